@@ -1,0 +1,23 @@
+# Quick start: `make demo` runs the embedded default job, `make test` runs the test suite.
+# Both create the virtual environment in .venv on first use and reuse it afterwards.
+SHELL := /bin/bash
+export OMP_WAIT_POLICY := PASSIVE
+export PYTHONDONTWRITEBYTECODE := 1
+VENV := .venv
+
+.PHONY: setup demo test test-slow bench clean
+
+setup:
+	@bash scripts/setup-env.sh
+
+demo: setup
+	@$(VENV)/bin/unsew demo $(ARGS)
+
+test: setup
+	@$(VENV)/bin/python -m pytest -q -m "not slow" $(ARGS)
+
+test-slow: setup
+	@$(VENV)/bin/python -m pytest -q -m slow $(ARGS)
+
+clean:
+	rm -rf $(VENV) .pytest_cache build src/*.egg-info

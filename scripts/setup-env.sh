@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Create or reuse the project's virtual environment in .venv.
+# Installs exactly torch==2.13.0 (the CPU build that pip finds in the local wheel folder on our
+# machines; never the multi-GB CUDA build), then unsew itself in editable mode with its test extra.
+# A second run finds the stamp up to date and returns in well under a second.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+PY=${PYTHON:-python3.11}
+command -v "$PY" >/dev/null 2>&1 || PY=python3
+VENV=.venv
+STAMP=$VENV/.unsew-setup
+want=$(cat pyproject.toml scripts/setup-env.sh | sha256sum | cut -d' ' -f1)
+if [ -f "$STAMP" ] && [ "$(cat "$STAMP")" = "$want" ] && [ -x "$VENV/bin/unsew" ]; then
+    exit 0
+fi
+echo "unsew: setting up $VENV (first run only; about a minute)" >&2
+[ -x "$VENV/bin/python" ] || "$PY" -m venv "$VENV"
+pip_args=(--disable-pip-version-check -q)
+links=()
+for d in /opt/wheels; do [ -d "$d" ] && links+=(--find-links "$d"); done
+if ! "$VENV/bin/python" -c "import torch, sys; sys.exit(0 if torch.__version__.startswith('2.13.0') else 1)" 2>/dev/null; then
+    # A CPU build of torch 2.13.0 is what we want. Where the local wheel folder has it, pip takes it;
+    # elsewhere the CPU wheel index is asked explicitly, so the CUDA build is never pulled.
+    if ls /opt/wheels/torch-2.13.0+cpu-*.whl >/dev/null 2>&1; then
+        "$VENV/bin/pip" install "${pip_args[@]}" "${links[@]}" "torch==2.13.0"
+    else
+        "$VENV/bin/pip" install "${pip_args[@]}" "torch==2.13.0" --index-url https://download.pytorch.org/whl/cpu
+    fi
+fi
+"$VENV/bin/pip" install "${pip_args[@]}" "${links[@]}" -e ".[test]"
+echo "$want" > "$STAMP"

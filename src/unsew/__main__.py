@@ -1,0 +1,3 @@
+from unsew.cli import main
+
+raise SystemExit(main())

@@ -1,0 +1,1 @@
+"""body stage of unsew (see docs/ARCHITECTURE.md)."""

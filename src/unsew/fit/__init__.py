@@ -1,0 +1,1 @@
+"""fit stage of unsew (see docs/ARCHITECTURE.md)."""

@@ -1,0 +1,1 @@
+"""grading stage of unsew (see docs/ARCHITECTURE.md)."""

@@ -1,0 +1,1 @@
+"""losses stage of unsew (see docs/ARCHITECTURE.md)."""

@@ -1,0 +1,1 @@
+"""meshing stage of unsew (see docs/ARCHITECTURE.md)."""

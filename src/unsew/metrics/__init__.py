@@ -1,0 +1,1 @@
+"""metrics stage of unsew (see docs/ARCHITECTURE.md)."""

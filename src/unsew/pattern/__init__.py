@@ -1,0 +1,1 @@
+"""pattern stage of unsew (see docs/ARCHITECTURE.md)."""

@@ -1,0 +1,1 @@
+"""sim stage of unsew (see docs/ARCHITECTURE.md)."""

@@ -1,0 +1,1 @@
+"""sim/energies stage of unsew (see docs/ARCHITECTURE.md)."""

@@ -1,0 +1,25 @@
+"""Named tolerances, in one place (STYLE.md habit 10). SI units."""
+
+__all__ = [
+    "GEOM_EPS",
+    "SYMMETRY_REL_TOL",
+    "STITCH_LENGTH_WARN_REL",
+    "COLLISION_THICKNESS",
+    "REBUILD_ATOL",
+]
+
+#: Lengths below this are treated as zero [m].
+GEOM_EPS = 1e-9
+
+#: Symmetry detection accepts an alignment whose RMS residual is below this fraction of the
+#: control points' RMS radius (Algorithm 1's epsilon, made scale-free).
+SYMMETRY_REL_TOL = 0.02
+
+#: Stitched edges whose lengths differ by more than this fraction get a warning.
+STITCH_LENGTH_WARN_REL = 0.05
+
+#: Collision thickness delta of paper eq. 4 [m].
+COLLISION_THICKNESS = 1e-3
+
+#: Control points rebuilt from K must equal the originals to this absolute tolerance [m].
+REBUILD_ATOL = 1e-9

@@ -1,0 +1,43 @@
+"""Shared test helpers (STYLE.md habit 10)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["assert_close"]
+
+
+def assert_close(actual, expected, *, atol: float = 0.0, rtol: float = 1e-7, what: str = "") -> None:
+    """Assert ``|actual - expected| <= atol + rtol*|expected|`` elementwise; on failure report the
+    largest difference, where it is, and both shapes."""
+    try:
+        import torch
+
+        if isinstance(actual, torch.Tensor):
+            actual = actual.detach().cpu().numpy()
+        if isinstance(expected, torch.Tensor):
+            expected = expected.detach().cpu().numpy()
+    except ImportError:  # pragma: no cover
+        pass
+    a = np.asarray(actual, dtype=np.float64)
+    e = np.asarray(expected, dtype=np.float64)
+    if a.shape != e.shape:
+        try:
+            np.broadcast_shapes(a.shape, e.shape)
+        except ValueError:
+            raise AssertionError(f"{what}shape mismatch: actual {a.shape} vs expected {e.shape}") from None
+    a_b, e_b = np.broadcast_arrays(a, e)
+    if not np.isfinite(a_b).all():
+        bad = np.argwhere(~np.isfinite(a_b))[0]
+        raise AssertionError(f"{what}non-finite value at {tuple(bad)} (shape {a.shape})")
+    diff = np.abs(a_b - e_b)
+    tol = atol + rtol * np.abs(e_b)
+    if (diff <= tol).all():
+        return
+    excess = diff - tol
+    idx = np.unravel_index(int(np.argmax(excess)), excess.shape) if excess.ndim else ()
+    raise AssertionError(
+        f"{what}not close: largest difference {diff[idx]:.3e} at index {tuple(int(i) for i in idx)} "
+        f"(actual {a_b[idx]!r}, expected {e_b[idx]!r}, atol {atol:g}, rtol {rtol:g}); "
+        f"shapes actual {a.shape} expected {e.shape}; {int((diff > tol).sum())} of {diff.size} out of tolerance"
+    )
