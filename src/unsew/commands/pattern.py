@@ -1,0 +1,50 @@
+"""``unsew pattern {new,mesh,symmetry,export}``: make, mesh, analyse and export sewing patterns.
+
+Each subcommand's work lives in its own private module (``_pattern_<verb>.py``) imported only
+when that subcommand runs, so ``unsew --help`` stays fast.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+
+__all__ = ["register"]
+
+GARMENTS = ["tshirt", "dress", "pants", "shorts", "skirt"]
+
+
+def _dispatch(verb: str):
+    def run(args: argparse.Namespace) -> int:
+        return importlib.import_module(f"unsew.commands._pattern_{verb}").run(args)
+
+    return run
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("pattern", help="make, mesh, analyse and export sewing patterns")
+    psub = p.add_subparsers(dest="pattern_command", metavar="VERB", required=True)
+
+    new = psub.add_parser("new", help="write a base pattern sized to body measurements")
+    new.add_argument("garment", choices=GARMENTS)
+    new.add_argument("--measurements", metavar="M.yaml", help="body measurements in metres (YAML); default: the default body")
+    new.add_argument("--out", required=True, metavar="P.json", help="GarmentCode JSON to write")
+    new.set_defaults(func=_dispatch("new"))
+
+    mesh = psub.add_parser("mesh", help="triangulate the panels and sew them into one garment mesh")
+    mesh.add_argument("pattern", metavar="P.json")
+    mesh.add_argument("--edge-length", type=float, default=0.02, help="target edge length [m] (0.01-0.03)")
+    mesh.add_argument("--out", required=True, metavar="REST.obj", help="flat panels as OBJ (pattern coordinates as UVs)")
+    mesh.set_defaults(func=_dispatch("mesh"))
+
+    sym = psub.add_parser("symmetry", help="detect panel pairs and mirror axes; count control points")
+    sym.add_argument("pattern", metavar="P.json")
+    sym.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    sym.set_defaults(func=_dispatch("symmetry"))
+
+    exp = psub.add_parser("export", help="write SVG (true scale) and/or DXF (AAMA/ASTM-style layers)")
+    exp.add_argument("pattern", metavar="P.json")
+    exp.add_argument("--svg", metavar="P.svg")
+    exp.add_argument("--dxf", metavar="P.dxf")
+    exp.add_argument("--obj", metavar="P.obj", help="flat panels as OBJ")
+    exp.set_defaults(func=_dispatch("export"))
