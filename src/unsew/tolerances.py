@@ -6,6 +6,7 @@ __all__ = [
     "STITCH_LENGTH_WARN_REL",
     "COLLISION_THICKNESS",
     "REBUILD_ATOL",
+    "FLAT_CURVATURE_TOL",
 ]
 
 #: Lengths below this are treated as zero [m].
@@ -23,3 +24,7 @@ COLLISION_THICKNESS = 1e-3
 
 #: Control points rebuilt from K must equal the originals to this absolute tolerance [m].
 REBUILD_ATOL = 1e-9
+
+#: A mesh whose area-weighted mean |H| times sqrt(area) is below this (dimensionless) is flat:
+#: its curvature weights are exactly 1 (unsew.losses.curvature).
+FLAT_CURVATURE_TOL = 1e-8
