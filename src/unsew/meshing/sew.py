@@ -1,0 +1,261 @@
+"""Panel meshes and the sewn garment mesh (paper 3.2, "Parameterization" and "Sewn garment shape").
+
+``mesh_pattern`` samples every panel edge at a target edge length, giving the two sides of each
+stitch the same number of segments, triangulates every panel (:mod:`unsew.meshing.triangulate`),
+and merges stitched vertices into the sewn mesh X. The 2D rest mesh U keeps one vertex per panel
+corner/sample; the map X <- U (``x_of_u``) is one-to-many on seams and one-to-one elsewhere.
+
+Stitch convention (:mod:`unsew.pattern.model`): side ``a`` runs against side ``b``, so the k-th
+sample of ``a`` (from its start) is sewn to the k-th sample of ``b`` counted from its end.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from unsew.errors import InputError, PatternError
+from unsew.meshing.triangulate import signed_areas, triangle_min_angles, triangulate_polygon
+from unsew.pattern.curves import edge_length as _edge_length
+from unsew.pattern.curves import sample_edge
+from unsew.pattern.model import Pattern
+
+__all__ = ["GarmentMesh", "mesh_pattern", "euler_xyz_matrix", "write_rest_obj", "EDGE_LENGTH_RANGE"]
+
+#: Accepted target edge lengths [m] (smaller is too slow to simulate, larger too coarse to drape).
+EDGE_LENGTH_RANGE = (0.005, 0.1)
+
+
+@dataclass
+class GarmentMesh:
+    """The 2D rest mesh U of all panels and the sewn 3D topology X (docs/ARCHITECTURE.md).
+
+    uv: 2D rest positions [m], (Nu, 2) float64, each panel in its own frame.
+    uv_panel: panel index (into ``panel_names``) of each uv vertex, (Nu,) int64.
+    faces_uv: triangles into ``uv``, (F, 3) int64, counter-clockwise in 2D.
+    x_of_u: sewn vertex of each uv vertex, (Nu,) int64, values in [0, n_x).
+    faces: the same triangles into the sewn vertices, (F, 3) int64 (= x_of_u[faces_uv]).
+    n_x: number of sewn vertices.
+    panel_names: panel names, = pattern.panel_order.
+    edge_verts: (panel name, edge index) -> uv indices along that edge, (k,) int64, start to end,
+        corners included.
+    seam_pairs: uv index pairs sewn together, (S, 2) int64 (side a, side b).
+    uv_placed3d: flat panels placed in 3D by their translation/rotation [m], (Nu, 3) float64.
+    panel_offsets: first uv index of each panel and Nu at the end, (P+1,) int64; a panel's
+        boundary vertices come first, in outline order, then its interior vertices.
+    n_boundary: number of boundary (outline) vertices of each panel, (P,) int64.
+    edge_length: target edge length used [m].
+    """
+
+    uv: np.ndarray
+    uv_panel: np.ndarray
+    faces_uv: np.ndarray
+    x_of_u: np.ndarray
+    faces: np.ndarray
+    n_x: int
+    panel_names: list[str]
+    edge_verts: dict
+    seam_pairs: np.ndarray
+    uv_placed3d: np.ndarray
+    panel_offsets: np.ndarray = field(default_factory=lambda: np.zeros(1, dtype=np.int64))
+    n_boundary: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
+    edge_length: float = 0.02
+
+    @property
+    def n_uv(self) -> int:
+        """Number of 2D rest vertices Nu."""
+        return int(len(self.uv))
+
+    def boundary_loop(self, p: int) -> np.ndarray:
+        """uv indices (k,) int64 of panel ``p``'s outline, counter-clockwise, starting at the start
+        of its edge 0."""
+        o = int(self.panel_offsets[p])
+        return np.arange(o, o + int(self.n_boundary[p]), dtype=np.int64)
+
+    def interior(self, p: int) -> np.ndarray:
+        """uv indices (k,) int64 of panel ``p``'s interior (non-outline) vertices."""
+        return np.arange(
+            int(self.panel_offsets[p]) + int(self.n_boundary[p]), int(self.panel_offsets[p + 1]), dtype=np.int64
+        )
+
+    def min_angle(self) -> float:
+        """Smallest triangle angle [deg] over the whole 2D mesh."""
+        return float(triangle_min_angles(self.uv, self.faces_uv).min())
+
+    def quality(self) -> dict:
+        """Mesh figures: vertices (uv and sewn), triangles, min angle [deg], smallest signed area
+        [m^2], count of non-counter-clockwise or degenerate triangles."""
+        area = signed_areas(self.uv, self.faces_uv)
+        return {
+            "uv_vertices": self.n_uv,
+            "sewn_vertices": int(self.n_x),
+            "triangles": int(len(self.faces_uv)),
+            "min_angle_deg": self.min_angle(),
+            "min_area_m2": float(area.min()),
+            "bad_triangles": int((area <= 1e-14).sum()),
+        }
+
+
+def euler_xyz_matrix(rotation_deg: np.ndarray) -> np.ndarray:
+    """Rotation matrix (3, 3) float64 of GarmentCode's panel rotation: intrinsic XYZ Euler
+    angles [deg], shape (3,), i.e. ``R = Rx(a) @ Ry(b) @ Rz(c)`` (scipy's
+    ``Rotation.from_euler('XYZ', r, degrees=True)``, the convention of pygarment's ``Panel``)."""
+    a, b, c = np.radians(np.asarray(rotation_deg, dtype=np.float64).reshape(3))
+    ca, sa, cb, sb, cc, sc = np.cos(a), np.sin(a), np.cos(b), np.sin(b), np.cos(c), np.sin(c)
+    rx = np.array([[1, 0, 0], [0, ca, -sa], [0, sa, ca]])
+    ry = np.array([[cb, 0, sb], [0, 1, 0], [-sb, 0, cb]])
+    rz = np.array([[cc, -sc, 0], [sc, cc, 0], [0, 0, 1]])
+    return rx @ ry @ rz
+
+
+class _UnionFind:
+    def __init__(self, n: int) -> None:
+        self.parent = np.arange(n)
+
+    def find(self, i: int) -> int:
+        p = self.parent
+        root = i
+        while p[root] != root:
+            root = p[root]
+        while p[i] != root:
+            p[i], i = root, p[i]
+        return int(root)
+
+    def union(self, i: int, j: int) -> None:
+        ri, rj = self.find(i), self.find(j)
+        if ri != rj:
+            self.parent[max(ri, rj)] = min(ri, rj)
+
+
+def _segments_per_edge(pattern: Pattern, edge_length: float) -> dict:
+    """Number of segments of every (panel, edge); both sides of a stitch (and chains of stitches)
+    get the largest count any of them asks for."""
+    keys = [(name, i) for name in pattern.panel_order for i in range(len(pattern.panels[name].edges))]
+    index = {k: j for j, k in enumerate(keys)}
+    n = np.array(
+        [max(1, math.ceil(_edge_length(pattern.panels[k[0]], k[1]) / edge_length - 1e-9)) for k in keys], dtype=np.int64
+    )
+    uf = _UnionFind(len(keys))
+    for s in pattern.stitches:
+        for side in (s.a, s.b):
+            if (side.panel, side.edge) not in index:
+                raise PatternError(
+                    f"stitch {s.label or ''} refers to panel {side.panel!r} edge {side.edge}, which does not exist; "
+                    "fix the stitch or add the panel"
+                )
+        uf.union(index[(s.a.panel, s.a.edge)], index[(s.b.panel, s.b.edge)])
+    roots = np.array([uf.find(j) for j in range(len(keys))])
+    best = np.zeros(len(keys), dtype=np.int64)
+    np.maximum.at(best, roots, n)
+    return {k: int(best[roots[j]]) for j, k in enumerate(keys)}
+
+
+def mesh_pattern(pattern: Pattern, *, edge_length: float = 0.02, min_angle: float = 20.0) -> GarmentMesh:
+    """Triangulate every panel and sew the panels into one garment mesh.
+
+    pattern: the sewing pattern (panels closed, counter-clockwise; see unsew.pattern.validate).
+    edge_length: target edge length h [m], in [0.005, 0.1]. Each edge gets
+        n = max(1, ceil(length / h)) segments of equal arc length (stitched sides share n).
+    min_angle: triangle quality bound [deg] (interior triangles; a sharper outline corner keeps
+        its own angle).
+
+    Returns a :class:`GarmentMesh` (shapes in its docstring).
+    """
+    lo, hi = EDGE_LENGTH_RANGE
+    if not (lo <= float(edge_length) <= hi):
+        raise InputError(f"edge length {edge_length:g} m is outside {lo:g}-{hi:g} m; pass e.g. --edge-length 0.02")
+    if not (0.0 <= float(min_angle) <= 33.0):
+        raise InputError(f"minimum angle {min_angle:g} deg is outside 0-33 deg (Triangle's guaranteed range)")
+    if not pattern.panel_order:
+        raise PatternError("the pattern has no panels; add at least one panel")
+    nseg = _segments_per_edge(pattern, edge_length)
+
+    uvs, panels_of, tris_all, placed = [], [], [], []
+    edge_verts: dict = {}
+    offsets = [0]
+    n_boundary = []
+    for p, name in enumerate(pattern.panel_order):
+        panel = pattern.panels[name]
+        parts, starts = [], []
+        m = 0
+        for i in range(len(panel.edges)):
+            pts = sample_edge(panel, i, nseg[(name, i)])[:-1]
+            starts.append(m)
+            parts.append(pts)
+            m += len(pts)
+        outline = np.concatenate(parts, axis=0)
+        verts, tris = triangulate_polygon(outline, edge_length=edge_length, min_angle=min_angle, name=name)
+        o = offsets[-1]
+        for i in range(len(panel.edges)):
+            k = nseg[(name, i)]
+            edge_verts[(name, i)] = o + (starts[i] + np.arange(k + 1)) % m
+        uvs.append(verts)
+        panels_of.append(np.full(len(verts), p, dtype=np.int64))
+        tris_all.append(tris + o)
+        r = euler_xyz_matrix(panel.rotation)
+        placed.append(np.c_[verts, np.zeros(len(verts))] @ r.T + panel.translation)
+        n_boundary.append(m)
+        offsets.append(o + len(verts))
+
+    uv = np.concatenate(uvs, axis=0)
+    faces_uv = np.concatenate(tris_all, axis=0).astype(np.int64)
+    pairs = []
+    for s in pattern.stitches:
+        ea = edge_verts[(s.a.panel, s.a.edge)]
+        eb = edge_verts[(s.b.panel, s.b.edge)]
+        pairs.append(np.stack([ea, eb[::-1]], axis=1))
+    seam_pairs = np.concatenate(pairs, axis=0).astype(np.int64) if pairs else np.zeros((0, 2), dtype=np.int64)
+
+    uf = _UnionFind(len(uv))
+    for i, j in seam_pairs:
+        uf.union(int(i), int(j))
+    roots = np.array([uf.find(i) for i in range(len(uv))], dtype=np.int64)
+    _, x_of_u = np.unique(roots, return_inverse=True)  # roots are min indices: X keeps U's order
+    x_of_u = x_of_u.astype(np.int64)
+    return GarmentMesh(
+        uv=uv,
+        uv_panel=np.concatenate(panels_of),
+        faces_uv=faces_uv,
+        x_of_u=x_of_u,
+        faces=x_of_u[faces_uv],
+        n_x=int(x_of_u.max()) + 1,
+        panel_names=list(pattern.panel_order),
+        edge_verts=edge_verts,
+        seam_pairs=seam_pairs,
+        uv_placed3d=np.concatenate(placed, axis=0),
+        panel_offsets=np.asarray(offsets, dtype=np.int64),
+        n_boundary=np.asarray(n_boundary, dtype=np.int64),
+        edge_length=float(edge_length),
+    )
+
+
+def write_rest_obj(mesh: GarmentMesh, path: str | os.PathLike) -> None:
+    """Write the flat panels as an OBJ [m]: vertices = ``uv_placed3d`` (Nu, 3), texture
+    coordinates = the pattern's 2D coordinates ``uv`` [m], faces ``faces_uv``. Atomic: written to a
+    temporary name in the same folder, then renamed."""
+    try:
+        from unsew.io.mesh import write_obj
+    except ImportError:
+        write_obj = None
+    if write_obj is not None:
+        write_obj(path, mesh.uv_placed3d, mesh.faces_uv, uv=mesh.uv, faces_uv=mesh.faces_uv)
+        return
+    path = os.fspath(path)
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise InputError(f"cannot write {path}: folder {folder} does not exist")
+    tmp = os.path.join(folder, f".{os.path.basename(path)}.{os.getpid()}.{time.time_ns()}.tmp")
+    try:
+        with open(tmp, "w") as f:
+            f.write("# unsew rest mesh (flat panels); units: m; vt: pattern coordinates [m]\n")
+            f.write("".join(f"v {x:.9g} {y:.9g} {z:.9g}\n" for x, y, z in mesh.uv_placed3d))
+            f.write("".join(f"vt {u:.9g} {v:.9g}\n" for u, v in mesh.uv))
+            f.write("".join(f"f {a}/{a} {b}/{b} {c}/{c}\n" for a, b, c in mesh.faces_uv + 1))
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)

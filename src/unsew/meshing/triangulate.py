@@ -1,0 +1,81 @@
+"""Triangulation of one flat panel with Shewchuk's Triangle (the ``triangle`` package).
+
+The panel's outline arrives already sampled (a closed polygon, counter-clockwise, last point not
+repeated). Triangle is called as a constrained, quality-conforming Delaunay triangulation with
+no Steiner points on the boundary (switch ``Y``), so the outline's vertices are exactly the
+first vertices of the result and seams sampled identically on two panels stay vertex to vertex.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from unsew.errors import PatternError
+
+__all__ = ["triangulate_polygon", "triangle_min_angles", "signed_areas"]
+
+
+def triangulate_polygon(
+    boundary: np.ndarray, *, edge_length: float, min_angle: float = 20.0, name: str = "panel"
+) -> tuple[np.ndarray, np.ndarray]:
+    """Triangulate the inside of a simple closed polygon.
+
+    boundary: outline [m], shape (M, 2), float64, counter-clockwise, last point not repeated.
+    edge_length: target edge length h [m]; triangles get a maximum area of sqrt(3)/4 * h^2.
+    min_angle: quality bound [deg] passed to Triangle (Triangle guarantees up to about 33 deg;
+        corners of the outline sharper than this bound keep their angle).
+    name: panel name used in error messages.
+
+    Returns (verts (V, 2) float64 [m], tris (T, 3) int64): the first M vertices are ``boundary``
+    itself, unchanged; triangles are counter-clockwise.
+    """
+    import triangle
+
+    boundary = np.ascontiguousarray(boundary, dtype=np.float64)
+    m = len(boundary)
+    if m < 3:
+        raise PatternError(f"panel {name!r}: outline has {m} points, need at least 3; check its edges")
+    seg = np.stack([np.arange(m), (np.arange(m) + 1) % m], axis=1).astype(np.int32)
+    max_area = math.sqrt(3.0) / 4.0 * edge_length**2
+    # p: PSLG, q: quality (min angle), a: max area, Y: no Steiner points on segments, Q: quiet.
+    opts = f"pq{min_angle:.6f}a{max_area:.15f}YQ"  # fixed point: Triangle reads no exponents
+    try:
+        out = triangle.triangulate({"vertices": boundary, "segments": seg}, opts)
+    except Exception as exc:  # Triangle reports bad input as generic errors
+        raise PatternError(
+            f"panel {name!r}: triangulation failed ({exc}); check that its outline does not cross itself"
+        ) from None
+    verts = np.asarray(out.get("vertices", np.zeros((0, 2))), dtype=np.float64)
+    tris = np.asarray(out.get("triangles", np.zeros((0, 3))), dtype=np.int64)
+    if len(tris) == 0 or len(verts) < m or not np.array_equal(verts[:m], boundary):
+        raise PatternError(
+            f"panel {name!r}: triangulation lost its outline; check for repeated or crossing outline points"
+        )
+    area = signed_areas(verts, tris)
+    flip = area < 0
+    if flip.any():
+        tris[flip] = tris[flip][:, [0, 2, 1]]
+    return verts, tris
+
+
+def signed_areas(verts: np.ndarray, tris: np.ndarray) -> np.ndarray:
+    """Signed areas [m^2], shape (T,), of triangles tris (T, 3) int over verts (V, 2) [m];
+    positive for counter-clockwise triangles."""
+    a, b, c = verts[tris[:, 0]], verts[tris[:, 1]], verts[tris[:, 2]]
+    e1, e2 = b - a, c - a
+    return 0.5 * (e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+
+
+def triangle_min_angles(verts: np.ndarray, tris: np.ndarray) -> np.ndarray:
+    """Smallest interior angle [deg] of each triangle, shape (T,), for verts (V, 2 or 3) [m]
+    and tris (T, 3) int."""
+    p = verts[tris]  # (T, 3, d)
+    ang = []
+    for k in range(3):
+        u = p[:, (k + 1) % 3] - p[:, k]
+        v = p[:, (k + 2) % 3] - p[:, k]
+        cosv = (u * v).sum(-1) / np.maximum(np.linalg.norm(u, axis=-1) * np.linalg.norm(v, axis=-1), 1e-300)
+        ang.append(np.degrees(np.arccos(np.clip(cosv, -1.0, 1.0))))
+    return np.min(np.stack(ang, axis=1), axis=1)
