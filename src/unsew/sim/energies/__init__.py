@@ -1,1 +1,1 @@
-"""sim/energies stage of unsew (see docs/ARCHITECTURE.md)."""
+"""One module per energy: membrane, bending, gravity, contact (+friction, projection), spring."""

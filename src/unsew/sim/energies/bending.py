@@ -1,0 +1,97 @@
+"""Bending energy on hinge quads: dihedral angle of Bridson, Marino, Fedkiw 2005 (paper eq. 3).
+
+For an interior edge e = x1 - x0 shared by triangles (x0, x1, x2) and (x1, x0, x3), with the
+(unnormalised) normals n1 = e x (x2 - x0), n2 = (x3 - x0) x e, the signed bend angle about e is
+
+    theta = atan2((n1 x n2) . e/|e|, n1 . n2)        (0 when flat; patterns are flat at rest)
+
+and the energy (the "discrete shells" form, Grinspun et al. 2003, whose force is Bridson's
+k |e|^2/(A1+A2) * (angle term) * u_i with u_i = d theta/d x_i)
+
+    W = (D/2) * 3 |e_r|^2 / (A1_r + A2_r) * (theta - theta0)^2,
+
+with rest (pattern) edge length |e_r| and rest areas A_r, D = Gamma[4] the bending rigidity
+[N*m]. For a sheet bent uniformly to curvature kappa this approximates D/2 kappa^2 per unit
+area (checked in tests/verification). We use theta - theta0 rather than Bridson's
+sin(theta/2) - sin(theta0/2): the same to second order, and quadratic, so W is convex in theta.
+
+Gradient (Bridson 2003 / Tamstorf and Grinspun 2013), checked against autograd in the tests:
+    d theta/dx2 = -|e| n1/|n1|^2,   d theta/dx3 = -|e| n2/|n2|^2,
+    d theta/dx0 = -(1 - t1) g2 - (1 - t2) g3,   d theta/dx1 = -t1 g2 - t2 g3,
+    t_i = (x_{i+1} - x0) . e / |e|^2 (projection of the opposite vertex on the edge).
+Hessian for the system: the Gauss-Newton part 2 c (d theta/dx)(d theta/dx)^T, PSD (rank 1);
+the term 2 c (theta - theta0) d2 theta/dx2 is left out of the matrix (not of the forces).
+"""
+
+from __future__ import annotations
+
+import torch
+
+__all__ = ["bending_rest", "energy_bending", "dihedral_angle"]
+
+
+def bending_rest(uv: torch.Tensor, faces_uv: torch.Tensor, hinge_faces, hinge_uv_edges, rest_area):
+    """Per-hinge rest coefficient c = 3 |e_r|^2 / (A1_r + A2_r) [-] (dimensionless), shape (H,).
+
+    Args:
+        uv: rest positions [m], (Nu, 2). faces_uv: (F, 3) int64.
+        hinge_faces: (H, 2) int64; hinge_uv_edges: (H, 4) int64 (see model.build_hinges).
+        rest_area: rest triangle areas [m^2], (F,).
+    """
+    ea = (uv[hinge_uv_edges[:, 1]] - uv[hinge_uv_edges[:, 0]]).pow(2).sum(-1)
+    eb = (uv[hinge_uv_edges[:, 3]] - uv[hinge_uv_edges[:, 2]]).pow(2).sum(-1)
+    e2 = 0.5 * (ea + eb)  # the two sides of a seam may differ slightly: take the mean
+    return 3.0 * e2 / (rest_area[hinge_faces[:, 0]] + rest_area[hinge_faces[:, 1]])
+
+
+def _cross(a, b):
+    return torch.linalg.cross(a, b, dim=-1)
+
+
+def dihedral_angle(x: torch.Tensor, hinges: torch.Tensor):
+    """Signed bend angle theta [rad] of each hinge, shape (H,), and its gradient (H, 4, 3) [rad/m].
+
+    x: positions [m] (N, 3); hinges: (H, 4) int64 (x0, x1 edge; x2, x3 opposite)."""
+    X = x[hinges]  # (H, 4, 3)
+    x0, x1, x2, x3 = X.unbind(1)
+    e = x1 - x0
+    el = e.norm(dim=-1)
+    n1 = _cross(e, x2 - x0)
+    n2 = _cross(x3 - x0, e)
+    n1s = (n1 * n1).sum(-1)
+    n2s = (n2 * n2).sum(-1)
+    theta = torch.atan2((_cross(n1, n2) * e).sum(-1) / el, (n1 * n2).sum(-1))
+    g2 = -(el / n1s)[:, None] * n1
+    g3 = -(el / n2s)[:, None] * n2
+    e2 = el * el
+    t1 = ((x2 - x0) * e).sum(-1) / e2
+    t2 = ((x3 - x0) * e).sum(-1) / e2
+    g0 = -(1 - t1)[:, None] * g2 - (1 - t2)[:, None] * g3
+    g1 = -t1[:, None] * g2 - t2[:, None] * g3
+    return theta, torch.stack([g0, g1, g2, g3], 1)
+
+
+def energy_bending(x, hinges, coef, gamma, *, theta0=None, hessian: bool = True):
+    """Bending energy, per-hinge gradient and Gauss-Newton Hessian.
+
+    Args:
+        x: positions [m], (N, 3) float64. hinges: (H, 4) int64.
+        coef: (H,) from :func:`bending_rest`. gamma: (5,), uses D = gamma[4] [N*m].
+        theta0: rest angles [rad] (H,) or None (flat).
+
+    Returns:
+        energy [J] scalar; grad (H, 4, 3) [N]; hess (H, 12, 12) [N/m] PSD or None.
+    """
+    if hinges.shape[0] == 0:
+        z = x.new_zeros(())
+        return z, x.new_zeros(0, 4, 3), (x.new_zeros(0, 12, 12) if hessian else None)
+    theta, dth = dihedral_angle(x, hinges)
+    d = theta if theta0 is None else theta - theta0
+    c = 0.5 * gamma[4] * coef  # (H,) [N*m]
+    energy = (c * d * d).sum()
+    grad = (2.0 * c * d)[:, None, None] * dth
+    if not hessian:
+        return energy, grad, None
+    gf = dth.reshape(-1, 12)
+    hess = (2.0 * c)[:, None, None] * gf[:, :, None] * gf[:, None, :]
+    return energy, grad, hess

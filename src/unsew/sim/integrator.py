@@ -1,0 +1,201 @@
+"""One implicit Euler step (paper eq. 1), batched, differentiable.
+
+Paper eq. 1, (M - dt^2 J) dv = dt (f + dt J v), with J = -K (K the stiffness, the sum of
+PSD-projected element Hessians), is the same as solving for the new velocity
+
+    (M + dt D + dt^2 K) v' = M v + dt f(x, v),       x' = x + dt v',
+
+where D is the lagged friction damping (friction is applied implicitly, see
+energies/contact.py). Pinned vertices keep their velocity (rows/cols replaced by identity).
+After the step, vertices inside the body are projected out (paper eq. 4).
+
+All of it is torch: a loss on the result back-propagates to the rest shape (through areas, B,
+masses, bending coefficients), to Gamma, and to the state, with the linear solve's adjoint
+reusing the forward factorization (solve.py).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import torch
+
+from unsew.errors import PatternError, SimulationError
+from unsew.sim.assembly import scatter_blocks, scatter_vertex
+from unsew.sim.energies.bending import bending_rest, energy_bending
+from unsew.sim.energies.contact import energy_contact, friction_damping, project_out
+from unsew.sim.energies.gravity import mass_lumped
+from unsew.sim.energies.membrane import energy_membrane, membrane_rest
+from unsew.sim.energies.spring import energy_spring
+from unsew.sim.model import SimModel
+from unsew.sim.solve import SparsePattern, sparse_solve
+from unsew.sim.state import SimState
+
+__all__ = ["StepParams", "RestData", "rest_data", "step", "forces", "total_energy"]
+
+
+@dataclass(frozen=True)
+class StepParams:
+    """Settings of a step (SI units).
+
+    Attributes:
+        dt: time step [s].
+        gravity: gravitational acceleration along -Y [m/s^2].
+        friction: Coulomb coefficient with the body [-].
+        contact_stiffness: kc of the repulsion [N/m^4].
+        contact_threshold: distance below which repulsion acts [m].
+        thickness: collision thickness delta of eq. 4 [m].
+        spring_stiffness: zero-length seam springs [N/m] (sewing phase).
+        max_speed: a vertex faster than this means divergence [m/s].
+        friction_eps: slip speed below which friction is viscous [m/s].
+        backend: linear solver, "cholespy" or "scipy".
+    """
+
+    dt: float = 0.05
+    gravity: float = 9.81
+    friction: float = 0.3
+    contact_stiffness: float = 1e8
+    contact_threshold: float = 5e-3
+    thickness: float = 1e-3
+    spring_stiffness: float = 100.0
+    max_speed: float = 50.0
+    friction_eps: float = 1e-2
+    backend: str = "cholespy"
+
+
+@dataclass
+class RestData:
+    """Rest-shape quantities (differentiable in uv and density).
+
+    area (F,) [m^2]; B (F, 3, 2) [1/m]; coef (H,) bending coefficients; mass (N,) [kg];
+    vert_area (N,) [m^2]."""
+
+    area: torch.Tensor
+    B: torch.Tensor
+    coef: torch.Tensor
+    mass: torch.Tensor
+    vert_area: torch.Tensor
+
+
+def rest_data(model: SimModel, uv: torch.Tensor, density) -> RestData:
+    """Rest quantities from the pattern uv (Nu, 2) [m] and density [kg/m^2].
+
+    Raises PatternError on a degenerate or clockwise (inverted) rest triangle."""
+    area, B, signed = membrane_rest(uv, model.faces_uv)
+    with torch.no_grad():
+        u = uv[model.faces_uv]
+        e2 = torch.stack([(u[:, 1] - u[:, 0]), (u[:, 2] - u[:, 1]), (u[:, 0] - u[:, 2])], 1).pow(2).sum(-1)
+        quality = 2.0 * signed / e2.max(dim=1).values.clamp_min(1e-300)  # height / longest edge
+        bad = quality < 1e-4
+        if bool(bad.any()):
+            i = int(torch.nonzero(bad)[0])
+            kind = "inverted (clockwise)" if float(signed[i]) < 0 else "degenerate"
+            raise PatternError(
+                f"rest triangle {i} of the pattern mesh is {kind} (height/edge {float(quality[i]):.2e}); "
+                f"{int(bad.sum())} such triangles: remesh the pattern or fix the panel outline"
+            )
+    vert_area = scatter_vertex(model.n, model.faces, (area / 3.0)[:, None, None].expand(-1, 3, 3))[:, 0]
+    mass = vert_area * density
+    coef = bending_rest(uv, model.faces_uv, model.hinge_faces, model.hinge_uv_edges, area)
+    return RestData(area=area, B=B, coef=coef, mass=mass, vert_area=vert_area)
+
+
+def _pattern(model: SimModel) -> SparsePattern:
+    p = getattr(model, "_pattern_cache", None)
+    if p is None:
+        p = SparsePattern(3 * model.n, model.rows, model.cols)
+        pin = torch.zeros(p.rows.shape[0], dtype=torch.float64)
+        pdofs = torch.nonzero(model.pinned.repeat_interleave(3))[:, 0]
+        pin[model.diag_dst[pdofs]] = 1.0
+        p.pin_diag = pin
+        model._pattern_cache = p
+    return p
+
+
+def forces(model, rest, x, v, sdf, gamma, params: StepParams, *, gravity=None, hessian=True):
+    """Forces and system blocks at (x, v).
+
+    Returns f (N, 3) [N] (internal + gravity + contact + springs, without friction),
+    K values (nnz,) [N/m] (PSD stiffness, lower triangle), vertex blocks (N, 3, 3) [N/m] of
+    contact stiffness, friction damping D (N, 3, 3) [kg/s], and the SDF values (d, n)."""
+    g = params.gravity if gravity is None else gravity
+    d, n = sdf.query(x)
+    _, gm, Hm = energy_membrane(x, model.faces, rest.area, rest.B, gamma, hessian=hessian)
+    _, gb, Hb = energy_bending(x, model.hinges, rest.coef, gamma, hessian=hessian)
+    _, gc, Hc, fn = energy_contact(
+        d, n, rest.vert_area, stiffness=params.contact_stiffness, threshold=params.contact_threshold, hessian=hessian
+    )
+    grad = scatter_vertex(model.n, model.faces, gm) + scatter_vertex(model.n, model.hinges, gb) + gc
+    Hs = None
+    if model.springs.shape[0]:
+        _, gs, Hs = energy_spring(x, model.springs, params.spring_stiffness, hessian=hessian)
+        grad = grad + scatter_vertex(model.n, model.springs, gs)
+    f = -grad
+    f = torch.cat([f[:, :1], f[:, 1:2] - g * rest.mass[:, None], f[:, 2:]], 1)
+    if not hessian:
+        return f, None, None, None, (d, n)
+    nnz = model.nnz
+    K = scatter_blocks(nnz, model.tri_src, model.tri_dst, Hm) + scatter_blocks(nnz, model.hinge_src, model.hinge_dst, Hb)
+    if Hs is not None:
+        K = K + scatter_blocks(nnz, model.spring_src, model.spring_dst, Hs)
+    D = friction_damping(v, n, fn, params.friction, eps_v=params.friction_eps)
+    return f, K, Hc, D, (d, n)
+
+
+def total_energy(model, rest, x, sdf, gamma, params: StepParams, *, gravity=None):
+    """Total potential energy [J] (membrane + bending + contact + gravity + springs) at x (N, 3) [m]."""
+    from unsew.sim.energies.gravity import energy_gravity
+
+    g = params.gravity if gravity is None else gravity
+    d, n = sdf.query(x)
+    e = energy_membrane(x, model.faces, rest.area, rest.B, gamma, hessian=False)[0]
+    e = e + energy_bending(x, model.hinges, rest.coef, gamma, hessian=False)[0]
+    e = e + energy_contact(d, n, rest.vert_area, stiffness=params.contact_stiffness, threshold=params.contact_threshold, hessian=False)[0]
+    e = e + energy_gravity(x, rest.mass, g)[0]
+    if model.springs.shape[0]:
+        e = e + energy_spring(x, model.springs, params.spring_stiffness, hessian=False)[0]
+    return e
+
+
+def step(model: SimModel, rest: RestData, state: SimState, sdf, gamma, params: StepParams, *, index: int = 0, gravity=None) -> SimState:
+    """Advance one implicit Euler step of length params.dt.
+
+    Args:
+        model: static model. rest: :func:`rest_data` output. state: x, v (N, 3) [m], [m/s].
+        sdf: object with ``query(x) -> (d (N,), n (N, 3))``. gamma: (5,) Gamma.
+        params: :class:`StepParams`. index: step number (for error messages).
+        gravity: override of params.gravity for this step [m/s^2] (sewing ramps it in).
+
+    Returns:
+        the new :class:`SimState`.
+
+    Raises:
+        SimulationError: NaN or a vertex faster than params.max_speed.
+    """
+    dt = params.dt
+    x, v = state.x, state.v
+    N = model.n
+    f, K, Hc, D, _ = forces(model, rest, x, v, sdf, gamma, params, gravity=gravity)
+    eye = torch.eye(3, dtype=x.dtype, device=x.device)
+    vblk = rest.mass[:, None, None] * eye + dt * D + (dt * dt) * Hc  # (N, 3, 3)
+    A = (dt * dt) * K + scatter_blocks(model.nnz, model.vert_src, model.vert_dst, vblk)
+    pat = _pattern(model)
+    A = A * model.keep.to(A) + pat.pin_diag.to(A)
+    rhs = rest.mass[:, None] * v + dt * f  # (N, 3) [kg m/s]
+    pinned = model.pinned[:, None].to(x.device)
+    rhs = torch.where(pinned, v, rhs)
+    v_new = sparse_solve(A, rhs.reshape(-1), pat, backend=params.backend).reshape(N, 3)
+    with torch.no_grad():
+        speed = v_new.norm(dim=1)
+        bad = ~torch.isfinite(speed) | (speed > params.max_speed)
+        if bool(bad.any()):
+            s = torch.where(torch.isfinite(speed), speed, torch.full_like(speed, float("inf")))
+            i = int(torch.argmax(s))
+            raise SimulationError(
+                f"simulation diverged at step {index}: vertex {i} speed {float(speed[i]):.3g} m/s "
+                f"(limit {params.max_speed:g}); lower dt, check the material stiffness and the initial state"
+            )
+    x_new = x + dt * v_new
+    d, n = sdf.query(x_new)
+    x_new = project_out(x_new, d, n, thickness=params.thickness)
+    return SimState(x_new, v_new)

@@ -1,0 +1,225 @@
+"""Static simulation data: topology, hinge quads, sparsity pattern and index maps (paper 3.4.3).
+
+Everything here is built once per topology with numpy and stored as torch tensors; a step only
+gathers and scatters with these fixed indices (``index_add_``), never loops over elements and
+never coalesces a sparse matrix.
+
+The linear system is (3N x 3N), symmetric; we store its LOWER triangle (row >= col) as a COO
+list ``rows, cols`` (int32 for cholespy, sorted by row then column) and one value per entry.
+Each element block (triangle 9x9, hinge 12x12, spring 6x6, vertex 3x3) has a map from its flat
+entries that fall in the lower triangle (``*_src``) to positions in the value array (``*_dst``).
+Because element blocks are symmetric, dropping their upper part loses nothing.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import torch
+
+from unsew.errors import InputError
+
+__all__ = ["SimModel", "build_hinges"]
+
+
+def build_hinges(faces: np.ndarray, faces_uv: np.ndarray):
+    """Hinge quads of interior edges (edges shared by exactly two faces).
+
+    Args:
+        faces: (F, 3) int triangles into sim vertices.
+        faces_uv: (F, 3) int the same triangles into rest (uv) vertices.
+
+    Returns:
+        hinges: (H, 4) int64 sim vertices (x0, x1, x2, x3); x0 -> x1 is the shared edge as
+            ordered in the first face, x2 the first face's opposite vertex, x3 the second's.
+        hinge_faces: (H, 2) int64 the two faces.
+        hinge_uv_edges: (H, 4) int64 uv indices of the edge's end points in face 1 (2) and face 2 (2).
+        n_nonmanifold: number of edges with more than two faces (skipped).
+    """
+    F = faces.shape[0]
+    slot_a = np.array([0, 1, 2])
+    slot_b = np.array([1, 2, 0])
+    slot_o = np.array([2, 0, 1])
+    e0 = faces[:, slot_a].reshape(-1)  # (3F,) edge start
+    e1 = faces[:, slot_b].reshape(-1)
+    fid = np.repeat(np.arange(F), 3)
+    slot = np.tile(np.arange(3), F)
+    lo, hi = np.minimum(e0, e1), np.maximum(e0, e1)
+    key = lo.astype(np.int64) * (int(faces.max(initial=0)) + 1) + hi
+    order = np.argsort(key, kind="stable")
+    ks = key[order]
+    uniq, start, counts = np.unique(ks, return_index=True, return_counts=True)
+    two = counts == 2
+    ia = order[start[two]]
+    ib = order[start[two] + 1]
+    fa, fb = fid[ia], fid[ib]
+    sa, sb = slot[ia], slot[ib]
+    x0 = faces[fa, slot_a[sa]]
+    x1 = faces[fa, slot_b[sa]]
+    x2 = faces[fa, slot_o[sa]]
+    x3 = faces[fb, slot_o[sb]]
+    hinges = np.stack([x0, x1, x2, x3], 1).astype(np.int64)
+    hinge_faces = np.stack([fa, fb], 1).astype(np.int64)
+    uv_e = np.stack(
+        [faces_uv[fa, slot_a[sa]], faces_uv[fa, slot_b[sa]], faces_uv[fb, slot_a[sb]], faces_uv[fb, slot_b[sb]]], 1
+    ).astype(np.int64)
+    return hinges, hinge_faces, uv_e, int((counts > 2).sum())
+
+
+def _block_entries(elems: np.ndarray):
+    """Global scalar (row, col) of every entry of each element's (3k x 3k) block, flattened.
+
+    elems: (E, k) vertex indices. Returns rows, cols: (E*9k^2,) int64."""
+    E, k = elems.shape
+    dof = (3 * elems[:, :, None] + np.arange(3)[None, None, :]).reshape(E, 3 * k)  # (E, 3k)
+    rows = np.broadcast_to(dof[:, :, None], (E, 3 * k, 3 * k)).reshape(-1)
+    cols = np.broadcast_to(dof[:, None, :], (E, 3 * k, 3 * k)).reshape(-1)
+    return rows, cols
+
+
+@dataclass
+class SimModel:
+    """Static topology of a cloth for simulation (built by :meth:`SimModel.build`).
+
+    Attributes (torch tensors on the CPU unless moved):
+        n: number of sim vertices N.
+        n_rest: number of rest (uv) vertices Nu.
+        faces: (F, 3) int64 into sim vertices.
+        faces_uv: (F, 3) int64 into rest vertices.
+        hinges: (H, 4) int64, hinge_faces (H, 2), hinge_uv_edges (H, 4) (see :func:`build_hinges`).
+        springs: (S, 2) int64 zero-length springs between sim vertices (sewing phase).
+        pinned: (N,) bool; pinned vertices keep their velocity (dv = 0).
+        rows, cols: (nnz,) int32 lower-triangle COO pattern of the (3N x 3N) system.
+        diag_dst: (3N,) int64 value index of each diagonal entry.
+        tri_src/tri_dst, hinge_src/hinge_dst, spring_src/spring_dst, vert_src/vert_dst: int64
+            index maps from flat element blocks to the value array.
+        keep: (nnz,) float64 0 on rows/cols of pinned dofs, 1 elsewhere.
+        n_nonmanifold: interior edges skipped for bending (more than two faces).
+    """
+
+    n: int
+    n_rest: int
+    faces: torch.Tensor
+    faces_uv: torch.Tensor
+    hinges: torch.Tensor
+    hinge_faces: torch.Tensor
+    hinge_uv_edges: torch.Tensor
+    springs: torch.Tensor
+    pinned: torch.Tensor
+    rows: torch.Tensor
+    cols: torch.Tensor
+    diag_dst: torch.Tensor
+    tri_src: torch.Tensor
+    tri_dst: torch.Tensor
+    hinge_src: torch.Tensor
+    hinge_dst: torch.Tensor
+    spring_src: torch.Tensor
+    spring_dst: torch.Tensor
+    vert_src: torch.Tensor
+    vert_dst: torch.Tensor
+    keep: torch.Tensor
+    n_nonmanifold: int = 0
+
+    @property
+    def nnz(self) -> int:
+        """Number of stored (lower-triangle) entries of the system matrix."""
+        return int(self.rows.shape[0])
+
+    @classmethod
+    def build(cls, faces, faces_uv, *, springs=None, pinned=None, n: int | None = None, n_rest: int | None = None):
+        """Build the static model.
+
+        Args:
+            faces: (F, 3) int triangles into N sim vertices (sewn topology X).
+            faces_uv: (F, 3) int the same triangles into Nu rest vertices (2D pattern U).
+            springs: (S, 2) int pairs of sim vertices joined by zero-length springs (sewing), or None.
+            pinned: (N,) bool mask or (P,) int indices of vertices whose velocity is held, or None.
+            n: number of sim vertices (default faces.max() + 1).
+            n_rest: number of rest vertices (default faces_uv.max() + 1).
+
+        Raises:
+            InputError: empty or inconsistent faces, indices out of range.
+        """
+        faces = np.asarray(faces.detach().cpu() if torch.is_tensor(faces) else faces)
+        faces_uv = np.asarray(faces_uv.detach().cpu() if torch.is_tensor(faces_uv) else faces_uv)
+        if faces.ndim != 2 or faces.shape[1] != 3 or faces.shape[0] == 0:
+            raise InputError(f"faces must be a non-empty (F, 3) integer array, got shape {faces.shape}")
+        if faces_uv.shape != faces.shape:
+            raise InputError(f"faces_uv {faces_uv.shape} must have the same shape as faces {faces.shape}")
+        faces = faces.astype(np.int64)
+        faces_uv = faces_uv.astype(np.int64)
+        if faces.min() < 0 or faces_uv.min() < 0:
+            raise InputError("faces and faces_uv must hold non-negative vertex indices")
+        n = int(faces.max()) + 1 if n is None else int(n)
+        n_rest = int(faces_uv.max()) + 1 if n_rest is None else int(n_rest)
+        if faces.max() >= n or faces_uv.max() >= n_rest:
+            raise InputError(f"face indices out of range (N={n}, Nu={n_rest})")
+        if np.any((faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 0] == faces[:, 2])):
+            raise InputError("faces repeat a vertex within a triangle; remove degenerate faces")
+        if springs is None:
+            springs = np.zeros((0, 2), np.int64)
+        springs = np.asarray(springs.detach().cpu() if torch.is_tensor(springs) else springs).astype(np.int64)
+        springs = springs.reshape(-1, 2)
+        if springs.size and (springs.min() < 0 or springs.max() >= n):
+            raise InputError(f"springs index vertices out of range (N={n})")
+        springs = springs[springs[:, 0] != springs[:, 1]]
+        pin = np.zeros(n, bool)
+        if pinned is not None:
+            p = np.asarray(pinned.detach().cpu() if torch.is_tensor(pinned) else pinned)
+            if p.dtype == bool:
+                if p.shape != (n,):
+                    raise InputError(f"pinned mask must have shape ({n},), got {p.shape}")
+                pin = p.copy()
+            else:
+                pin[p.astype(np.int64)] = True
+
+        hinges, hinge_faces, hinge_uv, n_nm = build_hinges(faces, faces_uv)
+        verts = np.arange(n, dtype=np.int64)[:, None]
+
+        n3 = 3 * n
+        groups = [(faces, "tri"), (hinges, "hinge"), (springs, "spring"), (verts, "vert")]
+        all_keys = []
+        per = {}
+        for elems, name in groups:
+            r, c = _block_entries(elems) if elems.shape[0] else (np.zeros(0, np.int64), np.zeros(0, np.int64))
+            lower = np.nonzero(r >= c)[0]
+            key = r[lower] * n3 + c[lower]
+            per[name] = (lower, key)
+            all_keys.append(key)
+        keys = np.unique(np.concatenate(all_keys))
+        rows = (keys // n3).astype(np.int32)
+        cols = (keys % n3).astype(np.int32)
+        maps = {}
+        for name, (lower, key) in per.items():
+            maps[name] = (torch.from_numpy(lower), torch.from_numpy(np.searchsorted(keys, key)))
+        diag = np.arange(n3, dtype=np.int64)
+        diag_dst = np.searchsorted(keys, diag * n3 + diag)
+        free = ~np.repeat(pin, 3)
+        keep = (free[rows] & free[cols]).astype(np.float64)
+
+        t = torch.from_numpy
+        return cls(
+            n=n,
+            n_rest=n_rest,
+            faces=t(faces),
+            faces_uv=t(faces_uv),
+            hinges=t(hinges),
+            hinge_faces=t(hinge_faces),
+            hinge_uv_edges=t(hinge_uv),
+            springs=t(springs),
+            pinned=t(pin),
+            rows=t(rows),
+            cols=t(cols),
+            diag_dst=t(diag_dst),
+            tri_src=maps["tri"][0],
+            tri_dst=maps["tri"][1],
+            hinge_src=maps["hinge"][0],
+            hinge_dst=maps["hinge"][1],
+            spring_src=maps["spring"][0],
+            spring_dst=maps["spring"][1],
+            vert_src=maps["vert"][0],
+            vert_dst=maps["vert"][1],
+            keep=t(keep),
+            n_nonmanifold=n_nm,
+        )
