@@ -58,7 +58,8 @@ def test_mini_shirt_sleeves_pair_and_torso_mirrors():
 
 
 def test_rotated_copy_is_paired_without_reflection():
-    v = nonconvex_panel().panels["L"].vertices  # no mirror symmetry of its own
+    v = nonconvex_panel().panels["L"].vertices.copy()
+    v[4, 1] = 0.6  # an L with unequal arms: no mirror symmetry of its own
     w = (v - v.mean(0)) @ _rot(1.1).T + [1.0, 2.0]
     pat = Pattern("two", {"H": Panel("H", v, loop_edges(6)), "G": Panel("G", np.roll(w, 2, axis=0), loop_edges(6))})
     s = detect_symmetry(pat)
