@@ -1,0 +1,171 @@
+"""Base t-shirt: front, back, two short set-in sleeves (paper Fig. 2a).
+
+Front and back are mirror-symmetric about their vertical centre lines (x = 0 in the panel
+frame); the two sleeves are mirror images. Every panel is counter-clockwise seen from outside
+the garment, and stitches follow :mod:`unsew.pattern.model`'s convention (a.start meets b.end).
+
+Panel-frame layout of the front and back (x across, y up, y = 0 at the hem)::
+
+    edge 0 hem, 1 right side seam, 2 right armhole, 3 right shoulder, 4 neckline,
+    5 left shoulder, 6 left armhole, 7 left side seam
+    ("right"/"left" are the panel's +x/-x sides; the front's +x is the body's left).
+
+Sleeve (one panel per arm, its underarm seam sewn to itself)::
+
+    edge 0 hem, 1 +x underarm seam, 2 +x cap half, 3 -x cap half, 4 -x underarm seam
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from unsew.body.measurements import Measurements
+from unsew.pattern.base._build import cubic, place, rot_y180, solve_length, stitch, symmetric_panel
+from unsew.pattern.base._frame import BodyFrame, body_frame
+from unsew.pattern.curves import edge_length
+from unsew.pattern.model import Curvature, Panel, Pattern, Stitch
+
+__all__ = ["make_tshirt", "TopSpec", "top_panels", "sleeve_panels", "BUST_EASE"]
+
+#: Ease over the bust girth [m] (a regular-fit t-shirt: 8-15 cm).
+BUST_EASE = 0.12
+#: Ease over the hip girth at a t-shirt hem [m].
+HIP_EASE = 0.08
+#: Ease over the upper-arm girth [m].
+ARM_EASE = 0.08
+#: Front and back neckline depths below the neck points [m].
+FRONT_NECK_DEPTH = 0.08
+BACK_NECK_DEPTH = 0.02
+#: Short sleeve: cap top to hem [m].
+SHORT_SLEEVE_LENGTH = 0.22
+
+
+@dataclass(frozen=True)
+class TopSpec:
+    """The right half of a top's front/back below the underarm (panel frame [m], y = 0 at hem).
+
+    lower: points from the hem corner up to (excluding) the underarm point, (k, 2) [m].
+    lower_curves: curvatures of the k segments between them and the underarm point.
+    """
+
+    lower: tuple
+    lower_curves: tuple
+    hem_y: float  #: world height of the hem [m]
+
+
+def _neckline(a, b, depth: float) -> Curvature:
+    """Self-symmetric cubic neckline from the right neck point ``a`` to the left one ``b``,
+    dipping ``depth`` [m] at the centre."""
+    a, b = np.asarray(a), np.asarray(b)
+    # A cubic with both control points at height y - d*4/3 dips d at its middle.
+    y = a[1] - depth * 4.0 / 3.0
+    return cubic(a, b, (a[0] * 0.9, y), (b[0] * 0.9, y))
+
+
+def _armhole(under, tip) -> Curvature:
+    """Armhole from the underarm point up to the shoulder tip, scooped towards the centre."""
+    under, tip = np.asarray(under), np.asarray(tip)
+    dx, dy = under[0] - tip[0], tip[1] - under[1]
+    return cubic(under, tip, (under[0] - 0.9 * dx, under[1] + 0.02 * dy / 0.2), (tip[0] - 0.012, under[1] + 0.55 * dy))
+
+
+def top_panels(m: Measurements, f: BodyFrame, spec: TopSpec) -> tuple[Panel, Panel, int]:
+    """Front and back panels of a top [m]; returns (front, back, number of lower segments k).
+
+    Edge numbering (k lower segments): 0 hem; 1..k right side below the underarm; k+1 right
+    armhole; k+2 right shoulder; k+3 neckline; then the mirrored left edges.
+    """
+    w = (m.bust + BUST_EASE) / 4
+    neck_w = m.neck / (2 * np.pi) + 0.015
+    under = np.array([w, f.armpit_y - spec.hem_y])
+    tip = np.array([f.shoulder_x + 0.01, f.shoulder_y - spec.hem_y])
+    neck = np.array([neck_w, f.neck_y - spec.hem_y])
+    half = [np.asarray(p) for p in spec.lower] + [under, tip, neck]
+    curves = list(spec.lower_curves) + [_armhole(under, tip), None]
+    k = len(spec.lower)
+    labels = ["right_side"] * k + ["right_armhole", "right_shoulder"]
+    panels = []
+    for name, depth in (("front", FRONT_NECK_DEPTH), ("back", BACK_NECK_DEPTH)):
+        neck_l = neck * np.array([-1.0, 1.0])
+        p, _ = symmetric_panel(
+            name, half, curves, top=_neckline(neck, neck_l, depth), half_labels=labels,
+            bottom_label="hem", top_label="neckline",
+        )
+        panels.append(p)
+    front, back = panels
+    place(front, np.eye(3), (0.0, spec.hem_y, f.chest_z))
+    place(back, rot_y180(), (0.0, spec.hem_y, -f.chest_z))
+    return front, back, k
+
+
+def _sleeve(name: str, ws: float, cap_h: float, under_len: float) -> Panel:
+    half = [(ws - 0.01, -under_len), (ws, 0.0), (0.0, cap_h)]
+    a, b = np.array(half[1]), np.array(half[2])
+    cap = cubic(a, b, (0.55 * ws, 0.15 * cap_h), (0.3 * ws, cap_h))
+    p, _ = symmetric_panel(name, half, [None, cap], half_labels=["right_underarm", "right_cap"], bottom_label="hem")
+    return p
+
+
+def sleeve_panels(m: Measurements, f: BodyFrame, armhole_length: float, *, length: float = SHORT_SLEEVE_LENGTH):
+    """Left and right sleeves whose cap halves are ``armhole_length`` [m] long each.
+
+    The cap height is solved (bisection) so both cap halves match the armholes exactly.
+    Returns (left_sleeve, right_sleeve).
+    """
+    ws = (m.upper_arm + ARM_EASE) / 2
+    cap_h = solve_length(lambda h: _sleeve("s", ws, h, 0.1), 2, armhole_length, 0.01, 0.4)
+    under_len = max(length - cap_h, 0.04)
+    left = _sleeve("left_sleeve", ws, cap_h, under_len)
+    right = _sleeve("right_sleeve", ws, cap_h, under_len)
+    a, c, s = f.arm_angle, np.cos(f.arm_angle), np.sin(f.arm_angle)
+    # Laid over each arm, outer side up, cap top at the shoulder tip, hem towards the wrist.
+    R_left = np.column_stack([(0.0, 0.0, -1.0), (-c, s, 0.0), (s, c, 0.0)])
+    R_right = np.column_stack([(0.0, 0.0, 1.0), (c, s, 0.0), (-s, c, 0.0)])
+    up = 0.04
+    place(left, R_left, (f.shoulder_x + up * s, f.shoulder_y + up * c, 0.0), (0.0, cap_h))
+    place(right, R_right, (-f.shoulder_x - up * s, f.shoulder_y + up * c, 0.0), (0.0, cap_h))
+    del a
+    return left, right
+
+
+def top_stitches(k: int, *, sleeves: bool = True) -> list[Stitch]:
+    """Stitches of a top built by :func:`top_panels` (+ :func:`sleeve_panels`).
+
+    Front +x is the body's left, back +x the body's right (the back is seen from behind).
+    """
+    n = 2 * k + 6  # vertices (and edges) of a front/back panel
+    right = lambda i: i + 1  # noqa: E731  right-half segment i
+    left = lambda i: n - 1 - i  # noqa: E731  its mirror image
+    arm, sho = k, k + 1  # segment indices of armhole and shoulder
+    st = []
+    for i in range(k):
+        st.append(stitch("front", right(i), "back", left(i), "left_side" if k == 1 else f"left_side_{i}"))
+        st.append(stitch("back", right(i), "front", left(i), "right_side" if k == 1 else f"right_side_{i}"))
+    st.append(stitch("front", right(sho), "back", left(sho), "left_shoulder"))
+    st.append(stitch("back", right(sho), "front", left(sho), "right_shoulder"))
+    if sleeves:
+        # Sleeve edges: 1 +x underarm, 2 +x cap, 3 -x cap, 4 -x underarm. The left sleeve's +x
+        # side faces the back, the right sleeve's +x side faces the front.
+        st.append(stitch("front", right(arm), "left_sleeve", 3, "left_armhole_front"))
+        st.append(stitch("back", left(arm), "left_sleeve", 2, "left_armhole_back"))
+        st.append(stitch("front", left(arm), "right_sleeve", 2, "right_armhole_front"))
+        st.append(stitch("back", right(arm), "right_sleeve", 3, "right_armhole_back"))
+        st.append(stitch("left_sleeve", 1, "left_sleeve", 4, "left_underarm"))
+        st.append(stitch("right_sleeve", 1, "right_sleeve", 4, "right_underarm"))
+    return st
+
+
+def make_tshirt(m: Measurements | None = None) -> Pattern:
+    """A short-sleeved t-shirt sized to ``m`` (default: the default body), placed around it."""
+    m = m or Measurements()
+    f = body_frame(m)
+    hem_y = f.hip_y - 0.02
+    w_hem = max((m.hip + HIP_EASE) / 4, (m.bust + BUST_EASE) / 4)
+    spec = TopSpec(lower=((w_hem, 0.0),), lower_curves=(None,), hem_y=hem_y)
+    front, back, k = top_panels(m, f, spec)
+    arm_len = edge_length(front, k + 1)
+    left, right = sleeve_panels(m, f, arm_len)
+    panels = {p.name: p for p in (front, back, left, right)}
+    return Pattern("tshirt", panels, top_stitches(k), properties={"units_in_meter": 100, "curvature_coords": "relative"})
