@@ -1,1 +1,12 @@
-"""report stage of unsew (see docs/ARCHITECTURE.md)."""
+"""report stage of unsew (see docs/ARCHITECTURE.md): pictures and the HTML report of a fit.
+
+- :mod:`unsew.report.render`: ``render_mesh``, ``render_views``, ``render_comparison`` (garment
+  meshes to PNG, orthographic, matplotlib only).
+- :mod:`unsew.report.figures`: ``plot_loss_curves``, ``plot_patterns``, ``pattern_outlines``,
+  ``plot_histogram``.
+- :mod:`unsew.report.html`: ``write_report`` (one self-contained HTML file).
+
+Importing this package is cheap; matplotlib is imported by the functions that draw.
+"""
+
+__all__: list[str] = []
