@@ -1,0 +1,90 @@
+"""Panel areas, area error, panel correspondence and vertex L2."""
+
+import numpy as np
+import pytest
+
+from helpers import assert_close
+from unsew.errors import PatternError
+from unsew.metrics.panels import area_error, match_panels, panel_area, panel_vertex_l2_cm, pattern_metrics
+from unsew.pattern.model import Curvature, Edge, Panel, Pattern
+
+
+def _poly_panel(name, verts, *, label="", translation=(0, 0, 0), curv=None):
+    n = len(verts)
+    edges = [Edge(i, (i + 1) % n, (curv or {}).get(i)) for i in range(n)]
+    return Panel(name, np.asarray(verts, float), edges, np.asarray(translation, float), np.zeros(3), label)
+
+
+SQ = [[0, 0], [1, 0], [1, 1], [0, 1]]
+TRI = [[0, 0], [0.6, 0], [0.3, 0.5]]
+PENT = [[0, 0], [0.5, 0], [0.7, 0.3], [0.25, 0.6], [-0.2, 0.3]]
+
+
+def test_area_with_circular_edge():
+    semi = Curvature("circle", [0.5, False, True])  # top edge (1,1)->(0,1) bulging up: a half disk
+    p = _poly_panel("p", SQ, curv={2: semi})
+    assert_close(panel_area(p), 1 + np.pi / 8, rtol=1e-4)
+    assert_close(panel_area(_poly_panel("q", SQ)), 1.0, rtol=1e-15)
+
+
+@pytest.mark.parametrize("s", [0.9, 1.1, 1.5])
+def test_area_error_of_scaled_panel(s):
+    semi = Curvature("circle", [0.5, False, True])
+    gt = Pattern("gt", {"a": _poly_panel("a", SQ, curv={2: semi})})
+    est_p = _poly_panel("a", np.asarray(SQ) * s, curv={2: Curvature("circle", [0.5 * s, False, True])})
+    est = Pattern("est", {"a": est_p})
+    ae = area_error(est, gt)
+    assert_close(ae.per_panel["a"], abs(s * s - 1), rtol=1e-6)
+    assert_close(ae.mean, abs(s * s - 1), rtol=1e-6)
+
+
+def test_correspondence_by_name_label_and_assignment():
+    gt = Pattern(
+        "gt",
+        {
+            "front": _poly_panel("front", SQ, translation=(0, 0, 0.2)),
+            "sleeve": _poly_panel("sleeve", TRI, label="arm", translation=(0.5, 0, 0)),
+            "back": _poly_panel("back", PENT, translation=(0, 0, -0.2)),
+            "belt": _poly_panel("belt", np.asarray(SQ) * [2, 0.1], translation=(0, 0.3, 0)),
+        },
+    )
+    est = Pattern(
+        "est",
+        {
+            "front": _poly_panel("front", SQ, translation=(0, 0, 0.2)),  # by name
+            "s1": _poly_panel("s1", TRI, label="arm", translation=(0.5, 0, 0)),  # by label
+            "x": _poly_panel("x", np.asarray(PENT) * 1.05, translation=(0, 0, -0.18)),  # by shape
+            "y": _poly_panel("y", np.asarray(SQ) * [2.1, 0.1], translation=(0, 0.31, 0)),
+        },
+    )
+    m = match_panels(est, gt)
+    assert m == {"front": "front", "s1": "sleeve", "x": "back", "y": "belt"}
+
+
+def test_unmatched_panels_raise():
+    gt = Pattern("gt", {"a": _poly_panel("a", SQ), "b": _poly_panel("b", TRI)})
+    est = Pattern("est", {"a": _poly_panel("a", SQ)})
+    with pytest.raises(PatternError, match="without a counterpart"):
+        match_panels(est, gt)
+    assert match_panels(est, gt, strict=False) == {"a": "a"}
+
+
+def test_vertex_l2_rigid_and_scaled():
+    gt = _poly_panel("a", PENT)
+    th = 0.8
+    R = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
+    moved = _poly_panel("b", np.roll(np.asarray(PENT) @ R.T + [3, -1], 2, axis=0))
+    assert panel_vertex_l2_cm(moved, gt) < 1e-12
+    sq = _poly_panel("s", np.asarray(SQ) - 0.5)
+    big = _poly_panel("t", (np.asarray(SQ) - 0.5) * 1.01)
+    assert_close(panel_vertex_l2_cm(big, sq), 100 * 0.01 * np.sqrt(2) / 2, rtol=1e-12)
+    assert panel_vertex_l2_cm(_poly_panel("t", TRI), sq) is None
+
+
+def test_pattern_metrics_identity_is_zero():
+    gt = Pattern("gt", {"a": _poly_panel("a", SQ), "b": _poly_panel("b", PENT, translation=(1, 0, 0))})
+    m = pattern_metrics(gt.copy(), gt)
+    assert m["turning_distance_mean"] < 1e-9
+    assert m["area_error_rel_mean"] == 0.0
+    assert m["vertex_l2_cm_mean"] < 1e-12
+    assert set(m["panels"]) == {"a", "b"}
