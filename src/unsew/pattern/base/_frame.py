@@ -25,6 +25,8 @@ ARMHOLE_DEPTH_CONST = 0.08
 DEPTH_PER_GIRTH = 1.0 / 3.35
 #: Clearance between a panel laid flat and the body surface it covers [m].
 CLEARANCE = 0.05
+#: The hips' fullest girth sits this fraction of the way from the waist down to the crotch.
+HIP_DROP_FRACTION = 0.7
 #: A-pose: arms hang this many degrees below horizontal (the default anny body's "A" pose).
 ARM_ANGLE_DEG = 45.0
 
@@ -55,7 +57,7 @@ def body_frame(m: Measurements | None = None) -> BodyFrame:
         shoulder_x=m.shoulder_width / 2,
         armpit_y=shoulder_y - (ARMHOLE_DEPTH_PER_BUST * m.bust + ARMHOLE_DEPTH_CONST),
         waist_y=m.waist_height,
-        hip_y=(m.waist_height + m.crotch_height) / 2 + 0.02,
+        hip_y=m.waist_height - HIP_DROP_FRACTION * (m.waist_height - m.crotch_height),
         crotch_y=m.crotch_height,
         chest_z=m.bust * DEPTH_PER_GIRTH / 2 + CLEARANCE,
         hip_z=m.hip * DEPTH_PER_GIRTH / 2 + CLEARANCE,

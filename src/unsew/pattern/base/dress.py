@@ -1,0 +1,47 @@
+"""Base dress: a t-shirt-like top running into a long flared skirt, with short sleeves.
+
+Front and back are single mirror-symmetric panels from hem to neck; the side seam has two
+edges (hem to hip: the flare; hip to underarm: curved in at the waist). Sleeves, armholes,
+shoulders and neckline as in :mod:`unsew.pattern.base.tshirt`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from unsew.body.measurements import Measurements
+from unsew.pattern.base._build import quad
+from unsew.pattern.base._frame import body_frame
+from unsew.pattern.base.tshirt import BUST_EASE, TopSpec, sleeve_panels, top_panels, top_stitches
+from unsew.pattern.curves import edge_length
+from unsew.pattern.model import Pattern
+
+__all__ = ["make_dress"]
+
+#: Ease over waist and hip girths [m].
+WAIST_EASE = 0.10
+HIP_EASE = 0.08
+#: Hem height above the floor [m] (mid-calf) and hem width per panel [m] (the flare).
+HEM_HEIGHT = 0.35
+HEM_FLARE = 0.18
+
+
+def make_dress(m: Measurements | None = None) -> Pattern:
+    """A long flared dress with short sleeves sized to ``m`` (default: the default body)."""
+    m = m or Measurements()
+    f = body_frame(m)
+    hem_y = HEM_HEIGHT * m.height / 1.70
+    hip_w = (m.hip + HIP_EASE) / 4
+    waist_w = (m.waist + WAIST_EASE) / 4
+    bust_w = (m.bust + BUST_EASE) / 4
+    hip = np.array([hip_w, f.hip_y - hem_y])
+    hem = np.array([hip_w + HEM_FLARE, 0.0])
+    under = np.array([bust_w, f.armpit_y - hem_y])
+    # Quadratic through the waist: its middle (a + 2c + b)/4 sits at the waist width.
+    mid = np.array([waist_w, f.waist_y - hem_y])
+    c = 2 * mid - (hip + under) / 2
+    spec = TopSpec(lower=(tuple(hem), tuple(hip)), lower_curves=(None, quad(hip, under, c)), hem_y=hem_y)
+    front, back, k = top_panels(m, f, spec)
+    left, right = sleeve_panels(m, f, edge_length(front, k + 1))
+    panels = {p.name: p for p in (front, back, left, right)}
+    return Pattern("dress", panels, top_stitches(k), properties={"units_in_meter": 100, "curvature_coords": "relative"})
