@@ -50,14 +50,19 @@ def _number(x, where: str) -> float:
 
 
 def _points(x, where: str, dim: int) -> np.ndarray:
+    """A list of 2D points, shape (N, 2) (``dim == 2``), or a vector of ``-dim`` numbers
+    (``dim < 0``: ``-3`` for a translation, ``-2`` for one point), as float64."""
     try:
         a = np.asarray(x, dtype=np.float64)
     except (TypeError, ValueError):
-        raise InputError(f"{where}: expected a list of {dim}-vectors of numbers; fix the pattern file") from None
-    if a.size == 0 and dim == 2:
-        return a.reshape(0, 2)
-    if a.ndim != (2 if dim == 2 else 1) or a.shape[-1] != dim:
-        raise InputError(f"{where}: expected shape (N, {dim})" if dim == 2 else f"{where}: expected {dim} numbers")
+        raise InputError(f"{where}: expected numbers; fix the pattern file") from None
+    if dim == 2:
+        if a.size == 0:
+            return a.reshape(0, 2)
+        if a.ndim != 2 or a.shape[1] != 2:
+            raise InputError(f"{where}: expected a list of [x, y] points; fix the pattern file")
+    elif a.shape != (-dim,):
+        raise InputError(f"{where}: expected {-dim} numbers; fix the pattern file")
     return a
 
 
@@ -75,9 +80,7 @@ def _curvature_from(c, a: np.ndarray, b: np.ndarray, absolute: bool, scale: floa
     if c is None:
         return None
     if isinstance(c, list):  # legacy: one quadratic control point
-        p = _points(c, f"{where} curvature", 1) if len(c) == 2 else None
-        if p is None:
-            raise InputError(f"{where}: legacy curvature must be [x, y]; fix the pattern file")
+        p = _points(c, f"{where} legacy curvature [x, y]", -2)
         st = _rel(a, b, p / scale) if absolute else [float(p[0]), float(p[1])]
         return Curvature("quadratic", [st])
     if not isinstance(c, dict) or "type" not in c:
@@ -148,8 +151,8 @@ def pattern_from_dict(data: dict, *, name: str = "pattern", validate: bool = Tru
         if "vertices" not in pd or "edges" not in pd:
             raise InputError(f"{w}: needs 'vertices' and 'edges'")
         verts = _points(pd["vertices"], f"{w} vertices", 2) / scale
-        tr = _points(pd.get("translation", [0, 0, 0]), f"{w} translation", 3) / scale
-        rot = _points(pd.get("rotation", [0, 0, 0]), f"{w} rotation", 3)
+        tr = _points(pd.get("translation", [0, 0, 0]), f"{w} translation", -3) / scale
+        rot = _points(pd.get("rotation", [0, 0, 0]), f"{w} rotation", -3)
         if not isinstance(pd["edges"], list):
             raise InputError(f"{w}: 'edges' must be a list")
         edges = []
