@@ -9,7 +9,6 @@ from meshing.handmade_patterns import curved_panel, mini_shirt, nonconvex_panel,
 
 from unsew.errors import InputError, PatternError
 from unsew.meshing import GarmentMesh, mesh_pattern, write_rest_obj
-from unsew.meshing.sew import euler_xyz_matrix
 from unsew.meshing.triangulate import signed_areas, triangle_min_angles
 from unsew.pattern.curves import edge_length, sample_edge
 from unsew.pattern.model import Stitch, StitchSide
@@ -121,13 +120,17 @@ def test_corner_shared_by_two_seams():
     assert m.n_x == m.n_uv - len(m.edge_verts[("A", 1)]) - len(m.edge_verts[("A", 2)]) + 1
 
 
-def test_euler_convention_matches_scipy_intrinsic_xyz():
+def test_placed3d_follows_garmentcode_euler_convention():
+    # GarmentCode's mesh generator places a panel with R = Rz @ Ry @ Rx (scipy's extrinsic "xyz")
     from scipy.spatial.transform import Rotation
 
-    rng = np.random.default_rng(0)
-    for _ in range(5):
-        r = rng.uniform(-180, 180, 3)
-        assert_close(euler_xyz_matrix(r), Rotation.from_euler("XYZ", r, degrees=True).as_matrix(), atol=1e-12)
+    pat = two_squares()
+    pat.panels["A"].rotation = np.array([30.0, -50.0, 70.0])
+    m = mesh_pattern(pat, edge_length=0.05)
+    idx = np.flatnonzero(m.uv_panel == 0)
+    R = Rotation.from_euler("xyz", [30.0, -50.0, 70.0], degrees=True).as_matrix()
+    expect = np.c_[m.uv[idx], np.zeros(len(idx))] @ R.T + pat.panels["A"].translation
+    assert_close(m.uv_placed3d[idx], expect, atol=1e-12)
 
 
 def test_placed3d_uses_rotation_and_translation():

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import math
 import os
-import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -22,9 +21,9 @@ from unsew.errors import InputError, PatternError
 from unsew.meshing.triangulate import signed_areas, triangle_min_angles, triangulate_polygon
 from unsew.pattern.curves import edge_length as _edge_length
 from unsew.pattern.curves import sample_edge
-from unsew.pattern.model import Pattern
+from unsew.pattern.model import Pattern, euler_xyz_to_matrix
 
-__all__ = ["GarmentMesh", "mesh_pattern", "euler_xyz_matrix", "write_rest_obj", "EDGE_LENGTH_RANGE"]
+__all__ = ["GarmentMesh", "mesh_pattern", "write_rest_obj", "EDGE_LENGTH_RANGE"]
 
 #: Accepted target edge lengths [m] (smaller is too slow to simulate, larger too coarse to drape).
 EDGE_LENGTH_RANGE = (0.005, 0.1)
@@ -44,7 +43,9 @@ class GarmentMesh:
     edge_verts: (panel name, edge index) -> uv indices along that edge, (k,) int64, start to end,
         corners included.
     seam_pairs: uv index pairs sewn together, (S, 2) int64 (side a, side b).
-    uv_placed3d: flat panels placed in 3D by their translation/rotation [m], (Nu, 3) float64.
+    uv_placed3d: flat panels placed in 3D by their translation/rotation [m], (Nu, 3) float64:
+        ``R @ (u, v, 0) + t`` with R from :func:`unsew.pattern.model.euler_xyz_to_matrix`
+        (GarmentCode's XYZ Euler convention as its mesh generator applies it, ``R = Rz Ry Rx``).
     panel_offsets: first uv index of each panel and Nu at the end, (P+1,) int64; a panel's
         boundary vertices come first, in outline order, then its interior vertices.
     n_boundary: number of boundary (outline) vertices of each panel, (P,) int64.
@@ -98,18 +99,6 @@ class GarmentMesh:
             "min_area_m2": float(area.min()),
             "bad_triangles": int((area <= 1e-14).sum()),
         }
-
-
-def euler_xyz_matrix(rotation_deg: np.ndarray) -> np.ndarray:
-    """Rotation matrix (3, 3) float64 of GarmentCode's panel rotation: intrinsic XYZ Euler
-    angles [deg], shape (3,), i.e. ``R = Rx(a) @ Ry(b) @ Rz(c)`` (scipy's
-    ``Rotation.from_euler('XYZ', r, degrees=True)``, the convention of pygarment's ``Panel``)."""
-    a, b, c = np.radians(np.asarray(rotation_deg, dtype=np.float64).reshape(3))
-    ca, sa, cb, sb, cc, sc = np.cos(a), np.sin(a), np.cos(b), np.sin(b), np.cos(c), np.sin(c)
-    rx = np.array([[1, 0, 0], [0, ca, -sa], [0, sa, ca]])
-    ry = np.array([[cb, 0, sb], [0, 1, 0], [-sb, 0, cb]])
-    rz = np.array([[cc, -sc, 0], [sc, cc, 0], [0, 0, 1]])
-    return rx @ ry @ rz
 
 
 class _UnionFind:
@@ -196,7 +185,7 @@ def mesh_pattern(pattern: Pattern, *, edge_length: float = 0.02, min_angle: floa
         uvs.append(verts)
         panels_of.append(np.full(len(verts), p, dtype=np.int64))
         tris_all.append(tris + o)
-        r = euler_xyz_matrix(panel.rotation)
+        r = euler_xyz_to_matrix(panel.rotation)  # GarmentCode's convention, R = Rz Ry Rx
         placed.append(np.c_[verts, np.zeros(len(verts))] @ r.T + panel.translation)
         n_boundary.append(m)
         offsets.append(o + len(verts))
@@ -235,27 +224,11 @@ def mesh_pattern(pattern: Pattern, *, edge_length: float = 0.02, min_angle: floa
 
 def write_rest_obj(mesh: GarmentMesh, path: str | os.PathLike) -> None:
     """Write the flat panels as an OBJ [m]: vertices = ``uv_placed3d`` (Nu, 3), texture
-    coordinates = the pattern's 2D coordinates ``uv`` [m], faces ``faces_uv``. Atomic: written to a
-    temporary name in the same folder, then renamed."""
-    try:
-        from unsew.io.mesh import write_obj
-    except ImportError:
-        write_obj = None
-    if write_obj is not None:
-        write_obj(path, mesh.uv_placed3d, mesh.faces_uv, uv=mesh.uv, faces_uv=mesh.faces_uv)
-        return
-    path = os.fspath(path)
-    folder = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(folder):
-        raise InputError(f"cannot write {path}: folder {folder} does not exist")
-    tmp = os.path.join(folder, f".{os.path.basename(path)}.{os.getpid()}.{time.time_ns()}.tmp")
-    try:
-        with open(tmp, "w") as f:
-            f.write("# unsew rest mesh (flat panels); units: m; vt: pattern coordinates [m]\n")
-            f.write("".join(f"v {x:.9g} {y:.9g} {z:.9g}\n" for x, y, z in mesh.uv_placed3d))
-            f.write("".join(f"vt {u:.9g} {v:.9g}\n" for u, v in mesh.uv))
-            f.write("".join(f"f {a}/{a} {b}/{b} {c}/{c}\n" for a, b, c in mesh.faces_uv + 1))
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    coordinates = the pattern's 2D coordinates ``uv`` [m], faces ``faces_uv``. Atomic (written to
+    a temporary name in the same folder, then renamed) through :func:`unsew.io.mesh.write_obj`."""
+    from unsew.io.mesh import write_obj
+
+    write_obj(
+        path, mesh.uv_placed3d, mesh.faces_uv, uv=mesh.uv, faces_uv=mesh.faces_uv,
+        header="unsew rest mesh: flat panels placed in 3D; vt = pattern coordinates [m]",
+    )
