@@ -47,7 +47,7 @@ def panel_area(panel) -> float:
 
 def panel_centroid3d(panel) -> np.ndarray:
     """Area centroid of the panel placed in 3D by its translation/rotation, shape (3,) [m]."""
-    from unsew.meshing.sew import euler_xyz_matrix
+    from unsew.pattern.model import euler_xyz_to_matrix
 
     p = _outline(panel, 32)
     x, y = p[:, 0], p[:, 1]
@@ -57,7 +57,7 @@ def panel_centroid3d(panel) -> np.ndarray:
         c = p.mean(0)
     else:
         c = np.array([((x + np.roll(x, -1)) * cr).sum(), ((y + np.roll(y, -1)) * cr).sum()]) / (6 * A)
-    return euler_xyz_matrix(panel.rotation) @ np.array([c[0], c[1], 0.0]) + panel.translation
+    return euler_xyz_to_matrix(panel.rotation) @ np.array([c[0], c[1], 0.0]) + panel.translation
 
 
 def match_panels(pattern_est, pattern_gt, *, placement_weight: float = 2.0, strict: bool = True) -> dict[str, str]:
