@@ -1,0 +1,146 @@
+"""Base patterns: valid, counter-clockwise, symmetric, sewn the right way, sized and placed."""
+
+import numpy as np
+import pytest
+
+from helpers import assert_close
+from unsew.body.measurements import Measurements
+from unsew.errors import InputError
+from unsew.pattern.base import GARMENTS, make_base_pattern
+from unsew.pattern.base._frame import body_frame
+from unsew.pattern.curves import edge_length, panel_outline, sample_edge
+from unsew.pattern.validate import signed_area, validate_pattern
+
+
+@pytest.mark.parametrize("garment", GARMENTS)
+def test_valid_ccw_no_length_warnings(garment):
+    p = make_base_pattern(garment)
+    assert validate_pattern(p) == []  # also: closed, no self-intersection, stitches in range
+    for pan in p.panels.values():
+        assert signed_area(pan) > 0, pan.name
+        assert len(pan.vertices) <= 10, pan.name  # modest number of control points
+    sides = [s.a for s in p.stitches] + [s.b for s in p.stitches]
+    assert len(sides) == len(set(sides))
+
+
+def test_unknown_garment():
+    with pytest.raises(InputError, match="unknown garment 'hat'"):
+        make_base_pattern("hat")
+
+
+def _mirror_matches(panel, i, j):
+    """Edge j is the mirror image (x -> -x) of edge i, traversed the other way."""
+    a = sample_edge(panel, i, 20) * np.array([-1.0, 1.0])
+    b = sample_edge(panel, j, 20)[::-1]
+    assert_close(a, b, atol=1e-9, what=f"{panel.name} edges {i}/{j}: ")
+
+
+def test_tshirt_front_back_mirror_symmetric_and_sleeves_mirror_images():
+    p = make_base_pattern("tshirt")
+    assert set(p.panels) >= {"front", "back", "left_sleeve", "right_sleeve"}
+    for name in ("front", "back"):
+        pan = p.panels[name]
+        n = len(pan.edges)
+        for i in range(1, n // 2):
+            _mirror_matches(pan, i, n - i)
+        _mirror_matches(pan, 0, 0)
+        _mirror_matches(pan, n // 2, n // 2)
+    ls, rs = p.panels["left_sleeve"], p.panels["right_sleeve"]
+    n = len(ls.edges)
+    for i in range(n):
+        a = sample_edge(ls, i, 20) * np.array([-1.0, 1.0])
+        b = sample_edge(rs, (n - i) % n, 20)[::-1]
+        assert_close(a, b, atol=1e-9)
+
+
+def _join_classes(p):
+    """Union-find over panel corners joined by stitches (a.start~b.end, a.end~b.start)."""
+    parent = {}
+
+    def find(x):
+        parent.setdefault(x, x)
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+
+    for s in p.stitches:
+        ea = p.panels[s.a.panel].edges[s.a.edge]
+        eb = p.panels[s.b.panel].edges[s.b.edge]
+        parent[find((s.a.panel, ea.start))] = find((s.b.panel, eb.end))
+        parent[find((s.a.panel, ea.end))] = find((s.b.panel, eb.start))
+    return find
+
+
+def test_tshirt_seams_join_the_right_corners():
+    p = make_base_pattern("tshirt")
+    find = _join_classes(p)
+    f, b = p.panels["front"], p.panels["back"]
+    # Front/back vertex layout: 0 hem -x, 1 hem +x, 2 underarm +x, 3 shoulder tip +x, 4 neck +x, 5..7 mirrored.
+    # Front +x is the body's left; back +x is the body's right.
+    assert find(("front", 3)) == find(("back", 6)) == find(("left_sleeve", 3))  # left shoulder tip = cap top
+    assert find(("front", 6)) == find(("back", 3)) == find(("right_sleeve", 3))
+    assert find(("front", 4)) == find(("back", 5))  # left neck point
+    assert find(("front", 1)) == find(("back", 0))  # left hem corner
+    # Left underarm: front, back and both underarm corners of the left sleeve meet in one point.
+    assert find(("front", 2)) == find(("back", 7)) == find(("left_sleeve", 2)) == find(("left_sleeve", 4))
+    assert find(("left_sleeve", 1)) == find(("left_sleeve", 0))  # sleeve hem corners
+    assert find(("front", 2)) != find(("front", 7))
+    # Torso seams run against each other in 3D too: a.start is nearer b.end than b.start.
+    for s in p.stitches:
+        if "sleeve" in s.a.panel + s.b.panel:
+            continue
+        pa, pb = p.panels[s.a.panel], p.panels[s.b.panel]
+        ea, eb = pa.edges[s.a.edge], pb.edges[s.b.edge]
+        xa = pa.to_world(pa.vertices[[ea.start]])[0]
+        d_end = np.linalg.norm(xa - pb.to_world(pb.vertices[[eb.end]])[0])
+        d_start = np.linalg.norm(xa - pb.to_world(pb.vertices[[eb.start]])[0])
+        assert d_end < d_start, s.label
+    del f, b
+
+
+def test_pants_seams_join_the_right_corners():
+    p = make_base_pattern("pants")
+    find = _join_classes(p)
+    # Leg layout (left front, right back): 0 hem in, 1 hem out, 2 hip, 3 waist side, 4 centre waist, 5 crotch.
+    # Mirrored panels keep vertex indices.
+    assert find(("left_front", 5)) == find(("left_back", 5)) == find(("right_front", 5)) == find(("right_back", 5))
+    assert find(("left_front", 4)) == find(("right_front", 4))  # centre front waist
+    assert find(("left_back", 4)) == find(("right_back", 4))
+    assert find(("left_front", 3)) == find(("left_back", 3))  # left waist side
+    assert find(("left_front", 0)) == find(("left_back", 0))  # left inner hem
+    assert find(("left_front", 4)) != find(("left_back", 4))
+
+
+def test_sizes_follow_measurements_with_ease():
+    m = Measurements()
+    p = make_base_pattern("tshirt")
+    width = lambda pan: np.ptp(panel_outline(pan)[:, 0])  # noqa: E731
+    chest = width(p.panels["front"]) + width(p.panels["back"])
+    assert 0.08 <= chest - m.bust <= 0.15
+    big = make_base_pattern("tshirt", Measurements(bust=1.10, hip=1.12))
+    assert_close(width(big.panels["front"]) - width(p.panels["front"]), 0.08, atol=1e-9)
+    skirt = make_base_pattern("skirt")
+    waist = edge_length(skirt.panels["front"], 2) + edge_length(skirt.panels["back"], 2)
+    assert 0.0 < waist - m.waist <= 0.05
+
+
+def test_placement_in_world_frame():
+    m = Measurements()
+    fr = body_frame(m)
+    p = make_base_pattern("tshirt")
+    world = {n: pan.to_world(panel_outline(pan)) for n, pan in p.panels.items()}
+    assert (world["front"][:, 2] > 0.1).all() and (world["back"][:, 2] < -0.1).all()
+    assert (world["left_sleeve"][:, 0] > 0.1).all() and (world["right_sleeve"][:, 0] < -0.1).all()
+    top = world["front"][:, 1].max()
+    assert abs(top - fr.neck_y) < 1e-9
+    assert_close(world["front"][:, 1].min(), fr.hip_y - 0.02, atol=1e-9)
+    # Front faces +Z, back faces -Z: the panel normal R @ (0, 0, 1).
+    assert_close(p.panels["front"].rotation_matrix()[:, 2], [0, 0, 1], atol=1e-12)
+    assert_close(p.panels["back"].rotation_matrix()[:, 2], [0, 0, -1], atol=1e-12)
+    pants = make_base_pattern("pants")
+    for n, pan in pants.panels.items():
+        w = pan.to_world(panel_outline(pan))
+        assert w[:, 1].max() == pytest.approx(fr.waist_y, abs=1e-9), n
+        outer = w[np.argmax(np.abs(w[:, 0])), 0]
+        assert (outer > 0) == n.startswith("left"), n
