@@ -1,0 +1,133 @@
+"""Configuration of a fit: one frozen dataclass, every field with its unit, read from and
+written to YAML so a result folder holds everything needed to rerun it (STYLE.md habit 13).
+
+Defaults follow the paper (4.1): Adam with learning rate 1e-3, betas (0.9, 0.999),
+lambda_open 0.1, lambda_seam 0.01, lambda_mat 0.01, dt 0.05 s, 10-20 steps per drape.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field, fields
+from pathlib import Path
+
+from unsew.errors import InputError
+
+__all__ = ["FitConfig", "load_config", "config_to_dict"]
+
+
+@dataclass(frozen=True)
+class FitConfig:
+    """Everything a fit needs besides its case folder.
+
+    Units in brackets; [-] is dimensionless.
+    """
+
+    # pattern and meshing
+    base: str = ""  #: base pattern: garment name or a GarmentCode JSON path; "" = meta.json's garment
+    edge_length: float = 0.025  #: target triangle edge length of the panel meshes [m]
+    material: str = "cotton"  #: starting material from the library (unsew.sim.material.MATERIALS)
+
+    # simulation
+    dt: float = 0.05  #: time step [s]
+    steps: int = 15  #: implicit Euler steps per differentiable drape [-]
+    sew_steps: int = 80  #: steps of the non-differentiated sewing phase [-]
+    settle_steps: int = 40  #: steps of plain draping after sewing, before the first loss [-]
+
+    # phase one: grading
+    grading: bool = True  #: run linear grading before the optimization (ablation: False)
+
+    # phase two: optimization
+    iterations: int = 60  #: iteration budget of the optimization [-]
+    lr: float = 1e-3  #: Adam learning rate for the control points [m per step]
+    lr_material: float = 2e-2  #: Adam learning rate for log-material parameters [-]
+    betas: tuple[float, float] = (0.9, 0.999)  #: Adam betas [-]
+    material_start: int = 30  #: iteration at which the material joins the variables [-]
+    optimize_material: bool = True  #: optimize Gamma = (H00, H01, H11, H22, k) (ablation: False)
+    curvature_weighted: bool = True  #: curvature-weighted Chamfer, eq. 7 (ablation: plain Chamfer)
+    lambda_open: float = 0.1  #: weight of the open-contour Chamfer, eq. 6 [-]
+    lambda_seam: float = 0.01  #: weight of the seam-length loss, eq. 8 [1/m^2 * m^2 = -]
+    lambda_mat: float = 0.01  #: weight of the material range penalty [-]
+    seam_loss: bool = True  #: include the seam loss (ablation: False)
+    tol: float = 1e-3  #: stop when the loss changed by less than this fraction over `patience` iterations [-]
+    patience: int = 10  #: iterations over which convergence is judged [-]
+    target_points: int = 8000  #: target vertices kept for the Chamfer (random subset, seeded) [-]
+    seed: int = 0  #: seed of every random choice [-]
+
+    # outputs
+    device: str = "cpu"  #: torch device for the simulation ("cpu", "cuda")
+    report: bool = True  #: write report.html and its figures
+
+    def replace(self, **changes) -> "FitConfig":
+        return dataclasses.replace(self, **changes)
+
+
+def config_to_dict(cfg: FitConfig) -> dict:
+    """Plain dict (YAML-ready) of a config."""
+    d = dataclasses.asdict(cfg)
+    d["betas"] = list(d["betas"])
+    return d
+
+
+def load_config(path: str | Path | None = None, **overrides) -> FitConfig:
+    """Read a YAML config (missing keys keep defaults) and apply keyword overrides.
+
+    Unknown keys and values of the wrong type raise InputError naming the key.
+    """
+    import yaml
+
+    data: dict = {}
+    if path is not None:
+        p = Path(path)
+        if not p.is_file():
+            raise InputError(f"config file {p} does not exist")
+        try:
+            loaded = yaml.safe_load(p.read_text()) or {}
+        except yaml.YAMLError as exc:
+            raise InputError(f"config file {p} is not valid YAML: {exc}".splitlines()[0]) from None
+        if not isinstance(loaded, dict):
+            raise InputError(f"config file {p} must hold a mapping of option: value")
+        data.update(loaded)
+    data.update({k: v for k, v in overrides.items() if v is not None})
+    known = {f.name: f for f in fields(FitConfig)}
+    unknown = sorted(set(data) - set(known))
+    if unknown:
+        raise InputError(f"unknown config option(s) {unknown}; known: {sorted(known)}")
+    default = FitConfig()
+    clean = {}
+    for k, v in data.items():
+        ref = getattr(default, k)
+        try:
+            if isinstance(ref, bool):
+                if not isinstance(v, bool):
+                    raise TypeError
+                clean[k] = v
+            elif isinstance(ref, int):
+                if isinstance(v, bool) or int(v) != float(v):
+                    raise TypeError
+                clean[k] = int(v)
+            elif isinstance(ref, float):
+                clean[k] = float(v)
+            elif isinstance(ref, tuple):
+                clean[k] = tuple(float(x) for x in v)
+                if len(clean[k]) != len(ref):
+                    raise TypeError
+            else:
+                clean[k] = str(v)
+        except (TypeError, ValueError):
+            raise InputError(f"config option {k!r} must be like {ref!r}, got {v!r}") from None
+    cfg = default.replace(**clean)
+    _check(cfg)
+    return cfg
+
+
+def _check(cfg: FitConfig) -> None:
+    if not 0.005 <= cfg.edge_length <= 0.1:
+        raise InputError(f"edge_length {cfg.edge_length} m is outside 0.005-0.1 m")
+    if cfg.dt <= 0 or cfg.dt > 0.2:
+        raise InputError(f"dt {cfg.dt} s must be in (0, 0.2]")
+    for k in ("steps", "iterations", "target_points"):
+        if getattr(cfg, k) < 1:
+            raise InputError(f"{k} must be at least 1")
+    if cfg.lr <= 0 or cfg.lr_material <= 0:
+        raise InputError("learning rates must be positive")

@@ -1,0 +1,44 @@
+"""Fit configuration: YAML round trip, overrides, bad values."""
+
+import pytest
+import yaml
+
+from unsew.errors import InputError
+from unsew.fit.config import FitConfig, config_to_dict, load_config
+
+
+def test_defaults_follow_the_paper():
+    c = FitConfig()
+    assert (c.lr, c.betas, c.lambda_open, c.lambda_seam, c.lambda_mat, c.dt) == (1e-3, (0.9, 0.999), 0.1, 0.01, 0.01, 0.05)
+    assert 10 <= c.steps <= 20
+
+
+def test_yaml_round_trip_and_overrides(tmp_path):
+    c = FitConfig(iterations=7, curvature_weighted=False, betas=(0.8, 0.99))
+    p = tmp_path / "fit.yaml"
+    p.write_text(yaml.safe_dump(config_to_dict(c)))
+    assert load_config(p) == c
+    assert load_config(p, iterations=3).iterations == 3
+
+
+@pytest.mark.parametrize(
+    "text, match",
+    [
+        ("iterationz: 3\n", "unknown config option"),
+        ("iterations: 2.5\n", "iterations"),
+        ("grading: yes please\n", "grading"),
+        ("edge_length: 2\n", "edge_length"),
+        ("- a\n- b\n", "mapping"),
+        ("a: [\n", "not valid YAML"),
+    ],
+)
+def test_bad_configs(tmp_path, text, match):
+    p = tmp_path / "fit.yaml"
+    p.write_text(text)
+    with pytest.raises(InputError, match=match):
+        load_config(p)
+
+
+def test_missing_config(tmp_path):
+    with pytest.raises(InputError, match="does not exist"):
+        load_config(tmp_path / "none.yaml")
