@@ -145,3 +145,57 @@ def test_controls_argument_is_used():
     pat = pentagon()
     c = find_control_points(pat)
     assert detect_symmetry(pat, controls=c).n_control == len(c)
+
+
+# --- base patterns (unsew.pattern.base) ---
+
+
+def test_tshirt_sleeves_pair_and_torso_panels_mirror():
+    from unsew.pattern.base import make_base_pattern
+
+    pat = make_base_pattern("tshirt")
+    s = detect_symmetry(pat)
+    pairs = {frozenset((p.source, p.target)) for p in s.pairs}
+    sleeves = [n for n in pat.panel_order if "sleeve" in n]
+    assert len(sleeves) == 2 and frozenset(sleeves) in pairs
+    assert all(p.mirrored for p in s.pairs if frozenset((p.source, p.target)) == frozenset(sleeves))
+    mirrored = {m.panel for m in s.mirrors}
+    for torso in ("front", "back"):
+        assert torso in mirrored, f"{torso} panel not found mirror-symmetric"
+        m = next(m for m in s.mirrors if m.panel == torso)
+        assert abs(abs(m.direction[1]) - 1.0) < 1e-9  # the vertical centre line
+    assert 2 * s.n_k <= s.n_control
+    assert_close(s.rebuild(s.k0()), s.c0, atol=REBUILD_ATOL)
+
+
+@pytest.mark.parametrize("garment", ["dress", "pants", "shorts", "skirt"])
+def test_other_base_patterns_rebuild_exactly(garment):
+    from unsew.pattern.base import make_base_pattern
+
+    s = detect_symmetry(make_base_pattern(garment))
+    assert s.pairs or s.mirrors
+    assert 2 * s.n_k <= s.n_control
+    assert_close(s.rebuild(s.k0()), s.c0, atol=REBUILD_ATOL)
+
+
+def test_cli_symmetry(tmp_path):
+    import json
+    import subprocess
+    import sys
+
+    from unsew.io.garmentcode import save_pattern
+    from unsew.pattern.base import make_base_pattern
+
+    path = tmp_path / "t.json"
+    save_pattern(make_base_pattern("tshirt"), path)
+    r = subprocess.run([sys.executable, "-m", "unsew", "pattern", "symmetry", str(path), "--json"],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    rep = json.loads(r.stdout)
+    assert 2 * rep["K"] <= rep["control_points"]
+    assert {m["panel"] for m in rep["mirror_axes"]} >= {"front", "back"}
+    r = subprocess.run([sys.executable, "-m", "unsew", "pattern", "symmetry", str(path)], capture_output=True, text=True)
+    assert r.returncode == 0 and "effective K" in r.stdout
+    r = subprocess.run([sys.executable, "-m", "unsew", "pattern", "symmetry", str(tmp_path / "missing.json")],
+                       capture_output=True, text=True)
+    assert r.returncode != 0 and "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1
