@@ -1,0 +1,38 @@
+"""``unsew eval RESULT_DIR CASE_DIR [--json]``: score a fit against its case.
+
+Prints a table (or JSON with ``--json``) and writes ``RESULT_DIR/eval.json`` atomically. The work
+is in :mod:`unsew.metrics.evaluate`, imported only when the command runs.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+__all__ = ["register", "run"]
+
+
+def run(args: argparse.Namespace) -> int:
+    import json
+    from pathlib import Path
+
+    from unsew.metrics.evaluate import evaluate_result, format_table, write_eval_json
+
+    ev = evaluate_result(args.result_dir, args.case_dir, n_samples=args.samples, seed=args.seed)
+    write_eval_json(ev, Path(args.result_dir) / "eval.json")
+    print(json.dumps(ev, indent=2) if args.json else format_table(ev))
+    return 0
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "eval",
+        help="score a fit result against a case: Chamfer [mm], normal error, and 2D pattern metrics",
+        description="Compare RESULT_DIR/garment.obj with CASE_DIR/target.obj (3D) and, when both exist, "
+        "RESULT_DIR/pattern.json with CASE_DIR/pattern_gt.json (2D). Writes RESULT_DIR/eval.json.",
+    )
+    p.add_argument("result_dir", metavar="RESULT_DIR", help="fit result folder (garment.obj, pattern.json)")
+    p.add_argument("case_dir", metavar="CASE_DIR", help="case folder (target.obj, optional pattern_gt.json)")
+    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    p.add_argument("--samples", type=int, default=100_000, help="surface samples per mesh (default 100000)")
+    p.add_argument("--seed", type=int, default=0, help="sampling seed (default 0)")
+    p.set_defaults(func=run)

@@ -1,0 +1,120 @@
+"""Evaluate a fit result folder against a case folder (FORMATS.md): the work of ``unsew eval``.
+
+3D (always): the result's draped ``garment.obj`` against the case's ``target.obj``/``target.ply``
+(:func:`unsew.metrics.surface.surface_metrics`). 2D (when the case has ``pattern_gt.json`` and
+the result ``pattern.json``): :func:`unsew.metrics.panels.pattern_metrics`. The case's optional
+``meta.json`` gives the target's ``units``/``up``/``front`` (default m, y, z); the result is in
+unsew's world frame (metres).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+__all__ = ["evaluate_result", "EVAL_FORMAT_VERSION", "format_table", "write_eval_json"]
+
+#: Version of the eval.json layout.
+EVAL_FORMAT_VERSION = 1
+
+
+def _case_meta(case: Path) -> dict:
+    from unsew.errors import InputError
+
+    p = case / "meta.json"
+    if not p.is_file():
+        return {}
+    try:
+        meta = json.loads(p.read_text())
+    except json.JSONDecodeError as exc:
+        raise InputError(f"{p} is not valid JSON: {exc.msg} at line {exc.lineno}") from None
+    if not isinstance(meta, dict):
+        raise InputError(f"{p} must hold a JSON object")
+    return meta
+
+
+def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int = 0) -> dict:
+    """All metrics of a result folder against a case folder, as a JSON-ready dict.
+
+    result_dir: folder with ``garment.obj`` [m, world frame] and optionally ``pattern.json``.
+    case_dir: folder with ``target.obj``/``target.ply`` and optionally ``meta.json`` and
+        ``pattern_gt.json``.
+    n_samples: surface samples per mesh for the 3D metrics. seed: their seed.
+    Returns: ``{"format_version", "result", "case", "3d": {...}, "2d": {...} | None,
+    "2d_skipped": reason | None}``. Raises InputError / PatternError on bad input (missing
+    files, empty or non-finite meshes, panels without counterparts).
+    """
+    from unsew.errors import InputError
+    from unsew.io.mesh import read_mesh
+    from unsew.metrics.surface import surface_metrics
+
+    res, case = Path(result_dir), Path(case_dir)
+    for d, what in ((res, "result"), (case, "case")):
+        if not d.is_dir():
+            raise InputError(f"{what} folder {d} does not exist")
+    garment = res / "garment.obj"
+    if not garment.is_file():
+        raise InputError(f"result folder {res} has no garment.obj (the draped result); run `unsew fit` first")
+    target = next((case / n for n in ("target.obj", "target.ply") if (case / n).is_file()), None)
+    if target is None:
+        raise InputError(f"case folder {case} has no target.obj or target.ply")
+    if n_samples < 1:
+        raise InputError(f"--samples must be at least 1, got {n_samples}")
+    meta = _case_meta(case)
+    gv, gf = read_mesh(garment)
+    tv, tf = read_mesh(target, units=meta.get("units", "m"), up=meta.get("up", "y"), front=meta.get("front", "z"))
+    out = {
+        "format_version": EVAL_FORMAT_VERSION,
+        "result": str(res),
+        "case": str(case),
+        "units": {"chamfer": "mm", "angles": "deg", "vertex_l2": "cm", "turning_distance": "rad", "area": "m^2"},
+        "3d": surface_metrics(gv, gf, tv, tf, n_samples=n_samples, seed=seed),
+        "2d": None,
+        "2d_skipped": None,
+    }
+    gt, est = case / "pattern_gt.json", res / "pattern.json"
+    if not gt.is_file():
+        out["2d_skipped"] = "case has no pattern_gt.json"
+    elif not est.is_file():
+        out["2d_skipped"] = "result has no pattern.json"
+    else:
+        from unsew.io.garmentcode import load_pattern
+        from unsew.metrics.panels import pattern_metrics
+
+        out["2d"] = pattern_metrics(load_pattern(est), load_pattern(gt))
+    return out
+
+
+def format_table(ev: dict) -> str:
+    """A plain-text table of an :func:`evaluate_result` dict."""
+    d3 = ev["3d"]
+    lines = [
+        f"3D: {ev['result']} vs {ev['case']} ({d3['n_samples']} samples per mesh, seed {d3['seed']})",
+        f"  {'Chamfer (mean) [mm]':<28}{d3['chamfer_mm']:>12.3f}",
+        f"  {'Chamfer p95 [mm]':<28}{d3['chamfer_p95_mm']:>12.3f}",
+        f"  {'Hausdorff (sampled) [mm]':<28}{d3['hausdorff_mm']:>12.3f}",
+        f"  {'normal error [deg]':<28}{d3['normal_error_deg']:>12.3f}",
+        f"  {'normal cosine distance':<28}{d3['normal_cosine_distance']:>12.5f}",
+    ]
+    d2 = ev.get("2d")
+    if d2 is None:
+        lines.append(f"2D: skipped ({ev.get('2d_skipped')})")
+    else:
+        lines.append("2D: panels (true <- estimated)")
+        lines.append(f"  {'panel':<24}{'turning [rad]':>14}{'area err':>10}{'L2 [cm]':>9}")
+        for name, p in d2["panels"].items():
+            l2 = "-" if p["vertex_l2_cm"] is None else f"{p['vertex_l2_cm']:.2f}"
+            lab = f"{name} <- {p['estimated_panel']}" if name != p["estimated_panel"] else name
+            lines.append(f"  {lab:<24}{p['turning_distance']:>14.4f}{p['area_error_rel']:>10.4f}{l2:>9}")
+        l2m = "-" if d2["vertex_l2_cm_mean"] is None else f"{d2['vertex_l2_cm_mean']:.2f}"
+        lines.append(f"  {'mean':<24}{d2['turning_distance_mean']:>14.4f}{d2['area_error_rel_mean']:>10.4f}{l2m:>9}")
+    return "\n".join(lines)
+
+
+def write_eval_json(ev: dict, path: str | os.PathLike) -> None:
+    """Write an evaluation dict as JSON, atomically."""
+    from unsew.io.atomic import atomic_write
+
+    with atomic_write(path) as tmp:
+        Path(tmp).write_text(json.dumps(ev, indent=2) + "\n")

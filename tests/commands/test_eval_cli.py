@@ -1,0 +1,115 @@
+"""``unsew eval``: metrics of a result folder against a case folder, and its errors."""
+
+import json
+
+import numpy as np
+import pytest
+
+from helpers import assert_close
+from unsew.cli import main
+from unsew.io.garmentcode import save_pattern
+from unsew.io.mesh import write_obj
+from unsew.pattern.model import Edge, Panel, Pattern
+
+
+def _plane(z, n=5):
+    s = np.linspace(0, 0.5, n)
+    X, Y = np.meshgrid(s, s)
+    V = np.stack([X.ravel(), Y.ravel(), np.full(X.size, z)], 1)
+    F = []
+    for j in range(n - 1):
+        for i in range(n - 1):
+            a = j * n + i
+            F += [[a, a + 1, a + n + 1], [a, a + n + 1, a + n]]
+    return V, np.array(F)
+
+
+def _pattern(scale=1.0, names=("front", "back")):
+    panels = {}
+    for k, name in enumerate(names):
+        v = np.array([[0, 0], [0.4, 0], [0.4, 0.6], [0, 0.6]]) * scale
+        edges = [Edge(i, (i + 1) % 4) for i in range(4)]
+        panels[name] = Panel(name, v, edges, np.array([0.0, 0.0, 0.2 - 0.4 * k]), np.zeros(3))
+    return Pattern("p", panels)
+
+
+@pytest.fixture
+def folders(tmp_path):
+    res, case = tmp_path / "result", tmp_path / "case"
+    res.mkdir()
+    case.mkdir()
+    write_obj(res / "garment.obj", *_plane(0.0))
+    write_obj(case / "target.obj", *_plane(0.005, n=7))
+    return res, case
+
+
+def test_eval_3d_only_writes_json(folders, capsys):
+    res, case = folders
+    assert main(["eval", str(res), str(case), "--samples", "2000"]) == 0
+    out = capsys.readouterr().out
+    assert "Chamfer" in out and "2D: skipped" in out
+    ev = json.loads((res / "eval.json").read_text())
+    assert_close(ev["3d"]["chamfer_mm"], 5.0, rtol=1e-6)
+    assert_close(ev["3d"]["hausdorff_mm"], 5.0, rtol=1e-6)
+    assert ev["2d"] is None and ev["3d"]["n_samples"] == 2000
+    assert not [p for p in res.iterdir() if p.name.endswith(".part")]
+
+
+def test_eval_with_patterns_and_json_flag(folders, capsys):
+    res, case = folders
+    save_pattern(_pattern(1.1), res / "pattern.json")
+    save_pattern(_pattern(1.0), case / "pattern_gt.json")
+    (case / "meta.json").write_text(json.dumps({"garment": "skirt", "units": "m", "up": "y", "front": "z"}))
+    assert main(["eval", str(res), str(case), "--samples", "1000", "--json"]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    ev = json.loads((res / "eval.json").read_text())
+    assert printed == ev
+    assert_close(ev["2d"]["area_error_rel_mean"], 0.21, rtol=1e-9)
+    assert ev["2d"]["turning_distance_mean"] < 1e-9
+    assert set(ev["2d"]["panels"]) == {"front", "back"}
+
+
+def test_eval_target_units_from_meta(folders):
+    res, case = folders
+    # the target written in cm, 0.5 cm = 5 mm above the result
+    write_obj(case / "target.obj", _plane(0.0)[0] * 100 + [0, 0, 0.5], _plane(0.0)[1])
+    (case / "meta.json").write_text(json.dumps({"units": "cm"}))
+    assert main(["eval", str(res), str(case), "--samples", "500"]) == 0
+    ev = json.loads((res / "eval.json").read_text())
+    assert_close(ev["3d"]["chamfer_mm"], 5.0, rtol=1e-6)
+
+
+def _fails(args, capsys, *, match):
+    rc = main(args)
+    err = capsys.readouterr().err
+    assert rc == 2
+    assert match in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_missing_files(folders, tmp_path, capsys):
+    res, case = folders
+    _fails(["eval", str(tmp_path / "nope"), str(case)], capsys, match="does not exist")
+    (case / "target.obj").unlink()
+    _fails(["eval", str(res), str(case)], capsys, match="no target.obj")
+    (res / "garment.obj").unlink()
+    _fails(["eval", str(res), str(case)], capsys, match="no garment.obj")
+    assert not (res / "eval.json").exists()
+
+
+def test_empty_and_nan_meshes(folders, capsys):
+    res, case = folders
+    (res / "garment.obj").write_text("# nothing\n")
+    _fails(["eval", str(res), str(case)], capsys, match="garment.obj")
+    V, F = _plane(0.0)
+    V[2, 0] = np.nan
+    write_obj(res / "garment.obj", V, F)
+    _fails(["eval", str(res), str(case)], capsys, match="NaN")
+    assert not (res / "eval.json").exists()
+
+
+def test_unmatched_panels_fail_cleanly(folders, capsys):
+    res, case = folders
+    save_pattern(_pattern(1.0, names=("front",)), res / "pattern.json")
+    save_pattern(_pattern(1.0), case / "pattern_gt.json")
+    _fails(["eval", str(res), str(case), "--samples", "500"], capsys, match="without a counterpart")
+    assert not (res / "eval.json").exists()
