@@ -33,3 +33,12 @@ def test_loss_gradient_reaches_every_effective_control_point():
     (pp.uv(K) ** 2).sum().backward()
     assert torch.isfinite(K.grad).all()
     assert (K.grad.abs().sum(dim=1) > 0).all()
+
+
+def test_gradcheck_uv_wrt_K_tshirt():
+    from unsew.pattern.base import make_base_pattern
+
+    pat = make_base_pattern("tshirt")
+    pp = PatternParams.build(pat, mesh_pattern(pat, edge_length=0.1))
+    K = pp.K0.clone().requires_grad_(True)
+    assert torch.autograd.gradcheck(pp.uv, (K,), eps=1e-6, atol=1e-8)

@@ -172,3 +172,24 @@ def test_write_rest_obj(tmp_path):
     assert_close(np.array(v)[f[:, :, 0]], m.uv_placed3d[m.faces_uv], atol=1e-8)
     assert_close(np.array(vt)[f[:, :, 1]], m.uv[m.faces_uv], atol=1e-8)
     assert [p.name for p in tmp_path.iterdir()] == ["rest.obj"]
+
+
+@pytest.mark.parametrize("garment", ["tshirt", "dress", "pants", "shorts", "skirt"])
+def test_base_patterns_mesh_cleanly(garment):
+    from unsew.pattern.base import make_base_pattern
+
+    pat = make_base_pattern(garment)
+    m = mesh_pattern(pat, edge_length=0.03)
+    q = m.quality()
+    assert q["min_angle_deg"] >= 20.0 and q["bad_triangles"] == 0
+    # every stitch sews vertex to vertex, and sewn vertices are merged
+    for s in pat.stitches:
+        ea, eb = m.edge_verts[(s.a.panel, s.a.edge)], m.edge_verts[(s.b.panel, s.b.edge)]
+        assert len(ea) == len(eb)
+        assert np.array_equal(m.x_of_u[ea], m.x_of_u[eb[::-1]])
+    # the sewn mesh is an edge-manifold surface (every edge in one or two triangles)
+    f = m.faces
+    edges = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
+    _, count = np.unique(edges, axis=0, return_counts=True)
+    assert count.max() <= 2
+    assert (np.diff(f[:, [0, 1, 2, 0]], axis=1) != 0).all()  # no triangle collapsed by sewing

@@ -129,3 +129,33 @@ def test_mismatched_symmetry_is_rejected():
     pat.panels["H"].vertices[3, 1] += 0.1
     with pytest.raises(PatternError):
         PatternParams.build(pat, mesh_pattern(pat, edge_length=0.05), symmetry=sym)
+
+
+def test_tshirt_params():
+    from unsew.pattern.base import make_base_pattern
+
+    pat = make_base_pattern("tshirt")
+    m = mesh_pattern(pat, edge_length=0.03)
+    pp = PatternParams.build(pat, m)
+    assert 2 * pp.n_k <= len(pp.controls)
+    assert_close(pp.uv(pp.K0), m.uv, atol=1e-12, rtol=0)
+    # widen the garment a little through K: the sleeves stay mirror images, nothing folds over
+    K = pp.K0.clone()
+    K[:, 0] *= 1.05
+    uv = pp.uv(K)
+    assert len(check_inverted(uv, m.faces_uv)) == 0
+    pair = pp.symmetry.pairs[0]
+    names = m.panel_names
+    a, b = names.index(pair.source), names.index(pair.target)
+    ua, ub = uv[m.uv_panel == a].numpy(), uv[m.uv_panel == b].numpy()
+    # mirror images have the same outline lengths and areas
+    assert_close(_area(uv.numpy(), m, a), _area(uv.numpy(), m, b), rtol=1e-12)
+    assert len(ua) == len(ub)
+    new = pp.to_pattern(K)
+    assert set(new.panels) == set(pat.panels)
+
+
+def _area(uv, m, p):
+    loop = uv[m.boundary_loop(p)]
+    x, y = loop.T
+    return 0.5 * np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)
