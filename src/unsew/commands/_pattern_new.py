@@ -1,0 +1,51 @@
+"""``unsew pattern new GARMENT [--measurements M.yaml] --out P.json``: write a base pattern."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+__all__ = ["run", "load_measurements"]
+
+
+def load_measurements(path):
+    """Read body measurements [m] from a YAML mapping (``name: value``); unknown names or
+    implausible values raise :class:`~unsew.errors.InputError`."""
+    from pathlib import Path
+
+    import yaml
+
+    from unsew.body.measurements import Measurements
+    from unsew.errors import InputError
+
+    p = Path(path)
+    if not p.is_file():
+        raise InputError(f"measurements file {p} not found")
+    try:
+        data = yaml.safe_load(p.read_text(encoding="utf-8"))
+    except yaml.YAMLError as exc:
+        line = getattr(getattr(exc, "problem_mark", None), "line", None)
+        where = f" (line {line + 1})" if line is not None else ""
+        raise InputError(f"measurements file {p} is not valid YAML{where}") from None
+    if data is None:
+        data = {}
+    if not isinstance(data, dict):
+        raise InputError(f"measurements file {p} must be a mapping like 'bust: 0.94' (metres)")
+    return Measurements.from_dict(data)
+
+
+def run(args: argparse.Namespace) -> int:
+    from unsew.errors import InputError
+    from unsew.io.garmentcode import save_pattern
+    from unsew.pattern.base import make_base_pattern
+    from unsew.pattern.validate import validate_pattern
+
+    if not str(args.out).lower().endswith(".json"):
+        raise InputError(f"--out {args.out} should name a .json file (GarmentCode specification)")
+    m = load_measurements(args.measurements) if args.measurements else None
+    pattern = make_base_pattern(args.garment, m)
+    for w in validate_pattern(pattern):
+        print(f"unsew: warning: {w}", file=sys.stderr)
+    save_pattern(pattern, args.out)
+    print(f"wrote {args.out}: {args.garment}, {len(pattern.panels)} panels, {len(pattern.stitches)} stitches")
+    return 0
