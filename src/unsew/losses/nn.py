@@ -23,12 +23,13 @@ __all__ = ["nearest_indices"]
 _CHUNK_ELEMS = 1 << 24  # cdist chunk size: rows * M <= 16M distances (128 MB in float64)
 
 
-def nearest_indices(query, points, *, method: str = "auto"):
+def nearest_indices(query, points, *, method: str = "auto", compute_mode: str = "use_mm_for_euclid_dist"):
     """Index of the nearest point of ``points`` to each query point (Euclidean, exact up to ties).
 
     query: positions [m], shape (N, 3) (any D), float64 torch tensor.
     points: positions [m], shape (M, D), float64 torch tensor, M >= 1.
     method: ``"auto"``, ``"kdtree"`` or ``"cdist"`` (see module docstring).
+    compute_mode: ``torch.cdist``'s mode for ``"cdist"`` (the matmul form is ~20x faster on CPU).
     Returns: (N,) int64 torch tensor on ``query``'s device, no gradient.
     """
     import torch
@@ -51,8 +52,9 @@ def nearest_indices(query, points, *, method: str = "auto"):
         rows = max(1, _CHUNK_ELEMS // max(m, 1))
         out = torch.empty(n, dtype=torch.int64, device=query.device)
         for s in range(0, n, rows):
-            # squared distances via the matmul expansion are inexact near ties; argmin only
-            d = torch.cdist(q[s : s + rows], p, compute_mode="donot_use_mm_for_euclid_dist")
+            # the matmul expansion is inexact only to ~1e-16 |x|^2: it can swap near-ties, which
+            # changes neither the gathered distance nor the loss beyond that rounding
+            d = torch.cdist(q[s : s + rows], p, compute_mode=compute_mode)
             out[s : s + rows] = d.argmin(dim=1)
         return out
     raise ValueError(f"nearest_indices: unknown method {method!r} (use 'auto', 'kdtree' or 'cdist')")
