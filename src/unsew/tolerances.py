@@ -12,8 +12,9 @@ __all__ = [
 #: Lengths below this are treated as zero [m].
 GEOM_EPS = 1e-9
 
-#: Symmetry detection accepts an alignment whose RMS residual is below this fraction of the
-#: control points' RMS radius (Algorithm 1's epsilon, made scale-free).
+#: Symmetry detection accepts an alignment whose largest point residual is below this fraction
+#: of the aligned points' RMS radius (Algorithm 1's epsilon, made scale-free; the largest residual
+#: rather than the RMS, so one differing curve such as a deeper neckline breaks a pair).
 SYMMETRY_REL_TOL = 0.02
 
 #: Stitched edges whose lengths differ by more than this fraction get a warning.

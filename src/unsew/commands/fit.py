@@ -1,0 +1,74 @@
+"""``unsew fit CASE_DIR --out RESULT_DIR``: the two-phase inverse fit of a case folder."""
+
+from __future__ import annotations
+
+import argparse
+
+__all__ = ["register", "run", "add_fit_options", "config_from_args"]
+
+
+def add_fit_options(p: argparse.ArgumentParser) -> None:
+    """Options shared by ``fit`` and ``demo`` (each maps to a FitConfig field)."""
+    p.add_argument("--config", metavar="FIT.yaml", help="fit configuration (YAML); flags below override it")
+    p.add_argument("--iterations", type=int, help="iteration budget of phase two")
+    p.add_argument("--edge-length", type=float, help="panel mesh edge length [m]")
+    p.add_argument("--material", help="starting material from the library (e.g. cotton, denim, silk)")
+    p.add_argument("--steps", type=int, help="drape steps per iteration")
+    p.add_argument("--no-grading", action="store_true", help="ablation: skip phase one (linear grading)")
+    p.add_argument("--plain-chamfer", action="store_true", help="ablation: Chamfer without curvature weights")
+    p.add_argument("--no-seam-loss", action="store_true", help="ablation: drop the seam-length loss")
+    p.add_argument("--no-material", action="store_true", help="ablation: keep the material fixed")
+    p.add_argument("--device", help="torch device (cpu, cuda)")
+    p.add_argument("--no-report", action="store_true", help="skip report.html")
+    p.add_argument("--quiet", action="store_true", help="no progress bars")
+
+
+def config_from_args(args: argparse.Namespace):
+    from unsew.fit.config import load_config
+
+    over = {
+        "iterations": args.iterations,
+        "edge_length": args.edge_length,
+        "material": args.material,
+        "steps": args.steps,
+        "device": args.device,
+        "base": getattr(args, "base", None),
+    }
+    if args.no_grading:
+        over["grading"] = False
+    if args.plain_chamfer:
+        over["curvature_weighted"] = False
+    if args.no_seam_loss:
+        over["seam_loss"] = False
+    if args.no_material:
+        over["optimize_material"] = False
+    if args.no_report:
+        over["report"] = False
+    return load_config(args.config, **over)
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("fit", help="recover the sewing pattern and material of a draped garment (case folder)")
+    p.add_argument("case", metavar="CASE_DIR", help="case folder: target.obj, body.obj + skeleton.json or meta body, meta.json")
+    p.add_argument("--out", required=True, metavar="RESULT_DIR", help="result folder to create")
+    p.add_argument("--base", help="base pattern: tshirt|dress|pants|shorts|skirt or a GarmentCode JSON (default: meta.json's garment)")
+    p.add_argument("--units", choices=["m", "cm", "mm"], help="units of the case's meshes (default: meta.json's, else m)")
+    p.add_argument("--up", help="the case files' up axis, e.g. z (default: meta.json's, else y)")
+    p.add_argument("--front", help="the case files' front axis, e.g. -y (default: meta.json's, else z)")
+    p.add_argument("--resume", action="store_true", help="continue an interrupted fit from RESULT_DIR.partial/checkpoint.pt")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing RESULT_DIR")
+    add_fit_options(p)
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from unsew.fit.run import run_fit
+    from unsew.io.case import load_case
+
+    cfg = config_from_args(args)
+    out = Path(args.out)
+    case = load_case(args.case, units=args.units, up=args.up, front=args.front)
+    run_fit(case, cfg, out, resume=args.resume, overwrite=args.overwrite, progress=not args.quiet)
+    return 0

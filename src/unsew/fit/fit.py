@@ -1,0 +1,367 @@
+"""The two-phase fit (paper 3.3-3.5): grade the base pattern, then refine its effective control
+points K and, once the pattern has settled, the material Gamma by Adam through differentiable
+drapes warm-started from the previous iteration's result.
+
+Loss (eqs. 5-9): L = L_CF(X, T) [curvature-weighted, eq. 7] + lambda_open L_CF(X_open, T_open)
++ lambda_mat relu(1e-6 - Gamma) + lambda_seam L_seam(U(K)).
+
+Material parameterisation (a deviation from the paper, which does not say how Gamma is scaled):
+the four stiffness entries H00, H11, H22, k are optimised as log-factors on the starting
+material, Gamma_i = Gamma0_i * exp(theta_i), so one learning rate suits values that differ by
+seven orders of magnitude and they stay positive; H01 is Gamma0_01 + 0.1 sqrt(H00 H11) theta_1.
+The material range penalty of the paper is kept on Gamma itself.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from unsew.errors import InputError
+from unsew.fit.config import FitConfig
+
+__all__ = ["FitResult", "fit", "base_pattern_for", "FitState"]
+
+#: garment types a base pattern may stand in for (same panel topology)
+_COMPATIBLE = {
+    "tshirt": {"tshirt", "dress"},
+    "dress": {"dress", "tshirt"},
+    "pants": {"pants", "shorts"},
+    "shorts": {"shorts", "pants"},
+    "skirt": {"skirt"},
+}
+
+
+@dataclass
+class FitResult:
+    """What a fit produces (the outputs module writes it as the result folder).
+
+    pattern: final Pattern; base_pattern, graded_pattern: the starting points; mesh: GarmentMesh
+    of the optimised pattern; x: final draped vertices (Nx, 3) float64 numpy [m]; uv: final rest
+    positions (Nu, 2) [m]; material: final Material; history: per-iteration losses;
+    grade_table: rows of phase one; timings: seconds per phase; target: (verts, faces).
+    """
+
+    pattern: object
+    base_pattern: object
+    graded_pattern: object
+    mesh: object
+    x: np.ndarray
+    uv: np.ndarray
+    material: object
+    history: dict
+    grade_table: list
+    timings: dict
+    iterations: int
+    converged: bool
+    x_graded: np.ndarray | None = None
+    x_base: np.ndarray | None = None
+    params: object = None
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass
+class FitState:
+    """What a checkpoint holds to resume phase two."""
+
+    iteration: int
+    K: object
+    theta: object
+    opt_state: dict
+    x: object
+    history: dict
+    best: dict
+
+
+def base_pattern_for(case, cfg: FitConfig):
+    """The base pattern: cfg.base (garment name or GarmentCode JSON path) or meta.json's garment,
+    sized to the wearer's measurements. Refuses a base of the wrong garment type."""
+    from unsew.body.measure import measure_body
+    from unsew.pattern.base import make_base_pattern
+
+    base = cfg.base or case.garment
+    if not base:
+        raise InputError("no base pattern: meta.json names no garment; pass --base tshirt|dress|pants|shorts|skirt|P.json")
+    if base in _COMPATIBLE:
+        if case.garment and case.garment not in _COMPATIBLE[base]:
+            raise InputError(
+                f"base pattern {base!r} cannot make a {case.garment} target (meta.json); "
+                f"use --base {case.garment}"
+            )
+        return make_base_pattern(base, measure_body(case.body))
+    p = Path(base)
+    if p.suffix.lower() != ".json":
+        raise InputError(f"--base {base!r} is neither a garment type ({', '.join(_COMPATIBLE)}) nor a .json pattern")
+    from unsew.io.garmentcode import load_pattern
+
+    return load_pattern(p)
+
+
+def _check_contours_compatible(n_src: int, n_tgt: int, garment: str) -> None:
+    if n_tgt == 0:
+        raise InputError("the target has no open contours (hem, cuff, neckline): it does not look like a garment")
+    if n_src and abs(n_src - n_tgt) > max(2, n_src // 2):
+        raise InputError(
+            f"the base pattern's garment has {n_src} openings but the target has {n_tgt}: "
+            f"the base ({garment or 'custom'}) does not match this target's garment type"
+        )
+
+
+def _material_params(gamma0):
+    import torch
+
+    theta = torch.zeros(5, dtype=torch.float64, requires_grad=True)
+    scale01 = 0.1 * math.sqrt(float(gamma0[0]) * float(gamma0[2]))
+
+    def gamma_of(th):
+        mult = torch.exp(th)
+        g = gamma0 * mult
+        g01 = gamma0[1] + scale01 * th[1]
+        return torch.stack([g[0], g01, g[2], g[3], g[4]])
+
+    return theta, gamma_of
+
+
+def fit(
+    case,
+    cfg: FitConfig,
+    *,
+    progress: bool = True,
+    checkpoint: Path | None = None,
+    resume: bool = False,
+    log: Callable[[str], None] = print,
+) -> FitResult:
+    """Run both phases on a loaded case (unsew.io.case.Case) and return the FitResult.
+
+    checkpoint: file to write after every iteration (and read with ``resume=True``).
+    """
+    import torch
+    from tqdm import tqdm
+
+    from unsew.body.sdf import BodySDF
+    from unsew.dress import dress, resolve_material
+    from unsew.losses.chamfer import loss_chamfer
+    from unsew.losses.contours import loss_open_contours, open_contours
+    from unsew.losses.curvature import curvature_weights
+    from unsew.losses.material import loss_material
+    from unsew.losses.seam import loss_seam, seam_segment_pairs
+    from unsew.pattern.params import PatternParams, check_inverted
+    from unsew.sim.drape import drape
+    from unsew.sim.material import Material
+    from unsew.sim.state import SimState
+
+    torch.manual_seed(cfg.seed)
+    timings: dict[str, float] = {}
+    t0 = time.perf_counter()
+    material0 = resolve_material(cfg.material)
+    base = base_pattern_for(case, cfg)
+    sdf = BodySDF.build(case.body)
+    timings["body_sdf_s"] = time.perf_counter() - t0
+
+    tv = np.asarray(case.target_verts, dtype=np.float64)
+    tf = np.asarray(case.target_faces, dtype=np.int64)
+    contours_t = open_contours(tv, tf)
+
+    ckpt = _load_checkpoint(checkpoint) if (resume and checkpoint is not None and Path(checkpoint).is_file()) else None
+
+    # ---- phase one: grading (or the plain base drape) ----------------------------------------
+    t1 = time.perf_counter()
+    if ckpt is not None:
+        graded, mesh, x_start, grade_table = ckpt["graded"], ckpt["mesh"], ckpt["x_graded"], ckpt["grade_table"]
+        x_base = ckpt.get("x_base")
+        log(f"resuming from iteration {ckpt['state'].iteration} ({checkpoint})")
+    else:
+        bar = _phase_bar(progress, "drape base")
+        dressed = dress(base, case.body, sdf=sdf, edge_length=cfg.edge_length, material=material0,
+                        sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt, progress=bar)
+        _close(bar)
+        x_base = dressed.x.numpy().copy()
+        n_src = len(open_contours(x_base, dressed.mesh.faces))
+        _check_contours_compatible(n_src, len(contours_t), cfg.base or case.garment)
+        grade_table = []
+        if cfg.grading:
+            from unsew.grading import grade
+
+            g = grade(base, case.body, tv, tf, edge_length=cfg.edge_length, material=material0, sdf=sdf,
+                      dressed=dressed, sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps)
+            graded, mesh, x_start, grade_table = g.pattern, g.mesh, _np(g.x_draped), g.table
+        else:
+            graded, mesh, x_start = base, dressed.mesh, x_base
+    timings["grading_s"] = time.perf_counter() - t1
+
+    # ---- phase two: inverse simulation ---------------------------------------------------------
+    t2 = time.perf_counter()
+    params = PatternParams.build(graded, mesh)
+    from unsew.sim.model import SimModel
+
+    model = SimModel.build(mesh.faces, mesh.faces_uv)
+    dev = torch.device(cfg.device)
+    T = torch.as_tensor(tv, dtype=torch.float64)
+    rng = np.random.default_rng(cfg.seed)
+    sub = np.sort(rng.choice(len(tv), cfg.target_points, replace=False)) if len(tv) > cfg.target_points else np.arange(len(tv))
+    w_full = np.asarray(curvature_weights(tv, tf), dtype=np.float64) if cfg.curvature_weighted else np.ones(len(tv))
+    T_sub = T[sub].to(dev)
+    w_sub = torch.as_tensor(w_full[sub], dtype=torch.float64, device=dev)
+    contours_x = open_contours(np.asarray(x_start), mesh.faces)
+    seam_pairs = seam_segment_pairs(mesh, graded.stitches)
+    gamma0 = material0.gamma().to(dev)
+    density = material0.density
+
+    K = params.K0.detach().clone().to(dev).requires_grad_(True)
+    theta, gamma_of = _material_params(gamma0)
+    opt_k = torch.optim.Adam([K], lr=cfg.lr, betas=cfg.betas)
+    opt_m = torch.optim.Adam([theta], lr=cfg.lr_material, betas=cfg.betas)
+    x_prev = torch.as_tensor(np.asarray(x_start), dtype=torch.float64, device=dev)
+    history: dict[str, list[float]] = {k: [] for k in ("total", "chamfer", "open", "seam", "material")}
+    best = {"loss": math.inf, "K": K.detach().clone(), "theta": theta.detach().clone(), "x": x_prev.clone(), "it": -1}
+    start_it = 0
+    if ckpt is not None:
+        st: FitState = ckpt["state"]
+        with torch.no_grad():
+            K.copy_(st.K)
+            theta.copy_(st.theta)
+        opt_k.load_state_dict(st.opt_state["k"])
+        opt_m.load_state_dict(st.opt_state["m"])
+        x_prev = st.x.to(dev)
+        history, best, start_it = st.history, st.best, st.iteration
+
+    converged = False
+    it = start_it
+    bar = tqdm(total=cfg.iterations, initial=start_it, desc="fit", unit="it", disable=not progress,
+               dynamic_ncols=True, leave=False)
+    try:
+        for it in range(start_it, cfg.iterations):
+            mat_on = cfg.optimize_material and it >= cfg.material_start
+            opt_k.zero_grad()
+            opt_m.zero_grad()
+            uv = params.uv(K)
+            gamma = gamma_of(theta) if mat_on else gamma0
+            out = drape(model, SimState.at_rest(x_prev), sdf, uv=uv, gamma=gamma, density=density,
+                        steps=cfg.steps, dt=cfg.dt, friction=material0.friction)
+            x = out.x
+            l_cf = loss_chamfer(x, T_sub, weights_t=w_sub)
+            l_open = loss_open_contours(x, contours_x, T, contours_t) if contours_t else x.sum() * 0
+            l_seam = loss_seam(uv, pairs=seam_pairs) if cfg.seam_loss else uv.sum() * 0
+            l_mat = loss_material(gamma)
+            loss = l_cf + cfg.lambda_open * l_open + cfg.lambda_seam * l_seam + cfg.lambda_mat * l_mat
+            if not torch.isfinite(loss):
+                raise InputError(f"the loss became non-finite at iteration {it}; try a smaller --lr or a coarser mesh")
+            loss.backward()
+            total = float(loss)
+            for key, val in (("total", total), ("chamfer", float(l_cf)), ("open", float(l_open)),
+                             ("seam", float(l_seam)), ("material", float(l_mat))):
+                history[key].append(val)
+            if total < best["loss"]:
+                best = {"loss": total, "K": K.detach().clone(), "theta": theta.detach().clone(),
+                        "x": x.detach().clone(), "it": it, "mat_on": mat_on}
+            K_before = K.detach().clone()
+            opt_k.step()
+            if mat_on:
+                opt_m.step()
+            # A step that inverts pattern triangles is shortened (halved towards the previous K)
+            # until none invert.
+            _backtrack_inversions(params, K, K_before, mesh.faces_uv, check_inverted)
+            x_prev = x.detach()
+            bar.set_postfix(loss=f"{total:.3e}", cf_mm=f"{math.sqrt(max(float(l_cf), 0)) * 1e3:.1f}")
+            bar.update(1)
+            if checkpoint is not None:
+                state = FitState(it + 1, K.detach().clone(), theta.detach().clone(),
+                                 {"k": opt_k.state_dict(), "m": opt_m.state_dict()}, x_prev.clone(), history, best)
+                _save_checkpoint(checkpoint, graded, mesh, x_start, x_base, grade_table, state)
+            h = history["total"]
+            if len(h) > cfg.patience and it >= cfg.material_start + cfg.patience:
+                old = min(h[: -cfg.patience])
+                if (old - min(h[-cfg.patience:])) < cfg.tol * abs(old):
+                    converged = True
+                    break
+    finally:
+        bar.close()
+    timings["optimization_s"] = time.perf_counter() - t2
+
+    # ---- final drape from the best parameters --------------------------------------------------
+    with torch.no_grad():
+        Kb = best["K"]
+        gamma_b = gamma_of(best["theta"]) if best.get("mat_on") else gamma0
+        uv_b = params.uv(Kb)
+        xb = best["x"]
+    g = gamma_b.cpu().numpy()
+    material = Material(float(g[0]), float(g[1]), float(g[2]), float(g[3]), float(g[4]),
+                        material0.density, material0.friction)
+    pattern = params.to_pattern(Kb.cpu())
+    timings["total_s"] = time.perf_counter() - t0
+    return FitResult(
+        pattern=pattern, base_pattern=base, graded_pattern=graded, mesh=mesh,
+        x=xb.cpu().numpy(), uv=uv_b.cpu().numpy(), material=material, history=history,
+        grade_table=grade_table, timings=timings, iterations=it + 1,
+        converged=converged, x_graded=np.asarray(x_start), x_base=x_base, params=params,
+        extra={"best_iteration": best["it"], "material_start": material0},
+    )
+
+
+def _backtrack_inversions(params, K, K_before, faces_uv, check_inverted) -> None:
+    import torch
+
+    with torch.no_grad():
+        for _ in range(10):
+            if len(check_inverted(params.uv(K).cpu().numpy(), faces_uv)) == 0:
+                return
+            K.copy_(0.5 * (K + K_before))
+        K.copy_(K_before)
+
+
+def _np(x):
+    try:
+        import torch
+
+        if torch.is_tensor(x):
+            return x.detach().cpu().numpy()
+    except ImportError:  # pragma: no cover
+        pass
+    return np.asarray(x)
+
+
+def _phase_bar(progress: bool, desc: str):
+    if not progress:
+        return None
+    from tqdm import tqdm
+
+    bars: dict = {}
+
+    def cb(phase, k, n):
+        b = bars.get(phase)
+        if b is None:
+            b = bars[phase] = tqdm(total=n, desc=f"{desc}: {phase}", unit="step", leave=False, dynamic_ncols=True)
+        b.update(k - b.n)
+
+    cb.bars = bars  # type: ignore[attr-defined]
+    return cb
+
+
+def _close(cb) -> None:
+    if cb is not None:
+        for b in cb.bars.values():
+            b.close()
+
+
+def _save_checkpoint(path, graded, mesh, x_graded, x_base, grade_table, state: FitState) -> None:
+    import torch
+
+    from unsew.io.atomic import atomic_write
+
+    with atomic_write(path) as tmp:
+        torch.save({"graded": graded, "mesh": mesh, "x_graded": x_graded, "x_base": x_base,
+                    "grade_table": grade_table, "state": state, "version": 1}, tmp)
+
+
+def _load_checkpoint(path):
+    import torch
+
+    try:
+        return torch.load(path, weights_only=False)
+    except Exception as exc:
+        raise InputError(f"checkpoint {path} cannot be read ({type(exc).__name__}); delete it to start afresh") from None

@@ -1,0 +1,142 @@
+"""The result folder of a fit (FORMATS.md): pattern.json, pattern.svg, pattern.dxf, garment.obj,
+garment_rest.obj, material.json, metrics.json, config.yaml, report.html and its figures.
+
+Everything is written into a work folder that is renamed onto the result folder only when all
+files are complete, so a failed or interrupted run never leaves a folder that looks finished.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import platform
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["write_result", "result_metrics", "file_sha256", "pattern_with_extras"]
+
+
+def file_sha256(path: str | os.PathLike) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for chunk in iter(lambda: fh.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def pattern_with_extras(result) -> object:
+    """The final pattern with unsew's additions under its ``unsew`` key: control points per panel,
+    symmetry (pairs, mirror axes, effective K), and the material."""
+    p = result.pattern.copy()
+    params = result.params
+    extras = dict(p.unsew)
+    try:
+        extras["control_points"] = params.controls.to_dict() if hasattr(params.controls, "to_dict") else None
+    except Exception:  # pragma: no cover - serialisation of optional extras must not sink a fit
+        extras["control_points"] = None
+    sym = getattr(params, "symmetry", None)
+    if sym is not None and hasattr(sym, "to_dict"):
+        extras["symmetry"] = sym.to_dict()
+    m = result.material
+    extras["material"] = _material_dict(m)
+    p.unsew = {k: v for k, v in extras.items() if v is not None}
+    return p
+
+
+def _material_dict(m) -> dict:
+    return {
+        "H00_N_per_m": m.h00, "H01_N_per_m": m.h01, "H11_N_per_m": m.h11, "H22_N_per_m": m.h22,
+        "bending_N_m": m.bend, "density_kg_per_m2": m.density, "friction": m.friction,
+    }
+
+
+def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
+    """3D metrics of the final drape against the target and, if the case has a true pattern,
+    the pattern metrics; plus the final loss terms and timings."""
+    from unsew.metrics.surface import surface_metrics
+
+    faces = np.asarray(result.mesh.faces)
+    m = {"surface": surface_metrics(result.x, faces, case.target_verts, case.target_faces, n_samples=n_samples)}
+    if result.x_base is not None:
+        m["surface_base"] = surface_metrics(result.x_base, _faces_of(result, "base"), case.target_verts,
+                                            case.target_faces, n_samples=n_samples)
+    if result.x_graded is not None:
+        m["surface_graded"] = surface_metrics(result.x_graded, faces, case.target_verts, case.target_faces,
+                                              n_samples=n_samples)
+    if case.pattern_gt is not None:
+        from unsew.metrics.panels import pattern_metrics
+
+        try:
+            m["pattern"] = pattern_metrics(result.pattern, case.pattern_gt)
+            m["pattern_base"] = pattern_metrics(result.base_pattern, case.pattern_gt)
+        except Exception as exc:  # unmatched panels: report, do not sink the fit
+            m["pattern"] = {"error": str(exc)}
+    h = result.history
+    m["loss_final"] = {k: (v[-1] if v else None) for k, v in h.items()}
+    m["iterations"] = result.iterations
+    m["converged"] = result.converged
+    m["timings_s"] = result.timings
+    return m
+
+
+def _faces_of(result, which: str):
+    mesh = result.extra.get("base_mesh") if which == "base" else None
+    return np.asarray((mesh or result.mesh).faces)
+
+
+def write_result(work: Path, result, case, cfg, *, report: bool = True, metrics: dict | None = None) -> dict:
+    """Write every output file of a fit into the folder ``work`` (which the caller renames).
+    Returns the metrics dict."""
+    import yaml
+
+    from unsew import __version__
+    from unsew.fit.config import config_to_dict
+    from unsew.io.dxf import write_dxf
+    from unsew.io.garmentcode import save_pattern
+    from unsew.io.mesh import write_obj
+    from unsew.io.svg import write_svg
+    from unsew.meshing import write_rest_obj
+
+    work = Path(work)
+    work.mkdir(parents=True, exist_ok=True)
+    pattern = pattern_with_extras(result)
+    save_pattern(pattern, work / "pattern.json")
+    write_svg(pattern, work / "pattern.svg")
+    write_dxf(pattern, work / "pattern.dxf")
+    mesh = result.mesh
+    write_obj(work / "garment.obj", result.x, mesh.faces, uv=result.uv, faces_uv=mesh.faces_uv,
+              header="unsew draped garment; vt = pattern coordinates [m]")
+    write_rest_obj(mesh, work / "garment_rest.obj")
+    _write_json(work / "material.json", {"units": "SI", **_material_dict(result.material)})
+    if metrics is None:
+        metrics = result_metrics(result, case)
+    _write_json(work / "metrics.json", metrics)
+    cfg_out = {
+        "config": config_to_dict(cfg),
+        "case": str(case.path),
+        "inputs_sha256": {k: file_sha256(v) for k, v in case.files.items()},
+        "unsew_version": __version__,
+        "python": platform.python_version(),
+    }
+    (work / "config.yaml").write_text(yaml.safe_dump(cfg_out, sort_keys=False))
+    if report:
+        from unsew.fit.report import write_fit_report
+
+        write_fit_report(work, result, case, metrics)
+    return metrics
+
+
+def _write_json(path: Path, obj) -> None:
+    path.write_text(json.dumps(obj, indent=2, default=_json_default) + "\n")
+
+
+def _json_default(o):
+    if isinstance(o, (np.floating, np.integer)):
+        return o.item()
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    if hasattr(o, "__dict__"):
+        return {k: v for k, v in vars(o).items() if not k.startswith("_")}
+    return str(o)

@@ -1,0 +1,50 @@
+"""Run a fit into a result folder: work in RESULT_DIR.partial (with a checkpoint after every
+iteration), rename onto RESULT_DIR only when every file is written."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import sys
+from pathlib import Path
+
+from unsew.errors import InputError
+
+__all__ = ["run_fit", "partial_dir"]
+
+
+def partial_dir(out: Path) -> Path:
+    """The work folder of a result folder: ``RESULT_DIR.partial`` beside it."""
+    out = Path(out)
+    return out.with_name(out.name + ".partial")
+
+
+def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = False, progress: bool = True,
+            log=None):
+    """Fit ``case`` with ``cfg`` and write the result folder ``out``. Returns (FitResult, metrics).
+
+    Ctrl-C or a crash leaves ``out.partial`` with ``checkpoint.pt``; ``resume=True`` continues.
+    """
+    from unsew.fit.fit import fit
+    from unsew.fit.outputs import write_result
+
+    log = log or (lambda s: print(s, file=sys.stderr))
+    out = Path(out)
+    work = partial_dir(out)
+    if out.exists() and not overwrite:
+        raise InputError(f"result folder {out} exists; pass --overwrite or choose another --out")
+    if work.exists() and not resume:
+        shutil.rmtree(work)
+    if resume and not (work / "checkpoint.pt").is_file():
+        log(f"no checkpoint in {work}; starting afresh")
+    work.mkdir(parents=True, exist_ok=True)
+    result = fit(case, cfg, progress=progress, checkpoint=work / "checkpoint.pt", resume=resume, log=log)
+    (work / "checkpoint.pt").unlink(missing_ok=True)
+    metrics = write_result(work, result, case, cfg, report=cfg.report)
+    if out.exists():
+        shutil.rmtree(out)
+    os.replace(work, out)
+    s = metrics["surface"]
+    log(f"fit done in {result.timings['total_s']:.0f} s, {result.iterations} iterations: "
+        f"Chamfer {s['chamfer_mm']:.2f} mm, normal error {s['normal_error_deg']:.1f} deg -> {out}")
+    return result, metrics
