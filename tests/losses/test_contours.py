@@ -65,3 +65,28 @@ def test_loss_open_contours_known_offset_and_pairs():
     assert_close(loss_open_contours(x, cs, t, cs), 2e-4, rtol=1e-12)
     assert_close(loss_open_contours(x, cs, t, cs, pairs=[(0, 0), (1, 1)]), 4e-4, rtol=1e-12)
     assert loss_open_contours(x, [], t, cs).item() == 0.0
+
+
+def test_two_holes_touching_at_a_vertex():
+    """A 6x6 grid with two diagonal quads removed: the holes share one corner vertex."""
+    n = 6
+    s = np.arange(n, dtype=float)
+    X, Y = np.meshgrid(s, s)
+    V = np.stack([X.ravel(), Y.ravel(), np.zeros(X.size)], 1) * 0.1
+    F = []
+    for j in range(n - 1):
+        for i in range(n - 1):
+            if (i, j) in ((2, 2), (3, 3)):
+                continue
+            a = j * n + i
+            F += [[a, a + 1, a + n + 1], [a, a + n + 1, a + n]]
+    cs = open_contours(V, np.array(F))
+    assert len(cs) == 3
+    assert_close(cs[0].length, 2.0, rtol=1e-12)  # outer boundary, 4 x 0.5 m
+    shared = 3 * n + 3
+    holes = cs[1:]
+    for c in holes:
+        assert len(c.indices) == 4 and shared in c.indices.tolist()
+        assert_close(c.length, 0.4, rtol=1e-12)
+    # the holes are walked against the outer loop (their normals oppose it)
+    assert all(c.normal[2] * cs[0].normal[2] < 0 for c in holes)

@@ -66,3 +66,25 @@ def test_material_penalty():
     assert_close(loss, 3e-6 + 1e-6, rtol=1e-12)
     loss.backward()
     assert g.grad.tolist() == [0.0, -1.0, -1.0, 0.0, 0.0]
+
+
+def test_real_garment_mesh_seams():
+    """Against meshing's GarmentMesh: stitched sides of a base skirt have equal lengths, and
+    scaling the uv of one side of every stitch by s gives (1 - s)^2 sum |e|^2."""
+    base = pytest.importorskip("unsew.pattern.base")
+    sew = pytest.importorskip("unsew.meshing.sew")
+    pattern = base.make_base_pattern("skirt")
+    mesh = sew.mesh_pattern(pattern, edge_length=0.03)
+    uv = torch.tensor(mesh.uv)
+    pairs = seam_segment_pairs(mesh, pattern.stitches)
+    assert len(pairs) > 0
+    la = (uv[pairs[:, 1]] - uv[pairs[:, 0]]).norm(dim=1)
+    lb = (uv[pairs[:, 3]] - uv[pairs[:, 2]]).norm(dim=1)
+    assert_close(la, lb, atol=1e-6)  # facing segments of equal length: sewing vertex to vertex
+    assert loss_seam(uv, mesh, pattern.stitches).item() < 1e-10
+    s = 1.05
+    side_b = torch.zeros(len(uv), dtype=torch.bool)
+    side_b[torch.as_tensor(pairs[:, 2:]).ravel()] = True
+    assert not side_b[torch.as_tensor(pairs[:, :2]).ravel()].any()
+    uv2 = torch.where(side_b[:, None], uv * s, uv)
+    assert_close(loss_seam(uv2, mesh, pattern.stitches), ((la - s * lb) ** 2).sum(), rtol=1e-12)
