@@ -1,0 +1,247 @@
+"""Open contours placed on the skeleton, and matched between a source and a target garment
+(paper 3.3 and supplementary Algorithm 2).
+
+Every open contour (boundary loop, :func:`unsew.losses.contours.open_contours`) is located on the
+wearer's skeleton:
+
+- its *encircled bones* are Algorithm 2's EncircledBones: the bones onto which the contour centre
+  projects inside the segment (0 < u < 1). The torso's root bone (pelvis -> its child on the
+  torso chain) is also tried below the pelvis (u <= 0): a t-shirt hem or a skirt hem hangs below
+  the pelvis joint, on the continuation of the spine, not around a thigh;
+- among them, the bones whose line passes *through* the loop (distance h of the centre to the
+  bone below the loop's mean radius) are preferred; the nearest of those (smallest h) is the
+  contour's bone, and its part (``torso``, ``head``, ``left_arm``, ...) the contour's part;
+- its axial position is ``distToRoot(P)``: the distance along the chain of bones from the
+  skeleton's root to the projection P of the centre (:meth:`Skeleton.distance_to_root`, with the
+  unclamped axial coordinate, so a hem below the pelvis has a negative position).
+
+Matching (Algorithm 2's MAP): a source and a target contour may pair when they share a body part
+(``head`` and ``torso`` count as one: a neckline sits on the neck bone or just above it). Among
+allowed pairs the assignment minimising a cost on centre distance, relative perimeter difference
+and normal angle is taken (Hungarian); pairs beyond the gates (:data:`MAX_CENTRE_DISTANCE`,
+:data:`MAX_PERIMETER_RATIO`) are never made, so a hole that matches nothing stays unmatched.
+
+The axial distance of a pair is ``distToRoot(P_t) - distToRoot(P_s)`` along the source
+contour's bone chain (the target's own bone when it lies on the same part, else the target
+centre projected on the source's bone). The *extension* is that distance signed so that positive
+means the target contour lies further out from the garment (a longer hem, sleeve or leg, a
+higher neckline or waist).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from unsew.body.skeleton import Bone, Skeleton, axial_coordinate, encircled_bones
+from unsew.losses.contours import Contour, open_contours
+
+__all__ = [
+    "PlacedContour",
+    "ContourMatch",
+    "place_contours",
+    "match_contours",
+    "part_group",
+    "MAX_CENTRE_DISTANCE",
+    "MAX_PERIMETER_RATIO",
+]
+
+#: Source and target contours whose centres are further apart than this are never paired [m].
+MAX_CENTRE_DISTANCE = 0.45
+#: ... nor those whose perimeters differ by more than this factor (either way).
+MAX_PERIMETER_RATIO = 2.0
+
+
+def part_group(part: str) -> str:
+    """The matching group of a body part: ``head`` and ``torso`` are one group (``torso``)."""
+    return "torso" if part in ("torso", "head") else part
+
+
+@dataclass
+class PlacedContour:
+    """One open contour located on the skeleton.
+
+    index: position in the list of contours of its mesh.
+    contour: the :class:`~unsew.losses.contours.Contour` (indices into the mesh's vertices,
+        length [m], centre (3,) [m], unit normal (3,)).
+    radius: mean distance of the contour's vertices to its centre [m].
+    bone: the bone it is located on (None when no bone qualifies).
+    u: axial coordinate of the centre on ``bone`` (unclamped) [dimensionless].
+    h: distance of the centre to the bone's line [m].
+    part: body part of ``bone`` (``""`` when none).
+    position: distToRoot of the centre's projection on ``bone`` [m].
+    candidates: all qualifying bones, nearest first: (bone, u, h) tuples.
+    """
+
+    index: int
+    contour: Contour
+    radius: float
+    bone: Bone | None
+    u: float
+    h: float
+    part: str
+    position: float
+    candidates: list = field(default_factory=list)
+
+    @property
+    def length(self) -> float:
+        """Perimeter [m]."""
+        return float(self.contour.length)
+
+    @property
+    def centre(self) -> np.ndarray:
+        """Centre (3,) [m]."""
+        return self.contour.centre
+
+
+@dataclass
+class ContourMatch:
+    """A source contour paired with a target contour.
+
+    source, target: indices into the source and target contour lists.
+    part: body part of the source contour's bone.
+    bone: name of the bone the distance is measured along (the source's).
+    axial_distance: distToRoot(P_t) - distToRoot(P_s) [m] (Algorithm 2).
+    extension: the axial distance signed outward from the garment [m]: > 0 when the target
+        contour lies further from the garment's middle than the source's (a longer sleeve).
+    girth_difference: target perimeter - source perimeter [m].
+    cost: matching cost (dimensionless; smaller is a closer pair).
+    """
+
+    source: int
+    target: int
+    part: str
+    bone: str
+    axial_distance: float
+    extension: float
+    girth_difference: float
+    cost: float
+
+
+def _torso_root_bone(skeleton: Skeleton) -> Bone | None:
+    """The bone from the root joint to its child on the torso axis (pelvis -> spine): the child
+    of the root whose bone is torso and points most upward."""
+    root = int(np.flatnonzero(skeleton.parents == -1)[0])
+    best, best_up = None, -np.inf
+    for b in skeleton.bones():
+        if skeleton.index(b.parent) == root and b.part == "torso":
+            up = float(b.direction[1])
+            if up > best_up:
+                best, best_up = b, up
+    return best if best_up > 0.5 else None
+
+
+def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] | None = None) -> list[PlacedContour]:
+    """Open contours of a mesh located on the skeleton (module docstring).
+
+    verts: (V, 3) float64 [m] (numpy or torch). faces: (F, 3) int.
+    skeleton: the wearer's skeleton, same frame.
+    contours: precomputed ``open_contours(verts, faces)`` (default: computed here).
+
+    Returns one :class:`PlacedContour` per contour, in the order of ``contours``.
+    """
+    try:
+        import torch
+
+        if isinstance(verts, torch.Tensor):
+            verts = verts.detach().cpu().numpy()
+    except ImportError:  # pragma: no cover
+        pass
+    v = np.asarray(verts, dtype=np.float64)
+    if contours is None:
+        contours = open_contours(v, faces)
+    bones = skeleton.bones()
+    root_bone = _torso_root_bone(skeleton)
+    out = []
+    for i, c in enumerate(contours):
+        pts = v[c.indices]
+        radius = float(np.linalg.norm(pts - c.centre, axis=1).mean())
+        cands = [(e.bone, e.u, e.h) for e in encircled_bones(pts, bones)]
+        if root_bone is not None:
+            u = float(axial_coordinate(c.centre, root_bone))
+            if u <= 0.0:
+                P = root_bone.a + u * (root_bone.b - root_bone.a)
+                cands.append((root_bone, u, float(np.linalg.norm(c.centre - P))))
+        # bones through the loop first, then the nearest
+        cands.sort(key=lambda t: (t[2] >= radius, t[2]))
+        if cands:
+            bone, u, h = cands[0]
+            pos = float(skeleton.distance_to_root(bone, u))
+            out.append(PlacedContour(i, c, radius, bone, float(u), float(h), bone.part, pos, cands))
+        else:
+            out.append(PlacedContour(i, c, radius, None, float("nan"), float("nan"), "", float("nan"), []))
+    return out
+
+
+def _target_position(skeleton: Skeleton, s: PlacedContour, t: PlacedContour) -> float:
+    """distToRoot of the target centre along the source's chain: the target's own bone when it
+    is of the same part group, else the target centre projected on the source's bone."""
+    if t.bone is not None and part_group(t.part) == part_group(s.part):
+        return t.position
+    u = float(axial_coordinate(t.centre, s.bone))
+    return float(skeleton.distance_to_root(s.bone, u))
+
+
+def match_contours(
+    source: list[PlacedContour],
+    target: list[PlacedContour],
+    skeleton: Skeleton,
+    *,
+    garment_centre: np.ndarray,
+    max_centre_distance: float = MAX_CENTRE_DISTANCE,
+    max_perimeter_ratio: float = MAX_PERIMETER_RATIO,
+) -> list[ContourMatch]:
+    """Pair source and target contours on the same body part (Algorithm 2) and measure them.
+
+    source, target: from :func:`place_contours` on the source (draped base pattern) and target
+        meshes. skeleton: the wearer's.
+    garment_centre: (3,) [m] a point in the middle of the source garment (its vertex mean), used
+        to sign the extension outward.
+    max_centre_distance [m], max_perimeter_ratio: gates beyond which no pair is made.
+
+    Returns the matches (each source and target contour at most once), by source index.
+    """
+    from scipy.optimize import linear_sum_assignment
+
+    ns, nt = len(source), len(target)
+    big = 1e6
+    cost = np.full((max(ns, 1), max(nt, 1)), big)
+    for i, s in enumerate(source):
+        if s.bone is None:
+            continue
+        for j, t in enumerate(target):
+            if t.bone is None:
+                continue
+            s_parts = {part_group(b.part) for b, _, _ in s.candidates}
+            t_parts = {part_group(b.part) for b, _, _ in t.candidates}
+            if part_group(s.part) not in t_parts and part_group(t.part) not in s_parts:
+                continue
+            dc = float(np.linalg.norm(s.centre - t.centre))
+            ratio = max(s.length, t.length) / max(min(s.length, t.length), 1e-9)
+            if dc > max_centre_distance or ratio > max_perimeter_ratio:
+                continue
+            cosn = abs(float(s.contour.normal @ t.contour.normal))
+            if cosn < 0.5:  # planes more than 60 degrees apart
+                continue
+            ref = max(s.radius, 0.05)
+            cost[i, j] = dc / ref + (ratio - 1.0) + (1.0 - cosn)
+    if ns == 0 or nt == 0:
+        return []
+    rows, cols = linear_sum_assignment(cost)
+    out = []
+    for i, j in zip(rows, cols):
+        if cost[i, j] >= big:
+            continue
+        s, t = source[i], target[j]
+        axial = _target_position(skeleton, s, t) - s.position
+        outward = float((s.centre - np.asarray(garment_centre, dtype=np.float64)) @ s.bone.direction)
+        sign = 1.0 if outward >= 0 else -1.0
+        out.append(
+            ContourMatch(
+                source=int(i), target=int(j), part=s.part, bone=s.bone.name, axial_distance=float(axial),
+                extension=float(sign * axial), girth_difference=float(t.length - s.length), cost=float(cost[i, j]),
+            )
+        )
+    out.sort(key=lambda m: m.source)
+    return out

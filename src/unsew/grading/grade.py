@@ -1,0 +1,291 @@
+"""Phase one of the fit: linear grading of a base pattern to a target garment (paper 3.3,
+supplementary Algorithm 2).
+
+``grade`` drapes the base pattern on the wearer (X_init), places the open contours of X_init and
+of the target on the skeleton and pairs them (:mod:`unsew.grading.contours`), maps every paired
+source contour to its 2D open curves (:mod:`unsew.grading.curves`), moves and widens those curves'
+control points by the measured axial distance and girth difference (:mod:`unsew.grading.edit`),
+projects the edit onto the symmetric parameters K, moves every other pattern vertex with
+``params.uv(K)``, scales the edit back if it would invert triangles, re-meshes when panel edges
+got stretched beyond 1.5x the target edge length, and re-drapes: U_LG and X_LG.
+
+Contours that match nothing (an extra hole in the target, a torn hem) are listed in the table
+and left alone.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Callable
+
+import numpy as np
+
+from unsew.errors import InputError, SimulationError
+from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, place_contours
+from unsew.grading.curves import curves_of_contour
+from unsew.grading.edit import curve_edit, project_edit, safe_fraction
+
+__all__ = ["GradeResult", "grade", "drape_pattern", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH"]
+
+#: Re-mesh after grading when a rest edge grew beyond this factor times the target edge length.
+REMESH_STRETCH = 1.5
+
+
+@dataclass
+class GradeResult:
+    """The outcome of linear grading.
+
+    pattern: the graded pattern U_LG (:class:`~unsew.pattern.model.Pattern`).
+    mesh: its :class:`~unsew.meshing.sew.GarmentMesh` (re-meshed or the base mesh moved).
+    x_draped: X_LG, the graded pattern draped on the wearer, (n_x, 3) float64 [m] (None when
+        ``redrape=False``).
+    table: one dict per contour row (:data:`TABLE_COLUMNS`), JSON-serialisable.
+    K: the graded effective control points (Nk, 2) float64 [m] of the *base* parameters.
+    fraction: the part of the wanted edit applied (1.0 unless scaled back to avoid inversions).
+    remeshed: whether the graded pattern was meshed again.
+    x_init: the drape of the base pattern, (n_x0, 3) float64 [m].
+    matches: the contour pairs.
+    """
+
+    pattern: object
+    mesh: object
+    x_draped: np.ndarray | None
+    table: list
+    K: np.ndarray
+    fraction: float = 1.0
+    remeshed: bool = False
+    x_init: np.ndarray | None = None
+    matches: list = field(default_factory=list)
+
+
+#: Keys of every row of ``GradeResult.table``.
+TABLE_COLUMNS = (
+    "source_contour", "target_contour", "part", "bone", "source_length_m", "target_length_m",
+    "axial_distance_m", "extension_m", "girth_difference_m", "edits", "warnings",
+)  # fmt: skip
+
+
+def flat_drape(pattern, mesh, body=None) -> np.ndarray:
+    """The panels laid flat at their 3D placement, seams merged: (n_x, 3) float64 [m], the mean of
+    ``mesh.uv_placed3d`` over the copies of each sewn vertex. A stand-in for a drape in tests and
+    when no simulator is wanted."""
+    out = np.zeros((mesh.n_x, 3))
+    cnt = np.zeros(mesh.n_x)
+    np.add.at(out, mesh.x_of_u, mesh.uv_placed3d)
+    np.add.at(cnt, mesh.x_of_u, 1.0)
+    return out / cnt[:, None]
+
+
+def drape_pattern(
+    pattern,
+    mesh,
+    body,
+    *,
+    material="cotton",
+    sdf=None,
+    sew_steps: int = 60,
+    settle_steps: int = 20,
+    uv=None,
+) -> np.ndarray:
+    """Drape a pattern on a body: place the panels, sew them, merge the seams, settle.
+
+    pattern, mesh: the pattern and its GarmentMesh. body: the wearer (:class:`Body`).
+    material: a :class:`~unsew.sim.material.Material` or a name from ``MATERIALS``.
+    sdf: the body's SDF (default: ``BodySDF.build(body)``, cached on disk).
+    sew_steps, settle_steps: implicit Euler steps of the sewing phase and of the drape.
+    uv: rest positions (Nu, 2) [m] (default ``mesh.uv``).
+
+    Returns the draped sewn vertices, (n_x, 3) float64 [m].
+    Raises SimulationError when the drape pipeline (``place_garment``, ``sew``) is not available.
+    """
+    import torch
+
+    try:
+        from unsew.body.placement import place_garment
+        from unsew.sim.drape import drape, merge_sewn, sew
+    except ImportError as exc:
+        raise SimulationError(f"the drape pipeline is not available in this build ({exc}); pass a drape function") from None
+    from unsew.sim.material import Material, get_material
+    from unsew.sim.model import SimModel
+    from unsew.sim.state import SimState
+
+    mat = material if isinstance(material, Material) else get_material(str(material))
+    if sdf is None:
+        from unsew.body.sdf import BodySDF
+
+        sdf = BodySDF.build(body)
+    uv_t = torch.as_tensor(np.asarray(mesh.uv if uv is None else uv), dtype=torch.float64)
+    gamma = mat.gamma()
+    x_unsewn = place_garment(pattern, mesh, body)
+    model_u = SimModel.build(mesh.faces_uv, mesh.faces_uv, springs=mesh.seam_pairs)
+    xu = sew(model_u, x_unsewn, sdf, uv=uv_t, gamma=gamma, density=mat.density, steps=sew_steps, friction=mat.friction)
+    x = merge_sewn(xu, mesh.x_of_u, mesh.n_x)
+    model = SimModel.build(mesh.faces, mesh.faces_uv)
+    with torch.no_grad():
+        state = drape(model, SimState.at_rest(x), sdf, uv=uv_t, gamma=gamma, density=mat.density, steps=settle_steps, friction=mat.friction)
+    x = state.x.detach().cpu().numpy()
+    if not np.isfinite(x).all():
+        raise SimulationError("the drape diverged (non-finite positions); try a smaller edge length or another material")
+    return x
+
+
+def _rest_edge_stretch(uv: np.ndarray, faces_uv: np.ndarray, edge_length: float) -> float:
+    """Longest rest edge divided by the target edge length."""
+    f = np.asarray(faces_uv)
+    e = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    return float(np.linalg.norm(uv[e[:, 0]] - uv[e[:, 1]], axis=1).max() / edge_length)
+
+
+def _moved_mesh(mesh, pattern, uv: np.ndarray):
+    """The base mesh with its rest positions moved to ``uv`` (same topology)."""
+    placed = np.zeros((len(uv), 3))
+    for p, name in enumerate(mesh.panel_names):
+        idx = np.flatnonzero(mesh.uv_panel == p)
+        placed[idx] = pattern.panels[name].to_world(uv[idx])
+    return replace(mesh, uv=uv.copy(), uv_placed3d=placed)
+
+
+def grade(
+    pattern,
+    body,
+    target_verts,
+    target_faces,
+    *,
+    edge_length: float = 0.03,
+    material="cotton",
+    mesh=None,
+    x_init=None,
+    drape_fn: Callable | None = None,
+    sdf=None,
+    redrape: bool = True,
+    max_centre_distance: float | None = None,
+) -> GradeResult:
+    """Grade ``pattern`` so that its draped open contours land where the target's are (phase one).
+
+    pattern: the base pattern (:class:`~unsew.pattern.model.Pattern`, panels placed around the body).
+    body: the wearer (:class:`~unsew.body.body.Body`; its skeleton is used).
+    target_verts: (V, 3) float64 [m]; target_faces: (F, 3) int: the target garment T.
+    edge_length: target rest edge length [m] for meshing (and re-meshing).
+    material: material name or :class:`Material` for the drapes.
+    mesh: the base pattern's GarmentMesh (default: ``mesh_pattern(pattern, edge_length=...)``).
+    x_init: the base pattern already draped, (n_x, 3) [m] on ``mesh`` (default: draped here).
+    drape_fn: ``drape_fn(pattern, mesh, body) -> (n_x, 3) [m]`` used for both drapes (default:
+        :func:`drape_pattern` with ``material`` and ``sdf``; :func:`flat_drape` for a quick look).
+    redrape: drape the graded pattern (X_LG); False leaves ``x_draped`` None.
+    max_centre_distance: contour pairing gate [m] (default :data:`~unsew.grading.contours.MAX_CENTRE_DISTANCE`).
+
+    Returns a :class:`GradeResult`.
+    """
+    import torch
+
+    from unsew.meshing.sew import mesh_pattern
+    from unsew.pattern.params import PatternParams
+
+    tv = np.asarray(target_verts, dtype=np.float64)
+    tf = np.asarray(target_faces, dtype=np.int64)
+    if tv.ndim != 2 or tv.shape[1] != 3 or len(tv) == 0 or tf.ndim != 2 or tf.shape[1] != 3 or len(tf) == 0:
+        raise InputError(f"target mesh must be (V, 3) vertices and (F, 3) faces, got {tv.shape} and {tf.shape}")
+    if drape_fn is None:
+        def drape_fn(p, m, b):  # noqa: E306
+            return drape_pattern(p, m, b, material=material, sdf=sdf)
+
+    if mesh is None:
+        mesh = mesh_pattern(pattern, edge_length=edge_length)
+    if x_init is None:
+        x_init = drape_fn(pattern, mesh, body)
+    x_init = np.asarray(x_init, dtype=np.float64)
+    if x_init.shape != (mesh.n_x, 3):
+        raise InputError(f"x_init must be ({mesh.n_x}, 3) positions on the base mesh, got {x_init.shape}")
+
+    skel = body.skeleton
+    src = place_contours(x_init, mesh.faces, skel)
+    tgt = place_contours(tv, tf, skel)
+    kw = {} if max_centre_distance is None else {"max_centre_distance": max_centre_distance}
+    matches = match_contours(src, tgt, skel, garment_centre=x_init.mean(axis=0), **kw)
+
+    params = PatternParams.build(pattern, mesh)
+    K0 = params.K0
+    C0 = params.control_points(K0).detach().cpu().numpy()
+    delta = np.zeros_like(C0)
+    rows = []
+    for m in matches:
+        s, t = src[m.source], tgt[m.target]
+        curves = curves_of_contour(s.contour.indices, x_init, params.pattern, mesh, params.controls)
+        warnings = []
+        edits = []
+        total = sum(c.length3d for c in curves)
+        if not curves:
+            warnings.append("no open pattern curve forms this contour; left alone")
+        for c in curves:
+            if len(c.edges) == len(params.pattern.panels[c.panel].edges):
+                warnings.append(f"panel {c.panel} is all open edges; not edited")
+                continue
+            share = c.length3d / total if total > 0 else 0.0
+            dg = m.girth_difference * share
+            delta += curve_edit(params.pattern, C0, c, params.controls, extension=m.extension, girth_change=dg)
+            names = "+".join(params.pattern.panels[c.panel].edges[e].label or f"edge{e}" for e in c.edges)
+            edits.append(f"{c.panel}:{names} move {m.extension * 100:+.1f} cm, widen {dg * 100:+.1f} cm")
+        rows.append(_row(s, t, m, edits, warnings))
+    matched_s = {m.source for m in matches}
+    matched_t = {m.target for m in matches}
+    for s in src:
+        if s.index not in matched_s:
+            rows.append(_row(s, None, None, [], ["source contour matches no target contour; left alone"]))
+    for t in tgt:
+        if t.index not in matched_t:
+            rows.append(_row(None, t, None, [], ["target contour matches no source contour; left alone"]))
+
+    K1 = project_edit(params, C0 + delta)
+    frac = safe_fraction(params, K0, K1)
+    if frac < 1.0:
+        note = f"edit scaled back to {frac:.0%} to avoid inverted triangles"
+        for r in rows:
+            if r["edits"]:
+                r["warnings"].append(note)
+    K = K0 + frac * (K1 - K0)
+    graded = params.to_pattern(K)
+    with torch.no_grad():
+        uv = params.uv(K).cpu().numpy()
+    remeshed = _rest_edge_stretch(uv, mesh.faces_uv, mesh.edge_length) > REMESH_STRETCH
+    new_mesh = mesh_pattern(graded, edge_length=mesh.edge_length) if remeshed else _moved_mesh(mesh, graded, uv)
+    x_lg = np.asarray(drape_fn(graded, new_mesh, body), dtype=np.float64) if redrape else None
+    return GradeResult(
+        pattern=graded, mesh=new_mesh, x_draped=x_lg, table=rows, K=K.detach().cpu().numpy(), fraction=float(frac),
+        remeshed=bool(remeshed), x_init=x_init, matches=matches,
+    )
+
+
+def _name(c: PlacedContour | None) -> str | None:
+    if c is None:
+        return None
+    return f"#{c.index} {c.part or 'no bone'}{' ' + c.bone.name if c.bone is not None else ''}"
+
+
+def _row(s: PlacedContour | None, t: PlacedContour | None, m: ContourMatch | None, edits, warnings) -> dict:
+    return {
+        "source_contour": _name(s),
+        "target_contour": _name(t),
+        "part": m.part if m else (s or t).part,
+        "bone": m.bone if m else ((s or t).bone.name if (s or t).bone is not None else None),
+        "source_length_m": None if s is None else round(s.length, 5),
+        "target_length_m": None if t is None else round(t.length, 5),
+        "axial_distance_m": None if m is None else round(m.axial_distance, 5),
+        "extension_m": None if m is None else round(m.extension, 5),
+        "girth_difference_m": None if m is None else round(m.girth_difference, 5),
+        "edits": list(edits),
+        "warnings": list(warnings),
+    }
+
+
+def format_table(table: list) -> str:
+    """The contour table as aligned text (lengths in cm)."""
+    head = f"{'source':<24} {'target':<24} {'part':<10} {'axial cm':>9} {'ext cm':>8} {'girth cm':>9}  edits / warnings"
+    lines = [head, "-" * len(head)]
+    cm = lambda v: "" if v is None else f"{v * 100:+.1f}"  # noqa: E731
+    for r in table:
+        notes = "; ".join(r["edits"] + r["warnings"])
+        lines.append(
+            f"{r['source_contour'] or '-':<24} {r['target_contour'] or '-':<24} {r['part'] or '-':<10} "
+            f"{cm(r['axial_distance_m']):>9} {cm(r['extension_m']):>8} {cm(r['girth_difference_m']):>9}  {notes}"
+        )
+    return "\n".join(lines)
