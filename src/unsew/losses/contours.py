@@ -5,7 +5,9 @@ into closed cycles. The cycles follow the triangles' orientation (each boundary 
 in the direction it has in its triangle). Where two loops touch at one vertex (a non-manifold
 boundary vertex with four or more boundary edges), the walk leaves the vertex by the boundary
 edge in the same triangle fan as the edge it arrived by, so the loops are separated rather
-than merged into a figure eight.
+than merged into a figure eight; and whenever the walk comes back to a vertex already on it, the
+closed part is cut off as its own loop, so every contour is a simple cycle (two holes that share
+a corner vertex come out as two loops).
 
 The loss (paper eq. 6, the ``L_CF(X_open, T_open)`` term) is the squared Chamfer distance between
 the simulated and the target contour *vertices*. By default all contour points of each mesh are
@@ -132,30 +134,34 @@ def open_contours(verts, faces) -> list[Contour]:
         if used[e0]:
             continue
         used[e0] = True
-        start = int(b_edges[e0, 0])
-        order = [start]
+        path = [int(b_edges[e0, 0])]  # vertices of the walk not yet closed into a loop
+        pos = {path[0]: 0}
         cur = e0
         v_now = int(b_edges[e0, 1])
-        for _ in range(len(b_edges)):
-            cands = [e for e in at[v_now] if e != cur and (not used[e] or e == e0) and int(b_edges[e, 0]) == v_now]
+        while True:
+            if v_now in pos:  # the walk came back to a vertex on it: cut off that simple cycle
+                k = pos[v_now]
+                if len(path) - k >= 3:
+                    loops.append(_describe(v, np.array(path[k:])))
+                for u in path[k + 1 :]:
+                    del pos[u]
+                path = path[: k + 1]
+            else:
+                pos[v_now] = len(path)
+                path.append(v_now)
+            cands = [e for e in at[v_now] if not used[e] and int(b_edges[e, 0]) == v_now]
             if not cands:  # inconsistent orientation: accept an edge walked backwards
-                cands = [e for e in at[v_now] if e != cur and (not used[e] or e == e0)]
+                cands = [e for e in at[v_now] if not used[e]]
             if len(cands) > 1 and v_now in nonmanifold:
                 fan = _fan_component(v_now, int(b_face[cur]), faces_at[v_now], f, interior_edges)
                 same = [e for e in cands if int(b_face[e]) in fan]
                 cands = same or cands
             if not cands:
-                break  # open chain (should not happen on a triangle mesh); keep what we have
-            nxt = cands[0]
-            if nxt == e0:
-                break
-            used[nxt] = True
-            order.append(v_now)
-            a, b = int(b_edges[nxt, 0]), int(b_edges[nxt, 1])
+                break  # nothing left here (an open chain remaining is not a loop and is dropped)
+            cur = cands[0]
+            used[cur] = True
+            a, b = int(b_edges[cur, 0]), int(b_edges[cur, 1])
             v_now = b if a == v_now else a
-            cur = nxt
-        if len(order) >= 3:
-            loops.append(_describe(v, np.array(order)))
     loops.sort(key=lambda c: -c.length)
     return loops
 
