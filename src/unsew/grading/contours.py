@@ -51,6 +51,8 @@ __all__ = [
 MAX_CENTRE_DISTANCE = 0.45
 #: ... nor those whose perimeters differ by more than this factor (either way).
 MAX_PERIMETER_RATIO = 2.0
+#: Contours flatter than this (second/first singular value) have no plane to compare.
+MIN_ROUNDNESS = 0.2
 
 
 def part_group(part: str) -> str:
@@ -72,6 +74,8 @@ class PlacedContour:
     part: body part of ``bone`` (``""`` when none).
     position: distToRoot of the centre's projection on ``bone`` [m].
     candidates: all qualifying bones, nearest first: (bone, u, h) tuples.
+    roundness: second over first singular value of the centred contour points (0 for a loop
+        collapsed onto a line, whose normal means nothing; about 1 for a round loop).
     """
 
     index: int
@@ -83,6 +87,7 @@ class PlacedContour:
     part: str
     position: float
     candidates: list = field(default_factory=list)
+    roundness: float = 1.0
 
     @property
     def length(self) -> float:
@@ -157,6 +162,8 @@ def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] 
     for i, c in enumerate(contours):
         pts = v[c.indices]
         radius = float(np.linalg.norm(pts - c.centre, axis=1).mean())
+        sv = np.linalg.svd(pts - pts.mean(axis=0), compute_uv=False)
+        roundness = float(sv[1] / sv[0]) if len(sv) > 1 and sv[0] > 0 else 0.0
         cands = [(e.bone, e.u, e.h) for e in encircled_bones(pts, bones)]
         if root_bone is not None:
             u = float(axial_coordinate(c.centre, root_bone))
@@ -168,9 +175,9 @@ def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] 
         if cands:
             bone, u, h = cands[0]
             pos = float(skeleton.distance_to_root(bone, u))
-            out.append(PlacedContour(i, c, radius, bone, float(u), float(h), bone.part, pos, cands))
+            out.append(PlacedContour(i, c, radius, bone, float(u), float(h), bone.part, pos, cands, roundness))
         else:
-            out.append(PlacedContour(i, c, radius, None, float("nan"), float("nan"), "", float("nan"), []))
+            out.append(PlacedContour(i, c, radius, None, float("nan"), float("nan"), "", float("nan"), [], roundness))
     return out
 
 
@@ -222,7 +229,9 @@ def match_contours(
             if dc > max_centre_distance or ratio > max_perimeter_ratio:
                 continue
             cosn = abs(float(s.contour.normal @ t.contour.normal))
-            if cosn < 0.5:  # planes more than 60 degrees apart
+            if min(s.roundness, t.roundness) < MIN_ROUNDNESS:
+                cosn = 1.0  # a loop collapsed onto a line has no meaningful plane
+            elif cosn < 0.5:  # planes more than 60 degrees apart
                 continue
             ref = max(s.radius, 0.05)
             cost[i, j] = dc / ref + (ratio - 1.0) + (1.0 - cosn)

@@ -43,8 +43,9 @@ class GradeResult:
     K: the graded effective control points (Nk, 2) float64 [m] of the *base* parameters.
     fraction: the part of the wanted edit applied (1.0 unless scaled back to avoid inversions).
     remeshed: whether the graded pattern was meshed again.
-    x_init: the drape of the base pattern, (n_x0, 3) float64 [m].
-    matches: the contour pairs.
+    x_init: the drape of the base pattern, (n_x0, 3) float64 [m], on ``mesh_init``.
+    mesh_init: the base pattern's GarmentMesh.
+    matches: the contour pairs (:class:`~unsew.grading.contours.ContourMatch`).
     """
 
     pattern: object
@@ -55,6 +56,7 @@ class GradeResult:
     fraction: float = 1.0
     remeshed: bool = False
     x_init: np.ndarray | None = None
+    mesh_init: object = None
     matches: list = field(default_factory=list)
 
 
@@ -251,7 +253,7 @@ def grade(
     x_lg = np.asarray(drape_fn(graded, new_mesh, body), dtype=np.float64) if redrape else None
     return GradeResult(
         pattern=graded, mesh=new_mesh, x_draped=x_lg, table=rows, K=K.detach().cpu().numpy(), fraction=float(frac),
-        remeshed=bool(remeshed), x_init=x_init, matches=matches,
+        remeshed=bool(remeshed), x_init=x_init, mesh_init=mesh, matches=matches,
     )
 
 

@@ -1,0 +1,78 @@
+"""``unsew grade CASE_DIR --base tshirt --out graded/``: linear grading (phase one) of a base
+pattern to a case's target garment.
+
+Writes, all at once into ``--out`` (nothing is left behind if the run fails):
+``pattern.json`` (graded pattern, GarmentCode JSON), ``garment.obj`` (its drape, pattern
+coordinates as UVs), ``garment_init.obj`` (the base pattern's drape), ``contours.json`` (the
+contour table, lengths in metres). The table is also printed.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+__all__ = ["register", "run"]
+
+GARMENTS = ["tshirt", "dress", "pants", "shorts", "skirt"]
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("grade", help="grade a base pattern to a target's hems, cuffs, necklines (phase one)")
+    p.add_argument("case", metavar="CASE_DIR", help="case folder (target.obj, body, meta.json; see FORMATS.md)")
+    p.add_argument("--base", choices=GARMENTS, default=None, help="base pattern (default: the case's garment type)")
+    p.add_argument("--out", required=True, metavar="DIR", help="result folder to create")
+    p.add_argument("--edge-length", type=float, default=0.03, help="rest edge length of the panel meshes [m]")
+    p.add_argument("--material", default="cotton", help="material name from the library (default cotton)")
+    p.add_argument("--flat", action="store_true", help="no simulation: use the flat-placed panels as drapes (quick look)")
+    p.add_argument("--overwrite", action="store_true", help="replace --out if it exists")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    import json
+
+    from unsew.errors import InputError
+    from unsew.grading.grade import flat_drape, format_table, grade
+    from unsew.io.atomic import atomic_dir
+    from unsew.io.case import load_case
+    from unsew.io.garmentcode import save_pattern
+    from unsew.io.mesh import write_obj
+    from unsew.meshing.sew import EDGE_LENGTH_RANGE
+    from unsew.pattern.base import make_base_pattern
+
+    lo, hi = EDGE_LENGTH_RANGE
+    if not (lo <= args.edge_length <= hi):
+        raise InputError(f"--edge-length {args.edge_length} m is outside [{lo}, {hi}] m")
+    case = load_case(args.case)
+    base = args.base or case.garment
+    if not base:
+        raise InputError(f"case {args.case} names no garment type in meta.json; pass --base")
+    with atomic_dir(args.out, overwrite=args.overwrite) as tmp:
+        pattern = make_base_pattern(base)
+        kw = {"drape_fn": flat_drape} if args.flat else {}
+        res = grade(
+            pattern, case.body, case.target_verts, case.target_faces, edge_length=args.edge_length,
+            material=args.material, **kw,
+        )
+        save_pattern(res.pattern, tmp / "pattern.json")
+        m = res.mesh
+        write_obj(tmp / "garment.obj", res.x_draped, m.faces, uv=m.uv, faces_uv=m.faces_uv, header="unsew grade: X_LG")
+        write_obj(tmp / "garment_init.obj", res.x_init, res.mesh_init.faces, header="unsew grade: X_init")
+        doc = {
+            "format_version": 1,
+            "units": "m",
+            "case": str(case.path),
+            "base": base,
+            "edge_length_m": args.edge_length,
+            "material": args.material,
+            "flat": bool(args.flat),
+            "edit_fraction": res.fraction,
+            "remeshed": res.remeshed,
+            "contours": res.table,
+        }
+        (tmp / "contours.json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
+    print(format_table(res.table))
+    note = "" if res.fraction == 1.0 else f" (edit scaled back to {res.fraction:.0%})"
+    print(f"wrote {args.out}: pattern.json, garment.obj, garment_init.obj, contours.json{note}")
+    return 0
+
