@@ -7,7 +7,9 @@ PSD-projected element Hessians), is the same as solving for the new velocity
 
 where D is the lagged friction damping (friction is applied implicitly, see
 energies/contact.py). Pinned vertices keep their velocity (rows/cols replaced by identity).
-After the step, vertices inside the body are projected out (paper eq. 4).
+After the step, vertices inside the body are projected out (paper eq. 4) and lose the
+normal component of their velocity that points into the body (an inelastic impact; the paper
+does not say what it does with velocities).
 
 All of it is torch: a loss on the result back-propagates to the rest shape (through areas, B,
 masses, bending coefficients), to Gamma, and to the state, with the linear solve's adjoint
@@ -54,7 +56,7 @@ class StepParams:
     dt: float = 0.05
     gravity: float = 9.81
     friction: float = 0.3
-    contact_stiffness: float = 1e8
+    contact_stiffness: float = 1e7
     contact_threshold: float = 5e-3
     thickness: float = 1e-3
     spring_stiffness: float = 100.0
@@ -198,4 +200,7 @@ def step(model: SimModel, rest: RestData, state: SimState, sdf, gamma, params: S
     x_new = x + dt * v_new
     d, n = sdf.query(x_new)
     x_new = project_out(x_new, d, n, thickness=params.thickness)
+    # projected vertices lose their velocity into the body (inelastic)
+    vn = (v_new * n).sum(-1, keepdim=True)
+    v_new = torch.where((d < 0)[:, None] & (vn < 0), v_new - vn * n, v_new)
     return SimState(x_new, v_new)
