@@ -102,3 +102,24 @@ def test_pretty_key():
     assert pretty_key("time [s]") == "time [s]"
     assert pretty_key("iterations") == "iterations"
     assert pretty_key("m") == "m"
+
+
+def test_write_fit_report_makes_every_figure(tmp_path, meshes):
+    from unsew.report.fit_report import nearest_distance_mm, write_fit_report
+
+    gv, gf = meshes.box((0.3, 0.5, 0.2), n=3)
+    tv = gv * 1.02
+    bv, bf = meshes.box((0.2, 0.7, 0.12), n=3)
+    d = nearest_distance_mm(gv, tv)
+    assert d.shape == (len(gv),) and d.max() > 0 and d.max() < 20
+    rect = [("sleeve", np.array([[0, 0], [0.4, 0], [0.4, 0.25], [0, 0.25]]))]
+    out = write_fit_report(tmp_path / "res", title="fit", summary={"chamfer_mm": 1.0},
+                           metrics={"chamfer_mm": 1.0}, target=(tv, gf), result=(gv, gf),
+                           body=(bv, bf), history={"total": [1.0, 0.5, 0.25]},
+                           patterns=[("base", rect), ("final", rect)], views=("front",))
+    names = sorted(p.name for p in (tmp_path / "res" / "figures").iterdir())
+    assert names == ["distance.png", "distance_hist.png", "loss.png", "patterns.png",
+                     "target_vs_result.png"]
+    text = out.read_text()
+    assert text.count("data:image/png;base64,") == 5
+    assert "nearest target vertex" in text

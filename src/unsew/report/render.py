@@ -29,6 +29,7 @@ from unsew.errors import InputError
 
 __all__ = [
     "VIEWS",
+    "HEAT_CMAP",
     "view_rotation",
     "project",
     "render_mesh",
@@ -48,6 +49,9 @@ GARMENT_RGB = (0.30, 0.50, 0.78)
 BODY_RGB = (0.80, 0.80, 0.80)
 OVERLAY_RGB = (0.85, 0.20, 0.15)
 TARGET_RGB = (0.86, 0.50, 0.38)
+#: Name of unsew's distance colour map (light yellow = near, dark purple = far); any matplotlib
+#: colour map name works too.
+HEAT_CMAP = "unsew_heat"
 _INSIDE_DIM = 0.78  # faces seen from their back side (the inside of a garment) are dimmer
 _LIGHT = np.array([-0.55, 0.5, 0.75])  # in camera coordinates (right, up, towards the viewer)
 _LIGHT = _LIGHT / np.linalg.norm(_LIGHT)
@@ -183,14 +187,16 @@ def _shade(cam_tri: np.ndarray, base_rgb: np.ndarray, ambient: float) -> np.ndar
     return np.clip(base_rgb * k[:, None], 0.0, 1.0)
 
 
-def _scene_polys(layers: list[_Layer], view: str, *, edge_px_w: float):
-    """Depth-sorted polygons and styles for one view.
+def _scene_polys(layers: list[_Layer], view: str):
+    """Depth-sorted polygons and colours for one view.
 
-    Returns (polys (F, 3, 2) [m], facecolors (F, 4), edgecolors (F, 4), linewidths (F,) [pt],
-    bbox (xmin, xmax, ymin, ymax) [m] of the framed layers).
+    Returns (polys (F, 3, 2) [m], facecolors (F, 4), edgecolors (F, 4), bbox (xmin, xmax, ymin,
+    ymax) [m] of the framed layers). Opaque faces are stroked in their own colour (closing
+    the hairline antialiasing gaps between neighbours), translucent ones not at all (alpha 0),
+    wire faces only stroked; one line width serves all, which keeps matplotlib fast.
     """
     R = view_rotation(view)
-    polys, depth, fc, ec, lw = [], [], [], [], []
+    polys, depth, fc, ec = [], [], [], []
     lo = np.array([np.inf, np.inf])
     hi = -lo
     for L in layers:
@@ -203,20 +209,14 @@ def _scene_polys(layers: list[_Layer], view: str, *, edge_px_w: float):
             hi = np.maximum(hi, cam[:, :2].max(axis=0))
         rgb = _shade(tri, L.face_rgb, L.ambient)
         F = len(L.faces)
+        rgba = np.concatenate([rgb, np.full((F, 1), L.alpha)], axis=1)
+        clear = np.zeros((F, 4))
         if L.wire:
-            f4 = np.zeros((F, 4))
-            e4 = np.concatenate([rgb, np.full((F, 1), L.alpha)], axis=1)
-            w = np.full(F, 0.35)
+            f4, e4 = clear, rgba
         else:
-            f4 = np.concatenate([rgb, np.full((F, 1), L.alpha)], axis=1)
-            if L.alpha >= 1.0:
-                # stroke each face in its own colour to close the hairline antialiasing gaps
-                e4, w = f4, np.full(F, edge_px_w)
-            else:
-                e4, w = np.zeros((F, 4)), np.zeros(F)
+            f4, e4 = rgba, (rgba if L.alpha >= 1.0 else clear)
         fc.append(f4)
         ec.append(e4)
-        lw.append(w)
     order = np.argsort(np.concatenate(depth), kind="stable")  # far to near
     if not np.isfinite(lo).all():  # nothing framed: frame everything
         allp = np.concatenate(polys).reshape(-1, 2)
@@ -225,7 +225,6 @@ def _scene_polys(layers: list[_Layer], view: str, *, edge_px_w: float):
         np.concatenate(polys)[order],
         np.concatenate(fc)[order],
         np.concatenate(ec)[order],
-        np.concatenate(lw)[order],
         (lo[0], hi[0], lo[1], hi[1]),
     )
 
@@ -293,7 +292,7 @@ def _render(path_png, scenes: list[list[_Layer]], views: Sequence[str], *, title
         raise InputError(f"size_px {size_px} is too small for {nr} x {nc} views")
     pad = 6
     # one scale for all cells: metres per pixel
-    drawn = [[_scene_polys(sc, v, edge_px_w=1.0 * 72 / dpi) for v in views] for sc in scenes]
+    drawn = [[_scene_polys(sc, v) for v in views] for sc in scenes]
     scale = np.inf
     for row in drawn:
         for *_, (x0, x1, y0, y1) in row:
@@ -301,13 +300,13 @@ def _render(path_png, scenes: list[list[_Layer]], views: Sequence[str], *, title
             dy = max(y1 - y0, 1e-9) * (1 + 2 * margin)
             scale = min(scale, (cell_w - 2 * pad) / dx, (cell_h - row_title - 2 * pad) / dy)
     for r, row in enumerate(drawn):
-        for c, (polys, fc, ec, lw, (x0, x1, y0, y1)) in enumerate(row):
+        for c, (polys, fc, ec, (x0, x1, y0, y1)) in enumerate(row):
             aw, ah = cell_w - 2 * pad, cell_h - row_title - 2 * pad
             ax = _px_axes(fig, 6 + c * cell_w + pad, bottom + (nr - 1 - r) * cell_h + pad, aw, ah, W, H)
             cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
             ax.set_xlim(cx - aw / scale / 2, cx + aw / scale / 2)
             ax.set_ylim(cy - ah / scale / 2, cy + ah / scale / 2)
-            pc = PolyCollection(polys, facecolors=fc, edgecolors=ec, linewidths=lw,
+            pc = PolyCollection(polys, facecolors=fc, edgecolors=ec, linewidths=72.0 / dpi,
                                 antialiaseds=True, closed=True)
             ax.add_collection(pc, autolim=False)
             label = titles[r] if titles[r] else ""
@@ -356,7 +355,15 @@ def _colormap(vertex_values, n_verts, *, cmap, vmin, vmax):
         hi = lo + 1.0 if lo == hi else lo
         if not hi > lo:
             raise InputError(f"vmin {vmin} must be below vmax {vmax}")
-    cm_ = matplotlib.colormaps[cmap] if isinstance(cmap, str) else cmap
+    if isinstance(cmap, str) and cmap == HEAT_CMAP:
+        # light yellow (near) to dark purple (far), both ends of inferno_r trimmed: the lightest
+        # would vanish on white and the darkest would read as shadow
+        from matplotlib.colors import ListedColormap
+
+        cm_ = ListedColormap(matplotlib.colormaps["inferno_r"](np.linspace(0.1, 0.85, 256)),
+                             name=HEAT_CMAP)
+    else:
+        cm_ = matplotlib.colormaps[cmap] if isinstance(cmap, str) else cmap
     cm_ = cm_.with_extremes(bad=(0.6, 0.6, 0.6))
     lo_out = bool(finite.size and finite.min() < lo)
     hi_out = bool(finite.size and finite.max() > hi)
@@ -478,8 +485,8 @@ def render_comparison(
     """Target (top row) and result (bottom row) from the same views at one common scale.
 
     target, result: (verts (V, 3) [m], faces (F, 3)) pairs. distance_mm: optional per-vertex
-    distance of the result to the target [mm], shape (V_result,); colours the result with a
-    ``magma_r``-like heat map from 0 to ``vmax_mm`` (default: the 98th percentile). body:
+    distance of the result to the target [mm], shape (V_result,); colours the result with
+    the :data:`HEAT_CMAP` heat map from 0 to ``vmax_mm`` (default: the 98th percentile). body:
     optional (verts, faces) drawn under both. Returns the PNG's path.
     """
     views = tuple(views)
@@ -494,16 +501,9 @@ def render_comparison(
         d = d[np.isfinite(d)]
         vmax = float(np.percentile(d, 98)) if d.size else 1.0
         vmax = vmax if vmax > 0 else 1.0
-    vals, cm_, norm, lo_out, hi_out = _colormap(distance_mm, len(rv), cmap="inferno_r",
+    vals, cm_, norm, lo_out, hi_out = _colormap(distance_mm, len(rv), cmap=HEAT_CMAP,
                                                  vmin=0.0 if distance_mm is not None else None,
                                                  vmax=vmax)
-    if cm_ is not None:
-        # light yellow (near) to dark purple (far), both ends trimmed: the lightest would vanish
-        # on white and the darkest would read as shadow
-        from matplotlib.colors import ListedColormap
-
-        cm_ = ListedColormap(cm_(np.linspace(0.1, 0.85, 256)), name="unsew_heat").with_extremes(
-            bad=(0.6, 0.6, 0.6))
     if size_px is None:
         size_px = (360 * len(views), 2 * 500 + (58 if vals is not None else 0) + (34 if title else 0))
     common = dict(cmap=cm_, norm=norm, body=body, overlay=None, overlay_style="ghost",

@@ -1,0 +1,113 @@
+"""One call for the fit loop: every figure of a fit plus report.html, in a result folder.
+
+``write_fit_report(out_dir, target=..., result=..., ...)`` writes ``out_dir/figures/*.png``
+and ``out_dir/report.html`` (figures embedded, so the HTML stands alone). Missing inputs
+just leave their figure out. Call it inside the fit's temporary result folder
+(``unsew.io.atomic.atomic_dir``) so a failed run leaves no report that looks finished.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+__all__ = ["write_fit_report", "nearest_distance_mm"]
+
+
+def nearest_distance_mm(verts: np.ndarray, target_verts: np.ndarray) -> np.ndarray:
+    """Distance [mm], shape (V,), float64, from each of ``verts`` (V, 3) [m] to the nearest of
+    ``target_verts`` (T, 3) [m] (vertex to vertex: an upper bound of the distance to the
+    target surface, close to it on meshes of similar resolution)."""
+    from scipy.spatial import cKDTree
+
+    d, _ = cKDTree(np.asarray(target_verts, dtype=np.float64)).query(
+        np.asarray(verts, dtype=np.float64))
+    return d * 1000.0
+
+
+def _outlines(p) -> list:
+    """A Pattern, or an already made list of (name, outline[, placement]) tuples."""
+    if hasattr(p, "panels") and hasattr(p, "panel_order"):
+        from unsew.report.figures import pattern_outlines
+
+        return pattern_outlines(p)
+    return list(p)
+
+
+def write_fit_report(
+    out_dir: str | os.PathLike,
+    *,
+    title: str = "unsew fit",
+    summary: Mapping[str, Any] | None = None,
+    metrics: Mapping[str, Any] | None = None,
+    target: tuple[np.ndarray, np.ndarray] | None = None,
+    result: tuple[np.ndarray, np.ndarray] | None = None,
+    body: tuple[np.ndarray, np.ndarray] | None = None,
+    distance_mm: np.ndarray | None = None,
+    history: Mapping[str, Sequence[float]] | None = None,
+    phases: Sequence[tuple[int, str]] | None = None,
+    patterns: Sequence[tuple[str, Any]] | None = None,
+    config: Mapping[str, Any] | None = None,
+    notes: Sequence[str] | None = None,
+    views: Sequence[str] = ("front", "side"),
+) -> Path:
+    """Draw the figures of a fit into ``out_dir/figures`` and write ``out_dir/report.html``.
+
+    target, result, body: (verts (V, 3) [m], faces (F, 3) int) in the world frame.
+    distance_mm: per-vertex distance of the result to the target [mm], shape (V_result,);
+        default: to the nearest target vertex (:func:`nearest_distance_mm`).
+    history, phases: as :func:`unsew.report.figures.plot_loss_curves`.
+    patterns: (label, Pattern or list of (name, outline (M, 2) [m])) in drawing order, e.g.
+        ``[("base", base), ("graded", graded), ("final", final), ("ground truth", gt)]``.
+    summary, metrics, config, notes: as :func:`unsew.report.html.write_report`.
+    Returns the path of report.html.
+    """
+    from unsew.report.figures import plot_histogram, plot_loss_curves, plot_patterns
+    from unsew.report.html import write_report
+    from unsew.report.render import HEAT_CMAP, render_comparison, render_views
+
+    out = Path(out_dir)
+    fig_dir = out / "figures"
+    fig_dir.mkdir(parents=True, exist_ok=True)
+    figures: list[tuple[str, Path]] = []
+    notes = list(notes or [])
+
+    if history:
+        figures.append(("Loss per iteration: the total and each term"
+                        + (", with the phases of the fit" if phases else ""),
+                        plot_loss_curves(fig_dir / "loss.png", history, phases=phases)))
+    if target is not None and result is not None:
+        figures.append(("Target (top) and fitted result (bottom), same views and scale",
+                        render_comparison(fig_dir / "target_vs_result.png", target, result,
+                                          body=body, views=views)))
+        if distance_mm is None:
+            distance_mm = nearest_distance_mm(result[0], target[0])
+            notes.append("Heat map distances are to the nearest target vertex.")
+        d = np.asarray(distance_mm, dtype=np.float64)
+        finite = d[np.isfinite(d)]
+        vmax = float(np.percentile(finite, 98)) if finite.size else 1.0
+        figures.append((f"Distance of the result to the target [mm] (colour scale capped at the "
+                        f"98th percentile, {vmax:.2g} mm)",
+                        render_views(fig_dir / "distance.png", result[0], result[1],
+                                     views=tuple(views) + (("back",) if "back" not in views else ()),
+                                     vertex_values=d, cmap=HEAT_CMAP, vmin=0.0,
+                                     vmax=vmax if vmax > 0 else 1.0,
+                                     colorbar_label="distance to target [mm]", body=body)))
+        if finite.size:
+            figures.append(("Histogram of the per-vertex distance to the target",
+                            plot_histogram(fig_dir / "distance_hist.png", d)))
+    elif result is not None:
+        figures.append(("Fitted result",
+                        render_views(fig_dir / "result.png", result[0], result[1], views=views,
+                                     body=body)))
+    if patterns:
+        pats = [(str(label), _outlines(p)) for label, p in patterns]
+        figures.append((", ".join(label for label, _ in pats) + " patterns, panel by panel, "
+                        "at true scale",
+                        plot_patterns(fig_dir / "patterns.png", pats)))
+    return write_report(out / "report.html", title=title, summary=dict(summary or {}),
+                        metrics=dict(metrics or {}), figures=figures, config=config,
+                        notes=notes or None)
