@@ -215,7 +215,7 @@ def grade(
         curves = curves_of_contour(s.contour.indices, x_init, params.pattern, mesh, params.controls)
         warnings = []
         edits = []
-        total = sum(c.length3d for c in curves)
+        total = max(s.length, 1e-12)  # each curve's share of the contour's 3D length
         if not curves:
             warnings.append("no open pattern curve forms this contour; left alone")
         for c in curves:
