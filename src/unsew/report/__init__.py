@@ -5,6 +5,8 @@
 - :mod:`unsew.report.figures`: ``plot_loss_curves``, ``plot_patterns``, ``pattern_outlines``,
   ``plot_histogram``.
 - :mod:`unsew.report.html`: ``write_report`` (one self-contained HTML file).
+- :mod:`unsew.report.fit_report`: ``write_fit_report`` (every figure of a fit and report.html
+  in one call, for the fit loop).
 
 Importing this package is cheap; matplotlib is imported by the functions that draw.
 """

@@ -237,8 +237,9 @@ def plot_patterns(
         raise InputError(f"layout must be 'grid' or 'placed', got {layout!r}")
     if not patterns:
         raise InputError("no patterns to plot")
-    # name -> list of (pattern index, outline [m]) in panel frame (+ placement when placed)
-    cells: dict[str, list[tuple[int, np.ndarray]]] = {}
+    # cell -> list of (pattern index, outline [m], panel name), outlines in the panel frame
+    # (moved by their placement in the "placed" layout, where everything shares one cell)
+    cells: dict[str, list[tuple[int, np.ndarray, str]]] = {}
     labels = []
     for pi, item in enumerate(patterns):
         try:
@@ -255,14 +256,14 @@ def plot_patterns(
                 off = np.asarray(entry[2], dtype=np.float64).reshape(2)
                 outline = outline + off
             key = name if layout == "grid" else "(all)"
-            cells.setdefault(key, []).append((pi, outline))
+            cells.setdefault(key, []).append((pi, outline, name))
     if not cells:
         raise InputError("the patterns hold no panels")
 
     # cell boxes and a shelf packing of the cells into rows
     boxes = {}
     for name, items in cells.items():
-        allp = np.concatenate([o for _, o in items])
+        allp = np.concatenate([o for _, o, _ in items])
         boxes[name] = (allp.min(axis=0), allp.max(axis=0))
     sizes = np.array([hi - lo for lo, hi in boxes.values()])
     gap = 0.12 * float(np.max(sizes)) if len(cells) > 1 else 0.0
@@ -314,8 +315,14 @@ def plot_patterns(
     pstyles = [_pattern_style(lbl, i, styles) for i, lbl in enumerate(labels)]
     for name, items in cells.items():
         off = offsets[name]
-        for pi, outline in items:
+        named = set()
+        for pi, outline, pname in items:
             st = pstyles[pi]
+            if layout == "placed" and pname not in named:  # name each panel once, at its middle
+                named.add(pname)
+                mid = (outline.min(axis=0) + outline.max(axis=0)) / 2 + off
+                ax.text(mid[0], mid[1], pname, ha="center", va="center", fontsize=9,
+                        color="#333333", zorder=50)
             pts = outline + off
             if st.get("fill"):
                 ax.add_patch(Polygon(pts, closed=True, facecolor=st["fill"], alpha=0.07,

@@ -88,9 +88,16 @@ def project(verts: np.ndarray, view: str) -> np.ndarray:
 # input checks
 
 
+def _np(x):
+    """numpy view of an array-like; torch tensors (any device, with grad) are detached first."""
+    if hasattr(x, "detach") and hasattr(x, "cpu"):
+        x = x.detach().cpu().numpy()
+    return np.asarray(x)
+
+
 def _check_mesh(verts, faces, what: str) -> tuple[np.ndarray, np.ndarray]:
-    v = np.asarray(verts, dtype=np.float64)
-    f = np.asarray(faces)
+    v = _np(verts).astype(np.float64, copy=False)
+    f = _np(faces)
     if v.ndim != 2 or v.shape[1] != 3 or len(v) == 0:
         raise InputError(f"{what} vertices must have shape (V, 3) with V > 0, got {v.shape}")
     if f.ndim != 2 or f.shape[1] != 3 or len(f) == 0:
@@ -344,7 +351,7 @@ def _colormap(vertex_values, n_verts, *, cmap, vmin, vmax):
     import matplotlib
     from matplotlib.colors import Normalize
 
-    vals = np.asarray(vertex_values, dtype=np.float64).reshape(-1)
+    vals = _np(vertex_values).astype(np.float64).reshape(-1)
     if vals.shape != (n_verts,):
         raise InputError(f"vertex_values must have shape ({n_verts},) (one per vertex), got "
                          f"{np.shape(vertex_values)}")
@@ -497,7 +504,7 @@ def render_comparison(
     body = _check_pair(body, "body")
     vmax = vmax_mm
     if distance_mm is not None and vmax is None:
-        d = np.asarray(distance_mm, dtype=np.float64)
+        d = _np(distance_mm).astype(np.float64)
         d = d[np.isfinite(d)]
         vmax = float(np.percentile(d, 98)) if d.size else 1.0
         vmax = vmax if vmax > 0 else 1.0
