@@ -7,8 +7,8 @@ Units (SI, per unit of cloth width/area, shell quantities):
   and eps = (E_uu, E_vv, 2 E_uv) the Green strain with *engineering* shear (see
   ``energies/membrane.py``). u is the warp (pattern x) direction, v the weft (pattern y).
 - ``bend`` [N*m]: bending rigidity D (moment per unit width per unit curvature). The discrete
-  energy of ``energies/bending.py`` is calibrated so that a uniformly bent sheet stores
-  D/2 * kappa^2 per unit area.
+  energy of ``energies/bending.py`` stores D/2 * kappa^2 per unit area for a sheet bent to a
+  cylinder on a grid mesh (9/8 of that on an equilateral mesh).
 - ``density`` [kg/m^2]: areal density.
 - ``friction``: Coulomb friction coefficient against the body (dimensionless).
 

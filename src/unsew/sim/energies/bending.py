@@ -5,15 +5,17 @@ For an interior edge e = x1 - x0 shared by triangles (x0, x1, x2) and (x1, x0, x
 
     theta = atan2((n1 x n2) . e/|e|, n1 . n2)        (0 when flat; patterns are flat at rest)
 
-and the energy (the "discrete shells" form, Grinspun et al. 2003, whose force is Bridson's
-k |e|^2/(A1+A2) * (angle term) * u_i with u_i = d theta/d x_i)
+and the energy, with Bridson's coefficient |e|^2/(A1+A2) (paper eq. 3: the force is
+k |e|^2/(A1+A2) * (angle term) * u_i, u_i = d theta/d x_i),
 
-    W = (D/2) * 3 |e_r|^2 / (A1_r + A2_r) * (theta - theta0)^2,
+    W = (D/2) * |e_r|^2 / (A1_r + A2_r) * (theta - theta0)^2,
 
 with rest (pattern) edge length |e_r| and rest areas A_r, D = Gamma[4] the bending rigidity
-[N*m]. For a sheet bent uniformly to curvature kappa this approximates D/2 kappa^2 per unit
-area (checked in tests/verification). We use theta - theta0 rather than Bridson's
-sin(theta/2) - sin(theta0/2): the same to second order, and quadratic, so W is convex in theta.
+[N*m]. Calibration: a sheet bent to a cylinder of curvature kappa stores exactly D/2 kappa^2
+per unit area on a grid mesh whose edges run along the bend (tests/verification); on an
+equilateral mesh the factor is 9/8 (mesh-dependent, as for every hinge energy; Grinspun et
+al.'s "3 |e|^2/(A1+A2)" would make it 3 and 27/8). We use theta - theta0 rather than Bridson's
+sin(theta/2) - sin(theta0/2): the same to second order, and quadratic in theta.
 
 Gradient (Bridson 2003 / Tamstorf and Grinspun 2013), checked against autograd in the tests:
     d theta/dx2 = -|e| n1/|n1|^2,   d theta/dx3 = -|e| n2/|n2|^2,
@@ -31,7 +33,7 @@ __all__ = ["bending_rest", "energy_bending", "dihedral_angle"]
 
 
 def bending_rest(uv: torch.Tensor, faces_uv: torch.Tensor, hinge_faces, hinge_uv_edges, rest_area):
-    """Per-hinge rest coefficient c = 3 |e_r|^2 / (A1_r + A2_r) [-] (dimensionless), shape (H,).
+    """Per-hinge rest coefficient c = |e_r|^2 / (A1_r + A2_r) [-] (dimensionless), shape (H,).
 
     Args:
         uv: rest positions [m], (Nu, 2). faces_uv: (F, 3) int64.
@@ -41,7 +43,7 @@ def bending_rest(uv: torch.Tensor, faces_uv: torch.Tensor, hinge_faces, hinge_uv
     ea = (uv[hinge_uv_edges[:, 1]] - uv[hinge_uv_edges[:, 0]]).pow(2).sum(-1)
     eb = (uv[hinge_uv_edges[:, 3]] - uv[hinge_uv_edges[:, 2]]).pow(2).sum(-1)
     e2 = 0.5 * (ea + eb)  # the two sides of a seam may differ slightly: take the mean
-    return 3.0 * e2 / (rest_area[hinge_faces[:, 0]] + rest_area[hinge_faces[:, 1]])
+    return e2 / (rest_area[hinge_faces[:, 0]] + rest_area[hinge_faces[:, 1]])
 
 
 def _cross(a, b):

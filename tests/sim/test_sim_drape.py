@@ -1,0 +1,88 @@
+"""drape/sew: boundary checks, divergence message, sewing closes seams, merge."""
+
+import numpy as np
+import pytest
+import torch
+from helpers import assert_close
+
+from unsew.errors import InputError, PatternError, SimulationError
+from unsew.sim import MATERIALS, PlaneSDF, SimModel, SimState, SphereSDF, drape, merge_sewn, sew
+from unsew.sim.meshes import grid_sheet, two_panels
+
+GAMMA = MATERIALS["cotton"].gamma()
+
+
+def _sheet(n=4, size=0.2, y=0.12):
+    uv, f = grid_sheet(n, n, size, size)
+    m = SimModel.build(f, f)
+    x = np.c_[uv[:, 0] - size / 2, np.full(len(uv), y), uv[:, 1] - size / 2]
+    return m, torch.as_tensor(uv), SimState.at_rest(x)
+
+
+def test_drape_over_sphere_stays_outside():
+    m, uv, st = _sheet(8, 0.3)
+    sdf = SphereSDF((0, 0, 0), 0.1)
+    out = drape(m, st, sdf, uv=uv, gamma=GAMMA, density=0.12, steps=20)
+    d, _ = sdf.query(out.x)
+    assert float(d.min()) >= 1e-3 - 1e-12  # projected at least to the collision thickness
+    assert float(out.x[:, 1].min()) < 0.05  # the corners fell around the sphere
+
+
+def test_missing_sdf_bad_material_bad_shapes():
+    m, uv, st = _sheet()
+    with pytest.raises(InputError, match="SDF"):
+        drape(m, st, None, uv=uv, gamma=GAMMA, density=0.1)
+    bad = GAMMA.clone()
+    bad[0] = -5.0
+    with pytest.raises(InputError, match="stiffness"):
+        drape(m, st, PlaneSDF(), uv=uv, gamma=bad, density=0.1)
+    with pytest.raises(InputError, match="uv"):
+        drape(m, st, PlaneSDF(), uv=uv[:-1], gamma=GAMMA, density=0.1)
+    with pytest.raises(InputError, match="float64"):
+        drape(m, SimState(st.x.float(), st.v.float()), PlaneSDF(), uv=uv, gamma=GAMMA, density=0.1)
+
+
+def test_degenerate_rest_triangle_is_a_pattern_error():
+    m, uv, st = _sheet()
+    uv2 = uv.clone()
+    uv2[6] = uv2[0]  # collapse a vertex onto another: zero-area triangles
+    with pytest.raises(PatternError, match="triangle"):
+        drape(m, st, PlaneSDF((0, -1, 0)), uv=uv2, gamma=GAMMA, density=0.1)
+
+
+def test_divergence_names_step_and_vertex():
+    m, uv, st = _sheet()
+    v = st.v.clone()
+    v[7, 1] = -30.0  # one vertex thrown fast
+    with pytest.raises(SimulationError, match=r"step 0: vertex \d+"):
+        drape(m, SimState(st.x, v), PlaneSDF((0, -1, 0)), uv=uv, gamma=GAMMA, density=0.1, max_speed=5.0)
+    x = st.x.clone()
+    x[3, 0] = float("nan")
+    with pytest.raises(InputError, match="NaN"):
+        drape(m, SimState(x, st.v), PlaneSDF((0, -1, 0)), uv=uv, gamma=GAMMA, density=0.1)
+
+
+def test_sew_closes_seam_and_merge():
+    p = two_panels(4, 0.1)
+    mu = SimModel.build(p["faces_uv"], p["faces_uv"], springs=p["seam_pairs"])
+    uv = torch.as_tensor(p["uv"])
+    # panels placed as a tent over a sphere, 2 cm gap at the seam
+    x = np.c_[p["uv"][:, 0] - 0.1125, 0.11 + 0.0 * p["uv"][:, 0], p["uv"][:, 1] - 0.05]
+    xs = sew(mu, x, SphereSDF((0, 0, 0), 0.1), uv=uv, gamma=GAMMA, density=0.12, steps=60, dt=0.02)
+    gap = (xs[p["seam_pairs"][:, 0]] - xs[p["seam_pairs"][:, 1]]).norm(dim=1)
+    assert float(gap.max()) < 2e-3  # from 25 mm apart to closed within 2 mm
+    xm = merge_sewn(xs, p["x_of_u"], p["n_x"])
+    assert xm.shape == (p["n_x"], 3)
+    a, b = p["seam_pairs"][0]
+    assert_close(xm[p["x_of_u"][a]], 0.5 * (xs[a] + xs[b]), rtol=1e-12)
+    with pytest.raises(InputError):
+        merge_sewn(xs, p["x_of_u"], p["n_x"] + 1)
+
+
+def test_pinned_vertices_hold_and_sewing_hold():
+    uv, f = grid_sheet(3, 3, 0.1, 0.1)
+    m = SimModel.build(f, f, pinned=[0, 3])
+    x = np.c_[uv[:, 0], np.zeros(len(uv)), uv[:, 1]]
+    out = drape(m, SimState.at_rest(x), PlaneSDF((0, -1, 0)), uv=torch.as_tensor(uv), gamma=GAMMA, density=0.1, steps=5)
+    assert_close(out.x[[0, 3]], torch.as_tensor(x[[0, 3]]), atol=0.0)
+    assert float(out.x[15, 1]) < -0.01
