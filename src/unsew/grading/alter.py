@@ -18,7 +18,7 @@ from unsew.errors import InputError
 from unsew.grading.curves import stitched_edges
 from unsew.pattern.model import Pattern
 
-__all__ = ["open_edges", "alter_pattern"]
+__all__ = ["open_edges", "alter_pattern", "alteration_groups"]
 
 
 def open_edges(pattern: Pattern, label: str, *, panels=None) -> list[tuple[str, int]]:
@@ -57,4 +57,21 @@ def alter_pattern(pattern: Pattern, edges, *, length: float = 0.0, girth: float 
         dchord = girth * chord
         panel.vertices[e.start] = a + length * normal - 0.5 * dchord * w
         panel.vertices[e.end] = b + length * normal + 0.5 * dchord * w
+    return out
+
+
+def alteration_groups(pattern: Pattern) -> dict[str, list[tuple[str, int]]]:
+    """The open ``hem`` edges of a base pattern grouped by what they finish: ``"hem"`` (the body
+    hem of a top, dress or skirt), ``"sleeves"`` (cuffs) or ``"legs"`` (leg openings of pants and
+    shorts: panels named ``*_front``/``*_back`` with an inseam). Empty groups are left out."""
+    out: dict[str, list] = {}
+    for name, i in open_edges(pattern, "hem"):
+        panel = pattern.panels[name]
+        if "sleeve" in name:
+            key = "sleeves"
+        elif any(e.label == "inseam" for e in panel.edges):
+            key = "legs"
+        else:
+            key = "hem"
+        out.setdefault(key, []).append((name, i))
     return out

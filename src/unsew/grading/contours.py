@@ -7,7 +7,8 @@ wearer's skeleton:
 - its *encircled bones* are Algorithm 2's EncircledBones: the bones onto which the contour centre
   projects inside the segment (0 < u < 1). The torso's root bone (pelvis -> its child on the
   torso chain) is also tried below the pelvis (u <= 0): a t-shirt hem or a skirt hem hangs below
-  the pelvis joint, on the continuation of the spine, not around a thigh;
+  the pelvis joint, on the continuation of the spine, not around a thigh; likewise the last bone
+  of a limb chain past its end (u >= 1: a leg opening below the ankle joint);
 - among them, the bones whose line passes *through* the loop (distance h of the centre to the
   bone below the loop's mean radius) are preferred; the nearest of those (smallest h) is the
   contour's bone, and its part (``torso``, ``head``, ``left_arm``, ...) the contour's part;
@@ -137,6 +138,21 @@ def _torso_root_bone(skeleton: Skeleton) -> Bone | None:
     return best if best_up > 0.5 else None
 
 
+def _chain_end_bones(skeleton: Skeleton) -> list[Bone]:
+    """Bones of a limb (not torso/head) that end a chain: no child bone of the same part
+    continues in their direction (cosine > 0.7). A leg opening below the ankle joint or a long
+    cuff past the wrist lies on their continuation (u >= 1)."""
+    bones = skeleton.bones()
+    out = []
+    for b in bones:
+        if b.part in ("torso", "head"):
+            continue
+        kids = [c for c in bones if c.parent == b.child and c.part == b.part]
+        if not any(float(c.direction @ b.direction) > 0.7 for c in kids):
+            out.append(b)
+    return out
+
+
 def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] | None = None) -> list[PlacedContour]:
     """Open contours of a mesh located on the skeleton (module docstring).
 
@@ -158,6 +174,7 @@ def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] 
         contours = open_contours(v, faces)
     bones = skeleton.bones()
     root_bone = _torso_root_bone(skeleton)
+    ends = _chain_end_bones(skeleton)
     out = []
     for i, c in enumerate(contours):
         pts = v[c.indices]
@@ -170,6 +187,11 @@ def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] 
             if u <= 0.0:
                 P = root_bone.a + u * (root_bone.b - root_bone.a)
                 cands.append((root_bone, u, float(np.linalg.norm(c.centre - P))))
+        for b in ends:
+            u = float(axial_coordinate(c.centre, b))
+            if u >= 1.0:
+                P = b.a + u * (b.b - b.a)
+                cands.append((b, u, float(np.linalg.norm(c.centre - P))))
         # bones through the loop first, then the nearest
         cands.sort(key=lambda t: (t[2] >= radius, t[2]))
         if cands:

@@ -1,0 +1,139 @@
+"""Linear grading benchmark (issue 6): recover known length and girth changes.
+
+For every garment type, the base pattern is altered by known amounts (hem / sleeve / leg length
+by +/- 5 to 15 cm, their girth by +/- 10 %, :mod:`unsew.grading.alter`), the altered pattern is
+draped to make the target T, and the *base* pattern is graded to T. Printed per contour:
+the known change, the measured axial distance and girth difference, and after grading the
+residuals |position(X_LG) - position(T)| along the skeleton and |girth(X_LG) - girth(T)| [cm];
+per garment the Chamfer distance [mm] of X_init and of X_LG to T (``unsew.metrics.chamfer_mm``)
+and their ratio.
+
+Drapes: the simulator (``--drape sim``: place_garment, sew, settle) or the panels laid flat at
+their placement (``--drape flat``: no physics, a check of the geometry alone). ``auto`` uses the
+simulator when ``unsew.body.placement.place_garment`` exists.
+
+Run: OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_grading.py [--drape auto|sim|flat]
+     [--edge-length 0.03] [--garments tshirt pants ...]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+#: garment -> {group: (length change [m], relative girth change)}
+CHANGES = {
+    "tshirt": {"hem": (0.10, 0.10), "sleeves": (-0.05, -0.10)},
+    "dress": {"hem": (-0.15, 0.10), "sleeves": (0.05, 0.10)},
+    "pants": {"legs": (-0.10, -0.10)},
+    "shorts": {"legs": (0.08, 0.10)},
+    "skirt": {"hem": (0.12, -0.10)},
+}
+
+
+def _have_placement() -> bool:
+    try:
+        from unsew.body.placement import place_garment  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--drape", choices=["auto", "sim", "flat"], default="auto")
+    ap.add_argument("--edge-length", type=float, default=0.03)
+    ap.add_argument("--material", default="cotton")
+    ap.add_argument("--garments", nargs="*", default=list(CHANGES))
+    ap.add_argument("--samples", type=int, default=20000, help="Chamfer samples per mesh")
+    args = ap.parse_args()
+
+    import numpy as np
+    import torch
+
+    torch.set_num_threads(1)
+    from unsew.body.body import default_body
+    from unsew.grading.alter import alter_pattern, alteration_groups
+    from unsew.grading.contours import place_contours
+    from unsew.grading.grade import drape_pattern, flat_drape, grade
+    from unsew.meshing.sew import mesh_pattern
+    from unsew.metrics.surface import chamfer_mm
+    from unsew.pattern.base import make_base_pattern
+
+    mode = args.drape
+    if mode == "auto":
+        mode = "sim" if _have_placement() else "flat"
+    body = default_body()
+    sdf = None
+    if mode == "sim":
+        from unsew.body.sdf import BodySDF
+
+        sdf = BodySDF.build(body)
+
+        def drape_fn(p, m, b):
+            return drape_pattern(p, m, b, material=args.material, sdf=sdf)
+    else:
+        drape_fn = flat_drape
+    print(f"drape: {mode}; edge length {args.edge_length} m; material {args.material}")
+    head = (
+        f"{'garment':<8} {'contour':<10} {'known dL cm':>11} {'known dG %':>10} {'axial cm':>9} {'girth cm':>9} "
+        f"{'res L cm':>9} {'res G cm':>9}"
+    )
+    print(head)
+    print("-" * len(head))
+    summary = []
+    for g in args.garments:
+        t0 = time.perf_counter()
+        base = make_base_pattern(g)
+        groups = alteration_groups(base)
+        target = base
+        for key, (dl, dg) in CHANGES[g].items():
+            if key in groups:
+                target = alter_pattern(target, groups[key], length=dl, girth=dg)
+        tm = mesh_pattern(target, edge_length=args.edge_length)
+        tx = drape_fn(target, tm, body)
+        res = grade(base, body, tx, tm.faces, edge_length=args.edge_length, drape_fn=drape_fn)
+        sk = body.skeleton
+        after = place_contours(res.x_draped, res.mesh.faces, sk)
+        tgt = place_contours(tx, tm.faces, sk)
+        src = place_contours(res.x_init, res.mesh_init.faces, sk)
+        for m in res.matches:
+            s, t = src[m.source], tgt[m.target]
+            # the graded contour that corresponds to the target one: same part, nearest centre
+            cands = [a for a in after if a.part == s.part] or after
+            a = min(cands, key=lambda a: float(np.linalg.norm(a.centre - t.centre)))
+            known = _known(g, s.part)
+            res_l = abs(a.position - t.position) if a.bone is not None and a.bone.part == t.part else float(
+                np.linalg.norm(a.centre - t.centre)
+            )
+            print(
+                f"{g:<8} {s.part:<10} {known[0] * 100:>+11.1f} {known[1] * 100:>+10.0f} {m.axial_distance * 100:>+9.1f} "
+                f"{m.girth_difference * 100:>+9.1f} {res_l * 100:>9.2f} {abs(a.length - t.length) * 100:>9.2f}"
+            )
+        for r in res.table:
+            if r["source_contour"] is None or r["target_contour"] is None:
+                print(f"{g:<8} unmatched: {r['source_contour'] or r['target_contour']}")
+        before = chamfer_mm(res.x_init, res.mesh_init.faces, tx, tm.faces, n_samples=args.samples).mean_mm
+        graded = chamfer_mm(res.x_draped, res.mesh.faces, tx, tm.faces, n_samples=args.samples).mean_mm
+        summary.append((g, before, graded, res.fraction, res.remeshed, time.perf_counter() - t0))
+    print()
+    print(f"{'garment':<8} {'Chamfer base mm':>15} {'graded mm':>10} {'ratio':>6} {'edit':>5} {'remeshed':>8} {'time s':>7}")
+    for g, b, a, f, rm, dt in summary:
+        print(f"{g:<8} {b:>15.1f} {a:>10.1f} {a / b if b > 0 else float('nan'):>6.2f} {f:>5.2f} {str(rm):>8} {dt:>7.1f}")
+
+
+def _known(garment: str, part: str) -> tuple[float, float]:
+    """The known (length [m], relative girth) change of the contour on ``part``."""
+    ch = CHANGES[garment]
+    if part in ("left_arm", "right_arm"):
+        return ch.get("sleeves", (0.0, 0.0))
+    if part in ("left_leg", "right_leg"):
+        return ch.get("legs", (0.0, 0.0))
+    return (0.0, 0.0)  # torso/head: the hem or the neckline/waist; see the table's axial column
+
+
+if __name__ == "__main__":
+    main()
