@@ -1,6 +1,469 @@
-"""Placement of a pattern's panels around a body (issue 3, item 6).
+"""Placement of a pattern's panels around a body: the start of the sewing phase (issue 3, item 6).
 
-OWNERSHIP NOTE (lead, during parallel work): this module is being written by the *dressing*
-engineer together with the sewing phase and `unsew.dress`. The body engineer need not write it.
-Contract (docs/ARCHITECTURE.md): ``place_garment(pattern, mesh, body) -> x_unsewn (Nu, 3) [m]``.
+Each flat panel is wrapped isometrically (arc length along a cross-section = distance across
+the panel) onto a surface a little outside the body, so its rest shape is nearly unstretched
+and the two edges of every stitch face each other:
+
+- torso panels onto a stack of horizontal ellipses around the torso (front panels in front,
+  back panels behind, the panel's own 3D placement telling which side and how high); what
+  rises above the shoulders folds over them towards the body's centre plane;
+- sleeves into a tube around the shoulder-elbow-wrist line of their arm (the side of the
+  panel's placement: x > 0 is the body's left);
+- trouser legs into a stack of ellipses around their leg below the crotch, blended over a few
+  cm into the torso stack above it;
+- anything else (a collar, a user's GarmentCode panel) at its own placement.
+
+Cross-sections come from the body's vertices (grouped by part through the skeleton), plus a
+clearance; where the garment is wider than the section, the ellipse grows (in depth for the
+torso, in both axes for legs and arms) so that front and back meet. Points that still end up
+inside or too close to the body are pushed out along the SDF normal, by at most
+``MAX_PUSH`` (a deep point pushed to its nearest surface would exit through the far side of
+the body, shared/STACK.md).
 """
+
+from __future__ import annotations
+
+import numpy as np
+
+from unsew.errors import InputError
+
+__all__ = ["place_garment", "panel_roles", "CLEARANCE", "MAX_PUSH"]
+
+#: Gap between the body's cross-section and the wrapped cloth [m].
+CLEARANCE = 0.02
+#: Points closer than this to the body after wrapping are pushed out to it [m].
+MIN_GAP = 0.008
+#: Largest push along the SDF normal [m] (deeper points are left to the sewing's contact).
+MAX_PUSH = 0.05
+#: Half-height of the blend between leg tubes and the torso stack around the crotch [m].
+CROTCH_BLEND = 0.04
+#: Height step of the cross-section tables [m].
+_DY = 0.01
+
+
+# -- geometry helpers --------------------------------------------------------------------------
+
+
+def _ellipse_perimeter(a, b):
+    """Ramanujan's approximation, arrays of semi-axes [m] -> perimeter [m]."""
+    h = ((a - b) / (a + b)) ** 2
+    return np.pi * (a + b) * (1 + 3 * h / (10 + np.sqrt(4 - 3 * h)))
+
+
+def _ellipse_arc_table(a, b, n=257):
+    """Cumulative arc length (N, n) [m] over phi in [0, 2 pi] (grid (n,)) on ellipses
+    (a sin phi, b cos phi), a and b (N,) [m]."""
+    phi = np.linspace(0.0, 2 * np.pi, n)
+    seg = np.sqrt((a[:, None] * np.cos(phi)) ** 2 + (b[:, None] * np.sin(phi)) ** 2)  # (N, n) |dp/dphi|
+    steps = 0.5 * (seg[:, 1:] + seg[:, :-1]) * np.diff(phi)
+    return phi, np.concatenate([np.zeros((len(a), 1)), np.cumsum(steps, axis=1)], axis=1)
+
+
+def _ellipse_at_arc(a, b, s0_phi, s):
+    """Angle on ellipses (a, b) (each (N,)) reached after signed arc length ``s`` (N,) [m] from
+    angle ``s0_phi`` (N,) [rad]; ellipse points are (a sin phi, b cos phi)."""
+    phi, cum = _ellipse_arc_table(a, b)
+    per = cum[:, -1]
+    n = len(phi)
+    r = np.arange(len(a))
+    f = np.mod(s0_phi, 2 * np.pi) / (2 * np.pi) * (n - 1)
+    i0 = np.clip(np.floor(f).astype(int), 0, n - 2)
+    s_start = cum[r, i0] + (f - i0) * (cum[r, i0 + 1] - cum[r, i0])
+    target = np.mod(s_start + s, per)
+    j = np.clip((cum < target[:, None]).sum(axis=1) - 1, 0, n - 2)
+    t = (target - cum[r, j]) / np.maximum(cum[r, j + 1] - cum[r, j], 1e-12)
+    return phi[j] + t * (phi[j + 1] - phi[j])
+
+
+def _section_table(points, ys, *, center=None):
+    """Enclosing ellipse of the horizontal cross-sections of a point cloud.
+
+    points: (M, 3) [m]; ys: (H,) heights [m]. Returns (cx, cz, a, b) each (H,) [m]: centre and
+    semi-axes (x, z) of an ellipse containing every point within one table step of each height
+    (empty heights copy the nearest filled one). center: optional (H, 2) fixed centres (x, z).
+    """
+    H = len(ys)
+    out = np.full((H, 4), np.nan)
+    idx = np.round((points[:, 1] - ys[0]) / _DY).astype(int)
+    order = np.argsort(idx)
+    idx_s = idx[order]
+    for h in range(H):
+        lo, hi = np.searchsorted(idx_s, [h - 1, h + 2])
+        if hi - lo < 3:
+            continue
+        p = points[order[lo:hi]]
+        if center is None:
+            cx = 0.5 * (p[:, 0].max() + p[:, 0].min())
+            cz = 0.5 * (p[:, 2].max() + p[:, 2].min())
+        else:
+            cx, cz = center[h]
+        dx, dz = p[:, 0] - cx, p[:, 2] - cz
+        a0 = max(np.abs(dx).max(), 0.02)
+        b0 = max(np.abs(dz).max(), 0.02)
+        s = np.sqrt(((dx / a0) ** 2 + (dz / b0) ** 2).max())  # >= 1: scale to enclose every point
+        out[h] = (cx, cz, a0 * s, b0 * s)
+    ok = ~np.isnan(out[:, 0])
+    if not ok.any():
+        raise InputError("the body has no vertices where the garment sits; is the body in metres and Y up?")
+    fi = np.flatnonzero(ok)
+    for k in range(4):
+        out[:, k] = np.interp(np.arange(H), fi, out[fi, k])
+    # Be generous: each height takes the largest semi-axes within +-2 steps; then smooth.
+    for k in (2, 3):
+        out[:, k] = _running_max(out[:, k], 2)
+    ker = np.array([1.0, 2.0, 3.0, 2.0, 1.0]) / 9.0
+    for k in range(4):
+        out[:, k] = np.convolve(np.pad(out[:, k], 2, mode="edge"), ker, mode="valid")
+    return [out[:, 0].copy(), out[:, 1].copy(), out[:, 2].copy(), out[:, 3].copy()]
+
+
+def _width_at(poly_s, poly_y, ys):
+    """Extent [min, max] along s of a closed polygon (given as (k,) arrays) at heights ys (H,).
+    Returns (H, 2), NaN where the line misses the polygon."""
+    s0, y0 = poly_s, poly_y
+    s1, y1 = np.roll(poly_s, -1), np.roll(poly_y, -1)
+    out = np.full((len(ys), 2), np.nan)
+    for h, y in enumerate(ys):
+        m = (np.minimum(y0, y1) <= y) & (np.maximum(y0, y1) >= y) & (y0 != y1)
+        if not m.any():
+            continue
+        t = (y - y0[m]) / (y1[m] - y0[m])
+        s = s0[m] + t * (s1[m] - s0[m])
+        out[h] = (s.min(), s.max())
+    return out
+
+
+def _smoothstep(t):
+    t = np.clip(t, 0.0, 1.0)
+    return t * t * (3 - 2 * t)
+
+
+# -- roles ------------------------------------------------------------------------------------
+
+
+def _landmarks(body):
+    sk = body.skeleton
+    missing = sk.missing()
+    if missing:
+        raise InputError(f"the body's skeleton lacks joints {', '.join(missing)}; placement needs them (shared/FORMATS.md)")
+    J = {n: sk.position(n) for n in sk.names}
+    parts = np.asarray(body.vertex_parts())
+    v = np.asarray(body.verts, np.float64)
+    cx = float(J["pelvis"][0])
+    # Crotch: the lowest body point on the centre line above the knees.
+    knee_y = max(J["left_knee"][1], J["right_knee"][1])
+    m = (np.abs(v[:, 0] - cx) < 0.012) & (v[:, 1] > knee_y) & (v[:, 1] < J["pelvis"][1]) & np.isin(parts, ["torso", "left_leg", "right_leg"])
+    crotch_y = float(v[m, 1].min()) if m.any() else float(0.5 * (J["pelvis"][1] + knee_y))
+    return J, parts, v, cx, crotch_y
+
+
+def panel_roles(pattern, body) -> dict:
+    """How each panel is placed: name -> ``"torso"``, ``"left_sleeve"``, ``"right_sleeve"``,
+    ``"left_leg"``, ``"right_leg"`` or ``"free"`` (kept at its own placement), judged from the
+    panel's 3D placement (translation/rotation) relative to the body's skeleton."""
+    J, _, _, cx, crotch_y = _landmarks(body)
+    roles = {}
+    for name in pattern.panel_order:
+        p = pattern.panels[name]
+        w = p.to_world(p.vertices)  # (k, 3) corners in the hint placement
+        c = w.mean(axis=0)
+        n = p.rotation_matrix()[:, 2]
+        side = "left" if c[0] > cx else "right"
+        sh = J[f"{side}_shoulder"]
+        if w[:, 1].min() > J["neck"][1] + 0.03:
+            roles[name] = "free"
+        elif abs(n[0]) > 0.7 and abs(c[0] - cx) > 0.8 * abs(sh[0] - cx) and c[1] > J[f"{side}_wrist"][1] - 0.1:
+            roles[name] = f"{side}_sleeve"
+        elif (
+            w[:, 1].min() < crotch_y - 0.08
+            and abs(c[0] - cx) > 0.04
+            and np.max(-np.sign(c[0] - cx) * (w[:, 0] - cx)) < 0.35 * np.ptp(w[:, 0])
+        ):
+            roles[name] = f"{side}_leg"
+        elif abs(n[1]) < 0.7:
+            roles[name] = "torso"
+        else:
+            roles[name] = "free"
+    return roles
+
+
+# -- placement -------------------------------------------------------------------------------
+
+
+def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE) -> np.ndarray:
+    """Put the flat panels of ``pattern`` around ``body``: the start of the sewing phase.
+
+    Args:
+        pattern: unsew.pattern.model.Pattern whose panels carry a 3D placement hint
+            (translation [m], rotation [deg]) telling side and height.
+        mesh: its GarmentMesh (uv (Nu, 2) [m], uv_panel, panel_offsets, n_boundary, ...).
+        body: unsew.body.body.Body with a skeleton (any body: nothing is hard-coded).
+        sdf: optional BodySDF of ``body`` (built, disk-cached, when None) for the final push-out.
+        clearance: gap between the body's cross-sections and the wrapped cloth [m].
+
+    Returns:
+        x_unsewn: (Nu, 3) float64 [m], one 3D point per 2D rest vertex (seam copies apart).
+    """
+    uv = np.asarray(mesh.uv, np.float64)
+    Nu = len(uv)
+    if Nu == 0:
+        raise InputError("the garment mesh is empty; mesh the pattern first")
+    J, parts, v, cx0, crotch_y = _landmarks(body)
+    roles = panel_roles(pattern, body)
+    ys = np.arange(v[:, 1].min() - 0.05, v[:, 1].max() + 0.3, _DY)  # (H,)
+    x = np.asarray(mesh.uv_placed3d, np.float64).copy()  # free panels stay at their hint
+
+    # Per panel: the hint (world positions of its vertices) and its frame.
+    info = {}
+    for pi, name in enumerate(mesh.panel_names):
+        p = pattern.panels[name]
+        sl = slice(int(mesh.panel_offsets[pi]), int(mesh.panel_offsets[pi + 1]))
+        info[name] = dict(sl=sl, R=p.rotation_matrix(), hint=x[sl].copy(), bl=mesh.boundary_loop(pi), role=roles[name])
+
+    # ---- stacks of horizontal ellipses: the torso and each leg --------------------------------
+    torso_pts = v[np.isin(parts, ["torso", "left_leg", "right_leg"])]
+    torso_pts = torso_pts[torso_pts[:, 1] < J["neck"][1]]
+    stacks = {"torso": _section_table(torso_pts, ys)}
+    # Above the chest the torso does not narrow into the neck (what rises above the shoulders
+    # folds over them, see _fold_over_shoulders); its depth follows the body.
+    up = ys >= J["chest"][1]
+    stacks["torso"][2][up] = np.maximum.accumulate(stacks["torso"][2][up])
+    for side, sgn in (("left", 1.0), ("right", -1.0)):
+        lp = v[np.isin(parts, ["torso", f"{side}_leg"]) & ((v[:, 0] - cx0) * sgn > 0) & (v[:, 1] < crotch_y + 0.05)]
+        stacks[f"{side}_leg"] = _section_table(lp, ys)
+    # Shoulder line: top of the torso (below the neck joint) per lateral position.
+    top = v[np.isin(parts, ["torso"]) & (v[:, 1] < J["neck"][1])]
+    xb = np.arange(-0.5, 0.5 + 1e-9, 0.01) + cx0
+    ib = np.clip(np.round((top[:, 0] - xb[0]) / 0.01).astype(int), 0, len(xb) - 1)
+    ytop = np.full(len(xb), -np.inf)
+    np.maximum.at(ytop, ib, top[:, 1])
+    ok = np.isfinite(ytop)
+    ytop = np.interp(xb, xb[ok], ytop[ok])
+
+    def stack_coords(name, centred):
+        """(S, y) of a panel's vertices: arc coordinate around its stack and height."""
+        d = info[name]
+        R = d["R"]
+        u = uv[d["sl"]]
+        a2 = R[:, :2].T @ np.array([0.0, 1.0, 0.0])  # panel-frame direction that points up
+        if np.linalg.norm(a2) < 1e-6:
+            a2 = np.array([0.0, 1.0])
+        a2 = a2 / np.linalg.norm(a2)
+        b2 = np.array([a2[1], -a2[0]])
+        nrm = R[:, 2]
+        phi0 = np.arctan2(nrm[0], nrm[2])
+        c_uv = u.mean(axis=0)
+        c_hint = d["hint"].mean(axis=0)
+        along = (u - c_uv) @ a2 + c_hint[1]
+        across = (u - c_uv) @ b2
+        return along, across, phi0, c_hint
+
+    def wrap_stack(stack, y, S, phi_c, *, perim=None):
+        """Points on a stack at heights y with arc coordinates S measured from angle phi_c."""
+        cx, cz, a, b = (np.interp(y, ys, t) for t in stack)
+        a = a + clearance
+        b = b + clearance
+        if perim is not None:
+            need = np.interp(y, ys, perim)
+            per = _ellipse_perimeter(a, b)
+            grow = need > per
+            # torso: grow the depth (arms limit the width); a few Newton-free bisections
+            lo, hi = b.copy(), b + need
+            for _ in range(30):
+                mid = 0.5 * (lo + hi)
+                big = _ellipse_perimeter(a, mid) > need
+                hi = np.where(big, mid, hi)
+                lo = np.where(big, lo, mid)
+            b = np.where(grow, hi, b)
+        phi = _ellipse_at_arc(a, b, np.broadcast_to(phi_c, a.shape).astype(np.float64), S)
+        return np.stack([cx + a * np.sin(phi), y, cz + b * np.cos(phi)], axis=1)
+
+    # Widths needed around each stack at each height (front + back panels side by side).
+    need = {k: np.zeros(len(ys)) for k in stacks}
+    coords = {}
+    for name, d in info.items():
+        role = d["role"]
+        if role not in ("torso", "left_leg", "right_leg"):
+            continue
+        along, across, phi0, c_hint = stack_coords(name, False)
+        coords[name] = (along, across, phi0, c_hint)
+        bl = d["bl"] - d["sl"].start
+        ext = _width_at(across[bl], along[bl], ys)
+        w = np.nan_to_num(ext[:, 1] - ext[:, 0])
+        if role == "torso":
+            need["torso"] += w
+        else:
+            need["torso"] += np.where(ys > crotch_y, w, 0.0)
+            need[role] += np.where(ys < crotch_y + CROTCH_BLEND, w, 0.0)
+        d["ext"] = ext
+
+    for name, d in info.items():
+        role = d["role"]
+        sl = d["sl"]
+        if role in ("torso", "left_leg", "right_leg"):
+            along, across, phi0, c_hint = coords[name]
+            st = stacks["torso"]
+            axis_x = np.interp(c_hint[1], ys, st[0])
+            axis_z = np.interp(c_hint[1], ys, st[1])
+            t_hat = np.array([np.cos(phi0), 0.0, -np.sin(phi0)])
+            S_c = t_hat @ (c_hint - np.array([axis_x, 0.0, axis_z]))
+            p_torso = wrap_stack(st, along, across + S_c, phi0, perim=need["torso"])
+            p_torso = _fold_over_shoulders(p_torso, phi0, xb, ytop, clearance, st, ys)
+            if role == "torso":
+                x[sl] = p_torso
+            else:
+                ext = d["ext"]
+                mid = np.interp(along, ys, np.nan_to_num(0.5 * (ext[:, 0] + ext[:, 1])))
+                p_leg = wrap_stack(stacks[role], along, across - mid, phi0, perim=need[role])
+                w = _smoothstep((crotch_y + CROTCH_BLEND - along) / (2 * CROTCH_BLEND))[:, None]
+                x[sl] = w * p_leg + (1 - w) * p_torso
+        elif role.endswith("_sleeve"):
+            x[sl] = _wrap_sleeve(uv[sl], d, role.split("_")[0], J)
+
+    return _push_out(x, body, sdf)
+
+
+def _fold_over_shoulders(p, phi0, xb, ytop, clearance, stack, ys):
+    """Fold what rises above the shoulder line horizontally towards the body's centre plane
+    (isometric: the excess height becomes a horizontal run)."""
+    y_line = np.interp(p[:, 0], xb, ytop) + clearance
+    e = p[:, 1] - y_line
+    m = e > 0
+    if not m.any():
+        return p
+    q = p.copy()
+    cz = np.interp(y_line[m], ys, stack[1])
+    dirz = -np.sign(np.cos(phi0)) if abs(np.cos(phi0)) > 1e-3 else 0.0
+    if dirz == 0.0:
+        return p
+    z_new = q[m, 2] + dirz * e[m]
+    # never cross the centre plane (front and back roofs meet there)
+    lim = cz - dirz * 0.01
+    z_new = np.maximum(z_new, lim) if dirz < 0 else np.minimum(z_new, lim)
+    q[m, 1] = y_line[m]
+    q[m, 2] = z_new
+    return q
+
+
+def _wrap_sleeve(u, d, side, J):
+    """A sleeve wrapped into a tube around its arm's shoulder-elbow-wrist line."""
+    A = np.stack([J[f"{side}_shoulder"], J[f"{side}_elbow"], J[f"{side}_wrist"]])  # (3, 3)
+    seg = np.diff(A, axis=0)
+    L = np.linalg.norm(seg, axis=1)
+    d0 = seg[0] / L[0]
+    R = d["R"]
+    a2 = R[:, :2].T @ d0
+    a2 = a2 / max(np.linalg.norm(a2), 1e-9)
+    b2 = np.array([a2[1], -a2[0]])
+    c_uv = u.mean(axis=0)
+    c_hint = d["hint"].mean(axis=0)
+    along = (u - c_uv) @ a2
+    across = (u - c_uv) @ b2
+    # Where along the arm: the cap's top (smallest 'along') a little inside the shoulder joint.
+    t = along - along.min() - 0.03
+    cum = np.concatenate([[0.0], np.cumsum(L)])
+
+    def axis_at(tt):
+        k = np.clip(np.searchsorted(cum, tt) - 1, 0, len(L) - 1)
+        return A[k] + (tt - cum[k])[:, None] * (seg[k] / L[k, None]), seg[k] / L[k, None]
+
+    P, D = axis_at(t)
+    # Radius: the sleeve's own width around (so its underarm seam starts closed); where the
+    # arm is thicker than that (the cap over the deltoid) the push-out lifts the cloth.
+    bl = d["bl"] - d["sl"].start
+    levels = np.unique(np.round(along, 4))
+    ext = _width_at(across[bl], along[bl], levels)
+    wid = np.interp(along, levels, np.nan_to_num(ext[:, 1] - ext[:, 0]))
+    r = np.maximum(wid / (2 * np.pi), 0.03)
+    # Frame: the sleeve's middle faces away from the body (its placement normal, off the axis).
+    n = R[:, 2]
+    e1 = n - (n @ d0) * d0
+    if np.linalg.norm(e1) < 1e-6:
+        e1 = np.cross(d0, [0.0, 0.0, 1.0])
+    e1 = e1 / np.linalg.norm(e1)
+    E1 = e1 - (np.einsum("ij,j->i", D, e1))[:, None] * D
+    E1 /= np.linalg.norm(E1, axis=1, keepdims=True)
+    E2 = np.cross(D, E1)
+    th = across / r
+    # mean radius per 'along' keeps the wrap isometric around each ring
+    return P + r[:, None] * (np.cos(th)[:, None] * E1 + np.sin(th)[:, None] * E2)
+
+
+def _running_max(a, k):
+    """Largest value within +-k entries (edges padded)."""
+    p = np.pad(a, k, mode="edge")
+    return np.max(np.stack([p[i : i + len(a)] for i in range(2 * k + 1)]), axis=0)
+
+
+def _push_out(x, body, sdf):
+    """Move points closer than MIN_GAP to the body (or inside, by at most MAX_PUSH deep) out
+    along the SDF normal."""
+    import torch
+
+    if sdf is None:
+        from unsew.body.sdf import BodySDF
+
+        sdf = BodySDF.build(body)
+    xt = torch.as_tensor(x, dtype=torch.float64)
+    for _ in range(3):
+        with torch.no_grad():
+            dd, nn = sdf.query(xt)
+        m = (dd < MIN_GAP) & (dd > -MAX_PUSH)
+        if not bool(m.any()):
+            break
+        xt[m] = xt[m] + (MIN_GAP + 0.002 - dd[m])[:, None] * nn[m]
+    return xt.numpy().copy()
+
+
+def stitch_distances(mesh, x_unsewn) -> list[dict]:
+    """How well each stitch's two edges face each other in a placement.
+
+    Args:
+        mesh: GarmentMesh. x_unsewn: (Nu, 3) [m] positions of the unsewn vertices.
+
+    Returns:
+        one dict per stitch side pair (in ``mesh.edge_verts`` pairing order): ``a``, ``b``
+        ((panel, edge) keys), ``pair`` [m] the mean distance between the vertices sewn together,
+        ``other`` [m] the mean distance from the edges' vertices to the nearest vertex of any
+        other panel (neither a's nor b's).
+    """
+    from scipy.spatial import cKDTree
+
+    x = np.asarray(x_unsewn, np.float64)
+    sp = np.asarray(mesh.seam_pairs)
+    part = np.asarray(mesh.uv_panel)
+    # group seam pairs by the (panel, edge) keys of their two sides
+    key_of = {}
+    for key, idx in mesh.edge_verts.items():
+        for i in np.asarray(idx):
+            key_of.setdefault(int(i), []).append(key)
+    groups: dict = {}
+    for i, j in sp:
+        ka = [k for k in key_of.get(int(i), [])]
+        kb = [k for k in key_of.get(int(j), [])]
+        # the edge pair: the one combination that holds most pairs (corners sit on two edges)
+        for a in ka:
+            for b in kb:
+                groups.setdefault((a, b), []).append((int(i), int(j)))
+    out = []
+    for (a, b), pairs in groups.items():
+        if len(pairs) < 2:
+            continue
+        pairs = np.array(pairs)
+        pa, pb = mesh.panel_names.index(a[0]), mesh.panel_names.index(b[0])
+        others = (part != pa) & (part != pb)
+        d_pair = float(np.linalg.norm(x[pairs[:, 0]] - x[pairs[:, 1]], axis=1).mean())
+        if others.any():
+            tree = cKDTree(x[others])
+            q = np.unique(pairs.ravel())
+            d_other = float(tree.query(x[q])[0].mean())
+        else:
+            d_other = float("inf")
+        out.append(dict(a=a, b=b, pair=d_pair, other=d_other))
+    # keep only true stitch edge pairs (drop corner-induced combinations holding few pairs)
+    best: dict = {}
+    for r in out:
+        n = len(groups[(r["a"], r["b"])])
+        if n >= 0.5 * min(len(mesh.edge_verts[r["a"]]), len(mesh.edge_verts[r["b"]])):
+            best[(r["a"], r["b"])] = r
+    return list(best.values())
