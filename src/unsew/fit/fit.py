@@ -173,7 +173,7 @@ def fit(
     t1 = time.perf_counter()
     if ckpt is not None:
         graded, mesh, x_start, grade_table = ckpt["graded"], ckpt["mesh"], ckpt["x_graded"], ckpt["grade_table"]
-        x_base = ckpt.get("x_base")
+        x_base, mesh_base = ckpt.get("x_base"), ckpt.get("mesh_base")
         log(f"resuming from iteration {ckpt['state'].iteration} ({checkpoint})")
     else:
         bar = _phase_bar(progress, "drape base")
@@ -181,14 +181,20 @@ def fit(
                         sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt, progress=bar)
         _close(bar)
         x_base = dressed.x.numpy().copy()
+        mesh_base = dressed.mesh
         n_src = len(open_contours(x_base, dressed.mesh.faces))
         _check_contours_compatible(n_src, len(contours_t), cfg.base or case.garment)
         grade_table = []
         if cfg.grading:
-            from unsew.grading import grade
+            from unsew.grading.grade import grade
+
+            def drape_fn(p, m, b):
+                d = dress(p, b, sdf=sdf, mesh=m, material=material0, sew_steps=cfg.sew_steps,
+                          settle_steps=cfg.settle_steps, dt=cfg.dt)
+                return d.x.numpy()
 
             g = grade(base, case.body, tv, tf, edge_length=cfg.edge_length, material=material0, sdf=sdf,
-                      dressed=dressed, sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps)
+                      mesh=dressed.mesh, x_init=x_base, drape_fn=drape_fn)
             graded, mesh, x_start, grade_table = g.pattern, g.mesh, _np(g.x_draped), g.table
         else:
             graded, mesh, x_start = base, dressed.mesh, x_base
@@ -272,7 +278,7 @@ def fit(
             if checkpoint is not None:
                 state = FitState(it + 1, K.detach().clone(), theta.detach().clone(),
                                  {"k": opt_k.state_dict(), "m": opt_m.state_dict()}, x_prev.clone(), history, best)
-                _save_checkpoint(checkpoint, graded, mesh, x_start, x_base, grade_table, state)
+                _save_checkpoint(checkpoint, graded, mesh, x_start, x_base, mesh_base, grade_table, state)
             h = history["total"]
             if len(h) > cfg.patience and it >= cfg.material_start + cfg.patience:
                 old = min(h[: -cfg.patience])
@@ -299,7 +305,7 @@ def fit(
         x=xb.cpu().numpy(), uv=uv_b.cpu().numpy(), material=material, history=history,
         grade_table=grade_table, timings=timings, iterations=it + 1,
         converged=converged, x_graded=np.asarray(x_start), x_base=x_base, params=params,
-        extra={"best_iteration": best["it"], "material_start": material0},
+        extra={"best_iteration": best["it"], "material_start": material0, "base_mesh": mesh_base},
     )
 
 
@@ -348,14 +354,14 @@ def _close(cb) -> None:
             b.close()
 
 
-def _save_checkpoint(path, graded, mesh, x_graded, x_base, grade_table, state: FitState) -> None:
+def _save_checkpoint(path, graded, mesh, x_graded, x_base, mesh_base, grade_table, state: FitState) -> None:
     import torch
 
     from unsew.io.atomic import atomic_write
 
     with atomic_write(path) as tmp:
         torch.save({"graded": graded, "mesh": mesh, "x_graded": x_graded, "x_base": x_base,
-                    "grade_table": grade_table, "state": state, "version": 1}, tmp)
+                    "mesh_base": mesh_base, "grade_table": grade_table, "state": state, "version": 1}, tmp)
 
 
 def _load_checkpoint(path):

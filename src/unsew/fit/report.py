@@ -51,7 +51,7 @@ def write_fit_report(work: Path, result, case, metrics: dict) -> Path:
         "time_s": result.timings.get("total_s"),
     }
     if "pattern" in metrics and isinstance(metrics["pattern"], dict):
-        summary["area_error_mean_pct"] = _pct(metrics["pattern"].get("area_error_mean"))
+        summary["area_error_mean_pct"] = _pct(metrics["pattern"].get("area_error_rel_mean"))
     notes = [f"{r.get('warning')}" for r in (result.grade_table or []) if isinstance(r, dict) and r.get("warning")]
     table = {k: v for k, v in metrics.items() if k not in ("timings_s",)}
     table["timings_s"] = metrics.get("timings_s", {})

@@ -1,0 +1,27 @@
+"""``unsew demo``: the embedded default job (known-truth t-shirt: make, fit, evaluate, retarget)."""
+
+from __future__ import annotations
+
+import argparse
+
+__all__ = ["register", "run"]
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    from unsew.commands.fit import add_fit_options
+
+    p = sub.add_parser("demo", help="fit a known t-shirt on the embedded default body (a few minutes)")
+    p.add_argument("--out", default="demo-out", metavar="DIR", help="folder for the case, the fit and the retarget")
+    add_fit_options(p)
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from unsew.commands.fit import config_from_args
+    from unsew.fit.demo import run_demo
+
+    cfg = config_from_args(args)
+    run_demo(Path(args.out), cfg=cfg, progress=not args.quiet)
+    return 0
