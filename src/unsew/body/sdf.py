@@ -18,7 +18,8 @@ Build (numpy/scipy, once per body, cached on disk):
    close to a closed surface.
 
 Query: ``sdf.query(x)`` trilinearly interpolates the distance grid and its gradient grid (central
-differences, precomputed) with ``torch.nn.functional.grid_sample``: ``d`` is differentiable in
+differences, precomputed) by one gather of the 8 corners of each point's cell from a
+channel-last table (faster than ``torch.nn.functional.grid_sample`` with 4 channels here): ``d`` is differentiable in
 ``x`` (first and second derivatives, those of the trilinear interpolant), ``n`` is the
 interpolated gradient normalised (continuous across cells, unlike autograd's gradient of ``d``).
 Points outside the grid get the distance at the nearest grid point plus the distance to it.
@@ -285,11 +286,17 @@ class BodySDF:
         t = self._dev.get(key)
         if t is None:
             g = np.stack(np.gradient(self.values, self.voxel), axis=0)  # (3, nz, ny, nx): d/dz, d/dy, d/dx
-            grid = np.concatenate([self.values[None], g[::-1]], axis=0)  # channels: d, dd/dx, dd/dy, dd/dz
-            vol = torch.as_tensor(np.ascontiguousarray(grid), dtype=dtype, device=device)[None]  # (1, 4, nz, ny, nx)
-            lo = torch.as_tensor(self.origin, dtype=dtype, device=device)
-            hi = torch.as_tensor(self.upper, dtype=dtype, device=device)
-            t = (vol, lo, hi)
+            table = np.stack([self.values, g[2], g[1], g[0]], axis=-1).reshape(-1, 4)  # (nodes, 4): d, grad
+            nz, ny, nx = self.values.shape
+            t = dict(
+                table=torch.as_tensor(np.ascontiguousarray(table), dtype=dtype, device=device),
+                lo=torch.as_tensor(self.origin, dtype=dtype, device=device),
+                hi=torch.as_tensor(self.upper, dtype=dtype, device=device),
+                last=torch.tensor([nx - 2, ny - 2, nz - 2], device=device),
+                stride=torch.tensor([1, nx, nx * ny], device=device),
+            )
+            bits = torch.tensor([[k & 1, (k >> 1) & 1, (k >> 2) & 1] for k in range(8)], device=device)
+            t["corner_offsets"] = (bits * t["stride"]).sum(dim=1)  # (8,) flat offsets of the corners
             self._dev[key] = t
         return t
 
@@ -300,17 +307,23 @@ class BodySDF:
         same dtype and device; differentiable in x (d twice, via the trilinear interpolant).
         """
         import torch
-        import torch.nn.functional as F
 
-        vol, lo, hi = self._tensors(x.device, x.dtype)
+        T = self._tensors(x.device, x.dtype)
+        lo, hi = T["lo"], T["hi"]
         xc = torch.minimum(torch.maximum(x, lo), hi)  # (N, 3) clamped into the grid
-        g = (xc - lo) / (hi - lo) * 2.0 - 1.0  # normalised (x, y, z) in [-1, 1]
-        s = F.grid_sample(vol, g.view(1, -1, 1, 1, 3), mode="bilinear", padding_mode="border", align_corners=True)
-        s = s.view(4, -1)  # (4, N)
+        f = (xc - lo) / self.voxel  # (N, 3) continuous node coordinates (x, y, z)
+        i0 = torch.minimum(f.detach().floor().long(), T["last"])  # (N, 3) cell's lower corner
+        t = f - i0.to(f.dtype)  # (N, 3) in [0, 1], carries the gradient
+        base = (i0 * T["stride"]).sum(dim=1)  # (N,)
+        vals = T["table"][base[:, None] + T["corner_offsets"]]  # (N, 8, 4) at the cell's corners
+        w1 = torch.stack([1 - t, t], dim=2)  # (N, 3, 2) 1D weights per axis (x, y, z)
+        # (N, 8) trilinear weights, corner k = 4 dz + 2 dy + dx
+        w = (w1[:, 2, :, None, None] * w1[:, 1, None, :, None] * w1[:, 0, None, None, :]).reshape(-1, 8)
+        s = (vals * w[:, :, None]).sum(dim=1)  # (N, 4): d, grad
         out = x - xc
         dist_out = torch.sqrt((out * out).sum(dim=1) + 1e-30) - 1e-15  # 0 inside the box
-        d = s[0] + dist_out
-        grad = s[1:].T  # (N, 3)
+        d = s[:, 0] + dist_out
+        grad = s[:, 1:]  # (N, 3)
         n = grad / torch.clamp(torch.linalg.norm(grad, dim=1, keepdim=True), min=1e-12)
         return d, n
 

@@ -1,0 +1,79 @@
+"""Body SDF benchmark: grid build time for the default body (no cache), accuracy against exact
+point-to-mesh distance, and query time of 8K points with gradient (forward + backward).
+
+    OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_sdf.py [--threads 2] [--voxel 0.005]
+
+Prints a table; never asserts timings.
+"""
+
+import argparse
+import os
+import time
+
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--voxel", type=float, default=0.005)
+    ap.add_argument("--points", type=int, default=8192)
+    ap.add_argument("--accuracy-points", type=int, default=1000)
+    args = ap.parse_args()
+
+    import numpy as np
+    import torch
+    import trimesh
+
+    torch.set_num_threads(args.threads)
+    from unsew.body.body import default_body
+    from unsew.body.sdf import BodySDF, mesh_distance
+
+    body = default_body()
+    t = time.perf_counter()
+    sdf = BodySDF.build(body, voxel=args.voxel, use_cache=False)
+    t_build = time.perf_counter() - t
+    nz, ny, nx = sdf.shape
+
+    m = body.to_trimesh()
+    rng = np.random.default_rng(0)
+    pts, fi = trimesh.sample.sample_surface(m, args.accuracy_points, seed=0)
+    x = pts + m.face_normals[fi] * rng.uniform(-0.05, 0.05, size=(len(pts), 1))
+    d_ex, _ = mesh_distance(x, body.verts, body.faces)
+    d, _ = sdf.query(torch.tensor(x))
+    err = np.abs(d.numpy()) - d_ex  # magnitude error; the sign is tested in tests/body
+    near = d_ex < 0.05
+
+    xq = torch.tensor(pts[rng.integers(0, len(pts), args.points)] + rng.normal(0, 0.02, (args.points, 3)))
+    # garment vertices are spatially coherent; random order is the worst case for the cache
+    key = np.lexsort(np.floor(xq.numpy() / 0.02).T)
+    rows = []
+    for dtype, order in ((torch.float64, "random"), (torch.float32, "random"), (torch.float64, "sorted")):
+        xx = (xq[key] if order == "sorted" else xq).to(dtype).requires_grad_(True)
+        sdf.query(xx)  # warm: grid tensors on this device/dtype
+        ts_f, ts_fb = [], []
+        for _ in range(20):
+            t = time.perf_counter()
+            with torch.no_grad():
+                sdf.query(xx)
+            ts_f.append(time.perf_counter() - t)
+            t = time.perf_counter()
+            dd, nn = sdf.query(xx)
+            (g,) = torch.autograd.grad(dd.sum(), xx)
+            ts_fb.append(time.perf_counter() - t)
+        rows.append((f"{str(dtype).replace('torch.', '')}, {order} order", np.median(ts_f) * 1e3, np.median(ts_fb) * 1e3))
+
+    print(f"default body: {len(body.verts)} verts, {len(body.faces)} faces; torch threads {args.threads}")
+    print(f"| grid | voxel [mm] | nodes | build [s] | RMS err <5cm [mm] | max err <5cm [mm] |")
+    print(f"|---|---|---|---|---|---|")
+    print(f"| {nx}x{ny}x{nz} | {args.voxel * 1e3:.1f} | {nx * ny * nz / 1e6:.1f}M | {t_build:.1f} | "
+          f"{np.sqrt(np.mean(err[near] ** 2)) * 1e3:.2f} | {np.abs(err[near]).max() * 1e3:.2f} |")
+    print()
+    print(f"| query {args.points} points | forward [ms] | forward + gradient [ms] |")
+    print(f"|---|---|---|")
+    for name, f, fb in rows:
+        print(f"| {name} | {f:.2f} | {fb:.2f} |")
+
+
+if __name__ == "__main__":
+    main()
