@@ -10,7 +10,8 @@ wearer's skeleton:
   the pelvis joint, on the continuation of the spine, not around a thigh; likewise the last bone
   of a limb chain past its end (u >= 1: a leg opening below the ankle joint);
 - among them, the bones whose line passes *through* the loop (distance h of the centre to the
-  bone below the loop's mean radius) are preferred; the nearest of those (smallest h) is the
+  bone below the loop's mean radius) are preferred, then those that cross the loop's plane at
+  more than 30 degrees (not a sideways hip or collar bone); the nearest (smallest h) is the
   contour's bone, and its part (``torso``, ``head``, ``left_arm``, ...) the contour's part;
 - its axial position is ``distToRoot(P)``: the distance along the chain of bones from the
   skeleton's root to the projection P of the centre (:meth:`Skeleton.distance_to_root`, with the
@@ -192,8 +193,10 @@ def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] 
             if u >= 1.0:
                 P = b.a + u * (b.b - b.a)
                 cands.append((b, u, float(np.linalg.norm(c.centre - P))))
-        # bones through the loop first, then the nearest
-        cands.sort(key=lambda t: (t[2] >= radius, t[2]))
+        # bones through the loop first, then bones across the loop's plane (a contour encircles a
+        # bone roughly along its normal; a sideways hip or collar bone is not it), then the nearest
+        across = lambda b: roundness < MIN_ROUNDNESS or abs(float(c.normal @ b.direction)) >= 0.5  # noqa: E731
+        cands.sort(key=lambda t: (t[2] >= radius, not across(t[0]), t[2]))
         if cands:
             bone, u, h = cands[0]
             pos = float(skeleton.distance_to_root(bone, u))
