@@ -1,0 +1,158 @@
+"""Measure a body from its mesh and skeleton: girths, lengths and heights (``Measurements``).
+
+Girths are convex-hull perimeters of cross-sections, as a tape measure reads them:
+
+- bust: horizontal section of torso (arms cut away) at its fullest level between the spine and
+  shoulder joints;
+- waist: the narrowest torso section between the hip level and the chest joint (the natural
+  waist); its height is ``waist_height``;
+- hip: the fullest horizontal section of torso and legs (arms cut away) between the crotch and
+  the pelvis joint;
+- neck: section a quarter of the way from the neck joint to the head joint, of the points within
+  8 cm of the neck axis;
+- upper arm: the left arm cut perpendicular to the upper-arm bone at 30 % from the shoulder;
+- thigh: the left leg cut horizontally 3 cm below the crotch.
+
+Arms and legs are told apart by the skinning weights when the body has them, else by the nearest
+bone (``Body.vertex_parts``). Lengths follow the skeleton: arm = shoulder->elbow->wrist, leg =
+hip->knee->ankle, torso = neck base to the waist level, shoulder width = between the outermost
+surface points 3 cm above the shoulder joints (acromion level). All in metres.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from unsew.body.measurements import Measurements
+
+__all__ = ["measure_body", "section_points", "hull_perimeter"]
+
+
+def section_points(verts: np.ndarray, faces: np.ndarray, origin: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    """Points where mesh edges cross the plane through ``origin`` with ``normal``.
+
+    verts: (V, 3) float64 [m]; faces: (F, 3) int; origin, normal: (3,) [m] / unit.
+    Returns (K, 3) float64 [m] (each crossing edge once per face; duplicates harmless).
+    """
+    s = (verts - origin) @ normal  # (V,) signed height above the plane
+    e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    sa, sb = s[e[:, 0]], s[e[:, 1]]
+    cross = (sa < 0) != (sb < 0)
+    e, sa, sb = e[cross], sa[cross], sb[cross]
+    t = sa / (sa - sb)
+    return verts[e[:, 0]] + (verts[e[:, 1]] - verts[e[:, 0]]) * t[:, None]
+
+
+def hull_perimeter(points2d: np.ndarray) -> float:
+    """Perimeter of the convex hull of 2D points, (K, 2) float64 [m] -> [m]; 0 for < 3 points."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    if len(points2d) < 3:
+        return 0.0
+    try:
+        return float(ConvexHull(points2d).area)  # in 2D, "area" is the perimeter
+    except QhullError:
+        return 0.0
+
+
+def _horizontal_girth(verts, faces, keep_face, y):
+    p = section_points(verts, faces[keep_face], np.array([0.0, y, 0.0]), np.array([0.0, 1.0, 0.0]))
+    return hull_perimeter(p[:, [0, 2]])
+
+
+def _scan(verts, faces, keep_face, y0, y1, *, step=0.005):
+    ys = np.arange(min(y0, y1), max(y0, y1) + 1e-9, step)
+    return ys, np.array([_horizontal_girth(verts, faces, keep_face, y) for y in ys])
+
+
+def measure_body(body) -> Measurements:
+    """Measurements of a body (see the module docstring for each definition).
+
+    body: a ``Body`` (verts (V,3) float64 [m], faces, skeleton with the required joints).
+    Returns ``Measurements`` in metres.
+    """
+    from unsew.body.skeleton import Bone, distance_to_bone
+
+    V, F, sk = body.verts, body.faces, body.skeleton
+    P = sk.position
+    floor = float(V[:, 1].min())
+    height = float(V[:, 1].max() - floor)
+    parts = body.vertex_parts()
+    is_arm = np.isin(parts, ["left_arm", "right_arm"])
+    is_head = parts == "head"
+    no_arm_face = ~is_arm[F].any(axis=1)
+    torso_face = no_arm_face & ~np.isin(parts, ["left_leg", "right_leg"])[F].any(axis=1) & ~is_head[F].any(axis=1)
+
+    pelvis, spine, chest, neck, head = (P(n) for n in ("pelvis", "spine", "chest", "neck", "head"))
+    l_sh, r_sh = P("left_shoulder"), P("right_shoulder")
+    sh_y = 0.5 * (l_sh[1] + r_sh[1])
+
+    # crotch: lowest midline surface point above the knees
+    knee_y = 0.5 * (P("left_knee")[1] + P("right_knee")[1])
+    mid = (np.abs(V[:, 0] - pelvis[0]) < 0.015) & (V[:, 1] > knee_y) & (V[:, 1] < pelvis[1])
+    crotch_y = float(V[mid, 1].min()) if mid.any() else float(0.5 * (knee_y + pelvis[1]))
+
+    # bust: fullest torso level between spine and shoulders (arms cut away)
+    ys, g = _scan(V, F, torso_face, spine[1] + 0.3 * (chest[1] - spine[1]), sh_y - 0.03)
+    bust = float(g.max())
+    # waist: narrowest torso level between hip level and chest
+    ys_w, g_w = _scan(V, F, torso_face, pelvis[1] + 0.04, chest[1])
+    k = int(np.argmin(np.where(g_w > 0, g_w, np.inf)))
+    waist, waist_y = float(g_w[k]), float(ys_w[k])
+    # hip: fullest torso + legs level between the crotch and the pelvis joint
+    ys_h, g_h = _scan(V, F, no_arm_face, crotch_y + 0.02, pelvis[1] + 0.02)
+    hip = float(g_h.max())
+
+    # neck girth
+    y_n = neck[1] + 0.25 * (head[1] - neck[1])
+    near_neck = np.linalg.norm((V - neck)[:, [0, 2]], axis=1) < 0.08
+    p = section_points(V, F[near_neck[F].all(axis=1)], np.array([0.0, y_n, 0.0]), np.array([0.0, 1.0, 0.0]))
+    neck_g = hull_perimeter(p[:, [0, 2]])
+
+    # upper arm: cut perpendicular to the left upper-arm bone at 30 %
+    ub = Bone("left_elbow", "left_shoulder", "left_elbow", l_sh, P("left_elbow"), "left_arm")
+    o = ub.a + 0.3 * (ub.b - ub.a)
+    arm_v = parts == "left_arm"
+    near_arm = arm_v & (distance_to_bone(V, ub) < 0.1)
+    p = section_points(V, F[near_arm[F].all(axis=1)], o, ub.direction)
+    p = p[np.linalg.norm(p - o, axis=1) < 0.1]
+    e1 = np.cross(ub.direction, [0.0, 0.0, 1.0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(ub.direction, e1)
+    upper_arm = hull_perimeter(np.stack([(p - o) @ e1, (p - o) @ e2], axis=1))
+
+    # thigh: left leg 3 cm below the crotch
+    leg_v = (parts == "left_leg") | ((parts == "torso") & (V[:, 0] > pelvis[0]))
+    leg_f = leg_v[F].all(axis=1) & (V[F][:, :, 0].min(axis=1) > pelvis[0])
+    thigh = _horizontal_girth(V, F, leg_f, crotch_y - 0.03)
+
+    # shoulder width: outermost surface points 3 cm above the shoulder joints (the acromion;
+    # lower, the deltoid's bulge would count)
+    def outer(sh, sign):
+        m = (V[:, 1] >= sh[1] + 0.03) & (np.linalg.norm(V - sh, axis=1) < 0.09)
+        return float((sign * V[m, 0]).max()) if m.any() else float(sign * sh[0])
+
+    shoulder_width = outer(l_sh, 1.0) + outer(r_sh, -1.0)
+
+    def length(*names):
+        pts = [P(n) for n in names]
+        return float(sum(np.linalg.norm(b - a) for a, b in zip(pts[:-1], pts[1:])))
+
+    arm = 0.5 * (length("left_shoulder", "left_elbow", "left_wrist") + length("right_shoulder", "right_elbow", "right_wrist"))
+    leg = 0.5 * (length("left_hip", "left_knee", "left_ankle") + length("right_hip", "right_knee", "right_ankle"))
+    return Measurements(
+        height=height,
+        bust=bust,
+        waist=waist,
+        hip=hip,
+        neck=neck_g,
+        upper_arm=upper_arm,
+        thigh=thigh,
+        shoulder_width=shoulder_width,
+        arm_length=arm,
+        leg_length=leg,
+        torso_length=float(neck[1] - waist_y),
+        waist_height=waist_y - floor,
+        crotch_height=crotch_y - floor,
+        neck_height=float(neck[1] - floor),
+    )
