@@ -1,0 +1,149 @@
+"""``run_batch``: one fit per case folder of CASES_DIR into RESULTS_DIR/<case>/, on a local
+process pool (default) or on Ray, resumable, with one progress bar and a summary.
+
+Rerunning the same batch continues it: complete result folders are skipped (their metrics are
+read back into the summary), interrupted fits resume from their checkpoint, failed and pending
+cases are tried again. Each case's log (the fit's messages, a failure's traceback) is appended to
+RESULTS_DIR/<case>.log.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+from unsew.batch.cases import find_cases, read_garment, result_state
+from unsew.batch.task import CaseJob, CaseRecord
+from unsew.errors import InputError
+
+__all__ = ["run_batch", "BatchResult", "default_workers"]
+
+
+@dataclass
+class BatchResult:
+    """What a batch did. records: one per case, in case-name order; interrupted: stopped by
+    Ctrl-C (the summary holds what finished); summary_csv, index_html: the files written;
+    wall_s: wall time of the batch [s]."""
+
+    records: list[CaseRecord]
+    out: Path
+    summary_csv: Path
+    index_html: Path
+    interrupted: bool = False
+    wall_s: float = 0.0
+    counts: dict = field(default_factory=dict)
+
+
+def default_workers(n_cases: int) -> int:
+    """min(CPU count, number of cases), at least 1."""
+    return max(1, min(os.cpu_count() or 1, n_cases))
+
+
+def _read_metrics(out: Path) -> dict | None:
+    try:
+        return json.loads((out / "metrics.json").read_text())
+    except (OSError, ValueError):
+        return None
+
+
+def run_batch(cases_dir: str | os.PathLike, out: str | os.PathLike, *, cfg=None, workers: int | None = None,
+              ray: str | None = None, overwrite: bool = False, fit_fn: Callable | None = None,
+              progress: bool = True, ray_init_kwargs: dict | None = None) -> BatchResult:
+    """Fit every case folder of ``cases_dir`` into ``out/<case name>/`` and write
+    ``out/summary.csv`` and ``out/index.html``.
+
+    cfg: FitConfig for every case (default FitConfig()); workers: local processes (default
+    min(CPU count, cases to fit)); ray: None for the local pool, else a Ray address ("auto",
+    "local", "host:6379", "ray://host:10001"; see :func:`unsew.batch.ray_backend.run_ray`);
+    overwrite: refit cases whose result is complete (otherwise they are skipped); fit_fn: the
+    per-case fit, a module-level function like :func:`unsew.batch.task.fit_case_dir` (the
+    default); progress: one tqdm bar on stderr for the batch.
+
+    A failing case is recorded (status "failed", one-line reason) and the batch goes on. On
+    Ctrl-C the workers are stopped, the summary of what finished is written and the result has
+    ``interrupted=True``; rerunning continues. Raises InputError for a bad cases folder or an
+    existing ``out`` that is not a folder.
+    """
+    from unsew.fit.config import FitConfig
+
+    cfg = cfg if cfg is not None else FitConfig()
+    cases = find_cases(cases_dir)
+    out = Path(out).resolve()
+    if out.exists() and not out.is_dir():
+        raise InputError(f"--out {out} exists and is not a folder")
+    out.mkdir(parents=True, exist_ok=True)
+    if workers is not None and workers < 1:
+        raise InputError(f"--workers must be at least 1, got {workers}")
+
+    records: dict[str, CaseRecord] = {}
+    jobs: list[CaseJob] = []
+    for c in cases:
+        c = c.resolve()
+        res = out / c.name
+        rec = CaseRecord(c.name, str(c), str(res), garment=read_garment(c))
+        state = result_state(res)
+        if state == "complete" and not overwrite:
+            rec.status, rec.metrics = "skipped", _read_metrics(res)
+            rec.time_s = ((rec.metrics or {}).get("timings_s") or {}).get("total_s")
+        elif state == "blocked" and not overwrite:
+            rec.status = "failed"
+            rec.reason = f"{res} exists but is not a complete result (no metrics.json); remove it or pass --overwrite"
+        else:
+            jobs.append(CaseJob(c.name, str(c), str(res), str(out / f"{c.name}.log"), cfg, overwrite=overwrite,
+                                fit_fn=fit_fn))
+        records[c.name] = rec
+
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        bar = tqdm(total=len(cases), initial=len(cases) - len(jobs), desc="batch", unit="case",
+                   dynamic_ncols=True, file=sys.stderr)
+    counts = {"done": 0, "failed": sum(r.status == "failed" for r in records.values()),
+              "skipped": sum(r.status == "skipped" for r in records.values())}
+
+    def on_done(rec: CaseRecord) -> None:
+        records[rec.name] = rec
+        counts[rec.status] = counts.get(rec.status, 0) + 1
+        if bar is not None:
+            bar.set_postfix(done=counts["done"], failed=counts["failed"], skipped=counts["skipped"], refresh=False)
+            bar.update(1)
+
+    if bar is not None:
+        bar.set_postfix(done=0, failed=counts["failed"], skipped=counts["skipped"])
+    t0 = time.perf_counter()
+    interrupted = False
+    try:
+        if jobs:
+            if ray:
+                from unsew.batch.ray_backend import run_ray
+
+                run_ray(jobs, address=ray, device=cfg.device, on_done=on_done, init_kwargs=ray_init_kwargs)
+            else:
+                from unsew.batch.local import run_local
+
+                run_local(jobs, workers=workers or default_workers(len(jobs)), on_done=on_done)
+    except KeyboardInterrupt:
+        interrupted = True
+    finally:
+        if bar is not None:
+            bar.close()
+    wall = time.perf_counter() - t0
+    for job in jobs:  # cases that never finished
+        rec = records[job.name]
+        if rec.status == "pending" and result_state(job.out_dir) == "partial":
+            rec.status, rec.reason = "interrupted", "stopped before it finished; rerun the batch to resume it"
+    final = [records[c.name] for c in cases]
+    from unsew.batch.summary import write_index_html, write_summary_csv
+
+    csv_path = write_summary_csv(final, out / "summary.csv")
+    html_path = write_index_html(final, out / "index.html", title=f"unsew batch: {Path(cases_dir).name}")
+    n = {}
+    for r in final:
+        n[r.status] = n.get(r.status, 0) + 1
+    return BatchResult(final, out, csv_path, html_path, interrupted=interrupted, wall_s=wall, counts=n)
