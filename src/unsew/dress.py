@@ -8,12 +8,22 @@ the fit and the benchmarks all call :func:`dress`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import time
+from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
 
-__all__ = ["Dressed", "dress", "resolve_material"]
+__all__ = ["Dressed", "dress", "resolve_material", "hold_vertices", "dress_stats"]
+
+#: Defaults of the sewing phase, measured on the five base patterns at 2-3 cm edges
+#: (benchmarks/bench_dress.py).
+SEW_DT = 0.02  #: [s]
+SEW_SPRING = 100.0  #: zero-length seam springs [N/m]
+HOLD_STEPS = 20  #: steps the waistline of a lower garment is held still
+RAMP_STEPS = 30  #: steps over which gravity rises to full
+#: A lower garment's waistline: its vertices within this height of its top [m].
+HOLD_BAND = 0.02
 
 
 @dataclass
@@ -32,6 +42,7 @@ class Dressed:
     uv: object
     material: object
     sdf: object
+    stats: dict = field(default_factory=dict)  #: timings [s] and seam gap [m] (see :func:`dress`)
 
 
 def resolve_material(material):
@@ -41,6 +52,64 @@ def resolve_material(material):
     if isinstance(material, Material):
         return material
     return get_material(str(material))
+
+
+def hold_vertices(pattern, mesh, body, x_unsewn) -> np.ndarray:
+    """Vertices held still at the start of the sewing phase: the waistline of a lower garment
+    (every panel below the body's chest: skirts, trousers), none for tops and dresses.
+
+    x_unsewn: (Nu, 3) [m] placed panels. Returns (P,) int64 uv indices (possibly empty).
+    """
+    x = np.asarray(x_unsewn)
+    chest_y = float(body.skeleton.position("chest")[1])
+    top = float(x[:, 1].max())
+    if top > chest_y:
+        return np.zeros(0, dtype=np.int64)
+    bnd = np.concatenate([mesh.boundary_loop(p) for p in range(len(mesh.panel_names))])
+    return bnd[x[bnd, 1] > top - HOLD_BAND].astype(np.int64)
+
+
+def dress_stats(d, *, x_unsewn_sewn=None) -> dict:
+    """Figures of a dressed garment (for tests and benchmarks).
+
+    d: :class:`Dressed`. Returns a dict: ``depth_mm`` deepest vertex inside the body [mm]
+    (0 if none), ``inside_pct`` share of vertices inside [%], ``stretch`` largest edge length
+    over its rest length [-], ``inverted`` triangles whose 3D normal opposes its neighbours'
+    average by more than 150 deg, ``bbox`` (2, 3) [m], plus ``d.stats``.
+    """
+    import torch
+
+    x = d.x.detach()
+    with torch.no_grad():
+        sd, _ = d.sdf.query(x)
+    m = d.mesh
+    e = m.faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    eu = m.faces_uv[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    xn = x.numpy()
+    L = np.linalg.norm(xn[e[:, 0]] - xn[e[:, 1]], axis=1)
+    L0 = np.linalg.norm(m.uv[eu[:, 0]] - m.uv[eu[:, 1]], axis=1)
+    out = dict(d.stats)
+    out.update(
+        n_x=int(m.n_x),
+        depth_mm=float(max(0.0, -float(sd.min())) * 1000.0),
+        inside_pct=float((sd < 0).double().mean()) * 100.0,
+        stretch=float((L / L0).max()),
+        inverted=_folded_triangles(xn, m.faces),
+        bbox=np.stack([xn.min(0), xn.max(0)]),
+    )
+    return out
+
+
+def _folded_triangles(x, faces) -> int:
+    """Triangles folded through their neighbours: the normal opposes the mean normal of the
+    triangles sharing its vertices by more than 150 degrees."""
+    n = np.cross(x[faces[:, 1]] - x[faces[:, 0]], x[faces[:, 2]] - x[faces[:, 0]])
+    nv = np.zeros_like(x)
+    for k in range(3):
+        np.add.at(nv, faces[:, k], n)
+    nb = nv[faces].sum(axis=1) - n  # (F, 3)
+    c = np.einsum("ij,ij->i", n, nb) / np.maximum(np.linalg.norm(n, axis=1) * np.linalg.norm(nb, axis=1), 1e-30)
+    return int((c < np.cos(np.radians(150))).sum())
 
 
 def dress(
@@ -56,6 +125,10 @@ def dress(
     settle_steps: int = 40,
     dt: float = 0.05,
     progress: Callable[[str, int, int], None] | None = None,
+    sew_dt: float = SEW_DT,
+    spring_stiffness: float = SEW_SPRING,
+    hold_steps: int = HOLD_STEPS,
+    ramp_steps: int = RAMP_STEPS,
 ) -> Dressed:
     """Mesh, place, sew and settle ``pattern`` on ``body``.
 
@@ -67,10 +140,15 @@ def dress(
         material: library name or Material; gamma: optional (5,) torch overriding its stiffness.
         sew_steps: steps of the sewing phase; settle_steps: steps of plain draping after it.
         dt: time step of the settle drape [s].
-        progress: optional callback ``progress(phase, k, n)``.
+        progress: optional callback ``progress(phase, k, n)`` (phases "place", "sew", "settle").
+        sew_dt: time step of the sewing phase [s]; spring_stiffness: seam springs [N/m];
+        hold_steps: steps a lower garment's waistline is held (:func:`hold_vertices`);
+        ramp_steps: steps over which gravity rises to full in the sewing phase.
 
     Returns:
-        :class:`Dressed`.
+        :class:`Dressed`; its ``stats`` hold ``place_s``, ``sew_s``, ``settle_s`` [s],
+        ``seam_gap`` [m] (largest distance between two unsewn copies of a seam vertex after
+        sewing, before they are merged) and ``max_speed`` [m/s] at the end of settling.
     """
     import torch
 
@@ -90,17 +168,30 @@ def dress(
     g = mat.gamma() if gamma is None else torch.as_tensor(gamma, dtype=torch.float64).detach()
     uv = torch.as_tensor(np.asarray(mesh.uv), dtype=torch.float64)
 
-    x_unsewn = place_garment(pattern, mesh, body)
+    t0 = time.perf_counter()
+    x_unsewn = place_garment(pattern, mesh, body, sdf=sdf)
+    hold = hold_vertices(pattern, mesh, body, x_unsewn)
+    t1 = time.perf_counter()
+    if progress:
+        progress("place", 1, 1)
     model_unsewn = SimModel.build(mesh.faces_uv, mesh.faces_uv, springs=mesh.seam_pairs)
     cb = (lambda k, s: progress("sew", k + 1, sew_steps)) if progress else None
-    xs = sew(model_unsewn, x_unsewn, sdf, uv=uv, gamma=g, density=mat.density, steps=sew_steps,
-             friction=mat.friction, callback=cb)
+    xs = sew(model_unsewn, x_unsewn, sdf, uv=uv, gamma=g, density=mat.density, steps=sew_steps, dt=sew_dt,
+             hold=hold if len(hold) else None, hold_steps=hold_steps, ramp_steps=ramp_steps,
+             spring_stiffness=spring_stiffness, friction=mat.friction, callback=cb)
+    sp = torch.as_tensor(np.asarray(mesh.seam_pairs), dtype=torch.int64)
+    gap = float((xs[sp[:, 0]] - xs[sp[:, 1]]).norm(dim=1).max()) if len(sp) else 0.0
     x = merge_sewn(xs, mesh.x_of_u, mesh.n_x)
     model = SimModel.build(mesh.faces, mesh.faces_uv)
+    t2 = time.perf_counter()
+    speed = 0.0
     if settle_steps > 0:
         cb = (lambda k, s: progress("settle", k + 1, settle_steps)) if progress else None
         with torch.no_grad():
             st = drape(model, SimState.at_rest(x), sdf, uv=uv, gamma=g, density=mat.density,
                        steps=settle_steps, dt=dt, friction=mat.friction, callback=cb)
         x = st.x
-    return Dressed(pattern, mesh, model, x.detach(), uv, mat, sdf)
+        speed = float(st.v.norm(dim=1).max())
+    t3 = time.perf_counter()
+    stats = dict(place_s=t1 - t0, sew_s=t2 - t1, settle_s=t3 - t2, seam_gap=gap, max_speed=speed)
+    return Dressed(pattern, mesh, model, x.detach(), uv, mat, sdf, stats)

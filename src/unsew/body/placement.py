@@ -37,6 +37,8 @@ MIN_GAP = 0.008
 MAX_PUSH = 0.05
 #: Half-height of the blend between leg tubes and the torso stack around the crotch [m].
 CROTCH_BLEND = 0.04
+#: A girth needed at one height is kept for this far below it (curved hems) [m].
+NEED_WINDOW = 0.15
 #: Height step of the cross-section tables [m].
 _DY = 0.01
 
@@ -264,17 +266,21 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
         a = a + clearance
         b = b + clearance
         if perim is not None:
+            # Grow to the garment's girth: first in depth up to a circle (the arms limit the
+            # width of the torso), beyond that into a wider circle.
             need = np.interp(y, ys, perim)
-            per = _ellipse_perimeter(a, b)
-            grow = need > per
-            # torso: grow the depth (arms limit the width); a few Newton-free bisections
-            lo, hi = b.copy(), b + need
+            grow = need > _ellipse_perimeter(a, b)
+            bmax = np.maximum(a, b)
+            lo, hi = b.copy(), bmax.copy()
             for _ in range(30):
                 mid = 0.5 * (lo + hi)
                 big = _ellipse_perimeter(a, mid) > need
                 hi = np.where(big, mid, hi)
                 lo = np.where(big, lo, mid)
-            b = np.where(grow, hi, b)
+            circle = need > _ellipse_perimeter(a, bmax)
+            r = need / (2 * np.pi)
+            b = np.where(grow, np.where(circle, np.maximum(r, b), hi), b)
+            a = np.where(grow & circle, np.maximum(r, a), a)
         phi = _ellipse_at_arc(a, b, np.broadcast_to(phi_c, a.shape).astype(np.float64), S)
         return np.stack([cx + a * np.sin(phi), y, cz + b * np.cos(phi)], axis=1)
 
@@ -296,6 +302,13 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
             need["torso"] += np.where(ys > crotch_y, w, 0.0)
             need[role] += np.where(ys < crotch_y + CROTCH_BLEND, w, 0.0)
         d["ext"] = ext
+
+    # A curved hem's horizontal slices are narrower than the cloth above them: each height
+    # takes the largest girth found up to NEED_WINDOW above it.
+    k = int(round(NEED_WINDOW / _DY))
+    for key in need:
+        p = np.pad(need[key], (0, k), mode="edge")
+        need[key] = np.max(np.stack([p[i : i + len(ys)] for i in range(k + 1)]), axis=0)
 
     for name, d in info.items():
         role = d["role"]
@@ -368,13 +381,11 @@ def _wrap_sleeve(u, d, side, J):
         return A[k] + (tt - cum[k])[:, None] * (seg[k] / L[k, None]), seg[k] / L[k, None]
 
     P, D = axis_at(t)
-    # Radius: the sleeve's own width around (so its underarm seam starts closed); where the
-    # arm is thicker than that (the cap over the deltoid) the push-out lifts the cloth.
+    # Radius: the sleeve's widest girth (a cylinder keeps the wrap isometric and closes the
+    # underarm seam there); where the arm is thicker (the cap over the deltoid) the push-out
+    # lifts the cloth.
     bl = d["bl"] - d["sl"].start
-    levels = np.unique(np.round(along, 4))
-    ext = _width_at(across[bl], along[bl], levels)
-    wid = np.interp(along, levels, np.nan_to_num(ext[:, 1] - ext[:, 0]))
-    r = np.maximum(wid / (2 * np.pi), 0.03)
+    r = max(float(np.ptp(across[bl])) / (2 * np.pi), 0.03)
     # Frame: the sleeve's middle faces away from the body (its placement normal, off the axis).
     n = R[:, 2]
     e1 = n - (n @ d0) * d0
@@ -385,8 +396,7 @@ def _wrap_sleeve(u, d, side, J):
     E1 /= np.linalg.norm(E1, axis=1, keepdims=True)
     E2 = np.cross(D, E1)
     th = across / r
-    # mean radius per 'along' keeps the wrap isometric around each ring
-    return P + r[:, None] * (np.cos(th)[:, None] * E1 + np.sin(th)[:, None] * E2)
+    return P + r * (np.cos(th)[:, None] * E1 + np.sin(th)[:, None] * E2)
 
 
 def _running_max(a, k):
