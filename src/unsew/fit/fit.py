@@ -258,9 +258,9 @@ def fit(
             if not torch.isfinite(loss):
                 raise InputError(f"the loss became non-finite at iteration {it}; try a smaller --lr or a coarser mesh")
             loss.backward()
-            total = float(loss)
-            for key, val in (("total", total), ("chamfer", float(l_cf)), ("open", float(l_open)),
-                             ("seam", float(l_seam)), ("material", float(l_mat))):
+            total = float(loss.detach())
+            for key, val in (("total", total), ("chamfer", float(l_cf.detach())), ("open", float(l_open.detach())),
+                             ("seam", float(l_seam.detach())), ("material", float(l_mat.detach()))):
                 history[key].append(val)
             if total < best["loss"]:
                 best = {"loss": total, "K": K.detach().clone(), "theta": theta.detach().clone(),

@@ -1,0 +1,93 @@
+"""The whole fit in small mode (coarse mesh, few iterations): a known-truth t-shirt case is made
+by draping, fitted from the base t-shirt, and the result folder is complete and better than the
+base. The full-size checks are in benchmarks/bench_fit.py and the slow test below."""
+
+import json
+
+import pytest
+
+from unsew.fit.config import FitConfig
+
+SMALL = dict(edge_length=0.05, iterations=3, steps=8, sew_steps=40, settle_steps=10, target_points=1500,
+             material_start=1)
+FILES = ["pattern.json", "pattern.svg", "pattern.dxf", "garment.obj", "garment_rest.obj", "material.json",
+         "metrics.json", "config.yaml", "report.html"]
+
+
+@pytest.fixture(scope="module")
+def small_case(tmp_path_factory):
+    from unsew.fit.demo import make_truth_case
+
+    d = tmp_path_factory.mktemp("case") / "tshirt"
+    return make_truth_case(d, edge_length=SMALL["edge_length"])
+
+
+@pytest.fixture(scope="module")
+def small_fit(small_case, tmp_path_factory):
+    from unsew.fit.run import run_fit
+    from unsew.io.case import load_case
+
+    out = tmp_path_factory.mktemp("fit") / "result"
+    result, metrics = run_fit(load_case(small_case), FitConfig(**SMALL), out, progress=False, log=lambda s: None)
+    return out, result, metrics
+
+
+def test_result_folder_is_complete(small_fit):
+    out, result, metrics = small_fit
+    for name in FILES:
+        assert (out / name).is_file(), name
+    assert not (out.parent / (out.name + ".partial")).exists()
+    saved = json.loads((out / "metrics.json").read_text())
+    assert saved["iterations"] == 3
+    from unsew.io.garmentcode import load_pattern
+
+    p = load_pattern(out / "pattern.json")
+    assert set(p.panels) == set(result.pattern.panels)
+    assert "material" in p.unsew and "symmetry" in p.unsew
+
+
+def test_fit_improves_on_the_base(small_fit):
+    _, result, metrics = small_fit
+    assert metrics["surface"]["chamfer_mm"] < metrics["surface_base"]["chamfer_mm"]
+    assert metrics["pattern"]["area_error_rel_mean"] < metrics["pattern_base"]["area_error_rel_mean"]
+    h = result.history["total"]
+    assert min(h) <= h[0]
+
+
+def test_resume_continues_from_checkpoint(small_case, tmp_path):
+    """An interrupted fit leaves RESULT.partial with a checkpoint; --resume finishes it."""
+    from unsew.fit.run import partial_dir, run_fit
+    from unsew.io.case import load_case
+
+    out = tmp_path / "r"
+    case = load_case(small_case)
+    cfg = FitConfig(**{**SMALL, "iterations": 2, "report": False})
+
+    import importlib
+
+    simdrape = importlib.import_module("unsew.sim.drape")  # fit() imports drape from here at call time
+    orig = simdrape.drape
+    calls = {"opt": 0}
+
+    def interrupt(s):
+        pass
+
+    def flaky(*a, **k):
+        # the second drape of phase two is interrupted, as by Ctrl-C
+        if k.get("steps") == cfg.steps and not k.get("callback"):
+            calls["opt"] += 1
+            if calls["opt"] == 2:
+                raise KeyboardInterrupt
+        return orig(*a, **k)
+
+    simdrape.drape = flaky
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            run_fit(case, cfg, out, progress=False, log=interrupt)
+    finally:
+        simdrape.drape = orig
+    assert not out.exists()
+    assert (partial_dir(out) / "checkpoint.pt").is_file()
+    result, _ = run_fit(case, cfg, out, resume=True, progress=False, log=interrupt)
+    assert out.is_dir() and not partial_dir(out).exists()
+    assert len(result.history["total"]) == 2
