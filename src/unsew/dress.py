@@ -19,7 +19,7 @@ __all__ = ["Dressed", "dress", "resolve_material", "hold_vertices", "dress_stats
 #: Defaults of the sewing phase, measured on the five base patterns at 2-3 cm edges
 #: (benchmarks/bench_dress.py).
 SEW_DT = 0.02  #: [s]
-SEW_SPRING = 100.0  #: zero-length seam springs [N/m]
+SEW_SPRING = 1000.0  #: zero-length seam springs [N/m] (100 left seams 2-4 mm open)
 HOLD_STEPS = 20  #: steps the waistline of a lower garment is held still
 RAMP_STEPS = 30  #: steps over which gravity rises to full
 #: A lower garment's waistline: its vertices within this height of its top [m].
@@ -121,8 +121,8 @@ def dress(
     edge_length: float = 0.025,
     material="cotton",
     gamma=None,
-    sew_steps: int = 80,
-    settle_steps: int = 40,
+    sew_steps: int = 60,
+    settle_steps: int = 20,
     dt: float = 0.05,
     progress: Callable[[str, int, int], None] | None = None,
     sew_dt: float = SEW_DT,

@@ -1,0 +1,118 @@
+"""Placement of every base pattern around two bodies: outside the body, stitches facing."""
+
+import numpy as np
+import pytest
+import torch
+
+from unsew.body.body import default_body
+from unsew.body.placement import panel_roles, place_garment, stitch_distances
+from unsew.body.sdf import BodySDF
+from unsew.errors import InputError
+from unsew.meshing import mesh_pattern
+from unsew.pattern.base import make_base_pattern
+
+GARMENTS = ["tshirt", "dress", "pants", "shorts", "skirt"]
+WIDE = [1.08, 1.0, 1.08]
+
+
+@pytest.fixture(scope="module")
+def bodies():
+    out = {}
+    for name, b in (("default", default_body()), ("wide", default_body().transformed(scale=WIDE))):
+        out[name] = (b, BodySDF.build(b))
+    return out
+
+
+@pytest.fixture(scope="module")
+def meshes():
+    return {g: (make_base_pattern(g), mesh_pattern(make_base_pattern(g), edge_length=0.04)) for g in GARMENTS}
+
+
+def test_roles(bodies):
+    b = bodies["default"][0]
+    assert panel_roles(make_base_pattern("tshirt"), b) == {
+        "front": "torso", "back": "torso", "left_sleeve": "left_sleeve", "right_sleeve": "right_sleeve"}
+    assert panel_roles(make_base_pattern("pants"), b) == {
+        "left_front": "left_leg", "right_front": "right_leg", "left_back": "left_leg", "right_back": "right_leg"}
+    assert set(panel_roles(make_base_pattern("skirt"), b).values()) == {"torso"}
+
+
+@pytest.mark.parametrize("body_name", ["default", "wide"])
+@pytest.mark.parametrize("garment", GARMENTS)
+def test_placement_outside_and_facing(bodies, meshes, garment, body_name):
+    body, sdf = bodies[body_name]
+    pat, mesh = meshes[garment]
+    x = place_garment(pat, mesh, body, sdf=sdf)
+    assert x.shape == (mesh.n_uv, 3) and x.dtype == np.float64 and np.isfinite(x).all()
+    d, _ = sdf.query(torch.as_tensor(x))
+    assert float(d.min()) > 0.0, f"{garment} on {body_name}: {int((d <= 0).sum())} vertices inside"
+    # each stitch: its two edges are closer to each other than to any other panel (mean distances);
+    rows = stitch_distances(mesh, x)
+    assert len(rows) >= len(pat.stitches)
+    bad = [(r["a"], r["b"], round(r["pair"], 3), round(r["other"], 3)) for r in rows
+           if r["pair"] >= r["other"] and not _known_open(pat, r)]
+    assert not bad, f"{garment} on {body_name}: stitches not facing: {bad}"
+
+
+def _known_open(pat, r) -> bool:
+    """Stitches the placement does not yet bring face to face (see the xfail test below): the
+    shoulder seams of tops (the panels end below the shoulder ridge, 7-16 cm apart) and the
+    shorts' 12 cm inseams (the other leg's panels are nearer at the crotch)."""
+    label = pat.panels[r["a"][0]].edges[r["a"][1]].label
+    return "shoulder" in label or (pat.name == "shorts" and "inseam" in label)
+
+
+@pytest.mark.xfail(strict=True, reason="shoulder seams of tops and the shorts' inseams start apart; sewing closes them")
+@pytest.mark.parametrize("garment", ["tshirt", "shorts"])
+def test_known_open_stitches_face(bodies, meshes, garment):
+    body, sdf = bodies["default"]
+    pat, mesh = meshes[garment]
+    x = place_garment(pat, mesh, body, sdf=sdf)
+    rows = [r for r in stitch_distances(mesh, x) if _known_open(pat, r)]
+    assert rows and all(r["pair"] < r["other"] for r in rows)
+
+
+@pytest.mark.parametrize("garment", GARMENTS)
+def test_placement_nearly_isometric(bodies, meshes, garment):
+    body, sdf = bodies["default"]
+    pat, mesh = meshes[garment]
+    x = place_garment(pat, mesh, body, sdf=sdf)
+    e = mesh.faces_uv[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    r = np.linalg.norm(x[e[:, 0]] - x[e[:, 1]], axis=1) / np.linalg.norm(mesh.uv[e[:, 0]] - mesh.uv[e[:, 1]], axis=1)
+    assert 0.95 < np.median(r) < 1.1
+    assert np.percentile(r, 95) < 1.35
+
+
+def test_sides_follow_the_skeleton(bodies, meshes):
+    body, sdf = bodies["default"]
+    pat, mesh = meshes["tshirt"]
+    x = place_garment(pat, mesh, body, sdf=sdf)
+    for p, name in enumerate(mesh.panel_names):
+        c = x[mesh.uv_panel == p].mean(axis=0)
+        if name == "front":
+            assert c[2] > 0
+        if name == "back":
+            assert c[2] < 0
+        if name == "left_sleeve":
+            assert c[0] > body.skeleton.position("left_shoulder")[0]
+        if name == "right_sleeve":
+            assert c[0] < body.skeleton.position("right_shoulder")[0]
+
+
+def test_missing_joints_named(bodies, meshes):
+    from unsew.body.body import Body
+    from unsew.body.skeleton import Skeleton
+
+    b = bodies["default"][0]
+    sk = b.skeleton
+    keep = [i for i, n in enumerate(sk.names) if not n.startswith("left_")]
+    names = [sk.names[i] for i in keep]
+    parents = [names.index(sk.names[sk.parents[i]]) if sk.parents[i] >= 0 else -1 for i in keep]
+    try:
+        sk2 = Skeleton(names, np.array(parents), sk.positions[keep], [sk.parts[i] for i in keep])
+    except Exception:
+        pytest.skip("Skeleton refuses a skeleton without left joints at construction")
+    body = Body(b.verts, b.faces, sk2)
+    pat, mesh = meshes["skirt"]
+    with pytest.raises(InputError, match="left_"):
+        place_garment(pat, mesh, body)
