@@ -38,7 +38,15 @@ def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = Fal
     if resume and not (work / "checkpoint.pt").is_file():
         log(f"no checkpoint in {work}; starting afresh")
     work.mkdir(parents=True, exist_ok=True)
-    result = fit(case, cfg, progress=progress, checkpoint=work / "checkpoint.pt", resume=resume, log=log)
+    try:
+        result = fit(case, cfg, progress=progress, checkpoint=work / "checkpoint.pt", resume=resume, log=log)
+    except BaseException:
+        # Keep the work folder only if it holds a checkpoint to resume from.
+        if not (work / "checkpoint.pt").is_file():
+            shutil.rmtree(work, ignore_errors=True)
+        else:
+            log(f"interrupted: rerun with --resume to continue from {work / 'checkpoint.pt'}")
+        raise
     (work / "checkpoint.pt").unlink(missing_ok=True)
     metrics = write_result(work, result, case, cfg, report=cfg.report)
     if out.exists():
