@@ -1,5 +1,7 @@
 """Dressing benchmark: every base pattern placed, sewn and settled on two bodies.
 
+Each base pattern is sized to the body's measurements (``measure_body``).
+
 Prints, per body and garment: sewn vertices, placement / sewing / settling time [s], the
 deepest vertex inside the body [mm], the share of vertices inside [%], the largest gap between
 the two copies of a seam vertex after sewing [mm], the largest edge stretch (3D length over
@@ -37,6 +39,7 @@ def main() -> None:
 
     torch.set_num_threads(1)
     from unsew.body.body import default_body
+    from unsew.body.measure import measure_body
     from unsew.body.placement import place_garment, stitch_distances
     from unsew.body.sdf import BodySDF
     from unsew.dress import dress, dress_stats
@@ -54,8 +57,9 @@ def main() -> None:
     for bname in args.bodies:
         body = default_body() if bname == "default" else default_body().transformed(scale=WIDE)
         sdf = BodySDF.build(body)
+        meas = measure_body(body)  # base patterns sized to the body they dress
         for g in args.garments:
-            pat = make_base_pattern(g)
+            pat = make_base_pattern(g, meas)
             mesh = mesh_pattern(pat, edge_length=args.edge_length)
             xp = place_garment(pat, mesh, body, sdf=sdf)
             with torch.no_grad():

@@ -67,7 +67,9 @@ def test_hold_waist_only_for_lower_garments(body_sdf):
 @pytest.mark.slow
 @pytest.mark.parametrize("garment", GARMENTS)
 def test_dress_wide_body(garment):
+    from unsew.body.measure import measure_body
+
     body = default_body().transformed(scale=WIDE)
     sdf = BodySDF.build(body)
-    d = dress(make_base_pattern(garment), body, sdf=sdf, edge_length=0.03)
+    d = dress(make_base_pattern(garment, measure_body(body)), body, sdf=sdf, edge_length=0.03)
     _check(garment, body, dress_stats(d), stretch_max=1.3)

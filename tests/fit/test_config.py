@@ -42,3 +42,10 @@ def test_bad_configs(tmp_path, text, match):
 def test_missing_config(tmp_path):
     with pytest.raises(InputError, match="does not exist"):
         load_config(tmp_path / "none.yaml")
+
+
+def test_precedence_flags_over_file_over_defaults(tmp_path):
+    p = tmp_path / "fit.yaml"
+    p.write_text("iterations: 9\nsteps: 11\n")
+    c = load_config(p, defaults={"iterations": 30, "steps": 12, "edge_length": 0.03}, steps=13)
+    assert (c.iterations, c.steps, c.edge_length) == (9, 13, 0.03)

@@ -22,6 +22,8 @@ def run(args: argparse.Namespace) -> int:
     from unsew.commands.fit import config_from_args
     from unsew.fit.demo import run_demo
 
-    cfg = config_from_args(args)
+    from unsew.fit.demo import DEMO_CONFIG
+
+    cfg = config_from_args(args, defaults=DEMO_CONFIG)
     run_demo(Path(args.out), cfg=cfg, progress=not args.quiet)
     return 0

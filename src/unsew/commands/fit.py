@@ -23,7 +23,8 @@ def add_fit_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--quiet", action="store_true", help="no progress bars")
 
 
-def config_from_args(args: argparse.Namespace):
+def config_from_args(args: argparse.Namespace, *, defaults: dict | None = None):
+    """FitConfig from the flags over --config over ``defaults`` (e.g. the demo's) over FitConfig's."""
     from unsew.fit.config import load_config
 
     over = {
@@ -44,7 +45,7 @@ def config_from_args(args: argparse.Namespace):
         over["optimize_material"] = False
     if args.no_report:
         over["report"] = False
-    return load_config(args.config, **over)
+    return load_config(args.config, defaults=defaults, **over)
 
 
 def register(sub: argparse._SubParsersAction) -> None:

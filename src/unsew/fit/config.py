@@ -69,14 +69,15 @@ def config_to_dict(cfg: FitConfig) -> dict:
     return d
 
 
-def load_config(path: str | Path | None = None, **overrides) -> FitConfig:
-    """Read a YAML config (missing keys keep defaults) and apply keyword overrides.
+def load_config(path: str | Path | None = None, *, defaults: dict | None = None, **overrides) -> FitConfig:
+    """Read a YAML config and apply keyword overrides (None values are ignored).
 
-    Unknown keys and values of the wrong type raise InputError naming the key.
+    Precedence: overrides > the file > ``defaults`` > FitConfig's own defaults. Unknown keys and
+    values of the wrong type raise InputError naming the key.
     """
     import yaml
 
-    data: dict = {}
+    data: dict = dict(defaults or {})
     if path is not None:
         p = Path(path)
         if not p.is_file():

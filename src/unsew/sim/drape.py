@@ -201,6 +201,7 @@ def sew(
                 pinned=hold,
                 n=model_unsewn.n,
                 n_rest=model_unsewn.n_rest,
+                bending_stencil=model_unsewn.bending_stencil,
             )
         rest = rest_data(model_unsewn, uv, density)
         for k in range(steps):

@@ -114,6 +114,14 @@ def _pattern(model: SimModel) -> SparsePattern:
     return p
 
 
+def _ring_weight(like: torch.Tensor) -> torch.Tensor:
+    """(12, 12) weights turning a hinge's Gauss-Newton block into the "ring" block (model.py)."""
+    w = torch.ones(12, 12, dtype=like.dtype, device=like.device)
+    w[6:9, 6:9] = 2.0
+    w[9:12, 9:12] = 2.0
+    return w
+
+
 def forces(model, rest, x, v, sdf, gamma, params: StepParams, *, gravity=None, hessian=True):
     """Forces and system blocks at (x, v).
 
@@ -137,6 +145,8 @@ def forces(model, rest, x, v, sdf, gamma, params: StepParams, *, gravity=None, h
     if not hessian:
         return f, None, None, None, (d, n)
     nnz = model.nnz
+    if model.bending_stencil == "ring":
+        Hb = Hb * _ring_weight(Hb)  # doubled (x2, x2), (x3, x3) blocks; (x2, x3) not in the pattern (model.py)
     K = scatter_blocks(nnz, model.tri_src, model.tri_dst, Hm) + scatter_blocks(nnz, model.hinge_src, model.hinge_dst, Hb)
     if Hs is not None:
         K = K + scatter_blocks(nnz, model.spring_src, model.spring_dst, Hs)

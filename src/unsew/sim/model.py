@@ -9,6 +9,19 @@ list ``rows, cols`` (int32 for cholespy, sorted by row then column) and one valu
 Each element block (triangle 9x9, hinge 12x12, spring 6x6, vertex 3x3) has a map from its flat
 entries that fall in the lower triangle (``*_src``) to positions in the value array (``*_dst``).
 Because element blocks are symmetric, dropping their upper part loses nothing.
+
+Bending stencil. A hinge's 12x12 Gauss-Newton block 2c g g^T couples the two vertices opposite
+its edge (x2, x3), which are not joined by a mesh edge. Those entries widen the sparsity graph
+from the mesh's 1-ring to the "diamond" stencil, and the Cholesky fill and numeric factorization
+time grow 2.5-6x (1K-8K vertex t-shirts, benchmarks/bench_sim.py). With ``bending_stencil="ring"``
+(the default) the (x2, x3) blocks are left out of the pattern and the system uses instead
+
+    2c (g g^T + P2 + P3),   P2 = g2 g2^T on block (2, 2), P3 = g3 g3^T on block (3, 3),
+
+without the (2, 3) and (3, 2) blocks. The difference to the full block is 2c (g2; -g3)(g2; -g3)^T
+on the (2, 3) corners, PSD, so the ring block dominates the full one (never less stiff: the
+implicit step stays stable) and is itself PSD. Forces are unchanged (so are equilibria); only the
+approximate Jacobian of the implicit step differs. ``"full"`` keeps the exact Gauss-Newton block.
 """
 
 from __future__ import annotations
@@ -20,7 +33,9 @@ import torch
 
 from unsew.errors import InputError
 
-__all__ = ["SimModel", "build_hinges"]
+__all__ = ["SimModel", "build_hinges", "BENDING_STENCILS"]
+
+BENDING_STENCILS = ("ring", "full")
 
 
 def build_hinges(faces: np.ndarray, faces_uv: np.ndarray):
@@ -96,6 +111,8 @@ class SimModel:
             index maps from flat element blocks to the value array.
         keep: (nnz,) float64 0 on rows/cols of pinned dofs, 1 elsewhere.
         n_nonmanifold: interior edges skipped for bending (more than two faces).
+        bending_stencil: "ring" (hinge blocks without the opposite-vertex coupling, see the
+            module docstring) or "full".
     """
 
     n: int
@@ -120,6 +137,7 @@ class SimModel:
     vert_dst: torch.Tensor
     keep: torch.Tensor
     n_nonmanifold: int = 0
+    bending_stencil: str = "full"
 
     @property
     def nnz(self) -> int:
@@ -127,7 +145,17 @@ class SimModel:
         return int(self.rows.shape[0])
 
     @classmethod
-    def build(cls, faces, faces_uv, *, springs=None, pinned=None, n: int | None = None, n_rest: int | None = None):
+    def build(
+        cls,
+        faces,
+        faces_uv,
+        *,
+        springs=None,
+        pinned=None,
+        n: int | None = None,
+        n_rest: int | None = None,
+        bending_stencil: str = "ring",
+    ):
         """Build the static model.
 
         Args:
@@ -137,12 +165,16 @@ class SimModel:
             pinned: (N,) bool mask or (P,) int indices of vertices whose velocity is held, or None.
             n: number of sim vertices (default faces.max() + 1).
             n_rest: number of rest vertices (default faces_uv.max() + 1).
+            bending_stencil: "ring" (default: hinge blocks kept within the mesh's 1-ring,
+                2.5-6x cheaper factorizations) or "full" (see the module docstring).
 
         Raises:
             InputError: empty or inconsistent faces, indices out of range.
         """
         faces = np.asarray(faces.detach().cpu() if torch.is_tensor(faces) else faces)
         faces_uv = np.asarray(faces_uv.detach().cpu() if torch.is_tensor(faces_uv) else faces_uv)
+        if bending_stencil not in BENDING_STENCILS:
+            raise InputError(f"bending_stencil must be one of {BENDING_STENCILS}, got {bending_stencil!r}")
         if faces.ndim != 2 or faces.shape[1] != 3 or faces.shape[0] == 0:
             raise InputError(f"faces must be a non-empty (F, 3) integer array, got shape {faces.shape}")
         if faces_uv.shape != faces.shape:
@@ -183,7 +215,12 @@ class SimModel:
         per = {}
         for elems, name in groups:
             r, c = _block_entries(elems) if elems.shape[0] else (np.zeros(0, np.int64), np.zeros(0, np.int64))
-            lower = np.nonzero(r >= c)[0]
+            sel = r >= c
+            if name == "hinge" and bending_stencil == "ring":
+                local = np.arange(r.shape[0]) % 144
+                ca, cb = local // 12 // 3, local % 12 // 3  # corners of the entry's row and column
+                sel &= ~(((ca == 2) & (cb == 3)) | ((ca == 3) & (cb == 2)))
+            lower = np.nonzero(sel)[0]
             key = r[lower] * n3 + c[lower]
             per[name] = (lower, key)
             all_keys.append(key)
@@ -222,4 +259,5 @@ class SimModel:
             vert_dst=maps["vert"][1],
             keep=t(keep),
             n_nonmanifold=n_nm,
+            bending_stencil=bending_stencil,
         )
