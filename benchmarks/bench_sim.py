@@ -5,11 +5,18 @@ pattern exist, else a square sheet) draped over a sphere: time of 1 and 20 impli
 forward and reverse (backprop of a loss on the final positions), peak memory of the 20-step
 forward+reverse (tracemalloc-free: resident set size growth via getrusage), and the assembly of
 the system matrix done by a plain per-element Python loop (the paper's baseline) versus our
-static index maps. Also the linear solver backends (cholespy vs scipy splu tuned for SPD).
+static index maps. Also the linear solver backends (factor + 2 solves of the step-0 system:
+cholespy, CHOLMOD with the symbolic analysis reused, scipy splu tuned for SPD).
 
-Timings on a shared 2-core machine are noisy: each figure is the minimum of --repeat runs.
+Simulator variants (--variants, "stencil:backend" pairs) are run interleaved, repeat by repeat,
+so they see the same machine load: stencil "full" (exact Gauss-Newton hinge blocks, the
+original) or "ring" (model.py), backend "cholespy", "cholmod" or "scipy" (solve.py).
+
+Timings on a shared 2-core machine are noisy: each figure is the minimum of --repeat runs, and the
+load average is printed with every row.
 
     OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_sim.py [--sizes 1000,2000,3000,8000] [--repeat 2]
+        [--variants full:cholespy,ring:cholespy,ring:cholmod] [--no-loop]
 """
 
 from __future__ import annotations
@@ -52,13 +59,13 @@ def _mesh(n_target: int, use_tshirt: bool):
     return "sheet", f, f, uv, x, len(uv)
 
 
-def _run(model, st, sdf, uv, gamma, steps, backward, checkpoint=False):
+def _run(model, st, sdf, uv, gamma, steps, backward, checkpoint=False, backend="auto"):
     from unsew.sim import drape
 
     uvp = uv.clone().requires_grad_(backward)
     gp = gamma.clone().requires_grad_(backward)
     t0 = time.perf_counter()
-    out = drape(model, st, sdf, uv=uvp, gamma=gp, density=0.15, steps=steps, checkpoint=checkpoint)
+    out = drape(model, st, sdf, uv=uvp, gamma=gp, density=0.15, steps=steps, checkpoint=checkpoint, backend=backend)
     t1 = time.perf_counter()
     if backward:
         (out.x**2).sum().backward()
@@ -94,50 +101,80 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sizes", default="1000,2000,3000,8000")
     ap.add_argument("--repeat", type=int, default=2)
-    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--threads", type=int, default=1, help="torch threads (the fit uses 1)")
+    ap.add_argument("--variants", default="full:cholespy,ring:cholespy,ring:cholmod", help="stencil:backend,...")
+    ap.add_argument("--no-loop", action="store_true", help="skip the per-element loop assembly baseline")
     ap.add_argument("--sheet", action="store_true", help="use square sheets even if the t-shirt exists")
     ap.add_argument("--checkpoint", action="store_true", help="recompute steps in backward (less memory)")
     args = ap.parse_args()
     torch.set_num_threads(args.threads)
+    print(f"load average at start: {os.getloadavg()[0]:.2f} (2 shared cores)")
     from unsew.sim import MATERIALS, SimModel, SimState, SphereSDF
     from unsew.sim.energies.bending import energy_bending
     from unsew.sim.energies.membrane import energy_membrane
     from unsew.sim.integrator import rest_data
     from unsew.sim.assembly import scatter_blocks
     from unsew.sim.solve import SparsePattern, _Factor
+    from unsew.sim.integrator import _ring_weight
+
+    from unsew.sim.solve import resolve_backend
 
     gamma = MATERIALS["cotton"].gamma()
     sdf = SphereSDF((0.0, 0.0, 0.0), 0.1)
-    print(f"torch {torch.__version__}, {args.threads} threads, min of {args.repeat} runs, seconds")
-    hdr = f"{'mesh':>6} {'verts':>6} {'faces':>6} | {'fwd 1':>6} {'fwd 20':>7} {'rev 1':>6} {'rev 20':>7} {'f+r 20':>7} | {'RSS+ MB':>7} | {'asm loop':>8} {'asm ours':>8} {'speedup':>7} | {'chol f+s':>8} {'splu f+s':>8}"
+    variants = []
+    for v in args.variants.split(","):
+        stencil, backend = v.split(":")
+        try:
+            resolve_backend(backend)
+        except ImportError as exc:
+            print(f"(skipping {v}: {exc})")
+            continue
+        variants.append((stencil, backend))
+    print(f"torch {torch.__version__}, {args.threads} torch thread(s), min of {args.repeat} runs, seconds")
+    hdr = (
+        f"{'mesh':>6} {'verts':>6} {'faces':>6} {'variant':>15} | {'fwd 1':>6} {'fwd 20':>7} {'rev 1':>6} {'rev 20':>7} "
+        f"{'f+r 20':>7} | {'RSS+ MB':>7} | {'load':>4}"
+    )
     print(hdr)
     print("-" * len(hdr))
+    solver_rows = []
     for n_target in [int(s) for s in args.sizes.split(",")]:
         kind, f, fuv, uv, x, n = _mesh(n_target, not args.sheet)
-        model = SimModel.build(f, fuv, n=n)
+        models = {st_: SimModel.build(f, fuv, n=n, bending_stencil=st_) for st_ in {v[0] for v in variants}}
         uvt = torch.as_tensor(uv, dtype=torch.float64)
         st = SimState.at_rest(x)
-        res = {}
+        res = {v: {} for v in variants}
+        for v in variants:  # warm-up (CHOLMOD's one analysis per topology is not timed)
+            _run(models[v[0]], st, sdf, uvt, gamma, 1, True, args.checkpoint, v[1])
         for steps in (1, 20):
-            best = (np.inf, np.inf)
             for _ in range(args.repeat):
-                r0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-                fw, rv = _run(model, st, sdf, uvt, gamma, steps, True, args.checkpoint)
-                r1 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-                best = (min(best[0], fw), min(best[1], rv))
-                if steps == 20:
-                    res["rss"] = max(res.get("rss", 0), (r1 - r0) / 1024)
-            res[steps] = best
+                for v in variants:
+                    r0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+                    fw, rv = _run(models[v[0]], st, sdf, uvt, gamma, steps, True, args.checkpoint, v[1])
+                    r1 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+                    b = res[v].get(steps, (np.inf, np.inf))
+                    res[v][steps] = (min(b[0], fw), min(b[1], rv))
+                    if steps == 20:
+                        res[v]["rss"] = max(res[v].get("rss", 0), (r1 - r0) / 1024)
+        load = os.getloadavg()[0]
+        for v in variants:
+            r = res[v]
+            print(
+                f"{kind:>6} {n:>6} {f.shape[0]:>6} {v[0] + ':' + v[1]:>15} | {r[1][0]:6.3f} {r[20][0]:7.3f} {r[1][1]:6.3f} "
+                f"{r[20][1]:7.3f} {r[20][0] + r[20][1]:7.3f} | {r['rss']:7.0f} | {load:4.1f}",
+                flush=True,
+            )
+        model = models.get("full", next(iter(models.values())))
         # assembly: loop baseline vs index maps, on the initial state's element Hessians
         rest = rest_data(model, uvt, 0.15)
         with torch.no_grad():
             _, _, Hm = energy_membrane(st.x, model.faces, rest.area, rest.B, gamma)
             _, _, Hb = energy_bending(st.x, model.hinges, rest.coef, gamma)
-            t_loop = np.inf
-            for _ in range(1):
+            t_loop = np.nan
+            if not args.no_loop:
                 t0 = time.perf_counter()
                 _loop_assembly(model, Hm, Hb)
-                t_loop = min(t_loop, time.perf_counter() - t0)
+                t_loop = time.perf_counter() - t0
             t_ours = np.inf
             for _ in range(5):
                 t0 = time.perf_counter()
@@ -145,29 +182,36 @@ def main():
                     model.nnz, model.hinge_src, model.hinge_dst, Hb
                 )
                 t_ours = min(t_ours, time.perf_counter() - t0)
-            # solver backends on the step-0 system
-            K = scatter_blocks(model.nnz, model.tri_src, model.tri_dst, Hm) + scatter_blocks(model.nnz, model.hinge_src, model.hinge_dst, Hb)
-            mass = rest.mass.repeat_interleave(3)
-            A = 0.0025 * K
-            A[model.diag_dst] += mass
-            pat = SparsePattern(3 * n, model.rows, model.cols)
-            b = np.random.default_rng(0).standard_normal(3 * n)
+            # solver backends on the step-0 system, for each stencil
             tb = {}
-            for be in ("cholespy", "scipy"):
-                t = np.inf
-                for _ in range(3):
-                    t0 = time.perf_counter()
-                    fac = _Factor(pat, A.numpy(), be)
-                    fac.solve(b)
-                    fac.solve(b)
-                    t = min(t, time.perf_counter() - t0)
-                    del fac
-                tb[be] = t
-        print(
-            f"{kind:>6} {n:>6} {f.shape[0]:>6} | {res[1][0]:6.3f} {res[20][0]:7.3f} {res[1][1]:6.3f} {res[20][1]:7.3f} "
-            f"{res[20][0] + res[20][1]:7.3f} | {res['rss']:7.0f} | {t_loop:8.3f} {t_ours:8.4f} {t_loop / t_ours:6.0f}x | "
-            f"{tb['cholespy'] * 1e3:6.1f}ms {tb['scipy'] * 1e3:6.1f}ms"
-        )
+            for stencil, m in sorted(models.items()):
+                Hb_s = Hb * _ring_weight(Hb) if stencil == "ring" else Hb
+                K = scatter_blocks(m.nnz, m.tri_src, m.tri_dst, Hm) + scatter_blocks(m.nnz, m.hinge_src, m.hinge_dst, Hb_s)
+                A = 0.0025 * K
+                A[m.diag_dst] += rest.mass.repeat_interleave(3)
+                pat = SparsePattern(3 * n, m.rows, m.cols)
+                b = np.random.default_rng(0).standard_normal(3 * n)
+                for be in ("cholespy", "cholmod", "scipy"):
+                    try:
+                        resolve_backend(be)
+                    except ImportError:
+                        continue
+                    _Factor(pat, A.numpy(), be)  # CHOLMOD: analysis once per pattern, not timed
+                    t = np.inf
+                    for _ in range(3):
+                        t0 = time.perf_counter()
+                        fac = _Factor(pat, A.numpy(), be)
+                        fac.solve(b)
+                        fac.solve(b)
+                        t = min(t, time.perf_counter() - t0)
+                        del fac
+                    tb[(stencil, be)] = (t, m.nnz)
+        solver_rows.append((kind, n, t_loop, t_ours, tb, os.getloadavg()[0]))
+    print()
+    print(f"{'mesh':>6} {'verts':>6} | {'asm loop':>8} {'asm ours':>8} {'speedup':>7} | factor + 2 solves [ms] (nnz of the lower triangle)")
+    for kind, n, t_loop, t_ours, tb, load in solver_rows:
+        cells = "  ".join(f"{st_}:{be} {t * 1e3:6.1f} ({nnz})" for (st_, be), (t, nnz) in tb.items())
+        print(f"{kind:>6} {n:>6} | {t_loop:8.3f} {t_ours:8.4f} {t_loop / t_ours:6.0f}x | {cells}  load {load:.1f}")
     print("fwd/rev: drape forward and backward (loss = sum |x|^2 on the final state) wrt uv and Gamma;")
     print("RSS+: growth of peak resident memory during the 20-step runs (0 when an earlier size peaked higher);")
     print("asm: assembly of the membrane + bending system blocks (one step); f+s: factor + two solves.")

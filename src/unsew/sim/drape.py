@@ -56,7 +56,7 @@ def drape(
     contact_threshold: float = 5e-3,
     thickness: float = COLLISION_THICKNESS,
     max_speed: float = 50.0,
-    backend: str = "cholespy",
+    backend: str = "auto",
     checkpoint: bool = False,
     callback=None,
 ) -> SimState:
@@ -156,7 +156,7 @@ def sew(
     contact_threshold: float = 5e-3,
     thickness: float = COLLISION_THICKNESS,
     max_speed: float = 50.0,
-    backend: str = "cholespy",
+    backend: str = "auto",
     callback=None,
 ) -> torch.Tensor:
     """Sewing phase (no gradients): close the seams of placed panels on the body.

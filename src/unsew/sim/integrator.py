@@ -50,7 +50,7 @@ class StepParams:
         spring_stiffness: zero-length seam springs [N/m] (sewing phase).
         max_speed: a vertex faster than this means divergence [m/s].
         friction_eps: slip speed below which friction is viscous [m/s].
-        backend: linear solver, "cholespy" or "scipy".
+        backend: linear solver, "auto", "cholmod", "cholespy" or "scipy" (solve.py).
     """
 
     dt: float = 0.05
@@ -62,7 +62,7 @@ class StepParams:
     spring_stiffness: float = 100.0
     max_speed: float = 50.0
     friction_eps: float = 1e-2
-    backend: str = "cholespy"
+    backend: str = "auto"
 
 
 @dataclass

@@ -10,8 +10,12 @@ and one value per stored entry (A_ij = A_ji = value for i != j). Forward: factor
     dL/dA_ij = -lambda_i x_j; a stored off-diagonal value stands for A_ij and A_ji, so
     dL/dvalue_ij = -(lambda_i x_j + lambda_j x_i), and dL/dvalue_ii = -lambda_i x_i.
 
-shared/STACK.md measured cholespy 1.0-1.5x faster to factor and 2-2.5x faster to solve than the
-tuned splu at 1K-25K vertices; ``benchmarks/bench_sim.py`` re-measures both on our systems.
+Backends: ``"cholmod"`` (CHOLMOD through scikit-sparse, an optional extra: ``pip install
+unsew[cholmod]`` against Debian's libsuitesparse-dev) analyses the sparsity pattern once (nested
+dissection ordering) and keeps that symbolic factorization on the :class:`SparsePattern`, so a step
+pays the numeric factorization only; ``"cholespy"`` (a hard dependency) redoes the analysis
+every factorization; ``"scipy"`` is splu tuned for SPD. ``"auto"`` (the default) is "cholmod"
+when scikit-sparse imports and "cholespy" otherwise. ``benchmarks/bench_sim.py`` measures them.
 """
 
 from __future__ import annotations
@@ -21,9 +25,40 @@ import torch
 
 from unsew.errors import SimulationError
 
-__all__ = ["SparsePattern", "sparse_solve", "BACKENDS"]
+__all__ = ["SparsePattern", "sparse_solve", "BACKENDS", "resolve_backend"]
 
-BACKENDS = ("cholespy", "scipy")
+BACKENDS = ("auto", "cholmod", "cholespy", "scipy")
+
+_HAS_CHOLMOD = None
+
+
+def resolve_backend(backend: str) -> str:
+    """The concrete backend for a name: "auto" is "cholmod" when scikit-sparse imports, else
+    "cholespy". Raises ValueError on an unknown name, ImportError (with the install line) when
+    "cholmod" is asked for explicitly and scikit-sparse is missing."""
+    global _HAS_CHOLMOD
+    if backend not in BACKENDS:
+        raise ValueError(f"unknown solver backend {backend!r}; choose one of {BACKENDS}")
+    if backend in ("auto", "cholmod"):
+        if _HAS_CHOLMOD is None:
+            try:
+                import warnings
+
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    import sksparse.cholmod  # noqa: F401
+                _HAS_CHOLMOD = True
+            except ImportError:
+                _HAS_CHOLMOD = False
+        if _HAS_CHOLMOD:
+            return "cholmod"
+        if backend == "cholmod":
+            raise ImportError(
+                "backend 'cholmod' needs scikit-sparse: apt-get install libsuitesparse-dev && "
+                "pip install 'unsew[cholmod]' (or use backend='cholespy')"
+            )
+        return "cholespy"
+    return backend
 
 
 class SparsePattern:
@@ -43,7 +78,23 @@ class SparsePattern:
         self.rows = torch.from_numpy(r.astype(np.int64))
         self.cols = torch.from_numpy(c.astype(np.int64))
         self.diag_half = torch.where(self.rows == self.cols, 0.5, 1.0).to(torch.float64)
-        self._csc = None
+        self._csc = None  # (order, indices, indptr) of the lower triangle in CSC order
+        self._cholmod_symbolic = None  # CHOLMOD analysis, computed at the first factorization
+
+    def csc_lower(self, values: np.ndarray):
+        """scipy CSC matrix of the lower triangle with these values (nnz,) (the COO order of
+        the pattern is row-major; the column-major permutation is computed once)."""
+        import scipy.sparse as sp
+
+        if self._csc is None:
+            order = np.lexsort((self.rows_np, self.cols_np))
+            indptr = np.zeros(self.n + 1, np.int32)
+            np.cumsum(np.bincount(self.cols_np, minlength=self.n), out=indptr[1:])
+            self._csc = (order, self.rows_np[order].copy(), indptr)
+        order, indices, indptr = self._csc
+        A = sp.csc_matrix((values[order], indices, indptr), shape=(self.n, self.n))
+        A.has_sorted_indices = True
+        return A
 
     def dense(self, values: torch.Tensor) -> torch.Tensor:
         """The full symmetric matrix (n, n) from lower values (nnz,) (tests and small cases)."""
@@ -57,7 +108,23 @@ class _Factor:
     def __init__(self, pattern: SparsePattern, values: np.ndarray, backend: str):
         self.backend = backend
         self.n = pattern.n
-        if backend == "cholespy":
+        if backend == "cholmod":
+            import warnings
+
+            from sksparse.cholmod import CholmodError, analyze
+
+            A = pattern.csc_lower(values)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # CholmodTypeConversionWarning never applies here
+                if pattern._cholmod_symbolic is None:
+                    pattern._cholmod_symbolic = analyze(A, mode="supernodal", ordering_method="nesdis")
+                try:
+                    self.solver = pattern._cholmod_symbolic.cholesky(A)
+                except CholmodError as exc:
+                    raise SimulationError(
+                        f"sparse Cholesky factorization failed ({exc}); the system is not positive definite"
+                    ) from None
+        elif backend == "cholespy":
             from cholespy import CholeskySolverD, MatrixType
 
             try:
@@ -89,6 +156,8 @@ class _Factor:
             x = np.empty_like(b)
             self.solver.solve(b, x)
             return x
+        if self.backend == "cholmod":
+            return self.solver.solve_A(b)
         return self.solver.solve(b)
 
 
@@ -120,14 +189,15 @@ class _SparseSolve(torch.autograd.Function):
         return gv, (lam if ctx.needs_input_grad[1] else None), None, None
 
 
-def sparse_solve(values: torch.Tensor, b: torch.Tensor, pattern: SparsePattern, *, backend: str = "cholespy"):
+def sparse_solve(values: torch.Tensor, b: torch.Tensor, pattern: SparsePattern, *, backend: str = "auto"):
     """Solve A x = b for SPD A given by lower-triangle values; differentiable in values and b.
 
     Args:
         values: (nnz,) float64 lower-triangle entries of A (units of the system).
         b: (n,) float64 right-hand side.
         pattern: the :class:`SparsePattern` of ``values``.
-        backend: "cholespy" (default) or "scipy".
+        backend: "auto" (default: "cholmod" if scikit-sparse is installed, else "cholespy"),
+            "cholmod", "cholespy" or "scipy" (see the module docstring).
 
     Returns:
         x: (n,) float64.
@@ -137,4 +207,4 @@ def sparse_solve(values: torch.Tensor, b: torch.Tensor, pattern: SparsePattern, 
     """
     if values.dtype != torch.float64 or b.dtype != torch.float64:
         raise TypeError("sparse_solve works in float64 (shared/STACK.md: float32 adjoints are useless)")
-    return _SparseSolve.apply(values, b, pattern, backend)
+    return _SparseSolve.apply(values, b, pattern, resolve_backend(backend))
