@@ -9,7 +9,7 @@ from unsew.fit.config import FitConfig, config_to_dict, load_config
 
 def test_defaults_follow_the_paper():
     c = FitConfig()
-    assert (c.lr, c.betas, c.lambda_open, c.lambda_seam, c.lambda_mat, c.dt) == (1e-3, (0.9, 0.999), 0.1, 0.01, 0.01, 0.05)
+    assert (c.lr, c.betas, c.lambda_open, c.lambda_mat, c.dt) == (1e-3, (0.9, 0.999), 0.1, 0.01, 0.05)
     assert 10 <= c.steps <= 20
 
 
