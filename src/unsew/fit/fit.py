@@ -305,7 +305,8 @@ def fit(
         x=xb.cpu().numpy(), uv=uv_b.cpu().numpy(), material=material, history=history,
         grade_table=grade_table, timings=timings, iterations=it + 1,
         converged=converged, x_graded=np.asarray(x_start), x_base=x_base, params=params,
-        extra={"best_iteration": best["it"], "material_start": material0, "base_mesh": mesh_base},
+        extra={"best_iteration": best["it"], "material_start": material0, "base_mesh": mesh_base,
+               "material_start_iteration": cfg.material_start if cfg.optimize_material else None},
     )
 
 

@@ -124,7 +124,7 @@ def write_result(work: Path, result, case, cfg, *, report: bool = True, metrics:
     if report:
         from unsew.fit.report import write_fit_report
 
-        write_fit_report(work, result, case, metrics)
+        write_fit_report(work, result, case, metrics, config=cfg_out)
     return metrics
 
 
