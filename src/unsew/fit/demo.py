@@ -49,33 +49,14 @@ def other_body():
 
 def make_truth_case(case_dir: Path, *, truth: DemoTruth = DEMO_TRUTH, edge_length: float = 0.03,
                     progress=None) -> Path:
-    """Write a case folder (FORMATS.md) whose target is the true t-shirt draped on the default body,
+    """Write the demo's case folder (FORMATS.md): the true t-shirt draped on the default body,
     with pattern_gt.json. Returns the folder."""
-    from unsew.body.body import default_body
-    from unsew.body.measure import measure_body
-    from unsew.dress import dress
-    from unsew.grading.alter import alter_pattern, open_edges
-    from unsew.io.atomic import atomic_dir
-    from unsew.io.garmentcode import save_pattern
-    from unsew.io.mesh import write_obj
-    from unsew.pattern.base import make_base_pattern
+    from unsew.fit.synthetic import Alteration
+    from unsew.fit.synthetic import make_truth_case as _make
 
-    body = default_body()
-    base = make_base_pattern("tshirt", measure_body(body))
-    torso = [n for n in base.panel_order if "sleeve" not in n]
-    sleeves = [n for n in base.panel_order if "sleeve" in n]
-    p = alter_pattern(base, open_edges(base, "hem", panels=torso), length=truth.hem_length, girth=truth.hem_girth)
-    p = alter_pattern(p, open_edges(p, "hem", panels=sleeves), length=truth.sleeve_length)
-    p.name = "demo_truth_tshirt"
-    d = dress(p, body, edge_length=edge_length, material=truth.material, progress=progress)
-    with atomic_dir(case_dir, overwrite=True) as tmp:
-        write_obj(tmp / "target.obj", d.x.numpy(), d.mesh.faces, header="unsew demo target (true t-shirt draped)")
-        save_pattern(p, tmp / "pattern_gt.json")
-        (tmp / "meta.json").write_text(json.dumps(
-            {"garment": "tshirt", "units": "m", "up": "y", "front": "z", "body": "default",
-             "truth": {"hem_length_m": truth.hem_length, "hem_girth_frac": truth.hem_girth,
-                       "sleeve_length_m": truth.sleeve_length, "material": truth.material}}, indent=2))
-    return Path(case_dir)
+    alt = Alteration({"hem": (truth.hem_length, truth.hem_girth), "sleeves": (truth.sleeve_length, 0.0)},
+                     truth.material)
+    return _make(case_dir, garment="tshirt", alteration=alt, edge_length=edge_length, progress=progress)
 
 
 def run_demo(out: Path, *, cfg=None, progress: bool = True, log=None) -> dict:

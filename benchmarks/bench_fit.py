@@ -1,0 +1,142 @@
+"""Per-garment fit accuracy on known-truth cases (issue 7's must-show table).
+
+For each garment type, a base pattern altered by known amounts (hem/sleeve/leg lengths and
+widths) in a different material is draped by our simulator on the default body (the target,
+about 2K vertices at --edge-length 0.02); the fit starts from the base pattern in cotton.
+Prints, per garment: vertices, Chamfer [mm] and normal error [deg] of the base drape, the graded
+drape and the final fit, mean panel area error [%] and turning distance of the base and the final
+pattern, the recovered material, iterations and time.
+
+    OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_fit.py [--garments tshirt pants ...]
+        [--edge-length 0.02] [--iterations 100] [--out bench-out/fit] [--variants noise,decimate,cm]
+
+--variants also fits the t-shirt target with 1 mm noise, decimated to half its vertices, and given
+in cm (read back with --units cm).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+from pathlib import Path
+
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+import numpy as np  # noqa: E402
+
+
+def _fit(case_dir: Path, out: Path, cfg, *, units=None):
+    from unsew.fit.run import run_fit
+    from unsew.io.case import load_case
+
+    case = load_case(case_dir, units=units)
+    t = time.perf_counter()
+    result, m = run_fit(case, cfg, out, overwrite=True, progress=False, log=lambda s: None)
+    return result, m, time.perf_counter() - t
+
+
+def _row(name, result, m, secs, nverts):
+    s, sb, sg = m["surface"], m.get("surface_base", {}), m.get("surface_graded", {})
+    p, pb = m.get("pattern", {}) or {}, m.get("pattern_base", {}) or {}
+    mat = result.material
+    return {
+        "case": name, "verts": nverts,
+        "cf_base_mm": sb.get("chamfer_mm"), "cf_graded_mm": sg.get("chamfer_mm"), "cf_final_mm": s["chamfer_mm"],
+        "nrm_base_deg": sb.get("normal_error_deg"), "nrm_final_deg": s["normal_error_deg"],
+        "area_base_pct": 100 * pb.get("area_error_rel_mean", float("nan")),
+        "area_final_pct": 100 * p.get("area_error_rel_mean", float("nan")),
+        "turn_base": pb.get("turning_distance_mean"), "turn_final": p.get("turning_distance_mean"),
+        "H00": mat.h00, "H11": mat.h11, "H22": mat.h22, "k": mat.bend,
+        "iters": result.iterations, "time_s": secs,
+    }
+
+
+def _print(rows):
+    cols = [("case", 10, "s"), ("verts", 6, "d"), ("cf_base_mm", 8, ".2f"), ("cf_graded_mm", 8, ".2f"),
+            ("cf_final_mm", 8, ".2f"), ("nrm_base_deg", 8, ".1f"), ("nrm_final_deg", 8, ".1f"),
+            ("area_base_pct", 8, ".2f"), ("area_final_pct", 8, ".2f"), ("turn_final", 8, ".3f"),
+            ("iters", 6, "d"), ("time_s", 7, ".0f")]
+    heads = ["case", "verts", "CF base", "CF grad", "CF fit", "N base", "N fit", "A base%", "A fit%",
+             "turn", "iters", "time s"]
+    print(" ".join(f"{h:>{w}}" for h, (_, w, _) in zip(heads, cols)))
+    for r in rows:
+        out = []
+        for k, w, f in cols:
+            v = r.get(k)
+            out.append(f"{'-':>{w}}" if v is None or (isinstance(v, float) and np.isnan(v)) else f"{v:>{w}{f}}")
+        print(" ".join(out))
+    sys.stdout.flush()
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--garments", nargs="+", default=["tshirt", "dress", "pants", "shorts", "skirt"])
+    ap.add_argument("--edge-length", type=float, default=0.02)
+    ap.add_argument("--iterations", type=int, default=100)
+    ap.add_argument("--out", default="bench-out/fit")
+    ap.add_argument("--variants", default="", help="comma list of noise,decimate,cm (t-shirt only)")
+    args = ap.parse_args(argv)
+
+    import torch
+
+    torch.set_num_threads(1)
+    from unsew.fit.config import FitConfig
+    from unsew.fit.synthetic import make_truth_case
+
+    out = Path(args.out)
+    cfg = FitConfig(edge_length=args.edge_length, iterations=args.iterations)
+    rows = []
+    for g in args.garments:
+        case = make_truth_case(out / "cases" / g, garment=g, edge_length=args.edge_length)
+        nverts = sum(1 for line in open(case / "target.obj") if line.startswith("v "))
+        result, m, secs = _fit(case, out / "results" / g, cfg)
+        rows.append(_row(g, result, m, secs, nverts))
+        _print(rows[-1:] if len(rows) > 1 else rows)
+    variants = [v for v in args.variants.split(",") if v]
+    if variants:
+        from unsew.io.mesh import read_mesh, write_obj
+
+        base = out / "cases" / "tshirt"
+        if not base.is_dir():
+            make_truth_case(base, garment="tshirt", edge_length=args.edge_length)
+        v, f = read_mesh(base / "target.obj")
+        for var in variants:
+            d = out / "cases" / f"tshirt_{var}"
+            if d.exists():
+                import shutil
+
+                shutil.rmtree(d)
+            import shutil
+
+            shutil.copytree(base, d)
+            units = None
+            if var == "noise":
+                rng = np.random.default_rng(0)
+                write_obj(d / "target.obj", v + rng.normal(scale=0.001, size=v.shape), f)
+            elif var == "decimate":
+                import trimesh
+
+                m = trimesh.Trimesh(v, f, process=False).simplify_quadric_decimation(face_count=len(f) // 2)
+                write_obj(d / "target.obj", m.vertices, m.faces)
+            elif var == "cm":
+                write_obj(d / "target.obj", v * 100.0, f)
+                meta = json.loads((d / "meta.json").read_text())
+                meta.pop("units", None)
+                (d / "meta.json").write_text(json.dumps(meta))
+                units = "cm"
+            nverts = sum(1 for line in open(d / "target.obj") if line.startswith("v "))
+            result, m, secs = _fit(d, out / "results" / f"tshirt_{var}", cfg, units=units)
+            rows.append(_row(f"t-{var}", result, m, secs, nverts))
+            _print(rows[-1:])
+    print()
+    print("all rows:")
+    _print(rows)
+    (out / "bench_fit.json").parent.mkdir(parents=True, exist_ok=True)
+    (out / "bench_fit.json").write_text(json.dumps(rows, indent=2))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,88 @@
+"""Known-truth fitting cases made with our own simulator: a base pattern altered by known amounts
+(hem, sleeve and leg lengths and widths), in a known material, draped on a body. The case folder
+(FORMATS.md) holds the drape as target.obj and the altered pattern as pattern_gt.json, so a fit
+can be judged against the truth. Used by the demo, the tests and the benchmarks.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["Alteration", "make_truth_pattern", "make_truth_case", "DEFAULT_ALTERATIONS"]
+
+
+@dataclass(frozen=True)
+class Alteration:
+    """Changes from the base pattern, per group of open edges (unsew.grading.alter.alteration_groups).
+
+    changes: group ("hem", "sleeves", "legs") -> (length [m], girth [-]): the open edges move
+    outward by ``length`` and widen by the fraction ``girth``. material: the true fabric
+    (library name). A group the garment does not have is ignored.
+    """
+
+    changes: dict = field(default_factory=dict)
+    material: str = "jersey"
+
+    def as_dict(self) -> dict:
+        return {"changes": {k: {"length_m": v[0], "girth_frac": v[1]} for k, v in self.changes.items()},
+                "material": self.material}
+
+
+#: One alteration per garment type, used by the per-garment fit benchmark (bench_fit.py).
+DEFAULT_ALTERATIONS = {
+    "tshirt": Alteration({"hem": (0.06, 0.06), "sleeves": (0.03, 0.0)}, "jersey"),
+    "dress": Alteration({"hem": (-0.08, 0.08), "sleeves": (0.02, 0.0)}, "silk"),
+    "pants": Alteration({"legs": (-0.06, 0.08)}, "denim"),
+    "shorts": Alteration({"legs": (0.05, -0.06)}, "polyester"),
+    "skirt": Alteration({"hem": (0.07, 0.10)}, "wool"),
+}
+
+
+def make_truth_pattern(garment: str, alteration: Alteration, *, body=None):
+    """The base pattern of ``garment`` sized to ``body`` (default body when None), altered."""
+    from unsew.body.body import default_body
+    from unsew.body.measure import measure_body
+    from unsew.grading.alter import alter_pattern, alteration_groups
+    from unsew.pattern.base import make_base_pattern
+
+    body = body if body is not None else default_body()
+    p = make_base_pattern(garment, measure_body(body))
+    groups = alteration_groups(p)
+    for key, (length, girth) in alteration.changes.items():
+        if key in groups:
+            p = alter_pattern(p, groups[key], length=length, girth=girth)
+    p.name = f"truth_{garment}"
+    return p
+
+
+def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alteration | None = None,
+                    body=None, body_meta="default", edge_length: float = 0.03, progress=None) -> Path:
+    """Drape the true pattern and write the case folder. ``body``: a Body (default body when None);
+    ``body_meta``: what meta.json says of the body ("default"), or None to write body.obj and
+    skeleton.json into the case. Returns the folder."""
+    from unsew.body.body import default_body
+    from unsew.body.skeleton import save_skeleton
+    from unsew.dress import dress
+    from unsew.io.atomic import atomic_dir
+    from unsew.io.garmentcode import save_pattern
+    from unsew.io.mesh import write_obj
+
+    alteration = alteration or DEFAULT_ALTERATIONS[garment]
+    body = body if body is not None else default_body()
+    p = make_truth_pattern(garment, alteration, body=body)
+    d = dress(p, body, edge_length=edge_length, material=alteration.material, progress=progress)
+    meta = {"garment": garment, "units": "m", "up": "y", "front": "z", "truth": alteration.as_dict()}
+    with atomic_dir(case_dir, overwrite=True) as tmp:
+        write_obj(tmp / "target.obj", np.asarray(d.x), d.mesh.faces, header=f"unsew known-truth target ({garment})")
+        save_pattern(p, tmp / "pattern_gt.json")
+        if body_meta is None:
+            write_obj(tmp / "body.obj", body.verts, body.faces)
+            save_skeleton(body.skeleton, tmp / "skeleton.json")
+        else:
+            meta["body"] = body_meta
+        (tmp / "meta.json").write_text(json.dumps(meta, indent=2))
+    return Path(case_dir)
