@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import torch
 
 from unsew.errors import PatternError, SimulationError
-from unsew.sim.assembly import scatter_blocks, scatter_vertex
+from unsew.sim.assembly import assemble_membrane, assemble_outer, outer_adjoint_map, scatter_blocks, scatter_vertex
 from unsew.sim.energies.bending import bending_rest, energy_bending
 from unsew.sim.energies.contact import energy_contact, friction_damping, project_out
 from unsew.sim.energies.gravity import mass_lumped
@@ -114,6 +114,25 @@ def _pattern(model: SimModel) -> SparsePattern:
     return p
 
 
+def _tri_maps(model: SimModel):
+    """Cached :func:`~unsew.sim.assembly.outer_adjoint_map` of the triangle blocks (per topology)."""
+    maps = getattr(model, "_tri_maps_cache", None)
+    if maps is None:
+        maps = outer_adjoint_map(model.nnz, model.tri_src, model.tri_dst, model.faces.shape[0], 9)
+        model._tri_maps_cache = maps
+    return maps
+
+
+def _hinge_maps(model: SimModel):
+    """Cached :func:`~unsew.sim.assembly.outer_adjoint_map` of the hinge blocks (per topology)."""
+    maps = getattr(model, "_hinge_maps_cache", None)
+    if maps is None:
+        w = _ring_weight(model.keep) if model.bending_stencil == "ring" else None
+        maps = outer_adjoint_map(model.nnz, model.hinge_src, model.hinge_dst, model.hinges.shape[0], 12, w)
+        model._hinge_maps_cache = maps
+    return maps
+
+
 def _ring_weight(like: torch.Tensor) -> torch.Tensor:
     """(12, 12) weights turning a hinge's Gauss-Newton block into the "ring" block (model.py)."""
     w = torch.ones(12, 12, dtype=like.dtype, device=like.device)
@@ -130,8 +149,8 @@ def forces(model, rest, x, v, sdf, gamma, params: StepParams, *, gravity=None, h
     contact stiffness, friction damping D (N, 3, 3) [kg/s], and the SDF values (d, n)."""
     g = params.gravity if gravity is None else gravity
     d, n = sdf.query(x)
-    _, gm, Hm = energy_membrane(x, model.faces, rest.area, rest.B, gamma, hessian=hessian)
-    _, gb, Hb = energy_bending(x, model.hinges, rest.coef, gamma, hessian=hessian)
+    _, gm, Hm = energy_membrane(x, model.faces, rest.area, rest.B, gamma, hessian=hessian, parts=True)
+    _, gb, Hb = energy_bending(x, model.hinges, rest.coef, gamma, hessian=hessian, parts=True)
     _, gc, Hc, fn = energy_contact(
         d, n, rest.vert_area, stiffness=params.contact_stiffness, threshold=params.contact_threshold, hessian=hessian
     )
@@ -145,9 +164,12 @@ def forces(model, rest, x, v, sdf, gamma, params: StepParams, *, gravity=None, h
     if not hessian:
         return f, None, None, None, (d, n)
     nnz = model.nnz
-    if model.bending_stencil == "ring":
-        Hb = Hb * _ring_weight(Hb)  # doubled (x2, x2), (x3, x3) blocks; (x2, x3) not in the pattern (model.py)
-    K = scatter_blocks(nnz, model.tri_src, model.tri_dst, Hm) + scatter_blocks(nnz, model.hinge_src, model.hinge_dst, Hb)
+    # element blocks go straight into the system values; the hand-written backward of the
+    # assembly (assembly.py) never materialises the (E, m, m) blocks' autograd graph
+    K = assemble_membrane(nnz, model.tri_src, model.tri_dst, *Hm, rest.area, maps=_tri_maps(model))
+    # "ring": doubled (x2, x2), (x3, x3) blocks; (x2, x3) not in the pattern (model.py)
+    w = _ring_weight(x) if model.bending_stencil == "ring" else None
+    K = K + assemble_outer(nnz, model.hinge_src, model.hinge_dst, Hb[0], Hb[1], w, maps=_hinge_maps(model))
     if Hs is not None:
         K = K + scatter_blocks(nnz, model.spring_src, model.spring_dst, Hs)
     D = friction_damping(v, n, fn, params.friction, eps_v=params.friction_eps)

@@ -73,19 +73,23 @@ def dihedral_angle(x: torch.Tensor, hinges: torch.Tensor):
     return theta, torch.stack([g0, g1, g2, g3], 1)
 
 
-def energy_bending(x, hinges, coef, gamma, *, theta0=None, hessian: bool = True):
+def energy_bending(x, hinges, coef, gamma, *, theta0=None, hessian: bool = True, parts: bool = False):
     """Bending energy, per-hinge gradient and Gauss-Newton Hessian.
 
     Args:
         x: positions [m], (N, 3) float64. hinges: (H, 4) int64.
         coef: (H,) from :func:`bending_rest`. gamma: (5,), uses D = gamma[4] [N*m].
         theta0: rest angles [rad] (H,) or None (flat).
+        parts: return the Hessian's factors (g (H, 12) [rad/m], s (H,) [N*m]) with
+            hess = s g g^T, for ``assembly.assemble_outer``, instead of blocks.
 
     Returns:
         energy [J] scalar; grad (H, 4, 3) [N]; hess (H, 12, 12) [N/m] PSD or None.
     """
     if hinges.shape[0] == 0:
         z = x.new_zeros(())
+        if parts and hessian:
+            return z, x.new_zeros(0, 4, 3), (x.new_zeros(0, 12), x.new_zeros(0))
         return z, x.new_zeros(0, 4, 3), (x.new_zeros(0, 12, 12) if hessian else None)
     theta, dth = dihedral_angle(x, hinges)
     d = theta if theta0 is None else theta - theta0
@@ -95,5 +99,7 @@ def energy_bending(x, hinges, coef, gamma, *, theta0=None, hessian: bool = True)
     if not hessian:
         return energy, grad, None
     gf = dth.reshape(-1, 12)
+    if parts:
+        return energy, grad, (gf, 2.0 * c)
     hess = (2.0 * c)[:, None, None] * gf[:, :, None] * gf[:, None, :]
     return energy, grad, hess

@@ -82,7 +82,7 @@ def _psd2(S: torch.Tensor) -> torch.Tensor:
     return torch.where(keep_all[:, None, None], S, torch.where(mixed[:, None, None], one, zero))
 
 
-def energy_membrane(x, faces, area, B, gamma, *, hessian: bool = True, project: bool = True):
+def energy_membrane(x, faces, area, B, gamma, *, hessian: bool = True, project: bool = True, parts: bool = False):
     """Membrane energy, per-corner gradient and (projected) per-element Hessian.
 
     Args:
@@ -93,6 +93,8 @@ def energy_membrane(x, faces, area, B, gamma, *, hessian: bool = True, project: 
         gamma: (5,) Gamma; uses H00, H01, H11, H22 [N/m].
         hessian: compute the Hessian.
         project: replace the stress term by its PSD part (for the system matrix).
+        parts: return the Hessian's factors (G (F, 3, 9), H (3, 3), P (F, 3, 3)) with
+            hess = area (G^T H G + P kron I3), for ``assembly.assemble_membrane``, instead of blocks.
 
     Returns:
         energy: scalar [J]; grad: dW/dx per corner [N], shape (F, 3, 3) (corner, xyz);
@@ -119,9 +121,11 @@ def energy_membrane(x, faces, area, B, gamma, *, hessian: bool = True, project: 
         ],
         1,
     ).reshape(-1, 3, 9)  # (F, 3 strains, 9 dofs)
-    gn = torch.einsum("fmi,mn,fnj->fij", G, H, G)
     Sp = _psd2(S) if project else S
     bsb = torch.einsum("fka,fab,flb->fkl", B, Sp, B)  # (F, 3, 3)
+    if parts:
+        return energy, grad, (G, H, bsb)
+    gn = torch.einsum("fmi,mn,fnj->fij", G, H, G)
     eye3 = torch.eye(3, dtype=x.dtype, device=x.device)
     geo = (bsb[:, :, None, :, None] * eye3[None, None, :, None, :]).reshape(-1, 9, 9)
     hess = area[:, None, None] * (gn + geo)
