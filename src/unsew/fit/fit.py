@@ -273,7 +273,7 @@ def fit(
             # until none invert.
             _backtrack_inversions(params, K, K_before, mesh.faces_uv, check_inverted)
             x_prev = x.detach()
-            bar.set_postfix(loss=f"{total:.3e}", cf_mm=f"{math.sqrt(max(float(l_cf), 0)) * 1e3:.1f}")
+            bar.set_postfix(loss=f"{total:.3e}", cf_mm=f"{math.sqrt(max(float(l_cf.detach()), 0)) * 1e3:.1f}")
             bar.update(1)
             if checkpoint is not None:
                 state = FitState(it + 1, K.detach().clone(), theta.detach().clone(),
