@@ -10,8 +10,10 @@ pattern, the recovered material, iterations and time.
     OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_fit.py [--garments tshirt pants ...]
         [--edge-length 0.02] [--iterations 100] [--out bench-out/fit] [--variants noise,decimate,cm]
 
---variants also fits the t-shirt target with 1 mm noise, decimated to half its vertices, and given
-in cm (read back with --units cm).
+--variants also fits the t-shirt target with 1 mm noise, decimated to half its vertices, given
+in cm (read back with --units cm), on the default body posed with the left arm raised 25 degrees
+(pose), and on a body 8% wider and deeper (body); the last two cases carry body.obj and
+skeleton.json.
 """
 
 from __future__ import annotations
@@ -77,7 +79,7 @@ def main(argv=None):
     ap.add_argument("--edge-length", type=float, default=0.02)
     ap.add_argument("--iterations", type=int, default=100)
     ap.add_argument("--out", default="bench-out/fit")
-    ap.add_argument("--variants", default="", help="comma list of noise,decimate,cm (t-shirt only)")
+    ap.add_argument("--variants", default="", help="comma list of noise,decimate,cm,pose,body (t-shirt only)")
     args = ap.parse_args(argv)
 
     import torch
@@ -105,6 +107,18 @@ def main(argv=None):
         v, f = read_mesh(base / "target.obj")
         for var in variants:
             d = out / "cases" / f"tshirt_{var}"
+            if var in ("pose", "body"):
+                from unsew.body.body import default_body
+                from unsew.body.pose import pose_body
+
+                b = pose_body(default_body(), "left_arm_up") if var == "pose" else default_body().transformed(
+                    scale=np.array([1.08, 1.0, 1.08]))
+                make_truth_case(d, garment="tshirt", body=b, body_meta=None, edge_length=args.edge_length)
+                nverts = sum(1 for line in open(d / "target.obj") if line.startswith("v "))
+                result, m, secs = _fit(d, out / "results" / f"tshirt_{var}", cfg)
+                rows.append(_row(f"t-{var}", result, m, secs, nverts))
+                _print(rows[-1:])
+                continue
             if d.exists():
                 import shutil
 
