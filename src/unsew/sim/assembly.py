@@ -85,12 +85,15 @@ class _AssembleOuter(torch.autograd.Function):
 
     @staticmethod
     def forward(ctx, g, s, weight, src, dst, nnz, fdst, h):
-        blocks = s[:, None, None] * g[:, :, None] * g[:, None, :]
+        sg = s[:, None] * g
+        blocks = sg[:, :, None] * g[:, None, :]  # (E, m, m)
+        picked = blocks.reshape(-1)[src]
         if weight is not None:
-            blocks = blocks * weight
+            m = g.shape[1]
+            picked = picked * weight.reshape(-1)[src % (m * m)]
         ctx.save_for_backward(g, s)
         ctx.maps = (fdst, h)
-        return blocks.new_zeros(nnz).index_add_(0, dst, blocks.reshape(-1)[src])
+        return blocks.new_zeros(nnz).index_add_(0, dst, picked)
 
     @staticmethod
     @torch.autograd.function.once_differentiable
@@ -131,11 +134,9 @@ class _AssembleMembrane(torch.autograd.Function):
         F = G.shape[0]
         H = 0.5 * (H + H.T)
         P = 0.5 * (P + P.transpose(1, 2))
-        HG = torch.matmul(H, G)  # (F, 3, 9)
-        gn = torch.bmm(G.transpose(1, 2), HG)  # (F, 9, 9)
-        eye3 = torch.eye(3, dtype=G.dtype, device=G.device)
-        geo = (P[:, :, None, :, None] * eye3[None, None, :, None, :]).reshape(F, 9, 9)
-        blocks = area[:, None, None] * (gn + geo)
+        HGa = torch.matmul(H, G) * area[:, None, None]  # (F, 3, 9)
+        blocks = torch.bmm(G.transpose(1, 2), HGa)  # (F, 9, 9) area G^T H G
+        blocks.view(F, 3, 3, 3, 3).diagonal(dim1=2, dim2=4).add_(area[:, None, None, None] * P[..., None])  # + area P kron I3
         ctx.save_for_backward(G, H, P, area)
         ctx.maps = (fdst, h)
         return blocks.new_zeros(nnz).index_add_(0, dst, blocks.reshape(-1)[src])
