@@ -7,8 +7,12 @@ batch on 2 local workers and on a local Ray instance is marked slow."""
 
 from __future__ import annotations
 
+import csv
 import json
+import os
 import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -69,8 +73,16 @@ def test_small_batch_equals_single_fit_and_reports_broken_case(tmp_path):
     assert_same_metrics(_metrics(tmp_path / "out" / "tshirt"), single)
     no_time = lambda m: {k: v for k, v in m.items() if k != "timings_s"}  # noqa: E731
     assert no_time(_metrics(tmp_path / "out" / "tshirt")) == no_time(json.loads(json.dumps(single)))  # bitwise, in fact
-    res2 = run_batch(cases, tmp_path / "out", cfg=cfg, workers=2, progress=False)
-    assert {r.name: r.status for r in res2.records} == {"tshirt": "skipped", "broken": "failed"}
+    # the rerun, through the CLI: the finished case is skipped, the broken one fails again (exit 1)
+    p = subprocess.run([sys.executable, "-m", "unsew", "batch", str(cases), "--out", str(tmp_path / "out"),
+                        "--workers", "2", "--quiet"], capture_output=True, text=True, timeout=300,
+                       env={**os.environ, "OMP_WAIT_POLICY": "PASSIVE"})
+    assert p.returncode == 1, p.stderr
+    assert "skipped" in p.stdout and "failed: garment 'sweater'" in p.stdout and "1 skipped, 1 failed" in p.stdout
+    with open(tmp_path / "out" / "summary.csv", newline="") as f:
+        rows = {r["case"]: r for r in csv.DictReader(f)}
+    assert rows["tshirt"]["status"] == "skipped"
+    assert float(rows["tshirt"]["chamfer_mm"]) == single["surface"]["chamfer_mm"]
 
 
 @pytest.fixture(scope="module")
