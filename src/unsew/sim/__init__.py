@@ -2,7 +2,8 @@
 
 Public names (one import path each):
 ``Material``, ``MATERIALS``, ``get_material`` (material.py); ``SimModel`` (model.py);
-``SimState`` (state.py); ``drape``, ``sew``, ``merge_sewn`` (drape.py);
+``SimState`` (state.py); ``drape``, ``sew``, ``merge_sewn`` (drape.py); ``drape_static``,
+``StaticInfo`` (static.py);
 ``sparse_solve``, ``SparsePattern`` (solve.py); ``SphereSDF``, ``PlaneSDF``, ``CapsuleSDF``
 (sdf_analytic.py). Importing this package imports torch.
 """
@@ -13,6 +14,7 @@ from unsew.sim.model import SimModel
 from unsew.sim.sdf_analytic import CapsuleSDF, PlaneSDF, SphereSDF
 from unsew.sim.solve import SparsePattern, sparse_solve
 from unsew.sim.state import SimState
+from unsew.sim.static import StaticInfo, drape_static
 
 __all__ = [
     "Material",
@@ -23,6 +25,8 @@ __all__ = [
     "drape",
     "sew",
     "merge_sewn",
+    "drape_static",
+    "StaticInfo",
     "sparse_solve",
     "SparsePattern",
     "SphereSDF",
