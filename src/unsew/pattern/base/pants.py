@@ -31,8 +31,11 @@ FRONT_CROTCH_EXT = 1.0 / 16
 BACK_CROTCH_EXT = 1.0 / 9
 #: Crotch point below the body's crotch [m] (ease).
 CROTCH_DROP = 0.02
-#: Hem height above the floor for pants [m], and the shorts' inseam length [m].
-PANTS_HEM_HEIGHT = 0.05
+#: Hem height above the floor for pants at a height of 1.70 m [m] (scaled with the height), and
+#: the shorts' inseam length [m]. The wearer is barefoot: the hem (PANTS_HEM_GIRTH, a ring of
+#: about 6.7 cm radius around the leg) must clear the foot under it, which on the default body
+#: rises to 6.6 cm at that radius (ankle joint at 7.0 cm); at 5 cm the hem rested on the instep.
+PANTS_HEM_HEIGHT = 0.085
 SHORTS_INSEAM = 0.12
 #: Hem girth per leg for pants [m].
 PANTS_HEM_GIRTH = 0.42
