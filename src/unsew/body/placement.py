@@ -39,6 +39,13 @@ MAX_PUSH = 0.05
 CROTCH_BLEND = 0.04
 #: A girth needed at one height is kept for this far below it (curved hems) [m].
 NEED_WINDOW = 0.15
+#: Each shoulder edge of a top is brought this close to the body's centre plane [m] (front
+#: and back edges 2 * SHOULDER_MEET apart over the shoulder ridge).
+SHOULDER_MEET = 0.012
+#: Share of a top's lift (see place_garment) its sleeves move up their arms.
+SLEEVE_SHIFT = 0.75
+#: Smallest gap between the two legs' wrapped cloth where the thighs touch [m].
+LEG_GAP = 0.03
 #: Height step of the cross-section tables [m].
 _DY = 0.01
 
@@ -232,7 +239,7 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
     stacks["torso"][2][up] = np.maximum.accumulate(stacks["torso"][2][up])
     for side, sgn in (("left", 1.0), ("right", -1.0)):
         lp = v[np.isin(parts, ["torso", f"{side}_leg"]) & ((v[:, 0] - cx0) * sgn > 0) & (v[:, 1] < crotch_y + 0.05)]
-        stacks[f"{side}_leg"] = _section_table(lp, ys)
+        stacks[f"{side}_leg"] = _keep_apart(_section_table(lp, ys), cx0, sgn, clearance)
     # Shoulder line: top of the torso (below the neck joint) per lateral position.
     top = v[np.isin(parts, ["torso"]) & (v[:, 1] < J["neck"][1])]
     xb = np.arange(-0.5, 0.5 + 1e-9, 0.01) + cx0
@@ -284,6 +291,67 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
         phi = _ellipse_at_arc(a, b, np.broadcast_to(phi_c, a.shape).astype(np.float64), S)
         return np.stack([cx + a * np.sin(phi), y, cz + b * np.cos(phi)], axis=1)
 
+    # Lifts [m]: a top hangs from its shoulder seams, so its front and back panels are raised
+    # until what rises above the shoulder line folds over it to the ridge, where the two
+    # shoulder edges meet (the panels' hint puts them at the shoulder tip, below the ridge).
+    lifts = {name: 0.0 for name in info}
+    shoulder_edges = _shoulder_edges(pattern, mesh, info)
+    for it in range(4 if shoulder_edges else 1):
+        if it:
+            for name, idx in shoulder_edges.items():
+                lifts[name] += _shoulder_lift(folds[name], idx - info[name]["sl"].start, xb, ytop, clearance, stacks["torso"], ys)
+        x_wrap, folds = _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance, wrap_stack, stack_coords)
+    # The sleeves follow the raised armholes: moved up their arm by the tops' mean lift.
+    sleeve_shift = SLEEVE_SHIFT * float(np.mean([lifts[n] for n in shoulder_edges])) if shoulder_edges else 0.0
+    for name, d in info.items():
+        if name in x_wrap:
+            x[d["sl"]] = x_wrap[name]
+        elif d["role"].endswith("_sleeve"):
+            x[d["sl"]] = _wrap_sleeve(uv[d["sl"]], d, d["role"].split("_")[0], J, shift=sleeve_shift)
+
+    return _push_out(x, body, sdf)
+
+
+def _keep_apart(stack, cx0, sgn, clearance):
+    """A leg's stack of ellipses kept on its own side of the centre plane x = cx0 (sgn +1: the
+    left leg at x > cx0): where the thighs touch, the inner side of the wrapped cloth stays
+    LEG_GAP / 2 from the plane (the outer side is kept; the push-out lifts what is inside)."""
+    cx, cz, a, b = (t.copy() for t in stack)
+    outer = cx + sgn * a
+    inner_lim = cx0 + sgn * (0.5 * LEG_GAP + clearance)
+    m = sgn * (cx - a * sgn - inner_lim) < 0  # the inner side crosses the limit
+    a_new = np.maximum(0.5 * sgn * (outer - inner_lim), 0.02)
+    a = np.where(m, a_new, a)
+    cx = np.where(m, outer - sgn * a, cx)
+    return [cx, cz, a, b]
+
+
+def _shoulder_edges(pattern, mesh, info) -> dict:
+    """Torso panels with stitched shoulder edges -> uv indices of those edges' vertices."""
+    out = {}
+    for st in pattern.stitches:
+        for side in (st.a, st.b):
+            e = pattern.panels[side.panel].edges[side.edge]
+            if "shoulder" in (e.label or "") and info[side.panel]["role"] == "torso":
+                idx = np.asarray(mesh.edge_verts[(side.panel, side.edge)])
+                out[side.panel] = np.union1d(out.get(side.panel, np.zeros(0, np.int64)), idx)
+    return out
+
+
+def _shoulder_lift(p, idx, xb, ytop, clearance, stack, ys) -> float:
+    """How much higher [m] a panel must sit for its shoulder-edge vertices (``p[idx]``, wrapped
+    positions before the fold over the shoulders) to fold to SHOULDER_MEET from the body's
+    centre plane: the run still missing, averaged over the edge."""
+    q = p[idx]
+    y_line = np.interp(q[:, 0], xb, ytop) + clearance
+    cz = np.interp(y_line, ys, stack[1])
+    run = np.abs(q[:, 2] - cz) - SHOULDER_MEET
+    return float(np.mean(run - (q[:, 1] - y_line)))
+
+
+def _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance, wrap_stack, stack_coords):
+    """Torso and leg panels wrapped on their stacks, each raised by ``lifts[name]`` [m].
+    Returns (name -> (k, 3) positions, name -> (k, 3) positions before the shoulder fold)."""
     # Widths needed around each stack at each height (front + back panels side by side).
     need = {k: np.zeros(len(ys)) for k in stacks}
     coords = {}
@@ -292,16 +360,17 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
         if role not in ("torso", "left_leg", "right_leg"):
             continue
         along, across, phi0, c_hint = stack_coords(name, False)
-        coords[name] = (along, across, phi0, c_hint)
+        along = along + lifts[name]
+        c_hint = c_hint + np.array([0.0, lifts[name], 0.0])
         bl = d["bl"] - d["sl"].start
         ext = _width_at(across[bl], along[bl], ys)
+        coords[name] = (along, across, phi0, c_hint, ext)
         w = np.nan_to_num(ext[:, 1] - ext[:, 0])
         if role == "torso":
             need["torso"] += w
         else:
             need["torso"] += np.where(ys > crotch_y, w, 0.0)
             need[role] += np.where(ys < crotch_y + CROTCH_BLEND, w, 0.0)
-        d["ext"] = ext
 
     # A curved hem's horizontal slices are narrower than the cloth above them: each height
     # takes the largest girth found up to NEED_WINDOW above it.
@@ -310,30 +379,36 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
         p = np.pad(need[key], (0, k), mode="edge")
         need[key] = np.max(np.stack([p[i : i + len(ys)] for i in range(k + 1)]), axis=0)
 
-    for name, d in info.items():
+    out, folds = {}, {}
+    for name, (along, across, phi0, c_hint, ext) in coords.items():
+        d = info[name]
         role = d["role"]
-        sl = d["sl"]
-        if role in ("torso", "left_leg", "right_leg"):
-            along, across, phi0, c_hint = coords[name]
-            st = stacks["torso"]
-            axis_x = np.interp(c_hint[1], ys, st[0])
-            axis_z = np.interp(c_hint[1], ys, st[1])
-            t_hat = np.array([np.cos(phi0), 0.0, -np.sin(phi0)])
-            S_c = t_hat @ (c_hint - np.array([axis_x, 0.0, axis_z]))
-            p_torso = wrap_stack(st, along, across + S_c, phi0, perim=need["torso"])
-            p_torso = _fold_over_shoulders(p_torso, phi0, xb, ytop, clearance, st, ys)
-            if role == "torso":
-                x[sl] = p_torso
-            else:
-                ext = d["ext"]
-                mid = np.interp(along, ys, np.nan_to_num(0.5 * (ext[:, 0] + ext[:, 1])))
-                p_leg = wrap_stack(stacks[role], along, across - mid, phi0, perim=need[role])
-                w = _smoothstep((crotch_y + CROTCH_BLEND - along) / (2 * CROTCH_BLEND))[:, None]
-                x[sl] = w * p_leg + (1 - w) * p_torso
-        elif role.endswith("_sleeve"):
-            x[sl] = _wrap_sleeve(uv[sl], d, role.split("_")[0], J)
-
-    return _push_out(x, body, sdf)
+        st = stacks["torso"]
+        axis_x = np.interp(c_hint[1], ys, st[0])
+        axis_z = np.interp(c_hint[1], ys, st[1])
+        t_hat = np.array([np.cos(phi0), 0.0, -np.sin(phi0)])
+        S_c = t_hat @ (c_hint - np.array([axis_x, 0.0, axis_z]))
+        p_flat = wrap_stack(st, along, across + S_c, phi0, perim=need["torso"])
+        folds[name] = p_flat
+        p_torso = _fold_over_shoulders(p_flat, phi0, xb, ytop, clearance, st, ys)
+        if role == "torso":
+            out[name] = p_torso
+            continue
+        # A leg: its inseam edge (the side towards the other leg) on the leg's innermost line,
+        # so the front's and back's inseams meet there and any slack goes to the outseam.
+        sgn = 1.0 if role == "left_leg" else -1.0
+        R = d["R"]
+        a2 = R[:, :2].T @ np.array([0.0, 1.0, 0.0])
+        a2 = a2 / max(np.linalg.norm(a2), 1e-9)
+        b2 = np.array([a2[1], -a2[0]])
+        inward = -np.sign((R[:, :2] @ b2)[0]) * sgn  # +1: the across coordinate grows inwards
+        ok = np.flatnonzero(~np.isnan(ext[:, 0]))
+        edge = np.interp(along, ys[ok], ext[ok, 1] if inward > 0 else ext[ok, 0])
+        phi_in = -0.5 * np.pi * sgn
+        p_leg = wrap_stack(stacks[role], along, across - edge, phi_in, perim=need[role])
+        w = _smoothstep((crotch_y + CROTCH_BLEND - along) / (2 * CROTCH_BLEND))[:, None]
+        out[name] = w * p_leg + (1 - w) * p_torso
+    return out, folds
 
 
 def _fold_over_shoulders(p, phi0, xb, ytop, clearance, stack, ys):
@@ -351,15 +426,16 @@ def _fold_over_shoulders(p, phi0, xb, ytop, clearance, stack, ys):
         return p
     z_new = q[m, 2] + dirz * e[m]
     # never cross the centre plane (front and back roofs meet there)
-    lim = cz - dirz * 0.01
+    lim = cz - dirz * 0.5 * SHOULDER_MEET
     z_new = np.maximum(z_new, lim) if dirz < 0 else np.minimum(z_new, lim)
     q[m, 1] = y_line[m]
     q[m, 2] = z_new
     return q
 
 
-def _wrap_sleeve(u, d, side, J):
-    """A sleeve wrapped into a tube around its arm's shoulder-elbow-wrist line."""
+def _wrap_sleeve(u, d, side, J, *, shift=0.0):
+    """A sleeve wrapped into a tube around its arm's shoulder-elbow-wrist line, moved ``shift``
+    [m] up the arm (towards the shoulder) from its default place."""
     A = np.stack([J[f"{side}_shoulder"], J[f"{side}_elbow"], J[f"{side}_wrist"]])  # (3, 3)
     seg = np.diff(A, axis=0)
     L = np.linalg.norm(seg, axis=1)
@@ -373,7 +449,7 @@ def _wrap_sleeve(u, d, side, J):
     along = (u - c_uv) @ a2
     across = (u - c_uv) @ b2
     # Where along the arm: the cap's top (smallest 'along') a little inside the shoulder joint.
-    t = along - along.min() - 0.03
+    t = along - along.min() - 0.03 - shift
     cum = np.concatenate([[0.0], np.cumsum(L)])
 
     def axis_at(tt):
