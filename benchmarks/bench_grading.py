@@ -8,7 +8,7 @@ residuals |position(X_LG) - position(T)| along the skeleton and |girth(X_LG) - g
 per garment the Chamfer distance [mm] of X_init and of X_LG to T (``unsew.metrics.chamfer_mm``)
 and their ratio.
 
-Drapes: the simulator (``--drape sim``: place_garment, sew, settle) or the panels laid flat at
+Drapes: the simulator (``--drape sim``: ``unsew.dress.dress``: place, sew, settle) or the panels laid flat at
 their placement (``--drape flat``: no physics, a check of the geometry alone). ``auto`` uses the
 simulator when ``unsew.body.placement.place_garment`` exists.
 
@@ -58,7 +58,7 @@ def main() -> None:
     from unsew.body.body import default_body
     from unsew.grading.alter import alter_pattern, alteration_groups
     from unsew.grading.contours import place_contours
-    from unsew.grading.grade import drape_pattern, flat_drape, grade
+    from unsew.grading.grade import dress_drape, flat_drape, grade
     from unsew.meshing.sew import mesh_pattern
     from unsew.metrics.surface import chamfer_mm
     from unsew.pattern.base import make_base_pattern
@@ -74,7 +74,7 @@ def main() -> None:
         sdf = BodySDF.build(body)
 
         def drape_fn(p, m, b):
-            return drape_pattern(p, m, b, material=args.material, sdf=sdf)
+            return dress_drape(p, m, b, material=args.material, sdf=sdf)
     else:
         drape_fn = flat_drape
     print(f"drape: {mode}; edge length {args.edge_length} m; material {args.material}")

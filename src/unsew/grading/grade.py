@@ -25,7 +25,7 @@ from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, 
 from unsew.grading.curves import curves_of_contour
 from unsew.grading.edit import curve_edit, project_edit, safe_fraction
 
-__all__ = ["GradeResult", "grade", "drape_pattern", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH"]
+__all__ = ["GradeResult", "grade", "dress_drape", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH"]
 
 #: Re-mesh after grading when a rest edge grew beyond this factor times the target edge length.
 REMESH_STRETCH = 1.5
@@ -78,54 +78,21 @@ def flat_drape(pattern, mesh, body=None) -> np.ndarray:
     return out / cnt[:, None]
 
 
-def drape_pattern(
-    pattern,
-    mesh,
-    body,
-    *,
-    material="cotton",
-    sdf=None,
-    sew_steps: int = 60,
-    settle_steps: int = 20,
-    uv=None,
-) -> np.ndarray:
-    """Drape a pattern on a body: place the panels, sew them, merge the seams, settle.
+def dress_drape(pattern, mesh, body, *, material="cotton", sdf=None, **dress_options) -> np.ndarray:
+    """The grading drape: :func:`unsew.dress.dress` (place, sew, merge, settle) on ``mesh``.
 
     pattern, mesh: the pattern and its GarmentMesh. body: the wearer (:class:`Body`).
     material: a :class:`~unsew.sim.material.Material` or a name from ``MATERIALS``.
     sdf: the body's SDF (default: ``BodySDF.build(body)``, cached on disk).
-    sew_steps, settle_steps: implicit Euler steps of the sewing phase and of the drape.
-    uv: rest positions (Nu, 2) [m] (default ``mesh.uv``).
+    dress_options: further keyword arguments of :func:`~unsew.dress.dress` (``sew_steps``, ...).
 
     Returns the draped sewn vertices, (n_x, 3) float64 [m].
-    Raises SimulationError when the drape pipeline (``place_garment``, ``sew``) is not available.
+    Raises SimulationError when the drape diverged.
     """
-    import torch
+    from unsew.dress import dress
 
-    try:
-        from unsew.body.placement import place_garment
-        from unsew.sim.drape import drape, merge_sewn, sew
-    except ImportError as exc:
-        raise SimulationError(f"the drape pipeline is not available in this build ({exc}); pass a drape function") from None
-    from unsew.sim.material import Material, get_material
-    from unsew.sim.model import SimModel
-    from unsew.sim.state import SimState
-
-    mat = material if isinstance(material, Material) else get_material(str(material))
-    if sdf is None:
-        from unsew.body.sdf import BodySDF
-
-        sdf = BodySDF.build(body)
-    uv_t = torch.as_tensor(np.asarray(mesh.uv if uv is None else uv), dtype=torch.float64)
-    gamma = mat.gamma()
-    x_unsewn = place_garment(pattern, mesh, body)
-    model_u = SimModel.build(mesh.faces_uv, mesh.faces_uv, springs=mesh.seam_pairs)
-    xu = sew(model_u, x_unsewn, sdf, uv=uv_t, gamma=gamma, density=mat.density, steps=sew_steps, friction=mat.friction)
-    x = merge_sewn(xu, mesh.x_of_u, mesh.n_x)
-    model = SimModel.build(mesh.faces, mesh.faces_uv)
-    with torch.no_grad():
-        state = drape(model, SimState.at_rest(x), sdf, uv=uv_t, gamma=gamma, density=mat.density, steps=settle_steps, friction=mat.friction)
-    x = state.x.detach().cpu().numpy()
+    d = dress(pattern, body, sdf=sdf, mesh=mesh, material=material, **dress_options)
+    x = d.x.detach().cpu().numpy().astype(np.float64)
     if not np.isfinite(x).all():
         raise SimulationError("the drape diverged (non-finite positions); try a smaller edge length or another material")
     return x
@@ -172,7 +139,7 @@ def grade(
     mesh: the base pattern's GarmentMesh (default: ``mesh_pattern(pattern, edge_length=...)``).
     x_init: the base pattern already draped, (n_x, 3) [m] on ``mesh`` (default: draped here).
     drape_fn: ``drape_fn(pattern, mesh, body) -> (n_x, 3) [m]`` used for both drapes (default:
-        :func:`drape_pattern` with ``material`` and ``sdf``; :func:`flat_drape` for a quick look).
+        :func:`dress_drape` with ``material`` and ``sdf``; :func:`flat_drape` for a quick look).
     redrape: drape the graded pattern (X_LG); False leaves ``x_draped`` None.
     max_centre_distance: contour pairing gate [m] (default :data:`~unsew.grading.contours.MAX_CENTRE_DISTANCE`).
 
@@ -189,7 +156,7 @@ def grade(
         raise InputError(f"target mesh must be (V, 3) vertices and (F, 3) faces, got {tv.shape} and {tf.shape}")
     if drape_fn is None:
         def drape_fn(p, m, b):  # noqa: E306
-            return drape_pattern(p, m, b, material=material, sdf=sdf)
+            return dress_drape(p, m, b, material=material, sdf=sdf)
 
     if mesh is None:
         mesh = mesh_pattern(pattern, edge_length=edge_length)
