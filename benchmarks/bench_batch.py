@@ -77,13 +77,14 @@ def main() -> None:
     for label, kw in runs:
         out = root / ("results_" + label.replace(" ", "_").replace(",", ""))
         shutil.rmtree(out, ignore_errors=True)
+        load = os.getloadavg()[0]  # other work on the machine skews the figures
         t = time.perf_counter()
         res = run_batch(cases, out, cfg=cfg, progress=False, **kw)
         wall = time.perf_counter() - t
         ok = sum(r.status == "done" for r in res.records)
         fit_s = [r.time_s for r in res.records if r.status == "done"]
         rows.append((label, ok, len(res.records), wall, sum(fit_s) / max(len(fit_s), 1), 3600 * ok / wall))
-        print(f"  {label}: {ok}/{len(res.records)} done in {wall:.1f} s", flush=True)
+        print(f"  {label}: {ok}/{len(res.records)} done in {wall:.1f} s (load average before: {load:.1f})", flush=True)
     print()
     print(f"{'backend':<22}{'fits':>8}{'wall [s]':>10}{'s per fit':>11}{'fits/hour':>11}{'speed-up':>10}")
     print("-" * 72)

@@ -74,10 +74,13 @@ def one_line(exc: BaseException) -> str:
 
 
 def prepare_worker(*, ignore_sigint: bool = False) -> None:
-    """Settings of a worker process, before it imports torch (shared/STACK.md): passive OpenMP
-    waiting and one torch thread. ``ignore_sigint``: leave Ctrl-C to the driver, which stops the
-    worker itself (local pool)."""
+    """Settings of a worker process, before it imports torch or numpy (shared/STACK.md): passive
+    OpenMP waiting, one torch thread, and one BLAS/OpenMP thread (a worker is one core's worth of
+    work; OpenBLAS threads also busy-wait). ``ignore_sigint``: leave Ctrl-C to the driver, which
+    stops the worker itself (local pool)."""
     os.environ["OMP_WAIT_POLICY"] = "PASSIVE"
+    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(var, "1")
     if ignore_sigint:
         import signal
 
