@@ -71,6 +71,7 @@ def main():
     args = ap.parse_args()
     torch.set_num_threads(1)
     from unsew.sim import CapsuleSDF, SimModel, SimState, drape
+    from unsew.sim.integrator import StepParams, forces, rest_data, total_energy
     from unsew.sim.static import StaticInfo, drape_static
 
     sdf = CapsuleSDF((-0.1, 0.0, 0.0), (0.5, 0.0, 0.0), R_ARM)
@@ -78,7 +79,7 @@ def main():
     print(f"torch {torch.__version__}, 1 thread, min of {args.repeat} runs; load average {os.getloadavg()[0]:.2f} (2 shared cores)")
     hdr = (
         f"{'verts':>5} {'method':>18} | {'fwd s':>6} {'rev s':>6} {'iters':>5} | {'|x-x*| mm':>9} {'min d mm':>8} | "
-        f"{'cos uv':>7} {'cos Gam':>7} {'|g_uv|/|g*|':>11} | {'load':>4}"
+        f"{'cos uv':>7} {'cos Gam':>7} {'|g_uv|/|g*|':>11} | {'E mJ':>9} {'|grad E|':>8} | {'load':>4}"
     )
     print(hdr)
     print("-" * len(hdr))
@@ -117,19 +118,25 @@ def main():
                 b = best.get(name)
                 best[name] = (xs, g, min(tf, b[2]) if b else tf, min(tr, b[3]) if b else tr, its)
         xstar, gstar = best["static exact"][0], best["static exact"][1]
+        rest = rest_data(model, uvt, DENSITY)
+        params = StepParams(friction=0.0)
         load = os.getloadavg()[0]
         for name, _ in methods:
             xs, g, tf, tr, its = best[name]
             cos = [float((a * b).sum() / (a.norm() * b.norm())) for a, b in zip(g, gstar)]
             ratio = float(g[0].norm() / gstar[0].norm())
             d, _ = sdf.query(xs[~model.pinned])  # free vertices (the pinned ring sits 2 mm over the arm)
+            energy = float(total_energy(model, rest, xs, sdf, gamma0, params))
+            fres = float((forces(model, rest, xs, torch.zeros_like(xs), sdf, gamma0, params, hessian=False)[0][~model.pinned]).abs().max())
+            fres /= float(rest.mass.max() * params.gravity)
             print(
                 f"{n_x:>5} {name:>18} | {tf:6.3f} {tr:6.3f} {its:>5} | {float((xs - xstar).norm(dim=1).max()) * 1e3:9.4f} "
-                f"{float(d.min()) * 1e3:8.3f} | {cos[0]:7.4f} {cos[1]:7.4f} {ratio:11.4f} | {load:4.1f}",
+                f"{float(d.min()) * 1e3:8.3f} | {cos[0]:7.4f} {cos[1]:7.4f} {ratio:11.4f} | {energy * 1e3:9.5f} {fres:8.1e} | {load:4.1f}",
                 flush=True,
             )
     print("iters: Newton/adjoint-CG iterations (static) or steps (dynamic); cos: direction cosine of the")
-    print("gradient w.r.t. uv / Gamma with the static exact-adjoint one; |x-x*|: largest vertex distance to it.")
+    print("gradient w.r.t. uv / Gamma with the static exact-adjoint one; |x-x*|: largest vertex distance to it;")
+    print("E: total potential energy of the result; |grad E|: max force residual / heaviest vertex weight.")
 
 
 if __name__ == "__main__":
