@@ -10,13 +10,14 @@ cholespy, CHOLMOD with the symbolic analysis reused, scipy splu tuned for SPD).
 
 Simulator variants (--variants, "stencil:backend" pairs) are run interleaved, repeat by repeat,
 so they see the same machine load: stencil "full" (exact Gauss-Newton hinge blocks, the
-original) or "ring" (model.py), backend "cholespy", "cholmod" or "scipy" (solve.py).
+original) or "ring" (model.py), backend "cholespy", "cholmod" or "scipy" (solve.py), and
+":unfused" for separate assembly Functions + sparse_solve instead of the fused step_solve.
 
 Timings on a shared 2-core machine are noisy: each figure is the minimum of --repeat runs, and the
 load average is printed with every row.
 
     OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_sim.py [--sizes 1000,2000,3000,8000] [--repeat 2]
-        [--variants full:cholespy,ring:cholespy,ring:cholmod] [--no-loop]
+        [--variants full:cholespy:unfused,ring:cholespy,ring:cholmod:unfused,ring:cholmod] [--no-loop]
 """
 
 from __future__ import annotations
@@ -59,13 +60,13 @@ def _mesh(n_target: int, use_tshirt: bool):
     return "sheet", f, f, uv, x, len(uv)
 
 
-def _run(model, st, sdf, uv, gamma, steps, backward, checkpoint=False, backend="auto"):
+def _run(model, st, sdf, uv, gamma, steps, backward, checkpoint=False, backend="auto", fused=True):
     from unsew.sim import drape
 
     uvp = uv.clone().requires_grad_(backward)
     gp = gamma.clone().requires_grad_(backward)
     t0 = time.perf_counter()
-    out = drape(model, st, sdf, uv=uvp, gamma=gp, density=0.15, steps=steps, checkpoint=checkpoint, backend=backend)
+    out = drape(model, st, sdf, uv=uvp, gamma=gp, density=0.15, steps=steps, checkpoint=checkpoint, backend=backend, fused=fused)
     t1 = time.perf_counter()
     if backward:
         (out.x**2).sum().backward()
@@ -102,7 +103,11 @@ def main():
     ap.add_argument("--sizes", default="1000,2000,3000,8000")
     ap.add_argument("--repeat", type=int, default=2)
     ap.add_argument("--threads", type=int, default=1, help="torch threads (the fit uses 1)")
-    ap.add_argument("--variants", default="full:cholespy,ring:cholespy,ring:cholmod", help="stencil:backend,...")
+    ap.add_argument(
+        "--variants",
+        default="full:cholespy:unfused,ring:cholespy,ring:cholmod:unfused,ring:cholmod",
+        help="stencil:backend[:unfused],... (unfused: assembly Functions + sparse_solve instead of step_solve)",
+    )
     ap.add_argument("--no-loop", action="store_true", help="skip the per-element loop assembly baseline")
     ap.add_argument("--sheet", action="store_true", help="use square sheets even if the t-shirt exists")
     ap.add_argument("--checkpoint", action="store_true", help="recompute steps in backward (less memory)")
@@ -123,16 +128,16 @@ def main():
     sdf = SphereSDF((0.0, 0.0, 0.0), 0.1)
     variants = []
     for v in args.variants.split(","):
-        stencil, backend = v.split(":")
+        stencil, backend, *rest_ = v.split(":")
         try:
             resolve_backend(backend)
         except ImportError as exc:
             print(f"(skipping {v}: {exc})")
             continue
-        variants.append((stencil, backend))
+        variants.append((stencil, backend, "unfused" not in rest_))
     print(f"torch {torch.__version__}, {args.threads} torch thread(s), min of {args.repeat} runs, seconds")
     hdr = (
-        f"{'mesh':>6} {'verts':>6} {'faces':>6} {'variant':>15} | {'fwd 1':>6} {'fwd 20':>7} {'rev 1':>6} {'rev 20':>7} "
+        f"{'mesh':>6} {'verts':>6} {'faces':>6} {'variant':>23} | {'fwd 1':>6} {'fwd 20':>7} {'rev 1':>6} {'rev 20':>7} "
         f"{'f+r 20':>7} | {'RSS+ MB':>7} | {'load':>4}"
     )
     print(hdr)
@@ -140,17 +145,17 @@ def main():
     solver_rows = []
     for n_target in [int(s) for s in args.sizes.split(",")]:
         kind, f, fuv, uv, x, n = _mesh(n_target, not args.sheet)
-        models = {st_: SimModel.build(f, fuv, n=n, bending_stencil=st_) for st_ in {v[0] for v in variants}}
+        models = {st_: SimModel.build(f, fuv, n=n, bending_stencil=st_) for st_ in sorted({v[0] for v in variants})}
         uvt = torch.as_tensor(uv, dtype=torch.float64)
         st = SimState.at_rest(x)
         res = {v: {} for v in variants}
         for v in variants:  # warm-up (CHOLMOD's one analysis per topology is not timed)
-            _run(models[v[0]], st, sdf, uvt, gamma, 1, True, args.checkpoint, v[1])
+            _run(models[v[0]], st, sdf, uvt, gamma, 1, True, args.checkpoint, v[1], v[2])
         for steps in (1, 20):
             for _ in range(args.repeat):
                 for v in variants:
                     r0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-                    fw, rv = _run(models[v[0]], st, sdf, uvt, gamma, steps, True, args.checkpoint, v[1])
+                    fw, rv = _run(models[v[0]], st, sdf, uvt, gamma, steps, True, args.checkpoint, v[1], v[2])
                     r1 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
                     b = res[v].get(steps, (np.inf, np.inf))
                     res[v][steps] = (min(b[0], fw), min(b[1], rv))
@@ -160,7 +165,7 @@ def main():
         for v in variants:
             r = res[v]
             print(
-                f"{kind:>6} {n:>6} {f.shape[0]:>6} {v[0] + ':' + v[1]:>15} | {r[1][0]:6.3f} {r[20][0]:7.3f} {r[1][1]:6.3f} "
+                f"{kind:>6} {n:>6} {f.shape[0]:>6} {v[0] + ':' + v[1] + ('' if v[2] else ':unfused'):>23} | {r[1][0]:6.3f} {r[20][0]:7.3f} {r[1][1]:6.3f} "
                 f"{r[20][1]:7.3f} {r[20][0] + r[20][1]:7.3f} | {r['rss']:7.0f} | {load:4.1f}",
                 flush=True,
             )

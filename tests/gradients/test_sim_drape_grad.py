@@ -95,10 +95,16 @@ def test_adjoint_matches_dense_unrolled_and_checkpoint(case, monkeypatch):
     ck = torch.autograd.grad(L2, (uvp, gp))
     for a, b in zip(ck, ref_grads):
         assert_close(a, b, rtol=1e-10, atol=1e-12, what="checkpointed ")
+    # the unfused path (assembly Functions + sparse_solve), then the same with a dense solve
+    L4 = _run(m, uvp, gp, st, fused=False)
+    unfused = torch.autograd.grad(L4, (uvp, gp))
+    assert_close(L4, L, rtol=1e-12)
+    for a, b in zip(unfused, ref_grads):
+        assert_close(b, a, rtol=1e-9, atol=1e-12, what="fused vs unfused adjoint ")
     import unsew.sim.integrator as integ
 
     monkeypatch.setattr(integ, "sparse_solve", lambda A, b, pat, backend: torch.linalg.solve(pat.dense(A), b))
-    L3 = _run(m, uvp, gp, st)
+    L3 = _run(m, uvp, gp, st, fused=False)
     dense = torch.autograd.grad(L3, (uvp, gp))
     assert_close(L3, L, rtol=1e-12)
     for a, b in zip(dense, ref_grads):

@@ -59,6 +59,7 @@ def drape(
     backend: str = "auto",
     checkpoint: bool = False,
     callback=None,
+    fused: bool = True,
 ) -> SimState:
     """Drape the cloth for ``steps`` implicit Euler steps.
 
@@ -75,6 +76,8 @@ def drape(
         checkpoint: recompute each step in the backward pass instead of storing it (less
             memory, about one more forward in time).
         callback: called as ``callback(k, state)`` after each step k (e.g. a progress bar).
+        fused: one Function per step for assembly + solve with a structured adjoint (default,
+            faster backward; step_solve.py), or separate assembly Functions and ``sparse_solve``.
 
     Returns:
         the final :class:`SimState` (differentiable w.r.t. uv, gamma, density and state).
@@ -95,6 +98,7 @@ def drape(
         thickness=thickness,
         max_speed=max_speed,
         backend=backend,
+        fused=fused,
     )
     rest = rest_data(model, uv, density)
     for k in range(steps):

@@ -30,7 +30,8 @@ from unsew.sim.energies.gravity import mass_lumped
 from unsew.sim.energies.membrane import energy_membrane, membrane_rest
 from unsew.sim.energies.spring import energy_spring
 from unsew.sim.model import SimModel
-from unsew.sim.solve import SparsePattern, sparse_solve
+from unsew.sim.solve import SparsePattern, resolve_backend, sparse_solve
+from unsew.sim.step_solve import step_solve
 from unsew.sim.state import SimState
 
 __all__ = ["StepParams", "RestData", "rest_data", "step", "forces", "total_energy"]
@@ -51,6 +52,8 @@ class StepParams:
         max_speed: a vertex faster than this means divergence [m/s].
         friction_eps: slip speed below which friction is viscous [m/s].
         backend: linear solver, "auto", "cholmod", "cholespy" or "scipy" (solve.py).
+        fused: assemble, factorize and solve in one Function with a structured adjoint
+            (step_solve.py, CPU); False: separate assembly Functions + ``sparse_solve``.
     """
 
     dt: float = 0.05
@@ -63,6 +66,7 @@ class StepParams:
     max_speed: float = 50.0
     friction_eps: float = 1e-2
     backend: str = "auto"
+    fused: bool = True
 
 
 @dataclass
@@ -133,6 +137,14 @@ def _hinge_maps(model: SimModel):
     return maps
 
 
+def _ring_corner_weight(like: torch.Tensor) -> torch.Tensor:
+    """(4, 4) hinge corner weights of the "ring" stencil: (x2, x2), (x3, x3) doubled, (x2, x3) dropped."""
+    w = torch.ones(4, 4, dtype=like.dtype, device=like.device)
+    w[2, 2] = w[3, 3] = 2.0
+    w[2, 3] = w[3, 2] = 0.0
+    return w
+
+
 def _ring_weight(like: torch.Tensor) -> torch.Tensor:
     """(12, 12) weights turning a hinge's Gauss-Newton block into the "ring" block (model.py)."""
     w = torch.ones(12, 12, dtype=like.dtype, device=like.device)
@@ -141,12 +153,14 @@ def _ring_weight(like: torch.Tensor) -> torch.Tensor:
     return w
 
 
-def forces(model, rest, x, v, sdf, gamma, params: StepParams, *, gravity=None, hessian=True):
+def forces(model, rest, x, v, sdf, gamma, params: StepParams, *, gravity=None, hessian=True, parts=False):
     """Forces and system blocks at (x, v).
 
     Returns f (N, 3) [N] (internal + gravity + contact + springs, without friction),
     K values (nnz,) [N/m] (PSD stiffness, lower triangle), vertex blocks (N, 3, 3) [N/m] of
-    contact stiffness, friction damping D (N, 3, 3) [kg/s], and the SDF values (d, n)."""
+    contact stiffness, friction damping D (N, 3, 3) [kg/s], and the SDF values (d, n).
+    With ``parts=True`` K is replaced by (membrane factors (G, H, Pgeo, area), bending factors
+    (g, s), spring values (nnz,) or None) for :func:`~unsew.sim.step_solve.step_solve`."""
     g = params.gravity if gravity is None else gravity
     d, n = sdf.query(x)
     _, gm, Hm = energy_membrane(x, model.faces, rest.area, rest.B, gamma, hessian=hessian, parts=True)
@@ -164,6 +178,10 @@ def forces(model, rest, x, v, sdf, gamma, params: StepParams, *, gravity=None, h
     if not hessian:
         return f, None, None, None, (d, n)
     nnz = model.nnz
+    if parts:
+        Ks = scatter_blocks(nnz, model.spring_src, model.spring_dst, Hs) if Hs is not None else None
+        D = friction_damping(v, n, fn, params.friction, eps_v=params.friction_eps)
+        return f, ((*Hm, rest.area), Hb, Ks), Hc, D, (d, n)
     # element blocks go straight into the system values; the hand-written backward of the
     # assembly (assembly.py) never materialises the (E, m, m) blocks' autograd graph
     K = assemble_membrane(nnz, model.tri_src, model.tri_dst, *Hm, rest.area, maps=_tri_maps(model))
@@ -209,16 +227,26 @@ def step(model: SimModel, rest: RestData, state: SimState, sdf, gamma, params: S
     dt = params.dt
     x, v = state.x, state.v
     N = model.n
-    f, K, Hc, D, _ = forces(model, rest, x, v, sdf, gamma, params, gravity=gravity)
+    fused = params.fused and x.device.type == "cpu"
+    f, K, Hc, D, _ = forces(model, rest, x, v, sdf, gamma, params, gravity=gravity, parts=fused)
     eye = torch.eye(3, dtype=x.dtype, device=x.device)
     vblk = rest.mass[:, None, None] * eye + dt * D + (dt * dt) * Hc  # (N, 3, 3)
-    A = (dt * dt) * K + scatter_blocks(model.nnz, model.vert_src, model.vert_dst, vblk)
     pat = _pattern(model)
-    A = A * model.keep.to(A) + pat.pin_diag.to(A)
     rhs = rest.mass[:, None] * v + dt * f  # (N, 3) [kg m/s]
     pinned = model.pinned[:, None].to(x.device)
     rhs = torch.where(pinned, v, rhs)
-    v_new = sparse_solve(A, rhs.reshape(-1), pat, backend=params.backend).reshape(N, 3)
+    if fused:  # assembly + factorization + structured adjoint in one Function (step_solve.py)
+        mem, bend, Ks = K
+        w4 = _ring_corner_weight(x) if model.bending_stencil == "ring" else None
+        extra = (dt * dt) * Ks if Ks is not None else None
+        v_new = step_solve(
+            model, pat, dt=dt, membrane=mem, bending=bend, vblk=vblk, extra=extra, rhs=rhs.reshape(-1), w4=w4,
+            backend=resolve_backend(params.backend),
+        ).reshape(N, 3)
+    else:
+        A = (dt * dt) * K + scatter_blocks(model.nnz, model.vert_src, model.vert_dst, vblk)
+        A = A * model.keep.to(A) + pat.pin_diag.to(A)
+        v_new = sparse_solve(A, rhs.reshape(-1), pat, backend=params.backend).reshape(N, 3)
     with torch.no_grad():
         speed = v_new.norm(dim=1)
         bad = ~torch.isfinite(speed) | (speed > params.max_speed)

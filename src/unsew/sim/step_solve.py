@@ -1,0 +1,147 @@
+"""The implicit Euler system assembled, factorized and solved in one autograd Function, with a
+structured adjoint (factor once, solve twice; no (nnz,) or (E, m, m) adjoint arrays).
+
+    A = keep * (dt^2 (K_membrane + K_bending) + V + extra) + pinned identity,   A v' = b,
+
+K_membrane = sum_f area_f P_f (G_f^T H G_f + Pgeo_f kron I3) P_f^T and K_bending =
+sum_h s_h P_h (w kron 1_3 * g_h g_h^T) P_h^T (energies/membrane.py, energies/bending.py; w the
+4x4 corner weights of the bending stencil, model.py), V the per-vertex 3x3 blocks (masses,
+friction damping, contact stiffness), ``extra`` any other lower-triangle values (seam springs).
+
+Adjoint. With lambda = A^-1 g and the free-dof masks applied (l = free * lambda,
+y = free * v'), dL/dA = -l y^T, so every element block B_e gets dL/dB_e = -1/2 (l_e y_e^T +
+y_e l_e^T) (its corners' slices), a rank-2 matrix that is never formed:
+
+    membrane (a = area, Gl = G l_e, Gy = G y_e (3,)):
+        dL/da = -dt^2 (Gl . H Gy + sum_kl Pgeo_kl l_k . y_l)
+        dL/dG = -dt^2 a (H Gy l_e^T + H Gl y_e^T)            (3, 9)
+        dL/dH = -dt^2/2 sum_f a (Gl Gy^T + Gy Gl^T)
+        dL/dPgeo_kl = -dt^2/2 a (l_k . y_l + y_k . l_l)
+    bending (p_a = g_a . l_a, q_a = g_a . y_a per corner a):
+        dL/ds = -dt^2 p^T w q,   dL/dg_a = -dt^2 s (l_a (w q)_a + y_a (w p)_a)
+    vertex blocks: dL/dV_i = -1/2 (l_i y_i^T + y_i l_i^T);  dL/db = lambda.
+
+O(elements) work after the one adjoint solve, checked against the unfused path (separate
+assembly + sparse_solve) in tests/gradients/test_sim_step_solve.py and gradchecked there.
+"""
+
+from __future__ import annotations
+
+import torch
+
+from unsew.sim.assembly import scatter_blocks
+from unsew.sim.solve import SparsePattern, _Factor
+
+__all__ = ["step_solve"]
+
+
+def _values(G, H, P, area, bg, bs, vblk, extra, st):
+    """Forward assembly of A's lower values (no autograd)."""
+    model, pat, dt2, w4 = st["model"], st["pattern"], st["dt2"], st["w4"]
+    F = G.shape[0]
+    HGa = torch.matmul(H, G) * area[:, None, None]
+    blocks = torch.bmm(G.transpose(1, 2), HGa)  # (F, 9, 9)
+    blocks.view(F, 3, 3, 3, 3).diagonal(dim1=2, dim2=4).add_(area[:, None, None, None] * P[..., None])
+    K = blocks.new_zeros(model.nnz).index_add_(0, model.tri_dst, blocks.reshape(-1)[model.tri_src])
+    if bg.shape[0]:
+        sg = bs[:, None] * bg
+        hb = sg[:, :, None] * bg[:, None, :]  # (Hn, 12, 12)
+        picked = hb.reshape(-1)[model.hinge_src]
+        if w4 is not None:
+            w12 = w4.repeat_interleave(3, 0).repeat_interleave(3, 1)
+            picked = picked * w12.reshape(-1)[model.hinge_src % 144]
+        K.index_add_(0, model.hinge_dst, picked)
+    A = dt2 * K + scatter_blocks(model.nnz, model.vert_src, model.vert_dst, vblk)
+    if extra is not None:
+        A = A + extra
+    return A * model.keep.to(A) + pat.pin_diag.to(A)
+
+
+class _StepSolve(torch.autograd.Function):
+    @staticmethod
+    def forward(ctx, G, H, P, area, bg, bs, vblk, extra, rhs, st):
+        H = 0.5 * (H + H.T)  # symmetric parts: the adjoint below is that of symmetric blocks
+        P = 0.5 * (P + P.transpose(1, 2))
+        vblk = 0.5 * (vblk + vblk.transpose(1, 2))
+        A = _values(G, H, P, area, bg, bs, vblk, extra, st)
+        fac = _Factor(st["pattern"], A.detach().cpu().numpy(), st["backend"])
+        x = torch.from_numpy(fac.solve(rhs.detach().cpu().numpy())).to(rhs.device)
+        ctx.fac, ctx.st = fac, st
+        ctx.has_extra = extra is not None
+        ctx.save_for_backward(G, H, P, area, bg, bs, vblk, extra if extra is not None else vblk.new_zeros(0), x)
+        return x
+
+    @staticmethod
+    @torch.autograd.function.once_differentiable
+    def backward(ctx, g):
+        G, H, P, area, bg, bs, vblk, extra, x = ctx.saved_tensors
+        st = ctx.st
+        model, dt2, w4 = st["model"], st["dt2"], st["w4"]
+        fac = ctx.fac
+        if fac is None:  # a second backward through a retained graph: factorize again
+            A = _values(G, H, P, area, bg, bs, vblk, extra if ctx.has_extra else None, st)
+            fac = _Factor(st["pattern"], A.cpu().numpy(), st["backend"])
+        lam = torch.from_numpy(fac.solve(g.detach().cpu().numpy())).to(g.device)
+        ctx.fac = None
+        free = (~model.pinned).to(lam.dtype).repeat_interleave(3)
+        L = (lam * free).view(-1, 3)  # (N, 3)
+        Y = (x * free).view(-1, 3)
+        need = ctx.needs_input_grad
+        gG = gH = gP = ga = gbg = gbs = gV = gE = None
+        if any(need[:4]):
+            Le = L[model.faces].reshape(-1, 9)  # (F, 9) corner-major
+            Ye = Y[model.faces].reshape(-1, 9)
+            Gl = torch.bmm(G, Le[:, :, None])[:, :, 0]  # (F, 3)
+            Gy = torch.bmm(G, Ye[:, :, None])[:, :, 0]
+            HGl, HGy = Gl @ H, Gy @ H  # H symmetric
+            LY = torch.bmm(Le.view(-1, 3, 3), Ye.view(-1, 3, 3).transpose(1, 2))  # (F, 3, 3): l_k . y_l
+            if need[0]:
+                gG = (-dt2 * area)[:, None, None] * (HGy[:, :, None] * Le[:, None, :] + HGl[:, :, None] * Ye[:, None, :])
+            if need[1]:
+                M = torch.einsum("f,fm,fn->mn", area, Gl, Gy)
+                gH = (-0.5 * dt2) * (M + M.T)
+            if need[2]:
+                gP = (-0.5 * dt2) * area[:, None, None] * (LY + LY.transpose(1, 2))
+            if need[3]:
+                ga = -dt2 * ((Gl * HGy).sum(-1) + (P * LY).sum((1, 2)))
+        if (need[4] or need[5]) and bg.shape[0]:
+            Lh = L[model.hinges]  # (Hn, 4, 3)
+            Yh = Y[model.hinges]
+            g4 = bg.view(-1, 4, 3)
+            p = (g4 * Lh).sum(-1)  # (Hn, 4)
+            q = (g4 * Yh).sum(-1)
+            wq = q @ w4 if w4 is not None else q.sum(-1, keepdim=True).expand_as(q)
+            wp = p @ w4 if w4 is not None else p.sum(-1, keepdim=True).expand_as(p)
+            if need[4]:
+                gbg = ((-dt2 * bs)[:, None, None] * (Lh * wq[..., None] + Yh * wp[..., None])).reshape(-1, 12)
+            if need[5]:
+                gbs = -dt2 * (p * wq).sum(-1)
+        elif need[4] or need[5]:
+            gbg, gbs = torch.zeros_like(bg), torch.zeros_like(bs)
+        if need[6]:
+            LYv = L[:, :, None] * Y[:, None, :]  # (N, 3, 3)
+            gV = -0.5 * (LYv + LYv.transpose(1, 2))
+        if ctx.has_extra and need[7]:
+            r, c = model.rows.long(), model.cols.long()
+            lt, yt = L.reshape(-1), Y.reshape(-1)
+            gE = -(lt[r] * yt[c] + lt[c] * yt[r]) * st["pattern"].diag_half
+        return gG, gH, gP, ga, gbg, gbs, gV, gE, lam, None
+
+
+def step_solve(model, pattern: SparsePattern, *, dt: float, membrane, bending, vblk, extra, rhs, w4, backend: str):
+    """Solve the implicit Euler system of one step (module docstring); differentiable.
+
+    Args:
+        model: :class:`~unsew.sim.model.SimModel`. pattern: its :class:`SparsePattern` (with ``pin_diag``).
+        dt: time step [s]. membrane: (G (F, 3, 9), H (3, 3) [N/m], Pgeo (F, 3, 3), area (F,) [m^2]).
+        bending: (g (Hn, 12) [rad/m], s (Hn,) [N*m]). vblk: (N, 3, 3) vertex blocks [kg].
+        extra: (nnz,) more lower values [kg] (e.g. dt^2 * springs) or None.
+        rhs: (3N,) [kg m/s]. w4: (4, 4) bending corner weights or None (all ones).
+        backend: a concrete solver backend (solve.resolve_backend).
+
+    Returns:
+        v': (3N,) float64 [m/s].
+    """
+    st = dict(model=model, pattern=pattern, dt2=dt * dt, w4=w4, backend=backend)
+    G, H, P, area = membrane
+    return _StepSolve.apply(G, H, P, area, bending[0], bending[1], vblk, extra, rhs, st)
