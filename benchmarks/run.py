@@ -80,24 +80,43 @@ def n_verts(case_dir: Path) -> int:
         return sum(1 for line in fh if line.startswith("v "))
 
 
-def fit_case(case_dir: Path, out: Path, cfg, *, log=print) -> dict:
+#: Set by --retry-failed: refit cases whose fit raised before (default for fit_case).
+RETRY_FAILED = False
+
+
+def fit_case(case_dir: Path, out: Path, cfg, *, log=print, retry_failed: bool | None = None) -> dict:
     """Fit ``case_dir`` into the result folder ``out`` unless it is finished already.
 
     Returns a record: metrics (metrics.json), material (material.json), bench (the sidecar:
     pattern_graded, wall_s, load), out. An interrupted fit (out.partial with a checkpoint) resumes.
+    A fit that raises is recorded (metrics None, bench["error"]) and skipped on reruns unless
+    ``retry_failed``.
     """
     from unsew.fit.run import partial_dir, run_fit
     from unsew.io.case import load_case
 
     out = Path(out)
     side = out.with_name(out.name + ".bench.json")
+    retry_failed = RETRY_FAILED if retry_failed is None else retry_failed
+    failed = json.loads(side.read_text()).get("error") if side.is_file() else None
+    if failed and not (out / "metrics.json").is_file() and not retry_failed:
+        log(f"  {case_dir.name}: FAILED before ({failed}); --retry-failed to try again")
+        return {"out": out, "metrics": None, "material": {}, "bench": {"error": failed}}
     if not (out / "metrics.json").is_file():
         case = load_case(case_dir)
-        resume = (partial_dir(out) / "checkpoint.pt").is_file()
+        resume = (partial_dir(out) / "checkpoint.pt").is_file() and not failed
         log(f"fit {case_dir.name} -> {out} ({'resuming' if resume else 'starting'}, load {_loadavg():.1f})")
         load0 = _loadavg()
         t = time.perf_counter()
-        result, _ = run_fit(case, cfg, out, resume=resume, overwrite=True, progress=False, log=lambda s: None)
+        try:
+            result, _ = run_fit(case, cfg, out, resume=resume, overwrite=True, progress=False, log=lambda s: None)
+        except Exception as exc:  # a failed fit is a row of the table, not the end of the run
+            err = f"{type(exc).__name__}: {exc}".splitlines()[0]
+            side.parent.mkdir(parents=True, exist_ok=True)
+            side.write_text(json.dumps({"error": err, "wall_s": time.perf_counter() - t, "load_start": load0},
+                                       indent=2))
+            log(f"  {case_dir.name}: FAILED ({err})")
+            return {"out": out, "metrics": None, "material": {}, "bench": {"error": err}}
         wall = time.perf_counter() - t
         graded = None
         if case.pattern_gt is not None and result.graded_pattern is not None:
@@ -114,6 +133,7 @@ def fit_case(case_dir: Path, out: Path, cfg, *, log=print) -> dict:
            "bench": json.loads(side.read_text()) if side.is_file() else {}}
     s = rec["metrics"]["surface"]
     p = rec["metrics"].get("pattern") or {}
+    p = p if "error" not in p else {}
     log(f"  {case_dir.name}: Chamfer {s['chamfer_mm']:.2f} mm, normal {s['normal_error_deg']:.1f} deg, "
         f"area error {100 * p.get('area_error_rel_mean', float('nan')):.2f} %")
     return rec
@@ -196,6 +216,8 @@ def emit(args, name: str, text: str) -> None:
 
 
 def _stage_values(rec) -> dict:
+    if rec["metrics"] is None:  # failed fit
+        return {k: (None, None, None, None) for k in ("base", "graded", "fit")}
     m, b = rec["metrics"], rec["bench"]
     sb, sg, s = m.get("surface_base") or {}, m.get("surface_graded") or {}, m["surface"]
     pb, pg, p = m.get("pattern_base"), b.get("pattern_graded"), m.get("pattern")
@@ -218,22 +240,23 @@ def table_accuracy(args, cases: dict[str, list[Path]]) -> list[dict]:
             r.update(garment=g, case=c.name, verts=n_verts(c),
                      body=json.loads((c / "meta.json").read_text()).get("benchmark", {}).get("body_name", "?"))
             recs.append(r)
-    heads = ["garment", "cases", "stage", "Chamfer mm", "normal deg", "turning rad", "area err %"]
-    fmts = ["s", "d", "s", ".2f", ".1f", ".3f", ".2f"]
+    heads = ["garment", "fits done", "stage", "Chamfer mm", "normal deg", "turning rad", "area err %"]
+    fmts = ["s", "s", "s", ".2f", ".1f", ".3f", ".2f"]
     rows = []
     for g in cases:
         rs = [r for r in recs if r["garment"] == g]
         for stage in ("base", "graded", "fit"):
             vals = [_stage_values(r)[stage] for r in rs]
-            rows.append([g, len(rs), stage] + [_mean([v[i] for v in vals]) for i in range(4)])
+            rows.append([g, f"{sum(r['metrics'] is not None for r in rs)}/{len(rs)}", stage] + [_mean([v[i] for v in vals]) for i in range(4)])
     per_case = md_table(
         ["case", "body", "verts", "CF base", "CF graded", "CF fit", "N base", "N fit", "A base %", "A graded %",
-         "A fit %", "turn fit", "iters", "fit s"],
+         "A fit %", "turn fit", "iters", "fit s", "failure"],
         [[r["case"], r["body"], r["verts"], *(_stage_values(r)[k][0] for k in ("base", "graded", "fit")),
           _stage_values(r)["base"][1], _stage_values(r)["fit"][1],
           *(_stage_values(r)[k][3] for k in ("base", "graded", "fit")), _stage_values(r)["fit"][2],
-          r["metrics"].get("iterations"), r["metrics"].get("timings_s", {}).get("total_s")] for r in recs],
-        ["s", "s", "d", ".2f", ".2f", ".2f", ".1f", ".1f", ".2f", ".2f", ".2f", ".3f", "d", ".0f"])
+          (r["metrics"] or {}).get("iterations"), (r["metrics"] or {}).get("timings_s", {}).get("total_s"),
+          r["bench"].get("error", "")] for r in recs],
+        ["s", "s", "d", ".2f", ".2f", ".2f", ".1f", ".1f", ".2f", ".2f", ".2f", ".3f", "d", ".0f", "s"])
     text = (f"## Accuracy (Table 2)\n\n{header(args, 'measured')}\n\n"
             f"Per garment type (mean over its cases):\n\n{md_table(heads, rows, fmts)}\n\nPer case:\n\n{per_case}\n")
     emit(args, "accuracy", text)
@@ -250,11 +273,11 @@ def table_ablation(args, cases: dict[str, list[Path]]) -> None:
         cfg = base_config(args, **changes)
         recs = [fit_case(c, Path(args.out) / "results" / name / c.name, cfg) for c in chosen]
         vals = [_stage_values(r)["fit"] for r in recs]
-        rows.append([name, len(recs)] + [_mean([v[i] for v in vals]) for i in range(4)]
-                    + [_mean([r["metrics"].get("timings_s", {}).get("total_s") for r in recs])])
+        rows.append([name, f"{sum(r['metrics'] is not None for r in recs)}/{len(recs)}"] + [_mean([v[i] for v in vals]) for i in range(4)]
+                    + [_mean([(r["metrics"] or {}).get("timings_s", {}).get("total_s") for r in recs])])
     text = (f"## Ablation (Table 3)\n\n{header(args, 'measured')}\n\nCases: {', '.join(c.name for c in chosen)}\n\n"
-            + md_table(["variant", "cases", "Chamfer mm", "normal deg", "turning rad", "area err %", "fit s"], rows,
-                       ["s", "d", ".2f", ".1f", ".3f", ".2f", ".0f"]) + "\n")
+            + md_table(["variant", "fits done", "Chamfer mm", "normal deg", "turning rad", "area err %", "fit s"], rows,
+                       ["s", "s", ".2f", ".1f", ".3f", ".2f", ".0f"]) + "\n")
     emit(args, "ablation", text)
 
 
@@ -340,17 +363,21 @@ def table_material(args) -> None:
     for pair, members in material_cases(args).items():
         fields = MATERIAL_PAIRS[pair][1]
         recs = [(f, fit_case(d, Path(args.out) / "results" / "material" / d.name, cfg)) for f, d in members]
-        pats = [load_pattern(r["out"] / "pattern.json") for _, r in recs]
-        between = pattern_metrics(pats[0], pats[1])
+        if any(r["metrics"] is None for _, r in recs):
+            between = {"area_error_rel_mean": float("nan")}
+        else:
+            pats = [load_pattern(r["out"] / "pattern.json") for _, r in recs]
+            between = pattern_metrics(pats[0], pats[1])
         key = "bending_N_m" if pair == "bending" else "H00_N_per_m"
         vals = [r["material"].get(key) for _, r in recs]
         order_ok = vals[0] is not None and vals[1] is not None and vals[0] < vals[1]
         for (f, r), v in zip(recs, vals):
-            m = r["metrics"]
-            rows.append([pair, f"x{f:g} ({'/'.join(fields)})", m["surface"]["chamfer_mm"],
+            m = r["metrics"] or {}
+            rows.append([pair, f"x{f:g} ({'/'.join(fields)})", m.get("surface", {}).get("chamfer_mm"),
                          _pm(m.get("pattern"), "area_error_rel_mean", 100), v,
                          100 * between["area_error_rel_mean"], "yes" if order_ok else "NO",
-                         "yes" if between["area_error_rel_mean"] <= 0.02 else "NO"])
+                         "yes" if between["area_error_rel_mean"] <= 0.02 else "NO"]
+                        + [r["bench"].get("error", "")])
     from unsew.sim.material import get_material
 
     b = get_material(MATERIAL_BASE)
@@ -360,8 +387,8 @@ def table_material(args) -> None:
             "from cotton. `recovered` is the fit's bending [N m] or H00 [N/m]; `A between` is the mean panel "
             "area error between the pair's two recovered patterns.\n\n"
             + md_table(["pair", "truth", "Chamfer mm", "area err vs truth %", "recovered", "A between %",
-                        "order right", "A between <= 2%"], rows,
-                       ["s", "s", ".2f", ".2f", ".4g", ".2f", "s", "s"]) + "\n")
+                        "order right", "A between <= 2%", "failure"], rows,
+                       ["s", "s", ".2f", ".2f", ".4g", ".2f", "s", "s", "s"]) + "\n")
     emit(args, "material", text)
 
 
@@ -401,7 +428,7 @@ def table_sensitivity(args, cases: dict[str, list[Path]]) -> None:
             rec = fit_case(c, Path(args.out) / "results" / f"scale{s:g}" / c.name, base_config(args, base=str(base)))
         v = _stage_values(rec)
         vals.append(v["fit"])
-        rows.append([f"x{s:g}", v["base"][0], v["base"][3], *v["fit"], rec["metrics"].get("iterations")])
+        rows.append([f"x{s:g}", v["base"][0], v["base"][3], *v["fit"], (rec["metrics"] or {}).get("iterations")])
     arr = np.array([[np.nan if x is None else x for x in v] for v in vals], dtype=float)
     spread = list(np.nanmax(arr, axis=0) - np.nanmin(arr, axis=0))
     rows.append(["spread (max-min)", None, None, *spread, None])
@@ -429,7 +456,10 @@ def main(argv=None):
     ap.add_argument("--sensitivity-case", help="case name for the sensitivity table (default: the smallest)")
     ap.add_argument("--sim-sizes", default="1000,2000,3000", help="bench_sim.py sizes for the speed table")
     ap.add_argument("--skip-sim", action="store_true", help="speed table: only the fits' timings")
+    ap.add_argument("--retry-failed", action="store_true", help="refit cases whose fit raised before")
     args = ap.parse_args(argv)
+    global RETRY_FAILED
+    RETRY_FAILED = args.retry_failed
     tables = TABLES if "all" in args.table else args.table
 
     import torch
