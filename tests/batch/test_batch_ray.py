@@ -4,6 +4,7 @@ Skipped when Ray (the optional extra unsew[ray]) is not installed."""
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -11,9 +12,22 @@ ray = pytest.importorskip("ray", reason="Ray is optional (pip install 'unsew[ray
 
 import batch.fakes as fakes  # noqa: E402
 from unsew.batch import run_batch  # noqa: E402
+from unsew.errors import InputError  # noqa: E402
 from unsew.fit.config import FitConfig  # noqa: E402
 
 CFG = FitConfig(iterations=3, report=False)
+
+
+def test_unreachable_cluster_is_one_line_and_writes_nothing(tmp_path, monkeypatch):
+    if ray.is_initialized():
+        pytest.skip("a Ray instance is already running in this process")
+    if Path("/tmp/ray/ray_current_cluster").exists():
+        pytest.skip("a Ray cluster is running on this machine ('auto' would reach it)")
+    monkeypatch.delenv("RAY_ADDRESS", raising=False)
+    fakes.make_fake_case(tmp_path / "cases" / "a")
+    with pytest.raises(InputError, match="cannot start or reach Ray at 'auto'"):  # no cluster is running
+        run_batch(tmp_path / "cases", tmp_path / "out", ray="auto", fit_fn=fakes.fake_fit, progress=False)
+    assert not (tmp_path / "out").exists()
 
 
 @pytest.fixture(scope="module")

@@ -10,12 +10,13 @@ Ray is optional (``pip install 'unsew[ray]'``) and imported only here, when aske
 
 from __future__ import annotations
 
-from typing import Callable, Sequence
+import contextlib
+from typing import Callable, Iterator, Sequence
 
 from unsew.batch.task import CaseJob, CaseRecord, one_line, prepare_worker, run_case
 from unsew.errors import InputError
 
-__all__ = ["run_ray", "ray_available"]
+__all__ = ["run_ray", "ray_session", "ray_available"]
 
 
 def ray_available() -> bool:
@@ -38,30 +39,43 @@ def _import_ray():
     return ray
 
 
-def run_ray(jobs: Sequence[CaseJob], *, address: str = "auto", device: str = "cpu",
-            on_done: Callable[[CaseRecord], None],
-            init_kwargs: dict | None = None) -> None:
-    """Run ``jobs`` as Ray tasks; call ``on_done(record)`` in the driver as each case ends.
+@contextlib.contextmanager
+def ray_session(address: str = "auto", *, init_kwargs: dict | None = None) -> Iterator[None]:
+    """Connect to (or start) Ray for the block; disconnect (or stop it) afterwards.
 
     address: "auto" (a running cluster, e.g. after ``ray start --head``), "local" (start a Ray
     instance on this machine for the batch) or a cluster address ("ray://host:10001",
-    "host:6379"). device: the fit's torch device; "cuda..." asks one GPU per task.
-    init_kwargs: extra ``ray.init`` arguments (e.g. num_cpus for a local instance). If Ray is
-    already initialised in this process, that instance is used and left running.
-    On KeyboardInterrupt the tasks are cancelled (forcibly) and the interrupt re-raised.
+    "host:6379"). init_kwargs: extra ``ray.init`` arguments (e.g. num_cpus for a local
+    instance). If Ray is already initialised in this process, that instance is used and left
+    running. Raises InputError (one line) if Ray is missing or cannot be reached.
     """
     ray = _import_ray()
-    started = False
-    if not ray.is_initialized():
-        kw = {"runtime_env": {"env_vars": {"OMP_WAIT_POLICY": "PASSIVE"}}, "include_dashboard": False,
-              "log_to_driver": False, **(init_kwargs or {})}
-        if address != "local":
-            kw["address"] = address
-        try:
-            ray.init(**kw)
-        except (ConnectionError, ValueError, RuntimeError) as exc:
-            raise InputError(f"cannot start or reach Ray at {address!r}: {one_line(exc)}") from None
-        started = True
+    if ray.is_initialized():
+        yield
+        return
+    kw = {"runtime_env": {"env_vars": {"OMP_WAIT_POLICY": "PASSIVE"}}, "include_dashboard": False,
+          "log_to_driver": False, **(init_kwargs or {})}
+    if address != "local":
+        kw["address"] = address
+    try:
+        ray.init(**kw)
+    except (ConnectionError, ValueError, RuntimeError) as exc:
+        raise InputError(f"cannot start or reach Ray at {address!r}: {one_line(exc)}") from None
+    try:
+        yield
+    finally:
+        ray.shutdown()
+
+
+def run_ray(jobs: Sequence[CaseJob], *, device: str = "cpu", on_done: Callable[[CaseRecord], None]) -> None:
+    """Run ``jobs`` as Ray tasks on the Ray instance this process is connected to (see
+    :func:`ray_session`); call ``on_done(record)`` in the driver as each case ends.
+
+    device: the fit's torch device; "cuda..." asks one GPU per task besides its CPU. A task whose
+    worker dies is retried once by Ray, then recorded as failed. On KeyboardInterrupt the tasks
+    are cancelled (forcibly) and the interrupt re-raised.
+    """
+    ray = _import_ray()
     opts = {"num_cpus": 1, "max_retries": 1}
     if str(device).startswith("cuda"):
         opts["num_gpus"] = 1
@@ -87,6 +101,3 @@ def run_ray(jobs: Sequence[CaseJob], *, address: str = "auto", device: str = "cp
             except Exception:
                 pass
         raise
-    finally:
-        if started:
-            ray.shutdown()

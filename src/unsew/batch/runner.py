@@ -9,6 +9,7 @@ RESULTS_DIR/<case>.log.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import sys
@@ -59,15 +60,17 @@ def run_batch(cases_dir: str | os.PathLike, out: str | os.PathLike, *, cfg=None,
 
     cfg: FitConfig for every case (default FitConfig()); workers: local processes (default
     min(CPU count, cases to fit)); ray: None for the local pool, else a Ray address ("auto",
-    "local", "host:6379", "ray://host:10001"; see :func:`unsew.batch.ray_backend.run_ray`);
+    "local", "host:6379", "ray://host:10001"; see :func:`unsew.batch.ray_backend.ray_session`);
+    ray_init_kwargs: extra ``ray.init`` arguments;
     overwrite: refit cases whose result is complete (otherwise they are skipped); fit_fn: the
     per-case fit, a module-level function like :func:`unsew.batch.task.fit_case_dir` (the
     default); progress: one tqdm bar on stderr for the batch.
 
     A failing case is recorded (status "failed", one-line reason) and the batch goes on. On
     Ctrl-C the workers are stopped, the summary of what finished is written and the result has
-    ``interrupted=True``; rerunning continues. Raises InputError for a bad cases folder or an
-    existing ``out`` that is not a folder.
+    ``interrupted=True``; rerunning continues. Raises InputError for a bad cases folder, an
+    existing ``out`` that is not a folder, or a Ray that is missing or cannot be reached (before
+    anything is written).
     """
     from unsew.fit.config import FitConfig
 
@@ -76,10 +79,20 @@ def run_batch(cases_dir: str | os.PathLike, out: str | os.PathLike, *, cfg=None,
     out = Path(out).resolve()
     if out.exists() and not out.is_dir():
         raise InputError(f"--out {out} exists and is not a folder")
-    out.mkdir(parents=True, exist_ok=True)
     if workers is not None and workers < 1:
         raise InputError(f"--workers must be at least 1, got {workers}")
+    session = contextlib.ExitStack()
+    if ray:  # connect first: a bad address fails before anything is written
+        from unsew.batch.ray_backend import ray_session
 
+        session.enter_context(ray_session(ray, init_kwargs=ray_init_kwargs))
+    with session:
+        return _run(cases, cases_dir, out, cfg=cfg, workers=workers, ray=bool(ray), overwrite=overwrite,
+                    fit_fn=fit_fn, progress=progress)
+
+
+def _run(cases, cases_dir, out: Path, *, cfg, workers, ray: bool, overwrite, fit_fn, progress) -> BatchResult:
+    out.mkdir(parents=True, exist_ok=True)
     records: dict[str, CaseRecord] = {}
     jobs: list[CaseJob] = []
     for c in cases:
@@ -123,7 +136,7 @@ def run_batch(cases_dir: str | os.PathLike, out: str | os.PathLike, *, cfg=None,
             if ray:
                 from unsew.batch.ray_backend import run_ray
 
-                run_ray(jobs, address=ray, device=cfg.device, on_done=on_done, init_kwargs=ray_init_kwargs)
+                run_ray(jobs, device=cfg.device, on_done=on_done)
             else:
                 from unsew.batch.local import run_local
 
