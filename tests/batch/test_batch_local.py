@@ -74,6 +74,8 @@ def test_batch_two_workers_broken_case_and_rerun(tmp_path):
 
 def test_worker_death_is_recorded_and_others_finish(tmp_path):
     cases = _cases(tmp_path / "cases", n_good=2, crash=True)
+    for i in range(2):  # slow enough to be in flight when "broken" kills its worker, twice
+        make_fake_case(cases / f"case{i}", value=float(i + 1), sleep=0.5)
     res = run_batch(cases, tmp_path / "out", cfg=CFG, workers=2, fit_fn=fake_fit, progress=False)
     st = {r.name: (r.status, r.reason) for r in res.records}
     assert st["case0"] == ("done", "") and st["case1"] == ("done", "")

@@ -1,8 +1,9 @@
 """The default backend: a local pool of worker processes (spawn context, one torch thread each).
 
 Jobs are handed out one at a time per worker, so at most ``workers`` cases are in flight. A
-worker that dies (killed, out of memory) breaks the pool: the cases then in flight are tried once
-more in a fresh pool, then recorded as failed. Ctrl-C reaches the driver only (workers ignore
+worker that dies (killed, out of memory) breaks the pool: every case then in flight is tried once
+more, alone in a fresh pool, and recorded as failed if its worker dies again (so a crash is pinned
+on the case that caused it, not on the cases that happened to run beside it). Ctrl-C reaches the driver only (workers ignore
 SIGINT); the driver terminates the workers and re-raises, leaving each interrupted fit's
 checkpoint for a rerun.
 """
@@ -48,32 +49,35 @@ def run_local(jobs: Sequence[CaseJob], *, workers: int, on_done: Callable[[CaseR
     case ends (in completion order). Raises KeyboardInterrupt after stopping the workers if
     interrupted (the cases then in flight keep their checkpoints)."""
     workers = max(1, int(workers))
-    pending = deque((job, 0) for job in jobs)  # (job, retries used)
+    pending = deque((job, False) for job in jobs)  # (job, solo): solo jobs run alone in the pool
     running: dict = {}
     pool = _new_pool(workers)
     try:
         while pending or running:
             while pending and len(running) < workers:
-                job, tries = pending.popleft()
-                running[pool.submit(run_case, job)] = (job, tries)
+                job, solo = pending[0]
+                if running and (solo or any(s for _, s in running.values())):
+                    break  # a suspect runs alone, so a crash is pinned on the case that caused it
+                pending.popleft()
+                running[pool.submit(run_case, job)] = (job, solo)
             done, _ = wait(running, return_when=FIRST_COMPLETED)
             lost = []  # jobs whose worker pool broke under them
             for fut in done:
-                job, tries = running.pop(fut)
+                job, solo = running.pop(fut)
                 try:
                     rec = fut.result()
                 except BrokenProcessPool:
-                    lost.append((job, tries))
+                    lost.append((job, solo))
                 else:
                     on_done(rec)
-            if lost:  # every case in flight went down with the pool: each gets one more try
+            if lost:  # every case in flight went down with the pool
                 lost += list(running.values())
                 running.clear()
                 _stop(pool)
                 pool = _new_pool(workers)
-                for job, tries in reversed(lost):
-                    if tries == 0:
-                        pending.appendleft((job, 1))
+                for job, solo in reversed(lost):
+                    if not solo:  # a suspect: tried again, alone
+                        pending.appendleft((job, True))
                     else:
                         on_done(CaseRecord(job.name, job.case_dir, job.out_dir, status="failed",
                                            reason="a worker process died while fitting it (killed, or out of memory)"))
