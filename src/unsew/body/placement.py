@@ -42,6 +42,9 @@ NEED_WINDOW = 0.15
 #: Each shoulder edge of a top is brought this close to the body's centre plane [m] (front
 #: and back edges 2 * SHOULDER_MEET apart over the shoulder ridge).
 SHOULDER_MEET = 0.012
+#: Secant iterations solving a top's lift, and the largest change of the lift per step [m].
+LIFT_ITERS = 4
+LIFT_MAX_STEP = 0.1
 #: Share of a top's lift (see place_garment) its sleeves move up their arms.
 SLEEVE_SHIFT = 0.75
 #: Smallest gap between the two legs' wrapped cloth where the thighs touch [m].
@@ -294,12 +297,18 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
     # Lifts [m]: a top hangs from its shoulder seams, so its front and back panels are raised
     # until what rises above the shoulder line folds over it to the ridge, where the two
     # shoulder edges meet (the panels' hint puts them at the shoulder tip, below the ridge).
+    # The missing run falls by more than the lift that removes it where the raised panel wraps
+    # a shallower part of the torso (a front over the chest: about -2.4 per m), so a plain
+    # fixed-point step overshoots and oscillates; secant steps on each panel's residual converge.
     lifts = {name: 0.0 for name in info}
     shoulder_edges = _shoulder_edges(pattern, mesh, info)
-    for it in range(4 if shoulder_edges else 1):
+    hist: dict = {name: [] for name in shoulder_edges}  # (lift, residual) per iteration
+    for it in range(LIFT_ITERS + 1 if shoulder_edges else 1):
         if it:
             for name, idx in shoulder_edges.items():
-                lifts[name] += _shoulder_lift(folds[name], idx - info[name]["sl"].start, xb, ytop, clearance, stacks["torso"], ys)
+                r = _shoulder_lift(folds[name], idx - info[name]["sl"].start, xb, ytop, clearance, stacks["torso"], ys)
+                hist[name].append((lifts[name], r))
+                lifts[name] = _secant_step(hist[name])
         x_wrap, folds = _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance, wrap_stack, stack_coords)
     # The sleeves follow the raised armholes: moved up their arm by the tops' mean lift.
     sleeve_shift = SLEEVE_SHIFT * float(np.mean([lifts[n] for n in shoulder_edges])) if shoulder_edges else 0.0
@@ -310,6 +319,20 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
             x[d["sl"]] = _wrap_sleeve(uv[d["sl"]], d, d["role"].split("_")[0], J, shift=sleeve_shift)
 
     return _push_out(x, body, sdf)
+
+
+def _secant_step(hist) -> float:
+    """Next lift [m] from the (lift, residual) history of one panel: a secant step through the
+    last two points (residual: the lift still missing), a plain step when there is one point or
+    the slope is not negative. Steps are limited to LIFT_MAX_STEP."""
+    l1, r1 = hist[-1]
+    step = r1
+    if len(hist) > 1:
+        l0, r0 = hist[-2]
+        slope = (r1 - r0) / (l1 - l0) if abs(l1 - l0) > 1e-9 else 0.0
+        if slope < -1e-3:
+            step = -r1 / slope
+    return l1 + float(np.clip(step, -LIFT_MAX_STEP, LIFT_MAX_STEP))
 
 
 def _keep_apart(stack, cx0, sgn, clearance):
