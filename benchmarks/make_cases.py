@@ -82,6 +82,16 @@ def design(garment: str, index: int, seed: int = 0):
     return Alteration(changes, material), body
 
 
+def _git_version() -> str:
+    import subprocess
+
+    try:
+        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=HERE.parent, capture_output=True,
+                              text=True, timeout=10).stdout.strip() or "?"
+    except (OSError, subprocess.SubprocessError):
+        return "?"
+
+
 def case_name(garment: str, index: int) -> str:
     return f"{garment}_{index:02d}"
 
@@ -99,7 +109,7 @@ def make_case(out: Path, garment: str, index: int, *, seed: int = 0, edge_length
                     body_meta="default" if bname == "default" else None, edge_length=edge_length)
     meta = json.loads((d / "meta.json").read_text())
     meta["benchmark"] = {"body_name": bname, "seed": seed, "index": index, "edge_length_m": edge_length,
-                         "generator": "benchmarks/make_cases.py"}
+                         "generator": "benchmarks/make_cases.py", "unsew_commit": _git_version()}
     (d / "meta.json").write_text(json.dumps(meta, indent=2))
     return d
 

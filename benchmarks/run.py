@@ -113,8 +113,8 @@ def fit_case(case_dir: Path, out: Path, cfg, *, log=print, retry_failed: bool | 
         except Exception as exc:  # a failed fit is a row of the table, not the end of the run
             err = f"{type(exc).__name__}: {exc}".splitlines()[0]
             side.parent.mkdir(parents=True, exist_ok=True)
-            side.write_text(json.dumps({"error": err, "wall_s": time.perf_counter() - t, "load_start": load0},
-                                       indent=2))
+            side.write_text(json.dumps({"error": err, "wall_s": time.perf_counter() - t, "load_start": load0,
+                                        "unsew_commit": git_version()}, indent=2))
             log(f"  {case_dir.name}: FAILED ({err})")
             return {"out": out, "metrics": None, "material": {}, "bench": {"error": err}}
         wall = time.perf_counter() - t
@@ -127,6 +127,7 @@ def fit_case(case_dir: Path, out: Path, cfg, *, log=print, retry_failed: bool | 
             except Exception as exc:  # unmatched panels: report, keep the table going
                 graded = {"error": str(exc)}
         side.write_text(json.dumps({"pattern_graded": graded, "wall_s": wall, "load_start": load0,
+                                    "unsew_commit": git_version(),
                                     "load_end": _loadavg(), "resumed": resume}, indent=2))
     rec = {"out": out, "metrics": json.loads((out / "metrics.json").read_text()),
            "material": json.loads((out / "material.json").read_text()) if (out / "material.json").is_file() else {},
@@ -198,8 +199,22 @@ def _pm(d, key, scale=1.0):
     return scale * d[key]
 
 
+def git_version() -> str:
+    """The checkout's commit (short hash, '+dirty' when tracked files under src/ differ)."""
+    root = HERE.parent
+    try:
+        rev = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=root, capture_output=True, text=True,
+                             timeout=10).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no", "src"], cwd=root,
+                               capture_output=True, text=True, timeout=10).stdout.strip()
+        return (rev or "?") + ("+dirty" if dirty else "")
+    except (OSError, subprocess.SubprocessError):
+        return "?"
+
+
 def header(args, what: str) -> str:
-    return (f"{what}: {datetime.datetime.now().isoformat(timespec='minutes')}, {platform.node()} "
+    return (f"{what}: {datetime.datetime.now().isoformat(timespec='minutes')}, unsew at {git_version()}, "
+            f"{platform.node()} "
             f"({os.cpu_count()} cores, load {_loadavg():.1f}), python {platform.python_version()}, "
             f"fit edge {args.edge_length} m, {args.iterations} iterations max, "
             f"{'quick' if args.quick else 'full'} mode")
