@@ -90,6 +90,26 @@ def test_shorter_sleeve_is_a_negative_extension(body):
     assert cuff.extension == pytest.approx(-0.3 * bone.length, abs=1e-9)
 
 
+def test_extension_sign_follows_the_cloth_next_to_the_contour(body):
+    """A long sleeve beside a lot of cloth far below (a dress's skirt): the garment's vertex mean
+    then lies beyond the cuff along the arm bone; the cloth next to the cuff still tells that a
+    cuff further down the arm is a longer sleeve."""
+    sk = body.skeleton
+    bone = sk.bone("left_elbow")
+    vs, fs = tube(bone, 0.1, 0.5, 0.06)
+    vt, ft = tube(bone, 0.1, 0.8, 0.06)
+    skirt, sf = tube(sk.bone("spine"), -3.0, -1.0, 0.3, n_rings=40)  # far below, many vertices
+    v_all = np.vstack([vs, skirt])
+    f_all = np.vstack([fs, sf + len(vs)])
+    centre = v_all.mean(axis=0)
+    assert float((vs[-1] - centre) @ bone.direction) < 0  # the vertex mean would read it backwards
+    src = place_contours(v_all, f_all, sk)
+    tgt = place_contours(vt, ft, sk)
+    ms = match_contours([c for c in src if c.part == "left_arm"], tgt, sk, garment_centre=centre)
+    cuff = max(ms, key=lambda m: abs(m.axial_distance))
+    assert cuff.extension == pytest.approx(0.3 * bone.length, abs=1e-9)
+
+
 def test_contour_across_bones_of_one_limb_uses_distance_along_the_chain(body):
     sk = body.skeleton
     upper, fore = sk.bone("left_elbow"), sk.bone("left_wrist")

@@ -55,6 +55,8 @@ MAX_CENTRE_DISTANCE = 0.45
 MAX_PERIMETER_RATIO = 2.0
 #: Contours flatter than this (second/first singular value) have no plane to compare.
 MIN_ROUNDNESS = 0.2
+#: Edge rings around a contour whose vertices tell on which side of it the cloth lies.
+INWARD_RINGS = 3
 
 
 def part_group(part: str) -> str:
@@ -78,6 +80,9 @@ class PlacedContour:
     candidates: all qualifying bones, nearest first: (bone, u, h) tuples.
     roundness: second over first singular value of the centred contour points (0 for a loop
         collapsed onto a line, whose normal means nothing; about 1 for a round loop).
+    inward: (3,) [m] from the centre to the mean of the garment vertices within
+        :data:`INWARD_RINGS` edge rings of the contour (the side the cloth lies on); None when
+        the mesh gives no such vertices.
     """
 
     index: int
@@ -90,6 +95,7 @@ class PlacedContour:
     position: float
     candidates: list = field(default_factory=list)
     roundness: float = 1.0
+    inward: np.ndarray | None = None
 
     @property
     def length(self) -> float:
@@ -175,6 +181,7 @@ def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] 
         contours = open_contours(v, faces)
     bones = skeleton.bones()
     root_bone = _torso_root_bone(skeleton)
+    adj = _adjacency(len(v), faces)
     ends = _chain_end_bones(skeleton)
     out = []
     for i, c in enumerate(contours):
@@ -197,13 +204,38 @@ def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] 
         # bone roughly along its normal; a sideways hip or collar bone is not it), then the nearest
         across = lambda b: roundness < MIN_ROUNDNESS or abs(float(c.normal @ b.direction)) >= 0.5  # noqa: E731
         cands.sort(key=lambda t: (t[2] >= radius, not across(t[0]), t[2]))
+        inward = _inward(adj, v, c)
         if cands:
             bone, u, h = cands[0]
             pos = float(skeleton.distance_to_root(bone, u))
-            out.append(PlacedContour(i, c, radius, bone, float(u), float(h), bone.part, pos, cands, roundness))
+            out.append(PlacedContour(i, c, radius, bone, float(u), float(h), bone.part, pos, cands, roundness, inward))
         else:
-            out.append(PlacedContour(i, c, radius, None, float("nan"), float("nan"), "", float("nan"), [], roundness))
+            out.append(PlacedContour(i, c, radius, None, float("nan"), float("nan"), "", float("nan"), [], roundness, inward))
     return out
+
+
+def _adjacency(n: int, faces):
+    """Vertex adjacency (n, n) scipy CSR boolean of a triangle mesh (faces (F, 3) int)."""
+    from scipy.sparse import coo_matrix
+
+    f = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
+    e = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    e = np.concatenate([e, e[:, ::-1]])
+    return coo_matrix((np.ones(len(e), dtype=bool), (e[:, 0], e[:, 1])), shape=(n, n)).tocsr()
+
+
+def _inward(adj, v, c: Contour) -> np.ndarray | None:
+    """From the contour's centre to the mean of the vertices within INWARD_RINGS edge rings of
+    it (the contour's own vertices excluded): (3,) [m], or None when there are none."""
+    on = np.zeros(adj.shape[0], dtype=bool)
+    on[np.asarray(c.indices, dtype=np.int64)] = True
+    seen = on.copy()
+    for _ in range(INWARD_RINGS):
+        seen |= (adj @ seen.astype(np.int8)) > 0
+    near = seen & ~on
+    if not near.any():
+        return None
+    return v[near].mean(axis=0) - c.centre
 
 
 def _target_position(skeleton: Skeleton, s: PlacedContour, t: PlacedContour) -> float:
@@ -229,7 +261,8 @@ def match_contours(
     source, target: from :func:`place_contours` on the source (draped base pattern) and target
         meshes. skeleton: the wearer's.
     garment_centre: (3,) [m] a point in the middle of the source garment (its vertex mean), used
-        to sign the extension outward.
+        to sign the extension outward for a contour without neighbouring vertices (else its
+        ``inward`` side tells).
     max_centre_distance [m], max_perimeter_ratio: gates beyond which no pair is made.
 
     Returns the matches (each source and target contour at most once), by source index.
@@ -269,7 +302,13 @@ def match_contours(
             continue
         s, t = source[i], target[j]
         axial = _target_position(skeleton, s, t) - s.position
-        outward = float((s.centre - np.asarray(garment_centre, dtype=np.float64)) @ s.bone.direction)
+        # Outward: away from the cloth next to the contour (a cuff's sleeve, a hem's body); the
+        # garment's centre only when the mesh gave no neighbours. (The vertex mean of a long
+        # dress lies so low that it read a sleeve's outward direction backwards.)
+        if s.inward is not None:
+            outward = -float(s.inward @ s.bone.direction)
+        else:
+            outward = float((s.centre - np.asarray(garment_centre, dtype=np.float64)) @ s.bone.direction)
         sign = 1.0 if outward >= 0 else -1.0
         out.append(
             ContourMatch(
