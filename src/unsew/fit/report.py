@@ -41,7 +41,10 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     for row in result.grade_table or []:
         for w in (row.get("warnings") or []) if isinstance(row, dict) else []:
             notes.append(f"grading: {w}")
-    hist = {k: v for k, v in result.history.items() if v and any(x > 0 for x in v)}
+    top = max((max(v) for v in result.history.values() if v), default=0.0)
+    # terms that stay at round-off level (e.g. the seam loss of a symmetric skirt) would stretch
+    # the log axis over 30 decades: leave them out of the plot (they are in the metrics table)
+    hist = {k: v for k, v in result.history.items() if v and max(v) > 1e-12 * top}
     start = result.extra.get("material_start_iteration")
     phases = [(0, "pattern")] + ([(start, "pattern + material")] if start is not None and start < result.iterations else [])
     tables = dict(metrics)
