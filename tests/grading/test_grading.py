@@ -157,7 +157,9 @@ def test_grade_flat_recovers_known_hem_and_sleeve_changes(body, tshirt):
     t = alter_pattern(t, open_edges(t, "hem", panels=["left_sleeve", "right_sleeve"]), length=-0.05)
     tm = mesh_pattern(t, edge_length=EDGE)
     tx = flat_drape(t, tm)
-    res = grade(p, body, tx, tm.faces, mesh=m, drape_fn=flat_drape)
+    # one pass: laid flat, the right sleeve sits shifted in its frame (below), which a second
+    # pass from the flat "drape" would chase
+    res = grade(p, body, tx, tm.faces, mesh=m, drape_fn=flat_drape, passes=1)
     assert res.fraction == 1.0
     assert len(check_inverted(res.mesh.uv, res.mesh.faces_uv)) == 0
     sk = body.skeleton

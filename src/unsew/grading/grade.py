@@ -29,6 +29,10 @@ __all__ = ["GradeResult", "grade", "dress_drape", "flat_drape", "format_table", 
 
 #: Re-mesh after grading when a rest edge grew beyond this factor times the target edge length.
 REMESH_STRETCH = 1.5
+#: A further grading pass is made only when some contour is still further than this from its
+#: target along the bone [m], or its girth differs by more than PASS_GIRTH_TOL [m].
+PASS_LENGTH_TOL = 0.005
+PASS_GIRTH_TOL = 0.01
 
 
 @dataclass
@@ -128,6 +132,7 @@ def grade(
     sdf=None,
     redrape: bool = True,
     max_centre_distance: float | None = None,
+    passes: int = 2,
 ) -> GradeResult:
     """Grade ``pattern`` so that its draped open contours land where the target's are (phase one).
 
@@ -142,13 +147,15 @@ def grade(
         :func:`dress_drape` with ``material`` and ``sdf``; :func:`flat_drape` for a quick look).
     redrape: drape the graded pattern (X_LG); False leaves ``x_draped`` None.
     max_centre_distance: contour pairing gate [m] (default :data:`~unsew.grading.contours.MAX_CENTRE_DISTANCE`).
+    passes: grading passes. Pass 2 grades the graded pattern again from its own drape (X_LG) to
+        the target, when a contour is still off by more than :data:`PASS_LENGTH_TOL` or
+        :data:`PASS_GIRTH_TOL`: one edit by the axial distance cannot know how the drape answers
+        (a skirt whose narrower hem rests on the hips hangs its waist higher and its hem shorter
+        than the pattern change), a second one measures it. Each pass costs one drape.
 
     Returns a :class:`GradeResult`.
     """
-    import torch
-
     from unsew.meshing.sew import mesh_pattern
-    from unsew.pattern.params import PatternParams
 
     tv = np.asarray(target_verts, dtype=np.float64)
     tf = np.asarray(target_faces, dtype=np.int64)
@@ -167,9 +174,48 @@ def grade(
         raise InputError(f"x_init must be ({mesh.n_x}, 3) positions on the base mesh, got {x_init.shape}")
 
     skel = body.skeleton
-    src = place_contours(x_init, mesh.faces, skel)
     tgt = place_contours(tv, tf, skel)
     kw = {} if max_centre_distance is None else {"max_centre_distance": max_centre_distance}
+    first = _grade_pass(pattern, mesh, x_init, tgt, skel, kw)
+    cur, rows = first, list(first["rows"])
+    x_lg = None
+    for k in range(max(int(passes), 1)):
+        if k > 0:
+            # Another pass from the graded drape: the contours' remaining offsets, edited again.
+            nxt = _grade_pass(cur["pattern"], cur["mesh"], x_lg, tgt, skel, kw)
+            if not _worth_a_pass(nxt["matches"]):
+                break
+            for r in nxt["rows"]:
+                if r["edits"]:
+                    r["edits"] = [f"pass {k + 1}: {e}" for e in r["edits"]]
+                    rows.append(r)
+            cur = nxt
+        if not redrape:
+            break
+        x_lg = np.asarray(drape_fn(cur["pattern"], cur["mesh"], body), dtype=np.float64)
+    return GradeResult(
+        pattern=cur["pattern"], mesh=cur["mesh"], x_draped=x_lg, table=rows, K=cur["K"], fraction=float(first["fraction"]),
+        remeshed=bool(first["remeshed"] or cur["remeshed"]), x_init=x_init, mesh_init=mesh, matches=first["matches"],
+    )
+
+
+def _worth_a_pass(matches) -> bool:
+    """Whether any contour is still off by more than PASS_LENGTH_TOL along its bone or
+    PASS_GIRTH_TOL in girth."""
+    return any(abs(m.extension) > PASS_LENGTH_TOL or abs(m.girth_difference) > PASS_GIRTH_TOL for m in matches)
+
+
+def _grade_pass(pattern, mesh, x_init, tgt, skel, kw) -> dict:
+    """One pass of Algorithm 2: contours of the drape ``x_init`` (on ``mesh``) paired with the
+    target's ``tgt``, the open curves moved and widened, projected on K, scaled back if needed,
+    and the mesh moved or re-meshed. Returns a dict: pattern, mesh, rows, matches, K (Nk, 2)
+    [m], fraction, remeshed."""
+    import torch
+
+    from unsew.meshing.sew import mesh_pattern
+    from unsew.pattern.params import PatternParams
+
+    src = place_contours(x_init, mesh.faces, skel)
     matches = match_contours(src, tgt, skel, garment_centre=x_init.mean(axis=0), **kw)
 
     params = PatternParams.build(pattern, mesh)
@@ -217,11 +263,8 @@ def grade(
         uv = params.uv(K).cpu().numpy()
     remeshed = _rest_edge_stretch(uv, mesh.faces_uv, mesh.edge_length) > REMESH_STRETCH
     new_mesh = mesh_pattern(graded, edge_length=mesh.edge_length) if remeshed else _moved_mesh(mesh, graded, uv)
-    x_lg = np.asarray(drape_fn(graded, new_mesh, body), dtype=np.float64) if redrape else None
-    return GradeResult(
-        pattern=graded, mesh=new_mesh, x_draped=x_lg, table=rows, K=K.detach().cpu().numpy(), fraction=float(frac),
-        remeshed=bool(remeshed), x_init=x_init, mesh_init=mesh, matches=matches,
-    )
+    return dict(pattern=graded, mesh=new_mesh, rows=rows, matches=matches, K=K.detach().cpu().numpy(),
+                fraction=float(frac), remeshed=bool(remeshed))
 
 
 def _name(c: PlacedContour | None) -> str | None:
