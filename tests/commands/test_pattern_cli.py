@@ -26,13 +26,20 @@ def test_new_then_export(tmp_path, capsys):
 
 
 def test_new_with_measurements(tmp_path):
+    from unsew.body.measurements import Measurements
+
+    d = Measurements()
     m = tmp_path / "m.yaml"
-    m.write_text("bust: 1.10\nhip: 1.12\n")
+    # 16 cm more bust (hip unchanged): the front is (bust + ease) / 2 wide, so 4 cm more each side
+    m.write_text(f"bust: {d.bust + 0.16}\nhip: {d.hip}\n")
     a, b = tmp_path / "a.json", tmp_path / "b.json"
     assert main(["pattern", "new", "tshirt", "--out", str(a)]) == 0
     assert main(["pattern", "new", "tshirt", "--measurements", str(m), "--out", str(b)]) == 0
     va, vb = load_pattern(a).panels["front"].vertices, load_pattern(b).panels["front"].vertices
-    assert vb[:, 0].max() - va[:, 0].max() == pytest.approx(0.04)
+    from unsew.pattern.base.tshirt import BUST_EASE, HIP_EASE
+
+    want = (max(d.bust + 0.16 + BUST_EASE, d.hip + HIP_EASE) - max(d.bust + BUST_EASE, d.hip + HIP_EASE)) / 4
+    assert vb[:, 0].max() - va[:, 0].max() == pytest.approx(want) and want > 0.035
 
 
 def _bad_files(tmp_path):

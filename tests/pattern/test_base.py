@@ -118,8 +118,13 @@ def test_sizes_follow_measurements_with_ease():
     width = lambda pan: np.ptp(panel_outline(pan)[:, 0])  # noqa: E731
     chest = width(p.panels["front"]) + width(p.panels["back"])
     assert 0.08 <= chest - m.bust <= 0.15
-    big = make_base_pattern("tshirt", Measurements(bust=1.10, hip=1.12))
-    assert_close(width(big.panels["front"]) - width(p.panels["front"]), 0.08, atol=1e-9)
+    # the front is max(bust + bust ease, hip + hip ease) / 2 wide: 16 cm more bust widens it so
+    from unsew.pattern.base.tshirt import BUST_EASE, HIP_EASE
+
+    big = make_base_pattern("tshirt", Measurements(bust=m.bust + 0.16, hip=m.hip))
+    want = (max(m.bust + 0.16 + BUST_EASE, m.hip + HIP_EASE) - max(m.bust + BUST_EASE, m.hip + HIP_EASE)) / 2
+    assert_close(width(big.panels["front"]) - width(p.panels["front"]), want, atol=1e-9)
+    assert want > 0.07
     skirt = make_base_pattern("skirt")
     waist = edge_length(skirt.panels["front"], 2) + edge_length(skirt.panels["back"], 2)
     assert 0.0 < waist - m.waist <= 0.05
