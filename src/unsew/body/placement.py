@@ -43,7 +43,7 @@ NEED_WINDOW = 0.15
 #: and back edges 2 * SHOULDER_MEET apart over the shoulder ridge).
 SHOULDER_MEET = 0.012
 #: Secant iterations solving a top's lift, and the largest change of the lift per step [m].
-LIFT_ITERS = 4
+LIFT_ITERS = 6
 LIFT_MAX_STEP = 0.1
 #: Share of a top's lift (see place_garment) its sleeves move up their arms.
 SLEEVE_SHIFT = 0.75
