@@ -11,7 +11,7 @@ import pytest
 from unsew.fit.config import FitConfig
 from unsew.io.mesh import read_mesh, write_obj
 
-SMALL = dict(edge_length=0.05, iterations=2, steps=8, sew_steps=40, settle_steps=10, target_points=1500,
+SMALL = dict(edge_length=0.04, iterations=2, steps=8, sew_steps=60, settle_steps=20, target_points=1500,
              material_start=1)
 
 
@@ -38,11 +38,11 @@ def _variant(base_case, tmp_path, name):
     if name == "noise":
         write_obj(d / "target.obj", v + np.random.default_rng(0).normal(scale=0.001, size=v.shape), f)
     elif name == "decimate":
-        from fit.decimate import cluster_decimate
+        import trimesh  # quadric edge collapse (fast-simplification, in the test extra)
 
-        v2, f2 = cluster_decimate(v, f, 0.5)
-        assert len(v2) <= 0.5 * len(v) and len(f2) > 0.3 * len(f)
-        write_obj(d / "target.obj", v2, f2)
+        m = trimesh.Trimesh(v, f, process=False).simplify_quadric_decimation(face_count=len(f) // 2)
+        assert len(m.vertices) <= 0.55 * len(v)
+        write_obj(d / "target.obj", m.vertices, m.faces)
     elif name == "cm":
         write_obj(d / "target.obj", v * 100.0, f)
         meta = json.loads((d / "meta.json").read_text())
