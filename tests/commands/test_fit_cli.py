@@ -89,3 +89,14 @@ def test_no_traceback_in_a_real_process(tmp_path):
     r = subprocess.run([sys.executable, "-m", "unsew", "fit", str(tmp_path / "nope"), "--out", str(tmp_path / "r")],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "Traceback" not in r.stderr and r.stderr.startswith("unsew: error:")
+
+
+def test_unavailable_device(tmp_path, capsys):
+    import torch
+
+    if torch.cuda.is_available():
+        pytest.skip("a CUDA device is present")
+    d = _case(tmp_path)
+    code, err = _run(["fit", str(d), "--device", "cuda", "--out", str(tmp_path / "r"), "--quiet"], capsys)
+    assert code == 2 and "--device cpu" in err
+    assert not (tmp_path / "r").exists() and not (tmp_path / "r.partial").exists()

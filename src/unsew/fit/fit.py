@@ -156,6 +156,13 @@ def fit(
     from unsew.sim.state import SimState
 
     torch.manual_seed(cfg.seed)
+    if cfg.device != "cpu":
+        try:
+            dev_ok = torch.device(cfg.device).type == "cuda" and torch.cuda.is_available()
+        except RuntimeError:
+            dev_ok = False
+        if not dev_ok:
+            raise InputError(f"--device {cfg.device}: no such device is visible to torch here; use --device cpu")
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
     material0 = resolve_material(cfg.material)
