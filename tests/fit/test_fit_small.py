@@ -91,3 +91,23 @@ def test_resume_continues_from_checkpoint(small_case, tmp_path):
     result, _ = run_fit(case, cfg, out, resume=True, progress=False, log=interrupt)
     assert out.is_dir() and not partial_dir(out).exists()
     assert len(result.history["total"]) == 2
+
+
+def test_result_comes_from_the_material_phase(small_fit):
+    """Once the material joins the variables, the returned iterate is one with the material in play."""
+    _, result, _ = small_fit
+    assert result.extra["best_iteration"] >= SMALL["material_start"]
+
+
+def test_material_parameterisation_stays_valid():
+    import torch
+
+    from unsew.fit.fit import _material_params
+    from unsew.sim.material import check_gamma, get_material
+
+    g0 = get_material("cotton").gamma()
+    theta, gamma_of = _material_params(g0)
+    assert torch.allclose(gamma_of(theta), g0, rtol=1e-12)
+    for t in ([5, 9, -5, 3, -8], [-5, -9, 5, -3, 8], [0, 40, 0, 0, 0]):
+        g = gamma_of(torch.tensor(t, dtype=torch.float64))
+        check_gamma(g)  # positive definite membrane stiffness, non-negative bending

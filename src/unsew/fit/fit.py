@@ -113,15 +113,21 @@ def _check_contours_compatible(n_src: int, n_tgt: int, garment: str) -> None:
 
 
 def _material_params(gamma0):
+    """Gamma as a function of unconstrained parameters theta (5,), zero at the start material.
+
+    H00, H11, H22, k = start * exp(theta); H01 = tanh(phi0 + theta_1) * sqrt(H00 H11) with
+    tanh(phi0) the start's H01 / sqrt(H00 H11), so the membrane stiffness stays positive
+    definite for every theta (|H01| < sqrt(H00 H11)).
+    """
     import torch
 
     theta = torch.zeros(5, dtype=torch.float64, requires_grad=True)
-    scale01 = 0.1 * math.sqrt(float(gamma0[0]) * float(gamma0[2]))
+    r0 = float(gamma0[1]) / math.sqrt(float(gamma0[0]) * float(gamma0[2]))
+    phi0 = math.atanh(max(-0.99, min(0.99, r0 / 0.995)))
 
     def gamma_of(th):
-        mult = torch.exp(th)
-        g = gamma0 * mult
-        g01 = gamma0[1] + scale01 * th[1]
+        g = gamma0 * torch.exp(th)
+        g01 = 0.995 * torch.tanh(phi0 + th[1]) * torch.sqrt(g[0] * g[2])
         return torch.stack([g[0], g01, g[2], g[3], g[4]])
 
     return theta, gamma_of
@@ -269,6 +275,11 @@ def fit(
             for key, val in (("total", total), ("chamfer", float(l_cf.detach())), ("open", float(l_open.detach())),
                              ("seam", float(l_seam.detach())), ("material", float(l_mat.detach()))):
                 history[key].append(val)
+            # Once the material joins, only iterates with the material in play count as the
+            # result: otherwise an early pattern-only iterate wins and the fitted material is
+            # never reported (the start material is returned unchanged).
+            if mat_on and not best.get("mat_on"):
+                best = {"loss": math.inf}
             if total < best["loss"]:
                 best = {"loss": total, "K": K.detach().clone(), "theta": theta.detach().clone(),
                         "x": x.detach().clone(), "it": it, "mat_on": mat_on}

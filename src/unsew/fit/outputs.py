@@ -71,6 +71,8 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
         try:
             m["pattern"] = pattern_metrics(result.pattern, case.pattern_gt)
             m["pattern_base"] = pattern_metrics(result.base_pattern, case.pattern_gt)
+            if result.graded_pattern is not None:
+                m["pattern_graded"] = pattern_metrics(result.graded_pattern, case.pattern_gt)
         except Exception as exc:  # unmatched panels: report, do not sink the fit
             m["pattern"] = {"error": str(exc)}
     h = result.history
