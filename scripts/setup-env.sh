@@ -16,16 +16,18 @@ fi
 echo "unsew: setting up $VENV (first run only; about a minute)" >&2
 [ -x "$VENV/bin/python" ] || "$PY" -m venv "$VENV"
 pip_args=(--disable-pip-version-check -q)
+# pip's noise about this machine's empty extra index folders is dropped; errors stay.
+pipq() { "$VENV/bin/pip" "$@" 2>&1 | { grep -v "is ignored: it is neither a file nor a directory" || true; }; return "${PIPESTATUS[0]}"; }
 links=()
 for d in /opt/wheels; do [ -d "$d" ] && links+=(--find-links "$d"); done
 if ! "$VENV/bin/python" -c "import torch, sys; sys.exit(0 if torch.__version__.startswith('2.13.0') else 1)" 2>/dev/null; then
     # A CPU build of torch 2.13.0 is what we want. Where the local wheel folder has it, pip takes it;
     # elsewhere the CPU wheel index is asked explicitly, so the CUDA build is never pulled.
     if ls /opt/wheels/torch-2.13.0+cpu-*.whl >/dev/null 2>&1; then
-        "$VENV/bin/pip" install "${pip_args[@]}" "${links[@]}" "torch==2.13.0"
+        pipq install "${pip_args[@]}" "${links[@]}" "torch==2.13.0"
     else
-        "$VENV/bin/pip" install "${pip_args[@]}" "torch==2.13.0" --index-url https://download.pytorch.org/whl/cpu
+        pipq install "${pip_args[@]}" "torch==2.13.0" --index-url https://download.pytorch.org/whl/cpu
     fi
 fi
-"$VENV/bin/pip" install "${pip_args[@]}" "${links[@]}" -e ".[test]"
+pipq install "${pip_args[@]}" "${links[@]}" -e ".[test]"
 echo "$want" > "$STAMP"
