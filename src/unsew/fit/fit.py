@@ -275,11 +275,10 @@ def fit(
             for key, val in (("total", total), ("chamfer", float(l_cf.detach())), ("open", float(l_open.detach())),
                              ("seam", float(l_seam.detach())), ("material", float(l_mat.detach()))):
                 history[key].append(val)
-            # Once the material joins, only iterates with the material in play count as the
-            # result: otherwise an early pattern-only iterate wins and the fitted material is
-            # never reported (the start material is returned unchanged).
-            if mat_on and not best.get("mat_on"):
-                best = {"loss": math.inf}
+            # The result is the iterate of lowest loss, pattern-only or with the material; when a
+            # pattern-only iterate wins, the reported material is the start material (measured on
+            # bench_fit's t-shirt: forcing a material-phase iterate gave 5.75 mm / 1.30 % against
+            # 5.27 mm / 0.54 %), and metrics.json says which (best_iteration, material_fitted).
             if total < best["loss"]:
                 best = {"loss": total, "K": K.detach().clone(), "theta": theta.detach().clone(),
                         "x": x.detach().clone(), "it": it, "mat_on": mat_on}
@@ -323,7 +322,8 @@ def fit(
         x=xb.cpu().numpy(), uv=uv_b.cpu().numpy(), material=material, history=history,
         grade_table=grade_table, timings=timings, iterations=it + 1,
         converged=converged, x_graded=np.asarray(x_start), x_base=x_base, params=params,
-        extra={"best_iteration": best["it"], "material_start": material0, "base_mesh": mesh_base,
+        extra={"best_iteration": best["it"], "material_fitted": bool(best.get("mat_on")),
+               "material_start": material0, "base_mesh": mesh_base,
                "material_start_iteration": cfg.material_start if cfg.optimize_material else None},
     )
 

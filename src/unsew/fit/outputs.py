@@ -78,6 +78,8 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     h = result.history
     m["loss_final"] = {k: (v[-1] if v else None) for k, v in h.items()}
     m["iterations"] = result.iterations
+    m["best_iteration"] = result.extra.get("best_iteration")
+    m["material_fitted"] = result.extra.get("material_fitted")
     m["converged"] = result.converged
     m["timings_s"] = result.timings
     return m
