@@ -106,12 +106,15 @@ def _summary(metrics: dict, total_s: float, case_s: float) -> dict:
     s, sb = metrics.get("surface", {}), metrics.get("surface_base", {})
     sg = metrics.get("surface_graded", {})
     pat, patb = metrics.get("pattern", {}) or {}, metrics.get("pattern_base", {}) or {}
+    patg = metrics.get("pattern_graded", {}) or {}
     return {
         "chamfer_mm": {"base": sb.get("chamfer_mm"), "graded": sg.get("chamfer_mm"), "final": s.get("chamfer_mm")},
         "normal_error_deg": {"base": sb.get("normal_error_deg"), "graded": sg.get("normal_error_deg"),
                              "final": s.get("normal_error_deg")},
-        "area_error_mean": {"base": patb.get("area_error_rel_mean"), "final": pat.get("area_error_rel_mean")},
-        "turning_distance_mean": {"base": patb.get("turning_distance_mean"), "final": pat.get("turning_distance_mean")},
+        "area_error_mean": {"base": patb.get("area_error_rel_mean"), "graded": patg.get("area_error_rel_mean"),
+                            "final": pat.get("area_error_rel_mean")},
+        "turning_distance_mean": {"base": patb.get("turning_distance_mean"), "graded": patg.get("turning_distance_mean"),
+                                  "final": pat.get("turning_distance_mean")},
         "time_s": {"target": case_s, "total": total_s},
     }
 
