@@ -87,17 +87,9 @@ def open_contours(verts, faces) -> list[Contour]:
     faces: (F, 3) int.
     Returns: list of :class:`Contour`; empty for a closed mesh.
     """
-    try:
-        import torch
+    from unsew.losses._arrays import mesh_arrays
 
-        if isinstance(verts, torch.Tensor):
-            verts = verts.detach().cpu().numpy()
-        if isinstance(faces, torch.Tensor):
-            faces = faces.detach().cpu().numpy()
-    except ImportError:  # pragma: no cover
-        pass
-    v = np.asarray(verts, dtype=np.float64)
-    f = np.asarray(faces, dtype=np.int64)
+    v, f = mesh_arrays(verts, faces)
     if len(f) == 0:
         return []
     he = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])  # (3F, 2) directed, as in faces

@@ -26,26 +26,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from unsew.losses._arrays import mesh_arrays
+
 __all__ = ["mean_curvature", "curvature_weights", "mixed_areas"]
-
-
-def _as_numpy(verts, faces):
-    try:
-        import torch
-
-        if isinstance(verts, torch.Tensor):
-            verts = verts.detach().cpu().numpy()
-        if isinstance(faces, torch.Tensor):
-            faces = faces.detach().cpu().numpy()
-    except ImportError:  # pragma: no cover
-        pass
-    v = np.asarray(verts, dtype=np.float64)
-    f = np.asarray(faces, dtype=np.int64)
-    if v.ndim != 2 or v.shape[1] != 3 or f.ndim != 2 or f.shape[1] != 3:
-        raise ValueError(f"verts {v.shape} and faces {f.shape} must be (V, 3) and (F, 3)")
-    if len(f) == 0:
-        raise ValueError("mesh has no faces")
-    return v, f
 
 
 def _corner_cotangents(v, f):
@@ -66,7 +49,7 @@ def mixed_areas(verts, faces) -> np.ndarray:
     verts: (V, 3) float64 [m]; faces: (F, 3) int. Returns (V,) float64 [m^2]; the areas sum to
     the mesh's area.
     """
-    v, f = _as_numpy(verts, faces)
+    v, f = mesh_arrays(verts, faces)
     cots, area = _corner_cotangents(v, f)
     el2 = np.stack(  # squared length of the edge opposite each corner, (F, 3)
         [
@@ -103,7 +86,7 @@ def mean_curvature(verts, faces) -> np.ndarray:
     verts: (V, 3) float64 [m] (numpy or torch); faces: (F, 3) int.
     Returns: (V,) float64 numpy [1/m]; vertices in no face get 0.
     """
-    v, f = _as_numpy(verts, faces)
+    v, f = mesh_arrays(verts, faces)
     n = len(v)
     cots, _ = _corner_cotangents(v, f)
     K = np.zeros((n, 3))
@@ -142,7 +125,7 @@ def curvature_weights(verts, faces):
     """
     from unsew.tolerances import FLAT_CURVATURE_TOL
 
-    v, f = _as_numpy(verts, faces)
+    v, f = mesh_arrays(verts, faces)
     H = mean_curvature(v, f)
     A = mixed_areas(v, f)
     total = A.sum()
