@@ -128,7 +128,7 @@ def _newton(model, rest, x0, sdf, gamma, params, *, tol, max_iter, mu0, backend,
             return (hvp_exact(v) + mu * massv * v) * free
 
         eta = min(0.5, res**0.5)
-        p = _truncated_pcg(hvp, r, precond, rtol=eta, max_iter=50)
+        p, _, _ = _pcg(hvp, r, precond, rtol=eta, max_iter=50, truncate=True)
         slope = -float((r * p).sum())  # grad E . p < 0
         if not slope < 0:
             p = precond(r)
@@ -157,34 +157,13 @@ def _newton(model, rest, x0, sdf, gamma, params, *, tol, max_iter, mu0, backend,
     return x, mu
 
 
-def _truncated_pcg(hvp, b, precond, *, rtol, max_iter):
-    """Approximate H p = b by PCG; stops at negative curvature (returning the last iterate, or the
-    preconditioned b if met at once) or at relative residual rtol."""
-    x = torch.zeros_like(b)
-    r = b.clone()
-    z = precond(r)
-    p = z.clone()
-    rz = float((r * z).sum())
-    bn = float(b.norm()) or 1.0
-    for k in range(max_iter):
-        Hp = hvp(p)
-        pHp = float((p * Hp).sum())
-        if pHp <= 0:
-            return z if k == 0 else x
-        a = rz / pHp
-        x = x + a * p
-        r = r - a * Hp
-        if float(r.norm()) <= rtol * bn:
-            break
-        z = precond(r)
-        rz_new = float((r * z).sum())
-        p = z + (rz_new / rz) * p
-        rz = rz_new
-    return x
+def _pcg(hvp, b, precond, *, rtol, max_iter, truncate=False):
+    """Preconditioned CG for H x = b. Returns x, iterations, relative residual.
 
-
-def _pcg(hvp, b, precond, *, rtol, max_iter):
-    """Preconditioned CG for H x = b (H SPD on the free dofs). Returns x, iterations, rel. residual."""
+    At negative curvature (p^T H p <= 0): with ``truncate`` (a Newton direction) stop and return
+    the last iterate, or the preconditioned b if met at once; otherwise (an adjoint solve, which
+    needs H positive definite) raise SimulationError.
+    """
     x = torch.zeros_like(b)
     bn = float(b.norm())
     if bn == 0.0:
@@ -198,6 +177,8 @@ def _pcg(hvp, b, precond, *, rtol, max_iter):
         Hp = hvp(p)
         pHp = float((p * Hp).sum())
         if pHp <= 0:
+            if truncate:
+                return (z if k == 1 else x), k, float(r.norm()) / bn
             raise SimulationError(
                 "the exact Hessian at the static solution is not positive definite (not a stable "
                 "equilibrium); use adjoint='projected' or pin the cloth"
