@@ -320,10 +320,10 @@ def fit(
     return FitResult(
         pattern=pattern, base_pattern=base, graded_pattern=graded, mesh=mesh,
         x=xb.cpu().numpy(), uv=uv_b.cpu().numpy(), material=material, history=history,
-        grade_table=grade_table, timings=timings, iterations=it + 1,
+        grade_table=grade_table, timings=timings, iterations=len(history["total"]),
         converged=converged, x_graded=np.asarray(x_start), x_base=x_base, params=params,
         extra={"best_iteration": best["it"], "material_fitted": bool(best.get("mat_on")),
-               "material_start": material0, "base_mesh": mesh_base,
+               "material0": material0, "base_mesh": mesh_base,
                "material_start_iteration": cfg.material_start if cfg.optimize_material else None},
     )
 
