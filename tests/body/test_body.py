@@ -188,3 +188,25 @@ def test_cli_body_measure_and_errors(tmp_path):
     r = subprocess.run([sys.executable, "-m", "unsew", "body", "measure", str(tmp_path)], capture_output=True, text=True)
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert len(r.stderr.strip().splitlines()) == 1 and "body.obj" in r.stderr
+
+
+def test_default_body_is_exactly_mirror_symmetric():
+    """The stored float32 body is symmetric to 0.4 mm only; loading makes it exact (a symmetric
+    garment must drape symmetrically on it)."""
+    from scipy.spatial import cKDTree
+
+    from unsew.body.body import symmetrize
+
+    b = default_body()
+    v = np.asarray(b.verts)
+    d, _ = cKDTree(v).query(v * [-1.0, 1.0, 1.0])
+    assert d.max() < 1e-12
+    sk = b.skeleton
+    for n in sk.names:
+        if n.startswith("left_"):
+            assert np.allclose(sk.position(n) * [-1, 1, 1], sk.position("right_" + n[5:]), atol=1e-12)
+    # an asymmetric body is left alone
+    w = v.copy()
+    w[v[:, 0] > 0.1, 0] += 0.01
+    w2, sk2 = symmetrize(w, sk)
+    assert w2 is w and sk2 is sk

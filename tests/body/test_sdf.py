@@ -165,3 +165,15 @@ def test_default_body_accuracy_and_sign(default_sdf):
     err = np.abs(d) - d_ex
     rms = np.sqrt(np.mean(err**2))
     assert rms <= 1e-3, f"RMS error {rms * 1e3:.3f} mm > 1 mm"
+
+
+def test_sdf_of_a_symmetric_body_is_symmetric(default_sdf):
+    import torch
+
+    rng = np.random.default_rng(3)
+    b = default_body()
+    x = np.asarray(b.verts)[rng.choice(len(b.verts), 2000)] + rng.normal(0, 0.01, (2000, 3))
+    d1, n1 = default_sdf.query(torch.as_tensor(x))
+    d2, n2 = default_sdf.query(torch.as_tensor(x * [-1.0, 1.0, 1.0]))
+    assert float((d1 - d2).abs().max()) < 1e-9
+    assert float((n1 * torch.tensor([-1.0, 1.0, 1.0], dtype=n1.dtype) - n2).abs().max()) < 1e-6

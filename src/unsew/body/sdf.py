@@ -38,7 +38,11 @@ import numpy as np
 __all__ = ["BodySDF", "closest_point_on_triangles", "mesh_distance", "default_cache_dir"]
 
 #: Bump when the build changes, so cached grids are rebuilt.
-_SDF_VERSION = 2
+_SDF_VERSION = 3
+#: A body whose every vertex has a mirror image (x -> 2c - x) within this distance of a vertex is
+#: treated as left-right symmetric by the SDF build [m] (the default anny body: 0.41 mm, float32
+#: storage).
+BODY_MIRROR_TOL = 1e-3
 #: Nodes closer than this to the surface get a neighbour sweep after propagation [m].
 _SWEEP_RADIUS = 0.06
 
@@ -265,6 +269,10 @@ class BodySDF:
                     pass
         t0 = time.perf_counter()
         values, origin = _build_grid(verts, faces, voxel, margin)
+        # the cache stores float32: round a fresh grid the same way, so a run is reproducible
+        # whether its grid was built or read (the drape of loose cloth amplifies the difference:
+        # bench_grading's skirt came out at 6.9 mm from a fresh grid and 10.6 mm from the cache)
+        values = values.astype(np.float32).astype(np.float64)
         sdf = cls(values, origin, float(voxel), build_seconds=time.perf_counter() - t0)
         if path is not None:
             try:
@@ -339,12 +347,36 @@ class BodySDF:
         return cls(np.asarray(v, np.float64), lo, float(voxel))
 
 
+def mirror_plane(verts: np.ndarray, tol: float = BODY_MIRROR_TOL) -> float | None:
+    """x = c of the body's left-right mirror plane [m], or None when the body is not mirror
+    symmetric: every vertex's mirror image within ``tol`` [m] of a vertex (posed bodies, most
+    scans, are not)."""
+    from scipy.spatial import cKDTree
+
+    c = 0.5 * float(verts[:, 0].min() + verts[:, 0].max())
+    mirrored = verts * np.array([-1.0, 1.0, 1.0]) + np.array([2.0 * c, 0.0, 0.0])
+    dist, _ = cKDTree(verts).query(mirrored, distance_upper_bound=2.0 * tol)
+    return c if bool(np.all(dist <= tol)) else None
+
+
 def _build_grid(verts: np.ndarray, faces: np.ndarray, h: float, margin: float) -> tuple[np.ndarray, np.ndarray]:
-    """(values (nz, ny, nx) float64 [m], origin (3,) [m]) of the signed distance of a closed mesh."""
+    """(values (nz, ny, nx) float64 [m], origin (3,) [m]) of the signed distance of a closed mesh.
+
+    A mirror-symmetric body (:func:`mirror_plane`) gets a grid whose nodes are symmetric about
+    its plane and values averaged with their mirror images, so the distance is exactly
+    symmetric: a symmetric garment then drapes symmetrically. Measured on the default body:
+    without this the distance at mirror points differed by up to 1.3 mm (grid alignment and
+    interpolation), which seeded asymmetric folds of loose cloth.
+    """
     from scipy import ndimage
 
     origin = verts.min(axis=0) - margin
     n = np.ceil((verts.max(axis=0) + margin - origin) / h).astype(np.int64) + 1  # (nx, ny, nz)
+    plane = mirror_plane(verts)
+    if plane is not None:
+        k = int(np.ceil(max(plane - origin[0], verts[:, 0].max() + margin - plane) / h))
+        origin[0] = plane - k * h
+        n[0] = 2 * k + 1
     nx, ny, nz = (int(v) for v in n)
     shape = (nz, ny, nx)
     r = 1.5 * h
@@ -419,4 +451,7 @@ def _build_grid(verts: np.ndarray, faces: np.ndarray, h: float, margin: float) -
     # shell nodes: angle-weighted pseudonormal at the closest point
     sidx = np.flatnonzero(shell.ravel())
     sign[sidx] = pseudo_sign(sidx)
-    return (sign * dist).reshape(shape), origin
+    values = (sign * dist).reshape(shape)
+    if plane is not None:
+        values = 0.5 * (values + values[:, :, ::-1])
+    return values, origin
