@@ -7,6 +7,7 @@ __all__ = [
     "COLLISION_THICKNESS",
     "REBUILD_ATOL",
     "FLAT_CURVATURE_TOL",
+    "MIN_TRIANGLE_QUALITY",
 ]
 
 #: Lengths below this are treated as zero [m].
@@ -29,3 +30,9 @@ REBUILD_ATOL = 1e-9
 #: A mesh whose area-weighted mean |H| times sqrt(area) is below this (dimensionless) is flat:
 #: its curvature weights are exactly 1 (unsew.losses.curvature).
 FLAT_CURVATURE_TOL = 1e-8
+
+#: A control point edit (fit step, grading edit) may not make a pattern triangle flatter than
+#: this height over longest edge [-]: ten times the simulator's refusal threshold
+#: (unsew.sim.integrator); a fit of the noisy t-shirt target once stepped to 4e-5 and the next
+#: drape refused the pattern.
+MIN_TRIANGLE_QUALITY = 1e-3

@@ -24,6 +24,7 @@ import numpy as np
 
 from unsew.errors import InputError
 from unsew.fit.config import FitConfig
+from unsew.tolerances import MIN_TRIANGLE_QUALITY
 
 __all__ = ["FitResult", "fit", "base_pattern_for", "FitState"]
 
@@ -286,8 +287,8 @@ def fit(
             opt_k.step()
             if mat_on:
                 opt_m.step()
-            # A step that inverts pattern triangles is shortened (halved towards the previous K)
-            # until none invert.
+            # A step that inverts pattern triangles, or flattens one below MIN_TRIANGLE_QUALITY,
+            # is shortened (halved towards the previous K) until none does.
             _backtrack_inversions(params, K, K_before, mesh.faces_uv, check_inverted)
             x_prev = x.detach()
             bar.set_postfix(loss=f"{total:.3e}", cf_mm=f"{math.sqrt(max(float(l_cf.detach()), 0)) * 1e3:.1f}")
@@ -333,7 +334,7 @@ def _backtrack_inversions(params, K, K_before, faces_uv, check_inverted) -> None
 
     with torch.no_grad():
         for _ in range(10):
-            if len(check_inverted(params.uv(K).cpu().numpy(), faces_uv)) == 0:
+            if len(check_inverted(params.uv(K).cpu().numpy(), faces_uv, min_quality=MIN_TRIANGLE_QUALITY)) == 0:
                 return
             K.copy_(0.5 * (K + K_before))
         K.copy_(K_before)

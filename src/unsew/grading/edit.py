@@ -99,12 +99,13 @@ def safe_fraction(params, K0, K1, *, iterations: int = 12) -> float:
     import torch
 
     from unsew.pattern.params import check_inverted
+    from unsew.tolerances import MIN_TRIANGLE_QUALITY
 
     faces = params.mesh.faces_uv
 
     def ok(t: float) -> bool:
         with torch.no_grad():
-            return len(check_inverted(params.uv(K0 + t * (K1 - K0)), faces)) == 0
+            return len(check_inverted(params.uv(K0 + t * (K1 - K0)), faces, min_quality=MIN_TRIANGLE_QUALITY)) == 0
 
     if ok(1.0):
         return 1.0

@@ -202,8 +202,10 @@ class PatternParams:
         return out
 
 
-def check_inverted(uv, faces_uv) -> np.ndarray:
-    """Indices (k,) int64 of triangles that are inverted or degenerate (signed area <= 0).
+def check_inverted(uv, faces_uv, *, min_quality: float = 0.0) -> np.ndarray:
+    """Indices (k,) int64 of triangles that are inverted or degenerate: signed area <= 0, or
+    height over longest edge (twice the signed area over the longest edge squared) at most
+    ``min_quality`` [-].
 
     uv: 2D vertex positions [m], (Nu, 2), numpy or torch. faces_uv: (F, 3) int, numpy or torch,
     counter-clockwise at rest.
@@ -221,4 +223,7 @@ def check_inverted(uv, faces_uv) -> np.ndarray:
     f = np.asarray(faces_uv, dtype=np.int64)
     a, b, c = uv[f[:, 0]], uv[f[:, 1]], uv[f[:, 2]]
     area2 = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+    if min_quality > 0:
+        e2 = np.stack([((b - a) ** 2).sum(1), ((c - b) ** 2).sum(1), ((a - c) ** 2).sum(1)], axis=1).max(axis=1)
+        return np.flatnonzero(area2 <= min_quality * np.maximum(e2, 1e-300)).astype(np.int64)
     return np.flatnonzero(area2 <= 0).astype(np.int64)
