@@ -8,6 +8,7 @@ __all__ = [
     "REBUILD_ATOL",
     "FLAT_CURVATURE_TOL",
     "MIN_TRIANGLE_QUALITY",
+    "BODY_MIRROR_TOL",
 ]
 
 #: Lengths below this are treated as zero [m].
@@ -36,3 +37,8 @@ FLAT_CURVATURE_TOL = 1e-8
 #: (unsew.sim.integrator); a fit of the noisy t-shirt target once stepped to 4e-5 and the next
 #: drape refused the pattern.
 MIN_TRIANGLE_QUALITY = 1e-3
+
+#: A body whose every vertex has a mirror image (x -> 2c - x) within this distance of a vertex is
+#: left-right symmetric [m]: it is made exactly symmetric when loaded (unsew.body.body.symmetrize)
+#: and its SDF grid is built symmetric. The default anny body is off by 0.41 mm (float32 storage).
+BODY_MIRROR_TOL = 1e-3

@@ -41,10 +41,9 @@ def test_boundary_is_the_sampled_outline(make):
             ev = m.edge_verts[(name, i)]
             n = len(ev) - 1
             assert n >= max(1, int(np.ceil(edge_length(panel, i) / h - 1e-9)))
-            # symmetric meshing may snap samples to exact symmetry (by far less than 1e-3 h)
-            assert_close(m.uv[ev], sample_edge(panel, i, n), atol=1e-6 * h, what=f"{name} edge {i}: ")
-            assert_close(m.uv[ev[0]], panel.vertices[e.start], atol=1e-12, what="corner: ")
-            assert_close(m.uv[ev[-1]], panel.vertices[e.end], atol=1e-12, what="corner: ")
+            assert_close(m.uv[ev], sample_edge(panel, i, n), atol=1e-15, what=f"{name} edge {i}: ")
+            assert_close(m.uv[ev[0]], panel.vertices[e.start], atol=0, what="corner: ")
+            assert_close(m.uv[ev[-1]], panel.vertices[e.end], atol=0, what="corner: ")
         loop = m.boundary_loop(p)
         assert np.array_equal(np.concatenate([m.edge_verts[(name, i)][:-1] for i in range(len(panel.edges))]), loop)
         # the outline is a boundary of the 2D mesh: each outline segment belongs to exactly one triangle

@@ -7,6 +7,7 @@ from unsew.meshing.sew import mesh_pattern
 from unsew.meshing.symmetric import reflect, transport_mesh, triangulate_mirrored
 from unsew.meshing.triangulate import signed_areas, triangulate_polygon
 from unsew.pattern.base import make_base_pattern
+from unsew.pattern.curves import sample_edge
 
 
 def _face_set(tris):
@@ -79,6 +80,14 @@ def test_base_patterns_mesh_symmetrically(garment):
             src = m.panel_names.index(how.split(":", 1)[1])
             assert (m.uv_panel == src).sum() == len(sel)
     assert m.quality()["bad_triangles"] == 0
+    # the outline is still the sampled edges, snapped to exact symmetry by far less than 1e-3 h,
+    # and pattern corners stay where they are
+    for name in m.panel_names:
+        panel = p.panels[name]
+        for i, e in enumerate(panel.edges):
+            ev = m.edge_verts[(name, i)]
+            assert np.abs(m.uv[ev] - sample_edge(panel, i, len(ev) - 1)).max() < 1e-6 * 0.03
+            assert np.abs(m.uv[ev[0]] - panel.vertices[e.start]).max() < 1e-12
     plain = mesh_pattern(p, edge_length=0.03)
     assert set(plain.panel_symmetry.values()) == {"own"}
     assert abs(m.n_x - plain.n_x) < 0.05 * plain.n_x

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from unsew.body.skeleton import Skeleton
+from unsew.tolerances import BODY_MIRROR_TOL
 
 __all__ = ["Body", "default_body", "load_body", "clean_body_mesh", "check_body_plausible"]
 
@@ -143,20 +144,33 @@ def body_from_npz(path: str | os.PathLike) -> Body:
     return Body(verts, faces, sk, weights, name=name)
 
 
+def mirror_plane(verts: np.ndarray, tol: float = BODY_MIRROR_TOL) -> float | None:
+    """x = c [m] of a body's left-right mirror plane, or None when it is not mirror symmetric.
+
+    verts: (V, 3) float64 [m], world frame (X is the left-right axis). Symmetric means every
+    vertex's mirror image (x -> 2c - x, c the middle of the x extent) lies within ``tol`` [m] of a
+    vertex; posed bodies and most scans are not.
+    """
+    from scipy.spatial import cKDTree
+
+    c = 0.5 * float(verts[:, 0].min() + verts[:, 0].max())
+    mirrored = verts * np.array([-1.0, 1.0, 1.0]) + np.array([2.0 * c, 0.0, 0.0])
+    dist, _ = cKDTree(verts).query(mirrored, distance_upper_bound=2.0 * tol)
+    return c if bool(np.all(dist <= tol)) else None
+
+
 def symmetrize(verts: np.ndarray, skeleton: Skeleton) -> tuple[np.ndarray, Skeleton]:
     """Make a nearly mirror-symmetric body exactly symmetric about its plane x = c.
 
     verts: (V, 3) float64 [m]. A body stored in float32 (the embedded anny bodies) is symmetric
     only to about 0.4 mm, and that was enough to break the left-right symmetry of a draped
     garment (the placement and the SDF inherit it, and buckling cloth amplifies it). When every
-    vertex has a mirror image within ``unsew.body.sdf.BODY_MIRROR_TOL`` of another vertex, each
+    vertex has a mirror image within ``unsew.tolerances.BODY_MIRROR_TOL`` of another vertex, each
     vertex moves to the mean of itself and its partner's image, and left/right joints likewise
     (centre-line joints move onto the plane). Otherwise both are returned unchanged.
     Returns (verts, skeleton).
     """
     from scipy.spatial import cKDTree
-
-    from unsew.body.sdf import mirror_plane
 
     c = mirror_plane(verts)
     if c is None:

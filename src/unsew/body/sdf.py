@@ -39,10 +39,6 @@ __all__ = ["BodySDF", "closest_point_on_triangles", "mesh_distance", "default_ca
 
 #: Bump when the build changes, so cached grids are rebuilt.
 _SDF_VERSION = 3
-#: A body whose every vertex has a mirror image (x -> 2c - x) within this distance of a vertex is
-#: treated as left-right symmetric by the SDF build [m] (the default anny body: 0.41 mm, float32
-#: storage).
-BODY_MIRROR_TOL = 1e-3
 #: Nodes closer than this to the surface get a neighbour sweep after propagation [m].
 _SWEEP_RADIUS = 0.06
 
@@ -347,28 +343,18 @@ class BodySDF:
         return cls(np.asarray(v, np.float64), lo, float(voxel))
 
 
-def mirror_plane(verts: np.ndarray, tol: float = BODY_MIRROR_TOL) -> float | None:
-    """x = c of the body's left-right mirror plane [m], or None when the body is not mirror
-    symmetric: every vertex's mirror image within ``tol`` [m] of a vertex (posed bodies, most
-    scans, are not)."""
-    from scipy.spatial import cKDTree
-
-    c = 0.5 * float(verts[:, 0].min() + verts[:, 0].max())
-    mirrored = verts * np.array([-1.0, 1.0, 1.0]) + np.array([2.0 * c, 0.0, 0.0])
-    dist, _ = cKDTree(verts).query(mirrored, distance_upper_bound=2.0 * tol)
-    return c if bool(np.all(dist <= tol)) else None
-
-
 def _build_grid(verts: np.ndarray, faces: np.ndarray, h: float, margin: float) -> tuple[np.ndarray, np.ndarray]:
     """(values (nz, ny, nx) float64 [m], origin (3,) [m]) of the signed distance of a closed mesh.
 
-    A mirror-symmetric body (:func:`mirror_plane`) gets a grid whose nodes are symmetric about
+    A mirror-symmetric body (:func:`unsew.body.body.mirror_plane`) gets a grid whose nodes are symmetric about
     its plane and values averaged with their mirror images, so the distance is exactly
     symmetric: a symmetric garment then drapes symmetrically. Measured on the default body:
     without this the distance at mirror points differed by up to 1.3 mm (grid alignment and
     interpolation), which seeded asymmetric folds of loose cloth.
     """
     from scipy import ndimage
+
+    from unsew.body.body import mirror_plane
 
     origin = verts.min(axis=0) - margin
     n = np.ceil((verts.max(axis=0) + margin - origin) / h).astype(np.int64) + 1  # (nx, ny, nz)
