@@ -15,7 +15,7 @@ their placement (``--drape flat``: no physics, a check of the geometry alone). `
 simulator when ``unsew.body.placement.place_garment`` exists.
 
 Run: OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_grading.py [--drape auto|sim|flat]
-     [--edge-length 0.03] [--garments tshirt pants ...]
+     [--edge-length 0.03] [--garments tshirt pants ...] [--passes N]
 """
 
 from __future__ import annotations
@@ -51,6 +51,7 @@ def main() -> None:
     ap.add_argument("--material", default="cotton")
     ap.add_argument("--garments", nargs="*", default=list(CHANGES))
     ap.add_argument("--samples", type=int, default=20000, help="Chamfer samples per mesh")
+    ap.add_argument("--passes", type=int, default=None, help="grading passes (default: grade()'s)")
     ap.add_argument("--floor-scale", type=float, default=0.97, help="edge length factor of the noise-floor mesh (0: skip)")
     args = ap.parse_args()
 
@@ -98,7 +99,8 @@ def main() -> None:
                 target = alter_pattern(target, groups[key], length=dl, girth=dg)
         tm = mesh_pattern(target, edge_length=args.edge_length)
         tx = drape_fn(target, tm, body)
-        res = grade(base, body, tx, tm.faces, edge_length=args.edge_length, drape_fn=drape_fn)
+        kw = {} if args.passes is None else {"passes": args.passes}
+        res = grade(base, body, tx, tm.faces, edge_length=args.edge_length, drape_fn=drape_fn, **kw)
         sk = body.skeleton
         after = place_contours(res.x_draped, res.mesh.faces, sk)
         tgt = place_contours(tx, tm.faces, sk)

@@ -19,6 +19,9 @@ Tables (``--table``, repeatable or ``all``):
 - ``sensitivity``: one target fitted from the base pattern scaled by 0.9, 1.0 and 1.1 (the scaled
   base is a GarmentCode JSON passed as cfg.base); the spread of the final metrics.
 
+``--set KEY=VALUE`` (repeatable) overrides a FitConfig option for every fit of the run (give it
+its own ``--out``); the table header names the overrides.
+
 ``--quick`` keeps one case per garment type, the one with the fewest target vertices (ablation
 and sensitivity: the smallest case overall). Cases missing under --cases are generated first
 (benchmarks/make_cases.py). Every fit writes a result folder (FORMATS.md) under
@@ -140,10 +143,32 @@ def fit_case(case_dir: Path, out: Path, cfg, *, log=print, retry_failed: bool | 
     return rec
 
 
+def yaml_value(text: str):
+    """A --set value parsed as YAML (numbers, booleans, lists), else the plain string."""
+    import yaml
+
+    try:
+        return yaml.safe_load(text)
+    except yaml.YAMLError:
+        return text
+
+
 def base_config(args, **changes):
-    from unsew.fit.config import FitConfig
+    from unsew.errors import InputError
+    from unsew.fit.config import FitConfig, load_config
 
     cfg = FitConfig(edge_length=args.edge_length, iterations=args.iterations, report=not args.no_report)
+    if getattr(args, "set", None):
+        sets = {}
+        for item in args.set:
+            key, sep, val = item.partition("=")
+            if not sep:
+                sys.exit(f"--set {item!r}: expected KEY=VALUE")
+            sets[key.strip()] = yaml_value(val)
+        try:
+            cfg = load_config(defaults=dataclasses.asdict(cfg) | sets)
+        except InputError as exc:
+            sys.exit(f"--set: {exc}")
     return cfg.replace(**changes) if changes else cfg
 
 
@@ -217,7 +242,8 @@ def header(args, what: str) -> str:
             f"{platform.node()} "
             f"({os.cpu_count()} cores, load {_loadavg():.1f}), python {platform.python_version()}, "
             f"fit edge {args.edge_length} m, {args.iterations} iterations max, "
-            f"{'quick' if args.quick else 'full'} mode")
+            f"{'quick' if args.quick else 'full'} mode"
+            + (f", config overrides {' '.join(args.set)}" if getattr(args, "set", None) else ""))
 
 
 def emit(args, name: str, text: str) -> None:
@@ -471,6 +497,8 @@ def main(argv=None):
     ap.add_argument("--sensitivity-case", help="case name for the sensitivity table (default: the smallest)")
     ap.add_argument("--sim-sizes", default="1000,2000,3000", help="bench_sim.py sizes for the speed table")
     ap.add_argument("--skip-sim", action="store_true", help="speed table: only the fits' timings")
+    ap.add_argument("--set", action="append", metavar="KEY=VALUE",
+                    help="override a FitConfig option for every fit (repeatable); use a separate --out")
     ap.add_argument("--retry-failed", action="store_true", help="refit cases whose fit raised before")
     args = ap.parse_args(argv)
     global RETRY_FAILED

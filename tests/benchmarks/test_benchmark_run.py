@@ -80,3 +80,16 @@ def test_quick_accuracy_smallest_case_improves_every_metric(tmp_path):
     assert m["pattern"]["turning_distance_mean"] < m["pattern_base"]["turning_distance_mean"]
     assert m["pattern"]["area_error_rel_mean"] < m["pattern_base"]["area_error_rel_mean"]
     assert (tmp_path / "out" / "tables" / "accuracy_quick.md").is_file()
+
+
+def test_set_overrides_the_fit_config():
+    """run.py --set KEY=VALUE reaches every fit's FitConfig; an unknown key stops the run."""
+    import argparse
+
+    run = _module("run")
+    args = argparse.Namespace(edge_length=0.03, iterations=5, no_report=True, set=["lr_decay=0.1", "steps=12"])
+    cfg = run.base_config(args, seam_loss=False)
+    assert (cfg.lr_decay, cfg.steps, cfg.edge_length, cfg.iterations, cfg.seam_loss) == (0.1, 12, 0.03, 5, False)
+    args.set = ["no_such_option=1"]
+    with pytest.raises(SystemExit, match="no_such_option"):
+        run.base_config(args)

@@ -11,6 +11,7 @@ def test_defaults_follow_the_paper():
     c = FitConfig()
     assert (c.lr, c.betas, c.lambda_open, c.lambda_mat, c.dt) == (1e-3, (0.9, 0.999), 0.1, 0.01, 0.05)
     assert 10 <= c.steps <= 20
+    assert c.lr_decay == 1.0  # constant learning rate, as the paper states no schedule
 
 
 def test_yaml_round_trip_and_overrides(tmp_path):
@@ -30,6 +31,8 @@ def test_yaml_round_trip_and_overrides(tmp_path):
         ("edge_length: 2\n", "edge_length"),
         ("- a\n- b\n", "mapping"),
         ("a: [\n", "not valid YAML"),
+        ("lr_decay: 0\n", "lr_decay"),
+        ("lr_decay: 1.5\n", "lr_decay"),
     ],
 )
 def test_bad_configs(tmp_path, text, match):

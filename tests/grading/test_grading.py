@@ -289,3 +289,25 @@ def test_grade_simulated_tshirt_recovers_known_changes(body):
     assert abs(got["torso"].length - want["torso"].length) < 0.02
     before, after = _chamfers(res, tx, tm)
     assert after <= 0.5 * before
+
+
+def test_later_pass_scales_by_the_drapes_measured_response():
+    """A contour that moved 4 cm for a 7 cm edit gets its remaining offset scaled by 7/4; one that
+    moved fully, the wrong way, or too little to tell, is left at gain 1; the gain is capped."""
+    from unsew.grading.contours import ContourMatch
+    from unsew.grading.grade import MAX_PASS_GAIN, response_gains
+
+    def m(target, ext):
+        return ContourMatch(source=target, target=target, part="torso", bone="b", axial_distance=-ext,
+                            extension=ext, girth_difference=0.0, cost=0.0)
+
+    before = [m(0, 0.07), m(1, 0.05), m(2, 0.05), m(3, 0.05), m(4, 0.10), m(5, 0.002)]
+    applied = {0: 0.07, 1: 0.05, 2: 0.05, 3: 0.05, 4: 0.10, 5: 0.002}
+    after = [m(0, 0.03), m(1, 0.0), m(2, 0.06), m(3, 0.045), m(4, 0.09), m(5, 0.0)]
+    gains = response_gains(before, applied, after)
+    assert gains[0] == pytest.approx(0.07 / 0.04)
+    assert 1 not in gains and 2 not in gains and 5 not in gains  # answered fully, wrong way, no edit
+    assert 3 not in gains  # 10 % response: noise, not a slow answer
+    assert 4 not in gains  # 10 % response
+    before[4], after[4] = m(4, 0.10), m(4, 0.075)  # 25 % response: capped
+    assert response_gains(before, applied, after)[4] == MAX_PASS_GAIN

@@ -45,6 +45,7 @@ class FitConfig:
     # phase two: optimization
     iterations: int = 100  #: iteration budget of the optimization [-]
     lr: float = 1e-3  #: Adam learning rate for the control points [m per step]
+    lr_decay: float = 1.0  #: factor the learning rates fall to, geometrically, over `iterations` [-] (1 = constant)
     lr_material: float = 5e-2  #: Adam learning rate for log-material parameters [-]
     betas: tuple[float, float] = (0.9, 0.999)  #: Adam betas [-]
     material_start: int = 20  #: iteration at which the material joins the variables [-]
@@ -137,3 +138,5 @@ def _check(cfg: FitConfig) -> None:
             raise InputError(f"{k} must be at least 1")
     if cfg.lr <= 0 or cfg.lr_material <= 0:
         raise InputError("learning rates must be positive")
+    if not 0 < cfg.lr_decay <= 1:
+        raise InputError(f"lr_decay {cfg.lr_decay} must be in (0, 1]")

@@ -257,6 +257,10 @@ def fit(
     try:
         for it in range(start_it, cfg.iterations):
             mat_on = cfg.optimize_material and it >= cfg.material_start
+            decay = cfg.lr_decay ** (it / cfg.iterations)
+            for opt, lr in ((opt_k, cfg.lr), (opt_m, cfg.lr_material)):
+                for group in opt.param_groups:
+                    group["lr"] = lr * decay
             opt_k.zero_grad()
             opt_m.zero_grad()
             uv = params.uv(K)

@@ -77,6 +77,7 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
             m["pattern"] = {"error": str(exc)}
     h = result.history
     m["loss_final"] = {k: (v[-1] if v else None) for k, v in h.items()}
+    m["loss_history"] = {k: [float(f"{x:.6g}") for x in v] for k, v in h.items()}  # per iteration
     m["iterations"] = result.iterations
     m["best_iteration"] = result.extra.get("best_iteration")
     m["material_fitted"] = result.extra.get("material_fitted")

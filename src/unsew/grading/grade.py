@@ -181,10 +181,14 @@ def grade(
     x_lg = None
     for k in range(max(int(passes), 1)):
         if k > 0:
-            # Another pass from the graded drape: the contours' remaining offsets, edited again.
-            nxt = _grade_pass(cur["pattern"], cur["mesh"], x_lg, tgt, skel, kw)
-            if not _worth_a_pass(nxt["matches"]):
+            # Another pass from the graded drape: the contours' remaining offsets, edited again,
+            # each scaled by how far the drape answered the previous pass's edit.
+            src = place_contours(x_lg, cur["mesh"].faces, skel)
+            now = match_contours(src, tgt, skel, garment_centre=x_lg.mean(axis=0), **kw)
+            if not _worth_a_pass(now):
                 break
+            gains = response_gains(cur["matches"], cur["applied"], now)
+            nxt = _grade_pass(cur["pattern"], cur["mesh"], x_lg, tgt, skel, kw, gains=gains, placed=(src, now))
             for r in nxt["rows"]:
                 if r["edits"]:
                     r["edits"] = [f"pass {k + 1}: {e}" for e in r["edits"]]
@@ -199,32 +203,75 @@ def grade(
     )
 
 
+#: Bounds of the gain a later grading pass applies to a contour's remaining offset (see
+#: :func:`response_gains`).
+MAX_PASS_GAIN = 3.0
+#: A response below this fraction of the edit is taken as noise, not as a slow answer.
+MIN_RESPONSE = 0.2
+
+
+def response_gains(prev_matches, applied: dict, now_matches) -> dict:
+    """Per target contour, the factor by which the next pass scales its remaining extension.
+
+    prev_matches: the previous pass's matches (extension measured before its edit [m]);
+    applied: target index -> the extension that pass applied to the pattern [m] (after any
+    scale-back); now_matches: the matches measured on the drape after the edit.
+
+    The drape answers a pattern edit only in part: a flared skirt's hem lengthened by 7 cm along
+    the panel came down 4 cm (measured on bench_grading's skirt), because the cloth hangs at an
+    angle and the waist rides. The response r = (extension before - extension after) / applied is
+    measured per contour; the next edit is divided by it (gain 1/r, clamped to
+    [1, MAX_PASS_GAIN]). A response below MIN_RESPONSE or of the wrong sign is drape noise: gain 1.
+    Returns only the contours whose gain is not 1.
+    """
+    before = {m.target: m.extension for m in prev_matches}
+    gains = {}
+    for m in now_matches:
+        a = applied.get(m.target, 0.0)
+        if m.target not in before or abs(a) < PASS_LENGTH_TOL:
+            continue
+        r = (before[m.target] - m.extension) / a
+        if r >= MIN_RESPONSE:
+            g = float(min(max(1.0 / r, 1.0), MAX_PASS_GAIN))
+            if g > 1.0:
+                gains[m.target] = g
+    return gains
+
+
 def _worth_a_pass(matches) -> bool:
     """Whether any contour is still off by more than PASS_LENGTH_TOL along its bone or
     PASS_GIRTH_TOL in girth."""
     return any(abs(m.extension) > PASS_LENGTH_TOL or abs(m.girth_difference) > PASS_GIRTH_TOL for m in matches)
 
 
-def _grade_pass(pattern, mesh, x_init, tgt, skel, kw) -> dict:
+def _grade_pass(pattern, mesh, x_init, tgt, skel, kw, *, gains: dict | None = None, placed=None) -> dict:
     """One pass of Algorithm 2: contours of the drape ``x_init`` (on ``mesh``) paired with the
-    target's ``tgt``, the open curves moved and widened, projected on K, scaled back if needed,
-    and the mesh moved or re-meshed. Returns a dict: pattern, mesh, rows, matches, K (Nk, 2)
-    [m], fraction, remeshed."""
+    target's ``tgt``, the open curves moved (by the extension times ``gains[target index]``,
+    default 1) and widened, projected on K, scaled back if needed, and the mesh moved or
+    re-meshed. ``placed``: the drape's placed contours and their matches when already computed.
+    Returns a dict: pattern, mesh, rows, matches, applied (target index -> extension applied
+    [m]), K (Nk, 2) [m], fraction, remeshed."""
     import torch
 
     from unsew.meshing.sew import mesh_pattern
     from unsew.pattern.params import PatternParams
 
-    src = place_contours(x_init, mesh.faces, skel)
-    matches = match_contours(src, tgt, skel, garment_centre=x_init.mean(axis=0), **kw)
+    if placed is None:
+        src = place_contours(x_init, mesh.faces, skel)
+        matches = match_contours(src, tgt, skel, garment_centre=x_init.mean(axis=0), **kw)
+    else:
+        src, matches = placed
 
     params = PatternParams.build(pattern, mesh)
     K0 = params.K0
     C0 = params.control_points(K0).detach().cpu().numpy()
     delta = np.zeros_like(C0)
     rows = []
+    wanted = {}
     for m in matches:
         s, t = src[m.source], tgt[m.target]
+        gain = (gains or {}).get(m.target, 1.0)
+        ext = m.extension * gain
         curves = curves_of_contour(s.contour.indices, x_init, params.pattern, mesh, params.controls)
         warnings = []
         edits = []
@@ -237,9 +284,12 @@ def _grade_pass(pattern, mesh, x_init, tgt, skel, kw) -> dict:
                 continue
             share = c.length3d / total if total > 0 else 0.0
             dg = m.girth_difference * share
-            delta += curve_edit(params.pattern, C0, c, params.controls, extension=m.extension, girth_change=dg)
+            delta += curve_edit(params.pattern, C0, c, params.controls, extension=ext, girth_change=dg)
             names = "+".join(params.pattern.panels[c.panel].edges[e].label or f"edge{e}" for e in c.edges)
-            edits.append(f"{c.panel}:{names} move {m.extension * 100:+.1f} cm, widen {dg * 100:+.1f} cm")
+            how = f" (x{gain:.2f}: the drape answered the last pass in part)" if gain != 1.0 else ""
+            edits.append(f"{c.panel}:{names} move {ext * 100:+.1f} cm{how}, widen {dg * 100:+.1f} cm")
+        if edits:
+            wanted[m.target] = ext
         rows.append(_row(s, t, m, edits, warnings))
     matched_s = {m.source for m in matches}
     matched_t = {m.target for m in matches}
@@ -264,7 +314,8 @@ def _grade_pass(pattern, mesh, x_init, tgt, skel, kw) -> dict:
     remeshed = _rest_edge_stretch(uv, mesh.faces_uv, mesh.edge_length) > REMESH_STRETCH
     new_mesh = mesh_pattern(graded, edge_length=mesh.edge_length) if remeshed else _moved_mesh(mesh, graded, uv)
     return dict(pattern=graded, mesh=new_mesh, rows=rows, matches=matches, K=K.detach().cpu().numpy(),
-                fraction=float(frac), remeshed=bool(remeshed))
+                fraction=float(frac), remeshed=bool(remeshed),
+                applied={t: float(frac) * e for t, e in wanted.items()})
 
 
 def _name(c: PlacedContour | None) -> str | None:
