@@ -86,3 +86,25 @@ def test_pinned_vertices_hold_and_sewing_hold():
     out = drape(m, SimState.at_rest(x), PlaneSDF((0, -1, 0)), uv=torch.as_tensor(uv), gamma=GAMMA, density=0.1, steps=5)
     assert_close(out.x[[0, 3]], torch.as_tensor(x[[0, 3]]), atol=0.0)
     assert float(out.x[15, 1]) < -0.01
+
+
+def test_friction_eps_bounds_the_creep_on_a_slope():
+    """A sheet on a 10-degree slope (tan 10 deg = 0.18 < mu 0.3: friction should hold it) creeps
+    downhill at up to the viscous slip speed friction_eps; a 100x smaller eps creeps far less."""
+    th = np.radians(10.0)
+    normal = np.array([np.sin(th), np.cos(th), 0.0])  # the slope falls towards +x
+    m, uv, st = _sheet(6, 0.2, y=0.0)
+    x = st.x.numpy()
+    # lay the sheet on the slope, 2 mm above it (inside the contact layer)
+    e1 = np.array([np.cos(th), -np.sin(th), 0.0])
+    x = x[:, :1] * e1 + x[:, 2:3] * np.array([0.0, 0.0, 1.0]) + 0.002 * normal
+    st = SimState.at_rest(x)
+    plane = PlaneSDF((0.0, 0.0, 0.0), tuple(normal))
+
+    def creep(eps):
+        out = drape(m, st, plane, uv=uv, gamma=GAMMA, density=0.12, steps=40, friction=0.3, friction_eps=eps)
+        return float(((out.x - st.x).numpy() @ e1).mean())  # mean downhill travel [m] (e1 points downhill)
+
+    fast, slow = creep(1e-2), creep(1e-4)
+    assert fast > 1e-3  # the shipped eps lets it slide millimetres in 2 s
+    assert slow < 0.1 * fast

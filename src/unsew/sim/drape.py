@@ -60,6 +60,7 @@ def drape(
     checkpoint: bool = False,
     callback=None,
     fused: bool = True,
+    friction_eps: float = StepParams.friction_eps,
 ) -> SimState:
     """Drape the cloth for ``steps`` implicit Euler steps.
 
@@ -72,7 +73,7 @@ def drape(
         density: areal density [kg/m^2] (float or 0-d tensor).
         steps: number of steps. dt: step [s]. gravity: [m/s^2] along -Y.
         friction, contact_stiffness [N/m^4], contact_threshold [m], thickness [m], max_speed [m/s],
-        backend: see :class:`~unsew.sim.integrator.StepParams`.
+        backend, friction_eps [m/s]: see :class:`~unsew.sim.integrator.StepParams`.
         checkpoint: recompute each step in the backward pass instead of storing it (less
             memory, about one more forward in time).
         callback: called as ``callback(k, state)`` after each step k (e.g. a progress bar).
@@ -93,6 +94,7 @@ def drape(
         dt=dt,
         gravity=gravity,
         friction=friction,
+        friction_eps=friction_eps,
         contact_stiffness=contact_stiffness,
         contact_threshold=contact_threshold,
         thickness=thickness,
