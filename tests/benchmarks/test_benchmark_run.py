@@ -54,7 +54,8 @@ def test_small_fit_beats_base(tmp_path):
     from unsew.fit.config import FitConfig
 
     mc, run = _module("make_cases"), _module("run")
-    case = mc.make_case(tmp_path / "cases", "shorts", 3, edge_length=0.04)  # small_slim body
+    case = mc.make_case(tmp_path / "cases", "shorts", 3, edge_length=0.04, sew_steps=SMALL["sew_steps"],
+                        settle_steps=SMALL["settle_steps"])  # small_slim body
     assert (case / "body.obj").is_file() and (case / "skeleton.json").is_file()
     rec = run.fit_case(case, tmp_path / "results" / "full" / case.name, FitConfig(**SMALL), log=lambda s: None)
     v = run._stage_values(rec)

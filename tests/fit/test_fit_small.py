@@ -19,7 +19,8 @@ def small_case(tmp_path_factory):
     from unsew.fit.demo import make_truth_case
 
     d = tmp_path_factory.mktemp("case") / "tshirt"
-    return make_truth_case(d, edge_length=SMALL["edge_length"])
+    return make_truth_case(d, edge_length=SMALL["edge_length"], sew_steps=SMALL["sew_steps"],
+                           settle_steps=SMALL["settle_steps"])
 
 
 @pytest.fixture(scope="module")
@@ -114,3 +115,17 @@ def test_material_parameterisation_stays_valid():
     for t in ([5, 9, -5, 3, -8], [-5, -9, 5, -3, 8], [0, 40, 0, 0, 0]):
         g = gamma_of(torch.tensor(t, dtype=torch.float64))
         check_gamma(g)  # positive definite membrane stiffness, non-negative bending
+
+
+def test_pattern_start_holds_the_control_points(small_case):
+    """Before cfg.pattern_start the control points do not move: with it past the budget the fit
+    returns the graded pattern unchanged."""
+    import numpy as np
+
+    from unsew.fit.fit import fit
+    from unsew.io.case import load_case
+
+    cfg = FitConfig(**{**SMALL, "iterations": 2, "pattern_start": 5, "optimize_material": False, "report": False})
+    r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
+    for name, panel in r.graded_pattern.panels.items():
+        np.testing.assert_allclose(r.pattern.panels[name].vertices, panel.vertices, atol=1e-12)

@@ -49,6 +49,7 @@ class FitConfig:
     lr_material: float = 5e-2  #: Adam learning rate for log-material parameters [-]
     betas: tuple[float, float] = (0.9, 0.999)  #: Adam betas [-]
     material_start: int = 20  #: iteration at which the material joins the variables [-]
+    pattern_start: int = 0  #: iteration at which the control points K start to move [-] (0: from the first)
     optimize_material: bool = True  #: optimize Gamma = (H00, H01, H11, H22, k) (ablation: False)
     curvature_weighted: bool = True  #: curvature-weighted Chamfer, eq. 7 (ablation: plain Chamfer)
     lambda_open: float = 0.1  #: weight of the open-contour Chamfer, eq. 6 [-]

@@ -48,15 +48,16 @@ def other_body():
 
 
 def make_truth_case(case_dir: Path, *, truth: DemoTruth = DEMO_TRUTH, edge_length: float = 0.03,
-                    progress=None) -> Path:
+                    progress=None, **dressing) -> Path:
     """Write the demo's case folder (FORMATS.md): the true t-shirt draped on the default body,
-    with pattern_gt.json. Returns the folder."""
+    with pattern_gt.json. ``dressing``: sew_steps, settle_steps, dt of the target's drape (default:
+    FitConfig's, see :func:`unsew.fit.synthetic.make_truth_case`). Returns the folder."""
     from unsew.fit.synthetic import Alteration
     from unsew.fit.synthetic import make_truth_case as _make
 
     alt = Alteration({"hem": (truth.hem_length, truth.hem_girth), "sleeves": (truth.sleeve_length, 0.0)},
                      truth.material)
-    return _make(case_dir, garment="tshirt", alteration=alt, edge_length=edge_length, progress=progress)
+    return _make(case_dir, garment="tshirt", alteration=alt, edge_length=edge_length, progress=progress, **dressing)
 
 
 def run_demo(out: Path, *, cfg=None, progress: bool = True, log=None) -> dict:
@@ -75,7 +76,8 @@ def run_demo(out: Path, *, cfg=None, progress: bool = True, log=None) -> dict:
     log(f"[1/3] making the target: a t-shirt {DEMO_TRUTH.hem_length * 100:.0f} cm longer, hem "
         f"{DEMO_TRUTH.hem_girth * 100:.0f}% wider, sleeves {DEMO_TRUTH.sleeve_length * 100:.0f} cm longer, "
         f"in {DEMO_TRUTH.material} (the fit starts from the base t-shirt in {cfg.material})")
-    case_dir = make_truth_case(out / "case", edge_length=cfg.edge_length)
+    case_dir = make_truth_case(out / "case", edge_length=cfg.edge_length, sew_steps=cfg.sew_steps,
+                               settle_steps=cfg.settle_steps, dt=cfg.dt)
     t_case = time.perf_counter() - t0
     log("[2/3] fitting the target from the base t-shirt")
     case = load_case(case_dir)

@@ -288,7 +288,8 @@ def fit(
                 best = {"loss": total, "K": K.detach().clone(), "theta": theta.detach().clone(),
                         "x": x.detach().clone(), "it": it, "mat_on": mat_on}
             K_before = K.detach().clone()
-            opt_k.step()
+            if it >= cfg.pattern_start:
+                opt_k.step()
             if mat_on:
                 opt_m.step()
             # A step that inverts pattern triangles, or flattens one below MIN_TRIANGLE_QUALITY,
@@ -302,7 +303,7 @@ def fit(
                                  {"k": opt_k.state_dict(), "m": opt_m.state_dict()}, x_prev.clone(), history, best)
                 _save_checkpoint(checkpoint, graded, mesh, x_start, x_base, mesh_base, grade_table, state)
             h = history["total"]
-            if len(h) > cfg.patience and it >= cfg.material_start + cfg.patience:
+            if len(h) > cfg.patience and it >= max(cfg.material_start, cfg.pattern_start) + cfg.patience:
                 old = min(h[: -cfg.patience])
                 if (old - min(h[-cfg.patience:])) < cfg.tol * abs(old):
                     converged = True

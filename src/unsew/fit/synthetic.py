@@ -60,10 +60,19 @@ def make_truth_pattern(garment: str, alteration: Alteration, *, body=None):
 
 
 def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alteration | None = None,
-                    body=None, body_meta="default", edge_length: float = 0.03, progress=None) -> Path:
+                    body=None, body_meta="default", edge_length: float = 0.03, progress=None,
+                    sew_steps: int | None = None, settle_steps: int | None = None, dt: float | None = None) -> Path:
     """Drape the true pattern and write the case folder. ``body``: a Body (default body when None);
     ``body_meta``: what meta.json says of the body ("default"), or None to write body.obj and
-    skeleton.json into the case. Returns the folder."""
+    skeleton.json into the case. Returns the folder.
+
+    The target is dressed the way a fit dresses its patterns: ``sew_steps``, ``settle_steps`` and
+    ``dt`` default to :class:`~unsew.fit.config.FitConfig`'s (pass a fit's own when it differs).
+    Dressed with dress()'s shorter defaults (60 + 20 steps against 80 + 40), a target was an
+    earlier snapshot of a garment that is still settling and creeping: the true pattern in the
+    true fabric, dressed like a fit, lay 5.7 mm from its t-shirt target and 6.7 mm from its dress
+    target (benchmarks/bench_fabric_gap.py at eefb700), a simulator gap by accident.
+    """
     from unsew.body.body import default_body
     from unsew.body.skeleton import save_skeleton
     from unsew.dress import dress
@@ -74,7 +83,13 @@ def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alte
     alteration = alteration or DEFAULT_ALTERATIONS[garment]
     body = body if body is not None else default_body()
     p = make_truth_pattern(garment, alteration, body=body)
-    d = dress(p, body, edge_length=edge_length, material=alteration.material, progress=progress)
+    from unsew.fit.config import FitConfig
+
+    fc = FitConfig()
+    d = dress(p, body, edge_length=edge_length, material=alteration.material, progress=progress,
+              sew_steps=fc.sew_steps if sew_steps is None else sew_steps,
+              settle_steps=fc.settle_steps if settle_steps is None else settle_steps,
+              dt=fc.dt if dt is None else dt)
     meta = {"garment": garment, "units": "m", "up": "y", "front": "z", "truth": alteration.as_dict()}
     with atomic_dir(case_dir, overwrite=True) as tmp:
         write_obj(tmp / "target.obj", np.asarray(d.x), d.mesh.faces, header=f"unsew known-truth target ({garment})")
