@@ -119,8 +119,13 @@ def test_cli_bad_cases_folder_is_one_line(tmp_path):
     assert p.returncode == 2 and p.stderr.strip().count("\n") == 0 and "does not exist" in p.stderr
 
 
+# The driver restores Python's Ctrl-C handler: a process started in the background by a
+# non-interactive shell (a CI runner, `cmd &`) inherits SIGINT ignored, and then the interrupt
+# below would never reach it (the batch ran to FINISHED in such a run).
 _DRIVER = """
+import signal
 import sys
+signal.signal(signal.SIGINT, signal.default_int_handler)
 sys.path.insert(0, {tests!r})
 from batch.fakes import fake_fit
 from unsew.batch import run_batch
