@@ -29,13 +29,20 @@ os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--garments", nargs="+", default=["shorts", "tshirt"])
+    ap.add_argument("--garments", nargs="+", default=["shorts", "tshirt"],
+                    choices=["tshirt", "dress", "pants", "shorts", "skirt"])
     ap.add_argument("--eps", nargs="+", type=float, default=[1e-2, 1e-3, 1e-4], help="friction_eps values [m/s]")
     ap.add_argument("--chunks", type=int, default=12)
     ap.add_argument("--chunk-steps", type=int, default=40)
     ap.add_argument("--edge-length", type=float, default=0.025)
     ap.add_argument("--material", default="cotton")
     args = ap.parse_args()
+    if min(args.eps) <= 0 or args.chunks < 1 or args.chunk_steps < 1:
+        ap.error("--eps values, --chunks and --chunk-steps must be positive")
+    from unsew.sim.material import MATERIALS
+
+    if args.material not in MATERIALS:
+        ap.error(f"--material {args.material!r}: not a library material ({', '.join(MATERIALS)})")
 
     import numpy as np
     import torch

@@ -31,6 +31,13 @@ def main() -> None:
     ap.add_argument("--start", default="cotton", help="the fit's starting material")
     ap.add_argument("--samples", type=int, default=20000)
     args = ap.parse_args()
+    from unsew.sim.material import MATERIALS
+
+    if args.start not in MATERIALS:
+        ap.error(f"--start {args.start!r}: not a library material ({', '.join(MATERIALS)})")
+    for d in args.cases:
+        if not (Path(d) / "meta.json").is_file():
+            ap.error(f"{d}: not a case folder (no meta.json)")
 
     import numpy as np
     import torch
@@ -41,14 +48,17 @@ def main() -> None:
     from unsew.fit.config import FitConfig
     from unsew.io.case import load_case
     from unsew.metrics.surface import chamfer_mm
-    from unsew.sim.material import MATERIALS
+    from unsew.errors import InputError
 
     cfg = FitConfig()
     print(f"{'case':<12} {'truth fabric':<12} {'drape of the true pattern in':<40} {'Chamfer mm':>10}")
     for d in args.cases:
         d = Path(d)
         truth = json.loads((d / "meta.json").read_text()).get("truth", {}).get("material")
-        case = load_case(d)
+        try:
+            case = load_case(d)
+        except InputError as exc:
+            raise SystemExit(f"{d}: {exc}") from None
         if case.pattern_gt is None or truth not in MATERIALS:
             print(f"{d.name:<12} skipped: no pattern_gt.json or no known truth.material in meta.json")
             continue

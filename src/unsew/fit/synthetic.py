@@ -69,13 +69,15 @@ def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alte
     The target is dressed the way a fit dresses its patterns: ``sew_steps``, ``settle_steps`` and
     ``dt`` default to :class:`~unsew.fit.config.FitConfig`'s (pass a fit's own when it differs).
     Dressed with dress()'s shorter defaults (60 + 20 steps against 80 + 40), a target was an
-    earlier snapshot of a garment that is still settling and creeping: the true pattern in the
-    true fabric, dressed like a fit, lay 5.7 mm from its t-shirt target and 6.7 mm from its dress
-    target (benchmarks/bench_fabric_gap.py at eefb700), a simulator gap by accident.
+    earlier snapshot of a garment that is still settling and creeping: the true skirt pattern of
+    benchmark case skirt_02 in its true fabric, dressed like a fit, lay 2.89 mm from its target
+    then and 0.00 mm now (benchmarks/bench_fabric_gap.py). (The t-shirt and dress cases stay 5-7
+    mm off either way: their folds follow rounding-level differences of the loaded body.)
     """
     from unsew.body.body import default_body
     from unsew.body.skeleton import save_skeleton
     from unsew.dress import dress
+    from unsew.fit.config import FitConfig
     from unsew.io.atomic import atomic_dir
     from unsew.io.garmentcode import save_pattern
     from unsew.io.mesh import write_obj
@@ -83,8 +85,6 @@ def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alte
     alteration = alteration or DEFAULT_ALTERATIONS[garment]
     body = body if body is not None else default_body()
     p = make_truth_pattern(garment, alteration, body=body)
-    from unsew.fit.config import FitConfig
-
     fc = FitConfig()
     d = dress(p, body, edge_length=edge_length, material=alteration.material, progress=progress,
               sew_steps=fc.sew_steps if sew_steps is None else sew_steps,
