@@ -199,3 +199,23 @@ def test_cli_symmetry(tmp_path):
     r = subprocess.run([sys.executable, "-m", "unsew", "pattern", "symmetry", str(tmp_path / "missing.json")],
                        capture_output=True, text=True)
     assert r.returncode != 0 and "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1
+
+
+def test_paired_panel_follows_the_source_translation():
+    """A rigid copy moves with its source: translating the source's K by t translates the copy by
+    M t (a copy pinned at its own centroid would be shifted against its source, and placed and
+    sewn at another height)."""
+    v = nonconvex_panel().panels["L"].vertices.copy()
+    v[4, 1] = 0.6
+    w = (v - v.mean(0)) @ _rot(1.1).T + [1.0, 2.0]
+    pat = Pattern("two", {"H": Panel("H", v, loop_edges(6)), "G": Panel("G", np.roll(w, 2, axis=0), loop_edges(6))})
+    s = detect_symmetry(pat)
+    (pr,) = s.pairs
+    t = np.array([0.03, -0.05])
+    src = [i for i, g in enumerate(s.k_indices) if s.panel_names[int(np.searchsorted(s.offsets, g, side="right") - 1)] == pr.source]
+    K = s.k0()
+    K[src] += t
+    C = s.rebuild(K)
+    pt = s.panel_names.index(pr.target)
+    moved = C[s.offsets[pt] : s.offsets[pt + 1]] - s.c0[s.offsets[pt] : s.offsets[pt + 1]]
+    assert_close(moved, np.tile(pr.matrix @ t, (len(moved), 1)), atol=1e-12)

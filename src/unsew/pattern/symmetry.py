@@ -23,10 +23,13 @@ built once by :meth:`Symmetry.rebuild_map`:
 - a mirrored point is the reflection of its partner about the fixed axis (point a0, unit
   direction d): ``c' = a0 + H (c - a0) + r`` with ``H = 2 d d^T - I``;
 - an on-axis point is projected on the axis: ``c = a0 + d d^T (k - a0) + r``;
-- a paired panel's points follow the source panel's: ``c_q,i = M (c_p,perm[i] - mean(C_p)) + o_i``.
+- a paired panel's points follow the source panel's, translation included:
+  ``c_q,i = M c_p,perm[i] + o_i``. (Recentring on the source's current centroid instead would pin
+  the copy's centroid: grading a skirt's front hem and waist then shifted the back panel 1.8 cm
+  against the front in 2D, so the two were placed, and sewn, at different heights.)
 The constant offsets ``r``, ``o`` are chosen so that ``L @ K0 + b`` equals the original control
-points exactly; for an exactly symmetric pattern they are the partner's centroid (``o``) and zero
-(``r``), and for a pattern symmetric only within the tolerance they keep its small asymmetry.
+points exactly; for an exactly symmetric pattern ``r`` is zero, and for a pattern symmetric only
+within the tolerance both keep its small asymmetry.
 """
 
 from __future__ import annotations
@@ -148,14 +151,11 @@ class Symmetry:
             n = int(self.offsets[ps + 1]) - os_
             Ls = L[2 * os_ : 2 * (os_ + n)].reshape(n, 2, -1)
             bs = b[2 * os_ : 2 * (os_ + n)].reshape(n, 2)
-            Lm, bm = Ls.mean(axis=0), bs.mean(axis=0)
-            cm = self.c0[os_ : os_ + n].mean(axis=0)
             M = pr.matrix
             for i in range(n):
                 g, s = ot + i, os_ + int(pr.perm[i])
-                L[2 * g : 2 * g + 2, :] = M @ (Ls[pr.perm[i]] - Lm)
-                off = self.c0[g] - M @ (self.c0[s] - cm)
-                b[2 * g : 2 * g + 2] = M @ (bs[pr.perm[i]] - bm) + off
+                L[2 * g : 2 * g + 2, :] = M @ Ls[pr.perm[i]]
+                b[2 * g : 2 * g + 2] = M @ bs[pr.perm[i]] + self.c0[g] - M @ self.c0[s]
                 done[g] = True
         if not done.all():  # pragma: no cover - a bug, not a user error
             raise AssertionError(f"control points {np.flatnonzero(~done).tolist()} not rebuilt")
