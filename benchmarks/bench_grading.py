@@ -10,12 +10,16 @@ and their ratio, and the drape's own noise floor: the target pattern draped agai
 ``--floor-scale`` times the edge length, against T (folds of loose cloth land elsewhere on
 another mesh; a graded drape cannot be expected much closer to T than that).
 
+``--targets N`` drapes the target pattern on N meshes (edge length times 1, 0.985, 1.015, 0.97,
+1.03, ...) and grades the base to each: one loose drape's folds are chaotic (a millimetre moves
+them), so a single ratio is one sample; the summary prints each and their mean.
+
 Drapes: the simulator (``--drape sim``: ``unsew.dress.dress``: place, sew, settle) or the panels laid flat at
 their placement (``--drape flat``: no physics, a check of the geometry alone). ``auto`` uses the
 simulator when ``unsew.body.placement.place_garment`` exists.
 
 Run: OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_grading.py [--drape auto|sim|flat]
-     [--edge-length 0.03] [--garments tshirt pants ...] [--passes N]
+     [--edge-length 0.03] [--garments tshirt pants ...] [--passes N] [--targets N]
 """
 
 from __future__ import annotations
@@ -25,6 +29,9 @@ import os
 import time
 
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+#: edge length factors of the target meshes (``--targets``)
+TARGET_SCALES = (1.0, 0.985, 1.015, 0.97, 1.03)
 
 #: garment -> {group: (length change [m], relative girth change)}
 CHANGES = {
@@ -53,7 +60,11 @@ def main() -> None:
     ap.add_argument("--samples", type=int, default=20000, help="Chamfer samples per mesh")
     ap.add_argument("--passes", type=int, default=None, help="grading passes (default: grade()'s)")
     ap.add_argument("--floor-scale", type=float, default=0.97, help="edge length factor of the noise-floor mesh (0: skip)")
+    ap.add_argument("--no-hold-top", action="store_true", help="let a waist edit move the panel's placement (grade(hold_top=False))")
+    ap.add_argument("--targets", type=int, default=1, help="target drapes per garment, on meshes of slightly different edge length")
     args = ap.parse_args()
+    if args.targets < 1 or args.targets > len(TARGET_SCALES):
+        ap.error(f"--targets must be 1 to {len(TARGET_SCALES)}")
 
     import numpy as np
     import torch
@@ -90,50 +101,61 @@ def main() -> None:
     print("-" * len(head))
     summary = []
     for g in args.garments:
-        t0 = time.perf_counter()
         base = make_base_pattern(g)
         groups = alteration_groups(base)
         target = base
         for key, (dl, dg) in CHANGES[g].items():
             if key in groups:
                 target = alter_pattern(target, groups[key], length=dl, girth=dg)
-        tm = mesh_pattern(target, edge_length=args.edge_length)
-        tx = drape_fn(target, tm, body)
-        kw = {} if args.passes is None else {"passes": args.passes}
-        res = grade(base, body, tx, tm.faces, edge_length=args.edge_length, drape_fn=drape_fn, **kw)
-        sk = body.skeleton
-        after = place_contours(res.x_draped, res.mesh.faces, sk)
-        tgt = place_contours(tx, tm.faces, sk)
-        src = place_contours(res.x_init, res.mesh_init.faces, sk)
-        for m in res.matches:
-            s, t = src[m.source], tgt[m.target]
-            # the graded contour that corresponds to the target one: same part, nearest centre
-            cands = [a for a in after if a.part == s.part] or after
-            a = min(cands, key=lambda a: float(np.linalg.norm(a.centre - t.centre)))
-            known = _known(g, s.part)
-            res_l = abs(a.position - t.position) if a.bone is not None and a.bone.part == t.part else float(
-                np.linalg.norm(a.centre - t.centre)
-            )
-            print(
-                f"{g:<8} {s.part:<10} {known[0] * 100:>+11.1f} {known[1] * 100:>+10.0f} {m.axial_distance * 100:>+9.1f} "
-                f"{m.girth_difference * 100:>+9.1f} {res_l * 100:>9.2f} {abs(a.length - t.length) * 100:>9.2f}"
-            )
-        for r in res.table:
-            if r["source_contour"] is None or r["target_contour"] is None:
-                print(f"{g:<8} unmatched: {r['source_contour'] or r['target_contour']}")
-        before = chamfer_mm(res.x_init, res.mesh_init.faces, tx, tm.faces, n_samples=args.samples).mean_mm
-        graded = chamfer_mm(res.x_draped, res.mesh.faces, tx, tm.faces, n_samples=args.samples).mean_mm
-        floor = float("nan")
-        if args.floor_scale > 0:
-            fm = mesh_pattern(target, edge_length=args.edge_length * args.floor_scale)
-            floor = chamfer_mm(drape_fn(target, fm, body), fm.faces, tx, tm.faces, n_samples=args.samples).mean_mm
-        summary.append((g, before, graded, floor, res.fraction, res.remeshed, time.perf_counter() - t0))
+        bm = mesh_pattern(base, edge_length=args.edge_length)
+        bx = drape_fn(base, bm, body)
+        for ti, scale in enumerate(TARGET_SCALES[: args.targets]):
+            t0 = time.perf_counter()
+            tm = mesh_pattern(target, edge_length=args.edge_length * scale)
+            tx = drape_fn(target, tm, body)
+            kw = {"hold_top": not args.no_hold_top}
+            if args.passes is not None:
+                kw["passes"] = args.passes
+            res = grade(base, body, tx, tm.faces, edge_length=args.edge_length, drape_fn=drape_fn, mesh=bm, x_init=bx, **kw)
+            sk = body.skeleton
+            after = place_contours(res.x_draped, res.mesh.faces, sk)
+            tgt = place_contours(tx, tm.faces, sk)
+            src = place_contours(res.x_init, res.mesh_init.faces, sk)
+            for m in res.matches:
+                s, t = src[m.source], tgt[m.target]
+                # the graded contour that corresponds to the target one: same part, nearest centre
+                cands = [a for a in after if a.part == s.part] or after
+                a = min(cands, key=lambda a: float(np.linalg.norm(a.centre - t.centre)))
+                known = _known(g, s.part)
+                res_l = abs(a.position - t.position) if a.bone is not None and a.bone.part == t.part else float(
+                    np.linalg.norm(a.centre - t.centre)
+                )
+                print(
+                    f"{g:<8} {s.part:<10} {known[0] * 100:>+11.1f} {known[1] * 100:>+10.0f} {m.axial_distance * 100:>+9.1f} "
+                    f"{m.girth_difference * 100:>+9.1f} {res_l * 100:>9.2f} {abs(a.length - t.length) * 100:>9.2f}"
+                )
+            for r in res.table:
+                if r["source_contour"] is None or r["target_contour"] is None:
+                    print(f"{g:<8} unmatched: {r['source_contour'] or r['target_contour']}")
+            before = chamfer_mm(res.x_init, res.mesh_init.faces, tx, tm.faces, n_samples=args.samples).mean_mm
+            graded = chamfer_mm(res.x_draped, res.mesh.faces, tx, tm.faces, n_samples=args.samples).mean_mm
+            floor = float("nan")
+            if args.floor_scale > 0:
+                fm = mesh_pattern(target, edge_length=args.edge_length * scale * args.floor_scale)
+                floor = chamfer_mm(drape_fn(target, fm, body), fm.faces, tx, tm.faces, n_samples=args.samples).mean_mm
+            summary.append((g, ti, before, graded, floor, res.fraction, res.remeshed, time.perf_counter() - t0))
     print()
-    print(f"{'garment':<8} {'Chamfer base mm':>15} {'graded mm':>10} {'ratio':>6} {'floor mm':>9} {'floor ratio':>11} "
-          f"{'edit':>5} {'remeshed':>8} {'time s':>7}")
-    for g, b, a, fl, f, rm, dt in summary:
+    print(f"{'garment':<8} {'target':>6} {'Chamfer base mm':>15} {'graded mm':>10} {'ratio':>6} {'floor mm':>9} "
+          f"{'floor ratio':>11} {'edit':>5} {'remeshed':>8} {'time s':>7}")
+    for g, ti, b, a, fl, f, rm, dt in summary:
         r = (lambda v: v / b if b > 0 else float("nan"))  # noqa: E731
-        print(f"{g:<8} {b:>15.1f} {a:>10.1f} {r(a):>6.2f} {fl:>9.1f} {r(fl):>11.2f} {f:>5.2f} {str(rm):>8} {dt:>7.1f}")
+        print(f"{g:<8} {ti:>6} {b:>15.1f} {a:>10.1f} {r(a):>6.2f} {fl:>9.1f} {r(fl):>11.2f} {f:>5.2f} {str(rm):>8} {dt:>7.1f}")
+    if args.targets > 1:
+        for g in args.garments:
+            rows = [x for x in summary if x[0] == g]
+            b, a, fl = (float(np.mean([x[k] for x in rows])) for k in (2, 3, 4))
+            ratios = [x[3] / x[2] for x in rows if x[2] > 0]
+            print(f"{g:<8} {'mean':>6} {b:>15.1f} {a:>10.1f} {float(np.mean(ratios)):>6.2f} {fl:>9.1f} {fl / b:>11.2f}")
     print("floor: the target pattern draped on a second mesh, against the target drape (the drape's own noise)")
 
 

@@ -311,3 +311,32 @@ def test_later_pass_scales_by_the_drapes_measured_response():
     assert 4 not in gains  # 10 % response
     before[4], after[4] = m(4, 0.10), m(4, 0.075)  # 25 % response: capped
     assert response_gains(before, applied, after)[4] == MAX_PASS_GAIN
+
+
+def test_hold_tops_moves_the_length_change_to_the_hem():
+    """A skirt panel whose waist curve is edited upward is translated back along its upright
+    direction: the waist keeps its placed height, the hem takes the whole change; a panel whose
+    top is not an edited curve is left as edited."""
+    from unsew.grading.grade import _hold_tops
+    from unsew.pattern.controls import find_control_points
+
+    p = make_base_pattern("skirt")
+    controls = find_control_points(p)
+    C0 = controls.positions
+    front = controls.panel_names.index("front")
+    back = controls.panel_names.index("back")
+    cf = controls.of_panel(front)
+    panel = p.panels["front"]
+    h = panel.to_world(C0[cf])[:, 1]
+    top = [int(g) for g, y in zip(cf, h) if y >= h.max() - 1e-9]
+    bottom = [int(g) for g in cf if g not in top]
+    up = panel.rotation_matrix()[1, :2] / np.linalg.norm(panel.rotation_matrix()[1, :2])
+    delta = np.zeros_like(C0)
+    delta[top] += 0.035 * up  # the waist curve moved up 3.5 cm
+    delta[bottom] -= 0.07 * up  # the hem down 7 cm
+    cb = controls.of_panel(back)
+    delta[cb] += 0.01  # the back panel edited, but not on a curve through its top
+    out = _hold_tops(p, controls, C0, delta, {front: [set(top)], back: [set()]})
+    assert np.allclose(out[top] @ up, 0.0, atol=1e-12)
+    assert np.allclose(out[bottom] @ up, -0.105, atol=1e-12)  # the panel grew by the same 10.5 cm
+    assert np.allclose(out[cb], delta[cb])
