@@ -9,6 +9,7 @@ pattern, the recovered material, iterations and time.
 
     OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_fit.py [--garments tshirt pants ...]
         [--edge-length 0.02] [--iterations 100] [--out bench-out/fit] [--variants noise,decimate,cm]
+        [--set KEY=VALUE ...]
 
 --variants also fits the t-shirt target with 1 mm noise, decimated to half its vertices, given
 in cm (read back with --units cm), on the default body posed with the left arm raised 25 degrees
@@ -80,6 +81,8 @@ def main(argv=None):
     ap.add_argument("--iterations", type=int, default=100)
     ap.add_argument("--out", default="bench-out/fit")
     ap.add_argument("--variants", default="", help="comma list of noise,decimate,cm,pose,body (t-shirt only)")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="override a FitConfig option for every fit (repeatable)")
     args = ap.parse_args(argv)
 
     import torch
@@ -90,6 +93,25 @@ def main(argv=None):
 
     out = Path(args.out)
     cfg = FitConfig(edge_length=args.edge_length, iterations=args.iterations)
+    if args.set:
+        import dataclasses
+
+        from run import yaml_value
+
+        from unsew.errors import InputError
+        from unsew.fit.config import load_config
+
+        sets = {}
+        for item in args.set:
+            key, eq, val = item.partition("=")
+            if not eq:
+                sys.exit(f"--set {item!r}: expected KEY=VALUE")
+            sets[key.strip()] = yaml_value(val)
+        try:
+            cfg = load_config(defaults=dataclasses.asdict(cfg) | sets)
+        except InputError as exc:
+            sys.exit(f"--set: {exc}")
+        print("overrides: " + ", ".join(f"{k}={v}" for k, v in sets.items()))
     rows = []
     for g in args.garments:
         case = make_truth_case(out / "cases" / g, garment=g, edge_length=args.edge_length)

@@ -129,3 +129,4 @@ def test_pattern_start_holds_the_control_points(small_case):
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
     for name, panel in r.graded_pattern.panels.items():
         np.testing.assert_allclose(r.pattern.panels[name].vertices, panel.vertices, atol=1e-12)
+

@@ -55,6 +55,7 @@ class FitConfig:
     lambda_open: float = 0.1  #: weight of the open-contour Chamfer, eq. 6 [-]
     lambda_seam: float = 1.0  #: weight of the seam-length loss, eq. 8 [-] (paper: 0.01; see module docstring)
     lambda_mat: float = 0.01  #: weight of the material range penalty [-]
+    lambda_prior: float = 0.0  #: weight of the pull towards the start (graded) pattern: mean squared 2D rest-vertex move [m^2] (0: off, the paper's loss) [-]
     seam_loss: bool = True  #: include the seam loss (ablation: False)
     tol: float = 1e-3  #: stop when the loss changed by less than this fraction over `patience` iterations [-]
     patience: int = 15  #: iterations over which convergence is judged [-]
