@@ -130,3 +130,15 @@ def test_pattern_start_holds_the_control_points(small_case):
     for name, panel in r.graded_pattern.panels.items():
         np.testing.assert_allclose(r.pattern.panels[name].vertices, panel.vertices, atol=1e-12)
 
+
+
+def test_prior_term_is_wired_in(small_case):
+    """With lambda_prior the loss carries the pull towards the graded pattern: zero at the first
+    iterate (the graded pattern itself), positive once the control points moved."""
+    from unsew.fit.fit import fit
+    from unsew.io.case import load_case
+
+    cfg = FitConfig(**{**SMALL, "iterations": 2, "optimize_material": False, "report": False, "lambda_prior": 1.0})
+    r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
+    assert r.history["prior"][0] == 0.0
+    assert r.history["prior"][1] > 0.0

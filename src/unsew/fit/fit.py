@@ -157,6 +157,7 @@ def fit(
     from unsew.losses.curvature import curvature_weights
     from unsew.losses.material import loss_material
     from unsew.losses.seam import loss_seam, seam_segment_pairs
+    from unsew.losses.prior import loss_prior
     from unsew.pattern.params import PatternParams, check_inverted
     from unsew.sim.drape import drape
     from unsew.sim.material import Material
@@ -274,7 +275,7 @@ def fit(
             l_open = loss_open_contours(x, contours_x, T, contours_t) if contours_t else x.sum() * 0
             l_seam = loss_seam(uv, pairs=seam_pairs) if cfg.seam_loss else uv.sum() * 0
             l_mat = loss_material(gamma)
-            l_prior = ((uv - uv_start) ** 2).sum(dim=1).mean() if cfg.lambda_prior > 0 else uv.sum() * 0
+            l_prior = loss_prior(uv, uv_start) if cfg.lambda_prior > 0 else uv.sum() * 0
             loss = (l_cf + cfg.lambda_open * l_open + cfg.lambda_seam * l_seam + cfg.lambda_mat * l_mat
                     + cfg.lambda_prior * l_prior)
             if not torch.isfinite(loss):
