@@ -52,3 +52,14 @@ def test_precedence_flags_over_file_over_defaults(tmp_path):
     p.write_text("iterations: 9\nsteps: 11\n")
     c = load_config(p, defaults={"iterations": 30, "steps": 12, "edge_length": 0.03}, steps=13)
     assert (c.iterations, c.steps, c.edge_length) == (9, 13, 0.03)
+
+
+def test_material_params_lists_entries_of_gamma():
+    from unsew.errors import InputError
+    from unsew.fit.config import load_config, material_mask
+
+    assert material_mask("H00,H01,H11,H22,k") == (True,) * 5
+    assert material_mask(" k , H22") == (False, False, False, True, True)
+    for bad in ("", "k,H33", "bend"):
+        with pytest.raises(InputError, match="material_params"):
+            load_config(material_params=bad)

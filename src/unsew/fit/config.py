@@ -51,6 +51,7 @@ class FitConfig:
     material_start: int = 20  #: iteration at which the material joins the variables [-]
     pattern_start: int = 0  #: iteration at which the control points K start to move [-] (0: from the first)
     optimize_material: bool = True  #: optimize Gamma = (H00, H01, H11, H22, k) (ablation: False)
+    material_params: str = "H00,H01,H11,H22,k"  #: which entries of Gamma the material fit moves (comma list; the others keep the start material's value, H01 its ratio to sqrt(H00 H11))
     curvature_weighted: bool = True  #: curvature-weighted Chamfer, eq. 7 (ablation: plain Chamfer)
     lambda_open: float = 0.1  #: weight of the open-contour Chamfer, eq. 6 [-]
     lambda_seam: float = 1.0  #: weight of the seam-length loss, eq. 8 [-] (paper: 0.01; see module docstring)
@@ -142,3 +143,18 @@ def _check(cfg: FitConfig) -> None:
         raise InputError("learning rates must be positive")
     if not 0 < cfg.lr_decay <= 1:
         raise InputError(f"lr_decay {cfg.lr_decay} must be in (0, 1]")
+    material_mask(cfg.material_params)
+
+
+#: Names of the entries of Gamma, in order (unsew.sim.material.Material.gamma()).
+GAMMA_NAMES = ("H00", "H01", "H11", "H22", "k")
+
+
+def material_mask(spec: str) -> tuple[bool, ...]:
+    """Which entries of Gamma a ``material_params`` list (e.g. ``"H22,k"``) frees, in GAMMA_NAMES
+    order. Raises InputError on an unknown or empty list."""
+    names = [n.strip() for n in str(spec).split(",") if n.strip()]
+    bad = sorted(set(names) - set(GAMMA_NAMES))
+    if bad or not names:
+        raise InputError(f"material_params {spec!r} must be a comma list of {', '.join(GAMMA_NAMES)}")
+    return tuple(n in names for n in GAMMA_NAMES)

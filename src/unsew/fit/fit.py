@@ -23,7 +23,7 @@ from typing import Callable
 import numpy as np
 
 from unsew.errors import InputError
-from unsew.fit.config import FitConfig
+from unsew.fit.config import FitConfig, material_mask
 from unsew.tolerances import MIN_TRIANGLE_QUALITY
 
 __all__ = ["FitResult", "fit", "base_pattern_for", "FitState"]
@@ -235,6 +235,7 @@ def fit(
 
     K = params.K0.detach().clone().to(dev).requires_grad_(True)
     theta, gamma_of = _material_params(gamma0)
+    free_mat = torch.tensor(material_mask(cfg.material_params), dtype=theta.dtype, device=theta.device)
     opt_k = torch.optim.Adam([K], lr=cfg.lr, betas=cfg.betas)
     opt_m = torch.optim.Adam([theta], lr=cfg.lr_material, betas=cfg.betas)
     x_prev = torch.as_tensor(np.asarray(x_start), dtype=torch.float64, device=dev)
@@ -297,6 +298,8 @@ def fit(
             if it >= cfg.pattern_start:
                 opt_k.step()
             if mat_on:
+                if theta.grad is not None:
+                    theta.grad.mul_(free_mat)  # entries left out of cfg.material_params stay put
                 opt_m.step()
             # A step that inverts pattern triangles, or flattens one below MIN_TRIANGLE_QUALITY,
             # is shortened (halved towards the previous K) until none does.
@@ -336,7 +339,8 @@ def fit(
         converged=converged, x_graded=np.asarray(x_start), x_base=x_base, params=params,
         extra={"best_iteration": best["it"], "material_fitted": bool(best.get("mat_on")),
                "material0": material0, "base_mesh": mesh_base,
-               "material_start_iteration": cfg.material_start if cfg.optimize_material else None},
+               "material_start_iteration": cfg.material_start if cfg.optimize_material else None,
+               "gamma_last": [float(v) for v in gamma_of(theta.detach()).cpu()]},
     )
 
 
