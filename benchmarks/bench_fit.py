@@ -94,24 +94,10 @@ def main(argv=None):
     out = Path(args.out)
     cfg = FitConfig(edge_length=args.edge_length, iterations=args.iterations)
     if args.set:
-        import dataclasses
+        from run import apply_sets
 
-        from run import yaml_value
-
-        from unsew.errors import InputError
-        from unsew.fit.config import load_config
-
-        sets = {}
-        for item in args.set:
-            key, eq, val = item.partition("=")
-            if not eq:
-                sys.exit(f"--set {item!r}: expected KEY=VALUE")
-            sets[key.strip()] = yaml_value(val)
-        try:
-            cfg = load_config(defaults=dataclasses.asdict(cfg) | sets)
-        except InputError as exc:
-            sys.exit(f"--set: {exc}")
-        print("overrides: " + ", ".join(f"{k}={v}" for k, v in sets.items()))
+        cfg = apply_sets(cfg, args.set)
+        print("overrides: " + ", ".join(args.set))
     rows = []
     for g in args.garments:
         case = make_truth_case(out / "cases" / g, garment=g, edge_length=args.edge_length)

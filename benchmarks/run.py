@@ -153,22 +153,31 @@ def yaml_value(text: str):
         return text
 
 
-def base_config(args, **changes):
+def apply_sets(cfg, items):
+    """``cfg`` with the ``--set KEY=VALUE`` overrides in ``items`` applied (checked by
+    load_config); exits with a one-line reason on a malformed or unknown override."""
     from unsew.errors import InputError
-    from unsew.fit.config import FitConfig, load_config
+    from unsew.fit.config import load_config
+
+    sets = {}
+    for item in items or ():
+        key, sep, val = item.partition("=")
+        if not sep:
+            sys.exit(f"--set {item!r}: expected KEY=VALUE")
+        sets[key.strip()] = yaml_value(val)
+    if not sets:
+        return cfg
+    try:
+        return load_config(defaults=dataclasses.asdict(cfg) | sets)
+    except InputError as exc:
+        sys.exit(f"--set: {exc}")
+
+
+def base_config(args, **changes):
+    from unsew.fit.config import FitConfig
 
     cfg = FitConfig(edge_length=args.edge_length, iterations=args.iterations, report=not args.no_report)
-    if getattr(args, "set", None):
-        sets = {}
-        for item in args.set:
-            key, sep, val = item.partition("=")
-            if not sep:
-                sys.exit(f"--set {item!r}: expected KEY=VALUE")
-            sets[key.strip()] = yaml_value(val)
-        try:
-            cfg = load_config(defaults=dataclasses.asdict(cfg) | sets)
-        except InputError as exc:
-            sys.exit(f"--set: {exc}")
+    cfg = apply_sets(cfg, getattr(args, "set", None))
     return cfg.replace(**changes) if changes else cfg
 
 
