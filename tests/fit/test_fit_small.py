@@ -156,3 +156,20 @@ def test_material_params_frees_only_the_listed_entries(small_case):
     g = r.extra["gamma_last"]
     assert g[:4] == pytest.approx(g0[:4], rel=1e-12)
     assert abs(g[4] / g0[4] - 1) > 1e-3
+
+
+def test_cold_start_makes_the_drape_a_function_of_the_parameters(small_case):
+    """warm_start=False: every iteration drapes from the graded pattern's settled drape, so with
+    the pattern and material held, every iteration's loss is the same; warm-started, the cloth
+    keeps moving and the loss changes."""
+    from unsew.fit.fit import fit
+    from unsew.io.case import load_case
+
+    case = load_case(small_case)
+    losses = {}
+    for warm in (False, True):
+        cfg = FitConfig(**{**SMALL, "iterations": 3, "pattern_start": 10, "optimize_material": False,
+                           "report": False, "warm_start": warm})
+        losses[warm] = fit(case, cfg, progress=False, log=lambda s: None).history["total"]
+    assert max(losses[False]) - min(losses[False]) <= 1e-12 * max(losses[False])
+    assert max(losses[True]) - min(losses[True]) > 1e-6 * max(losses[True])

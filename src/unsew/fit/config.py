@@ -36,6 +36,7 @@ class FitConfig:
     # simulation
     dt: float = 0.05  #: time step [s]
     steps: int = 15  #: implicit Euler steps per differentiable drape [-]
+    warm_start: bool = True  #: start each drape from the previous iteration's (the paper); False: always from the graded pattern's settled drape, so the drape depends on K and Gamma alone
     sew_steps: int = 80  #: steps of the non-differentiated sewing phase [-]
     settle_steps: int = 40  #: steps of plain draping after sewing, before the first loss [-]
 

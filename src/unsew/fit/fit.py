@@ -304,7 +304,8 @@ def fit(
             # A step that inverts pattern triangles, or flattens one below MIN_TRIANGLE_QUALITY,
             # is shortened (halved towards the previous K) until none does.
             _backtrack_inversions(params, K, K_before, mesh.faces_uv, check_inverted)
-            x_prev = x.detach()
+            if cfg.warm_start:
+                x_prev = x.detach()
             bar.set_postfix(loss=f"{total:.3e}", cf_mm=f"{math.sqrt(max(float(l_cf.detach()), 0)) * 1e3:.1f}")
             bar.update(1)
             if checkpoint is not None:
