@@ -71,33 +71,42 @@ def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alte
     Dressed with dress()'s shorter defaults (60 + 20 steps against 80 + 40), a target was an
     earlier snapshot of a garment that is still settling and creeping: the true skirt pattern of
     benchmark case skirt_02 in its true fabric, dressed like a fit, lay 2.89 mm from its target
-    then and 0.00 mm now (benchmarks/bench_fabric_gap.py). (The t-shirt and dress cases stay 5-7
-    mm off either way: their folds follow rounding-level differences of the loaded body.)
+    then and 0.00 mm now (benchmarks/bench_fabric_gap.py). A body written into the case
+    (``body_meta=None``) is written first and the target draped on it as loaded back (see below).
     """
-    from unsew.body.body import default_body
+    from unsew.body.body import default_body, load_body
     from unsew.body.skeleton import save_skeleton
     from unsew.dress import dress
     from unsew.fit.config import FitConfig
     from unsew.io.atomic import atomic_dir
-    from unsew.io.garmentcode import save_pattern
+    from unsew.io.garmentcode import load_pattern, save_pattern
     from unsew.io.mesh import write_obj
 
     alteration = alteration or DEFAULT_ALTERATIONS[garment]
     body = body if body is not None else default_body()
     p = make_truth_pattern(garment, alteration, body=body)
     fc = FitConfig()
-    d = dress(p, body, edge_length=edge_length, material=alteration.material, progress=progress,
-              sew_steps=fc.sew_steps if sew_steps is None else sew_steps,
-              settle_steps=fc.settle_steps if settle_steps is None else settle_steps,
-              dt=fc.dt if dt is None else dt)
     meta = {"garment": garment, "units": "m", "up": "y", "front": "z", "truth": alteration.as_dict()}
     with atomic_dir(case_dir, overwrite=True) as tmp:
-        write_obj(tmp / "target.obj", np.asarray(d.x), d.mesh.faces, header=f"unsew known-truth target ({garment})")
-        save_pattern(p, tmp / "pattern_gt.json")
         if body_meta is None:
+            # The target is draped on the body exactly as a fit will load it from the case: an
+            # OBJ and skeleton.json carry no skinning weights, and the panel placement reads body
+            # parts from the weights when present (Body.vertex_parts). Draped on the in-memory
+            # body, benchmark case tshirt_02's true pattern in its true fabric lay 5.38 mm from
+            # its target as the fit sees it; the gap was the placement, not the physics.
             write_obj(tmp / "body.obj", body.verts, body.faces)
             save_skeleton(body.skeleton, tmp / "skeleton.json")
+            body = load_body(tmp / "body.obj", tmp / "skeleton.json")
         else:
             meta["body"] = body_meta
+        # Likewise the pattern: draped as pattern_gt.json reads back (its rounding can move a
+        # mesh vertex), so the true pattern reproduces the target exactly.
+        save_pattern(p, tmp / "pattern_gt.json")
+        p = load_pattern(tmp / "pattern_gt.json")
+        d = dress(p, body, edge_length=edge_length, material=alteration.material, progress=progress,
+                  sew_steps=fc.sew_steps if sew_steps is None else sew_steps,
+                  settle_steps=fc.settle_steps if settle_steps is None else settle_steps,
+                  dt=fc.dt if dt is None else dt)
+        write_obj(tmp / "target.obj", np.asarray(d.x), d.mesh.faces, header=f"unsew known-truth target ({garment})")
         (tmp / "meta.json").write_text(json.dumps(meta, indent=2))
     return Path(case_dir)
