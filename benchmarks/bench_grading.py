@@ -11,8 +11,9 @@ and their ratio, and the drape's own noise floor: the target pattern draped agai
 another mesh; a graded drape cannot be expected much closer to T than that).
 
 ``--targets N`` drapes the target pattern on N meshes (edge length times 1, 0.985, 1.015, 0.97,
-1.03, ...) and grades the base to each: one loose drape's folds are chaotic (a millimetre moves
-them), so a single ratio is one sample; the summary prints each and their mean.
+1.03, ...) and grades the base to each: where a loose drape's folds land depends on its mesh
+(a mesh 3 % finer moves the drape by 2-10 mm), so a single ratio is one sample; the summary
+prints each and their mean.
 
 Drapes: the simulator (``--drape sim``: ``unsew.dress.dress``: place, sew, settle) or the panels laid flat at
 their placement (``--drape flat``: no physics, a check of the geometry alone). ``auto`` uses the
