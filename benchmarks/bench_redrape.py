@@ -49,7 +49,7 @@ def main() -> None:
     from unsew.io.case import load_case
     from unsew.io.garmentcode import load_pattern
     from unsew.metrics.surface import chamfer_mm
-    from unsew.sim.material import Material
+    from unsew.sim.material import material_from_dict
 
     cfg = FitConfig()
     print(f"{'case':<14} {'result':<40} {'reported mm':>11} {'re-dressed mm':>13}")
@@ -59,9 +59,10 @@ def main() -> None:
             pattern = load_pattern(res / "pattern.json")
         except InputError as exc:
             raise SystemExit(f"{case_dir} / {res}: {exc}") from None
-        j = json.loads((res / "material.json").read_text())
-        mat = Material(j["H00_N_per_m"], j["H01_N_per_m"], j["H11_N_per_m"], j["H22_N_per_m"], j["bending_N_m"],
-                       j["density_kg_per_m2"], j["friction"])
+        try:
+            mat = material_from_dict(json.loads((res / "material.json").read_text()))
+        except (InputError, ValueError) as exc:
+            raise SystemExit(f"{res}/material.json: {exc}") from None
         reported = json.loads((res / "metrics.json").read_text())["surface"]["chamfer_mm"]
         d = dress(pattern, case.body, edge_length=args.edge_length, material=mat, sew_steps=cfg.sew_steps,
                   settle_steps=cfg.settle_steps, dt=cfg.dt)

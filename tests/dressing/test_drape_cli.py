@@ -31,3 +31,26 @@ def test_drape_cli_bad_input(tmp_path, capsys):
     assert main(["drape", str(pj), "--material", "unobtainium", "--out", str(out)]) == 2
     assert main(["drape", str(pj), "--edge-length", "2", "--out", str(out)]) == 2
     assert not out.exists()
+
+
+def test_drape_cli_uses_the_patterns_fitted_material(tmp_path, capsys):
+    """A pattern.json written by unsew fit carries its fitted material; drape uses it unless
+    --material names another, and refuses a broken one in one line."""
+    from unsew.sim.material import MATERIALS, material_to_dict
+
+    p = make_base_pattern("skirt")
+    p.unsew = {**p.unsew, "material": material_to_dict(MATERIALS["jersey"])}
+    pj = tmp_path / "fitted.json"
+    save_pattern(p, pj)
+    out = tmp_path / "garment.obj"
+    small = ["--edge-length", "0.05", "--sew-steps", "10", "--settle-steps", "1", "--no-progress"]
+    assert main(["drape", str(pj), *small, "--out", str(out)]) == 0
+    assert "the pattern's fitted material" in out.read_text().splitlines()[0]
+    assert main(["drape", str(pj), *small, "--material", "cotton", "--out", str(out)]) == 0
+    assert "cotton" in out.read_text().splitlines()[0]
+    p.unsew["material"] = {"H00_N_per_m": 1.0}
+    save_pattern(p, pj)
+    out.unlink()
+    assert main(["drape", str(pj), *small, "--out", str(out)]) == 2
+    assert "material lacks" in capsys.readouterr().err
+    assert not out.exists()

@@ -36,3 +36,22 @@ def test_bad_material_raises(kw):
 def test_unknown_material_names_choices():
     with pytest.raises(InputError, match="cotton"):
         get_material("kevlar")
+
+
+def test_material_dict_round_trip_and_errors():
+    import pytest
+
+    from unsew.errors import InputError
+    from unsew.sim.material import MATERIALS, MATERIAL_KEYS, material_from_dict, material_to_dict
+
+    for m in MATERIALS.values():
+        d = material_to_dict(m)
+        assert tuple(d) == MATERIAL_KEYS
+        assert material_from_dict(d) == m
+    d = material_to_dict(MATERIALS["cotton"])
+    with pytest.raises(InputError, match="lacks 'friction'"):
+        material_from_dict({k: v for k, v in d.items() if k != "friction"})
+    with pytest.raises(InputError, match="must be numbers"):
+        material_from_dict({**d, "H00_N_per_m": "stiff"})
+    with pytest.raises(InputError, match="positive"):
+        material_from_dict({**d, "H22_N_per_m": -1.0})

@@ -24,7 +24,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--body", default="default", help="default | CASE_DIR | body.obj/ply (default: default)")
     p.add_argument("--skeleton", default=None, help="skeleton.json of a body mesh given with --body")
     p.add_argument("--units", default="m", choices=["m", "cm", "mm"], help="units of a body mesh file (default m)")
-    p.add_argument("--material", default="cotton", help="material name from the library (default cotton)")
+    p.add_argument("--material", default=None,
+                   help="material name from the library (default: the pattern's own fitted material when "
+                        "pattern.json carries one, as unsew fit writes it; else cotton)")
     p.add_argument("--edge-length", type=float, default=0.025, help="target triangle edge length [m] (default 0.025)")
     p.add_argument("--sew-steps", type=int, default=None, help="steps of the sewing phase (default: dress()'s)")
     p.add_argument("--settle-steps", type=int, default=None, help="steps of settling after sewing (default: dress()'s)")
@@ -84,7 +86,14 @@ def run(args: argparse.Namespace) -> int:
     from unsew.dress import dress, resolve_material
     from unsew.io.mesh import write_obj
 
-    material = resolve_material(args.material)  # a bad name fails before any work
+    fitted = (getattr(pattern, "unsew", None) or {}).get("material")
+    if args.material is None and fitted is not None:
+        from unsew.sim.material import material_from_dict
+
+        material, material_name = material_from_dict(fitted), "the pattern's fitted material"
+    else:
+        material_name = args.material or "cotton"
+        material = resolve_material(material_name)  # a bad name fails before any work
     bars: dict = {}
 
     def progress(phase: str, k: int, n: int) -> None:
@@ -109,7 +118,7 @@ def run(args: argparse.Namespace) -> int:
             b.close()
     m = d.mesh
     write_obj(out, d.x.detach().cpu().numpy(), m.faces, uv=m.uv, faces_uv=m.faces_uv,
-              header=f"unsew drape: {pattern.name} on {getattr(body, 'name', 'body')}, {args.material}; UVs are pattern coordinates [m]")
+              header=f"unsew drape: {pattern.name} on {getattr(body, 'name', 'body')}, {material_name}; UVs are pattern coordinates [m]")
     s = d.stats
     print(f"wrote {out}: {m.n_x} vertices, seam gap {s.get('seam_gap', 0.0) * 1000:.2f} mm, "
           f"max speed {s.get('max_speed', 0.0):.3f} m/s")

@@ -39,17 +39,11 @@ def pattern_with_extras(result) -> object:
     sym = getattr(params, "symmetry", None)
     if sym is not None and hasattr(sym, "to_dict"):
         extras["symmetry"] = sym.to_dict()
-    m = result.material
-    extras["material"] = _material_dict(m)
+    from unsew.sim.material import material_to_dict
+
+    extras["material"] = material_to_dict(result.material)
     p.unsew = {k: v for k, v in extras.items() if v is not None}
     return p
-
-
-def _material_dict(m) -> dict:
-    return {
-        "H00_N_per_m": m.h00, "H01_N_per_m": m.h01, "H11_N_per_m": m.h11, "H22_N_per_m": m.h22,
-        "bending_N_m": m.bend, "density_kg_per_m2": m.density, "friction": m.friction,
-    }
 
 
 def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
@@ -103,6 +97,7 @@ def write_result(work: Path, result, case, cfg, *, report: bool = True, metrics:
     from unsew.io.mesh import write_obj
     from unsew.io.svg import write_svg
     from unsew.meshing import write_rest_obj
+    from unsew.sim.material import material_to_dict
 
     work = Path(work)
     work.mkdir(parents=True, exist_ok=True)
@@ -114,7 +109,7 @@ def write_result(work: Path, result, case, cfg, *, report: bool = True, metrics:
     write_obj(work / "garment.obj", result.x, mesh.faces, uv=result.uv, faces_uv=mesh.faces_uv,
               header="unsew draped garment; vt = pattern coordinates [m]")
     write_rest_obj(mesh, work / "garment_rest.obj")
-    _write_json(work / "material.json", {"units": "SI", **_material_dict(result.material)})
+    _write_json(work / "material.json", {"units": "SI", **material_to_dict(result.material)})
     if metrics is None:
         metrics = result_metrics(result, case)
     _write_json(work / "metrics.json", metrics)

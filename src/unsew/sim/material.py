@@ -87,6 +87,32 @@ class Material:
         )
 
 
+#: Keys of a material as written in material.json and in pattern.json's ``unsew.material`` (SI units).
+MATERIAL_KEYS = ("H00_N_per_m", "H01_N_per_m", "H11_N_per_m", "H22_N_per_m", "bending_N_m",
+                 "density_kg_per_m2", "friction")
+
+
+def material_to_dict(m: Material) -> dict:
+    """A material as a JSON-ready dict: H00-H22 [N/m], bending [N*m], density [kg/m^2], friction [-]
+    under :data:`MATERIAL_KEYS`."""
+    return dict(zip(MATERIAL_KEYS, (m.h00, m.h01, m.h11, m.h22, m.bend, m.density, m.friction)))
+
+
+def material_from_dict(d) -> Material:
+    """The Material a :func:`material_to_dict` dict describes (material.json, or the
+    ``unsew.material`` block of a fitted pattern.json). Raises InputError naming a missing or
+    non-numeric key, or a stiffness that is not valid (:func:`check_gamma`)."""
+    if not isinstance(d, dict):
+        raise InputError(f"a material must be a JSON object with keys {', '.join(MATERIAL_KEYS)}")
+    try:
+        vals = [float(d[k]) for k in MATERIAL_KEYS]
+    except KeyError as exc:
+        raise InputError(f"material lacks {exc.args[0]!r} (needs {', '.join(MATERIAL_KEYS)})") from None
+    except (TypeError, ValueError):
+        raise InputError(f"material values must be numbers, got {d!r}") from None
+    return Material(*vals)
+
+
 def check_gamma(g) -> None:
     """Raise InputError unless Gamma (5,) = (H00, H01, H11, H22 [N/m], k [N*m]) gives a
     positive definite membrane stiffness and a non-negative bending stiffness."""
