@@ -81,6 +81,9 @@ def main(argv=None):
     ap.add_argument("--iterations", type=int, default=100)
     ap.add_argument("--out", default="bench-out/fit")
     ap.add_argument("--variants", default="", help="comma list of noise,decimate,cm,pose,body (t-shirt only)")
+    ap.add_argument("--off-library", action="store_true",
+                    help="drape each target in its fabric with every stiffness, density and friction moved "
+                         "at random (synthetic.off_library, seeded), so no library material is the truth")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="override a FitConfig option for every fit (repeatable)")
     args = ap.parse_args(argv)
@@ -100,7 +103,15 @@ def main(argv=None):
         print("overrides: " + ", ".join(args.set))
     rows = []
     for g in args.garments:
-        case = make_truth_case(out / "cases" / g, garment=g, edge_length=args.edge_length)
+        alt = None
+        if args.off_library:
+            from dataclasses import replace
+
+            from unsew.fit.synthetic import DEFAULT_ALTERATIONS, off_library
+
+            alt = replace(DEFAULT_ALTERATIONS[g], material=off_library(DEFAULT_ALTERATIONS[g].material))
+            print(f"{g}: true fabric {alt.as_dict()['material']}")
+        case = make_truth_case(out / "cases" / g, garment=g, alteration=alt, edge_length=args.edge_length)
         nverts = sum(1 for line in open(case / "target.obj") if line.startswith("v "))
         result, m, secs = _fit(case, out / "results" / g, cfg)
         rows.append(_row(g, result, m, secs, nverts))

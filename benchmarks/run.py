@@ -364,18 +364,6 @@ def table_speed(args) -> None:
     emit(args, "speed", "\n".join(parts))
 
 
-@dataclasses.dataclass(frozen=True)
-class _MaterialAlteration:
-    """An Alteration whose material is a Material instance (meta.json records its values)."""
-
-    changes: dict
-    material: object
-
-    def as_dict(self) -> dict:
-        return {"changes": {k: {"length_m": v[0], "girth_frac": v[1]} for k, v in self.changes.items()},
-                "material": dataclasses.asdict(self.material)}
-
-
 #: The material table's pairs: name -> (what is scaled, factors, Material fields scaled).
 MATERIAL_PAIRS = {
     "bending": ((0.2, 5.0), ("bend",)),
@@ -387,7 +375,7 @@ MATERIAL_BASE = "jersey"
 
 
 def material_cases(args) -> dict[str, list[tuple[float, Path]]]:
-    from unsew.fit.synthetic import make_truth_case
+    from unsew.fit.synthetic import Alteration, make_truth_case
     from unsew.sim.material import get_material
 
     base = get_material(MATERIAL_BASE)
@@ -398,7 +386,7 @@ def material_cases(args) -> dict[str, list[tuple[float, Path]]]:
             d = Path(args.cases) / f"material_{pair}_x{f:g}"
             if not (d / "meta.json").is_file():
                 mat = dataclasses.replace(base, **{k: getattr(base, k) * f for k in fields})
-                make_truth_case(d, garment="skirt", alteration=_MaterialAlteration(MATERIAL_SKIRT, mat),
+                make_truth_case(d, garment="skirt", alteration=Alteration(MATERIAL_SKIRT, mat),
                                 edge_length=args.case_edge_length)
             out[pair].append((f, d))
     return out
@@ -434,7 +422,7 @@ def table_material(args) -> None:
     text = (f"## Material recovery (paper 4.3, Fig. 10)\n\n{header(args, 'measured')}\n\n"
             f"One skirt pattern (base skirt, hem {MATERIAL_SKIRT['hem']}) draped in {MATERIAL_BASE} "
             f"(bending {b.bend:.3g} N m, H00 {b.h00:g} N/m) with the listed stiffnesses scaled; each fitted "
-            "from cotton. `recovered` is the fit's bending [N m] or H00 [N/m]; `A between` is the mean panel "
+            f"with material: {cfg.material}. `recovered` is the fit's bending [N m] or H00 [N/m]; `A between` is the mean panel "
             "area error between the pair's two recovered patterns.\n\n"
             + md_table(["pair", "truth", "Chamfer mm", "area err vs truth %", "recovered", "A between %",
                         "order right", "A between <= 2%", "failure"], rows,

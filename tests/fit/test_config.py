@@ -33,6 +33,8 @@ def test_yaml_round_trip_and_overrides(tmp_path):
         ("a: [\n", "not valid YAML"),
         ("lr_decay: 0\n", "lr_decay"),
         ("lr_decay: 1.5\n", "lr_decay"),
+        ("material: velvet\n", "unknown material 'velvet'"),
+        ("material: auto\nmaterial_candidates: silk,tweed\n", "unknown material 'tweed'"),
     ],
 )
 def test_bad_configs(tmp_path, text, match):

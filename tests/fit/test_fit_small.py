@@ -173,3 +173,49 @@ def test_cold_start_makes_the_drape_a_function_of_the_parameters(small_case):
         losses[warm] = fit(case, cfg, progress=False, log=lambda s: None).history["total"]
     assert max(losses[False]) - min(losses[False]) <= 1e-12 * max(losses[False])
     assert max(losses[True]) - min(losses[True]) > 1e-6 * max(losses[True])
+
+
+def test_auto_material_picks_the_true_fabric(small_case):
+    """material=auto dresses the cotton-graded pattern in each candidate, grades again in the best
+    one other than cotton, and starts phase two from the closest: the target is the demo t-shirt
+    in jersey, so jersey wins over cotton and denim, and the fit's material (density and friction
+    included) is jersey's; at material_start (iteration 1 here) the candidates are dressed again
+    with the pattern of that iteration."""
+    from unsew.fit.fit import fit
+    from unsew.io.case import load_case
+    from unsew.sim.material import MATERIALS
+
+    cfg = FitConfig(**{**SMALL, "iterations": 2, "optimize_material": False, "report": False,
+                       "material": "auto", "material_candidates": "cotton,denim,jersey",
+                       "material_regrade": 1})
+    r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
+    table = r.extra["material_choice"]
+    assert [row["material"] for row in table][0] == "jersey"
+    assert sorted((row["material"], row["pattern"]) for row in table) == [
+        ("cotton", "graded in cotton"), ("cotton", "iteration 1"), ("denim", "graded in cotton"),
+        ("denim", "iteration 1"), ("jersey", "graded in cotton"), ("jersey", "graded in jersey"),
+        ("jersey", "iteration 1")]
+    cf = [row["chamfer_mm"] for row in table]
+    assert cf == sorted(cf) and cf[0] < cf[-1]
+    assert r.material == MATERIALS["jersey"]
+
+
+def test_choose_material_ranks_by_the_objective():
+    """choose_material keeps every finite candidate, best first, and returns the winner's drape;
+    a candidate whose drape is not finite is dropped; none finite is a one-line InputError."""
+    import math
+
+    import numpy as np
+
+    from unsew.errors import InputError
+    from unsew.fit.fit import choose_material
+    from unsew.sim.material import MATERIALS
+
+    drapes = {MATERIALS[n].density: np.full((4, 3), i, dtype=float) for i, n in enumerate(["cotton", "silk", "wool"])}
+    score = {0.0: 2.0, 1.0: 1.0, 2.0: math.nan}
+    mat, x, table = choose_material(["cotton", "silk", "wool"], lambda m, bar: drapes[m.density],
+                                    lambda x: score[float(x[0, 0])])
+    assert mat == MATERIALS["silk"] and float(x[0, 0]) == 1.0
+    assert [r["material"] for r in table] == ["silk", "cotton"]
+    with pytest.raises(InputError):
+        choose_material(["wool"], lambda m, bar: drapes[m.density], lambda x: math.nan)

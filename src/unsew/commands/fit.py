@@ -12,7 +12,8 @@ def add_fit_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--config", metavar="FIT.yaml", help="fit configuration (YAML); flags below override it")
     p.add_argument("--iterations", type=int, help="iteration budget of phase two")
     p.add_argument("--edge-length", type=float, help="panel mesh edge length [m]")
-    p.add_argument("--material", help="starting material from the library (e.g. cotton, denim, silk)")
+    p.add_argument("--material", help="starting material from the library (e.g. cotton, denim, silk), or auto: the library "
+                   "material whose drape of the graded pattern is closest to the target")
     p.add_argument("--steps", type=int, help="drape steps per iteration")
     p.add_argument("--no-grading", action="store_true", help="ablation: skip phase one (linear grading)")
     p.add_argument("--plain-chamfer", action="store_true", help="ablation: Chamfer without curvature weights")

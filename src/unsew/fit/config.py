@@ -18,7 +18,7 @@ from pathlib import Path
 
 from unsew.errors import InputError
 
-__all__ = ["FitConfig", "load_config", "config_to_dict"]
+__all__ = ["FitConfig", "load_config", "config_to_dict", "material_mask", "material_candidates"]
 
 
 @dataclass(frozen=True)
@@ -31,7 +31,10 @@ class FitConfig:
     # pattern and meshing
     base: str = ""  #: base pattern: garment name or a GarmentCode JSON path; "" = meta.json's garment
     edge_length: float = 0.025  #: target triangle edge length of the panel meshes [m]
-    material: str = "cotton"  #: starting material from the library (unsew.sim.material.MATERIALS)
+    material: str = "cotton"  #: starting material from the library (unsew.sim.material.MATERIALS), or "auto": after grading, dress the graded pattern in each of `material_candidates` and start phase two from the one whose drape has the lowest loss
+    material_candidates: str = ""  #: comma list of library materials "auto" tries ("" = every material in the library)
+    material_rechoose: bool = True  #: "auto": at `material_start`, dress the pattern of that iteration in every candidate and go on in the closest
+    material_regrade: int = 2  #: "auto": how many of the best candidates other than cotton are graded again in their own fabric [-]
 
     # simulation
     dt: float = 0.05  #: time step [s]
@@ -137,6 +140,8 @@ def _check(cfg: FitConfig) -> None:
         raise InputError(f"edge_length {cfg.edge_length} m is outside 0.005-0.1 m")
     if cfg.dt <= 0 or cfg.dt > 0.2:
         raise InputError(f"dt {cfg.dt} s must be in (0, 0.2]")
+    if cfg.material_regrade < 0:
+        raise InputError(f"material_regrade must be >= 0, got {cfg.material_regrade}")
     for k in ("steps", "iterations", "target_points"):
         if getattr(cfg, k) < 1:
             raise InputError(f"{k} must be at least 1")
@@ -145,6 +150,32 @@ def _check(cfg: FitConfig) -> None:
     if not 0 < cfg.lr_decay <= 1:
         raise InputError(f"lr_decay {cfg.lr_decay} must be in (0, 1]")
     material_mask(cfg.material_params)
+    if cfg.material != "auto":
+        _library_material(cfg.material)
+    material_candidates(cfg.material_candidates)
+
+
+def _library_material(name: str):
+    from unsew.sim.material import get_material
+
+    return get_material(name)
+
+
+def material_candidates(spec: str) -> tuple[str, ...]:
+    """The library materials ``material: auto`` tries: the comma list ``spec`` or, when empty,
+    every distinct material of the library (aliases dropped). Raises InputError on an unknown name."""
+    from unsew.sim.material import MATERIALS
+
+    names = [n.strip() for n in str(spec).split(",") if n.strip()]
+    if not names:
+        seen, names = set(), []
+        for n, m in MATERIALS.items():
+            if id(m) not in seen:
+                seen.add(id(m))
+                names.append(n)
+    for n in names:
+        _library_material(n)
+    return tuple(dict.fromkeys(names))
 
 
 #: Names of the entries of Gamma, in order (unsew.sim.material.Material.gamma()).

@@ -75,6 +75,8 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     m["iterations"] = result.iterations
     m["best_iteration"] = result.extra.get("best_iteration")
     m["material_fitted"] = result.extra.get("material_fitted")
+    if result.extra.get("material_choice"):
+        m["material_choice"] = result.extra["material_choice"]  # material: auto, best first
     m["converged"] = result.converged
     m["timings_s"] = result.timings
     return m

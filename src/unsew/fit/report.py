@@ -48,6 +48,11 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     start = result.extra.get("material_start_iteration")
     phases = [(0, "pattern")] + ([(start, "pattern + material")] if start is not None and start < result.iterations else [])
     tables = dict(metrics)
+    choice = tables.pop("material_choice", None)
+    if choice:
+        summary["start_material"] = choice[0]["material"]
+        tables["material choice (pattern dressed in each from scratch, Chamfer mm)"] = {
+            f"{r['material']} ({r.get('pattern', '?')})": round(float(r["chamfer_mm"]), 2) for r in choice}
     if result.grade_table:
         tables["grading"] = {str(i): _flat(r) for i, r in enumerate(result.grade_table)}
     return _write(

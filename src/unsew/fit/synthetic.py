@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["Alteration", "make_truth_pattern", "make_truth_case", "DEFAULT_ALTERATIONS"]
+__all__ = ["Alteration", "make_truth_pattern", "make_truth_case", "DEFAULT_ALTERATIONS", "off_library"]
 
 
 @dataclass(frozen=True)
@@ -25,11 +25,36 @@ class Alteration:
     """
 
     changes: dict = field(default_factory=dict)
-    material: str = "jersey"
+    material: object = "jersey"  #: library name or a unsew.sim.material.Material
 
     def as_dict(self) -> dict:
+        from unsew.sim.material import Material, material_to_dict
+
+        mat = material_to_dict(self.material) if isinstance(self.material, Material) else self.material
         return {"changes": {k: {"length_m": v[0], "girth_frac": v[1]} for k, v in self.changes.items()},
-                "material": self.material}
+                "material": mat}
+
+
+def off_library(name: str, seed: int = 0):
+    """A fabric that is in no library: the library material ``name`` with its stretch, shear and
+    bending stiffness each scaled by a random factor exp(N(0, 0.4)) (about x0.67-x1.5 at one
+    sigma; H01 keeps its Poisson ratio), density by exp(N(0, 0.15)) and friction moved by
+    U(-0.05, 0.05). Seeded by ``seed`` and the name; for benchmarks whose truth must not be a candidate of
+    ``material: auto``."""
+    import math
+
+    from unsew.sim.material import Material, get_material
+
+    import zlib
+
+    m = get_material(name)
+    rng = np.random.default_rng([seed, zlib.crc32(name.encode())])
+    f_uu, f_vv, f_s, f_b = (float(f) for f in np.exp(rng.normal(0.0, 0.4, 4)))
+    h00, h11 = m.h00 * f_uu, m.h11 * f_vv
+    nu = m.h01 / math.sqrt(m.h00 * m.h11)
+    return Material(h00, nu * math.sqrt(h00 * h11), h11, m.h22 * f_s, m.bend * f_b,
+                    m.density * float(np.exp(rng.normal(0.0, 0.15))),
+                    max(0.05, m.friction + float(rng.uniform(-0.05, 0.05))))
 
 
 #: One alteration per garment type, used by the per-garment fit benchmark (bench_fit.py).

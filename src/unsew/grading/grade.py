@@ -25,7 +25,7 @@ from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, 
 from unsew.grading.curves import curves_of_contour
 from unsew.grading.edit import curve_edit, project_edit, safe_fraction
 
-__all__ = ["GradeResult", "grade", "dress_drape", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH"]
+__all__ = ["GradeResult", "grade", "moved_mesh", "dress_drape", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH"]
 
 #: Re-mesh after grading when a rest edge grew beyond this factor times the target edge length.
 REMESH_STRETCH = 1.5
@@ -109,7 +109,7 @@ def _rest_edge_stretch(uv: np.ndarray, faces_uv: np.ndarray, edge_length: float)
     return float(np.linalg.norm(uv[e[:, 0]] - uv[e[:, 1]], axis=1).max() / edge_length)
 
 
-def _moved_mesh(mesh, pattern, uv: np.ndarray):
+def moved_mesh(mesh, pattern, uv: np.ndarray):
     """The base mesh with its rest positions moved to ``uv`` (same topology)."""
     placed = np.zeros((len(uv), 3))
     for p, name in enumerate(mesh.panel_names):
@@ -356,7 +356,7 @@ def _grade_pass(pattern, mesh, x_init, tgt, skel, kw, *, gains: dict | None = No
     with torch.no_grad():
         uv = params.uv(K).cpu().numpy()
     remeshed = _rest_edge_stretch(uv, mesh.faces_uv, mesh.edge_length) > REMESH_STRETCH
-    new_mesh = mesh_pattern(graded, edge_length=mesh.edge_length) if remeshed else _moved_mesh(mesh, graded, uv)
+    new_mesh = mesh_pattern(graded, edge_length=mesh.edge_length) if remeshed else moved_mesh(mesh, graded, uv)
     return dict(pattern=graded, mesh=new_mesh, rows=rows, matches=matches, K=K.detach().cpu().numpy(),
                 fraction=float(frac), remeshed=bool(remeshed),
                 applied={t: float(frac) * e for t, e in wanted.items()})
