@@ -33,7 +33,6 @@ class FitConfig:
     edge_length: float = 0.025  #: target triangle edge length of the panel meshes [m]
     material: str = "cotton"  #: starting material from the library (unsew.sim.material.MATERIALS), or "auto": after grading, dress the graded pattern in each of `material_candidates` and start phase two from the one whose drape has the lowest loss
     material_candidates: str = ""  #: comma list of library materials "auto" tries ("" = every material in the library)
-    material_rechoose: bool = True  #: "auto": at `material_start`, dress the pattern of that iteration in every candidate and go on in the closest
     material_regrade: int = 2  #: "auto": how many of the best candidates other than cotton are graded again in their own fabric [-]
 
     # simulation

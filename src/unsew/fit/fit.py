@@ -26,7 +26,7 @@ from unsew.errors import InputError
 from unsew.fit.config import FitConfig, material_candidates, material_mask
 from unsew.tolerances import MIN_TRIANGLE_QUALITY
 
-__all__ = ["FitResult", "fit", "base_pattern_for", "FitState", "choose_material", "material_name", "AUTO_START_MATERIAL"]
+__all__ = ["FitResult", "fit", "base_pattern_for", "FitState", "choose_material", "AUTO_START_MATERIAL"]
 
 #: the material ``material: auto`` drapes the base and grades in, before it chooses
 AUTO_START_MATERIAL = "cotton"
@@ -143,13 +143,6 @@ def choose_material(names, dress_in, objective, *, progress: bool = False):
     return get_material(best), drapes[best], rows
 
 
-def material_name(material) -> str:
-    """The library name of ``material``, or "custom"."""
-    from unsew.sim.material import MATERIALS
-
-    return next((n for n, m in MATERIALS.items() if m == material), "custom")
-
-
 def _material_params(gamma0):
     """Gamma as a function of unconstrained parameters theta (5,), zero at the start material.
 
@@ -198,7 +191,6 @@ def fit(
     from unsew.metrics.surface import surface_metrics
     from unsew.pattern.params import PatternParams, check_inverted
     from unsew.sim.drape import drape
-    from unsew.grading.grade import moved_mesh
     from unsew.sim.material import Material, get_material
     from unsew.sim.state import SimState
 
@@ -343,37 +335,6 @@ def fit(
                dynamic_ncols=True, leave=False)
     try:
         for it in range(start_it, cfg.iterations):
-            if auto_material and cfg.material_rechoose and it == cfg.material_start and it > 0:
-                # The pattern has settled: dress it from scratch in every candidate and go on in
-                # the closest. Chosen on the graded pattern alone, the dress of bench_fit (true
-                # fabric silk) kept cotton, whose drape of the true pattern is 3.72 mm off.
-                t_m = time.perf_counter()
-                with torch.no_grad():
-                    uv_now = params.uv(K).cpu().numpy()
-                pat_now = params.to_pattern(K.detach().cpu())
-                mesh_now = moved_mesh(mesh, pat_now, uv_now)
-
-                def dress_now(material, bar=None):
-                    return dress(pat_now, case.body, sdf=sdf, mesh=mesh_now, material=material,
-                                 sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt,
-                                 progress=bar).x.numpy()
-
-                new_mat, x_new, rows = choose_material(
-                    material_candidates(cfg.material_candidates), dress_now,
-                    lambda x: surface_metrics(x, mesh.faces, tv, tf, n_samples=20_000, seed=cfg.seed)["chamfer_mm"],
-                    progress=progress)
-                for row in rows:
-                    row["pattern"] = f"iteration {it}"
-                material_table = sorted(material_table + rows, key=lambda r: r["chamfer_mm"])
-                if new_mat != material0:
-                    log(f"iteration {it}: material {material_name(new_mat)} instead of {material_name(material0)} "
-                        f"({rows[0]['chamfer_mm']:.2f} mm dressed from scratch)")
-                    material0 = new_mat
-                    gamma0, density = material0.gamma().to(dev), material0.density
-                    theta, gamma_of = _material_params(gamma0)
-                    opt_m = torch.optim.Adam([theta], lr=cfg.lr_material, betas=cfg.betas)
-                    x_prev = torch.as_tensor(x_new, dtype=torch.float64, device=dev)
-                timings["material_choice_s"] = timings.get("material_choice_s", 0.0) + time.perf_counter() - t_m
             mat_on = cfg.optimize_material and it >= cfg.material_start
             decay = cfg.lr_decay ** (it / cfg.iterations)
             for opt, lr in ((opt_k, cfg.lr), (opt_m, cfg.lr_material)):
