@@ -22,7 +22,8 @@ from unsew.fit.config import FitConfig
 from unsew.fit.demo import DemoTruth, make_truth_case
 
 #: tiny fits: coarse panels, few sewing/settling/drape steps, a small Chamfer subset
-TINY = dict(edge_length=0.05, sew_steps=10, settle_steps=5, steps=3, target_points=1000, report=False)
+TINY = dict(edge_length=0.05, sew_steps=10, settle_steps=5, steps=3, target_points=1000, report=False,
+            material="cotton")
 TRUTHS = [DemoTruth(), DemoTruth(hem_length=0.03, hem_girth=0.02, sleeve_length=0.01),
           DemoTruth(hem_length=0.09, hem_girth=0.08, sleeve_length=0.05, material="cotton")]
 

@@ -9,7 +9,7 @@ import pytest
 from unsew.fit.config import FitConfig
 
 SMALL = dict(edge_length=0.04, iterations=3, steps=8, sew_steps=60, settle_steps=20, target_points=1500,
-             material_start=1)
+             material_start=1, material="cotton")
 FILES = ["pattern.json", "pattern.svg", "pattern.dxf", "garment.obj", "garment_rest.obj", "material.json",
          "metrics.json", "config.yaml", "report.html"]
 

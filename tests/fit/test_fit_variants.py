@@ -12,7 +12,7 @@ from unsew.fit.config import FitConfig
 from unsew.io.mesh import read_mesh, write_obj
 
 SMALL = dict(edge_length=0.03, iterations=2, steps=8, sew_steps=60, settle_steps=20, target_points=1500,
-             material_start=1)
+             material_start=1, material="cotton")
 
 
 @pytest.fixture(scope="module")

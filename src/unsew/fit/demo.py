@@ -75,7 +75,8 @@ def run_demo(out: Path, *, cfg=None, progress: bool = True, log=None) -> dict:
     t0 = time.perf_counter()
     log(f"[1/3] making the target: a t-shirt {DEMO_TRUTH.hem_length * 100:.0f} cm longer, hem "
         f"{DEMO_TRUTH.hem_girth * 100:.0f}% wider, sleeves {DEMO_TRUTH.sleeve_length * 100:.0f} cm longer, "
-        f"in {DEMO_TRUTH.material} (the fit starts from the base t-shirt in {cfg.material})")
+        f"in {DEMO_TRUTH.material} (the fit starts from the base t-shirt"
+        + (", in the library fabric whose drape is closest)" if cfg.material == "auto" else f" in {cfg.material})"))
     case_dir = make_truth_case(out / "case", edge_length=cfg.edge_length, sew_steps=cfg.sew_steps,
                                settle_steps=cfg.settle_steps, dt=cfg.dt)
     t_case = time.perf_counter() - t0
