@@ -3,11 +3,11 @@ written to YAML so a result folder holds everything needed to rerun it (STYLE.md
 
 Defaults follow the paper (4.1): Adam with learning rate 1e-3, betas (0.9, 0.999),
 lambda_open 0.1, lambda_mat 0.01, dt 0.05 s, 10-20 steps per drape; except lambda_seam, which is
-1.0 here instead of the paper's 0.01, and the starting material, which the paper has the user pick
-from the library and ``material: auto`` picks by draping (on bench_fit's skirt, in wool, a fit
-from cotton ended 4.54 mm from its target and one from auto 2.36 mm). Our Chamfer term is a mean of squared distances [m^2] and the
-seam term a sum of squared edge-length differences [m^2] over all seam edges; with 0.01 the
-seam term had no effect: on the demo case the seam loss rose from 5e-7 to 1e-4 during the fit
+1.0 here instead of the paper's 0.01, and the starting material, which the paper has the user
+pick from the library and ``material: auto`` picks by draping (on bench_fit's skirt, in wool, a
+fit from cotton ended 4.54 mm from its target and one from auto 2.36 mm). Our Chamfer term is a
+mean of squared distances [m^2] and the seam term a sum of squared edge-length differences [m^2]
+over all seam edges; with 0.01 the seam term had no effect: on the demo case the seam loss rose from 5e-7 to 1e-4 during the fit
 (stitched edges drifting apart), while with 1.0 it stayed at 6e-6 and the fit reached a lower
 Chamfer (2.9 mm against 4.6 mm). The paper does not state its loss scaling.
 """
@@ -152,20 +152,16 @@ def _check(cfg: FitConfig) -> None:
         raise InputError(f"lr_decay {cfg.lr_decay} must be in (0, 1]")
     material_mask(cfg.material_params)
     if cfg.material != "auto":
-        _library_material(cfg.material)
+        from unsew.sim.material import get_material
+
+        get_material(cfg.material)  # InputError naming the library's materials
     material_candidates(cfg.material_candidates)
-
-
-def _library_material(name: str):
-    from unsew.sim.material import get_material
-
-    return get_material(name)
 
 
 def material_candidates(spec: str) -> tuple[str, ...]:
     """The library materials ``material: auto`` tries: the comma list ``spec`` or, when empty,
     every distinct material of the library (aliases dropped). Raises InputError on an unknown name."""
-    from unsew.sim.material import MATERIALS
+    from unsew.sim.material import MATERIALS, get_material
 
     names = [n.strip() for n in str(spec).split(",") if n.strip()]
     if not names:
@@ -175,7 +171,7 @@ def material_candidates(spec: str) -> tuple[str, ...]:
                 seen.add(id(m))
                 names.append(n)
     for n in names:
-        _library_material(n)
+        get_material(n)
     return tuple(dict.fromkeys(names))
 
 

@@ -280,6 +280,8 @@ def fit(
                 log(f"material {name}: grading in it failed ({exc}); left out")
                 continue
             cf = objective(g_x, g_m.faces)
+            if not math.isfinite(cf):
+                continue
             material_table.append({"material": name, "chamfer_mm": cf, "pattern": f"graded in {name}"})
             if cf < best_cf:
                 best_cf, material0 = cf, mat

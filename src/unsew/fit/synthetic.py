@@ -39,13 +39,12 @@ def off_library(name: str, seed: int = 0):
     """A fabric that is in no library: the library material ``name`` with its stretch, shear and
     bending stiffness each scaled by a random factor exp(N(0, 0.4)) (about x0.67-x1.5 at one
     sigma; H01 keeps its Poisson ratio), density by exp(N(0, 0.15)) and friction moved by
-    U(-0.05, 0.05). Seeded by ``seed`` and the name; for benchmarks whose truth must not be a candidate of
-    ``material: auto``."""
+    U(-0.05, 0.05). Seeded by ``seed`` and the name; for benchmarks whose truth must not be a
+    candidate of ``material: auto``. Returns a Material (units as in unsew.sim.material)."""
     import math
+    import zlib
 
     from unsew.sim.material import Material, get_material
-
-    import zlib
 
     m = get_material(name)
     rng = np.random.default_rng([seed, zlib.crc32(name.encode())])
