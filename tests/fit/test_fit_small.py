@@ -177,25 +177,36 @@ def test_cold_start_makes_the_drape_a_function_of_the_parameters(small_case):
 
 def test_auto_material_picks_the_true_fabric(small_case):
     """material=auto dresses the cotton-graded pattern in each candidate, grades again in the best
-    one other than cotton, and starts phase two from the closest: the target is the demo t-shirt
-    in jersey, so jersey wins over cotton and denim, and the fit's material (density and friction
-    included) is jersey's."""
+    one other than cotton, refines the winner's stiffness by draping, and starts phase two from
+    the closest: the target is the demo t-shirt in jersey, so jersey wins over cotton and denim,
+    and the fit's material is jersey's (density, friction and Poisson ratio; a refinement scales
+    only the stiffness)."""
+    import math
+
     from unsew.fit.fit import fit
     from unsew.io.case import load_case
     from unsew.sim.material import MATERIALS
 
     cfg = FitConfig(**{**SMALL, "iterations": 1, "optimize_material": False, "report": False,
                        "material": "auto", "material_candidates": "cotton,denim,jersey",
-                       "material_regrade": 1})
+                       "material_regrade": 1, "material_refine": 1})
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
     table = r.extra["material_choice"]
-    assert [row["material"] for row in table][0] == "jersey"
-    assert sorted((row["material"], row["pattern"]) for row in table) == [
+    library = [row for row in table if "(" not in row["material"]]
+    refined = [row for row in table if "(" in row["material"]]
+    assert library[0]["material"] == "jersey" and table[0]["material"].startswith("jersey")
+    assert sorted((row["material"], row["pattern"]) for row in library) == [
         ("cotton", "graded in cotton"), ("denim", "graded in cotton"), ("jersey", "graded in cotton"),
         ("jersey", "graded in jersey")]
+    # one round: stretch and bending each tried at x0.5, and at x2 unless x0.5 came closer
+    assert 2 <= len(refined) <= 4 and all(row["material"].startswith("jersey (stretch x") for row in refined)
+    assert all(row["pattern"] == library[0]["pattern"] for row in refined)
     cf = [row["chamfer_mm"] for row in table]
     assert cf == sorted(cf) and cf[0] < cf[-1]
-    assert r.material == MATERIALS["jersey"]
+    j = MATERIALS["jersey"]
+    assert (r.material.density, r.material.friction) == (j.density, j.friction)
+    assert math.isclose(r.material.h01 / r.material.h00, j.h01 / j.h00)
+    assert (r.material == j) == (table[0]["material"] == "jersey")
 
 
 def test_choose_material_ranks_by_the_objective():
@@ -217,3 +228,34 @@ def test_choose_material_ranks_by_the_objective():
     assert [r["material"] for r in table] == ["silk", "cotton"]
     with pytest.raises(InputError):
         choose_material(["wool"], lambda m, bar: drapes[m.density], lambda x: math.nan)
+
+
+def test_refine_material_walks_towards_the_closest_stiffness():
+    """refine_material scales stretch and bending by 1/s and s (s = 2, sqrt 2) and keeps a
+    scaling only when the objective falls: on a distance whose minimum is stretch x0.5 and
+    bending x1.41 of cotton it lands there, keeps the Poisson ratio, and never returns a
+    material worse than its start."""
+    import math
+
+    import numpy as np
+
+    from unsew.fit.fit import refine_material
+    from unsew.sim.material import MATERIALS
+
+    c = MATERIALS["cotton"]
+
+    def dress_in(m, bar):  # the "drape" carries the material's stiffness
+        return np.array([[m.h00, m.bend, m.h01]])
+
+    def objective(x):
+        return abs(math.log(x[0, 0] / (0.5 * c.h00))) + abs(math.log(x[0, 1] / (math.sqrt(2) * c.bend)))
+
+    start = dress_in(c, None)
+    mat, x, rows = refine_material(c, "cotton", start, objective(start), dress_in, objective, rounds=2)
+    assert mat.h00 == pytest.approx(0.5 * c.h00) and mat.bend == pytest.approx(math.sqrt(2) * c.bend)
+    assert mat.h01 / mat.h00 == pytest.approx(c.h01 / c.h00) and mat.density == c.density
+    assert float(x[0, 0]) == mat.h00 and objective(x) == pytest.approx(0.0, abs=1e-12)
+    assert rows and all(r["material"].startswith("cotton (stretch x") for r in rows)
+    # a start already at the minimum is kept: every scaling is worse
+    mat2, x2, rows2 = refine_material(mat, "m", x, objective(x), dress_in, objective, rounds=2)
+    assert mat2 == mat and len(rows2) == 8

@@ -36,6 +36,7 @@ class FitConfig:
     material: str = "auto"  #: starting material: a library name (unsew.sim.material.MATERIALS; the paper's user choice), or "auto": grade in cotton, dress the graded pattern in each of `material_candidates`, grade again in the `material_regrade` best others, and start phase two from the drape closest to the target (mean surface distance)
     material_candidates: str = ""  #: comma list of library materials "auto" tries ("" = every material in the library)
     material_regrade: int = 2  #: "auto": how many of the best candidates other than cotton are graded again in their own fabric [-]
+    material_refine: int = 2  #: "auto": rounds of the stiffness search after the choice (stretch and bending scaled by 1/s and s, s = 2, sqrt 2, ...; each kept when the drape comes closer); 0: off [-]
 
     # simulation
     dt: float = 0.05  #: time step [s]
@@ -141,6 +142,8 @@ def _check(cfg: FitConfig) -> None:
         raise InputError(f"edge_length {cfg.edge_length} m is outside 0.005-0.1 m")
     if cfg.dt <= 0 or cfg.dt > 0.2:
         raise InputError(f"dt {cfg.dt} s must be in (0, 0.2]")
+    if cfg.material_refine < 0:
+        raise InputError(f"material_refine must be >= 0, got {cfg.material_refine}")
     if cfg.material_regrade < 0:
         raise InputError(f"material_regrade must be >= 0, got {cfg.material_regrade}")
     for k in ("steps", "iterations", "target_points"):
