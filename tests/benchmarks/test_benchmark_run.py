@@ -70,11 +70,12 @@ def test_small_fit_beats_base(tmp_path):
 @pytest.mark.slow
 def test_quick_accuracy_smallest_case_improves_every_metric(tmp_path):
     """The quick accuracy table on the smallest shorts case (default fit settings): the fit beats
-    the base pattern in Chamfer, turning distance and area error.
+    the base pattern in every metric of the table, Chamfer and normal error (3D), turning
+    distance and area error (2D).
 
-    The normal error is not asserted: on this case it sits at the drape's wrinkle floor for every
-    pattern (measured at 96490a3: base 14.0 deg, graded 14.2, fit 14.2, while the area error fell
-    from 9.86 to 0.12 %); it is checked to stay within 1 degree of the base."""
+    The normal error sits near the drape's wrinkle floor on this case: at 96490a3 (start cotton)
+    base 14.0 deg, fit 14.2; at 53e7d49 (material auto with the stiffness refinement, bench-out
+    run of run.py --table ablation --quick) base 13.8, graded 12.7, fit 13.0."""
     run = _module("run")
     run.main(["--table", "accuracy", "--quick", "--garments", "shorts", "--no-report",
               "--cases", str(tmp_path / "cases"), "--out", str(tmp_path / "out")])
@@ -82,7 +83,7 @@ def test_quick_accuracy_smallest_case_improves_every_metric(tmp_path):
     m = json.loads(res.read_text())
     base, fit = m["surface_base"], m["surface"]
     assert fit["chamfer_mm"] < base["chamfer_mm"]
-    assert fit["normal_error_deg"] < base["normal_error_deg"] + 1.0
+    assert fit["normal_error_deg"] < base["normal_error_deg"]
     assert m["pattern"]["turning_distance_mean"] < m["pattern_base"]["turning_distance_mean"]
     assert m["pattern"]["area_error_rel_mean"] < m["pattern_base"]["area_error_rel_mean"]
     assert (tmp_path / "out" / "tables" / "accuracy_quick.md").is_file()
