@@ -33,7 +33,7 @@ class FitConfig:
     # pattern and meshing
     base: str = ""  #: base pattern: garment name or a GarmentCode JSON path; "" = meta.json's garment
     edge_length: float = 0.025  #: target triangle edge length of the panel meshes [m]
-    material: str = "auto"  #: starting material: a library name (unsew.sim.material.MATERIALS; the paper's user choice), or "auto": grade in cotton, dress the graded pattern in each of `material_candidates`, grade again in the `material_regrade` best others, and start phase two from the drape closest to the target (mean surface distance)
+    material: str = "auto"  #: starting material: a library name (unsew.sim.material.MATERIALS; the paper's user choice), or "auto": grade in cotton, dress the graded pattern in each of `material_candidates`, grade again in the `material_regrade` best others, scale the winner's stiffness (`material_refine`), and start phase two from the drape closest to the target (mean surface distance)
     material_candidates: str = ""  #: comma list of library materials "auto" tries ("" = every material in the library)
     material_regrade: int = 2  #: "auto": how many of the best candidates other than cotton are graded again in their own fabric [-]
     material_refine: int = 2  #: "auto": rounds of the stiffness search after the choice (stretch and bending scaled by 1/s and s, s = 2, sqrt 2, ...; each kept when the drape comes closer); 0: off [-]

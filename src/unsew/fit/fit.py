@@ -167,7 +167,7 @@ def refine_material(material, label: str, x0, cf0: float, dress_in, objective, *
     Returns (Material, drape, rows): rows list every scaling tried, {"material", "chamfer_mm"}.
     A library fabric is one point of the stiffness space; a drape tells stretch and bending
     apart (a jersey skirt with stretch x0.5 and x2 lay 14 mm apart) but the library's steps
-    between them are coarse (cotton to silk halves both).
+    between them are coarse (cotton to silk halves the stretch and divides the bending by 3).
     """
     import dataclasses
 
@@ -339,7 +339,7 @@ def fit(
         r0 = material_table[0]
         if cfg.material_refine > 0:
             material0, x_start, rows = refine_material(
-                material0, f"{r0['material']}", x_start, best_cf, dress_in, lambda x: objective(x, mesh.faces),
+                material0, r0["material"], x_start, best_cf, dress_in, lambda x: objective(x, mesh.faces),
                 rounds=cfg.material_refine, progress=progress)
             for row in rows:
                 row["pattern"] = r0["pattern"]
