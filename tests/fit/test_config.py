@@ -34,6 +34,8 @@ def test_yaml_round_trip_and_overrides(tmp_path):
         ("lr_decay: 0\n", "lr_decay"),
         ("lr_decay: 1.5\n", "lr_decay"),
         ("material: velvet\n", "unknown material 'velvet'"),
+        ("fit_friction_eps: 0\n", "fit_friction_eps"),
+        ("redress_check: maybe\n", "redress_check"),
         ("material: auto\nmaterial_candidates: silk,tweed\n", "unknown material 'tweed'"),
     ],
 )

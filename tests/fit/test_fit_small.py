@@ -100,7 +100,42 @@ def test_result_is_the_best_iterate_and_says_so(small_fit):
     _, result, metrics = small_fit
     h = result.history["total"]
     assert metrics["best_iteration"] == min(range(len(h)), key=h.__getitem__)
-    assert metrics["material_fitted"] == (metrics["best_iteration"] >= SMALL["material_start"])
+    kept = metrics["redress"]["phase_two_kept"]
+    assert metrics["material_fitted"] == (metrics["best_iteration"] >= SMALL["material_start"] and kept)
+
+
+def test_redress_check_decides_and_returns_what_it_decided(small_fit):
+    """The fitted pattern, dressed from scratch, is kept only if it lies closer to the target than
+    the graded drape; otherwise the result is the graded pattern with its drape."""
+    import numpy as np
+
+    _, result, metrics = small_fit
+    rd = metrics["redress"]
+    assert rd["phase_two_kept"] == (rd["fit_redressed_mm"] < rd["graded_mm"] - 0.01)
+    assert rd["graded_mm"] == pytest.approx(metrics["surface_graded"]["chamfer_mm"], rel=0.1)
+    if not rd["phase_two_kept"]:
+        np.testing.assert_array_equal(result.x, result.x_graded)
+
+
+def test_redress_check_returns_the_graded_pattern_when_phase_two_found_nothing(small_case):
+    """With the pattern and material held, the re-dress reproduces the graded drape, so the check
+    returns the graded pattern, its drape and the start material; without the check the result
+    is the warm-started drape the optimizer ended on."""
+    import numpy as np
+
+    from unsew.fit.fit import fit
+    from unsew.io.case import load_case
+
+    case = load_case(small_case)
+    cfg = FitConfig(**{**SMALL, "iterations": 2, "pattern_start": 5, "optimize_material": False, "report": False})
+    r = fit(case, cfg, progress=False, log=lambda s: None)
+    assert r.extra["redress"]["phase_two_kept"] is False
+    assert r.extra["redress"]["fit_redressed_mm"] == pytest.approx(r.extra["redress"]["graded_mm"], abs=1e-6)
+    np.testing.assert_array_equal(r.x, r.x_graded)
+    assert r.material == r.extra["material0"]
+    off = fit(case, cfg.replace(redress_check=False), progress=False, log=lambda s: None)
+    assert off.extra["redress"] is None
+    assert np.abs(off.x - off.x_graded).max() > 1e-6
 
 
 def test_material_parameterisation_stays_valid():
@@ -259,3 +294,25 @@ def test_refine_material_walks_towards_the_closest_stiffness():
     # a start already at the minimum is kept: every scaling is worse
     mat2, x2, rows2 = refine_material(mat, "m", x, objective(x), dress_in, objective, rounds=2)
     assert mat2 == mat and len(rows2) == 8
+
+
+def test_fit_friction_eps_reaches_phase_two_drapes(small_case, monkeypatch):
+    """fit_friction_eps is the slip speed of phase two's drapes (and of those only)."""
+    import importlib
+
+    from unsew.fit.fit import fit
+    from unsew.io.case import load_case
+
+    simdrape = importlib.import_module("unsew.sim.drape")
+    orig, seen = simdrape.drape, []
+
+    def spy(*a, **k):
+        if k.get("uv") is not None and k["uv"].requires_grad:
+            seen.append(k.get("friction_eps"))
+        return orig(*a, **k)
+
+    monkeypatch.setattr(simdrape, "drape", spy)
+    cfg = FitConfig(**{**SMALL, "iterations": 2, "optimize_material": False, "report": False,
+                       "fit_friction_eps": 2e-3, "redress_check": False})
+    fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
+    assert seen == [2e-3, 2e-3]

@@ -42,6 +42,7 @@ class FitConfig:
     dt: float = 0.05  #: time step [s]
     steps: int = 15  #: implicit Euler steps per differentiable drape [-]
     warm_start: bool = True  #: start each drape from the previous iteration's (the paper); False: always from the graded pattern's settled drape, so the drape depends on K and Gamma alone
+    fit_friction_eps: float = 1e-2  #: slip speed below which friction is viscous in phase two's drapes [m/s] (the simulator's default; 1e-3 holds a warm-started drape from creeping down the body, docs/benchmarks.md "Where phase two's pattern drift comes from")
     sew_steps: int = 80  #: steps of the non-differentiated sewing phase [-]
     settle_steps: int = 40  #: steps of plain draping after sewing, before the first loss [-]
 
@@ -62,6 +63,7 @@ class FitConfig:
     lambda_open: float = 0.1  #: weight of the open-contour Chamfer, eq. 6 [-]
     lambda_seam: float = 1.0  #: weight of the seam-length loss, eq. 8 [-] (paper: 0.01; see module docstring)
     lambda_mat: float = 0.01  #: weight of the material range penalty [-]
+    redress_check: bool = True  #: after phase two, dress the fitted pattern from scratch on the same mesh; if it lies no closer to the target (mean surface distance) than the graded pattern's drape, return the graded pattern and its drape (not in the paper)
     lambda_prior: float = 0.0  #: weight of the pull towards the start (graded) pattern: mean squared 2D rest-vertex move [m^2] (0: off, the paper's loss) [-]
     seam_loss: bool = True  #: include the seam loss (ablation: False)
     tol: float = 1e-3  #: stop when the loss changed by less than this fraction over `patience` iterations [-]
@@ -142,6 +144,8 @@ def _check(cfg: FitConfig) -> None:
         raise InputError(f"edge_length {cfg.edge_length} m is outside 0.005-0.1 m")
     if cfg.dt <= 0 or cfg.dt > 0.2:
         raise InputError(f"dt {cfg.dt} s must be in (0, 0.2]")
+    if not cfg.fit_friction_eps > 0:
+        raise InputError(f"fit_friction_eps must be positive, got {cfg.fit_friction_eps} m/s")
     if cfg.material_refine < 0:
         raise InputError(f"material_refine must be >= 0, got {cfg.material_refine}")
     if cfg.material_regrade < 0:

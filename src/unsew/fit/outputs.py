@@ -78,6 +78,8 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     if result.extra.get("material_choice"):
         m["material_choice"] = result.extra["material_choice"]  # material: auto, best first
     m["converged"] = result.converged
+    if result.extra.get("redress"):
+        m["redress"] = result.extra["redress"]  # the re-dress check: phase two kept or not
     m["timings_s"] = result.timings
     return m
 

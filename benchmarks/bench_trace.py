@@ -1,0 +1,107 @@
+"""Trace phase two of one fit, iteration by iteration: where does the pattern go, and what does the
+drape gain for it?
+
+Fits one known-truth case folder (FORMATS.md, with pattern_gt.json) with FitConfig's defaults,
+changed by ``--set KEY=VALUE``, and records the control points and the drape of every
+iteration of phase two. Prints per iteration: the loss, the Chamfer distance [mm] of that
+iteration's (warm-started) drape to the target, and the mean panel area error [%] and mean
+vertex L2 [cm] of that iteration's pattern against the true one. ``--json`` writes the rows.
+
+A frozen pattern (``--set pattern_start=1000 optimize_material=false``) shows how far the drape
+moves by itself over the iterations (creep); the default shows how far the pattern moves for
+what the drape gains.
+
+Run: OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_trace.py CASE_DIR [--set KEY=VALUE ...]
+     [--json rows.json]
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import json
+import os
+from pathlib import Path
+
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("case")
+    ap.add_argument("--set", nargs="*", default=[], metavar="KEY=VALUE", help="FitConfig overrides (YAML values)")
+    ap.add_argument("--json", default=None, help="write the per-iteration rows here")
+    ap.add_argument("--samples", type=int, default=20000)
+    args = ap.parse_args()
+    if not (Path(args.case) / "pattern_gt.json").is_file():
+        ap.error(f"{args.case}: not a known-truth case folder (no pattern_gt.json)")
+    import yaml
+
+    sets = {}
+    for kv in args.set:
+        if "=" not in kv:
+            ap.error(f"--set {kv!r}: expected KEY=VALUE")
+        k, v = kv.split("=", 1)
+        sets[k] = yaml.safe_load(v)
+
+    import numpy as np
+    import torch
+
+    torch.set_num_threads(1)
+    from unsew.errors import InputError
+    from unsew.fit.config import load_config
+    from unsew.io.case import load_case
+    from unsew.metrics.panels import pattern_metrics
+    from unsew.metrics.surface import chamfer_mm
+
+    try:
+        case = load_case(args.case)
+        cfg = load_config(None, report=False, **sets)
+    except InputError as exc:
+        raise SystemExit(f"bench_trace: {exc}") from None
+
+    # Record what phase two's loop hands to the simulator and to the inversion check: the drape of
+    # every iteration (drapes with a differentiable rest shape) and the control points it used.
+    fit_mod = importlib.import_module("unsew.fit.fit")
+    drape_mod = importlib.import_module("unsew.sim.drape")  # fit() imports drape from here at call time
+    xs, Ks = [], []
+    orig_drape, orig_backtrack = drape_mod.drape, fit_mod._backtrack_inversions
+
+    def recording_drape(*a, **k):
+        out = orig_drape(*a, **k)
+        if k.get("uv") is not None and k["uv"].requires_grad:
+            xs.append(out.x.detach().cpu().clone())
+        return out
+
+    def recording_backtrack(params, K, K_before, *a, **k):
+        Ks.append(K_before.detach().cpu().clone())
+        return orig_backtrack(params, K, K_before, *a, **k)
+
+    drape_mod.drape, fit_mod._backtrack_inversions = recording_drape, recording_backtrack
+    try:
+        res = fit_mod.fit(case, cfg, progress=False, log=lambda s: None)
+    finally:
+        drape_mod.drape, fit_mod._backtrack_inversions = orig_drape, orig_backtrack
+
+    tv, tf = np.asarray(case.target_verts), np.asarray(case.target_faces)
+    rows = []
+    print(f"{'it':>3} {'loss':>10} {'Chamfer mm':>10} {'area %':>7} {'vertex L2 cm':>12}")
+    for i, (K, x) in enumerate(zip(Ks, xs)):
+        pm = pattern_metrics(res.params.to_pattern(K), case.pattern_gt)
+        cf = chamfer_mm(x.numpy(), res.mesh.faces, tv, tf, n_samples=args.samples).mean_mm
+        row = {"it": i, "loss": res.history["total"][i], "chamfer_mm": cf,
+               "area_pct": 100 * pm["area_error_rel_mean"], "vertex_l2_cm": pm.get("vertex_l2_cm_mean")}
+        rows.append(row)
+        print(f"{i:>3d} {row['loss']:>10.4e} {cf:>10.2f} {row['area_pct']:>7.2f} {row['vertex_l2_cm']:>12.2f}", flush=True)
+    rd = res.extra.get("redress")
+    start = (res.extra.get("material_choice") or [{"material": cfg.material}])[0]["material"]
+    print(f"best iteration {res.extra['best_iteration']}; start material {start}"
+          + (f"; re-dress {rd['fit_redressed_mm']:.2f} mm against graded {rd['graded_mm']:.2f} mm, "
+             f"{'fit kept' if rd['phase_two_kept'] else 'graded returned'}" if rd else ""))
+    if args.json:
+        Path(args.json).write_text(json.dumps({"case": str(args.case), "set": sets, "rows": rows,
+                                               "best_iteration": res.extra["best_iteration"], "redress": rd}, indent=1))
+
+
+if __name__ == "__main__":
+    main()
