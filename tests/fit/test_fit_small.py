@@ -109,8 +109,9 @@ def test_redress_check_decides_and_returns_what_it_decided(small_fit):
     the graded drape; otherwise the result is the graded pattern with its drape."""
     import numpy as np
 
-    _, result, metrics = small_fit
+    out, result, metrics = small_fit
     rd = metrics["redress"]
+    assert "re-dress check" in (out / "report.html").read_text()
     assert rd["phase_two_kept"] == (rd["fit_redressed_mm"] < rd["graded_mm"] - 0.01)
     assert rd["graded_mm"] == pytest.approx(metrics["surface_graded"]["chamfer_mm"], rel=0.1)
     if not rd["phase_two_kept"]:

@@ -41,6 +41,13 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     for row in result.grade_table or []:
         for w in (row.get("warnings") or []) if isinstance(row, dict) else []:
             notes.append(f"grading: {w}")
+    rd = metrics.get("redress")
+    if rd:
+        summary["returned"] = "phase two's pattern" if rd["phase_two_kept"] else "the graded pattern"
+        notes.append(f"re-dress check: the fitted pattern dressed from scratch lies {rd['fit_redressed_mm']:.2f} mm "
+                     f"from the target, the graded one {rd['graded_mm']:.2f} mm; "
+                     + ("phase two's pattern is returned" if rd["phase_two_kept"] else
+                        "the graded pattern and its drape are returned (the final and graded patterns coincide)"))
     top = max((max(v) for v in result.history.values() if v), default=0.0)
     # terms that stay at round-off level (e.g. the seam loss of a symmetric skirt) would stretch
     # the log axis over 30 decades: leave them out of the plot (they are in the metrics table)
