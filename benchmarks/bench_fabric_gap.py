@@ -17,9 +17,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
 import os
-from pathlib import Path
 
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
@@ -35,34 +33,19 @@ def main() -> None:
 
     if args.start not in MATERIALS:
         ap.error(f"--start {args.start!r}: not a library material ({', '.join(MATERIALS)})")
-    for d in args.cases:
-        if not (Path(d) / "meta.json").is_file():
-            ap.error(f"{d}: not a case folder (no meta.json)")
+    from truth_cases import check_case_dirs, truth_cases
 
-    import numpy as np
+    check_case_dirs(ap, args.cases)
     import torch
 
     torch.set_num_threads(1)
-    from unsew.body.sdf import BodySDF
     from unsew.dress import dress
     from unsew.fit.config import FitConfig
-    from unsew.io.case import load_case
     from unsew.metrics.surface import chamfer_mm
-    from unsew.errors import InputError
 
     cfg = FitConfig()
     print(f"{'case':<12} {'truth fabric':<12} {'drape of the true pattern in':<40} {'Chamfer mm':>10}")
-    for d in args.cases:
-        d = Path(d)
-        truth = json.loads((d / "meta.json").read_text()).get("truth", {}).get("material")
-        try:
-            case = load_case(d)
-        except InputError as exc:
-            raise SystemExit(f"{d}: {exc}") from None
-        if case.pattern_gt is None or truth not in MATERIALS:
-            print(f"{d.name:<12} skipped: no pattern_gt.json or no known truth.material in meta.json")
-            continue
-        sdf = BodySDF.build(case.body)
+    for name, case, truth, sdf, tv, tf in truth_cases(args.cases):
         start, true = MATERIALS[args.start], MATERIALS[truth]
         variants = [
             (f"{args.start} (the fit's start)", start),
@@ -70,12 +53,11 @@ def main() -> None:
             (f"{truth} (the target's)", true),
             (f"{truth} with {args.start}'s friction", dataclasses.replace(true, friction=start.friction)),
         ]
-        tv, tf = np.asarray(case.target_verts), np.asarray(case.target_faces)
-        for name, mat in variants:
+        for label, mat in variants:
             dr = dress(case.pattern_gt, case.body, sdf=sdf, edge_length=args.edge_length, material=mat,
                        sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt)
             cf = chamfer_mm(dr.x.numpy(), dr.mesh.faces, tv, tf, n_samples=args.samples).mean_mm
-            print(f"{d.name:<12} {truth:<12} {name:<40} {cf:>10.2f}", flush=True)
+            print(f"{name:<12} {truth:<12} {label:<40} {cf:>10.2f}", flush=True)
 
 
 if __name__ == "__main__":

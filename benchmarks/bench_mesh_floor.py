@@ -17,10 +17,8 @@ Run: OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_mesh_floor.py CAS
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import time
-from pathlib import Path
 
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
@@ -32,43 +30,26 @@ def main() -> None:
                     help="panel mesh edge lengths to dress the true pattern at [m]")
     ap.add_argument("--samples", type=int, default=20000)
     args = ap.parse_args()
-    from unsew.sim.material import MATERIALS
+    from truth_cases import check_case_dirs, truth_cases
 
-    for d in args.cases:
-        if not (Path(d) / "meta.json").is_file():
-            ap.error(f"{d}: not a case folder (no meta.json)")
-
-    import numpy as np
+    check_case_dirs(ap, args.cases)
     import torch
 
     torch.set_num_threads(1)
-    from unsew.body.sdf import BodySDF
     from unsew.dress import dress
-    from unsew.errors import InputError
     from unsew.fit.config import FitConfig
-    from unsew.io.case import load_case
     from unsew.metrics.surface import chamfer_mm
+    from unsew.sim.material import MATERIALS
 
     cfg = FitConfig()
     print(f"{'case':<12} {'fabric':<10} {'edge m':>7} {'verts':>6} {'Chamfer mm':>10} {'time s':>7}")
-    for d in args.cases:
-        d = Path(d)
-        truth = json.loads((d / "meta.json").read_text()).get("truth", {}).get("material")
-        try:
-            case = load_case(d)
-        except InputError as exc:
-            raise SystemExit(f"{d}: {exc}") from None
-        if case.pattern_gt is None or truth not in MATERIALS:
-            print(f"{d.name:<12} skipped: no pattern_gt.json or no known truth.material in meta.json")
-            continue
-        sdf = BodySDF.build(case.body)
-        tv, tf = np.asarray(case.target_verts), np.asarray(case.target_faces)
+    for name, case, truth, sdf, tv, tf in truth_cases(args.cases):
         for h in args.edge_lengths:
             t = time.perf_counter()
             dr = dress(case.pattern_gt, case.body, sdf=sdf, edge_length=h, material=MATERIALS[truth],
                        sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt)
             cf = chamfer_mm(dr.x.numpy(), dr.mesh.faces, tv, tf, n_samples=args.samples).mean_mm
-            print(f"{d.name:<12} {truth:<10} {h:>7.4f} {len(dr.x):>6d} {cf:>10.2f} {time.perf_counter() - t:>7.1f}",
+            print(f"{name:<12} {truth:<10} {h:>7.4f} {len(dr.x):>6d} {cf:>10.2f} {time.perf_counter() - t:>7.1f}",
                   flush=True)
 
 
