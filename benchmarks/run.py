@@ -350,14 +350,14 @@ def table_speed(args) -> None:
         gm = mfile.parent / "garment.obj"
         nv = sum(1 for line in open(gm) if line.startswith("v ")) if gm.is_file() else None
         rows.append([f"{mfile.parent.parent.name}/{mfile.parent.name}", nv, it, t.get("total_s"), t.get("body_sdf_s"),
-                     t.get("grading_s"), t.get("optimization_s"),
-                     (t.get("optimization_s") or 0) / it if it else None, b.get("wall_s"),
+                     t.get("grading_s"), t.get("material_choice_s"), t.get("optimization_s"),
+                     (t.get("optimization_s") or 0) / it if it else None, t.get("redress_s"), b.get("wall_s"),
                      b.get("load_start")])
     parts.append("End-to-end fits found under the results folder (seconds; `fit` = run_fit's total, `wall` "
                  "includes writing the result folder and report):\n\n"
-                 + md_table(["variant/case", "verts", "iters", "total s", "body SDF s", "grading s", "optim s",
-                             "s/iter", "wall s", "load"], rows,
-                            ["s", "d", "d", ".0f", ".1f", ".1f", ".0f", ".2f", ".0f", ".1f"]) + "\n")
+                 + md_table(["variant/case", "verts", "iters", "total s", "body SDF s", "grading s",
+                             "fabric choice s", "optim s", "s/iter", "re-dress s", "wall s", "load"], rows,
+                            ["s", "d", "d", ".0f", ".1f", ".1f", ".0f", ".0f", ".2f", ".1f", ".0f", ".1f"]) + "\n")
     if rows:
         tot = [r[3] for r in rows if r[3]]
         parts.append(f"{len(rows)} fits: median {np.median(tot):.0f} s, max {np.max(tot):.0f} s.\n")
