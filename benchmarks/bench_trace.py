@@ -11,8 +11,11 @@ A frozen pattern (``--set pattern_start=1000 optimize_material=false``) shows ho
 moves by itself over the iterations (creep); the default shows how far the pattern moves for
 what the drape gains.
 
+``--redress-every N`` also dresses every N-th iterate (and the best) from scratch, as the fit's
+re-dress check does with the best one, and prints how far that fresh drape lies from the target.
+
 Run: OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_trace.py CASE_DIR [--set KEY=VALUE ...]
-     [--json rows.json]
+     [--json rows.json] [--redress-every N]
 """
 
 from __future__ import annotations
@@ -32,6 +35,9 @@ def main() -> None:
     ap.add_argument("--set", nargs="*", default=[], metavar="KEY=VALUE", help="FitConfig overrides (YAML values)")
     ap.add_argument("--json", default=None, help="write the per-iteration rows here")
     ap.add_argument("--samples", type=int, default=20000)
+    ap.add_argument("--redress-every", type=int, default=0, metavar="N",
+                    help="also dress every N-th iterate's pattern (in that iteration's material) from scratch "
+                         "on the fit's mesh and print its Chamfer [mm] (0: off)")
     args = ap.parse_args()
     if not (Path(args.case) / "pattern_gt.json").is_file():
         ap.error(f"{args.case}: not a known-truth case folder (no pattern_gt.json)")
@@ -64,13 +70,14 @@ def main() -> None:
     # every iteration (drapes with a differentiable rest shape) and the control points it used.
     fit_mod = importlib.import_module("unsew.fit.fit")
     drape_mod = importlib.import_module("unsew.sim.drape")  # fit() imports drape from here at call time
-    xs, Ks = [], []
+    xs, Ks, gammas = [], [], []
     orig_drape, orig_backtrack = drape_mod.drape, fit_mod._backtrack_inversions
 
     def recording_drape(*a, **k):
         out = orig_drape(*a, **k)
         if k.get("uv") is not None and k["uv"].requires_grad:
             xs.append(out.x.detach().cpu().clone())
+            gammas.append(k["gamma"].detach().cpu().clone())
         return out
 
     def recording_backtrack(params, K, K_before, *a, **k):
@@ -85,14 +92,20 @@ def main() -> None:
 
     tv, tf = np.asarray(case.target_verts), np.asarray(case.target_faces)
     rows = []
-    print(f"{'it':>3} {'loss':>10} {'Chamfer mm':>10} {'area %':>7} {'vertex L2 cm':>12}")
+    n = args.redress_every
+    print(f"{'it':>3} {'loss':>10} {'Chamfer mm':>10} {'area %':>7} {'vertex L2 cm':>12}"
+          + (f" {'re-dressed mm':>13}" if n > 0 else ""))
     for i, (K, x) in enumerate(zip(Ks, xs)):
-        pm = pattern_metrics(res.params.to_pattern(K), case.pattern_gt)
+        pattern = res.params.to_pattern(K)
+        pm = pattern_metrics(pattern, case.pattern_gt)
         cf = chamfer_mm(x.numpy(), res.mesh.faces, tv, tf, n_samples=args.samples).mean_mm
         row = {"it": i, "loss": res.history["total"][i], "chamfer_mm": cf,
                "area_pct": 100 * pm["area_error_rel_mean"], "vertex_l2_cm": pm.get("vertex_l2_cm_mean")}
+        if n > 0 and (i % n == 0 or i == res.extra["best_iteration"]):
+            row["redressed_mm"] = _redress(res, case, cfg, pattern, K, gammas[i], tv, tf, args.samples)
         rows.append(row)
-        print(f"{i:>3d} {row['loss']:>10.4e} {cf:>10.2f} {row['area_pct']:>7.2f} {row['vertex_l2_cm']:>12.2f}", flush=True)
+        print(f"{i:>3d} {row['loss']:>10.4e} {cf:>10.2f} {row['area_pct']:>7.2f} {row['vertex_l2_cm']:>12.2f}"
+              + (f" {row['redressed_mm']:>13.2f}" if "redressed_mm" in row else ""), flush=True)
     rd = res.extra.get("redress")
     start = (res.extra.get("material_choice") or [{"material": cfg.material}])[0]["material"]
     print(f"best iteration {res.extra['best_iteration']}; start material {start}"
@@ -101,6 +114,25 @@ def main() -> None:
     if args.json:
         Path(args.json).write_text(json.dumps({"case": str(args.case), "set": sets, "rows": rows,
                                                "best_iteration": res.extra["best_iteration"], "redress": rd}, indent=1))
+
+
+def _redress(res, case, cfg, pattern, K, gamma, tv, tf, samples) -> float:
+    """Chamfer [mm] to the target of ``pattern`` (control points K) in the material ``gamma``
+    (with the start material's density and friction), dressed from scratch on the fit's mesh, as
+    the fit's re-dress check does."""
+    from unsew.body.sdf import BodySDF
+    from unsew.dress import dress
+    from unsew.grading.grade import moved_mesh
+    from unsew.metrics.surface import chamfer_mm
+    from unsew.sim.material import Material
+
+    m0 = res.extra["material0"]
+    g = [float(v) for v in gamma]
+    mat = Material(g[0], g[1], g[2], g[3], g[4], m0.density, m0.friction)
+    uv = res.params.uv(K).detach().cpu().numpy()
+    x = dress(pattern, case.body, sdf=BodySDF.build(case.body), mesh=moved_mesh(res.mesh, pattern, uv), material=mat,
+              sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt).x.numpy()
+    return chamfer_mm(x, res.mesh.faces, tv, tf, n_samples=samples).mean_mm
 
 
 if __name__ == "__main__":
