@@ -93,6 +93,11 @@ def main() -> None:
     tv, tf = np.asarray(case.target_verts), np.asarray(case.target_faces)
     rows = []
     n = args.redress_every
+    sdf = None
+    if n > 0:
+        from unsew.body.sdf import BodySDF
+
+        sdf = BodySDF.build(case.body)
     print(f"{'it':>3} {'loss':>10} {'Chamfer mm':>10} {'area %':>7} {'vertex L2 cm':>12}"
           + (f" {'re-dressed mm':>13}" if n > 0 else ""))
     for i, (K, x) in enumerate(zip(Ks, xs)):
@@ -102,7 +107,7 @@ def main() -> None:
         row = {"it": i, "loss": res.history["total"][i], "chamfer_mm": cf,
                "area_pct": 100 * pm["area_error_rel_mean"], "vertex_l2_cm": pm.get("vertex_l2_cm_mean")}
         if n > 0 and (i % n == 0 or i == res.extra["best_iteration"]):
-            row["redressed_mm"] = _redress(res, case, cfg, pattern, K, gammas[i], tv, tf, args.samples)
+            row["redressed_mm"] = _redress(res, case, cfg, sdf, pattern, K, gammas[i], tv, tf, args.samples)
         rows.append(row)
         print(f"{i:>3d} {row['loss']:>10.4e} {cf:>10.2f} {row['area_pct']:>7.2f} {row['vertex_l2_cm']:>12.2f}"
               + (f" {row['redressed_mm']:>13.2f}" if "redressed_mm" in row else ""), flush=True)
@@ -116,11 +121,10 @@ def main() -> None:
                                                "best_iteration": res.extra["best_iteration"], "redress": rd}, indent=1))
 
 
-def _redress(res, case, cfg, pattern, K, gamma, tv, tf, samples) -> float:
+def _redress(res, case, cfg, sdf, pattern, K, gamma, tv, tf, samples) -> float:
     """Chamfer [mm] to the target of ``pattern`` (control points K) in the material ``gamma``
     (with the start material's density and friction), dressed from scratch on the fit's mesh, as
     the fit's re-dress check does."""
-    from unsew.body.sdf import BodySDF
     from unsew.dress import dress
     from unsew.grading.grade import moved_mesh
     from unsew.metrics.surface import chamfer_mm
@@ -130,7 +134,7 @@ def _redress(res, case, cfg, pattern, K, gamma, tv, tf, samples) -> float:
     g = [float(v) for v in gamma]
     mat = Material(g[0], g[1], g[2], g[3], g[4], m0.density, m0.friction)
     uv = res.params.uv(K).detach().cpu().numpy()
-    x = dress(pattern, case.body, sdf=BodySDF.build(case.body), mesh=moved_mesh(res.mesh, pattern, uv), material=mat,
+    x = dress(pattern, case.body, sdf=sdf, mesh=moved_mesh(res.mesh, pattern, uv), material=mat,
               sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt).x.numpy()
     return chamfer_mm(x, res.mesh.faces, tv, tf, n_samples=samples).mean_mm
 

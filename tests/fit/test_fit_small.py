@@ -133,6 +133,7 @@ def test_redress_check_returns_the_graded_pattern_when_phase_two_found_nothing(s
     assert r.extra["redress"]["phase_two_kept"] is False
     assert r.extra["redress"]["fit_redressed_mm"] == pytest.approx(r.extra["redress"]["graded_mm"], abs=1e-6)
     np.testing.assert_array_equal(r.x, r.x_graded)
+    np.testing.assert_array_equal(r.uv, r.mesh.uv)  # the rest mesh the graded drape was made on
     assert r.material == r.extra["material0"]
     off = fit(case, cfg.replace(redress_check=False), progress=False, log=lambda s: None)
     assert off.extra["redress"] is None

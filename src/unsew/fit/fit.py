@@ -503,8 +503,7 @@ def fit(
         log(f"re-dress check: the fitted pattern dressed from scratch lies {cf_re:.2f} mm from the target, "
             f"the graded one {cf_graded:.2f} mm: " + ("fit kept" if kept else "the graded pattern is returned"))
         if not kept:
-            with torch.no_grad():
-                uv_b = params.uv(params.K0).cpu().numpy()
+            uv_b = np.asarray(mesh.uv, dtype=np.float64)  # the graded pattern's rest mesh (= uv(K0))
             pattern, xb, material = graded, np.asarray(x_start), material0
         timings["redress_s"] = time.perf_counter() - t3
     timings["total_s"] = time.perf_counter() - t0

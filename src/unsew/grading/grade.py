@@ -110,7 +110,9 @@ def _rest_edge_stretch(uv: np.ndarray, faces_uv: np.ndarray, edge_length: float)
 
 
 def moved_mesh(mesh, pattern, uv: np.ndarray):
-    """The base mesh with its rest positions moved to ``uv`` (same topology)."""
+    """The GarmentMesh ``mesh`` with its rest positions moved to ``uv`` (Nu, 2) float64 [m] (same
+    topology and vertex order); the flat panels' 3D placement (``uv_placed3d``, (Nu, 3) [m]) is
+    recomputed from ``pattern``'s panel translations and rotations."""
     placed = np.zeros((len(uv), 3))
     for p, name in enumerate(mesh.panel_names):
         idx = np.flatnonzero(mesh.uv_panel == p)
