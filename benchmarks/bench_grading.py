@@ -20,7 +20,10 @@ their placement (``--drape flat``: no physics, a check of the geometry alone). `
 simulator when ``unsew.body.placement.place_garment`` exists.
 
 Run: OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_grading.py [--drape auto|sim|flat]
-     [--edge-length 0.03] [--garments tshirt pants ...] [--passes N] [--targets N]
+     [--edge-length 0.03] [--garments tshirt pants ...] [--passes N] [--targets N] [--flip]
+
+``--flip`` negates every change (the t-shirt's hem -10 cm and 10 % narrower, its sleeves +5 cm
+and 10 % wider, ...), so each garment is graded in both directions the issue names.
 """
 
 from __future__ import annotations
@@ -61,6 +64,8 @@ def main() -> None:
     ap.add_argument("--samples", type=int, default=20000, help="Chamfer samples per mesh")
     ap.add_argument("--passes", type=int, default=None, help="grading passes (default: grade()'s)")
     ap.add_argument("--floor-scale", type=float, default=0.97, help="edge length factor of the noise-floor mesh (0: skip)")
+    ap.add_argument("--flip", action="store_true",
+                    help="negate every known change (lengths and girths): the opposite case of each garment")
     ap.add_argument("--no-hold-top", action="store_true", help="let a waist edit move the panel's placement (grade(hold_top=False))")
     ap.add_argument("--targets", type=int, default=1, help="target drapes per garment, on meshes of slightly different edge length")
     args = ap.parse_args()
@@ -93,7 +98,8 @@ def main() -> None:
             return dress_drape(p, m, b, material=args.material, sdf=sdf)
     else:
         drape_fn = flat_drape
-    print(f"drape: {mode}; edge length {args.edge_length} m; material {args.material}")
+    flipped = "; changes negated (--flip)" if args.flip else ""
+    print(f"drape: {mode}; edge length {args.edge_length} m; material {args.material}{flipped}")
     head = (
         f"{'garment':<8} {'contour':<10} {'known dL cm':>11} {'known dG %':>10} {'axial cm':>9} {'girth cm':>9} "
         f"{'res L cm':>9} {'res G cm':>9}"
@@ -105,7 +111,7 @@ def main() -> None:
         base = make_base_pattern(g)
         groups = alteration_groups(base)
         target = base
-        for key, (dl, dg) in CHANGES[g].items():
+        for key, (dl, dg) in _changes(g, args.flip).items():
             if key in groups:
                 target = alter_pattern(target, groups[key], length=dl, girth=dg)
         bm = mesh_pattern(base, edge_length=args.edge_length)
@@ -127,7 +133,7 @@ def main() -> None:
                 # the graded contour that corresponds to the target one: same part, nearest centre
                 cands = [a for a in after if a.part == s.part] or after
                 a = min(cands, key=lambda a: float(np.linalg.norm(a.centre - t.centre)))
-                known = _known(g, s.part)
+                known = _known(g, s.part, args.flip)
                 res_l = abs(a.position - t.position) if a.bone is not None and a.bone.part == t.part else float(
                     np.linalg.norm(a.centre - t.centre)
                 )
@@ -160,9 +166,14 @@ def main() -> None:
     print("floor: the target pattern draped on a second mesh, against the target drape (the drape's own noise)")
 
 
-def _known(garment: str, part: str) -> tuple[float, float]:
+def _changes(garment: str, flip: bool) -> dict:
+    """CHANGES[garment], every length and girth change negated when ``flip``."""
+    return {k: ((-dl, -dg) if flip else (dl, dg)) for k, (dl, dg) in CHANGES[garment].items()}
+
+
+def _known(garment: str, part: str, flip: bool = False) -> tuple[float, float]:
     """The known (length [m], relative girth) change of the contour on ``part``."""
-    ch = CHANGES[garment]
+    ch = _changes(garment, flip)
     if part in ("left_arm", "right_arm"):
         return ch.get("sleeves", (0.0, 0.0))
     if part in ("left_leg", "right_leg"):
