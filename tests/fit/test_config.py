@@ -36,6 +36,8 @@ def test_yaml_round_trip_and_overrides(tmp_path):
         ("material: velvet\n", "unknown material 'velvet'"),
         ("fit_friction_eps: 0\n", "fit_friction_eps"),
         ("redress_check: maybe\n", "redress_check"),
+        ("mesh_spread: 0.6\n", "mesh_spread"),
+        ("mesh_spread: -0.1\n", "mesh_spread"),
         ("material: auto\nmaterial_candidates: silk,tweed\n", "unknown material 'tweed'"),
     ],
 )

@@ -118,6 +118,24 @@ def test_redress_check_decides_and_returns_what_it_decided(small_fit):
         np.testing.assert_array_equal(result.x, result.x_graded)
 
 
+def test_mesh_spread_dresses_the_returned_pattern_on_two_other_meshes(small_fit):
+    """metrics.json's mesh_spread: the returned pattern dressed on meshes 4 % finer and coarser,
+    each at its own distance from the target, beside the result's own (the re-dress figure of
+    whichever pattern was returned); the report says so."""
+    import math
+
+    out, result, metrics = small_fit
+    ms = json.loads((out / "metrics.json").read_text())["mesh_spread"]
+    h = SMALL["edge_length"]
+    assert ms["edge_lengths_m"] == pytest.approx([0.96 * h, 1.04 * h])
+    rd = metrics["redress"]
+    assert ms["result_mm"] == (rd["fit_redressed_mm"] if rd["phase_two_kept"] else rd["graded_mm"])
+    for v in ms["chamfer_mm"]:
+        assert math.isfinite(v) and 0 < v < 100
+        assert abs(v - ms["result_mm"]) > 1e-6  # another triangulation, another drape
+    assert "mesh spread" in (out / "report.html").read_text()
+
+
 def test_redress_check_returns_the_graded_pattern_when_phase_two_found_nothing(small_case):
     """With the pattern and material held, the re-dress reproduces the graded drape, so the check
     returns the graded pattern, its drape and the start material; without the check the result
@@ -135,8 +153,9 @@ def test_redress_check_returns_the_graded_pattern_when_phase_two_found_nothing(s
     np.testing.assert_array_equal(r.x, r.x_graded)
     np.testing.assert_array_equal(r.uv, r.mesh.uv)  # the rest mesh the graded drape was made on
     assert r.material == r.extra["material0"]
-    off = fit(case, cfg.replace(redress_check=False), progress=False, log=lambda s: None)
-    assert off.extra["redress"] is None
+    assert r.extra["mesh_spread"] is not None
+    off = fit(case, cfg.replace(redress_check=False, mesh_spread=0.0), progress=False, log=lambda s: None)
+    assert off.extra["redress"] is None and off.extra["mesh_spread"] is None
     assert np.abs(off.x - off.x_graded).max() > 1e-6
 
 

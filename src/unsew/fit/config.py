@@ -64,6 +64,7 @@ class FitConfig:
     lambda_seam: float = 1.0  #: weight of the seam-length loss, eq. 8 [-] (paper: 0.01; see module docstring)
     lambda_mat: float = 0.01  #: weight of the material range penalty [-]
     redress_check: bool = True  #: after phase two, dress the fitted pattern from scratch on the same mesh; if it lies no closer to the target (mean surface distance) than the graded pattern's drape, return the graded pattern and its drape (not in the paper)
+    mesh_spread: float = 0.04  #: after the fit, dress the returned pattern from scratch on meshes of edge length x (1 - mesh_spread) and x (1 + mesh_spread); their distance to the target (metrics.json ``mesh_spread``) is how far the triangulation alone moves the drape (0: skip) [-]
     lambda_prior: float = 0.0  #: weight of the pull towards the start (graded) pattern: mean squared 2D rest-vertex move [m^2] (0: off, the paper's loss) [-]
     seam_loss: bool = True  #: include the seam loss (ablation: False)
     tol: float = 1e-3  #: stop when the loss changed by less than this fraction over `patience` iterations [-]
@@ -146,6 +147,8 @@ def _check(cfg: FitConfig) -> None:
         raise InputError(f"dt {cfg.dt} s must be in (0, 0.2]")
     if not cfg.fit_friction_eps > 0:
         raise InputError(f"fit_friction_eps must be positive, got {cfg.fit_friction_eps} m/s")
+    if not 0 <= cfg.mesh_spread < 0.5:
+        raise InputError(f"mesh_spread must be in [0, 0.5), got {cfg.mesh_spread}")
     if cfg.material_refine < 0:
         raise InputError(f"material_refine must be >= 0, got {cfg.material_refine}")
     if cfg.material_regrade < 0:

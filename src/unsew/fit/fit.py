@@ -506,6 +506,21 @@ def fit(
             uv_b = np.asarray(mesh.uv, dtype=np.float64)  # the graded pattern's rest mesh (= uv(K0))
             pattern, xb, material = graded, np.asarray(x_start), material0
         timings["redress_s"] = time.perf_counter() - t3
+
+    # ---- the mesh spread -----------------------------------------------------------------------
+    # The returned pattern dressed on two other triangulations: how far the folds move with the
+    # mesh alone, the floor under the result's distance to the target (docs/benchmarks.md, "The
+    # mesh floor").
+    spread = None
+    if cfg.mesh_spread > 0:
+        t4 = time.perf_counter()
+        spread = _mesh_spread(pattern, material, case.body, sdf, cfg, objective, progress)
+        spread["result_mm"] = (redress["fit_redressed_mm"] if redress and redress["phase_two_kept"]
+                               else redress["graded_mm"] if redress else objective(xb, mesh.faces))
+        log(f"mesh spread: the returned pattern dressed on meshes {100 * cfg.mesh_spread:.0f} % finer / coarser "
+            f"lies {' / '.join(_mm(v) for v in spread['chamfer_mm'])} from the target "
+            f"(the result {spread['result_mm']:.2f} mm)")
+        timings["mesh_spread_s"] = time.perf_counter() - t4
     timings["total_s"] = time.perf_counter() - t0
     return FitResult(
         pattern=pattern, base_pattern=base, graded_pattern=graded, mesh=mesh,
@@ -516,8 +531,36 @@ def fit(
                "material_fitted": bool(best.get("mat_on")) and (redress is None or redress["phase_two_kept"]),
                "material0": material0, "base_mesh": mesh_base, "material_choice": material_table,
                "material_start_iteration": cfg.material_start if cfg.optimize_material else None,
-               "gamma_last": [float(v) for v in gamma_of(theta.detach()).cpu()], "redress": redress},
+               "gamma_last": [float(v) for v in gamma_of(theta.detach()).cpu()], "redress": redress,
+               "mesh_spread": spread},
     )
+
+
+def _mm(v) -> str:
+    return "failed" if v is None else f"{v:.2f} mm"
+
+
+def _mesh_spread(pattern, material, body, sdf, cfg: FitConfig, objective, progress) -> dict:
+    """``pattern`` in ``material`` dressed from scratch (the fit's sew/settle settings) on meshes of
+    edge length cfg.edge_length x (1 - cfg.mesh_spread) and x (1 + cfg.mesh_spread); returns
+    {"edge_lengths_m": [2], "chamfer_mm": [2]}: each drape's mean surface distance to the target [mm].
+    A drape that fails (SimulationError) is None: the figure is a diagnostic, not the result."""
+    from unsew.dress import dress
+    from unsew.errors import SimulationError
+
+    lengths = [cfg.edge_length * (1 - cfg.mesh_spread), cfg.edge_length * (1 + cfg.mesh_spread)]
+    out = []
+    for h in lengths:
+        bar = _phase_bar(progress, f"dress on a {100 * h:.2f} cm mesh")
+        try:
+            d = dress(pattern, body, sdf=sdf, edge_length=h, material=material, sew_steps=cfg.sew_steps,
+                      settle_steps=cfg.settle_steps, dt=cfg.dt, progress=bar)
+            out.append(objective(d.x.numpy(), d.mesh.faces))
+        except SimulationError:
+            out.append(None)
+        finally:
+            _close(bar)
+    return {"edge_lengths_m": lengths, "chamfer_mm": out}
 
 
 def _backtrack_inversions(params, K, K_before, faces_uv, check_inverted) -> None:

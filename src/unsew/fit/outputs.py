@@ -80,6 +80,8 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     m["converged"] = result.converged
     if result.extra.get("redress"):
         m["redress"] = result.extra["redress"]  # the re-dress check: phase two kept or not
+    if result.extra.get("mesh_spread"):
+        m["mesh_spread"] = result.extra["mesh_spread"]  # the returned pattern on two other meshes
     m["timings_s"] = result.timings
     return m
 

@@ -48,6 +48,13 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
                      f"from the target, the graded one {rd['graded_mm']:.2f} mm; "
                      + ("phase two's pattern is returned" if rd["phase_two_kept"] else
                         "the graded pattern and its drape are returned (the final and graded patterns coincide)"))
+    ms = metrics.get("mesh_spread")
+    if ms:
+        cf = " / ".join("failed" if v is None else f"{v:.2f} mm" for v in ms["chamfer_mm"])
+        notes.append(f"mesh spread: the returned pattern dressed from scratch on {100 * ms['edge_lengths_m'][0]:.2f} "
+                     f"and {100 * ms['edge_lengths_m'][1]:.2f} cm meshes lies {cf} from the target, the result "
+                     f"{ms['result_mm']:.2f} mm; differences smaller than these are within how far the triangulation "
+                     "alone moves the folds")
     top = max((max(v) for v in result.history.values() if v), default=0.0)
     # terms that stay at round-off level (e.g. the seam loss of a symmetric skirt) would stretch
     # the log axis over 30 decades: leave them out of the plot (they are in the metrics table)
