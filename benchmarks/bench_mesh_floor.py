@@ -52,6 +52,8 @@ def main() -> None:
     args = ap.parse_args()
     if bool(args.cases) == bool(args.garment):
         ap.error("give case folders or --garment, not both and not neither")
+    if args.cases and (args.fabrics or args.from_target > 0 or args.resolutions != [0.025]):
+        ap.error("--fabrics, --resolutions and --from-target go with --garment; case folders take --edge-lengths")
     if not 0.0 <= args.from_target <= 1.0:
         ap.error("--from-target must be in [0, 1]")
     if not 0.0 < args.spread < 0.5 or min(args.resolutions) <= 0:
