@@ -12,7 +12,7 @@ import pytest
 BENCH = Path(__file__).resolve().parents[2] / "benchmarks"
 
 SMALL = dict(edge_length=0.04, iterations=3, steps=8, sew_steps=40, settle_steps=10, target_points=1500,
-             material_start=1, report=False)
+             material_start=1, report=False, mesh_spread=0.0)
 
 
 def _module(name):

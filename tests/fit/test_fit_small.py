@@ -62,7 +62,7 @@ def test_resume_continues_from_checkpoint(small_case, tmp_path):
 
     out = tmp_path / "r"
     case = load_case(small_case)
-    cfg = FitConfig(**{**SMALL, "iterations": 2, "report": False})
+    cfg = FitConfig(**{**SMALL, "iterations": 2, "report": False, "mesh_spread": 0.0})
 
     import importlib
 
@@ -181,7 +181,8 @@ def test_pattern_start_holds_the_control_points(small_case):
     from unsew.fit.fit import fit
     from unsew.io.case import load_case
 
-    cfg = FitConfig(**{**SMALL, "iterations": 2, "pattern_start": 5, "optimize_material": False, "report": False})
+    cfg = FitConfig(**{**SMALL, "iterations": 2, "pattern_start": 5, "optimize_material": False, "report": False,
+                       "mesh_spread": 0.0})
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
     for name, panel in r.graded_pattern.panels.items():
         np.testing.assert_allclose(r.pattern.panels[name].vertices, panel.vertices, atol=1e-12)
@@ -194,7 +195,8 @@ def test_prior_term_is_wired_in(small_case):
     from unsew.fit.fit import fit
     from unsew.io.case import load_case
 
-    cfg = FitConfig(**{**SMALL, "iterations": 2, "optimize_material": False, "report": False, "lambda_prior": 1.0})
+    cfg = FitConfig(**{**SMALL, "iterations": 2, "optimize_material": False, "report": False, "mesh_spread": 0.0,
+                       "lambda_prior": 1.0})
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
     assert r.history["prior"][0] == 0.0
     assert r.history["prior"][1] > 0.0
@@ -206,7 +208,8 @@ def test_material_params_frees_only_the_listed_entries(small_case):
     from unsew.io.case import load_case
     from unsew.sim.material import MATERIALS
 
-    cfg = FitConfig(**{**SMALL, "iterations": 3, "material_start": 0, "report": False, "material_params": "k"})
+    cfg = FitConfig(**{**SMALL, "iterations": 3, "material_start": 0, "report": False, "mesh_spread": 0.0,
+                       "material_params": "k"})
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
     g0 = [float(v) for v in MATERIALS[cfg.material].gamma()]
     g = r.extra["gamma_last"]
@@ -225,7 +228,7 @@ def test_cold_start_makes_the_drape_a_function_of_the_parameters(small_case):
     losses = {}
     for warm in (False, True):
         cfg = FitConfig(**{**SMALL, "iterations": 3, "pattern_start": 10, "optimize_material": False,
-                           "report": False, "warm_start": warm})
+                           "report": False, "mesh_spread": 0.0, "warm_start": warm})
         losses[warm] = fit(case, cfg, progress=False, log=lambda s: None).history["total"]
     assert max(losses[False]) - min(losses[False]) <= 1e-12 * max(losses[False])
     assert max(losses[True]) - min(losses[True]) > 1e-6 * max(losses[True])
@@ -243,7 +246,7 @@ def test_auto_material_picks_the_true_fabric(small_case):
     from unsew.io.case import load_case
     from unsew.sim.material import MATERIALS
 
-    cfg = FitConfig(**{**SMALL, "iterations": 1, "optimize_material": False, "report": False,
+    cfg = FitConfig(**{**SMALL, "iterations": 1, "optimize_material": False, "report": False, "mesh_spread": 0.0,
                        "material": "auto", "material_candidates": "cotton,denim,jersey",
                        "material_regrade": 1, "material_refine": 1})
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
@@ -333,7 +336,7 @@ def test_fit_friction_eps_reaches_phase_two_drapes(small_case, monkeypatch):
         return orig(*a, **k)
 
     monkeypatch.setattr(simdrape, "drape", spy)
-    cfg = FitConfig(**{**SMALL, "iterations": 2, "optimize_material": False, "report": False,
+    cfg = FitConfig(**{**SMALL, "iterations": 2, "optimize_material": False, "report": False, "mesh_spread": 0.0,
                        "fit_friction_eps": 2e-3, "redress_check": False})
     fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
     assert seen == [2e-3, 2e-3]
