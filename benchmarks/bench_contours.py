@@ -21,19 +21,6 @@ import os
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 
-def hull_perimeter(points) -> float:
-    """Perimeter [m] of the convex hull of ``points`` (k, 3) projected on their least-squares plane."""
-    import numpy as np
-    from scipy.spatial import ConvexHull
-
-    p = np.asarray(points, dtype=np.float64)
-    c = p - p.mean(axis=0)
-    _, _, vt = np.linalg.svd(c, full_matrices=False)
-    q = c @ vt[:2].T
-    ring = q[ConvexHull(q).vertices]
-    return float(np.linalg.norm(np.roll(ring, -1, axis=0) - ring, axis=1).sum())
-
-
 def main() -> None:
     from bench_grading import CHANGES, _changes
 
@@ -85,9 +72,8 @@ def main() -> None:
     print(f"{'drape':<7} {'part':<10} {'position m':>10} {'loop m':>7} {'hull m':>7} {'loop/hull':>9}")
     for name, x, faces in (("target", tx, tm.faces), ("base", bx, bm.faces), ("graded", res.x_draped, res.mesh.faces)):
         for c in place_contours(x, faces, body.skeleton):
-            hull = hull_perimeter(c.contour.points(x))
             pos = f"{c.position:>10.3f}" if c.bone is not None else f"{'-':>10}"
-            print(f"{name:<7} {c.part or '-':<10} {pos} {c.length:>7.3f} {hull:>7.3f} {c.length / hull:>9.2f}")
+            print(f"{name:<7} {c.part or '-':<10} {pos} {c.length:>7.3f} {c.hull:>7.3f} {c.crumple:>9.2f}")
 
 
 if __name__ == "__main__":

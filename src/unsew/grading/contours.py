@@ -23,6 +23,9 @@ allowed pairs the assignment minimising a cost on centre distance, relative peri
 and normal angle is taken (Hungarian); pairs beyond the gates (:data:`MAX_CENTRE_DISTANCE`,
 :data:`MAX_PERIMETER_RATIO`) are never made, so a hole that matches nothing stays unmatched.
 
+The girth difference of a pair is the difference of the loops' lengths (grading reads a
+crumpled and stretched loop differently: :func:`unsew.grading.grade.source_girth`).
+
 The axial distance of a pair is ``distToRoot(P_t) - distToRoot(P_s)`` along the source
 contour's bone chain (the target's own bone when it lies on the same part, else the target
 centre projected on the source's bone). The *extension* is that distance signed so that positive
@@ -47,6 +50,7 @@ __all__ = [
     "part_group",
     "MAX_CENTRE_DISTANCE",
     "MAX_PERIMETER_RATIO",
+    "hull_perimeter",
 ]
 
 #: Source and target contours whose centres are further apart than this are never paired [m].
@@ -83,6 +87,8 @@ class PlacedContour:
     inward: (3,) [m] from the centre to the mean of the garment vertices within
         :data:`INWARD_RINGS` edge rings of the contour (the side the cloth lies on); None when
         the mesh gives no such vertices.
+    hull: perimeter of the convex hull of the loop in its least-squares plane [m]
+        (:func:`hull_perimeter`; NaN when not measured).
     """
 
     index: int
@@ -96,6 +102,15 @@ class PlacedContour:
     candidates: list = field(default_factory=list)
     roundness: float = 1.0
     inward: np.ndarray | None = None
+    hull: float = float("nan")
+
+    @property
+    def crumple(self) -> float:
+        """Loop length over hull perimeter (dimensionless): about 1 for a smooth loop, more for
+        a pleated or crumpled one; 1.0 when the hull was not measured."""
+        if not np.isfinite(self.hull) or self.hull <= 0:
+            return 1.0
+        return float(self.length / self.hull)
 
     @property
     def length(self) -> float:
@@ -205,13 +220,34 @@ def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] 
         across = lambda b: roundness < MIN_ROUNDNESS or abs(float(c.normal @ b.direction)) >= 0.5  # noqa: E731
         cands.sort(key=lambda t: (t[2] >= radius, not across(t[0]), t[2]))
         inward = _inward(adj, v, c)
+        hull = hull_perimeter(pts)
         if cands:
             bone, u, h = cands[0]
             pos = float(skeleton.distance_to_root(bone, u))
-            out.append(PlacedContour(i, c, radius, bone, float(u), float(h), bone.part, pos, cands, roundness, inward))
+            out.append(PlacedContour(i, c, radius, bone, float(u), float(h), bone.part, pos, cands, roundness, inward, hull))
         else:
-            out.append(PlacedContour(i, c, radius, None, float("nan"), float("nan"), "", float("nan"), [], roundness, inward))
+            out.append(
+                PlacedContour(i, c, radius, None, float("nan"), float("nan"), "", float("nan"), [], roundness, inward, hull)
+            )
     return out
+
+
+def hull_perimeter(points) -> float:
+    """Perimeter [m] of the convex hull of ``points`` (k, 3) [m] projected on their
+    least-squares plane; NaN for fewer than three points or points on a line."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    p = np.asarray(points, dtype=np.float64)
+    if len(p) < 3:
+        return float("nan")
+    c = p - p.mean(axis=0)
+    _, _, vt = np.linalg.svd(c, full_matrices=False)
+    q = c @ vt[:2].T
+    try:
+        ring = q[ConvexHull(q).vertices]
+    except QhullError:
+        return float("nan")
+    return float(np.linalg.norm(np.roll(ring, -1, axis=0) - ring, axis=1).sum())
 
 
 def _adjacency(n: int, faces):
