@@ -7,9 +7,9 @@ import pytest
 
 from unsew.body.body import default_body
 from unsew.grading.alter import alter_pattern, open_edges
-from unsew.grading.contours import match_contours, part_group, place_contours
+from unsew.grading.contours import hull_perimeter, match_contours, part_group, place_contours
 from unsew.grading.curves import curves_of_contour
-from unsew.grading.grade import TABLE_COLUMNS, flat_drape, format_table, grade
+from unsew.grading.grade import TABLE_COLUMNS, flat_drape, format_table, grade, source_girth
 from unsew.meshing.sew import mesh_pattern
 from unsew.pattern.base import make_base_pattern
 from unsew.pattern.params import PatternParams, check_inverted
@@ -28,9 +28,10 @@ def tshirt():
     return p, mesh_pattern(p, edge_length=EDGE)
 
 
-def tube(bone, u0, u1, radius, *, n_around=24, n_rings=12, cap=False):
+def tube(bone, u0, u1, radius, *, n_around=24, n_rings=12, cap=False, pleat=0.0):
     """Open cylinder of ``radius`` [m] around ``bone`` from axial coordinate u0 to u1 (closed at
-    u0 by a fan when ``cap``)."""
+    u0 by a fan when ``cap``); ``pleat`` [m] pulls every other vertex of the u1 ring that much
+    towards the bone (a crumpled cuff)."""
     d = bone.direction
     e1 = np.cross(d, [0.0, 0.0, 1.0] if abs(d[2]) < 0.9 else [1.0, 0.0, 0.0])
     e1 /= np.linalg.norm(e1)
@@ -38,6 +39,10 @@ def tube(bone, u0, u1, radius, *, n_around=24, n_rings=12, cap=False):
     us = np.linspace(u0, u1, n_rings)
     th = np.linspace(0, 2 * np.pi, n_around, endpoint=False)
     v = np.array([bone.a + u * (bone.b - bone.a) + radius * (np.cos(t) * e1 + np.sin(t) * e2) for u in us for t in th])
+    if pleat:
+        last = np.arange((n_rings - 1) * n_around, n_rings * n_around, 2)
+        axis = bone.a + us[-1] * (bone.b - bone.a)
+        v[last] -= pleat * (v[last] - axis) / radius
     f = []
     for i in range(n_rings - 1):
         for j in range(n_around):
@@ -78,6 +83,34 @@ def test_tube_match_measures_axial_distance_and_girth(body):
     assert cuff.axial_distance == pytest.approx(0.3 * bone.length, abs=1e-9)
     assert top.extension == pytest.approx(0.0, abs=1e-9)
     assert cuff.girth_difference == pytest.approx(girth, abs=1e-9)
+
+
+def test_caught_source_cuff_reads_its_girth_from_its_hull(body):
+    sk = body.skeleton
+    bone = sk.bone("left_elbow")
+    vs, fs = tube(bone, 0.2, 0.6, 0.06, pleat=0.01)  # a pleated cuff: a longer loop around the same hull
+    vt, ft = tube(bone, 0.2, 0.6, 0.06)
+    src, tgt = place_contours(vs, fs, sk), place_contours(vt, ft, sk)
+    ms = match_contours(src, tgt, sk, garment_centre=vs.mean(axis=0))
+    cuff = next(m for m in ms if round(src[m.source].u, 1) == 0.6)
+    s, t = src[cuff.source], tgt[cuff.target]
+    assert s.crumple > 1.1 and t.crumple == pytest.approx(1.0, abs=0.02)
+    assert cuff.girth_difference < -0.04  # read by its loop, the cuff would be narrowed by 4 cm
+    # its cloth edge as long as the smooth loop: the drape stretched it into pleats
+    girth, why = source_girth(s, t, rest=t.length)
+    assert "hull" in why and abs(t.length - girth) < 0.005
+    # its cloth edge as long as its loop: pleated by its own cloth, a girth to grade
+    assert source_girth(s, t, rest=s.length) == (s.length, "")
+    # no rest length known, or a crumpled target: the loop lengths
+    assert source_girth(s, t, rest=None) == (s.length, "")
+    assert source_girth(t, s, rest=0.5 * t.length) == (t.length, "")
+
+
+def test_hull_perimeter_of_a_square_and_a_line():
+    sq = np.array([[0, 0, 0], [1, 0, 0], [0.5, 0.5, 0], [1, 1, 0], [0, 1, 0]], dtype=float)
+    assert hull_perimeter(sq) == pytest.approx(4.0)
+    assert np.isnan(hull_perimeter(sq[:2]))
+    assert np.isnan(hull_perimeter(np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0]], dtype=float)))
 
 
 def test_shorter_sleeve_is_a_negative_extension(body):
@@ -178,6 +211,23 @@ def test_grade_flat_recovers_known_hem_and_sleeve_changes(body, tshirt):
     assert "torso" in format_table(res.table)
 
 
+def test_graded_pattern_is_meshed_afresh_unless_told_otherwise(body, tshirt):
+    p, m = tshirt
+    t = alter_pattern(p, open_edges(p, "hem", panels=["front", "back"]), length=0.02)
+    tm = mesh_pattern(t, edge_length=EDGE)
+    tx = flat_drape(t, tm)
+    fresh = grade(p, body, tx, tm.faces, mesh=m, drape_fn=flat_drape, passes=1)
+    moved = grade(p, body, tx, tm.faces, mesh=m, drape_fn=flat_drape, passes=1, remesh="stretched")
+    assert fresh.remeshed and not moved.remeshed
+    # a 2 cm longer hem stretches no edge 1.5x: the base's triangles, moved with the pattern
+    np.testing.assert_array_equal(moved.mesh.faces_uv, m.faces_uv)
+    assert not np.allclose(moved.mesh.uv, m.uv)
+    # the fresh mesh is the graded pattern's own, as mesh_pattern makes it
+    own = mesh_pattern(fresh.pattern, edge_length=EDGE)
+    np.testing.assert_allclose(fresh.mesh.uv, own.uv)
+    np.testing.assert_array_equal(fresh.mesh.faces, own.faces)
+
+
 def test_paired_sleeves_edit_is_averaged(body, tshirt):
     """Only the left cuff moves in the target: symmetry keeps the sleeves alike (half each)."""
     p, m = tshirt
@@ -233,6 +283,9 @@ def test_bad_target_is_refused(body, tshirt):
     p, m = tshirt
     with pytest.raises(InputError):
         grade(p, body, np.zeros((0, 3)), np.zeros((0, 3), dtype=int), mesh=m, drape_fn=flat_drape)
+    x = flat_drape(p, m)
+    with pytest.raises(InputError, match="remesh"):
+        grade(p, body, x, m.faces, mesh=m, drape_fn=flat_drape, remesh="sometimes")
 
 
 def _grade_simulated(body, garment, changes, edge):
