@@ -4,7 +4,11 @@ For every garment type, the base pattern is altered by known amounts (hem / slee
 by +/- 5 to 15 cm, their girth by +/- 10 %, :mod:`unsew.grading.alter`), the altered pattern is
 draped to make the target T, and the *base* pattern is graded to T. Printed per contour:
 the known change, the measured axial distance and girth difference, and after grading the
-residuals |position(X_LG) - position(T)| along the skeleton and |girth(X_LG) - girth(T)| [cm];
+residuals |position(X_LG) - position(T)| along the skeleton and |girth(X_LG) - girth(T)| [cm]
+(girth: loop length), and the same in the pattern (``pat L``, ``pat G``: :func:`pattern_residuals`
+on the edges that form the target's contour: how far the graded pattern's edge lies from the
+true pattern's, and how much longer or shorter it is; the drape's loop can pleat where the
+pattern is right, the pattern is what grading recovers);
 per garment the Chamfer distance [mm] of X_init and of X_LG to T (``unsew.metrics.chamfer_mm``)
 and their ratio, and the drape's own noise floor: the target pattern draped again on a mesh of
 ``--floor-scale`` times the edge length, against T (folds of loose cloth land elsewhere on
@@ -21,6 +25,7 @@ simulator when ``unsew.body.placement.place_garment`` exists.
 
 Run: OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_grading.py [--drape auto|sim|flat]
      [--edge-length 0.03] [--garments tshirt pants ...] [--passes N] [--targets N] [--flip]
+     [--remesh always|stretched]
 
 ``--flip`` negates every change (the t-shirt's hem -10 cm and 10 % narrower, its sleeves +5 cm
 and 10 % wider, ...), so each garment is graded in both directions the issue names.
@@ -67,6 +72,8 @@ def main() -> None:
     ap.add_argument("--flip", action="store_true",
                     help="negate every known change (lengths and girths): the opposite case of each garment")
     ap.add_argument("--no-hold-top", action="store_true", help="let a waist edit move the panel's placement (grade(hold_top=False))")
+    ap.add_argument("--remesh", choices=["always", "stretched"], default="always",
+                    help="grade(remesh=...): mesh every graded pattern afresh, or only when an edge stretched 1.5x")
     ap.add_argument("--targets", type=int, default=1, help="target drapes per garment, on meshes of slightly different edge length")
     args = ap.parse_args()
     if args.targets < 1 or args.targets > len(TARGET_SCALES):
@@ -79,10 +86,12 @@ def main() -> None:
     from unsew.body.body import default_body
     from unsew.grading.alter import alter_pattern, alteration_groups
     from unsew.grading.contours import place_contours
+    from unsew.grading.curves import curves_of_contour
     from unsew.grading.grade import dress_drape, flat_drape, grade
     from unsew.meshing.sew import mesh_pattern
     from unsew.metrics.surface import chamfer_mm
     from unsew.pattern.base import make_base_pattern
+    from unsew.pattern.params import PatternParams
 
     mode = args.drape
     if mode == "auto":
@@ -102,11 +111,12 @@ def main() -> None:
     print(f"drape: {mode}; edge length {args.edge_length} m; material {args.material}{flipped}")
     head = (
         f"{'garment':<8} {'contour':<10} {'known dL cm':>11} {'known dG %':>10} {'axial cm':>9} {'girth cm':>9} "
-        f"{'res L cm':>9} {'res G cm':>9}"
+        f"{'res L cm':>9} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9}"
     )
     print(head)
     print("-" * len(head))
     summary = []
+    worst: dict = {}  # garment -> worst (res L, res G, pat L, pat G) over its contours and targets [m]
     for g in args.garments:
         base = make_base_pattern(g)
         groups = alteration_groups(base)
@@ -120,7 +130,7 @@ def main() -> None:
             t0 = time.perf_counter()
             tm = mesh_pattern(target, edge_length=args.edge_length * scale)
             tx = drape_fn(target, tm, body)
-            kw = {"hold_top": not args.no_hold_top}
+            kw = {"hold_top": not args.no_hold_top, "remesh": args.remesh}
             if args.passes is not None:
                 kw["passes"] = args.passes
             res = grade(base, body, tx, tm.faces, edge_length=args.edge_length, drape_fn=drape_fn, mesh=bm, x_init=bx, **kw)
@@ -128,6 +138,7 @@ def main() -> None:
             after = place_contours(res.x_draped, res.mesh.faces, sk)
             tgt = place_contours(tx, tm.faces, sk)
             src = place_contours(res.x_init, res.mesh_init.faces, sk)
+            tcontrols = PatternParams.build(target, tm).controls
             for m in res.matches:
                 s, t = src[m.source], tgt[m.target]
                 # the graded contour that corresponds to the target one: same part, nearest centre
@@ -137,10 +148,15 @@ def main() -> None:
                 res_l = abs(a.position - t.position) if a.bone is not None and a.bone.part == t.part else float(
                     np.linalg.norm(a.centre - t.centre)
                 )
+                curves = curves_of_contour(t.contour.indices, tx, target, tm, tcontrols)
+                pat_l, pat_g = pattern_residuals(target, res.pattern, [(c.panel, e) for c in curves for e in c.edges])
                 print(
                     f"{g:<8} {s.part:<10} {known[0] * 100:>+11.1f} {known[1] * 100:>+10.0f} {m.axial_distance * 100:>+9.1f} "
-                    f"{m.girth_difference * 100:>+9.1f} {res_l * 100:>9.2f} {abs(a.length - t.length) * 100:>9.2f}"
+                    f"{m.girth_difference * 100:>+9.1f} {res_l * 100:>9.2f} {abs(a.length - t.length) * 100:>9.2f} "
+                    f"{pat_l * 100:>9.2f} {pat_g * 100:>9.2f}"
                 )
+                got = (res_l, abs(a.length - t.length), pat_l, pat_g)
+                worst[g] = [float(np.nanmax([w, v])) for w, v in zip(worst.get(g, got), got)]
             for r in res.table:
                 if r["source_contour"] is None or r["target_contour"] is None:
                     print(f"{g:<8} unmatched: {r['source_contour'] or r['target_contour']}")
@@ -164,6 +180,44 @@ def main() -> None:
             ratios = [x[3] / x[2] for x in rows if x[2] > 0]
             print(f"{g:<8} {'mean':>6} {b:>15.1f} {a:>10.1f} {float(np.mean(ratios)):>6.2f} {fl:>9.1f} {fl / b:>11.2f}")
     print("floor: the target pattern draped on a second mesh, against the target drape (the drape's own noise)")
+    print()
+    print(f"{'garment':<8} {'worst res L cm':>14} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9}   (over contours and targets)")
+    for g, w in worst.items():
+        print(f"{g:<8} {w[0] * 100:>14.2f} {w[1] * 100:>9.2f} {w[2] * 100:>9.2f} {w[3] * 100:>9.2f}")
+
+
+def pattern_residuals(true, graded, edges) -> tuple[float, float]:
+    """How far the graded pattern's open edges are from the true pattern's: (length [m], girth [m]).
+
+    true, graded: patterns of the same topology (the target's altered base and the graded base).
+    edges: (panel name, edge index) pairs that form one contour.
+    length: the largest, over the edges, |reach(graded) - reach(true)|, where an edge's reach is
+    how far its chord's midpoint lies beyond the panel's opposite extreme, along the true edge's
+    outward normal (a hem lowered by 5 cm reaches 5 cm further; moving the whole panel changes
+    nothing). girth: |sum of the graded edges' arc lengths - sum of the true ones'|. (nan, nan)
+    when ``edges`` is empty.
+    """
+    import numpy as np
+
+    from unsew.pattern.curves import edge_length
+
+    if not edges:
+        return float("nan"), float("nan")
+    dl = []
+    for name, i in edges:
+        tp, gp = true.panels[name], graded.panels[name]
+        e = tp.edges[i]
+        a, b = tp.vertices[e.start], tp.vertices[e.end]
+        w = (b - a) / np.linalg.norm(b - a)
+        n = np.array([w[1], -w[0]])  # outward for a counter-clockwise panel (unsew.grading.alter)
+
+        def reach(panel):
+            mid = 0.5 * (panel.vertices[e.start] + panel.vertices[e.end])
+            return float(mid @ n - (panel.vertices @ n).min())
+
+        dl.append(abs(reach(gp) - reach(tp)))
+    dg = sum(edge_length(graded.panels[p], i) for p, i in edges) - sum(edge_length(true.panels[p], i) for p, i in edges)
+    return float(max(dl)), float(abs(dg))
 
 
 def _changes(garment: str, flip: bool) -> dict:
