@@ -6,11 +6,13 @@ girth a tape measure would read around it. For one of bench_grading's cases (``-
 ``--flip``, the target on a mesh ``--target-scale`` times the edge length), this grades the
 base pattern to the target exactly as bench_grading does and prints, for every contour of the
 target, the base drape and the graded drape: its body part, position along the bone [m], loop
-length [m] and the perimeter of the loop's convex hull in its least-squares plane [m]. A ratio
-loop / hull well above 1 is a crumpled loop.
+length [m], the perimeter of the loop's convex hull in its least-squares plane [m], and the
+rest length of the pattern edges that form it [m]. A ratio loop / hull well above 1 is a pleated
+loop; a loop longer than its rest length is stretched (both: caught by the drape,
+``unsew.grading.grade.source_girth``). ``--passes 1`` shows the drape after the first pass.
 
 Run: OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_contours.py --garment dress --flip
-     [--edge-length 0.03] [--target-scale 1.0] [--material cotton]
+     [--edge-length 0.03] [--target-scale 1.0] [--material cotton] [--passes 2]
 """
 
 from __future__ import annotations
@@ -30,9 +32,10 @@ def main() -> None:
     ap.add_argument("--edge-length", type=float, default=0.03)
     ap.add_argument("--target-scale", type=float, default=1.0, help="edge length factor of the target's mesh")
     ap.add_argument("--material", default="cotton")
+    ap.add_argument("--passes", type=int, default=2, help="grading passes (grade(passes=...))")
     args = ap.parse_args()
-    if not 0.005 <= args.edge_length <= 0.1 or not 0.5 <= args.target_scale <= 2.0:
-        ap.error("--edge-length must be in [0.005, 0.1] m and --target-scale in [0.5, 2]")
+    if not 0.005 <= args.edge_length <= 0.1 or not 0.5 <= args.target_scale <= 2.0 or args.passes < 1:
+        ap.error("--edge-length must be in [0.005, 0.1] m, --target-scale in [0.5, 2] and --passes at least 1")
 
     import torch
 
@@ -42,9 +45,11 @@ def main() -> None:
     from unsew.errors import InputError
     from unsew.grading.alter import alter_pattern, alteration_groups
     from unsew.grading.contours import place_contours
+    from unsew.grading.curves import curves_of_contour, rest_length
     from unsew.grading.grade import dress_drape, grade
     from unsew.meshing.sew import mesh_pattern
     from unsew.pattern.base import make_base_pattern
+    from unsew.pattern.params import PatternParams
     from unsew.sim.material import get_material
 
     try:
@@ -67,13 +72,17 @@ def main() -> None:
     bx = drape_fn(base, bm, body)
     tm = mesh_pattern(target, edge_length=args.edge_length * args.target_scale)
     tx = drape_fn(target, tm, body)
-    res = grade(base, body, tx, tm.faces, edge_length=args.edge_length, drape_fn=drape_fn, mesh=bm, x_init=bx)
-    print(f"{args.garment}{' (flipped)' if args.flip else ''}, edge length {args.edge_length} m, target mesh x{args.target_scale}")
-    print(f"{'drape':<7} {'part':<10} {'position m':>10} {'loop m':>7} {'hull m':>7} {'loop/hull':>9}")
-    for name, x, faces in (("target", tx, tm.faces), ("base", bx, bm.faces), ("graded", res.x_draped, res.mesh.faces)):
-        for c in place_contours(x, faces, body.skeleton):
+    res = grade(base, body, tx, tm.faces, edge_length=args.edge_length, drape_fn=drape_fn, mesh=bm, x_init=bx,
+                passes=args.passes)
+    print(f"{args.garment}{' (flipped)' if args.flip else ''}, edge length {args.edge_length} m, "
+          f"target mesh x{args.target_scale}, {args.passes} pass(es)")
+    print(f"{'drape':<7} {'part':<10} {'position m':>10} {'loop m':>7} {'hull m':>7} {'loop/hull':>9} {'rest m':>7}")
+    for name, p, m, x in (("target", target, tm, tx), ("base", base, bm, bx), ("graded", res.pattern, res.mesh, res.x_draped)):
+        controls = PatternParams.build(p, m).controls
+        for c in place_contours(x, m.faces, body.skeleton):
             pos = f"{c.position:>10.3f}" if c.bone is not None else f"{'-':>10}"
-            print(f"{name:<7} {c.part or '-':<10} {pos} {c.length:>7.3f} {c.hull:>7.3f} {c.crumple:>9.2f}")
+            rest = rest_length(p, curves_of_contour(c.contour.indices, x, p, m, controls))
+            print(f"{name:<7} {c.part or '-':<10} {pos} {c.length:>7.3f} {c.hull:>7.3f} {c.crumple:>9.2f} {rest:>7.3f}")
 
 
 if __name__ == "__main__":

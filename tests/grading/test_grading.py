@@ -8,7 +8,7 @@ import pytest
 from unsew.body.body import default_body
 from unsew.grading.alter import alter_pattern, open_edges
 from unsew.grading.contours import hull_perimeter, match_contours, part_group, place_contours
-from unsew.grading.curves import curves_of_contour
+from unsew.grading.curves import curves_of_contour, rest_length
 from unsew.grading.grade import TABLE_COLUMNS, flat_drape, format_table, grade, source_girth
 from unsew.meshing.sew import mesh_pattern
 from unsew.pattern.base import make_base_pattern
@@ -172,6 +172,10 @@ def test_tshirt_contours_parts_and_curves(body, tshirt):
     cuff = next(c for c in placed if c.part == "left_arm")
     (curve,) = curves_of_contour(cuff.contour.indices, x, p, m, params.controls)
     assert curve.panel == "left_sleeve" and p.panels["left_sleeve"].edges[curve.edges[0]].label == "hem"
+    hem = p.panels["left_sleeve"].edges[curve.edges[0]]
+    chord = np.linalg.norm(p.panels["left_sleeve"].vertices[hem.end] - p.panels["left_sleeve"].vertices[hem.start])
+    assert rest_length(p, [curve]) >= chord - 1e-12 and rest_length(p, []) == 0.0
+    assert rest_length(p, [curve, curve]) == pytest.approx(2 * rest_length(p, [curve]))
 
 
 def _contour_by_part(x, faces, sk):

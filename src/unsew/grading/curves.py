@@ -16,7 +16,7 @@ import numpy as np
 from unsew.pattern.controls import ControlPoints
 from unsew.pattern.model import Pattern
 
-__all__ = ["OpenCurve", "stitched_edges", "curves_of_contour"]
+__all__ = ["OpenCurve", "stitched_edges", "curves_of_contour", "rest_length"]
 
 
 @dataclass
@@ -118,3 +118,11 @@ def curves_of_contour(
                 )
             )
     return out
+
+
+def rest_length(pattern: Pattern, curves: list[OpenCurve]) -> float:
+    """Total arc length [m] of the pattern edges that form ``curves`` (in 2D, at rest): the cloth
+    edge a contour is made of (0.0 for no curves)."""
+    from unsew.pattern.curves import edge_length
+
+    return float(sum(edge_length(pattern.panels[c.panel], e) for c in curves for e in c.edges))

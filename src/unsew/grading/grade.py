@@ -23,9 +23,8 @@ import numpy as np
 
 from unsew.errors import InputError, SimulationError
 from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, place_contours
-from unsew.grading.curves import curves_of_contour
+from unsew.grading.curves import curves_of_contour, rest_length
 from unsew.grading.edit import curve_edit, project_edit, safe_fraction
-from unsew.pattern.curves import edge_length
 
 __all__ = [
     "GradeResult", "grade", "moved_mesh", "dress_drape", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH",
@@ -171,9 +170,10 @@ def grade(
         edge grew beyond :data:`REMESH_STRETCH` times the edge length (issue 6's rule), else the
         base mesh is moved with the pattern (:func:`moved_mesh`). A moved mesh keeps the base's
         triangles squeezed or stretched, and a pattern draped on it is not the drape of the
-        pattern returned: bench_grading's skirt, 12 cm shorter, graded to within 3.2 mm of the
-        true pattern at every vertex, draped 21.7 mm (Chamfer) from the target on the moved mesh
-        and 11.7 mm on a fresh one. Over bench_grading's ten cases (five garments, both
+        pattern returned: bench_grading's first flipped skirt (12 cm shorter), graded to within
+        0.19 cm of the true hem and 0.35 cm of its waist, draped 21.7 mm (Chamfer) from the target
+        on the moved mesh; meshed afresh, the graded skirt drapes 10.2 mm from it and the true
+        pattern 11.5 mm. Over bench_grading's ten cases (five garments, both
         directions, five targets each) neither choice drapes closer on the whole (mean Chamfer
         ratio 0.43 always, 0.45 stretched); "always" makes X_LG reproducible from U_LG alone.
 
@@ -277,13 +277,15 @@ def source_girth(s: PlacedContour, t: PlacedContour, rest: float | None) -> tupl
     the loop's own length ("" when it is).
 
     s, t: the paired source and target contours (:class:`PlacedContour`, with their hulls).
-    rest: the rest length [m] of the pattern edges that form ``s`` (None: unknown).
+    rest: the rest length [m] of the pattern edges that form ``s``
+        (:func:`~unsew.grading.curves.rest_length`; None or 0: unknown, the loop's length is used).
 
     A loop longer than its own cloth edge is stretched, and one longer than its convex hull is
     pleated. When the source loop is both, beyond the target's pleats (:data:`CRUMPLE_TOL`) and
     its rest length (:data:`STRETCH_TOL`), the drape has caught the opening, not sized it: a
     dress cuff graded 10 % narrower draped to a 0.339 m loop around a 0.306 m hull from 0.304 m
-    of edge, against the target's 0.308 m loop around 0.306 m (bench_grading's dress, --flip).
+    of edge, against the target's 0.308 m loop around 0.306 m (``benchmarks/bench_contours.py
+    --garment dress --flip --passes 1``).
     Read by its length, the next pass narrowed it 3.1 cm more and the cuff crumpled further
     (0.394 m around 0.228 m); read from its hull, it was left alone and draped smooth (0.301 m
     around 0.299 m). Its girth is then the hull times the target's crumple. A loop pleated by
@@ -377,8 +379,7 @@ def _grade_pass(pattern, mesh, x_init, tgt, skel, kw, *, gains: dict | None = No
         total = max(s.length, 1e-12)  # each curve's share of the contour's 3D length
         if not curves:
             warnings.append("no open pattern curve forms this contour; left alone")
-        rest = sum(edge_length(params.pattern.panels[c.panel], e) for c in curves for e in c.edges)
-        girth, why = source_girth(s, t, rest if curves else None)
+        girth, why = source_girth(s, t, rest_length(params.pattern, curves))
         girth_difference = t.length - girth
         if why:
             warnings.append(why)
