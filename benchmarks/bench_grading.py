@@ -25,7 +25,7 @@ simulator when ``unsew.body.placement.place_garment`` exists.
 
 Run: OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_grading.py [--drape auto|sim|flat]
      [--edge-length 0.03] [--garments tshirt pants ...] [--passes N] [--targets N] [--flip]
-     [--remesh always|stretched]
+     [--remesh always|stretched] [--length cloth|axial]
 
 ``--flip`` negates every change (the t-shirt's hem -10 cm and 10 % narrower, its sleeves +5 cm
 and 10 % wider, ...), so each garment is graded in both directions the issue names.
@@ -74,6 +74,8 @@ def main() -> None:
     ap.add_argument("--no-hold-top", action="store_true", help="let a waist edit move the panel's placement (grade(hold_top=False))")
     ap.add_argument("--remesh", choices=["always", "stretched"], default="always",
                     help="grade(remesh=...): mesh every graded pattern afresh, or only when an edge stretched 1.5x")
+    ap.add_argument("--length", choices=["cloth", "axial"], default="cloth",
+                    help="grade(length=...): move open curves by the cloth length to the top opening, or by the axial distance")
     ap.add_argument("--targets", type=int, default=1, help="target drapes per garment, on meshes of slightly different edge length")
     args = ap.parse_args()
     if args.targets < 1 or args.targets > len(TARGET_SCALES):
@@ -108,7 +110,7 @@ def main() -> None:
     else:
         drape_fn = flat_drape
     flipped = "; changes negated (--flip)" if args.flip else ""
-    print(f"drape: {mode}; edge length {args.edge_length} m; material {args.material}{flipped}")
+    print(f"drape: {mode}; edge length {args.edge_length} m; material {args.material}; length {args.length}{flipped}")
     head = (
         f"{'garment':<8} {'contour':<10} {'known dL cm':>11} {'known dG %':>10} {'axial cm':>9} {'girth cm':>9} "
         f"{'res L cm':>9} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9}"
@@ -130,7 +132,7 @@ def main() -> None:
             t0 = time.perf_counter()
             tm = mesh_pattern(target, edge_length=args.edge_length * scale)
             tx = drape_fn(target, tm, body)
-            kw = {"hold_top": not args.no_hold_top, "remesh": args.remesh}
+            kw = {"hold_top": not args.no_hold_top, "remesh": args.remesh, "length": args.length}
             if args.passes is not None:
                 kw["passes"] = args.passes
             res = grade(base, body, tx, tm.faces, edge_length=args.edge_length, drape_fn=drape_fn, mesh=bm, x_init=bx, **kw)

@@ -33,7 +33,17 @@ def test_grade_cli_writes_pattern_drape_and_table(case, tmp_path, capsys):
     assert doc["units"] == "m" and len(doc["contours"]) == 4
     hem = next(r for r in doc["contours"] if r["part"] == "torso")
     assert hem["extension_m"] == pytest.approx(0.06, abs=0.01)
+    # laid flat, the hem's cloth length to the neckline is 6 cm longer too
+    assert doc["length"] == "cloth" and hem["cloth_difference_m"] == pytest.approx(0.06, abs=0.01)
     assert "torso" in capsys.readouterr().out
+
+
+def test_grade_cli_axial_length_leaves_cloth_unmeasured(case, tmp_path):
+    out = tmp_path / "graded"
+    args = ["grade", str(case), "--out", str(out), "--flat", "--edge-length", "0.04", "--length", "axial"]
+    assert main(args) == 0
+    doc = json.loads((out / "contours.json").read_text())
+    assert doc["length"] == "axial" and all(r["cloth_difference_m"] is None for r in doc["contours"])
 
 
 def test_grade_cli_refuses_existing_out_and_leaves_nothing_on_failure(case, tmp_path, capsys):

@@ -23,6 +23,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--out", required=True, metavar="DIR", help="result folder to create")
     p.add_argument("--edge-length", type=float, default=0.03, help="rest edge length of the panel meshes [m]")
     p.add_argument("--material", default="cotton", help="material name from the library (default cotton)")
+    p.add_argument("--length", choices=["cloth", "axial"], default="cloth",
+                   help="move hems and cuffs by the cloth length to the top opening (default) or by the axial distance "
+                        "along the bone (the paper's Algorithm 2)")
     p.add_argument("--flat", action="store_true", help="no simulation: use the flat-placed panels as drapes (quick look)")
     p.add_argument("--overwrite", action="store_true", help="replace --out if it exists")
     p.set_defaults(func=run)
@@ -52,7 +55,7 @@ def run(args: argparse.Namespace) -> int:
         kw = {"drape_fn": flat_drape} if args.flat else {}
         res = grade(
             pattern, case.body, case.target_verts, case.target_faces, edge_length=args.edge_length,
-            material=args.material, **kw,
+            material=args.material, length=args.length, **kw,
         )
         save_pattern(res.pattern, tmp / "pattern.json")
         m = res.mesh
@@ -66,6 +69,7 @@ def run(args: argparse.Namespace) -> int:
             "edge_length_m": args.edge_length,
             "material": args.material,
             "flat": bool(args.flat),
+            "length": args.length,
             "edit_fraction": res.fraction,
             "remeshed": res.remeshed,
             "contours": res.table,

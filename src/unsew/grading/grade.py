@@ -22,13 +22,14 @@ from typing import Callable
 import numpy as np
 
 from unsew.errors import InputError, SimulationError
+from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
 from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, place_contours
 from unsew.grading.curves import curves_of_contour, rest_length
 from unsew.grading.edit import curve_edit, project_edit, safe_fraction
 
 __all__ = [
     "GradeResult", "grade", "moved_mesh", "dress_drape", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH",
-    "REMESH_MODES", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL",
+    "REMESH_MODES", "LENGTH_MODES", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL",
 ]
 
 #: Re-mesh after grading when a rest edge grew beyond this factor times the target edge length
@@ -36,8 +37,11 @@ __all__ = [
 REMESH_STRETCH = 1.5
 #: The choices of ``grade(remesh=...)``.
 REMESH_MODES = ("always", "stretched")
-#: A further grading pass is made only when some contour is still further than this from its
-#: target along the bone [m], or its girth differs by more than PASS_GIRTH_TOL [m].
+#: The choices of ``grade(length=...)``: cloth length to the top opening, or Algorithm 2's axial distance.
+LENGTH_MODES = ("cloth", "axial")
+#: A further grading pass is made only when some contour's cloth length (or, without one, its
+#: position along the bone) is still further than this from the target's [m], or its girth
+#: differs by more than PASS_GIRTH_TOL [m].
 PASS_LENGTH_TOL = 0.005
 PASS_GIRTH_TOL = 0.01
 
@@ -74,7 +78,7 @@ class GradeResult:
 #: Keys of every row of ``GradeResult.table``.
 TABLE_COLUMNS = (
     "source_contour", "target_contour", "part", "bone", "source_length_m", "target_length_m",
-    "axial_distance_m", "extension_m", "girth_difference_m", "edits", "warnings",
+    "axial_distance_m", "extension_m", "girth_difference_m", "cloth_difference_m", "edits", "warnings",
 )  # fmt: skip
 
 
@@ -144,6 +148,7 @@ def grade(
     passes: int = 2,
     hold_top: bool = True,
     remesh: str = "always",
+    length: str = "cloth",
 ) -> GradeResult:
     """Grade ``pattern`` so that its draped open contours land where the target's are (phase one).
 
@@ -176,6 +181,11 @@ def grade(
         pattern 11.5 mm. Over bench_grading's ten cases (five garments, both
         directions, five targets each) neither choice drapes closer on the whole (mean Chamfer
         ratio 0.43 always, 0.45 stretched); "always" makes X_LG reproducible from U_LG alone.
+    length: how far a contour's open curve moves. ``"cloth"``: by the change of cloth length
+        between the contour and the garment's top opening, target minus drape, read on the
+        pattern's own rest mesh (:mod:`unsew.grading.cloth`; the top opening itself, and any
+        contour without a surface path to it, moves by its axial extension); ``"axial"``: by the
+        axial extension along the bone (Algorithm 2).
 
     Returns a :class:`GradeResult`.
     """
@@ -183,6 +193,8 @@ def grade(
 
     if remesh not in REMESH_MODES:
         raise InputError(f"remesh must be one of {', '.join(REMESH_MODES)}, got {remesh!r}")
+    if length not in LENGTH_MODES:
+        raise InputError(f"length must be one of {', '.join(LENGTH_MODES)}, got {length!r}")
     tv = np.asarray(target_verts, dtype=np.float64)
     tf = np.asarray(target_faces, dtype=np.int64)
     if tv.ndim != 2 or tv.shape[1] != 3 or len(tv) == 0 or tf.ndim != 2 or tf.shape[1] != 3 or len(tf) == 0:
@@ -201,8 +213,9 @@ def grade(
 
     skel = body.skeleton
     tgt = place_contours(tv, tf, skel)
+    tcloth = cloth_lengths(tv, tf, tgt) if length == "cloth" else (None, {})
     kw = {} if max_centre_distance is None else {"max_centre_distance": max_centre_distance}
-    first = _grade_pass(pattern, mesh, x_init, tgt, skel, kw, hold_top=hold_top, remesh=remesh)
+    first = _grade_pass(pattern, mesh, x_init, tgt, skel, kw, hold_top=hold_top, remesh=remesh, tcloth=tcloth)
     cur, rows = first, list(first["rows"])
     x_lg = None
     for k in range(max(int(passes), 1)):
@@ -211,11 +224,12 @@ def grade(
             # each scaled by how far the drape answered the previous pass's edit.
             src = place_contours(x_lg, cur["mesh"].faces, skel)
             now = match_contours(src, tgt, skel, garment_centre=x_lg.mean(axis=0), **kw)
-            if not _worth_a_pass(now):
+            cloth = _cloth_wants(src, now, x_lg, cur["mesh"].faces, tcloth)
+            if not _worth_a_pass(now, cloth):
                 break
             gains = response_gains(cur["matches"], cur["applied"], now)
-            nxt = _grade_pass(cur["pattern"], cur["mesh"], x_lg, tgt, skel, kw, gains=gains, placed=(src, now),
-                              hold_top=hold_top, remesh=remesh)
+            nxt = _grade_pass(cur["pattern"], cur["mesh"], x_lg, tgt, skel, kw, gains=gains, placed=(src, now, cloth),
+                              hold_top=hold_top, remesh=remesh, tcloth=tcloth)
             for r in nxt["rows"]:
                 if r["edits"]:
                     r["edits"] = [f"pass {k + 1}: {e}" for e in r["edits"]]
@@ -302,10 +316,12 @@ def source_girth(s: PlacedContour, t: PlacedContour, rest: float | None) -> tupl
     return s.length, ""
 
 
-def _worth_a_pass(matches) -> bool:
-    """Whether any contour is still off by more than PASS_LENGTH_TOL along its bone or
-    PASS_GIRTH_TOL in girth."""
-    return any(abs(m.extension) > PASS_LENGTH_TOL or abs(m.girth_difference) > PASS_GIRTH_TOL for m in matches)
+def _worth_a_pass(matches, cloth: dict | None = None) -> bool:
+    """Whether any contour is still off by more than PASS_LENGTH_TOL in cloth length (``cloth``:
+    target index -> difference [m]) or else along its bone, or by PASS_GIRTH_TOL in girth."""
+    cloth = cloth or {}
+    return any(abs(cloth.get(m.target, m.extension)) > PASS_LENGTH_TOL or abs(m.girth_difference) > PASS_GIRTH_TOL
+               for m in matches)
 
 
 #: Control points within this height [m] of a panel's highest one (as placed) form its top.
@@ -343,14 +359,39 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
     return out
 
 
+def _cloth_wants(src, matches, x, faces, tcloth) -> dict:
+    """Target index -> target cloth length - source cloth length [m] (:mod:`unsew.grading.cloth`)
+    of every matched contour but the top one; {} when the target's cloth lengths were not
+    measured or the two top contours are not a pair."""
+    ttop, tl = tcloth
+    if ttop is None:
+        return {}
+    stop, sl = cloth_lengths(x, faces, src)
+    if stop is None or {m.source: m.target for m in matches}.get(stop.index) != ttop.index:
+        return {}
+    return {m.target: tl[m.target] - sl[m.source] for m in matches if m.source in sl and m.target in tl}
+
+
+#: Corrections of a cloth-length edit measured on the edited pattern's own rest mesh.
+CLOTH_STEPS = 2
+#: ... stopped when every contour's rest cloth length is within this of its goal [m].
+CLOTH_TOL = 0.001
+
+
 def _grade_pass(pattern, mesh, x_init, tgt, skel, kw, *, gains: dict | None = None, placed=None,
-                hold_top: bool = True, remesh: str = "always") -> dict:
+                hold_top: bool = True, remesh: str = "always", tcloth=(None, {})) -> dict:
     """One pass of Algorithm 2: contours of the drape ``x_init`` (on ``mesh``) paired with the
-    target's ``tgt``, the open curves moved (by the extension times ``gains[target index]``,
-    default 1) and widened, projected on K, scaled back if needed, and the mesh moved or
-    re-meshed. ``placed``: the drape's placed contours and their matches when already computed.
-    Returns a dict: pattern, mesh, rows, matches, applied (target index -> extension applied
-    [m]), K (Nk, 2) [m], fraction, remeshed."""
+    target's ``tgt``, the open curves moved and widened, projected on K, scaled back if needed,
+    and the mesh moved or re-meshed.
+
+    A contour with a cloth length on both sides (``tcloth``: the target's
+    :func:`~unsew.grading.cloth.cloth_lengths`; ``(None, {})`` for Algorithm 2's axial rule) is
+    moved so that the pattern's cloth length at rest changes by the target's minus the drape's:
+    the move starts at that difference and is corrected :data:`CLOTH_STEPS` times on the edited
+    pattern's mesh. The others move by their axial extension times ``gains[target index]``
+    (default 1). ``placed``: the drape's placed contours, their matches and cloth differences
+    when already computed. Returns a dict: pattern, mesh, rows, matches, applied (target index
+    -> extension applied [m]), K (Nk, 2) [m], fraction, remeshed."""
     import torch
 
     from unsew.meshing.sew import mesh_pattern
@@ -359,44 +400,89 @@ def _grade_pass(pattern, mesh, x_init, tgt, skel, kw, *, gains: dict | None = No
     if placed is None:
         src = place_contours(x_init, mesh.faces, skel)
         matches = match_contours(src, tgt, skel, garment_centre=x_init.mean(axis=0), **kw)
+        cloth = _cloth_wants(src, matches, x_init, mesh.faces, tcloth)
     else:
-        src, matches = placed
+        src, matches, cloth = placed
 
     params = PatternParams.build(pattern, mesh)
     K0 = params.K0
     C0 = params.control_points(K0).detach().cpu().numpy()
-    delta = np.zeros_like(C0)
-    rows = []
-    wanted = {}
-    edited: dict[int, list[set]] = {}  # panel index -> control points of each edited open curve
+    items = []  # (match, curves, girth difference, warnings) of every match
+    exts = {}
     for m in matches:
         s, t = src[m.source], tgt[m.target]
-        gain = (gains or {}).get(m.target, 1.0)
-        ext = m.extension * gain
         curves = curves_of_contour(s.contour.indices, x_init, params.pattern, mesh, params.controls)
         warnings = []
-        edits = []
-        total = max(s.length, 1e-12)  # each curve's share of the contour's 3D length
         if not curves:
             warnings.append("no open pattern curve forms this contour; left alone")
         girth, why = source_girth(s, t, rest_length(params.pattern, curves))
-        girth_difference = t.length - girth
         if why:
             warnings.append(why)
+        items.append((m, curves, t.length - girth, warnings))
+        exts[m.target] = cloth[m.target] if m.target in cloth else m.extension * (gains or {}).get(m.target, 1.0)
+
+    def edge_keys(curves):
+        return [(c.panel, e) for c in curves for e in c.edges]
+
+    top = top_contour(src) if cloth else None
+    top_edges = next((edge_keys(cv) for m, cv, _, _ in items if top is not None and m.source == top.index), [])
+    keyed = {m.target: edge_keys(cv) for m, cv, _, _ in items if m.target in cloth and cv}
+    goal = {}
+    if keyed and top_edges:
+        rest0 = rest_cloth_lengths(mesh, keyed, top_edges)
+        goal = {t: rest0[t] + cloth[t] for t in keyed if t in rest0}
+
+    for step in range(CLOTH_STEPS + 1):
+        delta = np.zeros_like(C0)
+        edited: dict[int, list[set]] = {}  # panel index -> control points of each edited open curve
+        for m, curves, girth_difference, _ in items:
+            total = max(src[m.source].length, 1e-12)  # each curve's share of the contour's 3D length
+            for c in curves:
+                if len(c.edges) == len(params.pattern.panels[c.panel].edges):
+                    continue
+                dg = girth_difference * (c.length3d / total)
+                delta += curve_edit(params.pattern, C0, c, params.controls, extension=exts[m.target], girth_change=dg)
+                edited.setdefault(c.panel_index, []).append(set(int(g) for g in c.controls))
+        if hold_top:
+            delta = _hold_tops(params.pattern, params.controls, C0, delta, edited)
+        K1 = project_edit(params, C0 + delta)
+        frac = safe_fraction(params, K0, K1)
+        K = K0 + frac * (K1 - K0)
+        graded = params.to_pattern(K)
+        with torch.no_grad():
+            uv = params.uv(K).cpu().numpy()
+        remeshed = remesh == "always" or _rest_edge_stretch(uv, mesh.faces_uv, mesh.edge_length) > REMESH_STRETCH
+        new_mesh = mesh_pattern(graded, edge_length=mesh.edge_length) if remeshed else moved_mesh(mesh, graded, uv)
+        if not goal or step == CLOTH_STEPS:
+            break
+        now = rest_cloth_lengths(new_mesh, {t: keyed[t] for t in goal}, top_edges)
+        err = {t: goal[t] - now[t] for t in goal if t in now}
+        if all(abs(e) < CLOTH_TOL for e in err.values()):
+            break
+        for t, e in err.items():
+            exts[t] += e
+
+    rows = []
+    wanted = {}
+    for m, curves, girth_difference, warnings in items:
+        s, t = src[m.source], tgt[m.target]
+        ext, edits = exts[m.target], []
+        gain = (gains or {}).get(m.target, 1.0) if m.target not in cloth else 1.0
+        total = max(s.length, 1e-12)
         for c in curves:
             if len(c.edges) == len(params.pattern.panels[c.panel].edges):
                 warnings.append(f"panel {c.panel} is all open edges; not edited")
                 continue
-            share = c.length3d / total if total > 0 else 0.0
-            dg = girth_difference * share
-            delta += curve_edit(params.pattern, C0, c, params.controls, extension=ext, girth_change=dg)
-            edited.setdefault(c.panel_index, []).append(set(int(g) for g in c.controls))
+            dg = girth_difference * (c.length3d / total)
             names = "+".join(params.pattern.panels[c.panel].edges[e].label or f"edge{e}" for e in c.edges)
-            how = f" (x{gain:.2f}: the drape answered the last pass in part)" if gain != 1.0 else ""
+            if m.target in goal:
+                how = f" (cloth length {cloth[m.target] * 100:+.1f} cm)"
+            else:
+                how = f" (x{gain:.2f}: the drape answered the last pass in part)" if gain != 1.0 else ""
             edits.append(f"{c.panel}:{names} move {ext * 100:+.1f} cm{how}, widen {dg * 100:+.1f} cm")
         if edits:
             wanted[m.target] = ext
-        rows.append(_row(s, t, m, edits, warnings, girth_difference))
+        rows.append(_row(s, t, m, edits, warnings, girth_difference, cloth.get(m.target)))
     matched_s = {m.source for m in matches}
     matched_t = {m.target for m in matches}
     for s in src:
@@ -405,22 +491,11 @@ def _grade_pass(pattern, mesh, x_init, tgt, skel, kw, *, gains: dict | None = No
     for t in tgt:
         if t.index not in matched_t:
             rows.append(_row(None, t, None, [], ["target contour matches no source contour; left alone"]))
-
-    if hold_top:
-        delta = _hold_tops(params.pattern, params.controls, C0, delta, edited)
-    K1 = project_edit(params, C0 + delta)
-    frac = safe_fraction(params, K0, K1)
     if frac < 1.0:
         note = f"edit scaled back to {frac:.0%} to avoid inverted triangles"
         for r in rows:
             if r["edits"]:
                 r["warnings"].append(note)
-    K = K0 + frac * (K1 - K0)
-    graded = params.to_pattern(K)
-    with torch.no_grad():
-        uv = params.uv(K).cpu().numpy()
-    remeshed = remesh == "always" or _rest_edge_stretch(uv, mesh.faces_uv, mesh.edge_length) > REMESH_STRETCH
-    new_mesh = mesh_pattern(graded, edge_length=mesh.edge_length) if remeshed else moved_mesh(mesh, graded, uv)
     return dict(pattern=graded, mesh=new_mesh, rows=rows, matches=matches, K=K.detach().cpu().numpy(),
                 fraction=float(frac), remeshed=bool(remeshed),
                 applied={t: float(frac) * e for t, e in wanted.items()})
@@ -433,7 +508,7 @@ def _name(c: PlacedContour | None) -> str | None:
 
 
 def _row(s: PlacedContour | None, t: PlacedContour | None, m: ContourMatch | None, edits, warnings,
-         girth_difference: float | None = None) -> dict:
+         girth_difference: float | None = None, cloth_difference: float | None = None) -> dict:
     if girth_difference is None and m is not None:
         girth_difference = m.girth_difference
     return {
@@ -446,6 +521,7 @@ def _row(s: PlacedContour | None, t: PlacedContour | None, m: ContourMatch | Non
         "axial_distance_m": None if m is None else round(m.axial_distance, 5),
         "extension_m": None if m is None else round(m.extension, 5),
         "girth_difference_m": None if girth_difference is None else round(float(girth_difference), 5),
+        "cloth_difference_m": None if cloth_difference is None else round(float(cloth_difference), 5),
         "edits": list(edits),
         "warnings": list(warnings),
     }
@@ -453,13 +529,14 @@ def _row(s: PlacedContour | None, t: PlacedContour | None, m: ContourMatch | Non
 
 def format_table(table: list) -> str:
     """The contour table as aligned text (lengths in cm)."""
-    head = f"{'source':<24} {'target':<24} {'part':<10} {'axial cm':>9} {'ext cm':>8} {'girth cm':>9}  edits / warnings"
+    head = f"{'source':<24} {'target':<24} {'part':<10} {'axial cm':>9} {'ext cm':>8} {'cloth cm':>9} {'girth cm':>9}  edits / warnings"
     lines = [head, "-" * len(head)]
     cm = lambda v: "" if v is None else f"{v * 100:+.1f}"  # noqa: E731
     for r in table:
         notes = "; ".join(r["edits"] + r["warnings"])
         lines.append(
             f"{r['source_contour'] or '-':<24} {r['target_contour'] or '-':<24} {r['part'] or '-':<10} "
-            f"{cm(r['axial_distance_m']):>9} {cm(r['extension_m']):>8} {cm(r['girth_difference_m']):>9}  {notes}"
+            f"{cm(r['axial_distance_m']):>9} {cm(r['extension_m']):>8} {cm(r.get('cloth_difference_m')):>9} "
+            f"{cm(r['girth_difference_m']):>9}  {notes}"
         )
     return "\n".join(lines)
