@@ -5,7 +5,9 @@ by +/- 5 to 15 cm, their girth by +/- 10 %, :mod:`unsew.grading.alter`), the alt
 draped to make the target T, and the *base* pattern is graded to T. Printed per contour:
 the known change, the measured axial distance and girth difference, and after grading the
 residuals |position(X_LG) - position(T)| along the skeleton and |girth(X_LG) - girth(T)| [cm]
-(girth: loop length), and the same in the pattern (``pat L``, ``pat G``: :func:`pattern_residuals`
+(girth: loop length), the cloth-length difference target - base that grading reads
+(``cloth cm``, :mod:`unsew.grading.cloth`) beside the true patterns' own at rest (``rest cm``),
+and the same residuals in the pattern (``pat L``, ``pat G``: :func:`pattern_residuals`
 on the edges that form the target's contour: how far the graded pattern's edge lies from the
 true pattern's, and how much longer or shorter it is; the drape's loop can pleat where the
 pattern is right, the pattern is what grading recovers);
@@ -87,6 +89,7 @@ def main() -> None:
     torch.set_num_threads(1)
     from unsew.body.body import default_body
     from unsew.grading.alter import alter_pattern, alteration_groups
+    from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
     from unsew.grading.contours import place_contours
     from unsew.grading.curves import curves_of_contour
     from unsew.grading.grade import dress_drape, flat_drape, grade
@@ -113,7 +116,7 @@ def main() -> None:
     print(f"drape: {mode}; edge length {args.edge_length} m; material {args.material}; length {args.length}{flipped}")
     head = (
         f"{'garment':<8} {'contour':<10} {'known dL cm':>11} {'known dG %':>10} {'axial cm':>9} {'girth cm':>9} "
-        f"{'res L cm':>9} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9}"
+        f"{'res L cm':>9} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9} {'cloth cm':>9} {'rest cm':>8}"
     )
     print(head)
     print("-" * len(head))
@@ -141,6 +144,11 @@ def main() -> None:
             tgt = place_contours(tx, tm.faces, sk)
             src = place_contours(res.x_init, res.mesh_init.faces, sk)
             tcontrols = PatternParams.build(target, tm).controls
+            _, cl_t = cloth_lengths(tx, tm.faces, tgt)
+            _, cl_s = cloth_lengths(res.x_init, res.mesh_init.faces, src)
+            ttop = top_contour(tgt)
+            top_edges = [(c.panel, e) for c in curves_of_contour(ttop.contour.indices, tx, target, tm, tcontrols)
+                         for e in c.edges]
             for m in res.matches:
                 s, t = src[m.source], tgt[m.target]
                 # the graded contour that corresponds to the target one: same part, nearest centre
@@ -151,11 +159,20 @@ def main() -> None:
                     np.linalg.norm(a.centre - t.centre)
                 )
                 curves = curves_of_contour(t.contour.indices, tx, target, tm, tcontrols)
-                pat_l, pat_g = pattern_residuals(target, res.pattern, [(c.panel, e) for c in curves for e in c.edges])
+                edges = [(c.panel, e) for c in curves for e in c.edges]
+                pat_l, pat_g = pattern_residuals(target, res.pattern, edges)
+                # cloth: the drapes' cloth-length difference (target - base) grading reads; rest: the
+                # true patterns' own, at rest (unsew.grading.cloth)
+                cloth = cl_t[t.index] - cl_s[s.index] if t.index in cl_t and s.index in cl_s else float("nan")
+                rest = float("nan")
+                if edges and top_edges and t is not ttop:
+                    r1 = rest_cloth_lengths(tm, {0: edges}, top_edges)
+                    r0 = rest_cloth_lengths(res.mesh_init, {0: edges}, top_edges)
+                    rest = r1[0] - r0[0] if 0 in r1 and 0 in r0 else rest
                 print(
                     f"{g:<8} {s.part:<10} {known[0] * 100:>+11.1f} {known[1] * 100:>+10.0f} {m.axial_distance * 100:>+9.1f} "
                     f"{m.girth_difference * 100:>+9.1f} {res_l * 100:>9.2f} {abs(a.length - t.length) * 100:>9.2f} "
-                    f"{pat_l * 100:>9.2f} {pat_g * 100:>9.2f}"
+                    f"{pat_l * 100:>9.2f} {pat_g * 100:>9.2f} {cloth * 100:>+9.1f} {rest * 100:>+8.1f}"
                 )
                 got = (res_l, abs(a.length - t.length), pat_l, pat_g)
                 worst[g] = [float(np.nanmax([w, v])) for w, v in zip(worst.get(g, got), got)]

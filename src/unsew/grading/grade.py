@@ -4,7 +4,9 @@ supplementary Algorithm 2).
 ``grade`` drapes the base pattern on the wearer (X_init), places the open contours of X_init and
 of the target on the skeleton and pairs them (:mod:`unsew.grading.contours`), maps every paired
 source contour to its 2D open curves (:mod:`unsew.grading.curves`), moves and widens those curves'
-control points by the measured axial distance and girth difference (:mod:`unsew.grading.edit`),
+control points by the measured length and girth differences (:mod:`unsew.grading.edit`; the
+length is the change of cloth length to the garment's top opening, :mod:`unsew.grading.cloth`,
+or Algorithm 2's axial distance along the bone with ``length="axial"``),
 projects the edit onto the symmetric parameters K, moves every other pattern vertex with
 ``params.uv(K)``, scales the edit back if it would invert triangles, re-meshes when panel edges
 got stretched beyond 1.5x the target edge length (or always: ``remesh``), and re-drapes: U_LG
@@ -179,8 +181,9 @@ def grade(
         0.19 cm of the true hem and 0.35 cm of its waist, draped 21.7 mm (Chamfer) from the target
         on the moved mesh; meshed afresh, the graded skirt drapes 10.2 mm from it and the true
         pattern 11.5 mm. Over bench_grading's ten cases (five garments, both
-        directions, five targets each) neither choice drapes closer on the whole (mean Chamfer
-        ratio 0.43 always, 0.45 stretched); "always" makes X_LG reproducible from U_LG alone.
+        directions, five targets each; 7734a1b, axial lengths) neither choice drapes closer on
+        the whole (mean Chamfer ratio 0.43 always, 0.45 stretched); "always" makes X_LG
+        reproducible from U_LG alone.
     length: how far a contour's open curve moves. ``"cloth"``: by the change of cloth length
         between the contour and the garment's top opening, target minus drape, read on the
         pattern's own rest mesh (:mod:`unsew.grading.cloth`; the top opening itself, and any
