@@ -77,7 +77,8 @@ def main() -> None:
     ap.add_argument("--remesh", choices=["always", "stretched"], default="always",
                     help="grade(remesh=...): mesh every graded pattern afresh, or only when an edge stretched 1.5x")
     ap.add_argument("--length", choices=["cloth", "axial"], default="cloth",
-                    help="grade(length=...): move open curves by the cloth length to the top opening, or by the axial distance")
+                    help="grade(length=...): move open curves by the cloth length to the top opening, "
+                         "or by the axial distance")
     ap.add_argument("--targets", type=int, default=1, help="target drapes per garment, on meshes of slightly different edge length")
     args = ap.parse_args()
     if args.targets < 1 or args.targets > len(TARGET_SCALES):
@@ -149,6 +150,12 @@ def main() -> None:
             ttop = top_contour(tgt)
             top_edges = [(c.panel, e) for c in curves_of_contour(ttop.contour.indices, tx, target, tm, tcontrols)
                          for e in c.edges]
+            # the true patterns' rest cloth lengths of every target contour, on each pattern's own mesh
+            keyed = {t.index: [(c.panel, e) for c in curves_of_contour(t.contour.indices, tx, target, tm, tcontrols)
+                               for e in c.edges] for t in tgt if t is not ttop}
+            keyed = {k: v for k, v in keyed.items() if v}
+            rest1 = rest_cloth_lengths(tm, keyed, top_edges) if top_edges else {}
+            rest0 = rest_cloth_lengths(res.mesh_init, keyed, top_edges) if top_edges else {}
             for m in res.matches:
                 s, t = src[m.source], tgt[m.target]
                 # the graded contour that corresponds to the target one: same part, nearest centre
@@ -164,11 +171,7 @@ def main() -> None:
                 # cloth: the drapes' cloth-length difference (target - base) grading reads; rest: the
                 # true patterns' own, at rest (unsew.grading.cloth)
                 cloth = cl_t[t.index] - cl_s[s.index] if t.index in cl_t and s.index in cl_s else float("nan")
-                rest = float("nan")
-                if edges and top_edges and t is not ttop:
-                    r1 = rest_cloth_lengths(tm, {0: edges}, top_edges)
-                    r0 = rest_cloth_lengths(res.mesh_init, {0: edges}, top_edges)
-                    rest = r1[0] - r0[0] if 0 in r1 and 0 in r0 else rest
+                rest = rest1[t.index] - rest0[t.index] if t.index in rest1 and t.index in rest0 else float("nan")
                 print(
                     f"{g:<8} {s.part:<10} {known[0] * 100:>+11.1f} {known[1] * 100:>+10.0f} {m.axial_distance * 100:>+9.1f} "
                     f"{m.girth_difference * 100:>+9.1f} {res_l * 100:>9.2f} {abs(a.length - t.length) * 100:>9.2f} "

@@ -43,7 +43,8 @@ def test_distance_graph_takes_each_pair_once_whatever_the_winding():
     flipped[::2] = flipped[::2, ::-1]  # inconsistent winding: a scan's faces
     a, b = distance_graph(v, f), distance_graph(v, flipped)
     assert (a != b).nnz == 0
-    assert np.allclose(a.data, np.linalg.norm(v[a.indices] - v[np.repeat(np.arange(len(v)), np.diff(a.indptr))], axis=1))
+    rows = np.repeat(np.arange(len(v)), np.diff(a.indptr))
+    assert np.allclose(a.data, np.linalg.norm(v[a.indices] - v[rows], axis=1))
 
 
 def tube(heights, radii, n_around=32):

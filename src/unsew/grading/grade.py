@@ -478,7 +478,7 @@ def _grade_pass(pattern, mesh, x_init, tgt, skel, kw, *, gains: dict | None = No
                 continue
             dg = girth_difference * (c.length3d / total)
             names = "+".join(params.pattern.panels[c.panel].edges[e].label or f"edge{e}" for e in c.edges)
-            if m.target in goal:
+            if m.target in cloth:
                 how = f" (cloth length {cloth[m.target] * 100:+.1f} cm)"
             else:
                 how = f" (x{gain:.2f}: the drape answered the last pass in part)" if gain != 1.0 else ""
@@ -532,7 +532,8 @@ def _row(s: PlacedContour | None, t: PlacedContour | None, m: ContourMatch | Non
 
 def format_table(table: list) -> str:
     """The contour table as aligned text (lengths in cm)."""
-    head = f"{'source':<24} {'target':<24} {'part':<10} {'axial cm':>9} {'ext cm':>8} {'cloth cm':>9} {'girth cm':>9}  edits / warnings"
+    head = (f"{'source':<24} {'target':<24} {'part':<10} {'axial cm':>9} {'ext cm':>8} {'cloth cm':>9} {'girth cm':>9}"
+            "  edits / warnings")
     lines = [head, "-" * len(head)]
     cm = lambda v: "" if v is None else f"{v * 100:+.1f}"  # noqa: E731
     for r in table:
