@@ -19,5 +19,9 @@ test: setup
 test-slow: setup
 	@$(VENV)/bin/python -m pytest -q -m slow $(ARGS)
 
+# `make bench NAME=fit ARGS="--edge-length 0.025"`; `make bench` lists the benchmarks.
+bench: setup
+	@$(VENV)/bin/python -m benchmarks $(NAME) $(ARGS)
+
 clean:
 	rm -rf $(VENV) .pytest_cache build src/*.egg-info

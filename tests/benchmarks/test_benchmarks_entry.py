@@ -1,0 +1,41 @@
+"""`python -m benchmarks`: lists every benchmark with its question, runs one by name, refuses an
+unknown name with exit 2."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _run(*args):
+    return subprocess.run([sys.executable, "-m", "benchmarks", *args], cwd=ROOT, capture_output=True, text=True)
+
+
+def test_lists_benchmarks_with_their_question():
+    r = _run("list")
+    assert r.returncode == 0, r.stderr
+    lines = {ln.split()[0]: ln for ln in r.stdout.splitlines()[2:] if ln.strip()}
+    assert "fit" in lines and "grading" in lines and "run" in lines
+    assert "truth_cases" not in lines and "tables" not in lines  # helpers, not benchmarks
+    assert "Linear grading benchmark" in lines["grading"]
+
+
+def test_unknown_name_exits_2():
+    r = _run("no_such_bench")
+    assert r.returncode == 2
+    assert "no benchmark named 'no_such_bench'" in r.stderr
+
+
+def test_runs_a_benchmark_by_name_with_its_options():
+    r = _run("meshing", "--help")
+    assert r.returncode == 0, r.stderr
+    assert "usage" in r.stdout.lower()
+
+
+def test_markdown_table():
+    sys.path.insert(0, str(ROOT))
+    from benchmarks.tables import markdown_table
+
+    t = markdown_table([{"a": 1.234, "b": None}, {"a": "x", "b": 2}], digits=1)
+    assert t.splitlines() == ["| a | b |", "|---|---|", "| 1.2 |  |", "| x | 2 |"]
