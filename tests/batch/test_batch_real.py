@@ -64,7 +64,7 @@ def _metrics(out: Path) -> dict:
 def test_small_batch_equals_single_fit_and_reports_broken_case(tmp_path):
     cfg = FitConfig(iterations=1, **TINY)
     cases = tmp_path / "cases"
-    make_truth_case(cases / "tshirt", edge_length=0.05, sew_steps=TINY["sew_steps"], settle_steps=TINY["settle_steps"])
+    make_truth_case(cases / "tshirt", settings=cfg.drape)
     _broken_copy(cases / "tshirt", cases / "broken")
     single = fit_case_dir(cases / "tshirt", tmp_path / "single", cfg)
     res = run_batch(cases, tmp_path / "out", cfg=cfg, workers=2, progress=False)
@@ -91,8 +91,7 @@ def three_cases(tmp_path_factory):
     root = tmp_path_factory.mktemp("real3")
     cfg = FitConfig(iterations=2, **{**TINY, "report": True})
     for i, truth in enumerate(TRUTHS):
-        make_truth_case(root / "cases" / f"tshirt{i}", truth=truth, edge_length=0.05, sew_steps=TINY["sew_steps"],
-                        settle_steps=TINY["settle_steps"])
+        make_truth_case(root / "cases" / f"tshirt{i}", truth=truth, settings=cfg.drape)
     _broken_copy(root / "cases" / "tshirt0", root / "cases" / "broken")
     singles = {f"tshirt{i}": fit_case_dir(root / "cases" / f"tshirt{i}", root / "single" / f"tshirt{i}", cfg)
                for i in range(3)}
