@@ -151,9 +151,12 @@ def _worker(spec: dict) -> dict:
         Q = lo + (hi - lo) * rng.random((spec["queries"], 3))
         fn = _inside
     # import the library before the baseline, so the peak counts the build and queries only
-    {"igl": "igl", "fcpw": "fcpw"}.get(spec["lib"].split()[0]) and __import__(spec["lib"].split()[0])
-    if spec["lib"].startswith("embreex"):
-        import trimesh.ray.ray_pyembree  # noqa: F401
+    mod = {"igl": "igl", "fcpw": "fcpw", "embreex": "embreex"}.get(spec["lib"].split()[0])
+    try:
+        if mod:
+            __import__(mod)
+    except ImportError:
+        return {"status": f"{mod} not installed (pip install -e .[bench])"}
     base = _reset_peak()
     try:
         t_build, t_query, out = fn(spec["lib"], V, F, Q)
