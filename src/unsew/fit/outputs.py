@@ -86,6 +86,8 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     from unsew._memory import peak_rss_mb
 
     m["peak_memory_mb"] = peak_rss_mb()  # the process's peak resident memory so far [MB]
+    if getattr(case, "target_repair", None):
+        m["target_repair"] = case.target_repair  # what loading cleaned in the target (counts)
     return m
 
 
