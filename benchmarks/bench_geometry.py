@@ -186,7 +186,8 @@ def _run(spec: dict, timeout: float) -> dict:
         return {"status": f"not done in {timeout:g} s"}
     if r.returncode != 0:
         last = (r.stderr.strip().splitlines() or ["?"])[-1]
-        return {"status": f"failed: {last[:60]}"}
+        limit = f" under the {spec['mem_limit_gb']:g} GB limit" if spec.get("mem_limit_gb") else ""
+        return {"status": f"failed{limit}: {last[:60]}"}
     return json.loads(r.stdout.strip().splitlines()[-1])
 
 
