@@ -97,3 +97,33 @@ def test_nothing_left_refused():
     v = np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0.0]])
     with pytest.raises(InputError, match="no triangles"):
         repair_garment(v, np.array([[0, 1, 2], [0, 0, 1]]))
+
+
+def test_damaged_case_loads_the_clean_target(tmp_path):
+    """A case whose target has 50 duplicate faces, a 3-face fin and a degenerate face loads the
+    same target arrays as the clean case, so a fit's inputs (and its pattern) are the clean ones;
+    what was cleaned is kept for metrics.json."""
+    import json
+
+    from unsew.io.case import load_case
+    from unsew.io.mesh import write_obj
+
+    v, f = grid_tube(32, 10, radius=0.2, height=0.4, y0=0.9)
+    v = v + [0, 0, 0.05]
+    cases = {}
+    for name, (vv, ff) in {"clean": (v, f), "damaged": _damaged(v, f, np.random.default_rng(2))}.items():
+        d = tmp_path / name
+        d.mkdir()
+        write_obj(d / "target.obj", vv, ff)
+        (d / "meta.json").write_text(json.dumps({"garment": "tshirt", "body": "default"}))
+        if name == "damaged":
+            with pytest.warns(UserWarning, match="repaired"):
+                cases[name] = load_case(d)
+        else:
+            cases[name] = load_case(d)
+    c, b = cases["clean"], cases["damaged"]
+    assert (b.target_verts == c.target_verts).all()
+    canon = lambda x: np.unique(np.sort(x, axis=1), axis=0)  # noqa: E731
+    assert (canon(b.target_faces) == canon(c.target_faces)).all()
+    assert b.target_repair["duplicate_faces"] == 50 and b.target_repair["fin_faces"] == 3
+    assert c.target_repair["notes"] == []
