@@ -55,3 +55,17 @@ def test_inside_sphere_either_orientation(exact):
     assert (inside(p, m.vertices, m.faces[:, ::-1], exact=exact) == want).all()
     w = winding_number(p, m.vertices, m.faces, exact=exact)
     assert_close(w[want], 1.0, atol=0.02) if exact else None
+
+
+def test_many_queries_keep_their_order():
+    """More than 256 queries are answered in a spatial order inside: results come back in the
+    caller's order, equal to answering them one chunk at a time."""
+    v, f = grid_tube()
+    p = np.random.default_rng(3).uniform(-0.4, 0.6, (2000, 3))
+    mq = MeshQuery(v, f)
+    q, d, fi = mq.closest(p)
+    parts = [mq.closest(p[i : i + 200]) for i in range(0, 2000, 200)]
+    assert_close(q, np.concatenate([x[0] for x in parts]), atol=0)
+    assert_close(d, np.concatenate([x[1] for x in parts]), atol=0)
+    assert (fi == np.concatenate([x[2] for x in parts])).all()
+    assert_close(np.linalg.norm(q - p, axis=1), d, atol=1e-12)
