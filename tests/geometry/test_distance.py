@@ -69,3 +69,20 @@ def test_many_queries_keep_their_order():
     assert_close(d, np.concatenate([x[1] for x in parts]), atol=0)
     assert (fi == np.concatenate([x[2] for x in parts])).all()
     assert_close(np.linalg.norm(q - p, axis=1), d, atol=1e-12)
+
+
+def test_first_hit_on_a_sphere():
+    m = trimesh.creation.icosphere(4, radius=0.3)
+    mq = MeshQuery(m.vertices, m.faces)
+    o = np.array([[0, 0, -1.0], [0, 0, -1.0], [1.0, 1.0, 1.0], [0, 0, 0.0]])
+    d = np.array([[0, 0, 2.0], [0, 0, 1.0], [1.0, 0, 0], [1.0, 0, 0]])
+    hit, t, fi, p = mq.first_hit(o, d)
+    assert hit.tolist() == [True, True, False, True]
+    assert_close(t[[0, 1, 3]], [0.7, 0.7, 0.3], atol=2e-3)  # the tessellation sags inside the sphere
+    assert np.isinf(t[2]) and fi[2] == -1 and np.isnan(p[2]).all()
+    assert_close(np.linalg.norm(p[hit], axis=1), 0.3, atol=2e-3)
+    assert (fi[hit] >= 0).all()
+    hit2, _, _, _ = mq.first_hit(o, d, max_distance=0.5)
+    assert hit2.tolist() == [False, False, False, True]
+    with pytest.raises(ValueError):
+        mq.first_hit(o, np.zeros_like(o))

@@ -1,4 +1,4 @@
-"""Point-to-mesh queries on libigl's AABB tree: closest points, distances, inside tests.
+"""Point-to-mesh queries on libigl's AABB tree: closest points, distances, ray hits, inside tests.
 
 libigl was chosen over fcpw and embreex on the figures of ``python -m benchmarks geometry``
 (docs/benchmarks.md, "Geometry core and memory"): exact in float64, memory that grows with the
@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["MeshQuery", "closest_points", "point_mesh_distance", "winding_number", "inside"]
+__all__ = ["MeshQuery", "closest_points", "point_mesh_distance", "winding_number", "inside"]  # MeshQuery.first_hit: rays
 
 
 def _arrays(verts, faces) -> tuple[np.ndarray, np.ndarray]:
@@ -88,6 +88,31 @@ class MeshQuery:
     def distance(self, points) -> np.ndarray:
         """Unsigned distance (P,) float64 [m] from points (P, 3) [m] to the surface."""
         return self.closest(points)[1]
+
+    def first_hit(self, origins, directions, *, max_distance: float = np.inf):
+        """First intersection of rays with the surface.
+
+        origins: (R, 3) float64 [m]; directions: (R, 3) (any length, normalised here).
+        max_distance: ignore hits farther than this [m]. Returns (hit (R,) bool, distance (R,)
+        float64 [m] along the ray, inf where no hit, face (R,) int64, -1 where no hit, point
+        (R, 3) float64 [m], NaN where no hit).
+        """
+        o = _points(origins)
+        d = _points(directions)
+        if d.shape != o.shape:
+            raise ValueError(f"directions {d.shape} must match origins {o.shape}")
+        n = np.linalg.norm(d, axis=1, keepdims=True)
+        if not (n > 0).all():
+            raise ValueError("ray directions must be non-zero")
+        d = np.ascontiguousarray(d / n)
+        if len(o) == 0:
+            return np.zeros(0, bool), np.zeros(0), np.zeros(0, np.int64), np.zeros((0, 3))
+        fi, t, _ = self._tree.intersect_ray_first(self.verts, self.faces, o, d, float(max_distance))
+        fi = np.asarray(fi, dtype=np.int64)
+        hit = fi >= 0
+        t = np.where(hit, np.asarray(t, dtype=np.float64), np.inf)
+        p = np.where(hit[:, None], o + np.where(hit, t, 0.0)[:, None] * d, np.nan)
+        return hit, t, np.where(hit, fi, -1), p
 
 
 def closest_points(points, verts, faces) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
