@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["MeshQuery", "closest_points", "point_mesh_distance", "winding_number", "inside"]  # MeshQuery.first_hit: rays
+__all__ = ["MeshQuery", "closest_points", "point_mesh_distance", "winding_number", "inside"]
 
 
 def _arrays(verts, faces) -> tuple[np.ndarray, np.ndarray]:
