@@ -63,6 +63,14 @@ def _closest(lib, V, F, Q):
         t1 = time.perf_counter()
         sq, _, _ = tree.squared_distance(V, F, Q)
         return t1 - t, time.perf_counter() - t1, np.sqrt(sq)
+    if lib == "igl, Morton order":  # unsew.geometry.distance.MeshQuery: queries sorted along a Z-curve
+        from unsew.geometry.distance import MeshQuery
+
+        t = time.perf_counter()
+        mq = MeshQuery(V, F)
+        t1 = time.perf_counter()
+        d = mq.distance(Q)
+        return t1 - t, time.perf_counter() - t1, d
     if lib == "fcpw":
         import fcpw
 
@@ -151,10 +159,12 @@ def _worker(spec: dict) -> dict:
         Q = lo + (hi - lo) * rng.random((spec["queries"], 3))
         fn = _inside
     # import the library before the baseline, so the peak counts the build and queries only
-    mod = {"igl": "igl", "fcpw": "fcpw", "embreex": "embreex"}.get(spec["lib"].split()[0])
+    mod = {"igl": "igl", "fcpw": "fcpw", "embreex": "embreex"}.get(spec["lib"].replace(",", " ").split()[0])
     try:
         if mod:
             __import__(mod)
+        if "Morton" in spec["lib"]:
+            import unsew.geometry.distance  # noqa: F401
     except ImportError:
         return {"status": f"{mod} not installed (pip install -e .[bench])"}
     base = _reset_peak()
@@ -197,6 +207,9 @@ def main() -> None:
     ap.add_argument("--quick", action="store_true", help="5K-triangle meshes and 5K queries only")
     ap.add_argument("--mem-limit-gb", type=float, default=4.0, help="address-space limit of the old search")
     ap.add_argument("--timeout", type=float, default=300.0, help="seconds per measurement")
+    ap.add_argument("--libs", nargs="+", default=["igl", "igl, Morton order", "fcpw", "kdtree (old)"],
+                    help="closest-point libraries to measure")
+    ap.add_argument("--no-inside", action="store_true", help="skip the inside-test table")
     args = ap.parse_args()
     if args.worker:
         print(json.dumps(_worker(json.loads(args.worker))))
@@ -204,7 +217,7 @@ def main() -> None:
     from tables import print_table
 
     sizes = [5000] if args.quick else [5000, 20000, 50000]
-    libs = ["igl", "fcpw", "kdtree (old)"]
+    libs = args.libs
     rows = []
     cases = [(f, q, False, 0.0) for f in sizes for q in sizes]
     big = sizes[-1]
@@ -222,6 +235,8 @@ def main() -> None:
     print_table(rows, title="Closest points on a triangle mesh (time [s], peak memory growth [MB], error against libigl [um])",
                 digits=3)
 
+    if args.no_inside:
+        return
     rows = []
     for nq in sizes:
         for lib in ["igl fast winding number", "igl winding number (exact)", "fcpw contains", "embreex rays (trimesh)"]:

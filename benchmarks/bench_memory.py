@@ -10,6 +10,10 @@ another tessellation, 5 mm outside the target, or 30 cm outside it ("30 cm away"
 it up to three times, with 50K samples per mesh, ``unsew eval`` once with 100K) and the report's
 per-vertex distance (:func:`unsew.metrics.surface.closest_points` of the result's vertices).
 
+``--fit DIR``: also a whole fit (small mode: 4 cm mesh, 3 iterations, as tests/fit) of a known-truth
+t-shirt whose target is the true drape subdivided (flat, the surface unchanged) to each size;
+each fit in a fresh process, its peak resident memory as recorded in its metrics.json.
+
 "peak MB" is the growth of the process's peak resident memory (VmHWM, reset before each row) over
 its size at the start of the row; "process peak MB" the whole process's peak then. Prints tables;
 never asserts timings.
@@ -29,6 +33,7 @@ def main() -> None:
     ap.add_argument("--samples", type=int, nargs="+", default=[50_000, 100_000], help="points sampled per mesh")
     ap.add_argument("--result-verts", type=int, default=5000)
     ap.add_argument("--sizes", type=int, nargs="+", default=[2000, 10000, 20000, 50000], help="target vertices")
+    ap.add_argument("--fit", metavar="DIR", help="also run a whole small fit per target size in DIR (minutes each)")
     args = ap.parse_args()
 
     import numpy as np
@@ -66,6 +71,68 @@ def main() -> None:
             print(rows[-1], flush=True) if os.environ.get("BENCH_VERBOSE") else None
     print_table(rows, title="3D metrics of a fit (surface_metrics + the report's per-vertex distances): time [s] and peak memory [MB]",
                 digits=2)
+    if args.fit:
+        print_table(_fit_rows(args.sizes, args.fit), title="Whole small fits (peak memory from metrics.json)", digits=2)
+
+
+#: tests/fit/test_fit_small.py's small mode
+SMALL = dict(edge_length=0.04, iterations=3, steps=8, sew_steps=60, settle_steps=20, target_points=1500,
+             material_start=1, material="cotton")
+
+_FIT = """
+import sys
+from pathlib import Path
+from unsew.fit.config import FitConfig
+from unsew.fit.run import run_fit
+from unsew.io.case import load_case
+run_fit(load_case(sys.argv[1]), FitConfig(**{small!r}), Path(sys.argv[2]), progress=False, log=lambda s: None)
+"""
+
+
+def _fit_rows(sizes, folder) -> list[dict]:
+    import json
+    import shutil
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    import numpy as np
+    import trimesh
+
+    from unsew.fit.demo import make_truth_case
+    from unsew.io.mesh import read_mesh, write_obj
+
+    work = Path(folder)
+    work.mkdir(parents=True, exist_ok=True)
+    base = work / "truth"
+    if not (base / "target.obj").is_file():
+        make_truth_case(base, edge_length=SMALL["edge_length"], sew_steps=SMALL["sew_steps"],
+                        settle_steps=SMALL["settle_steps"])
+    v0, f0 = read_mesh(base / "target.obj")
+    edge = float(np.linalg.norm(v0[f0[:, 0]] - v0[f0[:, 1]], axis=1).mean())
+    rows = []
+    for n in sizes:
+        d = work / f"case_{n}"
+        shutil.rmtree(d, ignore_errors=True)
+        shutil.copytree(base, d)
+        v, f = v0, f0
+        if n > len(v0):
+            v, f = trimesh.remesh.subdivide_to_size(v0, f0, max_edge=edge * np.sqrt(len(v0) / n) * 1.2)
+        write_obj(d / "target.obj", v, f)
+        out = work / f"fit_{n}"
+        shutil.rmtree(out, ignore_errors=True)
+        t = time.perf_counter()
+        r = subprocess.run([sys.executable, "-c", _FIT.format(small=SMALL), str(d), str(out)], capture_output=True, text=True)
+        wall = time.perf_counter() - t
+        if r.returncode != 0:
+            rows.append({"target verts": len(v), "status": (r.stderr.strip().splitlines() or ["?"])[-1][:80]})
+            continue
+        m = json.loads((out / "metrics.json").read_text())
+        rows.append({"target verts": len(v), "target triangles": len(f), "fit s": m["timings_s"].get("total_s"),
+                     "wall s": wall, "peak MB (metrics.json)": m.get("peak_memory_mb"),
+                     "chamfer mm": m["surface"]["chamfer_mm"], "status": "ok"})
+        print(rows[-1], file=sys.stderr, flush=True)
+    return rows
 
 
 if __name__ == "__main__":

@@ -55,3 +55,34 @@ def test_inside_sphere_either_orientation(exact):
     assert (inside(p, m.vertices, m.faces[:, ::-1], exact=exact) == want).all()
     w = winding_number(p, m.vertices, m.faces, exact=exact)
     assert_close(w[want], 1.0, atol=0.02) if exact else None
+
+
+def test_many_queries_keep_their_order():
+    """More than 256 queries are answered in a spatial order inside: results come back in the
+    caller's order, equal to answering them one chunk at a time."""
+    v, f = grid_tube()
+    p = np.random.default_rng(3).uniform(-0.4, 0.6, (2000, 3))
+    mq = MeshQuery(v, f)
+    q, d, fi = mq.closest(p)
+    parts = [mq.closest(p[i : i + 200]) for i in range(0, 2000, 200)]
+    assert_close(q, np.concatenate([x[0] for x in parts]), atol=0)
+    assert_close(d, np.concatenate([x[1] for x in parts]), atol=0)
+    assert (fi == np.concatenate([x[2] for x in parts])).all()
+    assert_close(np.linalg.norm(q - p, axis=1), d, atol=1e-12)
+
+
+def test_first_hit_on_a_sphere():
+    m = trimesh.creation.icosphere(4, radius=0.3)
+    mq = MeshQuery(m.vertices, m.faces)
+    o = np.array([[0, 0, -1.0], [0, 0, -1.0], [1.0, 1.0, 1.0], [0, 0, 0.0]])
+    d = np.array([[0, 0, 2.0], [0, 0, 1.0], [1.0, 0, 0], [1.0, 0, 0]])
+    hit, t, fi, p = mq.first_hit(o, d)
+    assert hit.tolist() == [True, True, False, True]
+    assert_close(t[[0, 1, 3]], [0.7, 0.7, 0.3], atol=2e-3)  # the tessellation sags inside the sphere
+    assert np.isinf(t[2]) and fi[2] == -1 and np.isnan(p[2]).all()
+    assert_close(np.linalg.norm(p[hit], axis=1), 0.3, atol=2e-3)
+    assert (fi[hit] >= 0).all()
+    hit2, _, _, _ = mq.first_hit(o, d, max_distance=0.5)
+    assert hit2.tolist() == [False, False, False, True]
+    with pytest.raises(ValueError):
+        mq.first_hit(o, np.zeros_like(o))

@@ -97,6 +97,10 @@ def test_nothing_left_refused():
     v = np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0.0]])
     with pytest.raises(InputError, match="no triangles"):
         repair_garment(v, np.array([[0, 1, 2], [0, 0, 1]]))
+    with pytest.raises(InputError, match="missing vertices"):
+        repair_garment(v, np.array([[0, 1, 3]]))
+    with pytest.raises(InputError, match="finite"):
+        repair_garment(v * np.nan, np.array([[0, 1, 2]]))
 
 
 def test_damaged_case_loads_the_clean_target(tmp_path):

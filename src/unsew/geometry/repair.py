@@ -115,6 +115,10 @@ def repair_garment(verts, faces, *, what: str = "target") -> tuple[np.ndarray, n
     """
     v = np.asarray(verts, dtype=np.float64)
     f = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
+    if v.ndim != 2 or v.shape[1] != 3 or not np.isfinite(v).all():
+        raise InputError(f"{what} needs finite vertex coordinates of shape (V, 3), got shape {v.shape}")
+    if len(f) == 0 or f.min() < 0 or f.max() >= len(v):
+        raise InputError(f"{what} has no triangles or faces indexing missing vertices (0..{len(v) - 1})")
     rep = MeshRepair()
     used0 = np.zeros(len(v), bool)
     used0[f.ravel()] = True
