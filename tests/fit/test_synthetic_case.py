@@ -10,7 +10,7 @@ def test_target_is_reproducible_from_the_case_folder(tmp_path):
     from unsew.body.body import default_body
     from unsew.dress import dress
     from unsew.fit.synthetic import make_truth_case
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.sim.material import MATERIALS
 
     body = default_body().transformed(scale=np.array([1.05, 1.0, 1.05]))

@@ -68,6 +68,7 @@ _SHOULDER = (0.101, -0.0525, 0.011)  # shoulder joint from the neck joint (x out
 _WRIST_WINDOW = (0.07, 0.22)  # the wrist's range of geodesic distance from the finger tip, share of H
 _NARROW = 1.08  # the wrist: the first ring within this factor of the forearm's narrowest
 _ARM_RATIO = 1.11  # upper arm / forearm length
+_HEEL_EXIT = 0.85  # a ring this much shorter than the longest before it is on the shin
 _HEEL_NEAR = 0.97  # rings within this factor of the longest over the foot go round the heel
 _ANKLE_BEFORE_HEEL = 0.027  # the ankle's geodesic distance before the heel's last ring, share of H
 _SPINE_SHARE = {"spine": 0.265, "chest": 0.673}  # share of the way from pelvis to neck
@@ -340,6 +341,11 @@ def _leg_joints(leg: _Limb, hip: np.ndarray, side: str, H: float) -> dict:
     # the ankle: a fixed way back from the heel's last ring (the longest ring over the foot)
     win = np.flatnonzero((t > 0.08 * H) & (t < 0.25 * H) & (np.arange(len(t)) < leg.root))
     heel = win[g[win] >= _HEEL_NEAR * g[win].max()].max()
+    run = np.maximum.accumulate(g[win])
+    out = np.flatnonzero(g[win] < _HEEL_EXIT * run)  # the rings have left the heel for the shin
+    if len(out):
+        before = win[: out[0]]
+        heel = before[g[before] >= _HEEL_NEAR * run[out[0]]].max()
     ia = max(int(heel) - int(round(_ANKLE_BEFORE_HEEL * H / step)), 0)
     ankle = c[ia]
     # the knee: the narrowest ring between the calf's widest and the thigh
