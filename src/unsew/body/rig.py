@@ -4,12 +4,12 @@ moved, when no skeleton.json comes with it.
 
 The method is geometric (no body model, no dependency beyond scipy):
 
-1. The five extremities (head top, hands, feet) are the farthest points of the surface by
+1. The five extremities (head, finger tips, toes) are the farthest points of the surface by
    geodesic distance (edge-graph Dijkstra), found one after another from the body's centre of
-   mass; each is then moved to the point of its end region farthest from the centre of mass
-   (a mouth or an ear canal can be geodesically far, never Euclidean-far). The two lowest are
-   the feet (left at +X), the head is the one as far from both feet, the hand nearer to the left
-   foot is the left hand.
+   mass. The two lowest are the feet (left at +X); of the other three the head is as far from
+   one as from the other, and the hands are told apart by X. The crown is the highest point of
+   the part of the surface nearer the head's extremity than any other (the extremity itself may
+   be inside a mouth). Toes behind the heels mean the body faces -Z: refused.
 2. Each limb is read as rings: level sets of the geodesic distance from its extremity, which cut
    a limb across its axis whatever its pose. A ring's centroid is a point of the limb's axis and
    its length the limb's girth there. The limb's root is where the girth jumps (the ring has
@@ -57,17 +57,18 @@ RIG_JOINTS: dict[str, tuple[str | None, str]] = {
 
 # Shares of the body height H (head top to soles) and of limb axes, read on anny bodies.
 _RING_STEP = 0.006  # spacing of the rings along a limb, share of H
-_END_RADIUS = 0.15  # an extremity is refined within this geodesic radius, share of H
 _ROOT_JUMP = 1.3  # a ring longer than this many times the limb's recent narrowest one is on the torso
 _NECK_BELOW_MIN = 0.013  # the neck joint below the neck's narrowest section, share of H
 _HEAD_SHARE = 0.395  # the head joint's share of the way from the neck joint to the head top
 _PELVIS_ABOVE_CROTCH = 0.059  # share of H
-_HIP_BELOW_PELVIS = 0.005  # share of H
+_HIP_BELOW_PELVIS = 0.0055  # share of H
 _HIP_X = 0.0625  # hip joints' distance from the pelvis' mid-plane, share of H
 _SHOULDER = (0.101, -0.0525, 0.011)  # shoulder joint from the neck joint (x outwards), share of H
 _WRIST_WINDOW = (0.07, 0.22)  # the wrist's range of geodesic distance from the finger tip, share of H
 _NARROW = 1.08  # the wrist: the first ring within this factor of the forearm's narrowest
 _ARM_RATIO = 1.11  # upper arm / forearm length
+_SHIN = 0.247  # knee to ankle, share of H
+_KNEE_BELOW_NARROW = 0.012  # the knee joint below the back of the knee's narrowest ring, share of H
 _HEEL_EXIT = 0.85  # a ring this much shorter than the longest before it is on the shin
 _HEEL_NEAR = 0.97  # rings within this factor of the longest over the foot go round the heel
 _ANKLE_BEFORE_HEEL = 0.027  # the ankle's geodesic distance before the heel's last ring, share of H
@@ -224,7 +225,7 @@ def _column(verts: np.ndarray, faces: np.ndarray, top: np.ndarray, y_end: float,
     return _Column(ys[:n], np.array(cs), np.array(gs), np.array(los), np.array(his), min(crotch, n))
 
 
-def _extremities(verts: np.ndarray, faces: np.ndarray, graph, height_guess: float):
+def _extremities(verts: np.ndarray, faces: np.ndarray, graph):
     """Vertex indices of the five extremities and the geodesic distances (5, V) from them."""
     import trimesh
     from scipy.sparse.csgraph import dijkstra
@@ -232,14 +233,12 @@ def _extremities(verts: np.ndarray, faces: np.ndarray, graph, height_guess: floa
     com = trimesh.Trimesh(verts, faces, process=False).center_mass
     seed = int(np.argmin(np.linalg.norm(verts - com, axis=1)))
     dmin = dijkstra(graph, indices=seed)
-    far = np.linalg.norm(verts - com, axis=1)
     ends = []
     for _ in range(5):
         e = int(np.argmax(dmin))
         d = dijkstra(graph, indices=e)
         dmin = np.minimum(dmin, d)
-        region = np.flatnonzero(d < _END_RADIUS * height_guess)
-        ends.append(int(region[np.argmax(far[region])]))
+        ends.append(e)
     return ends, dijkstra(graph, indices=ends)
 
 
@@ -274,7 +273,7 @@ def rig_skeleton(verts: np.ndarray, faces: np.ndarray, *, debug: dict | None = N
     F = np.asarray(faces, dtype=np.int64)
     floor = float(V[:, 1].min())
     graph = _graph(V, F)
-    ends, D = _extremities(V, F, graph, float(V[:, 1].max() - floor))
+    ends, D = _extremities(V, F, graph)
     ey = V[ends, 1]
     feet = list(np.argsort(ey)[:2])
     others = [i for i in range(5) if i not in feet]
@@ -283,8 +282,12 @@ def rig_skeleton(verts: np.ndarray, faces: np.ndarray, *, debug: dict | None = N
     ih = min(others, key=lambda i: abs(float(np.subtract(*[D[i, ends[j]] for j in others if j != i]))))
     hands = [i for i in others if i != ih]
     lh, rh = sorted(hands, key=lambda i: -(V[ends[i], 0] - V[ends[ih], 0]))  # left hand at +X
-    near_head = np.flatnonzero(D[ih] < _END_RADIUS * float(V[:, 1].max() - floor))
+    near_head = np.flatnonzero(np.argmin(D, axis=0) == ih)  # nearer the head's end than any other
     head_top = V[near_head[np.argmax(V[near_head, 1])]]  # the crown, not the forehead or chin
+    toes = V[[ends[lf], ends[rf]]]  # the feet's far ends: the toes, in front of the heels
+    heels = np.array([V[D[i] < 0.12 * (head_top[1] - floor)].mean(axis=0) for i in (lf, rf)])
+    if (toes[:, 2] - heels[:, 2]).max() < 0:
+        raise InputError("body faces -Z (its toes point backwards); use --front -z")
     H = float(head_top[1] - floor)
     if not (0.5 < H < 3.0):
         raise InputError(f"body is {H:.2f} m from soles to head top; cannot rig it (check --units/--up)")
@@ -339,7 +342,9 @@ def _leg_joints(leg: _Limb, hip: np.ndarray, side: str, H: float) -> dict:
     t, c, g = leg.t, leg.c, leg.g
     step = t[1] - t[0]
     # the ankle: a fixed way back from the heel's last ring (the longest ring over the foot)
-    win = np.flatnonzero((t > 0.08 * H) & (t < 0.25 * H) & (np.arange(len(t)) < leg.root))
+    toes = np.flatnonzero((leg.nc > 1) & (t < 0.15 * H))  # rings that cut toes apart
+    start = max(0.08 * H, t[toes.max()] if len(toes) else 0.0)
+    win = np.flatnonzero((t > start) & (t < 0.25 * H) & (np.arange(len(t)) < leg.root))
     heel = win[g[win] >= _HEEL_NEAR * g[win].max()].max()
     run = np.maximum.accumulate(g[win])
     out = np.flatnonzero(g[win] < _HEEL_EXIT * run)  # the rings have left the heel for the shin
@@ -348,19 +353,20 @@ def _leg_joints(leg: _Limb, hip: np.ndarray, side: str, H: float) -> dict:
         heel = before[g[before] >= _HEEL_NEAR * run[out[0]]].max()
     ia = max(int(heel) - int(round(_ANKLE_BEFORE_HEEL * H / step)), 0)
     ankle = c[ia]
-    # the knee: the narrowest ring between the calf's widest and the thigh
+    # the knee: the mean of two readings along the leg's axis, the ring a shin's length from the
+    # ankle and the narrowest ring between the calf's widest and the thigh (the back of the knee)
     top = int(np.argmin(np.linalg.norm(c[ia : leg.root + 1] - hip, axis=1))) + ia
-    calf = np.flatnonzero((t > t[ia] + 0.05 * H) & (t < t[ia] + 0.2 * H) & (np.arange(len(t)) < top))
-    knee = None
+    idx = np.arange(len(t))
+    k_len = ia + int(np.argmin(np.abs(np.linalg.norm(c[ia : top + 1] - ankle, axis=1) - _SHIN * H)))
+    k = k_len
+    calf = np.flatnonzero((t > t[ia] + 0.05 * H) & (t < t[ia] + 0.2 * H) & (idx < top))
     if len(calf):
         ic = int(calf[np.argmax(g[calf])])
-        up = np.flatnonzero((t > t[ic]) & (t < t[ic] + 0.12 * H) & (np.arange(len(t)) < top))
+        up = np.flatnonzero((t > t[ic]) & (t < t[ic] + 0.12 * H) & (idx < top))
         if len(up):
-            knee = c[int(up[np.argmin(g[up])])]
-    if knee is None:
-        seg = c[ia : top + 1]
-        ratio = np.linalg.norm(seg - hip, axis=1) / np.maximum(np.linalg.norm(seg - ankle, axis=1), 1e-9)
-        knee = seg[int(np.argmin(np.abs(ratio - 1.0)))]
+            k_narrow = int(up[np.argmin(g[up])]) - int(round(_KNEE_BELOW_NARROW * H / step))
+            k = int(round(0.5 * (k_len + k_narrow)))
+    knee = c[k]
     return {f"{side}_ankle": ankle, f"{side}_knee": knee}
 
 
@@ -388,7 +394,7 @@ def _torso_joints(col: _Column, floor: float, H: float) -> dict:
     head = np.array([top[0], neck[1] + _HEAD_SHARE * (top[1] + 0.5 * (col.y[0] - col.y[1]) - neck[1]), top[2]])
     crotch = col.y[col.crotch - 1]
     pelvis = at(crotch + _PELVIS_ABOVE_CROTCH * H, _ZREL["pelvis"])
-    hip_y = pelvis[1] + _HIP_BELOW_PELVIS * H
+    hip_y = pelvis[1] - _HIP_BELOW_PELVIS * H
     out = {"pelvis": pelvis, "neck": neck, "head": head}
     for side, sign in (("left", 1.0), ("right", -1.0)):
         out[f"{side}_hip"] = at(hip_y, _ZREL["hip"]) + np.array([sign * _HIP_X * H, 0.0, 0.0])
