@@ -67,8 +67,7 @@ _SHOULDER = (0.101, -0.0525, 0.011)  # shoulder joint from the neck joint (x out
 _WRIST_WINDOW = (0.07, 0.22)  # the wrist's range of geodesic distance from the finger tip, share of H
 _NARROW = 1.08  # the wrist: the first ring within this factor of the forearm's narrowest
 _ARM_RATIO = 1.11  # upper arm / forearm length
-_SHIN = 0.247  # knee to ankle, share of H
-_KNEE_BELOW_NARROW = 0.012  # the knee joint below the back of the knee's narrowest ring, share of H
+_SHIN = (0.41, 1.65, 0.61)  # knee to ankle [m] = a * (H / H0) ** p: (a [m], H0 [m], p)
 _HEEL_EXIT = 0.85  # a ring this much shorter than the longest before it is on the shin
 _HEEL_NEAR = 0.97  # rings within this factor of the longest over the foot go round the heel
 _ANKLE_BEFORE_HEEL = 0.027  # the ankle's geodesic distance before the heel's last ring, share of H
@@ -353,19 +352,10 @@ def _leg_joints(leg: _Limb, hip: np.ndarray, side: str, H: float) -> dict:
         heel = before[g[before] >= _HEEL_NEAR * run[out[0]]].max()
     ia = max(int(heel) - int(round(_ANKLE_BEFORE_HEEL * H / step)), 0)
     ankle = c[ia]
-    # the knee: the mean of two readings along the leg's axis, the ring a shin's length from the
-    # ankle and the narrowest ring between the calf's widest and the thigh (the back of the knee)
+    # the knee: the axis point a shin's length from the ankle (anny's shin grows as H^0.61)
     top = int(np.argmin(np.linalg.norm(c[ia : leg.root + 1] - hip, axis=1))) + ia
-    idx = np.arange(len(t))
-    k_len = ia + int(np.argmin(np.abs(np.linalg.norm(c[ia : top + 1] - ankle, axis=1) - _SHIN * H)))
-    k = k_len
-    calf = np.flatnonzero((t > t[ia] + 0.05 * H) & (t < t[ia] + 0.2 * H) & (idx < top))
-    if len(calf):
-        ic = int(calf[np.argmax(g[calf])])
-        up = np.flatnonzero((t > t[ic]) & (t < t[ic] + 0.12 * H) & (idx < top))
-        if len(up):
-            k_narrow = int(up[np.argmin(g[up])]) - int(round(_KNEE_BELOW_NARROW * H / step))
-            k = int(round(0.5 * (k_len + k_narrow)))
+    shin = _SHIN[0] * (H / _SHIN[1]) ** _SHIN[2]
+    k = ia + int(np.argmin(np.abs(np.linalg.norm(c[ia : top + 1] - ankle, axis=1) - shin)))
     knee = c[k]
     return {f"{side}_ankle": ankle, f"{side}_knee": knee}
 
