@@ -300,12 +300,10 @@ def rig_skeleton(verts: np.ndarray, faces: np.ndarray, *, debug: dict | None = N
     arms = {}
     for side, i in (("left", lh), ("right", rh)):
         arms[side] = _limb(V, F, D[i], ends[i], t_max=0.55 * H, step=step, t_min_root=0.25 * H)
-    # -- head: rings from the top of the head
-    head = _limb(V, F, D[ih], ends[ih], t_max=0.25 * H, step=step, t_min_root=0.1 * H)
     if debug is not None:
         debug.update(ends={n: ends[i] for n, i in (("head", ih), ("left_hand", lh), ("right_hand", rh),
                                                   ("left_foot", lf), ("right_foot", rf))},
-                     legs=legs, arms=arms, head=head, H=H)
+                     legs=legs, arms=arms, H=H)
     col = _column(V, F, head_top, floor + 0.3 * H, 0.003 * H, 0.13 * H)
     J = _torso_joints(col, floor, H)
     for side in ("left", "right"):
