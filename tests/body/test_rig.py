@@ -211,3 +211,13 @@ def test_garmentcode_tpose_bust():
     if not mesh.is_file():
         pytest.skip(f"GarmentCode bodies not at {FOREIGN}")
     assert abs(measure_body(load_body(mesh)).bust * 100 - _yaml(mesh.with_suffix(".yaml"))["bust"]) <= 2.0
+
+
+def test_a_shape_that_is_not_a_person_is_refused_in_one_line(tmp_path):
+    import trimesh
+
+    m = trimesh.creation.cylinder(radius=0.2, height=1.7, sections=64)
+    m = trimesh.Trimesh(m.vertices[:, [0, 2, 1]] + [0, 0.85, 0], m.faces[:, ::-1]).subdivide().subdivide()
+    write_obj(tmp_path / "body.obj", m.vertices, m.faces)
+    with pytest.raises(InputError, match="skeleton.json"):
+        load_body(tmp_path / "body.obj")

@@ -384,6 +384,7 @@ def load_body(
     note). Returns a Body without skinning weights; ``notes`` lists what was repaired or rigged.
     """
     from unsew.body.skeleton import load_skeleton
+    from unsew.errors import InputError
     from unsew.io.mesh import UNIT_SCALE, frame_matrix, read_mesh
 
     what = f"body {os.fspath(mesh_path)}"
@@ -399,7 +400,10 @@ def load_body(
         check_body_plausible(verts, None, what=what)
         from unsew.body.rig import rig_skeleton
 
-        sk = rig_skeleton(verts, faces)
+        try:
+            sk = rig_skeleton(verts, faces)
+        except (IndexError, ValueError) as exc:  # a shape the rig cannot read, not a bug to show
+            raise InputError(f"cannot rig {what} from its mesh ({exc}); give its skeleton.json") from None
         notes = [*notes, "no skeleton.json: the 17 joints were estimated from the mesh (unsew body rig)"]
     check_body_plausible(verts, sk, what=what)
     return Body(verts, faces, sk, None, name=name or os.path.basename(os.fspath(mesh_path)),

@@ -14,16 +14,21 @@ The method is geometric (no body model, no dependency beyond scipy):
    a limb across its axis whatever its pose. A ring's centroid is a point of the limb's axis and
    its length the limb's girth there. The limb's root is where the girth jumps (the ring has
    reached the torso).
-3. Joints on the axis: the wrist at the narrowest ring past the hand; the elbow and knee at the
-   sharpest bend of the axis when it is bent, else at a fixed share of the axis; the ankle on the
-   shin's axis a fixed share of the body height below the shin's narrowest ring; the shoulder on
-   the upper arm's axis where it meets the torso; the hip on the thigh's axis a fixed share of
-   the body height above the crotch; the neck at the root of the head's tube and the head joint
-   on its axis; pelvis between the hips, spine and chest between pelvis and neck.
+3. The trunk is read as horizontal sections followed down from the crown (the loop around the
+   crown's vertical axis): the neck joint a little below the neck's narrowest section, the head
+   joint a share of the way up to the crown, the crotch where no section surrounds the axis any
+   more, the pelvis and hips above it, spine and chest at shares of the way from pelvis to neck,
+   each at a share of its section's depth. The shoulders are fixed offsets from the neck joint (a
+   shoulder joint does not move when its arm turns, so the arm's pose does not matter).
+4. On the limbs' axes: the wrist at the first ring, coming from the hand, as narrow as the
+   forearm; the elbow at the axis point whose distances to shoulder and wrist have the upper
+   arm's share (bent or straight); the ankle a fixed geodesic way back from the heel's last ring
+   (the longest ring over the foot); the knee at the axis point a shin's length from the ankle.
 
-The fixed shares are those of the anny body model (MakeHuman's skeleton), whose joints the
-benchmark ``python -m benchmarks rig`` compares against. The torso is assumed upright (the
-spine is not bent; a limb may be moved, a leg up to about 45 degrees).
+All lengths are shares of the body height H (crown to soles; the shin grows as H^0.61), read on
+anny bodies (MakeHuman's
+skeleton), whose joints the benchmark ``python -m benchmarks rig`` compares against. The torso is
+assumed upright (the spine is not bent); a limb may be moved, a leg up to about 45 degrees.
 """
 
 from __future__ import annotations
@@ -283,13 +288,18 @@ def rig_skeleton(verts: np.ndarray, faces: np.ndarray, *, debug: dict | None = N
     lh, rh = sorted(hands, key=lambda i: -(V[ends[i], 0] - V[ends[ih], 0]))  # left hand at +X
     near_head = np.flatnonzero(np.argmin(D, axis=0) == ih)  # nearer the head's end than any other
     head_top = V[near_head[np.argmax(V[near_head, 1])]]  # the crown, not the forehead or chin
+    H = float(head_top[1] - floor)
+    if not (0.5 < H < 3.0):
+        raise InputError(f"body is {H:.2f} m from soles to head top; cannot rig it (check --units/--up)")
+    if V[[ends[lf], ends[rf]], 1].max() - floor > 0.15 * H or not V[ends[rh], 0] < head_top[0] < V[ends[lh], 0]:
+        raise InputError(
+            "body mesh does not read as a person standing on two feet with the arms apart from the "
+            "trunk; give its skeleton.json"
+        )
     toes = V[[ends[lf], ends[rf]]]  # the feet's far ends: the toes, in front of the heels
     heels = np.array([V[D[i] < 0.12 * (head_top[1] - floor)].mean(axis=0) for i in (lf, rf)])
     if (toes[:, 2] - heels[:, 2]).max() < 0:
         raise InputError("body faces -Z (its toes point backwards); use --front -z")
-    H = float(head_top[1] - floor)
-    if not (0.5 < H < 3.0):
-        raise InputError(f"body is {H:.2f} m from soles to head top; cannot rig it (check --units/--up)")
     step = _RING_STEP * H
 
     # -- legs: rings from the toes
