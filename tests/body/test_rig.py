@@ -221,3 +221,17 @@ def test_a_shape_that_is_not_a_person_is_refused_in_one_line(tmp_path):
     write_obj(tmp_path / "body.obj", m.vertices, m.faces)
     with pytest.raises(InputError, match="skeleton.json"):
         load_body(tmp_path / "body.obj")
+
+
+def test_io_knows_no_body():
+    """io reads files; the body loader lives in body/ (no io <-> body import cycle)."""
+    import ast
+
+    io_dir = Path(__file__).resolve().parents[2] / "src" / "unsew" / "io"
+    bad = []
+    for p in sorted(io_dir.glob("*.py")):
+        for node in ast.walk(ast.parse(p.read_text())):
+            mods = [node.module or ""] if isinstance(node, ast.ImportFrom) else (
+                [a.name for a in node.names] if isinstance(node, ast.Import) else [])
+            bad += [f"{p.name}: {m}" for m in mods if m == "unsew.body" or m.startswith("unsew.body.")]
+    assert not bad, bad
