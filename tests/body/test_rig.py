@@ -161,8 +161,8 @@ def test_cli_rig_writes_skeleton_and_preview(tmp_path):
     d = json.loads((tmp_path / "skeleton.json").read_text())
     assert {j["name"] for j in d["joints"]} == set(RIG_JOINTS)
     assert (tmp_path / "rig.png").stat().st_size > 10_000
-    r = subprocess.run([sys.executable, "-m", "unsew", "body", "rig", str(tmp_path / "body.obj")], capture_output=True, text=True)
-    assert r.returncode == 2 and "--overwrite" in r.stderr  # no silent overwrite
+    r = subprocess.run([sys.executable, "-m", "unsew", "body", "rig", str(tmp_path)], capture_output=True, text=True)
+    assert r.returncode == 2 and "--overwrite" in r.stderr  # a folder's skeleton.json, never silently replaced
     r = subprocess.run([sys.executable, "-m", "unsew", "body", "measure", str(tmp_path / "body.obj"), "--json"],
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr

@@ -37,9 +37,9 @@ def run_make(args: argparse.Namespace) -> int:
     return 0
 
 
-def _body_from_arg(args: argparse.Namespace):
+def _body_from_arg(args: argparse.Namespace, *, rig: bool = False):
     """The body named on the command line: 'default', a body mesh file, or a folder with body.obj
-    (and skeleton.json, else the body is rigged from its mesh)."""
+    (and skeleton.json, else the body is rigged from its mesh; ``rig``: always rigged)."""
     import os
 
     from unsew.body.body import default_body, load_body
@@ -57,7 +57,8 @@ def _body_from_arg(args: argparse.Namespace):
         mesh, skel = src, getattr(args, "skeleton", None) or ""
     else:
         raise InputError(f"body {src} not found; give a body folder, a body mesh file or 'default'")
-    return load_body(mesh, skel if os.path.isfile(skel) else None, units=args.units, up=args.up, front=args.front)
+    use = skel if os.path.isfile(skel) and not rig else None
+    return load_body(mesh, use, units=args.units, up=args.up, front=args.front)
 
 
 def run_rig(args: argparse.Namespace) -> int:
@@ -65,10 +66,11 @@ def run_rig(args: argparse.Namespace) -> int:
 
     from unsew.body.skeleton import save_skeleton
 
-    body = _body_from_arg(args)
+    body = _body_from_arg(args, rig=True)
     for note in body.notes:
         print(f"note: {note}")
-    out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.body)), "skeleton.json")
+    folder = args.body if os.path.isdir(args.body) else os.path.dirname(os.path.abspath(args.body))
+    out = args.out or os.path.join(folder, "skeleton.json")
     if os.path.exists(out) and not args.overwrite:
         from unsew.errors import InputError
 
