@@ -33,7 +33,7 @@ import numpy as np  # noqa: E402
 
 def _fit(case_dir: Path, out: Path, cfg, *, units=None):
     from unsew.fit.run import run_fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     case = load_case(case_dir, units=units)
     t = time.perf_counter()

@@ -46,7 +46,7 @@ def main() -> None:
     from unsew.dress import dress
     from unsew.errors import InputError
     from unsew.fit.config import FitConfig
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.io.garmentcode import load_pattern
     from unsew.metrics.surface import chamfer_mm
     from unsew.sim.material import material_from_dict

@@ -56,7 +56,7 @@ def main() -> None:
     torch.set_num_threads(1)
     from unsew.errors import InputError
     from unsew.fit.config import load_config
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.metrics.panels import pattern_metrics
     from unsew.metrics.surface import chamfer_mm
 

@@ -96,7 +96,7 @@ def fit_case(case_dir: Path, out: Path, cfg, *, log=print, retry_failed: bool | 
     ``retry_failed``.
     """
     from unsew.fit.run import partial_dir, run_fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     out = Path(out)
     side = out.with_name(out.name + ".bench.json")
@@ -435,7 +435,7 @@ def _scaled_base(case_dir: Path, garment: str, s: float, path: Path) -> Path:
     """The base pattern of ``garment`` sized to the case's body, every panel scaled by ``s``
     about its 2D centroid, saved as GarmentCode JSON at ``path``."""
     from unsew.body.measure import measure_body
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.io.garmentcode import save_pattern
     from unsew.pattern.base import make_base_pattern
 

@@ -25,7 +25,7 @@ def small_case(tmp_path_factory):
 @pytest.fixture(scope="module")
 def small_fit(small_case, tmp_path_factory):
     from unsew.fit.run import run_fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     out = tmp_path_factory.mktemp("fit") / "result"
     result, metrics = run_fit(load_case(small_case), FitConfig(**SMALL), out, progress=False, log=lambda s: None)
@@ -57,7 +57,7 @@ def test_fit_improves_on_the_base(small_fit):
 def test_resume_continues_from_checkpoint(small_case, tmp_path):
     """An interrupted fit leaves RESULT.partial with a checkpoint; --resume finishes it."""
     from unsew.fit.run import partial_dir, run_fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     out = tmp_path / "r"
     case = load_case(small_case)
@@ -142,7 +142,7 @@ def test_redress_check_returns_the_graded_pattern_when_phase_two_found_nothing(s
     import numpy as np
 
     from unsew.fit.fit import fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     case = load_case(small_case)
     cfg = FitConfig(**{**SMALL, "iterations": 2, "pattern_start": 5, "optimize_material": False, "report": False})
@@ -178,7 +178,7 @@ def test_pattern_start_holds_the_control_points(small_case):
     import numpy as np
 
     from unsew.fit.fit import fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     cfg = FitConfig(**{**SMALL, "iterations": 2, "pattern_start": 5, "optimize_material": False, "report": False,
                        "mesh_spread": 0.0})
@@ -192,7 +192,7 @@ def test_prior_term_is_wired_in(small_case):
     """With lambda_prior the loss carries the pull towards the graded pattern: zero at the first
     iterate (the graded pattern itself), positive once the control points moved."""
     from unsew.fit.fit import fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     cfg = FitConfig(**{**SMALL, "iterations": 2, "optimize_material": False, "report": False, "mesh_spread": 0.0,
                        "lambda_prior": 1.0})
@@ -204,7 +204,7 @@ def test_prior_term_is_wired_in(small_case):
 def test_material_params_frees_only_the_listed_entries(small_case):
     """material_params="k": the last iterate's bending has moved, its stretch and shear have not."""
     from unsew.fit.fit import fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.sim.material import MATERIALS
 
     cfg = FitConfig(**{**SMALL, "iterations": 3, "material_start": 0, "report": False, "mesh_spread": 0.0,
@@ -221,7 +221,7 @@ def test_cold_start_makes_the_drape_a_function_of_the_parameters(small_case):
     the pattern and material held, every iteration's loss is the same; warm-started, the cloth
     keeps moving and the loss changes."""
     from unsew.fit.fit import fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     case = load_case(small_case)
     losses = {}
@@ -242,7 +242,7 @@ def test_auto_material_picks_the_true_fabric(small_case):
     import math
 
     from unsew.fit.fit import fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.sim.material import MATERIALS
 
     cfg = FitConfig(**{**SMALL, "iterations": 1, "optimize_material": False, "report": False, "mesh_spread": 0.0,
@@ -324,7 +324,7 @@ def test_fit_friction_eps_reaches_phase_two_drapes(small_case, monkeypatch):
     import importlib
 
     from unsew.fit.fit import fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     simdrape = importlib.import_module("unsew.sim.drape")
     orig, seen = simdrape.drape, []

@@ -31,7 +31,7 @@ def base_case(tmp_path_factory):
 
 def _fit(case_dir, out, **kw):
     from unsew.fit.run import run_fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     cfg = FitConfig(**{**SMALL, "report": False, "mesh_spread": 0.0})
     return run_fit(load_case(case_dir, **kw), cfg, out, progress=False, log=lambda s: None)

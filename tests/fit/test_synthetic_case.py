@@ -10,7 +10,7 @@ def test_target_is_reproducible_from_the_case_folder(tmp_path):
     from unsew.body.body import default_body
     from unsew.dress import dress
     from unsew.fit.synthetic import make_truth_case
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.sim.drape import DrapeSettings
     from unsew.sim.material import MATERIALS
 

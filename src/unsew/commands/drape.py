@@ -49,7 +49,7 @@ def _load_body(args):
         return default_body()
     path = Path(src)
     if path.is_dir():
-        from unsew.io.case import load_case
+        from unsew.body.case import load_case
 
         return load_case(path).body
     if not path.is_file():

@@ -67,7 +67,7 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from unsew.fit.run import run_fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     cfg = config_from_args(args)
     out = Path(args.out)

@@ -37,7 +37,7 @@ def run(args: argparse.Namespace) -> int:
     from unsew.errors import InputError
     from unsew.grading.grade import GRADE_SETTINGS, flat_drape, format_table, grade
     from unsew.io.atomic import atomic_dir
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.io.garmentcode import save_pattern
     from unsew.io.mesh import write_obj
     from unsew.meshing.sew import EDGE_LENGTH_RANGE

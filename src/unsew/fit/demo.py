@@ -64,7 +64,7 @@ def run_demo(out: Path, *, cfg=None, progress: bool = True, log=None) -> dict:
     from unsew.dress import DRESS_SETTINGS, dress
     from unsew.fit.config import FitConfig
     from unsew.fit.run import run_fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.io.mesh import write_obj
 
     log = log or (lambda s: print(s, file=sys.stderr))

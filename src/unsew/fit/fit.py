@@ -233,7 +233,7 @@ def fit(
     resume: bool = False,
     log: Callable[[str], None] = print,
 ) -> FitResult:
-    """Run both phases on a loaded case (unsew.io.case.Case) and return the FitResult.
+    """Run both phases on a loaded case (unsew.io.case.Case, from unsew.body.case.load_case) and return the FitResult.
 
     checkpoint: file to write after every iteration (and read with ``resume=True``).
     """
