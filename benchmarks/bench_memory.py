@@ -84,7 +84,7 @@ import sys
 from pathlib import Path
 from unsew.fit.config import FitConfig
 from unsew.fit.run import run_fit
-from unsew.io.case import load_case
+from unsew.body.case import load_case
 run_fit(load_case(sys.argv[1]), FitConfig(**{small!r}), Path(sys.argv[2]), progress=False, log=lambda s: None)
 """
 

@@ -109,7 +109,7 @@ def test_damaged_case_loads_the_clean_target(tmp_path):
     what was cleaned is kept for metrics.json."""
     import json
 
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.io.mesh import write_obj
 
     v, f = grid_tube(32, 10, radius=0.2, height=0.4, y0=0.9)
