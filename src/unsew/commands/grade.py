@@ -47,6 +47,9 @@ def run(args: argparse.Namespace) -> int:
     if not (lo <= args.edge_length <= hi):
         raise InputError(f"--edge-length {args.edge_length} m is outside [{lo}, {hi}] m")
     case = load_case(args.case)
+    from unsew.commands._checks import check_target_on_body
+
+    check_target_on_body(case.target_verts, case.body, where=f"target of {case.path}")
     base = args.base or case.garment
     if not base:
         raise InputError(f"case {args.case} names no garment type in meta.json; pass --base")
