@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import warnings
 
 from unsew import __version__
 from unsew._threads import configure_threads
@@ -53,7 +54,9 @@ def main(argv: list[str] | None = None) -> int:
     from unsew.errors import UnsewError
 
     try:
-        return int(args.func(args) or 0)
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning  # one line each, no source line
+            return int(args.func(args) or 0)
     except UnsewError as exc:
         if args.debug:
             raise
@@ -89,3 +92,8 @@ def main(argv: list[str] | None = None) -> int:
 def _one_line(exc: BaseException) -> str:
     """An exception's message on one line (a multi-line message is joined with '; ')."""
     return "; ".join(part.strip() for part in str(exc).splitlines() if part.strip())
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """Print a warning as one ``unsew: warning: ...`` line on stderr."""
+    print(f"unsew: warning: {_one_line(message)}", file=file or sys.stderr)

@@ -89,7 +89,10 @@ def _check_inputs(case, cfg) -> None:
 
     check_target_on_body(case.target_verts, case.body, where=f"target of {case.path}")
     base = getattr(cfg, "base", None)
-    if base and Path(str(base)).suffix.lower() == ".json" and Path(str(base)).is_file():
+    if base and Path(str(base)).suffix.lower() == ".json":
+        from unsew.errors import InputError
         from unsew.io.garmentcode import load_pattern
 
+        if not Path(str(base)).is_file():
+            raise InputError(f"--base {base}: no such pattern file (give a GarmentCode JSON or a garment type)")
         check_pattern_scale(load_pattern(base), case.body)
