@@ -399,6 +399,6 @@ def test_damaged_input_is_one_line_and_exit_2(name, tmp_path, valid, no_fit, cap
     assert code == 2, f"{name}: exit {code}; stderr: {err!r}"
     assert len(lines) == 1 and lines[0].startswith("unsew: error: "), f"{name}: {err!r}"
     assert "Traceback" not in err + out
-    assert raised and isinstance(raised[0], InputError), f"{name}: {type(raised[0]).__name__ if raised else None}"
+    assert raised and isinstance(raised[-1], InputError), f"{name}: {type(raised[-1]).__name__ if raised else None}"
     # nothing that looks like a result
     assert not any(p.name in ("result", "p.svg", "p.obj", "g.obj") for p in tmp_path.iterdir())
