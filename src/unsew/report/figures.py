@@ -84,7 +84,8 @@ def plot_loss_curves(
         length, e.g. a term switched on later can be padded with NaN at the start; NaN and
         None are gaps). The term named ``total`` (or ``loss``) is drawn thick and black.
     log: logarithmic y axis; values <= 0 are then gaps, and a term with none above zero is
-        listed in the legend as not shown.
+        listed in the legend as not shown. The legend gives each term's last value: its value
+        at the final iteration, also where the log axis hides it (0), as metrics' loss_final.
     phases: (first iteration, name) of each phase, e.g. ``[(0, "sewing"), (40, "pattern"),
         (120, "pattern + material")]``: a dashed line and the name at each start.
     size_px: (width, height) of the PNG in pixels. Returns the PNG's path.
@@ -113,14 +114,16 @@ def plot_loss_curves(
         if log:
             y[~(y > 0)] = np.nan
         finite = y[np.isfinite(y)]
-        last = finite[-1] if finite.size else None
+        raw = series[name][np.isfinite(series[name])]
+        last = raw[-1] if raw.size else None  # the final value, even where the log axis hides it
         if name == total:
             style = {"color": "black", "linewidth": 2.2, "zorder": 5}
         else:
             style = {"color": colors[ci % len(colors)], "linewidth": 1.3, "zorder": 3}
             ci += 1
         if finite.size == 0:
-            label = f"{name}  ({'all <= 0' if log else 'no value'}, not shown)"
+            label = (f"{name}  (last {last:.3g}; " if last is not None else f"{name}  (") + \
+                f"{'all <= 0' if log else 'no value'}, not shown)"
             ax.plot([], [], label=label, **style)
             continue
         label = f"{name}  (last {last:.3g})"
