@@ -80,6 +80,8 @@ def test_result_folder_under_a_file_fails_before_the_fit(tmp_path, capsys):
     _one_line_error(capsys, code, "cannot write --out")
     code = main(["batch", str(case), "--out", str(tmp_path / "afile" / "r"), "--quiet"])
     _one_line_error(capsys, code, "cannot write --out")
+    code = main(["demo", "--out", str(tmp_path / "afile" / "r"), "--quiet"])
+    _one_line_error(capsys, code, "cannot write --out")
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="RLIMIT_FSIZE is POSIX")
