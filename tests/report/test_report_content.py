@@ -35,7 +35,8 @@ def test_panel_measurements_read_the_labelled_edges():
     pants = panel_measurements(make_base_pattern("pants"))
     assert {"inseam", "waist", "side seam", "hem"} <= set(pants) and pants["inseam"] > 0.5
     assert 0.6 < pants["waist"] < 0.9  # the whole waist girth, four panels
-    rows = measurement_table([("base", t), ("final", make_base_pattern("pants"))])
+    rows = measurement_table([("final", make_base_pattern("pants")), ("base", t)])
+    assert list(rows[0]) == ["measurement", "base [cm]", "final [cm]"]
     by = {r["measurement"]: r for r in rows}
     assert by["sleeve"]["final [cm]"] is None and by["inseam"]["base [cm]"] is None
     assert by["hem"]["base [cm]"] == pytest.approx(100 * hem, abs=0.01)
@@ -54,7 +55,7 @@ def test_fit_report_has_measurements_material_and_no_loss_dump(tmp_path, meshes)
                            metrics={"loss_history": hist, "loss_final": {"material": 0.0}})
     html = out.read_text()
     assert "panel measurements" in html.lower() and "side seam" in html
-    assert "fitted material" in html.lower() and "2855" in html
+    assert "material of the result" in html.lower() and "2855" in html
     assert "loss history" not in html.lower() and "0.0625" not in html
 
 

@@ -145,6 +145,9 @@ def plot_loss_curves(
     if log:
         ax.set_yscale("log")
     ax.set_xlim(0, max(n_iter - 1, 1))
+    from matplotlib.ticker import MaxNLocator
+
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))  # iterations are whole numbers
     ax.set_xlabel("iteration")
     ax.set_ylabel("loss (log scale)" if log else "loss")
     ax.grid(True, which="major", color="#dddddd", linewidth=0.8)

@@ -65,7 +65,7 @@ def write_fit_report(
         ``[("base", base), ("graded", graded), ("final", final), ("ground truth", gt)]``.
     summary, metrics, config, notes: as :func:`unsew.report.html.write_report`. The metrics
         tables are preceded by the panel measurements of ``patterns``
-        (:func:`unsew.report.measure.measurement_table`, cm) and the fitted ``material`` (SI
+        (:func:`unsew.report.measure.measurement_table`, cm) and the result's ``material`` (SI
         values, as ``unsew.sim.material.material_to_dict`` gives them); a per-iteration
         ``loss_history`` entry is left out of the tables when ``history`` is plotted.
     Returns the path of report.html.
@@ -120,9 +120,10 @@ def write_fit_report(
 
         rows = measurement_table(list(patterns))
         if rows:
-            tables["panel measurements"] = rows
+            tables["panel measurements"] = {r["measurement"]: {k: v for k, v in r.items() if k != "measurement"}
+                                            for r in rows}
     if material:
-        tables["fitted material"] = dict(material)
+        tables["material of the result"] = dict(material)
     for k, v in (metrics or {}).items():
         if history and k == "loss_history":
             continue  # plotted above; every value stays in metrics.json

@@ -69,8 +69,11 @@ def panel_measurements(pattern) -> dict[str, float]:
 def measurement_table(patterns: Sequence[tuple[str, object]]) -> list[dict]:
     """Rows ``{"measurement": name, "<label> [cm]": value, ...}`` for each measurement that at
     least one of ``patterns`` ((label, Pattern) pairs, e.g. base, graded, final, true) has;
-    a pattern without it gets None. Lengths in centimetres, rounded to 0.1 mm."""
-    measured = [(str(label), panel_measurements(p)) for label, p in patterns if hasattr(p, "panels")]
+    a pattern without it gets None. Lengths in centimetres, rounded to 0.1 mm. Columns in the
+    order base, graded, final, true, then any other label."""
+    order = {"base": 0, "graded": 1, "final": 2, "true": 3}
+    ps = sorted(((str(label), p) for label, p in patterns), key=lambda lp: order.get(lp[0], len(order)))
+    measured = [(label, panel_measurements(p)) for label, p in ps if hasattr(p, "panels")]
     rows = []
     for name in MEASUREMENTS:
         if not any(name in m for _, m in measured):
