@@ -135,6 +135,8 @@ def _pattern_case(damage, command="export"):
             return ["pattern", "export", str(p), "--svg", str(tmp / "p.svg")]
         if command == "mesh":
             return ["pattern", "mesh", str(p), "--out", str(tmp / "p.obj")]
+        if command == "fine mesh":
+            return ["pattern", "mesh", str(p), "--out", str(tmp / "p.obj"), "--edge-length", "0.005"]
         return ["drape", str(p), "--out", str(tmp / "g.obj"), "--no-progress"]
 
     return make
@@ -174,6 +176,12 @@ def _zero_area(s):  # every corner on one straight line, every edge straight
     return s
 
 
+def _spike(s):  # corners on one line, curved edges kept: a sliver that folds back on itself
+    p = _panel(s)
+    p["vertices"] = [[0.0, float(i)] for i in range(len(p["vertices"]))]
+    return s
+
+
 def _units(value):
     def damage(s):
         s["properties"]["units_in_meter"] = value
@@ -200,6 +208,7 @@ PATTERNS = {
     "pattern_stitch_edge_out_of_range": _pattern_case(_stitch_edge_out_of_range),
     "pattern_self_intersecting_panel": _pattern_case(_self_intersecting, "mesh"),
     "pattern_zero_area_panel": _pattern_case(_zero_area, "mesh"),
+    "pattern_spike_panel": _pattern_case(_spike, "fine mesh"),  # crashed Triangle (segfault)
     "pattern_units_zero": _pattern_case(_units(0)),
     "pattern_units_negative": _pattern_case(_units(-100)),
     "pattern_units_text": _pattern_case(_units("cm")),
