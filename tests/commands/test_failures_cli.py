@@ -182,3 +182,10 @@ def test_target_beside_the_body_is_refused(tmp_path, capsys):
     for cmd in (["fit", str(d), "--out", str(tmp_path / "r"), "--quiet"], ["grade", str(d), "--out", str(tmp_path / "r"), "--flat"]):
         _one_line_error(capsys, main(cmd), "does not lie on its body")
         assert not (tmp_path / "r").exists() and not (tmp_path / "r.partial").exists()
+
+
+def test_triangle_limit_default_is_one_number():
+    from unsew.commands._checks import MAX_TRIANGLES
+    from unsew.commands.pattern import MAX_TRIANGLES as in_help
+
+    assert in_help == MAX_TRIANGLES
