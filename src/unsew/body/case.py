@@ -17,8 +17,10 @@ from unsew.io.case import Case, CaseFiles, read_case
 
 __all__ = ["load_case", "load_case_body", "check_garment_on_body", "MAX_GARMENT_GAP"]
 
-#: The garment's median distance from its wearer's surface above which they do not overlap [m].
-MAX_GARMENT_GAP = 0.10
+#: The garment's median distance from its wearer's vertices above which they do not overlap [m].
+#: Worn truth cases lie at 0.02 (tshirt, dress) to 0.07 (skirt); a tshirt moved 0.3 m forward
+#: reads 0.22, moved 1 m sideways 0.58 (a shift within the arms' reach stays below).
+MAX_GARMENT_GAP = 0.2
 
 
 def load_case(

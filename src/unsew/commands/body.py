@@ -29,6 +29,12 @@ def run_make(args: argparse.Namespace) -> int:
     from unsew.io.atomic import atomic_dir
     from unsew.io.mesh import write_obj
 
+    from unsew.errors import InputError
+    from unsew.io.atomic import check_output
+
+    if os.path.exists(args.out) and not args.overwrite:
+        raise InputError(f"output folder {args.out} exists; remove it, pass --overwrite or choose another --out")
+    check_output(args.out, folder=True)  # fail before making the body
     body = make_anny_body(dict(args.phenotype or []), pose=args.pose)
     with atomic_dir(args.out, overwrite=args.overwrite) as tmp:
         write_obj(os.path.join(tmp, "body.obj"), body.verts, body.faces, header=f"unsew body: {body.name}")

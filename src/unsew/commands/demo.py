@@ -24,6 +24,9 @@ def run(args: argparse.Namespace) -> int:
 
     from unsew.fit.demo import DEMO_CONFIG
 
+    from unsew.io.atomic import check_output
+
     cfg = config_from_args(args, defaults=DEMO_CONFIG)
+    check_output(Path(args.out), folder=True)  # an unwritable --out fails now, not after the fit
     run_demo(Path(args.out), cfg=cfg, progress=not args.quiet)
     return 0

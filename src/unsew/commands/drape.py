@@ -77,11 +77,18 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--out {out} must end in .obj")
     if not out.parent.exists():
         raise InputError(f"folder {out.parent} of --out does not exist")
+    from unsew.io.atomic import check_output
+
+    check_output(out)  # an unwritable --out fails now, not after the drape
 
     from unsew.io.garmentcode import load_pattern
 
+    from unsew.commands._checks import check_pattern_scale, check_triangle_budget
+
     pattern = load_pattern(args.pattern)
     body = _load_body(args)
+    check_pattern_scale(pattern, body)
+    check_triangle_budget(pattern, args.edge_length, override=None)
 
     from unsew.dress import dress, resolve_material
     from unsew.io.mesh import write_obj

@@ -67,10 +67,31 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from unsew.fit.run import run_fit
+    from unsew.io.atomic import check_output
     from unsew.body.case import load_case
 
     cfg = config_from_args(args)
     out = Path(args.out)
+    if not (out.exists() and not args.overwrite):  # run_fit says "exists; pass --overwrite"
+        check_output(out, folder=True)  # an unwritable --out fails now, not after the fit
     case = load_case(args.case, units=args.units, up=args.up, front=args.front)
+    _check_inputs(case, cfg)
     run_fit(case, cfg, out, resume=args.resume, overwrite=args.overwrite, progress=not args.quiet)
     return 0
+
+
+def _check_inputs(case, cfg) -> None:
+    """Refuse, before the fit, a --base pattern far out of scale for the body
+    (:mod:`unsew.commands._checks`); a target its body does not wear is refused by ``load_case``."""
+    from pathlib import Path
+
+    from unsew.commands._checks import check_pattern_scale
+
+    base = getattr(cfg, "base", None)
+    if base and Path(str(base)).suffix.lower() == ".json":
+        from unsew.errors import InputError
+        from unsew.io.garmentcode import load_pattern
+
+        if not Path(str(base)).is_file():
+            raise InputError(f"--base {base}: no such pattern file (give a GarmentCode JSON or a garment type)")
+        check_pattern_scale(load_pattern(base), case.body)

@@ -16,6 +16,7 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     """Write report.html (figures embedded) into ``work``; figures go to ``work/figures``."""
     from unsew.metrics.surface import closest_points
     from unsew.report.fit_report import write_fit_report as _write
+    from unsew.sim.material import material_to_dict
 
     faces = np.asarray(result.mesh.faces)
     _, dist, _ = closest_points(np.asarray(result.x), np.asarray(case.target_verts), np.asarray(case.target_faces))
@@ -74,6 +75,7 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
         target=(np.asarray(case.target_verts), np.asarray(case.target_faces)), result=(np.asarray(result.x), faces),
         body=(np.asarray(case.body.verts), np.asarray(case.body.faces)), distance_mm=1e3 * np.asarray(dist),
         history=hist or None, phases=phases if hist else None, patterns=patterns, config=config, notes=notes or None,
+        material=material_to_dict(result.material),
     )
 
 
