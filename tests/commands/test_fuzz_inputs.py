@@ -343,9 +343,13 @@ def _no_target(tmp, valid):
     return d
 
 
-def _body_without_skeleton(tmp, valid):
+def _unriggable_body(tmp, valid):
+    """A closed body mesh without skeleton.json that is no standing person (a ball): the rig
+    cannot find its joints."""
     d = _case(tmp, valid, body=True)
     (d / "skeleton.json").unlink()
+    ball = trimesh.creation.icosphere(subdivisions=3, radius=0.3)
+    write_obj(d / "body.obj", ball.vertices + [0.0, 1.0, 0.0], ball.faces)
     return d
 
 
@@ -362,7 +366,7 @@ CASES = {
     "case_no_target": _case_maker(_no_target),
     "case_no_body": _case_maker(lambda tmp, valid: _case(tmp, valid, meta={"garment": "tshirt"})),
     "case_unknown_body_model": _case_maker(lambda tmp, valid: _case(tmp, valid, meta={"garment": "tshirt", "body": {"model": "smurf"}})),
-    "case_body_without_skeleton": _case_maker(_body_without_skeleton),
+    "case_unriggable_body_without_skeleton": _case_maker(_unriggable_body),
     "case_body_with_cyclic_skeleton": _case_maker(lambda tmp, valid: _case(
         tmp, valid, body=True, skeleton=json.dumps(_cycle(json.loads((valid / "skeleton.json").read_text()))))),
     "case_bad_pattern_gt": lambda tmp, valid: _fit(_write(_case(tmp, valid) / "pattern_gt.json", "{}").parent, tmp),
