@@ -344,8 +344,8 @@ def _no_target(tmp, valid):
 
 
 def _unriggable_body(tmp, valid):
-    """A closed body mesh without skeleton.json that is no standing person (a ball): the rig
-    cannot find its joints."""
+    """A closed body mesh without skeleton.json that is no standing person (a 0.6 m ball): it
+    cannot be rigged."""
     d = _case(tmp, valid, body=True)
     (d / "skeleton.json").unlink()
     ball = trimesh.creation.icosphere(subdivisions=3, radius=0.3)
