@@ -18,6 +18,7 @@ behind the fit's defaults").
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
 from dataclasses import dataclass
@@ -248,9 +249,11 @@ class PhaseTwo:
                 callback(info)
 
     def state_dict(self) -> dict:
-        """Everything :meth:`load_state_dict` needs to continue from here."""
+        """Everything :meth:`load_state_dict` needs to continue from here (copies: stepping on
+        does not change it)."""
         return {"iteration": self.iteration, "K": self.K.detach().clone(), "theta": self.theta.detach().clone(),
-                "opt_k": self.opt_k.state_dict(), "opt_m": self.opt_m.state_dict(), "x_prev": self.x_prev.clone(),
+                "opt_k": copy.deepcopy(self.opt_k.state_dict()), "opt_m": copy.deepcopy(self.opt_m.state_dict()),
+                "x_prev": self.x_prev.clone(),
                 "history": {k: list(v) for k, v in self.history.items()}, "best": dataclasses.asdict(self.best)}
 
     def load_state_dict(self, state: dict) -> None:
