@@ -58,9 +58,9 @@ GARMENTS = ["tshirt", "dress", "pants", "shorts", "skirt"]
 #: Ablation variants: name -> FitConfig overrides (paper Table 3 rows, plus no grading).
 ABLATIONS = {
     "full": {},
-    "no_curvature": {"curvature_weighted": False},
-    "no_seam": {"seam_loss": False},
-    "no_material": {"optimize_material": False},
+    "no_curvature": {"loss": {"curvature_weighted": False}},
+    "no_seam": {"loss": {"seam": 0.0}},
+    "no_material": {"material": {"fit": []}},
     "no_grading": {"grading": False},
 }
 
@@ -157,7 +157,7 @@ def apply_sets(cfg, items):
     """``cfg`` with the ``--set KEY=VALUE`` overrides in ``items`` applied (checked by
     load_config); exits with a one-line reason on a malformed or unknown override."""
     from unsew.errors import InputError
-    from unsew.fit.config import load_config
+    from unsew.fit.config import config_to_dict, load_config
 
     sets = {}
     for item in items or ():
@@ -168,17 +168,17 @@ def apply_sets(cfg, items):
     if not sets:
         return cfg
     try:
-        return load_config(defaults=dataclasses.asdict(cfg) | sets)
+        return load_config(defaults=config_to_dict(cfg) | sets)
     except InputError as exc:
         sys.exit(f"--set: {exc}")
 
 
 def base_config(args, **changes):
-    from unsew.fit.config import FitConfig
+    from unsew.fit.config import config_to_dict, load_config
 
-    cfg = FitConfig(edge_length=args.edge_length, iterations=args.iterations, report=not args.no_report)
+    cfg = load_config(edge_length=args.edge_length, iterations=args.iterations, report=not args.no_report)
     cfg = apply_sets(cfg, getattr(args, "set", None))
-    return cfg.replace(**changes) if changes else cfg
+    return load_config(defaults=config_to_dict(cfg), **changes) if changes else cfg
 
 
 # -- cases -------------------------------------------------------------------------------------
@@ -423,7 +423,7 @@ def table_material(args) -> None:
     text = (f"## Material recovery (paper 4.3, Fig. 10)\n\n{header(args, 'measured')}\n\n"
             f"One skirt pattern (base skirt, hem {MATERIAL_SKIRT['hem']}) draped in {MATERIAL_BASE} "
             f"(bending {b.bend:.3g} N m, H00 {b.h00:g} N/m) with the listed stiffnesses scaled; each fitted "
-            f"with material: {cfg.material}. `recovered` is the fit's bending [N m] or H00 [N/m]; `A between` is the mean panel "
+            f"with material: {cfg.material.start}. `recovered` is the fit's bending [N m] or H00 [N/m]; `A between` is the mean panel "
             "area error between the pair's two recovered patterns.\n\n"
             + md_table(["pair", "truth", "Chamfer mm", "area err vs truth %", "recovered", "A between %",
                         "order right", "A between <= 2%", "failure"], rows,

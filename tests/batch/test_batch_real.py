@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 
 from unsew.batch import fit_case_dir, run_batch
-from unsew.fit.config import FitConfig
+from unsew.fit.config import load_config
 from unsew.fit.demo import DemoTruth, make_truth_case
 
 #: tiny fits: coarse panels, few sewing/settling/drape steps, a small Chamfer subset
@@ -67,7 +67,7 @@ def _metrics(out: Path) -> dict:
 
 
 def test_small_batch_equals_single_fit_and_reports_broken_case(tmp_path):
-    cfg = FitConfig(iterations=1, **TINY)
+    cfg = load_config(iterations=1, **TINY)
     cases = tmp_path / "cases"
     make_truth_case(cases / "tshirt", settings=cfg.drape)
     _broken_copy(cases / "tshirt", cases / "broken")
@@ -94,7 +94,7 @@ def test_small_batch_equals_single_fit_and_reports_broken_case(tmp_path):
 @pytest.fixture(scope="module")
 def three_cases(tmp_path_factory):
     root = tmp_path_factory.mktemp("real3")
-    cfg = FitConfig(iterations=2, **{**TINY, "report": True})
+    cfg = load_config(iterations=2, **{**TINY, "report": True})
     for i, truth in enumerate(TRUTHS):
         make_truth_case(root / "cases" / f"tshirt{i}", truth=truth, settings=cfg.drape)
     _broken_copy(root / "cases" / "tshirt0", root / "cases" / "broken")

@@ -8,7 +8,7 @@ import shutil
 import numpy as np
 import pytest
 
-from unsew.fit.config import FitConfig
+from unsew.fit.config import load_config
 from unsew.io.mesh import read_mesh, write_obj
 
 SMALL = dict(edge_length=0.03, iterations=2, steps=8, sew_steps=60, settle_steps=20, target_points=1500,
@@ -17,8 +17,6 @@ SMALL = dict(edge_length=0.03, iterations=2, steps=8, sew_steps=60, settle_steps
 
 def _settings(edge_length):
     """The targets' drape: the small fits' sewing and settling on a mesh of ``edge_length`` [m]."""
-    from unsew.fit.config import load_config
-
     return load_config(**SMALL).drape.replace(edge_length=edge_length)
 
 
@@ -33,7 +31,7 @@ def _fit(case_dir, out, **kw):
     from unsew.fit.run import run_fit
     from unsew.body.case import load_case
 
-    cfg = FitConfig(**{**SMALL, "report": False, "mesh_spread": 0.0})
+    cfg = load_config(**{**SMALL, "report": False, "mesh_spread": 0.0})
     return run_fit(load_case(case_dir, **kw), cfg, out, progress=False, log=lambda s: None)
 
 

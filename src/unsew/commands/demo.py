@@ -20,9 +20,7 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from unsew.commands.fit import config_from_args
-    from unsew.fit.demo import run_demo
-
-    from unsew.fit.demo import DEMO_CONFIG
+    from unsew.fit.demo import DEMO_CONFIG, run_demo
 
     from unsew.io.atomic import check_output
 

@@ -29,24 +29,27 @@ def config_from_args(args: argparse.Namespace, *, defaults: dict | None = None):
     from unsew.fit.config import load_config
 
     over = {
-        "iterations": args.iterations,
-        "edge_length": args.edge_length,
-        "material": args.material,
-        "steps": args.steps,
+        "optimizer": {"iterations": args.iterations},
+        "drape": {"edge_length": args.edge_length, "steps": args.steps},
+        "material": {"start": args.material},
+        "loss": {},
+        "output": {},
         "device": args.device,
         "base": getattr(args, "base", None),
     }
     if args.no_grading:
         over["grading"] = False
     if args.plain_chamfer:
-        over["curvature_weighted"] = False
+        over["loss"]["curvature_weighted"] = False
     if args.no_seam_loss:
-        over["seam_loss"] = False
+        over["loss"]["seam"] = 0.0
     if args.no_material:
-        over["optimize_material"] = False
+        over["material"]["fit"] = []
     if args.no_report:
-        over["report"] = False
-    return load_config(args.config, defaults=defaults, **over)
+        over["output"]["report"] = False
+    groups = {k: {f: v for f, v in g.items() if v is not None} for k, g in over.items() if isinstance(g, dict)}
+    tops = {k: v for k, v in over.items() if not isinstance(v, dict) and v is not None}
+    return load_config(args.config, defaults=defaults, **tops, **{k: g for k, g in groups.items() if g})
 
 
 def register(sub: argparse._SubParsersAction) -> None:

@@ -37,7 +37,8 @@ DEMO_TRUTH = DemoTruth()
 
 #: The demo's fit settings (under --config and flags): a 3 cm mesh and a budget that finishes the
 #: whole demo in well under five minutes on two cores.
-DEMO_CONFIG = {"edge_length": 0.03, "iterations": 80, "material_start": 20, "steps": 12}
+DEMO_CONFIG = {"drape": {"edge_length": 0.03, "steps": 12}, "optimizer": {"iterations": 80},
+               "material": {"start_iteration": 20}}
 
 
 def other_body():
@@ -62,7 +63,7 @@ def make_truth_case(case_dir: Path, *, truth: DemoTruth = DEMO_TRUTH, settings=N
 def run_demo(out: Path, *, cfg=None, progress: bool = True, log=None) -> dict:
     """Run the whole demo into ``out`` (case/, fit/, retarget/). Returns a summary dict."""
     from unsew.dress import DRESS_SETTINGS, dress
-    from unsew.fit.config import FitConfig
+    from unsew.fit.config import load_config
     from unsew.fit.run import run_fit
     from unsew.body.case import load_case
     from unsew.io.mesh import write_obj
@@ -70,12 +71,12 @@ def run_demo(out: Path, *, cfg=None, progress: bool = True, log=None) -> dict:
     log = log or (lambda s: print(s, file=sys.stderr))
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    cfg = cfg or FitConfig(**DEMO_CONFIG)
+    cfg = cfg or load_config(defaults=DEMO_CONFIG)
     t0 = time.perf_counter()
     log(f"[1/3] making the target: a t-shirt {DEMO_TRUTH.hem_length * 100:.0f} cm longer, hem "
         f"{DEMO_TRUTH.hem_girth * 100:.0f}% wider, sleeves {DEMO_TRUTH.sleeve_length * 100:.0f} cm longer, "
         f"in {DEMO_TRUTH.material} (the fit starts from the base t-shirt"
-        + (", in the library fabric whose drape is closest)" if cfg.material == "auto" else f" in {cfg.material})"))
+        + (", in the library fabric whose drape is closest)" if cfg.material.start == "auto" else f" in {cfg.material.start})"))
     case_dir = make_truth_case(out / "case", settings=cfg.drape)
     t_case = time.perf_counter() - t0
     log("[2/3] fitting the target from the base t-shirt")

@@ -60,7 +60,7 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     # terms that stay at round-off level (e.g. the seam loss of a symmetric skirt) would stretch
     # the log axis over 30 decades: leave them out of the plot (they are in the metrics table)
     hist = {k: v for k, v in result.history.items() if v and max(v) > 1e-12 * top}
-    start = result.extra.get("material_start_iteration")
+    start = result.material_start_iteration
     phases = [(0, "pattern")] + ([(start, "pattern + material")] if start is not None and start < result.iterations else [])
     tables = dict(metrics)
     choice = tables.pop("material_choice", None)
