@@ -148,7 +148,9 @@ def dress(
     Returns:
         :class:`Dressed`; its ``stats`` hold ``place_s``, ``sew_s``, ``settle_s`` [s],
         ``seam_gap`` [m] (largest distance between two unsewn copies of a seam vertex after
-        sewing, before they are merged) and ``max_speed`` [m/s] at the end of settling.
+        sewing, before they are merged), ``max_speed`` [m/s] at the end of settling and
+        ``top_start`` [m] the height of the placed panels' highest point (the drop check of
+        :func:`unsew.sim.checks.check_dressed`).
     """
     import torch
 
@@ -193,5 +195,6 @@ def dress(
         x = st.x
         speed = float(st.v.norm(dim=1).max())
     t3 = time.perf_counter()
-    stats = dict(place_s=t1 - t0, sew_s=t2 - t1, settle_s=t3 - t2, seam_gap=gap, max_speed=speed)
+    stats = dict(place_s=t1 - t0, sew_s=t2 - t1, settle_s=t3 - t2, seam_gap=gap, max_speed=speed,
+                 top_start=float(np.asarray(x_unsewn)[:, 1].max()))
     return Dressed(pattern, mesh, model, x.detach(), uv, mat, sdf, stats)
