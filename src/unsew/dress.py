@@ -149,8 +149,8 @@ def dress(
         :class:`Dressed`; its ``stats`` hold ``place_s``, ``sew_s``, ``settle_s`` [s],
         ``seam_gap`` [m] (largest distance between two unsewn copies of a seam vertex after
         sewing, before they are merged), ``max_speed`` [m/s] at the end of settling and
-        ``top_start`` [m] the height of the placed panels' highest point (the drop check of
-        :func:`unsew.sim.checks.check_dressed`).
+        ``start_height`` [m] the mean height of the placed garment's vertices (the drop check
+        of :func:`unsew.sim.checks.check_dressed`).
     """
     import torch
 
@@ -196,5 +196,5 @@ def dress(
         speed = float(st.v.norm(dim=1).max())
     t3 = time.perf_counter()
     stats = dict(place_s=t1 - t0, sew_s=t2 - t1, settle_s=t3 - t2, seam_gap=gap, max_speed=speed,
-                 top_start=float(np.asarray(x_unsewn)[:, 1].max()))
+                 start_height=float(merge_sewn(x_unsewn, mesh.x_of_u, mesh.n_x)[:, 1].mean()))
     return Dressed(pattern, mesh, model, x.detach(), uv, mat, sdf, stats)

@@ -13,9 +13,9 @@ Checks, in order (the first that fails is the reason):
    the 99th percentile beyond :data:`STRETCH_P99_MAX`.
 3. ``fallen``: the garment's lowest point is below the body's lowest point (the floor) by more
    than :data:`FLOOR_TOL`; or its highest point is below the body's crotch (nothing holds a
-   garment up there); or, when the start of the drape is given, its top has dropped by more
-   than :data:`DROP_MAX` from where it was placed (a waistband slid down the hips, a top slid
-   off the shoulders).
+   garment up there); or, when the start of the drape is given, its mean height has dropped
+   by more than :data:`DROP_MAX` from where it was placed (a waistband slid down the hips, a
+   top slid off the shoulders; a hood falling onto the head moves too few vertices to count).
 4. ``off the body``: more than :data:`FAR_MAX_PCT` % of the vertices are further than
    :data:`FAR_DIST` from the body.
 5. ``inside the body``: more than :data:`INSIDE_MAX_PCT` % of the vertices are inside it.
@@ -52,7 +52,7 @@ STRETCH_MAX = 3.0
 STRETCH_P99_MAX = 1.6
 #: How far below the body's lowest point the garment may reach [m] (cloth lying on the floor).
 FLOOR_TOL = 0.02
-#: How far the garment's top may drop from where the drape started [m].
+#: How far the garment's mean height may drop from where the drape started [m].
 DROP_MAX = 0.10
 #: A vertex further than this from every body vertex is off the body [m].
 FAR_DIST = 0.15
@@ -70,8 +70,8 @@ class DrapeVerdict:
     inside_pct: vertices inside the body [%]. depth_mm: deepest vertex inside [mm] (0 if none).
     far_pct: vertices further than FAR_DIST from the body [%].
     stretch_max, stretch_p99: largest and 99th-percentile edge length over pattern length [-].
-    y_min, y_max: the garment's height range [m]. drop: how far its top fell from the start [m]
-    (NaN when no start was given). finite: no NaN or inf.
+    y_min, y_max: the garment's height range [m]. drop: how far its mean height fell from the
+    start [m] (NaN when no start was given). finite: no NaN or inf.
     """
 
     ok: bool
@@ -111,7 +111,7 @@ def check_drape(
     faces_uv,
     body,
     sdf=None,
-    x_start=None,
+    start_height=None,
 ) -> DrapeVerdict:
     """Judge a draped garment (see the module docstring for the checks).
 
@@ -121,8 +121,8 @@ def check_drape(
         faces_uv: (F, 3) int the same triangles into ``uv`` (edge rest lengths come from it).
         body: unsew.body.body.Body (verts [m] and skeleton: the floor, the crotch).
         sdf: the body's BodySDF for the inside test (built, disk-cached, when None).
-        x_start: optional positions [m] where the drape started, (N, 3) on the same vertices
-            or (Nu, 3) on the unsewn ones (only its highest point is used): the drop check.
+        start_height: optional mean vertex height [m] of the garment where the drape started
+            (the placed panels): the drop check.
 
     Returns:
         :class:`DrapeVerdict`.
@@ -166,10 +166,7 @@ def check_drape(
     far_pct = float(np.isinf(far).mean() * 100.0)
 
     y_min, y_max = float(x[:, 1].min()), float(x[:, 1].max())
-    drop = nan
-    if x_start is not None:
-        xs = x_start.detach().cpu().numpy() if torch.is_tensor(x_start) else np.asarray(x_start)
-        drop = float(np.asarray(xs, dtype=np.float64)[:, 1].max() - y_max)
+    drop = nan if start_height is None else float(start_height) - float(x[:, 1].mean())
     floor = float(bv[:, 1].min())
     crotch = _crotch_height(body)
 
@@ -183,7 +180,7 @@ def check_drape(
     elif y_max < crotch:
         reason = f"fallen: the garment's top is at y = {y_max:.2f} m, below the body's crotch ({crotch:.2f} m)"
     elif np.isfinite(drop) and drop > DROP_MAX:
-        reason = f"fallen: the garment's top slid {drop:.2f} m down from where it was put on (bound {DROP_MAX:g} m)"
+        reason = f"fallen: the garment slid {drop:.2f} m down from where it was put on (bound {DROP_MAX:g} m)"
     elif far_pct > FAR_MAX_PCT:
         reason = f"off the body: {far_pct:.0f} % of the vertices are more than {FAR_DIST:g} m from it (bound {FAR_MAX_PCT:g} %)"
     elif inside_pct > INSIDE_MAX_PCT:
@@ -202,18 +199,17 @@ def _crotch_height(body) -> float:
     return float(v[m, 1].min()) if m.any() else float(0.5 * (pel[1] + knee))
 
 
-def check_dressed(d, *, x_start=None, body=None) -> DrapeVerdict:
+def check_dressed(d, *, body=None, start_height=None) -> DrapeVerdict:
     """:func:`check_drape` of a :class:`unsew.dress.Dressed` (its sewn mesh, rest shape and SDF).
 
-    body: the body it was dressed on (needed: a Dressed does not keep it). x_start: see
-    :func:`check_drape`; when None, the top of the placed panels that :func:`unsew.dress.dress`
-    records as ``d.stats["top_start"]`` [m] is used.
+    body: the body it was dressed on (needed: a Dressed does not keep it). start_height: see
+    :func:`check_drape`; when None, the mean height of the placed panels that
+    :func:`unsew.dress.dress` records as ``d.stats["start_height"]`` [m] is used.
     """
     if body is None:
         raise ValueError("check_dressed needs the body the garment was dressed on")
-    if x_start is None:
-        x_start = d.stats.get("top_start")
-        if x_start is not None:
-            x_start = np.array([[0.0, float(x_start), 0.0]])
+    if start_height is None:
+        start_height = d.stats.get("start_height")
     m = d.mesh
-    return check_drape(d.x, faces=m.faces, uv=m.uv, faces_uv=m.faces_uv, body=body, sdf=d.sdf, x_start=x_start)
+    return check_drape(d.x, faces=m.faces, uv=m.uv, faces_uv=m.faces_uv, body=body, sdf=d.sdf,
+                       start_height=start_height)
