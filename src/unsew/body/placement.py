@@ -56,6 +56,8 @@ HORIZONTAL_SLOPE = 0.6
 #: The top of a sleeve's cap starts this far up the arm from the top of its armhole [m]
 #: (measured on the base dress: 0 left it moving at 0.10 m/s after settling, 0.02 as before).
 SLEEVE_CAP_IN = 0.02
+#: Seam vertices whose two copies are placed further apart than this start at their midpoint [m].
+SEAM_MEET = 0.02
 #: Height step of the cross-section tables [m].
 _DY = 0.01
 
@@ -218,7 +220,7 @@ def panel_roles(pattern, body) -> dict:
 # -- placement -------------------------------------------------------------------------------
 
 
-def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE) -> np.ndarray:
+def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE, meet_seams: bool = True) -> np.ndarray:
     """Put the flat panels of ``pattern`` around ``body``: the start of the sewing phase.
 
     Args:
@@ -228,6 +230,8 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
         body: unsew.body.body.Body with a skeleton (any body: nothing is hard-coded).
         sdf: optional BodySDF of ``body`` (built, disk-cached, when None) for the final push-out.
         clearance: gap between the body's cross-sections and the wrapped cloth [m].
+        meet_seams: start seam vertices whose two copies are further apart than SEAM_MEET at
+            their midpoint (see :func:`_meet_seams`).
 
     Returns:
         x_unsewn: (Nu, 3) float64 [m], one 3D point per 2D rest vertex (seam copies apart).
@@ -369,7 +373,26 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
                 shift = top - SLEEVE_CAP_IN - float(np.min(along[cap[0] - d["sl"].start]))
             x[d["sl"]] = _wrap_sleeve(along, across, d, side, J, radius=radius, shift=shift)
 
+    if meet_seams:
+        x = _meet_seams(x, mesh)
     return _push_out(x, body, sdf)
+
+
+def _meet_seams(x, mesh):
+    """Start the two copies of every seam vertex further apart than SEAM_MEET at their
+    midpoint (the push-out that follows lifts any midpoint that lands in the body). Seam
+    springs closing a gap of several cm in one step drag whole panels; where a limb is in
+    the way (a T-pose's sleeve pulled to the armpit) the cloth tore over it (stretch 4-6)."""
+    sp = np.asarray(mesh.seam_pairs)
+    if len(sp) == 0:
+        return x
+    gap = np.linalg.norm(x[sp[:, 0]] - x[sp[:, 1]], axis=1)
+    far = sp[gap > SEAM_MEET]
+    x = x.copy()
+    mid = 0.5 * (x[far[:, 0]] + x[far[:, 1]])  # (k, 3)
+    x[far[:, 0]] = mid
+    x[far[:, 1]] = mid
+    return x
 
 
 def _secant_step(hist) -> float:
