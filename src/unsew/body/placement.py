@@ -58,6 +58,10 @@ HORIZONTAL_SLOPE = 0.6
 SLEEVE_CAP_IN = 0.02
 #: Seam vertices whose two copies are placed further apart than this start at their midpoint [m].
 SEAM_MEET = 0.02
+#: An upper arm less than this far below horizontal is raised [deg] (T-pose: 1; A-pose: 48).
+ARM_RAISED = 30.0
+#: How far out from the shoulder joint a raised arm's root joins the torso's stack [m].
+ARM_ROOT = 0.05
 #: Height step of the cross-section tables [m].
 _DY = 0.01
 
@@ -255,6 +259,10 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
     # ---- stacks of horizontal ellipses: the torso and each leg --------------------------------
     torso_pts = v[np.isin(parts, ["torso", "left_leg", "right_leg"])]
     torso_pts = torso_pts[torso_pts[:, 1] < J["neck"][1]]
+    # A raised arm (T-pose) leaves the torso at the height of the armholes: the torso's stack
+    # takes in the arm's root there, so the armhole wraps round it instead of through it.
+    roots = [_arm_root(v, parts, J, side, cx0) for side in ("left", "right")]
+    torso_pts = np.concatenate([torso_pts] + [r for r in roots if r is not None])
     stacks = {"torso": _section_table(torso_pts, ys)}
     # Above the chest the torso does not narrow into the neck (what rises above the shoulders
     # folds over them, see _fold_over_shoulders); its depth follows the body.
@@ -393,6 +401,17 @@ def _meet_seams(x, mesh):
     x[far[:, 0]] = mid
     x[far[:, 1]] = mid
     return x
+
+
+def _arm_root(v, parts, J, side, cx):
+    """Vertices (k, 3) [m] of a raised arm's root (within ARM_ROOT of its shoulder joint
+    sideways), or None when the upper arm hangs more than ARM_RAISED below horizontal."""
+    A, seg, L = _arm_frame(J, side)
+    drop = np.degrees(np.arcsin(np.clip(-seg[0][1] / L[0], -1.0, 1.0)))
+    if drop > ARM_RAISED:
+        return None
+    m = (parts == f"{side}_arm") & (np.abs(v[:, 0] - cx) < abs(A[0][0] - cx) + ARM_ROOT)
+    return v[m]
 
 
 def _secant_step(hist) -> float:
