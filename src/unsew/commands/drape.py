@@ -20,10 +20,12 @@ def register(sub: argparse._SubParsersAction) -> None:
         "drape",
         help="drape a sewing pattern on a body (place, sew, settle) and write garment.obj",
         description="Drape PATTERN.json (GarmentCode JSON) on a body: 'default' (the embedded body), "
-        "a case folder (its body.obj + skeleton.json), or a body mesh with --skeleton.",
+        "a case folder or a body folder (its body.obj + skeleton.json, as `unsew body make` writes it), "
+        "or a body mesh with --skeleton. A drape that ends fallen, off the body, exploded or inside it "
+        "exits non-zero with one line and writes no --out.",
     )
     p.add_argument("pattern", metavar="PATTERN.json", help="sewing pattern (GarmentCode specification JSON)")
-    p.add_argument("--body", default="default", help="default | CASE_DIR | body.obj/ply (default: default)")
+    p.add_argument("--body", default="default", help="default | CASE_DIR | BODY_DIR | body.obj/ply (default: default)")
     p.add_argument("--skeleton", default=None, help="skeleton.json of a body mesh given with --body")
     p.add_argument("--units", default="m", choices=["m", "cm", "mm"], help="units of a body mesh file (default m)")
     p.add_argument("--material", default=None,
