@@ -62,6 +62,8 @@ SEAM_MEET = 0.02
 ARM_RAISED = 30.0
 #: How far out from the shoulder joint a raised arm's root joins the torso's stack [m].
 ARM_ROOT = 0.05
+#: Outline segments shorter than this many target edge lengths start about their length long.
+TINY_EDGE = 0.3
 #: Height step of the cross-section tables [m].
 _DY = 0.01
 
@@ -382,7 +384,7 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
             x[d["sl"]] = _wrap_sleeve(along, across, d, side, J, radius=radius, shift=shift)
 
     if meet_seams:
-        x = _meet_seams(x, mesh)
+        x = _close_stubs(_meet_seams(x, mesh), mesh)
     return _push_out(x, body, sdf)
 
 
@@ -400,6 +402,46 @@ def _meet_seams(x, mesh):
     mid = 0.5 * (x[far[:, 0]] + x[far[:, 1]])  # (k, 3)
     x[far[:, 0]] = mid
     x[far[:, 1]] = mid
+    return x
+
+
+def _close_stubs(x, mesh):
+    """Bring the ends of outline stubs shorter than TINY_EDGE edge lengths (GarmentCode leaves
+    1-5 mm segments where an interface was split) to within the stub's length of each other:
+    every copy of such an end moves to its sewn vertex's mean, pulled towards the stub cluster's
+    mean until it lies within the stub's length of it (not onto it: a zero-length edge makes
+    the step's matrix singular). Placed cm apart, a 1 mm stub starts stretched 30 times."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    xu = np.asarray(mesh.x_of_u)
+    n = int(mesh.n_x)
+    stubs, lens = [], []
+    for p in range(len(mesh.panel_names)):
+        bl = mesh.boundary_loop(p)
+        seg = np.stack([bl, np.roll(bl, -1)], axis=1)
+        L = np.linalg.norm(mesh.uv[seg[:, 0]] - mesh.uv[seg[:, 1]], axis=1)
+        short = L < TINY_EDGE * mesh.edge_length
+        stubs.append(xu[seg[short]])
+        lens.append(L[short])
+    e = np.concatenate(stubs).reshape(-1, 2)
+    if len(e) == 0:
+        return x
+    cnt = np.bincount(xu, minlength=n).astype(np.float64)
+    m = np.stack([np.bincount(xu, weights=x[:, k], minlength=n) for k in range(3)], axis=1) / np.maximum(cnt, 1.0)[:, None]
+    g = coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(n, n))
+    _, lab = connected_components(g, directed=False)
+    c_cnt = np.bincount(lab).astype(np.float64)
+    M = np.stack([np.bincount(lab, weights=m[:, k]) for k in range(3)], axis=1) / c_cnt[:, None]
+    r = np.zeros(len(c_cnt))
+    np.maximum.at(r, lab[e[:, 0]], np.concatenate(lens))
+    d = m - M[lab]
+    dn = np.linalg.norm(d, axis=1)
+    shrink = (c_cnt[lab] > 1) & (dn > r[lab])
+    m[shrink] = M[lab[shrink]] + d[shrink] * (r[lab[shrink]] / dn[shrink])[:, None]
+    x = x.copy()
+    sel = shrink[xu]
+    x[sel] = m[xu[sel]]
     return x
 
 
