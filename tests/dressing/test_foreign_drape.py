@@ -70,19 +70,32 @@ def test_shirt_small_hangs_from_the_shoulders(default_sdf):
 @pytest.mark.parametrize("name", SAMPLES)
 def test_samples_on_the_default_body(default_sdf, name):
     body, sdf = default_sdf
-    _check_on_body(name, _sample(name), body, sdf, edge_length=0.03)
+    _check_on_body(name, _sample(name), body, sdf, edge_length=0.025)
+
+
+_JUMPSUIT_POSED = pytest.mark.xfail(
+    strict=True,
+    reason="the 12-panel jumpsuit on a posed body: its long sleeves end off the raised arms (T-pose) and one "
+    "edge at the moved leg is 3.3x its length (pose_step); docs/benchmarks.md, 'Draping foreign patterns'",
+)
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("body_name", ["tpose", "pose_step"])
-@pytest.mark.parametrize("name", SAMPLES + ["base_tshirt", "base_dress", "base_pants", "base_shorts", "base_skirt"])
+@pytest.mark.parametrize(
+    "name",
+    [pytest.param(n, marks=_JUMPSUIT_POSED) if n == "js_mean_all" else n for n in SAMPLES]
+    + ["base_tshirt", "base_dress", "base_pants", "base_shorts", "base_skirt"],
+)
 def test_on_posed_bodies(name, body_name):
     path = BENCH_DATA / f"body_{body_name}.npz"
     body = body_from_npz(path)
     if name.startswith("base_"):
+        from unsew.io.garmentcode import pattern_from_dict, pattern_to_dict
         from unsew.pattern.base import make_base_pattern
 
-        pattern = make_base_pattern(name[5:])
+        # through GarmentCode JSON (cm) as benchmarks/bench_gcdrape.py does
+        pattern = pattern_from_dict(pattern_to_dict(make_base_pattern(name[5:])), name=name[5:])
     else:
         pattern = _sample(name)
-    _check_on_body(f"{name} on {body_name}", pattern, body, BodySDF.build(body), edge_length=0.03)
+    _check_on_body(f"{name} on {body_name}", pattern, body, BodySDF.build(body), edge_length=0.025)
