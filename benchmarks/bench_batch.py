@@ -36,12 +36,13 @@ def _truths(n: int):
 def make_cases(root: Path, n: int, *, edge_length: float) -> Path:
     """n small truth cases under root/cases (kept between runs when root is kept)."""
     from unsew.fit.demo import make_truth_case
+    from unsew.sim.drape import DrapeSettings
 
     cases = root / f"cases_e{edge_length:g}"
     for i, truth in enumerate(_truths(n)):
         d = cases / f"tshirt{i:02d}"
         if not (d / "meta.json").is_file():
-            make_truth_case(d, truth=truth, edge_length=edge_length)
+            make_truth_case(d, truth=truth, settings=DrapeSettings(edge_length=edge_length))
     return cases
 
 

@@ -135,7 +135,7 @@ def _redress(res, case, cfg, sdf, pattern, K, gamma, tv, tf, samples) -> float:
     mat = Material(g[0], g[1], g[2], g[3], g[4], m0.density, m0.friction)
     uv = res.params.uv(K).detach().cpu().numpy()
     x = dress(pattern, case.body, sdf=sdf, mesh=moved_mesh(res.mesh, pattern, uv), material=mat,
-              sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt).x.numpy()
+              settings=cfg.drape).x.numpy()
     return chamfer_mm(x, res.mesh.faces, tv, tf, n_samples=samples).mean_mm
 
 

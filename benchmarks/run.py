@@ -376,6 +376,7 @@ MATERIAL_BASE = "jersey"
 
 def material_cases(args) -> dict[str, list[tuple[float, Path]]]:
     from unsew.fit.synthetic import Alteration, make_truth_case
+    from unsew.sim.drape import DrapeSettings
     from unsew.sim.material import get_material
 
     base = get_material(MATERIAL_BASE)
@@ -387,7 +388,7 @@ def material_cases(args) -> dict[str, list[tuple[float, Path]]]:
             if not (d / "meta.json").is_file():
                 mat = dataclasses.replace(base, **{k: getattr(base, k) * f for k in fields})
                 make_truth_case(d, garment="skirt", alteration=Alteration(MATERIAL_SKIRT, mat),
-                                edge_length=args.case_edge_length)
+                                settings=DrapeSettings(edge_length=args.case_edge_length))
             out[pair].append((f, d))
     return out
 

@@ -51,11 +51,11 @@ def test_stored_bodies_load():
 
 def test_small_fit_beats_base(tmp_path):
     """A coarse shorts case on another body, 3 iterations: Chamfer and area error better than the base."""
-    from unsew.fit.config import FitConfig
+    from unsew.fit.config import FitConfig, load_config
 
     mc, run = _module("make_cases"), _module("run")
-    case = mc.make_case(tmp_path / "cases", "shorts", 3, edge_length=0.04, sew_steps=SMALL["sew_steps"],
-                        settle_steps=SMALL["settle_steps"])  # small_slim body
+    case = mc.make_case(tmp_path / "cases", "shorts", 3, edge_length=0.04,
+                        settings=load_config(**SMALL).drape)  # small_slim body
     assert (case / "body.obj").is_file() and (case / "skeleton.json").is_file()
     rec = run.fit_case(case, tmp_path / "results" / "full" / case.name, FitConfig(**SMALL), log=lambda s: None)
     v = run._stage_values(rec)

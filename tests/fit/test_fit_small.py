@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from unsew.fit.config import FitConfig
+from unsew.fit.config import FitConfig, load_config
 
 SMALL = dict(edge_length=0.04, iterations=3, steps=8, sew_steps=60, settle_steps=20, target_points=1500,
              material_start=1, material="cotton")
@@ -19,8 +19,7 @@ def small_case(tmp_path_factory):
     from unsew.fit.demo import make_truth_case
 
     d = tmp_path_factory.mktemp("case") / "tshirt"
-    return make_truth_case(d, edge_length=SMALL["edge_length"], sew_steps=SMALL["sew_steps"],
-                           settle_steps=SMALL["settle_steps"])
+    return make_truth_case(d, settings=load_config(**SMALL).drape)
 
 
 @pytest.fixture(scope="module")
@@ -75,7 +74,7 @@ def test_resume_continues_from_checkpoint(small_case, tmp_path):
 
     def flaky(*a, **k):
         # the second drape of phase two is interrupted, as by Ctrl-C
-        if k.get("steps") == cfg.steps and not k.get("callback"):
+        if "steps" not in k and not k.get("callback"):  # phase two drapes settings.steps
             calls["opt"] += 1
             if calls["opt"] == 2:
                 raise KeyboardInterrupt
@@ -332,7 +331,7 @@ def test_fit_friction_eps_reaches_phase_two_drapes(small_case, monkeypatch):
 
     def spy(*a, **k):
         if k.get("uv") is not None and k["uv"].requires_grad:
-            seen.append(k.get("friction_eps"))
+            seen.append(k["settings"].friction_eps)
         return orig(*a, **k)
 
     monkeypatch.setattr(simdrape, "drape", spy)

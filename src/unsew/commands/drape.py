@@ -119,13 +119,12 @@ def run(args: argparse.Namespace) -> int:
             b = bars[phase] = tqdm(total=n, desc=f"drape: {phase}", unit="step", leave=False, dynamic_ncols=True)
         b.update(k - b.n)
 
-    kw = {}
-    if args.sew_steps is not None:
-        kw["sew_steps"] = args.sew_steps
-    if args.settle_steps is not None:
-        kw["settle_steps"] = args.settle_steps
+    from unsew.dress import DRESS_SETTINGS
+
+    kw = {k: getattr(args, k) for k in ("sew_steps", "settle_steps") if getattr(args, k) is not None}
+    settings = DRESS_SETTINGS.replace(edge_length=args.edge_length, **kw)
     try:
-        d = dress(pattern, body, edge_length=args.edge_length, material=material, progress=progress, **kw)
+        d = dress(pattern, body, material=material, settings=settings, progress=progress)
     finally:
         for b in bars.values():
             b.close()

@@ -76,6 +76,14 @@ class FitConfig:
     device: str = "cpu"  #: torch device for the simulation ("cpu", "cuda")
     report: bool = True  #: write report.html and its figures
 
+    @property
+    def drape(self):
+        """The :class:`~unsew.sim.drape.DrapeSettings` of every drape of the fit."""
+        from unsew.sim.drape import DrapeSettings
+
+        return DrapeSettings(edge_length=self.edge_length, dt=self.dt, steps=self.steps, sew_steps=self.sew_steps,
+                             settle_steps=self.settle_steps)
+
     def replace(self, **changes) -> "FitConfig":
         return dataclasses.replace(self, **changes)
 

@@ -47,22 +47,21 @@ def other_body():
     return default_body().transformed(scale=np.array([1.08, 1.0, 1.08]))
 
 
-def make_truth_case(case_dir: Path, *, truth: DemoTruth = DEMO_TRUTH, edge_length: float = 0.03,
-                    progress=None, **dressing) -> Path:
+def make_truth_case(case_dir: Path, *, truth: DemoTruth = DEMO_TRUTH, settings=None, progress=None) -> Path:
     """Write the demo's case folder (FORMATS.md): the true t-shirt draped on the default body,
-    with pattern_gt.json. ``dressing``: sew_steps, settle_steps, dt of the target's drape (default:
-    FitConfig's, see :func:`unsew.fit.synthetic.make_truth_case`). Returns the folder."""
+    with pattern_gt.json. ``settings``: DrapeSettings of the target's drape (default: FitConfig's
+    on a 3 cm mesh, see :func:`unsew.fit.synthetic.make_truth_case`). Returns the folder."""
     from unsew.fit.synthetic import Alteration
     from unsew.fit.synthetic import make_truth_case as _make
 
     alt = Alteration({"hem": (truth.hem_length, truth.hem_girth), "sleeves": (truth.sleeve_length, 0.0)},
                      truth.material)
-    return _make(case_dir, garment="tshirt", alteration=alt, edge_length=edge_length, progress=progress, **dressing)
+    return _make(case_dir, garment="tshirt", alteration=alt, settings=settings, progress=progress)
 
 
 def run_demo(out: Path, *, cfg=None, progress: bool = True, log=None) -> dict:
     """Run the whole demo into ``out`` (case/, fit/, retarget/). Returns a summary dict."""
-    from unsew.dress import dress
+    from unsew.dress import DRESS_SETTINGS, dress
     from unsew.fit.config import FitConfig
     from unsew.fit.run import run_fit
     from unsew.io.case import load_case
@@ -77,15 +76,15 @@ def run_demo(out: Path, *, cfg=None, progress: bool = True, log=None) -> dict:
         f"{DEMO_TRUTH.hem_girth * 100:.0f}% wider, sleeves {DEMO_TRUTH.sleeve_length * 100:.0f} cm longer, "
         f"in {DEMO_TRUTH.material} (the fit starts from the base t-shirt"
         + (", in the library fabric whose drape is closest)" if cfg.material == "auto" else f" in {cfg.material})"))
-    case_dir = make_truth_case(out / "case", edge_length=cfg.edge_length, sew_steps=cfg.sew_steps,
-                               settle_steps=cfg.settle_steps, dt=cfg.dt)
+    case_dir = make_truth_case(out / "case", settings=cfg.drape)
     t_case = time.perf_counter() - t0
     log("[2/3] fitting the target from the base t-shirt")
     case = load_case(case_dir)
     result, metrics = run_fit(case, cfg, out / "fit", overwrite=True, progress=progress, log=log)
     log("[3/3] retargeting the fitted pattern to another body (8% wider and deeper)")
     body2 = other_body()
-    d2 = dress(result.pattern, body2, edge_length=cfg.edge_length, material=result.material)
+    d2 = dress(result.pattern, body2, material=result.material,
+               settings=DRESS_SETTINGS.replace(edge_length=cfg.drape.edge_length))
     (out / "retarget").mkdir(exist_ok=True)
     write_obj(out / "retarget" / "garment.obj", d2.x.numpy(), d2.mesh.faces, uv=d2.mesh.uv,
               faces_uv=d2.mesh.faces_uv, header="fitted pattern draped on another body")

@@ -281,8 +281,7 @@ def fit(
         """Dress the base pattern in ``material`` and grade it in the same material.
         Returns (graded, mesh, x_start, grade_table, x_base, mesh_base)."""
         bar = _phase_bar(progress, bar_desc)
-        dressed = dress(base, case.body, sdf=sdf, edge_length=cfg.edge_length, material=material,
-                        sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt, progress=bar)
+        dressed = dress(base, case.body, sdf=sdf, material=material, settings=cfg.drape, progress=bar)
         _close(bar)
         x_b = dressed.x.numpy().copy()
         n_src = len(open_contours(x_b, dressed.mesh.faces))
@@ -292,10 +291,9 @@ def fit(
         from unsew.grading.grade import grade
 
         def drape_fn(p, m, b):
-            return dress(p, b, sdf=sdf, mesh=m, material=material, sew_steps=cfg.sew_steps,
-                         settle_steps=cfg.settle_steps, dt=cfg.dt).x.numpy()
+            return dress(p, b, sdf=sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
 
-        g = grade(base, case.body, tv, tf, edge_length=cfg.edge_length, material=material, sdf=sdf,
+        g = grade(base, case.body, tv, tf, settings=cfg.drape, material=material, sdf=sdf,
                   mesh=dressed.mesh, x_init=x_b, drape_fn=drape_fn)
         return g.pattern, g.mesh, _np(g.x_draped), g.table, x_b, dressed.mesh
 
@@ -320,8 +318,8 @@ def fit(
         t_m = time.perf_counter()
 
         def dress_in(material, bar=None):
-            return dress(graded, case.body, sdf=sdf, mesh=mesh, material=material, sew_steps=cfg.sew_steps,
-                         settle_steps=cfg.settle_steps, dt=cfg.dt, progress=bar).x.numpy()
+            return dress(graded, case.body, sdf=sdf, mesh=mesh, material=material, settings=cfg.drape,
+                         progress=bar).x.numpy()
 
         material0, x_start, material_table = choose_material(
             material_candidates(cfg.material_candidates), dress_in, lambda x: objective(x, mesh.faces),
@@ -416,7 +414,7 @@ def fit(
             uv = params.uv(K)
             gamma = gamma_of(theta) if mat_on else gamma0
             out = drape(model, SimState.at_rest(x_prev), sdf, uv=uv, gamma=gamma, density=density,
-                        steps=cfg.steps, dt=cfg.dt, friction=material0.friction, friction_eps=cfg.fit_friction_eps)
+                        settings=cfg.drape.replace(friction_eps=cfg.fit_friction_eps), friction=material0.friction)
             x = out.x
             l_cf = loss_chamfer(x, T_sub, weights_t=w_sub)
             l_open = loss_open_contours(x, contours_x, T, contours_t) if contours_t else x.sum() * 0
@@ -495,7 +493,7 @@ def fit(
 
         bar = _phase_bar(progress, "re-dress the fit")
         x_re = dress(pattern, case.body, sdf=sdf, mesh=moved_mesh(mesh, pattern, uv_b), material=material,
-                     sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt, progress=bar).x.numpy()
+                     settings=cfg.drape, progress=bar).x.numpy()
         _close(bar)
         cf_re, cf_graded = objective(x_re, mesh.faces), objective(x_start, mesh.faces)
         kept = bool(cf_re < cf_graded - REDRESS_MARGIN_MM)
@@ -553,8 +551,8 @@ def _mesh_spread(pattern, material, body, sdf, cfg: FitConfig, objective, progre
     for h in lengths:
         bar = _phase_bar(progress, f"dress on a {100 * h:.2f} cm mesh")
         try:
-            d = dress(pattern, body, sdf=sdf, edge_length=h, material=material, sew_steps=cfg.sew_steps,
-                      settle_steps=cfg.settle_steps, dt=cfg.dt, progress=bar)
+            d = dress(pattern, body, sdf=sdf, material=material, settings=cfg.drape.replace(edge_length=h),
+                      progress=bar)
             out.append(objective(d.x.numpy(), d.mesh.faces))
         except SimulationError:
             out.append(None)

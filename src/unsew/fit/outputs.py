@@ -83,6 +83,11 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     if result.extra.get("mesh_spread"):
         m["mesh_spread"] = result.extra["mesh_spread"]  # the returned pattern on two other meshes
     m["timings_s"] = result.timings
+    from unsew._memory import peak_rss_mb
+
+    m["peak_memory_mb"] = peak_rss_mb()  # the process's peak resident memory so far [MB]
+    if getattr(case, "target_repair", None):
+        m["target_repair"] = case.target_repair  # what loading cleaned in the target (counts)
     return m
 
 

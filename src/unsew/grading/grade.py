@@ -22,17 +22,26 @@ from dataclasses import dataclass, field, replace
 from typing import Callable
 
 import numpy as np
+import torch
 
+from unsew.dress import DRESS_SETTINGS, dress
 from unsew.errors import InputError, SimulationError
 from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
 from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, place_contours
 from unsew.grading.curves import curves_of_contour, rest_length
 from unsew.grading.edit import curve_edit, project_edit, safe_fraction
+from unsew.meshing.sew import mesh_pattern
+from unsew.pattern.params import PatternParams
+from unsew.sim.drape import DrapeSettings
 
 __all__ = [
     "GradeResult", "grade", "moved_mesh", "dress_drape", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH",
-    "REMESH_MODES", "LENGTH_MODES", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL",
+    "REMESH_MODES", "LENGTH_MODES", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL", "GRADE_SETTINGS",
 ]
+
+#: grade()'s drape settings when none are given: dress()'s on a 3 cm mesh (grade's default edge
+#: length has been 3 cm, the fit's 2.5 cm; a fit passes its own settings).
+GRADE_SETTINGS = DRESS_SETTINGS.replace(edge_length=0.03)
 
 #: Re-mesh after grading when a rest edge grew beyond this factor times the target edge length
 #: (``remesh="stretched"``; the default ``"always"`` meshes every graded pattern afresh).
@@ -95,20 +104,18 @@ def flat_drape(pattern, mesh, body=None) -> np.ndarray:
     return out / cnt[:, None]
 
 
-def dress_drape(pattern, mesh, body, *, material="cotton", sdf=None, **dress_options) -> np.ndarray:
+def dress_drape(pattern, mesh, body, *, material="cotton", sdf=None, settings: DrapeSettings = DRESS_SETTINGS) -> np.ndarray:
     """The grading drape: :func:`unsew.dress.dress` (place, sew, merge, settle) on ``mesh``.
 
     pattern, mesh: the pattern and its GarmentMesh. body: the wearer (:class:`Body`).
     material: a :class:`~unsew.sim.material.Material` or a name from ``MATERIALS``.
     sdf: the body's SDF (default: ``BodySDF.build(body)``, cached on disk).
-    dress_options: further keyword arguments of :func:`~unsew.dress.dress` (``sew_steps``, ...).
+    settings: :class:`~unsew.sim.drape.DrapeSettings` of the drape (default dress()'s).
 
     Returns the draped sewn vertices, (n_x, 3) float64 [m].
     Raises SimulationError when the drape diverged.
     """
-    from unsew.dress import dress
-
-    d = dress(pattern, body, sdf=sdf, mesh=mesh, material=material, **dress_options)
+    d = dress(pattern, body, sdf=sdf, mesh=mesh, material=material, settings=settings)
     x = d.x.detach().cpu().numpy().astype(np.float64)
     if not np.isfinite(x).all():
         raise SimulationError("the drape diverged (non-finite positions); try a smaller edge length or another material")
@@ -139,7 +146,7 @@ def grade(
     target_verts,
     target_faces,
     *,
-    edge_length: float = 0.03,
+    settings: DrapeSettings = GRADE_SETTINGS,
     material="cotton",
     mesh=None,
     x_init=None,
@@ -157,12 +164,13 @@ def grade(
     pattern: the base pattern (:class:`~unsew.pattern.model.Pattern`, panels placed around the body).
     body: the wearer (:class:`~unsew.body.body.Body`; its skeleton is used).
     target_verts: (V, 3) float64 [m]; target_faces: (F, 3) int: the target garment T.
-    edge_length: target rest edge length [m] for meshing (and re-meshing).
+    settings: :class:`~unsew.sim.drape.DrapeSettings` of the drapes; ``settings.edge_length`` is
+        the target rest edge length [m] for meshing (default :data:`GRADE_SETTINGS`).
     material: material name or :class:`Material` for the drapes.
-    mesh: the base pattern's GarmentMesh (default: ``mesh_pattern(pattern, edge_length=...)``).
+    mesh: the base pattern's GarmentMesh (default: meshed at ``settings.edge_length``).
     x_init: the base pattern already draped, (n_x, 3) [m] on ``mesh`` (default: draped here).
     drape_fn: ``drape_fn(pattern, mesh, body) -> (n_x, 3) [m]`` used for both drapes (default:
-        :func:`dress_drape` with ``material`` and ``sdf``; :func:`flat_drape` for a quick look).
+        :func:`dress_drape` with ``material``, ``sdf`` and ``settings``; :func:`flat_drape` for a quick look).
     redrape: drape the graded pattern (X_LG); False leaves ``x_draped`` None.
     max_centre_distance: contour pairing gate [m] (default :data:`~unsew.grading.contours.MAX_CENTRE_DISTANCE`).
     passes: grading passes. Pass 2 grades the graded pattern again from its own drape (X_LG) to
@@ -192,8 +200,6 @@ def grade(
 
     Returns a :class:`GradeResult`.
     """
-    from unsew.meshing.sew import mesh_pattern
-
     if remesh not in REMESH_MODES:
         raise InputError(f"remesh must be one of {', '.join(REMESH_MODES)}, got {remesh!r}")
     if length not in LENGTH_MODES:
@@ -204,10 +210,10 @@ def grade(
         raise InputError(f"target mesh must be (V, 3) vertices and (F, 3) faces, got {tv.shape} and {tf.shape}")
     if drape_fn is None:
         def drape_fn(p, m, b):  # noqa: E306
-            return dress_drape(p, m, b, material=material, sdf=sdf)
+            return dress_drape(p, m, b, material=material, sdf=sdf, settings=settings)
 
     if mesh is None:
-        mesh = mesh_pattern(pattern, edge_length=edge_length)
+        mesh = mesh_pattern(pattern, edge_length=settings.edge_length)
     if x_init is None:
         x_init = drape_fn(pattern, mesh, body)
     x_init = np.asarray(x_init, dtype=np.float64)
@@ -395,11 +401,6 @@ def _grade_pass(pattern, mesh, x_init, tgt, skel, kw, *, gains: dict | None = No
     (default 1). ``placed``: the drape's placed contours, their matches and cloth differences
     when already computed. Returns a dict: pattern, mesh, rows, matches, applied (target index
     -> extension applied [m]), K (Nk, 2) [m], fraction, remeshed."""
-    import torch
-
-    from unsew.meshing.sew import mesh_pattern
-    from unsew.pattern.params import PatternParams
-
     if placed is None:
         src = place_contours(x_init, mesh.faces, skel)
         matches = match_contours(src, tgt, skel, garment_centre=x_init.mean(axis=0), **kw)

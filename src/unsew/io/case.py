@@ -42,6 +42,7 @@ class Case:
     meta: dict = field(default_factory=dict)
     pattern_gt: object = None
     files: dict = field(default_factory=dict)  #: the files read, for hashing into config.yaml
+    target_repair: dict = field(default_factory=dict)  #: what loading cleaned (MeshRepair.as_dict)
 
 
 def _read_meta(d: Path) -> dict:
@@ -66,7 +67,7 @@ def load_case(
     garment: str | None = None,
 ) -> Case:
     """Load and check a case folder. Options override meta.json's units/up/front/garment."""
-    from unsew.io.mesh import read_mesh
+    from unsew.io.mesh import read_garment
 
     d = Path(path)
     if not d.is_dir():
@@ -82,7 +83,7 @@ def load_case(
     target = next((d / n for n in ("target.obj", "target.ply") if (d / n).is_file()), None)
     if target is None:
         raise InputError(f"case {d} has no target.obj or target.ply (the draped garment to invert)")
-    tv, tf = read_mesh(target, units=units, up=up, front=front)
+    tv, tf, repair = read_garment(target, units=units, up=up, front=front)
     _check_target(tv, tf, target)
 
     files = {"target": target}
@@ -96,7 +97,7 @@ def load_case(
 
         pattern_gt = load_pattern(gt)
         files["pattern_gt"] = gt
-    return Case(d, garment or "", tv, tf, body, meta, pattern_gt, files)
+    return Case(d, garment or "", tv, tf, body, meta, pattern_gt, files, repair.as_dict())
 
 
 def _load_case_body(d: Path, meta: dict, *, units, up, front, files) -> object:
