@@ -105,7 +105,7 @@ def main() -> None:
     from tables import print_table
 
     from unsew.body.sdf import BodySDF
-    from unsew.dress import dress
+    from unsew.dress import DRESS_SETTINGS, dress
     from unsew.errors import UnsewError
     from unsew.sim.checks import check_dressed
 
@@ -121,7 +121,7 @@ def main() -> None:
             t0 = time.perf_counter()
             row = dict(pattern=pname, body=bname)
             try:
-                d = dress(pat.copy(), body, sdf=sdf, edge_length=args.edge_length)
+                d = dress(pat.copy(), body, sdf=sdf, settings=DRESS_SETTINGS.replace(edge_length=args.edge_length))
             except UnsewError as exc:
                 row.update(verdict=f"error: {exc}", time_s=time.perf_counter() - t0)
                 rows.append(row)

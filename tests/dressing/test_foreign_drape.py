@@ -11,7 +11,7 @@ import pytest
 
 from unsew.body.body import body_from_npz, default_body
 from unsew.body.sdf import BodySDF
-from unsew.dress import dress
+from unsew.dress import DRESS_SETTINGS, dress
 from unsew.io.garmentcode import load_pattern
 from unsew.sim.checks import check_dressed
 
@@ -36,7 +36,7 @@ def _sample(name):
 
 
 def _check_on_body(name, pattern, body, sdf, *, edge_length, **kw):
-    d = dress(pattern, body, sdf=sdf, edge_length=edge_length, **kw)
+    d = dress(pattern, body, sdf=sdf, settings=DRESS_SETTINGS.replace(edge_length=edge_length, **kw))
     v = check_dressed(d, body=body)
     assert v.ok, f"{name}: {v.reason}"
     assert v.inside_pct < 0.5, f"{name}: {v.inside_pct:.2f} % inside the body"
