@@ -6,12 +6,19 @@ and the two edges of every stitch face each other:
 
 - torso panels onto a stack of horizontal ellipses around the torso (front panels in front,
   back panels behind, the panel's own 3D placement telling which side and how high); what
-  rises above the shoulders folds over them towards the body's centre plane;
-- sleeves into a tube around the shoulder-elbow-wrist line of their arm (the side of the
-  panel's placement: x > 0 is the body's left);
+  rises above the shoulders folds over them towards the body's centre plane. Tops are raised
+  until their shoulder seams (labelled, or found by geometry) meet over the shoulders; panels
+  sewn to them by horizontal seams (a skirt, a waistband, trousers) follow; a lower garment
+  stays at its placement's height when that lies on this body's torso, else goes to the waist;
+- sleeves (panels out beyond the shoulder, one piece or front and back halves) into one tube
+  per arm around its shoulder-elbow-wrist line, so they follow the arm in any pose; a raised
+  arm's root joins the torso's stack so armholes wrap round it;
 - trouser legs into a stack of ellipses around their leg below the crotch, blended over a few
   cm into the torso stack above it;
-- anything else (a collar, a user's GarmentCode panel) at its own placement.
+- anything else (a collar, a hood) at its own placement, moved with the garment.
+
+Seam vertices whose copies land more than SEAM_MEET apart start at their midpoint, and outline
+stubs (1-5 mm) start about their own length long (see :func:`_meet_seams`, :func:`_close_stubs`).
 
 Cross-sections come from the body's vertices (grouped by part through the skeleton), plus a
 clearance; where the garment is wider than the section, the ellipse grows (in depth for the
