@@ -143,7 +143,9 @@ def dress(
     Returns:
         :class:`Dressed`; its ``stats`` hold ``place_s``, ``sew_s``, ``settle_s`` [s],
         ``seam_gap`` [m] (largest distance between two unsewn copies of a seam vertex after
-        sewing, before they are merged) and ``max_speed`` [m/s] at the end of settling.
+        sewing, before they are merged), ``max_speed`` [m/s] at the end of settling and
+        ``start_height`` [m] the mean height of the placed garment's vertices (the drop check
+        of :func:`unsew.sim.checks.check_dressed`).
     """
     mat = resolve_material(material)
     if mesh is None:
@@ -177,5 +179,6 @@ def dress(
         x = st.x
         speed = float(st.v.norm(dim=1).max())
     t3 = time.perf_counter()
-    stats = dict(place_s=t1 - t0, sew_s=t2 - t1, settle_s=t3 - t2, seam_gap=gap, max_speed=speed)
+    stats = dict(place_s=t1 - t0, sew_s=t2 - t1, settle_s=t3 - t2, seam_gap=gap, max_speed=speed,
+                 start_height=float(merge_sewn(x_unsewn, mesh.x_of_u, mesh.n_x)[:, 1].mean()))
     return Dressed(pattern, mesh, model, x.detach(), uv, mat, sdf, stats)
