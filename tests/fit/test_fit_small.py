@@ -39,6 +39,7 @@ def test_result_folder_is_complete(small_fit):
     assert not (out.parent / (out.name + ".partial")).exists()
     saved = json.loads((out / "metrics.json").read_text())
     assert saved["iterations"] == 3
+    assert saved["drape_check"]["ok"] and saved["drape_check"]["inside_pct"] < 0.5
     from unsew.io.garmentcode import load_pattern
 
     p = load_pattern(out / "pattern.json")
@@ -52,6 +53,26 @@ def test_fit_improves_on_the_base(small_fit):
     assert metrics["pattern"]["area_error_rel_mean"] < metrics["pattern_base"]["area_error_rel_mean"]
     h = result.history["total"]
     assert min(h) <= h[0]
+
+
+def test_a_result_off_the_body_is_no_result(small_case, tmp_path, monkeypatch):
+    """The fit's drape judged fallen (here: the real check shown the result 1.2 m lower, through the floor) ends in
+    one SimulationError line and leaves neither the result folder nor its .partial."""
+    import numpy as np
+
+    import unsew.fit.fit as fit_module
+    from unsew.body.case import load_case
+    from unsew.errors import SimulationError
+    from unsew.fit.run import partial_dir, run_fit
+
+    real = fit_module.check_drape
+    monkeypatch.setattr(fit_module, "check_drape",
+                        lambda x, **kw: real(np.asarray(x) - np.array([0.0, 1.2, 0.0]), **kw))
+    out = tmp_path / "result"
+    with pytest.raises(SimulationError, match="fit failed: fallen"):
+        run_fit(load_case(small_case), load_config(**{**SMALL, "iterations": 1}), out, progress=False,
+                log=lambda s: None)
+    assert not out.exists() and not partial_dir(out).exists()
 
 
 def test_resume_continues_from_checkpoint(small_case, tmp_path):

@@ -30,6 +30,7 @@ from unsew.fit.optimize import Iteration, PhaseTwo
 from unsew.fit.progress import BAR_SAMPLES, Progress
 from unsew.fit.start import base_pattern_for, start
 from unsew.fit.target import Target
+from unsew.sim.checks import DrapeVerdict, check_drape
 
 __all__ = ["FitResult", "fit"]
 
@@ -47,7 +48,9 @@ class FitResult:
     start_material: phase two's start; material_choice: the auto choice's table, best first;
     best_iteration: the iterate returned (-1: the start); material_fitted: whether the returned
     material was optimised; material_start_iteration: when the material joined (None: never);
-    gamma_last: the last iterate's Gamma (5,); redress, mesh_spread: the checks' figures (None: off).
+    gamma_last: the last iterate's Gamma (5,); redress, mesh_spread: the checks' figures (None: off);
+    drape_check: the returned drape judged on its body (:func:`unsew.sim.checks.check_drape`: fallen,
+    off the body, exploded, inside it); :func:`unsew.fit.run.run_fit` refuses a bad one.
     """
 
     pattern: object
@@ -74,6 +77,7 @@ class FitResult:
     gamma_last: list | None = None
     redress: RedressCheck | None = None
     mesh_spread: MeshSpread | None = None
+    drape_check: DrapeVerdict | None = None
 
 
 def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: Path | None = None,
@@ -148,6 +152,7 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
         material_fitted=two.best.material_on and (redress is None or redress.phase_two_kept),
         material_start_iteration=cfg.material.start_iteration if cfg.fits_material else None,
         gamma_last=two.gamma_last(), redress=redress, mesh_spread=spread,
+        drape_check=check_drape(x, faces=s.mesh.faces, uv=uv, faces_uv=s.mesh.faces_uv, body=case.body, sdf=sdf),
     )
 
 

@@ -86,6 +86,10 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     from unsew._memory import peak_rss_mb
 
     m["peak_memory_mb"] = peak_rss_mb()  # the process's peak resident memory so far [MB]
+    if result.drape_check is not None:
+        m["drape_check"] = result.drape_check.as_dict()  # the result on its body: inside %, stretch, ...
+    if getattr(case, "notes", None):
+        m["input_notes"] = list(case.notes)  # what loading did to the inputs (e.g. the wearer rigged)
     if getattr(case, "target_repair", None):
         m["target_repair"] = case.target_repair  # what loading cleaned in the target (counts)
     return m

@@ -52,6 +52,10 @@ def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = Fal
             log(f"interrupted: rerun with --resume to continue from {work / 'checkpoint.pt'}")
         raise
     (work / "checkpoint.pt").unlink(missing_ok=True)
+    if result.drape_check is not None and not result.drape_check.ok:
+        # a garment fallen, off the body, exploded or inside it is no result: nothing is written
+        shutil.rmtree(work, ignore_errors=True)
+        result.drape_check.raise_if_bad("fit")
     metrics = write_result(work, result, case, cfg, report=cfg.output.report)
     if out.exists():
         shutil.rmtree(out)
