@@ -21,6 +21,8 @@ import numpy as np
 
 from unsew.body.body import Body, clean_body_mesh
 from unsew.body.skeleton import Skeleton
+from unsew.errors import InputError
+from unsew.io.atomic import atomic_write
 
 __all__ = ["PHENOTYPES", "JOINT_MAP", "make_anny_body", "save_body_npz", "parse_pose"]
 
@@ -58,8 +60,6 @@ ANNY_TO_WORLD = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
 
 
 def _require_anny():
-    from unsew.errors import InputError
-
     try:
         import anny  # noqa: F401
     except ImportError:
@@ -71,8 +71,6 @@ def parse_pose(pose: str) -> dict[str, list[float]]:
     """A pose: ``"A"`` (anny's rest pose), ``"T"`` (arms raised to horizontal) or the path of a
     JSON file mapping our joint names (or anny bone names) to a rotation vector [rad] in the
     world frame, applied to that joint's subtree. Returns {joint: rotvec (3,) [rad]}, world frame."""
-    from unsew.errors import InputError
-
     if pose in ("A", "a", "rest"):
         return {}
     if pose in ("T", "t"):
@@ -117,8 +115,6 @@ def _anny_pose_tensor(model, rest_out, rotations_world: dict, torch):
     for name, rv in rotations_world.items():
         bone = JOINT_MAP[name][0] if name in JOINT_MAP else name
         if bone not in labels:
-            from unsew.errors import InputError
-
             raise InputError(f"pose names unknown joint {name!r}; use one of {sorted(k for k in JOINT_MAP if JOINT_MAP[k][0])}")
         # world frame -> anny frame
         local_rot[labels.index(bone)] = ANNY_TO_WORLD.T @ _rotvec_to_matrix(np.asarray(rv)) @ ANNY_TO_WORLD
@@ -149,8 +145,6 @@ def make_anny_body(
     Returns a Body in the world frame (feet at y = 0, pelvis at x = z = 0), largest closed
     component, with skinning weights (V, J) on our joints (each vertex's ``top_k`` largest kept).
     """
-    from unsew.errors import InputError
-
     anny = _require_anny()
     import torch
 
@@ -268,8 +262,6 @@ def _largest_component(verts: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray
 def save_body_npz(body: Body, path: str | os.PathLike, *, top_k: int = 4, meta: dict | None = None) -> None:
     """Store a body compactly: vertices float32 [m], faces int32, skeleton float64, the top-k
     skinning weights per vertex (uint8 joint index, float32 weight). Written atomically."""
-    from unsew.io.atomic import atomic_write
-
     sk = body.skeleton
     arrays = dict(
         verts=body.verts.astype(np.float32),

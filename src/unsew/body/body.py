@@ -25,7 +25,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from unsew.body.skeleton import Skeleton
+from unsew.body.rig import rig_skeleton
+from unsew.body.skeleton import Skeleton, distance_to_bone, load_skeleton
+from unsew.errors import InputError
+from unsew.io.mesh import UNIT_SCALE, frame_matrix, read_mesh
 from unsew.tolerances import BODY_MIRROR_TOL
 
 __all__ = ["Body", "default_body", "load_body", "clean_body_mesh", "check_body_plausible"]
@@ -79,7 +82,6 @@ class Body:
         if self.weights is not None:
             moved = np.array(sk.moved_part())
             return moved[np.argmax(self.weights, axis=1)]
-        from unsew.body.skeleton import distance_to_bone
 
         bones = sk.bones()
         d = np.stack([distance_to_bone(self.verts, b) for b in bones], axis=1)  # (V, nbones)
@@ -119,8 +121,6 @@ def _data_path() -> str:
 
 @functools.lru_cache(maxsize=1)
 def _load_default() -> Body:
-    from unsew.errors import InputError
-
     path = _data_path()
     if not os.path.isfile(path):
         raise InputError(f"default body data {path} is missing; reinstall unsew")
@@ -256,8 +256,6 @@ def clean_body_mesh(verts: np.ndarray, faces: np.ndarray, *, what: str = "body m
     """
     import trimesh
 
-    from unsew.errors import InputError
-
     notes = []
     m = trimesh.Trimesh(np.asarray(verts, np.float64), np.asarray(faces, np.int64), process=True, validate=False)
     raw = trimesh.Trimesh(np.asarray(verts, np.float64), np.asarray(faces, np.int64), process=False)
@@ -313,8 +311,6 @@ def check_body_plausible(verts: np.ndarray, skeleton: Skeleton | None = None, *,
     verts: (V, 3) float64, as read (after the user's unit/frame options). Raises InputError
     naming the option to use (``--units cm``, ``--up z``, ``--front -z``).
     """
-    from unsew.errors import InputError
-
     ext = verts.max(axis=0) - verts.min(axis=0)  # (3,) [m]
     lo, hi = HEIGHT_RANGE
     # the up axis: from the skeleton (pelvis -> head) when there is one, else the longest extent
@@ -383,10 +379,6 @@ def load_body(
     from the mesh (``unsew.body.rig.rig_skeleton``) and the Body says so (``rigged=True`` and a
     note). Returns a Body without skinning weights; ``notes`` lists what was repaired or rigged.
     """
-    from unsew.body.skeleton import load_skeleton
-    from unsew.errors import InputError
-    from unsew.io.mesh import UNIT_SCALE, frame_matrix, read_mesh
-
     what = f"body {os.fspath(mesh_path)}"
     verts, faces = read_mesh(mesh_path, units=units, up=up, front=front)
     sk = None
@@ -398,7 +390,6 @@ def load_body(
     verts, faces, notes = clean_body_mesh(verts, faces, what=f"body mesh {os.fspath(mesh_path)}")
     if sk is None:
         check_body_plausible(verts, None, what=what)
-        from unsew.body.rig import rig_skeleton
 
         try:
             sk = rig_skeleton(verts, faces)

@@ -24,6 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from unsew.body.measurements import Measurements
+from unsew.body.skeleton import Bone, distance_to_bone
 
 __all__ = ["measure_body", "section_points", "hull_perimeter"]
 
@@ -71,8 +72,6 @@ def measure_body(body) -> Measurements:
     body: a ``Body`` (verts (V,3) float64 [m], faces, skeleton with the required joints).
     Returns ``Measurements`` in metres.
     """
-    from unsew.body.skeleton import Bone, distance_to_bone
-
     V, F, sk = body.verts, body.faces, body.skeleton
     P = sk.position
     floor = float(V[:, 1].min())

@@ -8,6 +8,7 @@ measures any body (tests/body/test_measure.py checks the defaults against it).
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, fields, replace
+from unsew.errors import InputError
 
 __all__ = ["Measurements"]
 
@@ -38,8 +39,6 @@ class Measurements:
     @classmethod
     def from_dict(cls, d: dict) -> "Measurements":
         """Build from a mapping (e.g. a YAML file); unknown keys raise, missing keys keep defaults."""
-        from unsew.errors import InputError
-
         names = {f.name for f in fields(cls)}
         unknown = set(d) - names
         if unknown:

@@ -36,6 +36,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from unsew.body.skeleton import Skeleton
+from unsew.errors import InputError
 
 __all__ = ["rig_skeleton", "RIG_JOINTS"]
 
@@ -270,9 +272,6 @@ def rig_skeleton(verts: np.ndarray, faces: np.ndarray, *, debug: dict | None = N
     Raises InputError when the surface does not read as a standing person with two arms and
     two legs.
     """
-    from unsew.body.skeleton import Skeleton
-    from unsew.errors import InputError
-
     V = np.asarray(verts, dtype=np.float64)
     F = np.asarray(faces, dtype=np.int64)
     floor = float(V[:, 1].min())
@@ -330,8 +329,6 @@ def _arm_joints(arm: _Limb, shoulder: np.ndarray, side: str, H: float) -> dict:
     win = np.flatnonzero((t > _WRIST_WINDOW[0] * H) & (t < _WRIST_WINDOW[1] * H))
     win = win[win < arm.root]
     if len(win) == 0:
-        from unsew.errors import InputError
-
         raise InputError(f"cannot find the {side} wrist: the {side} arm is shorter than a hand")
     gmin = g[win].min()
     iw = int(win[np.argmax(g[win] < _NARROW * gmin)])  # the hand's end of the forearm's narrow part
@@ -373,8 +370,6 @@ def _torso_joints(col: _Column, floor: float, H: float) -> dict:
     yr = (col.y - floor) / H
     m = (yr > 0.78) & (yr < 0.9)
     if not m.any():
-        from unsew.errors import InputError
-
         raise InputError("cannot find the neck of the body (no narrow section 78-90 % of its height up)")
     neck_min = col.y[np.flatnonzero(m)[np.argmin(col.g[m])]]
 

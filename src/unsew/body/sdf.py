@@ -34,6 +34,10 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
+from unsew.body.body import mirror_plane
+from unsew.errors import InputError
+from unsew.geometry.topology import unique_edges
+from unsew.io.atomic import atomic_write
 
 __all__ = ["BodySDF", "closest_point_on_triangles", "mesh_distance", "default_cache_dir"]
 
@@ -137,7 +141,6 @@ def _pseudonormals(verts: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np
         cos = np.einsum("ij,ij->i", e1, e2) / np.maximum(np.linalg.norm(e1, axis=1) * np.linalg.norm(e2, axis=1), 1e-30)
         ang = np.arccos(np.clip(cos, -1.0, 1.0))
         np.add.at(vn, faces[:, k], fn * ang[:, None])
-    from unsew.geometry.topology import unique_edges
 
     _, inv, _ = unique_edges(faces)  # (3F,) edge of each (face, local edge ab/bc/ca)
     en_u = np.zeros((inv.max() + 1, 3))
@@ -236,8 +239,6 @@ class BodySDF:
         cache_dir: folder of cached grids (default ``default_cache_dir()``), keyed by a hash of
         verts, faces, voxel and margin; ``use_cache=False`` neither reads nor writes it.
         """
-        from unsew.errors import InputError
-
         verts = np.ascontiguousarray(body.verts, dtype=np.float64)
         faces = np.ascontiguousarray(body.faces, dtype=np.int64)
         if not (voxel > 0 and margin >= 0):
@@ -272,7 +273,6 @@ class BodySDF:
         if path is not None:
             try:
                 os.makedirs(os.path.dirname(path), exist_ok=True)
-                from unsew.io.atomic import atomic_write
 
                 with atomic_write(path) as tmp:
                     with open(tmp, "wb") as fh:
@@ -352,8 +352,6 @@ def _build_grid(verts: np.ndarray, faces: np.ndarray, h: float, margin: float) -
     interpolation), which seeded asymmetric folds of loose cloth.
     """
     from scipy import ndimage
-
-    from unsew.body.body import mirror_plane
 
     origin = verts.min(axis=0) - margin
     n = np.ceil((verts.max(axis=0) + margin - origin) / h).astype(np.int64) + 1  # (nx, ny, nz)

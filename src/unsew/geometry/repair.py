@@ -33,6 +33,7 @@ import numpy as np
 
 from unsew.errors import InputError
 from unsew.geometry import topology
+from unsew.geometry.distance import MeshQuery
 
 __all__ = ["MeshRepair", "repair_garment", "MERGE_TOL", "DEGENERATE_REL", "SMALL_PIECE", "SEPARATE_GAP"]
 
@@ -205,8 +206,6 @@ def repair_garment(verts, faces, *, what: str = "target") -> tuple[np.ndarray, n
 
 def _check_separate(v, f, lab, n, what) -> None:
     """Raise InputError when a piece lies farther than SEPARATE_GAP from every other piece."""
-    from unsew.geometry.distance import MeshQuery
-
     area = _areas(v, f)
     a_comp = np.bincount(lab, weights=area, minlength=n)
     for c in range(n):

@@ -28,6 +28,7 @@ edits: ``rest_cloth_lengths`` on a :class:`~unsew.meshing.sew.GarmentMesh`.
 from __future__ import annotations
 
 import numpy as np
+from unsew.geometry.topology import unique_edges
 
 __all__ = ["distance_graph", "cloth_distance", "top_contour", "cloth_lengths", "rest_cloth_lengths"]
 
@@ -70,7 +71,6 @@ def distance_graph(points: np.ndarray, faces: np.ndarray):
     ok &= (cy + dy > 0) & (cross > 0) & (cross < lab) & (c != d)
     across = np.stack([c[ok], d[ok]], axis=1)
     w_across = np.hypot(cx - dx, cy + dy)[ok]
-    from unsew.geometry.topology import unique_edges
 
     edges = unique_edges(f)[0]  # (E, 2) sorted, as np.unique(key, axis=0)
     pairs = np.concatenate([edges, np.sort(across, axis=1)])

@@ -14,6 +14,7 @@ import shutil
 import tempfile
 from pathlib import Path
 from typing import Iterator
+from unsew.errors import InputError
 
 __all__ = ["atomic_write", "atomic_dir"]
 
@@ -45,8 +46,6 @@ def atomic_dir(path: str | os.PathLike, *, overwrite: bool = False) -> Iterator[
     An existing ``path`` is replaced only with ``overwrite=True``; otherwise its presence is an
     error raised before any work starts.
     """
-    from unsew.errors import InputError
-
     path = Path(path)
     if path.exists() and not overwrite:
         raise InputError(f"output folder {path} exists; remove it or choose another --out")

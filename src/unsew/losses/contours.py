@@ -21,6 +21,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from unsew.geometry.topology import unique_edges
+from unsew.losses._arrays import mesh_arrays
+from unsew.losses.chamfer import loss_chamfer
 
 __all__ = ["Contour", "open_contours", "loss_open_contours"]
 
@@ -87,12 +90,9 @@ def open_contours(verts, faces) -> list[Contour]:
     faces: (F, 3) int.
     Returns: list of :class:`Contour`; empty for a closed mesh.
     """
-    from unsew.losses._arrays import mesh_arrays
-
     v, f = mesh_arrays(verts, faces)
     if len(f) == 0:
         return []
-    from unsew.geometry.topology import unique_edges
 
     he = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])  # (3F, 2) directed, edge-major
     he_face = np.tile(np.arange(len(f)), 3)
@@ -173,8 +173,6 @@ def loss_open_contours(x, contours_x, t, contours_t, *, pairs=None, method: str 
     Returns: scalar tensor [m^2]; zero-dimensional 0 if either side has no contour.
     """
     import torch
-
-    from unsew.losses.chamfer import loss_chamfer
 
     if not contours_x or not contours_t:
         return (x.sum() + t.sum()) * 0.0

@@ -12,6 +12,12 @@ from __future__ import annotations
 import json
 import os
 from pathlib import Path
+from unsew.errors import InputError
+from unsew.io.atomic import atomic_write
+from unsew.io.garmentcode import load_pattern
+from unsew.io.mesh import read_garment, read_mesh
+from unsew.metrics.panels import pattern_metrics
+from unsew.metrics.surface import surface_metrics
 
 __all__ = ["evaluate_result", "EVAL_FORMAT_VERSION", "format_table", "write_eval_json"]
 
@@ -20,8 +26,6 @@ EVAL_FORMAT_VERSION = 1
 
 
 def _case_meta(case: Path) -> dict:
-    from unsew.errors import InputError
-
     p = case / "meta.json"
     if not p.is_file():
         return {}
@@ -45,10 +49,6 @@ def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int
     "2d_skipped": reason | None}``. Raises InputError / PatternError on bad input (missing
     files, empty or non-finite meshes, panels without counterparts).
     """
-    from unsew.errors import InputError
-    from unsew.io.mesh import read_garment, read_mesh
-    from unsew.metrics.surface import surface_metrics
-
     res, case = Path(result_dir), Path(case_dir)
     for d, what in ((res, "result"), (case, "case")):
         if not d.is_dir():
@@ -79,9 +79,6 @@ def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int
     elif not est.is_file():
         out["2d_skipped"] = "result has no pattern.json"
     else:
-        from unsew.io.garmentcode import load_pattern
-        from unsew.metrics.panels import pattern_metrics
-
         out["2d"] = pattern_metrics(load_pattern(est), load_pattern(gt))
     return out
 
@@ -114,7 +111,5 @@ def format_table(ev: dict) -> str:
 
 def write_eval_json(ev: dict, path: str | os.PathLike) -> None:
     """Write an evaluation dict as JSON, atomically."""
-    from unsew.io.atomic import atomic_write
-
     with atomic_write(path) as tmp:
         Path(tmp).write_text(json.dumps(ev, indent=2) + "\n")

@@ -39,6 +39,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from unsew.pattern.controls import ControlPoints, find_control_points
+from unsew.pattern.curves import edge_point_fn
 from unsew.pattern.model import Pattern
 from unsew.tolerances import SYMMETRY_REL_TOL
 
@@ -248,8 +249,6 @@ def procrustes(x: np.ndarray, y: np.ndarray, *, det: int | None = None) -> tuple
 def curve_samples(pattern: Pattern, controls: ControlPoints, p: int, *, m: int = _SAMPLES_PER_CURVE) -> np.ndarray:
     """Points (n, m, 2) float64 [m] along each of panel p's n curves (the outline between control
     point j and j+1, CCW), at arc-length fractions k/m, k = 0..m-1 (so [:, 0] are the control points)."""
-    from unsew.pattern.curves import edge_point_fn
-
     name = controls.panel_names[p]
     panel = pattern.panels[name]
     idx = controls.of_panel(p)
