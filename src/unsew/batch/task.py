@@ -15,6 +15,7 @@ import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
+
 from unsew.batch.cases import read_garment, result_state
 from unsew.body.case import load_case
 from unsew.errors import UnsewError

@@ -8,6 +8,7 @@ measures any body (tests/body/test_measure.py checks the defaults against it).
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, fields, replace
+
 from unsew.errors import InputError
 
 __all__ = ["Measurements"]

@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 
 import numpy as np
+
 from unsew.io.atomic import atomic_write
 
 __all__ = ["render_rig_preview"]

@@ -36,6 +36,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+
 from unsew.body.skeleton import Skeleton
 from unsew.errors import InputError
 

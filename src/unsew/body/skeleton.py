@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
+
 from unsew.errors import InputError
 from unsew.io.atomic import atomic_write
 

@@ -14,6 +14,7 @@ import shutil
 import tempfile
 from pathlib import Path
 from typing import Iterator
+
 from unsew.errors import InputError
 
 __all__ = ["atomic_write", "atomic_dir"]

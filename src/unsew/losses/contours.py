@@ -21,6 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+
 from unsew.geometry.topology import unique_edges
 from unsew.losses._arrays import mesh_arrays
 from unsew.losses.chamfer import loss_chamfer

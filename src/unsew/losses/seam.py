@@ -16,6 +16,7 @@ The per-stitch index lists are turned once into a static (E, 4) index map
 from __future__ import annotations
 
 import numpy as np
+
 from unsew.errors import PatternError
 
 __all__ = ["seam_segment_pairs", "loss_seam"]

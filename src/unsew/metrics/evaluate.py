@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import os
 from pathlib import Path
+
 from unsew.errors import InputError
 from unsew.io.atomic import atomic_write
 from unsew.io.garmentcode import load_pattern

@@ -14,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+
 from unsew.errors import PatternError
 from unsew.metrics.turning import panel_turning_distance, turning_distance
 from unsew.pattern.curves import panel_outline

@@ -20,6 +20,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+
 from unsew.errors import InputError
 from unsew.geometry.distance import MeshQuery
 

@@ -23,6 +23,7 @@ Both outlines are made counter-clockwise first (a panel's orientation is not par
 from __future__ import annotations
 
 import numpy as np
+
 from unsew.pattern.curves import panel_outline
 
 __all__ = ["turning_function", "turning_distance", "panel_turning_distance"]
