@@ -28,6 +28,7 @@ import numpy as np
 from unsew.body.rig import rig_skeleton
 from unsew.body.skeleton import Skeleton, distance_to_bone, load_skeleton
 from unsew.errors import InputError
+from unsew.geometry.topology import boundary_loops, unique_edges
 from unsew.io.mesh import UNIT_SCALE, frame_matrix, read_mesh
 from unsew.tolerances import BODY_MIRROR_TOL
 
@@ -222,30 +223,6 @@ def default_body() -> Body:
 # -- any body from files ---------------------------------------------------------------------
 
 
-def _boundary_loops(faces: np.ndarray) -> list[np.ndarray]:
-    """Boundary loops of a triangle mesh as vertex index arrays, oriented like the faces' edges
-    (edge (a, b) of a face, a -> b)."""
-    e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
-    key = np.sort(e, axis=1)
-    _, inv, cnt = np.unique(key, axis=0, return_inverse=True, return_counts=True)
-    bnd = e[cnt[inv.reshape(-1)] == 1]
-    nxt = {}
-    for a, b in bnd:
-        nxt.setdefault(int(a), []).append(int(b))
-    loops, seen = [], set()
-    for start in list(nxt):
-        if start in seen:
-            continue
-        loop, v = [], start
-        while v not in seen and v in nxt:
-            seen.add(v)
-            loop.append(v)
-            v = nxt[v][0]
-        if len(loop) >= 3:
-            loops.append(np.array(loop))
-    return loops
-
-
 def clean_body_mesh(verts: np.ndarray, faces: np.ndarray, *, what: str = "body mesh") -> tuple[np.ndarray, np.ndarray, list[str]]:
     """Keep the largest connected component, merge duplicate vertices, fill small holes.
 
@@ -266,14 +243,13 @@ def clean_body_mesh(verts: np.ndarray, faces: np.ndarray, *, what: str = "body m
         m = max(parts, key=lambda p: (p.is_watertight, len(p.faces)))
         notes.append(f"kept the largest closed component of {len(parts)}")
     verts, faces = np.asarray(m.vertices), np.asarray(m.faces, dtype=np.int64)
-    e = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
-    _, cnt = np.unique(e, axis=0, return_counts=True)
+    cnt = unique_edges(faces)[2]  # (E,) faces per edge
     if (cnt > 2).any():
         raise InputError(
             f"{what} has {(cnt > 2).sum()} non-manifold edges (shared by 3+ triangles); "
             "export the body as one closed manifold surface"
         )
-    loops = _boundary_loops(faces)
+    loops = boundary_loops(faces)
     if loops:
         new_v, new_f = [verts], [faces]
         nv = len(verts)
