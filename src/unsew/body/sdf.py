@@ -83,28 +83,23 @@ def closest_point_on_triangles(p: np.ndarray, a: np.ndarray, b: np.ndarray, c: n
         q = a + ab * v[:, None] + ac * w[:, None]
         region = np.zeros(len(p), dtype=np.int8)
         # overrides in reverse priority: the first matching test of Ericson's order wins last
-        m = (va <= 0) & ((d4 - d3) >= 0) & ((d5 - d6) >= 0)
         t = (d4 - d3) / np.maximum((d4 - d3) + (d5 - d6), tiny)
-        q = np.where(m[:, None], b + (c - b) * t[:, None], q)
-        region[m] = 5
-        m = (vb <= 0) & (d2 >= 0) & (d6 <= 0)
+        q = _override(q, region, (va <= 0) & ((d4 - d3) >= 0) & ((d5 - d6) >= 0), b + (c - b) * t[:, None], 5)
         t = d2 / np.where(np.abs(d2 - d6) < tiny, tiny, d2 - d6)
-        q = np.where(m[:, None], a + ac * t[:, None], q)
-        region[m] = 6
-        m = (d6 >= 0) & (d5 <= d6)
-        q = np.where(m[:, None], c, q)
-        region[m] = 3
-        m = (vc <= 0) & (d1 >= 0) & (d3 <= 0)
+        q = _override(q, region, (vb <= 0) & (d2 >= 0) & (d6 <= 0), a + ac * t[:, None], 6)
+        q = _override(q, region, (d6 >= 0) & (d5 <= d6), c, 3)
         t = d1 / np.where(np.abs(d1 - d3) < tiny, tiny, d1 - d3)
-        q = np.where(m[:, None], a + ab * t[:, None], q)
-        region[m] = 4
-        m = (d3 >= 0) & (d4 <= d3)
-        q = np.where(m[:, None], b, q)
-        region[m] = 2
-        m = (d1 <= 0) & (d2 <= 0)
-        q = np.where(m[:, None], a, q)
-        region[m] = 1
+        q = _override(q, region, (vc <= 0) & (d1 >= 0) & (d3 <= 0), a + ab * t[:, None], 4)
+        q = _override(q, region, (d3 >= 0) & (d4 <= d3), b, 2)
+        q = _override(q, region, (d1 <= 0) & (d2 <= 0), a, 1)
     return q, region
+
+
+def _override(q: np.ndarray, region: np.ndarray, m: np.ndarray, point: np.ndarray, code: int) -> np.ndarray:
+    """Closest points (N, 3) with rows ``m`` replaced by ``point`` (N, 3) or (3,); ``region``
+    (N,) int8 set to ``code`` there (in place)."""
+    region[m] = code
+    return np.where(m[:, None], point, q)
 
 
 def mesh_distance(points: np.ndarray, verts: np.ndarray, faces: np.ndarray, *, chunk: int = 2_000_000) -> tuple[np.ndarray, np.ndarray]:

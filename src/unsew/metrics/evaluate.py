@@ -15,6 +15,7 @@ from pathlib import Path
 
 from unsew.errors import InputError
 from unsew.io.atomic import atomic_write
+from unsew.io.case import read_meta
 from unsew.io.garmentcode import load_pattern
 from unsew.io.mesh import read_garment, read_mesh
 from unsew.metrics.panels import pattern_metrics
@@ -24,19 +25,6 @@ __all__ = ["evaluate_result", "EVAL_FORMAT_VERSION", "format_table", "write_eval
 
 #: Version of the eval.json layout.
 EVAL_FORMAT_VERSION = 1
-
-
-def _case_meta(case: Path) -> dict:
-    p = case / "meta.json"
-    if not p.is_file():
-        return {}
-    try:
-        meta = json.loads(p.read_text())
-    except json.JSONDecodeError as exc:
-        raise InputError(f"{p} is not valid JSON: {exc.msg} at line {exc.lineno}") from None
-    if not isinstance(meta, dict):
-        raise InputError(f"{p} must hold a JSON object")
-    return meta
 
 
 def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int = 0) -> dict:
@@ -62,7 +50,7 @@ def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int
         raise InputError(f"case folder {case} has no target.obj or target.ply")
     if n_samples < 1:
         raise InputError(f"--samples must be at least 1, got {n_samples}")
-    meta = _case_meta(case)
+    meta = read_meta(case, required=False)
     gv, gf = read_mesh(garment)
     tv, tf, _ = read_garment(target, units=meta.get("units", "m"), up=meta.get("up", "y"), front=meta.get("front", "z"))
     out = {
