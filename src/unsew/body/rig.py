@@ -39,6 +39,7 @@ import numpy as np
 
 from unsew.body.skeleton import Skeleton
 from unsew.errors import InputError
+from unsew.geometry.topology import unique_edges
 
 __all__ = ["rig_skeleton", "RIG_JOINTS"]
 
@@ -101,8 +102,7 @@ class _Limb:
 def _graph(verts: np.ndarray, faces: np.ndarray):
     import scipy.sparse as sp
 
-    e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
-    e = np.unique(np.sort(e, axis=1), axis=0)
+    e = unique_edges(faces)[0]  # (E, 2)
     w = np.linalg.norm(verts[e[:, 0]] - verts[e[:, 1]], axis=1)
     n = len(verts)
     a = sp.coo_matrix((w, (e[:, 0], e[:, 1])), shape=(n, n)).tocsr()
