@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from unsew.body.measurements import Measurements
+from unsew.pattern.measurements import Measurements
 from unsew.body.skeleton import Bone, distance_to_bone
 from unsew.geometry.topology import unique_edges
 
