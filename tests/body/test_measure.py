@@ -7,7 +7,7 @@ from helpers import assert_close
 
 from unsew.body.body import default_body
 from unsew.body.measure import hull_perimeter, measure_body, section_points
-from unsew.body.measurements import Measurements
+from unsew.pattern.measurements import Measurements
 
 
 def test_section_of_cylinder_has_its_circumference():

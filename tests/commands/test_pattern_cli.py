@@ -26,7 +26,7 @@ def test_new_then_export(tmp_path, capsys):
 
 
 def test_new_with_measurements(tmp_path):
-    from unsew.body.measurements import Measurements
+    from unsew.pattern.measurements import Measurements
 
     d = Measurements()
     m = tmp_path / "m.yaml"

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from helpers import assert_close
-from unsew.body.measurements import Measurements
+from unsew.pattern.measurements import Measurements
 from unsew.errors import InputError
 from unsew.pattern.base import GARMENTS, make_base_pattern
 from unsew.pattern.base._frame import body_frame

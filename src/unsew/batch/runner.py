@@ -19,8 +19,12 @@ from pathlib import Path
 from typing import Callable
 
 from unsew.batch.cases import find_cases, read_garment, result_state
+from unsew.batch.local import run_local
+from unsew.batch.ray_backend import ray_session, run_ray
+from unsew.batch.summary import write_index_html, write_summary_csv
 from unsew.batch.task import CaseJob, CaseRecord
 from unsew.errors import InputError
+from unsew.fit.config import FitConfig
 
 __all__ = ["run_batch", "BatchResult", "default_workers"]
 
@@ -72,8 +76,6 @@ def run_batch(cases_dir: str | os.PathLike, out: str | os.PathLike, *, cfg=None,
     existing ``out`` that is not a folder, or a Ray that is missing or cannot be reached (before
     anything is written).
     """
-    from unsew.fit.config import FitConfig
-
     cfg = cfg if cfg is not None else FitConfig()
     cases = find_cases(cases_dir)
     out = Path(out).resolve()
@@ -83,8 +85,6 @@ def run_batch(cases_dir: str | os.PathLike, out: str | os.PathLike, *, cfg=None,
         raise InputError(f"--workers must be at least 1, got {workers}")
     session = contextlib.ExitStack()
     if ray:  # connect first: a bad address fails before anything is written
-        from unsew.batch.ray_backend import ray_session
-
         session.enter_context(ray_session(ray, init_kwargs=ray_init_kwargs))
     with session:
         return _run(cases, cases_dir, out, cfg=cfg, workers=workers, ray=bool(ray), overwrite=overwrite,
@@ -134,12 +134,8 @@ def _run(cases, cases_dir, out: Path, *, cfg, workers, ray: bool, overwrite, fit
     try:
         if jobs:
             if ray:
-                from unsew.batch.ray_backend import run_ray
-
                 run_ray(jobs, device=cfg.device, on_done=on_done)
             else:
-                from unsew.batch.local import run_local
-
                 run_local(jobs, workers=workers or default_workers(len(jobs)), on_done=on_done)
     except KeyboardInterrupt:
         interrupted = True
@@ -152,7 +148,6 @@ def _run(cases, cases_dir, out: Path, *, cfg, workers, ray: bool, overwrite, fit
         if rec.status == "pending" and result_state(job.out_dir) == "partial":
             rec.status, rec.reason = "interrupted", "stopped before it finished; rerun the batch to resume it"
     final = [records[c.name] for c in cases]
-    from unsew.batch.summary import write_index_html, write_summary_csv
 
     csv_path = write_summary_csv(final, out / "summary.csv")
     html_path = write_index_html(final, out / "index.html", title=f"unsew batch: {Path(cases_dir).name}")

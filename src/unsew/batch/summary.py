@@ -20,6 +20,7 @@ from typing import Sequence
 from urllib.parse import quote
 
 from unsew.batch.task import CaseRecord
+from unsew.io.atomic import atomic_write
 
 __all__ = ["summary_rows", "write_summary_csv", "format_table", "write_index_html", "BASE_COLUMNS",
            "METRIC_COLUMNS"]
@@ -79,8 +80,6 @@ def _columns(rows: Sequence[dict]) -> list[str]:
 def write_summary_csv(records: Sequence[CaseRecord], path: str | os.PathLike) -> Path:
     """Write ``summary.csv`` atomically (a temporary file renamed onto ``path``). Numbers are
     written with full precision (repr). Returns the path."""
-    from unsew.io.atomic import atomic_write
-
     path = Path(path)
     rows = summary_rows(records, root=path.parent)
     buf = io.StringIO()
@@ -133,8 +132,6 @@ def format_table(records: Sequence[CaseRecord]) -> str:
 def write_index_html(records: Sequence[CaseRecord], path: str | os.PathLike, *, title: str = "unsew batch") -> Path:
     """Write ``index.html`` atomically: counts by status, then the summary table with each case
     linking its ``report.html`` (where it exists) and its result folder. Returns the path."""
-    from unsew.io.atomic import atomic_write
-
     path = Path(path)
     rows = summary_rows(records, root=path.parent)
     cols = [c for c in _columns(rows) if c not in ("result", "reason")]

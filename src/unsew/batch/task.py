@@ -16,6 +16,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
+from unsew.batch.cases import read_garment, result_state
+from unsew.body.case import load_case
+from unsew.errors import UnsewError
+from unsew.fit.run import run_fit
+
 __all__ = ["CaseJob", "CaseRecord", "run_case", "fit_case_dir", "prepare_worker", "one_line"]
 
 
@@ -65,8 +70,6 @@ class CaseRecord:
 def one_line(exc: BaseException) -> str:
     """The one-line reason of a failure: an UnsewError's message, otherwise the exception's type
     and message."""
-    from unsew.errors import UnsewError
-
     msg = " ".join(str(exc).split())
     if isinstance(exc, UnsewError):
         return msg or type(exc).__name__
@@ -94,9 +97,6 @@ def fit_case_dir(case_dir: Path, out: Path, cfg, *, resume: bool = False, overwr
                  log: Callable[[str], None] | None = None) -> dict:
     """The real fit of one case folder into ``out`` (load_case + run_fit, no progress bar).
     Returns the metrics dict."""
-    from unsew.fit.run import run_fit
-    from unsew.body.case import load_case
-
     case = load_case(case_dir)
     _, metrics = run_fit(case, cfg, out, resume=resume, overwrite=overwrite, progress=False, log=log)
     return metrics
@@ -105,8 +105,6 @@ def fit_case_dir(case_dir: Path, out: Path, cfg, *, resume: bool = False, overwr
 def run_case(job: CaseJob) -> CaseRecord:
     """Fit one case; never raises for a failed fit (status "failed", reason one line, the
     traceback in ``job.log_path``)."""
-    from unsew.batch.cases import read_garment, result_state
-
     resume = result_state(job.out_dir) == "partial"
     rec = CaseRecord(job.name, job.case_dir, job.out_dir, garment=read_garment(job.case_dir), resumed=resume)
     fit_fn = job.fit_fn or fit_case_dir

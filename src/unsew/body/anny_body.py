@@ -21,6 +21,9 @@ import numpy as np
 
 from unsew.body.body import Body, clean_body_mesh
 from unsew.body.skeleton import Skeleton
+from unsew.errors import InputError
+from unsew.geometry.topology import components
+from unsew.io.atomic import atomic_write
 
 __all__ = ["PHENOTYPES", "JOINT_MAP", "make_anny_body", "save_body_npz", "parse_pose"]
 
@@ -58,8 +61,6 @@ ANNY_TO_WORLD = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
 
 
 def _require_anny():
-    from unsew.errors import InputError
-
     try:
         import anny  # noqa: F401
     except ImportError:
@@ -71,8 +72,6 @@ def parse_pose(pose: str) -> dict[str, list[float]]:
     """A pose: ``"A"`` (anny's rest pose), ``"T"`` (arms raised to horizontal) or the path of a
     JSON file mapping our joint names (or anny bone names) to a rotation vector [rad] in the
     world frame, applied to that joint's subtree. Returns {joint: rotvec (3,) [rad]}, world frame."""
-    from unsew.errors import InputError
-
     if pose in ("A", "a", "rest"):
         return {}
     if pose in ("T", "t"):
@@ -117,8 +116,6 @@ def _anny_pose_tensor(model, rest_out, rotations_world: dict, torch):
     for name, rv in rotations_world.items():
         bone = JOINT_MAP[name][0] if name in JOINT_MAP else name
         if bone not in labels:
-            from unsew.errors import InputError
-
             raise InputError(f"pose names unknown joint {name!r}; use one of {sorted(k for k in JOINT_MAP if JOINT_MAP[k][0])}")
         # world frame -> anny frame
         local_rot[labels.index(bone)] = ANNY_TO_WORLD.T @ _rotvec_to_matrix(np.asarray(rv)) @ ANNY_TO_WORLD
@@ -149,11 +146,30 @@ def make_anny_body(
     Returns a Body in the world frame (feet at y = 0, pelvis at x = z = 0), largest closed
     component, with skinning weights (V, J) on our joints (each vertex's ``top_k`` largest kept).
     """
-    from unsew.errors import InputError
-
     anny = _require_anny()
-    import torch
+    ph = _phenotype(phenotype)
+    rot = parse_pose(pose) if isinstance(pose, str) else dict(pose)
+    model, out = _run_anny(anny, ph, rot)
+    labels = list(model.bone_labels)
+    verts = out["vertices"][0].double().numpy() @ ANNY_TO_WORLD.T  # (V, 3) world [m]
+    heads = out["bone_poses"][0, :, :3, 3].double().numpy() @ ANNY_TO_WORLD.T  # (104, 3) [m]
+    faces = model.get_triangular_faces().numpy().astype(np.int64)
+    W = _joint_weights(model, len(verts))
 
+    # largest closed component, keeping the weights of the kept vertices
+    keep_v, faces = _largest_component(verts, faces)
+    verts, W = verts[keep_v], W[keep_v]
+    v2, faces, _ = clean_body_mesh(verts, faces, what="anny body")
+    if len(v2) != len(verts):
+        raise RuntimeError("anny body component is not closed as generated")  # pragma: no cover
+    verts, sk = _skeleton(verts, heads, labels)
+    W = _keep_top_k(W, top_k)
+    label = ",".join(f"{k}={ph[k]:g}" for k in PHENOTYPES)
+    return Body(verts, faces, sk, W, name=f"anny({label};pose={pose if isinstance(pose, str) else 'custom'})")
+
+
+def _phenotype(phenotype: dict[str, float] | None) -> dict[str, float]:
+    """All PHENOTYPES with values in [0, 1], missing ones 0.5; InputError on unknown names."""
     ph = {k: 0.5 for k in PHENOTYPES}
     for k, v in (phenotype or {}).items():
         if k not in PHENOTYPES:
@@ -162,11 +178,16 @@ def make_anny_body(
         if not 0.0 <= v <= 1.0:
             raise InputError(f"phenotype {k}={v} must be in [0, 1]")
         ph[k] = v
-    rot = parse_pose(pose) if isinstance(pose, str) else dict(pose)
+    return ph
+
+
+def _run_anny(anny, ph: dict[str, float], rot: dict):
+    """The anny model and its output for phenotype ``ph``, posed by ``rot`` (world-frame rotvecs,
+    or the T-pose marker) when given."""
+    import torch
 
     model = anny.Anny()
     labels = list(model.bone_labels)
-    parents = list(model.bone_parents)
     with torch.no_grad():
         out = model(phenotype_kwargs={k: torch.tensor([v], dtype=torch.float64) for k, v in ph.items()})
         if rot:
@@ -178,41 +199,36 @@ def make_anny_body(
                 phenotype_kwargs={k: torch.tensor([v], dtype=torch.float64) for k, v in ph.items()},
                 pose_parameterization="world",
             )
-    verts_a = out["vertices"][0].double().numpy()  # (V, 3) anny frame [m]
-    heads_a = out["bone_poses"][0, :, :3, 3].double().numpy()  # (104, 3)
-    faces = model.get_triangular_faces().numpy().astype(np.int64)
+    return model, out
 
-    # skinning weights: anny (V, 9) sparse over 104 bones -> our joints (nearest mapped ancestor)
+
+def _joint_weights(model, n_verts: int) -> np.ndarray:
+    """Skinning weights (V, J) float64 on our joints: anny's (V, 9) sparse weights over 104 bones,
+    each bone given to its nearest ancestor that JOINT_MAP maps."""
+    labels, parents = list(model.bone_labels), list(model.bone_parents)
     src = {v[0]: i for i, (k, v) in enumerate(JOINT_MAP.items()) if v[0]}
-    names = list(JOINT_MAP)
     bone_to_joint = np.zeros(len(labels), dtype=np.int64)
-    for b, lab in enumerate(labels):
+    for b in range(len(labels)):
         k = b
         while labels[k] not in src:
             k = parents[k]
         bone_to_joint[b] = src[labels[k]]
     wv = model.vertex_bone_weights.double().numpy()
     wi = model.vertex_bone_indices.numpy().astype(np.int64)
-    W = np.zeros((len(verts_a), len(names)))
-    np.add.at(W, (np.arange(len(verts_a))[:, None], bone_to_joint[wi]), wv)
+    W = np.zeros((n_verts, len(JOINT_MAP)))
+    np.add.at(W, (np.arange(n_verts)[:, None], bone_to_joint[wi]), wv)
+    return W
 
-    verts = verts_a @ ANNY_TO_WORLD.T
-    heads = heads_a @ ANNY_TO_WORLD.T
 
-    # largest closed component, keeping the weights of the kept vertices
-    keep_v, faces = _largest_component(verts, faces)
-    verts, W = verts[keep_v], W[keep_v]
-    v2, f2, _ = clean_body_mesh(verts, faces, what="anny body")
-    if len(v2) != len(verts):
-        raise RuntimeError("anny body component is not closed as generated")  # pragma: no cover
-    faces = f2
-
+def _skeleton(verts: np.ndarray, heads: np.ndarray, labels: list[str]) -> tuple[np.ndarray, Skeleton]:
+    """Our skeleton from anny's bone heads (104, 3) [m] (head_top: the highest vertex near the
+    head's vertical axis), body and skeleton moved to feet at y = 0, pelvis at x = z = 0."""
+    names = list(JOINT_MAP)
     pos = np.zeros((len(names), 3))
     for j, n in enumerate(names):
         bone = JOINT_MAP[n][0]
         if bone is not None:
             pos[j] = heads[labels.index(bone)]
-    # head_top: highest vertex near the head's vertical axis
     hj = names.index("head")
     near = np.linalg.norm((verts - pos[hj])[:, [0, 2]], axis=1) < 0.06
     pos[names.index("head_top")] = [pos[hj, 0], verts[near, 1].max(), pos[hj, 2]]
@@ -220,15 +236,16 @@ def make_anny_body(
     offset = np.array([-pos[0, 0], -verts[:, 1].min(), -pos[0, 2]])
     verts, pos = verts + offset, pos + offset
     par = np.array([-1 if JOINT_MAP[n][1] is None else names.index(JOINT_MAP[n][1]) for n in names])
-    sk = Skeleton(names, par, pos, [JOINT_MAP[n][2] for n in names])
+    return verts, Skeleton(names, par, pos, [JOINT_MAP[n][2] for n in names])
 
-    # sparsify the weights to the top-k per vertex
+
+def _keep_top_k(W: np.ndarray, top_k: int) -> np.ndarray:
+    """Weights (V, J) with all but each vertex's ``top_k`` largest zeroed, rows normalized to 1."""
     if top_k and top_k < W.shape[1]:
         idx = np.argsort(-W, axis=1)[:, top_k:]
         np.put_along_axis(W, idx, 0.0, axis=1)
     W /= np.maximum(W.sum(axis=1, keepdims=True), 1e-12)
-    label = ",".join(f"{k}={ph[k]:g}" for k in PHENOTYPES)
-    return Body(verts, faces, sk, W, name=f"anny({label};pose={pose if isinstance(pose, str) else 'custom'})")
+    return W
 
 
 def _t_pose_rotations(out, labels) -> dict:
@@ -248,19 +265,12 @@ def _t_pose_rotations(out, labels) -> dict:
 
 
 def _largest_component(verts: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Vertex indices (kept, sorted) and re-indexed faces of the component with most faces."""
-    import scipy.sparse as sp
-    from scipy.sparse.csgraph import connected_components
-
-    V = len(verts)
-    e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]]])
-    A = sp.coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(V, V))
-    n, lab = connected_components(A, directed=False)
-    fl = lab[faces[:, 0]]
-    best = np.bincount(fl, minlength=n).argmax()
-    keep_f = faces[fl == best]
+    """Vertex indices (kept, sorted) and re-indexed faces of the component (vertex-connected)
+    with most faces."""
+    n, lab = components(faces, len(verts), by="vertex")
+    keep_f = faces[lab == np.bincount(lab, minlength=n).argmax()]
     keep_v = np.unique(keep_f)
-    remap = -np.ones(V, dtype=np.int64)
+    remap = -np.ones(len(verts), dtype=np.int64)
     remap[keep_v] = np.arange(len(keep_v))
     return keep_v, remap[keep_f]
 
@@ -268,8 +278,6 @@ def _largest_component(verts: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray
 def save_body_npz(body: Body, path: str | os.PathLike, *, top_k: int = 4, meta: dict | None = None) -> None:
     """Store a body compactly: vertices float32 [m], faces int32, skeleton float64, the top-k
     skinning weights per vertex (uint8 joint index, float32 weight). Written atomically."""
-    from unsew.io.atomic import atomic_write
-
     sk = body.skeleton
     arrays = dict(
         verts=body.verts.astype(np.float32),

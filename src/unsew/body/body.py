@@ -25,7 +25,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from unsew.body.skeleton import Skeleton
+from unsew.body.rig import rig_skeleton
+from unsew.body.skeleton import Skeleton, distance_to_bone, load_skeleton
+from unsew.errors import InputError
+from unsew.geometry.topology import boundary_loops, unique_edges
+from unsew.io.mesh import UNIT_SCALE, frame_matrix, read_mesh
 from unsew.tolerances import BODY_MIRROR_TOL
 
 __all__ = ["Body", "default_body", "load_body", "clean_body_mesh", "check_body_plausible"]
@@ -79,7 +83,6 @@ class Body:
         if self.weights is not None:
             moved = np.array(sk.moved_part())
             return moved[np.argmax(self.weights, axis=1)]
-        from unsew.body.skeleton import distance_to_bone
 
         bones = sk.bones()
         d = np.stack([distance_to_bone(self.verts, b) for b in bones], axis=1)  # (V, nbones)
@@ -119,8 +122,6 @@ def _data_path() -> str:
 
 @functools.lru_cache(maxsize=1)
 def _load_default() -> Body:
-    from unsew.errors import InputError
-
     path = _data_path()
     if not os.path.isfile(path):
         raise InputError(f"default body data {path} is missing; reinstall unsew")
@@ -222,30 +223,6 @@ def default_body() -> Body:
 # -- any body from files ---------------------------------------------------------------------
 
 
-def _boundary_loops(faces: np.ndarray) -> list[np.ndarray]:
-    """Boundary loops of a triangle mesh as vertex index arrays, oriented like the faces' edges
-    (edge (a, b) of a face, a -> b)."""
-    e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
-    key = np.sort(e, axis=1)
-    _, inv, cnt = np.unique(key, axis=0, return_inverse=True, return_counts=True)
-    bnd = e[cnt[inv.reshape(-1)] == 1]
-    nxt = {}
-    for a, b in bnd:
-        nxt.setdefault(int(a), []).append(int(b))
-    loops, seen = [], set()
-    for start in list(nxt):
-        if start in seen:
-            continue
-        loop, v = [], start
-        while v not in seen and v in nxt:
-            seen.add(v)
-            loop.append(v)
-            v = nxt[v][0]
-        if len(loop) >= 3:
-            loops.append(np.array(loop))
-    return loops
-
-
 def clean_body_mesh(verts: np.ndarray, faces: np.ndarray, *, what: str = "body mesh") -> tuple[np.ndarray, np.ndarray, list[str]]:
     """Keep the largest connected component, merge duplicate vertices, fill small holes.
 
@@ -255,8 +232,6 @@ def clean_body_mesh(verts: np.ndarray, faces: np.ndarray, *, what: str = "body m
     InputError saying how to fix the mesh.
     """
     import trimesh
-
-    from unsew.errors import InputError
 
     notes = []
     m = trimesh.Trimesh(np.asarray(verts, np.float64), np.asarray(faces, np.int64), process=True, validate=False)
@@ -268,14 +243,13 @@ def clean_body_mesh(verts: np.ndarray, faces: np.ndarray, *, what: str = "body m
         m = max(parts, key=lambda p: (p.is_watertight, len(p.faces)))
         notes.append(f"kept the largest closed component of {len(parts)}")
     verts, faces = np.asarray(m.vertices), np.asarray(m.faces, dtype=np.int64)
-    e = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
-    _, cnt = np.unique(e, axis=0, return_counts=True)
+    cnt = unique_edges(faces)[2]  # (E,) faces per edge
     if (cnt > 2).any():
         raise InputError(
             f"{what} has {(cnt > 2).sum()} non-manifold edges (shared by 3+ triangles); "
             "export the body as one closed manifold surface"
         )
-    loops = _boundary_loops(faces)
+    loops = boundary_loops(faces)
     if loops:
         new_v, new_f = [verts], [faces]
         nv = len(verts)
@@ -313,8 +287,6 @@ def check_body_plausible(verts: np.ndarray, skeleton: Skeleton | None = None, *,
     verts: (V, 3) float64, as read (after the user's unit/frame options). Raises InputError
     naming the option to use (``--units cm``, ``--up z``, ``--front -z``).
     """
-    from unsew.errors import InputError
-
     ext = verts.max(axis=0) - verts.min(axis=0)  # (3,) [m]
     lo, hi = HEIGHT_RANGE
     # the up axis: from the skeleton (pelvis -> head) when there is one, else the longest extent
@@ -383,10 +355,6 @@ def load_body(
     from the mesh (``unsew.body.rig.rig_skeleton``) and the Body says so (``rigged=True`` and a
     note). Returns a Body without skinning weights; ``notes`` lists what was repaired or rigged.
     """
-    from unsew.body.skeleton import load_skeleton
-    from unsew.errors import InputError
-    from unsew.io.mesh import UNIT_SCALE, frame_matrix, read_mesh
-
     what = f"body {os.fspath(mesh_path)}"
     verts, faces = read_mesh(mesh_path, units=units, up=up, front=front)
     sk = None
@@ -398,7 +366,6 @@ def load_body(
     verts, faces, notes = clean_body_mesh(verts, faces, what=f"body mesh {os.fspath(mesh_path)}")
     if sk is None:
         check_body_plausible(verts, None, what=what)
-        from unsew.body.rig import rig_skeleton
 
         try:
             sk = rig_skeleton(verts, faces)

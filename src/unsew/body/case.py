@@ -11,6 +11,7 @@ import os
 
 import numpy as np
 
+from unsew.body.anny_body import make_anny_body
 from unsew.body.body import Body, default_body, load_body
 from unsew.errors import InputError
 from unsew.io.case import Case, CaseFiles, read_case
@@ -50,8 +51,6 @@ def load_case_body(files: CaseFiles) -> Body:
     if spec == "default":
         return default_body()
     if isinstance(spec, dict) and spec.get("model") == "anny":
-        from unsew.body.anny_body import make_anny_body
-
         return make_anny_body(phenotype=spec.get("phenotype", {}), pose=spec.get("pose", "A"))
     raise InputError(f'meta.json "body" must be "default" or {{"model": "anny", ...}}, got {spec!r}')
 

@@ -23,7 +23,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from unsew.body.measurements import Measurements
+from unsew.pattern.measurements import Measurements
+from unsew.body.skeleton import Bone, distance_to_bone
+from unsew.geometry.topology import unique_edges
 
 __all__ = ["measure_body", "section_points", "hull_perimeter"]
 
@@ -32,10 +34,10 @@ def section_points(verts: np.ndarray, faces: np.ndarray, origin: np.ndarray, nor
     """Points where mesh edges cross the plane through ``origin`` with ``normal``.
 
     verts: (V, 3) float64 [m]; faces: (F, 3) int; origin, normal: (3,) [m] / unit.
-    Returns (K, 3) float64 [m] (each crossing edge once per face; duplicates harmless).
+    Returns (K, 3) float64 [m], one point per crossing edge.
     """
     s = (verts - origin) @ normal  # (V,) signed height above the plane
-    e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    e = unique_edges(faces)[0]  # (E, 2)
     sa, sb = s[e[:, 0]], s[e[:, 1]]
     cross = (sa < 0) != (sb < 0)
     e, sa, sb = e[cross], sa[cross], sb[cross]
@@ -71,8 +73,6 @@ def measure_body(body) -> Measurements:
     body: a ``Body`` (verts (V,3) float64 [m], faces, skeleton with the required joints).
     Returns ``Measurements`` in metres.
     """
-    from unsew.body.skeleton import Bone, distance_to_bone
-
     V, F, sk = body.verts, body.faces, body.skeleton
     P = sk.position
     floor = float(V[:, 1].min())
@@ -103,43 +103,17 @@ def measure_body(body) -> Measurements:
     ys_h, g_h = _scan(V, F, no_arm_face, crotch_y + 0.02, pelvis[1] + 0.02)
     hip = float(g_h.max())
 
-    # neck girth
-    y_n = neck[1] + 0.25 * (head[1] - neck[1])
-    near_neck = np.linalg.norm((V - neck)[:, [0, 2]], axis=1) < 0.08
-    p = section_points(V, F[near_neck[F].all(axis=1)], np.array([0.0, y_n, 0.0]), np.array([0.0, 1.0, 0.0]))
-    neck_g = hull_perimeter(p[:, [0, 2]])
-
-    # upper arm: cut perpendicular to the left upper-arm bone at 30 %
-    ub = Bone("left_elbow", "left_shoulder", "left_elbow", l_sh, P("left_elbow"), "left_arm")
-    o = ub.a + 0.3 * (ub.b - ub.a)
-    arm_v = parts == "left_arm"
-    near_arm = arm_v & (distance_to_bone(V, ub) < 0.1)
-    p = section_points(V, F[near_arm[F].all(axis=1)], o, ub.direction)
-    p = p[np.linalg.norm(p - o, axis=1) < 0.1]
-    e1 = np.cross(ub.direction, [0.0, 0.0, 1.0])
-    e1 /= np.linalg.norm(e1)
-    e2 = np.cross(ub.direction, e1)
-    upper_arm = hull_perimeter(np.stack([(p - o) @ e1, (p - o) @ e2], axis=1))
-
+    neck_g = _neck_girth(V, F, neck, head)
+    upper_arm = _upper_arm_girth(V, F, parts, l_sh, P("left_elbow"))
     # thigh: left leg 3 cm below the crotch
     leg_v = (parts == "left_leg") | ((parts == "torso") & (V[:, 0] > pelvis[0]))
     leg_f = leg_v[F].all(axis=1) & (V[F][:, :, 0].min(axis=1) > pelvis[0])
     thigh = _horizontal_girth(V, F, leg_f, crotch_y - 0.03)
-
-    # shoulder width: outermost surface points 3 cm above the shoulder joints (the acromion;
-    # lower, the deltoid's bulge would count)
-    def outer(sh, sign):
-        m = (V[:, 1] >= sh[1] + 0.03) & (np.linalg.norm(V - sh, axis=1) < 0.09)
-        return float((sign * V[m, 0]).max()) if m.any() else float(sign * sh[0])
-
-    shoulder_width = outer(l_sh, 1.0) + outer(r_sh, -1.0)
-
-    def length(*names):
-        pts = [P(n) for n in names]
-        return float(sum(np.linalg.norm(b - a) for a, b in zip(pts[:-1], pts[1:])))
-
-    arm = 0.5 * (length("left_shoulder", "left_elbow", "left_wrist") + length("right_shoulder", "right_elbow", "right_wrist"))
-    leg = 0.5 * (length("left_hip", "left_knee", "left_ankle") + length("right_hip", "right_knee", "right_ankle"))
+    shoulder_width = _outer_x(V, l_sh, 1.0) + _outer_x(V, r_sh, -1.0)
+    arm = 0.5 * (
+        _length(sk, "left_shoulder", "left_elbow", "left_wrist") + _length(sk, "right_shoulder", "right_elbow", "right_wrist")
+    )
+    leg = 0.5 * (_length(sk, "left_hip", "left_knee", "left_ankle") + _length(sk, "right_hip", "right_knee", "right_ankle"))
     return Measurements(
         height=height,
         bust=bust,
@@ -156,3 +130,38 @@ def measure_body(body) -> Measurements:
         crotch_height=crotch_y - floor,
         neck_height=float(neck[1] - floor),
     )
+
+
+def _neck_girth(V, F, neck, head) -> float:
+    """Girth [m] a quarter of the way from the neck joint to the head joint, of the faces within
+    8 cm of the neck's vertical axis."""
+    y_n = neck[1] + 0.25 * (head[1] - neck[1])
+    near_neck = np.linalg.norm((V - neck)[:, [0, 2]], axis=1) < 0.08
+    p = section_points(V, F[near_neck[F].all(axis=1)], np.array([0.0, y_n, 0.0]), np.array([0.0, 1.0, 0.0]))
+    return hull_perimeter(p[:, [0, 2]])
+
+
+def _upper_arm_girth(V, F, parts, shoulder, elbow) -> float:
+    """Girth [m] of the left arm cut perpendicular to the upper-arm bone at 30 % from the shoulder."""
+    ub = Bone("left_elbow", "left_shoulder", "left_elbow", shoulder, elbow, "left_arm")
+    o = ub.a + 0.3 * (ub.b - ub.a)
+    near_arm = (parts == "left_arm") & (distance_to_bone(V, ub) < 0.1)
+    p = section_points(V, F[near_arm[F].all(axis=1)], o, ub.direction)
+    p = p[np.linalg.norm(p - o, axis=1) < 0.1]
+    e1 = np.cross(ub.direction, [0.0, 0.0, 1.0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(ub.direction, e1)
+    return hull_perimeter(np.stack([(p - o) @ e1, (p - o) @ e2], axis=1))
+
+
+def _outer_x(V, sh, sign: float) -> float:
+    """Outermost surface x [m] (times ``sign``) 3 cm above a shoulder joint (the acromion; lower,
+    the deltoid's bulge would count)."""
+    m = (V[:, 1] >= sh[1] + 0.03) & (np.linalg.norm(V - sh, axis=1) < 0.09)
+    return float((sign * V[m, 0]).max()) if m.any() else float(sign * sh[0])
+
+
+def _length(sk, *names) -> float:
+    """Length [m] of the polyline through the named joints."""
+    pts = [sk.position(n) for n in names]
+    return float(sum(np.linalg.norm(b - a) for a, b in zip(pts[:-1], pts[1:])))

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from unsew.body.body import Body
+from unsew.body.skeleton import Skeleton
 from unsew.errors import InputError
 
 __all__ = ["pose_body", "rotation_matrix", "POSES"]
@@ -42,9 +44,6 @@ def pose_body(body, rotations: dict | str, *, name: str | None = None):
     rotations: joint name -> rotation vector (3,) [rad], world frame, or a name from POSES.
     Returns a Body with moved vertices (V, 3) [m], moved joint positions, the same faces and weights.
     """
-    from unsew.body.body import Body
-    from unsew.body.skeleton import Skeleton
-
     if isinstance(rotations, str):
         if rotations not in POSES:
             raise InputError(f"unknown pose {rotations!r}; known: {', '.join(sorted(POSES))}")

@@ -6,6 +6,8 @@ import os
 
 import numpy as np
 
+from unsew.io.atomic import atomic_write
+
 __all__ = ["render_rig_preview"]
 
 
@@ -19,8 +21,6 @@ def render_rig_preview(body, path: str | os.PathLike, *, title: str | None = Non
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-
-    from unsew.io.atomic import atomic_write
 
     V = np.asarray(body.verts)
     sk = body.skeleton

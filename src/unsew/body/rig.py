@@ -37,6 +37,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from unsew.body.skeleton import Skeleton
+from unsew.errors import InputError
+from unsew.geometry.topology import unique_edges
+
 __all__ = ["rig_skeleton", "RIG_JOINTS"]
 
 #: The joints :func:`rig_skeleton` places: name -> (parent, part) (FORMATS.md's 17).
@@ -98,8 +102,7 @@ class _Limb:
 def _graph(verts: np.ndarray, faces: np.ndarray):
     import scipy.sparse as sp
 
-    e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
-    e = np.unique(np.sort(e, axis=1), axis=0)
+    e = unique_edges(faces)[0]  # (E, 2)
     w = np.linalg.norm(verts[e[:, 0]] - verts[e[:, 1]], axis=1)
     n = len(verts)
     a = sp.coo_matrix((w, (e[:, 0], e[:, 1])), shape=(n, n)).tocsr()
@@ -270,9 +273,6 @@ def rig_skeleton(verts: np.ndarray, faces: np.ndarray, *, debug: dict | None = N
     Raises InputError when the surface does not read as a standing person with two arms and
     two legs.
     """
-    from unsew.body.skeleton import Skeleton
-    from unsew.errors import InputError
-
     V = np.asarray(verts, dtype=np.float64)
     F = np.asarray(faces, dtype=np.int64)
     floor = float(V[:, 1].min())
@@ -330,8 +330,6 @@ def _arm_joints(arm: _Limb, shoulder: np.ndarray, side: str, H: float) -> dict:
     win = np.flatnonzero((t > _WRIST_WINDOW[0] * H) & (t < _WRIST_WINDOW[1] * H))
     win = win[win < arm.root]
     if len(win) == 0:
-        from unsew.errors import InputError
-
         raise InputError(f"cannot find the {side} wrist: the {side} arm is shorter than a hand")
     gmin = g[win].min()
     iw = int(win[np.argmax(g[win] < _NARROW * gmin)])  # the hand's end of the forearm's narrow part
@@ -373,8 +371,6 @@ def _torso_joints(col: _Column, floor: float, H: float) -> dict:
     yr = (col.y - floor) / H
     m = (yr > 0.78) & (yr < 0.9)
     if not m.any():
-        from unsew.errors import InputError
-
         raise InputError("cannot find the neck of the body (no narrow section 78-90 % of its height up)")
     neck_min = col.y[np.flatnonzero(m)[np.argmin(col.g[m])]]
 

@@ -35,6 +35,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from unsew.body.body import mirror_plane
+from unsew.errors import InputError
+from unsew.geometry.topology import unique_edges
+from unsew.io.atomic import atomic_write
+
 __all__ = ["BodySDF", "closest_point_on_triangles", "mesh_distance", "default_cache_dir"]
 
 #: Bump when the build changes, so cached grids are rebuilt.
@@ -78,28 +83,23 @@ def closest_point_on_triangles(p: np.ndarray, a: np.ndarray, b: np.ndarray, c: n
         q = a + ab * v[:, None] + ac * w[:, None]
         region = np.zeros(len(p), dtype=np.int8)
         # overrides in reverse priority: the first matching test of Ericson's order wins last
-        m = (va <= 0) & ((d4 - d3) >= 0) & ((d5 - d6) >= 0)
         t = (d4 - d3) / np.maximum((d4 - d3) + (d5 - d6), tiny)
-        q = np.where(m[:, None], b + (c - b) * t[:, None], q)
-        region[m] = 5
-        m = (vb <= 0) & (d2 >= 0) & (d6 <= 0)
+        q = _override(q, region, (va <= 0) & ((d4 - d3) >= 0) & ((d5 - d6) >= 0), b + (c - b) * t[:, None], 5)
         t = d2 / np.where(np.abs(d2 - d6) < tiny, tiny, d2 - d6)
-        q = np.where(m[:, None], a + ac * t[:, None], q)
-        region[m] = 6
-        m = (d6 >= 0) & (d5 <= d6)
-        q = np.where(m[:, None], c, q)
-        region[m] = 3
-        m = (vc <= 0) & (d1 >= 0) & (d3 <= 0)
+        q = _override(q, region, (vb <= 0) & (d2 >= 0) & (d6 <= 0), a + ac * t[:, None], 6)
+        q = _override(q, region, (d6 >= 0) & (d5 <= d6), c, 3)
         t = d1 / np.where(np.abs(d1 - d3) < tiny, tiny, d1 - d3)
-        q = np.where(m[:, None], a + ab * t[:, None], q)
-        region[m] = 4
-        m = (d3 >= 0) & (d4 <= d3)
-        q = np.where(m[:, None], b, q)
-        region[m] = 2
-        m = (d1 <= 0) & (d2 <= 0)
-        q = np.where(m[:, None], a, q)
-        region[m] = 1
+        q = _override(q, region, (vc <= 0) & (d1 >= 0) & (d3 <= 0), a + ab * t[:, None], 4)
+        q = _override(q, region, (d3 >= 0) & (d4 <= d3), b, 2)
+        q = _override(q, region, (d1 <= 0) & (d2 <= 0), a, 1)
     return q, region
+
+
+def _override(q: np.ndarray, region: np.ndarray, m: np.ndarray, point: np.ndarray, code: int) -> np.ndarray:
+    """Closest points (N, 3) with rows ``m`` replaced by ``point`` (N, 3) or (3,); ``region``
+    (N,) int8 set to ``code`` there (in place)."""
+    region[m] = code
+    return np.where(m[:, None], point, q)
 
 
 def mesh_distance(points: np.ndarray, verts: np.ndarray, faces: np.ndarray, *, chunk: int = 2_000_000) -> tuple[np.ndarray, np.ndarray]:
@@ -137,7 +137,6 @@ def _pseudonormals(verts: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np
         cos = np.einsum("ij,ij->i", e1, e2) / np.maximum(np.linalg.norm(e1, axis=1) * np.linalg.norm(e2, axis=1), 1e-30)
         ang = np.arccos(np.clip(cos, -1.0, 1.0))
         np.add.at(vn, faces[:, k], fn * ang[:, None])
-    from unsew.geometry.topology import unique_edges
 
     _, inv, _ = unique_edges(faces)  # (3F,) edge of each (face, local edge ab/bc/ca)
     en_u = np.zeros((inv.max() + 1, 3))
@@ -236,8 +235,6 @@ class BodySDF:
         cache_dir: folder of cached grids (default ``default_cache_dir()``), keyed by a hash of
         verts, faces, voxel and margin; ``use_cache=False`` neither reads nor writes it.
         """
-        from unsew.errors import InputError
-
         verts = np.ascontiguousarray(body.verts, dtype=np.float64)
         faces = np.ascontiguousarray(body.faces, dtype=np.int64)
         if not (voxel > 0 and margin >= 0):
@@ -265,14 +262,13 @@ class BodySDF:
         t0 = time.perf_counter()
         values, origin = _build_grid(verts, faces, voxel, margin)
         # the cache stores float32: round a fresh grid the same way, so a run is reproducible
-        # whether its grid was built or read (the drape of loose cloth amplifies the difference:
-        # bench_grading's skirt came out at 6.9 mm from a fresh grid and 10.6 mm from the cache)
+        # whether its grid was built or read (the drape of loose cloth amplifies the difference;
+        # docs/history.md, "Notes moved from docstrings")
         values = values.astype(np.float32).astype(np.float64)
         sdf = cls(values, origin, float(voxel), build_seconds=time.perf_counter() - t0)
         if path is not None:
             try:
                 os.makedirs(os.path.dirname(path), exist_ok=True)
-                from unsew.io.atomic import atomic_write
 
                 with atomic_write(path) as tmp:
                     with open(tmp, "wb") as fh:
@@ -345,16 +341,23 @@ class BodySDF:
 def _build_grid(verts: np.ndarray, faces: np.ndarray, h: float, margin: float) -> tuple[np.ndarray, np.ndarray]:
     """(values (nz, ny, nx) float64 [m], origin (3,) [m]) of the signed distance of a closed mesh.
 
-    A mirror-symmetric body (:func:`unsew.body.body.mirror_plane`) gets a grid whose nodes are symmetric about
-    its plane and values averaged with their mirror images, so the distance is exactly
-    symmetric: a symmetric garment then drapes symmetrically. Measured on the default body:
-    without this the distance at mirror points differed by up to 1.3 mm (grid alignment and
-    interpolation), which seeded asymmetric folds of loose cloth.
+    A mirror-symmetric body (:func:`unsew.body.body.mirror_plane`) gets a grid whose nodes are
+    symmetric about its plane and values averaged with their mirror images, so the distance is
+    exactly symmetric: grid alignment and interpolation would otherwise differ at mirror points
+    and seed asymmetric folds of loose cloth.
     """
-    from scipy import ndimage
+    origin, shape, plane = _grid_frame(verts, h, margin)
+    near = _nearest_surface(verts, faces, origin, h, shape)
+    sign = _grid_sign(verts, faces, near, h, shape)
+    values = (sign * near.dist).reshape(shape)
+    if plane is not None:
+        values = 0.5 * (values + values[:, :, ::-1])
+    return values, origin
 
-    from unsew.body.body import mirror_plane
 
+def _grid_frame(verts: np.ndarray, h: float, margin: float):
+    """Grid origin (3,) [m], shape (nz, ny, nx) and the body's mirror plane x [m] (or None);
+    a mirrored body's nodes are placed symmetric about its plane."""
     origin = verts.min(axis=0) - margin
     n = np.ceil((verts.max(axis=0) + margin - origin) / h).astype(np.int64) + 1  # (nx, ny, nz)
     plane = mirror_plane(verts)
@@ -363,7 +366,29 @@ def _build_grid(verts: np.ndarray, faces: np.ndarray, h: float, margin: float) -
         origin[0] = plane - k * h
         n[0] = 2 * k + 1
     nx, ny, nz = (int(v) for v in n)
-    shape = (nz, ny, nx)
+    return origin, (nz, ny, nx), plane
+
+
+@dataclass
+class _Nearest:
+    """Closest surface point of every grid node: node positions ``pts`` (nnodes, 3) [m], band
+    closest points ``Q`` (B, 3) [m] with their Voronoi ``region`` (B,) and triangle ``bt`` (B,),
+    ``src`` (nnodes,) the band entry each node takes, ``dist`` (nnodes,) unsigned distance [m]."""
+
+    pts: np.ndarray
+    Q: np.ndarray
+    region: np.ndarray
+    bt: np.ndarray
+    src: np.ndarray
+    dist: np.ndarray
+
+
+def _nearest_surface(verts, faces, origin, h: float, shape) -> _Nearest:
+    """Exact closest points in a band of 1.5 h about the surface, propagated to every node by a
+    Euclidean distance transform and corrected by one neighbour sweep near the surface."""
+    from scipy import ndimage
+
+    nz, ny, nx = shape
     r = 1.5 * h
     best_d, best_t = _band(verts, faces, origin, h, shape, r)
     band = best_d <= r  # exact there: every triangle within r of such a node was visited
@@ -385,6 +410,7 @@ def _build_grid(verts: np.ndarray, faces: np.ndarray, h: float, margin: float) -
     Y, X = np.divmod(rem, nx)
     pts = origin + h * np.stack([X, Y, Z], axis=1).astype(np.float64)
     del X, Y, Z, rem
+
     def sqdist(cand, nodes):
         v = pts[nodes] - Q[cand]
         return np.einsum("ij,ij->i", v, v)
@@ -400,9 +426,15 @@ def _build_grid(verts: np.ndarray, faces: np.ndarray, h: float, margin: float) -
             m = dc < dist2[act]
             dist2[act[m]] = dc[m]
             src[act[m]] = cand[m]
-    dist = np.sqrt(dist2)
-    del dist2
-    # sign: flood fill of the exterior outside the half-voxel shell
+    return _Nearest(pts=pts, Q=Q, region=region, bt=bt, src=src, dist=np.sqrt(dist2))
+
+
+def _grid_sign(verts, faces, near: _Nearest, h: float, shape) -> np.ndarray:
+    """(nnodes,) float64 sign (+1 outside, -1 inside): flood fill of the exterior outside the
+    half-voxel shell, a pseudonormal vote for enclosed regions, pseudonormals on the shell."""
+    from scipy import ndimage
+
+    dist, src, bt, region, Q, pts = near.dist, near.src, near.bt, near.region, near.Q, near.pts
     shell = (dist <= 0.5 * h * 1.05).reshape(shape)
     lab, nlab = ndimage.label(~shell)  # 6-connected by default
     lab = lab.ravel()
@@ -436,7 +468,4 @@ def _build_grid(verts: np.ndarray, faces: np.ndarray, h: float, margin: float) -
     # shell nodes: angle-weighted pseudonormal at the closest point
     sidx = np.flatnonzero(shell.ravel())
     sign[sidx] = pseudo_sign(sidx)
-    values = (sign * dist).reshape(shape)
-    if plane is not None:
-        values = 0.5 * (values + values[:, :, ::-1])
-    return values, origin
+    return sign

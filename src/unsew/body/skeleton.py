@@ -21,6 +21,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+from unsew.errors import InputError
+from unsew.io.atomic import atomic_write
+
 __all__ = [
     "PARTS",
     "REQUIRED_JOINTS",
@@ -93,8 +96,6 @@ class Skeleton:
     _index: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        from unsew.errors import InputError
-
         self.names = [str(n) for n in self.names]
         self.parents = np.asarray(self.parents, dtype=np.int64).reshape(-1)
         self.positions = np.asarray(self.positions, dtype=np.float64).reshape(-1, 3)
@@ -230,8 +231,6 @@ class Skeleton:
         """Build from a skeleton.json mapping. ``scale`` converts its positions to metres (0.01 for
         cm); a ``units`` key in ``d`` overrides it. Missing required joints raise InputError
         naming them."""
-        from unsew.errors import InputError
-
         if not isinstance(d, dict) or not isinstance(d.get("joints"), list) or not d["joints"]:
             raise InputError('skeleton must be a JSON object with a non-empty "joints" list (see FORMATS.md)')
         units = d.get("units")
@@ -285,8 +284,6 @@ def load_skeleton(path: str | os.PathLike, *, scale: float = 1.0) -> Skeleton:
     """Read skeleton.json (shared/FORMATS.md). Positions are converted to metres by its ``units``
     key (or ``scale`` if it has none). Raises InputError on a missing file, bad JSON or missing
     required joints (named)."""
-    from unsew.errors import InputError
-
     path = os.fspath(path)
     if not os.path.isfile(path):
         raise InputError(f"skeleton file {path!r} not found; give the wearer's skeleton.json")
@@ -303,8 +300,6 @@ def load_skeleton(path: str | os.PathLike, *, scale: float = 1.0) -> Skeleton:
 
 def save_skeleton(skeleton: Skeleton, path: str | os.PathLike) -> None:
     """Write skeleton.json atomically (temporary name in the same folder, then rename)."""
-    from unsew.io.atomic import atomic_write
-
     text = json.dumps(skeleton.to_dict(), indent=1)
     with atomic_write(path) as tmp:
         with open(tmp, "w", encoding="utf-8") as fh:

@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from unsew.body.body import Body, check_body_plausible, clean_body_mesh
+from unsew.body.skeleton import Skeleton
 from unsew.errors import InputError
 
 __all__ = ["SMPLX_JOINTS", "SMPLX_PARENTS", "make_smplx_body"]
@@ -70,8 +72,6 @@ def make_smplx_body(model_path, *, gender: str = "neutral", betas=None, body_pos
         import torch
     except ImportError:
         raise InputError("SMPL-X bodies need the smplx package: pip install unsew[smplx] (and SMPL-X's model files)") from None
-    from unsew.body.body import Body, check_body_plausible, clean_body_mesh
-    from unsew.body.skeleton import Skeleton
 
     betas = np.zeros(10) if betas is None else np.asarray(betas, dtype=np.float64).reshape(-1)
     try:

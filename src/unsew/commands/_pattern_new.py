@@ -15,7 +15,7 @@ def load_measurements(path):
 
     import yaml
 
-    from unsew.body.measurements import Measurements
+    from unsew.pattern.measurements import Measurements
     from unsew.errors import InputError
 
     p = Path(path)

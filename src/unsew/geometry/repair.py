@@ -33,6 +33,7 @@ import numpy as np
 
 from unsew.errors import InputError
 from unsew.geometry import topology
+from unsew.geometry.distance import MeshQuery
 
 __all__ = ["MeshRepair", "repair_garment", "MERGE_TOL", "DEGENERATE_REL", "SMALL_PIECE", "SEPARATE_GAP"]
 
@@ -113,18 +114,46 @@ def repair_garment(verts, faces, *, what: str = "target") -> tuple[np.ndarray, n
     Returns (verts (V', 3) float64 [m], faces (F', 3) int64, :class:`MeshRepair`).
     Raises InputError for branching (non-manifold) surfaces, several garments, or nothing left.
     """
+    v, f = _check_arrays(verts, faces, what)
+    rep = MeshRepair()
+    used0 = np.zeros(len(v), bool)
+    used0[f.ravel()] = True
+    rep.unreferenced_vertices = int((~used0).sum())
+    f, rep.merged_vertices = _merge_vertices(v, f)
+    f = _drop_bad_faces(v, f, rep, what)
+    area = _areas(v, f)
+    f, area = _cut_fins(v, f, area, rep, what)
+    f, rep.components = _drop_debris(v, f, area, rep, what)
+
+    # compact vertices, keeping their order
+    used = np.zeros(len(v), bool)
+    used[f.ravel()] = True
+    remap = np.cumsum(used) - 1
+    v, f = v[used], remap[f]
+    counted = [
+        (rep.merged_vertices, "merged {} duplicate vertices"),
+        (rep.degenerate_faces, "removed {} degenerate faces"),
+        (rep.duplicate_faces, "removed {} duplicate faces"),
+        (rep.unreferenced_vertices, "removed {} unreferenced vertices"),
+    ]
+    rep.notes = [fmt.format(k) for k, fmt in counted if k] + rep.notes
+    return np.ascontiguousarray(v), np.ascontiguousarray(f, dtype=np.int64), rep
+
+
+def _check_arrays(verts, faces, what: str) -> tuple[np.ndarray, np.ndarray]:
+    """(V, 3) float64 vertices and (F, 3) int64 faces, or InputError for non-finite or missing ones."""
     v = np.asarray(verts, dtype=np.float64)
     f = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
     if v.ndim != 2 or v.shape[1] != 3 or not np.isfinite(v).all():
         raise InputError(f"{what} needs finite vertex coordinates of shape (V, 3), got shape {v.shape}")
     if len(f) == 0 or f.min() < 0 or f.max() >= len(v):
         raise InputError(f"{what} has no triangles or faces indexing missing vertices (0..{len(v) - 1})")
-    rep = MeshRepair()
-    used0 = np.zeros(len(v), bool)
-    used0[f.ravel()] = True
-    rep.unreferenced_vertices = int((~used0).sum())
+    return v, f
 
-    f, rep.merged_vertices = _merge_vertices(v, f)
+
+def _drop_bad_faces(v: np.ndarray, f: np.ndarray, rep: MeshRepair, what: str) -> np.ndarray:
+    """Faces without degenerate (repeated vertex or area below DEGENERATE_REL of the median) and
+    duplicate triangles, counted in ``rep``; InputError when none is left."""
     area = _areas(v, f)
     med = float(np.median(area)) if len(area) else 0.0
     bad = (f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0]) | (area <= DEGENERATE_REL * med)
@@ -140,34 +169,42 @@ def repair_garment(verts, faces, *, what: str = "target") -> tuple[np.ndarray, n
     f = f[keep]
     if len(f) == 0:
         raise InputError(f"{what} has no triangles with area after removing degenerate ones")
-    area = _areas(v, f)
-    total = float(area.sum())
+    return f
 
-    # fins: small pieces hanging on non-manifold edges
+
+def _cut_fins(v, f, area, rep: MeshRepair, what: str) -> tuple[np.ndarray, np.ndarray]:
+    """Faces (and their areas [m^2]) without fins, small pieces hanging on non-manifold edges;
+    InputError when non-manifold edges remain."""
+    total = float(area.sum())
+    _, inv, cnt = topology.unique_edges(f)
+    if not (cnt > 2).any():
+        return f, area
+    n, lab, nm_half = _manifold_components(f)
+    n_faces = np.bincount(lab, minlength=n)
+    a_comp = np.bincount(lab, weights=area, minlength=n)
+    on_nm = np.bincount(lab, weights=nm_half.reshape(-1, 3).any(1), minlength=n) > 0
+    small = (n_faces < SMALL_PIECE * len(f)) & (a_comp < SMALL_PIECE * total) & on_nm
+    if small.any():
+        cut = small[lab]
+        rep.fin_faces = int(cut.sum())
+        where = _where(v[f[cut]].reshape(-1, 3).mean(0))
+        rep.notes.append(f"cut off {int(small.sum())} fin(s) of {rep.fin_faces} face(s) near {where}")
+        f = f[~cut]
+        area = area[~cut]
     _, inv, cnt = topology.unique_edges(f)
     if (cnt > 2).any():
-        n, lab, nm_half = _manifold_components(f)
-        n_faces = np.bincount(lab, minlength=n)
-        a_comp = np.bincount(lab, weights=area, minlength=n)
-        on_nm = np.bincount(lab, weights=nm_half.reshape(-1, 3).any(1), minlength=n) > 0
-        small = (n_faces < SMALL_PIECE * len(f)) & (a_comp < SMALL_PIECE * total) & on_nm
-        if small.any():
-            cut = small[lab]
-            rep.fin_faces = int(cut.sum())
-            where = _where(v[f[cut]].reshape(-1, 3).mean(0))
-            rep.notes.append(f"cut off {int(small.sum())} fin(s) of {rep.fin_faces} face(s) near {where}")
-            f = f[~cut]
-            area = area[~cut]
-        _, inv, cnt = topology.unique_edges(f)
-        if (cnt > 2).any():
-            e = topology.half_edges(f)[np.argmax(cnt[inv] > 2)]
-            raise InputError(
-                f"{what} has {int((cnt > 2).sum())} non-manifold edges (3+ triangles on one edge), e.g. at "
-                f"{_where(v[e].mean(0))}; the surface branches there: remove the extra faces (e.g. MeshLab "
-                "'Select non-manifold edges' then delete) and retry"
-            )
+        e = topology.half_edges(f)[np.argmax(cnt[inv] > 2)]
+        raise InputError(
+            f"{what} has {int((cnt > 2).sum())} non-manifold edges (3+ triangles on one edge), e.g. at "
+            f"{_where(v[e].mean(0))}; the surface branches there: remove the extra faces (e.g. MeshLab "
+            "'Select non-manifold edges' then delete) and retry"
+        )
+    return f, area
 
-    # disconnected pieces: debris removed, separate garments refused
+
+def _drop_debris(v, f, area, rep: MeshRepair, what: str) -> tuple[np.ndarray, int]:
+    """Faces without small loose pieces (debris) and the number of pieces left; InputError for
+    several garments apart (:func:`_check_separate`)."""
     n, lab = topology.components(f, len(v))
     if n > 1:
         a_comp = np.bincount(lab, weights=area, minlength=n)
@@ -186,27 +223,11 @@ def repair_garment(verts, faces, *, what: str = "target") -> tuple[np.ndarray, n
             n = len(big)
         if n > 1:
             _check_separate(v, f, lab, n, what)
-    rep.components = int(n)
-
-    # compact vertices, keeping their order
-    used = np.zeros(len(v), bool)
-    used[f.ravel()] = True
-    remap = np.cumsum(used) - 1
-    v, f = v[used], remap[f]
-    counted = [
-        (rep.merged_vertices, "merged {} duplicate vertices"),
-        (rep.degenerate_faces, "removed {} degenerate faces"),
-        (rep.duplicate_faces, "removed {} duplicate faces"),
-        (rep.unreferenced_vertices, "removed {} unreferenced vertices"),
-    ]
-    rep.notes = [fmt.format(k) for k, fmt in counted if k] + rep.notes
-    return np.ascontiguousarray(v), np.ascontiguousarray(f, dtype=np.int64), rep
+    return f, int(n)
 
 
 def _check_separate(v, f, lab, n, what) -> None:
     """Raise InputError when a piece lies farther than SEPARATE_GAP from every other piece."""
-    from unsew.geometry.distance import MeshQuery
-
     area = _areas(v, f)
     a_comp = np.bincount(lab, weights=area, minlength=n)
     for c in range(n):

@@ -18,6 +18,7 @@ __all__ = [
     "boundary_edges",
     "boundary_vertices",
     "boundary_loops",
+    "extend_walk",
     "edge_faces",
     "vertex_adjacency",
     "components",
@@ -106,19 +107,31 @@ def boundary_loops(faces) -> list[np.ndarray]:
         while e >= 0:
             used[e] = True
             w = int(targets[e])
-            if w in pos:  # closed a cycle: cut it off
-                k = pos[w]
-                if len(path) - k >= 3:
-                    loops.append(np.array(path[k:], dtype=np.int64))
-                for u in path[k + 1 :]:
-                    del pos[u]
-                path = path[: k + 1]
-            else:
-                pos[w] = len(path)
-                path.append(w)
+            cycle = extend_walk(path, pos, w)
+            if cycle is not None and len(cycle) >= 3:
+                loops.append(np.array(cycle, dtype=np.int64))
             e = take(w)
     loops.sort(key=len, reverse=True)
     return loops
+
+
+def extend_walk(path: list[int], pos: dict[int, int], w: int) -> list[int] | None:
+    """One step of a walk along boundary edges: append vertex ``w`` to ``path``, or, when ``w``
+    is already on it, cut off the closed cycle from ``w`` and return it.
+
+    path: the walk's vertices not yet closed into a loop (changed in place); pos: vertex ->
+    its index in ``path`` (kept in step). Returns the cycle's vertices (starting at ``w``) or None.
+    """
+    k = pos.get(w)
+    if k is None:
+        pos[w] = len(path)
+        path.append(w)
+        return None
+    cycle = path[k:]
+    for u in path[k + 1 :]:
+        del pos[u]
+    del path[k + 1 :]
+    return cycle
 
 
 def edge_faces(faces) -> tuple[np.ndarray, np.ndarray]:

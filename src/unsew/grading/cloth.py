@@ -2,11 +2,9 @@
 
 Algorithm 2 moves an open curve by the axial distance between the paired contours along the
 bone. Where the cloth hangs along the bone (a sleeve, a straight hem) the two agree; where it
-does not, the drape answers a pattern change only in part and the axial distance under-reads
-the pattern: a flared skirt's hem lengthened by 12 cm (and narrowed by 10 %) in the pattern
-hangs 7 cm lower along the spine, its waist riding 3.5 cm up the hips
-(``benchmarks/bench_grading.py --drape sim``, the skirt's ``axial cm`` column). The cloth length
-reads the change in the cloth itself: the mean, over a contour's vertices, of the shortest path
+does not (a flared skirt whose waist rides up the hips), the drape answers a pattern change
+only in part and the axial distance under-reads the pattern (``python -m benchmarks grading
+--drape sim``, the skirt's ``axial cm`` column; docs/history.md). The cloth length reads the change in the cloth itself: the mean, over a contour's vertices, of the shortest path
 *along the surface* to the garment's top contour (the neckline of a top or a dress, the waist of
 trousers or a skirt). A path that runs across folds and flare follows them, so trousers whose
 longer legs fold on the feet still read their length. bench_grading prints, per contour, the
@@ -15,10 +13,9 @@ drapes' cloth-length difference (``cloth cm``) beside the true patterns' own at 
 
 Shortest paths are graph distances (Dijkstra) on the mesh's edges plus, for every pair of
 triangles sharing an edge, the straight path between their two opposite vertices across that edge
-with the two triangles unfolded flat (across a fold the chord would jump it). Edges alone zig-zag:
-on a regular grid they read straight paths up to 8 % long (5 % on average); with the
-opposite-vertex segments, up to 2.7 % (1.3 % on average; ``tests/grading/test_cloth.py``). The
-excess depends on the direction of the path across the triangles, much the same on two meshes of
+with the two triangles unfolded flat (across a fold the chord would jump it): edges alone
+zig-zag and read straight paths several percent long, the opposite-vertex segments cut that
+excess (``tests/grading/test_cloth.py`` bounds it). The excess depends on the direction of the path across the triangles, much the same on two meshes of
 one garment, so it largely cancels in the difference grading uses.
 
 The same lengths measured at rest (the pattern's 2D edge lengths, seams joined) are what grading
@@ -28,6 +25,8 @@ edits: ``rest_cloth_lengths`` on a :class:`~unsew.meshing.sew.GarmentMesh`.
 from __future__ import annotations
 
 import numpy as np
+
+from unsew.geometry.topology import unique_edges
 
 __all__ = ["distance_graph", "cloth_distance", "top_contour", "cloth_lengths", "rest_cloth_lengths"]
 
@@ -70,7 +69,6 @@ def distance_graph(points: np.ndarray, faces: np.ndarray):
     ok &= (cy + dy > 0) & (cross > 0) & (cross < lab) & (c != d)
     across = np.stack([c[ok], d[ok]], axis=1)
     w_across = np.hypot(cx - dx, cy + dy)[ok]
-    from unsew.geometry.topology import unique_edges
 
     edges = unique_edges(f)[0]  # (E, 2) sorted, as np.unique(key, axis=0)
     pairs = np.concatenate([edges, np.sort(across, axis=1)])

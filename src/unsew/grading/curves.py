@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from unsew.pattern.controls import ControlPoints
+from unsew.pattern.curves import edge_length
 from unsew.pattern.model import Pattern
 
 __all__ = ["OpenCurve", "stitched_edges", "curves_of_contour", "rest_length"]
@@ -123,6 +124,4 @@ def curves_of_contour(
 def rest_length(pattern: Pattern, curves: list[OpenCurve]) -> float:
     """Total arc length [m] of the pattern edges that form ``curves`` (in 2D, at rest): the cloth
     edge a contour is made of (0.0 for no curves)."""
-    from unsew.pattern.curves import edge_length
-
     return float(sum(edge_length(pattern.panels[c.panel], e) for c in curves for e in c.edges))

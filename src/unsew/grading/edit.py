@@ -25,6 +25,8 @@ import numpy as np
 from unsew.grading.curves import OpenCurve
 from unsew.pattern.curves import edge_length
 from unsew.pattern.model import Pattern
+from unsew.pattern.params import check_inverted
+from unsew.tolerances import MIN_TRIANGLE_QUALITY
 
 __all__ = ["curve_edit", "edit_directions", "safe_fraction", "project_edit"]
 
@@ -97,9 +99,6 @@ def safe_fraction(params, K0, K1, *, iterations: int = 12) -> float:
     params: :class:`~unsew.pattern.params.PatternParams`. K0, K1: (Nk, 2) torch float64 [m].
     """
     import torch
-
-    from unsew.pattern.params import check_inverted
-    from unsew.tolerances import MIN_TRIANGLE_QUALITY
 
     faces = params.mesh.faces_uv
 

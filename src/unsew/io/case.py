@@ -21,10 +21,11 @@ from pathlib import Path
 import numpy as np
 
 from unsew.errors import InputError
+from unsew.geometry.topology import boundary_edges
 from unsew.io.garmentcode import load_pattern
 from unsew.io.mesh import read_garment
 
-__all__ = ["Case", "CaseFiles", "read_case", "GARMENT_TYPES"]
+__all__ = ["Case", "CaseFiles", "read_case", "read_meta", "GARMENT_TYPES"]
 
 GARMENT_TYPES = ("tshirt", "dress", "pants", "shorts", "skirt")
 
@@ -80,9 +81,14 @@ class CaseFiles:
     target_repair: dict = field(default_factory=dict)  #: what loading cleaned (MeshRepair.as_dict)
 
 
-def _read_meta(d: Path) -> dict:
+def read_meta(d: str | os.PathLike, *, required: bool = True) -> dict:
+    """A case folder's meta.json as a dict; InputError when it is not a JSON object, or when it is
+    missing and ``required`` (else ``{}``)."""
+    d = Path(d)
     p = d / "meta.json"
     if not p.is_file():
+        if not required:
+            return {}
         raise InputError(f"case {d} has no meta.json (it names the garment type and units; see FORMATS.md)")
     try:
         meta = json.loads(p.read_text())
@@ -105,7 +111,7 @@ def read_case(
     d = Path(path)
     if not d.is_dir():
         raise InputError(f"case folder {d} does not exist")
-    meta = _read_meta(d)
+    meta = read_meta(d)
     units = units or meta.get("units", "m")
     up = up or meta.get("up", "y")
     front = front or meta.get("front", "z")
@@ -140,15 +146,11 @@ def read_case(
 
 
 def _check_target(v: np.ndarray, f: np.ndarray, path: Path) -> None:
-    import trimesh
-
-    m = trimesh.Trimesh(v, f, process=False)
-    if m.area <= 0:
+    area = 0.5 * np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1).sum()  # [m^2]
+    if area <= 0:
         raise InputError(f"target {path} has zero area")
     # A garment is an open surface: hems, cuffs, necklines and waists are boundary loops.
-    edges = np.sort(m.edges, axis=1)
-    _, counts = np.unique(edges, axis=0, return_counts=True)
-    if not (counts == 1).any():
+    if len(boundary_edges(f)) == 0:
         raise InputError(
             f"target {path} is a closed surface with no open hem, cuff or neckline: "
             "give the garment alone (segmented from the body), not a watertight shape"

@@ -26,6 +26,10 @@ import os
 
 import numpy as np
 
+from unsew.errors import InputError
+from unsew.io.atomic import atomic_write
+from unsew.io.svg import NOTCH_LENGTH, edge_point, layout_panels, panel_polyline, seam_marks
+from unsew.pattern.curves import edge_length, sample_edge
 from unsew.pattern.model import Pattern
 
 __all__ = ["write_dxf", "LAYERS"]
@@ -51,14 +55,9 @@ def write_dxf(pattern: Pattern, path: str | os.PathLike) -> None:
     try:
         import ezdxf
     except ImportError as exc:  # pragma: no cover
-        from unsew.errors import InputError
 
         raise InputError("DXF export needs the ezdxf package: pip install ezdxf") from exc
     from ezdxf import units
-
-    from unsew.io.atomic import atomic_write
-    from unsew.io.svg import NOTCH_LENGTH, edge_point, layout_panels, panel_polyline, seam_marks
-    from unsew.pattern.curves import edge_length, sample_edge
 
     doc = ezdxf.new("R2000")
     doc.units = units.MM

@@ -14,6 +14,8 @@ from pathlib import Path
 import numpy as np
 
 from unsew.errors import InputError
+from unsew.geometry.repair import repair_garment
+from unsew.io.atomic import atomic_write
 
 __all__ = ["read_mesh", "read_garment", "write_obj", "frame_matrix", "UNIT_SCALE"]
 
@@ -90,8 +92,6 @@ def read_garment(path: str | os.PathLike, *, units: str = "m", up: str = "y", fr
     """
     import warnings
 
-    from unsew.geometry.repair import repair_garment
-
     verts, faces = read_mesh(path, units=units, up=up, front=front)
     verts, faces, rep = repair_garment(verts, faces, what=f"{what} {Path(path).name}")
     if rep.changed:
@@ -114,8 +114,6 @@ def write_obj(
     (unsew writes pattern coordinates in metres as UVs); faces_uv: (F, 3) int into uv (defaults
     to ``faces`` when uv has one entry per vertex). The file records its units in a comment.
     """
-    from unsew.io.atomic import atomic_write
-
     verts = np.asarray(verts, dtype=np.float64)
     faces = np.asarray(faces, dtype=np.int64)
     if uv is not None and faces_uv is None:

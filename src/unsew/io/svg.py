@@ -19,6 +19,8 @@ from xml.sax.saxutils import escape
 
 import numpy as np
 
+from unsew.io.atomic import atomic_write
+from unsew.pattern.curves import edge_length, sample_edge
 from unsew.pattern.model import Pattern
 
 __all__ = ["write_svg", "layout_panels", "seam_marks", "SeamMark", "edge_point", "panel_polyline", "stitch_code"]
@@ -46,8 +48,6 @@ def stitch_code(k: int) -> str:
 def panel_polyline(panel, *, step: float = CURVE_STEP) -> np.ndarray:
     """Closed outline (M, 2) [m] of ``panel``: corners exactly, curves sampled at most ``step``
     apart (last point not repeated)."""
-    from unsew.pattern.curves import edge_length, sample_edge
-
     parts = []
     for i, e in enumerate(panel.edges):
         n = 1 if e.curvature is None else max(8, int(np.ceil(edge_length(panel, i) / step)))
@@ -58,8 +58,6 @@ def panel_polyline(panel, *, step: float = CURVE_STEP) -> np.ndarray:
 def edge_point(panel, i: int, frac: float) -> tuple[np.ndarray, np.ndarray]:
     """Point (2,) [m] at arc-length fraction ``frac`` of edge ``i``, and the unit normal (2,)
     pointing into the panel (left of the edge direction, panels being counter-clockwise)."""
-    from unsew.pattern.curves import sample_edge
-
     n = 400
     pts = sample_edge(panel, i, n)
     x = frac * n
@@ -87,8 +85,6 @@ def seam_marks(pattern: Pattern) -> list[SeamMark]:
     :data:`NOTCH_SPACING` apart along it; side b gets them at ``1 - f`` (it runs the other way),
     so matching notches meet when the seam is sewn.
     """
-    from unsew.pattern.curves import edge_length
-
     out = []
     for k, s in enumerate(pattern.stitches):
         la = edge_length(pattern.panels[s.a.panel], s.a.edge)
@@ -124,8 +120,6 @@ def _fmt(v: float) -> str:
 def write_svg(pattern: Pattern, path: str | os.PathLike) -> None:
     """Write ``pattern`` as a true-scale SVG (mm), atomically."""
     from pathlib import Path
-
-    from unsew.io.atomic import atomic_write
 
     offsets = layout_panels(pattern)
     outlines = {n: panel_polyline(pattern.panels[n]) + offsets[n] for n in pattern.panel_order}

@@ -22,6 +22,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from unsew.geometry.topology import extend_walk, unique_edges
+from unsew.losses._arrays import mesh_arrays
+from unsew.losses.chamfer import loss_chamfer
+
 __all__ = ["Contour", "open_contours", "loss_open_contours"]
 
 
@@ -87,12 +91,9 @@ def open_contours(verts, faces) -> list[Contour]:
     faces: (F, 3) int.
     Returns: list of :class:`Contour`; empty for a closed mesh.
     """
-    from unsew.losses._arrays import mesh_arrays
-
     v, f = mesh_arrays(verts, faces)
     if len(f) == 0:
         return []
-    from unsew.geometry.topology import unique_edges
 
     he = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])  # (3F, 2) directed, edge-major
     he_face = np.tile(np.arange(len(f)), 3)
@@ -133,16 +134,9 @@ def open_contours(verts, faces) -> list[Contour]:
         cur = e0
         v_now = int(b_edges[e0, 1])
         while True:
-            if v_now in pos:  # the walk came back to a vertex on it: cut off that simple cycle
-                k = pos[v_now]
-                if len(path) - k >= 3:
-                    loops.append(_describe(v, np.array(path[k:])))
-                for u in path[k + 1 :]:
-                    del pos[u]
-                path = path[: k + 1]
-            else:
-                pos[v_now] = len(path)
-                path.append(v_now)
+            cycle = extend_walk(path, pos, v_now)  # a return to a vertex on the walk closes a cycle
+            if cycle is not None and len(cycle) >= 3:
+                loops.append(_describe(v, np.array(cycle)))
             cands = [e for e in at[v_now] if not used[e] and int(b_edges[e, 0]) == v_now]
             if not cands:  # inconsistent orientation: accept an edge walked backwards
                 cands = [e for e in at[v_now] if not used[e]]
@@ -173,8 +167,6 @@ def loss_open_contours(x, contours_x, t, contours_t, *, pairs=None, method: str 
     Returns: scalar tensor [m^2]; zero-dimensional 0 if either side has no contour.
     """
     import torch
-
-    from unsew.losses.chamfer import loss_chamfer
 
     if not contours_x or not contours_t:
         return (x.sum() + t.sum()) * 0.0

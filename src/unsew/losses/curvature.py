@@ -26,7 +26,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from unsew.geometry.topology import boundary_vertices, unique_edges
 from unsew.losses._arrays import mesh_arrays
+from unsew.tolerances import FLAT_CURVATURE_TOL
 
 __all__ = ["mean_curvature", "curvature_weights", "mixed_areas"]
 
@@ -91,7 +93,6 @@ def mean_curvature(verts, faces) -> np.ndarray:
     used = A > 0
     H = np.zeros(n)
     H[used] = np.linalg.norm(K[used], axis=1) / (2.0 * A[used]) / 2.0
-    from unsew.geometry.topology import boundary_vertices, unique_edges
 
     bnd = boundary_vertices(f, n)
     if bnd.any():
@@ -118,8 +119,6 @@ def curvature_weights(verts, faces):
     Returns: (V,) float64 dimensionless, a torch tensor (no gradient, on ``verts``' device) if
     ``verts`` is a torch tensor, else numpy.
     """
-    from unsew.tolerances import FLAT_CURVATURE_TOL
-
     v, f = mesh_arrays(verts, faces)
     H = mean_curvature(v, f)
     A = mixed_areas(v, f)

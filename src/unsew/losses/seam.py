@@ -17,6 +17,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from unsew.errors import PatternError
+
 __all__ = ["seam_segment_pairs", "loss_seam"]
 
 
@@ -29,8 +31,6 @@ def seam_segment_pairs(mesh, stitches) -> np.ndarray:
     Raises PatternError if a stitched edge is missing from the mesh or the sides have different
     vertex counts.
     """
-    from unsew.errors import PatternError
-
     rows = []
     for s in stitches:
         sides = []

@@ -13,25 +13,18 @@ import json
 import os
 from pathlib import Path
 
+from unsew.errors import InputError
+from unsew.io.atomic import atomic_write
+from unsew.io.case import read_meta
+from unsew.io.garmentcode import load_pattern
+from unsew.io.mesh import read_garment, read_mesh
+from unsew.metrics.panels import pattern_metrics
+from unsew.metrics.surface import surface_metrics
+
 __all__ = ["evaluate_result", "EVAL_FORMAT_VERSION", "format_table", "write_eval_json"]
 
 #: Version of the eval.json layout.
 EVAL_FORMAT_VERSION = 1
-
-
-def _case_meta(case: Path) -> dict:
-    from unsew.errors import InputError
-
-    p = case / "meta.json"
-    if not p.is_file():
-        return {}
-    try:
-        meta = json.loads(p.read_text())
-    except json.JSONDecodeError as exc:
-        raise InputError(f"{p} is not valid JSON: {exc.msg} at line {exc.lineno}") from None
-    if not isinstance(meta, dict):
-        raise InputError(f"{p} must hold a JSON object")
-    return meta
 
 
 def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int = 0) -> dict:
@@ -45,10 +38,6 @@ def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int
     "2d_skipped": reason | None}``. Raises InputError / PatternError on bad input (missing
     files, empty or non-finite meshes, panels without counterparts).
     """
-    from unsew.errors import InputError
-    from unsew.io.mesh import read_garment, read_mesh
-    from unsew.metrics.surface import surface_metrics
-
     res, case = Path(result_dir), Path(case_dir)
     for d, what in ((res, "result"), (case, "case")):
         if not d.is_dir():
@@ -61,7 +50,7 @@ def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int
         raise InputError(f"case folder {case} has no target.obj or target.ply")
     if n_samples < 1:
         raise InputError(f"--samples must be at least 1, got {n_samples}")
-    meta = _case_meta(case)
+    meta = read_meta(case, required=False)
     gv, gf = read_mesh(garment)
     tv, tf, _ = read_garment(target, units=meta.get("units", "m"), up=meta.get("up", "y"), front=meta.get("front", "z"))
     out = {
@@ -79,9 +68,6 @@ def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int
     elif not est.is_file():
         out["2d_skipped"] = "result has no pattern.json"
     else:
-        from unsew.io.garmentcode import load_pattern
-        from unsew.metrics.panels import pattern_metrics
-
         out["2d"] = pattern_metrics(load_pattern(est), load_pattern(gt))
     return out
 
@@ -114,7 +100,5 @@ def format_table(ev: dict) -> str:
 
 def write_eval_json(ev: dict, path: str | os.PathLike) -> None:
     """Write an evaluation dict as JSON, atomically."""
-    from unsew.io.atomic import atomic_write
-
     with atomic_write(path) as tmp:
         Path(tmp).write_text(json.dumps(ev, indent=2) + "\n")

@@ -15,6 +15,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from unsew.errors import PatternError
+from unsew.metrics.turning import panel_turning_distance, turning_distance
+from unsew.pattern.curves import panel_outline
+from unsew.pattern.model import euler_xyz_to_matrix
+
 __all__ = [
     "panel_area",
     "panel_centroid3d",
@@ -29,8 +34,6 @@ _AREA_POINTS_PER_EDGE = 256  # curved-edge sampling for areas: relative error ~1
 
 
 def _outline(panel, n=_AREA_POINTS_PER_EDGE) -> np.ndarray:
-    from unsew.pattern.curves import panel_outline
-
     return panel_outline(panel, points_per_edge=n)
 
 
@@ -47,8 +50,6 @@ def panel_area(panel) -> float:
 
 def panel_centroid3d(panel) -> np.ndarray:
     """Area centroid of the panel placed in 3D by its translation/rotation, shape (3,) [m]."""
-    from unsew.pattern.model import euler_xyz_to_matrix
-
     p = _outline(panel, 32)
     x, y = p[:, 0], p[:, 1]
     cr = x * np.roll(y, -1) - np.roll(x, -1) * y
@@ -68,9 +69,6 @@ def match_panels(pattern_est, pattern_gt, *, placement_weight: float = 2.0, stri
     strict: raise PatternError when a panel of either pattern is left unmatched; otherwise the
         unmatched panels are simply absent from the result.
     """
-    from unsew.errors import PatternError
-    from unsew.metrics.turning import turning_distance
-
     est = list(pattern_est.panel_order or pattern_est.panels)
     gt = list(pattern_gt.panel_order or pattern_gt.panels)
     match: dict[str, str] = {}
@@ -136,8 +134,6 @@ def area_error(pattern_est, pattern_gt, correspondence: dict[str, str] | None = 
     pattern_est, pattern_gt: :class:`unsew.pattern.model.Pattern`.
     correspondence: estimated name -> true name; default :func:`match_panels` (strict).
     """
-    from unsew.errors import PatternError
-
     if correspondence is None:
         correspondence = match_panels(pattern_est, pattern_gt)
     if not correspondence:
@@ -183,8 +179,6 @@ def pattern_metrics(pattern_est, pattern_gt, *, correspondence: dict[str, str] |
     """All 2D metrics of an estimated pattern against the true one, as a JSON-ready dict:
     correspondence, per-panel and mean turning distance [rad], relative area error, and vertex
     L2 [cm] (mean over the panels with equal corner counts; None if there are none)."""
-    from unsew.metrics.turning import panel_turning_distance
-
     if correspondence is None:
         correspondence = match_panels(pattern_est, pattern_gt)
     ae = area_error(pattern_est, pattern_gt, correspondence)

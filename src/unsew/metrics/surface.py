@@ -21,6 +21,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from unsew.errors import InputError
+from unsew.geometry.distance import MeshQuery
+
 __all__ = [
     "sample_surface",
     "closest_points",
@@ -32,8 +35,6 @@ __all__ = [
 ]
 
 def _check(verts, faces, what):
-    from unsew.errors import InputError
-
     v = np.asarray(verts, dtype=np.float64)
     f = np.asarray(faces)
     if v.ndim != 2 or v.shape[1] != 3 or len(v) == 0:
@@ -74,8 +75,6 @@ def closest_points(points, verts, faces):
     Returns: (closest (P, 3) [m], distance (P,) [m], face index (P,) int64).
     Raises InputError for empty, degenerate or non-finite meshes.
     """
-    from unsew.geometry.distance import MeshQuery
-
     v, f, _ = _check(verts, faces, "mesh")
     return MeshQuery(v, f).closest(points)
 

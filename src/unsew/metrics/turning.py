@@ -24,6 +24,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from unsew.pattern.curves import panel_outline
+
 __all__ = ["turning_function", "turning_distance", "panel_turning_distance"]
 
 _CHUNK = 1 << 21  # candidate-shift x piece evaluations per vectorised chunk
@@ -138,8 +140,6 @@ def panel_turning_distance(panel_a, panel_b, *, points_per_edge: int = 32) -> fl
     panel_a, panel_b: :class:`unsew.pattern.model.Panel`. points_per_edge: segments per curved
     edge (straight edges keep their two ends). Returns: distance [rad].
     """
-    from unsew.pattern.curves import panel_outline
-
     return turning_distance(
         panel_outline(panel_a, points_per_edge=points_per_edge),
         panel_outline(panel_b, points_per_edge=points_per_edge),

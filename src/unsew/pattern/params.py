@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from unsew.errors import PatternError
 from unsew.pattern.controls import ControlPoints, find_control_points
 from unsew.pattern.model import Pattern
 from unsew.pattern.mvc import mean_value_coordinates
@@ -126,8 +127,6 @@ class PatternParams:
         if symmetry is None:
             symmetry = detect_symmetry(pattern, controls=controls)
         if symmetry.n_control != len(controls) or not np.allclose(symmetry.c0, controls.positions, atol=1e-9):
-            from unsew.errors import PatternError
-
             raise PatternError("the stored symmetry does not match the pattern's control points; detect it again")
         control_uv = _control_uv_index(pattern, mesh, controls)
         Lc, bc = symmetry.rebuild_map()

@@ -39,6 +39,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from unsew.pattern.controls import ControlPoints, find_control_points
+from unsew.pattern.curves import edge_point_fn
 from unsew.pattern.model import Pattern
 from unsew.tolerances import SYMMETRY_REL_TOL
 
@@ -248,8 +249,6 @@ def procrustes(x: np.ndarray, y: np.ndarray, *, det: int | None = None) -> tuple
 def curve_samples(pattern: Pattern, controls: ControlPoints, p: int, *, m: int = _SAMPLES_PER_CURVE) -> np.ndarray:
     """Points (n, m, 2) float64 [m] along each of panel p's n curves (the outline between control
     point j and j+1, CCW), at arc-length fractions k/m, k = 0..m-1 (so [:, 0] are the control points)."""
-    from unsew.pattern.curves import edge_point_fn
-
     name = controls.panel_names[p]
     panel = pattern.panels[name]
     idx = controls.of_panel(p)
@@ -320,14 +319,41 @@ def detect_symmetry(
     samples = [curve_samples(pattern, controls, p) for p in range(P)]
     counts = [int(controls.offsets[p + 1] - controls.offsets[p]) for p in range(P)]
 
-    # --- inter-panel symmetry ---
-    pairs: list[PanelPair] = []
-    dropped, sources = set(), set()
+    pairs, dropped = _panel_pairs(names, samples, counts, tol)
+    mirrors, removed = [], set()
     for p in range(P):
         if p in dropped:
             continue
+        axis = _mirror_axis(names[p], samples[p], counts[p], tol)
+        if axis is not None:
+            o = int(controls.offsets[p])
+            removed.update(o + int(j) for _, j in axis.pairs)
+            mirrors.append(axis)
+
+    keep = [
+        g for g in range(len(controls)) if int(controls.panel[g]) not in dropped and g not in removed
+    ]
+    return Symmetry(
+        panel_names=list(names),
+        offsets=controls.offsets.copy(),
+        c0=controls.positions.copy(),
+        k_indices=np.asarray(keep, dtype=np.int64),
+        pairs=pairs,
+        mirrors=mirrors,
+        tol=float(tol),
+    )
+
+
+def _panel_pairs(names, samples, counts, tol: float) -> tuple[list[PanelPair], set[int]]:
+    """Inter-panel symmetry: for each panel the best mirrored or congruent partner with as many
+    control points, fit error below ``tol``. Returns the pairs and the panel indices they drop."""
+    pairs: list[PanelPair] = []
+    dropped, sources = set(), set()
+    for p in range(len(names)):
+        if p in dropped:
+            continue
         best = None
-        for q in range(P):
+        for q in range(len(names)):
             if q == p or q in dropped or q in sources or counts[q] != counts[p]:
                 continue
             n = counts[p]
@@ -346,49 +372,28 @@ def detect_symmetry(
             pairs.append(PanelPair(names[p], names[q], sigma.astype(np.int64), r, reverse, float(err)))
             dropped.add(q)
             sources.add(p)
+    return pairs, dropped
 
-    # --- intra-panel mirror symmetry ---
-    mirrors: list[MirrorAxis] = []
-    removed = set()
-    for p in range(P):
-        if p in dropped:
-            continue
-        n = counts[p]
-        best = None
-        for s in range(n):
-            i = np.arange(n)
-            sigma = (s - i) % n
-            src = _corresponding_samples(samples[p], sigma, True).reshape(-1, 2)
-            dst = samples[p].reshape(-1, 2)
-            r, err = _fit(src, dst, -1)
-            if err < tol and (best is None or err < best[0] - 1e-12):
-                best = (err, sigma, r)
-        if best is None:
-            continue
-        err, sigma, r = best
-        theta = 0.5 * np.arctan2(r[1, 0], r[0, 0])  # reflection about the line at angle theta
-        d = np.array([np.cos(theta), np.sin(theta)])
-        point = samples[p].reshape(-1, 2).mean(axis=0)
-        pr = sorted({(min(j, int(sigma[j])), max(j, int(sigma[j]))) for j in range(n) if sigma[j] != j})
-        on_axis = [j for j in range(n) if sigma[j] == j]
-        o = int(controls.offsets[p])
-        removed.update(o + j for _, j in pr)
-        mirrors.append(
-            MirrorAxis(
-                names[p], point, d, np.asarray(pr, dtype=np.int64).reshape(-1, 2),
-                np.asarray(on_axis, dtype=np.int64), float(err),
-            )
-        )
 
-    keep = [
-        g for g in range(len(controls)) if int(controls.panel[g]) not in dropped and g not in removed
-    ]
-    return Symmetry(
-        panel_names=list(names),
-        offsets=controls.offsets.copy(),
-        c0=controls.positions.copy(),
-        k_indices=np.asarray(keep, dtype=np.int64),
-        pairs=pairs,
-        mirrors=mirrors,
-        tol=float(tol),
-    )
+def _mirror_axis(name: str, samples: np.ndarray, n: int, tol: float) -> MirrorAxis | None:
+    """Intra-panel mirror symmetry of one panel with ``n`` control points and its curve
+    ``samples``: the best reflection with fit error below ``tol``, or None."""
+    best = None
+    for s in range(n):
+        i = np.arange(n)
+        sigma = (s - i) % n
+        src = _corresponding_samples(samples, sigma, True).reshape(-1, 2)
+        dst = samples.reshape(-1, 2)
+        r, err = _fit(src, dst, -1)
+        if err < tol and (best is None or err < best[0] - 1e-12):
+            best = (err, sigma, r)
+    if best is None:
+        return None
+    err, sigma, r = best
+    theta = 0.5 * np.arctan2(r[1, 0], r[0, 0])  # reflection about the line at angle theta
+    d = np.array([np.cos(theta), np.sin(theta)])
+    point = samples.reshape(-1, 2).mean(axis=0)
+    pr = sorted({(min(j, int(sigma[j])), max(j, int(sigma[j]))) for j in range(n) if sigma[j] != j})
+    on_axis = [j for j in range(n) if sigma[j] == j]
+    pairs = np.asarray(pr, dtype=np.int64).reshape(-1, 2)
+    return MirrorAxis(name, point, d, pairs, np.asarray(on_axis, dtype=np.int64), float(err))

@@ -23,16 +23,22 @@ from dataclasses import dataclass
 import torch
 
 from unsew.errors import PatternError, SimulationError
-from unsew.sim.assembly import assemble_membrane, assemble_outer, outer_adjoint_map, scatter_blocks, scatter_vertex
+from unsew.sim.assembly import (
+    assemble_membrane,
+    assemble_outer,
+    outer_adjoint_map,
+    scatter_blocks,
+    scatter_vertex,
+)
 from unsew.sim.energies.bending import bending_rest, energy_bending
 from unsew.sim.energies.contact import energy_contact, friction_damping, project_out
-from unsew.sim.energies.gravity import mass_lumped
+from unsew.sim.energies.gravity import energy_gravity, mass_lumped
 from unsew.sim.energies.membrane import energy_membrane, membrane_rest
 from unsew.sim.energies.spring import energy_spring
 from unsew.sim.model import SimModel
 from unsew.sim.solve import SparsePattern, resolve_backend, sparse_solve
-from unsew.sim.step_solve import step_solve
 from unsew.sim.state import SimState
+from unsew.sim.step_solve import step_solve
 
 __all__ = ["StepParams", "RestData", "rest_data", "step", "forces", "total_energy"]
 
@@ -196,8 +202,6 @@ def forces(model, rest, x, v, sdf, gamma, params: StepParams, *, gravity=None, h
 
 def total_energy(model, rest, x, sdf, gamma, params: StepParams, *, gravity=None):
     """Total potential energy [J] (membrane + bending + contact + gravity + springs) at x (N, 3) [m]."""
-    from unsew.sim.energies.gravity import energy_gravity
-
     g = params.gravity if gravity is None else gravity
     d, n = sdf.query(x)
     e = energy_membrane(x, model.faces, rest.area, rest.B, gamma, hessian=False)[0]

@@ -13,7 +13,7 @@ Because element blocks are symmetric, dropping their upper part loses nothing.
 Bending stencil. A hinge's 12x12 Gauss-Newton block 2c g g^T couples the two vertices opposite
 its edge (x2, x3), which are not joined by a mesh edge. Those entries widen the sparsity graph
 from the mesh's 1-ring to the "diamond" stencil, and the Cholesky fill and numeric factorization
-time grow 2.5-6x (1K-8K vertex t-shirts, benchmarks/bench_sim.py). With ``bending_stencil="ring"``
+time grow several-fold (``python -m benchmarks sim``). With ``bending_stencil="ring"``
 (the default) the (x2, x3) blocks are left out of the pattern and the system uses instead
 
     2c (g g^T + P2 + P3),   P2 = g2 g2^T on block (2, 2), P3 = g3 g3^T on block (3, 3),
@@ -93,6 +93,84 @@ def _block_entries(elems: np.ndarray):
     return rows, cols
 
 
+def _as_numpy(a) -> np.ndarray:
+    return np.asarray(a.detach().cpu() if torch.is_tensor(a) else a)
+
+
+def _check_faces(faces, faces_uv, n, n_rest):
+    """Validated (F, 3) int64 ``faces`` and ``faces_uv`` with their vertex counts (N, Nu)."""
+    faces, faces_uv = _as_numpy(faces), _as_numpy(faces_uv)
+    if faces.ndim != 2 or faces.shape[1] != 3 or faces.shape[0] == 0:
+        raise InputError(f"faces must be a non-empty (F, 3) integer array, got shape {faces.shape}")
+    if faces_uv.shape != faces.shape:
+        raise InputError(f"faces_uv {faces_uv.shape} must have the same shape as faces {faces.shape}")
+    faces = faces.astype(np.int64)
+    faces_uv = faces_uv.astype(np.int64)
+    if faces.min() < 0 or faces_uv.min() < 0:
+        raise InputError("faces and faces_uv must hold non-negative vertex indices")
+    n = int(faces.max()) + 1 if n is None else int(n)
+    n_rest = int(faces_uv.max()) + 1 if n_rest is None else int(n_rest)
+    if faces.max() >= n or faces_uv.max() >= n_rest:
+        raise InputError(f"face indices out of range (N={n}, Nu={n_rest})")
+    if np.any((faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 0] == faces[:, 2])):
+        raise InputError("faces repeat a vertex within a triangle; remove degenerate faces")
+    return faces, faces_uv, n, n_rest
+
+
+def _check_springs(springs, n: int) -> np.ndarray:
+    """(S, 2) int64 springs within range, self-springs dropped; None gives (0, 2)."""
+    if springs is None:
+        return np.zeros((0, 2), np.int64)
+    springs = _as_numpy(springs).astype(np.int64).reshape(-1, 2)
+    if springs.size and (springs.min() < 0 or springs.max() >= n):
+        raise InputError(f"springs index vertices out of range (N={n})")
+    return springs[springs[:, 0] != springs[:, 1]]
+
+
+def _pin_mask(pinned, n: int) -> np.ndarray:
+    """(N,) bool mask from an (N,) bool mask, (P,) int indices or None."""
+    pin = np.zeros(n, bool)
+    if pinned is not None:
+        p = _as_numpy(pinned)
+        if p.dtype == bool:
+            if p.shape != (n,):
+                raise InputError(f"pinned mask must have shape ({n},), got {p.shape}")
+            pin = p.copy()
+        else:
+            pin[p.astype(np.int64)] = True
+    return pin
+
+
+def _sparsity(groups: dict, n: int, bending_stencil: str):
+    """Lower-triangle COO pattern of the (3N x 3N) system and the index maps into it.
+
+    groups: element arrays by name ("tri" (F, 3), "hinge" (H, 4), "spring" (S, 2), "vert" (N, 1)).
+    Returns rows, cols: (nnz,) int32; diag_dst: (3N,) int64 value index of each diagonal entry;
+    maps: name -> (src, dst) int64 tensors from the flat element blocks to the value array.
+    """
+    n3 = 3 * n
+    per = {}
+    for name, elems in groups.items():
+        r, c = _block_entries(elems) if elems.shape[0] else (np.zeros(0, np.int64), np.zeros(0, np.int64))
+        sel = r >= c
+        if name == "hinge" and bending_stencil == "ring":
+            local = np.arange(r.shape[0]) % 144
+            ca, cb = local // 12 // 3, local % 12 // 3  # corners of the entry's row and column
+            sel &= ~(((ca == 2) & (cb == 3)) | ((ca == 3) & (cb == 2)))
+        lower = np.nonzero(sel)[0]
+        per[name] = (lower, r[lower] * n3 + c[lower])
+    keys = np.unique(np.concatenate([key for _, key in per.values()]))
+    rows = (keys // n3).astype(np.int32)
+    cols = (keys % n3).astype(np.int32)
+    maps = {
+        name: (torch.from_numpy(lower), torch.from_numpy(np.searchsorted(keys, key)))
+        for name, (lower, key) in per.items()
+    }
+    diag = np.arange(n3, dtype=np.int64)
+    diag_dst = np.searchsorted(keys, diag * n3 + diag)
+    return rows, cols, diag_dst, maps
+
+
 @dataclass
 class SimModel:
     """Static topology of a cloth for simulation (built by :meth:`SimModel.build`).
@@ -166,72 +244,20 @@ class SimModel:
             n: number of sim vertices (default faces.max() + 1).
             n_rest: number of rest vertices (default faces_uv.max() + 1).
             bending_stencil: "ring" (default: hinge blocks kept within the mesh's 1-ring,
-                2.5-6x cheaper factorizations) or "full" (see the module docstring).
+                several times cheaper factorizations) or "full" (see the module docstring).
 
         Raises:
             InputError: empty or inconsistent faces, indices out of range.
         """
-        faces = np.asarray(faces.detach().cpu() if torch.is_tensor(faces) else faces)
-        faces_uv = np.asarray(faces_uv.detach().cpu() if torch.is_tensor(faces_uv) else faces_uv)
         if bending_stencil not in BENDING_STENCILS:
             raise InputError(f"bending_stencil must be one of {BENDING_STENCILS}, got {bending_stencil!r}")
-        if faces.ndim != 2 or faces.shape[1] != 3 or faces.shape[0] == 0:
-            raise InputError(f"faces must be a non-empty (F, 3) integer array, got shape {faces.shape}")
-        if faces_uv.shape != faces.shape:
-            raise InputError(f"faces_uv {faces_uv.shape} must have the same shape as faces {faces.shape}")
-        faces = faces.astype(np.int64)
-        faces_uv = faces_uv.astype(np.int64)
-        if faces.min() < 0 or faces_uv.min() < 0:
-            raise InputError("faces and faces_uv must hold non-negative vertex indices")
-        n = int(faces.max()) + 1 if n is None else int(n)
-        n_rest = int(faces_uv.max()) + 1 if n_rest is None else int(n_rest)
-        if faces.max() >= n or faces_uv.max() >= n_rest:
-            raise InputError(f"face indices out of range (N={n}, Nu={n_rest})")
-        if np.any((faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 0] == faces[:, 2])):
-            raise InputError("faces repeat a vertex within a triangle; remove degenerate faces")
-        if springs is None:
-            springs = np.zeros((0, 2), np.int64)
-        springs = np.asarray(springs.detach().cpu() if torch.is_tensor(springs) else springs).astype(np.int64)
-        springs = springs.reshape(-1, 2)
-        if springs.size and (springs.min() < 0 or springs.max() >= n):
-            raise InputError(f"springs index vertices out of range (N={n})")
-        springs = springs[springs[:, 0] != springs[:, 1]]
-        pin = np.zeros(n, bool)
-        if pinned is not None:
-            p = np.asarray(pinned.detach().cpu() if torch.is_tensor(pinned) else pinned)
-            if p.dtype == bool:
-                if p.shape != (n,):
-                    raise InputError(f"pinned mask must have shape ({n},), got {p.shape}")
-                pin = p.copy()
-            else:
-                pin[p.astype(np.int64)] = True
-
+        faces, faces_uv, n, n_rest = _check_faces(faces, faces_uv, n, n_rest)
+        springs = _check_springs(springs, n)
+        pin = _pin_mask(pinned, n)
         hinges, hinge_faces, hinge_uv, n_nm = build_hinges(faces, faces_uv)
         verts = np.arange(n, dtype=np.int64)[:, None]
-
-        n3 = 3 * n
-        groups = [(faces, "tri"), (hinges, "hinge"), (springs, "spring"), (verts, "vert")]
-        all_keys = []
-        per = {}
-        for elems, name in groups:
-            r, c = _block_entries(elems) if elems.shape[0] else (np.zeros(0, np.int64), np.zeros(0, np.int64))
-            sel = r >= c
-            if name == "hinge" and bending_stencil == "ring":
-                local = np.arange(r.shape[0]) % 144
-                ca, cb = local // 12 // 3, local % 12 // 3  # corners of the entry's row and column
-                sel &= ~(((ca == 2) & (cb == 3)) | ((ca == 3) & (cb == 2)))
-            lower = np.nonzero(sel)[0]
-            key = r[lower] * n3 + c[lower]
-            per[name] = (lower, key)
-            all_keys.append(key)
-        keys = np.unique(np.concatenate(all_keys))
-        rows = (keys // n3).astype(np.int32)
-        cols = (keys % n3).astype(np.int32)
-        maps = {}
-        for name, (lower, key) in per.items():
-            maps[name] = (torch.from_numpy(lower), torch.from_numpy(np.searchsorted(keys, key)))
-        diag = np.arange(n3, dtype=np.int64)
-        diag_dst = np.searchsorted(keys, diag * n3 + diag)
+        groups = {"tri": faces, "hinge": hinges, "spring": springs, "vert": verts}
+        rows, cols, diag_dst, maps = _sparsity(groups, n, bending_stencil)
         free = ~np.repeat(pin, 3)
         keep = (free[rows] & free[cols]).astype(np.float64)
 

@@ -33,8 +33,8 @@ conjugate gradients preconditioned with the Cholesky factor of the projected mat
 the true derivative of x*. ``adjoint="projected"`` uses that factor alone (one solve, cheaper,
 approximate: the projection drops compressive stress, the bending curvature term and the SDF's
 curvature). tests/gradients/test_sim_static_grad.py checks the exact one against central
-differences (1e-5 relative); the projected one was off by 1-150 % per component on that curtain
-and has direction cosines 0.91-0.94 on benchmarks/bench_static.py's sleeve. The exact products
+differences (1e-5 relative); the projected one is only roughly aligned with it
+(figures in docs/history.md, "Notes moved from docstrings"). The exact products
 assume the SDF's normal is the gradient of its distance (true of the analytic SDFs; the body
 grid's trilinear distance and its normals agree only to the grid's accuracy).
 """

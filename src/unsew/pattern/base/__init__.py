@@ -26,7 +26,7 @@ GARMENTS = list(_MAKERS)
 
 def make_base_pattern(garment: str, measurements=None):
     """The base :class:`~unsew.pattern.model.Pattern` of ``garment`` sized to ``measurements``
-    (a :class:`~unsew.body.measurements.Measurements`; default: the default body)."""
+    (a :class:`~unsew.pattern.measurements.Measurements`; default: the default body)."""
     if garment not in _MAKERS:
         raise InputError(f"unknown garment {garment!r}; choose one of {', '.join(GARMENTS)}")
     mod, fn = _MAKERS[garment]

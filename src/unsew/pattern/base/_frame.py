@@ -2,7 +2,7 @@
 
 World frame (shared/FORMATS.md): metres, Y up, the body faces +Z, its left at +X, feet at
 y = 0, centre line x = 0, torso centred near z = 0. All heights and depths here are derived
-from :class:`~unsew.body.measurements.Measurements`; the few proportions that are not
+from :class:`~unsew.pattern.measurements.Measurements`; the few proportions that are not
 measurements (shoulder slope, armhole depth, torso depth per girth, A-pose arm angle) are named
 constants below.
 """
@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from unsew.body.measurements import Measurements
+from unsew.pattern.measurements import Measurements
 
 __all__ = ["BodyFrame", "body_frame"]
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from unsew.body.measurements import Measurements
+from unsew.pattern.measurements import Measurements
 from unsew.pattern.base._build import quad
 from unsew.pattern.base._frame import body_frame
 from unsew.pattern.base.tshirt import BUST_EASE, TopSpec, sleeve_panels, top_panels, top_stitches

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from unsew.body.measurements import Measurements
+from unsew.pattern.measurements import Measurements
 from unsew.pattern.base._build import cubic, loop_panel, mirror_panel, place, quad, rot_y180, stitch
 from unsew.pattern.base._frame import body_frame
 from unsew.pattern.model import Pattern

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from unsew.body.measurements import Measurements
+from unsew.pattern.measurements import Measurements
 from unsew.pattern.base._build import loop_panel, place, rot_y180, stitch
 from unsew.pattern.base._frame import body_frame
 from unsew.pattern.model import Curvature, Pattern

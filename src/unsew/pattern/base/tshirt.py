@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from unsew.body.measurements import Measurements
+from unsew.pattern.measurements import Measurements
 from unsew.pattern.base._build import cubic, place, rot_y180, solve_length, stitch, symmetric_panel
 from unsew.pattern.base._frame import BodyFrame, body_frame
 from unsew.pattern.curves import edge_length
