@@ -39,3 +39,13 @@ def test_markdown_table():
 
     t = markdown_table([{"a": 1.234, "b": None}, {"a": "x", "b": 2}], digits=1)
     assert t.splitlines() == ["| a | b |", "|---|---|", "| 1.2 |  |", "| x | 2 |"]
+
+
+def test_code_benchmark_finds_cycles_through_several_packages():
+    """bench_code's cycle finder reports a three-package loop, not only pairs, and no acyclic edge."""
+    sys.path.insert(0, str(ROOT))
+    from benchmarks.bench_code import _cycles
+
+    assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [("a", "b", "c")]
+    assert _cycles({"a": {"b"}, "b": {"a"}, "c": {"a"}}) == [("a", "b")]
+    assert _cycles({"a": {"b"}, "b": {"c"}}) == []
