@@ -87,8 +87,8 @@ class DrapeVerdict:
     finite: bool
 
     def as_dict(self) -> dict:
-        """The verdict as a JSON-able dict."""
-        return asdict(self)
+        """The verdict as a JSON-able dict (a figure that was not measured, NaN, is None)."""
+        return {k: None if isinstance(v, float) and not np.isfinite(v) else v for k, v in asdict(self).items()}
 
     def raise_if_bad(self, what: str = "drape") -> None:
         """Raise :class:`~unsew.errors.SimulationError` with ``"<what> failed: <reason>"``
