@@ -145,10 +145,11 @@ def build_case(cid, out_root: Path):
     _log(f"{cid}: {mesh.n_x} vertices, {len(mesh.faces)} triangles")
     x, info = newton_drape.drape_newton(mesh, x0, body.verts, body.faces, lower=typ in LOWER, log=_log)
     faces = np.asarray(mesh.faces)
-    inside = float(checks.inside_mask(x, body.verts, body.faces).mean())
+    ins_v = checks.inside_mask(x, body.verts, body.faces)
+    inside = float(ins_v.mean())
     st = checks.stretch(x, faces, np.asarray(mesh.uv), np.asarray(mesh.faces_uv))
     seam_x = np.unique(np.asarray(mesh.x_of_u)[np.asarray(mesh.seam_pairs).ravel()])
-    cut, cut_seam = checks.edges_through_body(x, faces, body.verts, body.faces, seam_vertices=seam_x)
+    cut, cut_seam = checks.edges_through_body(x, faces, body.verts, body.faces, seam_vertices=seam_x, ins_v=ins_v)
     on, on_why = _on_body(typ, x, body)
     res = {
         "inside_fraction": round(inside, 5),
