@@ -138,6 +138,11 @@ def _waist_edges(spec, panel):
     return sorted((e for e in spec.names[panel] if e.startswith("waist")), key=lambda s: int(s[5:]))
 
 
+def _edge_x(spec, panel, ename) -> float:
+    p = spec.panels[panel]
+    return float(np.mean([p["vertices"][j][0] for j in p["edges"][spec.names[panel][ename]]["endpoints"]]))
+
+
 def _sew_darts(spec, panel):
     for e in list(spec.names[panel]):
         if e.startswith("dart") and e.endswith("a"):
@@ -148,8 +153,8 @@ def _waistband(spec, side, panels, y0, height):
     """A straight band over the waist edges of ``panels`` (ordered by increasing panel x, all of
     the same side), sewn to them edge by edge; returns its name."""
     segs = []
-    for p in panels:
-        segs += [(p, e, spec.edge_len(p, e)) for e in reversed(_waist_edges(spec, p))]
+    for p in panels:  # each panel's waist edges from its smallest x to its largest
+        segs += sorted(((p, e, spec.edge_len(p, e)) for e in _waist_edges(spec, p)), key=lambda t: _edge_x(spec, t[0], t[1]))
     total = sum(s[2] for s in segs)
     xs = -total / 2 + np.concatenate([[0.0], np.cumsum([s[2] for s in segs])])
     pts = [(x, 0.0) for x in xs] + [(xs[-1], height), (xs[0], height)]

@@ -37,12 +37,26 @@ SETTINGS = dict(
     soft_contact_mu=0.5,
     sew_frames=40,
     seam_spring_n_m=30.0,
+    seam_force_max_n=float("inf"),
     sew_damping=0.05,
+    sew_speed_max_m_s=float("inf"),
     ramp_frames=15,
     hold_frames=55,
     settle_frames=90,
     hold_band_m=0.02,
 )
+
+
+#: Retried in order when a drape diverges (a sewing force that one garment needs blows another
+#: up where several seams meet at a light corner vertex): the used one is recorded per case.
+FALLBACKS = [
+    {},
+    {"seam_force_max_n": 1.0, "sew_speed_max_m_s": 0.5},
+]
+
+
+#: A vertex farther than this from the body's bounding-box centre means the drape blew up [m].
+MAX_REACH = 1.5
 
 
 def _to_z(p):
@@ -109,6 +123,7 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
     dt = 1.0 / s["fps"] / s["substeps"]
     solver_cfg = newton.solvers.SolverStyle3D.Config(iterations=s["iterations"], linear_iterations=s["linear_iterations"])
     bz = _to_z(body_v)
+    centre = 0.5 * (bz.min(axis=0) + bz.max(axis=0))
     info = {}
 
     # held: the waist line of a lower garment (vertices within hold_band of its top)
@@ -139,8 +154,9 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
                 solver.step(state0, state1, control, contacts, dt)
                 state0, state1 = state1, state0
             q = state0.particle_q.numpy()
-            if not np.isfinite(q).all():
-                raise RuntimeError(f"newton diverged at frame {f}")
+            far = np.abs(q - centre).max() if np.isfinite(q).all() else np.inf
+            if far > MAX_REACH:
+                raise RuntimeError(f"newton diverged at frame {f} (a vertex {far:.1f} m from the body's centre)")
         return _to_y(state0.particle_q.numpy())
 
     # phase 1: sewing on the unsewn panels
@@ -154,8 +170,12 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
         f = np.zeros((len(q), 3))
         np.add.at(f, sp[:, 0], s["seam_spring_n_m"] * d)
         np.add.at(f, sp[:, 1], -s["seam_spring_n_m"] * d)
+        fn = np.linalg.norm(f, axis=1, keepdims=True)
+        f *= np.minimum(1.0, s["seam_force_max_n"] / np.maximum(fn, 1e-12))
         state.particle_f.assign(wp.array(f.astype(np.float32), dtype=wp.vec3, device="cpu"))
         v = state.particle_qd.numpy() * (1.0 - s["sew_damping"])
+        vn = np.linalg.norm(v, axis=1, keepdims=True)
+        v *= np.minimum(1.0, s["sew_speed_max_m_s"] / np.maximum(vn, 1e-12))
         state.particle_qd.assign(wp.array(v.astype(np.float32), dtype=wp.vec3, device="cpu"))
 
     x1 = run(m1, x_u, s["sew_frames"], lambda f: (0.0, False), np.zeros(0, np.int64), hook=pull)

@@ -78,7 +78,7 @@ CASES = {
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").
 MAX_INSIDE = 0.005  #: share of target vertices inside the body
-MAX_SEAM_GAP = 0.015  #: largest stitched-pair distance after the sewing phase [m]
+MAX_STRETCH = 1.0  #: largest per-triangle stretch (a seam left open by the sewing shows here)
 MAX_CUT_EDGES = 2  #: garment edges through the body (ends outside, midpoint inside)
 MAX_STRETCH_P99 = 0.25  #: 99th percentile of per-triangle largest stretch
 LOWER = ("skirt", "pants", "shorts")
@@ -143,7 +143,15 @@ def build_case(cid, out_root: Path):
     mesh = mesh_pattern(pattern, edge_length=EDGE_LENGTH)
     x0 = place_garment(pattern, mesh, body)
     _log(f"{cid}: {mesh.n_x} vertices, {len(mesh.faces)} triangles")
-    x, info = newton_drape.drape_newton(mesh, x0, body.verts, body.faces, lower=typ in LOWER, log=_log)
+    for k, extra in enumerate(newton_drape.FALLBACKS):
+        settings = {**newton_drape.SETTINGS, **extra}
+        try:
+            x, info = newton_drape.drape_newton(mesh, x0, body.verts, body.faces, lower=typ in LOWER, settings=settings, log=_log)
+            break
+        except RuntimeError as exc:
+            _log(f"  {exc}" + ("; retrying with " + str(newton_drape.FALLBACKS[k + 1]) if k + 1 < len(newton_drape.FALLBACKS) else ""))
+            if k + 1 == len(newton_drape.FALLBACKS):
+                raise
     faces = np.asarray(mesh.faces)
     ins_v = checks.inside_mask(x, body.verts, body.faces)
     inside = float(ins_v.mean())
@@ -156,6 +164,7 @@ def build_case(cid, out_root: Path):
         "stretch_p50": round(float(np.percentile(st, 50)), 4),
         "stretch_p95": round(float(np.percentile(st, 95)), 4),
         "stretch_p99": round(float(np.percentile(st, 99)), 4),
+        "stretch_max": round(float(st.max()), 4),
         "edges_through_body": cut,
         "seam_edges_through_body": cut_seam,
         "seam_gap_after_sewing_mm": round(info["gap_after_sewing_m"] * 1000, 1),
@@ -167,8 +176,8 @@ def build_case(cid, out_root: Path):
         fails.append(f"{inside:.2%} of vertices inside the body")
     if cut > MAX_CUT_EDGES or cut_seam:
         fails.append(f"{cut} edges ({cut_seam} seam edges) through the body")
-    if info["gap_after_sewing_m"] > MAX_SEAM_GAP:
-        fails.append(f"seams not closed ({info['gap_after_sewing_m'] * 1000:.0f} mm)")
+    if res["stretch_max"] > MAX_STRETCH:
+        fails.append(f"largest stretch {res['stretch_max']:.2f}")
     if res["stretch_p99"] > MAX_STRETCH_P99:
         fails.append(f"stretch p99 {res['stretch_p99']:.2f}")
     if not on:
@@ -191,8 +200,9 @@ def build_case(cid, out_root: Path):
             "name": "newton SolverStyle3D (CPU)",
             "newton": newton.__version__,
             "warp": __import__("warp").__version__,
-            "material": {k: newton_drape.SETTINGS[k] for k in ("density_kg_m2", "tri_aniso_ke", "edge_aniso_ke")},
-            "settings": {k: v for k, v in newton_drape.SETTINGS.items() if k not in ("density_kg_m2", "tri_aniso_ke", "edge_aniso_ke")},
+            "material": {k: settings[k] for k in ("density_kg_m2", "tri_aniso_ke", "edge_aniso_ke")},
+            "settings": {k: (None if v == float("inf") else v) for k, v in settings.items()
+                         if k not in ("density_kg_m2", "tri_aniso_ke", "edge_aniso_ke")},
             "mesh_edge_length_m": EDGE_LENGTH,
             "start": "unsew.body.placement.place_garment",
             "frames": info["frames"],
@@ -300,7 +310,7 @@ def cmd_list(args):
             "body": meta["source"]["body_key"],
             "verts": sum(1 for ln in open(d / "target.obj") if ln.startswith("v ")),
             "inside %": 100 * c["inside_fraction"],
-            "stretch p50/p95/p99": f"{c['stretch_p50']:.3f}/{c['stretch_p95']:.3f}/{c['stretch_p99']:.3f}",
+            "stretch p50/p95/p99/max": f"{c['stretch_p50']:.3f}/{c['stretch_p95']:.3f}/{c['stretch_p99']:.3f}/{c['stretch_max']:.2f}",
             "cut edges (seam)": f"{c['edges_through_body']} ({c['seam_edges_through_body']})",
             "seam gap mm": c["seam_gap_after_sewing_mm"],
             "on body": "yes" if c["on_body"] else "no",
