@@ -43,7 +43,8 @@ _P = dict(gender=0.5, age=0.5, muscle=0.5, weight=0.5, height=0.5, proportions=0
 #: Bodies by model (meta.json's "body"): anny phenotypes in [0, 1] and a pose.
 BODIES = {
     "anny_default": {"model": "anny", "phenotype": dict(_P), "pose": "A"},
-    "anny_male_heavy": {"model": "anny", "phenotype": dict(_P, gender=1.0, weight=0.8, muscle=0.6), "pose": "A"},
+    # anny interpolates gender from male (0) to female (1)
+    "anny_male_heavy": {"model": "anny", "phenotype": dict(_P, gender=0.0, weight=0.8, muscle=0.6), "pose": "A"},
     "anny_tall_thin": {"model": "anny", "phenotype": dict(_P, height=0.9, weight=0.15, proportions=0.7), "pose": "A"},
     "anny_tpose": {"model": "anny", "phenotype": dict(_P), "pose": "T"},
     # left leg swung 0.3 rad forward at the hip (world-frame rotation vector)
@@ -119,9 +120,9 @@ def _on_body(typ, x, body):
         from unsew.body.measure import measure_body
 
         wy = measure_body(body).waist_height
-        ok = abs(ytop - wy) < 0.08
+        ok = bool(abs(ytop - wy) < 0.08)
         return ok, f"top {ytop:.3f} m, waist {wy:.3f} m"
-    ok = ytop > J["chest"][1] + 0.1
+    ok = bool(ytop > J["chest"][1] + 0.1)
     return ok, f"top {ytop:.3f} m, chest {J['chest'][1]:.3f} m"
 
 
