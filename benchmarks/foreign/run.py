@@ -74,7 +74,6 @@ CASES = {
     "trousers_straight__leg_forward": ("trousers_straight", "anny_leg_forward"),
     "skirt_aline_knee__male_heavy": ("skirt_aline_knee", "anny_male_heavy"),
     "dress_pencil_gc__default": ("gc:dress_pencil_specification.json", "anny_default"),
-    "shirt_gc__default": ("gc:shirt_mean_specification.json", "anny_default"),
 }
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").
@@ -102,7 +101,7 @@ def _pattern(design, body):
 
     if design.startswith("gc:"):
         return json.loads((FOREIGN_PATTERNS / design[3:]).read_text()), {
-            "dress_pencil": "dress", "shirt_mean": "tshirt"}[design[3:].rsplit("_", 1)[0]]
+            "dress_pencil": "dress"}[design[3:].rsplit("_", 1)[0]]
     typ, fn = designs.DESIGNS[design]
     m = measure_body(body).as_dict()
     J = {n: p for n, p in zip(body.skeleton.names, body.skeleton.positions)}
