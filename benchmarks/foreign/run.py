@@ -313,6 +313,7 @@ def cmd_list(args):
             "stretch p50/p95/p99/max": f"{c['stretch_p50']:.3f}/{c['stretch_p95']:.3f}/{c['stretch_p99']:.3f}/{c['stretch_max']:.2f}",
             "cut edges (seam)": f"{c['edges_through_body']} ({c['seam_edges_through_body']})",
             "seam gap mm": c["seam_gap_after_sewing_mm"],
+            "sewing": "default" if meta["simulator"]["settings"].get("seam_force_max_n") is None else "capped (retry)",
             "on body": "yes" if c["on_body"] else "no",
             "floor mm": meta.get("floor", {}).get("chamfer_mm", meta.get("floor", {}).get("error", "")),
             "passed": "yes" if c["passed"] else "no",
