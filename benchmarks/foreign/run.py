@@ -73,6 +73,8 @@ CASES = {
     "tank_top__tpose": ("tank_top", "anny_tpose"),
     "trousers_straight__leg_forward": ("trousers_straight", "anny_leg_forward"),
     "skirt_aline_knee__male_heavy": ("skirt_aline_knee", "anny_male_heavy"),
+    "shorts_short__default": ("shorts_short", "anny_default"),
+    "tee_loose_long__tall_thin": ("tee_loose_long", "anny_tall_thin"),
     "dress_pencil_gc__default": ("gc:dress_pencil_specification.json", "anny_default"),
 }
 
