@@ -36,12 +36,13 @@ def _truths(n: int):
 def make_cases(root: Path, n: int, *, edge_length: float) -> Path:
     """n small truth cases under root/cases (kept between runs when root is kept)."""
     from unsew.fit.demo import make_truth_case
+    from unsew.sim.drape import DrapeSettings
 
     cases = root / f"cases_e{edge_length:g}"
     for i, truth in enumerate(_truths(n)):
         d = cases / f"tshirt{i:02d}"
         if not (d / "meta.json").is_file():
-            make_truth_case(d, truth=truth, edge_length=edge_length)
+            make_truth_case(d, truth=truth, settings=DrapeSettings(edge_length=edge_length))
     return cases
 
 
@@ -59,17 +60,18 @@ def main() -> None:
 
     torch.set_num_threads(1)
     from unsew.batch import run_batch
-    from unsew.fit.config import FitConfig
+    from unsew.fit.config import load_config
 
     root = Path(args.keep) if args.keep else Path(tempfile.mkdtemp(prefix="bench_batch_"))
     root.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
     cases = make_cases(root, args.cases, edge_length=args.edge_length)
     print(f"{args.cases} cases in {cases} ({time.perf_counter() - t0:.0f} s to make)")
-    cfg = FitConfig(edge_length=args.edge_length, iterations=args.iterations, sew_steps=20, settle_steps=10,
-                    steps=5, target_points=2000, report=False)
-    print(f"fit: edge_length {cfg.edge_length} m, {cfg.iterations} iterations, {cfg.steps} drape steps, "
-          f"sew/settle {cfg.sew_steps}/{cfg.settle_steps} steps, no report; cpu count {os.cpu_count()}")
+    cfg = load_config(edge_length=args.edge_length, iterations=args.iterations, sew_steps=20, settle_steps=10,
+                      steps=5, target_points=2000, report=False)
+    d = cfg.drape
+    print(f"fit: edge_length {d.edge_length} m, {cfg.optimizer.iterations} iterations, {d.steps} drape steps, "
+          f"sew/settle {d.sew_steps}/{d.settle_steps} steps, no report; cpu count {os.cpu_count()}")
     runs = [(f"local, {w} worker{'s' if w > 1 else ''}", {"workers": w}) for w in args.workers]
     if args.ray:
         runs.append(("Ray local, 2 CPUs", {"ray": "local", "ray_init_kwargs": {"num_cpus": 2}}))

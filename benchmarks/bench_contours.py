@@ -46,7 +46,7 @@ def main() -> None:
     from unsew.grading.alter import alter_pattern, alteration_groups
     from unsew.grading.contours import place_contours
     from unsew.grading.curves import curves_of_contour, rest_length
-    from unsew.grading.grade import dress_drape, grade
+    from unsew.grading.grade import GRADE_SETTINGS, dress_drape, grade
     from unsew.meshing.sew import mesh_pattern
     from unsew.pattern.base import make_base_pattern
     from unsew.pattern.params import PatternParams
@@ -72,7 +72,7 @@ def main() -> None:
     bx = drape_fn(base, bm, body)
     tm = mesh_pattern(target, edge_length=args.edge_length * args.target_scale)
     tx = drape_fn(target, tm, body)
-    res = grade(base, body, tx, tm.faces, edge_length=args.edge_length, drape_fn=drape_fn, mesh=bm, x_init=bx,
+    res = grade(base, body, tx, tm.faces, settings=GRADE_SETTINGS.replace(edge_length=args.edge_length), drape_fn=drape_fn, mesh=bm, x_init=bx,
                 passes=args.passes)
     print(f"{args.garment}{' (flipped)' if args.flip else ''}, edge length {args.edge_length} m, "
           f"target mesh x{args.target_scale}, {args.passes} pass(es)")

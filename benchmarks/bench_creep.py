@@ -61,11 +61,11 @@ def main() -> None:
     cfg = FitConfig()
     body = default_body()
     sdf = BodySDF.build(body)
-    print(f"dress: sew {cfg.sew_steps} + settle {cfg.settle_steps} steps, dt {cfg.dt} s, {args.material}, "
+    ds = cfg.drape.replace(edge_length=args.edge_length)
+    print(f"dress: sew {ds.sew_steps} + settle {ds.settle_steps} steps, dt {ds.dt} s, {args.material}, "
           f"edge {args.edge_length} m; shipped friction_eps {StepParams.friction_eps} m/s")
     for g in args.garments:
-        d = dress(make_base_pattern(g), body, sdf=sdf, edge_length=args.edge_length, material=args.material,
-                  sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt)
+        d = dress(make_base_pattern(g), body, sdf=sdf, material=args.material, settings=ds)
         x0 = d.x.detach().numpy().copy()
         contours = open_contours(x0, d.mesh.faces)
         m = d.material
@@ -78,7 +78,7 @@ def main() -> None:
             for k in range(args.chunks):
                 with torch.no_grad():
                     st = drape(d.model, st, sdf, uv=d.uv, gamma=m.gamma(), density=m.density,
-                               steps=args.chunk_steps, dt=cfg.dt, friction=m.friction, friction_eps=eps)
+                               settings=ds.replace(friction_eps=eps), steps=args.chunk_steps, friction=m.friction)
                 x = st.x.numpy()
                 dy = [1000 * float(x[c.indices, 1].mean() - x0[c.indices, 1].mean()) for c in contours]
                 print(f"{(k + 1) * args.chunk_steps:>6} {1000 * float((x[:, 1] - x0[:, 1]).mean()):>11.1f} "

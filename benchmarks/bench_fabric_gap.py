@@ -54,8 +54,8 @@ def main() -> None:
             (f"{truth} with {args.start}'s friction", dataclasses.replace(true, friction=start.friction)),
         ]
         for label, mat in variants:
-            dr = dress(case.pattern_gt, case.body, sdf=sdf, edge_length=args.edge_length, material=mat,
-                       sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt)
+            dr = dress(case.pattern_gt, case.body, sdf=sdf, material=mat,
+                       settings=cfg.drape.replace(edge_length=args.edge_length))
             cf = chamfer_mm(dr.x.numpy(), dr.mesh.faces, tv, tf, n_samples=args.samples).mean_mm
             print(f"{name:<12} {truth:<12} {label:<40} {cf:>10.2f}", flush=True)
 

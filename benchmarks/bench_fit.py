@@ -33,7 +33,7 @@ import numpy as np  # noqa: E402
 
 def _fit(case_dir: Path, out: Path, cfg, *, units=None):
     from unsew.fit.run import run_fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     case = load_case(case_dir, units=units)
     t = time.perf_counter()
@@ -91,11 +91,13 @@ def main(argv=None):
     import torch
 
     torch.set_num_threads(1)
-    from unsew.fit.config import FitConfig
+    from unsew.fit.config import load_config
+    from unsew.sim.drape import DrapeSettings
     from unsew.fit.synthetic import make_truth_case
 
     out = Path(args.out)
-    cfg = FitConfig(edge_length=args.edge_length, iterations=args.iterations)
+    cfg = load_config(edge_length=args.edge_length, iterations=args.iterations)
+    target_drape = DrapeSettings(edge_length=args.edge_length)  # the targets' dressing (FitConfig's, not --set's)
     if args.set:
         from run import apply_sets
 
@@ -111,7 +113,7 @@ def main(argv=None):
 
             alt = replace(DEFAULT_ALTERATIONS[g], material=off_library(DEFAULT_ALTERATIONS[g].material))
             print(f"{g}: true fabric {alt.as_dict()['material']}")
-        case = make_truth_case(out / "cases" / g, garment=g, alteration=alt, edge_length=args.edge_length)
+        case = make_truth_case(out / "cases" / g, garment=g, alteration=alt, settings=target_drape)
         nverts = sum(1 for line in open(case / "target.obj") if line.startswith("v "))
         result, m, secs = _fit(case, out / "results" / g, cfg)
         rows.append(_row(g, result, m, secs, nverts))
@@ -122,7 +124,7 @@ def main(argv=None):
 
         base = out / "cases" / "tshirt"
         if not base.is_dir():
-            make_truth_case(base, garment="tshirt", edge_length=args.edge_length)
+            make_truth_case(base, garment="tshirt", settings=target_drape)
         v, f = read_mesh(base / "target.obj")
         for var in variants:
             d = out / "cases" / f"tshirt_{var}"
@@ -132,7 +134,7 @@ def main(argv=None):
 
                 b = pose_body(default_body(), "left_arm_up") if var == "pose" else default_body().transformed(
                     scale=np.array([1.08, 1.0, 1.08]))
-                make_truth_case(d, garment="tshirt", body=b, body_meta=None, edge_length=args.edge_length)
+                make_truth_case(d, garment="tshirt", body=b, body_meta=None, settings=target_drape)
                 nverts = sum(1 for line in open(d / "target.obj") if line.startswith("v "))
                 result, m, secs = _fit(d, out / "results" / f"tshirt_{var}", cfg)
                 rows.append(_row(f"t-{var}", result, m, secs, nverts))

@@ -93,7 +93,7 @@ def main() -> None:
     from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
     from unsew.grading.contours import place_contours
     from unsew.grading.curves import curves_of_contour
-    from unsew.grading.grade import dress_drape, flat_drape, grade
+    from unsew.grading.grade import GRADE_SETTINGS, dress_drape, flat_drape, grade
     from unsew.meshing.sew import mesh_pattern
     from unsew.metrics.surface import chamfer_mm
     from unsew.pattern.base import make_base_pattern
@@ -139,7 +139,8 @@ def main() -> None:
             kw = {"hold_top": not args.no_hold_top, "remesh": args.remesh, "length": args.length}
             if args.passes is not None:
                 kw["passes"] = args.passes
-            res = grade(base, body, tx, tm.faces, edge_length=args.edge_length, drape_fn=drape_fn, mesh=bm, x_init=bx, **kw)
+            res = grade(base, body, tx, tm.faces, settings=GRADE_SETTINGS.replace(edge_length=args.edge_length),
+                        drape_fn=drape_fn, mesh=bm, x_init=bx, **kw)
             sk = body.skeleton
             after = place_contours(res.x_draped, res.mesh.faces, sk)
             tgt = place_contours(tx, tm.faces, sk)

@@ -81,8 +81,8 @@ def main() -> None:
     for name, case, truth, sdf, tv, tf in truth_cases(args.cases):
         for h in args.edge_lengths:
             t = time.perf_counter()
-            dr = dress(case.pattern_gt, case.body, sdf=sdf, edge_length=h, material=MATERIALS[truth],
-                       sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt)
+            dr = dress(case.pattern_gt, case.body, sdf=sdf, material=MATERIALS[truth],
+                       settings=cfg.drape.replace(edge_length=h))
             cf = chamfer_mm(dr.x.numpy(), dr.mesh.faces, tv, tf, n_samples=args.samples).mean_mm
             print(f"{name:<12} {truth:<10} {h:>7.4f} {len(dr.x):>6d} {cf:>10.2f} {time.perf_counter() - t:>7.1f}",
                   flush=True)
@@ -111,7 +111,6 @@ def _by_resolution(args) -> None:
     alt = DEFAULT_ALTERATIONS[args.garment]
     pattern = make_truth_pattern(args.garment, alt, body=body)
     fabrics = args.fabrics or [alt.material]
-    kw = dict(sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt)
     lo, hi = 1 - args.spread, 1 + args.spread
     head = f"{'garment':<8} {'fabric':<10} {'edge m':>7} {'verts':>6} {'floor x' + format(lo, '.2f'):>12} {'x' + format(hi, '.2f'):>7}"
     if args.from_target > 0:
@@ -121,12 +120,12 @@ def _by_resolution(args) -> None:
         mat = get_material(fabric)
         for h in args.resolutions:
             t = time.perf_counter()
-            ref = dress(pattern, body, sdf=sdf, edge_length=h, material=mat, **kw)
+            ref = dress(pattern, body, sdf=sdf, material=mat, settings=cfg.drape.replace(edge_length=h))
             rv, rf = ref.x.numpy(), ref.mesh.faces
             near = trimesh.Trimesh(rv, rf, process=False)
             floors, guided = [], []
             for f in (lo, hi):
-                d = dress(pattern, body, sdf=sdf, edge_length=h * f, material=mat, **kw)
+                d = dress(pattern, body, sdf=sdf, material=mat, settings=cfg.drape.replace(edge_length=h * f))
                 x = d.x.numpy()
                 floors.append(chamfer_mm(x, d.mesh.faces, rv, rf, n_samples=args.samples).mean_mm)
                 if args.from_target > 0:
@@ -134,7 +133,7 @@ def _by_resolution(args) -> None:
                     x0 = torch.as_tensor(x + args.from_target * (cp - x))
                     try:
                         st = drape(d.model, SimState.at_rest(x0), sdf, uv=d.uv, gamma=mat.gamma(),
-                                   density=mat.density, steps=args.settle, dt=cfg.dt, friction=mat.friction)
+                                   density=mat.density, settings=cfg.drape, steps=args.settle, friction=mat.friction)
                         guided.append(chamfer_mm(st.x.detach().numpy(), d.mesh.faces, rv, rf,
                                                  n_samples=args.samples).mean_mm)
                     except SimulationError:

@@ -46,7 +46,7 @@ def main() -> None:
     from unsew.dress import dress
     from unsew.errors import InputError
     from unsew.fit.config import FitConfig
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.io.garmentcode import load_pattern
     from unsew.metrics.surface import chamfer_mm
     from unsew.sim.material import material_from_dict
@@ -64,8 +64,7 @@ def main() -> None:
         except (InputError, ValueError) as exc:
             raise SystemExit(f"{res}/material.json: {exc}") from None
         reported = json.loads((res / "metrics.json").read_text())["surface"]["chamfer_mm"]
-        d = dress(pattern, case.body, edge_length=args.edge_length, material=mat, sew_steps=cfg.sew_steps,
-                  settle_steps=cfg.settle_steps, dt=cfg.dt)
+        d = dress(pattern, case.body, material=mat, settings=cfg.drape.replace(edge_length=args.edge_length))
         x = d.x.detach().cpu().numpy().astype(np.float64)
         tv, tf = np.asarray(case.target_verts), np.asarray(case.target_faces)
         cf = chamfer_mm(x, d.mesh.faces, tv, tf, n_samples=args.samples).mean_mm

@@ -61,12 +61,13 @@ def _mesh(n_target: int, use_tshirt: bool):
 
 
 def _run(model, st, sdf, uv, gamma, steps, backward, checkpoint=False, backend="auto", fused=True):
-    from unsew.sim import drape
+    from unsew.sim import DrapeSettings, drape
 
     uvp = uv.clone().requires_grad_(backward)
     gp = gamma.clone().requires_grad_(backward)
     t0 = time.perf_counter()
-    out = drape(model, st, sdf, uv=uvp, gamma=gp, density=0.15, steps=steps, checkpoint=checkpoint, backend=backend, fused=fused)
+    out = drape(model, st, sdf, uv=uvp, gamma=gp, density=0.15, steps=steps, checkpoint=checkpoint,
+                settings=DrapeSettings(backend=backend, fused=fused))
     t1 = time.perf_counter()
     if backward:
         (out.x**2).sum().backward()

@@ -34,6 +34,7 @@ def main(argv=None) -> None:
     from run import MATERIAL_BASE, MATERIAL_SKIRT
 
     from unsew.fit.synthetic import Alteration, make_truth_case
+    from unsew.sim.drape import DrapeSettings
     from unsew.io.mesh import read_mesh
     from unsew.metrics.surface import surface_metrics
     from unsew.sim.material import get_material
@@ -46,7 +47,8 @@ def main(argv=None) -> None:
         mat = dataclasses.replace(base, **{k: getattr(base, k) * f for k in ("h00", "h01", "h11", "h22")})
         t = time.perf_counter()
         d = make_truth_case(Path(args.out) / f"skirt_stretch_x{f:g}", garment="skirt",
-                            alteration=Alteration(MATERIAL_SKIRT, mat), edge_length=args.edge_length)
+                            alteration=Alteration(MATERIAL_SKIRT, mat),
+                            settings=DrapeSettings(edge_length=args.edge_length))
         drapes[f] = read_mesh(d / "target.obj")
         print(f"{'x%g' % f:>8} {mat.h00:>8.0f} {np.asarray(drapes[f][0])[:, 1].min():>10.4f} "
               f"{time.perf_counter() - t:>7.0f}", flush=True)

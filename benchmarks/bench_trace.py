@@ -7,7 +7,7 @@ iteration of phase two. Prints per iteration: the loss, the Chamfer distance [mm
 iteration's (warm-started) drape to the target, and the mean panel area error [%] and mean
 vertex L2 [cm] of that iteration's pattern against the true one. ``--json`` writes the rows.
 
-A frozen pattern (``--set pattern_start=1000 optimize_material=false``) shows how far the drape
+A frozen pattern (``--set pattern_start=1000 material_params=``) shows how far the drape
 moves by itself over the iterations (creep); the default shows how far the pattern moves for
 what the drape gains.
 
@@ -21,7 +21,6 @@ Run: OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_trace.py CASE_DIR
 from __future__ import annotations
 
 import argparse
-import importlib
 import json
 import os
 from pathlib import Path
@@ -56,7 +55,8 @@ def main() -> None:
     torch.set_num_threads(1)
     from unsew.errors import InputError
     from unsew.fit.config import load_config
-    from unsew.io.case import load_case
+    from unsew.fit.fit import fit
+    from unsew.body.case import load_case
     from unsew.metrics.panels import pattern_metrics
     from unsew.metrics.surface import chamfer_mm
 
@@ -66,29 +66,16 @@ def main() -> None:
     except InputError as exc:
         raise SystemExit(f"bench_trace: {exc}") from None
 
-    # Record what phase two's loop hands to the simulator and to the inversion check: the drape of
-    # every iteration (drapes with a differentiable rest shape) and the control points it used.
-    fit_mod = importlib.import_module("unsew.fit.fit")
-    drape_mod = importlib.import_module("unsew.sim.drape")  # fit() imports drape from here at call time
+    # Record every iteration of phase two through the fit's per-iteration callback: the control
+    # points it draped, its material and its (warm-started) drape.
     xs, Ks, gammas = [], [], []
-    orig_drape, orig_backtrack = drape_mod.drape, fit_mod._backtrack_inversions
 
-    def recording_drape(*a, **k):
-        out = orig_drape(*a, **k)
-        if k.get("uv") is not None and k["uv"].requires_grad:
-            xs.append(out.x.detach().cpu().clone())
-            gammas.append(k["gamma"].detach().cpu().clone())
-        return out
+    def record(info):
+        xs.append(info.x.cpu().clone())
+        Ks.append(info.K.cpu().clone())
+        gammas.append(info.gamma.cpu().clone())
 
-    def recording_backtrack(params, K, K_before, *a, **k):
-        Ks.append(K_before.detach().cpu().clone())
-        return orig_backtrack(params, K, K_before, *a, **k)
-
-    drape_mod.drape, fit_mod._backtrack_inversions = recording_drape, recording_backtrack
-    try:
-        res = fit_mod.fit(case, cfg, progress=False, log=lambda s: None)
-    finally:
-        drape_mod.drape, fit_mod._backtrack_inversions = orig_drape, orig_backtrack
+    res = fit(case, cfg, progress=False, log=lambda s: None, callback=record)
 
     tv, tf = np.asarray(case.target_verts), np.asarray(case.target_faces)
     rows = []
@@ -106,19 +93,19 @@ def main() -> None:
         cf = chamfer_mm(x.numpy(), res.mesh.faces, tv, tf, n_samples=args.samples).mean_mm
         row = {"it": i, "loss": res.history["total"][i], "chamfer_mm": cf,
                "area_pct": 100 * pm["area_error_rel_mean"], "vertex_l2_cm": pm.get("vertex_l2_cm_mean")}
-        if n > 0 and (i % n == 0 or i == res.extra["best_iteration"]):
+        if n > 0 and (i % n == 0 or i == res.best_iteration):
             row["redressed_mm"] = _redress(res, case, cfg, sdf, pattern, K, gammas[i], tv, tf, args.samples)
         rows.append(row)
         print(f"{i:>3d} {row['loss']:>10.4e} {cf:>10.2f} {row['area_pct']:>7.2f} {row['vertex_l2_cm']:>12.2f}"
               + (f" {row['redressed_mm']:>13.2f}" if "redressed_mm" in row else ""), flush=True)
-    rd = res.extra.get("redress")
-    start = (res.extra.get("material_choice") or [{"material": cfg.material}])[0]["material"]
-    print(f"best iteration {res.extra['best_iteration']}; start material {start}"
+    rd = res.redress.as_dict() if res.redress is not None else None
+    start = (res.material_choice or [{"material": cfg.material.start}])[0]["material"]
+    print(f"best iteration {res.best_iteration}; start material {start}"
           + (f"; re-dress {rd['fit_redressed_mm']:.2f} mm against graded {rd['graded_mm']:.2f} mm, "
              f"{'fit kept' if rd['phase_two_kept'] else 'graded returned'}" if rd else ""))
     if args.json:
         Path(args.json).write_text(json.dumps({"case": str(args.case), "set": sets, "rows": rows,
-                                               "best_iteration": res.extra["best_iteration"], "redress": rd}, indent=1))
+                                               "best_iteration": res.best_iteration, "redress": rd}, indent=1))
 
 
 def _redress(res, case, cfg, sdf, pattern, K, gamma, tv, tf, samples) -> float:
@@ -130,12 +117,12 @@ def _redress(res, case, cfg, sdf, pattern, K, gamma, tv, tf, samples) -> float:
     from unsew.metrics.surface import chamfer_mm
     from unsew.sim.material import Material
 
-    m0 = res.extra["material0"]
+    m0 = res.start_material
     g = [float(v) for v in gamma]
     mat = Material(g[0], g[1], g[2], g[3], g[4], m0.density, m0.friction)
     uv = res.params.uv(K).detach().cpu().numpy()
     x = dress(pattern, case.body, sdf=sdf, mesh=moved_mesh(res.mesh, pattern, uv), material=mat,
-              sew_steps=cfg.sew_steps, settle_steps=cfg.settle_steps, dt=cfg.dt).x.numpy()
+              settings=cfg.drape).x.numpy()
     return chamfer_mm(x, res.mesh.faces, tv, tf, n_samples=samples).mean_mm
 
 

@@ -96,10 +96,11 @@ def case_name(garment: str, index: int) -> str:
     return f"{garment}_{index:02d}"
 
 
-def make_case(out: Path, garment: str, index: int, *, seed: int = 0, edge_length: float = 0.025, **dressing) -> Path:
+def make_case(out: Path, garment: str, index: int, *, seed: int = 0, edge_length: float = 0.025, settings=None) -> Path:
     """Write (or keep, if present) case ``index`` of ``garment`` under ``out``. Returns its folder.
-    ``dressing``: sew_steps, settle_steps, dt of the target's drape (default: FitConfig's, as the
-    fits dress)."""
+    ``settings``: DrapeSettings of the target's drape (default: FitConfig's, as the fits dress),
+    its edge length replaced by ``edge_length``."""
+    from unsew.fit.config import FitConfig
     from unsew.fit.synthetic import make_truth_case
 
     d = Path(out) / case_name(garment, index)
@@ -108,7 +109,8 @@ def make_case(out: Path, garment: str, index: int, *, seed: int = 0, edge_length
     alt, bname = design(garment, index, seed)
     body = body_by_name(bname)
     make_truth_case(d, garment=garment, alteration=alt, body=None if bname == "default" else body,
-                    body_meta="default" if bname == "default" else None, edge_length=edge_length, **dressing)
+                    body_meta="default" if bname == "default" else None,
+                    settings=(settings or FitConfig().drape).replace(edge_length=edge_length))
     meta = json.loads((d / "meta.json").read_text())
     meta["benchmark"] = {"body_name": bname, "seed": seed, "index": index, "edge_length_m": edge_length,
                          "generator": "benchmarks/make_cases.py", "unsew_commit": _git_version()}

@@ -58,9 +58,9 @@ GARMENTS = ["tshirt", "dress", "pants", "shorts", "skirt"]
 #: Ablation variants: name -> FitConfig overrides (paper Table 3 rows, plus no grading).
 ABLATIONS = {
     "full": {},
-    "no_curvature": {"curvature_weighted": False},
-    "no_seam": {"seam_loss": False},
-    "no_material": {"optimize_material": False},
+    "no_curvature": {"loss": {"curvature_weighted": False}},
+    "no_seam": {"loss": {"seam": 0.0}},
+    "no_material": {"material": {"fit": []}},
     "no_grading": {"grading": False},
 }
 
@@ -96,7 +96,7 @@ def fit_case(case_dir: Path, out: Path, cfg, *, log=print, retry_failed: bool | 
     ``retry_failed``.
     """
     from unsew.fit.run import partial_dir, run_fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     out = Path(out)
     side = out.with_name(out.name + ".bench.json")
@@ -157,7 +157,7 @@ def apply_sets(cfg, items):
     """``cfg`` with the ``--set KEY=VALUE`` overrides in ``items`` applied (checked by
     load_config); exits with a one-line reason on a malformed or unknown override."""
     from unsew.errors import InputError
-    from unsew.fit.config import load_config
+    from unsew.fit.config import config_to_dict, load_config
 
     sets = {}
     for item in items or ():
@@ -168,17 +168,17 @@ def apply_sets(cfg, items):
     if not sets:
         return cfg
     try:
-        return load_config(defaults=dataclasses.asdict(cfg) | sets)
+        return load_config(defaults=config_to_dict(cfg) | sets)
     except InputError as exc:
         sys.exit(f"--set: {exc}")
 
 
 def base_config(args, **changes):
-    from unsew.fit.config import FitConfig
+    from unsew.fit.config import config_to_dict, load_config
 
-    cfg = FitConfig(edge_length=args.edge_length, iterations=args.iterations, report=not args.no_report)
+    cfg = load_config(edge_length=args.edge_length, iterations=args.iterations, report=not args.no_report)
     cfg = apply_sets(cfg, getattr(args, "set", None))
-    return cfg.replace(**changes) if changes else cfg
+    return load_config(defaults=config_to_dict(cfg), **changes) if changes else cfg
 
 
 # -- cases -------------------------------------------------------------------------------------
@@ -376,6 +376,7 @@ MATERIAL_BASE = "jersey"
 
 def material_cases(args) -> dict[str, list[tuple[float, Path]]]:
     from unsew.fit.synthetic import Alteration, make_truth_case
+    from unsew.sim.drape import DrapeSettings
     from unsew.sim.material import get_material
 
     base = get_material(MATERIAL_BASE)
@@ -387,7 +388,7 @@ def material_cases(args) -> dict[str, list[tuple[float, Path]]]:
             if not (d / "meta.json").is_file():
                 mat = dataclasses.replace(base, **{k: getattr(base, k) * f for k in fields})
                 make_truth_case(d, garment="skirt", alteration=Alteration(MATERIAL_SKIRT, mat),
-                                edge_length=args.case_edge_length)
+                                settings=DrapeSettings(edge_length=args.case_edge_length))
             out[pair].append((f, d))
     return out
 
@@ -422,7 +423,7 @@ def table_material(args) -> None:
     text = (f"## Material recovery (paper 4.3, Fig. 10)\n\n{header(args, 'measured')}\n\n"
             f"One skirt pattern (base skirt, hem {MATERIAL_SKIRT['hem']}) draped in {MATERIAL_BASE} "
             f"(bending {b.bend:.3g} N m, H00 {b.h00:g} N/m) with the listed stiffnesses scaled; each fitted "
-            f"with material: {cfg.material}. `recovered` is the fit's bending [N m] or H00 [N/m]; `A between` is the mean panel "
+            f"with material: {cfg.material.start}. `recovered` is the fit's bending [N m] or H00 [N/m]; `A between` is the mean panel "
             "area error between the pair's two recovered patterns.\n\n"
             + md_table(["pair", "truth", "Chamfer mm", "area err vs truth %", "recovered", "A between %",
                         "order right", "A between <= 2%", "failure"], rows,
@@ -434,7 +435,7 @@ def _scaled_base(case_dir: Path, garment: str, s: float, path: Path) -> Path:
     """The base pattern of ``garment`` sized to the case's body, every panel scaled by ``s``
     about its 2D centroid, saved as GarmentCode JSON at ``path``."""
     from unsew.body.measure import measure_body
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.io.garmentcode import save_pattern
     from unsew.pattern.base import make_base_pattern
 

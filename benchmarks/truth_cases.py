@@ -24,7 +24,7 @@ def truth_cases(dirs):
 
     from unsew.body.sdf import BodySDF
     from unsew.errors import InputError
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.sim.material import MATERIALS
 
     for d in map(Path, dirs):

@@ -15,10 +15,19 @@ def test_version(capsys):
     assert unsew.__version__ in capsys.readouterr().out
 
 
+def test_no_command_prints_help_and_fails(capsys):
+    assert main([]) == 2
+    err = capsys.readouterr().err
+    assert "usage: unsew" in err and "fit" in err and "pattern" in err
+
+
 def test_help_lists_commands(capsys):
-    assert main([]) == 0
+    try:
+        main(["--help"])
+    except SystemExit as exc:
+        assert exc.code == 0
     out = capsys.readouterr().out
-    assert "usage: unsew" in out
+    assert "usage: unsew" in out and "demo" in out
 
 
 def test_unknown_command_fails():

@@ -13,15 +13,18 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
+import torch
 
-__all__ = ["Dressed", "dress", "resolve_material", "hold_vertices", "dress_stats"]
+from unsew.body.placement import place_garment
+from unsew.body.sdf import BodySDF
+from unsew.meshing import mesh_pattern
+from unsew.sim.drape import DrapeSettings, drape, merge_sewn, sew
+from unsew.sim.material import Material, get_material
+from unsew.sim.model import SimModel
+from unsew.sim.state import SimState
 
-#: Defaults of the sewing phase, measured on the five base patterns at 2-3 cm edges
-#: (benchmarks/bench_dress.py).
-SEW_DT = 0.02  #: [s]
-SEW_SPRING = 1000.0  #: zero-length seam springs [N/m] (100 left seams 2-4 mm open)
-HOLD_STEPS = 20  #: steps the waistline of a lower garment is held still
-RAMP_STEPS = 30  #: steps over which gravity rises to full
+__all__ = ["Dressed", "dress", "DRESS_SETTINGS", "resolve_material", "hold_vertices", "dress_stats"]
+
 #: A lower garment's waistline: its vertices within this height of its top [m].
 HOLD_BAND = 0.02
 
@@ -47,8 +50,6 @@ class Dressed:
 
 def resolve_material(material):
     """A Material from a library name or a Material instance."""
-    from unsew.sim.material import Material, get_material
-
     if isinstance(material, Material):
         return material
     return get_material(str(material))
@@ -77,8 +78,6 @@ def dress_stats(d, *, x_unsewn_sewn=None) -> dict:
     over its rest length [-], ``inverted`` triangles whose 3D normal opposes its neighbours'
     average by more than 150 deg, ``bbox`` (2, 3) [m], plus ``d.stats``.
     """
-    import torch
-
     x = d.x.detach()
     with torch.no_grad():
         sd, _ = d.sdf.query(x)
@@ -112,58 +111,46 @@ def _folded_triangles(x, faces) -> int:
     return int((c < np.cos(np.radians(150))).sum())
 
 
+#: dress()'s settings when none are given: the fit's, with a shorter sewing and settling phase
+#: (60 + 20 steps against the fit's 80 + 40), as dress() has always defaulted to.
+DRESS_SETTINGS = DrapeSettings(sew_steps=60, settle_steps=20)
+
+
 def dress(
     pattern,
     body,
     *,
     sdf=None,
     mesh=None,
-    edge_length: float = 0.025,
     material="cotton",
     gamma=None,
-    sew_steps: int = 60,
-    settle_steps: int = 20,
-    dt: float = 0.05,
+    settings: DrapeSettings = DRESS_SETTINGS,
     progress: Callable[[str, int, int], None] | None = None,
-    sew_dt: float = SEW_DT,
-    spring_stiffness: float = SEW_SPRING,
-    hold_steps: int = HOLD_STEPS,
-    ramp_steps: int = RAMP_STEPS,
 ) -> Dressed:
     """Mesh, place, sew and settle ``pattern`` on ``body``.
 
     Args:
         pattern: unsew.pattern.model.Pattern. body: unsew.body.body.Body.
         sdf: the body's SDF (built and disk-cached from ``body`` when None).
-        mesh: a GarmentMesh of ``pattern`` to reuse (meshed at ``edge_length`` when None).
-        edge_length: target triangle edge length [m].
+        mesh: a GarmentMesh of ``pattern`` to reuse (meshed at ``settings.edge_length`` when None).
         material: library name or Material; gamma: optional (5,) torch overriding its stiffness.
-        sew_steps: steps of the sewing phase; settle_steps: steps of plain draping after it.
-        dt: time step of the settle drape [s].
+        settings: :class:`~unsew.sim.drape.DrapeSettings`: the mesh's edge length, the sewing
+            phase (``sew_steps`` of ``sew_dt``, seam springs, the waistline held ``hold_steps``,
+            gravity ramped over ``ramp_steps``) and ``settle_steps`` of plain draping at ``dt``.
+            Default :data:`DRESS_SETTINGS`.
         progress: optional callback ``progress(phase, k, n)`` (phases "place", "sew", "settle").
-        sew_dt: time step of the sewing phase [s]; spring_stiffness: seam springs [N/m];
-        hold_steps: steps a lower garment's waistline is held (:func:`hold_vertices`);
-        ramp_steps: steps over which gravity rises to full in the sewing phase.
 
     Returns:
         :class:`Dressed`; its ``stats`` hold ``place_s``, ``sew_s``, ``settle_s`` [s],
         ``seam_gap`` [m] (largest distance between two unsewn copies of a seam vertex after
-        sewing, before they are merged) and ``max_speed`` [m/s] at the end of settling.
+        sewing, before they are merged), ``max_speed`` [m/s] at the end of settling and
+        ``start_height`` [m] the mean height of the placed garment's vertices (the drop check
+        of :func:`unsew.sim.checks.check_dressed`).
     """
-    import torch
-
-    from unsew.body.placement import place_garment
-    from unsew.meshing import mesh_pattern
-    from unsew.sim.drape import drape, merge_sewn, sew
-    from unsew.sim.model import SimModel
-    from unsew.sim.state import SimState
-
     mat = resolve_material(material)
     if mesh is None:
-        mesh = mesh_pattern(pattern, edge_length=edge_length)
+        mesh = mesh_pattern(pattern, edge_length=settings.edge_length)
     if sdf is None:
-        from unsew.body.sdf import BodySDF
-
         sdf = BodySDF.build(body)
     g = mat.gamma() if gamma is None else torch.as_tensor(gamma, dtype=torch.float64).detach()
     uv = torch.as_tensor(np.asarray(mesh.uv), dtype=torch.float64)
@@ -175,23 +162,23 @@ def dress(
     if progress:
         progress("place", 1, 1)
     model_unsewn = SimModel.build(mesh.faces_uv, mesh.faces_uv, springs=mesh.seam_pairs)
-    cb = (lambda k, s: progress("sew", k + 1, sew_steps)) if progress else None
-    xs = sew(model_unsewn, x_unsewn, sdf, uv=uv, gamma=g, density=mat.density, steps=sew_steps, dt=sew_dt,
-             hold=hold if len(hold) else None, hold_steps=hold_steps, ramp_steps=ramp_steps,
-             spring_stiffness=spring_stiffness, friction=mat.friction, callback=cb)
+    cb = (lambda k, s: progress("sew", k + 1, settings.sew_steps)) if progress else None
+    xs = sew(model_unsewn, x_unsewn, sdf, uv=uv, gamma=g, density=mat.density, settings=settings,
+             hold=hold if len(hold) else None, friction=mat.friction, callback=cb)
     sp = torch.as_tensor(np.asarray(mesh.seam_pairs), dtype=torch.int64)
     gap = float((xs[sp[:, 0]] - xs[sp[:, 1]]).norm(dim=1).max()) if len(sp) else 0.0
     x = merge_sewn(xs, mesh.x_of_u, mesh.n_x)
     model = SimModel.build(mesh.faces, mesh.faces_uv)
     t2 = time.perf_counter()
     speed = 0.0
-    if settle_steps > 0:
-        cb = (lambda k, s: progress("settle", k + 1, settle_steps)) if progress else None
+    if settings.settle_steps > 0:
+        cb = (lambda k, s: progress("settle", k + 1, settings.settle_steps)) if progress else None
         with torch.no_grad():
-            st = drape(model, SimState.at_rest(x), sdf, uv=uv, gamma=g, density=mat.density,
-                       steps=settle_steps, dt=dt, friction=mat.friction, callback=cb)
+            st = drape(model, SimState.at_rest(x), sdf, uv=uv, gamma=g, density=mat.density, settings=settings,
+                       steps=settings.settle_steps, friction=mat.friction, callback=cb)
         x = st.x
         speed = float(st.v.norm(dim=1).max())
     t3 = time.perf_counter()
-    stats = dict(place_s=t1 - t0, sew_s=t2 - t1, settle_s=t3 - t2, seam_gap=gap, max_speed=speed)
+    stats = dict(place_s=t1 - t0, sew_s=t2 - t1, settle_s=t3 - t2, seam_gap=gap, max_speed=speed,
+                 start_height=float(merge_sewn(x_unsewn, mesh.x_of_u, mesh.n_x)[:, 1].mean()))
     return Dressed(pattern, mesh, model, x.detach(), uv, mat, sdf, stats)

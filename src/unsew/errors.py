@@ -5,7 +5,7 @@ Every check at a boundary (files, meshes, patterns, configs) raises :class:`Unse
 ``unsew: error: <message>`` and exits with status 2; it never shows a traceback for these.
 """
 
-__all__ = ["UnsewError", "InputError", "PatternError", "SimulationError"]
+__all__ = ["UnsewError", "InputError", "OutputError", "PatternError", "SimulationError"]
 
 
 class UnsewError(Exception):
@@ -16,8 +16,16 @@ class InputError(UnsewError):
     """A file, mesh, body or option given by the user is missing or malformed."""
 
 
-class PatternError(UnsewError):
-    """A sewing pattern is malformed (open loop, self-intersection, bad stitch, ...)."""
+class OutputError(UnsewError, OSError):
+    """An output cannot be written (unwritable place, disk full, not a regular file).
+
+    Also an :class:`OSError`, so code that tolerates a failed optional write (a cache) keeps
+    catching it.
+    """
+
+
+class PatternError(InputError):
+    """A sewing pattern is malformed (open loop, self-intersection, bad stitch, ...): bad input."""
 
 
 class SimulationError(UnsewError):

@@ -43,7 +43,7 @@ def fake_fit(case_dir: Path, out: Path, cfg, *, resume: bool = False, overwrite:
     start = int(ckpt.read_text()) if resume and ckpt.is_file() else 0
     if log:
         log(f"fake fit from iteration {start}")
-    for it in range(start, cfg.iterations):
+    for it in range(start, cfg.optimizer.iterations):
         time.sleep(float(meta.get("sleep", 0.0)))
         tmp = work / "ckpt.tmp"
         tmp.write_text(str(it + 1))
@@ -51,7 +51,7 @@ def fake_fit(case_dir: Path, out: Path, cfg, *, resume: bool = False, overwrite:
     v = float(meta.get("value", 1.0))
     metrics = {"surface": {"chamfer_mm": 10.0 * v, "normal_error_deg": 5.0 * v},
                "loss_final": {"total": v / 3.0, "chamfer": v / 7.0},
-               "iterations": cfg.iterations, "timings_s": {"total_s": 0.5}, "resumed_from": start}
+               "iterations": cfg.optimizer.iterations, "timings_s": {"total_s": 0.5}, "resumed_from": start}
     if meta.get("pattern_gt"):
         metrics["pattern"] = {"area_error_rel_mean": 0.01 * v, "turning_distance_mean": 0.1 * v}
     (work / "report.html").write_text("<html>fake</html>")

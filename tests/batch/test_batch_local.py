@@ -19,9 +19,9 @@ from batch.fakes import fake_fit, make_fake_case
 from unsew.batch import find_cases, result_state, run_batch
 from unsew.batch.summary import format_table
 from unsew.errors import InputError
-from unsew.fit.config import FitConfig
+from unsew.fit.config import load_config
 
-CFG = FitConfig(iterations=3, report=False)
+CFG = load_config(iterations=3, report=False)
 
 
 def _cases(root: Path, n_good: int = 3, **bad) -> Path:
@@ -129,8 +129,8 @@ signal.signal(signal.SIGINT, signal.default_int_handler)
 sys.path.insert(0, {tests!r})
 from batch.fakes import fake_fit
 from unsew.batch import run_batch
-from unsew.fit.config import FitConfig
-res = run_batch({cases!r}, {out!r}, cfg=FitConfig(iterations=40, report=False), workers=2, fit_fn=fake_fit,
+from unsew.fit.config import load_config
+res = run_batch({cases!r}, {out!r}, cfg=load_config(iterations=40, report=False), workers=2, fit_fn=fake_fit,
                 progress=False)
 print("INTERRUPTED" if res.interrupted else "FINISHED", flush=True)
 """
@@ -167,7 +167,7 @@ def test_ctrl_c_stops_cleanly_and_rerun_continues(tmp_path):
     time.sleep(0.5)
     assert snap == {p: p.read_text() for p in out.glob("*.partial/checkpoint.pt")}
 
-    res = run_batch(cases, out, cfg=FitConfig(iterations=40, report=False), workers=2, fit_fn=fake_fit,
+    res = run_batch(cases, out, cfg=load_config(iterations=40, report=False), workers=2, fit_fn=fake_fit,
                     progress=False)
     st = {r.name: r for r in res.records}
     assert all(r.status in ("done", "skipped") for r in res.records)

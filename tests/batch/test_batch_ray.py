@@ -13,9 +13,9 @@ ray = pytest.importorskip("ray", reason="Ray is optional (pip install 'unsew[ray
 import batch.fakes as fakes  # noqa: E402
 from unsew.batch import run_batch  # noqa: E402
 from unsew.errors import InputError  # noqa: E402
-from unsew.fit.config import FitConfig  # noqa: E402
+from unsew.fit.config import load_config  # noqa: E402
 
-CFG = FitConfig(iterations=3, report=False)
+CFG = load_config(iterations=3, report=False)
 
 
 def test_unreachable_cluster_is_one_line_and_writes_nothing(tmp_path, monkeypatch):

@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 
 from unsew.batch import fit_case_dir, run_batch
-from unsew.fit.config import FitConfig
+from unsew.fit.config import load_config
 from unsew.fit.demo import DemoTruth, make_truth_case
 
 #: tiny fits: coarse panels, few sewing/settling/drape steps, a small Chamfer subset
@@ -39,10 +39,15 @@ def _leaves(d, prefix=""):
         yield prefix, d
 
 
+#: metrics.json keys that measure the run itself, not the result
+_RUN_MEASURES = ("/timings_s", "/peak_memory_mb")
+
+
 def assert_same_metrics(a: dict, b: dict, *, rtol: float = 1e-9) -> None:
-    """Every metric equal to ``rtol`` (timings excepted); the message lists the ones that differ."""
-    la = {k: v for k, v in _leaves(a) if not k.startswith("/timings_s")}
-    lb = {k: v for k, v in _leaves(b) if not k.startswith("/timings_s")}
+    """Every metric equal to ``rtol`` (timings and peak memory, which measure the run, excepted); the
+    message lists the ones that differ."""
+    la = {k: v for k, v in _leaves(a) if not k.startswith(_RUN_MEASURES)}
+    lb = {k: v for k, v in _leaves(b) if not k.startswith(_RUN_MEASURES)}
     assert la.keys() == lb.keys()
     bad = [(k, la[k], lb[k]) for k in la
            if la[k] != lb[k] and not (isinstance(la[k], float) and isinstance(lb[k], float)
@@ -62,9 +67,9 @@ def _metrics(out: Path) -> dict:
 
 
 def test_small_batch_equals_single_fit_and_reports_broken_case(tmp_path):
-    cfg = FitConfig(iterations=1, **TINY)
+    cfg = load_config(iterations=1, **TINY)
     cases = tmp_path / "cases"
-    make_truth_case(cases / "tshirt", edge_length=0.05, sew_steps=TINY["sew_steps"], settle_steps=TINY["settle_steps"])
+    make_truth_case(cases / "tshirt", settings=cfg.drape)
     _broken_copy(cases / "tshirt", cases / "broken")
     single = fit_case_dir(cases / "tshirt", tmp_path / "single", cfg)
     res = run_batch(cases, tmp_path / "out", cfg=cfg, workers=2, progress=False)
@@ -72,7 +77,7 @@ def test_small_batch_equals_single_fit_and_reports_broken_case(tmp_path):
     assert st["tshirt"] == ("done", "")
     assert st["broken"][0] == "failed" and "garment 'sweater'" in st["broken"][1]
     assert_same_metrics(_metrics(tmp_path / "out" / "tshirt"), single)
-    no_time = lambda m: {k: v for k, v in m.items() if k != "timings_s"}  # noqa: E731
+    no_time = lambda m: {k: v for k, v in m.items() if k not in ("timings_s", "peak_memory_mb")}  # noqa: E731
     assert no_time(_metrics(tmp_path / "out" / "tshirt")) == no_time(json.loads(json.dumps(single)))  # bitwise, in fact
     # the rerun, through the CLI: the finished case is skipped, the broken one fails again (exit 1)
     p = subprocess.run([sys.executable, "-m", "unsew", "batch", str(cases), "--out", str(tmp_path / "out"),
@@ -89,10 +94,9 @@ def test_small_batch_equals_single_fit_and_reports_broken_case(tmp_path):
 @pytest.fixture(scope="module")
 def three_cases(tmp_path_factory):
     root = tmp_path_factory.mktemp("real3")
-    cfg = FitConfig(iterations=2, **{**TINY, "report": True})
+    cfg = load_config(iterations=2, **{**TINY, "report": True})
     for i, truth in enumerate(TRUTHS):
-        make_truth_case(root / "cases" / f"tshirt{i}", truth=truth, edge_length=0.05, sew_steps=TINY["sew_steps"],
-                        settle_steps=TINY["settle_steps"])
+        make_truth_case(root / "cases" / f"tshirt{i}", truth=truth, settings=cfg.drape)
     _broken_copy(root / "cases" / "tshirt0", root / "cases" / "broken")
     singles = {f"tshirt{i}": fit_case_dir(root / "cases" / f"tshirt{i}", root / "single" / f"tshirt{i}", cfg)
                for i in range(3)}

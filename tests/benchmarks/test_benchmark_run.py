@@ -51,19 +51,19 @@ def test_stored_bodies_load():
 
 def test_small_fit_beats_base(tmp_path):
     """A coarse shorts case on another body, 3 iterations: Chamfer and area error better than the base."""
-    from unsew.fit.config import FitConfig
+    from unsew.fit.config import load_config
 
     mc, run = _module("make_cases"), _module("run")
-    case = mc.make_case(tmp_path / "cases", "shorts", 3, edge_length=0.04, sew_steps=SMALL["sew_steps"],
-                        settle_steps=SMALL["settle_steps"])  # small_slim body
+    case = mc.make_case(tmp_path / "cases", "shorts", 3, edge_length=0.04,
+                        settings=load_config(**SMALL).drape)  # small_slim body
     assert (case / "body.obj").is_file() and (case / "skeleton.json").is_file()
-    rec = run.fit_case(case, tmp_path / "results" / "full" / case.name, FitConfig(**SMALL), log=lambda s: None)
+    rec = run.fit_case(case, tmp_path / "results" / "full" / case.name, load_config(**SMALL), log=lambda s: None)
     v = run._stage_values(rec)
     assert v["fit"][0] < v["base"][0]  # Chamfer [mm]
     assert v["fit"][3] < v["base"][3]  # area error [%]
     # rerunning finds the finished result and does not fit again
     mtime = (rec["out"] / "metrics.json").stat().st_mtime
-    rec2 = run.fit_case(case, rec["out"], FitConfig(**SMALL), log=lambda s: None)
+    rec2 = run.fit_case(case, rec["out"], load_config(**SMALL), log=lambda s: None)
     assert (rec2["out"] / "metrics.json").stat().st_mtime == mtime
 
 
@@ -96,7 +96,8 @@ def test_set_overrides_the_fit_config():
     run = _module("run")
     args = argparse.Namespace(edge_length=0.03, iterations=5, no_report=True, set=["lr_decay=0.1", "steps=12"])
     cfg = run.base_config(args, seam_loss=False)
-    assert (cfg.lr_decay, cfg.steps, cfg.edge_length, cfg.iterations, cfg.seam_loss) == (0.1, 12, 0.03, 5, False)
+    o, d = cfg.optimizer, cfg.drape
+    assert (o.lr_decay, d.steps, d.edge_length, o.iterations, cfg.loss.seam) == (0.1, 12, 0.03, 5, 0.0)
     args.set = ["no_such_option=1"]
     with pytest.raises(SystemExit, match="no_such_option"):
         run.base_config(args)

@@ -54,3 +54,26 @@ def test_drape_cli_uses_the_patterns_fitted_material(tmp_path, capsys):
     assert main(["drape", str(pj), *small, "--out", str(out)]) == 2
     assert "material lacks" in capsys.readouterr().err
     assert not out.exists()
+
+
+def test_drape_cli_body_folder(tmp_path, capsys):
+    """--body takes a body folder as `unsew body make` writes it (body.obj + skeleton.json);
+    one without skeleton.json is rigged from its mesh and drapes too."""
+    from unsew.body.body import default_body
+    from unsew.body.skeleton import save_skeleton
+    from unsew.io.mesh import write_obj
+
+    b = default_body()
+    folder = tmp_path / "body"
+    folder.mkdir()
+    write_obj(folder / "body.obj", b.verts, b.faces)
+    pj = tmp_path / "skirt.json"
+    save_pattern(make_base_pattern("skirt"), pj)
+    out = tmp_path / "garment.obj"
+    small = ["--edge-length", "0.06", "--sew-steps", "5", "--settle-steps", "0", "--no-progress"]
+    assert main(["drape", str(pj), "--body", str(folder), *small, "--out", str(out)]) == 0
+    assert out.is_file()
+    out.unlink()
+    save_skeleton(b.skeleton, folder / "skeleton.json")
+    assert main(["drape", str(pj), "--body", str(folder), *small, "--out", str(out)]) == 0
+    assert out.is_file()

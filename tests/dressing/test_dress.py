@@ -6,7 +6,7 @@ import pytest
 
 from unsew.body.body import default_body
 from unsew.body.sdf import BodySDF
-from unsew.dress import dress, dress_stats, hold_vertices
+from unsew.dress import DRESS_SETTINGS, dress, dress_stats, hold_vertices
 from unsew.pattern.base import make_base_pattern
 
 GARMENTS = ["tshirt", "dress", "pants", "shorts", "skirt"]
@@ -42,7 +42,7 @@ def _check(g, body, s, *, stretch_max):
 @pytest.mark.parametrize("garment", GARMENTS)
 def test_dress_small(body_sdf, garment):
     body, sdf = body_sdf
-    d = dress(make_base_pattern(garment), body, sdf=sdf, edge_length=0.04)
+    d = dress(make_base_pattern(garment), body, sdf=sdf, settings=DRESS_SETTINGS.replace(edge_length=0.04))
     assert d.x.shape == (d.mesh.n_x, 3)
     for k in ("place_s", "sew_s", "settle_s", "seam_gap", "max_speed"):
         assert k in d.stats
@@ -71,5 +71,6 @@ def test_dress_wide_body(garment):
 
     body = default_body().transformed(scale=WIDE)
     sdf = BodySDF.build(body)
-    d = dress(make_base_pattern(garment, measure_body(body)), body, sdf=sdf, edge_length=0.03)
+    d = dress(make_base_pattern(garment, measure_body(body)), body, sdf=sdf,
+              settings=DRESS_SETTINGS.replace(edge_length=0.03))
     _check(garment, body, dress_stats(d), stretch_max=1.3)

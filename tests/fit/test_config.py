@@ -1,34 +1,68 @@
-"""Fit configuration: YAML round trip, overrides, bad values."""
+"""Fit configuration: grouped YAML round trip, old flat files, overrides, bad values."""
 
 import pytest
 import yaml
 
 from unsew.errors import InputError
-from unsew.fit.config import FitConfig, config_to_dict, load_config
+from unsew.fit.config import LEGACY_KEYS, FitConfig, LossWeights, OptimizerSettings, config_to_dict, load_config
+from unsew.sim.drape import DrapeSettings
 
 
 def test_defaults_follow_the_paper():
     c = FitConfig()
-    assert (c.lr, c.betas, c.lambda_open, c.lambda_mat, c.dt) == (1e-3, (0.9, 0.999), 0.1, 0.01, 0.05)
-    assert 10 <= c.steps <= 20
-    assert c.lr_decay == 1.0  # constant learning rate, as the paper states no schedule
+    o, w = c.optimizer, c.loss
+    assert (o.lr, o.betas, w.open, w.material, c.drape.dt) == (1e-3, (0.9, 0.999), 0.1, 0.01, 0.05)
+    assert 10 <= c.drape.steps <= 20
+    assert o.lr_decay == 1.0  # constant learning rate, as the paper states no schedule
 
 
 def test_yaml_round_trip_and_overrides(tmp_path):
-    c = FitConfig(iterations=7, curvature_weighted=False, betas=(0.8, 0.99))
+    c = FitConfig(optimizer=OptimizerSettings(iterations=7, betas=(0.8, 0.99)),
+                  loss=LossWeights(curvature_weighted=False), drape=DrapeSettings(sew_steps=33))
     p = tmp_path / "fit.yaml"
-    p.write_text(yaml.safe_dump(config_to_dict(c)))
+    text = yaml.safe_dump(config_to_dict(c))
+    assert "candidates: []" in text and "- H00" in text  # lists as lists
+    p.write_text(text)
     assert load_config(p) == c
-    assert load_config(p, iterations=3).iterations == 3
+    assert load_config(p, iterations=3).optimizer.iterations == 3
+    assert load_config(p, optimizer={"iterations": 4}).optimizer == OptimizerSettings(iterations=4, betas=(0.8, 0.99))
+
+
+def test_old_flat_file_loads_into_the_groups(tmp_path):
+    """A config.yaml of the flat format still loads; its on/off switches become a zero weight
+    and an empty list."""
+    p = tmp_path / "old.yaml"
+    p.write_text("iterations: 9\nsew_steps: 70\nmaterial: silk\nmaterial_candidates: cotton,silk\n"
+                 "lambda_seam: 0.5\nseam_loss: false\noptimize_material: false\nmaterial_params: H22,k\n"
+                 "redress_check: false\nreport: false\nfit_friction_eps: 0.002\nbetas: [0.8, 0.9]\n")
+    c = load_config(p)
+    assert (c.optimizer.iterations, c.drape.sew_steps, c.material.start) == (9, 70, "silk")
+    assert c.material.candidates == ("cotton", "silk") and c.optimizer.betas == (0.8, 0.9)
+    assert c.loss.seam == 0.0 and c.material.fit == () and not c.fits_material
+    assert (c.checks.redress, c.output.report, c.optimizer.friction_eps) == (False, False, 0.002)
+    assert load_config(material_params="H22,k").material.fit == ("H22", "k")
+    assert load_config(seam_loss=True, lambda_seam=0.5).loss.seam == 0.5
+    for old, place in LEGACY_KEYS.items():  # every old name lands on a field that exists
+        group, name = place.split(".")
+        assert hasattr(getattr(FitConfig(), group), name), old
+
+
+def test_a_result_folders_config_loads(tmp_path):
+    c = load_config(iterations=5, edge_length=0.03)
+    p = tmp_path / "config.yaml"
+    p.write_text(yaml.safe_dump({"config": config_to_dict(c), "case": "x", "unsew_version": "0"}, sort_keys=False))
+    assert load_config(p) == c
 
 
 @pytest.mark.parametrize(
     "text, match",
     [
         ("iterationz: 3\n", "unknown config option"),
+        ("optimizer:\n  iterationz: 3\n", "unknown config option.*optimizer.iterationz"),
         ("iterations: 2.5\n", "iterations"),
         ("grading: yes please\n", "grading"),
         ("edge_length: 2\n", "edge_length"),
+        ("drape:\n  edge_length: 2\n", "drape.edge_length"),
         ("- a\n- b\n", "mapping"),
         ("a: [\n", "not valid YAML"),
         ("lr_decay: 0\n", "lr_decay"),
@@ -36,16 +70,19 @@ def test_yaml_round_trip_and_overrides(tmp_path):
         ("material: velvet\n", "unknown material 'velvet'"),
         ("fit_friction_eps: 0\n", "fit_friction_eps"),
         ("redress_check: maybe\n", "redress_check"),
+        ("seam_loss: maybe\n", "seam_loss"),
         ("mesh_spread: 0.6\n", "mesh_spread"),
         ("mesh_spread: -0.1\n", "mesh_spread"),
         ("material: auto\nmaterial_candidates: silk,tweed\n", "unknown material 'tweed'"),
+        ("material:\n  candidates: [silk, tweed]\n", "unknown material 'tweed'"),
     ],
 )
 def test_bad_configs(tmp_path, text, match):
     p = tmp_path / "fit.yaml"
     p.write_text(text)
-    with pytest.raises(InputError, match=match):
+    with pytest.raises(InputError, match=match) as err:
         load_config(p)
+    assert "\n" not in str(err.value)  # one line
 
 
 def test_missing_config(tmp_path):
@@ -57,15 +94,35 @@ def test_precedence_flags_over_file_over_defaults(tmp_path):
     p = tmp_path / "fit.yaml"
     p.write_text("iterations: 9\nsteps: 11\n")
     c = load_config(p, defaults={"iterations": 30, "steps": 12, "edge_length": 0.03}, steps=13)
-    assert (c.iterations, c.steps, c.edge_length) == (9, 13, 0.03)
+    assert (c.optimizer.iterations, c.drape.steps, c.drape.edge_length) == (9, 13, 0.03)
+    c = load_config(p, defaults={"drape": {"steps": 12, "edge_length": 0.03}}, drape={"steps": 14})
+    assert (c.optimizer.iterations, c.drape.steps, c.drape.edge_length) == (9, 14, 0.03)
 
 
-def test_material_params_lists_entries_of_gamma():
-    from unsew.errors import InputError
-    from unsew.fit.config import load_config, material_mask
+def test_material_fit_lists_entries_of_gamma():
+    from unsew.fit.config import material_mask
 
-    assert material_mask("H00,H01,H11,H22,k") == (True,) * 5
+    assert material_mask(("H00", "H01", "H11", "H22", "k")) == (True,) * 5
     assert material_mask(" k , H22") == (False, False, False, True, True)
-    for bad in ("", "k,H33", "bend"):
+    assert material_mask(()) == (False,) * 5  # the material stays fixed
+    for bad in ("k,H33", "bend"):
         with pytest.raises(InputError, match="material_params"):
             load_config(material_params=bad)
+        with pytest.raises(InputError, match="material.fit"):
+            load_config(material={"fit": bad.split(",")})
+
+
+def test_cli_flags_map_onto_the_groups():
+    import argparse
+
+    from unsew.commands.fit import add_fit_options, config_from_args
+
+    p = argparse.ArgumentParser()
+    add_fit_options(p)
+    args = p.parse_args(["--iterations", "4", "--edge-length", "0.03", "--steps", "9", "--material", "silk",
+                         "--no-grading", "--plain-chamfer", "--no-seam-loss", "--no-material", "--no-report"])
+    c = config_from_args(args, defaults={"optimizer": {"iterations": 80}})
+    assert (c.optimizer.iterations, c.drape.edge_length, c.drape.steps, c.material.start) == (4, 0.03, 9, "silk")
+    assert not c.grading and not c.loss.curvature_weighted and c.loss.seam == 0.0
+    assert c.material.fit == () and not c.output.report
+    assert config_from_args(p.parse_args([]), defaults={"optimizer": {"iterations": 80}}).optimizer.iterations == 80

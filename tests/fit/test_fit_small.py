@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from unsew.fit.config import FitConfig
+from unsew.fit.config import CheckSettings, load_config
 
 SMALL = dict(edge_length=0.04, iterations=3, steps=8, sew_steps=60, settle_steps=20, target_points=1500,
              material_start=1, material="cotton")
@@ -19,17 +19,16 @@ def small_case(tmp_path_factory):
     from unsew.fit.demo import make_truth_case
 
     d = tmp_path_factory.mktemp("case") / "tshirt"
-    return make_truth_case(d, edge_length=SMALL["edge_length"], sew_steps=SMALL["sew_steps"],
-                           settle_steps=SMALL["settle_steps"])
+    return make_truth_case(d, settings=load_config(**SMALL).drape)
 
 
 @pytest.fixture(scope="module")
 def small_fit(small_case, tmp_path_factory):
     from unsew.fit.run import run_fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     out = tmp_path_factory.mktemp("fit") / "result"
-    result, metrics = run_fit(load_case(small_case), FitConfig(**SMALL), out, progress=False, log=lambda s: None)
+    result, metrics = run_fit(load_case(small_case), load_config(**SMALL), out, progress=False, log=lambda s: None)
     return out, result, metrics
 
 
@@ -58,40 +57,29 @@ def test_fit_improves_on_the_base(small_fit):
 def test_resume_continues_from_checkpoint(small_case, tmp_path):
     """An interrupted fit leaves RESULT.partial with a checkpoint; --resume finishes it."""
     from unsew.fit.run import partial_dir, run_fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     out = tmp_path / "r"
     case = load_case(small_case)
-    cfg = FitConfig(**{**SMALL, "iterations": 2, "report": False, "mesh_spread": 0.0})
+    cfg = load_config(**{**SMALL, "iterations": 2, "report": False, "mesh_spread": 0.0})
 
-    import importlib
+    def interrupt(info):
+        # stopped after the first iteration's checkpoint, as by Ctrl-C
+        if info.iteration == 0:
+            raise KeyboardInterrupt
 
-    simdrape = importlib.import_module("unsew.sim.drape")  # fit() imports drape from here at call time
-    orig = simdrape.drape
-    calls = {"opt": 0}
-
-    def interrupt(s):
-        pass
-
-    def flaky(*a, **k):
-        # the second drape of phase two is interrupted, as by Ctrl-C
-        if k.get("steps") == cfg.steps and not k.get("callback"):
-            calls["opt"] += 1
-            if calls["opt"] == 2:
-                raise KeyboardInterrupt
-        return orig(*a, **k)
-
-    simdrape.drape = flaky
-    try:
-        with pytest.raises(KeyboardInterrupt):
-            run_fit(case, cfg, out, progress=False, log=interrupt)
-    finally:
-        simdrape.drape = orig
+    with pytest.raises(KeyboardInterrupt):
+        run_fit(case, cfg, out, progress=False, log=lambda s: None, callback=interrupt)
     assert not out.exists()
     assert (partial_dir(out) / "checkpoint.pt").is_file()
-    result, _ = run_fit(case, cfg, out, resume=True, progress=False, log=interrupt)
+    seen = []
+    result, _ = run_fit(case, cfg, out, resume=True, progress=False, log=seen.append)
+    assert any("resuming from iteration 1" in line for line in seen)
     assert out.is_dir() and not partial_dir(out).exists()
     assert len(result.history["total"]) == 2
+    # the resumed fit is the fit that was not interrupted
+    whole, _ = run_fit(case, cfg, tmp_path / "whole", progress=False, log=lambda s: None)
+    assert result.history == whole.history and result.best_iteration == whole.best_iteration
 
 
 def test_result_is_the_best_iterate_and_says_so(small_fit):
@@ -143,30 +131,30 @@ def test_redress_check_returns_the_graded_pattern_when_phase_two_found_nothing(s
     import numpy as np
 
     from unsew.fit.fit import fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     case = load_case(small_case)
-    cfg = FitConfig(**{**SMALL, "iterations": 2, "pattern_start": 5, "optimize_material": False, "report": False})
+    cfg = load_config(**{**SMALL, "iterations": 2, "pattern_start": 5, "optimize_material": False, "report": False})
     r = fit(case, cfg, progress=False, log=lambda s: None)
-    assert r.extra["redress"]["phase_two_kept"] is False
-    assert r.extra["redress"]["fit_redressed_mm"] == pytest.approx(r.extra["redress"]["graded_mm"], abs=1e-6)
+    assert r.redress.phase_two_kept is False
+    assert r.redress.fit_redressed_mm == pytest.approx(r.redress.graded_mm, abs=1e-6)
     np.testing.assert_array_equal(r.x, r.x_graded)
     np.testing.assert_array_equal(r.uv, r.mesh.uv)  # the rest mesh the graded drape was made on
-    assert r.material == r.extra["material0"]
-    assert r.extra["mesh_spread"] is not None
-    off = fit(case, cfg.replace(redress_check=False, mesh_spread=0.0), progress=False, log=lambda s: None)
-    assert off.extra["redress"] is None and off.extra["mesh_spread"] is None
+    assert r.material == r.start_material
+    assert r.mesh_spread is not None
+    off = fit(case, cfg.replace(checks=CheckSettings(redress=False, mesh_spread=0.0)), progress=False, log=lambda s: None)
+    assert off.redress is None and off.mesh_spread is None
     assert np.abs(off.x - off.x_graded).max() > 1e-6
 
 
 def test_material_parameterisation_stays_valid():
     import torch
 
-    from unsew.fit.fit import _material_params
+    from unsew.fit.optimize import material_params
     from unsew.sim.material import check_gamma, get_material
 
     g0 = get_material("cotton").gamma()
-    theta, gamma_of = _material_params(g0)
+    theta, gamma_of = material_params(g0)
     assert torch.allclose(gamma_of(theta), g0, rtol=1e-12)
     for t in ([5, 9, -5, 3, -8], [-5, -9, 5, -3, 8], [0, 40, 0, 0, 0]):
         g = gamma_of(torch.tensor(t, dtype=torch.float64))
@@ -179,9 +167,9 @@ def test_pattern_start_holds_the_control_points(small_case):
     import numpy as np
 
     from unsew.fit.fit import fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
-    cfg = FitConfig(**{**SMALL, "iterations": 2, "pattern_start": 5, "optimize_material": False, "report": False,
+    cfg = load_config(**{**SMALL, "iterations": 2, "pattern_start": 5, "optimize_material": False, "report": False,
                        "mesh_spread": 0.0})
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
     for name, panel in r.graded_pattern.panels.items():
@@ -193,9 +181,9 @@ def test_prior_term_is_wired_in(small_case):
     """With lambda_prior the loss carries the pull towards the graded pattern: zero at the first
     iterate (the graded pattern itself), positive once the control points moved."""
     from unsew.fit.fit import fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
-    cfg = FitConfig(**{**SMALL, "iterations": 2, "optimize_material": False, "report": False, "mesh_spread": 0.0,
+    cfg = load_config(**{**SMALL, "iterations": 2, "optimize_material": False, "report": False, "mesh_spread": 0.0,
                        "lambda_prior": 1.0})
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
     assert r.history["prior"][0] == 0.0
@@ -205,14 +193,14 @@ def test_prior_term_is_wired_in(small_case):
 def test_material_params_frees_only_the_listed_entries(small_case):
     """material_params="k": the last iterate's bending has moved, its stretch and shear have not."""
     from unsew.fit.fit import fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.sim.material import MATERIALS
 
-    cfg = FitConfig(**{**SMALL, "iterations": 3, "material_start": 0, "report": False, "mesh_spread": 0.0,
+    cfg = load_config(**{**SMALL, "iterations": 3, "material_start": 0, "report": False, "mesh_spread": 0.0,
                        "material_params": "k"})
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
-    g0 = [float(v) for v in MATERIALS[cfg.material].gamma()]
-    g = r.extra["gamma_last"]
+    g0 = [float(v) for v in MATERIALS[cfg.material.start].gamma()]
+    g = r.gamma_last
     assert g[:4] == pytest.approx(g0[:4], rel=1e-12)
     assert abs(g[4] / g0[4] - 1) > 1e-3
 
@@ -222,12 +210,12 @@ def test_cold_start_makes_the_drape_a_function_of_the_parameters(small_case):
     the pattern and material held, every iteration's loss is the same; warm-started, the cloth
     keeps moving and the loss changes."""
     from unsew.fit.fit import fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     case = load_case(small_case)
     losses = {}
     for warm in (False, True):
-        cfg = FitConfig(**{**SMALL, "iterations": 3, "pattern_start": 10, "optimize_material": False,
+        cfg = load_config(**{**SMALL, "iterations": 3, "pattern_start": 10, "optimize_material": False,
                            "report": False, "mesh_spread": 0.0, "warm_start": warm})
         losses[warm] = fit(case, cfg, progress=False, log=lambda s: None).history["total"]
     assert max(losses[False]) - min(losses[False]) <= 1e-12 * max(losses[False])
@@ -243,14 +231,14 @@ def test_auto_material_picks_the_true_fabric(small_case):
     import math
 
     from unsew.fit.fit import fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.sim.material import MATERIALS
 
-    cfg = FitConfig(**{**SMALL, "iterations": 1, "optimize_material": False, "report": False, "mesh_spread": 0.0,
+    cfg = load_config(**{**SMALL, "iterations": 1, "optimize_material": False, "report": False, "mesh_spread": 0.0,
                        "material": "auto", "material_candidates": "cotton,denim,jersey",
                        "material_regrade": 1, "material_refine": 1})
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
-    table = r.extra["material_choice"]
+    table = r.material_choice
     library = [row for row in table if "(" not in row["material"]]
     refined = [row for row in table if "(" in row["material"]]
     assert library[0]["material"] == "jersey" and table[0]["material"].startswith("jersey")
@@ -276,7 +264,7 @@ def test_choose_material_ranks_by_the_objective():
     import numpy as np
 
     from unsew.errors import InputError
-    from unsew.fit.fit import choose_material
+    from unsew.fit.material import choose_material
     from unsew.sim.material import MATERIALS
 
     drapes = {MATERIALS[n].density: np.full((4, 3), i, dtype=float) for i, n in enumerate(["cotton", "silk", "wool"])}
@@ -298,7 +286,7 @@ def test_refine_material_walks_towards_the_closest_stiffness():
 
     import numpy as np
 
-    from unsew.fit.fit import refine_material
+    from unsew.fit.material import refine_material
     from unsew.sim.material import MATERIALS
 
     c = MATERIALS["cotton"]
@@ -325,18 +313,56 @@ def test_fit_friction_eps_reaches_phase_two_drapes(small_case, monkeypatch):
     import importlib
 
     from unsew.fit.fit import fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
-    simdrape = importlib.import_module("unsew.sim.drape")
-    orig, seen = simdrape.drape, []
+    optimize = importlib.import_module("unsew.fit.optimize")
+    orig, seen = optimize.drape, []
 
     def spy(*a, **k):
         if k.get("uv") is not None and k["uv"].requires_grad:
-            seen.append(k.get("friction_eps"))
+            seen.append(k["settings"].friction_eps)
         return orig(*a, **k)
 
-    monkeypatch.setattr(simdrape, "drape", spy)
-    cfg = FitConfig(**{**SMALL, "iterations": 2, "optimize_material": False, "report": False, "mesh_spread": 0.0,
+    monkeypatch.setattr(optimize, "drape", spy)
+    cfg = load_config(**{**SMALL, "iterations": 2, "optimize_material": False, "report": False, "mesh_spread": 0.0,
                        "fit_friction_eps": 2e-3, "redress_check": False})
     fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
     assert seen == [2e-3, 2e-3]
+
+
+def test_phase_two_stage_loss_step_and_state_dict(small_case):
+    """The optimize stage on its own: loss() returns named terms whose weighted sum is the total;
+    step() records them; a PhaseTwo loaded from another's state_dict steps exactly like it."""
+    import torch
+
+    from unsew.body.sdf import BodySDF
+    from unsew.fit.material import MaterialChoice
+    from unsew.fit.optimize import LOSS_TERMS, PhaseTwo
+    from unsew.fit.progress import Progress
+    from unsew.fit.start import base_pattern_for, start
+    from unsew.fit.target import Target
+    from unsew.body.case import load_case
+    from unsew.sim.material import get_material
+
+    case = load_case(small_case)
+    cfg = load_config(**{**SMALL, "grading": False, "lambda_prior": 0.5})
+    sdf, target = BodySDF.build(case.body), Target.of_case(case)
+    s = start(base_pattern_for(case, cfg), case.body, target, sdf, cfg, get_material("cotton"),
+              progress=Progress(False))
+    two = PhaseTwo(MaterialChoice(s), target, sdf, cfg)
+    terms, _, x = two.loss()
+    w = cfg.loss
+    assert tuple(terms.floats()) == LOSS_TERMS and x.shape == (s.mesh.n_x, 3)
+    weighted = terms.chamfer + w.open * terms.open + w.seam * terms.seam + w.material * terms.material \
+        + w.prior * terms.prior
+    assert float(terms.total.detach()) == pytest.approx(float(weighted.detach()), rel=1e-12)
+    f = terms.floats()
+    assert f["chamfer"] > 0 and f["open"] > 0 and f["prior"] == 0.0
+    info = two.step()
+    assert (info.iteration, two.iteration) == (0, 1) and info.terms == {k: v[0] for k, v in two.history.items()}
+    other = PhaseTwo(MaterialChoice(s), target, sdf, cfg)
+    other.load_state_dict(two.state_dict())
+    assert torch.equal(other.K, two.K) and other.iteration == 1
+    two.step()
+    other.step()
+    assert other.history == two.history and torch.equal(other.K, two.K)

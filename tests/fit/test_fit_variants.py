@@ -8,26 +8,30 @@ import shutil
 import numpy as np
 import pytest
 
-from unsew.fit.config import FitConfig
+from unsew.fit.config import load_config
 from unsew.io.mesh import read_mesh, write_obj
 
 SMALL = dict(edge_length=0.03, iterations=2, steps=8, sew_steps=60, settle_steps=20, target_points=1500,
              material_start=1, material="cotton")
 
 
+def _settings(edge_length):
+    """The targets' drape: the small fits' sewing and settling on a mesh of ``edge_length`` [m]."""
+    return load_config(**SMALL).drape.replace(edge_length=edge_length)
+
+
 @pytest.fixture(scope="module")
 def base_case(tmp_path_factory):
     from unsew.fit.synthetic import make_truth_case
 
-    return make_truth_case(tmp_path_factory.mktemp("c") / "tshirt", garment="tshirt", edge_length=0.03,
-                           sew_steps=SMALL["sew_steps"], settle_steps=SMALL["settle_steps"])
+    return make_truth_case(tmp_path_factory.mktemp("c") / "tshirt", garment="tshirt", settings=_settings(0.03))
 
 
 def _fit(case_dir, out, **kw):
     from unsew.fit.run import run_fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
-    cfg = FitConfig(**{**SMALL, "report": False, "mesh_spread": 0.0})
+    cfg = load_config(**{**SMALL, "report": False, "mesh_spread": 0.0})
     return run_fit(load_case(case_dir, **kw), cfg, out, progress=False, log=lambda s: None)
 
 
@@ -70,8 +74,7 @@ def test_other_pose_and_body(tmp_path, which):
 
     b = pose_body(default_body(), "left_arm_up") if which == "pose" else default_body().transformed(
         scale=np.array([1.08, 1.0, 1.08]))
-    d = make_truth_case(tmp_path / which, garment="tshirt", body=b, body_meta=None, edge_length=0.04,
-                        sew_steps=SMALL["sew_steps"], settle_steps=SMALL["settle_steps"])
+    d = make_truth_case(tmp_path / which, garment="tshirt", body=b, body_meta=None, settings=_settings(0.04))
     assert (d / "body.obj").is_file() and (d / "skeleton.json").is_file()
     _, m = _fit(d, tmp_path / "r")
     assert m["surface"]["chamfer_mm"] < m["surface_base"]["chamfer_mm"]

@@ -10,15 +10,16 @@ def test_target_is_reproducible_from_the_case_folder(tmp_path):
     from unsew.body.body import default_body
     from unsew.dress import dress
     from unsew.fit.synthetic import make_truth_case
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
+    from unsew.sim.drape import DrapeSettings
     from unsew.sim.material import MATERIALS
 
     body = default_body().transformed(scale=np.array([1.05, 1.0, 1.05]))
     assert body.weights is not None  # in memory the body carries skinning weights; body.obj does not
-    steps = dict(sew_steps=30, settle_steps=5, dt=0.05)
-    d = make_truth_case(tmp_path / "case", garment="tshirt", body=body, body_meta=None, edge_length=0.05, **steps)
+    settings = DrapeSettings(edge_length=0.05, sew_steps=30, settle_steps=5, dt=0.05)
+    d = make_truth_case(tmp_path / "case", garment="tshirt", body=body, body_meta=None, settings=settings)
     case = load_case(d)
     assert case.body.weights is None
     material = MATERIALS[json.loads((d / "meta.json").read_text())["truth"]["material"]]
-    again = dress(case.pattern_gt, case.body, edge_length=0.05, material=material, **steps)
+    again = dress(case.pattern_gt, case.body, material=material, settings=settings)
     np.testing.assert_allclose(again.x.detach().numpy(), case.target_verts, atol=1e-6)

@@ -7,7 +7,7 @@ import pytest
 import torch
 from helpers import assert_close
 
-from unsew.sim import CapsuleSDF, SimModel, SimState, drape
+from unsew.sim import CapsuleSDF, DrapeSettings, SimModel, SimState, drape
 from unsew.sim.meshes import two_panels
 
 GAMMA = torch.tensor([800.0, 80.0, 600.0, 60.0, 6e-5], dtype=torch.float64)
@@ -40,8 +40,9 @@ def _loss(state):
     return (w * state.x).sum() + 10.0 * (state.x**2).sum() + 0.1 * (w * state.v).sum()
 
 
-def _run(m, uv, gamma, st, **kw):
-    return _loss(drape(m, st, SDF, uv=uv, gamma=gamma, density=DENSITY, steps=20, dt=0.05, **kw))
+def _run(m, uv, gamma, st, checkpoint=False, fused=True):
+    return _loss(drape(m, st, SDF, uv=uv, gamma=gamma, density=DENSITY, steps=20, checkpoint=checkpoint,
+                       settings=DrapeSettings(dt=0.05, fused=fused)))
 
 
 @pytest.fixture(scope="module")

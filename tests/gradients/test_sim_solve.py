@@ -71,17 +71,87 @@ def test_non_pd_matrix_raises_simulation_error(backend):
         sparse_solve(torch.tensor([1.0, 2.0, 1.0], dtype=torch.float64), torch.ones(2, dtype=torch.float64), p, backend=backend)
 
 
-def test_symbolic_analysis_is_reused_across_values():
+@pytest.mark.parametrize("backend", ALL_BACKENDS)
+def test_factor_once_solve_twice(backend, monkeypatch):
+    """Every backend factorizes A once in the forward solve and answers the adjoint solve of the
+    backward pass with that same factorization (STYLE.md habit 5): one factorization, two solves."""
+    import unsew.sim.solve as solve_mod
+
+    factors, solves = [], []
+    orig_init, orig_solve = solve_mod._Factor.__init__, solve_mod._Factor.solve
+
+    def counting_init(self, *a, **k):
+        factors.append(self)
+        orig_init(self, *a, **k)
+
+    def counting_solve(self, rhs):
+        solves.append(self)
+        return orig_solve(self, rhs)
+
+    monkeypatch.setattr(solve_mod._Factor, "__init__", counting_init)
+    monkeypatch.setattr(solve_mod._Factor, "solve", counting_solve)
+    p = _pattern()
+    g = torch.Generator().manual_seed(3)
+    w = torch.randn(p.rows.shape[0], generator=g, dtype=torch.float64).requires_grad_()
+    b = torch.randn(N, generator=g, dtype=torch.float64).requires_grad_()
+    x = sparse_solve(_values(p, w), b, p, backend=backend)
+    assert len(factors) == 1 and len(solves) == 1
+    x.sum().backward()
+    assert len(factors) == 1, "the backward pass factorized again"
+    assert solves == [factors[0], factors[0]]  # the adjoint solve used the forward's factor
+    assert w.grad is not None and b.grad is not None
+
+
+@pytest.mark.parametrize("fused", [True, False])
+def test_a_differentiable_drape_factorizes_once_per_step(fused, monkeypatch):
+    """Through a whole drape and its backward pass (fused step Function or separate assembly +
+    sparse_solve): one factorization per step, reused by that step's adjoint solve."""
+    import numpy as np
+
+    import unsew.sim.solve as solve_mod
+    import unsew.sim.step_solve as step_mod
+    from unsew.sim import MATERIALS, DrapeSettings, PlaneSDF, SimModel, SimState, drape
+    from unsew.sim.meshes import grid_sheet
+
+    counts = {"factor": 0, "solve": 0}
+    orig_init, orig_solve = solve_mod._Factor.__init__, solve_mod._Factor.solve
+
+    def counting_init(self, *a, **k):
+        counts["factor"] += 1
+        orig_init(self, *a, **k)
+
+    def counting_solve(self, rhs):
+        counts["solve"] += 1
+        return orig_solve(self, rhs)
+
+    monkeypatch.setattr(solve_mod._Factor, "__init__", counting_init)
+    monkeypatch.setattr(solve_mod._Factor, "solve", counting_solve)
+    assert step_mod._Factor is solve_mod._Factor
+    uv, f = grid_sheet(3, 3, 0.1, 0.1)
+    m = SimModel.build(f, f)
+    x = np.c_[uv[:, 0], np.full(len(uv), 0.05), uv[:, 1]]
+    uvt = torch.as_tensor(uv).clone().requires_grad_()
+    out = drape(m, SimState.at_rest(x), PlaneSDF((0, -1, 0)), uv=uvt, gamma=MATERIALS["cotton"].gamma(),
+                density=0.1, steps=3, settings=DrapeSettings(fused=fused, backend="cholespy"))
+    assert counts == {"factor": 3, "solve": 3}
+    out.x.sum().backward()
+    assert counts == {"factor": 3, "solve": 6}
+    assert uvt.grad is not None
+
+
+@pytest.mark.parametrize("backend", _CHOLMOD)
+def test_cholmod_symbolic_analysis_is_reused_across_values(backend):
     """The cholmod backend analyses the pattern once; new values on the same pattern solve right."""
     p = _pattern()
     g = torch.Generator().manual_seed(2)
+    first = None
     for k in range(3):
         w = torch.randn(p.rows.shape[0], generator=g, dtype=torch.float64)
         b = torch.randn(N, generator=g, dtype=torch.float64)
-        x = sparse_solve(_values(p, w), b, p)
+        x = sparse_solve(_values(p, w), b, p, backend=backend)
         assert_close(x, torch.linalg.solve(p.dense(_values(p, w)), b), rtol=1e-12, atol=1e-14, what=f"values {k} ")
-    if resolve_backend("auto") == "cholmod":
-        assert p._cholmod_symbolic is not None
+        first = first or p._cholmod_symbolic
+        assert p._cholmod_symbolic is first is not None
 
 
 def test_unknown_backend_is_refused():

@@ -9,7 +9,7 @@ from unsew.body.body import default_body
 from unsew.grading.alter import alter_pattern, open_edges
 from unsew.grading.contours import hull_perimeter, match_contours, part_group, place_contours
 from unsew.grading.curves import curves_of_contour, rest_length
-from unsew.grading.grade import TABLE_COLUMNS, flat_drape, format_table, grade, source_girth
+from unsew.grading.grade import GRADE_SETTINGS, TABLE_COLUMNS, flat_drape, format_table, grade, source_girth
 from unsew.meshing.sew import mesh_pattern
 from unsew.pattern.base import make_base_pattern
 from unsew.pattern.params import PatternParams, check_inverted
@@ -313,7 +313,7 @@ def _grade_simulated(body, garment, changes, edge, **kw):
         t = alter_pattern(t, groups[key], length=dl, girth=dg)
     tm = mesh_pattern(t, edge_length=edge)
     tx = dress_drape(t, tm, body, sdf=sdf)
-    res = grade(p, body, tx, tm.faces, edge_length=edge, sdf=sdf, **kw)
+    res = grade(p, body, tx, tm.faces, settings=GRADE_SETTINGS.replace(edge_length=edge), sdf=sdf, **kw)
     return res, tx, tm, t
 
 

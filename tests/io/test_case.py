@@ -7,7 +7,7 @@ import pytest
 import trimesh
 
 from unsew.errors import InputError
-from unsew.io.case import load_case
+from unsew.body.case import load_case
 from unsew.io.mesh import write_obj
 
 

@@ -160,28 +160,28 @@ def test_bad_values_are_input_errors():
         pattern_from_dict(d)
 
 
-def test_clockwise_file_reoriented_with_warning():
+def test_clockwise_file_mirrored_with_warning():
+    """A panel drawn clockwise (seen from inside, GarmentCode's way for backs and right halves)
+    with rotation 0 is read as the same cloth at the same place, counter-clockwise, with the
+    same edge numbers and stitches."""
     d = _handmade_dict()
     pan = d["pattern"]["panels"]["back"]
-    # Traverse the same outline clockwise: reversed edge order and directions; the stitched
-    # edges 1 and 3 become 2 and 0.
-    pan["edges"] = [
-        {"endpoints": [0, 3], "curvature": {"type": "quadratic", "params": [[0.5, -0.08]]}},
-        {"endpoints": [3, 2]},
-        {"endpoints": [2, 1], "curvature": {"type": "quadratic", "params": [[0.5, -0.08]]}},
-        {"endpoints": [1, 0], "curvature": {"type": "circle", "params": [80.0, 0, 0]}},
-    ]
-    d["pattern"]["stitches"] = [[{"panel": "front", "edge": 1}, {"panel": "back", "edge": 0}]]
+    # The counter-clockwise back at rotation (0, 180, 0) is, point for point, the mirrored
+    # outline at rotation 0: x -> -x, arcs bulge to the other side, quadratic t -> -t.
+    pan["rotation"] = [0.0, 0.0, 0.0]
+    pan["vertices"] = [[-x, y] for x, y in pan["vertices"]]
+    pan["edges"][0]["curvature"]["params"][2] = 0
+    for k in (1, 3):
+        pan["edges"][k]["curvature"]["params"][0][1] *= -1
     with warnings.catch_warnings(record=True) as w:
         warnings.simplefilter("always")
         p = pattern_from_dict(d)
     assert any("'back' was clockwise" in str(x.message) for x in w)
     ref = pattern_from_dict(_handmade_dict())
-    # Same geometry as the counter-clockwise original, edge for edge.
-    for e, f in zip(p.panels["back"].edges, ref.panels["back"].edges):
-        assert (e.start, e.end) == (f.start, f.end)
-        assert (e.curvature is None) == (f.curvature is None)
-        if e.curvature:
-            assert e.curvature.kind == f.curvature.kind
-            assert_close(np.array(e.curvature.params, dtype=float), np.array(f.curvature.params, dtype=float), atol=1e-12)
-    assert (p.stitches[0].b.panel, p.stitches[0].b.edge) == ("back", 3)
+    from unsew.pattern.curves import sample_edge
+
+    a, b = p.panels["back"], ref.panels["back"]
+    for i in range(len(b.edges)):
+        assert (a.edges[i].start, a.edges[i].end) == (b.edges[i].start, b.edges[i].end)
+        assert_close(a.to_world(sample_edge(a, i, 12)), b.to_world(sample_edge(b, i, 12)), atol=1e-12)
+    assert [(s.a, s.b) for s in p.stitches] == [(s.a, s.b) for s in ref.stitches]

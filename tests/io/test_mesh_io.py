@@ -63,3 +63,33 @@ def test_failed_write_leaves_nothing(tmp_path):
             tmp.write_text("half")
             raise RuntimeError("boom")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_read_garment_cleans_a_damaged_target(tmp_path):
+    """50 duplicate faces, a 3-face fin and a degenerate face: read back as the clean mesh, with
+    the counts and a one-line warning."""
+    from unsew.io.mesh import read_garment
+
+    th = np.linspace(0, 2 * np.pi, 24, endpoint=False)
+    y = np.linspace(0.0, 0.5, 9)
+    T, Y = np.meshgrid(th, y)
+    v = np.stack([0.2 * np.cos(T), Y, 0.2 * np.sin(T)], -1).reshape(-1, 3)
+    i, j = np.arange(8)[:, None] * 24, np.arange(24)[None, :]
+    a, b = (i + j).ravel(), (i + (j + 1) % 24).ravel()
+    f = np.concatenate([np.stack([a, b, b + 24], 1), np.stack([a, b + 24, a + 24], 1)])
+    write_obj(tmp_path / "clean.obj", v, f)
+    n = len(v)
+    e0, e1 = f[0, 0], f[0, 2]
+    out = np.array([0.05, 0.0, 0.0])
+    fin_v = np.array([v[e0] + out, v[e1] + out, 0.5 * (v[e0] + v[e1]) + 2 * out])
+    fin_f = np.array([[e0, e1, n + 1], [e0, n + 1, n], [n, n + 1, n + 2]])
+    dup = f[np.random.default_rng(0).choice(len(f), 50, replace=False)]
+    bad = np.concatenate([f, dup, fin_f, [[f[7, 0], f[7, 1], f[7, 1]]]])
+    write_obj(tmp_path / "bad.obj", np.concatenate([v, fin_v]), bad)
+    vc, fc, rc = read_garment(tmp_path / "clean.obj")
+    with pytest.warns(UserWarning, match=r"repaired: .*50 duplicate faces.*fin"):
+        vb, fb, rb = read_garment(tmp_path / "bad.obj")
+    assert not rc.changed
+    assert (rb.duplicate_faces, rb.fin_faces, rb.degenerate_faces) == (50, 3, 1)
+    assert_close(vb, vc, atol=0)
+    assert (fb == fc).all()

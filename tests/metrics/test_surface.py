@@ -6,14 +6,18 @@ import trimesh
 
 from helpers import assert_close
 from unsew.errors import InputError
+from unsew.body.sdf import closest_point_on_triangles
 from unsew.metrics.surface import (
-    _closest_on_triangles,
     chamfer_mm,
     closest_points,
     normal_error,
     sample_surface,
     surface_metrics,
 )
+
+
+def _closest_on_triangles(p, a, b, c):
+    return closest_point_on_triangles(p, a, b, c)[0]
 
 
 def _square(z=0.0, n=6):

@@ -1,11 +1,12 @@
-"""validate_pattern: errors name the panel and edge; clockwise panels reoriented; length warnings."""
+"""validate_pattern: errors name the panel and edge; clockwise panels mirrored in place; length warnings."""
 
 import numpy as np
 import pytest
 
+from helpers import assert_close
 from unsew.errors import PatternError
 from unsew.pattern.curves import sample_edge
-from unsew.pattern.model import Curvature, Edge, Panel, Pattern, Stitch, StitchSide
+from unsew.pattern.model import Curvature, Edge, Panel, Pattern, Stitch, StitchSide, mirror_curvature
 from unsew.pattern.validate import find_self_intersection, signed_area, validate_pattern
 
 
@@ -87,18 +88,26 @@ def test_length_mismatch_warning():
     assert len(w) == 1 and "stitch 0" in w[0] and "panel 'b'" in w[0]
 
 
-def test_clockwise_panel_reoriented_geometry_kept():
+def test_clockwise_panel_mirrored_in_place():
+    """A clockwise panel (drawn from inside, as GarmentCode draws backs) is mirrored: the same
+    points in 3D, the same edge numbers and directions, counter-clockwise in 2D."""
     curv = {0: Curvature("cubic", [[0.2, -0.2], [0.7, -0.1]]), 2: Curvature("circle", [0.9, False, True])}
     ccw = _square(curv=curv)
-    # Same outline traversed clockwise.
     cw = ccw.copy()
-    cw.edges = [e.reversed() for e in reversed(ccw.edges)]
+    cw.vertices = cw.vertices * [-1.0, 1.0]  # mirrored outline: clockwise
+    cw.edges = [Edge(e.start, e.end, mirror_curvature(e.curvature) if e.curvature else None) for e in ccw.edges]
+    cw.translation = np.array([0.1, 0.9, -0.2])
+    cw.rotation = np.array([10.0, 20.0, 30.0])
     assert signed_area(cw) < 0
+    before = [cw.to_world(sample_edge(cw, i, 16)) for i in range(4)]
+    normal_before = cw.rotation_matrix()[:, 2]
     pat = Pattern("x", {"sq": cw, "o": _square("o")}, [Stitch(StitchSide("sq", 3), StitchSide("o", 0))])
     w = validate_pattern(pat)
     assert len(w) == 1 and "'sq' was clockwise" in w[0]
-    assert signed_area(pat.panels["sq"]) > 0
+    q = pat.panels["sq"]
+    assert signed_area(q) > 0
     for i in range(4):
-        np.testing.assert_allclose(sample_edge(pat.panels["sq"], i, 16), sample_edge(ccw, i, 16), atol=1e-12)
-    # Old edge 3 of the clockwise loop is the new edge 0.
-    assert pat.stitches[0].a == StitchSide("sq", 0)
+        assert_close(q.to_world(sample_edge(q, i, 16)), before[i], atol=1e-12)
+    # the panel's normal flipped (it now faces away from where the clockwise one faced)
+    assert_close(q.rotation_matrix()[:, 2], -normal_before, atol=1e-12)
+    assert pat.stitches[0].a == StitchSide("sq", 3)

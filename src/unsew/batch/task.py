@@ -95,7 +95,7 @@ def fit_case_dir(case_dir: Path, out: Path, cfg, *, resume: bool = False, overwr
     """The real fit of one case folder into ``out`` (load_case + run_fit, no progress bar).
     Returns the metrics dict."""
     from unsew.fit.run import run_fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
 
     case = load_case(case_dir)
     _, metrics = run_fit(case, cfg, out, resume=resume, overwrite=overwrite, progress=False, log=log)

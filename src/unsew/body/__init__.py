@@ -1,5 +1,6 @@
-"""body stage of unsew (see docs/ARCHITECTURE.md): the wearer's mesh, skeleton, measurements,
-signed distance and the placement of a pattern's panels around it.
+"""body stage of unsew (see docs/ARCHITECTURE.md): the wearer's mesh, skeleton (given or rigged
+from the mesh), measurements, signed distance, the placement of a pattern's panels around it, and
+the loading of a whole case with its wearer.
 
 Public names load lazily (``from unsew.body import default_body`` imports only what it needs).
 """
@@ -23,6 +24,9 @@ __all__ = [
     "measure_body",
     "BodySDF",
     "place_garment",
+    "rig_skeleton",
+    "render_rig_preview",
+    "load_case",
 ]
 
 _WHERE = {
@@ -40,6 +44,9 @@ _WHERE = {
     "measure_body": "measure",
     "BodySDF": "sdf",
     "place_garment": "placement",
+    "rig_skeleton": "rig",
+    "render_rig_preview": "preview",
+    "load_case": "case",
 }
 
 

@@ -54,6 +54,10 @@ class Body:
     skeleton: Skeleton
     weights: np.ndarray | None = None
     name: str = "body"
+    #: True when the skeleton was estimated from the mesh (``unsew.body.rig``), not given
+    rigged: bool = False
+    #: what loading did to the mesh or skeleton, one line each (for reports and metrics.json)
+    notes: tuple[str, ...] = ()
 
     @property
     def height(self) -> float:
@@ -95,6 +99,8 @@ class Body:
             self.skeleton.transformed(scale=s, offset=off),
             None if self.weights is None else self.weights.copy(),
             name=f"{self.name}*{s.round(3).tolist()}",
+            rigged=self.rigged,
+            notes=self.notes,
         )
 
     def to_trimesh(self):
@@ -254,6 +260,9 @@ def clean_body_mesh(verts: np.ndarray, faces: np.ndarray, *, what: str = "body m
 
     notes = []
     m = trimesh.Trimesh(np.asarray(verts, np.float64), np.asarray(faces, np.int64), process=True, validate=False)
+    raw = trimesh.Trimesh(np.asarray(verts, np.float64), np.asarray(faces, np.int64), process=False)
+    if raw.is_watertight and not m.is_watertight:
+        m = raw  # closed as given; merging coincident vertices (touching fingers) would pinch it
     parts = m.split(only_watertight=False)
     if len(parts) > 1:
         m = max(parts, key=lambda p: (p.is_watertight, len(p.faces)))
@@ -358,28 +367,44 @@ def check_body_plausible(verts: np.ndarray, skeleton: Skeleton | None = None, *,
 
 def load_body(
     mesh_path: str | os.PathLike,
-    skeleton_path: str | os.PathLike,
+    skeleton_path: str | os.PathLike | None = None,
     *,
     units: str = "m",
     up: str = "y",
     front: str = "z",
     name: str | None = None,
 ) -> Body:
-    """Read a wearer from a closed mesh file (OBJ/PLY) and a skeleton.json.
+    """Read a wearer from a closed mesh file (OBJ/PLY) and, when given, its skeleton.json.
 
     ``units``/``up``/``front`` describe the files (both are converted to metres, Y up, facing
     +Z; a skeleton.json with a ``units`` key uses it for the joints). Keeps the largest closed
     component, fills small holes, refuses open, non-manifold or implausible bodies (wrong units
-    or axes) with a message naming the fix. Returns a Body without skinning weights.
+    or axes) with a message naming the fix. Without ``skeleton_path`` the joints are estimated
+    from the mesh (``unsew.body.rig.rig_skeleton``) and the Body says so (``rigged=True`` and a
+    note). Returns a Body without skinning weights; ``notes`` lists what was repaired or rigged.
     """
     from unsew.body.skeleton import load_skeleton
+    from unsew.errors import InputError
     from unsew.io.mesh import UNIT_SCALE, frame_matrix, read_mesh
 
+    what = f"body {os.fspath(mesh_path)}"
     verts, faces = read_mesh(mesh_path, units=units, up=up, front=front)
-    sk = load_skeleton(skeleton_path, scale=UNIT_SCALE[units])
-    R = frame_matrix(up=up, front=front)
-    sk = Skeleton(sk.names, sk.parents, sk.positions @ R.T, sk.parts)
-    check_body_plausible(verts, sk, what=f"body {os.fspath(mesh_path)}")
-    verts, faces, _notes = clean_body_mesh(verts, faces, what=f"body mesh {os.fspath(mesh_path)}")
-    check_body_plausible(verts, sk, what=f"body {os.fspath(mesh_path)}")
-    return Body(verts, faces, sk, None, name=name or os.path.basename(os.fspath(mesh_path)))
+    sk = None
+    if skeleton_path is not None:
+        sk = load_skeleton(skeleton_path, scale=UNIT_SCALE[units])
+        R = frame_matrix(up=up, front=front)
+        sk = Skeleton(sk.names, sk.parents, sk.positions @ R.T, sk.parts)
+    check_body_plausible(verts, sk, what=what)
+    verts, faces, notes = clean_body_mesh(verts, faces, what=f"body mesh {os.fspath(mesh_path)}")
+    if sk is None:
+        check_body_plausible(verts, None, what=what)
+        from unsew.body.rig import rig_skeleton
+
+        try:
+            sk = rig_skeleton(verts, faces)
+        except (IndexError, ValueError) as exc:  # a shape the rig cannot read, not a bug to show
+            raise InputError(f"cannot rig {what} from its mesh ({exc}); give its skeleton.json") from None
+        notes = [*notes, "no skeleton.json: the 17 joints were estimated from the mesh (unsew body rig)"]
+    check_body_plausible(verts, sk, what=what)
+    return Body(verts, faces, sk, None, name=name or os.path.basename(os.fspath(mesh_path)),
+                rigged=skeleton_path is None, notes=tuple(notes))

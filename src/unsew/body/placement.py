@@ -6,12 +6,19 @@ and the two edges of every stitch face each other:
 
 - torso panels onto a stack of horizontal ellipses around the torso (front panels in front,
   back panels behind, the panel's own 3D placement telling which side and how high); what
-  rises above the shoulders folds over them towards the body's centre plane;
-- sleeves into a tube around the shoulder-elbow-wrist line of their arm (the side of the
-  panel's placement: x > 0 is the body's left);
+  rises above the shoulders folds over them towards the body's centre plane. Tops are raised
+  until their shoulder seams (labelled, or found by geometry) meet over the shoulders; panels
+  sewn to them by horizontal seams (a skirt, a waistband, trousers) follow; a lower garment
+  stays at its placement's height when that lies on this body's torso, else goes to the waist;
+- sleeves (panels out beyond the shoulder, one piece or front and back halves) into one tube
+  per arm around its shoulder-elbow-wrist line, so they follow the arm in any pose; a raised
+  arm's root joins the torso's stack so armholes wrap round it;
 - trouser legs into a stack of ellipses around their leg below the crotch, blended over a few
   cm into the torso stack above it;
-- anything else (a collar, a user's GarmentCode panel) at its own placement.
+- anything else (a collar, a hood) at its own placement, moved with the garment.
+
+Seam vertices whose copies land more than SEAM_MEET apart start at their midpoint, and outline
+stubs (1-5 mm) start about their own length long (see :func:`_meet_seams`, :func:`_close_stubs`).
 
 Cross-sections come from the body's vertices (grouped by part through the skeleton), plus a
 clearance; where the garment is wider than the section, the ellipse grows (in depth for the
@@ -45,10 +52,25 @@ SHOULDER_MEET = 0.012
 #: Secant iterations solving a top's lift, and the largest change of the lift per step [m].
 LIFT_ITERS = 6
 LIFT_MAX_STEP = 0.1
-#: Share of a top's lift (see place_garment) its sleeves move up their arms.
-SLEEVE_SHIFT = 0.75
 #: Smallest gap between the two legs' wrapped cloth where the thighs touch [m].
 LEG_GAP = 0.03
+#: A panel whose every point lies beyond this share of the shoulder's offset from the centre
+#: plane (in its hint placement) is a sleeve, whichever way it faces.
+SLEEVE_INNER = 0.6
+#: A stitched edge whose hint direction rises less than this share of its length is horizontal
+#: (a shoulder seam between a front and a back, a waist seam between a bodice and a skirt).
+HORIZONTAL_SLOPE = 0.6
+#: The top of a sleeve's cap starts this far up the arm from the top of its armhole [m]
+#: (measured on the base dress: 0 left it moving at 0.10 m/s after settling, 0.02 as before).
+SLEEVE_CAP_IN = 0.02
+#: Seam vertices whose two copies are placed further apart than this start at their midpoint [m].
+SEAM_MEET = 0.02
+#: An upper arm less than this far below horizontal is raised [deg] (T-pose: 1; A-pose: 48).
+ARM_RAISED = 30.0
+#: How far out from the shoulder joint a raised arm's root joins the torso's stack [m].
+ARM_ROOT = 0.05
+#: Outline segments shorter than this many target edge lengths start about their length long.
+TINY_EDGE = 0.3
 #: Height step of the cross-section tables [m].
 _DY = 0.01
 
@@ -172,7 +194,12 @@ def _landmarks(body):
 def panel_roles(pattern, body) -> dict:
     """How each panel is placed: name -> ``"torso"``, ``"left_sleeve"``, ``"right_sleeve"``,
     ``"left_leg"``, ``"right_leg"`` or ``"free"`` (kept at its own placement), judged from the
-    panel's 3D placement (translation/rotation) relative to the body's skeleton."""
+    panel's 3D placement (translation/rotation) relative to the body's skeleton.
+
+    A sleeve is a panel out to the side of its shoulder and above the crotch: either facing
+    sideways (one panel round the arm, as unsew's base patterns draw it) or lying entirely
+    beyond SLEEVE_INNER of the shoulder's offset from the centre plane (GarmentCode's front and
+    back halves of a sleeve, facing front and back)."""
     J, _, _, cx, crotch_y = _landmarks(body)
     roles = {}
     for name in pattern.panel_order:
@@ -182,9 +209,13 @@ def panel_roles(pattern, body) -> dict:
         n = p.rotation_matrix()[:, 2]
         side = "left" if c[0] > cx else "right"
         sh = J[f"{side}_shoulder"]
-        if w[:, 1].min() > J["neck"][1] + 0.03:
-            roles[name] = "free"
-        elif abs(n[0]) > 0.7 and abs(c[0] - cx) > 0.8 * abs(sh[0] - cx) and c[1] > J[f"{side}_wrist"][1] - 0.1:
+        off_sh = abs(sh[0] - cx)
+        if w[:, 1].min() > J["neck"][1] + 0.03 or c[1] > J["neck"][1]:
+            roles[name] = "free"  # a collar, a hood
+        elif c[1] > crotch_y + 0.1 and abs(c[0] - cx) > 0.8 * off_sh and (
+            (abs(n[0]) > 0.7 and c[1] > J[f"{side}_wrist"][1] - 0.1)
+            or np.min(np.abs(w[:, 0] - cx)) > SLEEVE_INNER * off_sh
+        ):
             roles[name] = f"{side}_sleeve"
         elif (
             w[:, 1].min() < crotch_y - 0.08
@@ -202,7 +233,7 @@ def panel_roles(pattern, body) -> dict:
 # -- placement -------------------------------------------------------------------------------
 
 
-def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE) -> np.ndarray:
+def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE, meet_seams: bool = True) -> np.ndarray:
     """Put the flat panels of ``pattern`` around ``body``: the start of the sewing phase.
 
     Args:
@@ -212,6 +243,8 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
         body: unsew.body.body.Body with a skeleton (any body: nothing is hard-coded).
         sdf: optional BodySDF of ``body`` (built, disk-cached, when None) for the final push-out.
         clearance: gap between the body's cross-sections and the wrapped cloth [m].
+        meet_seams: start seam vertices whose two copies are further apart than SEAM_MEET at
+            their midpoint (see :func:`_meet_seams`).
 
     Returns:
         x_unsewn: (Nu, 3) float64 [m], one 3D point per 2D rest vertex (seam copies apart).
@@ -235,6 +268,10 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
     # ---- stacks of horizontal ellipses: the torso and each leg --------------------------------
     torso_pts = v[np.isin(parts, ["torso", "left_leg", "right_leg"])]
     torso_pts = torso_pts[torso_pts[:, 1] < J["neck"][1]]
+    # A raised arm (T-pose) leaves the torso at the height of the armholes: the torso's stack
+    # takes in the arm's root there, so the armhole wraps round it instead of through it.
+    roots = [_arm_root(v, parts, J, side, cx0) for side in ("left", "right")]
+    torso_pts = np.concatenate([torso_pts] + [r for r in roots if r is not None])
     stacks = {"torso": _section_table(torso_pts, ys)}
     # Above the chest the torso does not narrow into the neck (what rises above the shoulders
     # folds over them, see _fold_over_shoulders); its depth follows the body.
@@ -302,6 +339,21 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
     # fixed-point step overshoots and oscillates; secant steps on each panel's residual converge.
     lifts = {name: 0.0 for name in info}
     shoulder_edges = _shoulder_edges(pattern, mesh, info)
+    links = _horizontal_links(pattern, mesh, info)
+    if not shoulder_edges:
+        # A lower garment (or anything not hanging from shoulders): kept at its hint height
+        # when its top lies on this body's torso between the crotch and the chest, else its
+        # top goes to the body's waist (the spine joint); panels sewn below or above it by
+        # horizontal seams follow it.
+        wrapped = [n for n, d in info.items() if d["role"] in ("torso", "left_leg", "right_leg")]
+        if wrapped:
+            top_name = max(wrapped, key=lambda n: float(info[n]["hint"][:, 1].max()))
+            top = float(info[top_name]["hint"][:, 1].max())
+            fits = crotch_y + 0.1 <= top <= float(J["chest"][1])
+            base = 0.0 if fits else float(J["spine"][1]) - top
+            for n in wrapped:
+                lifts[n] = base
+            _propagate_lifts(lifts, links, [top_name])
     hist: dict = {name: [] for name in shoulder_edges}  # (lift, residual) per iteration
     for it in range(LIFT_ITERS + 1 if shoulder_edges else 1):
         if it:
@@ -309,16 +361,106 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
                 r = _shoulder_lift(folds[name], idx - info[name]["sl"].start, xb, ytop, clearance, stacks["torso"], ys)
                 hist[name].append((lifts[name], r))
                 lifts[name] = _secant_step(hist[name])
+            _propagate_lifts(lifts, links, list(shoulder_edges))
         x_wrap, folds = _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance, wrap_stack, stack_coords)
-    # The sleeves follow the raised armholes: moved up their arm by the tops' mean lift.
-    sleeve_shift = SLEEVE_SHIFT * float(np.mean([lifts[n] for n in shoulder_edges])) if shoulder_edges else 0.0
+    moved = [lifts[n] for n in x_wrap]
     for name, d in info.items():
         if name in x_wrap:
             x[d["sl"]] = x_wrap[name]
-        elif d["role"].endswith("_sleeve"):
-            x[d["sl"]] = _wrap_sleeve(uv[d["sl"]], d, d["role"].split("_")[0], J, shift=sleeve_shift)
+        elif d["role"] == "free" and moved:  # a hood or collar follows the garment up or down
+            x[d["sl"]] = d["hint"] + np.array([0.0, float(np.mean(moved)), 0.0])
+    # Sleeves: a tube round their arm, as wide as all panels of that arm side by side, moved
+    # along the arm until the top of the cap sits SLEEVE_CAP_IN inside the top of the armhole
+    # it is sewn to (the armhole as placed above).
+    caps = _sleeve_caps(pattern, mesh, info)
+    for side in ("left", "right"):
+        names = [n for n, d in info.items() if d["role"] == f"{side}_sleeve"]
+        if not names:
+            continue
+        axes = {n: _sleeve_axis(uv[info[n]["sl"]], info[n], caps.get(n), J, side) for n in names}
+        width = sum(float(np.ptp(ax[1][info[n]["bl"] - info[n]["sl"].start])) for n, ax in axes.items())
+        radius = max(width / (2 * np.pi), 0.03)
+        for n in names:
+            d = info[n]
+            along, across = axes[n]
+            cap = caps.get(n)
+            shift = None
+            if cap is not None and len(cap[1]):
+                top = _armhole_top(x[cap[1]], J, side)
+                shift = top - SLEEVE_CAP_IN - float(np.min(along[cap[0] - d["sl"].start]))
+            x[d["sl"]] = _wrap_sleeve(along, across, d, side, J, radius=radius, shift=shift)
 
+    if meet_seams:
+        x = _close_stubs(_meet_seams(x, mesh), mesh)
     return _push_out(x, body, sdf)
+
+
+def _meet_seams(x, mesh):
+    """Start the two copies of every seam vertex further apart than SEAM_MEET at their
+    midpoint (the push-out that follows lifts any midpoint that lands in the body). Seam
+    springs closing a gap of several cm in one step drag whole panels; where a limb is in
+    the way (a T-pose's sleeve pulled to the armpit) the cloth tore over it (stretch 4-6)."""
+    sp = np.asarray(mesh.seam_pairs)
+    if len(sp) == 0:
+        return x
+    gap = np.linalg.norm(x[sp[:, 0]] - x[sp[:, 1]], axis=1)
+    far = sp[gap > SEAM_MEET]
+    x = x.copy()
+    mid = 0.5 * (x[far[:, 0]] + x[far[:, 1]])  # (k, 3)
+    x[far[:, 0]] = mid
+    x[far[:, 1]] = mid
+    return x
+
+
+def _close_stubs(x, mesh):
+    """Bring the ends of outline stubs shorter than TINY_EDGE edge lengths (GarmentCode leaves
+    1-5 mm segments where an interface was split) to within the stub's length of each other:
+    every copy of such an end moves to its sewn vertex's mean, pulled towards the stub cluster's
+    mean until it lies within the stub's length of it (not onto it: a zero-length edge makes
+    the step's matrix singular). Placed cm apart, a 1 mm stub starts stretched 30 times."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    xu = np.asarray(mesh.x_of_u)
+    n = int(mesh.n_x)
+    stubs, lens = [], []
+    for p in range(len(mesh.panel_names)):
+        bl = mesh.boundary_loop(p)
+        seg = np.stack([bl, np.roll(bl, -1)], axis=1)
+        L = np.linalg.norm(mesh.uv[seg[:, 0]] - mesh.uv[seg[:, 1]], axis=1)
+        short = L < TINY_EDGE * mesh.edge_length
+        stubs.append(xu[seg[short]])
+        lens.append(L[short])
+    e = np.concatenate(stubs).reshape(-1, 2)
+    if len(e) == 0:
+        return x
+    cnt = np.bincount(xu, minlength=n).astype(np.float64)
+    m = np.stack([np.bincount(xu, weights=x[:, k], minlength=n) for k in range(3)], axis=1) / np.maximum(cnt, 1.0)[:, None]
+    g = coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(n, n))
+    _, lab = connected_components(g, directed=False)
+    c_cnt = np.bincount(lab).astype(np.float64)
+    M = np.stack([np.bincount(lab, weights=m[:, k]) for k in range(3)], axis=1) / c_cnt[:, None]
+    r = np.zeros(len(c_cnt))
+    np.maximum.at(r, lab[e[:, 0]], np.concatenate(lens))
+    d = m - M[lab]
+    dn = np.linalg.norm(d, axis=1)
+    shrink = (c_cnt[lab] > 1) & (dn > r[lab])
+    m[shrink] = M[lab[shrink]] + d[shrink] * (r[lab[shrink]] / dn[shrink])[:, None]
+    x = x.copy()
+    sel = shrink[xu]
+    x[sel] = m[xu[sel]]
+    return x
+
+
+def _arm_root(v, parts, J, side, cx):
+    """Vertices (k, 3) [m] of a raised arm's root (within ARM_ROOT of its shoulder joint
+    sideways), or None when the upper arm hangs more than ARM_RAISED below horizontal."""
+    A, seg, L = _arm_frame(J, side)
+    drop = np.degrees(np.arcsin(np.clip(-seg[0][1] / L[0], -1.0, 1.0)))
+    if drop > ARM_RAISED:
+        return None
+    m = (parts == f"{side}_arm") & (np.abs(v[:, 0] - cx) < abs(A[0][0] - cx) + ARM_ROOT)
+    return v[m]
 
 
 def _secant_step(hist) -> float:
@@ -350,12 +492,30 @@ def _keep_apart(stack, cx0, sgn, clearance):
 
 
 def _shoulder_edges(pattern, mesh, info) -> dict:
-    """Torso panels with stitched shoulder edges -> uv indices of those edges' vertices."""
+    """Torso panels with stitched shoulder edges -> uv indices of those edges' vertices.
+
+    A shoulder edge is labelled so (unsew's base patterns) or, unlabelled (GarmentCode's
+    files), a horizontal seam (:func:`_is_horizontal` in the hint placement) between a torso
+    panel facing front and one facing back, in the upper half of both."""
     out = {}
     for st in pattern.stitches:
-        for side in (st.a, st.b):
-            e = pattern.panels[side.panel].edges[side.edge]
-            if "shoulder" in (e.label or "") and info[side.panel]["role"] == "torso":
+        sides = (st.a, st.b)
+        labelled = any("shoulder" in (pattern.panels[s.panel].edges[s.edge].label or "") for s in sides)
+        if not labelled:
+            if any(info[s.panel]["role"] != "torso" for s in sides):
+                continue
+            nz = [info[s.panel]["R"][2, 2] for s in sides]
+            if not (nz[0] * nz[1] < 0 and min(abs(z) for z in nz) > 0.5):
+                continue
+            ok = True
+            for s in sides:
+                h = info[s.panel]["hint"]
+                e = h[np.asarray(mesh.edge_verts[(s.panel, s.edge)]) - info[s.panel]["sl"].start]
+                ok &= _is_horizontal(e) and e[:, 1].mean() > h[:, 1].min() + 0.5 * np.ptp(h[:, 1])
+            if not ok:
+                continue
+        for side in sides:
+            if info[side.panel]["role"] == "torso":
                 idx = np.asarray(mesh.edge_verts[(side.panel, side.edge)])
                 out[side.panel] = np.union1d(out.get(side.panel, np.zeros(0, np.int64)), idx)
     return out
@@ -456,23 +616,58 @@ def _fold_over_shoulders(p, phi0, xb, ytop, clearance, stack, ys):
     return q
 
 
-def _wrap_sleeve(u, d, side, J, *, shift=0.0):
-    """A sleeve wrapped into a tube around its arm's shoulder-elbow-wrist line, moved ``shift``
-    [m] up the arm (towards the shoulder) from its default place."""
-    A = np.stack([J[f"{side}_shoulder"], J[f"{side}_elbow"], J[f"{side}_wrist"]])  # (3, 3)
+def _arm_frame(J, side):
+    """Joints (3, 3) shoulder, elbow, wrist [m] of one arm, its segments (2, 3) and lengths (2,)."""
+    A = np.stack([J[f"{side}_shoulder"], J[f"{side}_elbow"], J[f"{side}_wrist"]])
     seg = np.diff(A, axis=0)
-    L = np.linalg.norm(seg, axis=1)
+    return A, seg, np.linalg.norm(seg, axis=1)
+
+
+def _sleeve_axis(u, d, cap, J, side):
+    """(along, across) [m] of a sleeve panel's vertices u (k, 2): along runs down the arm from
+    the panel's centre, across round it (the panel's frame turned so that across = along x z).
+
+    The direction down the arm is, in the panel's own frame, from its cap (the edges sewn to
+    the torso, ``cap`` = (uv indices, indices of the torso vertices they are sewn to)) to its
+    centre, snapped to the panel's nearest principal axis when within 35 degrees (sleeves are
+    drawn along an axis); without a cap, the arm's direction seen through the hint placement."""
+    R = d["R"]
+    c_uv = u.mean(axis=0)
+    a2 = None
+    if cap is not None and len(cap[0]):
+        v = c_uv - u[cap[0] - d["sl"].start].mean(axis=0)
+        if np.linalg.norm(v) > 1e-6:
+            a2 = v / np.linalg.norm(v)
+            w, V = np.linalg.eigh(np.cov((u - c_uv).T))
+            for k in range(2):
+                ax = V[:, k] * np.sign(V[:, k] @ a2)
+                if ax @ a2 > np.cos(np.radians(35.0)):
+                    a2 = ax
+    if a2 is None:
+        _, seg, L = _arm_frame(J, side)
+        a2 = R[:, :2].T @ (seg[0] / L[0])
+        a2 = a2 / max(np.linalg.norm(a2), 1e-9)
+    b2 = np.array([a2[1], -a2[0]])
+    return (u - c_uv) @ a2, (u - c_uv) @ b2
+
+
+def _armhole_top(p, J, side) -> float:
+    """Position [m] along the arm line (from the shoulder joint, along shoulder -> elbow) of
+    the armhole point p (k, 3) nearest the neck: the top of the armhole."""
+    A, seg, L = _arm_frame(J, side)
+    return float(np.min((p - A[0]) @ (seg[0] / L[0])))
+
+
+def _wrap_sleeve(along, across, d, side, J, *, radius, shift=None):
+    """A sleeve panel wrapped onto a tube of ``radius`` [m] round its arm's shoulder-elbow-wrist
+    line. along/across (k,) [m]: the panel's coordinates (:func:`_sleeve_axis`); the point
+    along = 0 goes ``shift`` [m] down the arm from the shoulder joint (default: the cap's top
+    3 cm inside the shoulder). The middle of the panel faces where its placement normal points,
+    off the arm's axis (a one-piece sleeve: up and out; a front half: to the front)."""
+    A, seg, L = _arm_frame(J, side)
     d0 = seg[0] / L[0]
     R = d["R"]
-    a2 = R[:, :2].T @ d0
-    a2 = a2 / max(np.linalg.norm(a2), 1e-9)
-    b2 = np.array([a2[1], -a2[0]])
-    c_uv = u.mean(axis=0)
-    c_hint = d["hint"].mean(axis=0)
-    along = (u - c_uv) @ a2
-    across = (u - c_uv) @ b2
-    # Where along the arm: the cap's top (smallest 'along') a little inside the shoulder joint.
-    t = along - along.min() - 0.03 - shift
+    t = along - along.min() - 0.03 if shift is None else along + shift
     cum = np.concatenate([[0.0], np.cumsum(L)])
 
     def axis_at(tt):
@@ -480,12 +675,6 @@ def _wrap_sleeve(u, d, side, J, *, shift=0.0):
         return A[k] + (tt - cum[k])[:, None] * (seg[k] / L[k, None]), seg[k] / L[k, None]
 
     P, D = axis_at(t)
-    # Radius: the sleeve's widest girth (a cylinder keeps the wrap isometric and closes the
-    # underarm seam there); where the arm is thicker (the cap over the deltoid) the push-out
-    # lifts the cloth.
-    bl = d["bl"] - d["sl"].start
-    r = max(float(np.ptp(across[bl])) / (2 * np.pi), 0.03)
-    # Frame: the sleeve's middle faces away from the body (its placement normal, off the axis).
     n = R[:, 2]
     e1 = n - (n @ d0) * d0
     if np.linalg.norm(e1) < 1e-6:
@@ -494,8 +683,66 @@ def _wrap_sleeve(u, d, side, J, *, shift=0.0):
     E1 = e1 - (np.einsum("ij,j->i", D, e1))[:, None] * D
     E1 /= np.linalg.norm(E1, axis=1, keepdims=True)
     E2 = np.cross(D, E1)
-    th = across / r
-    return P + r * (np.cos(th)[:, None] * E1 + np.sin(th)[:, None] * E2)
+    th = across / radius
+    return P + radius * (np.cos(th)[:, None] * E1 + np.sin(th)[:, None] * E2)
+
+
+def _sleeve_caps(pattern, mesh, info) -> dict:
+    """Sleeve panel -> (uv indices of its edges sewn to torso panels, the torso uv indices they
+    are sewn to), both (k,) int64."""
+    sp = np.asarray(mesh.seam_pairs)
+    part = np.asarray(mesh.uv_panel)
+    names = mesh.panel_names
+    out: dict = {}
+    for i, j in sp:
+        for a, b in ((i, j), (j, i)):
+            na, nb = names[part[a]], names[part[b]]
+            if info[na]["role"].endswith("_sleeve") and info[nb]["role"] == "torso":
+                out.setdefault(na, ([], []))
+                out[na][0].append(int(a))
+                out[na][1].append(int(b))
+    return {k: (np.asarray(v[0], np.int64), np.asarray(v[1], np.int64)) for k, v in out.items()}
+
+
+def _horizontal_links(pattern, mesh, info) -> list:
+    """Horizontal seams between wrapped panels (a bodice's waist to a skirt, a waistband to
+    trousers): (a, b, dy) with dy [m] the hint height of a's edge over b's, so that b sits
+    right when ``lift[b] = lift[a] + dy``. Both directions are listed."""
+    wrapped = ("torso", "left_leg", "right_leg")
+    out = []
+    for st in pattern.stitches:
+        a, b = st.a.panel, st.b.panel
+        if a == b or info[a]["role"] not in wrapped or info[b]["role"] not in wrapped:
+            continue
+        ya, yb = [info[s.panel]["hint"][np.asarray(mesh.edge_verts[(s.panel, s.edge)]) - info[s.panel]["sl"].start]
+                  for s in (st.a, st.b)]
+        if not all(_is_horizontal(y) for y in (ya, yb)):
+            continue
+        dy = float(ya[:, 1].mean() - yb[:, 1].mean())
+        out += [(a, b, dy), (b, a, -dy)]
+    return out
+
+
+def _is_horizontal(p) -> bool:
+    """Whether a polyline p (k, 3) [m] runs sideways: its chord rises less than HORIZONTAL_SLOPE
+    of its length."""
+    ch = p[-1] - p[0]
+    return abs(ch[1]) < HORIZONTAL_SLOPE * max(np.linalg.norm(ch), 1e-9)
+
+
+def _propagate_lifts(lifts, links, roots) -> None:
+    """Give every panel reachable from ``roots`` through horizontal seams (``links`` of
+    :func:`_horizontal_links`) the lift that puts its seam at the height of the one above or
+    below it (breadth first, in place); roots keep theirs."""
+    seen = set(roots)
+    queue = list(roots)
+    while queue:
+        a = queue.pop(0)
+        for p, q, dy in links:
+            if p == a and q not in seen:
+                lifts[q] = lifts[a] + dy
+                seen.add(q)
+                queue.append(q)
 
 
 def _running_max(a, k):

@@ -137,10 +137,9 @@ def _pseudonormals(verts: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np
         cos = np.einsum("ij,ij->i", e1, e2) / np.maximum(np.linalg.norm(e1, axis=1) * np.linalg.norm(e2, axis=1), 1e-30)
         ang = np.arccos(np.clip(cos, -1.0, 1.0))
         np.add.at(vn, faces[:, k], fn * ang[:, None])
-    e = np.stack([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]], axis=1)  # (F, 3, 2)
-    key = np.sort(e.reshape(-1, 2), axis=1)
-    _, inv = np.unique(key, axis=0, return_inverse=True)
-    inv = inv.reshape(-1)
+    from unsew.geometry.topology import unique_edges
+
+    _, inv, _ = unique_edges(faces)  # (3F,) edge of each (face, local edge ab/bc/ca)
     en_u = np.zeros((inv.max() + 1, 3))
     np.add.at(en_u, inv, np.repeat(fn, 3, axis=0))
     en = en_u[inv].reshape(-1, 3, 3)

@@ -31,7 +31,13 @@ def run(args: argparse.Namespace) -> int:
     for o, ext, flag in outs:
         if o and not str(o).lower().endswith(ext):
             raise InputError(f"{flag} {o} should name a {ext} file")
+    from unsew.commands._checks import MAX_TRIANGLES
+    from unsew.io.atomic import check_output
+
     pattern = load_pattern_reporting(args.pattern)
+    for o, _, flag in outs:
+        if o:
+            check_output(o, flag=flag)
     if args.svg:
         from unsew.io.svg import write_svg
 
@@ -43,8 +49,10 @@ def run(args: argparse.Namespace) -> int:
         write_dxf(pattern, args.dxf)
         print(f"wrote {args.dxf}")
     if getattr(args, "obj", None):
+        from unsew.commands._checks import check_triangle_budget
         from unsew.meshing import mesh_pattern, write_rest_obj
 
+        check_triangle_budget(pattern, 0.02, limit=MAX_TRIANGLES, override=None)
         write_rest_obj(mesh_pattern(pattern), args.obj)
         print(f"wrote {args.obj}")
     return 0

@@ -10,7 +10,9 @@ __all__ = ["run"]
 
 
 def run(args: argparse.Namespace) -> int:
+    from unsew.commands._checks import check_triangle_budget
     from unsew.errors import InputError
+    from unsew.io.atomic import check_output
     from unsew.io.garmentcode import load_pattern
     from unsew.meshing.sew import EDGE_LENGTH_RANGE, mesh_pattern, write_rest_obj
 
@@ -20,7 +22,11 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--edge-length {h:g} m is outside {lo:g}-{hi:g} m; the usual range is 0.01-0.03 m")
     if not str(args.out).lower().endswith(".obj"):
         raise InputError(f"--out {args.out} should name an .obj file")
+    if args.max_triangles < 1:
+        raise InputError(f"--max-triangles must be positive, got {args.max_triangles}")
     pattern = load_pattern(args.pattern)
+    check_triangle_budget(pattern, h, limit=args.max_triangles)  # before minutes of meshing
+    check_output(args.out)
     t0 = time.perf_counter()
     mesh = mesh_pattern(pattern, edge_length=h)
     dt = time.perf_counter() - t0

@@ -38,7 +38,10 @@ def run(args: argparse.Namespace) -> int:
     from unsew.batch.runner import run_batch
     from unsew.batch.summary import format_table
 
+    from unsew.io.atomic import check_output
+
     cfg = _config(args)
+    check_output(args.out, folder=True)  # an unwritable --out fails before any fit
     res = run_batch(args.cases, args.out, cfg=cfg, workers=args.workers, ray=args.ray, overwrite=args.overwrite,
                     progress=not args.quiet)
     print(format_table(res.records))

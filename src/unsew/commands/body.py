@@ -1,4 +1,5 @@
-"""``unsew body {make,measure}``: make a wearer with anny (optional extra), measure a body.
+"""``unsew body {make,rig,measure}``: make a wearer with anny (optional extra), rig a body mesh
+that has no skeleton, measure a body.
 
 No heavy imports at module level: the work is imported when a subcommand runs.
 """
@@ -28,6 +29,12 @@ def run_make(args: argparse.Namespace) -> int:
     from unsew.io.atomic import atomic_dir
     from unsew.io.mesh import write_obj
 
+    from unsew.errors import InputError
+    from unsew.io.atomic import check_output
+
+    if os.path.exists(args.out) and not args.overwrite:
+        raise InputError(f"output folder {args.out} exists; remove it, pass --overwrite or choose another --out")
+    check_output(args.out, folder=True)  # fail before making the body
     body = make_anny_body(dict(args.phenotype or []), pose=args.pose)
     with atomic_dir(args.out, overwrite=args.overwrite) as tmp:
         write_obj(os.path.join(tmp, "body.obj"), body.verts, body.faces, header=f"unsew body: {body.name}")
@@ -36,28 +43,75 @@ def run_make(args: argparse.Namespace) -> int:
     return 0
 
 
-def run_measure(args: argparse.Namespace) -> int:
-    import json
+def _body_from_arg(args: argparse.Namespace, *, rig: bool = False):
+    """The body named on the command line: 'default', a body mesh file, or a folder with body.obj
+    (and skeleton.json, else the body is rigged from its mesh; ``rig``: always rigged)."""
     import os
 
     from unsew.body.body import default_body, load_body
-    from unsew.body.measure import measure_body
     from unsew.errors import InputError
 
-    if args.body == "default":
-        body = default_body()
-    else:
-        mesh = next((os.path.join(args.body, n) for n in ("body.obj", "body.ply") if os.path.isfile(os.path.join(args.body, n))), None)
+    src = args.body
+    if src == "default":
+        return default_body()
+    if os.path.isdir(src):
+        mesh = next((os.path.join(src, n) for n in ("body.obj", "body.ply") if os.path.isfile(os.path.join(src, n))), None)
         if mesh is None:
-            raise InputError(f"{args.body} has no body.obj or body.ply; give a body folder (body.obj + skeleton.json) or 'default'")
-        body = load_body(mesh, os.path.join(args.body, "skeleton.json"), units=args.units, up=args.up, front=args.front)
+            raise InputError(f"{src} has no body.obj or body.ply; give a body folder, a body mesh file or 'default'")
+        skel = os.path.join(src, "skeleton.json")
+    elif os.path.isfile(src):
+        mesh, skel = src, getattr(args, "skeleton", None) or ""
+    else:
+        raise InputError(f"body {src} not found; give a body folder, a body mesh file or 'default'")
+    use = skel if os.path.isfile(skel) and not rig else None
+    return load_body(mesh, use, units=args.units, up=args.up, front=args.front)
+
+
+def run_rig(args: argparse.Namespace) -> int:
+    import os
+
+    from unsew.body.skeleton import save_skeleton
+
+    body = _body_from_arg(args, rig=True)
+    for note in body.notes:
+        print(f"note: {note}")
+    folder = args.body if os.path.isdir(args.body) else os.path.dirname(os.path.abspath(args.body))
+    out = args.out or os.path.join(folder, "skeleton.json")
+    if os.path.exists(out) and not args.overwrite:
+        from unsew.errors import InputError
+
+        raise InputError(f"{out} exists; pass --overwrite to replace it or --out another path")
+    save_skeleton(body.skeleton, out)
+    print(f"wrote {out} ({len(body.skeleton.names)} joints, height {body.height:.3f} m)")
+    if args.preview:
+        from unsew.body.preview import render_rig_preview
+
+        render_rig_preview(body, args.preview)
+        print(f"wrote {args.preview}")
+    return 0
+
+
+def run_measure(args: argparse.Namespace) -> int:
+    import json
+
+    from unsew.body.measure import measure_body
+
+    body = _body_from_arg(args)
+    for note in body.notes:
+        print(f"note: {note}")
     m = measure_body(body).as_dict()
     if args.json:
-        print(json.dumps({"units": "m", **{k: round(v, 4) for k, v in m.items()}}, indent=1))
+        print(json.dumps({"units": "m", "rigged": body.rigged, **{k: round(v, 4) for k, v in m.items()}}, indent=1))
     else:
         for k, v in m.items():
             print(f"{k:15s} {v * 100:7.1f} cm")
     return 0
+
+
+def _frame_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--units", default="m", choices=["m", "cm", "mm"], help="units of the body files")
+    p.add_argument("--up", default="y", help="the files' up axis (x, y, z, -x, ...)")
+    p.add_argument("--front", default="z", help="the files' front axis")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -72,10 +126,18 @@ def register(sub: argparse._SubParsersAction) -> None:
     mk.add_argument("--overwrite", action="store_true", help="replace an existing --out folder")
     mk.set_defaults(func=run_make)
 
-    me = psub.add_parser("measure", help="girths and lengths of a body (folder with body.obj + skeleton.json, or 'default')")
-    me.add_argument("body", metavar="BODY_DIR|default")
+    rg = psub.add_parser("rig", help="estimate the 17 joints of a body mesh that has no skeleton: skeleton.json")
+    rg.add_argument("body", metavar="BODY.obj|BODY_DIR")
+    rg.add_argument("--out", metavar="skeleton.json", help="where to write (default: skeleton.json beside the body)")
+    rg.add_argument("--preview", metavar="PNG", help="also draw the body and its joints, front and side")
+    rg.add_argument("--overwrite", action="store_true", help="replace an existing --out file")
+    _frame_options(rg)
+    rg.set_defaults(func=run_rig, skeleton=None)
+
+    me = psub.add_parser("measure", help="girths and lengths of a body (body.obj [+ skeleton.json], its folder, or 'default'); "
+                         "a body without skeleton.json is rigged from its mesh")
+    me.add_argument("body", metavar="BODY.obj|BODY_DIR|default")
+    me.add_argument("--skeleton", metavar="skeleton.json", help="the joints of a BODY.obj (default: rigged from the mesh)")
     me.add_argument("--json", action="store_true", help="print JSON (metres)")
-    me.add_argument("--units", default="m", choices=["m", "cm", "mm"], help="units of the body files")
-    me.add_argument("--up", default="y", help="the files' up axis (x, y, z, -x, ...)")
-    me.add_argument("--front", default="z", help="the files' front axis")
+    _frame_options(me)
     me.set_defaults(func=run_measure)

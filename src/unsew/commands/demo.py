@@ -20,10 +20,11 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from unsew.commands.fit import config_from_args
-    from unsew.fit.demo import run_demo
+    from unsew.fit.demo import DEMO_CONFIG, run_demo
 
-    from unsew.fit.demo import DEMO_CONFIG
+    from unsew.io.atomic import check_output
 
     cfg = config_from_args(args, defaults=DEMO_CONFIG)
+    check_output(Path(args.out), folder=True)  # an unwritable --out fails now, not after the fit
     run_demo(Path(args.out), cfg=cfg, progress=not args.quiet)
     return 0

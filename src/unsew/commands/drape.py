@@ -1,9 +1,11 @@
 """``unsew drape PATTERN.json --body default|CASE_DIR|body.obj --out garment.obj``: dress a body.
 
 Places the pattern's panels around the body, sews them shut and lets the garment settle
-(:func:`unsew.dress.dress`), then writes the draped garment as OBJ with the pattern's 2D
-coordinates [m] as UVs, atomically. This is also how a fitted pattern is retargeted to another
-body or pose (paper Fig. 12).
+(:func:`unsew.dress.dress`), judges the result (:func:`unsew.sim.checks.check_dressed`: fallen,
+off the body, exploded or inside it), then writes the draped garment as OBJ with the pattern's
+2D coordinates [m] as UVs, atomically. A bad verdict exits non-zero with one line and writes no
+``--out`` (with ``--keep-failed`` the garment goes to ``<out stem>.failed.obj`` for a look).
+This is also how a fitted pattern is retargeted to another body or pose (paper Fig. 12).
 """
 
 from __future__ import annotations
@@ -18,10 +20,12 @@ def register(sub: argparse._SubParsersAction) -> None:
         "drape",
         help="drape a sewing pattern on a body (place, sew, settle) and write garment.obj",
         description="Drape PATTERN.json (GarmentCode JSON) on a body: 'default' (the embedded body), "
-        "a case folder (its body.obj + skeleton.json), or a body mesh with --skeleton.",
+        "a case folder or a body folder (its body.obj + skeleton.json, as `unsew body make` writes it), "
+        "or a body mesh with --skeleton. A drape that ends fallen, off the body, exploded or inside it "
+        "exits non-zero with one line and writes no --out.",
     )
     p.add_argument("pattern", metavar="PATTERN.json", help="sewing pattern (GarmentCode specification JSON)")
-    p.add_argument("--body", default="default", help="default | CASE_DIR | body.obj/ply (default: default)")
+    p.add_argument("--body", default="default", help="default | CASE_DIR | BODY_DIR | body.obj/ply (default: default)")
     p.add_argument("--skeleton", default=None, help="skeleton.json of a body mesh given with --body")
     p.add_argument("--units", default="m", choices=["m", "cm", "mm"], help="units of a body mesh file (default m)")
     p.add_argument("--material", default=None,
@@ -31,6 +35,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--sew-steps", type=int, default=None, help="steps of the sewing phase (default: dress()'s)")
     p.add_argument("--settle-steps", type=int, default=None, help="steps of settling after sewing (default: dress()'s)")
     p.add_argument("--out", required=True, metavar="garment.obj", help="OBJ file to write")
+    p.add_argument("--keep-failed", action="store_true",
+                   help="when the drape fails its checks, write the garment to <out stem>.failed.obj")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.set_defaults(func=run)
 
@@ -49,16 +55,21 @@ def _load_body(args):
         return default_body()
     path = Path(src)
     if path.is_dir():
-        from unsew.io.case import load_case
+        if (path / "target.obj").is_file() or (path / "meta.json").is_file() or not (path / "body.obj").is_file():
+            from unsew.body.case import load_case
 
-        return load_case(path).body
+            return load_case(path).body
+        # a body folder as `unsew body make` writes it: body.obj and, when known, skeleton.json
+        from unsew.body.body import load_body
+
+        skel = path / "skeleton.json"
+        return load_body(path / "body.obj", skel if skel.is_file() else None, units=args.units)
     if not path.is_file():
         raise InputError(f"body {src} not found; give 'default', a case folder or a body mesh file")
-    if not args.skeleton:
-        raise InputError(f"body mesh {src} needs its joints: add --skeleton skeleton.json")
     from unsew.body.body import load_body
 
-    return load_body(path, args.skeleton, units=args.units)
+    # without --skeleton the mesh is rigged from its shape (unsew.body.rig)
+    return load_body(path, args.skeleton or None, units=args.units)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -77,11 +88,18 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--out {out} must end in .obj")
     if not out.parent.exists():
         raise InputError(f"folder {out.parent} of --out does not exist")
+    from unsew.io.atomic import check_output
+
+    check_output(out)  # an unwritable --out fails now, not after the drape
 
     from unsew.io.garmentcode import load_pattern
 
+    from unsew.commands._checks import check_pattern_scale, check_triangle_budget
+
     pattern = load_pattern(args.pattern)
     body = _load_body(args)
+    check_pattern_scale(pattern, body)
+    check_triangle_budget(pattern, args.edge_length, override=None)
 
     from unsew.dress import dress, resolve_material
     from unsew.io.mesh import write_obj
@@ -106,20 +124,29 @@ def run(args: argparse.Namespace) -> int:
             b = bars[phase] = tqdm(total=n, desc=f"drape: {phase}", unit="step", leave=False, dynamic_ncols=True)
         b.update(k - b.n)
 
-    kw = {}
-    if args.sew_steps is not None:
-        kw["sew_steps"] = args.sew_steps
-    if args.settle_steps is not None:
-        kw["settle_steps"] = args.settle_steps
+    from unsew.dress import DRESS_SETTINGS
+
+    kw = {k: getattr(args, k) for k in ("sew_steps", "settle_steps") if getattr(args, k) is not None}
+    settings = DRESS_SETTINGS.replace(edge_length=args.edge_length, **kw)
     try:
-        d = dress(pattern, body, edge_length=args.edge_length, material=material, progress=progress, **kw)
+        d = dress(pattern, body, material=material, settings=settings, progress=progress)
     finally:
         for b in bars.values():
             b.close()
+    from unsew.sim.checks import check_dressed
+
     m = d.mesh
+    verdict = check_dressed(d, body=body)
+    if not verdict.ok:
+        if args.keep_failed:
+            failed = out.with_name(out.stem + ".failed.obj")
+            write_obj(failed, d.x.detach().cpu().numpy(), m.faces, uv=m.uv, faces_uv=m.faces_uv,
+                      header=f"unsew drape FAILED ({verdict.reason}): {pattern.name}")
+        verdict.raise_if_bad(f"drape of {pattern.name}")
     write_obj(out, d.x.detach().cpu().numpy(), m.faces, uv=m.uv, faces_uv=m.faces_uv,
               header=f"unsew drape: {pattern.name} on {getattr(body, 'name', 'body')}, {material_name}; UVs are pattern coordinates [m]")
     s = d.stats
     print(f"wrote {out}: {m.n_x} vertices, seam gap {s.get('seam_gap', 0.0) * 1000:.2f} mm, "
-          f"max speed {s.get('max_speed', 0.0):.3f} m/s")
+          f"max speed {s.get('max_speed', 0.0):.3f} m/s, {verdict.inside_pct:.2f} % inside the body, "
+          f"stretch max {verdict.stretch_max:.2f}, y {verdict.y_min:.2f}..{verdict.y_max:.2f} m")
     return 0

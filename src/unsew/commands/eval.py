@@ -17,6 +17,10 @@ def run(args: argparse.Namespace) -> int:
 
     from unsew.metrics.evaluate import evaluate_result, format_table, write_eval_json
 
+    from unsew.io.atomic import check_output
+
+    if Path(args.result_dir).is_dir():
+        check_output(Path(args.result_dir) / "eval.json")  # fail before the work
     ev = evaluate_result(args.result_dir, args.case_dir, n_samples=args.samples, seed=args.seed)
     write_eval_json(ev, Path(args.result_dir) / "eval.json")
     print(json.dumps(ev, indent=2) if args.json else format_table(ev))

@@ -29,24 +29,27 @@ def config_from_args(args: argparse.Namespace, *, defaults: dict | None = None):
     from unsew.fit.config import load_config
 
     over = {
-        "iterations": args.iterations,
-        "edge_length": args.edge_length,
-        "material": args.material,
-        "steps": args.steps,
+        "optimizer": {"iterations": args.iterations},
+        "drape": {"edge_length": args.edge_length, "steps": args.steps},
+        "material": {"start": args.material},
+        "loss": {},
+        "output": {},
         "device": args.device,
         "base": getattr(args, "base", None),
     }
     if args.no_grading:
         over["grading"] = False
     if args.plain_chamfer:
-        over["curvature_weighted"] = False
+        over["loss"]["curvature_weighted"] = False
     if args.no_seam_loss:
-        over["seam_loss"] = False
+        over["loss"]["seam"] = 0.0
     if args.no_material:
-        over["optimize_material"] = False
+        over["material"]["fit"] = []
     if args.no_report:
-        over["report"] = False
-    return load_config(args.config, defaults=defaults, **over)
+        over["output"]["report"] = False
+    groups = {k: {f: v for f, v in g.items() if v is not None} for k, g in over.items() if isinstance(g, dict)}
+    tops = {k: v for k, v in over.items() if not isinstance(v, dict) and v is not None}
+    return load_config(args.config, defaults=defaults, **tops, **{k: g for k, g in groups.items() if g})
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -67,10 +70,31 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from unsew.fit.run import run_fit
-    from unsew.io.case import load_case
+    from unsew.io.atomic import check_output
+    from unsew.body.case import load_case
 
     cfg = config_from_args(args)
     out = Path(args.out)
+    if not (out.exists() and not args.overwrite):  # run_fit says "exists; pass --overwrite"
+        check_output(out, folder=True)  # an unwritable --out fails now, not after the fit
     case = load_case(args.case, units=args.units, up=args.up, front=args.front)
+    _check_inputs(case, cfg)
     run_fit(case, cfg, out, resume=args.resume, overwrite=args.overwrite, progress=not args.quiet)
     return 0
+
+
+def _check_inputs(case, cfg) -> None:
+    """Refuse, before the fit, a --base pattern far out of scale for the body
+    (:mod:`unsew.commands._checks`); a target its body does not wear is refused by ``load_case``."""
+    from pathlib import Path
+
+    from unsew.commands._checks import check_pattern_scale
+
+    base = getattr(cfg, "base", None)
+    if base and Path(str(base)).suffix.lower() == ".json":
+        from unsew.errors import InputError
+        from unsew.io.garmentcode import load_pattern
+
+        if not Path(str(base)).is_file():
+            raise InputError(f"--base {base}: no such pattern file (give a GarmentCode JSON or a garment type)")
+        check_pattern_scale(load_pattern(base), case.body)

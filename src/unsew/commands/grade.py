@@ -35,9 +35,9 @@ def run(args: argparse.Namespace) -> int:
     import json
 
     from unsew.errors import InputError
-    from unsew.grading.grade import flat_drape, format_table, grade
+    from unsew.grading.grade import GRADE_SETTINGS, flat_drape, format_table, grade
     from unsew.io.atomic import atomic_dir
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.io.garmentcode import save_pattern
     from unsew.io.mesh import write_obj
     from unsew.meshing.sew import EDGE_LENGTH_RANGE
@@ -54,8 +54,9 @@ def run(args: argparse.Namespace) -> int:
         pattern = make_base_pattern(base)
         kw = {"drape_fn": flat_drape} if args.flat else {}
         res = grade(
-            pattern, case.body, case.target_verts, case.target_faces, edge_length=args.edge_length,
-            material=args.material, length=args.length, **kw,
+            pattern, case.body, case.target_verts, case.target_faces,
+            settings=GRADE_SETTINGS.replace(edge_length=args.edge_length), material=args.material,
+            length=args.length, **kw,
         )
         save_pattern(res.pattern, tmp / "pattern.json")
         m = res.mesh

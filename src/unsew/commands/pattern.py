@@ -12,6 +12,7 @@ import importlib
 __all__ = ["register"]
 
 GARMENTS = ["tshirt", "dress", "pants", "shorts", "skirt"]
+MAX_TRIANGLES = 250_000  # unsew.commands._checks.MAX_TRIANGLES (kept here so --help imports nothing)
 
 
 def _dispatch(verb: str):
@@ -35,6 +36,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     mesh.add_argument("pattern", metavar="P.json")
     mesh.add_argument("--edge-length", type=float, default=0.02, help="target edge length [m] (0.01-0.03)")
     mesh.add_argument("--out", required=True, metavar="REST.obj", help="flat panels as OBJ (pattern coordinates as UVs)")
+    mesh.add_argument("--max-triangles", type=int, default=MAX_TRIANGLES, metavar="N",
+                      help=f"refuse a mesh estimated above N triangles (default {MAX_TRIANGLES:,})")
     mesh.set_defaults(func=_dispatch("mesh"))
 
     sym = psub.add_parser("symmetry", help="detect panel pairs and mirror axes; count control points")

@@ -1,15 +1,16 @@
-"""Configuration of a fit: one frozen dataclass, every field with its unit, read from and
-written to YAML so a result folder holds everything needed to rerun it (STYLE.md habit 13).
+"""Configuration of a fit: frozen dataclasses, one per concern, every field with its unit, read
+from and written to YAML so a result folder holds everything needed to rerun it (STYLE.md habit 13).
+
+A config file groups its options (``drape:``, ``material:``, ``optimizer:``, ``loss:``,
+``checks:``, ``output:``); the flat files of earlier versions (``iterations: 100``,
+``sew_steps: 80``, ``seam_loss: false``, ...) still load, each old name mapped onto its group
+(:data:`LEGACY_KEYS`).
 
 Defaults follow the paper (4.1): Adam with learning rate 1e-3, betas (0.9, 0.999),
-lambda_open 0.1, lambda_mat 0.01, dt 0.05 s, 10-20 steps per drape; except lambda_seam, which is
-1.0 here instead of the paper's 0.01, and the starting material, which the paper has the user
-pick from the library and ``material: auto`` picks by draping (on bench_fit's skirt, in wool, a
-fit from cotton ended 4.54 mm from its target and one from auto 2.36 mm). Our Chamfer term is a
-mean of squared distances [m^2] and the seam term a sum of squared edge-length differences [m^2]
-over all seam edges; with 0.01 the seam term had no effect: on the demo case the seam loss rose from 5e-7 to 1e-4 during the fit
-(stitched edges drifting apart), while with 1.0 it stayed at 6e-6 and the fit reached a lower
-Chamfer (2.9 mm against 4.6 mm). The paper does not state its loss scaling.
+lambda_open 0.1, lambda_mat 0.01, dt 0.05 s, 10-20 steps per drape; except the seam weight, 1.0
+here instead of the paper's 0.01, and the starting material, which the paper has the user pick
+from the library and ``material.start: auto`` picks by draping (the figures: docs/history.md,
+"Measurements behind the fit's defaults").
 """
 
 from __future__ import annotations
@@ -19,163 +20,284 @@ from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 from unsew.errors import InputError
+from unsew.sim.drape import DrapeSettings
+from unsew.sim.material import MATERIALS, get_material
 
-__all__ = ["FitConfig", "load_config", "config_to_dict", "material_mask", "material_candidates"]
+__all__ = [
+    "FitConfig", "MaterialSettings", "OptimizerSettings", "LossWeights", "CheckSettings", "OutputSettings",
+    "load_config", "config_to_dict", "material_mask", "material_candidates", "GAMMA_NAMES", "LEGACY_KEYS",
+]
+
+#: Names of the entries of Gamma, in order (unsew.sim.material.Material.gamma()).
+GAMMA_NAMES = ("H00", "H01", "H11", "H22", "k")
+
+
+@dataclass(frozen=True)
+class MaterialSettings:
+    """The fabric: where the fit starts and what phase two may change of it."""
+
+    start: str = "auto"  #: a library name (the paper's user choice), or "auto": grade in cotton, dress the graded pattern in each candidate, grade again in the `regrade` best others, scale the winner's stiffness (`refine`) and start from the drape closest to the target
+    candidates: tuple[str, ...] = ()  #: library materials "auto" tries (empty: every material in the library)
+    regrade: int = 2  #: "auto": how many of the best candidates other than cotton are graded again in their own fabric [-]
+    refine: int = 2  #: "auto": rounds of the stiffness search after the choice (stretch and bending scaled by 1/s and s, s = 2, sqrt 2, ...); 0: off [-]
+    fit: tuple[str, ...] = GAMMA_NAMES  #: entries of Gamma phase two moves (the others keep the start's value, H01 its ratio to sqrt(H00 H11)); empty: the material stays fixed
+    start_iteration: int = 20  #: iteration at which the material joins the variables [-]
+    lr: float = 5e-2  #: Adam learning rate of the log-material parameters [-]
+
+
+@dataclass(frozen=True)
+class OptimizerSettings:
+    """Phase two's Adam loop and its stopping rule."""
+
+    iterations: int = 100  #: iteration budget [-]
+    lr: float = 1e-3  #: Adam learning rate of the control points [m per step]
+    lr_decay: float = 1.0  #: factor the learning rates fall to, geometrically, over `iterations` [-] (1 = constant)
+    betas: tuple[float, float] = (0.9, 0.999)  #: Adam betas [-]
+    pattern_start: int = 0  #: iteration at which the control points K start to move [-]
+    warm_start: bool = True  #: start each drape from the previous iteration's (the paper); False: always from the graded drape
+    friction_eps: float = 1e-2  #: slip speed below which friction is viscous in phase two's drapes (only) [m/s]
+    tol: float = 1e-3  #: stop when the loss changed by less than this fraction over `patience` iterations [-]
+    patience: int = 15  #: iterations over which convergence is judged [-]
+
+
+@dataclass(frozen=True)
+class LossWeights:
+    """Weights of the loss terms (eqs. 5-9); a weight of 0 drops its term."""
+
+    curvature_weighted: bool = True  #: curvature-weighted Chamfer, eq. 7 (ablation: plain Chamfer)
+    open: float = 0.1  #: open-contour Chamfer, eq. 6 [-]
+    seam: float = 1.0  #: seam-length loss, eq. 8 [-] (paper: 0.01; see the module docstring)
+    material: float = 0.01  #: material range penalty [-]
+    prior: float = 0.0  #: pull towards the graded pattern: mean squared 2D rest-vertex move [m^2] (0: the paper's loss) [-]
+    target_points: int = 8000  #: target vertices kept for the Chamfer (random subset, seeded) [-]
+
+
+@dataclass(frozen=True)
+class CheckSettings:
+    """Checks after phase two (not in the paper)."""
+
+    redress: bool = True  #: dress the fitted pattern from scratch; unless it lies closer to the target than the graded drape, return the graded pattern
+    mesh_spread: float = 0.04  #: dress the returned pattern on meshes of edge length x (1 -/+ mesh_spread) and report their distance to the target (0: skip) [-]
+
+
+@dataclass(frozen=True)
+class OutputSettings:
+    """What a fit writes besides the pattern, garment and metrics."""
+
+    report: bool = True  #: write report.html and its figures
 
 
 @dataclass(frozen=True)
 class FitConfig:
-    """Everything a fit needs besides its case folder.
+    """Everything a fit needs besides its case folder. Units in brackets; [-] is dimensionless."""
 
-    Units in brackets; [-] is dimensionless.
-    """
-
-    # pattern and meshing
     base: str = ""  #: base pattern: garment name or a GarmentCode JSON path; "" = meta.json's garment
-    edge_length: float = 0.025  #: target triangle edge length of the panel meshes [m]
-    material: str = "auto"  #: starting material: a library name (unsew.sim.material.MATERIALS; the paper's user choice), or "auto": grade in cotton, dress the graded pattern in each of `material_candidates`, grade again in the `material_regrade` best others, scale the winner's stiffness (`material_refine`), and start phase two from the drape closest to the target (mean surface distance)
-    material_candidates: str = ""  #: comma list of library materials "auto" tries ("" = every material in the library)
-    material_regrade: int = 2  #: "auto": how many of the best candidates other than cotton are graded again in their own fabric [-]
-    material_refine: int = 2  #: "auto": rounds of the stiffness search after the choice (stretch and bending scaled by 1/s and s, s = 2, sqrt 2, ...; each kept when the drape comes closer); 0: off [-]
-
-    # simulation
-    dt: float = 0.05  #: time step [s]
-    steps: int = 15  #: implicit Euler steps per differentiable drape [-]
-    warm_start: bool = True  #: start each drape from the previous iteration's (the paper); False: always from the graded pattern's settled drape, so the drape depends on K and Gamma alone
-    fit_friction_eps: float = 1e-2  #: slip speed below which friction is viscous in phase two's drapes [m/s] (the simulator's default; 1e-3 holds a warm-started drape from creeping down the body, docs/benchmarks.md "Where phase two's pattern drift comes from")
-    sew_steps: int = 80  #: steps of the non-differentiated sewing phase [-]
-    settle_steps: int = 40  #: steps of plain draping after sewing, before the first loss [-]
-
-    # phase one: grading
     grading: bool = True  #: run linear grading before the optimization (ablation: False)
-
-    # phase two: optimization
-    iterations: int = 100  #: iteration budget of the optimization [-]
-    lr: float = 1e-3  #: Adam learning rate for the control points [m per step]
-    lr_decay: float = 1.0  #: factor the learning rates fall to, geometrically, over `iterations` [-] (1 = constant)
-    lr_material: float = 5e-2  #: Adam learning rate for log-material parameters [-]
-    betas: tuple[float, float] = (0.9, 0.999)  #: Adam betas [-]
-    material_start: int = 20  #: iteration at which the material joins the variables [-]
-    pattern_start: int = 0  #: iteration at which the control points K start to move [-] (0: from the first)
-    optimize_material: bool = True  #: optimize Gamma = (H00, H01, H11, H22, k) (ablation: False)
-    material_params: str = "H00,H01,H11,H22,k"  #: which entries of Gamma the material fit moves (comma list; the others keep the start material's value, H01 its ratio to sqrt(H00 H11))
-    curvature_weighted: bool = True  #: curvature-weighted Chamfer, eq. 7 (ablation: plain Chamfer)
-    lambda_open: float = 0.1  #: weight of the open-contour Chamfer, eq. 6 [-]
-    lambda_seam: float = 1.0  #: weight of the seam-length loss, eq. 8 [-] (paper: 0.01; see module docstring)
-    lambda_mat: float = 0.01  #: weight of the material range penalty [-]
-    redress_check: bool = True  #: after phase two, dress the fitted pattern from scratch on the same mesh; if it lies no closer to the target (mean surface distance) than the graded pattern's drape, return the graded pattern and its drape (not in the paper)
-    mesh_spread: float = 0.04  #: after the fit, dress the returned pattern from scratch on meshes of edge length x (1 - mesh_spread) and x (1 + mesh_spread); their distance to the target (metrics.json ``mesh_spread``) is how far the triangulation alone moves the drape (0: skip) [-]
-    lambda_prior: float = 0.0  #: weight of the pull towards the start (graded) pattern: mean squared 2D rest-vertex move [m^2] (0: off, the paper's loss) [-]
-    seam_loss: bool = True  #: include the seam loss (ablation: False)
-    tol: float = 1e-3  #: stop when the loss changed by less than this fraction over `patience` iterations [-]
-    patience: int = 15  #: iterations over which convergence is judged [-]
-    target_points: int = 8000  #: target vertices kept for the Chamfer (random subset, seeded) [-]
     seed: int = 0  #: seed of every random choice [-]
-
-    # outputs
     device: str = "cpu"  #: torch device for the simulation ("cpu", "cuda")
-    report: bool = True  #: write report.html and its figures
+    drape: DrapeSettings = field(default_factory=DrapeSettings)  #: meshing, sewing, settling and drape steps
+    material: MaterialSettings = field(default_factory=MaterialSettings)
+    optimizer: OptimizerSettings = field(default_factory=OptimizerSettings)
+    loss: LossWeights = field(default_factory=LossWeights)
+    checks: CheckSettings = field(default_factory=CheckSettings)
+    output: OutputSettings = field(default_factory=OutputSettings)
 
     def replace(self, **changes) -> "FitConfig":
+        """A copy with ``changes`` applied: top-level fields or whole groups."""
         return dataclasses.replace(self, **changes)
+
+    @property
+    def fits_material(self) -> bool:
+        """Whether phase two moves any entry of Gamma."""
+        return bool(self.material.fit)
+
+
+_GROUPS = {f.name: f.default_factory for f in fields(FitConfig) if f.default_factory is not dataclasses.MISSING}
+
+#: Option names of the flat config files of earlier versions -> their place (group.field).
+LEGACY_KEYS = {
+    "edge_length": "drape.edge_length", "dt": "drape.dt", "steps": "drape.steps", "sew_steps": "drape.sew_steps",
+    "settle_steps": "drape.settle_steps", "material": "material.start", "material_candidates": "material.candidates",
+    "material_regrade": "material.regrade", "material_refine": "material.refine", "material_params": "material.fit",
+    "material_start": "material.start_iteration", "lr_material": "material.lr", "iterations": "optimizer.iterations",
+    "lr": "optimizer.lr", "lr_decay": "optimizer.lr_decay", "betas": "optimizer.betas",
+    "pattern_start": "optimizer.pattern_start", "warm_start": "optimizer.warm_start",
+    "fit_friction_eps": "optimizer.friction_eps", "tol": "optimizer.tol", "patience": "optimizer.patience",
+    "curvature_weighted": "loss.curvature_weighted", "lambda_open": "loss.open", "lambda_seam": "loss.seam",
+    "lambda_mat": "loss.material", "lambda_prior": "loss.prior", "target_points": "loss.target_points",
+    "redress_check": "checks.redress", "mesh_spread": "checks.mesh_spread", "report": "output.report",
+}  # fmt: skip
+#: Old on/off switches, now a weight of 0 or an empty list: name -> (place, value when False).
+_LEGACY_SWITCHES = {"seam_loss": ("loss.seam", 0.0), "optimize_material": ("material.fit", ())}
+_STR_LISTS = {"material.candidates", "material.fit"}
 
 
 def config_to_dict(cfg: FitConfig) -> dict:
-    """Plain dict (YAML-ready) of a config."""
-    d = dataclasses.asdict(cfg)
-    d["betas"] = list(d["betas"])
-    return d
+    """Plain nested dict (YAML-ready: lists, not tuples) of a config."""
+    return _lists(dataclasses.asdict(cfg))
+
+
+def _lists(v):
+    if isinstance(v, dict):
+        return {k: _lists(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_lists(x) for x in v]
+    return v
 
 
 def load_config(path: str | Path | None = None, *, defaults: dict | None = None, **overrides) -> FitConfig:
     """Read a YAML config and apply keyword overrides (None values are ignored).
 
-    Precedence: overrides > the file > ``defaults`` > FitConfig's own defaults. Unknown keys and
-    values of the wrong type raise InputError naming the key.
+    Precedence: overrides > the file > ``defaults`` > FitConfig's own defaults. Each source may
+    be grouped (``{"optimizer": {"iterations": 9}}``), dotted (``{"optimizer.iterations": 9}``) or
+    use the old flat names (``{"iterations": 9}``, :data:`LEGACY_KEYS`). Unknown keys and values
+    of the wrong type raise InputError naming the key.
     """
-    import yaml
-
-    data: dict = dict(defaults or {})
-    if path is not None:
-        p = Path(path)
-        if not p.is_file():
-            raise InputError(f"config file {p} does not exist")
-        try:
-            loaded = yaml.safe_load(p.read_text()) or {}
-        except yaml.YAMLError as exc:
-            raise InputError(f"config file {p} is not valid YAML: {exc}".splitlines()[0]) from None
-        if not isinstance(loaded, dict):
-            raise InputError(f"config file {p} must hold a mapping of option: value")
-        data.update(loaded)
-    data.update({k: v for k, v in overrides.items() if v is not None})
-    known = {f.name: f for f in fields(FitConfig)}
-    unknown = sorted(set(data) - set(known))
-    if unknown:
-        raise InputError(f"unknown config option(s) {unknown}; known: {sorted(known)}")
-    default = FitConfig()
-    clean = {}
-    for k, v in data.items():
-        ref = getattr(default, k)
-        try:
-            if isinstance(ref, bool):
-                if not isinstance(v, bool):
-                    raise TypeError
-                clean[k] = v
-            elif isinstance(ref, int):
-                if isinstance(v, bool) or int(v) != float(v):
-                    raise TypeError
-                clean[k] = int(v)
-            elif isinstance(ref, float):
-                clean[k] = float(v)
-            elif isinstance(ref, tuple):
-                clean[k] = tuple(float(x) for x in v)
-                if len(clean[k]) != len(ref):
-                    raise TypeError
-            else:
-                clean[k] = str(v)
-        except (TypeError, ValueError):
-            raise InputError(f"config option {k!r} must be like {ref!r}, got {v!r}") from None
-    cfg = default.replace(**clean)
-    _check(cfg)
+    flat: dict = {}
+    names: dict = {}  # place -> the name the user gave it (for messages)
+    switches: dict = {}
+    for source in (defaults or {}, _read_yaml(path) if path is not None else {},
+                   {k: v for k, v in overrides.items() if v is not None}):
+        _flatten(source, flat, names, switches)
+    for key, on in switches.items():
+        place, off = _LEGACY_SWITCHES[key]
+        if not on:
+            flat[place], names[place] = off, key
+    groups: dict = {g: {} for g in _GROUPS}
+    top: dict = {}
+    for place, value in flat.items():
+        g, _, name = place.partition(".")
+        ref = getattr(FitConfig(), g) if name else FitConfig()
+        value = _coerce(place, getattr(ref, name or g), value, names.get(place, place))
+        (groups[g] if name else top)[name or g] = value
+    cfg = FitConfig(**top, **{g: _GROUPS[g](**kw) for g, kw in groups.items()})
+    _check(cfg, names)
     return cfg
 
 
-def _check(cfg: FitConfig) -> None:
-    if not 0.005 <= cfg.edge_length <= 0.1:
-        raise InputError(f"edge_length {cfg.edge_length} m is outside 0.005-0.1 m")
-    if cfg.dt <= 0 or cfg.dt > 0.2:
-        raise InputError(f"dt {cfg.dt} s must be in (0, 0.2]")
-    if not cfg.fit_friction_eps > 0:
-        raise InputError(f"fit_friction_eps must be positive, got {cfg.fit_friction_eps} m/s")
-    if not 0 <= cfg.mesh_spread < 0.5:
-        raise InputError(f"mesh_spread must be in [0, 0.5), got {cfg.mesh_spread}")
-    if cfg.material_refine < 0:
-        raise InputError(f"material_refine must be >= 0, got {cfg.material_refine}")
-    if cfg.material_regrade < 0:
-        raise InputError(f"material_regrade must be >= 0, got {cfg.material_regrade}")
-    for k in ("steps", "iterations", "target_points"):
-        if getattr(cfg, k) < 1:
-            raise InputError(f"{k} must be at least 1")
-    if cfg.lr <= 0 or cfg.lr_material <= 0:
+def _read_yaml(path) -> dict:
+    import yaml
+
+    p = Path(path)
+    if not p.is_file():
+        raise InputError(f"config file {p} does not exist")
+    try:
+        loaded = yaml.safe_load(p.read_text()) or {}
+    except yaml.YAMLError as exc:
+        raise InputError(f"config file {p} is not valid YAML: {exc}".splitlines()[0]) from None
+    if not isinstance(loaded, dict):
+        raise InputError(f"config file {p} must hold a mapping of option: value")
+    if isinstance(loaded.get("config"), dict) and "unsew_version" in loaded:
+        loaded = loaded["config"]  # a result folder's config.yaml
+    return loaded
+
+
+def _flatten(source: dict, flat: dict, names: dict, switches: dict) -> None:
+    """Add ``source``'s options to ``flat`` (place -> value), whatever their spelling."""
+    known_top = {f.name for f in fields(FitConfig)} - set(_GROUPS)
+    unknown = []
+    for key, value in source.items():
+        if key in _GROUPS and isinstance(value, dict):
+            group_fields = {f.name for f in fields(_GROUPS[key])}
+            for k, v in value.items():
+                if k in group_fields:
+                    flat[f"{key}.{k}"] = v
+                    names[f"{key}.{k}"] = f"{key}.{k}"
+                else:
+                    unknown.append(f"{key}.{k}")
+        elif key in _LEGACY_SWITCHES:
+            switches[key] = value if isinstance(value, bool) else _bad(key, True, value)
+        elif key in LEGACY_KEYS:
+            flat[LEGACY_KEYS[key]] = value
+            names[LEGACY_KEYS[key]] = key
+        elif key in known_top or ("." in key and key.split(".", 1)[0] in _GROUPS
+                                   and key.split(".", 1)[1] in {f.name for f in fields(_GROUPS[key.split(".", 1)[0]])}):
+            flat[key] = value
+            names[key] = key
+        else:
+            unknown.append(key)
+    if unknown:
+        raise InputError(f"unknown config option(s) {sorted(unknown)}; known: {', '.join(_known())}")
+
+
+def _known() -> list[str]:
+    out = [f.name for f in fields(FitConfig) if f.name not in _GROUPS]
+    for g, make in _GROUPS.items():
+        out += [f"{g}.{f.name}" for f in fields(make)]
+    return out
+
+
+def _bad(name, ref, value):
+    raise InputError(f"config option {name!r} must be like {ref!r}, got {value!r}")
+
+
+def _coerce(place: str, ref, v, name: str):
+    """``v`` as the type of the default ``ref``; InputError naming ``name`` when it is not."""
+    try:
+        if place in _STR_LISTS:
+            items = str(v).split(",") if isinstance(v, str) else list(v)
+            return tuple(dict.fromkeys(str(x).strip() for x in items if str(x).strip()))
+        if isinstance(ref, bool):
+            if not isinstance(v, bool):
+                raise TypeError
+            return v
+        if isinstance(ref, int):
+            if isinstance(v, bool) or int(v) != float(v):
+                raise TypeError
+            return int(v)
+        if isinstance(ref, float):
+            if isinstance(v, bool):
+                raise TypeError
+            return float(v)
+        if isinstance(ref, tuple):
+            out = tuple(float(x) for x in v)
+            if len(out) != len(ref):
+                raise TypeError
+            return out
+        return str(v)
+    except (TypeError, ValueError):
+        _bad(name, ref, v)
+
+
+def _check(cfg: FitConfig, names: dict) -> None:
+    def say(place: str) -> str:
+        return names.get(place, place)
+
+    d, o = cfg.drape, cfg.optimizer
+    if not 0.005 <= d.edge_length <= 0.1:
+        raise InputError(f"{say('drape.edge_length')} {d.edge_length} m is outside 0.005-0.1 m")
+    if d.dt <= 0 or d.dt > 0.2:
+        raise InputError(f"{say('drape.dt')} {d.dt} s must be in (0, 0.2]")
+    if not o.friction_eps > 0:
+        raise InputError(f"{say('optimizer.friction_eps')} must be positive, got {o.friction_eps} m/s")
+    if not 0 <= cfg.checks.mesh_spread < 0.5:
+        raise InputError(f"{say('checks.mesh_spread')} must be in [0, 0.5), got {cfg.checks.mesh_spread}")
+    for place in ("material.refine", "material.regrade", "drape.sew_steps", "drape.settle_steps"):
+        g, n = place.split(".")
+        if getattr(getattr(cfg, g), n) < 0:
+            raise InputError(f"{say(place)} must be >= 0, got {getattr(getattr(cfg, g), n)}")
+    for place in ("drape.steps", "optimizer.iterations", "loss.target_points"):
+        g, n = place.split(".")
+        if getattr(getattr(cfg, g), n) < 1:
+            raise InputError(f"{say(place)} must be at least 1")
+    if o.lr <= 0 or cfg.material.lr <= 0:
         raise InputError("learning rates must be positive")
-    if not 0 < cfg.lr_decay <= 1:
-        raise InputError(f"lr_decay {cfg.lr_decay} must be in (0, 1]")
-    material_mask(cfg.material_params)
-    if cfg.material != "auto":
-        from unsew.sim.material import get_material
+    if not 0 < o.lr_decay <= 1:
+        raise InputError(f"{say('optimizer.lr_decay')} {o.lr_decay} must be in (0, 1]")
+    if names.get("material.fit") != "optimize_material":
+        material_mask(cfg.material.fit, name=say("material.fit"))
+    if cfg.material.start != "auto":
+        get_material(cfg.material.start)  # InputError naming the library's materials
+    material_candidates(cfg.material.candidates)
 
-        get_material(cfg.material)  # InputError naming the library's materials
-    material_candidates(cfg.material_candidates)
 
-
-def material_candidates(spec: str) -> tuple[str, ...]:
-    """The library materials ``material: auto`` tries: the comma list ``spec`` or, when empty,
-    every distinct material of the library (aliases dropped). Raises InputError on an unknown name."""
-    from unsew.sim.material import MATERIALS, get_material
-
-    names = [n.strip() for n in str(spec).split(",") if n.strip()]
+def material_candidates(names) -> tuple[str, ...]:
+    """The library materials ``material.start: auto`` tries: ``names`` (a list, or a comma
+    string) or, when empty, every distinct material of the library (aliases dropped). Raises
+    InputError on an unknown name."""
+    names = [n.strip() for n in (names.split(",") if isinstance(names, str) else names) if n.strip()]
     if not names:
-        seen, names = set(), []
+        seen = set()
         for n, m in MATERIALS.items():
             if id(m) not in seen:
                 seen.add(id(m))
@@ -185,15 +307,11 @@ def material_candidates(spec: str) -> tuple[str, ...]:
     return tuple(dict.fromkeys(names))
 
 
-#: Names of the entries of Gamma, in order (unsew.sim.material.Material.gamma()).
-GAMMA_NAMES = ("H00", "H01", "H11", "H22", "k")
-
-
-def material_mask(spec: str) -> tuple[bool, ...]:
-    """Which entries of Gamma a ``material_params`` list (e.g. ``"H22,k"``) frees, in GAMMA_NAMES
-    order. Raises InputError on an unknown or empty list."""
-    names = [n.strip() for n in str(spec).split(",") if n.strip()]
+def material_mask(names, *, name: str = "material.fit") -> tuple[bool, ...]:
+    """Which entries of Gamma a list of names (e.g. ``("H22", "k")`` or ``"H22,k"``) frees, in
+    GAMMA_NAMES order; all False for an empty list. Raises InputError on an unknown name."""
+    names = [n.strip() for n in (names.split(",") if isinstance(names, str) else names) if n.strip()]
     bad = sorted(set(names) - set(GAMMA_NAMES))
-    if bad or not names:
-        raise InputError(f"material_params {spec!r} must be a comma list of {', '.join(GAMMA_NAMES)}")
+    if bad:
+        raise InputError(f"{name} {names!r} must list entries of {', '.join(GAMMA_NAMES)} (or none: material fixed)")
     return tuple(n in names for n in GAMMA_NAMES)

@@ -37,7 +37,8 @@ DEMO_TRUTH = DemoTruth()
 
 #: The demo's fit settings (under --config and flags): a 3 cm mesh and a budget that finishes the
 #: whole demo in well under five minutes on two cores.
-DEMO_CONFIG = {"edge_length": 0.03, "iterations": 80, "material_start": 20, "steps": 12}
+DEMO_CONFIG = {"drape": {"edge_length": 0.03, "steps": 12}, "optimizer": {"iterations": 80},
+               "material": {"start_iteration": 20}}
 
 
 def other_body():
@@ -47,45 +48,44 @@ def other_body():
     return default_body().transformed(scale=np.array([1.08, 1.0, 1.08]))
 
 
-def make_truth_case(case_dir: Path, *, truth: DemoTruth = DEMO_TRUTH, edge_length: float = 0.03,
-                    progress=None, **dressing) -> Path:
+def make_truth_case(case_dir: Path, *, truth: DemoTruth = DEMO_TRUTH, settings=None, progress=None) -> Path:
     """Write the demo's case folder (FORMATS.md): the true t-shirt draped on the default body,
-    with pattern_gt.json. ``dressing``: sew_steps, settle_steps, dt of the target's drape (default:
-    FitConfig's, see :func:`unsew.fit.synthetic.make_truth_case`). Returns the folder."""
+    with pattern_gt.json. ``settings``: DrapeSettings of the target's drape (default: FitConfig's
+    on a 3 cm mesh, see :func:`unsew.fit.synthetic.make_truth_case`). Returns the folder."""
     from unsew.fit.synthetic import Alteration
     from unsew.fit.synthetic import make_truth_case as _make
 
     alt = Alteration({"hem": (truth.hem_length, truth.hem_girth), "sleeves": (truth.sleeve_length, 0.0)},
                      truth.material)
-    return _make(case_dir, garment="tshirt", alteration=alt, edge_length=edge_length, progress=progress, **dressing)
+    return _make(case_dir, garment="tshirt", alteration=alt, settings=settings, progress=progress)
 
 
 def run_demo(out: Path, *, cfg=None, progress: bool = True, log=None) -> dict:
     """Run the whole demo into ``out`` (case/, fit/, retarget/). Returns a summary dict."""
-    from unsew.dress import dress
-    from unsew.fit.config import FitConfig
+    from unsew.dress import DRESS_SETTINGS, dress
+    from unsew.fit.config import load_config
     from unsew.fit.run import run_fit
-    from unsew.io.case import load_case
+    from unsew.body.case import load_case
     from unsew.io.mesh import write_obj
 
     log = log or (lambda s: print(s, file=sys.stderr))
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    cfg = cfg or FitConfig(**DEMO_CONFIG)
+    cfg = cfg or load_config(defaults=DEMO_CONFIG)
     t0 = time.perf_counter()
     log(f"[1/3] making the target: a t-shirt {DEMO_TRUTH.hem_length * 100:.0f} cm longer, hem "
         f"{DEMO_TRUTH.hem_girth * 100:.0f}% wider, sleeves {DEMO_TRUTH.sleeve_length * 100:.0f} cm longer, "
         f"in {DEMO_TRUTH.material} (the fit starts from the base t-shirt"
-        + (", in the library fabric whose drape is closest)" if cfg.material == "auto" else f" in {cfg.material})"))
-    case_dir = make_truth_case(out / "case", edge_length=cfg.edge_length, sew_steps=cfg.sew_steps,
-                               settle_steps=cfg.settle_steps, dt=cfg.dt)
+        + (", in the library fabric whose drape is closest)" if cfg.material.start == "auto" else f" in {cfg.material.start})"))
+    case_dir = make_truth_case(out / "case", settings=cfg.drape)
     t_case = time.perf_counter() - t0
     log("[2/3] fitting the target from the base t-shirt")
     case = load_case(case_dir)
     result, metrics = run_fit(case, cfg, out / "fit", overwrite=True, progress=progress, log=log)
     log("[3/3] retargeting the fitted pattern to another body (8% wider and deeper)")
     body2 = other_body()
-    d2 = dress(result.pattern, body2, edge_length=cfg.edge_length, material=result.material)
+    d2 = dress(result.pattern, body2, material=result.material,
+               settings=DRESS_SETTINGS.replace(edge_length=cfg.drape.edge_length))
     (out / "retarget").mkdir(exist_ok=True)
     write_obj(out / "retarget" / "garment.obj", d2.x.numpy(), d2.mesh.faces, uv=d2.mesh.uv,
               faces_uv=d2.mesh.faces_uv, header="fitted pattern draped on another body")

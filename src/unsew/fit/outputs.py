@@ -73,21 +73,26 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     m["loss_final"] = {k: (v[-1] if v else None) for k, v in h.items()}
     m["loss_history"] = {k: [float(f"{x:.6g}") for x in v] for k, v in h.items()}  # per iteration
     m["iterations"] = result.iterations
-    m["best_iteration"] = result.extra.get("best_iteration")
-    m["material_fitted"] = result.extra.get("material_fitted")
-    if result.extra.get("material_choice"):
-        m["material_choice"] = result.extra["material_choice"]  # material: auto, best first
+    m["best_iteration"] = result.best_iteration
+    m["material_fitted"] = result.material_fitted
+    if result.material_choice:
+        m["material_choice"] = result.material_choice  # material: auto, best first
     m["converged"] = result.converged
-    if result.extra.get("redress"):
-        m["redress"] = result.extra["redress"]  # the re-dress check: phase two kept or not
-    if result.extra.get("mesh_spread"):
-        m["mesh_spread"] = result.extra["mesh_spread"]  # the returned pattern on two other meshes
+    if result.redress is not None:
+        m["redress"] = result.redress.as_dict()  # the re-dress check: phase two kept or not
+    if result.mesh_spread is not None:
+        m["mesh_spread"] = result.mesh_spread.as_dict()  # the returned pattern on two other meshes
     m["timings_s"] = result.timings
+    from unsew._memory import peak_rss_mb
+
+    m["peak_memory_mb"] = peak_rss_mb()  # the process's peak resident memory so far [MB]
+    if getattr(case, "target_repair", None):
+        m["target_repair"] = case.target_repair  # what loading cleaned in the target (counts)
     return m
 
 
 def _faces_of(result, which: str):
-    mesh = result.extra.get("base_mesh") if which == "base" else None
+    mesh = result.base_mesh if which == "base" else None
     return np.asarray((mesh or result.mesh).faces)
 
 

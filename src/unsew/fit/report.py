@@ -16,6 +16,7 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     """Write report.html (figures embedded) into ``work``; figures go to ``work/figures``."""
     from unsew.metrics.surface import closest_points
     from unsew.report.fit_report import write_fit_report as _write
+    from unsew.sim.material import material_to_dict
 
     faces = np.asarray(result.mesh.faces)
     _, dist, _ = closest_points(np.asarray(result.x), np.asarray(case.target_verts), np.asarray(case.target_faces))
@@ -59,7 +60,7 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     # terms that stay at round-off level (e.g. the seam loss of a symmetric skirt) would stretch
     # the log axis over 30 decades: leave them out of the plot (they are in the metrics table)
     hist = {k: v for k, v in result.history.items() if v and max(v) > 1e-12 * top}
-    start = result.extra.get("material_start_iteration")
+    start = result.material_start_iteration
     phases = [(0, "pattern")] + ([(start, "pattern + material")] if start is not None and start < result.iterations else [])
     tables = dict(metrics)
     choice = tables.pop("material_choice", None)
@@ -74,6 +75,7 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
         target=(np.asarray(case.target_verts), np.asarray(case.target_faces)), result=(np.asarray(result.x), faces),
         body=(np.asarray(case.body.verts), np.asarray(case.body.faces)), distance_mm=1e3 * np.asarray(dist),
         history=hist or None, phases=phases if hist else None, patterns=patterns, config=config, notes=notes or None,
+        material=material_to_dict(result.material),
     )
 
 

@@ -19,9 +19,12 @@ def partial_dir(out: Path) -> Path:
     return out.with_name(out.name + ".partial")
 
 
-def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = False, progress: bool = True,
-            log=None):
+def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = False, progress=True,
+            log=None, callback=None):
     """Fit ``case`` with ``cfg`` and write the result folder ``out``. Returns (FitResult, metrics).
+
+    progress: True/False or a :class:`~unsew.fit.progress.Progress`; callback: called with each
+    phase-two iteration (:func:`unsew.fit.fit.fit`).
 
     Ctrl-C or a crash leaves ``out.partial`` with ``checkpoint.pt``; ``resume=True`` continues.
     """
@@ -39,7 +42,8 @@ def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = Fal
         log(f"no checkpoint in {work}; starting afresh")
     work.mkdir(parents=True, exist_ok=True)
     try:
-        result = fit(case, cfg, progress=progress, checkpoint=work / "checkpoint.pt", resume=resume, log=log)
+        result = fit(case, cfg, progress=progress, checkpoint=work / "checkpoint.pt", resume=resume, log=log,
+                     callback=callback)
     except BaseException:
         # Keep the work folder only if it holds a checkpoint to resume from.
         if not (work / "checkpoint.pt").is_file():
@@ -48,7 +52,7 @@ def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = Fal
             log(f"interrupted: rerun with --resume to continue from {work / 'checkpoint.pt'}")
         raise
     (work / "checkpoint.pt").unlink(missing_ok=True)
-    metrics = write_result(work, result, case, cfg, report=cfg.report)
+    metrics = write_result(work, result, case, cfg, report=cfg.output.report)
     if out.exists():
         shutil.rmtree(out)
     os.replace(work, out)

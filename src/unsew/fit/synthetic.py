@@ -84,14 +84,14 @@ def make_truth_pattern(garment: str, alteration: Alteration, *, body=None):
 
 
 def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alteration | None = None,
-                    body=None, body_meta="default", edge_length: float = 0.03, progress=None,
-                    sew_steps: int | None = None, settle_steps: int | None = None, dt: float | None = None) -> Path:
+                    body=None, body_meta="default", settings=None, progress=None) -> Path:
     """Drape the true pattern and write the case folder. ``body``: a Body (default body when None);
     ``body_meta``: what meta.json says of the body ("default"), or None to write body.obj and
     skeleton.json into the case. Returns the folder.
 
-    The target is dressed the way a fit dresses its patterns: ``sew_steps``, ``settle_steps`` and
-    ``dt`` default to :class:`~unsew.fit.config.FitConfig`'s (pass a fit's own when it differs).
+    The target is dressed the way a fit dresses its patterns: ``settings``
+    (:class:`~unsew.sim.drape.DrapeSettings`) defaults to :class:`~unsew.fit.config.FitConfig`'s
+    on a 3 cm mesh (pass a fit's own when it differs).
     Dressed with dress()'s shorter defaults (60 + 20 steps against 80 + 40), a target was an
     earlier snapshot of a garment that is still settling and creeping: the true skirt pattern of
     benchmark case skirt_02 in its true fabric, dressed like a fit, lay 2.89 mm from its target
@@ -109,7 +109,7 @@ def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alte
     alteration = alteration or DEFAULT_ALTERATIONS[garment]
     body = body if body is not None else default_body()
     p = make_truth_pattern(garment, alteration, body=body)
-    fc = FitConfig()
+    settings = settings if settings is not None else FitConfig().drape.replace(edge_length=0.03)
     meta = {"garment": garment, "units": "m", "up": "y", "front": "z", "truth": alteration.as_dict()}
     with atomic_dir(case_dir, overwrite=True) as tmp:
         if body_meta is None:
@@ -127,10 +127,7 @@ def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alte
         # mesh vertex), so the true pattern reproduces the target exactly.
         save_pattern(p, tmp / "pattern_gt.json")
         p = load_pattern(tmp / "pattern_gt.json")
-        d = dress(p, body, edge_length=edge_length, material=alteration.material, progress=progress,
-                  sew_steps=fc.sew_steps if sew_steps is None else sew_steps,
-                  settle_steps=fc.settle_steps if settle_steps is None else settle_steps,
-                  dt=fc.dt if dt is None else dt)
+        d = dress(p, body, material=alteration.material, settings=settings, progress=progress)
         write_obj(tmp / "target.obj", np.asarray(d.x), d.mesh.faces, header=f"unsew known-truth target ({garment})")
         (tmp / "meta.json").write_text(json.dumps(meta, indent=2))
     return Path(case_dir)

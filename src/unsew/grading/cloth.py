@@ -70,7 +70,9 @@ def distance_graph(points: np.ndarray, faces: np.ndarray):
     ok &= (cy + dy > 0) & (cross > 0) & (cross < lab) & (c != d)
     across = np.stack([c[ok], d[ok]], axis=1)
     w_across = np.hypot(cx - dx, cy + dy)[ok]
-    edges = np.unique(key, axis=0)
+    from unsew.geometry.topology import unique_edges
+
+    edges = unique_edges(f)[0]  # (E, 2) sorted, as np.unique(key, axis=0)
     pairs = np.concatenate([edges, np.sort(across, axis=1)])
     w = np.concatenate([np.linalg.norm(x[edges[:, 0]] - x[edges[:, 1]], axis=1), w_across])
     pairs, w = _shortest_once(pairs, w)

@@ -40,6 +40,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from unsew.body.skeleton import Bone, Skeleton, axial_coordinate, encircled_bones
+from unsew.geometry.topology import vertex_adjacency
 from unsew.losses.contours import Contour, open_contours
 
 __all__ = [
@@ -196,7 +197,7 @@ def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] 
         contours = open_contours(v, faces)
     bones = skeleton.bones()
     root_bone = _torso_root_bone(skeleton)
-    adj = _adjacency(len(v), faces)
+    adj = vertex_adjacency(faces, len(v))
     ends = _chain_end_bones(skeleton)
     out = []
     for i, c in enumerate(contours):
@@ -248,16 +249,6 @@ def hull_perimeter(points) -> float:
     except QhullError:
         return float("nan")
     return float(np.linalg.norm(np.roll(ring, -1, axis=0) - ring, axis=1).sum())
-
-
-def _adjacency(n: int, faces):
-    """Vertex adjacency (n, n) scipy CSR boolean of a triangle mesh (faces (F, 3) int)."""
-    from scipy.sparse import coo_matrix
-
-    f = np.asarray(faces, dtype=np.int64).reshape(-1, 3)
-    e = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
-    e = np.concatenate([e, e[:, ::-1]])
-    return coo_matrix((np.ones(len(e), dtype=bool), (e[:, 0], e[:, 1])), shape=(n, n)).tocsr()
 
 
 def _inward(adj, v, c: Contour) -> np.ndarray | None:

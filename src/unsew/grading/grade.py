@@ -22,17 +22,26 @@ from dataclasses import dataclass, field, replace
 from typing import Callable
 
 import numpy as np
+import torch
 
+from unsew.dress import DRESS_SETTINGS, dress
 from unsew.errors import InputError, SimulationError
 from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
 from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, place_contours
 from unsew.grading.curves import curves_of_contour, rest_length
 from unsew.grading.edit import curve_edit, project_edit, safe_fraction
+from unsew.meshing.sew import mesh_pattern
+from unsew.pattern.params import PatternParams
+from unsew.sim.drape import DrapeSettings
 
 __all__ = [
     "GradeResult", "grade", "moved_mesh", "dress_drape", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH",
-    "REMESH_MODES", "LENGTH_MODES", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL",
+    "REMESH_MODES", "LENGTH_MODES", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL", "GRADE_SETTINGS", "GradePass",
 ]
+
+#: grade()'s drape settings when none are given: dress()'s on a 3 cm mesh (grade's default edge
+#: length has been 3 cm, the fit's 2.5 cm; a fit passes its own settings).
+GRADE_SETTINGS = DRESS_SETTINGS.replace(edge_length=0.03)
 
 #: Re-mesh after grading when a rest edge grew beyond this factor times the target edge length
 #: (``remesh="stretched"``; the default ``"always"`` meshes every graded pattern afresh).
@@ -95,20 +104,18 @@ def flat_drape(pattern, mesh, body=None) -> np.ndarray:
     return out / cnt[:, None]
 
 
-def dress_drape(pattern, mesh, body, *, material="cotton", sdf=None, **dress_options) -> np.ndarray:
+def dress_drape(pattern, mesh, body, *, material="cotton", sdf=None, settings: DrapeSettings = DRESS_SETTINGS) -> np.ndarray:
     """The grading drape: :func:`unsew.dress.dress` (place, sew, merge, settle) on ``mesh``.
 
     pattern, mesh: the pattern and its GarmentMesh. body: the wearer (:class:`Body`).
     material: a :class:`~unsew.sim.material.Material` or a name from ``MATERIALS``.
     sdf: the body's SDF (default: ``BodySDF.build(body)``, cached on disk).
-    dress_options: further keyword arguments of :func:`~unsew.dress.dress` (``sew_steps``, ...).
+    settings: :class:`~unsew.sim.drape.DrapeSettings` of the drape (default dress()'s).
 
     Returns the draped sewn vertices, (n_x, 3) float64 [m].
     Raises SimulationError when the drape diverged.
     """
-    from unsew.dress import dress
-
-    d = dress(pattern, body, sdf=sdf, mesh=mesh, material=material, **dress_options)
+    d = dress(pattern, body, sdf=sdf, mesh=mesh, material=material, settings=settings)
     x = d.x.detach().cpu().numpy().astype(np.float64)
     if not np.isfinite(x).all():
         raise SimulationError("the drape diverged (non-finite positions); try a smaller edge length or another material")
@@ -139,7 +146,7 @@ def grade(
     target_verts,
     target_faces,
     *,
-    edge_length: float = 0.03,
+    settings: DrapeSettings = GRADE_SETTINGS,
     material="cotton",
     mesh=None,
     x_init=None,
@@ -157,43 +164,71 @@ def grade(
     pattern: the base pattern (:class:`~unsew.pattern.model.Pattern`, panels placed around the body).
     body: the wearer (:class:`~unsew.body.body.Body`; its skeleton is used).
     target_verts: (V, 3) float64 [m]; target_faces: (F, 3) int: the target garment T.
-    edge_length: target rest edge length [m] for meshing (and re-meshing).
+    settings: :class:`~unsew.sim.drape.DrapeSettings` of the drapes; ``settings.edge_length`` is
+        the target rest edge length [m] for meshing (default :data:`GRADE_SETTINGS`).
     material: material name or :class:`Material` for the drapes.
-    mesh: the base pattern's GarmentMesh (default: ``mesh_pattern(pattern, edge_length=...)``).
+    mesh: the base pattern's GarmentMesh (default: meshed at ``settings.edge_length``).
     x_init: the base pattern already draped, (n_x, 3) [m] on ``mesh`` (default: draped here).
     drape_fn: ``drape_fn(pattern, mesh, body) -> (n_x, 3) [m]`` used for both drapes (default:
-        :func:`dress_drape` with ``material`` and ``sdf``; :func:`flat_drape` for a quick look).
+        :func:`dress_drape` with ``material``, ``sdf`` and ``settings``; :func:`flat_drape` for a quick look).
     redrape: drape the graded pattern (X_LG); False leaves ``x_draped`` None.
     max_centre_distance: contour pairing gate [m] (default :data:`~unsew.grading.contours.MAX_CENTRE_DISTANCE`).
-    passes: grading passes. Pass 2 grades the graded pattern again from its own drape (X_LG) to
-        the target, when a contour is still off by more than :data:`PASS_LENGTH_TOL` or
-        :data:`PASS_GIRTH_TOL`: one edit by the axial distance cannot know how the drape answers
-        (a skirt whose narrower hem rests on the hips hangs its waist higher and its hem shorter
-        than the pattern change), a second one measures it. Each pass costs one drape.
+    passes: grading passes; a further pass grades the graded pattern again from its own drape
+        while a contour is off by more than :data:`PASS_LENGTH_TOL` or :data:`PASS_GIRTH_TOL`
+        (one edit cannot know how the drape answers; the next measures it). One drape each.
     hold_top: keep each panel's top where it was placed when its top is an edited open curve
         (a waist): the change of length goes to the other end (:func:`_hold_tops`).
     remesh: ``"always"``: every graded pattern is meshed afresh before it is draped, so X_LG is
-        the drape anyone meshing the returned pattern gets; ``"stretched"``: only when a rest
-        edge grew beyond :data:`REMESH_STRETCH` times the edge length (issue 6's rule), else the
-        base mesh is moved with the pattern (:func:`moved_mesh`). A moved mesh keeps the base's
-        triangles squeezed or stretched, and a pattern draped on it is not the drape of the
-        pattern returned: bench_grading's first flipped skirt (12 cm shorter), graded to within
-        0.19 cm of the true hem and 0.35 cm of its waist, draped 21.7 mm (Chamfer) from the target
-        on the moved mesh; meshed afresh, the graded skirt drapes 10.2 mm from it and the true
-        pattern 11.5 mm. Over bench_grading's ten cases (five garments, both
-        directions, five targets each; 7734a1b, axial lengths) neither choice drapes closer on
-        the whole (mean Chamfer ratio 0.43 always, 0.45 stretched); "always" makes X_LG
-        reproducible from U_LG alone.
-    length: how far a contour's open curve moves. ``"cloth"``: by the change of cloth length
-        between the contour and the garment's top opening, target minus drape, read on the
-        pattern's own rest mesh (:mod:`unsew.grading.cloth`; the top opening itself, and any
-        contour without a surface path to it, moves by its axial extension); ``"axial"``: by the
-        axial extension along the bone (Algorithm 2).
+        reproducible from U_LG alone; ``"stretched"``: only when a rest edge grew beyond
+        :data:`REMESH_STRETCH` times the edge length, else the base mesh is moved with the
+        pattern (:func:`moved_mesh`; docs/history.md, "the graded pattern meshed afresh").
+    length: how far a contour's open curve moves: ``"cloth"``, by the change of cloth length to
+        the garment's top opening, target minus drape, read on the pattern's rest mesh
+        (:mod:`unsew.grading.cloth`; contours without such a path move axially); ``"axial"``, by
+        the axial extension along the bone (Algorithm 2).
 
     Returns a :class:`GradeResult`.
     """
-    from unsew.meshing.sew import mesh_pattern
+    tv, tf = _check_grade_args(target_verts, target_faces, remesh, length)
+    if drape_fn is None:
+        def drape_fn(p, m, b):  # noqa: E306
+            return dress_drape(p, m, b, material=material, sdf=sdf, settings=settings)
 
+    mesh = mesh if mesh is not None else mesh_pattern(pattern, edge_length=settings.edge_length)
+    x_init = _base_drape(pattern, mesh, body, x_init, drape_fn)
+    skel = body.skeleton
+    tgt = place_contours(tv, tf, skel)
+    ctx = _PassContext(tgt, skel, {} if max_centre_distance is None else {"max_centre_distance": max_centre_distance},
+                       cloth_lengths(tv, tf, tgt) if length == "cloth" else (None, {}), hold_top, remesh)
+    first = _grade_pass(pattern, mesh, x_init, ctx)
+    cur, rows = first, list(first.rows)
+    x_lg = None
+    for k in range(max(int(passes), 1)):
+        if k > 0:
+            nxt = _further_pass(cur, x_lg, ctx)
+            if nxt is None:
+                break
+            rows += [{**r, "edits": [f"pass {k + 1}: {e}" for e in r["edits"]]} for r in nxt.rows if r["edits"]]
+            cur = nxt
+        if not redrape:
+            break
+        x_lg = np.asarray(drape_fn(cur.pattern, cur.mesh, body), dtype=np.float64)
+    return GradeResult(
+        pattern=cur.pattern, mesh=cur.mesh, x_draped=x_lg, table=rows, K=cur.K, fraction=first.fraction,
+        remeshed=first.remeshed or cur.remeshed, x_init=x_init, mesh_init=mesh, matches=first.matches,
+    )
+
+
+def _base_drape(pattern, mesh, body, x_init, drape_fn) -> np.ndarray:
+    """The base pattern's drape (n_x, 3) float64 [m] on ``mesh``: ``x_init``, checked, or draped."""
+    x_init = np.asarray(drape_fn(pattern, mesh, body) if x_init is None else x_init, dtype=np.float64)
+    if x_init.shape != (mesh.n_x, 3):
+        raise InputError(f"x_init must be ({mesh.n_x}, 3) positions on the base mesh, got {x_init.shape}")
+    return x_init
+
+
+def _check_grade_args(target_verts, target_faces, remesh: str, length: str):
+    """The target as (V, 3) float64 and (F, 3) int64 arrays; InputError on a bad mode or mesh."""
     if remesh not in REMESH_MODES:
         raise InputError(f"remesh must be one of {', '.join(REMESH_MODES)}, got {remesh!r}")
     if length not in LENGTH_MODES:
@@ -202,49 +237,34 @@ def grade(
     tf = np.asarray(target_faces, dtype=np.int64)
     if tv.ndim != 2 or tv.shape[1] != 3 or len(tv) == 0 or tf.ndim != 2 or tf.shape[1] != 3 or len(tf) == 0:
         raise InputError(f"target mesh must be (V, 3) vertices and (F, 3) faces, got {tv.shape} and {tf.shape}")
-    if drape_fn is None:
-        def drape_fn(p, m, b):  # noqa: E306
-            return dress_drape(p, m, b, material=material, sdf=sdf)
+    return tv, tf
 
-    if mesh is None:
-        mesh = mesh_pattern(pattern, edge_length=edge_length)
-    if x_init is None:
-        x_init = drape_fn(pattern, mesh, body)
-    x_init = np.asarray(x_init, dtype=np.float64)
-    if x_init.shape != (mesh.n_x, 3):
-        raise InputError(f"x_init must be ({mesh.n_x}, 3) positions on the base mesh, got {x_init.shape}")
 
-    skel = body.skeleton
-    tgt = place_contours(tv, tf, skel)
-    tcloth = cloth_lengths(tv, tf, tgt) if length == "cloth" else (None, {})
-    kw = {} if max_centre_distance is None else {"max_centre_distance": max_centre_distance}
-    first = _grade_pass(pattern, mesh, x_init, tgt, skel, kw, hold_top=hold_top, remesh=remesh, tcloth=tcloth)
-    cur, rows = first, list(first["rows"])
-    x_lg = None
-    for k in range(max(int(passes), 1)):
-        if k > 0:
-            # Another pass from the graded drape: the contours' remaining offsets, edited again,
-            # each scaled by how far the drape answered the previous pass's edit.
-            src = place_contours(x_lg, cur["mesh"].faces, skel)
-            now = match_contours(src, tgt, skel, garment_centre=x_lg.mean(axis=0), **kw)
-            cloth = _cloth_wants(src, now, x_lg, cur["mesh"].faces, tcloth)
-            if not _worth_a_pass(now, cloth):
-                break
-            gains = response_gains(cur["matches"], cur["applied"], now)
-            nxt = _grade_pass(cur["pattern"], cur["mesh"], x_lg, tgt, skel, kw, gains=gains, placed=(src, now, cloth),
-                              hold_top=hold_top, remesh=remesh, tcloth=tcloth)
-            for r in nxt["rows"]:
-                if r["edits"]:
-                    r["edits"] = [f"pass {k + 1}: {e}" for e in r["edits"]]
-                    rows.append(r)
-            cur = nxt
-        if not redrape:
-            break
-        x_lg = np.asarray(drape_fn(cur["pattern"], cur["mesh"], body), dtype=np.float64)
-    return GradeResult(
-        pattern=cur["pattern"], mesh=cur["mesh"], x_draped=x_lg, table=rows, K=cur["K"], fraction=float(first["fraction"]),
-        remeshed=bool(first["remeshed"] or cur["remeshed"]), x_init=x_init, mesh_init=mesh, matches=first["matches"],
-    )
+@dataclass
+class _PassContext:
+    """What every grading pass shares: the target's placed contours ``tgt``, the skeleton, the
+    pairing options, the target's cloth lengths (``(None, {})`` for the axial rule), and the
+    ``hold_top`` and ``remesh`` choices."""
+
+    tgt: list
+    skel: object
+    match_kw: dict
+    tcloth: tuple
+    hold_top: bool = True
+    remesh: str = "always"
+
+
+def _further_pass(cur: "GradePass", x_lg: np.ndarray, ctx: _PassContext) -> "GradePass | None":
+    """Another pass from the graded drape ``x_lg``: the contours' remaining offsets, edited again,
+    each scaled by how far the drape answered the previous pass's edit. None when every contour
+    is already close enough (:func:`_worth_a_pass`)."""
+    src = place_contours(x_lg, cur.mesh.faces, ctx.skel)
+    now = match_contours(src, ctx.tgt, ctx.skel, garment_centre=x_lg.mean(axis=0), **ctx.match_kw)
+    cloth = _cloth_wants(src, now, x_lg, cur.mesh.faces, ctx.tcloth)
+    if not _worth_a_pass(now, cloth):
+        return None
+    gains = response_gains(cur.matches, cur.applied, now)
+    return _grade_pass(cur.pattern, cur.mesh, x_lg, ctx, gains=gains, placed=(src, now, cloth))
 
 
 #: Bounds of the gain a later grading pass applies to a contour's remaining offset (see
@@ -381,103 +401,163 @@ CLOTH_STEPS = 2
 CLOTH_TOL = 0.001
 
 
-def _grade_pass(pattern, mesh, x_init, tgt, skel, kw, *, gains: dict | None = None, placed=None,
-                hold_top: bool = True, remesh: str = "always", tcloth=(None, {})) -> dict:
+@dataclass
+class GradePass:
+    """One pass of Algorithm 2.
+
+    pattern, mesh: the graded pattern and its GarmentMesh; rows: its contour table rows;
+    matches: the contour pairs it edited; applied: target index -> extension applied [m];
+    K: (Nk, 2) float64 [m]; fraction: the part of the edit applied; remeshed: whether ``mesh``
+    was meshed afresh.
+    """
+
+    pattern: object
+    mesh: object
+    rows: list
+    matches: list
+    applied: dict
+    K: np.ndarray
+    fraction: float
+    remeshed: bool
+
+
+@dataclass
+class _Item:
+    """A matched contour to edit: its match, its open curves, the girth difference [m] (target
+    minus source), each curve's share of it [m] (by 3D length), and its warnings."""
+
+    match: ContourMatch
+    curves: list
+    girth_difference: float
+    shares: list
+    warnings: list
+
+
+@dataclass
+class _Edit:
+    """An edit of the control points: K (Nk, 2) [m], the fraction applied, the pattern and mesh."""
+
+    K: torch.Tensor
+    fraction: float
+    pattern: object
+    mesh: object
+    remeshed: bool
+
+
+def _grade_pass(pattern, mesh, x_init, ctx: _PassContext, *, gains: dict | None = None, placed=None) -> GradePass:
     """One pass of Algorithm 2: contours of the drape ``x_init`` (on ``mesh``) paired with the
-    target's ``tgt``, the open curves moved and widened, projected on K, scaled back if needed,
-    and the mesh moved or re-meshed.
+    target's, the open curves moved and widened, projected on K, scaled back if needed, and the
+    mesh moved or re-meshed.
 
-    A contour with a cloth length on both sides (``tcloth``: the target's
-    :func:`~unsew.grading.cloth.cloth_lengths`; ``(None, {})`` for Algorithm 2's axial rule) is
-    moved so that the pattern's cloth length at rest changes by the target's minus the drape's:
-    the move starts at that difference and is corrected :data:`CLOTH_STEPS` times on the edited
-    pattern's mesh. The others move by their axial extension times ``gains[target index]``
-    (default 1). ``placed``: the drape's placed contours, their matches and cloth differences
-    when already computed. Returns a dict: pattern, mesh, rows, matches, applied (target index
-    -> extension applied [m]), K (Nk, 2) [m], fraction, remeshed."""
-    import torch
-
-    from unsew.meshing.sew import mesh_pattern
-    from unsew.pattern.params import PatternParams
-
+    A contour with a cloth length on both sides (``ctx.tcloth``) is moved so that the pattern's
+    cloth length at rest changes by the target's minus the drape's: the move starts at that
+    difference and is corrected :data:`CLOTH_STEPS` times on the edited pattern's mesh. The
+    others move by their axial extension times ``gains[target index]`` (default 1). ``placed``:
+    the drape's placed contours, their matches and cloth differences when already computed."""
     if placed is None:
-        src = place_contours(x_init, mesh.faces, skel)
-        matches = match_contours(src, tgt, skel, garment_centre=x_init.mean(axis=0), **kw)
-        cloth = _cloth_wants(src, matches, x_init, mesh.faces, tcloth)
+        src = place_contours(x_init, mesh.faces, ctx.skel)
+        matches = match_contours(src, ctx.tgt, ctx.skel, garment_centre=x_init.mean(axis=0), **ctx.match_kw)
+        cloth = _cloth_wants(src, matches, x_init, mesh.faces, ctx.tcloth)
     else:
         src, matches, cloth = placed
-
+    gains = gains or {}
     params = PatternParams.build(pattern, mesh)
-    K0 = params.K0
-    C0 = params.control_points(K0).detach().cpu().numpy()
-    items = []  # (match, curves, girth difference, warnings) of every match
-    exts = {}
-    for m in matches:
-        s, t = src[m.source], tgt[m.target]
-        curves = curves_of_contour(s.contour.indices, x_init, params.pattern, mesh, params.controls)
-        warnings = []
-        if not curves:
-            warnings.append("no open pattern curve forms this contour; left alone")
-        girth, why = source_girth(s, t, rest_length(params.pattern, curves))
-        if why:
-            warnings.append(why)
-        items.append((m, curves, t.length - girth, warnings))
-        exts[m.target] = cloth[m.target] if m.target in cloth else m.extension * (gains or {}).get(m.target, 1.0)
+    items = [_item(m, src, ctx.tgt, x_init, params, mesh) for m in matches]
+    exts = {m.target: cloth[m.target] if m.target in cloth else m.extension * gains.get(m.target, 1.0)
+            for m in matches}
+    edit = _edit_with_cloth_goals(params, mesh, src, items, exts, cloth, ctx)
+    rows, wanted = _pass_rows(params.pattern, src, ctx.tgt, matches, items, exts, cloth, gains)
+    if edit.fraction < 1.0:
+        note = f"edit scaled back to {edit.fraction:.0%} to avoid inverted triangles"
+        for r in rows:
+            if r["edits"]:
+                r["warnings"].append(note)
+    return GradePass(edit.pattern, edit.mesh, rows, matches, {t: edit.fraction * e for t, e in wanted.items()},
+                     edit.K.detach().cpu().numpy(), edit.fraction, edit.remeshed)
 
-    def edge_keys(curves):
-        return [(c.panel, e) for c in curves for e in c.edges]
 
+def _item(m: ContourMatch, src, tgt, x_init, params, mesh) -> _Item:
+    """The open curves of a matched source contour and its girth to grade."""
+    s, t = src[m.source], tgt[m.target]
+    curves = curves_of_contour(s.contour.indices, x_init, params.pattern, mesh, params.controls)
+    warnings = [] if curves else ["no open pattern curve forms this contour; left alone"]
+    girth, why = source_girth(s, t, rest_length(params.pattern, curves))
+    if why:
+        warnings.append(why)
+    dg = t.length - girth
+    total = max(s.length, 1e-12)  # each curve's share of the contour's 3D length
+    return _Item(m, curves, dg, [dg * (c.length3d / total) for c in curves], warnings)
+
+
+def _whole_panel(pattern, c) -> bool:
+    """Whether the open curve ``c`` is every edge of its panel (such a panel is not edited)."""
+    return len(c.edges) == len(pattern.panels[c.panel].edges)
+
+
+def _edit_with_cloth_goals(params, mesh, src, items, exts: dict, cloth: dict, ctx: _PassContext) -> _Edit:
+    """The edit of the pass, with each cloth-length move corrected on the edited pattern's own
+    rest mesh until its rest cloth length is within CLOTH_TOL of its goal (``exts`` is updated)."""
     top = top_contour(src) if cloth else None
-    top_edges = next((edge_keys(cv) for m, cv, _, _ in items if top is not None and m.source == top.index), [])
-    keyed = {m.target: edge_keys(cv) for m, cv, _, _ in items if m.target in cloth and cv}
+    keys = {it.match.target: [(c.panel, e) for c in it.curves for e in c.edges] for it in items}
+    top_edges = next((keys[it.match.target] for it in items if top is not None and it.match.source == top.index), [])
+    keyed = {t: k for t, k in keys.items() if t in cloth and k}
     goal = {}
     if keyed and top_edges:
         rest0 = rest_cloth_lengths(mesh, keyed, top_edges)
         goal = {t: rest0[t] + cloth[t] for t in keyed if t in rest0}
-
     for step in range(CLOTH_STEPS + 1):
-        delta = np.zeros_like(C0)
-        edited: dict[int, list[set]] = {}  # panel index -> control points of each edited open curve
-        for m, curves, girth_difference, _ in items:
-            total = max(src[m.source].length, 1e-12)  # each curve's share of the contour's 3D length
-            for c in curves:
-                if len(c.edges) == len(params.pattern.panels[c.panel].edges):
-                    continue
-                dg = girth_difference * (c.length3d / total)
-                delta += curve_edit(params.pattern, C0, c, params.controls, extension=exts[m.target], girth_change=dg)
-                edited.setdefault(c.panel_index, []).append(set(int(g) for g in c.controls))
-        if hold_top:
-            delta = _hold_tops(params.pattern, params.controls, C0, delta, edited)
-        K1 = project_edit(params, C0 + delta)
-        frac = safe_fraction(params, K0, K1)
-        K = K0 + frac * (K1 - K0)
-        graded = params.to_pattern(K)
-        with torch.no_grad():
-            uv = params.uv(K).cpu().numpy()
-        remeshed = remesh == "always" or _rest_edge_stretch(uv, mesh.faces_uv, mesh.edge_length) > REMESH_STRETCH
-        new_mesh = mesh_pattern(graded, edge_length=mesh.edge_length) if remeshed else moved_mesh(mesh, graded, uv)
+        edit = _edit(params, mesh, items, exts, ctx)
         if not goal or step == CLOTH_STEPS:
             break
-        now = rest_cloth_lengths(new_mesh, {t: keyed[t] for t in goal}, top_edges)
+        now = rest_cloth_lengths(edit.mesh, {t: keyed[t] for t in goal}, top_edges)
         err = {t: goal[t] - now[t] for t in goal if t in now}
         if all(abs(e) < CLOTH_TOL for e in err.values()):
             break
         for t, e in err.items():
             exts[t] += e
+    return edit
 
-    rows = []
-    wanted = {}
-    for m, curves, girth_difference, warnings in items:
+
+def _edit(params, mesh, items, exts: dict, ctx: _PassContext) -> _Edit:
+    """Move and widen every item's open curves, hold the tops, project on K, scale back to avoid
+    inversions, and mesh the graded pattern (afresh or the base mesh moved)."""
+    C0 = params.control_points(params.K0).detach().cpu().numpy()
+    delta = np.zeros_like(C0)
+    edited: dict[int, list[set]] = {}  # panel index -> control points of each edited open curve
+    for it in items:
+        for c, dg in zip(it.curves, it.shares):
+            if _whole_panel(params.pattern, c):
+                continue
+            delta += curve_edit(params.pattern, C0, c, params.controls, extension=exts[it.match.target], girth_change=dg)
+            edited.setdefault(c.panel_index, []).append(set(int(g) for g in c.controls))
+    if ctx.hold_top:
+        delta = _hold_tops(params.pattern, params.controls, C0, delta, edited)
+    K0 = params.K0
+    K1 = project_edit(params, C0 + delta)
+    frac = safe_fraction(params, K0, K1)
+    K = K0 + frac * (K1 - K0)
+    graded = params.to_pattern(K)
+    with torch.no_grad():
+        uv = params.uv(K).cpu().numpy()
+    remeshed = ctx.remesh == "always" or _rest_edge_stretch(uv, mesh.faces_uv, mesh.edge_length) > REMESH_STRETCH
+    new_mesh = mesh_pattern(graded, edge_length=mesh.edge_length) if remeshed else moved_mesh(mesh, graded, uv)
+    return _Edit(K, float(frac), graded, new_mesh, bool(remeshed))
+
+
+def _pass_rows(pattern, src, tgt, matches, items, exts, cloth, gains) -> tuple[list, dict]:
+    """The contour table rows of a pass, and target index -> extension wanted [m] of every
+    contour that got an edit."""
+    rows, wanted = [], {}
+    for it in items:
+        m = it.match
         s, t = src[m.source], tgt[m.target]
         ext, edits = exts[m.target], []
-        gain = (gains or {}).get(m.target, 1.0) if m.target not in cloth else 1.0
-        total = max(s.length, 1e-12)
-        for c in curves:
-            if len(c.edges) == len(params.pattern.panels[c.panel].edges):
-                warnings.append(f"panel {c.panel} is all open edges; not edited")
+        gain = gains.get(m.target, 1.0) if m.target not in cloth else 1.0
+        for c, dg in zip(it.curves, it.shares):
+            if _whole_panel(pattern, c):
+                it.warnings.append(f"panel {c.panel} is all open edges; not edited")
                 continue
-            dg = girth_difference * (c.length3d / total)
-            names = "+".join(params.pattern.panels[c.panel].edges[e].label or f"edge{e}" for e in c.edges)
+            names = "+".join(pattern.panels[c.panel].edges[e].label or f"edge{e}" for e in c.edges)
             if m.target in cloth:
                 how = f" (cloth length {cloth[m.target] * 100:+.1f} cm)"
             else:
@@ -485,23 +565,13 @@ def _grade_pass(pattern, mesh, x_init, tgt, skel, kw, *, gains: dict | None = No
             edits.append(f"{c.panel}:{names} move {ext * 100:+.1f} cm{how}, widen {dg * 100:+.1f} cm")
         if edits:
             wanted[m.target] = ext
-        rows.append(_row(s, t, m, edits, warnings, girth_difference, cloth.get(m.target)))
-    matched_s = {m.source for m in matches}
-    matched_t = {m.target for m in matches}
-    for s in src:
-        if s.index not in matched_s:
-            rows.append(_row(s, None, None, [], ["source contour matches no target contour; left alone"]))
-    for t in tgt:
-        if t.index not in matched_t:
-            rows.append(_row(None, t, None, [], ["target contour matches no source contour; left alone"]))
-    if frac < 1.0:
-        note = f"edit scaled back to {frac:.0%} to avoid inverted triangles"
-        for r in rows:
-            if r["edits"]:
-                r["warnings"].append(note)
-    return dict(pattern=graded, mesh=new_mesh, rows=rows, matches=matches, K=K.detach().cpu().numpy(),
-                fraction=float(frac), remeshed=bool(remeshed),
-                applied={t: float(frac) * e for t, e in wanted.items()})
+        rows.append(_row(s, t, m, edits, it.warnings, it.girth_difference, cloth.get(m.target)))
+    matched_s, matched_t = {m.source for m in matches}, {m.target for m in matches}
+    rows += [_row(s, None, None, [], ["source contour matches no target contour; left alone"])
+             for s in src if s.index not in matched_s]
+    rows += [_row(None, t, None, [], ["target contour matches no source contour; left alone"])
+             for t in tgt if t.index not in matched_t]
+    return rows, wanted
 
 
 def _name(c: PlacedContour | None) -> str | None:

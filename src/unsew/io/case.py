@@ -1,13 +1,14 @@
-"""A fitting case folder (FORMATS.md): the target garment, its wearer, and what we know.
+"""A fitting case folder (FORMATS.md) as files: the target garment, the wearer's files, what we know.
 
 ```
 case/
   target.obj | target.ply   the draped garment to invert
-  body.obj + skeleton.json  the wearer (or meta.json names a body model)
+  body.obj [+ skeleton.json] the wearer (or meta.json names a body model)
   meta.json                 {"garment": ..., "units": "m", "up": "y", "front": "z", "body": {...}?}
   pattern_gt.json           optional true pattern
 ```
-Everything is checked here, at the boundary, with one-line errors naming the file and the fix.
+This module reads and checks the files, with one-line errors naming the file and the fix; it knows
+no body. Loading a whole case, wearer included, is ``unsew.body.case.load_case``.
 """
 
 from __future__ import annotations
@@ -20,8 +21,10 @@ from pathlib import Path
 import numpy as np
 
 from unsew.errors import InputError
+from unsew.io.garmentcode import load_pattern
+from unsew.io.mesh import read_garment
 
-__all__ = ["Case", "load_case", "GARMENT_TYPES"]
+__all__ = ["Case", "CaseFiles", "read_case", "GARMENT_TYPES"]
 
 GARMENT_TYPES = ("tshirt", "dress", "pants", "shorts", "skirt")
 
@@ -31,7 +34,8 @@ class Case:
     """A loaded fitting case.
 
     target_verts: (V, 3) float64 [m], world frame; target_faces: (F, 3) int64.
-    body: unsew.body.body.Body; garment: one of GARMENT_TYPES; pattern_gt: Pattern or None.
+    body: unsew.body.body.Body (``body.rigged`` says its joints were estimated from its mesh);
+    garment: one of GARMENT_TYPES; pattern_gt: Pattern or None.
     """
 
     path: Path
@@ -42,6 +46,38 @@ class Case:
     meta: dict = field(default_factory=dict)
     pattern_gt: object = None
     files: dict = field(default_factory=dict)  #: the files read, for hashing into config.yaml
+    target_repair: dict = field(default_factory=dict)  #: what loading cleaned (MeshRepair.as_dict)
+
+    @property
+    def notes(self) -> list[str]:
+        """What loading did to the inputs (the wearer rigged from its mesh, parts dropped), one
+        line each, for the report and metrics.json."""
+        return list(getattr(self.body, "notes", ()))
+
+
+@dataclass
+class CaseFiles:
+    """What a case folder holds, read and checked, before its wearer is built.
+
+    target_verts (V, 3) float64 [m] world frame, target_faces (F, 3) int64; body_mesh /
+    skeleton: paths or None; body_spec: meta.json's "body" entry or None; units/up/front: the
+    files' frame (options win over meta.json).
+    """
+
+    path: Path
+    meta: dict
+    garment: str
+    units: str
+    up: str
+    front: str
+    target_verts: np.ndarray
+    target_faces: np.ndarray
+    body_mesh: Path | None
+    skeleton: Path | None
+    body_spec: object
+    pattern_gt: object
+    files: dict
+    target_repair: dict = field(default_factory=dict)  #: what loading cleaned (MeshRepair.as_dict)
 
 
 def _read_meta(d: Path) -> dict:
@@ -57,17 +93,15 @@ def _read_meta(d: Path) -> dict:
     return meta
 
 
-def load_case(
+def read_case(
     path: str | os.PathLike,
     *,
     units: str | None = None,
     up: str | None = None,
     front: str | None = None,
     garment: str | None = None,
-) -> Case:
-    """Load and check a case folder. Options override meta.json's units/up/front/garment."""
-    from unsew.io.mesh import read_mesh
-
+) -> CaseFiles:
+    """Read and check a case folder's files. Options override meta.json's units/up/front/garment."""
     d = Path(path)
     if not d.is_dir():
         raise InputError(f"case folder {d} does not exist")
@@ -82,49 +116,27 @@ def load_case(
     target = next((d / n for n in ("target.obj", "target.ply") if (d / n).is_file()), None)
     if target is None:
         raise InputError(f"case {d} has no target.obj or target.ply (the draped garment to invert)")
-    tv, tf = read_mesh(target, units=units, up=up, front=front)
+    tv, tf, repair = read_garment(target, units=units, up=up, front=front)
     _check_target(tv, tf, target)
-
     files = {"target": target}
-    body = _load_case_body(d, meta, units=units, up=up, front=front, files=files)
-    _check_plausible_frame(tv, body, target)
-
+    mesh = next((d / n for n in ("body.obj", "body.ply") if (d / n).is_file()), None)
+    skel = d / "skeleton.json" if (d / "skeleton.json").is_file() else None
+    if mesh is not None:
+        files["body"] = mesh
+        if skel is not None:
+            files["skeleton"] = skel
+    elif meta.get("body") is None:
+        raise InputError(
+            f"case {d} has no body.obj and meta.json names no body "
+            '(add body.obj, or set "body": "default" or {"model": "anny", ...} in meta.json)'
+        )
     pattern_gt = None
     gt = d / "pattern_gt.json"
     if gt.is_file():
-        from unsew.io.garmentcode import load_pattern
-
         pattern_gt = load_pattern(gt)
         files["pattern_gt"] = gt
-    return Case(d, garment or "", tv, tf, body, meta, pattern_gt, files)
-
-
-def _load_case_body(d: Path, meta: dict, *, units, up, front, files) -> object:
-    spec = meta.get("body")
-    mesh = next((d / n for n in ("body.obj", "body.ply") if (d / n).is_file()), None)
-    if mesh is not None:
-        skel = d / "skeleton.json"
-        if not skel.is_file():
-            raise InputError(f"case {d} has {mesh.name} but no skeleton.json (the wearer's joints; see FORMATS.md)")
-        from unsew.body.body import load_body
-
-        files["body"] = mesh
-        files["skeleton"] = skel
-        return load_body(mesh, skel, units=units, up=up, front=front)
-    if spec is None or spec == "default":
-        if spec is None:
-            raise InputError(
-                f"case {d} has no body.obj + skeleton.json and meta.json names no body "
-                '(add them, or set "body": "default" or {"model": "anny", ...} in meta.json)'
-            )
-        from unsew.body.body import default_body
-
-        return default_body()
-    if isinstance(spec, dict) and spec.get("model") == "anny":
-        from unsew.body.anny_body import make_anny_body
-
-        return make_anny_body(phenotype=spec.get("phenotype", {}), pose=spec.get("pose", "A"))
-    raise InputError(f'meta.json "body" must be "default" or {{"model": "anny", ...}}, got {spec!r}')
+    return CaseFiles(d, meta, garment or "", units, up, front, tv, tf, mesh, skel, meta.get("body"), pattern_gt, files,
+                     repair.as_dict())
 
 
 def _check_target(v: np.ndarray, f: np.ndarray, path: Path) -> None:
@@ -141,10 +153,7 @@ def _check_target(v: np.ndarray, f: np.ndarray, path: Path) -> None:
             f"target {path} is a closed surface with no open hem, cuff or neckline: "
             "give the garment alone (segmented from the body), not a watertight shape"
         )
-
-
-def _check_plausible_frame(tv: np.ndarray, body, path: Path) -> None:
-    ext = tv.max(0) - tv.min(0)
+    ext = v.max(0) - v.min(0)
     if ext.max() > 3.0:
         raise InputError(
             f"target {path} is {ext.max():.1f} units across, implausible in metres: "
@@ -152,11 +161,3 @@ def _check_plausible_frame(tv: np.ndarray, body, path: Path) -> None:
         )
     if ext.max() < 0.05:
         raise InputError(f"target {path} is only {ext.max():.3f} m across; check its units (--units)")
-    bv = np.asarray(body.verts)
-    lo, hi = bv.min(0) - 0.3, bv.max(0) + 0.3
-    c = tv.mean(0)
-    if not ((c > lo) & (c < hi)).all():
-        raise InputError(
-            f"target {path} lies outside its wearer's bounding box: check --up/--front/--units "
-            "so target and body share the world frame (Y up, facing +Z)"
-        )

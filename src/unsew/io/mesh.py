@@ -15,7 +15,7 @@ import numpy as np
 
 from unsew.errors import InputError
 
-__all__ = ["read_mesh", "write_obj", "frame_matrix", "UNIT_SCALE"]
+__all__ = ["read_mesh", "read_garment", "write_obj", "frame_matrix", "UNIT_SCALE"]
 
 #: metres per file unit
 UNIT_SCALE = {"m": 1.0, "cm": 0.01, "mm": 0.001}
@@ -78,6 +78,25 @@ def read_mesh(path: str | os.PathLike, *, units: str = "m", up: str = "y", front
     R = frame_matrix(up=up, front=front)
     verts = (verts * UNIT_SCALE[units]) @ R.T
     return verts, faces
+
+
+def read_garment(path: str | os.PathLike, *, units: str = "m", up: str = "y", front: str = "z", what: str = "target"):
+    """Read a garment mesh (:func:`read_mesh`) and repair it (:func:`unsew.geometry.repair.repair_garment`):
+    duplicate/degenerate faces and duplicate/unreferenced vertices cleaned, fins and loose debris
+    cut off; a branching surface or several garments raise InputError naming where.
+
+    Returns (verts (V, 3) float64 [m], faces (F, 3) int64, repair :class:`~unsew.geometry.repair.MeshRepair`
+    with the counts). A repair is also announced in one line by ``warnings.warn``.
+    """
+    import warnings
+
+    from unsew.geometry.repair import repair_garment
+
+    verts, faces = read_mesh(path, units=units, up=up, front=front)
+    verts, faces, rep = repair_garment(verts, faces, what=f"{what} {Path(path).name}")
+    if rep.changed:
+        warnings.warn(f"{what} {Path(path).name} repaired: {rep.summary()}", stacklevel=2)
+    return verts, faces, rep
 
 
 def write_obj(

@@ -92,11 +92,13 @@ def open_contours(verts, faces) -> list[Contour]:
     v, f = mesh_arrays(verts, faces)
     if len(f) == 0:
         return []
-    he = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])  # (3F, 2) directed, as in faces
+    from unsew.geometry.topology import unique_edges
+
+    he = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])  # (3F, 2) directed, edge-major
     he_face = np.tile(np.arange(len(f)), 3)
     und = np.sort(he, axis=1)
-    uniq, inv, count = np.unique(und, axis=0, return_inverse=True, return_counts=True)
-    inv = inv.ravel()
+    _, inv, count = unique_edges(f)  # inv is face-major: reorder it to he's edge-major rows
+    inv = inv.reshape(-1, 3).T.ravel()
     bmask = count[inv] == 1
     b_edges = he[bmask]  # (B, 2) directed boundary edges
     b_face = he_face[bmask]

@@ -72,14 +72,6 @@ def mixed_areas(verts, faces) -> np.ndarray:
     return out
 
 
-def _boundary_vertices(f, n):
-    e = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
-    uniq, count = np.unique(e, axis=0, return_counts=True)
-    b = np.zeros(n, dtype=bool)
-    b[uniq[count == 1].ravel()] = True
-    return b, uniq
-
-
 def mean_curvature(verts, faces) -> np.ndarray:
     """Unsigned mean curvature |H| at each vertex, by the cotangent Laplacian (module docstring).
 
@@ -99,8 +91,11 @@ def mean_curvature(verts, faces) -> np.ndarray:
     used = A > 0
     H = np.zeros(n)
     H[used] = np.linalg.norm(K[used], axis=1) / (2.0 * A[used]) / 2.0
-    bnd, edges = _boundary_vertices(f, n)
+    from unsew.geometry.topology import boundary_vertices, unique_edges
+
+    bnd = boundary_vertices(f, n)
     if bnd.any():
+        edges = unique_edges(f)[0]
         interior = used & ~bnd
         # mean |H| over interior one-ring neighbours, for each boundary vertex
         a, b = edges[:, 0], edges[:, 1]

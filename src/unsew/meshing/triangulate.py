@@ -17,6 +17,73 @@ from unsew.errors import PatternError
 __all__ = ["triangulate_polygon", "triangle_min_angles", "signed_areas"]
 
 
+#: Narrowest panel [m] (mean width: twice the area over the perimeter) handed to Triangle: a
+#: sliver (a panel whose corners lie on one line, curved edges giving it 0.1 mm of width)
+#: crashed Triangle with a segmentation fault, taking the whole process down.
+MIN_MEAN_WIDTH = 1e-3
+
+
+def _check_meshable(boundary: np.ndarray, name: str) -> None:
+    """Refuse outlines Triangle cannot take safely: repeated consecutive points, no area, or a
+    sliver narrower than :data:`MIN_MEAN_WIDTH` on average. boundary: (M, 2) [m]."""
+    d = np.linalg.norm(np.roll(boundary, -1, axis=0) - boundary, axis=1)  # (M,) segment lengths
+    perimeter = float(d.sum())
+    if not np.isfinite(boundary).all():
+        raise PatternError(f"panel {name!r}: outline has non-finite coordinates; check its vertices")
+    if (d <= 1e-9 * max(perimeter, 1e-12)).any():
+        raise PatternError(f"panel {name!r}: outline repeats a point; check for duplicate vertices or zero-length edges")
+    back, ahead = np.roll(boundary, 1, axis=0) - boundary, np.roll(boundary, -1, axis=0) - boundary
+    cos = (back * ahead).sum(axis=1) / (np.linalg.norm(back, axis=1) * np.linalg.norm(ahead, axis=1))
+    spikes = np.flatnonzero(cos > math.cos(math.radians(0.5)))  # the outline turns back on itself
+    if spikes.size:
+        raise PatternError(
+            f"panel {name!r}: outline folds back on itself at outline point {int(spikes[0])} of {len(boundary)} "
+            "(a spike of zero width); check its vertices and curvature"
+        )
+    crossing = _first_crossing(boundary)
+    if crossing is not None:
+        raise PatternError(
+            f"panel {name!r}: outline crosses itself (outline segments {crossing[0]} and {crossing[1]} of "
+            f"{len(boundary)}); check its vertices and curvature"
+        )
+    x, y = boundary[:, 0], boundary[:, 1]
+    area = 0.5 * abs(float(x @ np.roll(y, -1) - y @ np.roll(x, -1)))
+    width = 2.0 * area / perimeter
+    if width < MIN_MEAN_WIDTH:
+        raise PatternError(
+            f"panel {name!r} has {area * 1e4:.3g} cm^2 over a {perimeter * 100:.3g} cm outline (a sliver "
+            f"{width * 1000:.2g} mm wide on average); check its vertices"
+        )
+
+
+def _first_crossing(b: np.ndarray, *, chunk: int = 256) -> tuple[int, int] | None:
+    """The first pair (i, j) of non-adjacent segments of the closed polyline ``b`` (M, 2) that
+    cross or touch, or None. Segment i runs from b[i] to b[i+1]; all pairs are tested with
+    orientation signs, ``chunk`` rows at a time (O(M^2) memory-bounded)."""
+    m = len(b)
+    p, q = b, np.roll(b, -1, axis=0)  # (M, 2) segment ends
+    scale = float(np.abs(b).max()) or 1.0
+    eps = 1e-12 * scale * scale
+
+    def orient(a, c, d):  # sign of cross((c - a), (d - a)), broadcast
+        return (c[..., 0] - a[..., 0]) * (d[..., 1] - a[..., 1]) - (c[..., 1] - a[..., 1]) * (d[..., 0] - a[..., 0])
+
+    idx = np.arange(m)
+    for s in range(0, m, chunk):
+        i = idx[s:s + chunk, None]  # (C, 1)
+        pi, qi = p[s:s + chunk, None], q[s:s + chunk, None]  # (C, 1, 2)
+        pj, qj = p[None], q[None]  # (1, M, 2)
+        d1, d2 = orient(pi, qi, pj), orient(pi, qi, qj)  # (C, M)
+        d3, d4 = orient(pj, qj, pi), orient(pj, qj, qi)
+        hit = (d1 * d2 < -eps) & (d3 * d4 < -eps)  # proper crossings
+        near = (np.abs(idx[None] - i) <= 1) | (np.abs(idx[None] - i) == m - 1)  # a segment and its neighbours
+        hit &= ~near & (idx[None] > i)
+        if hit.any():
+            r, c = np.argwhere(hit)[0]
+            return int(s + r), int(c)
+    return None
+
+
 def triangulate_polygon(
     boundary: np.ndarray, *, edge_length: float, min_angle: float = 20.0, name: str = "panel"
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -37,6 +104,7 @@ def triangulate_polygon(
     m = len(boundary)
     if m < 3:
         raise PatternError(f"panel {name!r}: outline has {m} points, need at least 3; check its edges")
+    _check_meshable(boundary, name)
     seg = np.stack([np.arange(m), (np.arange(m) + 1) % m], axis=1).astype(np.int32)
     max_area = math.sqrt(3.0) / 4.0 * edge_length**2
     # p: PSLG, q: quality (min angle), a: max area, Y: no Steiner points on segments, Q: quiet.

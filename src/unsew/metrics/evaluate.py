@@ -46,7 +46,7 @@ def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int
     files, empty or non-finite meshes, panels without counterparts).
     """
     from unsew.errors import InputError
-    from unsew.io.mesh import read_mesh
+    from unsew.io.mesh import read_garment, read_mesh
     from unsew.metrics.surface import surface_metrics
 
     res, case = Path(result_dir), Path(case_dir)
@@ -63,7 +63,7 @@ def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int
         raise InputError(f"--samples must be at least 1, got {n_samples}")
     meta = _case_meta(case)
     gv, gf = read_mesh(garment)
-    tv, tf = read_mesh(target, units=meta.get("units", "m"), up=meta.get("up", "y"), front=meta.get("front", "z"))
+    tv, tf, _ = read_garment(target, units=meta.get("units", "m"), up=meta.get("up", "y"), front=meta.get("front", "z"))
     out = {
         "format_version": EVAL_FORMAT_VERSION,
         "result": str(res),

@@ -2,11 +2,8 @@
 
 Both meshes are sampled area-uniformly with a fixed seed (``n_samples`` points on each), and each
 sample is projected exactly onto the other mesh's SURFACE (closest point on its triangles, not
-its vertices). The candidate triangles of a query come from a KD-tree on triangle centroids:
-the k nearest centroids give an upper bound ``u`` on the distance, and a triangle outside them
-is at least ``d_k - r_max`` away (``d_k`` the k-th centroid distance, ``r_max`` the largest
-centroid-to-corner radius); points not certified by that bound are re-searched with every
-triangle whose centroid lies within ``u + r_max``. The result is exact up to rounding.
+its vertices), found on libigl's AABB tree (:mod:`unsew.geometry.distance`), whose time and
+memory grow with the samples and triangles, not their product. The result is exact up to rounding.
 
 Chamfer (mm): the symmetric mean ``(mean_a->b + mean_b->a) / 2``, its 95th percentile over all
 samples of both directions, and the Hausdorff distance over the samples (the largest sampled
@@ -33,9 +30,6 @@ __all__ = [
     "SurfaceDistance",
     "NormalError",
 ]
-
-_K = 8  # nearest centroids tried first (fastest of 4, 8, 16 in benchmarks/bench_losses.py trials)
-
 
 def _check(verts, faces, what):
     from unsew.errors import InputError
@@ -73,97 +67,17 @@ def sample_surface(verts, faces, n: int, *, seed: int = 0):
     return pts, fi.astype(np.int64)
 
 
-def _closest_on_triangles(p, a, b, c):
-    """Closest points (P, 3) on triangles (a, b, c) (each (P, 3)) to points p (P, 3): Ericson,
-    Real-Time Collision Detection 5.1.5, vectorised over the Voronoi regions."""
-    ab, ac, ap = b - a, c - a, p - a
-    d1 = (ab * ap).sum(1)
-    d2 = (ac * ap).sum(1)
-    bp = p - b
-    d3 = (ab * bp).sum(1)
-    d4 = (ac * bp).sum(1)
-    cp = p - c
-    d5 = (ab * cp).sum(1)
-    d6 = (ac * cp).sum(1)
-    va = d3 * d6 - d5 * d4
-    vb = d5 * d2 - d1 * d6
-    vc = d1 * d4 - d3 * d2
-    with np.errstate(divide="ignore", invalid="ignore"):
-        denom = va + vb + vc
-        v = vb / denom
-        w = vc / denom
-        out = a + v[:, None] * ab + w[:, None] * ac  # interior (face region)
-        # edge regions
-        t_ab = d1 / (d1 - d3)
-        m_ab = (vc <= 0) & (d1 >= 0) & (d3 <= 0)
-        t_ac = d2 / (d2 - d6)
-        m_ac = (vb <= 0) & (d2 >= 0) & (d6 <= 0)
-        t_bc = (d4 - d3) / ((d4 - d3) + (d5 - d6))
-        m_bc = (va <= 0) & ((d4 - d3) >= 0) & ((d5 - d6) >= 0)
-    out = np.where(m_bc[:, None], b + t_bc[:, None] * (c - b), out)
-    out = np.where(m_ac[:, None], a + t_ac[:, None] * ac, out)
-    out = np.where(m_ab[:, None], a + t_ab[:, None] * ab, out)
-    # vertex regions (checked last so they win, as in Ericson's early returns)
-    m_c = (d6 >= 0) & (d5 <= d6)
-    m_b = (d3 >= 0) & (d4 <= d3)
-    m_a = (d1 <= 0) & (d2 <= 0)
-    out = np.where(m_c[:, None], c, out)
-    out = np.where(m_b[:, None], b, out)
-    out = np.where(m_a[:, None], a, out)
-    bad = ~np.isfinite(out).all(1)  # degenerate triangle: fall back to the nearest corner
-    if bad.any():
-        corners = np.stack([a[bad], b[bad], c[bad]], 1)
-        k = np.linalg.norm(corners - p[bad, None], axis=2).argmin(1)
-        out[bad] = corners[np.arange(bad.sum()), k]
-    return out
-
-
 def closest_points(points, verts, faces):
-    """Exact closest points on a triangle mesh's surface (module docstring for the search).
+    """Exact closest points on a triangle mesh's surface (libigl's AABB tree).
 
     points: queries (P, 3) float64 [m]; verts: (V, 3) float64 [m]; faces: (F, 3) int.
     Returns: (closest (P, 3) [m], distance (P,) [m], face index (P,) int64).
+    Raises InputError for empty, degenerate or non-finite meshes.
     """
-    from scipy.spatial import cKDTree
+    from unsew.geometry.distance import MeshQuery
 
     v, f, _ = _check(verts, faces, "mesh")
-    p = np.asarray(points, dtype=np.float64)
-    A, B, C = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
-    cen = (A + B + C) / 3.0
-    r_max = float(np.sqrt(np.max([((A - cen) ** 2).sum(1), ((B - cen) ** 2).sum(1), ((C - cen) ** 2).sum(1)])))
-    tree = cKDTree(cen)
-    k = min(_K, len(f))
-    dk, ik = tree.query(p, k=k, workers=-1)
-    dk = dk.reshape(len(p), k)
-    ik = ik.reshape(len(p), k)
-    P = len(p)
-    rows = np.repeat(np.arange(P), k)
-    cand = ik.ravel()
-    q = _closest_on_triangles(p[rows], A[cand], B[cand], C[cand])
-    d = np.linalg.norm(q - p[rows], axis=1).reshape(P, k)
-    j = d.argmin(1)
-    best_d = d[np.arange(P), j]
-    best_f = ik[np.arange(P), j]
-    best_q = q.reshape(P, k, 3)[np.arange(P), j]
-    if k < len(f):
-        unsure = np.nonzero(best_d > dk[:, -1] - r_max)[0]
-        if len(unsure):
-            lists = tree.query_ball_point(p[unsure], best_d[unsure] + r_max + 1e-12, workers=-1)
-            counts = np.array([len(x) for x in lists])
-            rr = np.repeat(unsure, counts)
-            ff = np.concatenate([np.asarray(x, dtype=np.int64) for x in lists]) if counts.sum() else np.zeros(0, np.int64)
-            if len(ff):
-                qq = _closest_on_triangles(p[rr], A[ff], B[ff], C[ff])
-                dd = np.linalg.norm(qq - p[rr], axis=1)
-                order = np.lexsort((dd, rr))  # by point, then distance
-                first = np.concatenate([[True], rr[order][1:] != rr[order][:-1]])
-                sel = order[first]
-                better = dd[sel] < best_d[rr[sel]]
-                tgt = rr[sel][better]
-                best_d[tgt] = dd[sel][better]
-                best_f[tgt] = ff[sel][better]
-                best_q[tgt] = qq[sel][better]
-    return best_q, best_d, best_f.astype(np.int64)
+    return MeshQuery(v, f).closest(points)
 
 
 def _face_normals(v, f):

@@ -1,8 +1,17 @@
 """Checks at the pattern boundary: closed counter-clockwise panels, sane stitches.
 
 :func:`validate_pattern` raises :class:`~unsew.errors.PatternError` (one line naming the panel
-and edge) for what cannot be sewn, reorients clockwise panels in place, and returns warnings
+and edge) for what cannot be sewn, mirrors clockwise panels in place, and returns warnings
 for what can be sewn but looks wrong (stitched edges of different lengths).
+
+A clockwise panel is one seen from inside the garment: GarmentCode draws the back and the right
+half of a garment that way, so that with their placement every panel's outward normal is
+``sign(area) * R @ z``. Such a panel is mirrored (x -> -x in its own frame, curvature mirrored)
+and its placement turned half a turn about its own y axis: the same cloth in the same 3D place,
+now counter-clockwise seen from outside, its edges numbered and directed as before, so the
+file's stitches keep their meaning (side ``a``'s start still meets side ``b``'s end). Reversing
+the loop instead would flip the direction of every stitched edge of the panel and sew its seams
+twisted.
 """
 
 from __future__ import annotations
@@ -13,7 +22,7 @@ from unsew.errors import PatternError
 from unsew.pattern.model import Panel, Pattern, StitchSide
 from unsew.tolerances import GEOM_EPS, STITCH_LENGTH_WARN_REL
 
-__all__ = ["validate_pattern", "reorient_panel", "signed_area", "find_self_intersection"]
+__all__ = ["validate_pattern", "mirror_panel", "reorient_panel", "signed_area", "find_self_intersection"]
 
 #: Segments per curved edge when testing outlines for self-intersection.
 _SEGMENTS_PER_CURVE = 24
@@ -35,6 +44,23 @@ def reorient_panel(panel: Panel) -> dict[int, int]:
     n = len(panel.edges)
     panel.edges = [e.reversed() for e in reversed(panel.edges)]
     return {i: n - 1 - i for i in range(n)}
+
+
+def mirror_panel(panel: Panel) -> None:
+    """Mirror the panel in place about its own y axis, keeping it where it is in 3D.
+
+    Vertices (x, y) -> (-x, y) [m]; each edge keeps its endpoints (so its index, its direction
+    and the stitches on it), its curvature is mirrored (:func:`~unsew.pattern.model.mirror_curvature`);
+    the rotation becomes ``R @ diag(-1, 1, -1)`` (half a turn about the panel's y axis), so
+    ``R' @ (-x, y, 0) + t == R @ (x, y, 0) + t``: every point stays put in 3D and the panel's
+    normal ``R' @ z`` flips. A clockwise panel becomes counter-clockwise."""
+    from unsew.pattern.model import matrix_to_euler_xyz, mirror_curvature
+
+    panel.vertices = panel.vertices * np.array([-1.0, 1.0])
+    for e in panel.edges:
+        if e.curvature is not None:
+            e.curvature = mirror_curvature(e.curvature)
+    panel.rotation = matrix_to_euler_xyz(panel.rotation_matrix() @ np.diag([-1.0, 1.0, -1.0]))
 
 
 def _segments(panel: Panel):
@@ -138,8 +164,8 @@ def validate_pattern(pattern: Pattern) -> list[str]:
     Raises :class:`~unsew.errors.PatternError` for: no panels; a panel with fewer than 3
     vertices; NaN coordinates; an open loop (edge i's end is not edge i+1's start); a zero-length
     edge; a self-intersecting outline; a stitch to a missing panel or edge; an edge stitched
-    twice. Clockwise panels are reversed (edges and stitch edge indices renumbered) with a
-    warning; stitched edges whose arc lengths differ by more than
+    twice. Clockwise panels are mirrored in place (:func:`mirror_panel`: same 3D placement,
+    same edge numbers and stitches) with a warning; stitched edges whose arc lengths differ by more than
     :data:`unsew.tolerances.STITCH_LENGTH_WARN_REL` get a warning.
     """
     from unsew.pattern.curves import edge_length
@@ -173,15 +199,10 @@ def validate_pattern(pattern: Pattern) -> list[str]:
 
     for name, p in pattern.panels.items():
         if signed_area(p) < 0:
-            remap = reorient_panel(p)
-            for s in pattern.stitches:
-                if s.a.panel == name:
-                    s.a = StitchSide(name, remap[s.a.edge])
-                if s.b.panel == name:
-                    s.b = StitchSide(name, remap[s.b.edge])
+            mirror_panel(p)
             warnings.append(
-                f"panel {name!r} was clockwise; reversed its edges to make it counter-clockwise "
-                "(the direction of its stitched edges changed with it: check its stitches)"
+                f"panel {name!r} was clockwise (drawn from inside the garment); mirrored it to make it "
+                "counter-clockwise, same place in 3D, same edges and stitches"
             )
 
     for k, s in enumerate(pattern.stitches):

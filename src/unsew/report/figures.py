@@ -18,6 +18,7 @@ from unsew.errors import InputError
 
 __all__ = [
     "plot_loss_curves",
+    "legend_label",
     "plot_patterns",
     "pattern_outlines",
     "plot_histogram",
@@ -69,6 +70,20 @@ def _save(fig, path_png, dpi=100) -> Path:
 # loss curves
 
 
+def legend_label(name: str, values, *, log: bool = True) -> str:
+    """A loss term's legend entry: its name and its last value, the value at the final iteration
+    (also where a log axis hides it: a term that ends at 0 says ``last 0``), as metrics'
+    ``loss_final`` has it. values: shape (N,), NaN for gaps."""
+    v = np.asarray(values, dtype=np.float64).reshape(-1)
+    raw = v[np.isfinite(v)]
+    shown = raw[raw > 0] if log else raw
+    if raw.size == 0:
+        return f"{name}  (no value, not shown)"
+    if shown.size == 0:
+        return f"{name}  (last {raw[-1]:.3g}; all <= 0, not shown)"
+    return f"{name}  (last {raw[-1]:.3g})"
+
+
 def plot_loss_curves(
     path_png: str | os.PathLike,
     history: Mapping[str, Sequence[float]],
@@ -84,7 +99,8 @@ def plot_loss_curves(
         length, e.g. a term switched on later can be padded with NaN at the start; NaN and
         None are gaps). The term named ``total`` (or ``loss``) is drawn thick and black.
     log: logarithmic y axis; values <= 0 are then gaps, and a term with none above zero is
-        listed in the legend as not shown.
+        listed in the legend as not shown. The legend gives each term's last value: its value
+        at the final iteration, also where the log axis hides it (0), as metrics' loss_final.
     phases: (first iteration, name) of each phase, e.g. ``[(0, "sewing"), (40, "pattern"),
         (120, "pattern + material")]``: a dashed line and the name at each start.
     size_px: (width, height) of the PNG in pixels. Returns the PNG's path.
@@ -113,17 +129,15 @@ def plot_loss_curves(
         if log:
             y[~(y > 0)] = np.nan
         finite = y[np.isfinite(y)]
-        last = finite[-1] if finite.size else None
         if name == total:
             style = {"color": "black", "linewidth": 2.2, "zorder": 5}
         else:
             style = {"color": colors[ci % len(colors)], "linewidth": 1.3, "zorder": 3}
             ci += 1
+        label = legend_label(name, series[name], log=log)
         if finite.size == 0:
-            label = f"{name}  ({'all <= 0' if log else 'no value'}, not shown)"
             ax.plot([], [], label=label, **style)
             continue
-        label = f"{name}  (last {last:.3g})"
         x = np.arange(len(y))
         ax.plot(x, y, label=label, **style)
         if finite.size == 1:  # a single point draws no line: mark it
@@ -131,6 +145,9 @@ def plot_loss_curves(
     if log:
         ax.set_yscale("log")
     ax.set_xlim(0, max(n_iter - 1, 1))
+    from matplotlib.ticker import MaxNLocator
+
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))  # iterations are whole numbers
     ax.set_xlabel("iteration")
     ax.set_ylabel("loss (log scale)" if log else "loss")
     ax.grid(True, which="major", color="#dddddd", linewidth=0.8)
@@ -380,7 +397,11 @@ def plot_histogram(
     v = v[ok]
     fig = _figure(size_px)
     ax = fig.add_axes((0.09, 0.14, 0.86, 0.72 if title else 0.8))
-    ax.hist(v, bins=int(bins), color="#5b8fd0", edgecolor="white", linewidth=0.4)
+    lo, hi = float(v.min()), float(v.max())
+    if not hi - lo > 1e-9 * max(abs(hi), 1.0):  # one value (or nearly): a bar of width 1 % around it
+        half = 0.005 * max(abs(hi), 1e-3)
+        lo, hi = lo - half, hi + half
+    ax.hist(v, bins=int(bins), range=(lo, hi), color="#5b8fd0", edgecolor="white", linewidth=0.4)
     marks = [("mean", float(v.mean()), "#111111", "-"),
              ("median", float(np.median(v)), "#d62728", "--"),
              ("95th pct", float(np.percentile(v, 95)), "#8c8c8c", ":")]

@@ -53,6 +53,7 @@ def write_fit_report(
     config: Mapping[str, Any] | None = None,
     notes: Sequence[str] | None = None,
     views: Sequence[str] = ("front", "side"),
+    material: Mapping[str, Any] | None = None,
 ) -> Path:
     """Draw the figures of a fit into ``out_dir/figures`` and write ``out_dir/report.html``.
 
@@ -62,7 +63,11 @@ def write_fit_report(
     history, phases: as :func:`unsew.report.figures.plot_loss_curves`.
     patterns: (label, Pattern or list of (name, outline (M, 2) [m])) in drawing order, e.g.
         ``[("base", base), ("graded", graded), ("final", final), ("ground truth", gt)]``.
-    summary, metrics, config, notes: as :func:`unsew.report.html.write_report`.
+    summary, metrics, config, notes: as :func:`unsew.report.html.write_report`. The metrics
+        tables are preceded by the panel measurements of ``patterns``
+        (:func:`unsew.report.measure.measurement_table`, cm) and the result's ``material`` (SI
+        values, as ``unsew.sim.material.material_to_dict`` gives them); a per-iteration
+        ``loss_history`` entry is left out of the tables when ``history`` is plotted.
     Returns the path of report.html.
     """
     from unsew.report.figures import plot_histogram, plot_loss_curves, plot_patterns
@@ -95,7 +100,8 @@ def write_fit_report(
                                      views=tuple(views) + (("back",) if "back" not in views else ()),
                                      vertex_values=d, cmap=HEAT_CMAP, vmin=0.0,
                                      vmax=vmax if vmax > 0 else 1.0,
-                                     colorbar_label="distance to target [mm]", body=body)))
+                                     colorbar_label="distance to target [mm]", body=body,
+                                     frame="all")))
         if finite.size:
             figures.append(("Histogram of the per-vertex distance to the target",
                             plot_histogram(fig_dir / "distance_hist.png", d)))
@@ -108,6 +114,20 @@ def write_fit_report(
         figures.append((", ".join(label for label, _ in pats) + " patterns, panel by panel, "
                         "at true scale",
                         plot_patterns(fig_dir / "patterns.png", pats)))
+    tables: dict[str, Any] = {}
+    if patterns:
+        from unsew.report.measure import measurement_table
+
+        rows = measurement_table(list(patterns))
+        if rows:
+            tables["panel measurements"] = {r["measurement"]: {k: v for k, v in r.items() if k != "measurement"}
+                                            for r in rows}
+    if material:
+        tables["material of the result"] = dict(material)
+    for k, v in (metrics or {}).items():
+        if history and k == "loss_history":
+            continue  # plotted above; every value stays in metrics.json
+        tables[k] = v
     return write_report(out / "report.html", title=title, summary=dict(summary or {}),
-                        metrics=dict(metrics or {}), figures=figures, config=config,
+                        metrics=tables, figures=figures, config=config,
                         notes=notes or None)

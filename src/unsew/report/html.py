@@ -88,8 +88,16 @@ def _fmt(v: Any) -> str:
             return "∞" if v > 0 else "−∞"
         return f"{v:.4g}"
     if isinstance(v, (list, tuple)):
+        nums = [x for x in v if isinstance(x, (int, float)) and not isinstance(x, bool)]
+        if len(v) > _MAX_LISTED and len(nums) == len(v):  # a series: its shape, not a wall of numbers
+            return (f"{len(v)} values, {_fmt(v[0])} → {_fmt(v[-1])} "
+                    f"(min {_fmt(min(nums))}, max {_fmt(max(nums))})")
         return ", ".join(_fmt(x) for x in v)
     return str(v)
+
+
+#: Longest list of numbers a table cell shows in full; longer ones are summarised.
+_MAX_LISTED = 6
 
 
 def _esc(s: Any) -> str:

@@ -52,6 +52,11 @@ TARGET_RGB = (0.86, 0.50, 0.38)
 #: Name of unsew's distance colour map (light yellow = near, dark purple = far); any matplotlib
 #: colour map name works too.
 HEAT_CMAP = "unsew_heat"
+#: Depth bias [m] of the body in the painter's sort: a body face is drawn as if this much further
+#: from the camera, so cloth lying a few millimetres over the body is not painted over by body
+#: faces whose centroids happen to be nearer (the body "showing through"; measured by
+#: ``python -m benchmarks render_bleed``, see docs/benchmarks.md).
+BODY_DEPTH_BIAS = 0.02
 _INSIDE_DIM = 0.78  # faces seen from their back side (the inside of a garment) are dimmer
 _LIGHT = np.array([-0.55, 0.5, 0.75])  # in camera coordinates (right, up, towards the viewer)
 _LIGHT = _LIGHT / np.linalg.norm(_LIGHT)
@@ -136,6 +141,7 @@ class _Layer:
     wire: bool = False
     ambient: float = 0.22  # raised for colour-mapped layers so shading does not read as data
     frame: bool = True  # counts for the picture's framing
+    depth_bias: float = 0.0  # [m] added to the sort depth (negative: drawn as if further away)
 
 
 def _face_rgb(verts, faces, vertex_values, color, cmap, norm):
@@ -210,7 +216,7 @@ def _scene_polys(layers: list[_Layer], view: str):
         cam = L.verts @ R.T  # (V, 3)
         tri = cam[L.faces]  # (F, 3, 3)
         polys.append(tri[:, :, :2])
-        depth.append(tri[:, :, 2].mean(axis=1))  # sort key: centroid depth
+        depth.append(tri[:, :, 2].mean(axis=1) + L.depth_bias)  # sort key: centroid depth
         if L.frame:
             lo = np.minimum(lo, cam[:, :2].min(axis=0))
             hi = np.maximum(hi, cam[:, :2].max(axis=0))
@@ -237,12 +243,13 @@ def _scene_polys(layers: list[_Layer], view: str):
 
 
 def _layers(verts, faces, *, vertex_values, color, cmap, norm, body, overlay, overlay_style,
-            overlay_color, frame) -> list[_Layer]:
+            overlay_color, frame, body_depth_bias=None) -> list[_Layer]:
+    body_depth_bias = BODY_DEPTH_BIAS if body_depth_bias is None else float(body_depth_bias)
     layers = []
     if body is not None:
         bv, bf = body
         layers.append(_Layer(bv, bf, _face_rgb(bv, bf, None, BODY_RGB, None, None),
-                             frame=(frame == "all")))
+                             frame=(frame == "all"), depth_bias=-body_depth_bias))
     layers.append(_Layer(verts, faces, _face_rgb(verts, faces, vertex_values, color, cmap, norm),
                          ambient=0.22 if vertex_values is None else 0.55))
     if overlay is not None:
@@ -486,6 +493,7 @@ def render_comparison(
     body: tuple[np.ndarray, np.ndarray] | None = None,
     views: Sequence[str] = ("front", "side"),
     labels: tuple[str, str] = ("target", "result"),
+    frame: str = "all",
     size_px: tuple[int, int] | None = None,
     title: str | None = None,
 ) -> Path:
@@ -494,7 +502,8 @@ def render_comparison(
     target, result: (verts (V, 3) [m], faces (F, 3)) pairs. distance_mm: optional per-vertex
     distance of the result to the target [mm], shape (V_result,); colours the result with
     the :data:`HEAT_CMAP` heat map from 0 to ``vmax_mm`` (default: the 98th percentile). body:
-    optional (verts, faces) drawn under both. Returns the PNG's path.
+    optional (verts, faces) drawn under both. frame: ``"all"`` (default) frames the whole body
+    too, ``"garment"`` only target and result. Returns the PNG's path.
     """
     views = tuple(views)
     for v in views:
@@ -513,8 +522,10 @@ def render_comparison(
                                                  vmax=vmax)
     if size_px is None:
         size_px = (360 * len(views), 2 * 500 + (58 if vals is not None else 0) + (34 if title else 0))
+    if frame not in ("garment", "all"):
+        raise InputError(f"frame must be 'garment' or 'all', got {frame!r}")
     common = dict(cmap=cm_, norm=norm, body=body, overlay=None, overlay_style="ghost",
-                  overlay_color=OVERLAY_RGB, frame="garment")
+                  overlay_color=OVERLAY_RGB, frame=frame)
     top = _layers(tv, tf, vertex_values=None, color=TARGET_RGB, **common)
     bot = _layers(rv, rf, vertex_values=vals, color=GARMENT_RGB, **common)
     # frame both rows on the union of target and result so the rows line up

@@ -2,13 +2,13 @@
 
 Public names (one import path each):
 ``Material``, ``MATERIALS``, ``get_material`` (material.py); ``SimModel`` (model.py);
-``SimState`` (state.py); ``drape``, ``sew``, ``merge_sewn`` (drape.py); ``drape_static``,
+``SimState`` (state.py); ``DrapeSettings``, ``drape``, ``sew``, ``merge_sewn`` (drape.py); ``drape_static``,
 ``StaticInfo`` (static.py);
 ``sparse_solve``, ``SparsePattern`` (solve.py); ``SphereSDF``, ``PlaneSDF``, ``CapsuleSDF``
 (sdf_analytic.py). Importing this package imports torch.
 """
 
-from unsew.sim.drape import drape, merge_sewn, sew
+from unsew.sim.drape import DrapeSettings, drape, merge_sewn, sew
 from unsew.sim.material import MATERIALS, Material, get_material
 from unsew.sim.model import SimModel
 from unsew.sim.sdf_analytic import CapsuleSDF, PlaneSDF, SphereSDF
@@ -22,6 +22,7 @@ __all__ = [
     "get_material",
     "SimModel",
     "SimState",
+    "DrapeSettings",
     "drape",
     "sew",
     "merge_sewn",

@@ -9,17 +9,21 @@ sewn topology (the mean of the unsewn copies of each sewn vertex).
 
 from __future__ import annotations
 
+import dataclasses
+from dataclasses import dataclass
+
 import numpy as np
 import torch
+from torch.utils.checkpoint import checkpoint as torch_checkpoint
 
 from unsew.errors import InputError
-from unsew.sim.integrator import StepParams, rest_data, step
+from unsew.sim.integrator import RestData, StepParams, rest_data, step
 from unsew.sim.material import check_gamma
 from unsew.sim.model import SimModel
 from unsew.sim.state import SimState
 from unsew.tolerances import COLLISION_THICKNESS
 
-__all__ = ["drape", "sew", "merge_sewn", "check_drape_inputs"]
+__all__ = ["DrapeSettings", "drape", "sew", "merge_sewn", "check_drape_inputs"]
 
 
 def check_drape_inputs(model: SimModel, state: SimState, sdf, uv, gamma) -> None:
@@ -40,6 +44,51 @@ def check_drape_inputs(model: SimModel, state: SimState, sdf, uv, gamma) -> None
             raise InputError(f"state.{name} holds NaN or inf")
 
 
+@dataclass(frozen=True)
+class DrapeSettings:
+    """How a garment is meshed, sewn, settled and draped: one value shared by :func:`drape`,
+    :func:`sew`, :func:`unsew.dress.dress`, :func:`unsew.grading.grade.grade` and ``FitConfig.drape``.
+
+    The defaults are the fit's. Material properties (stiffness, density, friction coefficient)
+    are not settings: they come with the :class:`~unsew.sim.material.Material`.
+    """
+
+    edge_length: float = 0.025  #: target triangle edge length of the panel meshes [m]
+    dt: float = 0.05  #: time step of settling and of the differentiable drapes [s]
+    steps: int = 15  #: implicit Euler steps of one differentiable drape (the fit's phase two) [-]
+    sew_steps: int = 80  #: steps of the sewing phase [-]
+    settle_steps: int = 40  #: steps of plain draping after sewing [-]
+    sew_dt: float = 0.02  #: time step of the sewing phase [s] (smaller: seams move fast)
+    spring_stiffness: float = 1000.0  #: zero-length seam springs while sewing [N/m] (100 left seams 2-4 mm open)
+    hold_steps: int = 20  #: sewing steps a lower garment's waistline is held still [-]
+    ramp_steps: int = 30  #: sewing steps over which gravity rises to full [-]
+    gravity: float = 9.81  #: gravitational acceleration along -Y [m/s^2]
+    friction_eps: float = StepParams.friction_eps  #: slip speed below which friction is viscous [m/s]
+    contact_stiffness: float = 1e7  #: body repulsion kc [N/m^4]
+    contact_threshold: float = 5e-3  #: distance below which repulsion acts [m]
+    thickness: float = COLLISION_THICKNESS  #: collision thickness [m]
+    max_speed: float = 50.0  #: a vertex faster than this means divergence [m/s]
+    backend: str = "auto"  #: linear solver (see :class:`~unsew.sim.integrator.StepParams`)
+    fused: bool = True  #: one Function per step for assembly + solve (step_solve.py)
+
+    def replace(self, **changes) -> "DrapeSettings":
+        """A copy with ``changes`` applied."""
+        return dataclasses.replace(self, **changes)
+
+    def step_params(self, *, friction: float, sewing: bool = False) -> StepParams:
+        """The integrator's :class:`StepParams` for a drape (or, ``sewing=True``, the sewing
+        phase: its time step and seam springs) with the material's Coulomb ``friction`` [-]."""
+        return StepParams(
+            dt=self.sew_dt if sewing else self.dt, gravity=self.gravity, friction=friction,
+            contact_stiffness=self.contact_stiffness, contact_threshold=self.contact_threshold,
+            thickness=self.thickness, spring_stiffness=self.spring_stiffness, max_speed=self.max_speed,
+            friction_eps=self.friction_eps, backend=self.backend, fused=self.fused,
+        )
+
+
+DEFAULT_SETTINGS = DrapeSettings()
+
+
 def drape(
     model: SimModel,
     state: SimState,
@@ -48,19 +97,11 @@ def drape(
     uv: torch.Tensor,
     gamma: torch.Tensor,
     density,
-    steps: int = 20,
-    dt: float = 0.05,
-    gravity: float = 9.81,
+    settings: DrapeSettings = DEFAULT_SETTINGS,
+    steps: int | None = None,
     friction: float = 0.3,
-    contact_stiffness: float = 1e7,
-    contact_threshold: float = 5e-3,
-    thickness: float = COLLISION_THICKNESS,
-    max_speed: float = 50.0,
-    backend: str = "auto",
     checkpoint: bool = False,
     callback=None,
-    fused: bool = True,
-    friction_eps: float = StepParams.friction_eps,
 ) -> SimState:
     """Drape the cloth for ``steps`` implicit Euler steps.
 
@@ -71,14 +112,13 @@ def drape(
         uv: rest positions (Nu, 2) float64 [m] (may require grad).
         gamma: (5,) float64 (H00, H01, H11, H22 [N/m], k [N*m]) (may require grad).
         density: areal density [kg/m^2] (float or 0-d tensor).
-        steps: number of steps. dt: step [s]. gravity: [m/s^2] along -Y.
-        friction, contact_stiffness [N/m^4], contact_threshold [m], thickness [m], max_speed [m/s],
-        backend, friction_eps [m/s]: see :class:`~unsew.sim.integrator.StepParams`.
+        settings: :class:`DrapeSettings` (dt, gravity, contact, solver); ``settings.steps``
+            steps unless ``steps`` is given.
+        steps: number of steps (default ``settings.steps``).
+        friction: the material's Coulomb coefficient with the body [-].
         checkpoint: recompute each step in the backward pass instead of storing it (less
             memory, about one more forward in time).
         callback: called as ``callback(k, state)`` after each step k (e.g. a progress bar).
-        fused: one Function per step for assembly + solve with a structured adjoint (default,
-            faster backward; step_solve.py), or separate assembly Functions and ``sparse_solve``.
 
     Returns:
         the final :class:`SimState` (differentiable w.r.t. uv, gamma, density and state).
@@ -88,38 +128,31 @@ def drape(
         triangles. SimulationError: divergence (names the step and the worst vertex).
     """
     check_drape_inputs(model, state, sdf, uv, gamma)
+    steps = settings.steps if steps is None else steps
     if steps < 0:
         raise InputError(f"steps must be >= 0, got {steps}")
-    params = StepParams(
-        dt=dt,
-        gravity=gravity,
-        friction=friction,
-        friction_eps=friction_eps,
-        contact_stiffness=contact_stiffness,
-        contact_threshold=contact_threshold,
-        thickness=thickness,
-        max_speed=max_speed,
-        backend=backend,
-        fused=fused,
-    )
+    params = settings.step_params(friction=friction)
     rest = rest_data(model, uv, density)
     for k in range(steps):
         if checkpoint and torch.is_grad_enabled():
-            from torch.utils.checkpoint import checkpoint as _ckpt
-
-            def _f(x, v, gamma_, *rest_t, _k=k):
-                from unsew.sim.integrator import RestData
-
-                s = step(model, RestData(*rest_t), SimState(x, v), sdf, gamma_, params, index=_k)
-                return s.x, s.v
-
-            xv = _ckpt(_f, state.x, state.v, gamma, rest.area, rest.B, rest.coef, rest.mass, rest.vert_area, use_reentrant=False)
-            state = SimState(*xv)
+            state = _checkpointed_step(model, rest, state, sdf, gamma, params, k)
         else:
             state = step(model, rest, state, sdf, gamma, params, index=k)
         if callback is not None:
             callback(k, state)
     return state
+
+
+def _checkpointed_step(model, rest: RestData, state: SimState, sdf, gamma, params: StepParams, k: int) -> SimState:
+    """One step whose intermediate values are recomputed in the backward pass."""
+
+    def _f(x, v, gamma_, *rest_t):
+        s = step(model, RestData(*rest_t), SimState(x, v), sdf, gamma_, params, index=k)
+        return s.x, s.v
+
+    xv = torch_checkpoint(_f, state.x, state.v, gamma, rest.area, rest.B, rest.coef, rest.mass, rest.vert_area,
+                          use_reentrant=False)
+    return SimState(*xv)
 
 
 def merge_sewn(x_unsewn, x_of_u, n_x: int) -> torch.Tensor:
@@ -150,19 +183,9 @@ def sew(
     uv: torch.Tensor,
     gamma: torch.Tensor,
     density,
-    steps: int = 60,
-    dt: float = 0.02,
+    settings: DrapeSettings = DEFAULT_SETTINGS,
     hold=None,
-    hold_steps: int = 20,
-    ramp_steps: int = 30,
-    gravity: float = 9.81,
-    spring_stiffness: float = 100.0,
     friction: float = 0.3,
-    contact_stiffness: float = 1e7,
-    contact_threshold: float = 5e-3,
-    thickness: float = COLLISION_THICKNESS,
-    max_speed: float = 50.0,
-    backend: str = "auto",
     callback=None,
 ) -> torch.Tensor:
     """Sewing phase (no gradients): close the seams of placed panels on the body.
@@ -172,11 +195,11 @@ def sew(
             faces_uv, springs=seam_pairs)`` (sim vertices = rest vertices, Nu of them).
         x_unsewn: (Nu, 3) [m] placed panels (e.g. ``place_garment``), torch or numpy.
         sdf: body SDF. uv: (Nu, 2) [m]. gamma: (5,). density: [kg/m^2].
-        steps: number of steps. dt: [s] (smaller than the drape's: seams move fast).
-        hold: (Nu,) bool or (P,) int vertices held still for the first ``hold_steps`` steps
-            (e.g. a waistline). ramp_steps: gravity rises linearly from 0 over these steps.
-        spring_stiffness: zero-length seam springs [N/m].
-        other arguments: as :func:`drape`.
+        settings: :class:`DrapeSettings`: ``sew_steps`` steps of ``sew_dt`` [s] with seam springs
+            of ``spring_stiffness`` [N/m]; gravity rises linearly from 0 over ``ramp_steps``.
+        hold: (Nu,) bool or (P,) int vertices held still for the first ``settings.hold_steps``
+            steps (e.g. a waistline).
+        friction: the material's Coulomb coefficient [-]. callback: ``callback(k, state)``.
 
     Returns:
         (Nu, 3) float64 torch [m] positions on the unsewn topology (see :func:`merge_sewn`).
@@ -187,19 +210,9 @@ def sew(
         uv = uv.detach()
         gamma = gamma.detach()
         check_drape_inputs(model_unsewn, state, sdf, uv, gamma)
-        params = StepParams(
-            dt=dt,
-            gravity=gravity,
-            friction=friction,
-            contact_stiffness=contact_stiffness,
-            contact_threshold=contact_threshold,
-            thickness=thickness,
-            spring_stiffness=spring_stiffness,
-            max_speed=max_speed,
-            backend=backend,
-        )
+        params = settings.step_params(friction=friction, sewing=True)
         held = None
-        if hold is not None and hold_steps > 0:
+        if hold is not None and settings.hold_steps > 0:
             held = SimModel.build(
                 model_unsewn.faces,
                 model_unsewn.faces_uv,
@@ -210,9 +223,9 @@ def sew(
                 bending_stencil=model_unsewn.bending_stencil,
             )
         rest = rest_data(model_unsewn, uv, density)
-        for k in range(steps):
-            g = gravity * min(1.0, (k + 1) / max(ramp_steps, 1))
-            m = held if (held is not None and k < hold_steps) else model_unsewn
+        for k in range(settings.sew_steps):
+            g = settings.gravity * min(1.0, (k + 1) / max(settings.ramp_steps, 1))
+            m = held if (held is not None and k < settings.hold_steps) else model_unsewn
             state = step(m, rest, state, sdf, gamma, params, index=k, gravity=g)
             if callback is not None:
                 callback(k, state)

@@ -1,0 +1,284 @@
+"""Phase two of the fit (paper 3.4-3.5): the effective control points K and, from
+``material.start_iteration``, the material Gamma refined by Adam through differentiable drapes
+warm-started from the previous iteration's result.
+
+Loss (eqs. 5-9): L = L_CF(X, T) [curvature-weighted, eq. 7] + lambda_open L_CF(X_open, T_open)
++ lambda_mat relu(1e-6 - Gamma) + lambda_seam L_seam(U(K)) (+ lambda_prior, off by default).
+
+Material parameterisation (a deviation from the paper, which does not say how Gamma is scaled):
+the four stiffness entries H00, H11, H22, k are optimised as log-factors on the starting
+material, Gamma_i = Gamma0_i * exp(theta_i), so one learning rate suits values that differ by
+seven orders of magnitude and they stay positive; H01 = 0.995 tanh(phi0 + theta_1) sqrt(H00 H11),
+so H stays positive definite. The material range penalty of the paper is kept on Gamma itself.
+
+The result is the iterate of lowest loss, pattern-only or with the material; when a pattern-only
+iterate wins, the reported material is the start material (docs/history.md, "Measurements
+behind the fit's defaults").
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+import torch
+
+from unsew.errors import InputError
+from unsew.fit.config import FitConfig, material_mask
+from unsew.fit.material import MaterialChoice
+from unsew.fit.target import Target
+from unsew.losses.chamfer import loss_chamfer
+from unsew.losses.contours import loss_open_contours, open_contours
+from unsew.losses.curvature import curvature_weights
+from unsew.losses.material import loss_material
+from unsew.losses.prior import loss_prior
+from unsew.losses.seam import loss_seam, seam_segment_pairs
+from unsew.pattern.params import PatternParams, check_inverted
+from unsew.sim.drape import drape
+from unsew.sim.material import Material
+from unsew.sim.model import SimModel
+from unsew.sim.state import SimState
+from unsew.tolerances import MIN_TRIANGLE_QUALITY
+
+__all__ = ["PhaseTwo", "LossTerms", "Iterate", "Iteration", "material_params", "LOSS_TERMS"]
+
+#: Names of the loss terms, in the order of :class:`LossTerms` (and of ``FitResult.history``).
+LOSS_TERMS = ("total", "chamfer", "open", "seam", "material", "prior")
+
+
+@dataclass
+class LossTerms:
+    """The loss of one drape, term by term (0-d torch tensors): ``total`` is the weighted sum
+    of ``chamfer`` [m^2], ``open`` [m^2], ``seam`` [m^2], ``material`` and ``prior`` [m^2]."""
+
+    total: torch.Tensor
+    chamfer: torch.Tensor
+    open: torch.Tensor
+    seam: torch.Tensor
+    material: torch.Tensor
+    prior: torch.Tensor
+
+    def floats(self) -> dict[str, float]:
+        """The terms as plain floats, keyed by :data:`LOSS_TERMS`."""
+        return {k: float(getattr(self, k).detach()) for k in LOSS_TERMS}
+
+
+@dataclass
+class Iterate:
+    """A point of phase two: its loss, control points K (Nk, 2) [m], Gamma (5,), drape x (Nx, 3)
+    [m], the iteration (-1: the start) and whether the material was a variable then."""
+
+    loss: float
+    K: torch.Tensor
+    gamma: torch.Tensor
+    x: torch.Tensor
+    iteration: int = -1
+    material_on: bool = False
+
+
+@dataclass
+class Iteration:
+    """What the per-iteration callback receives: the iteration's index, its loss terms (floats),
+    the control points K it draped (Nk, 2) [m], its Gamma (5,), its drape x (Nx, 3) [m] on
+    ``faces``, and whether it was the last one (budget spent or converged)."""
+
+    iteration: int
+    terms: dict
+    K: torch.Tensor
+    gamma: torch.Tensor
+    x: torch.Tensor
+    faces: np.ndarray
+    last: bool = False
+
+
+def material_params(gamma0: torch.Tensor):
+    """Gamma as a function of unconstrained parameters theta (5,), zero at the start material.
+
+    H00, H11, H22, k = start * exp(theta); H01 = tanh(phi0 + theta_1) * sqrt(H00 H11) with
+    tanh(phi0) the start's H01 / sqrt(H00 H11), so the membrane stiffness stays positive
+    definite for every theta (|H01| < sqrt(H00 H11)). Returns (theta (5,) leaf, gamma_of).
+    """
+    theta = torch.zeros(5, dtype=torch.float64, device=gamma0.device, requires_grad=True)
+    r0 = float(gamma0[1]) / math.sqrt(float(gamma0[0]) * float(gamma0[2]))
+    phi0 = math.atanh(max(-0.99, min(0.99, r0 / 0.995)))
+
+    def gamma_of(th):
+        g = gamma0 * torch.exp(th)
+        g01 = 0.995 * torch.tanh(phi0 + th[1]) * torch.sqrt(g[0] * g[2])
+        return torch.stack([g[0], g01, g[2], g[3], g[4]])
+
+    return theta, gamma_of
+
+
+class PhaseTwo:
+    """The optimisation of phase two from a :class:`~unsew.fit.material.MaterialChoice`.
+
+    ``loss()`` drapes the current pattern and returns its :class:`LossTerms`; ``step()`` makes
+    one iteration (loss, backward, Adam, inversion backtracking, warm start, convergence);
+    ``run(callback)`` iterates until the budget is spent or the loss has converged;
+    ``state_dict()`` / ``load_state_dict()`` checkpoint and resume it. ``best`` is the
+    lowest-loss :class:`Iterate` so far.
+    """
+
+    def __init__(self, choice: MaterialChoice, target: Target, sdf, cfg: FitConfig):
+        s = choice.start
+        self.cfg, self.sdf, self.mesh, self.material0 = cfg, sdf, s.mesh, s.material
+        dev = torch.device(cfg.device)
+        self.params = PatternParams.build(s.graded, s.mesh)
+        self.model = SimModel.build(s.mesh.faces, s.mesh.faces_uv)
+        self.settings = cfg.drape.replace(friction_eps=cfg.optimizer.friction_eps)
+        self._targets(target, dev)
+        self.contours_x = open_contours(np.asarray(s.x), s.mesh.faces)
+        self.seam_pairs = seam_segment_pairs(s.mesh, s.graded.stitches)
+        self.gamma0 = s.material.gamma().to(dev)
+        self.K = self.params.K0.detach().clone().to(dev).requires_grad_(True)
+        self.theta, self.gamma_of = material_params(self.gamma0)
+        self.free_mat = torch.tensor(material_mask(cfg.material.fit), dtype=self.theta.dtype, device=dev)
+        o = cfg.optimizer
+        self.opt_k = torch.optim.Adam([self.K], lr=o.lr, betas=o.betas)
+        self.opt_m = torch.optim.Adam([self.theta], lr=cfg.material.lr, betas=o.betas)
+        self.x_prev = torch.as_tensor(np.asarray(s.x), dtype=torch.float64, device=dev)
+        with torch.no_grad():
+            self.uv_start = self.params.uv(self.K).detach()
+        self.history: dict[str, list[float]] = {k: [] for k in LOSS_TERMS}
+        self.best = Iterate(math.inf, self.K.detach().clone(), self.gamma0.detach().clone(), self.x_prev.clone())
+        self.iteration, self.converged = 0, False
+
+    def _targets(self, target: Target, dev) -> None:
+        """The target points the Chamfer sees (a seeded subset) and their curvature weights."""
+        tv, n = target.verts, self.cfg.loss.target_points
+        rng = np.random.default_rng(self.cfg.seed)
+        sub = np.sort(rng.choice(len(tv), n, replace=False)) if len(tv) > n else np.arange(len(tv))
+        w = curvature_weights(tv, target.faces) if self.cfg.loss.curvature_weighted else np.ones(len(tv))
+        self.T = torch.as_tensor(tv, dtype=torch.float64)
+        self.T_sub = self.T[sub].to(dev)
+        self.w_sub = torch.as_tensor(np.asarray(w, dtype=np.float64)[sub], dtype=torch.float64, device=dev)
+        self.contours_t = target.contours
+
+    def material_on(self, it: int | None = None) -> bool:
+        """Whether Gamma is a variable at iteration ``it`` (default: the current one)."""
+        it = self.iteration if it is None else it
+        return self.cfg.fits_material and it >= self.cfg.material.start_iteration
+
+    def loss(self) -> tuple[LossTerms, torch.Tensor, torch.Tensor]:
+        """Drape the current K (and Gamma, when it is a variable) from the previous drape.
+        Returns (terms, gamma (5,), drape x (Nx, 3) [m]), differentiable in K and theta."""
+        w = self.cfg.loss
+        uv = self.params.uv(self.K)
+        gamma = self.gamma_of(self.theta) if self.material_on() else self.gamma0
+        x = drape(self.model, SimState.at_rest(self.x_prev), self.sdf, uv=uv, gamma=gamma,
+                  density=self.material0.density, settings=self.settings, friction=self.material0.friction).x
+        zero_x, zero_uv = x.sum() * 0, uv.sum() * 0
+        l_cf = loss_chamfer(x, self.T_sub, weights_t=self.w_sub)
+        l_open = loss_open_contours(x, self.contours_x, self.T, self.contours_t) if self.contours_t else zero_x
+        l_seam = loss_seam(uv, pairs=self.seam_pairs) if w.seam > 0 else zero_uv
+        l_mat = loss_material(gamma)
+        l_prior = loss_prior(uv, self.uv_start) if w.prior > 0 else zero_uv
+        total = l_cf + w.open * l_open + w.seam * l_seam + w.material * l_mat + w.prior * l_prior
+        return LossTerms(total, l_cf, l_open, l_seam, l_mat, l_prior), gamma, x
+
+    def _set_learning_rates(self) -> None:
+        o = self.cfg.optimizer
+        decay = o.lr_decay ** (self.iteration / o.iterations)
+        for opt, lr in ((self.opt_k, o.lr), (self.opt_m, self.cfg.material.lr)):
+            for group in opt.param_groups:
+                group["lr"] = lr * decay
+
+    def step(self) -> Iteration:
+        """One iteration of Adam on the loss; returns what it draped and measured."""
+        it, mat_on = self.iteration, self.material_on()
+        self._set_learning_rates()
+        self.opt_k.zero_grad()
+        self.opt_m.zero_grad()
+        terms, gamma, x = self.loss()
+        if not torch.isfinite(terms.total):
+            raise InputError(f"the loss became non-finite at iteration {it}; try a smaller --lr or a coarser mesh")
+        terms.total.backward()
+        values = terms.floats()
+        for key, val in values.items():
+            self.history[key].append(val)
+        if values["total"] < self.best.loss:
+            self.best = Iterate(values["total"], self.K.detach().clone(), gamma.detach().clone(), x.detach().clone(),
+                                it, mat_on)
+        K_before = self.K.detach().clone()
+        if it >= self.cfg.optimizer.pattern_start:
+            self.opt_k.step()
+        if mat_on:
+            if self.theta.grad is not None:
+                self.theta.grad.mul_(self.free_mat)  # entries left out of material.fit stay put
+            self.opt_m.step()
+        self._backtrack_inversions(K_before)
+        if self.cfg.optimizer.warm_start:
+            self.x_prev = x.detach()
+        self.iteration += 1
+        self.converged = self._has_converged()
+        last = self.converged or self.iteration >= self.cfg.optimizer.iterations
+        return Iteration(it, values, K_before, gamma.detach(), x.detach(), self.mesh.faces, last)
+
+    def _backtrack_inversions(self, K_before: torch.Tensor) -> None:
+        """A step that inverts pattern triangles, or flattens one below MIN_TRIANGLE_QUALITY, is
+        shortened (halved towards the previous K) until none does."""
+        with torch.no_grad():
+            for _ in range(10):
+                uv = self.params.uv(self.K).cpu().numpy()
+                if len(check_inverted(uv, self.mesh.faces_uv, min_quality=MIN_TRIANGLE_QUALITY)) == 0:
+                    return
+                self.K.copy_(0.5 * (self.K + K_before))
+            self.K.copy_(K_before)
+
+    def _has_converged(self) -> bool:
+        """The best loss of the last ``patience`` iterations improved on the earlier best by less
+        than ``tol`` of it (judged once both variables have had ``patience`` iterations)."""
+        o, h = self.cfg.optimizer, self.history["total"]
+        it = self.iteration - 1
+        if len(h) > o.patience and it >= max(self.cfg.material.start_iteration, o.pattern_start) + o.patience:
+            old = min(h[: -o.patience])
+            return (old - min(h[-o.patience:])) < o.tol * abs(old)
+        return False
+
+    def run(self, callback: Callable[[Iteration], None] | None = None) -> None:
+        """Iterate until the budget is spent or the loss has converged; ``callback(Iteration)``
+        after every iteration (progress, checkpoints, traces)."""
+        while self.iteration < self.cfg.optimizer.iterations and not self.converged:
+            info = self.step()
+            if callback is not None:
+                callback(info)
+
+    def state_dict(self) -> dict:
+        """Everything :meth:`load_state_dict` needs to continue from here (copies: stepping on
+        does not change it)."""
+        return {"iteration": self.iteration, "K": self.K.detach().clone(), "theta": self.theta.detach().clone(),
+                "opt_k": copy.deepcopy(self.opt_k.state_dict()), "opt_m": copy.deepcopy(self.opt_m.state_dict()),
+                "x_prev": self.x_prev.clone(),
+                "history": {k: list(v) for k, v in self.history.items()}, "best": dataclasses.asdict(self.best)}
+
+    def load_state_dict(self, state: dict) -> None:
+        """Continue from a :meth:`state_dict` of a PhaseTwo built from the same start."""
+        dev = self.K.device
+        with torch.no_grad():
+            self.K.copy_(state["K"])
+            self.theta.copy_(state["theta"])
+        self.opt_k.load_state_dict(state["opt_k"])
+        self.opt_m.load_state_dict(state["opt_m"])
+        self.x_prev = state["x_prev"].to(dev)
+        self.history = {k: list(v) for k, v in state["history"].items()}
+        self.best = Iterate(**state["best"])
+        self.iteration = int(state["iteration"])
+
+    def best_fit(self):
+        """The best iterate as (pattern, uv (Nu, 2) [m] numpy, drape x (Nx, 3) [m] numpy, Material)."""
+        b = self.best
+        with torch.no_grad():
+            uv = self.params.uv(b.K)
+        g = b.gamma.cpu().numpy()
+        m0 = self.material0
+        material = Material(float(g[0]), float(g[1]), float(g[2]), float(g[3]), float(g[4]), m0.density, m0.friction)
+        return self.params.to_pattern(b.K.cpu()), uv.cpu().numpy(), b.x.cpu().numpy(), material
+
+    def gamma_last(self) -> list[float]:
+        """Gamma at the current theta (the last iterate's material, as floats)."""
+        return [float(v) for v in self.gamma_of(self.theta.detach()).cpu()]

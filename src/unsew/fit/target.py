@@ -1,0 +1,46 @@
+"""The target garment as the fit sees it: its mesh, its open contours, and the distance a drape
+lies from it (the mean surface Chamfer the metrics and the report use)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from unsew.losses.contours import open_contours
+from unsew.metrics.surface import surface_metrics
+
+__all__ = ["Target", "OBJECTIVE_SAMPLES"]
+
+#: Surface samples per side of the distance that choices are made on (material, re-dress check).
+OBJECTIVE_SAMPLES = 20_000
+
+
+@dataclass
+class Target:
+    """The target mesh T.
+
+    verts: (V, 3) float64 [m]; faces: (F, 3) int64; contours: its open contours (hems, cuffs,
+    necklines; :func:`unsew.losses.contours.open_contours`); seed: of every sampling.
+    """
+
+    verts: np.ndarray
+    faces: np.ndarray
+    contours: list
+    seed: int = 0
+
+    @classmethod
+    def of_case(cls, case, *, seed: int = 0) -> "Target":
+        """The target of a loaded case (unsew.io.case.Case)."""
+        tv = np.asarray(case.target_verts, dtype=np.float64)
+        tf = np.asarray(case.target_faces, dtype=np.int64)
+        return cls(tv, tf, open_contours(tv, tf), seed)
+
+    def distance_mm(self, x, faces, *, n_samples: int = OBJECTIVE_SAMPLES) -> float:
+        """Mean surface distance [mm] between the drape ``x`` (N, 3) [m] on ``faces`` and the target.
+
+        Choices are made on this figure, not on the fit's squared loss, which tells fabrics apart
+        far less (docs/history.md, "Measurements behind the fit's defaults").
+        """
+        return surface_metrics(np.asarray(x), faces, self.verts, self.faces, n_samples=n_samples,
+                               seed=self.seed)["chamfer_mm"]

@@ -1,0 +1,215 @@
+"""Judge a drape: is the garment on the body, whole, and outside it?
+
+A simulation that ran to the end is not yet a success: a garment can slide off the body, fall
+to the floor, tear its triangles to many times their length or end up inside the body, and
+still come back without an error. :func:`check_drape` looks at the final positions and returns
+a :class:`DrapeVerdict`; a bad verdict names the first failed check in one line, so ``unsew
+drape`` (and the fit) can stop with that line instead of writing a result that looks finished.
+
+Checks, in order (the first that fails is the reason):
+
+1. ``exploded``: a position is NaN or infinite.
+2. ``exploded``: an edge is stretched beyond :data:`STRETCH_MAX` times its pattern length, or
+   the 99th percentile beyond :data:`STRETCH_P99_MAX`.
+3. ``fallen``: the garment's lowest point is below the body's lowest point (the floor) by more
+   than :data:`FLOOR_TOL`; or its highest point is below the body's crotch (nothing holds a
+   garment up there); or, when the start of the drape is given, its mean height has dropped
+   by more than :data:`DROP_MAX` from where it was placed (a waistband slid down the hips, a
+   top slid off the shoulders; a hood falling onto the head moves too few vertices to count).
+4. ``off the body``: more than :data:`FAR_MAX_PCT` % of the vertices are further than
+   :data:`FAR_DIST` from the body.
+5. ``inside the body``: more than :data:`INSIDE_MAX_PCT` % of the vertices are inside it.
+
+The thresholds are failure bounds, far from a good drape's figures (a good drape has < 0.5 %
+inside, stretch below 1.5); docs/benchmarks.md ("Draping foreign patterns") lists the figures
+measured on good and bad drapes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from unsew.errors import SimulationError
+
+__all__ = [
+    "DrapeVerdict",
+    "check_drape",
+    "check_dressed",
+    "STRETCH_MAX",
+    "STRETCH_P99_MAX",
+    "FLOOR_TOL",
+    "DROP_MAX",
+    "FAR_DIST",
+    "FAR_MAX_PCT",
+    "INSIDE_MAX_PCT",
+]
+
+#: Largest edge length over its pattern length [-] before a drape counts as exploded.
+STRETCH_MAX = 3.0
+#: Largest 99th percentile of edge stretch [-] (a garment torn all over, not one bad seam vertex).
+STRETCH_P99_MAX = 1.6
+#: How far below the body's lowest point the garment may reach [m] (cloth lying on the floor).
+FLOOR_TOL = 0.02
+#: How far the garment's mean height may drop from where the drape started [m].
+DROP_MAX = 0.10
+#: A vertex further than this from every body vertex is off the body [m].
+FAR_DIST = 0.15
+#: Largest share of vertices off the body [%].
+FAR_MAX_PCT = 30.0
+#: Largest share of vertices inside the body [%].
+INSIDE_MAX_PCT = 5.0
+
+
+@dataclass(frozen=True)
+class DrapeVerdict:
+    """What :func:`check_drape` found.
+
+    ok: every check passed. reason: one line naming the failed check ("" when ok).
+    inside_pct: vertices inside the body [%]. depth_mm: deepest vertex inside [mm] (0 if none).
+    far_pct: vertices further than FAR_DIST from the body [%].
+    stretch_max, stretch_p99: largest and 99th-percentile edge length over pattern length [-].
+    y_min, y_max: the garment's height range [m]. drop: how far its mean height fell from the
+    start [m] (NaN when no start was given). finite: no NaN or inf.
+    """
+
+    ok: bool
+    reason: str
+    inside_pct: float
+    depth_mm: float
+    far_pct: float
+    stretch_max: float
+    stretch_p99: float
+    y_min: float
+    y_max: float
+    drop: float
+    finite: bool
+
+    def as_dict(self) -> dict:
+        """The verdict as a JSON-able dict."""
+        return asdict(self)
+
+    def raise_if_bad(self, what: str = "drape") -> None:
+        """Raise :class:`~unsew.errors.SimulationError` with ``"<what> failed: <reason>"``
+        when the verdict is bad."""
+        if not self.ok:
+            raise SimulationError(f"{what} failed: {self.reason}")
+
+
+def _edges(faces: np.ndarray, faces_uv: np.ndarray):
+    e = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    eu = faces_uv[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    return e, eu
+
+
+def check_drape(
+    x,
+    *,
+    faces,
+    uv,
+    faces_uv,
+    body,
+    sdf=None,
+    start_height=None,
+) -> DrapeVerdict:
+    """Judge a draped garment (see the module docstring for the checks).
+
+    Args:
+        x: draped sewn vertices [m], (N, 3), float (numpy or torch).
+        faces: (F, 3) int triangles into ``x``. uv: pattern (rest) positions [m], (Nu, 2).
+        faces_uv: (F, 3) int the same triangles into ``uv`` (edge rest lengths come from it).
+        body: unsew.body.body.Body (verts [m] and skeleton: the floor, the crotch).
+        sdf: the body's BodySDF for the inside test (built, disk-cached, when None).
+        start_height: optional mean vertex height [m] of the garment where the drape started
+            (the placed panels): the drop check.
+
+    Returns:
+        :class:`DrapeVerdict`.
+    """
+    import torch
+    from scipy.spatial import cKDTree
+
+    x = x.detach().cpu().numpy() if torch.is_tensor(x) else np.asarray(x)
+    x = np.asarray(x, dtype=np.float64)
+    faces = np.asarray(faces, dtype=np.int64)
+    faces_uv = np.asarray(faces_uv, dtype=np.int64)
+    uv = np.asarray(uv.detach().cpu().numpy() if torch.is_tensor(uv) else uv, dtype=np.float64)
+    nan = float("nan")
+    if len(x) == 0:
+        return DrapeVerdict(False, "the garment has no vertices", nan, nan, nan, nan, nan, nan, nan, nan, True)
+    finite = bool(np.isfinite(x).all())
+    if not finite:
+        bad = int(np.flatnonzero(~np.isfinite(x).all(axis=1))[0])
+        n_bad = int((~np.isfinite(x).all(axis=1)).sum())
+        return DrapeVerdict(False, f"exploded: {n_bad} vertices are NaN or infinite (first: vertex {bad})",
+                            nan, nan, nan, nan, nan, nan, nan, nan, False)
+
+    e, eu = _edges(faces, faces_uv)
+    L = np.linalg.norm(x[e[:, 0]] - x[e[:, 1]], axis=1)
+    L0 = np.maximum(np.linalg.norm(uv[eu[:, 0]] - uv[eu[:, 1]], axis=1), 1e-12)
+    ratio = L / L0
+    s_max, s_99 = float(ratio.max()), float(np.percentile(ratio, 99))
+
+    if sdf is None:
+        from unsew.body.sdf import BodySDF
+
+        sdf = BodySDF.build(body)
+    with torch.no_grad():
+        d, _ = sdf.query(torch.as_tensor(x, dtype=torch.float64))
+    d = d.numpy()
+    inside_pct = float((d < 0).mean() * 100.0)
+    depth_mm = float(max(0.0, -float(d.min())) * 1000.0)
+
+    bv = np.asarray(body.verts, dtype=np.float64)
+    far = cKDTree(bv).query(x, distance_upper_bound=FAR_DIST)[0]
+    far_pct = float(np.isinf(far).mean() * 100.0)
+
+    y_min, y_max = float(x[:, 1].min()), float(x[:, 1].max())
+    drop = nan if start_height is None else float(start_height) - float(x[:, 1].mean())
+    floor = float(bv[:, 1].min())
+    crotch = _crotch_height(body)
+
+    reason = ""
+    if s_max > STRETCH_MAX:
+        reason = f"exploded: an edge is stretched to {s_max:.1f} times its pattern length (bound {STRETCH_MAX:g})"
+    elif s_99 > STRETCH_P99_MAX:
+        reason = f"exploded: 1 % of the edges are stretched beyond {s_99:.2f} times their pattern length (bound {STRETCH_P99_MAX:g})"
+    elif y_min < floor - FLOOR_TOL:
+        reason = f"fallen: the garment reaches {floor - y_min:.2f} m below the body's feet"
+    elif y_max < crotch:
+        reason = f"fallen: the garment's top is at y = {y_max:.2f} m, below the body's crotch ({crotch:.2f} m)"
+    elif np.isfinite(drop) and drop > DROP_MAX:
+        reason = f"fallen: the garment slid {drop:.2f} m down from where it was put on (bound {DROP_MAX:g} m)"
+    elif far_pct > FAR_MAX_PCT:
+        reason = f"off the body: {far_pct:.0f} % of the vertices are more than {FAR_DIST:g} m from it (bound {FAR_MAX_PCT:g} %)"
+    elif inside_pct > INSIDE_MAX_PCT:
+        reason = f"inside the body: {inside_pct:.1f} % of the vertices (bound {INSIDE_MAX_PCT:g} %)"
+    return DrapeVerdict(reason == "", reason, inside_pct, depth_mm, far_pct, s_max, s_99, y_min, y_max, drop, finite)
+
+
+def _crotch_height(body) -> float:
+    """Height of the crotch [m]: the lowest body point on the centre line between the knees
+    and the pelvis (the hips' joint height when the body has no such point)."""
+    sk = body.skeleton
+    v = np.asarray(body.verts, dtype=np.float64)
+    pel = sk.position("pelvis")
+    knee = max(sk.position("left_knee")[1], sk.position("right_knee")[1])
+    m = (np.abs(v[:, 0] - pel[0]) < 0.012) & (v[:, 1] > knee) & (v[:, 1] < pel[1])
+    return float(v[m, 1].min()) if m.any() else float(0.5 * (pel[1] + knee))
+
+
+def check_dressed(d, *, body=None, start_height=None) -> DrapeVerdict:
+    """:func:`check_drape` of a :class:`unsew.dress.Dressed` (its sewn mesh, rest shape and SDF).
+
+    body: the body it was dressed on (needed: a Dressed does not keep it). start_height: see
+    :func:`check_drape`; when None, the mean height of the placed panels that
+    :func:`unsew.dress.dress` records as ``d.stats["start_height"]`` [m] is used.
+    """
+    if body is None:
+        raise ValueError("check_dressed needs the body the garment was dressed on")
+    if start_height is None:
+        start_height = d.stats.get("start_height")
+    m = d.mesh
+    return check_drape(d.x, faces=m.faces, uv=m.uv, faces_uv=m.faces_uv, body=body, sdf=d.sdf,
+                       start_height=start_height)

@@ -1,0 +1,119 @@
+"""check_drape: a good drape passes; exploded, fallen, off-the-body and inside-the-body drapes
+fail with one line naming why; unsew drape stops on a bad verdict and writes no --out."""
+
+import numpy as np
+import pytest
+
+from unsew.body.body import default_body
+from unsew.body.sdf import BodySDF
+from unsew.errors import SimulationError
+from unsew.sim.checks import FAR_DIST, STRETCH_MAX, check_drape
+
+
+@pytest.fixture(scope="module")
+def body_sdf():
+    b = default_body()
+    return b, BodySDF.build(b)
+
+
+def _tube(body, *, a=0.19, b=0.14, cz=0.02, y0=0.92, y1=1.1, n_around=48, n_up=8):
+    """An elliptic cylinder of cloth round the waist (semi-axes a, b [m], centre z = cz [m]),
+    clear of the arms: faces (F, 3), its flat pattern uv (Nu, 2) [m] (the same vertices: the
+    cut at the back stays open) and 3D positions x (Nu, 3) [m] at rest (uv's first coordinate
+    is the length along the polygon round the ellipse: every edge keeps its length)."""
+    th = np.linspace(0.0, 2 * np.pi, n_around, endpoint=False)
+    ring = np.stack([a * np.sin(th), b * np.cos(th) + cz], axis=1)  # (n_around, 2) x, z
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(ring, axis=0), axis=1))])
+    y = np.linspace(y0, y1, n_up)
+    S, Y = np.meshgrid(s, y)  # (n_up, n_around)
+    uv = np.stack([S.ravel(), Y.ravel()], axis=1)
+    R = np.tile(ring, (n_up, 1))
+    x = np.stack([R[:, 0], uv[:, 1], R[:, 1]], axis=1)
+    idx = np.arange(n_up * n_around).reshape(n_up, n_around)
+    i, j, k, m = idx[:-1, :-1], idx[:-1, 1:], idx[1:, 1:], idx[1:, :-1]
+    faces = np.concatenate([np.stack([i, j, k], -1).reshape(-1, 3), np.stack([i, k, m], -1).reshape(-1, 3)])
+    return faces, uv, x
+
+
+def _check(body, sdf, x, faces, uv, **kw):
+    return check_drape(x, faces=faces, uv=uv, faces_uv=faces, body=body, sdf=sdf, **kw)
+
+
+def test_good_drape_passes(body_sdf):
+    body, sdf = body_sdf
+    faces, uv, x = _tube(body)
+    v = _check(body, sdf, x, faces, uv, start_height=float(x[:, 1].mean()) + 0.03)
+    assert v.ok and v.reason == "", v
+    assert v.inside_pct == 0.0 and v.far_pct == 0.0
+    assert v.stretch_max == pytest.approx(1.0, abs=0.01)
+    assert v.y_min == pytest.approx(0.92) and v.y_max == pytest.approx(1.1)
+    assert v.drop == pytest.approx(0.03)
+    v.raise_if_bad()  # no error
+
+
+def test_exploded(body_sdf):
+    body, sdf = body_sdf
+    faces, uv, x = _tube(body)
+    bad = x.copy()
+    bad[7] = np.nan
+    v = _check(body, sdf, bad, faces, uv)
+    assert not v.ok and v.reason.startswith("exploded") and "NaN" in v.reason and not v.finite
+    with pytest.raises(SimulationError, match="drape failed: exploded"):
+        v.raise_if_bad()
+    # one vertex pulled far out: its edges stretch beyond the bound
+    bad = x.copy()
+    bad[100] += [0.0, 0.0, 0.3]
+    v = _check(body, sdf, bad, faces, uv)
+    assert not v.ok and v.reason.startswith("exploded") and v.stretch_max > STRETCH_MAX
+
+
+def test_fallen(body_sdf):
+    body, sdf = body_sdf
+    faces, uv, x = _tube(body)
+    # at the feet: the top is below the crotch
+    v = _check(body, sdf, x - [0.0, 0.8, 0.0], faces, uv)
+    assert not v.ok and v.reason.startswith("fallen") and "crotch" in v.reason
+    # through the floor
+    v = _check(body, sdf, x - [0.0, 1.3, 0.0], faces, uv)
+    assert not v.ok and v.reason.startswith("fallen") and "feet" in v.reason
+    # slid 0.2 m down from where it was put on: still on the hips, but fallen
+    v = _check(body, sdf, x, faces, uv, start_height=float(x[:, 1].mean()) + 0.2)
+    assert not v.ok and "slid 0.20 m down" in v.reason
+
+
+def test_off_the_body(body_sdf):
+    body, sdf = body_sdf
+    faces, uv, x = _tube(body)
+    v = _check(body, sdf, x + [1.0, 0.0, 0.0], faces, uv)
+    assert not v.ok and v.reason.startswith("off the body") and v.far_pct == 100.0
+    assert FAR_DIST < 1.0
+
+
+def test_inside_the_body(body_sdf):
+    body, sdf = body_sdf
+    faces, uv, x = _tube(body)
+    c = np.array([0.0, 0.0, 0.02])
+    shrunk = c + (x - c) * [0.3, 1.0, 0.3]  # a 6 x 4 cm tube in the belly
+    v = _check(body, sdf, shrunk, faces, uv)
+    assert not v.ok and v.reason.startswith("inside the body") and v.inside_pct > 90.0
+
+
+def test_drape_cli_refuses_a_bad_drape(tmp_path, capsys, monkeypatch):
+    """A drape whose verdict is bad exits non-zero with one line and leaves no --out; with
+    --keep-failed the garment is kept under a name that says so."""
+    import unsew.sim.checks as checks
+    from unsew.cli import main
+    from unsew.io.garmentcode import save_pattern
+    from unsew.pattern.base import make_base_pattern
+
+    pj = tmp_path / "skirt.json"
+    save_pattern(make_base_pattern("skirt"), pj)
+    out = tmp_path / "garment.obj"
+    small = ["--edge-length", "0.06", "--sew-steps", "5", "--settle-steps", "0", "--no-progress"]
+    monkeypatch.setattr(checks, "INSIDE_MAX_PCT", -1.0)  # every drape now counts as inside the body
+    assert main(["drape", str(pj), "--body", "default", *small, "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "drape of skirt failed: inside the body" in err[0]
+    assert not out.exists() and not (tmp_path / "garment.failed.obj").exists()
+    assert main(["drape", str(pj), "--body", "default", *small, "--keep-failed", "--out", str(out)]) == 2
+    assert not out.exists() and (tmp_path / "garment.failed.obj").is_file()
