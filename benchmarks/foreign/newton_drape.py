@@ -1,0 +1,208 @@
+"""Drape a meshed sewing pattern on a body with NVIDIA newton's Style3D cloth solver (CPU).
+
+The independent simulator of the foreign benchmark: nothing of unsew's simulator is used. unsew
+only supplies the panel mesh (unsew.meshing) and the panels' start positions around the body
+(unsew.body.placement).
+
+Two phases:
+1. sewing, gravity off: the unsewn panels (one particle per 2D rest vertex) with a zero-length
+   spring (``seam_spring_n_m``, an external force evaluated at the start of each substep)
+   between every stitched vertex pair, velocities damped by ``sew_damping`` per substep; the
+   no gravity, so nothing needs holding;
+2. drape: the sewn mesh (stitched vertices merged at their mean) rebuilt as one cloth, gravity
+   ramped in over ``ramp_frames`` frames with the waist line of a lower garment held still
+   until ``hold_frames`` (counted from the start), then released and settled.
+
+World frame: metres, Y up (FORMATS.md); newton runs Z up: (x, y, z) -> (x, -z, y) and back.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+#: Settings (shared/STACK.md's newton trial): recorded in each case's meta.json.
+SETTINGS = dict(
+    fps=60,
+    substeps=4,
+    iterations=10,
+    linear_iterations=10,
+    density_kg_m2=0.2,
+    tri_aniso_ke=[2.0e3, 2.0e3, 2.0e2],
+    edge_aniso_ke=[2.0e-5, 1.0e-5, 5.0e-6],
+    particle_radius_m=0.004,
+    soft_contact_ke=1.0e3,
+    soft_contact_kd=1.0e-3,
+    soft_contact_mu=0.5,
+    sew_frames=40,
+    seam_spring_n_m=30.0,
+    seam_force_max_n=float("inf"),
+    sew_damping=0.05,
+    sew_speed_max_m_s=float("inf"),
+    ramp_frames=15,
+    hold_frames=55,
+    settle_frames=90,
+    hold_band_m=0.02,
+)
+
+
+#: Retried in order when a drape diverges (a sewing force that one garment needs blows another
+#: up where several seams meet at a light corner vertex): the used one is recorded per case.
+FALLBACKS = [
+    {},
+    {"seam_force_max_n": 1.0, "sew_speed_max_m_s": 0.5},
+]
+
+
+#: A vertex farther than this from the body's bounding-box centre means the drape blew up [m].
+MAX_REACH = 1.5
+
+
+def _to_z(p):
+    p = np.asarray(p, np.float64)
+    return np.stack([p[:, 0], -p[:, 2], p[:, 1]], axis=1)
+
+
+def _to_y(p):
+    p = np.asarray(p, np.float64)
+    return np.stack([p[:, 0], p[:, 2], -p[:, 1]], axis=1)
+
+
+def _model(x_z, tris3d, uv, tris_uv, body_v_z, body_f, s):
+    import newton
+    import warp as wp
+    from newton.solvers import style3d
+
+    builder = newton.ModelBuilder(up_axis=newton.Axis.Z)
+    newton.solvers.SolverStyle3D.register_custom_attributes(builder)
+    style3d.add_cloth_mesh(
+        builder,
+        pos=wp.vec3(0.0, 0.0, 0.0),
+        rot=wp.quat_identity(),
+        vel=wp.vec3(0.0, 0.0, 0.0),
+        vertices=x_z.tolist(),
+        indices=np.asarray(tris3d).ravel().tolist(),
+        panel_verts=np.asarray(uv).tolist(),
+        panel_indices=np.asarray(tris_uv).ravel().tolist(),
+        density=s["density_kg_m2"],
+        particle_radius=s["particle_radius_m"],
+        tri_aniso_ke=wp.vec3(*s["tri_aniso_ke"]),
+        edge_aniso_ke=wp.vec3(*s["edge_aniso_ke"]),
+    )
+    builder.add_shape_mesh(body=-1, mesh=newton.Mesh(body_v_z.astype(np.float32), np.asarray(body_f).ravel().astype(np.int32)))
+    model = builder.finalize(device="cpu")
+    model.soft_contact_ke = s["soft_contact_ke"]
+    model.soft_contact_kd = s["soft_contact_kd"]
+    model.soft_contact_mu = s["soft_contact_mu"]
+    return model
+
+
+def _set_active(model, held: np.ndarray, active: bool):
+    import newton
+    import warp as wp
+
+    flags = model.particle_flags.numpy()
+    if active:
+        flags[held] |= int(newton.ParticleFlags.ACTIVE)
+    else:
+        flags[held] &= ~int(newton.ParticleFlags.ACTIVE)
+    model.particle_flags = wp.array(flags, dtype=model.particle_flags.dtype, device="cpu")
+
+
+def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, log=print):
+    """Sew and drape ``mesh`` (unsew GarmentMesh) from its unsewn start ``x_unsewn`` (Nu, 3) [m]
+    on the body (body_v (V, 3) [m], body_f (F, 3)). ``lower``: hold the waist (skirts,
+    trousers). Returns (x (n_x, 3) float64 [m] sewn vertices in the world frame, info dict with
+    per-phase timings [s], the largest seam gap after sewing [m] and frames run)."""
+    import newton
+    import warp as wp
+
+    wp.config.quiet = True
+    s = dict(SETTINGS if settings is None else settings)
+    dt = 1.0 / s["fps"] / s["substeps"]
+    solver_cfg = newton.solvers.SolverStyle3D.Config(iterations=s["iterations"], linear_iterations=s["linear_iterations"])
+    bz = _to_z(body_v)
+    centre = 0.5 * (bz.min(axis=0) + bz.max(axis=0))
+    info = {}
+
+    # held: the waist line of a lower garment (vertices within hold_band of its top)
+    x_u = np.asarray(x_unsewn, np.float64)
+    held_u = np.flatnonzero(x_u[:, 1] > x_u[:, 1].max() - s["hold_band_m"]) if lower else np.zeros(0, np.int64)
+
+    def run(model, x0, frames, gravity_of_frame, held, hook=None):
+        state0, state1 = model.state(), model.state()
+        state0.particle_q.assign(wp.array(_to_z(x0).astype(np.float32), dtype=wp.vec3, device="cpu"))
+        state0.particle_qd.zero_()
+        control = model.control()
+        solver = newton.solvers.SolverStyle3D(model, config=solver_cfg)
+        pipeline = newton.CollisionPipeline(model, soft_contact_margin=0.01)
+        contacts = pipeline.contacts()
+        if len(held):
+            _set_active(model, held, False)
+        for f in range(frames):
+            g, release = gravity_of_frame(f)
+            if release and len(held):
+                _set_active(model, held, True)
+                held = np.zeros(0, np.int64)
+            model.set_gravity((0.0, 0.0, -9.81 * g))
+            pipeline.collide(state0, contacts)
+            for _ in range(s["substeps"]):
+                state0.clear_forces()
+                if hook is not None:
+                    hook(state0)
+                solver.step(state0, state1, control, contacts, dt)
+                state0, state1 = state1, state0
+            q = state0.particle_q.numpy()
+            far = np.abs(q - centre).max() if np.isfinite(q).all() else np.inf
+            if far > MAX_REACH:
+                raise RuntimeError(f"newton diverged at frame {f} (a vertex {far:.1f} m from the body's centre)")
+        return _to_y(state0.particle_q.numpy())
+
+    # phase 1: sewing on the unsewn panels
+    t0 = time.time()
+    sp = np.asarray(mesh.seam_pairs)
+    m1 = _model(_to_z(x_u), mesh.faces_uv, mesh.uv, mesh.faces_uv, bz, body_f, s)
+
+    def pull(state):
+        q = state.particle_q.numpy()
+        d = (q[sp[:, 1]] - q[sp[:, 0]]).astype(np.float64)
+        f = np.zeros((len(q), 3))
+        np.add.at(f, sp[:, 0], s["seam_spring_n_m"] * d)
+        np.add.at(f, sp[:, 1], -s["seam_spring_n_m"] * d)
+        fn = np.linalg.norm(f, axis=1, keepdims=True)
+        f *= np.minimum(1.0, s["seam_force_max_n"] / np.maximum(fn, 1e-12))
+        state.particle_f.assign(wp.array(f.astype(np.float32), dtype=wp.vec3, device="cpu"))
+        v = state.particle_qd.numpy() * (1.0 - s["sew_damping"])
+        vn = np.linalg.norm(v, axis=1, keepdims=True)
+        v *= np.minimum(1.0, s["sew_speed_max_m_s"] / np.maximum(vn, 1e-12))
+        state.particle_qd.assign(wp.array(v.astype(np.float32), dtype=wp.vec3, device="cpu"))
+
+    x1 = run(m1, x_u, s["sew_frames"], lambda f: (0.0, False), np.zeros(0, np.int64), hook=pull)
+    gaps = np.linalg.norm(x1[sp[:, 0]] - x1[sp[:, 1]], axis=1) if len(sp) else np.zeros(1)
+    info["gap_after_sewing_m"] = float(gaps.max())
+    info["gap_after_sewing_p95_m"] = float(np.percentile(gaps, 95))
+    if len(sp):
+        w = int(np.argmax(gaps))
+        pn = [mesh.panel_names[int(mesh.uv_panel[k])] for k in sp[w]]
+        log(f"  widest seam gap between {pn[0]} and {pn[1]} at y {x1[sp[w, 0], 1]:.3f} m")
+    info["sew_s"] = time.time() - t0
+    log(f"  sewing: {s['sew_frames']} frames {info['sew_s']:.0f} s, largest seam gap {info['gap_after_sewing_m'] * 1000:.1f} mm")
+
+    # phase 2: the sewn garment
+    t0 = time.time()
+    n_x = int(mesh.n_x)
+    xs = np.zeros((n_x, 3))
+    cnt = np.zeros(n_x)
+    np.add.at(xs, mesh.x_of_u, x1)
+    np.add.at(cnt, mesh.x_of_u, 1.0)
+    xs /= cnt[:, None]
+    held_x = np.unique(np.asarray(mesh.x_of_u)[held_u]) if len(held_u) else np.zeros(0, np.int64)
+    m2 = _model(_to_z(xs), mesh.faces, mesh.uv, mesh.faces_uv, bz, body_f, s)
+    ramp, hold = s["ramp_frames"], s["hold_frames"] - s["sew_frames"]
+    frames = max(ramp, hold) + s["settle_frames"]
+    x2 = run(m2, xs, frames, lambda f: (min(1.0, (f + 1) / ramp), f == hold), held_x)
+    info["drape_s"] = time.time() - t0
+    info["frames"] = s["sew_frames"] + frames
+    log(f"  drape: {frames} frames {info['drape_s']:.0f} s")
+    return x2, info

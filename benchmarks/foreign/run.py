@@ -1,0 +1,350 @@
+"""Foreign benchmark: garments unsew did not make, draped by another simulator (newton) on anny bodies.
+
+    python -m benchmarks foreign build [--cases ID ...] [--out DIR]   (needs pip install unsew[bench,anny])
+    python -m benchmarks foreign floor [--cases ID ...]   (unsew's own drape of each true pattern)
+    python -m benchmarks foreign list [--dir DIR]
+
+``build`` makes each case folder (FORMATS.md): ``target.obj`` (the sewn garment draped by newton's
+Style3D solver, metres, Y up), ``meta.json`` (garment type, the body by model, simulator, version,
+material, settings and the checks), ``pattern_gt.json`` (the true pattern, GarmentCode JSON) and
+``preview.png`` (front and side views). A case that fails a check is reported and not written.
+``list`` prints the committed cases with their checks. Cases are deterministic functions of the
+design, the body and the settings below; the committed folders are in ``cases/``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(HERE.parent))
+
+from tables import print_table  # noqa: E402
+
+#: Target edge length of the panel meshes [m] (a few thousand vertices per garment).
+EDGE_LENGTH = 0.025
+#: GarmentCode's sample specifications: shared/foreign/patterns beside the checkout (the
+#: nearest folder above the repository that holds it), or $UNSEW_FOREIGN_PATTERNS.
+FOREIGN_PATTERNS = Path(os.environ.get("UNSEW_FOREIGN_PATTERNS") or next(
+    (p / "shared" / "foreign" / "patterns" for p in Path(__file__).resolve().parents[2].parents
+     if (p / "shared" / "foreign" / "patterns").is_dir()), Path("shared/foreign/patterns")))
+
+_P = dict(gender=0.5, age=0.5, muscle=0.5, weight=0.5, height=0.5, proportions=0.5)
+#: Bodies by model (meta.json's "body"): anny phenotypes in [0, 1] and a pose.
+BODIES = {
+    "anny_default": {"model": "anny", "phenotype": dict(_P), "pose": "A"},
+    # anny interpolates gender from male (0) to female (1)
+    "anny_male_heavy": {"model": "anny", "phenotype": dict(_P, gender=0.0, weight=0.8, muscle=0.6), "pose": "A"},
+    "anny_tall_thin": {"model": "anny", "phenotype": dict(_P, height=0.9, weight=0.15, proportions=0.7), "pose": "A"},
+    "anny_tpose": {"model": "anny", "phenotype": dict(_P), "pose": "T"},
+    # left leg swung 0.3 rad forward at the hip (world-frame rotation vector)
+    "anny_leg_forward": {"model": "anny", "phenotype": dict(_P), "pose": {"left_hip": [-0.3, 0.0, 0.0]}},
+}
+
+#: case id -> (design name in designs.DESIGNS, body key). Ordered so that the first 15 give
+#: three cases of each garment type.
+CASES = {
+    "skirt_aline_knee__default": ("skirt_aline_knee", "anny_default"),
+    "trousers_straight__default": ("trousers_straight", "anny_default"),
+    "tee_fitted_short__default": ("tee_fitted_short", "anny_default"),
+    "dress_sheath_sleeveless__default": ("dress_sheath_sleeveless", "anny_default"),
+    "shorts_knee__default": ("shorts_knee", "anny_default"),
+    "skirt_circle_knee__default": ("skirt_circle_knee", "anny_default"),
+    "trousers_tapered__male_heavy": ("trousers_tapered", "anny_male_heavy"),
+    "tee_loose_long__default": ("tee_loose_long", "anny_default"),
+    "dress_shift_sleeved__default": ("dress_shift_sleeved", "anny_default"),
+    "shorts_short__male_heavy": ("shorts_short", "anny_male_heavy"),
+    "skirt_flared_midi__tall_thin": ("skirt_flared_midi", "anny_tall_thin"),
+    "trousers_wide__tall_thin": ("trousers_wide", "anny_tall_thin"),
+    "tee_fitted_short__male_heavy": ("tee_fitted_short", "anny_male_heavy"),
+    "dress_sheath_sleeveless__tall_thin": ("dress_sheath_sleeveless", "anny_tall_thin"),
+    "shorts_wide__tall_thin": ("shorts_wide", "anny_tall_thin"),
+    "skirt_pencil_mini__tpose": ("skirt_pencil_mini", "anny_tpose"),
+    "tank_top__tpose": ("tank_top", "anny_tpose"),
+    "trousers_straight__leg_forward": ("trousers_straight", "anny_leg_forward"),
+    "skirt_aline_knee__male_heavy": ("skirt_aline_knee", "anny_male_heavy"),
+    "shorts_short__default": ("shorts_short", "anny_default"),
+    "tee_loose_long__tall_thin": ("tee_loose_long", "anny_tall_thin"),
+    "dress_pencil_gc__default": ("gc:dress_pencil_specification.json", "anny_default"),
+}
+
+#: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").
+MAX_INSIDE = 0.005  #: share of target vertices inside the body
+MAX_STRETCH = 1.0  #: largest per-triangle stretch (a seam left open by the sewing shows here)
+MAX_CUT_EDGES = 2  #: garment edges through the body (ends outside, midpoint inside)
+MAX_STRETCH_P99 = 0.25  #: 99th percentile of per-triangle largest stretch
+LOWER = ("skirt", "pants", "shorts")
+
+
+def _log(*a):
+    print(*a, flush=True)
+
+
+def _body(key):
+    from unsew.body.anny_body import make_anny_body
+
+    spec = BODIES[key]
+    return make_anny_body(spec["phenotype"], pose=spec["pose"])
+
+
+def _pattern(design, body):
+    import designs
+    from unsew.body.measure import measure_body
+
+    if design.startswith("gc:"):
+        return json.loads((FOREIGN_PATTERNS / design[3:]).read_text()), {
+            "dress_pencil": "dress"}[design[3:].rsplit("_", 1)[0]]
+    typ, fn = designs.DESIGNS[design]
+    m = measure_body(body).as_dict()
+    J = {n: p for n, p in zip(body.skeleton.names, body.skeleton.positions)}
+    return fn(m, J), typ
+
+
+def _on_body(typ, x, body):
+    """The garment hangs where it should: a lower garment's top within 8 cm of the waist, a top
+    reaching above the chest joint; nothing on the floor."""
+    J = dict(zip(body.skeleton.names, body.skeleton.positions))
+    ytop = float(x[:, 1].max())
+    if x[:, 1].min() < 0.02:
+        return False, "touches the floor"
+    if typ in LOWER:
+        from unsew.body.measure import measure_body
+
+        wy = measure_body(body).waist_height
+        ok = bool(abs(ytop - wy) < 0.08)
+        return ok, f"top {ytop:.3f} m, waist {wy:.3f} m"
+    ok = bool(ytop > J["chest"][1] + 0.1)
+    return ok, f"top {ytop:.3f} m, chest {J['chest'][1]:.3f} m"
+
+
+def build_case(cid, out_root: Path):
+    import checks
+    import newton
+    import newton_drape
+    from unsew.body.placement import place_garment
+    from unsew.io.garmentcode import pattern_from_dict
+    from unsew.meshing.sew import mesh_pattern
+
+    design, bkey = CASES[cid]
+    t0 = time.time()
+    body = _body(bkey)
+    spec, typ = _pattern(design, body)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        pattern = pattern_from_dict(json.loads(json.dumps(spec)), name=cid)
+    mesh = mesh_pattern(pattern, edge_length=EDGE_LENGTH)
+    x0 = place_garment(pattern, mesh, body)
+    _log(f"{cid}: {mesh.n_x} vertices, {len(mesh.faces)} triangles")
+    for k, extra in enumerate(newton_drape.FALLBACKS):
+        settings = {**newton_drape.SETTINGS, **extra}
+        try:
+            x, info = newton_drape.drape_newton(mesh, x0, body.verts, body.faces, lower=typ in LOWER, settings=settings, log=_log)
+            break
+        except RuntimeError as exc:
+            _log(f"  {exc}" + ("; retrying with " + str(newton_drape.FALLBACKS[k + 1]) if k + 1 < len(newton_drape.FALLBACKS) else ""))
+            if k + 1 == len(newton_drape.FALLBACKS):
+                raise
+    faces = np.asarray(mesh.faces)
+    ins_v = checks.inside_mask(x, body.verts, body.faces)
+    inside = float(ins_v.mean())
+    st = checks.stretch(x, faces, np.asarray(mesh.uv), np.asarray(mesh.faces_uv))
+    seam_x = np.unique(np.asarray(mesh.x_of_u)[np.asarray(mesh.seam_pairs).ravel()])
+    cut, cut_seam = checks.edges_through_body(x, faces, body.verts, body.faces, seam_vertices=seam_x, ins_v=ins_v)
+    on, on_why = _on_body(typ, x, body)
+    res = {
+        "inside_fraction": round(inside, 5),
+        "stretch_p50": round(float(np.percentile(st, 50)), 4),
+        "stretch_p95": round(float(np.percentile(st, 95)), 4),
+        "stretch_p99": round(float(np.percentile(st, 99)), 4),
+        "stretch_max": round(float(st.max()), 4),
+        "edges_through_body": cut,
+        "seam_edges_through_body": cut_seam,
+        "seam_gap_after_sewing_mm": round(info["gap_after_sewing_m"] * 1000, 1),
+        "on_body": on,
+        "on_body_detail": on_why,
+    }
+    fails = []
+    if inside >= MAX_INSIDE:
+        fails.append(f"{inside:.2%} of vertices inside the body")
+    if cut > MAX_CUT_EDGES or cut_seam:
+        fails.append(f"{cut} edges ({cut_seam} seam edges) through the body")
+    if res["stretch_max"] > MAX_STRETCH:
+        fails.append(f"largest stretch {res['stretch_max']:.2f}")
+    if res["stretch_p99"] > MAX_STRETCH_P99:
+        fails.append(f"stretch p99 {res['stretch_p99']:.2f}")
+    if not on:
+        fails.append(f"not on the body ({on_why})")
+    res["passed"] = not fails
+    res["failures"] = fails
+    meta = {
+        "garment": typ,
+        "units": "m",
+        "up": "y",
+        "front": "z",
+        "body": BODIES[bkey],
+        "source": {
+            "design": design,
+            "pattern": "GarmentCode sample (MIT), shared/foreign/patterns" if design.startswith("gc:")
+            else "benchmarks/foreign/designs.py",
+            "body_key": bkey,
+        },
+        "simulator": {
+            "name": "newton SolverStyle3D (CPU)",
+            "newton": newton.__version__,
+            "warp": __import__("warp").__version__,
+            "material": {k: settings[k] for k in ("density_kg_m2", "tri_aniso_ke", "edge_aniso_ke")},
+            "settings": {k: (None if v == float("inf") else v) for k, v in settings.items()
+                         if k not in ("density_kg_m2", "tri_aniso_ke", "edge_aniso_ke")},
+            "mesh_edge_length_m": EDGE_LENGTH,
+            "start": "unsew.body.placement.place_garment",
+            "frames": info["frames"],
+            "seconds": round(time.time() - t0, 1),
+        },
+        "checks": res,
+    }
+    title = f"{cid}  inside {inside:.2%}  stretch p95 {res['stretch_p95']:.3f}  {'PASS' if not fails else 'FAIL: ' + '; '.join(fails)}"
+    d = out_root / cid
+    tmp = out_root / f".{cid}.tmp"
+    shutil.rmtree(tmp, ignore_errors=True)
+    tmp.mkdir(parents=True)
+    checks.preview(tmp / "preview.png", x, faces, body.verts, body.faces, title=title)
+    if fails:
+        rej = out_root.parent / "rejected"
+        rej.mkdir(exist_ok=True)
+        shutil.copy(tmp / "preview.png", rej / f"{cid}.png")
+        (rej / f"{cid}.json").write_text(json.dumps(meta, indent=1))
+        shutil.rmtree(tmp)
+        _log(f"{cid}: REJECTED: {'; '.join(fails)}")
+        return meta
+    with open(tmp / "target.obj", "w") as fh:
+        fh.write(f"# foreign benchmark case {cid}: draped by newton {newton.__version__} SolverStyle3D\n")
+        fh.write("".join(f"v {a:.5f} {b:.5f} {c:.5f}\n" for a, b, c in x))
+        fh.write("".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces))
+    (tmp / "pattern_gt.json").write_text(json.dumps(spec, indent=1))
+    (tmp / "meta.json").write_text(json.dumps(meta, indent=1))
+    shutil.rmtree(d, ignore_errors=True)
+    tmp.rename(d)
+    _log(f"{cid}: passed, written to {d} ({time.time() - t0:.0f} s)")
+    return meta
+
+
+def cmd_build(args):
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    ids = args.cases or list(CASES)
+    bad = [c for c in ids if c not in CASES]
+    if bad:
+        print(f"unknown case(s) {bad}; `python -m benchmarks foreign list --all` names them", file=sys.stderr)
+        return 2
+    for cid in ids:
+        try:
+            build_case(cid, out)
+        except Exception as exc:  # a case that cannot be built is reported, the rest go on
+            _log(f"{cid}: FAILED to build: {type(exc).__name__}: {exc}")
+    return 0
+
+
+def _read_obj(path):
+    v, f = [], []
+    for ln in open(path):
+        if ln.startswith("v "):
+            v.append([float(t) for t in ln.split()[1:4]])
+        elif ln.startswith("f "):
+            f.append([int(t.split("/")[0]) - 1 for t in ln.split()[1:4]])
+    return np.asarray(v), np.asarray(f, dtype=np.int64)
+
+
+def cmd_floor(args):
+    """Cross-simulator floor: ``unsew drape pattern_gt.json --body CASE`` against the newton
+    target, Chamfer [mm]; a failed drape is recorded as such in meta.json."""
+    import subprocess
+    import tempfile
+
+    from unsew.metrics.surface import chamfer_mm
+
+    root = Path(args.dir)
+    dirs = [root / c for c in args.cases] if args.cases else sorted(p for p in root.iterdir() if (p / "meta.json").is_file())
+    for d in dirs:
+        meta = json.loads((d / "meta.json").read_text())
+        with tempfile.TemporaryDirectory() as tmp:
+            out = Path(tmp) / "garment.obj"
+            t0 = time.time()
+            cmd = [sys.executable, "-m", "unsew", "drape", str(d / "pattern_gt.json"), "--body", str(d), "--out", str(out), "--no-progress"]
+            try:
+                r = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
+                rc, err = r.returncode, (r.stderr.strip().splitlines() or [""])[-1]
+            except subprocess.TimeoutExpired:
+                rc, err = -1, f"timed out after {args.timeout} s"
+            floor = {"command": "unsew drape pattern_gt.json --body CASE_DIR", "seconds": round(time.time() - t0, 1)}
+            if rc == 0 and out.is_file():
+                v, f = _read_obj(out)
+                tv, tf = _read_obj(d / "target.obj")
+                c = chamfer_mm(v, f, tv, tf, n_samples=50_000)
+                floor["chamfer_mm"] = round(c.mean_mm, 2)
+                floor["p95_mm"] = round(c.p95_mm, 2)
+            else:
+                floor["error"] = f"exit {rc}: {err[:200]}"
+        meta["floor"] = floor
+        (d / "meta.json").write_text(json.dumps(meta, indent=1))
+        _log(f"{d.name}: {floor}")
+    return 0
+
+
+def cmd_list(args):
+    root = Path(args.dir)
+    rows = []
+    for d in sorted(p for p in root.iterdir() if (p / "meta.json").is_file()):
+        meta = json.loads((d / "meta.json").read_text())
+        c = meta["checks"]
+        rows.append({
+            "case": d.name,
+            "type": meta["garment"],
+            "body": meta["source"]["body_key"],
+            "verts": sum(1 for ln in open(d / "target.obj") if ln.startswith("v ")),
+            "inside %": 100 * c["inside_fraction"],
+            "stretch p50/p95/p99/max": f"{c['stretch_p50']:.3f}/{c['stretch_p95']:.3f}/{c['stretch_p99']:.3f}/{c['stretch_max']:.2f}",
+            "cut edges (seam)": f"{c['edges_through_body']} ({c['seam_edges_through_body']})",
+            "seam gap mm": c["seam_gap_after_sewing_mm"],
+            "sewing": "default" if meta["simulator"]["settings"].get("seam_force_max_n") is None else "capped (retry)",
+            "on body": "yes" if c["on_body"] else "no",
+            "floor mm": meta.get("floor", {}).get("chamfer_mm", meta.get("floor", {}).get("error", "")),
+            "passed": "yes" if c["passed"] else "no",
+        })
+    print_table(rows, title=f"Foreign benchmark cases in {root} (newton Style3D drapes)", digits=2)
+    if args.all:
+        print("\nbuildable cases:", ", ".join(CASES))
+    return 0
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="python -m benchmarks foreign", description=__doc__.splitlines()[0])
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    b = sub.add_parser("build", help="drape cases with newton and write their folders")
+    b.add_argument("--cases", nargs="*", help="case ids (default: all)")
+    b.add_argument("--out", default=str(HERE / "cases"), help="folder of case folders")
+    b.set_defaults(func=cmd_build)
+    fl = sub.add_parser("floor", help="cross-simulator floor: unsew's drape of the true pattern against the target")
+    fl.add_argument("--cases", nargs="*")
+    fl.add_argument("--dir", default=str(HERE / "cases"))
+    fl.add_argument("--timeout", type=int, default=900, help="seconds per unsew drape")
+    fl.set_defaults(func=cmd_floor)
+    ls = sub.add_parser("list", help="table of the cases and their checks")
+    ls.add_argument("--dir", default=str(HERE / "cases"))
+    ls.add_argument("--all", action="store_true", help="also name every buildable case")
+    ls.set_defaults(func=cmd_list)
+    args = ap.parse_args(argv)
+    return args.func(args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
