@@ -75,6 +75,8 @@ CASES = {
     "skirt_aline_knee__male_heavy": ("skirt_aline_knee", "anny_male_heavy"),
     "shorts_short__default": ("shorts_short", "anny_default"),
     "tee_loose_long__tall_thin": ("tee_loose_long", "anny_tall_thin"),
+    "tee_fitted_short__tall_thin": ("tee_fitted_short", "anny_tall_thin"),
+    "tee_loose_long__male_heavy": ("tee_loose_long", "anny_male_heavy"),
     "dress_pencil_gc__default": ("gc:dress_pencil_specification.json", "anny_default"),
 }
 
