@@ -12,8 +12,9 @@ prints one row per case:
 - panel area error [%] of the base, graded and final pattern against pattern_gt.json, as metrics.json
   computes it (unsew.metrics.panels.pattern_metrics): the mean over matched panels of
   |A_est - A_gt| / A_gt, panels matched by name, then unique label, then a Hungarian assignment on
-  turning distance + 3D placement; when the panel counts differ no panel is matched and the cell is
-  empty (the row then shows the counts, est/gt);
+  turning distance + 3D placement; when the panel counts differ (column panels: est/gt) metrics.json
+  has no match and the base and graded cells stay empty (those patterns are not saved), and the
+  final cell is the mean over the panels matched without strictness (the unmatched left out);
 - total area error [%]: |sum A_est - sum A_gt| / sum A_gt over all panels (no correspondence
   needed) for the same three patterns; the final one is read from the result's pattern.json, base
   and graded from metrics.json's per-panel areas when matched;
@@ -116,6 +117,18 @@ def _pattern_area(path: Path) -> tuple[float, int]:
     return sum(panel_area(p) for p in pat.panels.values()), len(pat.panels)
 
 
+def _matched_area_err(est_path: Path, gt_path: Path) -> float | None:
+    """Mean relative area error [%] over the panels :func:`unsew.metrics.panels.match_panels`
+    matches without strictness (the unmatched ones, e.g. a waistband the base pattern lacks, are
+    left out), or None when none match."""
+    from unsew.io.garmentcode import load_pattern
+    from unsew.metrics.panels import area_error, match_panels
+
+    est, gt = load_pattern(est_path), load_pattern(gt_path)
+    corr = match_panels(est, gt, strict=False)
+    return 100.0 * area_error(est, gt, corr).mean if corr else None
+
+
 def row(case: Path, out: Path, status: dict) -> dict:
     """The table row of one case from its meta.json, status and (if any) result folder."""
     meta = json.loads((case / "meta.json").read_text())
@@ -136,6 +149,8 @@ def row(case: Path, out: Path, status: dict) -> dict:
         if "area_error_rel_mean" in p:
             r[f"area_{tag}_pct"] = 100.0 * p["area_error_rel_mean"]
             r[f"total_{tag}_pct"] = _total_err(p.get("panels"))
+    if r.get("area_final_pct") is None:  # strict matching failed (panel counts differ): matched panels only
+        r["area_final_pct"] = _matched_area_err(res / "pattern.json", case / "pattern_gt.json")
     gt_area, n_gt = _pattern_area(case / "pattern_gt.json")
     est_area, n_est = _pattern_area(res / "pattern.json")
     r["total_final_pct"] = 100.0 * abs(est_area - gt_area) / gt_area
