@@ -1,0 +1,61 @@
+"""benchmarks/bench_foreign_fit.py without fitting: a failed fit is recorded as its last stderr line
+and not rerun, and a result folder's metrics.json becomes the row's Chamfer, area and redress cells
+(fast: a fake fit command and a hand-written metrics.json on a real case)."""
+
+import importlib.util
+import json
+import shutil
+import sys
+from pathlib import Path
+
+BENCH = Path(__file__).resolve().parents[2] / "benchmarks"
+
+
+def _module():
+    if str(BENCH) not in sys.path:
+        sys.path.insert(0, str(BENCH))
+    spec = importlib.util.spec_from_file_location("_unsew_bench_foreign_fit", BENCH / "bench_foreign_fit.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_failed_fit_is_recorded_and_not_rerun(tmp_path):
+    mod = _module()
+    case = mod.case_dirs()[0]
+    fake = tmp_path / "fake_python"
+    calls = tmp_path / "calls"
+    fake.write_text(f"#!/bin/sh\necho x >> {calls}\necho 'progress line'\necho 'error: the garment fell' >&2\nexit 3\n")
+    fake.chmod(0o755)
+    out = tmp_path / "out"
+    st = mod.run_case(case, out, python=str(fake))
+    assert st["rc"] == 3 and st["exit"] == "error: the garment fell"
+    assert not (out / case.name).exists()
+    again = mod.run_case(case, out, python=str(fake))  # resumable: the failure is not rerun
+    assert again["exit"] == st["exit"] and calls.read_text().count("x") == 1
+    r = mod.row(case, out, again)
+    assert r["exit"] == "error: the garment fell" and r.get("cf_final_mm") is None
+
+
+def test_row_reads_metrics_and_total_area(tmp_path):
+    mod = _module()
+    case = mod.case_dirs()[0]
+    res = tmp_path / case.name
+    res.mkdir()
+    shutil.copy(case / "pattern_gt.json", res / "pattern.json")  # the true pattern as the "result"
+    panels = {"a": {"area_est_m2": 1.1, "area_gt_m2": 1.0}, "b": {"area_est_m2": 0.5, "area_gt_m2": 1.0}}
+    metrics = {
+        "surface": {"chamfer_mm": 7.0}, "surface_base": {"chamfer_mm": 30.0}, "surface_graded": {"chamfer_mm": 9.0},
+        "pattern": {"area_error_rel_mean": 0.3, "panels": panels},
+        "pattern_base": {"error": "panels without a counterpart"},
+        "redress": {"fit_redressed_mm": 8.0, "graded_mm": 9.0, "phase_two_kept": True},
+        "timings_s": {"total_s": 12.0},
+    }
+    (res / "metrics.json").write_text(json.dumps(metrics))
+    r = mod.row(case, tmp_path, {"exit": "ok", "time_s": None})
+    assert (r["cf_base_mm"], r["cf_graded_mm"], r["cf_final_mm"]) == (30.0, 9.0, 7.0)
+    assert abs(r["area_final_pct"] - 30.0) < 1e-9 and r.get("area_base_pct") is None
+    assert abs(r["total_final_pct"]) < 1e-6  # pattern.json is the true pattern: total area equal
+    assert r["phase2_kept"] == "yes" and r["time_s"] == 12.0
+    n = len(json.loads((case / "pattern_gt.json").read_text())["pattern"]["panels"])
+    assert r["panels"] == f"{n}/{n}"
