@@ -46,7 +46,7 @@ COLUMNS = ["case", "garment", "body", "exit", "time_s",
            "cf_base_mm", "cf_graded_mm", "cf_final_mm", "floor_mm",
            "area_base_pct", "area_graded_pct", "area_final_pct",
            "total_base_pct", "total_graded_pct", "total_final_pct",
-           "panels", "phase2_kept"]
+           "panels", "phase2_kept", "peak_mb"]
 
 
 def case_dirs(names: list[str] | None = None) -> list[Path]:
@@ -157,6 +157,7 @@ def row(case: Path, out: Path, status: dict) -> dict:
     r["panels"] = f"{n_est}/{n_gt}"
     red = m.get("redress")
     r["phase2_kept"] = None if red is None else ("yes" if red.get("phase_two_kept") else "no")
+    r["peak_mb"] = m.get("peak_memory_mb")  # the fit process's peak resident memory [MB]
     return r
 
 

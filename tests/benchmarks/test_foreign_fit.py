@@ -49,13 +49,13 @@ def test_row_reads_metrics_and_total_area(tmp_path):
         "pattern": {"area_error_rel_mean": 0.3, "panels": panels},
         "pattern_base": {"error": "panels without a counterpart"},
         "redress": {"fit_redressed_mm": 8.0, "graded_mm": 9.0, "phase_two_kept": True},
-        "timings_s": {"total_s": 12.0},
+        "timings_s": {"total_s": 12.0}, "peak_memory_mb": 2048.5,
     }
     (res / "metrics.json").write_text(json.dumps(metrics))
     r = mod.row(case, tmp_path, {"exit": "ok", "time_s": None})
     assert (r["cf_base_mm"], r["cf_graded_mm"], r["cf_final_mm"]) == (30.0, 9.0, 7.0)
     assert abs(r["area_final_pct"] - 30.0) < 1e-9 and r.get("area_base_pct") is None
     assert abs(r["total_final_pct"]) < 1e-6  # pattern.json is the true pattern: total area equal
-    assert r["phase2_kept"] == "yes" and r["time_s"] == 12.0
+    assert r["phase2_kept"] == "yes" and r["time_s"] == 12.0 and r["peak_mb"] == 2048.5
     n = len(json.loads((case / "pattern_gt.json").read_text())["pattern"]["panels"])
     assert r["panels"] == f"{n}/{n}"
