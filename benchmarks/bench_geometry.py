@@ -75,11 +75,7 @@ def _closest(lib, V, F, Q):
         import fcpw
 
         t = time.perf_counter()
-        scene = fcpw.scene_3D()
-        scene.set_object_count(1)
-        scene.set_object_vertices(np.asfortranarray(V, dtype=np.float32), 0)
-        scene.set_object_triangles(np.asfortranarray(F, dtype=np.int32), 0)
-        scene.build(fcpw.aggregate_type.bvh_surface_area, True)
+        scene = _fcpw_scene(V, F)
         t1 = time.perf_counter()
         hits = fcpw.interaction_3D_list()
         scene.find_closest_points(np.asfortranarray(Q, dtype=np.float32), np.full(len(Q), np.inf, np.float32), hits)
@@ -92,6 +88,19 @@ def _closest(lib, V, F, Q):
         _, d, _ = closest_points_kdtree(Q, V, F)
         return 0.0, time.perf_counter() - t, d
     raise ValueError(lib)
+
+
+def _fcpw_scene(V, F):
+    """An fcpw BVH scene of one triangle mesh (float32, as fcpw stores it)."""
+    import fcpw
+    import numpy as np
+
+    scene = fcpw.scene_3D()
+    scene.set_object_count(1)
+    scene.set_object_vertices(np.asfortranarray(V, dtype=np.float32), 0)
+    scene.set_object_triangles(np.asfortranarray(F, dtype=np.int32), 0)
+    scene.build(fcpw.aggregate_type.bvh_surface_area, True)
+    return scene
 
 
 def _inside(lib, V, F, Q):
@@ -111,14 +120,8 @@ def _inside(lib, V, F, Q):
         w = igl.winding_number(V, F, Q)
         return 0.0, time.perf_counter() - t, w > 0.5
     if lib == "fcpw contains":
-        import fcpw
-
         t = time.perf_counter()
-        scene = fcpw.scene_3D()
-        scene.set_object_count(1)
-        scene.set_object_vertices(np.asfortranarray(V, dtype=np.float32), 0)
-        scene.set_object_triangles(np.asfortranarray(F, dtype=np.int32), 0)
-        scene.build(fcpw.aggregate_type.bvh_surface_area, True)
+        scene = _fcpw_scene(V, F)
         t1 = time.perf_counter()
         out = np.zeros(len(Q), np.int32)
         scene.contains(np.asfortranarray(Q, dtype=np.float32), out)
