@@ -5,7 +5,8 @@ anny body; see benchmarks/foreign and FORMATS.md), runs the real command-line fi
 configuration, ``python -m unsew fit CASE --out OUT/CASE``, one case at a time in a subprocess, and
 prints one row per case:
 
-- garment, body (meta.json's source.body_key), exit (``ok`` or the fit's last stderr line), wall
+- garment, body (meta.json's source.body_key), base (metrics.json's base: the library base the fit
+  chose by draping, or the one named), exit (``ok`` or the fit's last stderr line), wall
   time of the command [s];
 - Chamfer [mm] of the base drape, the graded drape and the final result against the target
   (metrics.json: surface_base, surface_graded, surface);
@@ -42,7 +43,7 @@ os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 ROOT = Path(__file__).resolve().parent.parent
 CASES = ROOT / "benchmarks" / "foreign" / "cases"
 
-COLUMNS = ["case", "garment", "body", "exit", "time_s",
+COLUMNS = ["case", "garment", "body", "base", "exit", "time_s",
            "cf_base_mm", "cf_graded_mm", "cf_final_mm", "floor_mm",
            "area_base_pct", "area_graded_pct", "area_final_pct",
            "total_base_pct", "total_graded_pct", "total_final_pct",
@@ -142,6 +143,7 @@ def row(case: Path, out: Path, status: dict) -> dict:
     m = json.loads((res / "metrics.json").read_text())
     if r["time_s"] is None:
         r["time_s"] = (m.get("timings_s") or {}).get("total_s")
+    r["base"] = m.get("base")  # the base pattern phase one started from (chosen by draping by default)
     for key, col in (("surface_base", "cf_base_mm"), ("surface_graded", "cf_graded_mm"), ("surface", "cf_final_mm")):
         r[col] = (m.get(key) or {}).get("chamfer_mm")
     for key, tag in (("pattern_base", "base"), ("pattern_graded", "graded"), ("pattern", "final")):

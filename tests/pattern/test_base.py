@@ -209,3 +209,9 @@ def test_variants_differ_where_they_should():
     a, c = make_base_pattern("skirt_band"), make_base_pattern("skirt_circle")
     assert edge_length(c.panels["front"], 0) > 1.4 * edge_length(a.panels["front"], 0)
     assert edge_length(c.panels["front"], 2) == pytest.approx(edge_length(a.panels["front"], 2), abs=1e-6)
+
+
+def test_cli_lists_the_library():
+    from unsew.commands.pattern import BASES as CLI_BASES
+
+    assert CLI_BASES == BASES

@@ -75,6 +75,10 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     m["iterations"] = result.iterations
     m["best_iteration"] = result.best_iteration
     m["material_fitted"] = result.material_fitted
+    if getattr(result, "base_name", ""):
+        m["base"] = result.base_name  # the base pattern phase one started from
+    if getattr(result, "base_choice", None):
+        m["base_choice"] = result.base_choice  # base chosen by draping: candidates, best first
     if result.material_choice:
         m["material_choice"] = result.material_choice  # material: auto, best first
     m["converged"] = result.converged

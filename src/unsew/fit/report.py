@@ -63,6 +63,12 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     start = result.material_start_iteration
     phases = [(0, "pattern")] + ([(start, "pattern + material")] if start is not None and start < result.iterations else [])
     tables = dict(metrics)
+    if "base" in tables:
+        summary["base"] = tables.pop("base")
+    bases = tables.pop("base_choice", None)
+    if bases:
+        tables["base choice (each base dressed on a coarse mesh, Chamfer mm)"] = {
+            r["base"]: ("failed" if r["chamfer_mm"] is None else round(float(r["chamfer_mm"]), 2)) for r in bases}
     choice = tables.pop("material_choice", None)
     if choice:
         summary["start_material"] = choice[0]["material"]
