@@ -105,6 +105,21 @@ def plot_loss_curves(
         (120, "pattern + material")]``: a dashed line and the name at each start.
     size_px: (width, height) of the PNG in pixels. Returns the PNG's path.
     """
+    series = _loss_series(history)
+    fig = _figure(size_px)
+    ax = fig.add_axes((0.085, 0.12, 0.6, 0.76 if title else 0.82))
+    n_iter = _draw_loss_lines(ax, series, log=log)
+    _loss_axes(ax, n_iter, log=log)
+    if phases:
+        _draw_phases(ax, phases, n_iter)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False, fontsize=9)
+    if title:
+        fig.text(0.5, 0.975, title, ha="center", va="top", fontsize=13, weight="bold")
+    return _save(fig, path_png)
+
+
+def _loss_series(history: Mapping[str, Sequence[float]]) -> dict[str, np.ndarray]:
+    """term name -> values (N,) float64, None as NaN; InputError when there is nothing to plot."""
     if not history:
         raise InputError("history is empty: nothing to plot")
     series = {}
@@ -113,13 +128,16 @@ def plot_loss_curves(
         series[str(name)] = arr
     if all(len(a) == 0 for a in series.values()):
         raise InputError("every loss term in history is empty: nothing to plot")
+    return series
 
-    fig = _figure(size_px)
-    ax = fig.add_axes((0.085, 0.12, 0.6, 0.76 if title else 0.82))
-    total = next((k for k in _TOTAL_KEYS if k in series), None)
-    names = ([total] if total else []) + [k for k in series if k != total]
+
+def _draw_loss_lines(ax, series: Mapping[str, np.ndarray], *, log: bool) -> int:
+    """One line per term of ``series`` on ``ax``, the total first (thick, black), each labelled
+    by :func:`legend_label`. Returns the number of iterations (the longest series)."""
     import matplotlib
 
+    total = next((k for k in _TOTAL_KEYS if k in series), None)
+    names = ([total] if total else []) + [k for k in series if k != total]
     colors = matplotlib.colormaps["tab10"].colors
     ci = 0
     n_iter = 0
@@ -142,11 +160,16 @@ def plot_loss_curves(
         ax.plot(x, y, label=label, **style)
         if finite.size == 1:  # a single point draws no line: mark it
             ax.plot(x[np.isfinite(y)], finite, "o", color=style["color"], markersize=4)
+    return n_iter
+
+
+def _loss_axes(ax, n_iter: int, *, log: bool) -> None:
+    """Scale, limits, whole-number iteration ticks, labels and grid of the loss axes."""
+    from matplotlib.ticker import MaxNLocator
+
     if log:
         ax.set_yscale("log")
     ax.set_xlim(0, max(n_iter - 1, 1))
-    from matplotlib.ticker import MaxNLocator
-
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))  # iterations are whole numbers
     ax.set_xlabel("iteration")
     ax.set_ylabel("loss (log scale)" if log else "loss")
@@ -154,23 +177,23 @@ def plot_loss_curves(
     ax.set_axisbelow(True)
     for side in ("top", "right"):
         ax.spines[side].set_visible(False)
-    if phases:
-        from matplotlib.transforms import blended_transform_factory
 
-        tr = blended_transform_factory(ax.transData, ax.transAxes)
-        starts = sorted((int(i), str(n)) for i, n in phases)
-        for k, (i, pname) in enumerate(starts):
-            end = starts[k + 1][0] if k + 1 < len(starts) else max(n_iter - 1, 1)
-            if k % 2 == 1:
-                ax.axvspan(i, end, color="#f3f3f7", zorder=0)
-            if i > 0:
-                ax.axvline(i, color="#777777", linestyle="--", linewidth=1.0, zorder=1)
-            ax.text(i, 1.01, f" {pname}", transform=tr, ha="left", va="bottom", fontsize=8.5,
-                    color="#444444", clip_on=False)
-    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False, fontsize=9)
-    if title:
-        fig.text(0.5, 0.975, title, ha="center", va="top", fontsize=13, weight="bold")
-    return _save(fig, path_png)
+
+def _draw_phases(ax, phases: Sequence[tuple[int, str]], n_iter: int) -> None:
+    """Each phase's start (first iteration, name): a dashed line (none at 0), the name above
+    the axes, every other phase shaded."""
+    from matplotlib.transforms import blended_transform_factory
+
+    tr = blended_transform_factory(ax.transData, ax.transAxes)
+    starts = sorted((int(i), str(n)) for i, n in phases)
+    for k, (i, pname) in enumerate(starts):
+        end = starts[k + 1][0] if k + 1 < len(starts) else max(n_iter - 1, 1)
+        if k % 2 == 1:
+            ax.axvspan(i, end, color="#f3f3f7", zorder=0)
+        if i > 0:
+            ax.axvline(i, color="#777777", linestyle="--", linewidth=1.0, zorder=1)
+        ax.text(i, 1.01, f" {pname}", transform=tr, ha="left", va="bottom", fontsize=8.5,
+                color="#444444", clip_on=False)
 
 
 # --------------------------------------------------------------------------------------------
