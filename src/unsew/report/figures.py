@@ -15,6 +15,7 @@ from typing import Mapping, Sequence
 import numpy as np
 
 from unsew.errors import InputError
+from unsew.pattern.curves import panel_outline
 
 __all__ = [
     "plot_loss_curves",
@@ -204,8 +205,6 @@ def pattern_outlines(pattern, *, points_per_edge: int = 32) -> list[tuple[str, n
     """(panel name, closed outline (M, 2) float64 [m] in the panel's own frame) of each panel of
     a :class:`unsew.pattern.model.Pattern`, in ``panel_order`` (then any other panels), ready
     for :func:`plot_patterns`. Curved edges get ``points_per_edge`` segments."""
-    from unsew.pattern.curves import panel_outline
-
     order = [n for n in (pattern.panel_order or []) if n in pattern.panels]
     order += [n for n in pattern.panels if n not in order]
     return [(n, panel_outline(pattern.panels[n], points_per_edge=points_per_edge)) for n in order]

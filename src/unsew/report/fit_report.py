@@ -14,6 +14,11 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
+from unsew.report.figures import pattern_outlines, plot_histogram, plot_loss_curves, plot_patterns
+from unsew.report.html import write_report
+from unsew.report.measure import measurement_table
+from unsew.report.render import HEAT_CMAP, render_comparison, render_views
+
 __all__ = ["write_fit_report", "nearest_distance_mm"]
 
 
@@ -31,8 +36,6 @@ def nearest_distance_mm(verts: np.ndarray, target_verts: np.ndarray) -> np.ndarr
 def _outlines(p) -> list:
     """A Pattern, or an already made list of (name, outline[, placement]) tuples."""
     if hasattr(p, "panels") and hasattr(p, "panel_order"):
-        from unsew.report.figures import pattern_outlines
-
         return pattern_outlines(p)
     return list(p)
 
@@ -70,8 +73,6 @@ def write_fit_report(
         ``loss_history`` entry is left out of the tables when ``history`` is plotted.
     Returns the path of report.html.
     """
-    from unsew.report.html import write_report
-
     out = Path(out_dir)
     fig_dir = out / "figures"
     fig_dir.mkdir(parents=True, exist_ok=True)
@@ -90,9 +91,6 @@ def _fit_figures(fig_dir: Path, *, history, phases, target, result, body, distan
     """Draw the figures :func:`write_fit_report` has inputs for into ``fig_dir``; returns
     their (caption, PNG path) in report order. A note is appended to ``notes`` when the
     distances are computed here."""
-    from unsew.report.figures import plot_loss_curves, plot_patterns
-    from unsew.report.render import render_views
-
     figures: list[tuple[str, Path]] = []
     if history:
         figures.append(("Loss per iteration: the total and each term"
@@ -118,9 +116,6 @@ def _distance_figures(fig_dir: Path, target, result, *, body, distance_mm, views
     """Target against result, the result coloured by its distance to the target [mm] (the
     nearest target vertex when ``distance_mm`` is None, noted in ``notes``) and the distances'
     histogram (when any is finite): (caption, PNG path) each."""
-    from unsew.report.figures import plot_histogram
-    from unsew.report.render import HEAT_CMAP, render_comparison, render_views
-
     figures = [("Target (top) and fitted result (bottom), same views and scale",
                 render_comparison(fig_dir / "target_vs_result.png", target, result,
                                   body=body, views=views))]
@@ -149,8 +144,6 @@ def _fit_tables(*, patterns, material, metrics, history) -> dict[str, Any]:
     ``material``, then ``metrics`` (without ``loss_history`` when ``history`` is plotted)."""
     tables: dict[str, Any] = {}
     if patterns:
-        from unsew.report.measure import measurement_table
-
         rows = measurement_table(list(patterns))
         if rows:
             tables["panel measurements"] = {r["measurement"]: {k: v for k, v in r.items() if k != "measurement"}

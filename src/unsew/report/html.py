@@ -16,7 +16,9 @@ import os
 from pathlib import Path
 from typing import Any, Mapping, Sequence
 
+from unsew import __version__
 from unsew.errors import InputError
+from unsew.io.atomic import atomic_write
 
 __all__ = ["write_report", "pretty_key"]
 
@@ -295,8 +297,6 @@ def write_report(
     raises :class:`unsew.errors.InputError` naming it. The file is written to a temporary name
     in the same folder and renamed when complete, so a failure leaves no partial report.
     """
-    from unsew.io.atomic import atomic_write
-
     path = Path(path_html)
     if not isinstance(summary, Mapping) or not isinstance(metrics, Mapping):
         raise InputError("write_report: summary and metrics must be dicts")
@@ -337,8 +337,6 @@ def _embed_figures(figures: Sequence[tuple[str, str | os.PathLike]], base: Path)
 def _head(title: str) -> list[str]:
     """The page's opening lines up to its header: doctype, metadata, style, the heading with
     the unsew version and the time written."""
-    from unsew import __version__
-
     return [
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
@@ -392,8 +390,6 @@ def _figures_section(embedded: Sequence[tuple[str, str]]) -> list[str]:
 
 def _footer() -> str:
     """The page's closing line."""
-    from unsew import __version__
-
     return (f"<footer>Made by unsew {_esc(__version__)}. Units are given in the names of the "
             "quantities; renders are orthographic.</footer></main></body></html>\n")
 
