@@ -36,9 +36,18 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
         "time_s": result.timings.get("total_s"),
     }
     pat = metrics.get("pattern")
+    notes = []
     if isinstance(pat, dict) and pat.get("area_error_rel_mean") is not None:
         summary["area_error_mean_pct"] = 100.0 * float(pat["area_error_rel_mean"])
-    notes = []
+    if isinstance(pat, dict) and pat.get("area_error_weighted_rel") is not None:
+        summary["area_error_weighted_pct"] = 100.0 * float(pat["area_error_weighted_rel"])
+        summary["area_error_total_pct"] = 100.0 * float(pat["area_error_total_rel"])
+    for key, what in (("pattern_base", "base"), ("pattern_graded", "graded"), ("pattern", "final")):
+        un = (metrics.get(key) or {}).get("unmatched") or {}
+        if un.get("estimated") or un.get("true"):
+            notes.append(f"{what} pattern: panels without a counterpart, estimated {un.get('estimated') or []}, "
+                         f"true {un.get('true') or []} (left out of the per-panel means; the area-weighted "
+                         "area error counts each at its full area)")
     for row in result.grade_table or []:
         for w in (row.get("warnings") or []) if isinstance(row, dict) else []:
             notes.append(f"grading: {w}")
