@@ -18,6 +18,19 @@ from pathlib import Path
 
 import numpy as np
 
+from unsew import __version__
+from unsew._memory import peak_rss_mb
+from unsew.fit.config import config_to_dict
+from unsew.fit.report import write_fit_report
+from unsew.io.dxf import write_dxf
+from unsew.io.garmentcode import save_pattern
+from unsew.io.mesh import write_obj
+from unsew.io.svg import write_svg
+from unsew.meshing import write_rest_obj
+from unsew.metrics.panels import pattern_metrics
+from unsew.metrics.surface import surface_metrics
+from unsew.sim.material import material_to_dict
+
 __all__ = ["write_result", "result_metrics", "pattern_errors", "file_sha256", "pattern_with_extras",
            "BASE_PATTERN_FILE", "GRADED_PATTERN_FILE"]
 
@@ -48,8 +61,6 @@ def pattern_with_extras(result) -> object:
     sym = getattr(params, "symmetry", None)
     if sym is not None and hasattr(sym, "to_dict"):
         extras["symmetry"] = sym.to_dict()
-    from unsew.sim.material import material_to_dict
-
     extras["material"] = material_to_dict(result.material)
     p.unsew = {k: v for k, v in extras.items() if v is not None}
     return p
@@ -58,8 +69,6 @@ def pattern_with_extras(result) -> object:
 def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     """3D metrics of the final drape against the target and, if the case has a true pattern,
     the pattern metrics; plus the final loss terms and timings."""
-    from unsew.metrics.surface import surface_metrics
-
     faces = np.asarray(result.mesh.faces)
     m = {"surface": surface_metrics(result.x, faces, case.target_verts, case.target_faces, n_samples=n_samples)}
     if result.x_base is not None:
@@ -84,8 +93,6 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     if result.mesh_spread is not None:
         m["mesh_spread"] = result.mesh_spread.as_dict()  # the returned pattern on two other meshes
     m["timings_s"] = result.timings
-    from unsew._memory import peak_rss_mb
-
     m["peak_memory_mb"] = peak_rss_mb()  # the process's peak resident memory so far [MB]
     if result.drape_check is not None:
         m["drape_check"] = result.drape_check.as_dict()  # the result on its body: inside %, stretch, ...
@@ -102,8 +109,6 @@ def pattern_errors(result, pattern_gt) -> dict:
     last absent without grading). Panels without a counterpart (a waistband the base lacks) are
     listed under each key's ``unmatched``; a pattern that cannot be compared at all gets
     ``{"error": reason}`` under its key without sinking the others."""
-    from unsew.metrics.panels import pattern_metrics
-
     out = {}
     for key, pat in (("pattern", result.pattern), ("pattern_base", result.base_pattern),
                      ("pattern_graded", result.graded_pattern)):
@@ -125,15 +130,6 @@ def write_result(work: Path, result, case, cfg, *, report: bool = True, metrics:
     """Write every output file of a fit into the folder ``work`` (which the caller renames).
     Returns the metrics dict."""
     import yaml
-
-    from unsew import __version__
-    from unsew.fit.config import config_to_dict
-    from unsew.io.dxf import write_dxf
-    from unsew.io.garmentcode import save_pattern
-    from unsew.io.mesh import write_obj
-    from unsew.io.svg import write_svg
-    from unsew.meshing import write_rest_obj
-    from unsew.sim.material import material_to_dict
 
     work = Path(work)
     work.mkdir(parents=True, exist_ok=True)
@@ -161,8 +157,6 @@ def write_result(work: Path, result, case, cfg, *, report: bool = True, metrics:
     }
     (work / "config.yaml").write_text(yaml.safe_dump(cfg_out, sort_keys=False))
     if report:
-        from unsew.fit.report import write_fit_report
-
         write_fit_report(work, result, case, metrics, config=cfg_out)
     return metrics
 

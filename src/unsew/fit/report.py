@@ -9,15 +9,15 @@ from pathlib import Path
 
 import numpy as np
 
+from unsew.metrics.surface import closest_points
+from unsew.report.fit_report import write_fit_report as _write
+from unsew.sim.material import material_to_dict
+
 __all__ = ["write_fit_report"]
 
 
 def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | None = None) -> Path:
     """Write report.html (figures embedded) into ``work``; figures go to ``work/figures``."""
-    from unsew.metrics.surface import closest_points
-    from unsew.report.fit_report import write_fit_report as _write
-    from unsew.sim.material import material_to_dict
-
     faces = np.asarray(result.mesh.faces)
     _, dist, _ = closest_points(np.asarray(result.x), np.asarray(case.target_verts), np.asarray(case.target_faces))
     patterns = [("base", result.base_pattern)]
