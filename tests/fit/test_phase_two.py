@@ -3,7 +3,7 @@ hip corners, in the fit's own fabric (benchmarks/bench_phase_two.py prints the s
 Grading moves hems, cuffs and necklines by a length and a girth and leaves the hip corners where
 the base has them, so everything the fit gains over the graded pattern is phase two's.
 
-Slow (about 2.5 min on a busy 2-core machine: the dress is grading's slowest garment). The
+Slow (98 s on the shared 2-core VM: the dress is grading's slowest garment). The
 default suite's proof that phase two lowers the pattern error is
 tests/fit/test_fit_small.py::test_phase_two_lowers_the_pattern_error_below_grading."""
 
