@@ -11,7 +11,11 @@ that come without a skeleton?
    elbow=lowerarm01, wrist=wrist, hip=upperleg01, knee=lowerleg01, ankle=foot). The rig's fixed
    shares were read on the "tuning" bodies; the "held-out" bodies were added after the last change
    to the rig and not looked at before this table.
-2. GarmentCode's bodies (no skeleton): rigged, then ``measure_body`` against their .yaml (cm).
+2. Bust with the arms raised (anny): each shape of (1) built in A- and in T-pose; the arms-down
+   bust (``measure_body`` on the A body with anny's joints), the trunk girth at the bust points of
+   the T body rigged from its mesh, their ratio (its median is ``unsew.body.measure.RAISED_ARM_BUST``),
+   and the rigged T body's bust as ``measure_body`` reads it now; also the A body's bust once rigged.
+3. GarmentCode's bodies (no skeleton): rigged, then ``measure_body`` against their .yaml (cm).
 
 Prints tables; asserts nothing.
 """
@@ -86,6 +90,31 @@ def _anny_table(previews: Path | None) -> None:
                 title="Per joint, over all bodies")
 
 
+def _bust_pose_table() -> None:
+    from unsew.body.anny_body import make_anny_body
+    from unsew.body.body import Body
+    from unsew.body.measure import RAISED_ARM_BUST, bust_point_girth, measure_body
+    from unsew.body.rig import rig_skeleton
+
+    rows, seen = [], set()
+    for name, (ph, pose, _group) in ANNY_BODIES.items():
+        key = tuple(sorted(ph.items()))
+        if not isinstance(pose, str) or key in seen:
+            continue
+        seen.add(key)
+        a, t = make_anny_body(ph, pose="A"), make_anny_body(ph, pose="T")
+        a_rig = Body(a.verts, a.faces, rig_skeleton(a.verts, a.faces), rigged=True)
+        t_rig = Body(t.verts, t.faces, rig_skeleton(t.verts, t.faces), rigged=True)
+        bust_a = measure_body(a).bust
+        g_t = bust_point_girth(t_rig)[0]
+        bust_t = measure_body(t_rig).bust
+        rows.append({"shape": name, "A bust cm": bust_a * 100, "A bust rigged cm": measure_body(a_rig).bust * 100,
+                     "T bust-point girth cm": g_t * 100, "ratio A/T": bust_a / g_t,
+                     "T bust rigged cm": bust_t * 100, "T - A cm": (bust_t - bust_a) * 100})
+    print_table(rows, title="Bust with the arms raised: anny shapes in A- and T-pose", digits=2)
+    print(f"median ratio {np.median([r['ratio A/T'] for r in rows]):.4f}  (RAISED_ARM_BUST = {RAISED_ARM_BUST})")
+
+
 def _foreign_table(folder: Path, previews: Path | None) -> None:
     import yaml
 
@@ -132,6 +161,7 @@ def main() -> None:
             print("anny is not installed (pip install unsew[anny]): skipping the anny bodies")
         else:
             _anny_table(args.previews)
+            _bust_pose_table()
     if args.foreign.is_dir():
         _foreign_table(args.foreign, args.previews)
     else:
