@@ -229,7 +229,8 @@ def test_a_pill_or_ball_of_a_persons_height_is_refused_in_one_line(tmp_path, sha
 def test_raised_arms_keep_the_bust():
     """The default body with both arms raised to horizontal by its own skinning: the bust is read
     at the bust points (the fullest level is at the stretched armpits) and stays within 2 cm of
-    the arms-down bust; waist and hip do not move."""
+    the arms-down bust; waist and hip do not move; the shoulder width (no acromion edge on a
+    raised arm) stays within 3 cm."""
     from unsew.body.measure import arms_raised, bust_point_girth, measure_body
 
     b = default_body()
@@ -245,6 +246,7 @@ def test_raised_arms_keep_the_bust():
     assert sk.position("spine")[1] < y < sk.position("neck")[1]
     assert abs(m1.bust - m0.bust) < 0.02, (m0.bust, m1.bust)
     assert abs(m1.waist - m0.waist) < 0.01 and abs(m1.hip - m0.hip) < 0.01
+    assert abs(m1.shoulder_width - m0.shoulder_width) < 0.03, (m0.shoulder_width, m1.shoulder_width)
 
 
 def test_io_knows_no_body():

@@ -21,7 +21,9 @@ Girths are convex-hull perimeters of cross-sections, as a tape measure reads the
 Arms and legs are told apart by the skinning weights when the body has them, else by the nearest
 bone (``Body.vertex_parts``). Lengths follow the skeleton: arm = shoulder->elbow->wrist, leg =
 hip->knee->ankle, torso = neck base to the waist level, shoulder width = between the outermost
-surface points 3 cm above the shoulder joints (acromion level). All in metres.
+surface points 3 cm above the shoulder joints (acromion level); with an arm raised, whose top
+then continues the shoulder's, the distance between the shoulder joints plus
+``RAISED_ARM_SHOULDER_OUT`` on each side (read on anny bodies in both poses). All in metres.
 """
 
 from __future__ import annotations
@@ -33,7 +35,7 @@ from unsew.body.skeleton import Bone, distance_to_bone
 from unsew.errors import InputError
 from unsew.geometry.topology import unique_edges
 
-__all__ = ["measure_body", "section_points", "hull_perimeter", "RAISED_ARM_DEG", "RAISED_ARM_BUST",
+__all__ = ["measure_body", "section_points", "hull_perimeter", "RAISED_ARM_DEG", "RAISED_ARM_BUST", "RAISED_ARM_SHOULDER_OUT",
            "arms_raised", "bust_point_girth"]
 
 #: An upper arm (shoulder -> elbow) less than this far below horizontal is raised [degrees]
@@ -43,6 +45,9 @@ RAISED_ARM_DEG = 25.0
 #: anny shapes built in A- and T-pose (0.985-1.007; ``python -m benchmarks rig``, "Bust with the
 #: arms raised").
 RAISED_ARM_BUST = 0.993
+#: With an arm raised, the acromion sits this far [m] outside the shoulder joint: the median of
+#: (arms-down shoulder width - raised-arms joint distance) / 2 over the same anny shapes (0.017-0.047).
+RAISED_ARM_SHOULDER_OUT = 0.029
 
 
 def section_points(verts: np.ndarray, faces: np.ndarray, origin: np.ndarray, normal: np.ndarray) -> np.ndarray:
@@ -128,7 +133,10 @@ def measure_body(body) -> Measurements:
     leg_v = (parts == "left_leg") | ((parts == "torso") & (V[:, 0] > pelvis[0]))
     leg_f = leg_v[F].all(axis=1) & (V[F][:, :, 0].min(axis=1) > pelvis[0])
     thigh = _horizontal_girth(V, F, leg_f, crotch_y - 0.03)
-    shoulder_width = _outer_x(V, l_sh, 1.0) + _outer_x(V, r_sh, -1.0)
+    if arms_raised(sk):  # the raised arm's top continues the shoulder's: no outer edge to find
+        shoulder_width = float(abs(l_sh[0] - r_sh[0])) + 2 * RAISED_ARM_SHOULDER_OUT
+    else:
+        shoulder_width = _outer_x(V, l_sh, 1.0) + _outer_x(V, r_sh, -1.0)
     arm = 0.5 * (
         _length(sk, "left_shoulder", "left_elbow", "left_wrist") + _length(sk, "right_shoulder", "right_elbow", "right_wrist")
     )
