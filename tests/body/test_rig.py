@@ -261,3 +261,17 @@ def test_io_knows_no_body():
                 [a.name for a in node.names] if isinstance(node, ast.Import) else [])
             bad += [f"{p.name}: {m}" for m in mods if m == "unsew.body" or m.startswith("unsew.body.")]
     assert not bad, bad
+
+
+def test_foreign_cases_on_garmentcode_bodies_carry_no_skeleton():
+    """The foreign benchmark's cases on GarmentCode's body (body.obj, no skeleton.json) load
+    rigged from the mesh, and the case says so."""
+    from unsew.body.case import load_case
+
+    root = Path(__file__).resolve().parents[2] / "benchmarks" / "foreign" / "cases"
+    dirs = sorted(root.glob("*__gc_*"))
+    assert dirs, "no foreign case on a GarmentCode body"
+    for d in dirs:
+        assert (d / "body.obj").is_file() and not (d / "skeleton.json").exists(), d.name
+    case = load_case(dirs[0])
+    assert case.body.rigged and any("no skeleton.json" in n for n in case.notes)
