@@ -35,8 +35,10 @@ from unsew.body.skeleton import Bone, distance_to_bone
 from unsew.errors import InputError
 from unsew.geometry.topology import unique_edges
 
-__all__ = ["measure_body", "section_points", "hull_perimeter", "RAISED_ARM_DEG", "RAISED_ARM_BUST", "RAISED_ARM_SHOULDER_OUT",
-           "arms_raised", "bust_point_girth"]
+__all__ = [
+    "measure_body", "section_points", "hull_perimeter", "arms_raised", "bust_point_girth",
+    "RAISED_ARM_DEG", "RAISED_ARM_BUST", "RAISED_ARM_SHOULDER_OUT",
+]
 
 #: An upper arm (shoulder -> elbow) less than this far below horizontal is raised [degrees]
 #: (A-pose arms hang 44-51 degrees below it on anny and GarmentCode bodies, T-pose ones -3-4).
@@ -113,11 +115,10 @@ def measure_body(body) -> Measurements:
     crotch_y = float(V[mid, 1].min()) if mid.any() else float(0.5 * (knee_y + pelvis[1]))
 
     # bust: fullest torso level between spine and shoulders (arms cut away), arms down
-    y_lo = spine[1] + 0.3 * (chest[1] - spine[1])
     if arms_raised(sk):
         bust = RAISED_ARM_BUST * bust_point_girth(body)[0]
     else:
-        ys, g = _scan(V, F, torso_face, y_lo, sh_y - 0.03)
+        ys, g = _scan(V, F, torso_face, spine[1] + 0.3 * (chest[1] - spine[1]), sh_y - 0.03)
         bust = float(g.max())
     # waist: narrowest torso level between hip level and chest
     ys_w, g_w = _scan(V, F, torso_face, pelvis[1] + 0.04, chest[1])

@@ -332,7 +332,7 @@ def rig_skeleton(verts: np.ndarray, faces: np.ndarray, *, debug: dict | None = N
 def _check_limbs_thin(legs: dict, arms: dict, H: float) -> None:
     """Refuse a shape whose five extremities do not end limbs: a person's ankle (the narrowest
     ring 10-25 % of H from the toes) and wrist (7-22 % from the finger tips) are far thinner
-    than a quarter and a fifth of the height; a ball's or a box's rings there are not."""
+    than a quarter and a fifth of the height; a 1.7 m capsule's rings there are not."""
     for limbs, (a, b), most, what in ((legs, (0.10, 0.25), 0.25, "ankle"), (arms, _WRIST_WINDOW, 0.20, "wrist")):
         for side, limb in limbs.items():
             m = (limb.t > a * H) & (limb.t < b * H) & (limb.g > 0)
