@@ -11,7 +11,13 @@ that come without a skeleton?
    elbow=lowerarm01, wrist=wrist, hip=upperleg01, knee=lowerleg01, ankle=foot). The rig's fixed
    shares were read on the "tuning" bodies; the "held-out" bodies were added after the last change
    to the rig and not looked at before this table.
-2. GarmentCode's bodies (no skeleton): rigged, then ``measure_body`` against their .yaml (cm).
+2. Bust with the arms raised (anny): each shape of (1) built in A- and in T-pose; the arms-down
+   bust (``measure_body`` on the A body with anny's joints), the trunk girth at the bust points of
+   the T body rigged from its mesh, their ratio (its median is ``unsew.body.measure.RAISED_ARM_BUST``),
+   and the rigged T body's bust as ``measure_body`` reads it now; also the A body's bust once rigged.
+   Likewise the shoulder width: arms down (A, anny's joints) against the rigged T body's shoulder
+   joints (the median of half their difference is ``RAISED_ARM_SHOULDER_OUT``).
+3. GarmentCode's bodies (no skeleton): rigged, then ``measure_body`` against their .yaml (cm).
 
 Prints tables; asserts nothing.
 """
@@ -86,6 +92,36 @@ def _anny_table(previews: Path | None) -> None:
                 title="Per joint, over all bodies")
 
 
+def _bust_pose_table() -> None:
+    from unsew.body.anny_body import make_anny_body
+    from unsew.body.body import Body
+    from unsew.body.measure import RAISED_ARM_BUST, RAISED_ARM_SHOULDER_OUT, bust_point_girth, measure_body
+    from unsew.body.rig import rig_skeleton
+
+    rows, seen = [], set()
+    for name, (ph, pose, _group) in ANNY_BODIES.items():
+        key = tuple(sorted(ph.items()))
+        if not isinstance(pose, str) or key in seen:
+            continue
+        seen.add(key)
+        a, t = make_anny_body(ph, pose="A"), make_anny_body(ph, pose="T")
+        a_rig = Body(a.verts, a.faces, rig_skeleton(a.verts, a.faces), rigged=True)
+        t_rig = Body(t.verts, t.faces, rig_skeleton(t.verts, t.faces), rigged=True)
+        ma, mt = measure_body(a), measure_body(t_rig)
+        g_t = bust_point_girth(t_rig)[0]
+        sk = t_rig.skeleton
+        joints_t = abs(sk.position("left_shoulder")[0] - sk.position("right_shoulder")[0])
+        rows.append({"shape": name, "A bust cm": ma.bust * 100, "A bust rigged cm": measure_body(a_rig).bust * 100,
+                     "T bust-point girth cm": g_t * 100, "ratio A/T": ma.bust / g_t,
+                     "T bust rigged cm": mt.bust * 100, "T - A cm": (mt.bust - ma.bust) * 100,
+                     "A shoulder cm": ma.shoulder_width * 100, "T shoulder joints cm": joints_t * 100,
+                     "out cm": (ma.shoulder_width - joints_t) / 2 * 100,
+                     "T shoulder rigged cm": mt.shoulder_width * 100})
+    print_table(rows, title="Bust and shoulder width with the arms raised: anny shapes in A- and T-pose", digits=2)
+    print(f"median ratio {np.median([r['ratio A/T'] for r in rows]):.4f}  (RAISED_ARM_BUST = {RAISED_ARM_BUST}); "
+          f"median out {np.median([r['out cm'] for r in rows]):.2f} cm  (RAISED_ARM_SHOULDER_OUT = {RAISED_ARM_SHOULDER_OUT} m)")
+
+
 def _foreign_table(folder: Path, previews: Path | None) -> None:
     import yaml
 
@@ -132,6 +168,7 @@ def main() -> None:
             print("anny is not installed (pip install unsew[anny]): skipping the anny bodies")
         else:
             _anny_table(args.previews)
+            _bust_pose_table()
     if args.foreign.is_dir():
         _foreign_table(args.foreign, args.previews)
     else:

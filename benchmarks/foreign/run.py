@@ -39,6 +39,10 @@ FOREIGN_PATTERNS = Path(os.environ.get("UNSEW_FOREIGN_PATTERNS") or next(
     (p / "shared" / "foreign" / "patterns" for p in Path(__file__).resolve().parents[2].parents
      if (p / "shared" / "foreign" / "patterns").is_dir()), Path("shared/foreign/patterns")))
 
+#: GarmentCode's bodies (meshes without skeleton, measurements .yaml in cm): shared/foreign/bodies
+#: beside the checkout, or $UNSEW_FOREIGN_BODIES.
+FOREIGN_BODIES = Path(os.environ.get("UNSEW_FOREIGN_BODIES") or FOREIGN_PATTERNS.parent / "bodies")
+
 _P = dict(gender=0.5, age=0.5, muscle=0.5, weight=0.5, height=0.5, proportions=0.5)
 #: Bodies by model (meta.json's "body"): anny phenotypes in [0, 1] and a pose.
 BODIES = {
@@ -49,6 +53,9 @@ BODIES = {
     "anny_tpose": {"model": "anny", "phenotype": dict(_P), "pose": "T"},
     # left leg swung 0.3 rad forward at the hip (world-frame rotation vector)
     "anny_leg_forward": {"model": "anny", "phenotype": dict(_P), "pose": {"left_hip": [-0.3, 0.0, 0.0]}},
+    # GarmentCode's mean body (A-pose): its mesh goes into the case folder as body.obj with no
+    # skeleton.json, so the case is rigged from the mesh wherever it is read (and so is the target's body here)
+    "gc_mean_all": {"model": "garmentcode", "mesh": "mean_all.obj", "pose": "A"},
 }
 
 #: case id -> (design name in designs.DESIGNS, body key). Ordered so that the first 15 give
@@ -78,6 +85,9 @@ CASES = {
     "tee_fitted_short__tall_thin": ("tee_fitted_short", "anny_tall_thin"),
     "tee_loose_long__male_heavy": ("tee_loose_long", "anny_male_heavy"),
     "dress_pencil_gc__default": ("gc:dress_pencil_specification.json", "anny_default"),
+    "skirt_aline_knee__gc_mean_all": ("skirt_aline_knee", "gc_mean_all"),
+    "tee_fitted_short__gc_mean_all": ("tee_fitted_short", "gc_mean_all"),
+    "trousers_straight__gc_mean_all": ("trousers_straight", "gc_mean_all"),
 }
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").
@@ -93,9 +103,14 @@ def _log(*a):
 
 
 def _body(key):
+    """The body of a BODIES key: built by anny, or a GarmentCode mesh rigged from its shape."""
+    spec = BODIES[key]
+    if spec["model"] == "garmentcode":
+        from unsew.body.body import load_body
+
+        return load_body(FOREIGN_BODIES / spec["mesh"])  # no skeleton.json: rigged (unsew.body.rig)
     from unsew.body.anny_body import make_anny_body
 
-    spec = BODIES[key]
     return make_anny_body(spec["phenotype"], pose=spec["pose"])
 
 
@@ -232,6 +247,8 @@ def build_case(cid, out_root: Path):
         fh.write(f"# foreign benchmark case {cid}: draped by newton {newton.__version__} SolverStyle3D\n")
         fh.write("".join(f"v {a:.5f} {b:.5f} {c:.5f}\n" for a, b, c in x))
         fh.write("".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces))
+    if BODIES[bkey]["model"] == "garmentcode":  # the wearer travels with the case, without a skeleton
+        shutil.copyfile(FOREIGN_BODIES / BODIES[bkey]["mesh"], tmp / "body.obj")
     (tmp / "pattern_gt.json").write_text(json.dumps(spec, indent=1))
     (tmp / "meta.json").write_text(json.dumps(meta, indent=1))
     shutil.rmtree(d, ignore_errors=True)

@@ -3,7 +3,12 @@
 Girths are convex-hull perimeters of cross-sections, as a tape measure reads them:
 
 - bust: horizontal section of torso (arms cut away) at its fullest level between the spine and
-  shoulder joints;
+  shoulder joints, with the arms down. With an upper arm raised to less than
+  ``RAISED_ARM_DEG`` below horizontal (T-pose) that level is at the armpits, which the raised arm
+  pulls up and out; the bust is then read at the bust points instead (the level of the trunk's
+  greatest depth, below the armpits) and scaled by ``RAISED_ARM_BUST``, the ratio of the
+  arms-down bust to that girth with the arms raised, read on anny bodies measured in both poses
+  (``python -m benchmarks rig``);
 - waist: the narrowest torso section between the hip level and the chest joint (the natural
   waist); its height is ``waist_height``;
 - hip: the fullest horizontal section of torso and legs (arms cut away) between the crotch and
@@ -16,7 +21,9 @@ Girths are convex-hull perimeters of cross-sections, as a tape measure reads the
 Arms and legs are told apart by the skinning weights when the body has them, else by the nearest
 bone (``Body.vertex_parts``). Lengths follow the skeleton: arm = shoulder->elbow->wrist, leg =
 hip->knee->ankle, torso = neck base to the waist level, shoulder width = between the outermost
-surface points 3 cm above the shoulder joints (acromion level). All in metres.
+surface points 3 cm above the shoulder joints (acromion level); with an arm raised, whose top
+then continues the shoulder's, the distance between the shoulder joints plus
+``RAISED_ARM_SHOULDER_OUT`` on each side (read on anny bodies in both poses). All in metres.
 """
 
 from __future__ import annotations
@@ -25,9 +32,24 @@ import numpy as np
 
 from unsew.pattern.measurements import Measurements
 from unsew.body.skeleton import Bone, distance_to_bone
+from unsew.errors import InputError
 from unsew.geometry.topology import unique_edges
 
-__all__ = ["measure_body", "section_points", "hull_perimeter"]
+__all__ = [
+    "measure_body", "section_points", "hull_perimeter", "arms_raised", "bust_point_girth",
+    "RAISED_ARM_DEG", "RAISED_ARM_BUST", "RAISED_ARM_SHOULDER_OUT",
+]
+
+#: An upper arm (shoulder -> elbow) less than this far below horizontal is raised [degrees]
+#: (A-pose arms hang 44-51 degrees below it on anny and GarmentCode bodies, T-pose ones -3-4).
+RAISED_ARM_DEG = 25.0
+#: Arms-down bust / trunk girth at the bust points with both arms raised: the median over eight
+#: anny shapes built in A- and T-pose (0.985-1.007; ``python -m benchmarks rig``, "Bust with the
+#: arms raised").
+RAISED_ARM_BUST = 0.993
+#: With an arm raised, the acromion sits this far [m] outside the shoulder joint: the median of
+#: (arms-down shoulder width - raised-arms joint distance) / 2 over the same anny shapes (0.017-0.047).
+RAISED_ARM_SHOULDER_OUT = 0.029
 
 
 def section_points(verts: np.ndarray, faces: np.ndarray, origin: np.ndarray, normal: np.ndarray) -> np.ndarray:
@@ -92,9 +114,12 @@ def measure_body(body) -> Measurements:
     mid = (np.abs(V[:, 0] - pelvis[0]) < 0.015) & (V[:, 1] > knee_y) & (V[:, 1] < pelvis[1])
     crotch_y = float(V[mid, 1].min()) if mid.any() else float(0.5 * (knee_y + pelvis[1]))
 
-    # bust: fullest torso level between spine and shoulders (arms cut away)
-    ys, g = _scan(V, F, torso_face, spine[1] + 0.3 * (chest[1] - spine[1]), sh_y - 0.03)
-    bust = float(g.max())
+    # bust: fullest torso level between spine and shoulders (arms cut away), arms down
+    if arms_raised(sk):
+        bust = RAISED_ARM_BUST * bust_point_girth(body)[0]
+    else:
+        ys, g = _scan(V, F, torso_face, spine[1] + 0.3 * (chest[1] - spine[1]), sh_y - 0.03)
+        bust = float(g.max())
     # waist: narrowest torso level between hip level and chest
     ys_w, g_w = _scan(V, F, torso_face, pelvis[1] + 0.04, chest[1])
     k = int(np.argmin(np.where(g_w > 0, g_w, np.inf)))
@@ -109,7 +134,10 @@ def measure_body(body) -> Measurements:
     leg_v = (parts == "left_leg") | ((parts == "torso") & (V[:, 0] > pelvis[0]))
     leg_f = leg_v[F].all(axis=1) & (V[F][:, :, 0].min(axis=1) > pelvis[0])
     thigh = _horizontal_girth(V, F, leg_f, crotch_y - 0.03)
-    shoulder_width = _outer_x(V, l_sh, 1.0) + _outer_x(V, r_sh, -1.0)
+    if arms_raised(sk):  # the raised arm's top continues the shoulder's: no outer edge to find
+        shoulder_width = float(abs(l_sh[0] - r_sh[0])) + 2 * RAISED_ARM_SHOULDER_OUT
+    else:
+        shoulder_width = _outer_x(V, l_sh, 1.0) + _outer_x(V, r_sh, -1.0)
     arm = 0.5 * (
         _length(sk, "left_shoulder", "left_elbow", "left_wrist") + _length(sk, "right_shoulder", "right_elbow", "right_wrist")
     )
@@ -130,6 +158,45 @@ def measure_body(body) -> Measurements:
         crotch_height=crotch_y - floor,
         neck_height=float(neck[1] - floor),
     )
+
+
+def arms_raised(skeleton) -> bool:
+    """Whether either upper arm (shoulder -> elbow) is less than ``RAISED_ARM_DEG`` below horizontal."""
+    for side in ("left", "right"):
+        d = skeleton.position(f"{side}_elbow") - skeleton.position(f"{side}_shoulder")
+        if np.degrees(np.arcsin(-d[1] / max(float(np.linalg.norm(d)), 1e-12))) < RAISED_ARM_DEG:
+            return True
+    return False
+
+
+def bust_point_girth(body, *, step: float = 0.005) -> tuple[float, float]:
+    """Girth [m] and height [m, world y] of the trunk at its bust points: of the horizontal loops
+    around the chest joint's vertical axis, from 30 % of the way spine -> chest up to 3 cm under
+    the shoulders, the one of greatest front-to-back depth, read below the armpits (where the
+    loop's girth first jumps by over 15 %, the arms have joined it). The girth is the loop's
+    convex-hull perimeter (a tape over the bust points). Does not depend on which faces are
+    taken for arms, so it reads the same on a rigged body as with the body model's own joints.
+    """
+    from unsew.body.rig import level_loops, surrounds
+
+    V, F, P = body.verts, body.faces, body.skeleton.position
+    axis = P("chest")[[0, 2]]
+    spine, chest = P("spine"), P("chest")
+    sh_y = 0.5 * (P("left_shoulder")[1] + P("right_shoulder")[1])
+    rows = []  # (y, girth, depth)
+    for y in np.arange(spine[1] + 0.3 * (chest[1] - spine[1]), sh_y - 0.03, step):
+        loops = [lp for lp in level_loops(V, F, V[:, 1], y) if surrounds(axis, lp[2][:, [0, 2]])]
+        if not loops:
+            continue
+        pts = max(loops, key=lambda lp: lp[1])[2]
+        g = hull_perimeter(pts[:, [0, 2]])
+        if rows and g > 1.15 * rows[-1][1]:
+            break
+        rows.append((float(y), g, float(np.ptp(pts[:, 2]))))
+    if not rows:
+        raise InputError("cannot measure the bust: no horizontal section surrounds the chest")
+    y, g, _ = max(rows, key=lambda r: r[2])
+    return g, y
 
 
 def _neck_girth(V, F, neck, head) -> float:

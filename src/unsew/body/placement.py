@@ -304,11 +304,15 @@ def _body_stacks(v, parts, J, cx0, crotch_y, ys, clearance) -> dict:
 
 
 def _shoulder_line(v, parts, J, cx0):
-    """The shoulder line: top of the torso (below the neck joint) per lateral position.
+    """The shoulder line: top of the torso (below the neck joint) per lateral position, over a
+    raised arm's root (T-pose) where there is one: beyond the torso's side the torso's own top
+    is the armpit, and a shoulder folded down to it would run through the arm.
 
     Returns (xb, ytop): lateral positions (101,) [m] every 1 cm over cx0 +- 0.5 m, and the
     torso's top height at each (101,) [m] (gaps interpolated)."""
     top = v[np.isin(parts, ["torso"]) & (v[:, 1] < J["neck"][1])]
+    roots = [_arm_root(v, parts, J, side, cx0) for side in ("left", "right")]
+    top = np.concatenate([top] + [r for r in roots if r is not None])
     xb = np.arange(-0.5, 0.5 + 1e-9, 0.01) + cx0
     ib = np.clip(np.round((top[:, 0] - xb[0]) / 0.01).astype(int), 0, len(xb) - 1)
     ytop = np.full(len(xb), -np.inf)

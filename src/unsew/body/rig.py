@@ -41,7 +41,7 @@ from unsew.body.skeleton import Skeleton
 from unsew.errors import InputError
 from unsew.geometry.topology import unique_edges
 
-__all__ = ["rig_skeleton", "RIG_JOINTS"]
+__all__ = ["rig_skeleton", "RIG_JOINTS", "level_loops", "surrounds"]
 
 #: The joints :func:`rig_skeleton` places: name -> (parent, part) (FORMATS.md's 17).
 RIG_JOINTS: dict[str, tuple[str | None, str]] = {
@@ -109,9 +109,13 @@ def _graph(verts: np.ndarray, faces: np.ndarray):
     return a + a.T
 
 
-def _loops(verts: np.ndarray, faces: np.ndarray, g: np.ndarray, t: float, lo=None, hi=None, order=None):
-    """The level set {g = t} of a vertex field g (V,) on the surface, as loops. Returns a list of
-    (centroid (3,) [m], length [m], points (k, 3) [m]) per loop, longest first."""
+def level_loops(verts: np.ndarray, faces: np.ndarray, g: np.ndarray, t: float, lo=None, hi=None, order=None):
+    """The level set {g = t} of a vertex field g (V,) on the surface, as loops.
+
+    verts: (V, 3) float64 [m]; faces: (F, 3) int; g: (V,) float64; t: the level (g's unit).
+    ``lo``/``hi``/``order``: g's per-face min and max and ``argsort(lo)``, to reuse over many
+    levels. Returns a list of (centroid (3,) [m], length [m], points (k, 3) [m]) per loop,
+    longest first."""
     import scipy.sparse as sp
     from scipy.sparse.csgraph import connected_components
 
@@ -162,7 +166,7 @@ def _rings(verts: np.ndarray, faces: np.ndarray, g: np.ndarray, levels: np.ndarr
     order = np.argsort(lo)
     cs, ls, ncs = [], [], []
     for t in levels:
-        loops = _loops(verts, faces, g, t, lo, hi, order)
+        loops = level_loops(verts, faces, g, t, lo, hi, order)
         if not loops:
             cs.append(np.full(3, np.nan))
             ls.append(0.0)
@@ -174,7 +178,7 @@ def _rings(verts: np.ndarray, faces: np.ndarray, g: np.ndarray, levels: np.ndarr
     return np.array(cs), np.array(ls), np.array(ncs)
 
 
-def _inside(p: np.ndarray, loop: np.ndarray) -> bool:
+def surrounds(p: np.ndarray, loop: np.ndarray) -> bool:
     """Whether 2D point p (2,) is inside the region of a loop's points (k, 2), read by angle:
     the loop's points surround p when every direction from p has a point within 60 degrees."""
     d = loop - p
@@ -207,10 +211,10 @@ def _column(verts: np.ndarray, faces: np.ndarray, top: np.ndarray, y_end: float,
     cs, gs, los, his = [], [], [], []
     crotch = len(ys)
     for i, y in enumerate(ys):
-        loops = _loops(verts, faces, g, y, lo_f, hi_f, order)
+        loops = level_loops(verts, faces, g, y, lo_f, hi_f, order)
         best = None
         for c, length, pts in loops:
-            if _inside(axis, pts[:, [0, 2]]) and (best is None or length > best[1]):
+            if surrounds(axis, pts[:, [0, 2]]) and (best is None or length > best[1]):
                 best = (c, length, pts)
         if best is None:
             if i > 10:
@@ -310,6 +314,7 @@ def rig_skeleton(verts: np.ndarray, faces: np.ndarray, *, debug: dict | None = N
     arms = {}
     for side, i in (("left", lh), ("right", rh)):
         arms[side] = _limb(V, F, D[i], ends[i], t_max=0.55 * H, step=step, t_min_root=0.25 * H)
+    _check_limbs_thin(legs, arms, H)
     if debug is not None:
         debug.update(ends={n: ends[i] for n, i in (("head", ih), ("left_hand", lh), ("right_hand", rh),
                                                   ("left_foot", lf), ("right_foot", rf))},
@@ -322,6 +327,20 @@ def rig_skeleton(verts: np.ndarray, faces: np.ndarray, *, debug: dict | None = N
     names = list(RIG_JOINTS)
     parents = np.array([-1 if RIG_JOINTS[n][0] is None else names.index(RIG_JOINTS[n][0]) for n in names])
     return Skeleton(names, parents, np.array([J[n] for n in names]), [RIG_JOINTS[n][1] for n in names])
+
+
+def _check_limbs_thin(legs: dict, arms: dict, H: float) -> None:
+    """Refuse a shape whose five extremities do not end limbs: a person's ankle (the narrowest
+    ring 10-25 % of H from the toes) and wrist (7-22 % from the finger tips) are far thinner
+    than a quarter and a fifth of the height; a 1.7 m capsule's rings there are not."""
+    for limbs, (a, b), most, what in ((legs, (0.10, 0.25), 0.25, "ankle"), (arms, _WRIST_WINDOW, 0.20, "wrist")):
+        for side, limb in limbs.items():
+            m = (limb.t > a * H) & (limb.t < b * H) & (limb.g > 0)
+            if not m.any() or limb.g[m].min() > most * H:
+                raise InputError(
+                    f"body mesh does not read as a person: no {side} {what} thinner than {most:.0%} of its "
+                    f"height {H:.2f} m; give its skeleton.json"
+                )
 
 
 def _arm_joints(arm: _Limb, shoulder: np.ndarray, side: str, H: float) -> dict:
