@@ -11,7 +11,7 @@ from unsew.fit.config import CheckSettings, load_config
 SMALL = dict(edge_length=0.04, iterations=3, steps=8, sew_steps=60, settle_steps=20, target_points=1500,
              material_start=1, material="cotton")
 FILES = ["pattern.json", "pattern.svg", "pattern.dxf", "garment.obj", "garment_rest.obj", "material.json",
-         "metrics.json", "config.yaml", "report.html"]
+         "metrics.json", "config.yaml", "report.html", "pattern_base.json", "pattern_graded.json"]
 
 
 @pytest.fixture(scope="module")
@@ -45,6 +45,10 @@ def test_result_folder_is_complete(small_fit):
     p = load_pattern(out / "pattern.json")
     assert set(p.panels) == set(result.pattern.panels)
     assert "material" in p.unsew and "symmetry" in p.unsew
+    base = load_pattern(out / "pattern_base.json")  # the starting points, saved for their pattern errors
+    assert set(base.panels) == set(result.base_pattern.panels)
+    assert saved["pattern_base"]["area_error_weighted_rel"] >= saved["pattern_base"]["area_error_total_rel"]
+    assert saved["pattern_graded"]["unmatched"] == {"estimated": [], "true": []}
 
 
 def test_fit_improves_on_the_base(small_fit):

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import argparse
 
+from unsew.errors import InputError
+from unsew.io.atomic import check_output
+
 __all__ = ["register", "run", "add_fit_options", "config_from_args"]
 
 
@@ -70,7 +73,6 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from unsew.fit.run import run_fit
-    from unsew.io.atomic import check_output
     from unsew.body.case import load_case
 
     cfg = config_from_args(args)
@@ -92,7 +94,6 @@ def _check_inputs(case, cfg) -> None:
 
     base = getattr(cfg, "base", None)
     if base and Path(str(base)).suffix.lower() == ".json":
-        from unsew.errors import InputError
         from unsew.io.garmentcode import load_pattern
 
         if not Path(str(base)).is_file():

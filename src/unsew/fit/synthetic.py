@@ -12,6 +12,18 @@ from pathlib import Path
 
 import numpy as np
 
+from unsew.body.body import default_body, load_body
+from unsew.body.measure import measure_body
+from unsew.body.skeleton import save_skeleton
+from unsew.dress import dress
+from unsew.fit.config import FitConfig
+from unsew.grading.alter import alter_pattern, alteration_groups
+from unsew.io.atomic import atomic_dir
+from unsew.io.garmentcode import load_pattern, save_pattern
+from unsew.io.mesh import write_obj
+from unsew.pattern.base import make_base_pattern
+from unsew.sim.material import Material, get_material, material_to_dict
+
 __all__ = ["Alteration", "make_truth_pattern", "make_truth_case", "DEFAULT_ALTERATIONS", "off_library"]
 
 
@@ -28,8 +40,6 @@ class Alteration:
     material: object = "jersey"  #: library name or a unsew.sim.material.Material
 
     def as_dict(self) -> dict:
-        from unsew.sim.material import Material, material_to_dict
-
         mat = material_to_dict(self.material) if isinstance(self.material, Material) else self.material
         return {"changes": {k: {"length_m": v[0], "girth_frac": v[1]} for k, v in self.changes.items()},
                 "material": mat}
@@ -43,8 +53,6 @@ def off_library(name: str, seed: int = 0):
     candidate of ``material: auto``. Returns a Material (units as in unsew.sim.material)."""
     import math
     import zlib
-
-    from unsew.sim.material import Material, get_material
 
     m = get_material(name)
     rng = np.random.default_rng([seed, zlib.crc32(name.encode())])
@@ -68,11 +76,6 @@ DEFAULT_ALTERATIONS = {
 
 def make_truth_pattern(garment: str, alteration: Alteration, *, body=None):
     """The base pattern of ``garment`` sized to ``body`` (default body when None), altered."""
-    from unsew.body.body import default_body
-    from unsew.body.measure import measure_body
-    from unsew.grading.alter import alter_pattern, alteration_groups
-    from unsew.pattern.base import make_base_pattern
-
     body = body if body is not None else default_body()
     p = make_base_pattern(garment, measure_body(body))
     groups = alteration_groups(p)
@@ -98,14 +101,6 @@ def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alte
     then and 0.00 mm now (benchmarks/bench_fabric_gap.py). A body written into the case
     (``body_meta=None``) is written first and the target draped on it as loaded back (see below).
     """
-    from unsew.body.body import default_body, load_body
-    from unsew.body.skeleton import save_skeleton
-    from unsew.dress import dress
-    from unsew.fit.config import FitConfig
-    from unsew.io.atomic import atomic_dir
-    from unsew.io.garmentcode import load_pattern, save_pattern
-    from unsew.io.mesh import write_obj
-
     alteration = alteration or DEFAULT_ALTERATIONS[garment]
     body = body if body is not None else default_body()
     p = make_truth_pattern(garment, alteration, body=body)
