@@ -103,6 +103,7 @@ def test_pattern_metrics_with_different_panel_sets():
                           "back": _poly_panel("back", SQ, translation=(0, 0, -0.2))})
     m = pattern_metrics(est, gt)
     assert m["unmatched"] == {"estimated": [], "true": ["belt"]}
+    assert_close(m["unmatched_area_m2"]["true"]["belt"], 0.2, rtol=1e-9) and m["unmatched_area_m2"]["estimated"] == {}
     assert set(m["panels"]) == {"front", "back"}
     assert_close(m["area_error_rel_mean"], 0.05, rtol=1e-9)  # (0.1 + 0) / 2 over matched panels
     assert_close(m["area_error_total_rel"], abs(2.1 - 2.2) / 2.2, rtol=1e-9)  # 0.045: the belt hidden by front

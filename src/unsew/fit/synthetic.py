@@ -32,8 +32,12 @@ class Alteration:
     """Changes from the base pattern, per group of open edges (unsew.grading.alter.alteration_groups).
 
     changes: group ("hem", "sleeves", "legs") -> (length [m], girth [-]): the open edges move
-    outward by ``length`` and widen by the fraction ``girth``. material: the true fabric
-    (library name). A group the garment does not have is ignored.
+    outward by ``length`` and widen by the fraction ``girth``; "group@panel" (e.g. "hem@back")
+    alters only that panel's edges of the group, which grading (one length and girth per
+    contour) cannot express; "waist" -> (length, _): the waist corners of the side seams (where
+    two side-seam edges meet, dresses) move outward by ``length`` (negative: a fitted waist),
+    a shape that no open contour carries, so grading cannot make it either. material: the true fabric (library name). A group the garment does
+    not have is ignored.
     """
 
     changes: dict = field(default_factory=dict)
@@ -80,10 +84,36 @@ def make_truth_pattern(garment: str, alteration: Alteration, *, body=None):
     p = make_base_pattern(garment, measure_body(body))
     groups = alteration_groups(p)
     for key, (length, girth) in alteration.changes.items():
-        if key in groups:
-            p = alter_pattern(p, groups[key], length=length, girth=girth)
+        if key == "waist":
+            p = _move_waist(p, length)
+            continue
+        group, _, panel = key.partition("@")
+        edges = [e for e in groups.get(group, []) if not panel or e[0] == panel]
+        if edges:
+            p = alter_pattern(p, edges, length=length, girth=girth)
     p.name = f"truth_{garment}"
     return p
+
+
+def _move_waist(pattern, length: float):
+    """A copy of ``pattern`` whose side-seam corners (a vertex between two edges labelled
+    ``left_side`` or two labelled ``right_side``) move by ``length`` [m] horizontally, away from
+    the panel's vertical centre line. Mirror images move alike, so stitched side seams keep
+    matching lengths."""
+    out = pattern.copy()
+    for panel in out.panels.values():
+        ends = {}
+        for e in panel.edges:
+            if e.label in ("left_side", "right_side"):
+                ends.setdefault((e.label, e.start), 0)
+                ends.setdefault((e.label, e.end), 0)
+                ends[(e.label, e.start)] += 1
+                ends[(e.label, e.end)] += 1
+        centre = 0.5 * (panel.vertices[:, 0].min() + panel.vertices[:, 0].max())
+        for (_, v), n in ends.items():
+            if n == 2:
+                panel.vertices[v, 0] += length * np.sign(panel.vertices[v, 0] - centre)
+    return out
 
 
 def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alteration | None = None,

@@ -199,7 +199,8 @@ def pattern_metrics(pattern_est, pattern_gt, *, correspondence: dict[str, str] |
         ``strict``: panels left without a counterpart are reported, not an error).
     Returns: ``panels`` (per matched true panel: estimated_panel, turning_distance [rad],
     area_error_rel [-], area_est_m2, area_gt_m2, vertex_l2_cm), ``unmatched``
-    (``{"estimated": [...], "true": [...]}`` panel names), the means over matched panels
+    (``{"estimated": [...], "true": [...]}`` panel names) and ``unmatched_area_m2`` (their areas,
+    ``{"estimated": {name: m^2}, "true": {...}}``), the means over matched panels
     ``turning_distance_mean`` [rad], ``area_error_rel_mean`` [-] and ``vertex_l2_cm_mean`` [cm]
     (None without panels of equal corner counts), ``area_total_est_m2``, ``area_total_gt_m2``,
     ``area_error_total_rel`` [-] and ``area_error_weighted_rel`` [-] (module docstring).
@@ -236,6 +237,7 @@ def pattern_metrics(pattern_est, pattern_gt, *, correspondence: dict[str, str] |
     return {
         "panels": per,
         "unmatched": {"estimated": un_e, "true": un_g},
+        "unmatched_area_m2": {"estimated": {n: area_e[n] for n in un_e}, "true": {n: area_g[n] for n in un_g}},
         "turning_distance_mean": float(np.mean([v["turning_distance"] for v in per.values()])) if per else None,
         "area_error_rel_mean": float(np.mean([v["area_error_rel"] for v in per.values()])) if per else None,
         "vertex_l2_cm_mean": float(np.mean(l2)) if l2 else None,
