@@ -6,8 +6,9 @@ about 2K vertices at --edge-length 0.02); the fit starts from the base pattern i
 Prints, per garment: vertices, Chamfer [mm] and normal error [deg] of the base drape, the graded
 drape and the final fit, mean panel area error [%] and turning distance of the base and the final
 pattern, the recovered material, iterations, which pattern the re-dress check returned (graded
-or phase two), the fit's own peak resident memory [MB] (metrics.json ``peak_memory_mb``, the
-process peak reset before each fit) and time.
+or phase two), the peak resident memory [MB] (metrics.json ``peak_memory_mb``: the process peak,
+reset before each fit to what is resident then, so memory an earlier fit left allocated counts)
+and time.
 
     OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_fit.py [--garments tshirt pants ...]
         [--edge-length 0.02] [--iterations 100] [--out bench-out/fit] [--variants noise,decimate,cm]
@@ -39,7 +40,7 @@ def _fit(case_dir: Path, out: Path, cfg, *, units=None):
     from unsew.fit.run import run_fit
 
     case = load_case(case_dir, units=units)
-    reset_peak()  # each fit's own peak, not the largest of the fits before it
+    reset_peak()  # not the largest peak of the fits before it (what they left resident still counts)
     t = time.perf_counter()
     result, m = run_fit(case, cfg, out, overwrite=True, progress=False, log=lambda s: None)
     return result, m, time.perf_counter() - t
