@@ -5,7 +5,10 @@ widths) in a different material is draped by our simulator on the default body (
 about 2K vertices at --edge-length 0.02); the fit starts from the base pattern in cotton.
 Prints, per garment: vertices, Chamfer [mm] and normal error [deg] of the base drape, the graded
 drape and the final fit, mean panel area error [%] and turning distance of the base and the final
-pattern, the recovered material, iterations and time.
+pattern, the recovered material, iterations, which pattern the re-dress check returned (graded
+or phase two), the peak resident memory [MB] (metrics.json ``peak_memory_mb``: the process peak,
+reset before each fit to what is resident then, so memory an earlier fit left allocated counts)
+and time.
 
     OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_fit.py [--garments tshirt pants ...]
         [--edge-length 0.02] [--iterations 100] [--out bench-out/fit] [--variants noise,decimate,cm]
@@ -32,10 +35,12 @@ import numpy as np  # noqa: E402
 
 
 def _fit(case_dir: Path, out: Path, cfg, *, units=None):
-    from unsew.fit.run import run_fit
+    from unsew._memory import reset_peak
     from unsew.body.case import load_case
+    from unsew.fit.run import run_fit
 
     case = load_case(case_dir, units=units)
+    reset_peak()  # not the largest peak of the fits before it (what they left resident still counts)
     t = time.perf_counter()
     result, m = run_fit(case, cfg, out, overwrite=True, progress=False, log=lambda s: None)
     return result, m, time.perf_counter() - t
@@ -53,17 +58,25 @@ def _row(name, result, m, secs, nverts):
         "area_final_pct": 100 * p.get("area_error_rel_mean", float("nan")),
         "turn_base": pb.get("turning_distance_mean"), "turn_final": p.get("turning_distance_mean"),
         "H00": mat.h00, "H11": mat.h11, "H22": mat.h22, "k": mat.bend,
-        "iters": result.iterations, "time_s": secs,
+        "iters": result.iterations, "returned": _returned(m), "peak_mb": m.get("peak_memory_mb"), "time_s": secs,
     }
+
+
+def _returned(m) -> str | None:
+    """Which pattern the re-dress check returned: "graded" or "phase two" (None without the check)."""
+    red = m.get("redress")
+    if not red:
+        return None
+    return "phase two" if red.get("phase_two_kept") else "graded"
 
 
 def _print(rows):
     cols = [("case", 10, "s"), ("verts", 6, "d"), ("cf_base_mm", 8, ".2f"), ("cf_graded_mm", 8, ".2f"),
             ("cf_final_mm", 8, ".2f"), ("nrm_base_deg", 8, ".1f"), ("nrm_final_deg", 8, ".1f"),
             ("area_base_pct", 8, ".2f"), ("area_final_pct", 8, ".2f"), ("turn_final", 8, ".3f"),
-            ("iters", 6, "d"), ("time_s", 7, ".0f")]
+            ("iters", 6, "d"), ("returned", 9, "s"), ("peak_mb", 7, ".0f"), ("time_s", 7, ".0f")]
     heads = ["case", "verts", "CF base", "CF grad", "CF fit", "N base", "N fit", "A base%", "A fit%",
-             "turn", "iters", "time s"]
+             "turn", "iters", "returned", "peak MB", "time s"]
     print(" ".join(f"{h:>{w}}" for h, (_, w, _) in zip(heads, cols)))
     for r in rows:
         out = []

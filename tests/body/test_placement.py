@@ -117,13 +117,23 @@ def test_missing_joints_named(bodies, meshes):
         place_garment(pat, mesh, body)
 
 
+@pytest.fixture(scope="module")
+def arm_up():
+    """The default body with its left arm raised to 23 deg below horizontal (under MEET_ARM)."""
+    from unsew.body.pose import pose_body
+
+    b = pose_body(default_body(), "left_arm_up")
+    return b, BodySDF.build(b)
+
+
 @pytest.mark.parametrize("garment", ["tshirt", "pants"])
-def test_far_seam_copies_start_together(bodies, meshes, garment):
-    """Seam copies placed further apart than SEAM_MEET start at their midpoint (then pushed out
-    of the body): no seam starts wider than SEAM_MEET plus the push-out's move."""
+def test_far_seam_copies_start_together(arm_up, meshes, garment):
+    """On a body with an arm raised, seam copies placed further apart than SEAM_MEET start at
+    their midpoint (then pushed out of the body): no seam starts wider than SEAM_MEET plus the
+    push-out's move."""
     from unsew.body.placement import MAX_PUSH, SEAM_MEET
 
-    body, sdf = bodies["default"]
+    body, sdf = arm_up
     pat, mesh = meshes[garment]
     sp = mesh.seam_pairs
     x0 = place_garment(pat, mesh, body, sdf=sdf, meet_seams=False)
@@ -133,3 +143,19 @@ def test_far_seam_copies_start_together(bodies, meshes, garment):
     assert g0.max() > SEAM_MEET  # the case is a real one
     assert g.max() <= SEAM_MEET + 2 * MAX_PUSH
     assert np.median(g[g0 > SEAM_MEET]) < 1e-3
+
+
+@pytest.mark.parametrize("garment", ["tshirt", "pants"])
+def test_seam_copies_kept_apart_on_hanging_arms(bodies, meshes, garment):
+    """On the default body (arms 48 deg below horizontal, over MEET_ARM) no seam copy is moved
+    to a midpoint: the placement is the wrap alone, though its seams start cm apart."""
+    from unsew.body.placement import SEAM_MEET
+
+    body, sdf = bodies["default"]
+    pat, mesh = meshes[garment]
+    sp = mesh.seam_pairs
+    x0 = place_garment(pat, mesh, body, sdf=sdf, meet_seams=False)
+    x = place_garment(pat, mesh, body, sdf=sdf)
+    g0 = np.linalg.norm(x0[sp[:, 0]] - x0[sp[:, 1]], axis=1)
+    assert g0.max() > SEAM_MEET  # the seams do start apart
+    np.testing.assert_array_equal(x, x0)

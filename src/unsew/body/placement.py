@@ -17,8 +17,9 @@ and the two edges of every stitch face each other:
   cm into the torso stack above it;
 - anything else (a collar, a hood) at its own placement, moved with the garment.
 
-Seam vertices whose copies land more than SEAM_MEET apart start at their midpoint, and outline
-stubs (1-5 mm) start about their own length long (see :func:`_meet_seams`, :func:`_close_stubs`).
+On a body with an arm raised (T-pose and the like), seam vertices whose copies land more than
+SEAM_MEET apart start at their midpoint; outline stubs (1-5 mm) start about their own length long
+(see :func:`_meet_seams`, :func:`_close_stubs`).
 
 Cross-sections come from the body's vertices (grouped by part through the skeleton), plus a
 clearance; where the garment is wider than the section, the ellipse grows (in depth for the
@@ -65,6 +66,10 @@ HORIZONTAL_SLOPE = 0.6
 SLEEVE_CAP_IN = 0.02
 #: Seam vertices whose two copies are placed further apart than this start at their midpoint [m].
 SEAM_MEET = 0.02
+#: ... but only on a body with an upper arm less than this far below horizontal [deg]: the meeting
+#: a T-pose (1 deg) and a raised arm (31 deg) need makes an A-pose's (48 deg) drape depend more on
+#: its mesh (docs/benchmarks.md, "Demo").
+MEET_ARM = 40.0
 #: An upper arm less than this far below horizontal is raised [deg] (T-pose: 1; A-pose: 48).
 ARM_RAISED = 30.0
 #: How far out from the shoulder joint a raised arm's root joins the torso's stack [m].
@@ -243,8 +248,9 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
         body: unsew.body.body.Body with a skeleton (any body: nothing is hard-coded).
         sdf: optional BodySDF of ``body`` (built, disk-cached, when None) for the final push-out.
         clearance: gap between the body's cross-sections and the wrapped cloth [m].
-        meet_seams: start seam vertices whose two copies are further apart than SEAM_MEET at
-            their midpoint (see :func:`_meet_seams`).
+        meet_seams: on a body with an arm raised above MEET_ARM, start seam vertices whose two
+            copies are further apart than SEAM_MEET at their midpoint (see :func:`_meet_seams`);
+            on any body, start outline stubs about their own length long (:func:`_close_stubs`).
 
     Returns:
         x_unsewn: (Nu, 3) float64 [m], one 3D point per 2D rest vertex (seam copies apart).
@@ -262,8 +268,10 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
     x_wrap, lifts = _wrap_lifted(pattern, mesh, info, uv, stacks, ys, crotch_y, J, xb, ytop, clearance)
     _put_wrapped(x, info, x_wrap, lifts)
     _put_sleeves(x, pattern, mesh, info, uv, J)
+    if meet_seams and min(_arm_drop(J, side) for side in ("left", "right")) < MEET_ARM:
+        x = _meet_seams(x, mesh)
     if meet_seams:
-        x = _close_stubs(_meet_seams(x, mesh), mesh)
+        x = _close_stubs(x, mesh)
     return _push_out(x, body, sdf)
 
 
@@ -460,7 +468,9 @@ def _meet_seams(x, mesh):
     """Start the two copies of every seam vertex further apart than SEAM_MEET at their
     midpoint (the push-out that follows lifts any midpoint that lands in the body). Seam
     springs closing a gap of several cm in one step drag whole panels; where a limb is in
-    the way (a T-pose's sleeve pulled to the armpit) the cloth tore over it (stretch 4-6)."""
+    the way (a T-pose's sleeve pulled to the armpit) the cloth tore over it (stretch 4-6).
+    Only the seam vertices move, so the rows beside them start bent; place_garment calls this
+    only where an arm is raised (MEET_ARM)."""
     sp = np.asarray(mesh.seam_pairs)
     if len(sp) == 0:
         return x
@@ -513,12 +523,17 @@ def _close_stubs(x, mesh):
     return x
 
 
+def _arm_drop(J, side) -> float:
+    """How far one upper arm (shoulder -> elbow) hangs below horizontal [deg] (negative: above)."""
+    _, seg, L = _arm_frame(J, side)
+    return float(np.degrees(np.arcsin(np.clip(-seg[0][1] / L[0], -1.0, 1.0))))
+
+
 def _arm_root(v, parts, J, side, cx):
     """Vertices (k, 3) [m] of a raised arm's root (within ARM_ROOT of its shoulder joint
     sideways), or None when the upper arm hangs more than ARM_RAISED below horizontal."""
-    A, seg, L = _arm_frame(J, side)
-    drop = np.degrees(np.arcsin(np.clip(-seg[0][1] / L[0], -1.0, 1.0)))
-    if drop > ARM_RAISED:
+    A, _, _ = _arm_frame(J, side)
+    if _arm_drop(J, side) > ARM_RAISED:
         return None
     m = (parts == f"{side}_arm") & (np.abs(v[:, 0] - cx) < abs(A[0][0] - cx) + ARM_ROOT)
     return v[m]
