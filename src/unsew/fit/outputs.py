@@ -86,6 +86,8 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     from unsew._memory import peak_rss_mb
 
     m["peak_memory_mb"] = peak_rss_mb()  # the process's peak resident memory so far [MB]
+    if getattr(result, "memory_mb", None):
+        m["peak_memory_stages_mb"] = result.memory_mb  # the peak so far at the end of each stage [MB]
     if result.drape_check is not None:
         m["drape_check"] = result.drape_check.as_dict()  # the result on its body: inside %, stretch, ...
     if getattr(case, "notes", None):
