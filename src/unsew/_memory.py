@@ -79,7 +79,8 @@ def bound_heap() -> bool:
     :data:`ARENA_MAX` for this process. glibc otherwise raises the threshold to the size of the
     largest block freed (up to 32 MB), after which such blocks come from the heap and stay there
     when freed, and gives threads arenas of their own; either can keep memory the fit freed long
-    ago. Returns False where not glibc."""
+    ago. The arena limit only binds threads that start afterwards: call it first thing (the CLI
+    does). Returns False where not glibc."""
     libc = _glibc()
     if libc is None:
         return False

@@ -118,6 +118,7 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
                            lambda info: target.distance_mm(info.x.cpu().numpy(), info.faces, n_samples=BAR_SAMPLES))
 
     def on_iteration(info: Iteration) -> None:
+        release_free_memory()  # an iteration's tape, freed in pieces all over the heap
         shown(info)
         if checkpoint is not None:
             save_checkpoint(checkpoint, choice, two.state_dict())
