@@ -5,19 +5,21 @@ anny body; see benchmarks/foreign and FORMATS.md), runs the real command-line fi
 configuration, ``python -m unsew fit CASE --out OUT/CASE``, one case at a time in a subprocess, and
 prints one row per case:
 
-- garment, body (meta.json's source.body_key), exit (``ok`` or the fit's last stderr line), wall
+- garment, body (meta.json's source.body_key), base (metrics.json's base: the library base the fit
+  chose by draping, or the one named), exit (``ok`` or the fit's last stderr line), wall
   time of the command [s];
 - Chamfer [mm] of the base drape, the graded drape and the final result against the target
   (metrics.json: surface_base, surface_graded, surface);
-- panel area error [%] of the base, graded and final pattern against pattern_gt.json, as metrics.json
-  computes it (unsew.metrics.panels.pattern_metrics): the mean over matched panels of
-  |A_est - A_gt| / A_gt, panels matched by name, then unique label, then a Hungarian assignment on
-  turning distance + 3D placement; when the panel counts differ (column panels: est/gt) metrics.json
-  has no match and the base and graded cells stay empty (those patterns are not saved), and the
-  final cell is the mean over the panels matched without strictness (the unmatched left out);
-- total area error [%]: |sum A_est - sum A_gt| / sum A_gt over all panels (no correspondence
-  needed) for the same three patterns; the final one is read from the result's pattern.json, base
-  and graded from metrics.json's per-panel areas when matched;
+- panel area errors [%] of the base, graded and final pattern against pattern_gt.json
+  (unsew.metrics.panels.pattern_metrics; panels matched by name, then unique label, then a
+  Hungarian assignment on turning distance + 3D placement, panels left over reported):
+  ``area_*`` the area-weighted error in which an unmatched panel counts at its full area
+  (area_error_weighted_rel: the figure issue 21's area bar is judged on), ``total_*``
+  |sum A_est - sum A_gt| / sum A_gt (no correspondence), ``matched_final_pct`` the paper's mean
+  over matched panels of |A_est - A_gt| / A_gt; read from metrics.json, or computed from the result
+  folder's pattern.json / pattern_base.json / pattern_graded.json when metrics.json predates these
+  figures; ``panels`` est/gt panel counts of the final pattern and ``unmatched`` its panels without
+  a counterpart (``gt:`` true panels the result lacks, ``est:`` extra ones);
 - the case's cross-simulator floor [mm] (meta.json's floor.chamfer_mm: the true pattern draped by
   ``unsew drape``), and whether phase two's pattern was kept (metrics.json's redress);
 - the fit process's peak resident memory [MB] (metrics.json's peak_memory_mb) and the stage that
@@ -45,11 +47,15 @@ os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 ROOT = Path(__file__).resolve().parent.parent
 CASES = ROOT / "benchmarks" / "foreign" / "cases"
 
-COLUMNS = ["case", "garment", "body", "exit", "time_s",
+COLUMNS = ["case", "garment", "body", "base", "exit", "time_s",
            "cf_base_mm", "cf_graded_mm", "cf_final_mm", "floor_mm",
            "area_base_pct", "area_graded_pct", "area_final_pct",
-           "total_base_pct", "total_graded_pct", "total_final_pct",
-           "panels", "phase2_kept", "peak_mb", "peak_stage"]
+           "total_base_pct", "total_graded_pct", "total_final_pct", "matched_final_pct",
+           "panels", "unmatched", "phase2_kept", "peak_mb", "peak_stage"]
+
+#: metrics.json key and result-folder file of each pattern the table judges
+PATTERNS = (("base", "pattern_base", "pattern_base.json"), ("graded", "pattern_graded", "pattern_graded.json"),
+            ("final", "pattern", "pattern.json"))
 
 
 def case_dirs(names: list[str] | None = None) -> list[Path]:
@@ -102,34 +108,26 @@ def run_case(case: Path, out: Path, *, retry: bool = False, python: str = sys.ex
     return status
 
 
-def _total_err(panels: dict) -> float | None:
-    """|sum est - sum gt| / sum gt [%] from metrics' per-panel areas, or None."""
-    if not panels:
+def _pattern_errors(m: dict, key: str, est_path: Path, gt_path: Path) -> dict | None:
+    """The pattern metrics of one pattern: metrics.json's ``key`` when it has the area-weighted
+    error, else :func:`unsew.metrics.panels.pattern_metrics` of ``est_path`` (if saved) against
+    ``gt_path``; None when neither is there."""
+    p = m.get(key) or {}
+    if "area_error_weighted_rel" in p:
+        return p
+    if not est_path.is_file():
         return None
-    est = sum(p["area_est_m2"] for p in panels.values())
-    gt = sum(p["area_gt_m2"] for p in panels.values())
-    return 100.0 * abs(est - gt) / gt
-
-
-def _pattern_area(path: Path) -> tuple[float, int]:
-    """Total panel area [m^2] and panel count of a GarmentCode JSON pattern."""
     from unsew.io.garmentcode import load_pattern
-    from unsew.metrics.panels import panel_area
+    from unsew.metrics.panels import pattern_metrics
 
-    pat = load_pattern(path)
-    return sum(panel_area(p) for p in pat.panels.values()), len(pat.panels)
+    return pattern_metrics(load_pattern(est_path), load_pattern(gt_path))
 
 
-def _matched_area_err(est_path: Path, gt_path: Path) -> float | None:
-    """Mean relative area error [%] over the panels :func:`unsew.metrics.panels.match_panels`
-    matches without strictness (the unmatched ones, e.g. a waistband the base pattern lacks, are
-    left out), or None when none match."""
-    from unsew.io.garmentcode import load_pattern
-    from unsew.metrics.panels import area_error, match_panels
-
-    est, gt = load_pattern(est_path), load_pattern(gt_path)
-    corr = match_panels(est, gt, strict=False)
-    return 100.0 * area_error(est, gt, corr).mean if corr else None
+def _unmatched(p: dict) -> str:
+    un = p.get("unmatched") or {}
+    parts = [f"gt: {','.join(un['true'])}" if un.get("true") else "",
+             f"est: {','.join(un['estimated'])}" if un.get("estimated") else ""]
+    return "; ".join(x for x in parts if x) or "-"
 
 
 def row(case: Path, out: Path, status: dict) -> dict:
@@ -145,19 +143,23 @@ def row(case: Path, out: Path, status: dict) -> dict:
     m = json.loads((res / "metrics.json").read_text())
     if r["time_s"] is None:
         r["time_s"] = (m.get("timings_s") or {}).get("total_s")
+    r["base"] = m.get("base")  # the base pattern phase one started from (chosen by draping by default)
     for key, col in (("surface_base", "cf_base_mm"), ("surface_graded", "cf_graded_mm"), ("surface", "cf_final_mm")):
         r[col] = (m.get(key) or {}).get("chamfer_mm")
-    for key, tag in (("pattern_base", "base"), ("pattern_graded", "graded"), ("pattern", "final")):
-        p = m.get(key) or {}
-        if "area_error_rel_mean" in p:
-            r[f"area_{tag}_pct"] = 100.0 * p["area_error_rel_mean"]
-            r[f"total_{tag}_pct"] = _total_err(p.get("panels"))
-    if r.get("area_final_pct") is None:  # strict matching failed (panel counts differ): matched panels only
-        r["area_final_pct"] = _matched_area_err(res / "pattern.json", case / "pattern_gt.json")
-    gt_area, n_gt = _pattern_area(case / "pattern_gt.json")
-    est_area, n_est = _pattern_area(res / "pattern.json")
-    r["total_final_pct"] = 100.0 * abs(est_area - gt_area) / gt_area
-    r["panels"] = f"{n_est}/{n_gt}"
+    for tag, key, fname in PATTERNS:
+        p = _pattern_errors(m, key, res / fname, case / "pattern_gt.json")
+        if p is None:
+            continue
+        r[f"area_{tag}_pct"] = 100.0 * p["area_error_weighted_rel"]
+        r[f"total_{tag}_pct"] = 100.0 * p["area_error_total_rel"]
+        if tag == "final":
+            if p.get("area_error_rel_mean") is not None:
+                r["matched_final_pct"] = 100.0 * p["area_error_rel_mean"]
+            un = p.get("unmatched") or {}
+            n_est = len(p["panels"]) + len(un.get("estimated") or [])
+            n_gt = len(p["panels"]) + len(un.get("true") or [])
+            r["panels"] = f"{n_est}/{n_gt}"
+            r["unmatched"] = _unmatched(p)
     red = m.get("redress")
     r["phase2_kept"] = None if red is None else ("yes" if red.get("phase_two_kept") else "no")
     r["peak_mb"] = m.get("peak_memory_mb")  # the fit process's peak resident memory [MB]

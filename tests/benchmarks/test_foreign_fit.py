@@ -37,16 +37,20 @@ def test_failed_fit_is_recorded_and_not_rerun(tmp_path):
     assert r["exit"] == "error: the garment fell" and r.get("cf_final_mm") is None
 
 
-def test_row_reads_metrics_and_total_area(tmp_path):
+def test_row_reads_metrics_and_pattern_files(tmp_path):
+    """metrics.json's area-weighted, total and matched errors become the row's cells; a pattern
+    metrics.json lacks (an older result) is computed from the saved pattern file; unmatched panels
+    are named."""
     mod = _module()
     case = mod.case_dirs()[0]
     res = tmp_path / case.name
     res.mkdir()
-    shutil.copy(case / "pattern_gt.json", res / "pattern.json")  # the true pattern as the "result"
-    panels = {"a": {"area_est_m2": 1.1, "area_gt_m2": 1.0}, "b": {"area_est_m2": 0.5, "area_gt_m2": 1.0}}
+    shutil.copy(case / "pattern_gt.json", res / "pattern_base.json")  # the true pattern as the "base"
+    final = {"area_error_rel_mean": 0.3, "area_error_weighted_rel": 0.4, "area_error_total_rel": 0.1,
+             "panels": {"a": {}, "b": {}}, "unmatched": {"estimated": [], "true": ["belt_f", "belt_b"]}}
     metrics = {
         "surface": {"chamfer_mm": 7.0}, "surface_base": {"chamfer_mm": 30.0}, "surface_graded": {"chamfer_mm": 9.0},
-        "pattern": {"area_error_rel_mean": 0.3, "panels": panels},
+        "pattern": final,
         "pattern_base": {"error": "panels without a counterpart"},
         "redress": {"fit_redressed_mm": 8.0, "graded_mm": 9.0, "phase_two_kept": True},
         "timings_s": {"total_s": 12.0}, "peak_memory_mb": 2048.5,
@@ -55,12 +59,13 @@ def test_row_reads_metrics_and_total_area(tmp_path):
     (res / "metrics.json").write_text(json.dumps(metrics))
     r = mod.row(case, tmp_path, {"exit": "ok", "time_s": None})
     assert (r["cf_base_mm"], r["cf_graded_mm"], r["cf_final_mm"]) == (30.0, 9.0, 7.0)
-    assert abs(r["area_final_pct"] - 30.0) < 1e-9 and r.get("area_base_pct") is None
-    assert abs(r["total_final_pct"]) < 1e-6  # pattern.json is the true pattern: total area equal
+    assert abs(r["area_final_pct"] - 40.0) < 1e-9 and abs(r["total_final_pct"] - 10.0) < 1e-9
+    assert abs(r["matched_final_pct"] - 30.0) < 1e-9
+    assert r["panels"] == "2/4" and r["unmatched"] == "gt: belt_f,belt_b"
+    assert abs(r["area_base_pct"]) < 1e-9 and abs(r["total_base_pct"]) < 1e-9  # from pattern_base.json
+    assert r.get("area_graded_pct") is None  # neither in metrics.json nor saved
     assert r["phase2_kept"] == "yes" and r["time_s"] == 12.0 and r["peak_mb"] == 2048.5
     assert r["peak_stage"] == "grading"  # the first stage whose end reached the final peak
-    n = len(json.loads((case / "pattern_gt.json").read_text())["pattern"]["panels"])
-    assert r["panels"] == f"{n}/{n}"
 
 
 def test_peak_stage_is_metrics_when_no_stage_reached_the_peak():

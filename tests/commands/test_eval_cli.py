@@ -107,9 +107,19 @@ def test_empty_and_nan_meshes(folders, capsys):
     assert not (res / "eval.json").exists()
 
 
-def test_unmatched_panels_fail_cleanly(folders, capsys):
+def test_unmatched_panels_are_reported(folders, capsys):
+    """A true panel the result lacks (a waistband) is listed and counted at its full area in the
+    area-weighted error; the base/graded patterns saved beside pattern.json are evaluated too."""
     res, case = folders
     save_pattern(_pattern(1.0, names=("front",)), res / "pattern.json")
+    save_pattern(_pattern(1.0, names=("front",)), res / "pattern_base.json")
     save_pattern(_pattern(1.0), case / "pattern_gt.json")
-    _fails(["eval", str(res), str(case), "--samples", "500"], capsys, match="without a counterpart")
-    assert not (res / "eval.json").exists()
+    assert main(["eval", str(res), str(case), "--samples", "500"]) == 0
+    out = capsys.readouterr().out
+    assert "unmatched panels: estimated [], true ['back']" in out
+    ev = json.loads((res / "eval.json").read_text())
+    assert ev["2d"]["unmatched"] == {"estimated": [], "true": ["back"]}
+    assert ev["2d"]["area_error_rel_mean"] == 0.0  # the matched front is exact
+    assert_close(ev["2d"]["area_error_weighted_rel"], 0.5, rtol=1e-9)  # the missing back: half the fabric
+    assert_close(ev["2d"]["area_error_total_rel"], 0.5, rtol=1e-9)
+    assert_close(ev["2d_base"]["area_error_weighted_rel"], 0.5, rtol=1e-9) and "2d_graded" not in ev

@@ -11,7 +11,7 @@ from unsew.fit.config import CheckSettings, load_config
 SMALL = dict(edge_length=0.04, iterations=3, steps=8, sew_steps=60, settle_steps=20, target_points=1500,
              material_start=1, material="cotton")
 FILES = ["pattern.json", "pattern.svg", "pattern.dxf", "garment.obj", "garment_rest.obj", "material.json",
-         "metrics.json", "config.yaml", "report.html"]
+         "metrics.json", "config.yaml", "report.html", "pattern_base.json", "pattern_graded.json"]
 
 
 @pytest.fixture(scope="module")
@@ -45,14 +45,49 @@ def test_result_folder_is_complete(small_fit):
     p = load_pattern(out / "pattern.json")
     assert set(p.panels) == set(result.pattern.panels)
     assert "material" in p.unsew and "symmetry" in p.unsew
+    base = load_pattern(out / "pattern_base.json")  # the starting points, saved for their pattern errors
+    assert set(base.panels) == set(result.base_pattern.panels)
+    assert saved["pattern_base"]["area_error_weighted_rel"] >= saved["pattern_base"]["area_error_total_rel"]
+    assert saved["pattern_graded"]["unmatched"] == {"estimated": [], "true": []}
 
 
 def test_fit_improves_on_the_base(small_fit):
     _, result, metrics = small_fit
     assert metrics["surface"]["chamfer_mm"] < metrics["surface_base"]["chamfer_mm"]
     assert metrics["pattern"]["area_error_rel_mean"] < metrics["pattern_base"]["area_error_rel_mean"]
+    # phase two's loss falls: measured 516 -> 405 (x0.79) over the three iterations; with the
+    # control points and material held (pattern_start past the budget) it rises to 526 and
+    # min(h) is h[0], so this fails when phase two does nothing
     h = result.history["total"]
-    assert min(h) <= h[0]
+    assert min(h) < 0.9 * h[0]
+
+
+def test_phase_two_lowers_the_pattern_error_below_grading(small_fit):
+    """Grading alone is not enough on this case: it is graded in cotton, the truth is jersey, and
+    grading cannot change the fabric. Phase two (control points and material, through
+    differentiable drapes) must lower the pattern error against the graded pattern, and the
+    re-dress check must keep its pattern: the returned pattern is phase two's, not the graded one.
+    Measured (docs/benchmarks.md, "Phase two on a case grading cannot fit"): mean panel area error
+    0.92 % graded -> 0.51 % final (-44 %), re-dressed 7.02 -> 4.23 mm; with phase two held
+    (pattern_start past the budget) the graded pattern is returned and both stay put."""
+    import numpy as np
+
+    _, result, metrics = small_fit
+    rd = metrics["redress"]
+    assert rd["phase_two_kept"] and rd["fit_redressed_mm"] < 0.8 * rd["graded_mm"]
+    moved = max(float(np.abs(result.pattern.panels[n].vertices - p.vertices).max())
+                for n, p in result.graded_pattern.panels.items())
+    assert moved > 1e-3  # [m]: the returned pattern is not the graded one
+    assert metrics["pattern"]["area_error_rel_mean"] < 0.7 * metrics["pattern_graded"]["area_error_rel_mean"]
+
+
+@pytest.mark.xfail(strict=True, reason="phase two lowers the panel areas' error but moves corners the truth did not "
+                   "move: rigid corner L2 0.128 -> 0.225 cm (docs/benchmarks.md, 'Phase two on a case grading cannot fit')")
+def test_phase_two_lowers_the_corner_distance_below_grading(small_fit):
+    """The other pattern error: the panels' corners (rigidly aligned) closer to the truth's after
+    phase two than after grading."""
+    _, _, metrics = small_fit
+    assert metrics["pattern"]["vertex_l2_cm_mean"] < metrics["pattern_graded"]["vertex_l2_cm_mean"]
 
 
 def test_a_result_off_the_body_is_no_result(small_case, tmp_path, monkeypatch):

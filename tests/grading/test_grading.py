@@ -267,21 +267,53 @@ def test_extra_hole_in_target_is_reported_and_left_alone(body, tshirt):
         np.testing.assert_allclose(res.K, clean.K, atol=1e-12 if length == "axial" else 1e-3)
 
 
-def test_edit_that_would_invert_is_scaled_back(body, tshirt):
+def test_a_cuff_moved_past_the_sleeve_is_cut_not_collapsed(body, tshirt):
+    """A target whose cuffs lie 40 cm further in than the base's (more than the sleeve is long):
+    the move is cut so each sleeve keeps MIN_KEEP_LENGTH of its underarm seams (unsew.grading.
+    guards), instead of folding the sleeve into a spike; the rest of the edit is whole."""
+    from unsew.grading.guards import MIN_KEEP_LENGTH
+    from unsew.pattern.curves import edge_length
+
     p, m = tshirt
     t = alter_pattern(p, open_edges(p, "hem", panels=["left_sleeve", "right_sleeve"]), length=-0.10)
     tm = mesh_pattern(t, edge_length=EDGE)
     tx = flat_drape(t, tm)
-    # a target whose cuffs are 40 cm further in than the base's: more than the sleeve is long
     sk = body.skeleton
     shift = np.zeros_like(tx)
-    for side, sgn in (("left", 1.0), ("right", -1.0)):
+    for side in ("left", "right"):
         idx = np.flatnonzero(tm.uv_panel == tm.panel_names.index(f"{side}_sleeve"))
         shift[tm.x_of_u[idx]] = -0.3 * sk.bone(f"{side}_elbow").direction
     res = grade(p, body, tx + shift, tm.faces, mesh=m, drape_fn=flat_drape, redrape=False, max_centre_distance=1.0)
-    assert res.fraction < 1.0
     assert len(check_inverted(res.mesh.uv, res.mesh.faces_uv)) == 0
-    assert any("scaled back" in w for r in res.table for w in r["warnings"])
+    assert sum("move cut" in w for r in res.table for w in r["warnings"]) >= 2  # both sleeves
+    for side in ("left", "right"):
+        panel = res.pattern.panels[f"{side}_sleeve"]
+        hem = next(i for i, e in enumerate(panel.edges) if e.label == "hem")
+        n = len(panel.edges)
+        for nb in ((hem - 1) % n, (hem + 1) % n):  # the underarm seams beside the cuff
+            assert edge_length(panel, nb) > MIN_KEEP_LENGTH - 0.005, (side, nb)
+            assert edge_length(panel, nb) < edge_length(p.panels[f"{side}_sleeve"], nb) - 0.05  # it did shorten
+
+
+def test_safe_fraction_scales_back_an_inverting_edit(tshirt):
+    """An edit that turns a sleeve inside out is scaled back to the largest fraction that
+    inverts no triangle."""
+    import torch
+
+    from unsew.grading.edit import safe_fraction
+
+    p, m = tshirt
+    params = PatternParams.build(p, m)
+    K0 = params.K0
+    C = params.control_points(K0).detach().cpu().numpy()
+    cidx = params.controls.of_panel(m.panel_names.index("left_sleeve"))
+    C[cidx, 1] = 2 * C[cidx, 1].mean() - C[cidx, 1]  # the sleeve mirrored top to bottom: inside out
+    K1 = params.k_from_control_points(C)
+    f = safe_fraction(params, K0, K1)
+    assert 0.0 < f < 1.0
+    with torch.no_grad():
+        assert len(check_inverted(params.uv(K0 + f * (K1 - K0)), m.faces_uv)) == 0
+        assert len(check_inverted(params.uv(K1), m.faces_uv)) > 0
 
 
 def test_bad_target_is_refused(body, tshirt):

@@ -88,3 +88,31 @@ def test_pattern_metrics_identity_is_zero():
     assert m["area_error_rel_mean"] == 0.0
     assert m["vertex_l2_cm_mean"] < 1e-12
     assert set(m["panels"]) == {"a", "b"}
+    assert m["unmatched"] == {"estimated": [], "true": []}
+    assert m["area_error_weighted_rel"] == 0.0 and m["area_error_total_rel"] == 0.0
+
+
+def test_pattern_metrics_with_different_panel_sets():
+    """Missing and extra panels: listed, left out of the matched means, counted at full area in the
+    area-weighted error; the total-area error needs no correspondence."""
+    belt = np.asarray(SQ) * [2, 0.1]
+    gt = Pattern("gt", {"front": _poly_panel("front", SQ, translation=(0, 0, 0.2)),
+                        "back": _poly_panel("back", SQ, translation=(0, 0, -0.2)),
+                        "belt": _poly_panel("belt", belt, translation=(0, 0.6, 0))})
+    est = Pattern("est", {"front": _poly_panel("front", np.asarray(SQ) * [1, 1.1], translation=(0, 0, 0.2)),
+                          "back": _poly_panel("back", SQ, translation=(0, 0, -0.2))})
+    m = pattern_metrics(est, gt)
+    assert m["unmatched"] == {"estimated": [], "true": ["belt"]}
+    assert_close(m["unmatched_area_m2"]["true"]["belt"], 0.2, rtol=1e-9) and m["unmatched_area_m2"]["estimated"] == {}
+    assert set(m["panels"]) == {"front", "back"}
+    assert_close(m["area_error_rel_mean"], 0.05, rtol=1e-9)  # (0.1 + 0) / 2 over matched panels
+    assert_close(m["area_error_total_rel"], abs(2.1 - 2.2) / 2.2, rtol=1e-9)  # 0.045: the belt hidden by front
+    assert_close(m["area_error_weighted_rel"], (0.1 + 0.2) / 2.2, rtol=1e-9)  # the belt counts in full
+    with pytest.raises(PatternError, match="without a counterpart"):
+        pattern_metrics(est, gt, strict=True)
+    # an extra estimated panel counts at its own area
+    est2 = Pattern("est2", {**gt.panels, "pocket": _poly_panel("pocket", np.asarray(SQ) * 0.3, translation=(0, 0, 0.3))})
+    m2 = pattern_metrics(est2, gt)
+    assert m2["unmatched"] == {"estimated": ["pocket"], "true": []} and m2["area_error_rel_mean"] == 0.0
+    assert_close(m2["area_error_weighted_rel"], 0.09 / 2.2, rtol=1e-9)
+    assert_close(m2["area_error_total_rel"], 0.09 / 2.2, rtol=1e-9)

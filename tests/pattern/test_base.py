@@ -6,13 +6,13 @@ import pytest
 from helpers import assert_close
 from unsew.pattern.measurements import Measurements
 from unsew.errors import InputError
-from unsew.pattern.base import GARMENTS, make_base_pattern
+from unsew.pattern.base import BASES, GARMENTS, bases_for, garment_of, make_base_pattern
 from unsew.pattern.base._frame import body_frame
 from unsew.pattern.curves import edge_length, panel_outline, sample_edge
 from unsew.pattern.validate import signed_area, validate_pattern
 
 
-@pytest.mark.parametrize("garment", GARMENTS)
+@pytest.mark.parametrize("garment", BASES)
 def test_valid_ccw_no_length_warnings(garment):
     p = make_base_pattern(garment)
     assert validate_pattern(p) == []  # also: closed, no self-intersection, stitches in range
@@ -149,3 +149,69 @@ def test_placement_in_world_frame():
         assert w[:, 1].max() == pytest.approx(fr.waist_y, abs=1e-9), n
         outer = w[np.argmax(np.abs(w[:, 0])), 0]
         assert (outer > 0) == n.startswith("left"), n
+
+
+def test_library_lists_each_type_default_first():
+    assert set(GARMENTS) <= set(BASES)
+    for g in GARMENTS:
+        names = bases_for(g)
+        assert names[0] == g and all(garment_of(n) == g for n in names)
+    assert sorted(n for g in GARMENTS for n in bases_for(g)) == sorted(BASES)
+    assert len(bases_for("skirt")) >= 3 and len(bases_for("tshirt")) >= 3
+    with pytest.raises(InputError, match="unknown garment 'hat'"):
+        bases_for("hat")
+
+
+VARIANTS = [b for b in BASES if b not in GARMENTS]
+
+
+@pytest.mark.parametrize("name", VARIANTS)
+def test_variant_symmetric_seams_labelled_and_matched(name):
+    """Every variant: torso/band panels mirror-symmetric or paired, left/right pieces paired by
+    a reflection (Algorithm 1 finds it), every stitch labelled (labels unique) and joining
+    edges of equal length."""
+    from unsew.pattern.symmetry import detect_symmetry
+
+    p = make_base_pattern(name)
+    assert p.name == name
+    sym = detect_symmetry(p)
+    mirrored = {m.panel for m in sym.mirrors}
+    paired = {q.target for q in sym.pairs} | {q.source for q in sym.pairs}
+    for pname in p.panels:
+        assert pname in mirrored or pname in paired, f"{name}: panel {pname} has no symmetry"
+    labels = [s.label for s in p.stitches]
+    assert all(labels) and len(set(labels)) == len(labels), labels
+    for s in p.stitches:
+        la = edge_length(p.panels[s.a.panel], s.a.edge)
+        lb = edge_length(p.panels[s.b.panel], s.b.edge)
+        assert abs(la - lb) < 2e-3, f"{name} {s.label}: {la:.4f} vs {lb:.4f} m"
+
+
+def test_variants_differ_where_they_should():
+    m = Measurements()
+    fr = body_frame(m)
+    tee, long, tank = (make_base_pattern(n) for n in ("tshirt", "tshirt_long", "tshirt_sleeveless"))
+    assert "left_sleeve" not in tank.panels and "left_sleeve" not in make_base_pattern("dress_sleeveless").panels
+    sleeve = lambda p: np.ptp(panel_outline(p.panels["left_sleeve"])[:, 1])  # noqa: E731
+    assert sleeve(long) > m.arm_length > 2 * sleeve(tee)
+    # long sleeves narrow to the wrist
+    hem = lambda p: edge_length(p.panels["left_sleeve"], 0)  # noqa: E731
+    assert hem(long) < hem(tee) - 0.04
+    # waistbands: two bands, their top at the natural waist, the rest starting below them
+    for n in ("skirt_band", "skirt_circle", "pants_band", "shorts_band"):
+        p = make_base_pattern(n)
+        bands = [q for q in p.panels if q.startswith("waistband")]
+        assert len(bands) == 2, n
+        for b in bands:
+            w = p.panels[b].to_world(panel_outline(p.panels[b]))
+            assert w[:, 1].max() == pytest.approx(fr.waist_y, abs=1e-9), n
+    # the half-circle skirt's hem is far wider than the A-line's, its waist the same
+    a, c = make_base_pattern("skirt_band"), make_base_pattern("skirt_circle")
+    assert edge_length(c.panels["front"], 0) > 1.4 * edge_length(a.panels["front"], 0)
+    assert edge_length(c.panels["front"], 2) == pytest.approx(edge_length(a.panels["front"], 2), abs=1e-6)
+
+
+def test_cli_lists_the_library():
+    from unsew.commands.pattern import BASES as CLI_BASES
+
+    assert CLI_BASES == BASES

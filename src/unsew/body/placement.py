@@ -250,22 +250,42 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
         x_unsewn: (Nu, 3) float64 [m], one 3D point per 2D rest vertex (seam copies apart).
     """
     uv = np.asarray(mesh.uv, np.float64)
-    Nu = len(uv)
-    if Nu == 0:
+    if len(uv) == 0:
         raise InputError("the garment mesh is empty; mesh the pattern first")
     J, parts, v, cx0, crotch_y = _landmarks(body)
     roles = panel_roles(pattern, body)
     ys = np.arange(v[:, 1].min() - 0.05, v[:, 1].max() + 0.3, _DY)  # (H,)
     x = np.asarray(mesh.uv_placed3d, np.float64).copy()  # free panels stay at their hint
+    info = _panel_info(pattern, mesh, roles, x)
+    stacks = _body_stacks(v, parts, J, cx0, crotch_y, ys, clearance)
+    xb, ytop = _shoulder_line(v, parts, J, cx0)
+    x_wrap, lifts = _wrap_lifted(pattern, mesh, info, uv, stacks, ys, crotch_y, J, xb, ytop, clearance)
+    _put_wrapped(x, info, x_wrap, lifts)
+    _put_sleeves(x, pattern, mesh, info, uv, J)
+    if meet_seams:
+        x = _close_stubs(_meet_seams(x, mesh), mesh)
+    return _push_out(x, body, sdf)
 
-    # Per panel: the hint (world positions of its vertices) and its frame.
+
+def _panel_info(pattern, mesh, roles, x) -> dict:
+    """Per panel name: its slice of the uv vertices (``sl``), rotation matrix ``R`` (3, 3), the
+    hint (``hint``, (k, 3) world positions [m] of its vertices in ``x``, (Nu, 3)), its boundary
+    loop (``bl``, uv indices) and its placement role (``role``, see :func:`panel_roles`)."""
     info = {}
     for pi, name in enumerate(mesh.panel_names):
         p = pattern.panels[name]
         sl = slice(int(mesh.panel_offsets[pi]), int(mesh.panel_offsets[pi + 1]))
         info[name] = dict(sl=sl, R=p.rotation_matrix(), hint=x[sl].copy(), bl=mesh.boundary_loop(pi), role=roles[name])
+    return info
 
-    # ---- stacks of horizontal ellipses: the torso and each leg --------------------------------
+
+def _body_stacks(v, parts, J, cx0, crotch_y, ys, clearance) -> dict:
+    """Stacks of horizontal ellipses around the torso and each leg: ``"torso"``,
+    ``"left_leg"``, ``"right_leg"`` -> [cx, cz, a, b], each (H,) [m] at heights ``ys`` (H,).
+
+    v: body vertices (V, 3) [m]; parts: (V,) part name of each; J: joint name -> (3,) [m];
+    cx0: the pelvis's x [m]; crotch_y: crotch height [m]; clearance: cloth gap [m] (keeps the
+    legs' stacks apart)."""
     torso_pts = v[np.isin(parts, ["torso", "left_leg", "right_leg"])]
     torso_pts = torso_pts[torso_pts[:, 1] < J["neck"][1]]
     # A raised arm (T-pose) leaves the torso at the height of the armholes: the torso's stack
@@ -280,7 +300,14 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
     for side, sgn in (("left", 1.0), ("right", -1.0)):
         lp = v[np.isin(parts, ["torso", f"{side}_leg"]) & ((v[:, 0] - cx0) * sgn > 0) & (v[:, 1] < crotch_y + 0.05)]
         stacks[f"{side}_leg"] = _keep_apart(_section_table(lp, ys), cx0, sgn, clearance)
-    # Shoulder line: top of the torso (below the neck joint) per lateral position.
+    return stacks
+
+
+def _shoulder_line(v, parts, J, cx0):
+    """The shoulder line: top of the torso (below the neck joint) per lateral position.
+
+    Returns (xb, ytop): lateral positions (101,) [m] every 1 cm over cx0 +- 0.5 m, and the
+    torso's top height at each (101,) [m] (gaps interpolated)."""
     top = v[np.isin(parts, ["torso"]) & (v[:, 1] < J["neck"][1])]
     xb = np.arange(-0.5, 0.5 + 1e-9, 0.01) + cx0
     ib = np.clip(np.round((top[:, 0] - xb[0]) / 0.01).astype(int), 0, len(xb) - 1)
@@ -288,72 +315,80 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
     np.maximum.at(ytop, ib, top[:, 1])
     ok = np.isfinite(ytop)
     ytop = np.interp(xb, xb[ok], ytop[ok])
+    return xb, ytop
 
-    def stack_coords(name, centred):
-        """(S, y) of a panel's vertices: arc coordinate around its stack and height."""
-        d = info[name]
-        R = d["R"]
-        u = uv[d["sl"]]
-        a2 = R[:, :2].T @ np.array([0.0, 1.0, 0.0])  # panel-frame direction that points up
-        if np.linalg.norm(a2) < 1e-6:
-            a2 = np.array([0.0, 1.0])
-        a2 = a2 / np.linalg.norm(a2)
-        b2 = np.array([a2[1], -a2[0]])
-        nrm = R[:, 2]
-        phi0 = np.arctan2(nrm[0], nrm[2])
-        c_uv = u.mean(axis=0)
-        c_hint = d["hint"].mean(axis=0)
-        along = (u - c_uv) @ a2 + c_hint[1]
-        across = (u - c_uv) @ b2
-        return along, across, phi0, c_hint
 
-    def wrap_stack(stack, y, S, phi_c, *, perim=None):
-        """Points on a stack at heights y with arc coordinates S measured from angle phi_c."""
-        cx, cz, a, b = (np.interp(y, ys, t) for t in stack)
-        a = a + clearance
-        b = b + clearance
-        if perim is not None:
-            # Grow to the garment's girth: first in depth up to a circle (the arms limit the
-            # width of the torso), beyond that into a wider circle.
-            need = np.interp(y, ys, perim)
-            grow = need > _ellipse_perimeter(a, b)
-            bmax = np.maximum(a, b)
-            lo, hi = b.copy(), bmax.copy()
-            for _ in range(30):
-                mid = 0.5 * (lo + hi)
-                big = _ellipse_perimeter(a, mid) > need
-                hi = np.where(big, mid, hi)
-                lo = np.where(big, lo, mid)
-            circle = need > _ellipse_perimeter(a, bmax)
-            r = need / (2 * np.pi)
-            b = np.where(grow, np.where(circle, np.maximum(r, b), hi), b)
-            a = np.where(grow & circle, np.maximum(r, a), a)
-        phi = _ellipse_at_arc(a, b, np.broadcast_to(phi_c, a.shape).astype(np.float64), S)
-        return np.stack([cx + a * np.sin(phi), y, cz + b * np.cos(phi)], axis=1)
+def _stack_coords(d, uv):
+    """(along, across, phi0, c_hint) of a panel's vertices for wrapping on a stack: height
+    along the panel's up direction (k,) [m], coordinate across it (k,) [m], the angle of its
+    normal around the vertical [rad] and the centre of its hint (3,) [m].
 
-    # Lifts [m]: a top hangs from its shoulder seams, so its front and back panels are raised
-    # until what rises above the shoulder line folds over it to the ridge, where the two
-    # shoulder edges meet (the panels' hint puts them at the shoulder tip, below the ridge).
-    # The missing run falls by more than the lift that removes it where the raised panel wraps
-    # a shallower part of the torso (a front over the chest: about -2.4 per m), so a plain
-    # fixed-point step overshoots and oscillates; secant steps on each panel's residual converge.
+    d: the panel's entry of :func:`_panel_info`; uv: all rest positions (Nu, 2) [m]."""
+    R = d["R"]
+    u = uv[d["sl"]]
+    a2 = R[:, :2].T @ np.array([0.0, 1.0, 0.0])  # panel-frame direction that points up
+    if np.linalg.norm(a2) < 1e-6:
+        a2 = np.array([0.0, 1.0])
+    a2 = a2 / np.linalg.norm(a2)
+    b2 = np.array([a2[1], -a2[0]])
+    nrm = R[:, 2]
+    phi0 = np.arctan2(nrm[0], nrm[2])
+    c_uv = u.mean(axis=0)
+    c_hint = d["hint"].mean(axis=0)
+    along = (u - c_uv) @ a2 + c_hint[1]
+    across = (u - c_uv) @ b2
+    return along, across, phi0, c_hint
+
+
+def _grow_to_girth(a, b, need):
+    """Semi-axes (a, b), each (k,) [m], grown to the perimeter ``need`` (k,) [m] where the
+    ellipse is shorter: first in depth up to a circle (the arms limit the width of the torso),
+    beyond that into a wider circle. Returns the new (a, b)."""
+    grow = need > _ellipse_perimeter(a, b)
+    bmax = np.maximum(a, b)
+    lo, hi = b.copy(), bmax.copy()
+    for _ in range(30):
+        mid = 0.5 * (lo + hi)
+        big = _ellipse_perimeter(a, mid) > need
+        hi = np.where(big, mid, hi)
+        lo = np.where(big, lo, mid)
+    circle = need > _ellipse_perimeter(a, bmax)
+    r = need / (2 * np.pi)
+    b = np.where(grow, np.where(circle, np.maximum(r, b), hi), b)
+    a = np.where(grow & circle, np.maximum(r, a), a)
+    return a, b
+
+
+def _wrap_stack(stack, y, S, phi_c, ys, clearance, *, perim=None):
+    """Points (k, 3) [m] on a stack ([cx, cz, a, b] over heights ``ys`` (H,)) at heights y (k,)
+    [m] with arc coordinates S (k,) [m] measured from angle phi_c [rad], ``clearance`` [m]
+    outside the body's sections; ``perim`` (H,) [m]: the garment's girth to grow to."""
+    cx, cz, a, b = (np.interp(y, ys, t) for t in stack)
+    a = a + clearance
+    b = b + clearance
+    if perim is not None:
+        a, b = _grow_to_girth(a, b, np.interp(y, ys, perim))
+    phi = _ellipse_at_arc(a, b, np.broadcast_to(phi_c, a.shape).astype(np.float64), S)
+    return np.stack([cx + a * np.sin(phi), y, cz + b * np.cos(phi)], axis=1)
+
+
+def _wrap_lifted(pattern, mesh, info, uv, stacks, ys, crotch_y, J, xb, ytop, clearance):
+    """Torso and leg panels wrapped on their stacks at their solved heights.
+
+    Lifts [m]: a top hangs from its shoulder seams, so its front and back panels are raised
+    until what rises above the shoulder line folds over it to the ridge, where the two
+    shoulder edges meet (the panels' hint puts them at the shoulder tip, below the ridge).
+    The missing run falls by more than the lift that removes it where the raised panel wraps
+    a shallower part of the torso (a front over the chest: about -2.4 per m), so a plain
+    fixed-point step overshoots and oscillates; secant steps on each panel's residual converge.
+    A garment without shoulder seams gets :func:`_lower_garment_lifts`.
+
+    Returns (name -> (k, 3) wrapped positions [m], name -> lift [m])."""
     lifts = {name: 0.0 for name in info}
     shoulder_edges = _shoulder_edges(pattern, mesh, info)
     links = _horizontal_links(pattern, mesh, info)
     if not shoulder_edges:
-        # A lower garment (or anything not hanging from shoulders): kept at its hint height
-        # when its top lies on this body's torso between the crotch and the chest, else its
-        # top goes to the body's waist (the spine joint); panels sewn below or above it by
-        # horizontal seams follow it.
-        wrapped = [n for n, d in info.items() if d["role"] in ("torso", "left_leg", "right_leg")]
-        if wrapped:
-            top_name = max(wrapped, key=lambda n: float(info[n]["hint"][:, 1].max()))
-            top = float(info[top_name]["hint"][:, 1].max())
-            fits = crotch_y + 0.1 <= top <= float(J["chest"][1])
-            base = 0.0 if fits else float(J["spine"][1]) - top
-            for n in wrapped:
-                lifts[n] = base
-            _propagate_lifts(lifts, links, [top_name])
+        _lower_garment_lifts(lifts, info, links, J, crotch_y)
     hist: dict = {name: [] for name in shoulder_edges}  # (lift, residual) per iteration
     for it in range(LIFT_ITERS + 1 if shoulder_edges else 1):
         if it:
@@ -362,16 +397,42 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
                 hist[name].append((lifts[name], r))
                 lifts[name] = _secant_step(hist[name])
             _propagate_lifts(lifts, links, list(shoulder_edges))
-        x_wrap, folds = _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance, wrap_stack, stack_coords)
+        x_wrap, folds = _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance)
+    return x_wrap, lifts
+
+
+def _lower_garment_lifts(lifts, info, links, J, crotch_y) -> None:
+    """Lifts [m] (in place) of a lower garment (or anything not hanging from shoulders): kept
+    at its hint height when its top lies on this body's torso between the crotch and the
+    chest, else its top goes to the body's waist (the spine joint); panels sewn below or above
+    it by horizontal seams (``links``) follow it."""
+    wrapped = [n for n, d in info.items() if d["role"] in ("torso", "left_leg", "right_leg")]
+    if not wrapped:
+        return
+    top_name = max(wrapped, key=lambda n: float(info[n]["hint"][:, 1].max()))
+    top = float(info[top_name]["hint"][:, 1].max())
+    fits = crotch_y + 0.1 <= top <= float(J["chest"][1])
+    base = 0.0 if fits else float(J["spine"][1]) - top
+    for n in wrapped:
+        lifts[n] = base
+    _propagate_lifts(lifts, links, [top_name])
+
+
+def _put_wrapped(x, info, x_wrap, lifts) -> None:
+    """Write the wrapped panels ``x_wrap`` into ``x`` (Nu, 3) [m] (in place); free panels (a
+    hood, a collar) follow the garment up or down by the mean lift."""
     moved = [lifts[n] for n in x_wrap]
     for name, d in info.items():
         if name in x_wrap:
             x[d["sl"]] = x_wrap[name]
-        elif d["role"] == "free" and moved:  # a hood or collar follows the garment up or down
+        elif d["role"] == "free" and moved:
             x[d["sl"]] = d["hint"] + np.array([0.0, float(np.mean(moved)), 0.0])
-    # Sleeves: a tube round their arm, as wide as all panels of that arm side by side, moved
-    # along the arm until the top of the cap sits SLEEVE_CAP_IN inside the top of the armhole
-    # it is sewn to (the armhole as placed above).
+
+
+def _put_sleeves(x, pattern, mesh, info, uv, J) -> None:
+    """Sleeves into ``x`` (Nu, 3) [m] (in place): a tube round their arm, as wide as all panels
+    of that arm side by side, moved along the arm until the top of the cap sits SLEEVE_CAP_IN
+    inside the top of the armhole it is sewn to (the armhole as already placed in ``x``)."""
     caps = _sleeve_caps(pattern, mesh, info)
     for side in ("left", "right"):
         names = [n for n, d in info.items() if d["role"] == f"{side}_sleeve"]
@@ -389,10 +450,6 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
                 top = _armhole_top(x[cap[1]], J, side)
                 shift = top - SLEEVE_CAP_IN - float(np.min(along[cap[0] - d["sl"].start]))
             x[d["sl"]] = _wrap_sleeve(along, across, d, side, J, radius=radius, shift=shift)
-
-    if meet_seams:
-        x = _close_stubs(_meet_seams(x, mesh), mesh)
-    return _push_out(x, body, sdf)
 
 
 def _meet_seams(x, mesh):
@@ -532,7 +589,7 @@ def _shoulder_lift(p, idx, xb, ytop, clearance, stack, ys) -> float:
     return float(np.mean(run - (q[:, 1] - y_line)))
 
 
-def _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance, wrap_stack, stack_coords):
+def _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance):
     """Torso and leg panels wrapped on their stacks, each raised by ``lifts[name]`` [m].
     Returns (name -> (k, 3) positions, name -> (k, 3) positions before the shoulder fold)."""
     # Widths needed around each stack at each height (front + back panels side by side).
@@ -542,7 +599,7 @@ def _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance, wrap_s
         role = d["role"]
         if role not in ("torso", "left_leg", "right_leg"):
             continue
-        along, across, phi0, c_hint = stack_coords(name, False)
+        along, across, phi0, c_hint = _stack_coords(d, uv)
         along = along + lifts[name]
         c_hint = c_hint + np.array([0.0, lifts[name], 0.0])
         bl = d["bl"] - d["sl"].start
@@ -571,7 +628,7 @@ def _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance, wrap_s
         axis_z = np.interp(c_hint[1], ys, st[1])
         t_hat = np.array([np.cos(phi0), 0.0, -np.sin(phi0)])
         S_c = t_hat @ (c_hint - np.array([axis_x, 0.0, axis_z]))
-        p_flat = wrap_stack(st, along, across + S_c, phi0, perim=need["torso"])
+        p_flat = _wrap_stack(st, along, across + S_c, phi0, ys, clearance, perim=need["torso"])
         folds[name] = p_flat
         p_torso = _fold_over_shoulders(p_flat, phi0, xb, ytop, clearance, st, ys)
         if role == "torso":
@@ -588,7 +645,7 @@ def _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance, wrap_s
         ok = np.flatnonzero(~np.isnan(ext[:, 0]))
         edge = np.interp(along, ys[ok], ext[ok, 1] if inward > 0 else ext[ok, 0])
         phi_in = -0.5 * np.pi * sgn
-        p_leg = wrap_stack(stacks[role], along, across - edge, phi_in, perim=need[role])
+        p_leg = _wrap_stack(stacks[role], along, across - edge, phi_in, ys, clearance, perim=need[role])
         w = _smoothstep((crotch_y + CROTCH_BLEND - along) / (2 * CROTCH_BLEND))[:, None]
         out[name] = w * p_leg + (1 - w) * p_torso
     return out, folds

@@ -7,6 +7,9 @@ import argparse
 import sys
 import warnings
 
+from unsew.errors import InputError
+from unsew.io.atomic import check_output
+
 __all__ = ["run", "load_pattern_reporting"]
 
 
@@ -23,8 +26,6 @@ def load_pattern_reporting(path):
 
 
 def run(args: argparse.Namespace) -> int:
-    from unsew.errors import InputError
-
     outs = [(args.svg, ".svg", "--svg"), (args.dxf, ".dxf", "--dxf"), (getattr(args, "obj", None), ".obj", "--obj")]
     if not any(o for o, _, _ in outs):
         raise InputError("nothing to export: give --svg P.svg, --dxf P.dxf and/or --obj P.obj")
@@ -32,7 +33,6 @@ def run(args: argparse.Namespace) -> int:
         if o and not str(o).lower().endswith(ext):
             raise InputError(f"{flag} {o} should name a {ext} file")
     from unsew.commands._checks import MAX_TRIANGLES
-    from unsew.io.atomic import check_output
 
     pattern = load_pattern_reporting(args.pattern)
     for o, _, flag in outs:

@@ -6,13 +6,14 @@ from __future__ import annotations
 import argparse
 import time
 
+from unsew.errors import InputError
+from unsew.io.atomic import check_output
+
 __all__ = ["run"]
 
 
 def run(args: argparse.Namespace) -> int:
     from unsew.commands._checks import check_triangle_budget
-    from unsew.errors import InputError
-    from unsew.io.atomic import check_output
     from unsew.io.garmentcode import load_pattern
     from unsew.meshing.sew import EDGE_LENGTH_RANGE, mesh_pattern, write_rest_obj
 

@@ -5,6 +5,10 @@ from __future__ import annotations
 import argparse
 import sys
 
+from unsew.errors import InputError
+from unsew.pattern.base import make_base_pattern
+from unsew.pattern.measurements import Measurements
+
 __all__ = ["run", "load_measurements"]
 
 
@@ -14,9 +18,6 @@ def load_measurements(path):
     from pathlib import Path
 
     import yaml
-
-    from unsew.pattern.measurements import Measurements
-    from unsew.errors import InputError
 
     p = Path(path)
     if not p.is_file():
@@ -35,9 +36,7 @@ def load_measurements(path):
 
 
 def run(args: argparse.Namespace) -> int:
-    from unsew.errors import InputError
     from unsew.io.garmentcode import save_pattern
-    from unsew.pattern.base import make_base_pattern
     from unsew.pattern.validate import validate_pattern
 
     if not str(args.out).lower().endswith(".json"):

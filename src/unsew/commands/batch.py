@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import argparse
 
-from unsew.commands.fit import add_fit_options
+from unsew.commands.fit import add_fit_options, config_from_args
+from unsew.io.atomic import check_output
 
 __all__ = ["register", "run"]
 
@@ -38,8 +39,6 @@ def run(args: argparse.Namespace) -> int:
     from unsew.batch.runner import run_batch
     from unsew.batch.summary import format_table
 
-    from unsew.io.atomic import check_output
-
     cfg = _config(args)
     check_output(args.out, folder=True)  # an unwritable --out fails before any fit
     res = run_batch(args.cases, args.out, cfg=cfg, workers=args.workers, ray=args.ray, overwrite=args.overwrite,
@@ -53,8 +52,6 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _config(args: argparse.Namespace):
-    from unsew.commands.fit import config_from_args
-
     if not hasattr(args, "base"):
         args.base = None
     return config_from_args(args)

@@ -8,6 +8,9 @@ from __future__ import annotations
 
 import argparse
 
+from unsew.errors import InputError
+from unsew.io.atomic import atomic_dir, check_output
+
 __all__ = ["register"]
 
 
@@ -26,11 +29,7 @@ def run_make(args: argparse.Namespace) -> int:
 
     from unsew.body.anny_body import make_anny_body
     from unsew.body.skeleton import save_skeleton
-    from unsew.io.atomic import atomic_dir
     from unsew.io.mesh import write_obj
-
-    from unsew.errors import InputError
-    from unsew.io.atomic import check_output
 
     if os.path.exists(args.out) and not args.overwrite:
         raise InputError(f"output folder {args.out} exists; remove it, pass --overwrite or choose another --out")
@@ -49,7 +48,6 @@ def _body_from_arg(args: argparse.Namespace, *, rig: bool = False):
     import os
 
     from unsew.body.body import default_body, load_body
-    from unsew.errors import InputError
 
     src = args.body
     if src == "default":
@@ -78,8 +76,6 @@ def run_rig(args: argparse.Namespace) -> int:
     folder = args.body if os.path.isdir(args.body) else os.path.dirname(os.path.abspath(args.body))
     out = args.out or os.path.join(folder, "skeleton.json")
     if os.path.exists(out) and not args.overwrite:
-        from unsew.errors import InputError
-
         raise InputError(f"{out} exists; pass --overwrite to replace it or --out another path")
     save_skeleton(body.skeleton, out)
     print(f"wrote {out} ({len(body.skeleton.names)} joints, height {body.height:.3f} m)")

@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import argparse
 
+from unsew.commands.fit import add_fit_options, config_from_args
+from unsew.io.atomic import check_output
+
 __all__ = ["register", "run"]
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    from unsew.commands.fit import add_fit_options
-
     p = sub.add_parser("demo", help="fit a known t-shirt on the embedded default body (a few minutes)")
     p.add_argument("--out", default="demo-out", metavar="DIR", help="folder for the case, the fit and the retarget")
     add_fit_options(p)
@@ -19,10 +20,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from unsew.commands.fit import config_from_args
     from unsew.fit.demo import DEMO_CONFIG, run_demo
-
-    from unsew.io.atomic import check_output
 
     cfg = config_from_args(args, defaults=DEMO_CONFIG)
     check_output(Path(args.out), folder=True)  # an unwritable --out fails now, not after the fit

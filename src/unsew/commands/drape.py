@@ -12,6 +12,9 @@ from __future__ import annotations
 
 import argparse
 
+from unsew.errors import InputError
+from unsew.io.atomic import check_output
+
 __all__ = ["register", "run"]
 
 
@@ -44,8 +47,6 @@ def register(sub: argparse._SubParsersAction) -> None:
 def _load_body(args):
     from pathlib import Path
 
-    from unsew.errors import InputError
-
     src = args.body
     if src == "default":
         if args.skeleton:
@@ -75,8 +76,6 @@ def _load_body(args):
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from unsew.errors import InputError
-
     if not (0.005 <= args.edge_length <= 0.1):
         raise InputError(f"--edge-length {args.edge_length} m is outside [0.005, 0.1] m")
     for flag in ("sew_steps", "settle_steps"):
@@ -88,8 +87,6 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--out {out} must end in .obj")
     if not out.parent.exists():
         raise InputError(f"folder {out.parent} of --out does not exist")
-    from unsew.io.atomic import check_output
-
     check_output(out)  # an unwritable --out fails now, not after the drape
 
     from unsew.io.garmentcode import load_pattern

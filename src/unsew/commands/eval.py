@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import argparse
 
+from unsew.io.atomic import check_output
+
 __all__ = ["register", "run"]
 
 
@@ -16,8 +18,6 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from unsew.metrics.evaluate import evaluate_result, format_table, write_eval_json
-
-    from unsew.io.atomic import check_output
 
     if Path(args.result_dir).is_dir():
         check_output(Path(args.result_dir) / "eval.json")  # fail before the work

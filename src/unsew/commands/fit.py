@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import argparse
 
+from unsew.errors import InputError
+from unsew.io.atomic import check_output
+
 __all__ = ["register", "run", "add_fit_options", "config_from_args"]
 
 
@@ -56,7 +59,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("fit", help="recover the sewing pattern and material of a draped garment (case folder)")
     p.add_argument("case", metavar="CASE_DIR", help="case folder: target.obj, body.obj + skeleton.json or meta body, meta.json")
     p.add_argument("--out", required=True, metavar="RESULT_DIR", help="result folder to create")
-    p.add_argument("--base", help="base pattern: tshirt|dress|pants|shorts|skirt or a GarmentCode JSON (default: meta.json's garment)")
+    p.add_argument("--base", help="base pattern: a garment type or library base (unsew pattern new --help lists them) or a GarmentCode JSON (default: chosen by draping among the library's bases of meta.json's garment)")
     p.add_argument("--units", choices=["m", "cm", "mm"], help="units of the case's meshes (default: meta.json's, else m)")
     p.add_argument("--up", help="the case files' up axis, e.g. z (default: meta.json's, else y)")
     p.add_argument("--front", help="the case files' front axis, e.g. -y (default: meta.json's, else z)")
@@ -70,7 +73,6 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from unsew.fit.run import run_fit
-    from unsew.io.atomic import check_output
     from unsew.body.case import load_case
 
     cfg = config_from_args(args)
@@ -92,7 +94,6 @@ def _check_inputs(case, cfg) -> None:
 
     base = getattr(cfg, "base", None)
     if base and Path(str(base)).suffix.lower() == ".json":
-        from unsew.errors import InputError
         from unsew.io.garmentcode import load_pattern
 
         if not Path(str(base)).is_file():

@@ -11,6 +11,10 @@ from __future__ import annotations
 
 import argparse
 
+from unsew.errors import InputError
+from unsew.io.atomic import atomic_dir
+from unsew.pattern.base import make_base_pattern
+
 __all__ = ["register", "run"]
 
 GARMENTS = ["tshirt", "dress", "pants", "shorts", "skirt"]
@@ -34,14 +38,11 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     import json
 
-    from unsew.errors import InputError
     from unsew.grading.grade import GRADE_SETTINGS, flat_drape, format_table, grade
-    from unsew.io.atomic import atomic_dir
     from unsew.body.case import load_case
     from unsew.io.garmentcode import save_pattern
     from unsew.io.mesh import write_obj
     from unsew.meshing.sew import EDGE_LENGTH_RANGE
-    from unsew.pattern.base import make_base_pattern
 
     lo, hi = EDGE_LENGTH_RANGE
     if not (lo <= args.edge_length <= hi):

@@ -11,7 +11,9 @@ import importlib
 
 __all__ = ["register"]
 
-GARMENTS = ["tshirt", "dress", "pants", "shorts", "skirt"]
+#: unsew.pattern.base.BASES (kept here so --help imports nothing; a test checks they agree)
+BASES = ["tshirt", "tshirt_long", "tshirt_sleeveless", "dress", "dress_sleeveless", "pants", "pants_band", "shorts",
+         "shorts_band", "skirt", "skirt_band", "skirt_circle"]
 MAX_TRIANGLES = 250_000  # unsew.commands._checks.MAX_TRIANGLES (kept here so --help imports nothing)
 
 
@@ -27,7 +29,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     psub = p.add_subparsers(dest="pattern_command", metavar="VERB", required=True)
 
     new = psub.add_parser("new", help="write a base pattern sized to body measurements")
-    new.add_argument("garment", choices=GARMENTS)
+    new.add_argument("garment", choices=BASES, help="garment type or library base")
     new.add_argument("--measurements", metavar="M.yaml", help="body measurements in metres (YAML); default: the default body")
     new.add_argument("--out", required=True, metavar="P.json", help="GarmentCode JSON to write")
     new.set_defaults(func=_dispatch("new"))

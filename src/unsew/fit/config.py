@@ -91,7 +91,8 @@ class OutputSettings:
 class FitConfig:
     """Everything a fit needs besides its case folder. Units in brackets; [-] is dimensionless."""
 
-    base: str = ""  #: base pattern: garment name or a GarmentCode JSON path; "" = meta.json's garment
+    base: str = ""  #: base pattern: a garment type or library base name (unsew.pattern.base.BASES), or a GarmentCode JSON path; "" = chosen by draping among the library's bases of meta.json's garment type
+    base_choice_edge: float = 0.04  #: mesh edge length of the candidate drapes of the automatic base choice [m]
     grading: bool = True  #: run linear grading before the optimization (ablation: False)
     seed: int = 0  #: seed of every random choice [-]
     device: str = "cpu"  #: torch device for the simulation ("cpu", "cuda")

@@ -15,6 +15,15 @@ from pathlib import Path
 
 import numpy as np
 
+from unsew.body.body import default_body
+from unsew.body.case import load_case
+from unsew.dress import DRESS_SETTINGS, dress
+from unsew.fit.config import load_config
+from unsew.fit.run import run_fit
+from unsew.fit.synthetic import Alteration, make_truth_case as _make
+from unsew.io.mesh import write_obj
+from unsew.report.render import render_views
+
 __all__ = ["DemoTruth", "DEMO_TRUTH", "DEMO_CONFIG", "make_truth_case", "run_demo", "other_body"]
 
 
@@ -43,8 +52,6 @@ DEMO_CONFIG = {"drape": {"edge_length": 0.03, "steps": 12}, "optimizer": {"itera
 
 def other_body():
     """A second wearer for the retargeting step: the default body 8% wider and deeper."""
-    from unsew.body.body import default_body
-
     return default_body().transformed(scale=np.array([1.08, 1.0, 1.08]))
 
 
@@ -52,9 +59,6 @@ def make_truth_case(case_dir: Path, *, truth: DemoTruth = DEMO_TRUTH, settings=N
     """Write the demo's case folder (FORMATS.md): the true t-shirt draped on the default body,
     with pattern_gt.json. ``settings``: DrapeSettings of the target's drape (default: FitConfig's
     on a 3 cm mesh, see :func:`unsew.fit.synthetic.make_truth_case`). Returns the folder."""
-    from unsew.fit.synthetic import Alteration
-    from unsew.fit.synthetic import make_truth_case as _make
-
     alt = Alteration({"hem": (truth.hem_length, truth.hem_girth), "sleeves": (truth.sleeve_length, 0.0)},
                      truth.material)
     return _make(case_dir, garment="tshirt", alteration=alt, settings=settings, progress=progress)
@@ -62,12 +66,6 @@ def make_truth_case(case_dir: Path, *, truth: DemoTruth = DEMO_TRUTH, settings=N
 
 def run_demo(out: Path, *, cfg=None, progress: bool = True, log=None) -> dict:
     """Run the whole demo into ``out`` (case/, fit/, retarget/). Returns a summary dict."""
-    from unsew.dress import DRESS_SETTINGS, dress
-    from unsew.fit.config import load_config
-    from unsew.fit.run import run_fit
-    from unsew.body.case import load_case
-    from unsew.io.mesh import write_obj
-
     log = log or (lambda s: print(s, file=sys.stderr))
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -91,8 +89,6 @@ def run_demo(out: Path, *, cfg=None, progress: bool = True, log=None) -> dict:
               faces_uv=d2.mesh.faces_uv, header="fitted pattern draped on another body")
     write_obj(out / "retarget" / "body.obj", body2.verts, body2.faces)
     try:
-        from unsew.report.render import render_views
-
         render_views(out / "retarget" / "retarget.png", d2.x.numpy(), d2.mesh.faces,
                      body=(body2.verts, body2.faces), views=("front", "side"),
                      title="fitted t-shirt on another body")

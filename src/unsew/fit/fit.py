@@ -29,7 +29,7 @@ from unsew.fit.config import FitConfig
 from unsew.fit.material import AUTO_START_MATERIAL, MaterialChoice, choose_start
 from unsew.fit.optimize import Iteration, PhaseTwo
 from unsew.fit.progress import BAR_SAMPLES, Progress
-from unsew.fit.start import base_pattern_for, start
+from unsew.fit.start import choose_base, start
 from unsew.fit.target import Target
 from unsew.sim.checks import DrapeVerdict, check_drape
 
@@ -47,6 +47,7 @@ class FitResult:
     converged: whether it stopped on its tolerance; x_graded, x_base: the graded and base drapes
     (Nx, 3) [m] (the base on ``base_mesh``); params: the PatternParams of the graded pattern;
     start_material: phase two's start; material_choice: the auto choice's table, best first;
+    base_name, base_choice: the base pattern's name and the automatic base choice's table (best first);
     best_iteration: the iterate returned (-1: the start); material_fitted: whether the returned
     material was optimised; material_start_iteration: when the material joined (None: never);
     gamma_last: the last iterate's Gamma (5,); redress, mesh_spread: the checks' figures (None: off);
@@ -75,6 +76,8 @@ class FitResult:
     base_mesh: object = None
     start_material: object = None
     material_choice: list | None = None
+    base_name: str = ""
+    base_choice: list | None = None
     best_iteration: int = -1
     material_fitted: bool = False
     material_start_iteration: int | None = None
@@ -99,15 +102,18 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
     torch.manual_seed(cfg.seed)
     _check_device(cfg.device)
     material0 = resolve_material(AUTO_START_MATERIAL if cfg.material.start == "auto" else cfg.material.start)
-    base, sdf, target = base_pattern_for(case, cfg), BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
+    sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
     clock.lap("body_sdf_s")
     saved = load_checkpoint(checkpoint) if resume and checkpoint and Path(checkpoint).is_file() else None
     if saved is not None:  # phase one and the material choice are in the checkpoint
         choice, state = saved
         log(f"resuming from iteration {state['iteration']} ({checkpoint})")
     else:
-        garment = cfg.base or case.garment
-        first = start(base, case.body, target, sdf, cfg, material0, progress=bar, garment=garment)
+        base = choose_base(case, target, sdf, cfg, material0, progress=bar, log=log)
+        clock.lap("base_choice_s", keep=bool(base.table))
+        garment = base.name
+        first = start(base.pattern, case.body, target, sdf, cfg, material0, progress=bar, garment=garment)
+        first = first.replace(base_name=base.name, base_choice=tuple(base.table))
         clock.lap("grading_s")
         choice = choose_start(first, case.body, target, sdf, cfg, progress=bar, log=log, garment=garment)
         clock.lap("material_choice_s", keep=cfg.material.start == "auto")
@@ -155,7 +161,8 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
         pattern=pattern, base_pattern=s.base, graded_pattern=s.graded, mesh=s.mesh, x=x, uv=uv, material=material,
         history=two.history, grade_table=s.grade_table, timings=clock.total(), iterations=len(two.history["total"]),
         converged=two.converged, x_graded=np.asarray(s.x), x_base=s.x_base, params=two.params, base_mesh=s.mesh_base,
-        start_material=s.material, material_choice=choice.table, best_iteration=two.best.iteration,
+        start_material=s.material, material_choice=choice.table, base_name=s.base_name,
+        base_choice=list(s.base_choice) or None, best_iteration=two.best.iteration,
         material_fitted=two.best.material_on and (redress is None or redress.phase_two_kept),
         material_start_iteration=cfg.material.start_iteration if cfg.fits_material else None,
         gamma_last=two.gamma_last(), redress=redress, mesh_spread=spread,

@@ -1,5 +1,8 @@
 """The result folder of a fit (FORMATS.md): pattern.json, pattern.svg, pattern.dxf, garment.obj,
-garment_rest.obj, material.json, metrics.json, config.yaml, report.html and its figures.
+garment_rest.obj, material.json, metrics.json, config.yaml, report.html and its figures; and, an
+addition FORMATS.md does not list (docs/ARCHITECTURE.md), the fit's starting points
+pattern_base.json (the base pattern before grading) and pattern_graded.json (after grading;
+absent when grading is off), GarmentCode JSON like pattern.json.
 
 Everything is written into a work folder that is renamed onto the result folder only when all
 files are complete, so a failed or interrupted run never leaves a folder that looks finished.
@@ -15,7 +18,26 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["write_result", "result_metrics", "file_sha256", "pattern_with_extras"]
+from unsew import __version__
+from unsew._memory import peak_rss_mb
+from unsew.fit.config import config_to_dict
+from unsew.fit.report import write_fit_report
+from unsew.io.dxf import write_dxf
+from unsew.io.garmentcode import save_pattern
+from unsew.io.mesh import write_obj
+from unsew.io.svg import write_svg
+from unsew.meshing import write_rest_obj
+from unsew.metrics.panels import pattern_metrics
+from unsew.metrics.surface import surface_metrics
+from unsew.sim.material import material_to_dict
+
+__all__ = ["write_result", "result_metrics", "pattern_errors", "file_sha256", "pattern_with_extras",
+           "BASE_PATTERN_FILE", "GRADED_PATTERN_FILE"]
+
+#: The starting points of the fit, saved beside pattern.json so their pattern errors can be
+#: recomputed (``unsew eval``): unsew's base pattern before grading, and the graded pattern.
+BASE_PATTERN_FILE = "pattern_base.json"
+GRADED_PATTERN_FILE = "pattern_graded.json"
 
 
 def file_sha256(path: str | os.PathLike) -> str:
@@ -39,8 +61,6 @@ def pattern_with_extras(result) -> object:
     sym = getattr(params, "symmetry", None)
     if sym is not None and hasattr(sym, "to_dict"):
         extras["symmetry"] = sym.to_dict()
-    from unsew.sim.material import material_to_dict
-
     extras["material"] = material_to_dict(result.material)
     p.unsew = {k: v for k, v in extras.items() if v is not None}
     return p
@@ -49,8 +69,6 @@ def pattern_with_extras(result) -> object:
 def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     """3D metrics of the final drape against the target and, if the case has a true pattern,
     the pattern metrics; plus the final loss terms and timings."""
-    from unsew.metrics.surface import surface_metrics
-
     faces = np.asarray(result.mesh.faces)
     m = {"surface": surface_metrics(result.x, faces, case.target_verts, case.target_faces, n_samples=n_samples)}
     if result.x_base is not None:
@@ -60,21 +78,17 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
         m["surface_graded"] = surface_metrics(result.x_graded, faces, case.target_verts, case.target_faces,
                                               n_samples=n_samples)
     if case.pattern_gt is not None:
-        from unsew.metrics.panels import pattern_metrics
-
-        try:
-            m["pattern"] = pattern_metrics(result.pattern, case.pattern_gt)
-            m["pattern_base"] = pattern_metrics(result.base_pattern, case.pattern_gt)
-            if result.graded_pattern is not None:
-                m["pattern_graded"] = pattern_metrics(result.graded_pattern, case.pattern_gt)
-        except Exception as exc:  # unmatched panels: report, do not sink the fit
-            m["pattern"] = {"error": str(exc)}
+        m.update(pattern_errors(result, case.pattern_gt))
     h = result.history
     m["loss_final"] = {k: (v[-1] if v else None) for k, v in h.items()}
     m["loss_history"] = {k: [float(f"{x:.6g}") for x in v] for k, v in h.items()}  # per iteration
     m["iterations"] = result.iterations
     m["best_iteration"] = result.best_iteration
     m["material_fitted"] = result.material_fitted
+    if getattr(result, "base_name", ""):
+        m["base"] = result.base_name  # the base pattern phase one started from
+    if getattr(result, "base_choice", None):
+        m["base_choice"] = result.base_choice  # base chosen by draping: candidates, best first
     if result.material_choice:
         m["material_choice"] = result.material_choice  # material: auto, best first
     m["converged"] = result.converged
@@ -83,8 +97,6 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     if result.mesh_spread is not None:
         m["mesh_spread"] = result.mesh_spread.as_dict()  # the returned pattern on two other meshes
     m["timings_s"] = result.timings
-    from unsew._memory import peak_rss_mb
-
     m["peak_memory_mb"] = peak_rss_mb()  # the process's peak resident memory so far [MB]
     if getattr(result, "memory_mb", None):
         m["peak_memory_stages_mb"] = result.memory_mb  # the peak so far at the end of each stage [MB]
@@ -97,6 +109,24 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     return m
 
 
+def pattern_errors(result, pattern_gt) -> dict:
+    """Pattern metrics (:func:`unsew.metrics.panels.pattern_metrics`) of the final, base and graded
+    patterns against the true one, keyed ``pattern``, ``pattern_base``, ``pattern_graded`` (the
+    last absent without grading). Panels without a counterpart (a waistband the base lacks) are
+    listed under each key's ``unmatched``; a pattern that cannot be compared at all gets
+    ``{"error": reason}`` under its key without sinking the others."""
+    out = {}
+    for key, pat in (("pattern", result.pattern), ("pattern_base", result.base_pattern),
+                     ("pattern_graded", result.graded_pattern)):
+        if pat is None:
+            continue
+        try:
+            out[key] = pattern_metrics(pat, pattern_gt)
+        except Exception as exc:  # a metric must not sink a finished fit: report it
+            out[key] = {"error": f"{type(exc).__name__}: {exc}"}
+    return out
+
+
 def _faces_of(result, which: str):
     mesh = result.base_mesh if which == "base" else None
     return np.asarray((mesh or result.mesh).faces)
@@ -107,19 +137,13 @@ def write_result(work: Path, result, case, cfg, *, report: bool = True, metrics:
     Returns the metrics dict."""
     import yaml
 
-    from unsew import __version__
-    from unsew.fit.config import config_to_dict
-    from unsew.io.dxf import write_dxf
-    from unsew.io.garmentcode import save_pattern
-    from unsew.io.mesh import write_obj
-    from unsew.io.svg import write_svg
-    from unsew.meshing import write_rest_obj
-    from unsew.sim.material import material_to_dict
-
     work = Path(work)
     work.mkdir(parents=True, exist_ok=True)
     pattern = pattern_with_extras(result)
     save_pattern(pattern, work / "pattern.json")
+    save_pattern(result.base_pattern, work / BASE_PATTERN_FILE)
+    if result.graded_pattern is not None:
+        save_pattern(result.graded_pattern, work / GRADED_PATTERN_FILE)
     write_svg(pattern, work / "pattern.svg")
     write_dxf(pattern, work / "pattern.dxf")
     mesh = result.mesh
@@ -139,8 +163,6 @@ def write_result(work: Path, result, case, cfg, *, report: bool = True, metrics:
     }
     (work / "config.yaml").write_text(yaml.safe_dump(cfg_out, sort_keys=False))
     if report:
-        from unsew.fit.report import write_fit_report
-
         write_fit_report(work, result, case, metrics, config=cfg_out)
     return metrics
 

@@ -9,15 +9,15 @@ from pathlib import Path
 
 import numpy as np
 
+from unsew.metrics.surface import closest_points
+from unsew.report.fit_report import write_fit_report as _write
+from unsew.sim.material import material_to_dict
+
 __all__ = ["write_fit_report"]
 
 
 def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | None = None) -> Path:
     """Write report.html (figures embedded) into ``work``; figures go to ``work/figures``."""
-    from unsew.metrics.surface import closest_points
-    from unsew.report.fit_report import write_fit_report as _write
-    from unsew.sim.material import material_to_dict
-
     faces = np.asarray(result.mesh.faces)
     _, dist, _ = closest_points(np.asarray(result.x), np.asarray(case.target_verts), np.asarray(case.target_faces))
     patterns = [("base", result.base_pattern)]
@@ -36,9 +36,18 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
         "time_s": result.timings.get("total_s"),
     }
     pat = metrics.get("pattern")
+    notes = []
     if isinstance(pat, dict) and pat.get("area_error_rel_mean") is not None:
         summary["area_error_mean_pct"] = 100.0 * float(pat["area_error_rel_mean"])
-    notes = []
+    if isinstance(pat, dict) and pat.get("area_error_weighted_rel") is not None:
+        summary["area_error_weighted_pct"] = 100.0 * float(pat["area_error_weighted_rel"])
+        summary["area_error_total_pct"] = 100.0 * float(pat["area_error_total_rel"])
+    for key, what in (("pattern_base", "base"), ("pattern_graded", "graded"), ("pattern", "final")):
+        un = (metrics.get(key) or {}).get("unmatched") or {}
+        if un.get("estimated") or un.get("true"):
+            notes.append(f"{what} pattern: panels without a counterpart, estimated {un.get('estimated') or []}, "
+                         f"true {un.get('true') or []} (left out of the per-panel means; the area-weighted "
+                         "area error counts each at its full area)")
     for row in result.grade_table or []:
         for w in (row.get("warnings") or []) if isinstance(row, dict) else []:
             notes.append(f"grading: {w}")
@@ -63,6 +72,12 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     start = result.material_start_iteration
     phases = [(0, "pattern")] + ([(start, "pattern + material")] if start is not None and start < result.iterations else [])
     tables = dict(metrics)
+    if "base" in tables:
+        summary["base"] = tables.pop("base")
+    bases = tables.pop("base_choice", None)
+    if bases:
+        tables["base choice (each base dressed on a coarse mesh, Chamfer mm)"] = {
+            r["base"]: ("failed" if r["chamfer_mm"] is None else round(float(r["chamfer_mm"]), 2)) for r in bases}
     choice = tables.pop("material_choice", None)
     if choice:
         summary["start_material"] = choice[0]["material"]

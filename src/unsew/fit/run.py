@@ -9,6 +9,8 @@ import sys
 from pathlib import Path
 
 from unsew.errors import InputError
+from unsew.fit.fit import fit
+from unsew.fit.outputs import write_result
 
 __all__ = ["run_fit", "partial_dir"]
 
@@ -28,9 +30,6 @@ def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = Fal
 
     Ctrl-C or a crash leaves ``out.partial`` with ``checkpoint.pt``; ``resume=True`` continues.
     """
-    from unsew.fit.fit import fit
-    from unsew.fit.outputs import write_result
-
     log = log or (lambda s: print(s, file=sys.stderr))
     out = Path(out)
     work = partial_dir(out)

@@ -1,10 +1,18 @@
 """Phase one of the fit (paper 3.3): the base pattern sized to the wearer, dressed on the body and
-graded to the target's open contours. Its hand-off is a :class:`Start`."""
+graded to the target's open contours. Its hand-off is a :class:`Start`.
+
+The base is the user's (``--base NAME|P.json``) or, by default, chosen by draping
+(:func:`choose_base`): every base of the library of the target's garment type
+(:func:`unsew.pattern.base.bases_for`) is dressed on the wearer on a coarse mesh in the start
+material, and the one whose drape lies closest to the target (mean surface Chamfer) is kept, as
+the material is chosen (:mod:`unsew.fit.material`)."""
 
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
+import math
+import time
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -18,9 +26,10 @@ from unsew.fit.target import Target
 from unsew.grading.grade import grade
 from unsew.io.garmentcode import load_pattern
 from unsew.losses.contours import open_contours
-from unsew.pattern.base import make_base_pattern
+from unsew.pattern.base import BASES, bases_for, garment_of, make_base_pattern
+from unsew.sim.checks import check_dressed
 
-__all__ = ["Start", "start", "base_pattern_for"]
+__all__ = ["Start", "start", "base_pattern_for", "BaseChoice", "choose_base"]
 
 #: garment types a base pattern may stand in for (same panel topology)
 _COMPATIBLE = {
@@ -39,7 +48,7 @@ class Start:
     base: the base Pattern; graded: the graded pattern U_LG (the base itself without grading);
     mesh: its GarmentMesh; x: its drape X_LG (n_x, 3) float64 [m] on ``mesh``; grade_table: the
     contour rows of grading; x_base, mesh_base: the base pattern's drape and mesh; material: the
-    Material all of these were dressed in.
+    Material all of these were dressed in; base_name, base_choice: which base, and how it was chosen.
     """
 
     base: object
@@ -50,19 +59,24 @@ class Start:
     x_base: np.ndarray
     mesh_base: object
     material: object
+    base_name: str = ""  #: the base's library name or JSON path
+    base_choice: tuple = ()  #: the automatic base choice's rows, best first (BaseChoice.table)
 
     def replace(self, **changes) -> "Start":
         return dataclasses.replace(self, **changes)
 
 
 def base_pattern_for(case, cfg: FitConfig):
-    """The base pattern: cfg.base (garment name or GarmentCode JSON path) or meta.json's garment,
-    sized to the wearer's measurements. Refuses a base of the wrong garment type."""
+    """The base pattern the user named: cfg.base (a garment type, a library base name of
+    :data:`unsew.pattern.base.BASES`, or a GarmentCode JSON path) or, when cfg.base is empty,
+    meta.json's garment's default base, sized to the wearer's measurements. Refuses a library base
+    of the wrong garment type."""
     base = cfg.base or case.garment
     if not base:
-        raise InputError("no base pattern: meta.json names no garment; pass --base tshirt|dress|pants|shorts|skirt|P.json")
-    if base in _COMPATIBLE:
-        if case.garment and case.garment not in _COMPATIBLE[base]:
+        raise InputError(f"no base pattern: meta.json names no garment; pass --base {'|'.join(BASES)}|P.json")
+    if base in BASES:
+        g = garment_of(base)
+        if case.garment and case.garment not in _COMPATIBLE[g]:
             raise InputError(
                 f"base pattern {base!r} cannot make a {case.garment} target (meta.json); "
                 f"use --base {case.garment}"
@@ -70,8 +84,62 @@ def base_pattern_for(case, cfg: FitConfig):
         return make_base_pattern(base, measure_body(case.body))
     p = Path(base)
     if p.suffix.lower() != ".json":
-        raise InputError(f"--base {base!r} is neither a garment type ({', '.join(_COMPATIBLE)}) nor a .json pattern")
+        raise InputError(f"--base {base!r} is neither a base pattern ({', '.join(BASES)}) nor a .json pattern")
     return load_pattern(p)
+
+
+@dataclass
+class BaseChoice:
+    """The base pattern phase one starts from: ``pattern``, its ``name`` (a library base, or the
+    JSON path given), and the automatic choice's table, best first: rows {"base", "chamfer_mm"}
+    (a candidate whose drape failed has chamfer_mm None and an "error"); empty when the user named
+    the base. ``seconds``: time the choice took [s]."""
+
+    pattern: object
+    name: str
+    table: list = field(default_factory=list)
+    seconds: float = 0.0
+
+
+def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress: Progress,
+                log=print) -> BaseChoice:
+    """The base pattern of the fit: the user's (cfg.base) or, when cfg.base is empty and the
+    library has several bases of meta.json's garment type, the one whose drape lies closest to
+    the target. Each candidate, sized to the wearer, is dressed from scratch on a mesh of edge
+    ``cfg.base_choice_edge`` [m] (the rest of ``cfg.drape`` as the fit's drapes) in ``material``
+    (the start material); its distance is :meth:`Target.distance_mm`. A candidate whose drape
+    fails or is judged bad (:func:`unsew.sim.checks.check_dressed`) is listed, not chosen."""
+    if cfg.base or not case.garment or case.garment not in BASES:
+        return BaseChoice(base_pattern_for(case, cfg), cfg.base or case.garment)
+    names = bases_for(garment_of(case.garment))
+    m = measure_body(case.body)
+    if len(names) == 1:
+        return BaseChoice(make_base_pattern(names[0], m), names[0])
+    t0 = time.perf_counter()
+    settings = cfg.drape.replace(edge_length=cfg.base_choice_edge)
+    rows, patterns = [], {}
+    for name in names:
+        pat = make_base_pattern(name, m)
+        try:
+            with progress.phase(f"base {name}") as bar:
+                d = dress(pat, case.body, sdf=sdf, material=material, settings=settings, progress=bar)
+            verdict = check_dressed(d, body=case.body)
+            if not verdict.ok:  # fallen, exploded, off or inside the body: no candidate
+                raise ValueError(verdict.reason)
+            cf = target.distance_mm(d.x.numpy(), d.mesh.faces)
+        except (InputError, ValueError, RuntimeError) as exc:  # a candidate that cannot be dressed here
+            rows.append({"base": name, "chamfer_mm": None, "error": str(exc).splitlines()[0]})
+            continue
+        rows.append({"base": name, "chamfer_mm": cf if math.isfinite(cf) else None})
+        if math.isfinite(cf):
+            patterns[name] = pat
+    if not patterns:
+        raise InputError(f"no base pattern of type {case.garment} could be dressed on this body; pass --base P.json")
+    rows.sort(key=lambda r: (r["chamfer_mm"] is None, r["chamfer_mm"] or 0.0))
+    best = rows[0]["base"]
+    log("base: " + ", ".join(f"{r['base']} {r['chamfer_mm']:.2f} mm" if r["chamfer_mm"] is not None
+                             else f"{r['base']} failed" for r in rows) + f"; {best} chosen")
+    return BaseChoice(patterns[best], best, rows, time.perf_counter() - t0)
 
 
 def _check_contours_compatible(n_src: int, n_tgt: int, garment: str) -> None:

@@ -12,6 +12,18 @@ from pathlib import Path
 
 import numpy as np
 
+from unsew.body.body import default_body, load_body
+from unsew.body.measure import measure_body
+from unsew.body.skeleton import save_skeleton
+from unsew.dress import dress
+from unsew.fit.config import FitConfig
+from unsew.grading.alter import alter_pattern, alteration_groups
+from unsew.io.atomic import atomic_dir
+from unsew.io.garmentcode import load_pattern, save_pattern
+from unsew.io.mesh import write_obj
+from unsew.pattern.base import make_base_pattern
+from unsew.sim.material import Material, get_material, material_to_dict
+
 __all__ = ["Alteration", "make_truth_pattern", "make_truth_case", "DEFAULT_ALTERATIONS", "off_library"]
 
 
@@ -20,16 +32,18 @@ class Alteration:
     """Changes from the base pattern, per group of open edges (unsew.grading.alter.alteration_groups).
 
     changes: group ("hem", "sleeves", "legs") -> (length [m], girth [-]): the open edges move
-    outward by ``length`` and widen by the fraction ``girth``. material: the true fabric
-    (library name). A group the garment does not have is ignored.
+    outward by ``length`` and widen by the fraction ``girth``; "group@panel" (e.g. "hem@back")
+    alters only that panel's edges of the group, which grading (one length and girth per
+    contour) cannot express; "waist" -> (length, _): the waist corners of the side seams (where
+    two side-seam edges meet, dresses) move outward by ``length`` (negative: a fitted waist),
+    a shape that no open contour carries, so grading cannot make it either. material: the true fabric (library name). A group the garment does
+    not have is ignored.
     """
 
     changes: dict = field(default_factory=dict)
     material: object = "jersey"  #: library name or a unsew.sim.material.Material
 
     def as_dict(self) -> dict:
-        from unsew.sim.material import Material, material_to_dict
-
         mat = material_to_dict(self.material) if isinstance(self.material, Material) else self.material
         return {"changes": {k: {"length_m": v[0], "girth_frac": v[1]} for k, v in self.changes.items()},
                 "material": mat}
@@ -43,8 +57,6 @@ def off_library(name: str, seed: int = 0):
     candidate of ``material: auto``. Returns a Material (units as in unsew.sim.material)."""
     import math
     import zlib
-
-    from unsew.sim.material import Material, get_material
 
     m = get_material(name)
     rng = np.random.default_rng([seed, zlib.crc32(name.encode())])
@@ -68,19 +80,40 @@ DEFAULT_ALTERATIONS = {
 
 def make_truth_pattern(garment: str, alteration: Alteration, *, body=None):
     """The base pattern of ``garment`` sized to ``body`` (default body when None), altered."""
-    from unsew.body.body import default_body
-    from unsew.body.measure import measure_body
-    from unsew.grading.alter import alter_pattern, alteration_groups
-    from unsew.pattern.base import make_base_pattern
-
     body = body if body is not None else default_body()
     p = make_base_pattern(garment, measure_body(body))
     groups = alteration_groups(p)
     for key, (length, girth) in alteration.changes.items():
-        if key in groups:
-            p = alter_pattern(p, groups[key], length=length, girth=girth)
+        if key == "waist":
+            p = _move_waist(p, length)
+            continue
+        group, _, panel = key.partition("@")
+        edges = [e for e in groups.get(group, []) if not panel or e[0] == panel]
+        if edges:
+            p = alter_pattern(p, edges, length=length, girth=girth)
     p.name = f"truth_{garment}"
     return p
+
+
+def _move_waist(pattern, length: float):
+    """A copy of ``pattern`` whose side-seam corners (a vertex between two edges labelled
+    ``left_side`` or two labelled ``right_side``) move by ``length`` [m] horizontally, away from
+    the panel's vertical centre line. Mirror images move alike, so stitched side seams keep
+    matching lengths."""
+    out = pattern.copy()
+    for panel in out.panels.values():
+        ends = {}
+        for e in panel.edges:
+            if e.label in ("left_side", "right_side"):
+                ends.setdefault((e.label, e.start), 0)
+                ends.setdefault((e.label, e.end), 0)
+                ends[(e.label, e.start)] += 1
+                ends[(e.label, e.end)] += 1
+        centre = 0.5 * (panel.vertices[:, 0].min() + panel.vertices[:, 0].max())
+        for (_, v), n in ends.items():
+            if n == 2:
+                panel.vertices[v, 0] += length * np.sign(panel.vertices[v, 0] - centre)
+    return out
 
 
 def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alteration | None = None,
@@ -98,14 +131,6 @@ def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alte
     then and 0.00 mm now (benchmarks/bench_fabric_gap.py). A body written into the case
     (``body_meta=None``) is written first and the target draped on it as loaded back (see below).
     """
-    from unsew.body.body import default_body, load_body
-    from unsew.body.skeleton import save_skeleton
-    from unsew.dress import dress
-    from unsew.fit.config import FitConfig
-    from unsew.io.atomic import atomic_dir
-    from unsew.io.garmentcode import load_pattern, save_pattern
-    from unsew.io.mesh import write_obj
-
     alteration = alteration or DEFAULT_ALTERATIONS[garment]
     body = body if body is not None else default_body()
     p = make_truth_pattern(garment, alteration, body=body)

@@ -25,11 +25,12 @@ import numpy as np
 import torch
 
 from unsew.dress import DRESS_SETTINGS, dress
-from unsew.errors import InputError, SimulationError
+from unsew.errors import InputError, PatternError, SimulationError, UnsewError
 from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
 from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, place_contours
 from unsew.grading.curves import curves_of_contour, rest_length
 from unsew.grading.edit import curve_edit, project_edit, safe_fraction
+from unsew.grading.guards import WaistBound, bounded_extensions, bounded_girth, bounded_waist, waist_bound
 from unsew.meshing.sew import mesh_pattern
 from unsew.pattern.params import PatternParams
 from unsew.sim.drape import DrapeSettings
@@ -37,7 +38,18 @@ from unsew.sim.drape import DrapeSettings
 __all__ = [
     "GradeResult", "grade", "moved_mesh", "dress_drape", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH",
     "REMESH_MODES", "LENGTH_MODES", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL", "GRADE_SETTINGS", "GradePass",
+    "GradingError", "MESH_RETRIES",
 ]
+
+
+class GradingError(UnsewError):
+    """Grading made a pattern it cannot mesh even with its edit undone: a failure of unsew's
+    grading after the input was accepted, never reported as a fault of the input."""
+
+
+#: Halvings of an edit's fraction tried when its graded pattern cannot be meshed (a panel folded
+#: or crossed); after them the edit is undone (fraction 0).
+MESH_RETRIES = 4
 
 #: grade()'s drape settings when none are given: dress()'s on a 3 cm mesh (grade's default edge
 #: length has been 3 cm, the fit's 2.5 cm; a fit passes its own settings).
@@ -199,7 +211,8 @@ def grade(
     skel = body.skeleton
     tgt = place_contours(tv, tf, skel)
     ctx = _PassContext(tgt, skel, {} if max_centre_distance is None else {"max_centre_distance": max_centre_distance},
-                       cloth_lengths(tv, tf, tgt) if length == "cloth" else (None, {}), hold_top, remesh)
+                       cloth_lengths(tv, tf, tgt) if length == "cloth" else (None, {}), hold_top, remesh,
+                       waist_bound(body))
     first = _grade_pass(pattern, mesh, x_init, ctx)
     cur, rows = first, list(first.rows)
     x_lg = None
@@ -252,6 +265,7 @@ class _PassContext:
     tcloth: tuple
     hold_top: bool = True
     remesh: str = "always"
+    waist: WaistBound | None = None
 
 
 def _further_pass(cur: "GradePass", x_lg: np.ndarray, ctx: _PassContext) -> "GradePass | None":
@@ -424,13 +438,16 @@ class GradePass:
 @dataclass
 class _Item:
     """A matched contour to edit: its match, its open curves, the girth difference [m] (target
-    minus source), each curve's share of it [m] (by 3D length), and its warnings."""
+    minus source), each curve's share of it [m] (by 3D length), its warnings, the source girth
+    [m] graded from, and each curve's weight in the shares (its part of the loop's 3D length)."""
 
     match: ContourMatch
     curves: list
     girth_difference: float
     shares: list
     warnings: list
+    girth: float = 0.0
+    weights: list = field(default_factory=list)
 
 
 @dataclass
@@ -442,6 +459,8 @@ class _Edit:
     pattern: object
     mesh: object
     remeshed: bool
+    exts: dict = field(default_factory=dict)  # target index -> extension applied before ``fraction`` [m]
+    notes: dict = field(default_factory=dict)  # target index -> warnings of the bounds (grading.guards)
 
 
 def _grade_pass(pattern, mesh, x_init, ctx: _PassContext, *, gains: dict | None = None, placed=None) -> GradePass:
@@ -465,15 +484,35 @@ def _grade_pass(pattern, mesh, x_init, ctx: _PassContext, *, gains: dict | None 
     items = [_item(m, src, ctx.tgt, x_init, params, mesh) for m in matches]
     exts = {m.target: cloth[m.target] if m.target in cloth else m.extension * gains.get(m.target, 1.0)
             for m in matches}
+    _bound_waist(src, items, exts, ctx.waist)
     edit = _edit_with_cloth_goals(params, mesh, src, items, exts, cloth, ctx)
-    rows, wanted = _pass_rows(params.pattern, src, ctx.tgt, matches, items, exts, cloth, gains)
+    for it in items:
+        it.warnings.extend(edit.notes.get(it.match.target, []))
+    rows, wanted = _pass_rows(params.pattern, src, ctx.tgt, matches, items, edit.exts, cloth, gains)
     if edit.fraction < 1.0:
-        note = f"edit scaled back to {edit.fraction:.0%} to avoid inverted triangles"
+        note = f"edit scaled back to {edit.fraction:.0%} to avoid inverted triangles or an invalid panel"
         for r in rows:
             if r["edits"]:
                 r["warnings"].append(note)
     return GradePass(edit.pattern, edit.mesh, rows, matches, {t: edit.fraction * e for t, e in wanted.items()},
                      edit.K.detach().cpu().numpy(), edit.fraction, edit.remeshed)
+
+
+def _bound_waist(src, items, exts: dict, waist: WaistBound | None) -> None:
+    """Bound the top opening's move and widening by the body when it is a waist
+    (:func:`unsew.grading.guards.bounded_waist`); ``exts`` and the top item change in place."""
+    top = top_contour(src)
+    it = next((it for it in items if top is not None and it.match.source == top.index), None)
+    if it is None or waist is None:
+        return
+    t = it.match.target
+    ext, dg, notes = bounded_waist(waist, float(top.centre[1]), exts[t], it.girth, it.girth_difference)
+    if not notes:
+        return
+    exts[t] = ext
+    it.shares = [dg * w for w in it.weights]
+    it.girth_difference = dg
+    it.warnings.extend(notes)
 
 
 def _item(m: ContourMatch, src, tgt, x_init, params, mesh) -> _Item:
@@ -486,7 +525,8 @@ def _item(m: ContourMatch, src, tgt, x_init, params, mesh) -> _Item:
         warnings.append(why)
     dg = t.length - girth
     total = max(s.length, 1e-12)  # each curve's share of the contour's 3D length
-    return _Item(m, curves, dg, [dg * (c.length3d / total) for c in curves], warnings)
+    weights = [c.length3d / total for c in curves]
+    return _Item(m, curves, dg, [dg * w for w in weights], warnings, girth, weights)
 
 
 def _whole_panel(pattern, c) -> bool:
@@ -519,15 +559,21 @@ def _edit_with_cloth_goals(params, mesh, src, items, exts: dict, cloth: dict, ct
 
 
 def _edit(params, mesh, items, exts: dict, ctx: _PassContext) -> _Edit:
-    """Move and widen every item's open curves, hold the tops, project on K, scale back to avoid
-    inversions, and mesh the graded pattern (afresh or the base mesh moved)."""
+    """Move and widen every item's open curves within the bounds of :mod:`unsew.grading.guards`,
+    hold the tops, project on K, scale back to avoid inversions, and mesh the graded pattern
+    (afresh or the base mesh moved; scaled back further if a panel cannot be meshed)."""
     C0 = params.control_points(params.K0).detach().cpu().numpy()
+    exts, cut = bounded_extensions(params.pattern, C0, items, exts, params.controls)
+    notes = {t: [n] for t, n in cut.items()}
     delta = np.zeros_like(C0)
     edited: dict[int, list[set]] = {}  # panel index -> control points of each edited open curve
     for it in items:
         for c, dg in zip(it.curves, it.shares):
             if _whole_panel(params.pattern, c):
                 continue
+            dg, note = bounded_girth(params.pattern, c, dg)
+            if note:
+                notes.setdefault(it.match.target, []).append(note)
             delta += curve_edit(params.pattern, C0, c, params.controls, extension=exts[it.match.target], girth_change=dg)
             edited.setdefault(c.panel_index, []).append(set(int(g) for g in c.controls))
     if ctx.hold_top:
@@ -535,13 +581,29 @@ def _edit(params, mesh, items, exts: dict, ctx: _PassContext) -> _Edit:
     K0 = params.K0
     K1 = project_edit(params, C0 + delta)
     frac = safe_fraction(params, K0, K1)
-    K = K0 + frac * (K1 - K0)
-    graded = params.to_pattern(K)
-    with torch.no_grad():
-        uv = params.uv(K).cpu().numpy()
-    remeshed = ctx.remesh == "always" or _rest_edge_stretch(uv, mesh.faces_uv, mesh.edge_length) > REMESH_STRETCH
-    new_mesh = mesh_pattern(graded, edge_length=mesh.edge_length) if remeshed else moved_mesh(mesh, graded, uv)
-    return _Edit(K, float(frac), graded, new_mesh, bool(remeshed))
+    K, frac, graded, new_mesh, remeshed = _meshed(params, mesh, K0, K1, frac, ctx.remesh)
+    return _Edit(K, float(frac), graded, new_mesh, bool(remeshed), exts, notes)
+
+
+def _meshed(params, mesh, K0, K1, frac: float, remesh: str):
+    """(K, fraction, graded pattern, its mesh, remeshed) of the edit ``K0 + frac (K1 - K0)``; when
+    the graded pattern cannot be meshed (a panel folded back or crossed), the fraction is halved
+    up to :data:`MESH_RETRIES` times and then set to 0 (the base's shape, already meshed). A
+    pattern that still fails raises :class:`GradingError`, not the input's PatternError."""
+    tries = [frac * 0.5 ** k for k in range(MESH_RETRIES + 1)] + [0.0]
+    for f in tries:
+        K = K0 + f * (K1 - K0)
+        try:
+            graded = params.to_pattern(K)
+            with torch.no_grad():
+                uv = params.uv(K).cpu().numpy()
+            remeshed = remesh == "always" or _rest_edge_stretch(uv, mesh.faces_uv, mesh.edge_length) > REMESH_STRETCH
+            new_mesh = mesh_pattern(graded, edge_length=mesh.edge_length) if remeshed else moved_mesh(mesh, graded, uv)
+            return K, f, graded, new_mesh, remeshed
+        except PatternError as exc:
+            last = exc
+    raise GradingError(f"grading made a pattern it cannot mesh, even with its edit undone ({last}); this is a "
+                       "failure of unsew's grading, not of the input: rerun with --no-grading or another --base")
 
 
 def _pass_rows(pattern, src, tgt, matches, items, exts, cloth, gains) -> tuple[list, dict]:

@@ -129,65 +129,9 @@ def pattern_from_dict(data: dict, *, name: str = "pattern", validate: bool = Tru
     panels_in = pat.get("panels")
     if not isinstance(panels_in, dict):
         raise InputError("not a GarmentCode specification: 'pattern.panels' must be an object of panels")
-    props = dict(data.get("properties") or {})
-    if not isinstance(data.get("properties", {}), dict):
-        raise InputError("'properties' must be an object")
-    units = props.get("units_in_meter", 100)
-    if isinstance(units, bool) or not isinstance(units, (int, float)) or not math.isfinite(units) or units <= 0:
-        raise InputError(f"properties.units_in_meter must be a positive number (100 for cm), got {units!r}")
-    coords = props.get("curvature_coords", "relative")
-    if coords not in ("relative", "absolute"):
-        raise InputError(f"properties.curvature_coords must be 'relative' or 'absolute', got {coords!r}")
-    absolute = coords == "absolute"
-    props["curvature_coords"] = "relative"  # the model always holds relative coordinates
-    props["units_in_meter"] = units  # the unit this pattern is written in again
-    scale = float(units)
-
-    panels: dict[str, Panel] = {}
-    for pname, pd in panels_in.items():
-        w = f"panel {pname!r}"
-        if not isinstance(pd, dict):
-            raise InputError(f"{w}: must be an object with vertices and edges")
-        if "vertices" not in pd or "edges" not in pd:
-            raise InputError(f"{w}: needs 'vertices' and 'edges'")
-        verts = _points(pd["vertices"], f"{w} vertices", 2) / scale
-        tr = _points(pd.get("translation", [0, 0, 0]), f"{w} translation", -3) / scale
-        rot = _points(pd.get("rotation", [0, 0, 0]), f"{w} rotation", -3)
-        if not isinstance(pd["edges"], list):
-            raise InputError(f"{w}: 'edges' must be a list")
-        edges = []
-        for i, ed in enumerate(pd["edges"]):
-            we = f"{w} edge {i}"
-            if not isinstance(ed, dict) or not isinstance(ed.get("endpoints"), list) or len(ed["endpoints"]) != 2:
-                raise InputError(f"{we}: needs 'endpoints': [i, j]")
-            s, e = ed["endpoints"]
-            if not all(isinstance(k, int) and not isinstance(k, bool) for k in (s, e)):
-                raise InputError(f"{we}: endpoints must be integer vertex indices")
-            if not (0 <= s < len(verts) and 0 <= e < len(verts)):
-                raise PatternError(f"{we}: endpoint out of range (panel has {len(verts)} vertices)")
-            curv = _curvature_from(ed.get("curvature"), verts[s], verts[e], absolute, scale, we)
-            extra = {k: v for k, v in ed.items() if k not in _EDGE_KEYS}
-            edges.append(Edge(s, e, curv, ed.get("label", ""), extra))
-        extra = {k: v for k, v in pd.items() if k not in _PANEL_KEYS}
-        panels[pname] = Panel(pname, verts, edges, tr, rot, pd.get("label", ""), extra)
-
-    stitches = []
-    for k, st in enumerate(pat.get("stitches") or []):
-        if not isinstance(st, list) or len(st) < 2 or not all(isinstance(x, dict) for x in st[:2]):
-            raise InputError(f"stitch {k}: must be a list of two {{'panel': name, 'edge': index}} objects")
-        sides, extra = [], {}
-        for key, sd in zip("ab", st[:2]):
-            if "panel" not in sd or "edge" not in sd:
-                raise InputError(f"stitch {k}: each side needs 'panel' and 'edge'")
-            if not isinstance(sd["edge"], int) or isinstance(sd["edge"], bool):
-                raise InputError(f"stitch {k}: edge index must be an integer, got {sd['edge']!r}")
-            sides.append(StitchSide(str(sd["panel"]), sd["edge"]))
-            more = {x: v for x, v in sd.items() if x not in ("panel", "edge")}
-            if more:
-                extra[key] = more
-        if len(st) > 2:
-            extra["tail"] = list(st[2:])
-        stitches.append(Stitch(sides[0], sides[1], "", extra))
+    props, absolute, scale = _properties_from_dict(data)
+    panels = {pname: _panel_from_dict(pname, pd, absolute, scale) for pname, pd in panels_in.items()}
+    stitches = [_stitch_from_list(k, st) for k, st in enumerate(pat.get("stitches") or [])]
 
     uns = dict(data.get("unsew") or {})
     uns.pop("format_version", None)
@@ -213,6 +157,76 @@ def pattern_from_dict(data: dict, *, name: str = "pattern", validate: bool = Tru
         for msg in validate_pattern(p):
             warnings.warn(msg, stacklevel=2)
     return p
+
+
+def _properties_from_dict(data: dict) -> tuple[dict, bool, float]:
+    """The specification's ``properties``, checked: (properties as the model keeps them,
+    whether the file's curvature coordinates are absolute, file units per metre: 100 for cm)."""
+    props = dict(data.get("properties") or {})
+    if not isinstance(data.get("properties", {}), dict):
+        raise InputError("'properties' must be an object")
+    units = props.get("units_in_meter", 100)
+    if isinstance(units, bool) or not isinstance(units, (int, float)) or not math.isfinite(units) or units <= 0:
+        raise InputError(f"properties.units_in_meter must be a positive number (100 for cm), got {units!r}")
+    coords = props.get("curvature_coords", "relative")
+    if coords not in ("relative", "absolute"):
+        raise InputError(f"properties.curvature_coords must be 'relative' or 'absolute', got {coords!r}")
+    props["curvature_coords"] = "relative"  # the model always holds relative coordinates
+    props["units_in_meter"] = units  # the unit this pattern is written in again
+    return props, coords == "absolute", float(units)
+
+
+def _panel_from_dict(pname: str, pd, absolute: bool, scale: float) -> Panel:
+    """One panel of the file, vertices and translation divided by ``scale`` (file units per
+    metre) into [m], rotation in [deg]; unknown keys kept in ``extra``."""
+    w = f"panel {pname!r}"
+    if not isinstance(pd, dict):
+        raise InputError(f"{w}: must be an object with vertices and edges")
+    if "vertices" not in pd or "edges" not in pd:
+        raise InputError(f"{w}: needs 'vertices' and 'edges'")
+    verts = _points(pd["vertices"], f"{w} vertices", 2) / scale
+    tr = _points(pd.get("translation", [0, 0, 0]), f"{w} translation", -3) / scale
+    rot = _points(pd.get("rotation", [0, 0, 0]), f"{w} rotation", -3)
+    if not isinstance(pd["edges"], list):
+        raise InputError(f"{w}: 'edges' must be a list")
+    edges = [_edge_from_dict(ed, verts, absolute, scale, f"{w} edge {i}") for i, ed in enumerate(pd["edges"])]
+    extra = {k: v for k, v in pd.items() if k not in _PANEL_KEYS}
+    return Panel(pname, verts, edges, tr, rot, pd.get("label", ""), extra)
+
+
+def _edge_from_dict(ed, verts: np.ndarray, absolute: bool, scale: float, we: str) -> Edge:
+    """One edge of a panel whose vertices ``verts`` (N, 2) [m] are read; ``we`` names it in
+    error messages."""
+    if not isinstance(ed, dict) or not isinstance(ed.get("endpoints"), list) or len(ed["endpoints"]) != 2:
+        raise InputError(f"{we}: needs 'endpoints': [i, j]")
+    s, e = ed["endpoints"]
+    if not all(isinstance(k, int) and not isinstance(k, bool) for k in (s, e)):
+        raise InputError(f"{we}: endpoints must be integer vertex indices")
+    if not (0 <= s < len(verts) and 0 <= e < len(verts)):
+        raise PatternError(f"{we}: endpoint out of range (panel has {len(verts)} vertices)")
+    curv = _curvature_from(ed.get("curvature"), verts[s], verts[e], absolute, scale, we)
+    extra = {k: v for k, v in ed.items() if k not in _EDGE_KEYS}
+    return Edge(s, e, curv, ed.get("label", ""), extra)
+
+
+def _stitch_from_list(k: int, st) -> Stitch:
+    """Stitch ``k`` of the file, ``[{'panel': name, 'edge': index}, {...}, ...]``; anything
+    else in it is kept in ``extra`` (its label comes later, from ``unsew.stitch_labels``)."""
+    if not isinstance(st, list) or len(st) < 2 or not all(isinstance(x, dict) for x in st[:2]):
+        raise InputError(f"stitch {k}: must be a list of two {{'panel': name, 'edge': index}} objects")
+    sides, extra = [], {}
+    for key, sd in zip("ab", st[:2]):
+        if "panel" not in sd or "edge" not in sd:
+            raise InputError(f"stitch {k}: each side needs 'panel' and 'edge'")
+        if not isinstance(sd["edge"], int) or isinstance(sd["edge"], bool):
+            raise InputError(f"stitch {k}: edge index must be an integer, got {sd['edge']!r}")
+        sides.append(StitchSide(str(sd["panel"]), sd["edge"]))
+        more = {x: v for x, v in sd.items() if x not in ("panel", "edge")}
+        if more:
+            extra[key] = more
+    if len(st) > 2:
+        extra["tail"] = list(st[2:])
+    return Stitch(sides[0], sides[1], "", extra)
 
 
 def _jsonable(x):

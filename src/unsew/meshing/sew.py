@@ -184,7 +184,34 @@ def mesh_pattern(
     mirrors = {mi.panel: mi for mi in sym.mirrors} if sym is not None else {}
     pair_of = {pr.target: pr for pr in sym.pairs} if sym is not None else {}
     nseg = _segments_per_edge(pattern, edge_length, _axis_edges(pattern, _axes(sym) if sym is not None else {}))
+    outlines, starts_of = _sample_outlines(pattern, nseg)
+    meshed, how = _mesh_panels(pattern, outlines, mirrors, pair_of, edge_length, min_angle)
+    rest = _join_panels(pattern, meshed, outlines, starts_of, nseg)
+    seam_pairs = _seam_pairs(pattern, rest["edge_verts"])
+    x_of_u = _sewn_index(seam_pairs, len(rest["uv"]))
+    return GarmentMesh(
+        uv=rest["uv"],
+        uv_panel=rest["uv_panel"],
+        faces_uv=rest["faces_uv"],
+        x_of_u=x_of_u,
+        faces=x_of_u[rest["faces_uv"]],
+        n_x=int(x_of_u.max()) + 1,
+        panel_names=list(pattern.panel_order),
+        edge_verts=rest["edge_verts"],
+        seam_pairs=seam_pairs,
+        uv_placed3d=rest["uv_placed3d"],
+        panel_offsets=rest["panel_offsets"],
+        n_boundary=rest["n_boundary"],
+        edge_length=float(edge_length),
+        panel_symmetry=how,
+    )
 
+
+def _sample_outlines(pattern: Pattern, nseg: dict) -> tuple[dict, dict]:
+    """Each panel's outline sampled with ``nseg[(panel, edge)]`` segments per edge.
+
+    Returns (panel name -> outline (m, 2) [m], closed loop without its last point repeated;
+    panel name -> index in that outline of each edge's first sample)."""
     outlines, starts_of = {}, {}
     for name in pattern.panel_order:
         panel = pattern.panels[name]
@@ -196,8 +223,17 @@ def mesh_pattern(
             parts.append(pts)
             m += len(pts)
         outlines[name], starts_of[name] = np.concatenate(parts, axis=0), starts
-    meshed, how = _mesh_panels(pattern, outlines, mirrors, pair_of, edge_length, min_angle)
+    return outlines, starts_of
 
+
+def _join_panels(pattern: Pattern, meshed: dict, outlines: dict, starts_of: dict, nseg: dict) -> dict:
+    """The panel meshes ``meshed`` (name -> (verts (n, 2) [m], tris (t, 3))) one after another
+    in ``panel_order``: the rest mesh U before sewing.
+
+    Returns a dict of :class:`GarmentMesh` fields: ``uv`` (Nu, 2) [m], ``uv_panel`` (Nu,),
+    ``faces_uv`` (F, 3) int64, ``uv_placed3d`` (Nu, 3) [m] (each panel at its 3D placement),
+    ``panel_offsets`` (P + 1,), ``n_boundary`` (P,) and ``edge_verts`` ((panel, edge) -> uv
+    indices of its samples, both ends included)."""
     uvs, panels_of, tris_all, placed = [], [], [], []
     edge_verts: dict = {}
     offsets = [0]
@@ -217,38 +253,37 @@ def mesh_pattern(
         placed.append(np.c_[verts, np.zeros(len(verts))] @ r.T + panel.translation)
         n_boundary.append(m)
         offsets.append(o + len(verts))
+    return {
+        "uv": np.concatenate(uvs, axis=0),
+        "uv_panel": np.concatenate(panels_of),
+        "faces_uv": np.concatenate(tris_all, axis=0).astype(np.int64),
+        "uv_placed3d": np.concatenate(placed, axis=0),
+        "panel_offsets": np.asarray(offsets, dtype=np.int64),
+        "n_boundary": np.asarray(n_boundary, dtype=np.int64),
+        "edge_verts": edge_verts,
+    }
 
-    uv = np.concatenate(uvs, axis=0)
-    faces_uv = np.concatenate(tris_all, axis=0).astype(np.int64)
+
+def _seam_pairs(pattern: Pattern, edge_verts: dict) -> np.ndarray:
+    """(S, 2) int64 uv vertex pairs sewn together: side ``a``'s k-th sample against side
+    ``b``'s k-th from its end, stitch by stitch."""
     pairs = []
     for s in pattern.stitches:
         ea = edge_verts[(s.a.panel, s.a.edge)]
         eb = edge_verts[(s.b.panel, s.b.edge)]
         pairs.append(np.stack([ea, eb[::-1]], axis=1))
-    seam_pairs = np.concatenate(pairs, axis=0).astype(np.int64) if pairs else np.zeros((0, 2), dtype=np.int64)
+    return np.concatenate(pairs, axis=0).astype(np.int64) if pairs else np.zeros((0, 2), dtype=np.int64)
 
-    uf = _UnionFind(len(uv))
+
+def _sewn_index(seam_pairs: np.ndarray, n_uv: int) -> np.ndarray:
+    """x_of_u (Nu,) int64: the sewn vertex of each of the ``n_uv`` uv vertices, seam pairs
+    merged, numbered in the order of their first uv vertex."""
+    uf = _UnionFind(n_uv)
     for i, j in seam_pairs:
         uf.union(int(i), int(j))
-    roots = np.array([uf.find(i) for i in range(len(uv))], dtype=np.int64)
+    roots = np.array([uf.find(i) for i in range(n_uv)], dtype=np.int64)
     _, x_of_u = np.unique(roots, return_inverse=True)  # roots are min indices: X keeps U's order
-    x_of_u = x_of_u.astype(np.int64)
-    return GarmentMesh(
-        uv=uv,
-        uv_panel=np.concatenate(panels_of),
-        faces_uv=faces_uv,
-        x_of_u=x_of_u,
-        faces=x_of_u[faces_uv],
-        n_x=int(x_of_u.max()) + 1,
-        panel_names=list(pattern.panel_order),
-        edge_verts=edge_verts,
-        seam_pairs=seam_pairs,
-        uv_placed3d=np.concatenate(placed, axis=0),
-        panel_offsets=np.asarray(offsets, dtype=np.int64),
-        n_boundary=np.asarray(n_boundary, dtype=np.int64),
-        edge_length=float(edge_length),
-        panel_symmetry=how,
-    )
+    return x_of_u.astype(np.int64)
 
 
 def _symmetry_of(pattern: Pattern):

@@ -35,8 +35,10 @@ def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int
         ``pattern_gt.json``.
     n_samples: surface samples per mesh for the 3D metrics. seed: their seed.
     Returns: ``{"format_version", "result", "case", "3d": {...}, "2d": {...} | None,
-    "2d_skipped": reason | None}``. Raises InputError / PatternError on bad input (missing
-    files, empty or non-finite meshes, panels without counterparts).
+    "2d_skipped": reason | None}``, plus ``2d_base`` / ``2d_graded`` when the result folder holds
+    the fit's ``pattern_base.json`` / ``pattern_graded.json``. Raises InputError / PatternError on bad input (missing
+    files, empty or non-finite meshes, a pattern without panels); panels without a counterpart
+    are listed in ``2d["unmatched"]``.
     """
     res, case = Path(result_dir), Path(case_dir)
     for d, what in ((res, "result"), (case, "case")):
@@ -68,7 +70,11 @@ def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int
     elif not est.is_file():
         out["2d_skipped"] = "result has no pattern.json"
     else:
-        out["2d"] = pattern_metrics(load_pattern(est), load_pattern(gt))
+        gt_pattern = load_pattern(gt)
+        out["2d"] = pattern_metrics(load_pattern(est), gt_pattern)
+        for key, name in (("2d_base", "pattern_base.json"), ("2d_graded", "pattern_graded.json")):
+            if (res / name).is_file():  # the fit's starting points (unsew.fit.outputs)
+                out[key] = pattern_metrics(load_pattern(res / name), gt_pattern)
     return out
 
 
@@ -84,6 +90,11 @@ def format_table(ev: dict) -> str:
         f"  {'normal cosine distance':<28}{d3['normal_cosine_distance']:>12.5f}",
     ]
     d2 = ev.get("2d")
+    for key, what in (("2d_base", "base"), ("2d_graded", "graded")):
+        d = ev.get(key)
+        if d:
+            lines.append(f"2D of the {what} pattern: area error {100 * d['area_error_weighted_rel']:.2f} % "
+                         f"(area-weighted), total area {100 * d['area_error_total_rel']:.2f} %")
     if d2 is None:
         lines.append(f"2D: skipped ({ev.get('2d_skipped')})")
     else:
@@ -94,7 +105,13 @@ def format_table(ev: dict) -> str:
             lab = f"{name} <- {p['estimated_panel']}" if name != p["estimated_panel"] else name
             lines.append(f"  {lab:<24}{p['turning_distance']:>14.4f}{p['area_error_rel']:>10.4f}{l2:>9}")
         l2m = "-" if d2["vertex_l2_cm_mean"] is None else f"{d2['vertex_l2_cm_mean']:.2f}"
-        lines.append(f"  {'mean':<24}{d2['turning_distance_mean']:>14.4f}{d2['area_error_rel_mean']:>10.4f}{l2m:>9}")
+        lines.append(f"  {'mean (matched)':<24}{d2['turning_distance_mean']:>14.4f}{d2['area_error_rel_mean']:>10.4f}{l2m:>9}")
+        un = d2.get("unmatched") or {}
+        if un.get("estimated") or un.get("true"):
+            lines.append(f"  unmatched panels: estimated {un.get('estimated') or '[]'}, true {un.get('true') or '[]'}")
+        if d2.get("area_error_weighted_rel") is not None:
+            lines.append(f"  area error, area-weighted (unmatched count in full) {100 * d2['area_error_weighted_rel']:.2f} %, "
+                         f"total area {100 * d2['area_error_total_rel']:.2f} %")
     return "\n".join(lines)
 
 

@@ -15,6 +15,7 @@ from typing import Mapping, Sequence
 import numpy as np
 
 from unsew.errors import InputError
+from unsew.pattern.curves import panel_outline
 
 __all__ = [
     "plot_loss_curves",
@@ -105,6 +106,21 @@ def plot_loss_curves(
         (120, "pattern + material")]``: a dashed line and the name at each start.
     size_px: (width, height) of the PNG in pixels. Returns the PNG's path.
     """
+    series = _loss_series(history)
+    fig = _figure(size_px)
+    ax = fig.add_axes((0.085, 0.12, 0.6, 0.76 if title else 0.82))
+    n_iter = _draw_loss_lines(ax, series, log=log)
+    _loss_axes(ax, n_iter, log=log)
+    if phases:
+        _draw_phases(ax, phases, n_iter)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False, fontsize=9)
+    if title:
+        fig.text(0.5, 0.975, title, ha="center", va="top", fontsize=13, weight="bold")
+    return _save(fig, path_png)
+
+
+def _loss_series(history: Mapping[str, Sequence[float]]) -> dict[str, np.ndarray]:
+    """term name -> values (N,) float64, None as NaN; InputError when there is nothing to plot."""
     if not history:
         raise InputError("history is empty: nothing to plot")
     series = {}
@@ -113,13 +129,16 @@ def plot_loss_curves(
         series[str(name)] = arr
     if all(len(a) == 0 for a in series.values()):
         raise InputError("every loss term in history is empty: nothing to plot")
+    return series
 
-    fig = _figure(size_px)
-    ax = fig.add_axes((0.085, 0.12, 0.6, 0.76 if title else 0.82))
-    total = next((k for k in _TOTAL_KEYS if k in series), None)
-    names = ([total] if total else []) + [k for k in series if k != total]
+
+def _draw_loss_lines(ax, series: Mapping[str, np.ndarray], *, log: bool) -> int:
+    """One line per term of ``series`` on ``ax``, the total first (thick, black), each labelled
+    by :func:`legend_label`. Returns the number of iterations (the longest series)."""
     import matplotlib
 
+    total = next((k for k in _TOTAL_KEYS if k in series), None)
+    names = ([total] if total else []) + [k for k in series if k != total]
     colors = matplotlib.colormaps["tab10"].colors
     ci = 0
     n_iter = 0
@@ -142,11 +161,16 @@ def plot_loss_curves(
         ax.plot(x, y, label=label, **style)
         if finite.size == 1:  # a single point draws no line: mark it
             ax.plot(x[np.isfinite(y)], finite, "o", color=style["color"], markersize=4)
+    return n_iter
+
+
+def _loss_axes(ax, n_iter: int, *, log: bool) -> None:
+    """Scale, limits, whole-number iteration ticks, labels and grid of the loss axes."""
+    from matplotlib.ticker import MaxNLocator
+
     if log:
         ax.set_yscale("log")
     ax.set_xlim(0, max(n_iter - 1, 1))
-    from matplotlib.ticker import MaxNLocator
-
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))  # iterations are whole numbers
     ax.set_xlabel("iteration")
     ax.set_ylabel("loss (log scale)" if log else "loss")
@@ -154,23 +178,23 @@ def plot_loss_curves(
     ax.set_axisbelow(True)
     for side in ("top", "right"):
         ax.spines[side].set_visible(False)
-    if phases:
-        from matplotlib.transforms import blended_transform_factory
 
-        tr = blended_transform_factory(ax.transData, ax.transAxes)
-        starts = sorted((int(i), str(n)) for i, n in phases)
-        for k, (i, pname) in enumerate(starts):
-            end = starts[k + 1][0] if k + 1 < len(starts) else max(n_iter - 1, 1)
-            if k % 2 == 1:
-                ax.axvspan(i, end, color="#f3f3f7", zorder=0)
-            if i > 0:
-                ax.axvline(i, color="#777777", linestyle="--", linewidth=1.0, zorder=1)
-            ax.text(i, 1.01, f" {pname}", transform=tr, ha="left", va="bottom", fontsize=8.5,
-                    color="#444444", clip_on=False)
-    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False, fontsize=9)
-    if title:
-        fig.text(0.5, 0.975, title, ha="center", va="top", fontsize=13, weight="bold")
-    return _save(fig, path_png)
+
+def _draw_phases(ax, phases: Sequence[tuple[int, str]], n_iter: int) -> None:
+    """Each phase's start (first iteration, name): a dashed line (none at 0), the name above
+    the axes, every other phase shaded."""
+    from matplotlib.transforms import blended_transform_factory
+
+    tr = blended_transform_factory(ax.transData, ax.transAxes)
+    starts = sorted((int(i), str(n)) for i, n in phases)
+    for k, (i, pname) in enumerate(starts):
+        end = starts[k + 1][0] if k + 1 < len(starts) else max(n_iter - 1, 1)
+        if k % 2 == 1:
+            ax.axvspan(i, end, color="#f3f3f7", zorder=0)
+        if i > 0:
+            ax.axvline(i, color="#777777", linestyle="--", linewidth=1.0, zorder=1)
+        ax.text(i, 1.01, f" {pname}", transform=tr, ha="left", va="bottom", fontsize=8.5,
+                color="#444444", clip_on=False)
 
 
 # --------------------------------------------------------------------------------------------
@@ -181,8 +205,6 @@ def pattern_outlines(pattern, *, points_per_edge: int = 32) -> list[tuple[str, n
     """(panel name, closed outline (M, 2) float64 [m] in the panel's own frame) of each panel of
     a :class:`unsew.pattern.model.Pattern`, in ``panel_order`` (then any other panels), ready
     for :func:`plot_patterns`. Curved edges get ``points_per_edge`` segments."""
-    from unsew.pattern.curves import panel_outline
-
     order = [n for n in (pattern.panel_order or []) if n in pattern.panels]
     order += [n for n in pattern.panels if n not in order]
     return [(n, panel_outline(pattern.panels[n], points_per_edge=points_per_edge)) for n in order]
@@ -254,8 +276,46 @@ def plot_patterns(
         raise InputError(f"layout must be 'grid' or 'placed', got {layout!r}")
     if not patterns:
         raise InputError("no patterns to plot")
-    # cell -> list of (pattern index, outline [m], panel name), outlines in the panel frame
-    # (moved by their placement in the "placed" layout, where everything shares one cell)
+    cells, labels = _pattern_cells(patterns, layout)
+    boxes, offsets, label_h, (xmin, xmax, ymin) = _pack_cells(cells, layout, max_row_width_m)
+    ymax = 0.0
+    bar = _nice_length(0.25 * (xmax - xmin))
+    bar_h = 0.08 * (ymax - ymin) + 0.02
+    ymin_all = ymin - bar_h
+    dx, dy = xmax - xmin, ymax - ymin_all
+    pad = 0.03 * max(dx, dy)
+
+    W = int(width_px)
+    head = (40 if title else 8) + 30  # title and legend band [px]
+    ax_w = W - 40
+    H = int(min(max(head + ax_w * (dy + 2 * pad) / (dx + 2 * pad) + 12, 240), 3000))
+    fig = _figure((W, H))
+    ax = fig.add_axes((20 / W, 12 / H, ax_w / W, (H - head - 12) / H))
+    ax.set_axis_off()
+    ax.set_aspect("equal", adjustable="datalim", anchor="N")
+    pstyles = [_pattern_style(lbl, i, styles) for i, lbl in enumerate(labels)]
+    _draw_cells(ax, cells, boxes, offsets, pstyles, layout=layout, label_h=label_h)
+    _draw_scale_bar(ax, xmin, ymin - 0.45 * bar_h, bar, 0.12 * bar_h)
+    ax.set_xlim(xmin - pad, xmax + pad)
+    ax.set_ylim(ymin_all - pad, ymax + pad)
+
+    from matplotlib.lines import Line2D
+
+    handles = [Line2D([], [], color=st["color"], linestyle=st.get("linestyle", "-"),
+                      linewidth=st.get("linewidth", 1.4)) for st in pstyles]
+    fig.legend(handles, labels, loc="upper center", ncol=min(len(labels), 6), frameon=False,
+               fontsize=10, bbox_to_anchor=(0.5, 1 - (36 if title else 4) / H))
+    if title:
+        fig.text(0.5, 1 - 8 / H, title, ha="center", va="top", fontsize=13, weight="bold")
+    return _save(fig, path_png)
+
+
+def _pattern_cells(patterns, layout: str) -> tuple[dict[str, list[tuple[int, np.ndarray, str]]], list[str]]:
+    """The outlines of ``patterns`` (as :func:`plot_patterns` takes them), checked, by cell.
+
+    Returns (cell -> list of (pattern index, outline (M, 2) [m], panel name), pattern labels).
+    In the ``"grid"`` layout each panel name is a cell and outlines stay in the panel frame; in
+    ``"placed"`` everything shares one cell, each outline moved by its placement_xy."""
     cells: dict[str, list[tuple[int, np.ndarray, str]]] = {}
     labels = []
     for pi, item in enumerate(patterns):
@@ -276,8 +336,16 @@ def plot_patterns(
             cells.setdefault(key, []).append((pi, outline, name))
     if not cells:
         raise InputError("the patterns hold no panels")
+    return cells, labels
 
-    # cell boxes and a shelf packing of the cells into rows
+
+def _pack_cells(cells, layout: str, max_row_width_m: float | None):
+    """A shelf packing of the cells into rows under one scale, panels bottom-aligned in a row,
+    room for the names under each row (grid layout).
+
+    Returns (cell -> bounding box (lo (2,), hi (2,)) [m] in its own frame, cell -> offset (2,)
+    [m] into the page, the height of a row's name band [m], (xmin, xmax, ymin) [m]: the page's
+    extent, from y = 0 at the top down to the bottom of the last row's names)."""
     boxes = {}
     for name, items in cells.items():
         allp = np.concatenate([o for _, o, _ in items])
@@ -309,27 +377,15 @@ def plot_patterns(
         y_top -= h + label_h + gap
     xmin = min(offsets[n][0] + boxes[n][0][0] for n in cells)
     xmax = max(offsets[n][0] + boxes[n][1][0] for n in cells)
-    ymax = 0.0
-    ymin = y_top + gap  # bottom of the last row's labels
-    bar = _nice_length(0.25 * (xmax - xmin))
-    bar_h = 0.08 * (ymax - ymin) + 0.02
-    ymin_all = ymin - bar_h
-    dx, dy = xmax - xmin, ymax - ymin_all
-    pad = 0.03 * max(dx, dy)
+    return boxes, offsets, label_h, (xmin, xmax, y_top + gap)
 
-    W = int(width_px)
-    head = (40 if title else 8) + 30  # title and legend band [px]
-    ax_w = W - 40
-    H = int(min(max(head + ax_w * (dy + 2 * pad) / (dx + 2 * pad) + 12, 240), 3000))
-    fig = _figure((W, H))
-    ax = fig.add_axes((20 / W, 12 / H, ax_w / W, (H - head - 12) / H))
-    ax.set_axis_off()
-    ax.set_aspect("equal", adjustable="datalim", anchor="N")
 
-    from matplotlib.lines import Line2D
+def _draw_cells(ax, cells, boxes, offsets, pstyles, *, layout: str, label_h: float) -> None:
+    """Every outline of every cell at its offset, in the style of its pattern (a faint fill
+    where the style has ``fill``), with the panel names (under each cell in the grid layout,
+    at each panel's middle in the placed layout)."""
     from matplotlib.patches import Polygon
 
-    pstyles = [_pattern_style(lbl, i, styles) for i, lbl in enumerate(labels)]
     for name, items in cells.items():
         off = offsets[name]
         named = set()
@@ -353,24 +409,16 @@ def plot_patterns(
             lo, hi = boxes[name]
             ax.text(off[0] + (lo[0] + hi[0]) / 2, off[1] + lo[1] - 0.25 * label_h, name,
                     ha="center", va="top", fontsize=10, color="#333333")
-    # scale bar (centimetres), bottom left
-    yb = ymin - 0.45 * bar_h
-    tick = 0.12 * bar_h
-    ax.plot([xmin, xmin + bar], [yb, yb], color="black", linewidth=2.0, solid_capstyle="butt")
-    for xt in (xmin, xmin + bar / 2, xmin + bar):
-        ax.plot([xt, xt], [yb - tick, yb + tick], color="black", linewidth=1.0)
-    ax.text(xmin, yb - 1.6 * tick, "0", ha="center", va="top", fontsize=8.5)
-    ax.text(xmin + bar, yb - 1.6 * tick, f"{bar * 100:g} cm", ha="center", va="top", fontsize=8.5)
-    ax.set_xlim(xmin - pad, xmax + pad)
-    ax.set_ylim(ymin_all - pad, ymax + pad)
 
-    handles = [Line2D([], [], color=st["color"], linestyle=st.get("linestyle", "-"),
-                      linewidth=st.get("linewidth", 1.4)) for st in pstyles]
-    fig.legend(handles, labels, loc="upper center", ncol=min(len(labels), 6), frameon=False,
-               fontsize=10, bbox_to_anchor=(0.5, 1 - (36 if title else 4) / H))
-    if title:
-        fig.text(0.5, 1 - 8 / H, title, ha="center", va="top", fontsize=13, weight="bold")
-    return _save(fig, path_png)
+
+def _draw_scale_bar(ax, x0: float, yb: float, bar: float, tick: float) -> None:
+    """A scale bar of length ``bar`` [m] from (x0, yb) [m] with ticks ``tick`` [m] high at its
+    ends and middle, labelled 0 and its length in centimetres."""
+    ax.plot([x0, x0 + bar], [yb, yb], color="black", linewidth=2.0, solid_capstyle="butt")
+    for xt in (x0, x0 + bar / 2, x0 + bar):
+        ax.plot([xt, xt], [yb - tick, yb + tick], color="black", linewidth=1.0)
+    ax.text(x0, yb - 1.6 * tick, "0", ha="center", va="top", fontsize=8.5)
+    ax.text(x0 + bar, yb - 1.6 * tick, f"{bar * 100:g} cm", ha="center", va="top", fontsize=8.5)
 
 
 # --------------------------------------------------------------------------------------------

@@ -14,6 +14,11 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
+from unsew.report.figures import pattern_outlines, plot_histogram, plot_loss_curves, plot_patterns
+from unsew.report.html import write_report
+from unsew.report.measure import measurement_table
+from unsew.report.render import HEAT_CMAP, render_comparison, render_views
+
 __all__ = ["write_fit_report", "nearest_distance_mm"]
 
 
@@ -31,8 +36,6 @@ def nearest_distance_mm(verts: np.ndarray, target_verts: np.ndarray) -> np.ndarr
 def _outlines(p) -> list:
     """A Pattern, or an already made list of (name, outline[, placement]) tuples."""
     if hasattr(p, "panels") and hasattr(p, "panel_order"):
-        from unsew.report.figures import pattern_outlines
-
         return pattern_outlines(p)
     return list(p)
 
@@ -70,41 +73,32 @@ def write_fit_report(
         ``loss_history`` entry is left out of the tables when ``history`` is plotted.
     Returns the path of report.html.
     """
-    from unsew.report.figures import plot_histogram, plot_loss_curves, plot_patterns
-    from unsew.report.html import write_report
-    from unsew.report.render import HEAT_CMAP, render_comparison, render_views
-
     out = Path(out_dir)
     fig_dir = out / "figures"
     fig_dir.mkdir(parents=True, exist_ok=True)
-    figures: list[tuple[str, Path]] = []
     notes = list(notes or [])
+    figures = _fit_figures(fig_dir, history=history, phases=phases, target=target, result=result,
+                           body=body, distance_mm=distance_mm, views=views, patterns=patterns,
+                           notes=notes)
+    tables = _fit_tables(patterns=patterns, material=material, metrics=metrics, history=history)
+    return write_report(out / "report.html", title=title, summary=dict(summary or {}),
+                        metrics=tables, figures=figures, config=config,
+                        notes=notes or None)
 
+
+def _fit_figures(fig_dir: Path, *, history, phases, target, result, body, distance_mm, views,
+                 patterns, notes: list) -> list[tuple[str, Path]]:
+    """Draw the figures :func:`write_fit_report` has inputs for into ``fig_dir``; returns
+    their (caption, PNG path) in report order. A note is appended to ``notes`` when the
+    distances are computed here."""
+    figures: list[tuple[str, Path]] = []
     if history:
         figures.append(("Loss per iteration: the total and each term"
                         + (", with the phases of the fit" if phases else ""),
                         plot_loss_curves(fig_dir / "loss.png", history, phases=phases)))
     if target is not None and result is not None:
-        figures.append(("Target (top) and fitted result (bottom), same views and scale",
-                        render_comparison(fig_dir / "target_vs_result.png", target, result,
-                                          body=body, views=views)))
-        if distance_mm is None:
-            distance_mm = nearest_distance_mm(result[0], target[0])
-            notes.append("Heat map distances are to the nearest target vertex.")
-        d = np.asarray(distance_mm, dtype=np.float64)
-        finite = d[np.isfinite(d)]
-        vmax = float(np.percentile(finite, 98)) if finite.size else 1.0
-        figures.append((f"Distance of the result to the target [mm] (colour scale capped at the "
-                        f"98th percentile, {vmax:.2g} mm)",
-                        render_views(fig_dir / "distance.png", result[0], result[1],
-                                     views=tuple(views) + (("back",) if "back" not in views else ()),
-                                     vertex_values=d, cmap=HEAT_CMAP, vmin=0.0,
-                                     vmax=vmax if vmax > 0 else 1.0,
-                                     colorbar_label="distance to target [mm]", body=body,
-                                     frame="all")))
-        if finite.size:
-            figures.append(("Histogram of the per-vertex distance to the target",
-                            plot_histogram(fig_dir / "distance_hist.png", d)))
+        figures += _distance_figures(fig_dir, target, result, body=body, distance_mm=distance_mm,
+                                     views=views, notes=notes)
     elif result is not None:
         figures.append(("Fitted result",
                         render_views(fig_dir / "result.png", result[0], result[1], views=views,
@@ -114,10 +108,42 @@ def write_fit_report(
         figures.append((", ".join(label for label, _ in pats) + " patterns, panel by panel, "
                         "at true scale",
                         plot_patterns(fig_dir / "patterns.png", pats)))
+    return figures
+
+
+def _distance_figures(fig_dir: Path, target, result, *, body, distance_mm, views,
+                      notes: list) -> list[tuple[str, Path]]:
+    """Target against result, the result coloured by its distance to the target [mm] (the
+    nearest target vertex when ``distance_mm`` is None, noted in ``notes``) and the distances'
+    histogram (when any is finite): (caption, PNG path) each."""
+    figures = [("Target (top) and fitted result (bottom), same views and scale",
+                render_comparison(fig_dir / "target_vs_result.png", target, result,
+                                  body=body, views=views))]
+    if distance_mm is None:
+        distance_mm = nearest_distance_mm(result[0], target[0])
+        notes.append("Heat map distances are to the nearest target vertex.")
+    d = np.asarray(distance_mm, dtype=np.float64)
+    finite = d[np.isfinite(d)]
+    vmax = float(np.percentile(finite, 98)) if finite.size else 1.0
+    figures.append((f"Distance of the result to the target [mm] (colour scale capped at the "
+                    f"98th percentile, {vmax:.2g} mm)",
+                    render_views(fig_dir / "distance.png", result[0], result[1],
+                                 views=tuple(views) + (("back",) if "back" not in views else ()),
+                                 vertex_values=d, cmap=HEAT_CMAP, vmin=0.0,
+                                 vmax=vmax if vmax > 0 else 1.0,
+                                 colorbar_label="distance to target [mm]", body=body,
+                                 frame="all")))
+    if finite.size:
+        figures.append(("Histogram of the per-vertex distance to the target",
+                        plot_histogram(fig_dir / "distance_hist.png", d)))
+    return figures
+
+
+def _fit_tables(*, patterns, material, metrics, history) -> dict[str, Any]:
+    """The report's metric tables: panel measurements of ``patterns`` [cm], the result's
+    ``material``, then ``metrics`` (without ``loss_history`` when ``history`` is plotted)."""
     tables: dict[str, Any] = {}
     if patterns:
-        from unsew.report.measure import measurement_table
-
         rows = measurement_table(list(patterns))
         if rows:
             tables["panel measurements"] = {r["measurement"]: {k: v for k, v in r.items() if k != "measurement"}
@@ -128,6 +154,4 @@ def write_fit_report(
         if history and k == "loss_history":
             continue  # plotted above; every value stays in metrics.json
         tables[k] = v
-    return write_report(out / "report.html", title=title, summary=dict(summary or {}),
-                        metrics=tables, figures=figures, config=config,
-                        notes=notes or None)
+    return tables

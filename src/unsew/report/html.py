@@ -16,7 +16,9 @@ import os
 from pathlib import Path
 from typing import Any, Mapping, Sequence
 
+from unsew import __version__
 from unsew.errors import InputError
+from unsew.io.atomic import atomic_write
 
 __all__ = ["write_report", "pretty_key"]
 
@@ -295,21 +297,47 @@ def write_report(
     raises :class:`unsew.errors.InputError` naming it. The file is written to a temporary name
     in the same folder and renamed when complete, so a failure leaves no partial report.
     """
-    from unsew import __version__
-    from unsew.io.atomic import atomic_write
-
     path = Path(path_html)
     if not isinstance(summary, Mapping) or not isinstance(metrics, Mapping):
         raise InputError("write_report: summary and metrics must be dicts")
+    embedded = _embed_figures(figures, path.parent)
+    parts = _head(title)
+    parts.append(_nav(notes=bool(notes), figures=bool(embedded), config=config is not None))
+    parts += _summary_section(summary, notes)
+    parts += _figures_section(embedded)
+    parts.append('<section id="metrics"><h2>Metrics</h2>')
+    parts.append(_metrics_html(metrics) if metrics else "<p>No metrics were recorded.</p>")
+    parts.append("</section>")
+    if config is not None:
+        parts.append('<section id="config"><h2>Configuration</h2><details>'
+                     "<summary>everything needed to rerun (as in config.yaml)</summary>"
+                     f"<pre>{_esc(_config_text(config))}</pre></details></section>")
+    parts.append(_footer())
+    text = "\n".join(parts)
+
+    with atomic_write(path) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+        _chmod_like_new_file(tmp)
+    return path
+
+
+def _embed_figures(figures: Sequence[tuple[str, str | os.PathLike]], base: Path) -> list[tuple[str, str]]:
+    """(caption, data URI) of each (caption, image path) figure, every file read and checked
+    (:func:`_load_figure`; relative paths also looked up in ``base``)."""
     embedded = []
     for item in figures:
         try:
             caption, fpath = item
         except (TypeError, ValueError):
             raise InputError("write_report: each figure must be a (caption, path) pair") from None
-        embedded.append((str(caption), _load_figure(str(caption), fpath, path.parent)))
+        embedded.append((str(caption), _load_figure(str(caption), fpath, base)))
+    return embedded
 
-    parts = [
+
+def _head(title: str) -> list[str]:
+    """The page's opening lines up to its header: doctype, metadata, style, the heading with
+    the unsew version and the time written."""
+    return [
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
         '<meta name="viewport" content="width=device-width, initial-scale=1">',
@@ -319,17 +347,24 @@ def write_report(
         f"<p>unsew {_esc(__version__)} · written {_esc(_dt.datetime.now().strftime('%Y-%m-%d %H:%M'))}"
         "</p></header>",
     ]
+
+
+def _nav(*, notes: bool, figures: bool, config: bool) -> str:
+    """The links to the page's sections, those present only."""
     nav = [("summary", "Summary")]
     if notes:
         nav.append(("notes", "Notes"))
-    if embedded:
+    if figures:
         nav.append(("figures", "Figures"))
     nav.append(("metrics", "Metrics"))
-    if config is not None:
+    if config:
         nav.append(("config", "Configuration"))
-    parts.append("<nav>" + "".join(f'<a href="#{a}">{_esc(t)}</a>' for a, t in nav) + "</nav>")
+    return "<nav>" + "".join(f'<a href="#{a}">{_esc(t)}</a>' for a, t in nav) + "</nav>"
 
-    parts.append('<section id="summary"><h2>Summary</h2><div class="cards">')
+
+def _summary_section(summary: Mapping[str, Any], notes: Sequence[str] | None) -> list[str]:
+    """The summary cards, then the notes (when any) as a list."""
+    parts = ['<section id="summary"><h2>Summary</h2><div class="cards">']
     for k, v in summary.items():
         parts.append(f'<div class="card"><div class="k" title="{_esc(k)}">{_esc(pretty_key(k))}</div>'
                      f'<div class="v">{_esc(_fmt(v))}</div></div>')
@@ -338,27 +373,25 @@ def write_report(
         parts.append('<section id="notes"><h2>Notes</h2><ul class="notes">')
         parts += [f"<li>{_esc(n)}</li>" for n in notes]
         parts.append("</ul></section>")
-    if embedded:
-        parts.append('<section id="figures"><h2>Figures</h2>')
-        for i, (caption, uri) in enumerate(embedded, 1):
-            parts.append(f'<figure id="fig{i}"><img src="{uri}" alt="{_esc(caption)}">'
-                         f"<figcaption>Figure {i}. {_esc(caption)}</figcaption></figure>")
-        parts.append("</section>")
-    parts.append('<section id="metrics"><h2>Metrics</h2>')
-    parts.append(_metrics_html(metrics) if metrics else "<p>No metrics were recorded.</p>")
-    parts.append("</section>")
-    if config is not None:
-        parts.append('<section id="config"><h2>Configuration</h2><details>'
-                     "<summary>everything needed to rerun (as in config.yaml)</summary>"
-                     f"<pre>{_esc(_config_text(config))}</pre></details></section>")
-    parts.append(f"<footer>Made by unsew {_esc(__version__)}. Units are given in the names of the "
-                 "quantities; renders are orthographic.</footer></main></body></html>\n")
-    text = "\n".join(parts)
+    return parts
 
-    with atomic_write(path) as tmp:
-        tmp.write_text(text, encoding="utf-8")
-        _chmod_like_new_file(tmp)
-    return path
+
+def _figures_section(embedded: Sequence[tuple[str, str]]) -> list[str]:
+    """The numbered figures (caption, data URI), none when there are none."""
+    if not embedded:
+        return []
+    parts = ['<section id="figures"><h2>Figures</h2>']
+    for i, (caption, uri) in enumerate(embedded, 1):
+        parts.append(f'<figure id="fig{i}"><img src="{uri}" alt="{_esc(caption)}">'
+                     f"<figcaption>Figure {i}. {_esc(caption)}</figcaption></figure>")
+    parts.append("</section>")
+    return parts
+
+
+def _footer() -> str:
+    """The page's closing line."""
+    return (f"<footer>Made by unsew {_esc(__version__)}. Units are given in the names of the "
+            "quantities; renders are orthographic.</footer></main></body></html>\n")
 
 
 def _chmod_like_new_file(p: Path) -> None:

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 from typing import Sequence
 
+from unsew.pattern.curves import edge_length
+
 __all__ = ["panel_measurements", "measurement_table", "MEASUREMENTS"]
 
 #: The measurements in table order, with what each one is.
@@ -28,8 +30,6 @@ def _edges(panel, labels) -> list[int]:
 def panel_measurements(pattern) -> dict[str, float]:
     """The measurements of :data:`MEASUREMENTS` that ``pattern`` has, in metres (arc lengths of
     its edges, curves included). A pattern whose edges carry no such labels gives ``{}``."""
-    from unsew.pattern.curves import edge_length
-
     panels = [pattern.panels[n] for n in pattern.panel_order if n in pattern.panels] or list(pattern.panels.values())
     sleeves = [p for p in panels if "sleeve" in p.name]
     body = [p for p in panels if "sleeve" not in p.name]

@@ -127,14 +127,10 @@ def check_drape(
     Returns:
         :class:`DrapeVerdict`.
     """
-    import torch
-    from scipy.spatial import cKDTree
-
-    x = x.detach().cpu().numpy() if torch.is_tensor(x) else np.asarray(x)
-    x = np.asarray(x, dtype=np.float64)
+    x = _float64(x)
     faces = np.asarray(faces, dtype=np.int64)
     faces_uv = np.asarray(faces_uv, dtype=np.int64)
-    uv = np.asarray(uv.detach().cpu().numpy() if torch.is_tensor(uv) else uv, dtype=np.float64)
+    uv = _float64(uv)
     nan = float("nan")
     if len(x) == 0:
         return DrapeVerdict(False, "the garment has no vertices", nan, nan, nan, nan, nan, nan, nan, nan, True)
@@ -144,12 +140,39 @@ def check_drape(
         n_bad = int((~np.isfinite(x).all(axis=1)).sum())
         return DrapeVerdict(False, f"exploded: {n_bad} vertices are NaN or infinite (first: vertex {bad})",
                             nan, nan, nan, nan, nan, nan, nan, nan, False)
+    s_max, s_99 = _stretch(x, faces, uv, faces_uv)
+    inside_pct, depth_mm, far_pct = _body_gaps(x, body, sdf)
+    y_min, y_max = float(x[:, 1].min()), float(x[:, 1].max())
+    drop = nan if start_height is None else float(start_height) - float(x[:, 1].mean())
+    floor = float(np.asarray(body.verts, dtype=np.float64)[:, 1].min())
+    reason = _first_failure(s_max, s_99, y_min, y_max, drop, far_pct, inside_pct,
+                            floor=floor, crotch=_crotch_height(body))
+    return DrapeVerdict(reason == "", reason, inside_pct, depth_mm, far_pct, s_max, s_99, y_min, y_max, drop, finite)
 
+
+def _float64(a) -> np.ndarray:
+    """A numpy or torch array as a float64 numpy array."""
+    import torch
+
+    return np.asarray(a.detach().cpu().numpy() if torch.is_tensor(a) else a, dtype=np.float64)
+
+
+def _stretch(x, faces, uv, faces_uv) -> tuple[float, float]:
+    """Largest and 99th-percentile edge length over pattern length [-] of the triangles
+    ``faces`` (F, 3) into ``x`` (N, 3) [m], rest lengths from ``faces_uv`` into ``uv`` (Nu, 2) [m]."""
     e, eu = _edges(faces, faces_uv)
     L = np.linalg.norm(x[e[:, 0]] - x[e[:, 1]], axis=1)
     L0 = np.maximum(np.linalg.norm(uv[eu[:, 0]] - uv[eu[:, 1]], axis=1), 1e-12)
     ratio = L / L0
-    s_max, s_99 = float(ratio.max()), float(np.percentile(ratio, 99))
+    return float(ratio.max()), float(np.percentile(ratio, 99))
+
+
+def _body_gaps(x, body, sdf) -> tuple[float, float, float]:
+    """(inside_pct, depth_mm, far_pct) of the vertices ``x`` (N, 3) [m]: share inside the body
+    [%] by its SDF (built when None), deepest of them [mm] (0 if none), share further than
+    FAR_DIST from every body vertex [%]."""
+    import torch
+    from scipy.spatial import cKDTree
 
     if sdf is None:
         from unsew.body.sdf import BodySDF
@@ -160,32 +183,31 @@ def check_drape(
     d = d.numpy()
     inside_pct = float((d < 0).mean() * 100.0)
     depth_mm = float(max(0.0, -float(d.min())) * 1000.0)
-
     bv = np.asarray(body.verts, dtype=np.float64)
     far = cKDTree(bv).query(x, distance_upper_bound=FAR_DIST)[0]
     far_pct = float(np.isinf(far).mean() * 100.0)
+    return inside_pct, depth_mm, far_pct
 
-    y_min, y_max = float(x[:, 1].min()), float(x[:, 1].max())
-    drop = nan if start_height is None else float(start_height) - float(x[:, 1].mean())
-    floor = float(bv[:, 1].min())
-    crotch = _crotch_height(body)
 
-    reason = ""
+def _first_failure(s_max, s_99, y_min, y_max, drop, far_pct, inside_pct, *, floor, crotch) -> str:
+    """The reason of the first failed check, in the module docstring's order ("" when all
+    pass). Stretches [-], heights, drop, floor (the body's lowest point) and crotch [m],
+    shares [%]."""
     if s_max > STRETCH_MAX:
-        reason = f"exploded: an edge is stretched to {s_max:.1f} times its pattern length (bound {STRETCH_MAX:g})"
-    elif s_99 > STRETCH_P99_MAX:
-        reason = f"exploded: 1 % of the edges are stretched beyond {s_99:.2f} times their pattern length (bound {STRETCH_P99_MAX:g})"
-    elif y_min < floor - FLOOR_TOL:
-        reason = f"fallen: the garment reaches {floor - y_min:.2f} m below the body's feet"
-    elif y_max < crotch:
-        reason = f"fallen: the garment's top is at y = {y_max:.2f} m, below the body's crotch ({crotch:.2f} m)"
-    elif np.isfinite(drop) and drop > DROP_MAX:
-        reason = f"fallen: the garment slid {drop:.2f} m down from where it was put on (bound {DROP_MAX:g} m)"
-    elif far_pct > FAR_MAX_PCT:
-        reason = f"off the body: {far_pct:.0f} % of the vertices are more than {FAR_DIST:g} m from it (bound {FAR_MAX_PCT:g} %)"
-    elif inside_pct > INSIDE_MAX_PCT:
-        reason = f"inside the body: {inside_pct:.1f} % of the vertices (bound {INSIDE_MAX_PCT:g} %)"
-    return DrapeVerdict(reason == "", reason, inside_pct, depth_mm, far_pct, s_max, s_99, y_min, y_max, drop, finite)
+        return f"exploded: an edge is stretched to {s_max:.1f} times its pattern length (bound {STRETCH_MAX:g})"
+    if s_99 > STRETCH_P99_MAX:
+        return f"exploded: 1 % of the edges are stretched beyond {s_99:.2f} times their pattern length (bound {STRETCH_P99_MAX:g})"
+    if y_min < floor - FLOOR_TOL:
+        return f"fallen: the garment reaches {floor - y_min:.2f} m below the body's feet"
+    if y_max < crotch:
+        return f"fallen: the garment's top is at y = {y_max:.2f} m, below the body's crotch ({crotch:.2f} m)"
+    if np.isfinite(drop) and drop > DROP_MAX:
+        return f"fallen: the garment slid {drop:.2f} m down from where it was put on (bound {DROP_MAX:g} m)"
+    if far_pct > FAR_MAX_PCT:
+        return f"off the body: {far_pct:.0f} % of the vertices are more than {FAR_DIST:g} m from it (bound {FAR_MAX_PCT:g} %)"
+    if inside_pct > INSIDE_MAX_PCT:
+        return f"inside the body: {inside_pct:.1f} % of the vertices (bound {INSIDE_MAX_PCT:g} %)"
+    return ""
 
 
 def _crotch_height(body) -> float:

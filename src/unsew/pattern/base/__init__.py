@@ -1,8 +1,11 @@
 """Base sewing patterns (paper 3.2): our own parametric generators sized from body measurements.
 
-``make_base_pattern(garment, measurements=None) -> Pattern`` for ``tshirt``, ``dress``,
-``pants``, ``shorts`` and ``skirt``. Panels are placed in 3D around the body (world frame:
-metres, Y up, facing +Z, body's left at +X; see :mod:`unsew.pattern.base._frame`).
+``make_base_pattern(name, measurements=None) -> Pattern`` for a garment type (``tshirt``,
+``dress``, ``pants``, ``shorts``, ``skirt``: its first, default base) or one of the library's
+variants of a type (:data:`BASES`, :func:`bases_for`): tees with long sleeves or none, a
+sleeveless dress, trousers, shorts and skirts under a waistband, a half-circle skirt. Panels are
+placed in 3D around the body (world frame: metres, Y up, facing +Z, body's left at +X; see
+:mod:`unsew.pattern.base._frame`).
 """
 
 from __future__ import annotations
@@ -11,24 +14,49 @@ import importlib
 
 from unsew.errors import InputError
 
-__all__ = ["make_base_pattern", "GARMENTS"]
+__all__ = ["make_base_pattern", "GARMENTS", "BASES", "bases_for", "garment_of"]
 
-#: Garment name -> (module, function).
+#: Base name -> (garment type, module, function). The first base of each type is its default.
 _MAKERS = {
-    "tshirt": ("tshirt", "make_tshirt"),
-    "dress": ("dress", "make_dress"),
-    "pants": ("pants", "make_pants"),
-    "shorts": ("pants", "make_shorts"),
-    "skirt": ("skirt", "make_skirt"),
+    "tshirt": ("tshirt", "tshirt", "make_tshirt"),
+    "tshirt_long": ("tshirt", "tshirt", "make_tshirt_long"),
+    "tshirt_sleeveless": ("tshirt", "tshirt", "make_tshirt_sleeveless"),
+    "dress": ("dress", "dress", "make_dress"),
+    "dress_sleeveless": ("dress", "dress", "make_dress_sleeveless"),
+    "pants": ("pants", "pants", "make_pants"),
+    "pants_band": ("pants", "pants", "make_pants_band"),
+    "shorts": ("shorts", "pants", "make_shorts"),
+    "shorts_band": ("shorts", "pants", "make_shorts_band"),
+    "skirt": ("skirt", "skirt", "make_skirt"),
+    "skirt_band": ("skirt", "skirt", "make_skirt_band"),
+    "skirt_circle": ("skirt", "skirt", "make_skirt_circle"),
 }
-GARMENTS = list(_MAKERS)
+#: The garment types (each is also the name of its default base).
+GARMENTS = ["tshirt", "dress", "pants", "shorts", "skirt"]
+#: Every base of the library, default bases first within each type.
+BASES = list(_MAKERS)
+
+
+def bases_for(garment: str) -> list[str]:
+    """The library's base names of garment type ``garment``, its default first."""
+    if garment not in GARMENTS:
+        raise InputError(f"unknown garment {garment!r}; choose one of {', '.join(GARMENTS)}")
+    return [n for n, (g, _, _) in _MAKERS.items() if g == garment]
+
+
+def garment_of(name: str) -> str:
+    """The garment type of base ``name`` (a type is its own)."""
+    if name not in _MAKERS:
+        raise InputError(f"unknown base pattern {name!r}; choose one of {', '.join(BASES)}")
+    return _MAKERS[name][0]
 
 
 def make_base_pattern(garment: str, measurements=None):
-    """The base :class:`~unsew.pattern.model.Pattern` of ``garment`` sized to ``measurements``
-    (a :class:`~unsew.pattern.measurements.Measurements`; default: the default body)."""
+    """The base :class:`~unsew.pattern.model.Pattern` ``garment`` (a garment type or a base name
+    of :data:`BASES`) sized to ``measurements`` (a
+    :class:`~unsew.pattern.measurements.Measurements`; default: the default body)."""
     if garment not in _MAKERS:
-        raise InputError(f"unknown garment {garment!r}; choose one of {', '.join(GARMENTS)}")
-    mod, fn = _MAKERS[garment]
+        raise InputError(f"unknown garment {garment!r}; choose one of {', '.join(BASES)}")
+    _, mod, fn = _MAKERS[garment]
     module = importlib.import_module(f"unsew.pattern.base.{mod}")
     return getattr(module, fn)(measurements)

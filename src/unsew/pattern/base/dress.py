@@ -1,4 +1,5 @@
-"""Base dress: a t-shirt-like top running into a long flared skirt, with short sleeves.
+"""Base dress: a t-shirt-like top running into a long flared skirt, with short sleeves
+(``dress``) or none (``dress_sleeveless``).
 
 Front and back are single mirror-symmetric panels from hem to neck; the side seam has two
 edges (hem to hip: the flare; hip to underarm: curved in at the waist). Sleeves, armholes,
@@ -12,11 +13,11 @@ import numpy as np
 from unsew.pattern.measurements import Measurements
 from unsew.pattern.base._build import quad
 from unsew.pattern.base._frame import body_frame
-from unsew.pattern.base.tshirt import BUST_EASE, TopSpec, sleeve_panels, top_panels, top_stitches
+from unsew.pattern.base.tshirt import BUST_EASE, TopSpec, sleeveless_frame, sleeves_for, top_panels, top_stitches
 from unsew.pattern.curves import edge_length
 from unsew.pattern.model import Pattern
 
-__all__ = ["make_dress"]
+__all__ = ["make_dress", "make_dress_sleeveless"]
 
 #: Ease over waist and hip girths [m].
 WAIST_EASE = 0.10
@@ -26,10 +27,13 @@ HEM_HEIGHT = 0.35
 HEM_FLARE = 0.18
 
 
-def make_dress(m: Measurements | None = None) -> Pattern:
-    """A long flared dress with short sleeves sized to ``m`` (default: the default body)."""
+def make_dress(m: Measurements | None = None, *, sleeves: str = "short") -> Pattern:
+    """A long flared dress with short sleeves sized to ``m`` (default: the default body);
+    ``sleeves="none"``: without sleeves (pattern ``dress_sleeveless``, armholes cut in as
+    :func:`unsew.pattern.base.tshirt.sleeveless_frame`)."""
     m = m or Measurements()
-    f = body_frame(m)
+    f0 = body_frame(m)
+    f = sleeveless_frame(f0) if sleeves == "none" else f0
     hem_y = HEM_HEIGHT * m.height / 1.70
     hip_w = (m.hip + HIP_EASE) / 4
     waist_w = (m.waist + WAIST_EASE) / 4
@@ -42,6 +46,13 @@ def make_dress(m: Measurements | None = None) -> Pattern:
     c = 2 * mid - (hip + under) / 2
     spec = TopSpec(lower=(tuple(hem), tuple(hip)), lower_curves=(None, quad(hip, under, c)), hem_y=hem_y)
     front, back, k = top_panels(m, f, spec)
-    left, right = sleeve_panels(m, f, edge_length(front, k + 1))
-    panels = {p.name: p for p in (front, back, left, right)}
-    return Pattern("dress", panels, top_stitches(k), properties={"units_in_meter": 100, "curvature_coords": "relative"})
+    arm = sleeves_for(m, f0, edge_length(front, k + 1), sleeves)
+    panels = {p.name: p for p in (front, back, *arm)}
+    name = {"short": "dress", "long": "dress_long", "none": "dress_sleeveless"}[sleeves]
+    st = top_stitches(k, sleeves=bool(arm))
+    return Pattern(name, panels, st, properties={"units_in_meter": 100, "curvature_coords": "relative"})
+
+
+def make_dress_sleeveless(m: Measurements | None = None) -> Pattern:
+    """The flared dress without sleeves."""
+    return make_dress(m, sleeves="none")

@@ -1,4 +1,8 @@
-"""Base A-line skirt: front and back, each a sector of an annulus (paper Fig. 2c).
+"""Base skirts: front and back, each a sector of an annulus (paper Fig. 2c).
+
+Variants: ``skirt`` (knee-length A-line), ``skirt_band`` (the same under a waistband,
+:mod:`unsew.pattern.base._band`), ``skirt_circle`` (a half-circle skirt, its cone unrolled to
+pi, under a waistband).
 
 The waist and hem are concentric circular arcs (GarmentCode ``circle`` edges), so the skirt
 is a cone: its flare is chosen so that the cone's girth at hip depth clears the hips. Panel
@@ -12,11 +16,13 @@ from __future__ import annotations
 import numpy as np
 
 from unsew.pattern.measurements import Measurements
+from unsew.pattern.base._band import BAND_HEIGHT, band_panels, band_stitches
 from unsew.pattern.base._build import loop_panel, place, rot_y180, stitch
 from unsew.pattern.base._frame import body_frame
+from unsew.pattern.curves import edge_length, sample_edge
 from unsew.pattern.model import Curvature, Pattern
 
-__all__ = ["make_skirt"]
+__all__ = ["make_skirt", "make_skirt_band", "make_skirt_circle"]
 
 WAIST_EASE = 0.02  #: [m]
 HIP_EASE = 0.06  #: [m]
@@ -38,20 +44,50 @@ def _panel(name: str, r_w: float, r_h: float, half_angle: float):
     return loop_panel(name, v, curves, ["hem", "right_side", "waist", "left_side"])
 
 
-def make_skirt(m: Measurements | None = None) -> Pattern:
-    """A knee-length A-line skirt sized to ``m`` (default: the default body)."""
-    m = m or Measurements()
+def _skirt(m: Measurements, name: str, *, band: bool, theta: float | None = None) -> Pattern:
+    """Two-panel conical skirt; ``theta``: the cone's unrolled angle [rad] (None: what the hips
+    need plus EXTRA_FLARE); ``band``: with a waistband, the skirt starting BAND_HEIGHT lower."""
     f = body_frame(m)
-    waist = m.waist + WAIST_EASE
-    hip = m.hip + HIP_EASE
     drop = f.waist_y - f.hip_y  # waist to hip along the body [m]
-    theta = (hip - waist) / drop + EXTRA_FLARE  # unrolled angle of the whole cone [rad]
-    r_w = waist / theta
-    r_h = r_w + LENGTH_PER_LEG * m.leg_length
+    top_drop = BAND_HEIGHT if band else 0.0
+    top_y = f.waist_y - top_drop
+    # girth where the skirt's top sits: linear between waist and hips
+    top = m.waist + (m.hip - m.waist) * top_drop / drop + WAIST_EASE
+    hip = m.hip + HIP_EASE
+    if theta is None:
+        theta = (hip - top) / (drop - top_drop) + EXTRA_FLARE  # unrolled angle of the whole cone [rad]
+    r_w = top / theta
+    r_h = r_w + LENGTH_PER_LEG * m.leg_length - top_drop
     front = _panel("front", r_w, r_h, theta / 4)
     back = _panel("back", r_w, r_h, theta / 4)
     local_waist = (0.0, r_h - r_w)  # centre of the waist arc (its lowest point) at the waist
-    place(front, np.eye(3), (0.0, f.waist_y, f.hip_z), local_waist)
-    place(back, rot_y180(), (0.0, f.waist_y, -f.hip_z), local_waist)
+    if band:
+        # the arc's mean height at the band's lower edge: wrapped round the body the arc is level,
+        # and the placement joins horizontal seams at their mean heights
+        local_waist = (0.0, float(sample_edge(front, 2, 64)[:, 1].mean()))
+    place(front, np.eye(3), (0.0, top_y, f.hip_z), local_waist)
+    place(back, rot_y180(), (0.0, top_y, -f.hip_z), local_waist)
     st = [stitch("front", 1, "back", 3, "left_side"), stitch("back", 1, "front", 3, "right_side")]
-    return Pattern("skirt", {"front": front, "back": back}, st, properties={"units_in_meter": 100, "curvature_coords": "relative"})
+    panels = {"front": front, "back": back}
+    if band:
+        bf, bb = band_panels(edge_length(front, 2) / 2, f.waist_y, f.hip_z)
+        panels.update({bf.name: bf, bb.name: bb})
+        # band lower edge (+x) against the skirt's waist arc (-x)
+        st += [stitch(bf.name, 0, "front", 2, "front_waist"), stitch(bb.name, 0, "back", 2, "back_waist")]
+        st += band_stitches()
+    return Pattern(name, panels, st, properties={"units_in_meter": 100, "curvature_coords": "relative"})
+
+
+def make_skirt(m: Measurements | None = None) -> Pattern:
+    """A knee-length A-line skirt sized to ``m`` (default: the default body)."""
+    return _skirt(m or Measurements(), "skirt", band=False)
+
+
+def make_skirt_band(m: Measurements | None = None) -> Pattern:
+    """The knee-length A-line skirt under a waistband (front and back bands)."""
+    return _skirt(m or Measurements(), "skirt_band", band=True)
+
+
+def make_skirt_circle(m: Measurements | None = None) -> Pattern:
+    """A knee-length half-circle skirt (two quarter-circle panels) under a waistband."""
+    return _skirt(m or Measurements(), "skirt_circle", band=True, theta=np.pi)

@@ -1,4 +1,5 @@
-"""Base t-shirt: front, back, two short set-in sleeves (paper Fig. 2a).
+"""Base t-shirt: front, back, two short set-in sleeves (paper Fig. 2a); variants with long
+sleeves tapering to the wrist (``tshirt_long``) and without sleeves (``tshirt_sleeveless``).
 
 Front and back are mirror-symmetric about their vertical centre lines (x = 0 in the panel
 frame); the two sleeves are mirror images. Every panel is counter-clockwise seen from outside
@@ -17,6 +18,7 @@ Sleeve (one panel per arm, its underarm seam sewn to itself)::
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -27,7 +29,8 @@ from unsew.pattern.base._frame import BodyFrame, body_frame
 from unsew.pattern.curves import edge_length
 from unsew.pattern.model import Curvature, Panel, Pattern, Stitch
 
-__all__ = ["make_tshirt", "TopSpec", "top_panels", "sleeve_panels", "BUST_EASE"]
+__all__ = ["make_tshirt", "make_tshirt_long", "make_tshirt_sleeveless", "TopSpec", "top_panels", "sleeve_panels",
+           "sleeves_for", "sleeveless_frame", "BUST_EASE", "SLEEVES"]
 
 #: Ease over the bust girth [m] (a regular-fit t-shirt: 8-15 cm).
 BUST_EASE = 0.12
@@ -40,6 +43,19 @@ FRONT_NECK_DEPTH = 0.08
 BACK_NECK_DEPTH = 0.02
 #: Short sleeve: cap top to hem [m].
 SHORT_SLEEVE_LENGTH = 0.22
+#: Long sleeve: cap top to hem beyond the arm length (shoulder joint to wrist joint) [m]; the
+#: cap top sits on the shoulder tip, a little outside the joint.
+LONG_SLEEVE_EXTRA = 0.02
+#: Wrist girth per upper-arm girth (adult proportions: about 16 of 27 cm) [-], and the ease over
+#: it at a long sleeve's hem [m] (the hand must pass).
+WRIST_PER_UPPER_ARM = 0.6
+WRIST_EASE = 0.10
+#: Sleeveless tops: the shoulder seam ends this much nearer the neck than a sleeved top's [m],
+#: and the armhole's bottom sits this much higher [m] (a cut-in armhole that does not gape).
+SLEEVELESS_SHOULDER_IN = 0.04
+SLEEVELESS_ARMHOLE_RAISE = 0.015
+#: Sleeve variants of a top.
+SLEEVES = ("short", "long", "none")
 
 
 @dataclass(frozen=True)
@@ -100,16 +116,20 @@ def top_panels(m: Measurements, f: BodyFrame, spec: TopSpec) -> tuple[Panel, Pan
     return front, back, k
 
 
-def _sleeve(name: str, ws: float, cap_h: float, under_len: float) -> Panel:
-    half = [(ws - 0.01, -under_len), (ws, 0.0), (0.0, cap_h)]
+def _sleeve(name: str, ws: float, cap_h: float, under_len: float, hem_w: float | None = None) -> Panel:
+    hem_w = ws - 0.01 if hem_w is None else hem_w
+    half = [(hem_w, -under_len), (ws, 0.0), (0.0, cap_h)]
     a, b = np.array(half[1]), np.array(half[2])
     cap = cubic(a, b, (0.55 * ws, 0.15 * cap_h), (0.3 * ws, cap_h))
     p, _ = symmetric_panel(name, half, [None, cap], half_labels=["right_underarm", "right_cap"], bottom_label="hem")
     return p
 
 
-def sleeve_panels(m: Measurements, f: BodyFrame, armhole_length: float, *, length: float = SHORT_SLEEVE_LENGTH):
-    """Left and right sleeves whose cap halves are ``armhole_length`` [m] long each.
+def sleeve_panels(m: Measurements, f: BodyFrame, armhole_length: float, *, length: float = SHORT_SLEEVE_LENGTH,
+                  hem_half: float | None = None):
+    """Left and right sleeves whose cap halves are ``armhole_length`` [m] long each, ``length``
+    [m] from cap top to hem, the hem ``2 * hem_half`` [m] across (None: 2 cm less than the
+    sleeve's width at the underarm).
 
     The cap height is solved (bisection) so both cap halves match the armholes exactly.
     Returns (left_sleeve, right_sleeve).
@@ -117,8 +137,8 @@ def sleeve_panels(m: Measurements, f: BodyFrame, armhole_length: float, *, lengt
     ws = (m.upper_arm + ARM_EASE) / 2
     cap_h = solve_length(lambda h: _sleeve("s", ws, h, 0.1), 2, armhole_length, 0.01, 0.4)
     under_len = max(length - cap_h, 0.04)
-    left = _sleeve("left_sleeve", ws, cap_h, under_len)
-    right = _sleeve("right_sleeve", ws, cap_h, under_len)
+    left = _sleeve("left_sleeve", ws, cap_h, under_len, hem_half)
+    right = _sleeve("right_sleeve", ws, cap_h, under_len, hem_half)
     a, c, s = f.arm_angle, np.cos(f.arm_angle), np.sin(f.arm_angle)
     # Laid over each arm, outer side up, cap top at the shoulder tip, hem towards the wrist.
     R_left = np.column_stack([(0.0, 0.0, -1.0), (-c, s, 0.0), (s, c, 0.0)])
@@ -157,15 +177,46 @@ def top_stitches(k: int, *, sleeves: bool = True) -> list[Stitch]:
     return st
 
 
-def make_tshirt(m: Measurements | None = None) -> Pattern:
-    """A short-sleeved t-shirt sized to ``m`` (default: the default body), placed around it."""
+def sleeveless_frame(f: BodyFrame) -> BodyFrame:
+    """The landmarks a sleeveless top is cut to: shoulder seam shorter, armhole higher."""
+    return dataclasses.replace(f, shoulder_x=f.shoulder_x - SLEEVELESS_SHOULDER_IN,
+                               armpit_y=f.armpit_y + SLEEVELESS_ARMHOLE_RAISE)
+
+
+def sleeves_for(m: Measurements, f: BodyFrame, armhole_length: float, sleeves: str) -> tuple[Panel, ...]:
+    """The sleeve panels of a top: () for ``"none"``, else (left, right) short or long sleeves."""
+    if sleeves not in SLEEVES:
+        raise ValueError(f"sleeves must be one of {SLEEVES}, not {sleeves!r}")
+    if sleeves == "none":
+        return ()
+    if sleeves == "short":
+        return sleeve_panels(m, f, armhole_length)
+    wrist = (WRIST_PER_UPPER_ARM * m.upper_arm + WRIST_EASE) / 2
+    return sleeve_panels(m, f, armhole_length, length=m.arm_length + LONG_SLEEVE_EXTRA, hem_half=wrist)
+
+
+def make_tshirt(m: Measurements | None = None, *, sleeves: str = "short") -> Pattern:
+    """A t-shirt sized to ``m`` (default: the default body), placed around it; ``sleeves``:
+    ``"short"`` (pattern ``tshirt``), ``"long"`` (``tshirt_long``) or ``"none"`` (a tank top,
+    ``tshirt_sleeveless``, cut to :func:`sleeveless_frame`)."""
     m = m or Measurements()
     f = body_frame(m)
     hem_y = f.hip_y - 0.02
     w_hem = max((m.hip + HIP_EASE) / 4, (m.bust + BUST_EASE) / 4)
     spec = TopSpec(lower=((w_hem, 0.0),), lower_curves=(None,), hem_y=hem_y)
-    front, back, k = top_panels(m, f, spec)
-    arm_len = edge_length(front, k + 1)
-    left, right = sleeve_panels(m, f, arm_len)
-    panels = {p.name: p for p in (front, back, left, right)}
-    return Pattern("tshirt", panels, top_stitches(k), properties={"units_in_meter": 100, "curvature_coords": "relative"})
+    front, back, k = top_panels(m, sleeveless_frame(f) if sleeves == "none" else f, spec)
+    arm = sleeves_for(m, f, edge_length(front, k + 1), sleeves)
+    panels = {p.name: p for p in (front, back, *arm)}
+    name = {"short": "tshirt", "long": "tshirt_long", "none": "tshirt_sleeveless"}[sleeves]
+    st = top_stitches(k, sleeves=bool(arm))
+    return Pattern(name, panels, st, properties={"units_in_meter": 100, "curvature_coords": "relative"})
+
+
+def make_tshirt_long(m: Measurements | None = None) -> Pattern:
+    """The t-shirt with long sleeves tapering to the wrist."""
+    return make_tshirt(m, sleeves="long")
+
+
+def make_tshirt_sleeveless(m: Measurements | None = None) -> Pattern:
+    """The t-shirt without sleeves (a tank top), its armholes cut in."""
+    return make_tshirt(m, sleeves="none")

@@ -1,0 +1,75 @@
+"""The fit's automatic base choice (unsew.fit.start.choose_base): each library base of the
+target's garment type dressed on a coarse mesh, the closest kept; --base names one explicitly."""
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from unsew.body.body import default_body
+from unsew.body.sdf import BodySDF
+from unsew.dress import DRESS_SETTINGS, dress
+from unsew.errors import InputError
+from unsew.fit.config import FitConfig
+from unsew.fit.progress import Progress
+from unsew.fit.start import choose_base
+from unsew.fit.target import Target
+from unsew.io.garmentcode import save_pattern
+from unsew.losses.contours import open_contours
+from unsew.pattern.base import bases_for, make_base_pattern
+from unsew.sim.material import get_material
+
+#: small mode: candidates on 6 cm meshes, the target on a 3.5 cm one (never the same drape)
+CFG = FitConfig(base_choice_edge=0.06)
+
+
+@pytest.fixture(scope="module")
+def body_sdf():
+    b = default_body()
+    return b, BodySDF.build(b)
+
+
+def _target(name, body, sdf, edge=0.035):
+    d = dress(make_base_pattern(name), body, sdf=sdf, settings=DRESS_SETTINGS.replace(edge_length=edge))
+    x, f = d.x.numpy(), np.asarray(d.mesh.faces)
+    return Target(x, f, open_contours(x, f))
+
+
+def _choose(garment, target, body, sdf):
+    lines = []
+    ch = choose_base(SimpleNamespace(garment=garment, body=body), target, sdf, CFG, get_material("cotton"),
+                     progress=Progress(False), log=lines.append)
+    assert sorted(r["base"] for r in ch.table) == sorted(bases_for(garment))
+    cf = [r["chamfer_mm"] for r in ch.table]
+    assert all(c is not None for c in cf) and cf == sorted(cf)
+    assert ch.pattern.name == ch.name == ch.table[0]["base"]
+    assert lines and f"{ch.name} chosen" in lines[-1]
+    return ch, cf
+
+
+def test_sleeveless_tee_target_chooses_the_sleeveless_base(body_sdf):
+    body, sdf = body_sdf
+    ch, cf = _choose("tshirt", _target("tshirt_sleeveless", body, sdf), body, sdf)
+    assert ch.name == "tshirt_sleeveless"
+    assert cf[1] > 2 * cf[0]  # measured: 5.4 mm against 14.4 (short sleeves) and 34.8 (long)
+
+
+@pytest.mark.slow
+def test_circle_skirt_target_chooses_the_circle_base(body_sdf):
+    body, sdf = body_sdf
+    ch, cf = _choose("skirt", _target("skirt_circle", body, sdf), body, sdf)
+    assert ch.name == "skirt_circle"  # measured: 42.9 mm against 46.3 (A-line, band) and 54.2 (A-line)
+
+
+def test_named_base_is_used_without_a_choice(body_sdf, tmp_path):
+    body, sdf = body_sdf
+    case = SimpleNamespace(garment="skirt", body=body)
+    mat = get_material("cotton")
+    ch = choose_base(case, None, sdf, CFG.replace(base="skirt_band"), mat, progress=Progress(False))
+    assert ch.name == "skirt_band" and ch.table == [] and "waistband_front" in ch.pattern.panels
+    p = tmp_path / "mine.json"
+    save_pattern(make_base_pattern("skirt_circle"), p)
+    ch = choose_base(case, None, sdf, CFG.replace(base=str(p)), mat, progress=Progress(False))
+    assert ch.table == [] and set(ch.pattern.panels) == set(make_base_pattern("skirt_circle").panels)
+    with pytest.raises(InputError, match="cannot make a skirt"):
+        choose_base(case, None, sdf, CFG.replace(base="tshirt_long"), mat, progress=Progress(False))

@@ -1,0 +1,115 @@
+"""unsew.grading.guards: grading keeps every panel meshable and a waist above the hips, and an
+internal failure of grading is never reported as a fault of the input (fast: flat drapes)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import unsew.grading.grade as grade_module
+from unsew.body.body import default_body
+from unsew.errors import InputError, PatternError
+from unsew.grading.alter import alter_pattern, open_edges
+from unsew.grading.cloth import top_contour
+from unsew.grading.contours import place_contours
+from unsew.grading.grade import GradingError, flat_drape, grade
+from unsew.grading.guards import (MIN_KEEP_WIDTH, WAIST_ABOVE_HIP, WAIST_HIP_EASE, WaistBound, bounded_girth,
+                                  bounded_waist, waist_bound)
+from unsew.meshing.sew import mesh_pattern
+from unsew.pattern.base import make_base_pattern
+
+EDGE = 0.04
+
+
+@pytest.fixture(scope="module")
+def body():
+    return default_body()
+
+
+@pytest.fixture(scope="module")
+def skirt():
+    p = make_base_pattern("skirt")
+    return p, mesh_pattern(p, edge_length=EDGE)
+
+
+def _top_row(res):
+    return next(r for r in res.table if r["edits"] and any(":waist" in e for e in r["edits"]))
+
+
+def test_a_waist_is_not_moved_below_the_hips(body, skirt):
+    """A target whose waist lies 35 cm lower than the base's (below the hips): the waist moves
+    down only to WAIST_ABOVE_HIP above the hip joints."""
+    p, m = skirt
+    t = alter_pattern(p, open_edges(p, "waist"), length=-0.35)
+    tm = mesh_pattern(t, edge_length=EDGE)
+    x0 = flat_drape(p, m)
+    res = grade(p, body, flat_drape(t, tm), tm.faces, mesh=m, drape_fn=flat_drape, passes=1, redrape=False,
+                length="axial")
+    row = _top_row(res)
+    assert row["extension_m"] < -0.3  # what the target asked
+    assert any("waist move cut" in w for w in row["warnings"])
+    wb = waist_bound(body)
+    top_y = float(top_contour(place_contours(x0, m.faces, body.skeleton)).centre[1])  # the base's waist
+    room = top_y - (wb.hip_height + WAIST_ABOVE_HIP)
+    h0 = np.ptp(p.panels["front"].vertices[:, 1])
+    h1 = np.ptp(res.pattern.panels["front"].vertices[:, 1])
+    assert 0 < room < 0.3
+    assert h0 - h1 == pytest.approx(room, abs=0.002)  # the panel shortened from the top by the room only
+
+
+def test_a_waist_is_not_widened_past_the_hips():
+    bound = WaistBound(hip_height=0.86, shoulder_height=1.29, hip_girth=0.90)
+    ext, dg, notes = bounded_waist(bound, 1.0, -0.05, girth=0.78, girth_change=0.40)
+    assert ext == -0.05 and dg == pytest.approx(0.90 - WAIST_HIP_EASE - 0.78) and len(notes) == 1
+    assert bounded_waist(bound, 1.0, 0.0, girth=0.95, girth_change=0.10)[1] == 0.0  # already too wide: not widened
+    assert bounded_waist(bound, 1.0, 0.0, girth=0.95, girth_change=-0.10)[1] == -0.10  # narrowing is free
+    # a neckline (nearer the shoulders) is no waist: left alone
+    assert bounded_waist(bound, 1.25, -0.5, girth=0.4, girth_change=2.0) == (-0.5, 2.0, [])
+    assert bounded_waist(None, 1.0, -0.5, girth=0.4, girth_change=2.0) == (-0.5, 2.0, [])
+
+
+def test_a_narrowing_keeps_the_curve_open(skirt):
+    """A hem asked to shrink by more than its length keeps MIN_KEEP_WIDTH of it; a milder
+    narrowing and any widening pass unchanged."""
+    from unsew.grading.curves import OpenCurve
+    from unsew.pattern.curves import edge_length
+
+    p, _ = skirt
+    hem = next(i for i, e in enumerate(p.panels["front"].edges) if e.label == "hem")
+    e = p.panels["front"].edges[hem]
+    curve = OpenCurve("front", 0, [hem], e.start, e.end, np.array([0, 1]), 0.8)
+    length = edge_length(p.panels["front"], hem)
+    dg, note = bounded_girth(p, curve, -2.0)
+    assert dg == pytest.approx(-(length - MIN_KEEP_WIDTH)) and "narrowing cut" in note
+    assert bounded_girth(p, curve, -0.5 * length) == (-0.5 * length, "")
+    assert bounded_girth(p, curve, 0.3) == (0.3, "")
+
+
+def test_an_unmeshable_graded_pattern_is_scaled_back(body, skirt, monkeypatch):
+    """When the graded pattern cannot be meshed, the edit is halved until it can; when even the
+    undone edit fails, a GradingError says it is grading's failure, not the input's."""
+    p, m = skirt
+    t = alter_pattern(p, open_edges(p, "hem"), length=0.05)
+    tm = mesh_pattern(t, edge_length=EDGE)
+    tx = flat_drape(t, tm)
+    real = grade_module.mesh_pattern
+    calls = []
+
+    def fails_twice(pattern, **kw):
+        calls.append(1)
+        if len(calls) <= 2:
+            raise PatternError("panel 'front': outline folds back on itself (test)")
+        return real(pattern, **kw)
+
+    monkeypatch.setattr(grade_module, "mesh_pattern", fails_twice)
+    res = grade(p, body, tx, tm.faces, mesh=m, drape_fn=flat_drape, passes=1, redrape=False, length="axial")
+    assert res.fraction == pytest.approx(0.25) and len(calls) == 3
+    assert any("scaled back to 25%" in w for r in res.table for w in r["warnings"])
+
+    def always(pattern, **kw):
+        raise PatternError("panel 'front': outline folds back on itself (test)")
+
+    monkeypatch.setattr(grade_module, "mesh_pattern", always)
+    with pytest.raises(GradingError, match="not of the input") as err:
+        grade(p, body, tx, tm.faces, mesh=m, drape_fn=flat_drape, passes=1, redrape=False, length="axial")
+    assert not isinstance(err.value, InputError)
