@@ -21,7 +21,10 @@ prints one row per case:
   figures; ``panels`` est/gt panel counts of the final pattern and ``unmatched`` its panels without
   a counterpart (``gt:`` true panels the result lacks, ``est:`` extra ones);
 - the case's cross-simulator floor [mm] (meta.json's floor.chamfer_mm: the true pattern draped by
-  ``unsew drape``), and whether phase two's pattern was kept (metrics.json's redress).
+  ``unsew drape``), and whether phase two's pattern was kept (metrics.json's redress);
+- the fit process's peak resident memory [MB] (metrics.json's peak_memory_mb) and the stage that
+  set it (:func:`peak_stage`: loaded = reading the case and the body, body_sdf, grading,
+  material_choice, optimization, redress, mesh_spread, metrics).
 
 Resumable: a case whose result folder exists is not fitted again (nor one whose earlier failure is
 recorded in OUT/_status/CASE.json, unless --retry); an interrupted fit resumes from its checkpoint.
@@ -48,7 +51,7 @@ COLUMNS = ["case", "garment", "body", "base", "exit", "time_s",
            "cf_base_mm", "cf_graded_mm", "cf_final_mm", "floor_mm",
            "area_base_pct", "area_graded_pct", "area_final_pct",
            "total_base_pct", "total_graded_pct", "total_final_pct", "matched_final_pct",
-           "panels", "unmatched", "phase2_kept", "peak_mb"]
+           "panels", "unmatched", "phase2_kept", "peak_mb", "peak_stage"]
 
 #: metrics.json key and result-folder file of each pattern the table judges
 PATTERNS = (("base", "pattern_base", "pattern_base.json"), ("graded", "pattern_graded", "pattern_graded.json"),
@@ -160,7 +163,22 @@ def row(case: Path, out: Path, status: dict) -> dict:
     red = m.get("redress")
     r["phase2_kept"] = None if red is None else ("yes" if red.get("phase_two_kept") else "no")
     r["peak_mb"] = m.get("peak_memory_mb")  # the fit process's peak resident memory [MB]
+    r["peak_stage"] = peak_stage(m)
     return r
+
+
+def peak_stage(metrics: dict) -> str | None:
+    """The fit stage that set the process's peak memory: the first stage in metrics.json's
+    ``peak_memory_stages_mb`` (the peak so far at the end of each stage) reaching the final peak;
+    "metrics" when only the metrics after the last stage did; None when not recorded."""
+    stages = metrics.get("peak_memory_stages_mb") or {}
+    peak = metrics.get("peak_memory_mb")
+    if not stages or peak is None:
+        return None
+    for name, mb in stages.items():
+        if mb is not None and mb >= peak - 1.0:  # within 1 MB: the same page high-water mark
+            return name.removesuffix("_s")
+    return "metrics"
 
 
 def main(argv=None) -> int:

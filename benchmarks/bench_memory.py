@@ -99,6 +99,7 @@ def _fit_rows(sizes, folder) -> list[dict]:
     import numpy as np
     import trimesh
 
+    from unsew.fit.config import load_config
     from unsew.fit.demo import make_truth_case
     from unsew.io.mesh import read_mesh, write_obj
 
@@ -106,8 +107,7 @@ def _fit_rows(sizes, folder) -> list[dict]:
     work.mkdir(parents=True, exist_ok=True)
     base = work / "truth"
     if not (base / "target.obj").is_file():
-        make_truth_case(base, edge_length=SMALL["edge_length"], sew_steps=SMALL["sew_steps"],
-                        settle_steps=SMALL["settle_steps"])
+        make_truth_case(base, settings=load_config(**SMALL).drape)  # as tests/fit/test_fit_small.py
     v0, f0 = read_mesh(base / "target.obj")
     edge = float(np.linalg.norm(v0[f0[:, 0]] - v0[f0[:, 1]], axis=1).mean())
     rows = []

@@ -3,13 +3,22 @@
 Linux reports the peak resident set (VmHWM, also ``getrusage``'s ru_maxrss) and lets a process
 reset it (writing 5 to /proc/self/clear_refs), so a stage's own peak can be measured in-process.
 Elsewhere the functions fall back to ``resource.getrusage`` (peak since start) or return None.
+
+:func:`bound_heap` and :func:`release_free_memory` keep glibc's heap from holding on to memory
+the fit has freed (docs/benchmarks.md, "Geometry core and memory"); they do nothing elsewhere.
 """
 
 from __future__ import annotations
 
 import sys
 
-__all__ = ["peak_rss_mb", "current_rss_mb", "reset_peak"]
+__all__ = ["peak_rss_mb", "current_rss_mb", "reset_peak", "bound_heap", "release_free_memory"]
+
+#: Blocks at least this large are mapped and unmapped on their own, never kept in the heap [bytes].
+MMAP_THRESHOLD = 4 << 20
+#: At most this many malloc arenas (glibc's default is 8 per core, each keeping its free blocks).
+ARENA_MAX = 2
+_M_MMAP_THRESHOLD, _M_ARENA_MAX = -3, -8  # mallopt parameters (glibc malloc.h)
 
 
 def _status_kb(field: str) -> int | None:
@@ -51,3 +60,37 @@ def reset_peak() -> bool:
         return True
     except OSError:
         return False
+
+
+def _glibc():
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL("libc.so.6")
+        return libc if hasattr(libc, "mallopt") and hasattr(libc, "malloc_trim") else None
+    except OSError:
+        return None
+
+
+def bound_heap() -> bool:
+    """Fix glibc malloc's mmap threshold at :data:`MMAP_THRESHOLD` and its arenas at
+    :data:`ARENA_MAX` for this process. glibc otherwise raises the threshold to the size of the
+    largest block freed (up to 32 MB), after which such blocks come from the heap and stay there
+    when freed, and gives threads arenas of their own; either can keep memory the fit freed long
+    ago. The arena limit only binds threads that start afterwards: call it first thing (the CLI
+    does). Returns False where not glibc."""
+    libc = _glibc()
+    if libc is None:
+        return False
+    return bool(libc.mallopt(_M_MMAP_THRESHOLD, MMAP_THRESHOLD)) and bool(libc.mallopt(_M_ARENA_MAX, ARENA_MAX))
+
+
+def release_free_memory() -> bool:
+    """Give the heap's free pages back to the system (glibc ``malloc_trim(0)``); False elsewhere."""
+    libc = _glibc()
+    if libc is None:
+        return False
+    libc.malloc_trim(0)
+    return True

@@ -17,6 +17,7 @@ import sys
 import warnings
 
 from unsew import __version__
+from unsew._memory import bound_heap
 from unsew._threads import configure_threads
 
 __all__ = ["main", "build_parser"]
@@ -46,6 +47,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     configure_threads()
+    bound_heap()  # before any thread starts: glibc gives a thread an arena of its own only then
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):

@@ -54,6 +54,7 @@ def test_row_reads_metrics_and_pattern_files(tmp_path):
         "pattern_base": {"error": "panels without a counterpart"},
         "redress": {"fit_redressed_mm": 8.0, "graded_mm": 9.0, "phase_two_kept": True},
         "timings_s": {"total_s": 12.0}, "peak_memory_mb": 2048.5,
+        "peak_memory_stages_mb": {"loaded": 600.0, "body_sdf_s": 700.0, "grading_s": 2048.5, "optimization_s": 2048.5},
     }
     (res / "metrics.json").write_text(json.dumps(metrics))
     r = mod.row(case, tmp_path, {"exit": "ok", "time_s": None})
@@ -64,3 +65,11 @@ def test_row_reads_metrics_and_pattern_files(tmp_path):
     assert abs(r["area_base_pct"]) < 1e-9 and abs(r["total_base_pct"]) < 1e-9  # from pattern_base.json
     assert r.get("area_graded_pct") is None  # neither in metrics.json nor saved
     assert r["phase2_kept"] == "yes" and r["time_s"] == 12.0 and r["peak_mb"] == 2048.5
+    assert r["peak_stage"] == "grading"  # the first stage whose end reached the final peak
+
+
+def test_peak_stage_is_metrics_when_no_stage_reached_the_peak():
+    mod = _module()
+    m = {"peak_memory_mb": 900.0, "peak_memory_stages_mb": {"loaded": 500.0, "optimization_s": 800.0}}
+    assert mod.peak_stage(m) == "metrics"
+    assert mod.peak_stage({"peak_memory_mb": 900.0}) is None

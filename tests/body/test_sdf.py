@@ -119,6 +119,19 @@ def test_query_gradcheck_small_grid():
     assert torch.autograd.gradcheck(lambda y: sdf.query(y)[1], (x,))
 
 
+def test_query_table_is_distance_and_central_differences():
+    """The query's channel-last table, filled a channel at a time: the distance and np.gradient's
+    d/dx, d/dy, d/dz, exactly (a node's row is (iz * ny + iy) * nx + ix)."""
+    rng = np.random.default_rng(0)
+    sdf = BodySDF(rng.standard_normal((5, 6, 7)), np.zeros(3), 0.01)
+    t = sdf._table()
+    gz, gy, gx = np.gradient(sdf.values, sdf.voxel)
+    assert t.shape == (5 * 6 * 7, 4) and t.dtype == np.float64
+    assert_close(t, np.stack([sdf.values, gx, gy, gz], axis=-1).reshape(-1, 4), atol=0)
+    iz, iy, ix = 3, 2, 5
+    assert t[(iz * 6 + iy) * 7 + ix, 0] == sdf.values[iz, iy, ix]
+
+
 def test_cache_roundtrip(tmp_path):
     body = _sphere_body(subdiv=2)
     a = BodySDF.build(body, voxel=0.01, margin=0.02, cache_dir=tmp_path)

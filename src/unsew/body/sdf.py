@@ -284,11 +284,9 @@ class BodySDF:
         key = (str(device), dtype)
         t = self._dev.get(key)
         if t is None:
-            g = np.stack(np.gradient(self.values, self.voxel), axis=0)  # (3, nz, ny, nx): d/dz, d/dy, d/dx
-            table = np.stack([self.values, g[2], g[1], g[0]], axis=-1).reshape(-1, 4)  # (nodes, 4): d, grad
             nz, ny, nx = self.values.shape
             t = dict(
-                table=torch.as_tensor(np.ascontiguousarray(table), dtype=dtype, device=device),
+                table=torch.as_tensor(self._table(), dtype=dtype, device=device),
                 lo=torch.as_tensor(self.origin, dtype=dtype, device=device),
                 hi=torch.as_tensor(self.upper, dtype=dtype, device=device),
                 last=torch.tensor([nx - 2, ny - 2, nz - 2], device=device),
@@ -298,6 +296,17 @@ class BodySDF:
             t["corner_offsets"] = (bits * t["stride"]).sum(dim=1)  # (8,) flat offsets of the corners
             self._dev[key] = t
         return t
+
+    def _table(self) -> np.ndarray:
+        """(nodes, 4) float64 channel-last table: distance [m] and its gradient (d/dx, d/dy, d/dz)
+        by central differences (one-sided at the faces, as ``np.gradient``), node (ix, iy, iz)
+        at row ``(iz * ny + iy) * nx + ix``. Filled one channel at a time, so building it holds
+        the table and one gradient component (not all three gradients and two stacked copies)."""
+        table = np.empty(self.values.shape + (4,), dtype=np.float64)  # (nz, ny, nx, 4)
+        table[..., 0] = self.values
+        for ch, axis in ((1, 2), (2, 1), (3, 0)):  # x, y, z: the grid's axes 2, 1, 0
+            table[..., ch] = np.gradient(self.values, self.voxel, axis=axis)
+        return table.reshape(-1, 4)
 
     def query(self, x):
         """Signed distance and outward normal at points.

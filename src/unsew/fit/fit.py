@@ -19,6 +19,7 @@ from typing import Callable
 import numpy as np
 import torch
 
+from unsew._memory import bound_heap, peak_rss_mb, release_free_memory
 from unsew.body.sdf import BodySDF
 from unsew.dress import resolve_material
 from unsew.errors import InputError
@@ -52,6 +53,9 @@ class FitResult:
     gamma_last: the last iterate's Gamma (5,); redress, mesh_spread: the checks' figures (None: off);
     drape_check: the returned drape judged on its body (:func:`unsew.sim.checks.check_drape`: fallen,
     off the body, exploded, inside it); :func:`unsew.fit.run.run_fit` refuses a bad one.
+    memory_mb: the process's peak resident memory [MB] at the end of each stage (keys as
+    ``timings``, "loaded" at the fit's start), so the stage that set the peak is the first one
+    reaching the last value.
     """
 
     pattern: object
@@ -81,6 +85,7 @@ class FitResult:
     redress: RedressCheck | None = None
     mesh_spread: MeshSpread | None = None
     drape_check: DrapeVerdict | None = None
+    memory_mb: dict | None = None
 
 
 def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: Path | None = None,
@@ -92,6 +97,7 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
     checkpoint: file written after every iteration (and read with ``resume=True``).
     callback: called with every phase-two :class:`~unsew.fit.optimize.Iteration` (traces).
     """
+    bound_heap()  # freed memory goes back to the system (unsew._memory); peak memory: metrics.json
     clock, bar = _Clock(), progress if isinstance(progress, Progress) else Progress(progress)
     torch.manual_seed(cfg.seed)
     _check_device(cfg.device)
@@ -118,6 +124,7 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
                            lambda info: target.distance_mm(info.x.cpu().numpy(), info.faces, n_samples=BAR_SAMPLES))
 
     def on_iteration(info: Iteration) -> None:
+        release_free_memory()  # an iteration's tape, freed in pieces all over the heap
         shown(info)
         if checkpoint is not None:
             save_checkpoint(checkpoint, choice, two.state_dict())
@@ -160,6 +167,7 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
         material_start_iteration=cfg.material.start_iteration if cfg.fits_material else None,
         gamma_last=two.gamma_last(), redress=redress, mesh_spread=spread,
         drape_check=check_drape(x, faces=s.mesh.faces, uv=uv, faces_uv=s.mesh.faces_uv, body=case.body, sdf=sdf),
+        memory_mb=clock.peaks,
     )
 
 
@@ -175,17 +183,21 @@ def _check_device(device: str) -> None:
 
 
 class _Clock:
-    """Seconds per stage: ``lap(name)`` records the time since the previous lap."""
+    """Seconds per stage: ``lap(name)`` records the time since the previous lap, and the process's
+    peak resident memory so far [MB] (``peaks``)."""
 
     def __init__(self):
         self.t0 = self.last = time.perf_counter()
         self.timings: dict[str, float] = {}
+        self.peaks: dict[str, float | None] = {"loaded": peak_rss_mb()}
 
     def lap(self, name: str, *, keep: bool = True) -> None:
         now = time.perf_counter()
         if keep:
             self.timings[name] = self.timings.get(name, 0.0) + now - self.last
-        self.last = now
+            self.peaks[name] = peak_rss_mb()
+        release_free_memory()  # a stage's scratch memory, before the next stage
+        self.last = time.perf_counter()
 
     def total(self) -> dict[str, float]:
         return {**self.timings, "total_s": time.perf_counter() - self.t0}

@@ -12,6 +12,7 @@ import math
 import time
 from dataclasses import dataclass, field
 
+from unsew._memory import release_free_memory
 from unsew.dress import dress
 from unsew.errors import InputError
 from unsew.fit.config import FitConfig, material_candidates
@@ -101,8 +102,10 @@ def _dresser(s: Start, body, sdf, cfg: FitConfig):
     """dress_in(material, bar) -> drape (Nx, 3) [m] of the start's pattern dressed from scratch."""
 
     def dress_in(material, bar=None):
-        return dress(s.graded, body, sdf=sdf, mesh=s.mesh, material=material, settings=cfg.drape,
-                     progress=bar).x.numpy()
+        x = dress(s.graded, body, sdf=sdf, mesh=s.mesh, material=material, settings=cfg.drape,
+                  progress=bar).x.numpy()
+        release_free_memory()  # the drape's scratch memory (unsew._memory)
+        return x
 
     return dress_in
 

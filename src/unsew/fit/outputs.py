@@ -98,6 +98,8 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
         m["mesh_spread"] = result.mesh_spread.as_dict()  # the returned pattern on two other meshes
     m["timings_s"] = result.timings
     m["peak_memory_mb"] = peak_rss_mb()  # the process's peak resident memory so far [MB]
+    if getattr(result, "memory_mb", None):
+        m["peak_memory_stages_mb"] = result.memory_mb  # the peak so far at the end of each stage [MB]
     if result.drape_check is not None:
         m["drape_check"] = result.drape_check.as_dict()  # the result on its body: inside %, stretch, ...
     if getattr(case, "notes", None):
