@@ -15,9 +15,10 @@ from typing import Callable
 import numpy as np
 import torch
 
-from unsew.body.placement import place_garment
+from unsew.body.placement import meets_seams, place_garment
 from unsew.body.sdf import BodySDF
 from unsew.meshing import mesh_pattern
+from unsew.sim.checks import check_dressed
 from unsew.sim.drape import DrapeSettings, drape, merge_sewn, sew
 from unsew.sim.material import Material, get_material
 from unsew.sim.model import SimModel
@@ -155,8 +156,23 @@ def dress(
     g = mat.gamma() if gamma is None else torch.as_tensor(gamma, dtype=torch.float64).detach()
     uv = torch.as_tensor(np.asarray(mesh.uv), dtype=torch.float64)
 
+    d = _dress_once(pattern, body, sdf, mesh, mat, g, uv, settings, progress, force_meet=False)
+    if not d.stats["met_seams"]:
+        verdict = check_dressed(d, body=body)
+        if not verdict.ok and verdict.reason.startswith("exploded"):
+            # Seam copies started apart tore an edge (seen on a loose tee's sleeve on an A-pose
+            # body): dress again with the copies started at their midpoint, keep it if it holds.
+            retry = _dress_once(pattern, body, sdf, mesh, mat, g, uv, settings, progress, force_meet=True)
+            if check_dressed(retry, body=body).ok:
+                retry.stats["placement_retry"] = verdict.reason
+                return retry
+    return d
+
+
+def _dress_once(pattern, body, sdf, mesh, mat, g, uv, settings, progress, *, force_meet: bool) -> Dressed:
+    """One placement, sewing and settling of :func:`dress` (its arguments resolved)."""
     t0 = time.perf_counter()
-    x_unsewn = place_garment(pattern, mesh, body, sdf=sdf)
+    x_unsewn = place_garment(pattern, mesh, body, sdf=sdf, force_meet=force_meet)
     hold = hold_vertices(pattern, mesh, body, x_unsewn)
     t1 = time.perf_counter()
     if progress:
@@ -180,5 +196,6 @@ def dress(
         speed = float(st.v.norm(dim=1).max())
     t3 = time.perf_counter()
     stats = dict(place_s=t1 - t0, sew_s=t2 - t1, settle_s=t3 - t2, seam_gap=gap, max_speed=speed,
-                 start_height=float(merge_sewn(x_unsewn, mesh.x_of_u, mesh.n_x)[:, 1].mean()))
+                 start_height=float(merge_sewn(x_unsewn, mesh.x_of_u, mesh.n_x)[:, 1].mean()),
+                 met_seams=force_meet or meets_seams(body))
     return Dressed(pattern, mesh, model, x.detach(), uv, mat, sdf, stats)

@@ -102,3 +102,17 @@ def test_on_posed_bodies(name, body_name):
     else:
         pattern = _sample(name)
     _check_on_body(f"{name} on {body_name}", pattern, body, BodySDF.build(body), edge_length=0.025)
+
+
+def test_loose_tee_that_tears_without_met_seams_is_dressed_again_with_them():
+    """The foreign benchmark's loose long-sleeved tee (its true pattern) on the anny default
+    (A-pose) body: started with seam copies apart (the A-pose default) a sleeve edge tears to 3.6x
+    its length; dress() dresses it again with the copies met at their midpoint, which holds."""
+    pytest.importorskip("anny", reason="the case's wearer is an anny body (extra unsew[anny])")
+    from unsew.body.case import load_case
+
+    case = load_case(ROOT / "benchmarks" / "foreign" / "cases" / "tee_loose_long__default")
+    d = dress(case.pattern_gt, case.body, settings=DRESS_SETTINGS)
+    v = check_dressed(d, body=case.body)
+    assert v.ok and v.inside_pct < 0.5, v.reason
+    assert d.stats["placement_retry"].startswith("exploded")

@@ -35,7 +35,7 @@ import numpy as np
 
 from unsew.errors import InputError
 
-__all__ = ["place_garment", "panel_roles", "CLEARANCE", "MAX_PUSH"]
+__all__ = ["place_garment", "panel_roles", "meets_seams", "CLEARANCE", "MAX_PUSH"]
 
 #: Gap between the body's cross-section and the wrapped cloth [m].
 CLEARANCE = 0.02
@@ -238,7 +238,8 @@ def panel_roles(pattern, body) -> dict:
 # -- placement -------------------------------------------------------------------------------
 
 
-def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE, meet_seams: bool = True) -> np.ndarray:
+def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE, meet_seams: bool = True,
+                  force_meet: bool = False) -> np.ndarray:
     """Put the flat panels of ``pattern`` around ``body``: the start of the sewing phase.
 
     Args:
@@ -251,6 +252,8 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
         meet_seams: on a body with an arm raised above MEET_ARM, start seam vertices whose two
             copies are further apart than SEAM_MEET at their midpoint (see :func:`_meet_seams`);
             on any body, start outline stubs about their own length long (:func:`_close_stubs`).
+        force_meet: meet the seam copies at their midpoint whatever the arms' pose (the retry of
+            :func:`unsew.dress.dress` when a drape started without meeting exploded).
 
     Returns:
         x_unsewn: (Nu, 3) float64 [m], one 3D point per 2D rest vertex (seam copies apart).
@@ -268,7 +271,7 @@ def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE
     x_wrap, lifts = _wrap_lifted(pattern, mesh, info, uv, stacks, ys, crotch_y, J, xb, ytop, clearance)
     _put_wrapped(x, info, x_wrap, lifts)
     _put_sleeves(x, pattern, mesh, info, uv, J)
-    if meet_seams and min(_arm_drop(J, side) for side in ("left", "right")) < MEET_ARM:
+    if meet_seams and (force_meet or _arm_raised(J)):
         x = _meet_seams(x, mesh)
     if meet_seams:
         x = _close_stubs(x, mesh)
@@ -521,6 +524,17 @@ def _close_stubs(x, mesh):
     sel = shrink[xu]
     x[sel] = m[xu[sel]]
     return x
+
+
+def meets_seams(body) -> bool:
+    """Whether :func:`place_garment` starts seam copies at their midpoint on ``body`` by default:
+    an upper arm raised above MEET_ARM below horizontal."""
+    sk = body.skeleton
+    return _arm_raised({n: sk.position(n) for n in sk.names})
+
+
+def _arm_raised(J) -> bool:
+    return min(_arm_drop(J, side) for side in ("left", "right")) < MEET_ARM
 
 
 def _arm_drop(J, side) -> float:
