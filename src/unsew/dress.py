@@ -158,15 +158,33 @@ def dress(
 
     d = _dress_once(pattern, body, sdf, mesh, mat, g, uv, settings, progress, force_meet=False)
     if not d.stats["met_seams"]:
-        verdict = check_dressed(d, body=body)
-        if not verdict.ok and verdict.reason.startswith("exploded"):
-            # Seam copies started apart tore an edge (seen on a loose tee's sleeve on an A-pose
-            # body): dress again with the copies started at their midpoint, keep it if it holds.
+        fault = _sewing_fault(d, body)
+        if fault:
+            # Seam copies started apart can tear an edge (a loose tee's sleeve on an A-pose body)
+            # or leave a band's seams open and triangles folded: dress again with the copies
+            # started at their midpoint, and keep that when it is sound.
             retry = _dress_once(pattern, body, sdf, mesh, mat, g, uv, settings, progress, force_meet=True)
-            if check_dressed(retry, body=body).ok:
-                retry.stats["placement_retry"] = verdict.reason
+            if not _sewing_fault(retry, body) or (not check_dressed(d, body=body).ok and check_dressed(retry, body=body).ok):
+                retry.stats["placement_retry"] = fault
                 return retry
     return d
+
+
+#: Widest seam [m] left open by the sewing phase that :func:`dress` accepts without a retry.
+SEAM_GAP_MAX = 2e-3
+
+
+def _sewing_fault(d, body) -> str:
+    """Why a dressed garment is unsound ("" when it is): a failed verdict
+    (:func:`unsew.sim.checks.check_dressed`), a seam left open wider than SEAM_GAP_MAX, or
+    triangles folded through their neighbours."""
+    v = check_dressed(d, body=body)
+    if not v.ok:
+        return v.reason
+    if d.stats["seam_gap"] > SEAM_GAP_MAX:
+        return f"seams {d.stats['seam_gap'] * 1000:.1f} mm open after sewing"
+    folded = _folded_triangles(d.x.detach().numpy(), d.mesh.faces)
+    return f"{folded} triangles folded" if folded else ""
 
 
 def _dress_once(pattern, body, sdf, mesh, mat, g, uv, settings, progress, *, force_meet: bool) -> Dressed:

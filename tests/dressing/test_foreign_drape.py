@@ -115,4 +115,4 @@ def test_loose_tee_that_tears_without_met_seams_is_dressed_again_with_them():
     d = dress(case.pattern_gt, case.body, settings=DRESS_SETTINGS)
     v = check_dressed(d, body=case.body)
     assert v.ok and v.inside_pct < 0.5, v.reason
-    assert d.stats["placement_retry"].startswith("exploded")
+    assert "stretched" in d.stats["placement_retry"]
