@@ -14,7 +14,9 @@ fell (reason starting "fallen"), the garment's height range [m], the largest and
 99th-percentile edge stretch (3D length over pattern length), vertices off the body [%], sewn
 vertices, and the wall time of sizing + placing + sewing + settling [s]; then whether each drape
 meets issue 23's bar (< 0.5 % inside, not fallen, verdict ok). ``--png-dir`` renders each drape
-(front and side, garment over body).
+(front and side, garment over body). A ``--garments`` entry ending in ``.json`` is a pattern
+draped as it is, not sized to the body, in its own fitted material when it carries one:
+retargeting, e.g. a ``pattern.json`` fitted by ``unsew fit`` on another body model.
 
 Run: OMP_WAIT_POLICY=PASSIVE PYTHONPATH=src .venv/bin/python -m benchmarks gcbodies
      [--bodies mean_all mean_all_tpose ...] [--garments tshirt dress ...] [--png-dir DIR]
@@ -53,7 +55,8 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--folder", type=Path, default=None, help="folder of GarmentCode bodies (*.obj)")
     ap.add_argument("--bodies", nargs="*", default=None, help="body names (file stems); default: all")
-    ap.add_argument("--garments", nargs="*", default=GARMENTS)
+    ap.add_argument("--garments", nargs="*", default=GARMENTS,
+                    help="base garment names, or pattern JSON files draped as they are (retargeting)")
     ap.add_argument("--edge-length", type=float, default=0.025)
     ap.add_argument("--png-dir", type=Path, default=None, help="render each drape (front, side) here")
     args = ap.parse_args()
@@ -74,6 +77,7 @@ def main() -> None:
     from unsew.io.garmentcode import load_pattern, save_pattern
     from unsew.pattern.base import make_base_pattern
     from unsew.sim.checks import check_dressed
+    from unsew.sim.material import material_from_dict
 
     folder = args.folder or foreign_bodies()
     meshes = sorted(folder.glob("*.obj"))
@@ -91,16 +95,21 @@ def main() -> None:
         meas = measure_body(body)
         sdf = BodySDF.build(body)
         for g in args.garments:
-            row = dict(body=mesh.stem, garment=g, rig_s=rig_s)
+            given = g.endswith(".json")
+            row = dict(body=mesh.stem, garment=Path(g).parent.name + "/" + Path(g).name if given else g, rig_s=rig_s)
             t0 = time.perf_counter()
             try:
                 with tempfile.TemporaryDirectory() as tmp:
-                    path = Path(tmp) / f"{g}.json"
-                    save_pattern(make_base_pattern(g, meas), path)
+                    path = Path(g) if given else Path(tmp) / f"{g}.json"
+                    if not given:
+                        save_pattern(make_base_pattern(g, meas), path)
                     with warnings.catch_warnings():
                         warnings.simplefilter("ignore")
                         pat = load_pattern(path)
-                d = dress(pat, body, sdf=sdf, settings=settings)
+                # a fitted pattern drapes in its own fitted material, as `unsew drape` does
+                fitted = (getattr(pat, "unsew", None) or {}).get("material") if given else None
+                material = material_from_dict(fitted) if fitted else "cotton"
+                d = dress(pat, body, sdf=sdf, material=material, settings=settings)
             except UnsewError as exc:
                 row.update(verdict=f"error: {exc}", time_s=time.perf_counter() - t0, meets_bar=False)
                 rows.append(row)
@@ -127,14 +136,14 @@ def main() -> None:
 
                 os.makedirs(args.png_dir, exist_ok=True)
                 render_views(
-                    args.png_dir / f"{g}_{mesh.stem}.png", d.x.numpy(), d.mesh.faces,
+                    args.png_dir / f"{Path(g).stem}_{mesh.stem}.png", d.x.numpy(), d.mesh.faces,
                     body=(np.asarray(body.verts), np.asarray(body.faces)), frame="all",
-                    views=("front", "side"), title=f"base {g} on GarmentCode {mesh.stem} (rigged): {row['verdict']}",
+                    views=("front", "side"), title=f"{'pattern ' + row['garment'] if given else 'base ' + g} on GarmentCode {mesh.stem} (rigged): {row['verdict']}",
                 )
     cols = ["body", "garment", "rig_s", "verdict", "inside_pct", "fallen", "y_range", "stretch_max", "stretch_p99",
             "off_body_pct", "verts", "time_s", "meets_bar"]
     print_table(rows, cols, title=f"unsew's base patterns draped on GarmentCode bodies rigged from their mesh, "
-                                  f"{args.edge_length * 100:g} cm edges, cotton")
+                                  f"{args.edge_length * 100:g} cm edges, cotton (a given pattern: its fitted material)")
     n_ok = sum(bool(r.get("meets_bar")) for r in rows)
     print(f"\n{n_ok} of {len(rows)} drapes pass the checks with < {INSIDE_BAR_PCT:g} % of vertices inside and none fallen")
 
