@@ -456,31 +456,16 @@ def render_mesh(
     faces: np.ndarray,
     *,
     view: str = "front",
-    vertex_values: np.ndarray | None = None,
-    cmap: str = "viridis",
-    vmin: float | None = None,
-    vmax: float | None = None,
-    colorbar_label: str | None = None,
-    color=GARMENT_RGB,
-    body: tuple[np.ndarray, np.ndarray] | None = None,
-    overlay: tuple[np.ndarray, np.ndarray] | None = None,
-    overlay_style: str = "ghost",
-    overlay_color=OVERLAY_RGB,
-    frame: str = "garment",
-    margin: float = 0.06,
     size_px: tuple[int, int] = (600, 800),
-    title: str | None = None,
+    **style,
 ) -> Path:
     """Render one orthographic view of a mesh to a PNG of exactly ``size_px`` pixels.
 
-    Same arguments as :func:`render_views` with a single ``view`` (``"front"``, ``"side"``,
-    ``"back"`` or ``"three_quarter"``). Returns the PNG's path.
+    ``view``: ``"front"``, ``"side"``, ``"back"`` or ``"three_quarter"``; ``style``: the keyword
+    arguments of :func:`render_views` (vertex values, colours, body, overlay, frame, margin,
+    title). Returns the PNG's path.
     """
-    return render_views(path_png, verts, faces, views=(view,), vertex_values=vertex_values,
-                        cmap=cmap, vmin=vmin, vmax=vmax, colorbar_label=colorbar_label, color=color,
-                        body=body, overlay=overlay, overlay_style=overlay_style,
-                        overlay_color=overlay_color, frame=frame, margin=margin, size_px=size_px,
-                        title=title)
+    return render_views(path_png, verts, faces, views=(view,), size_px=size_px, **style)
 
 
 def render_comparison(

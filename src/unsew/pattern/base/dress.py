@@ -13,8 +13,7 @@ import numpy as np
 from unsew.pattern.measurements import Measurements
 from unsew.pattern.base._build import quad
 from unsew.pattern.base._frame import body_frame
-from unsew.pattern.base.tshirt import BUST_EASE, TopSpec, sleeveless_frame, sleeves_for, top_panels, top_stitches
-from unsew.pattern.curves import edge_length
+from unsew.pattern.base.tshirt import BUST_EASE, TopSpec, sleeveless_frame, top_pattern
 from unsew.pattern.model import Pattern
 
 __all__ = ["make_dress", "make_dress_sleeveless"]
@@ -45,12 +44,7 @@ def make_dress(m: Measurements | None = None, *, sleeves: str = "short") -> Patt
     mid = np.array([waist_w, f.waist_y - hem_y])
     c = 2 * mid - (hip + under) / 2
     spec = TopSpec(lower=(tuple(hem), tuple(hip)), lower_curves=(None, quad(hip, under, c)), hem_y=hem_y)
-    front, back, k = top_panels(m, f, spec)
-    arm = sleeves_for(m, f0, edge_length(front, k + 1), sleeves)
-    panels = {p.name: p for p in (front, back, *arm)}
-    name = {"short": "dress", "long": "dress_long", "none": "dress_sleeveless"}[sleeves]
-    st = top_stitches(k, sleeves=bool(arm))
-    return Pattern(name, panels, st, properties={"units_in_meter": 100, "curvature_coords": "relative"})
+    return top_pattern("dress", m, f0, spec, sleeves)
 
 
 def make_dress_sleeveless(m: Measurements | None = None) -> Pattern:

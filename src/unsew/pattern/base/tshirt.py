@@ -195,6 +195,18 @@ def sleeves_for(m: Measurements, f: BodyFrame, armhole_length: float, sleeves: s
     return sleeve_panels(m, f, armhole_length, length=m.arm_length + LONG_SLEEVE_EXTRA, hem_half=wrist)
 
 
+def top_pattern(family: str, m: Measurements, f: BodyFrame, spec: TopSpec, sleeves: str) -> Pattern:
+    """A top of ``family`` (``"tshirt"`` or ``"dress"``): front and back of ``spec`` (armholes cut
+    in as :func:`sleeveless_frame` when ``sleeves`` is ``"none"``), the sleeves sized to the
+    armhole, and the stitches. Named ``family``, ``family_long`` or ``family_sleeveless``."""
+    front, back, k = top_panels(m, sleeveless_frame(f) if sleeves == "none" else f, spec)
+    arm = sleeves_for(m, f, edge_length(front, k + 1), sleeves)
+    panels = {p.name: p for p in (front, back, *arm)}
+    name = family + {"short": "", "long": "_long", "none": "_sleeveless"}[sleeves]
+    st = top_stitches(k, sleeves=bool(arm))
+    return Pattern(name, panels, st, properties={"units_in_meter": 100, "curvature_coords": "relative"})
+
+
 def make_tshirt(m: Measurements | None = None, *, sleeves: str = "short") -> Pattern:
     """A t-shirt sized to ``m`` (default: the default body), placed around it; ``sleeves``:
     ``"short"`` (pattern ``tshirt``), ``"long"`` (``tshirt_long``) or ``"none"`` (a tank top,
@@ -204,12 +216,7 @@ def make_tshirt(m: Measurements | None = None, *, sleeves: str = "short") -> Pat
     hem_y = f.hip_y - 0.02
     w_hem = max((m.hip + HIP_EASE) / 4, (m.bust + BUST_EASE) / 4)
     spec = TopSpec(lower=((w_hem, 0.0),), lower_curves=(None,), hem_y=hem_y)
-    front, back, k = top_panels(m, sleeveless_frame(f) if sleeves == "none" else f, spec)
-    arm = sleeves_for(m, f, edge_length(front, k + 1), sleeves)
-    panels = {p.name: p for p in (front, back, *arm)}
-    name = {"short": "tshirt", "long": "tshirt_long", "none": "tshirt_sleeveless"}[sleeves]
-    st = top_stitches(k, sleeves=bool(arm))
-    return Pattern(name, panels, st, properties={"units_in_meter": 100, "curvature_coords": "relative"})
+    return top_pattern("tshirt", m, f, spec, sleeves)
 
 
 def make_tshirt_long(m: Measurements | None = None) -> Pattern:
