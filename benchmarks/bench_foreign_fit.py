@@ -202,7 +202,56 @@ def main(argv=None) -> int:
     from tables import print_table
 
     print_table(rows, COLUMNS, title=f"Foreign benchmark: default fit per case (results in {out})", digits=1)
+    summary = bars(rows)
+    if summary:
+        print_table(summary, title="Issue 21's bars over the fitted cases", digits=1)
     return 0
+
+
+def _median(v: list[float]) -> float:
+    v = sorted(v)
+    n = len(v)
+    return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
+
+
+def bars(rows: list[dict]) -> list[dict]:
+    """Issue 21's must-show figures over the cases that have a result: median and worst area error
+    (weighted, total and matched), median Chamfer, cases within max(5 mm, 1.5 x floor), cases
+    better than their base on both, cases under 10 minutes, and phase two's effect (final against
+    graded: medians, and cases improved)."""
+    done = [r for r in rows if r.get("cf_final_mm") is not None]
+    if not done:
+        return []
+    out = [{"figure": "cases fitted (exit 0, on the body)", "value": f"{sum(r['exit'] == 'ok' for r in done)} of {len(rows)}"}]
+    for col, what in (("area_final_pct", "area error, unmatched panels at 100 % [%]"),
+                      ("total_final_pct", "total area error, abs(sum A - sum A_gt) / sum A_gt [%]"),
+                      ("matched_final_pct", "area error over matched panels [%]")):
+        v = [r[col] for r in done if r.get(col) is not None]
+        if v:
+            out.append({"figure": f"{what}: median / worst", "value": f"{_median(v):.1f} / {max(v):.1f}"})
+    cf = [r["cf_final_mm"] for r in done]
+    out.append({"figure": "Chamfer of the fit: median / worst [mm]", "value": f"{_median(cf):.1f} / {max(cf):.1f}"})
+    within = [r["case"] for r in done if r.get("floor_mm") is not None
+              and r["cf_final_mm"] <= max(5.0, 1.5 * r["floor_mm"])]
+    out.append({"figure": "Chamfer within max(5 mm, 1.5 x floor)", "value": f"{len(within)} of {len(done)}"})
+    for col in ("area", "total"):
+        better = [r for r in done if r.get(f"{col}_final_pct") is not None and r.get(f"{col}_base_pct") is not None
+                  and r[f"{col}_final_pct"] < r[f"{col}_base_pct"] and r["cf_final_mm"] < r["cf_base_mm"]]
+        out.append({"figure": f"better than the base on Chamfer and {'total area' if col == 'total' else 'area'} error",
+                    "value": f"{len(better)} of {len(done)}"})
+    timed = [r for r in done if r.get("time_s") is not None]
+    out.append({"figure": "under 10 minutes (as run; see the load)", "value": f"{sum(r['time_s'] < 600 for r in timed)} of {len(timed)}"})
+    for col, what in (("cf", "Chamfer [mm]"), ("area", "area error [%]"), ("total", "total area error [%]")):
+        pairs = [(r[f"{col}_graded{'_mm' if col == 'cf' else '_pct'}"], r[f"{col}_final{'_mm' if col == 'cf' else '_pct'}"])
+                 for r in done if r.get(f"{col}_graded{'_mm' if col == 'cf' else '_pct'}") is not None]
+        if pairs:
+            g, f = zip(*pairs)
+            lower = sum(b < a - 1e-9 for a, b in pairs)
+            higher = sum(b > a + 1e-9 for a, b in pairs)
+            change = _median([b - a for a, b in pairs])
+            out.append({"figure": f"phase two, {what}: median graded -> final; median change; cases lower / higher",
+                        "value": f"{_median(list(g)):.1f} -> {_median(list(f)):.1f}; {change:+.1f}; {lower} / {higher}"})
+    return out
 
 
 if __name__ == "__main__":
