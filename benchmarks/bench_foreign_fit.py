@@ -187,6 +187,8 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default=str(ROOT / "bench-out" / "foreign_fit"), help="results folder")
     ap.add_argument("--no-run", action="store_true", help="only tabulate the results already in --out")
     ap.add_argument("--retry", action="store_true", help="fit again the cases whose earlier fit failed")
+    ap.add_argument("--sheet", type=Path, default=None,
+                    help="also write one PNG of every fitted case's target-vs-result figure, to look at them all")
     args = ap.parse_args(argv)
     names = [n for n in args.cases.split(",") if n]
     out = Path(args.out).resolve()
@@ -205,7 +207,36 @@ def main(argv=None) -> int:
     summary = bars(rows)
     if summary:
         print_table(summary, title="Issue 21's bars over the fitted cases", digits=1)
+    if args.sheet is not None:
+        contact_sheet(rows, out, args.sheet)
+        print(f"\nwrote {args.sheet}")
     return 0
+
+
+def contact_sheet(rows: list[dict], out: Path, path: Path, *, cols: int = 4) -> None:
+    """Tile every fitted case's report figure (figures/target_vs_result.png: target above, result
+    below, front and side) into one PNG, titled with the case, its Chamfer and floor [mm]."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.image as mpimg
+    import matplotlib.pyplot as plt
+
+    shown = [r for r in rows if (out / r["case"] / "figures" / "target_vs_result.png").is_file()]
+    if not shown:
+        return
+    n_rows = (len(shown) + cols - 1) // cols
+    fig, axes = plt.subplots(n_rows, cols, figsize=(4 * cols, 5.4 * n_rows), squeeze=False)
+    for ax in axes.flat:
+        ax.axis("off")
+    for ax, r in zip(axes.flat, shown):
+        ax.imshow(mpimg.imread(out / r["case"] / "figures" / "target_vs_result.png"))
+        ax.set_title(f"{r['case']}\nChamfer {r['cf_final_mm']:.1f} mm (floor {r.get('floor_mm') or float('nan'):.1f})",
+                     fontsize=9)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=80)
+    plt.close(fig)
 
 
 def _median(v: list[float]) -> float:
