@@ -431,3 +431,31 @@ def test_phase_two_stage_loss_step_and_state_dict(small_case):
     two.step()
     other.step()
     assert other.history == two.history and torch.equal(other.K, two.K)
+
+
+def test_redress_refuses_a_pattern_that_cannot_be_meshed_afresh():
+    """Phase two moves the rest mesh's vertices and can squeeze a panel flat while the moved mesh
+    still drapes (a waistband 0.9 mm high on a foreign flared skirt): such a pattern is refused
+    before dressing and the graded one returned, not crashed on later by the mesh spread."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from unsew.fit.checks import redress_check
+    from unsew.fit.config import FitConfig
+    from unsew.fit.progress import Progress
+    from unsew.pattern.base import make_base_pattern
+
+    pat = make_base_pattern("skirt_band")
+    band = pat.panels["waistband_front"]
+    v = band.vertices.copy()
+    v[:, 1] = v[:, 1].min() + (v[:, 1] - v[:, 1].min()) * 0.02  # 4 cm high -> under 1 mm
+    band.vertices = v
+    start = SimpleNamespace(x=np.zeros((3, 3)), mesh=SimpleNamespace(faces=np.array([[0, 1, 2]])))
+    target = SimpleNamespace(distance_mm=lambda x, f: 7.5)
+    lines = []
+    rd = redress_check(pat, None, None, start, None, target, None, FitConfig(), progress=Progress(False),
+                       log=lines.append)
+    assert not rd.phase_two_kept and rd.fit_redressed_mm is None and rd.graded_mm == 7.5
+    assert "waistband_front" in rd.refused and "sliver" in rd.refused
+    assert "graded pattern is returned" in lines[0]

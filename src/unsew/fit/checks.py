@@ -16,12 +16,13 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass
 
 from unsew.dress import dress
-from unsew.errors import SimulationError
+from unsew.errors import PatternError, SimulationError
 from unsew.fit.config import FitConfig
 from unsew.fit.progress import Progress
 from unsew.fit.start import Start
 from unsew.fit.target import Target
 from unsew.grading.grade import moved_mesh
+from unsew.meshing import mesh_pattern
 
 __all__ = ["RedressCheck", "MeshSpread", "redress_check", "mesh_spread", "REDRESS_MARGIN_MM"]
 
@@ -34,12 +35,15 @@ REDRESS_MARGIN_MM = 0.01
 @dataclass
 class RedressCheck:
     """fit_redressed_mm: phase two's pattern dressed from scratch, its distance to the target
-    [mm]; graded_mm: the graded drape's [mm]; phase_two_kept: whether phase two's pattern is the
-    result."""
+    [mm] (None when it was refused); graded_mm: the graded drape's [mm]; phase_two_kept: whether
+    phase two's pattern is the result; refused: why phase two's pattern was not dressed ("" when
+    it was): it cannot be meshed afresh (a panel squeezed to a sliver, an outline crossing itself),
+    so it is no pattern to return."""
 
-    fit_redressed_mm: float
+    fit_redressed_mm: float | None
     graded_mm: float
     phase_two_kept: bool
+    refused: str = ""
 
     def as_dict(self) -> dict:
         return asdict(self)
@@ -62,11 +66,19 @@ class MeshSpread:
 def redress_check(pattern, uv, material, start: Start, body, target: Target, sdf, cfg: FitConfig, *,
                   progress: Progress, log=print) -> RedressCheck:
     """Dress ``pattern`` (rest positions ``uv`` (Nu, 2) [m] on ``start.mesh``'s topology) in
-    ``material`` from scratch and compare it with the graded drape ``start.x``."""
+    ``material`` from scratch and compare it with the graded drape ``start.x``. A pattern that
+    cannot be meshed afresh (phase two moved the rest mesh's vertices, which can squeeze a panel
+    flat while the moved mesh still drapes) is refused and the graded pattern returned."""
+    cf_graded = target.distance_mm(start.x, start.mesh.faces)
+    try:
+        mesh_pattern(pattern, edge_length=cfg.drape.edge_length)
+    except PatternError as exc:
+        log(f"re-dress check: phase two's pattern cannot be meshed afresh ({exc}): the graded pattern is returned")
+        return RedressCheck(None, cf_graded, False, refused=str(exc))
     with progress.phase("re-dress the fit") as bar:
         x = dress(pattern, body, sdf=sdf, mesh=moved_mesh(start.mesh, pattern, uv), material=material,
                   settings=cfg.drape, progress=bar).x.numpy()
-    cf_re, cf_graded = target.distance_mm(x, start.mesh.faces), target.distance_mm(start.x, start.mesh.faces)
+    cf_re = target.distance_mm(x, start.mesh.faces)
     kept = bool(cf_re < cf_graded - REDRESS_MARGIN_MM)
     log(f"re-dress check: the fitted pattern dressed from scratch lies {cf_re:.2f} mm from the target, "
         f"the graded one {cf_graded:.2f} mm: " + ("fit kept" if kept else "the graded pattern is returned"))
@@ -77,7 +89,8 @@ def mesh_spread(pattern, material, body, target: Target, sdf, cfg: FitConfig, re
                 progress: Progress, log=print) -> MeshSpread:
     """``pattern`` in ``material`` dressed from scratch (the fit's settings) on meshes of edge
     length x (1 - s) and x (1 + s), s = ``cfg.checks.mesh_spread``. A drape that fails
-    (SimulationError) is None: the figure is a diagnostic, not the result."""
+    (SimulationError, or PatternError: the pattern cannot be meshed at that length) is None: the
+    figure is a diagnostic, not the result."""
     h0, s = cfg.drape.edge_length, cfg.checks.mesh_spread
     lengths = [h0 * (1 - s), h0 * (1 + s)]
     out = []
@@ -87,7 +100,7 @@ def mesh_spread(pattern, material, body, target: Target, sdf, cfg: FitConfig, re
                 d = dress(pattern, body, sdf=sdf, material=material, settings=cfg.drape.replace(edge_length=h),
                           progress=bar)
                 out.append(target.distance_mm(d.x.numpy(), d.mesh.faces))
-            except SimulationError:
+            except (SimulationError, PatternError):
                 out.append(None)
     spread = MeshSpread(lengths, out, result_mm)
     log(f"mesh spread: the returned pattern dressed on meshes {100 * s:.0f} % finer / coarser lies "

@@ -54,10 +54,14 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     rd = metrics.get("redress")
     if rd:
         summary["returned"] = "phase two's pattern" if rd["phase_two_kept"] else "the graded pattern"
-        notes.append(f"re-dress check: the fitted pattern dressed from scratch lies {rd['fit_redressed_mm']:.2f} mm "
-                     f"from the target, the graded one {rd['graded_mm']:.2f} mm; "
-                     + ("phase two's pattern is returned" if rd["phase_two_kept"] else
-                        "the graded pattern and its drape are returned (the final and graded patterns coincide)"))
+        if rd.get("refused"):
+            notes.append(f"re-dress check: phase two's pattern cannot be meshed afresh ({rd['refused']}); the graded "
+                         "pattern and its drape are returned (the final and graded patterns coincide)")
+        else:
+            notes.append(f"re-dress check: the fitted pattern dressed from scratch lies {rd['fit_redressed_mm']:.2f} mm "
+                         f"from the target, the graded one {rd['graded_mm']:.2f} mm; "
+                         + ("phase two's pattern is returned" if rd["phase_two_kept"] else
+                            "the graded pattern and its drape are returned (the final and graded patterns coincide)"))
     ms = metrics.get("mesh_spread")
     if ms:
         cf = " / ".join("failed" if v is None else f"{v:.2f} mm" for v in ms["chamfer_mm"])
