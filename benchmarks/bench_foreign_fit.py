@@ -235,7 +235,7 @@ def contact_sheet(rows: list[dict], out: Path, path: Path, *, cols: int = 4) -> 
                      fontsize=9)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=80)
+    fig.savefig(path, dpi=60)
     plt.close(fig)
 
 
