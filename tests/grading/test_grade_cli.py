@@ -57,3 +57,13 @@ def test_grade_cli_refuses_existing_out_and_leaves_nothing_on_failure(case, tmp_
     assert main(["grade", str(tmp_path / "nope"), "--out", str(tmp_path / "x"), "--flat"]) == 2
     assert not (tmp_path / "x").exists()
     assert [p.name for p in tmp_path.iterdir() if p.name.startswith(".")] == []
+
+
+def test_grade_cli_takes_library_bases_sized_to_the_wearer(case, tmp_path, capsys):
+    out = tmp_path / "long"
+    assert main(["grade", str(case), "--base", "tshirt_long", "--out", str(out), "--flat", "--edge-length", "0.04"]) == 0
+    assert json.loads((out / "contours.json").read_text())["base"] == "tshirt_long"
+    assert main(["grade", str(case), "--base", "skirt_band", "--out", str(tmp_path / "x"), "--flat"]) == 2
+    assert "cannot make a tshirt" in capsys.readouterr().err and not (tmp_path / "x").exists()
+    assert main(["grade", str(case), "--base", "cape", "--out", str(tmp_path / "y"), "--flat"]) == 2
+    assert "neither a base pattern" in capsys.readouterr().err and not (tmp_path / "y").exists()

@@ -13,17 +13,17 @@ import argparse
 
 from unsew.errors import InputError
 from unsew.io.atomic import atomic_dir
-from unsew.pattern.base import make_base_pattern
+from unsew.pattern.base import BASES
 
 __all__ = ["register", "run"]
-
-GARMENTS = ["tshirt", "dress", "pants", "shorts", "skirt"]
 
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("grade", help="grade a base pattern to a target's hems, cuffs, necklines (phase one)")
     p.add_argument("case", metavar="CASE_DIR", help="case folder (target.obj, body, meta.json; see FORMATS.md)")
-    p.add_argument("--base", choices=GARMENTS, default=None, help="base pattern (default: the case's garment type)")
+    p.add_argument("--base", default=None, metavar="NAME|P.json",
+                   help=f"base pattern, sized to the wearer as the fit sizes it: {', '.join(BASES)}, or a GarmentCode "
+                        "JSON file (default: the case's garment type)")
     p.add_argument("--out", required=True, metavar="DIR", help="result folder to create")
     p.add_argument("--edge-length", type=float, default=0.03, help="rest edge length of the panel meshes [m]")
     p.add_argument("--material", default="cotton", help="material name from the library (default cotton)")
@@ -38,8 +38,10 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     import json
 
-    from unsew.grading.grade import GRADE_SETTINGS, flat_drape, format_table, grade
     from unsew.body.case import load_case
+    from unsew.fit.config import FitConfig
+    from unsew.fit.start import base_pattern_for
+    from unsew.grading.grade import GRADE_SETTINGS, flat_drape, format_table, grade
     from unsew.io.garmentcode import save_pattern
     from unsew.io.mesh import write_obj
     from unsew.meshing.sew import EDGE_LENGTH_RANGE
@@ -51,8 +53,8 @@ def run(args: argparse.Namespace) -> int:
     base = args.base or case.garment
     if not base:
         raise InputError(f"case {args.case} names no garment type in meta.json; pass --base")
+    pattern = base_pattern_for(case, FitConfig(base=args.base or ""))  # a bad name fails before --out is made
     with atomic_dir(args.out, overwrite=args.overwrite) as tmp:
-        pattern = make_base_pattern(base)
         kw = {"drape_fn": flat_drape} if args.flat else {}
         res = grade(
             pattern, case.body, case.target_verts, case.target_faces,
