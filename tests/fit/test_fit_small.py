@@ -459,3 +459,13 @@ def test_redress_refuses_a_pattern_that_cannot_be_meshed_afresh():
     assert not rd.phase_two_kept and rd.fit_redressed_mm is None and rd.graded_mm == 7.5
     assert "waistband_front" in rd.refused and "sliver" in rd.refused
     assert "graded pattern is returned" in lines[0]
+
+
+def test_report_says_when_phase_two_was_refused():
+    from unsew.fit.report import _redress_note
+
+    note = _redress_note({"fit_redressed_mm": None, "graded_mm": 7.5, "phase_two_kept": False,
+                          "refused": "panel 'waistband_front' has 3.53 cm^2 over a 81.1 cm outline"})
+    assert "cannot be meshed afresh" in note and "waistband_front" in note and "graded pattern" in note
+    kept = _redress_note({"fit_redressed_mm": 6.0, "graded_mm": 7.5, "phase_two_kept": True, "refused": ""})
+    assert "6.00 mm" in kept and "phase two's pattern is returned" in kept

@@ -54,14 +54,7 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     rd = metrics.get("redress")
     if rd:
         summary["returned"] = "phase two's pattern" if rd["phase_two_kept"] else "the graded pattern"
-        if rd.get("refused"):
-            notes.append(f"re-dress check: phase two's pattern cannot be meshed afresh ({rd['refused']}); the graded "
-                         "pattern and its drape are returned (the final and graded patterns coincide)")
-        else:
-            notes.append(f"re-dress check: the fitted pattern dressed from scratch lies {rd['fit_redressed_mm']:.2f} mm "
-                         f"from the target, the graded one {rd['graded_mm']:.2f} mm; "
-                         + ("phase two's pattern is returned" if rd["phase_two_kept"] else
-                            "the graded pattern and its drape are returned (the final and graded patterns coincide)"))
+        notes.append(_redress_note(rd))
     ms = metrics.get("mesh_spread")
     if ms:
         cf = " / ".join("failed" if v is None else f"{v:.2f} mm" for v in ms["chamfer_mm"])
@@ -102,3 +95,13 @@ def _flat(row) -> dict:
     if not isinstance(row, dict):
         return {"row": str(row)}
     return {k: (v if isinstance(v, (int, float, str)) or v is None else str(v)) for k, v in row.items()}
+
+
+def _redress_note(rd: dict) -> str:
+    """The report's line on the re-dress check (metrics.json's ``redress``)."""
+    graded = "the graded pattern and its drape are returned (the final and graded patterns coincide)"
+    if rd.get("refused"):
+        return f"re-dress check: phase two's pattern cannot be meshed afresh ({rd['refused']}); {graded}"
+    return (f"re-dress check: the fitted pattern dressed from scratch lies {rd['fit_redressed_mm']:.2f} mm from the "
+            f"target, the graded one {rd['graded_mm']:.2f} mm; "
+            + ("phase two's pattern is returned" if rd["phase_two_kept"] else graded))
