@@ -67,6 +67,7 @@ def main() -> None:
     import torch
 
     torch.set_num_threads(1)
+    from _drapes import verdict_cells
     from tables import print_table
 
     from unsew.body.body import load_body
@@ -117,18 +118,8 @@ def main() -> None:
                 continue
             v = check_dressed(d, body=body)
             fallen = v.reason.startswith("fallen")
-            row.update(
-                verdict="ok" if v.ok else v.reason,
-                inside_pct=v.inside_pct,
-                fallen=fallen,
-                y_range=f"{v.y_min:.2f}..{v.y_max:.2f}",
-                stretch_max=v.stretch_max,
-                stretch_p99=v.stretch_p99,
-                off_body_pct=v.far_pct,
-                verts=int(d.mesh.n_x),
-                time_s=time.perf_counter() - t0,
-                meets_bar=bool(v.ok and v.inside_pct < INSIDE_BAR_PCT and not fallen),
-            )
+            row.update(verdict_cells(v, d), fallen=fallen, time_s=time.perf_counter() - t0,
+                       meets_bar=bool(v.ok and v.inside_pct < INSIDE_BAR_PCT and not fallen))
             rows.append(row)
             print({k: (round(x, 3) if isinstance(x, float) else x) for k, x in row.items()}, flush=True)
             if args.png_dir is not None:

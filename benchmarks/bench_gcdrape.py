@@ -102,6 +102,7 @@ def main() -> None:
     import torch
 
     torch.set_num_threads(1)
+    from _drapes import verdict_cells
     from tables import print_table
 
     from unsew.body.sdf import BodySDF
@@ -128,16 +129,7 @@ def main() -> None:
                 print(row, flush=True)
                 continue
             v = check_dressed(d, body=body)
-            row.update(
-                verdict="ok" if v.ok else v.reason,
-                inside_pct=v.inside_pct,
-                y_range=f"{v.y_min:.2f}..{v.y_max:.2f}",
-                stretch_max=v.stretch_max,
-                stretch_p99=v.stretch_p99,
-                off_body_pct=v.far_pct,
-                verts=int(d.mesh.n_x),
-                time_s=time.perf_counter() - t0,
-            )
+            row.update(verdict_cells(v, d), time_s=time.perf_counter() - t0)
             rows.append(row)
             print({k: (round(x, 3) if isinstance(x, float) else x) for k, x in row.items()}, flush=True)
             if args.png_dir:

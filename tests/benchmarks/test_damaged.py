@@ -1,23 +1,15 @@
 """benchmarks/bench_damaged.py's damage(): the damaged copy has the promised faults, and loading
 cleans it back to the clean triangles (fast; no fit)."""
 
-import importlib.util
-import sys
 import warnings
-from pathlib import Path
 
 import numpy as np
 
-BENCH = Path(__file__).resolve().parents[2] / "benchmarks"
+from benchmarks_loader import load_benchmark
 
 
 def _module():
-    if str(BENCH) not in sys.path:
-        sys.path.insert(0, str(BENCH))
-    spec = importlib.util.spec_from_file_location("_unsew_bench_damaged", BENCH / "bench_damaged.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_benchmark("bench_damaged")
 
 
 def test_damage_is_cleaned_back_to_the_clean_triangles(tmp_path):

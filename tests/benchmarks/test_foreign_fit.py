@@ -2,22 +2,14 @@
 and not rerun, and a result folder's metrics.json becomes the row's Chamfer, area and redress cells
 (fast: a fake fit command and a hand-written metrics.json on a real case)."""
 
-import importlib.util
 import json
 import shutil
-import sys
-from pathlib import Path
 
-BENCH = Path(__file__).resolve().parents[2] / "benchmarks"
+from benchmarks_loader import load_benchmark
 
 
 def _module():
-    if str(BENCH) not in sys.path:
-        sys.path.insert(0, str(BENCH))
-    spec = importlib.util.spec_from_file_location("_unsew_bench_foreign_fit", BENCH / "bench_foreign_fit.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_benchmark("bench_foreign_fit")
 
 
 def test_failed_fit_is_recorded_and_not_rerun(tmp_path):
