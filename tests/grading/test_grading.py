@@ -444,3 +444,44 @@ def test_hold_tops_moves_the_length_change_to_the_hem():
     assert np.allclose(out[top] @ up, 0.0, atol=1e-12)
     assert np.allclose(out[bottom] @ up, -0.105, atol=1e-12)  # the panel grew by the same 10.5 cm
     assert np.allclose(out[cb], delta[cb])
+
+
+def test_hold_tops_keeps_a_band_and_lengthens_the_panels_below():
+    """A waistband (open only along its top) whose waist curve is edited upward keeps its height,
+    with its girth edit; the panels sewn to its bottom take the waist's rise below their tops, so
+    the garment grows by the same length as when the band took it (issue 21: bands graded from
+    4 to 7.6 cm)."""
+    from unsew.grading.grade import _hold_tops
+    from unsew.pattern.controls import find_control_points
+
+    p = make_base_pattern("skirt_band")
+    controls = find_control_points(p)
+    C0 = controls.positions
+    band = controls.panel_names.index("waistband_front")
+    cb = controls.of_panel(band)
+    panel = p.panels["waistband_front"]
+    h = panel.to_world(C0[cb])[:, 1]
+    top = [int(g) for g, y in zip(cb, h) if y >= h.max() - 1e-9]
+    up = panel.rotation_matrix()[1, :2] / np.linalg.norm(panel.rotation_matrix()[1, :2])
+    side = np.array([up[1], -up[0]])
+    delta = np.zeros_like(C0)
+    delta[top] += 0.03 * up + 0.01 * side  # the waist moved up 3 cm and widened
+    out = _hold_tops(p, controls, C0, delta, {band: [set(top)]})
+    assert np.allclose(out[cb] @ up, 0.0, atol=1e-12)  # the band keeps its height
+    assert np.allclose(out[top] @ side, 0.01, atol=1e-12)  # and its girth edit
+    below = [n for n in controls.panel_names if not n.startswith("waistband")]
+    assert below
+    moved = 0
+    for name in below:
+        q = controls.panel_names.index(name)
+        cq = controls.of_panel(q)
+        pq = p.panels[name]
+        uq = pq.rotation_matrix()[1, :2] / np.linalg.norm(pq.rotation_matrix()[1, :2])
+        hq = pq.to_world(C0[cq])[:, 1]
+        tq = [int(g) for g, y in zip(cq, hq) if y >= hq.max() - 0.01]
+        lq = [int(g) for g in cq if g not in tq]
+        assert np.allclose(out[tq], 0.0)  # their tops stay sewn to the band
+        if any({s.a.panel, s.b.panel} == {"waistband_front", name} for s in p.stitches):
+            assert np.allclose(out[lq] @ uq, -0.03, atol=1e-12)  # the rest moves down 3 cm
+            moved += 1
+    assert moved >= 1

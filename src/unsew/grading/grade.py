@@ -28,7 +28,7 @@ from unsew.dress import DRESS_SETTINGS, dress
 from unsew.errors import InputError, PatternError, SimulationError, UnsewError
 from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
 from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, place_contours
-from unsew.grading.curves import curves_of_contour, rest_length
+from unsew.grading.curves import curves_of_contour, rest_length, stitched_edges
 from unsew.grading.edit import curve_edit, project_edit, safe_fraction
 from unsew.grading.guards import WaistBound, bounded_extensions, bounded_girth, bounded_waist, waist_bound
 from unsew.meshing.sew import mesh_pattern
@@ -371,14 +371,23 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
     skirt's or trousers' waist), the panel is translated in 2D, along the direction placed
     upright, by minus that curve's upward move, so the length change goes to the other end.
 
-    Why: the panel's 2D position also sets where it is placed around the body before sewing. A
-    waist found 3.5 cm higher on the target than on the base drape (bench_grading's skirt, whose
-    narrower, longer target hangs higher on the hips) is the drape's answer to the pattern, not a
-    waist placed higher; moving the waist curve up both lengthened the panel and placed it 2 cm
-    higher, and that placement alone put the drape 4 to 7 mm (Chamfer) from where the same shape
-    placed at the base's height lands. Returns a new (Nc, 2) array [m].
+    A waistband (:func:`_is_band`: open only along its top) keeps its height: its edit loses its
+    upright component, and its waist's upward move lengthens the panels sewn to its bottom instead
+    (:func:`_carry_down`). Held like the others, the band took the whole change itself: graded
+    from 4 to 5.7-7.6 cm on the foreign benchmark's banded trousers, shorts and skirt, whose bands
+    are 4 cm (docs/benchmarks.md, "Band grading").
+
+    Why the tops are held: the panel's 2D position also sets where it is placed around the body
+    before sewing. A waist found 3.5 cm higher on the target than on the base drape
+    (bench_grading's skirt, whose narrower, longer target hangs higher on the hips) is the drape's
+    answer to the pattern, not a waist placed higher; moving the waist curve up both lengthened the
+    panel and placed it 2 cm higher, and that placement alone put the drape 4 to 7 mm (Chamfer)
+    from where the same shape placed at the base's height lands. Returns a new (Nc, 2) array [m].
     """
     out = delta.copy()
+    stitched = stitched_edges(pattern)
+    open_edges = {(n, k) for n, pan in pattern.panels.items() for k in range(len(pan.edges)) if (n, k) not in stitched}
+    carried: dict[str, list[float]] = {}  # panel name -> upward moves of the bands sewn above it [m]
     for p, curves in edited.items():
         panel = pattern.panels[controls.panel_names[p]]
         cidx = controls.of_panel(p)
@@ -386,14 +395,71 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
         top = {int(g) for g, h in zip(cidx, height) if h >= height.max() - TOP_BAND}
         if not any(top <= c for c in curves):
             continue
-        up = panel.rotation_matrix()[1, :2]  # the 2D direction whose placement points up (world +y)
-        n = float(np.linalg.norm(up))
-        if n < 0.5:  # a panel placed lying down has no top to hold
+        up = _upright(panel)
+        if up is None:  # a panel placed lying down has no top to hold
             continue
-        up = up / n
         rise = float(np.mean([out[g] @ up for g in top]))
+        if _is_band(panel, height, open_edges):
+            out[cidx] -= np.outer(out[cidx] @ up, up)
+            for below in _sewn_below(pattern, panel):
+                carried.setdefault(below, []).append(rise)
+            continue
         out[cidx] -= rise * up
+    for name, rises in carried.items():
+        _carry_down(pattern, controls, C0, out, name, float(np.mean(rises)))
     return out
+
+
+def _upright(panel) -> np.ndarray | None:
+    """The unit 2D direction of ``panel`` that its placement points up (world +y); None when the
+    panel is placed lying down."""
+    up = panel.rotation_matrix()[1, :2]
+    n = float(np.linalg.norm(up))
+    return up / n if n >= 0.5 else None
+
+
+def _is_band(panel, height: np.ndarray, open_edges: set) -> bool:
+    """Whether ``panel``'s open (unstitched) edges all lie in the upper half of its placed height
+    range: a waistband, sewn along its bottom, open only at its top. ``height``: its control
+    points' placed heights [m]; ``open_edges``: (panel name, edge index) of unstitched edges."""
+    lo, hi = float(height.min()), float(height.max())
+    if hi - lo < 1e-6:
+        return False
+    ys = panel.to_world(panel.vertices)[:, 1]
+    mid = 0.5 * (lo + hi)
+    opened = [e for k, e in enumerate(panel.edges) if (panel.name, k) in open_edges]
+    return bool(opened) and all(ys[e.start] > mid and ys[e.end] > mid for e in opened)
+
+
+def _sewn_below(pattern, band) -> list[str]:
+    """Names of the panels stitched to an edge of ``band`` that lies wholly in the lower half of
+    its placed height: the panels hanging from a waistband (not the band's other pieces)."""
+    ys = band.to_world(band.vertices)[:, 1]
+    mid = 0.5 * (float(ys.min()) + float(ys.max()))
+    low = {k for k, e in enumerate(band.edges) if ys[e.start] < mid and ys[e.end] < mid}
+    out = []
+    for st in pattern.stitches:
+        for a, b in ((st.a, st.b), (st.b, st.a)):
+            if a.panel == band.name and a.edge in low and b.panel != band.name and b.panel not in out:
+                out.append(b.panel)
+    return out
+
+
+def _carry_down(pattern, controls, C0: np.ndarray, out: np.ndarray, name: str, rise: float) -> None:
+    """Lengthen panel ``name`` by ``rise`` [m] below its top, in place in ``out``: every control
+    point lower than its top (:data:`TOP_BAND`) moves down by ``rise`` along the upright direction,
+    so its top stays sewn to the band and its placement is unchanged."""
+    if name not in controls.panel_names:
+        return
+    p = controls.panel_names.index(name)
+    panel = pattern.panels[name]
+    up = _upright(panel)
+    if up is None:
+        return
+    cidx = controls.of_panel(p)
+    height = panel.to_world(C0[cidx])[:, 1]
+    below = [int(g) for g, h in zip(cidx, height) if h < height.max() - TOP_BAND]
+    out[below] -= rise * up
 
 
 def _cloth_wants(src, matches, x, faces, tcloth) -> dict:
