@@ -24,7 +24,7 @@ from unsew.sim.material import Material, get_material
 from unsew.sim.model import SimModel
 from unsew.sim.state import SimState
 
-__all__ = ["Dressed", "dress", "DRESS_SETTINGS", "resolve_material", "hold_vertices", "dress_stats"]
+__all__ = ["Dressed", "dress", "settle", "DRESS_SETTINGS", "resolve_material", "hold_vertices", "dress_stats"]
 
 #: A lower garment's waistline: its vertices within this height of its top [m].
 HOLD_BAND = 0.02
@@ -168,6 +168,30 @@ def dress(
                 retry.stats["placement_retry"] = fault
                 return retry
     return d
+
+
+def settle(mesh, x_from, sdf, material="cotton", *, settings: DrapeSettings = DRESS_SETTINGS,
+           steps: int | None = None, progress: Callable[[str, int, int], None] | None = None) -> np.ndarray:
+    """A sewn garment let settle from another drape: ``steps`` (default ``settings.settle_steps``)
+    of plain draping at ``settings.dt`` in ``material``, starting at rest from ``x_from``.
+
+    What :func:`dress` does after sewing, without the placement and the sewing: the cheap way to
+    drape a pattern already dressed once in another fabric or stiffness (the fit's material
+    choice, :mod:`unsew.fit.material`). mesh: the GarmentMesh ``x_from`` lies on; x_from: (n_x, 3)
+    [m]; sdf: the body's SDF; progress: ``progress("settle", k, n)``. Returns (n_x, 3) float64 [m].
+    """
+    mat = resolve_material(material)
+    steps = settings.settle_steps if steps is None else int(steps)
+    x0 = torch.as_tensor(np.asarray(x_from), dtype=torch.float64)
+    if x0.shape != (mesh.n_x, 3):
+        raise ValueError(f"x_from must be ({mesh.n_x}, 3) positions on the mesh, got {tuple(x0.shape)}")
+    uv = torch.as_tensor(np.asarray(mesh.uv), dtype=torch.float64)
+    model = SimModel.build(mesh.faces, mesh.faces_uv)
+    cb = (lambda k, s: progress("settle", k + 1, steps)) if progress else None
+    with torch.no_grad():
+        st = drape(model, SimState.at_rest(x0.clone()), sdf, uv=uv, gamma=mat.gamma(), density=mat.density,
+                   settings=settings, steps=steps, friction=mat.friction, callback=cb)
+    return st.x.detach().numpy()
 
 
 #: Widest seam [m] left open by the sewing phase that :func:`dress` accepts without a retry.

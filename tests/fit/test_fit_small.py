@@ -356,7 +356,10 @@ def test_refine_material_walks_towards_the_closest_stiffness():
 
     c = MATERIALS["cotton"]
 
-    def dress_in(m, bar):  # the "drape" carries the material's stiffness
+    froms = []
+
+    def dress_in(m, bar, x_from=None):  # the "drape" carries the material's stiffness
+        froms.append(x_from)
         return np.array([[m.h00, m.bend, m.h01]])
 
     def objective(x):
@@ -368,6 +371,7 @@ def test_refine_material_walks_towards_the_closest_stiffness():
     assert mat.h01 / mat.h00 == pytest.approx(c.h01 / c.h00) and mat.density == c.density
     assert float(x[0, 0]) == mat.h00 and objective(x) == pytest.approx(0.0, abs=1e-12)
     assert rows and all(r["material"].startswith("cotton (stretch x") for r in rows)
+    assert froms[0] is None and froms[1] is start  # each scaling is draped from the best drape so far
     # a start already at the minimum is kept: every scaling is worse
     mat2, x2, rows2 = refine_material(mat, "m", x, objective(x), dress_in, objective, rounds=2)
     assert mat2 == mat and len(rows2) == 8

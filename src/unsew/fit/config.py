@@ -39,6 +39,7 @@ class MaterialSettings:
     start: str = "auto"  #: a library name (the paper's user choice), or "auto": grade in cotton, dress the graded pattern in each candidate, grade again in the `regrade` best others, scale the winner's stiffness (`refine`) and start from the drape closest to the target
     candidates: tuple[str, ...] = ()  #: library materials "auto" tries (empty: every material in the library)
     regrade: int = 2  #: "auto": how many of the best candidates other than cotton are graded again in their own fabric [-]
+    warm_steps: int = 40  #: "auto": each candidate fabric or stiffness settles this many steps (at drape.dt) from the drape of the pattern it is tried on instead of being dressed from scratch; 0: dressed from scratch [-]
     refine: int = 2  #: "auto": rounds of the stiffness search after the choice (stretch and bending scaled by 1/s and s, s = 2, sqrt 2, ...); 0: off [-]
     fit: tuple[str, ...] = GAMMA_NAMES  #: entries of Gamma phase two moves (the others keep the start's value, H01 its ratio to sqrt(H00 H11)); empty: the material stays fixed
     start_iteration: int = 20  #: iteration at which the material joins the variables [-]
@@ -273,7 +274,7 @@ def _check(cfg: FitConfig, names: dict) -> None:
         raise InputError(f"{say('optimizer.friction_eps')} must be positive, got {o.friction_eps} m/s")
     if not 0 <= cfg.checks.mesh_spread < 0.5:
         raise InputError(f"{say('checks.mesh_spread')} must be in [0, 0.5), got {cfg.checks.mesh_spread}")
-    for place in ("material.refine", "material.regrade", "drape.sew_steps", "drape.settle_steps"):
+    for place in ("material.refine", "material.regrade", "material.warm_steps", "drape.sew_steps", "drape.settle_steps"):
         g, n = place.split(".")
         if getattr(getattr(cfg, g), n) < 0:
             raise InputError(f"{say(place)} must be >= 0, got {getattr(getattr(cfg, g), n)}")

@@ -1,8 +1,13 @@
 """The starting material of phase two (``material.start: auto``, a step the paper leaves to the
-user): grade in cotton, dress the graded pattern in every library fabric (:func:`choose_material`),
+user): grade in cotton, drape the graded pattern in every library fabric (:func:`choose_material`),
 grade again in the closest others, then search the winner's stretch and bending scale by draping
 (:func:`refine_material`). Phase two starts from the closest of these drapes by mean surface
-distance. Its hand-off is a :class:`MaterialChoice`. Measurements: docs/history.md,
+distance. Its hand-off is a :class:`MaterialChoice`.
+
+Each candidate is let settle (``material.warm_steps`` steps, :func:`unsew.dress.settle`) from the
+drape it competes with, the pattern already sewn, instead of being dressed from scratch (placement,
+80 sewing and 40 settling steps): the choice's time, half of each foreign fit, falls by about
+three. Measurements: docs/benchmarks.md, "Material choice: settled, not dressed"; docs/history.md,
 "Measurements behind the fit's defaults"."""
 
 from __future__ import annotations
@@ -13,7 +18,7 @@ import time
 from dataclasses import dataclass, field
 
 from unsew._memory import release_free_memory
-from unsew.dress import dress
+from unsew.dress import dress, settle
 from unsew.errors import InputError
 from unsew.fit.config import FitConfig, material_candidates
 from unsew.fit.progress import Progress
@@ -44,8 +49,9 @@ class MaterialChoice:
 def choose_material(names, dress_in, objective, *, progress: Progress | None = None):
     """The library material whose drape of the graded pattern lies closest to the target.
 
-    names: library material names; dress_in(material, bar) -> (Nx, 3) drape [m] of the graded
-    pattern dressed from scratch in that material; objective(x) -> its distance to the target
+    names: library material names; dress_in(material, bar, x_from) -> (Nx, 3) drape [m] of the
+    graded pattern in that material (settled from ``x_from``, or from the pattern's own drape when
+    None, or dressed from scratch: :func:`_dresser`); objective(x) -> its distance to the target
     [mm]. Returns (Material, drape of the winner, table): the table lists every finite candidate,
     best first, as {"material", "chamfer_mm"}.
     """
@@ -74,7 +80,8 @@ def refine_material(material, label: str, x0, cf0: float, dress_in, objective, *
     dressed from scratch in it, lies closer to the target.
 
     material: the start (unsew.sim.material.Material) named ``label`` in the table; x0, cf0: its
-    drape (Nx, 3) [m] and distance [mm]; dress_in, objective as for :func:`choose_material`.
+    drape (Nx, 3) [m] and distance [mm]; dress_in, objective as for :func:`choose_material` (each
+    scaling is draped from the best drape so far).
     Returns (Material, drape, rows): rows list every scaling tried, {"material", "chamfer_mm"}.
     """
     progress = progress or Progress(False)
@@ -86,7 +93,7 @@ def refine_material(material, label: str, x0, cf0: float, dress_in, objective, *
             for f in (1.0 / s, s):
                 cand = dataclasses.replace(best, **{k: getattr(best, k) * f for k in names})
                 with progress.phase(f"{group} x{scale[group] * f:.2g}") as bar:
-                    x = dress_in(cand, bar)
+                    x = dress_in(cand, bar, x_best)
                 cf = objective(x)
                 tag = ", ".join(f"{g} x{scale[g] * (f if g == group else 1.0):.2g}" for g in REFINE_GROUPS)
                 if math.isfinite(cf):
@@ -99,11 +106,17 @@ def refine_material(material, label: str, x0, cf0: float, dress_in, objective, *
 
 
 def _dresser(s: Start, body, sdf, cfg: FitConfig):
-    """dress_in(material, bar) -> drape (Nx, 3) [m] of the start's pattern dressed from scratch."""
+    """dress_in(material, bar, x_from=None) -> drape (Nx, 3) [m] of the start's pattern in
+    ``material``: settled ``cfg.material.warm_steps`` steps from ``x_from`` (default ``s.x``), or,
+    when warm_steps is 0, dressed from scratch (x_from unused)."""
 
-    def dress_in(material, bar=None):
-        x = dress(s.graded, body, sdf=sdf, mesh=s.mesh, material=material, settings=cfg.drape,
-                  progress=bar).x.numpy()
+    def dress_in(material, bar=None, x_from=None):
+        if cfg.material.warm_steps > 0:
+            x = settle(s.mesh, s.x if x_from is None else x_from, sdf, material, settings=cfg.drape,
+                       steps=cfg.material.warm_steps, progress=bar)
+        else:
+            x = dress(s.graded, body, sdf=sdf, mesh=s.mesh, material=material, settings=cfg.drape,
+                      progress=bar).x.numpy()
         release_free_memory()  # the drape's scratch memory (unsew._memory)
         return x
 
@@ -135,7 +148,7 @@ def choose_start(first: Start, body, target: Target, sdf, cfg: FitConfig, *, pro
     for name in others[: cfg.material.regrade] if cfg.grading else []:
         try:
             s = start(first.base, body, target, sdf, cfg, get_material(name), progress=progress,
-                      label=f"grade in {name}", garment=garment)
+                      label=f"grade in {name}", garment=garment, base_from=(first.mesh_base, first.x_base))
         except InputError as exc:
             log(f"material {name}: grading in it failed ({exc}); left out")
             continue

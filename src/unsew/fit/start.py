@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from unsew.body.measure import measure_body
-from unsew.dress import dress
+from unsew.dress import dress, settle
 from unsew.errors import InputError
 from unsew.fit.config import FitConfig
 from unsew.fit.progress import Progress
@@ -153,20 +153,29 @@ def _check_contours_compatible(n_src: int, n_tgt: int, garment: str) -> None:
 
 
 def start(base, body, target: Target, sdf, cfg: FitConfig, material, *, progress: Progress,
-          label: str = "drape base", garment: str = "") -> Start:
+          label: str = "drape base", garment: str = "", base_from: tuple | None = None) -> Start:
     """Dress ``base`` on ``body`` in ``material`` and, unless ``cfg.grading`` is off, grade it to
     ``target`` in the same material (:func:`unsew.grading.grade.grade`). Raises InputError when
-    the base's openings do not match the target's (``garment`` names the base in the message)."""
+    the base's openings do not match the target's (``garment`` names the base in the message).
+
+    base_from: (mesh, x) the base already dressed in another material: then, when
+    ``cfg.material.warm_steps`` > 0, the base drape is settled from it (:func:`unsew.dress.settle`)
+    instead of dressed from scratch."""
     with progress.phase(label) as bar:
-        dressed = dress(base, body, sdf=sdf, material=material, settings=cfg.drape, progress=bar)
-    x_b = dressed.x.numpy().copy()
-    _check_contours_compatible(len(open_contours(x_b, dressed.mesh.faces)), len(target.contours), garment)
+        if base_from is not None and cfg.material.warm_steps > 0:
+            mesh_b = base_from[0]
+            x_b = settle(mesh_b, base_from[1], sdf, material, settings=cfg.drape, steps=cfg.material.warm_steps,
+                         progress=bar)
+        else:
+            dressed = dress(base, body, sdf=sdf, material=material, settings=cfg.drape, progress=bar)
+            mesh_b, x_b = dressed.mesh, dressed.x.numpy().copy()
+    _check_contours_compatible(len(open_contours(x_b, mesh_b.faces)), len(target.contours), garment)
     if not cfg.grading:
-        return Start(base, base, dressed.mesh, x_b, [], x_b, dressed.mesh, material)
+        return Start(base, base, mesh_b, x_b, [], x_b, mesh_b, material)
 
     def drape_fn(p, m, b):
         return dress(p, b, sdf=sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
 
     g = grade(base, body, target.verts, target.faces, settings=cfg.drape, material=material, sdf=sdf,
-              mesh=dressed.mesh, x_init=x_b, drape_fn=drape_fn)
-    return Start(base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, dressed.mesh, material)
+              mesh=mesh_b, x_init=x_b, drape_fn=drape_fn)
+    return Start(base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, mesh_b, material)
