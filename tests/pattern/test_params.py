@@ -159,3 +159,13 @@ def _area(uv, m, p):
     loop = uv[m.boundary_loop(p)]
     x, y = loop.T
     return 0.5 * np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)
+
+
+def test_to_moves_the_maps_and_K0_follows():
+    """``to(device)`` moves the four maps (itself when they are there); K0 is made on their
+    device; the original stays on the CPU. A GPU run is in tests/fit/test_cuda.py."""
+    _, _, pp = _build(two_squares)
+    assert pp.to("cpu") is pp
+    moved = pp.to("meta")
+    assert all(t.device.type == "meta" for t in (moved.L_c, moved.b_c, moved.L_u, moved.b_u, moved.K0))
+    assert moved.symmetry is pp.symmetry and pp.L_u.device.type == "cpu"

@@ -24,9 +24,11 @@ def save_checkpoint(path: Path, choice, phase_two_state: dict) -> None:
 
 
 def load_checkpoint(path: Path) -> tuple:
-    """(MaterialChoice, phase two state) from ``path``; InputError when it cannot be read."""
+    """(MaterialChoice, phase two state) from ``path``, its tensors on the CPU (a checkpoint written
+    by a fit on a GPU resumes on any device: ``PhaseTwo.load_state_dict`` moves them to its own);
+    InputError when it cannot be read."""
     try:
-        data = torch.load(path, weights_only=False)
+        data = torch.load(path, map_location="cpu", weights_only=False)
     except Exception as exc:
         raise InputError(f"checkpoint {path} cannot be read ({type(exc).__name__}); delete it to start afresh") from None
     if not isinstance(data, dict) or data.get("version") != CHECKPOINT_VERSION:

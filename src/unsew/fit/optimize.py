@@ -122,18 +122,23 @@ class PhaseTwo:
     ``run(callback)`` iterates until the budget is spent or the loss has converged;
     ``state_dict()`` / ``load_state_dict()`` checkpoint and resume it. ``best`` is the
     lowest-loss :class:`Iterate` so far.
+
+    Device: phase one hands over numpy/CPU data; everything phase two computes with (the pattern
+    maps, the SimModel, K, Gamma, the drapes, the targets, the seam pairs) is moved once here to
+    ``cfg.device``, and the drapes' sparse factorizations run on the CPU (:mod:`unsew.sim.solve`).
+    ``best_fit()`` and ``gamma_last()`` hand back CPU data.
     """
 
     def __init__(self, choice: MaterialChoice, target: Target, sdf, cfg: FitConfig):
         s = choice.start
         self.cfg, self.sdf, self.mesh, self.material0 = cfg, sdf, s.mesh, s.material
         dev = torch.device(cfg.device)
-        self.params = PatternParams.build(s.graded, s.mesh)
-        self.model = SimModel.build(s.mesh.faces, s.mesh.faces_uv)
+        self.params = PatternParams.build(s.graded, s.mesh).to(dev)
+        self.model = SimModel.build(s.mesh.faces, s.mesh.faces_uv).to(dev)
         self.settings = cfg.drape.replace(friction_eps=cfg.optimizer.friction_eps)
         self._targets(target, dev)
         self.contours_x = open_contours(np.asarray(s.x), s.mesh.faces)
-        self.seam_pairs = seam_segment_pairs(s.mesh, s.graded.stitches)
+        self.seam_pairs = torch.as_tensor(seam_segment_pairs(s.mesh, s.graded.stitches), dtype=torch.int64, device=dev)
         self.gamma0 = s.material.gamma().to(dev)
         self.K = self.params.K0.detach().clone().to(dev).requires_grad_(True)
         self.theta, self.gamma_of = material_params(self.gamma0)
@@ -154,8 +159,8 @@ class PhaseTwo:
         rng = np.random.default_rng(self.cfg.seed)
         sub = np.sort(rng.choice(len(tv), n, replace=False)) if len(tv) > n else np.arange(len(tv))
         w = curvature_weights(tv, target.faces) if self.cfg.loss.curvature_weighted else np.ones(len(tv))
-        self.T = torch.as_tensor(tv, dtype=torch.float64)
-        self.T_sub = self.T[sub].to(dev)
+        self.T = torch.as_tensor(tv, dtype=torch.float64, device=dev)  # (M, 3) [m]: the open contours' target
+        self.T_sub = self.T[torch.as_tensor(sub, device=dev)]
         self.w_sub = torch.as_tensor(np.asarray(w, dtype=np.float64)[sub], dtype=torch.float64, device=dev)
         self.contours_t = target.contours
 
@@ -266,18 +271,20 @@ class PhaseTwo:
         self.opt_m.load_state_dict(state["opt_m"])
         self.x_prev = state["x_prev"].to(dev)
         self.history = {k: list(v) for k, v in state["history"].items()}
-        self.best = Iterate(**state["best"])
+        best = dict(state["best"])  # a checkpoint is read onto the CPU (checkpoint.py): tensors back to dev
+        self.best = Iterate(**{k: v.to(dev) if torch.is_tensor(v) else v for k, v in best.items()})
         self.iteration = int(state["iteration"])
 
     def best_fit(self):
-        """The best iterate as (pattern, uv (Nu, 2) [m] numpy, drape x (Nx, 3) [m] numpy, Material)."""
+        """The best iterate as (pattern, uv (Nu, 2) [m] numpy, drape x (Nx, 3) [m] numpy, Material),
+        all on the CPU whatever ``cfg.device``."""
         b = self.best
         with torch.no_grad():
             uv = self.params.uv(b.K)
         g = b.gamma.cpu().numpy()
         m0 = self.material0
         material = Material(float(g[0]), float(g[1]), float(g[2]), float(g[3]), float(g[4]), m0.density, m0.friction)
-        return self.params.to_pattern(b.K.cpu()), uv.cpu().numpy(), b.x.cpu().numpy(), material
+        return self.params.to_pattern(b.K), uv.cpu().numpy(), b.x.cpu().numpy(), material
 
     def gamma_last(self) -> list[float]:
         """Gamma at the current theta (the last iterate's material, as floats)."""

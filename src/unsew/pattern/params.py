@@ -21,6 +21,7 @@ So ``uv(K)`` is differentiable (it is a matrix product) and K0 gives back the re
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -99,7 +100,8 @@ class PatternParams:
 
     pattern: the pattern at rest. mesh: its GarmentMesh. controls, symmetry: as detected.
     control_uv: uv index of each control point, (Nc,) int64.
-    L_c (2 Nc, 2 Nk), b_c (2 Nc,) [m]; L_u (2 Nu, 2 Nk), b_u (2 Nu,) [m]: torch float64 (CPU).
+    L_c (2 Nc, 2 Nk), b_c (2 Nc,) [m]; L_u (2 Nu, 2 Nk), b_u (2 Nu,) [m]: torch float64, on the
+    CPU unless moved with :meth:`to`.
     """
 
     pattern: Pattern
@@ -143,12 +145,22 @@ class PatternParams:
         t = lambda a: torch.as_tensor(a, dtype=torch.float64)  # noqa: E731
         return cls(pattern.copy(), mesh, controls, symmetry, control_uv, t(Lc), t(bc), t(Lu), t(bu))
 
-    @property
-    def K0(self) -> "torch.Tensor":  # noqa: F821
-        """The rest effective control points [m], (Nk, 2) torch float64."""
+    def to(self, device) -> "PatternParams":
+        """The parameters with their maps on ``device`` (itself when they are there already)."""
         import torch
 
-        return torch.as_tensor(self.symmetry.k0(), dtype=torch.float64)
+        device = torch.device(device)
+        if self.L_u.device == device or (device.type == self.L_u.device.type and device.index is None):
+            return self
+        return dataclasses.replace(self, L_c=self.L_c.to(device), b_c=self.b_c.to(device), L_u=self.L_u.to(device),
+                                   b_u=self.b_u.to(device))
+
+    @property
+    def K0(self) -> "torch.Tensor":  # noqa: F821
+        """The rest effective control points [m], (Nk, 2) torch float64, on the maps' device."""
+        import torch
+
+        return torch.as_tensor(self.symmetry.k0(), dtype=torch.float64, device=self.L_u.device)
 
     @property
     def n_k(self) -> int:
@@ -172,12 +184,13 @@ class PatternParams:
         """The K [m], (Nk, 2) torch float64, whose rebuilt control points are closest (least squares)
         to the wanted positions C [m], (Nc, 2), of all control points: an edit made on all control
         points projected onto the symmetric parameters. For C that already respects the symmetries
-        this is K read off C (exact)."""
+        this is K read off C (exact). Solved on the CPU (``gelsd`` has no CUDA kernel); K comes
+        back on the maps' device."""
         import torch
 
-        C = torch.as_tensor(C, dtype=torch.float64).reshape(-1)
-        sol = torch.linalg.lstsq(self.L_c, (C - self.b_c).unsqueeze(1), driver="gelsd").solution
-        return sol.reshape(-1, 2)
+        C = torch.as_tensor(C, dtype=torch.float64).cpu().reshape(-1)
+        sol = torch.linalg.lstsq(self.L_c.cpu(), (C - self.b_c.cpu()).unsqueeze(1), driver="gelsd").solution
+        return sol.reshape(-1, 2).to(self.L_c.device)
 
     def to_pattern(self, K) -> Pattern:
         """A copy of the pattern with its panel vertices moved to ``uv(K)`` [m] (K: (Nk, 2)).

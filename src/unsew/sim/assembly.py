@@ -60,20 +60,21 @@ def outer_adjoint_map(nnz: int, src: torch.Tensor, dst: torch.Tensor, n_elem: in
     where one of the two stands for both, 0 where none is, times ``weight``. Then, for symmetric
     blocks, dL/dblocks = (gvals ++ [0])[fdst] * h, a symmetric (E, m, m) array, in one gather."""
     EM = n_elem * m * m
-    fdst = torch.full((EM,), nnz, dtype=torch.int64)
-    cnt = torch.zeros(EM, dtype=torch.float64)
+    dev = src.device
+    fdst = torch.full((EM,), nnz, dtype=torch.int64, device=dev)
+    cnt = torch.zeros(EM, dtype=torch.float64, device=dev)
     e = torch.div(src, m * m, rounding_mode="floor")
     loc = src - e * (m * m)
     i, j = torch.div(loc, m, rounding_mode="floor"), loc % m
     tr = e * (m * m) + j * m + i  # the transposed entry
     fdst[src] = dst
     cnt[src] += 1.0
-    has_own = torch.zeros(EM, dtype=torch.bool)
+    has_own = torch.zeros(EM, dtype=torch.bool, device=dev)
     has_own[src] = True
     only_t = ~has_own[tr]
     fdst[tr[only_t]] = dst[only_t]
     cnt[tr[only_t]] += 1.0
-    h = torch.where(has_own & torch.zeros(EM, dtype=torch.bool).index_fill_(0, tr[~only_t], True), 1.0, 0.5)
+    h = torch.where(has_own & torch.zeros(EM, dtype=torch.bool, device=dev).index_fill_(0, tr[~only_t], True), 1.0, 0.5)
     h = torch.where(cnt > 0, h, torch.zeros_like(h)).to(torch.float64)
     if weight is not None:
         h = (h.view(n_elem, m, m) * weight.to(h)).reshape(-1)

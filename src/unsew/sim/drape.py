@@ -35,6 +35,11 @@ def check_drape_inputs(model: SimModel, state: SimState, sdf, uv, gamma) -> None
     if not torch.is_tensor(gamma) or gamma.shape != (5,):
         raise InputError("gamma must be a torch tensor (5,) = (H00, H01, H11, H22, k); see Material.gamma()")
     check_gamma(gamma.detach().cpu())
+    dev = model.device
+    for name, t in (("uv", uv), ("gamma", gamma), ("state.x", state.x), ("state.v", state.v)):
+        if t.device != dev:
+            raise InputError(f"{name} is on {t.device}, the SimModel on {dev}: move the model with "
+                             f"model.to({str(t.device)!r}) (or the tensors to its device)")
     for name, t in (("x", state.x), ("v", state.v)):
         if t.shape != (model.n, 3):
             raise InputError(f"state.{name} must have shape ({model.n}, 3), got {tuple(t.shape)}")
@@ -167,7 +172,7 @@ def merge_sewn(x_unsewn, x_of_u, n_x: int) -> torch.Tensor:
         (n_x, 3) float64 torch [m].
     """
     xu = torch.as_tensor(np.asarray(x_unsewn) if not torch.is_tensor(x_unsewn) else x_unsewn, dtype=torch.float64)
-    idx = torch.as_tensor(np.asarray(x_of_u), dtype=torch.int64)
+    idx = torch.as_tensor(np.asarray(x_of_u), dtype=torch.int64, device=xu.device)
     s = xu.new_zeros(n_x, 3).index_add(0, idx, xu)
     c = xu.new_zeros(n_x).index_add(0, idx, torch.ones_like(idx, dtype=xu.dtype))
     if bool((c == 0).any()):
@@ -221,7 +226,7 @@ def sew(
                 n=model_unsewn.n,
                 n_rest=model_unsewn.n_rest,
                 bending_stencil=model_unsewn.bending_stencil,
-            )
+            ).to(model_unsewn.device)
         rest = rest_data(model_unsewn, uv, density)
         for k in range(settings.sew_steps):
             g = settings.gravity * min(1.0, (k + 1) / max(settings.ramp_steps, 1))

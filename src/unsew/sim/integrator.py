@@ -59,7 +59,8 @@ class StepParams:
         friction_eps: slip speed below which friction is viscous [m/s].
         backend: linear solver, "auto", "cholmod", "cholespy" or "scipy" (solve.py).
         fused: assemble, factorize and solve in one Function with a structured adjoint
-            (step_solve.py, CPU); False: separate assembly Functions + ``sparse_solve``.
+            (step_solve.py); False: separate assembly Functions + ``sparse_solve``. Either way
+            the assembly runs on the state's device and the factorization on the CPU.
     """
 
     dt: float = 0.05
@@ -115,8 +116,8 @@ def rest_data(model: SimModel, uv: torch.Tensor, density) -> RestData:
 def _pattern(model: SimModel) -> SparsePattern:
     p = getattr(model, "_pattern_cache", None)
     if p is None:
-        p = SparsePattern(3 * model.n, model.rows, model.cols)
-        pin = torch.zeros(p.rows.shape[0], dtype=torch.float64)
+        p = SparsePattern(3 * model.n, model.rows, model.cols, device=model.device)
+        pin = torch.zeros(p.rows.shape[0], dtype=torch.float64, device=model.device)
         pdofs = torch.nonzero(model.pinned.repeat_interleave(3))[:, 0]
         pin[model.diag_dst[pdofs]] = 1.0
         p.pin_diag = pin
@@ -231,7 +232,7 @@ def step(model: SimModel, rest: RestData, state: SimState, sdf, gamma, params: S
     dt = params.dt
     x, v = state.x, state.v
     N = model.n
-    fused = params.fused and x.device.type == "cpu"
+    fused = params.fused
     f, K, Hc, D, _ = forces(model, rest, x, v, sdf, gamma, params, gravity=gravity, parts=fused)
     eye = torch.eye(3, dtype=x.dtype, device=x.device)
     vblk = rest.mass[:, None, None] * eye + dt * D + (dt * dt) * Hc  # (N, 3, 3)

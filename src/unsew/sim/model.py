@@ -26,6 +26,7 @@ approximate Jacobian of the implicit step differs. ``"full"`` keeps the exact Ga
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -175,7 +176,7 @@ def _sparsity(groups: dict, n: int, bending_stencil: str):
 class SimModel:
     """Static topology of a cloth for simulation (built by :meth:`SimModel.build`).
 
-    Attributes (torch tensors on the CPU unless moved):
+    Attributes (torch tensors, all on one device: the CPU unless moved with :meth:`to`):
         n: number of sim vertices N.
         n_rest: number of rest (uv) vertices Nu.
         faces: (F, 3) int64 into sim vertices.
@@ -221,6 +222,22 @@ class SimModel:
     def nnz(self) -> int:
         """Number of stored (lower-triangle) entries of the system matrix."""
         return int(self.rows.shape[0])
+
+    @property
+    def device(self) -> torch.device:
+        """The device of the model's tensors (all on one)."""
+        return self.faces.device
+
+    def to(self, device) -> "SimModel":
+        """The model with every tensor on ``device`` (itself when they are there already). The
+        per-topology caches of the integrator (sparse pattern, adjoint maps) are rebuilt on the
+        new device at first use."""
+        device = torch.device(device)
+        if self.device == device or (device.type == self.device.type and device.index is None):
+            return self
+        moved = {f.name: getattr(self, f.name).to(device) for f in dataclasses.fields(self)
+                 if torch.is_tensor(getattr(self, f.name))}
+        return dataclasses.replace(self, **moved)
 
     @classmethod
     def build(

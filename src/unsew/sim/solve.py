@@ -66,17 +66,19 @@ class SparsePattern:
 
     Args:
         n: size. rows, cols: (nnz,) int arrays/tensors with rows >= cols, no duplicates.
+        device: where the index tensors ``rows``, ``cols`` and ``diag_half`` live (default: the
+            CPU); the factorizations always run on the CPU from ``rows_np``, ``cols_np``.
     """
 
-    def __init__(self, n: int, rows, cols):
+    def __init__(self, n: int, rows, cols, *, device=None):
         self.n = int(n)
         r = np.ascontiguousarray(np.asarray(rows.cpu() if torch.is_tensor(rows) else rows), dtype=np.int32)
         c = np.ascontiguousarray(np.asarray(cols.cpu() if torch.is_tensor(cols) else cols), dtype=np.int32)
         if np.any(r < c):
             raise ValueError("SparsePattern takes the lower triangle only (rows >= cols)")
         self.rows_np, self.cols_np = r, c
-        self.rows = torch.from_numpy(r.astype(np.int64))
-        self.cols = torch.from_numpy(c.astype(np.int64))
+        self.rows = torch.from_numpy(r.astype(np.int64)).to(device or "cpu")
+        self.cols = torch.from_numpy(c.astype(np.int64)).to(device or "cpu")
         self.diag_half = torch.where(self.rows == self.cols, 0.5, 1.0).to(torch.float64)
         self._csc = None  # (order, indices, indptr) of the lower triangle in CSC order
         self._cholmod_symbolic = None  # CHOLMOD analysis, computed at the first factorization
