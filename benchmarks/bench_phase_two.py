@@ -21,7 +21,7 @@ cotton, three iterations with the material joining at the second) through the wh
 budget, material fixed), and prints the loss, the re-dress check and the pattern error of each.
 
 Run: python -m benchmarks phase_two [--waist -0.03] [--edge-length 0.04] [--iterations 6]
-     [--lr 0.004] [--steps 8] [--warm-steps 8 40] [--out DIR]
+     [--lr 0.004] [--steps 8] [--warm-steps 8 40] [--prior 0] [--out DIR]
      python -m benchmarks phase_two --case tshirt [--out DIR]
 """
 
@@ -64,6 +64,7 @@ def main() -> None:
     ap.add_argument("--lr", type=float, default=0.004)
     ap.add_argument("--steps", type=int, default=8, help="steps of each of phase two's drapes")
     ap.add_argument("--warm-steps", type=int, nargs="+", default=[8, 40])
+    ap.add_argument("--prior", type=float, default=0.0, help="loss.prior: pull towards the graded pattern [-]")
     ap.add_argument("--out", type=Path, default=None, help="case folder (default: a temporary one)")
     ap.add_argument("--case", choices=["dress-hip", "tshirt"], default="dress-hip")
     args = ap.parse_args()
@@ -86,7 +87,7 @@ def main() -> None:
 
     cfg = load_config(edge_length=args.edge_length, iterations=args.iterations, steps=args.steps, sew_steps=60,
                       settle_steps=20, target_points=1500, material="cotton", optimize_material=False,
-                      lr=args.lr, report=False, mesh_spread=0.0)
+                      lr=args.lr, lambda_prior=args.prior, report=False, mesh_spread=0.0)
     out = args.out or Path(tempfile.mkdtemp(prefix="unsew-phase-two-"))
     t0 = time.perf_counter()
     case = load_case(make_truth_case(out / "case", garment="dress",
@@ -133,7 +134,7 @@ def main() -> None:
                     "vertex L2 cm": m["vertex_l2_cm_mean"]})
         rows.append(row)
     print_table(rows, title=f"dress, hip corners moved {100 * args.waist:+.1f} cm, {args.edge_length * 100:.0f} cm mesh, "
-                f"{args.iterations} iterations of {args.steps}-step drapes at lr {args.lr} (loss per iteration: "
+                f"{args.iterations} iterations of {args.steps}-step drapes at lr {args.lr}, prior {args.prior:g} (loss per iteration: "
                 f"{', '.join(f'{1e6 * v:.0f}' for v in two.history['total'])}; {time.perf_counter() - t0:.0f} s)")
     print("\nA lower warm loss than the truth's means phase two's loss has its minimum elsewhere.")
 

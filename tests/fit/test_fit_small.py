@@ -85,7 +85,9 @@ def test_phase_two_is_kept_and_lowers_the_redressed_distance(small_fit):
                    "not yet the pattern error, on this case")
 def test_phase_two_lowers_the_pattern_error_below_grading(small_fit):
     """The pattern error itself: the mean panel area error of phase two's pattern at most 0.7x the
-    graded pattern's."""
+    graded pattern's. Not on this t-shirt, whose graded area error is already under 1 %; the
+    default suite's proof is on a case grading cannot fit,
+    tests/fit/test_phase_two.py::test_phase_two_lowers_the_area_error."""
     _, _, metrics = small_fit
     assert metrics["pattern"]["area_error_rel_mean"] < 0.7 * metrics["pattern_graded"]["area_error_rel_mean"]
 

@@ -3,9 +3,12 @@ hip corners, in the fit's own fabric (benchmarks/bench_phase_two.py prints the s
 Grading moves hems, cuffs and necklines by a length and a girth and leaves the hip corners where
 the base has them, so everything the fit gains over the graded pattern is phase two's.
 
-Slow (98 s on the shared 2-core VM: the dress is grading's slowest garment). The
-default suite's proof that phase two lowers the pattern error is
-tests/fit/test_fit_small.py::test_phase_two_lowers_the_pattern_error_below_grading."""
+The whole fit (run_fit) on it is slow (98 s on the shared 2-core VM: the dress is grading's
+slowest garment). The default suite's proof that phase two lowers the pattern error runs phase
+two alone from the graded pattern, with 16-step drapes (``test_phase_two_lowers_the_area_error``,
+about 40 s): at 8 steps its warm-started loss ranks its own pattern above the truth (see the xfail
+below), at 16 it ranks them level (493 against 497, re-draped as the benchmark does) and the area error falls by half; the device
+sweep behind that choice is in docs/benchmarks.md, "Phase two on a case grading cannot fit"."""
 
 import numpy as np
 import pytest
@@ -60,3 +63,90 @@ def test_phase_two_lowers_the_whole_pattern_error_on_the_hip(hip_fit):
     case, result, metrics = hip_fit
     assert metrics["pattern"]["area_error_rel_mean"] < 0.7 * metrics["pattern_graded"]["area_error_rel_mean"]
     assert metrics["pattern"]["vertex_l2_cm_mean"] < 0.7 * metrics["pattern_graded"]["vertex_l2_cm_mean"]
+
+
+#: the default suite's setting: 16-step drapes, 8 iterations (``python -m benchmarks phase_two
+#: --steps 16 --iterations 8`` prints the same figures)
+SMALL16 = {**SMALL, "steps": 16, "iterations": 8}
+
+
+@pytest.fixture(scope="module")
+def hip_phase_two(tmp_path_factory):
+    """Phase two alone (unsew.fit.optimize.PhaseTwo, material held) from the graded default dress,
+    and its best iterate as a pattern."""
+    import torch
+
+    from unsew.body.case import load_case
+    from unsew.body.sdf import BodySDF
+    from unsew.fit.material import MaterialChoice
+    from unsew.fit.optimize import PhaseTwo
+    from unsew.fit.progress import Progress
+    from unsew.fit.start import base_pattern_for, start
+    from unsew.fit.synthetic import Alteration, make_truth_case
+    from unsew.fit.target import Target
+    from unsew.sim.material import get_material
+
+    cfg = load_config(**SMALL16)
+    case = load_case(make_truth_case(tmp_path_factory.mktemp("case16") / "dress", garment="dress",
+                                     alteration=Alteration({"waist": (-0.03, 0.0)}, "cotton"), settings=cfg.drape))
+    sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
+    s = start(base_pattern_for(case, cfg), case.body, target, sdf, cfg, get_material("cotton"), progress=Progress(False))
+    torch.manual_seed(cfg.seed)
+    two = PhaseTwo(MaterialChoice(s), target, sdf, cfg)
+    two.run()
+    best, _, _, _ = two.best_fit()
+    return case, s.graded, best, two
+
+
+def test_phase_two_lowers_the_area_error(hip_phase_two):
+    """Issue 21's default-suite proof: on a case grading cannot fit, phase two's pattern (its best
+    iterate) has a mean panel area error at most 0.7 x the graded pattern's (measured 2.92 ->
+    1.49 %, x0.51) and hip corners at most 0.9 x as far from the truth's (3.00 -> 2.30 cm), at a
+    best loss at most 0.95 x the first (684 -> 609 [1e-6 m^2]). With phase two held the best
+    iterate is the graded pattern and every ratio is 1."""
+    from unsew.metrics.panels import pattern_metrics
+
+    case, graded, best, two = hip_phase_two
+    truth = case.pattern_gt
+    area_graded = pattern_metrics(graded, truth)["area_error_rel_mean"]
+    area_best = pattern_metrics(best, truth)["area_error_rel_mean"]
+    assert area_graded > 0.02  # grading alone leaves the hip: 2.9 %
+    assert area_best < 0.7 * area_graded
+    assert _hip_error_cm(best, truth) < 0.9 * _hip_error_cm(graded, truth)
+    h = two.history["total"]
+    assert min(h) < 0.95 * h[0]
+
+
+@pytest.mark.xfail(strict=True, reason="phase two moves corners the truth did not move: rigid corner L2 0.40 -> "
+                   "0.68 cm at 16 steps (docs/benchmarks.md, 'Phase two on a case grading cannot fit')")
+def test_phase_two_lowers_the_corner_distance_on_the_hip(hip_phase_two):
+    """The other pattern error: rigidly aligned corner L2 of phase two's pattern below the graded one's."""
+    from unsew.metrics.panels import pattern_metrics
+
+    case, graded, best, _ = hip_phase_two
+    truth = case.pattern_gt
+    assert pattern_metrics(best, truth)["vertex_l2_cm_mean"] < pattern_metrics(graded, truth)["vertex_l2_cm_mean"]
+
+
+def test_step_scales_shorten_only_narrow_panels():
+    """optimizer.panel_width: a banded base's waistband points (3.6 cm wide) step x0.36, the legs'
+    and every t-shirt point x1; panel_width 0 leaves every step whole."""
+    from unsew.fit.optimize import step_scales
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.base import make_base_pattern
+    from unsew.pattern.params import PatternParams
+
+    for name, narrow in (("pants_band", True), ("tshirt", False)):
+        p = make_base_pattern(name)
+        P = PatternParams.build(p, mesh_pattern(p, edge_length=0.05))
+        s = step_scales(P, 0.1).numpy().ravel()
+        assert s.shape == (P.n_k,) and (s <= 1).all() and (s > 0).all()
+        if narrow:
+            assert 0.3 < s.min() < 0.4 and (s == 1).sum() > (s < 1).sum()
+            L = np.abs(P.L_c.numpy()).reshape(len(P.controls), 2, P.n_k, 2).sum(axis=(1, 3))
+            band = [P.controls.panel_names.index(n) for n in ("waistband_front", "waistband_back")]
+            for k in np.nonzero(s < 1)[0]:  # every shortened point moves a band's control points
+                assert set(np.asarray(P.controls.panel)[L[:, k] > 0]) <= set(band)
+        else:
+            assert (s == 1).all()
+        assert (step_scales(P, 0.0).numpy() == 1).all()
