@@ -171,14 +171,17 @@ def dress(
 
 
 def settle(mesh, x_from, sdf, material="cotton", *, settings: DrapeSettings = DRESS_SETTINGS,
-           steps: int | None = None, progress: Callable[[str, int, int], None] | None = None) -> np.ndarray:
+           steps: int | None = None, model: SimModel | None = None,
+           progress: Callable[[str, int, int], None] | None = None) -> np.ndarray:
     """A sewn garment let settle from another drape: ``steps`` (default ``settings.settle_steps``)
     of plain draping at ``settings.dt`` in ``material``, starting at rest from ``x_from``.
 
     What :func:`dress` does after sewing, without the placement and the sewing: the cheap way to
     drape a pattern already dressed once in another fabric or stiffness (the fit's material
     choice, :mod:`unsew.fit.material`). mesh: the GarmentMesh ``x_from`` lies on; x_from: (n_x, 3)
-    [m]; sdf: the body's SDF; progress: ``progress("settle", k, n)``. Returns (n_x, 3) float64 [m].
+    [m]; sdf: the body's SDF; model: the sewn mesh's SimModel (``SimModel.build(mesh.faces,
+    mesh.faces_uv)``), to reuse across calls on one mesh (built here when None; its sparse
+    pattern is cached on it); progress: ``progress("settle", k, n)``. Returns (n_x, 3) float64 [m].
     """
     mat = resolve_material(material)
     steps = settings.settle_steps if steps is None else int(steps)
@@ -186,7 +189,7 @@ def settle(mesh, x_from, sdf, material="cotton", *, settings: DrapeSettings = DR
     if x0.shape != (mesh.n_x, 3):
         raise ValueError(f"x_from must be ({mesh.n_x}, 3) positions on the mesh, got {tuple(x0.shape)}")
     uv = torch.as_tensor(np.asarray(mesh.uv), dtype=torch.float64)
-    model = SimModel.build(mesh.faces, mesh.faces_uv)
+    model = SimModel.build(mesh.faces, mesh.faces_uv) if model is None else model
     cb = (lambda k, s: progress("settle", k + 1, steps)) if progress else None
     with torch.no_grad():
         st = drape(model, SimState.at_rest(x0.clone()), sdf, uv=uv, gamma=mat.gamma(), density=mat.density,

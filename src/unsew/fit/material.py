@@ -6,9 +6,9 @@ distance. Its hand-off is a :class:`MaterialChoice`.
 
 Each candidate is let settle (``material.warm_steps`` steps, :func:`unsew.dress.settle`) from the
 drape it competes with, the pattern already sewn, instead of being dressed from scratch (placement,
-80 sewing and 40 settling steps): the choice's time, half of each foreign fit, falls by about
-three. Measurements: docs/benchmarks.md, "Material choice: settled, not dressed"; docs/history.md,
-"Measurements behind the fit's defaults"."""
+sewing and settling), on one SimModel of the start's mesh. Measurements: docs/benchmarks.md,
+"Material choice: settled, not dressed"; docs/history.md, "Measurements behind the fit's
+defaults"."""
 
 from __future__ import annotations
 
@@ -25,6 +25,7 @@ from unsew.fit.progress import Progress
 from unsew.fit.start import Start, start
 from unsew.fit.target import Target
 from unsew.sim.material import get_material
+from unsew.sim.model import SimModel
 
 __all__ = ["MaterialChoice", "choose_start", "choose_material", "refine_material", "AUTO_START_MATERIAL",
            "REFINE_GROUPS"]
@@ -110,10 +111,12 @@ def _dresser(s: Start, body, sdf, cfg: FitConfig):
     ``material``: settled ``cfg.material.warm_steps`` steps from ``x_from`` (default ``s.x``), or,
     when warm_steps is 0, dressed from scratch (x_from unused)."""
 
+    model = SimModel.build(s.mesh.faces, s.mesh.faces_uv) if cfg.material.warm_steps > 0 else None
+
     def dress_in(material, bar=None, x_from=None):
-        if cfg.material.warm_steps > 0:
+        if model is not None:
             x = settle(s.mesh, s.x if x_from is None else x_from, sdf, material, settings=cfg.drape,
-                       steps=cfg.material.warm_steps, progress=bar)
+                       steps=cfg.material.warm_steps, model=model, progress=bar)
         else:
             x = dress(s.graded, body, sdf=sdf, mesh=s.mesh, material=material, settings=cfg.drape,
                       progress=bar).x.numpy()

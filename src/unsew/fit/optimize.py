@@ -37,6 +37,8 @@ from unsew.losses.curvature import curvature_weights
 from unsew.losses.material import loss_material
 from unsew.losses.prior import loss_prior
 from unsew.losses.seam import loss_seam, seam_segment_pairs
+from unsew.metrics.panels import panel_area
+from unsew.pattern.curves import edge_length
 from unsew.pattern.params import PatternParams, check_inverted
 from unsew.sim.drape import drape
 from unsew.sim.material import Material
@@ -115,34 +117,27 @@ def material_params(gamma0: torch.Tensor):
 
 
 def step_scales(params, panel_width: float) -> torch.Tensor:
-    """(Nk, 1) factors on Adam's step of each effective control point: min(1, w / panel_width)
-    for the narrowest panel w among those it moves, w = area / half perimeter of the panel's
-    control polygon [m] (a long strip's short side); all 1 when ``panel_width`` is 0.
+    """(Nk, 1) float64 factors on Adam's step of each effective control point: min(1, w /
+    ``panel_width``) for the narrowest panel it moves, w = area / half perimeter of the panel's
+    outline [m] (a long strip's short side; :func:`unsew.metrics.panels.panel_area`,
+    :func:`unsew.pattern.curves.edge_length`); all 1 when ``panel_width`` [m] is 0.
 
-    Why: Adam moves every coordinate by about lr per step whatever its gradient's size, so a
-    point whose gradient is only noise still moves by lr, and the same move is a small change
-    of a 30 cm wide trouser leg but a large one of a 4 cm waistband. On the foreign benchmark
-    phase two left the legs' areas within 1-3 % and grew the bands' error to 15-38 % (matched
-    panels, docs/benchmarks.md, "Foreign benchmark: fits"); scaled, each panel's relative edit
-    per step is about the same."""
+    Why: Adam moves every coordinate by about lr per step whatever its gradient's size, and the
+    same move is a small change of a 30 cm wide trouser leg but a large one of a 4 cm waistband;
+    scaled, each panel's relative edit per step is about the same (measured: docs/benchmarks.md,
+    "Foreign benchmark: fits")."""
     nk = params.n_k
     if panel_width <= 0:
         return torch.ones(nk, 1, dtype=torch.float64)
     c = params.controls
-    width = np.ones(len(c.panel_names))
-    for p in range(len(c.panel_names)):
-        v = c.positions[c.of_panel(p)]
-        x, y = v[:, 0], v[:, 1]
-        area = 0.5 * abs(float(np.dot(x, np.roll(y, 1)) - np.dot(y, np.roll(x, 1))))
-        half_perimeter = 0.5 * float(np.linalg.norm(v - np.roll(v, 1, axis=0), axis=1).sum())
-        width[p] = area / half_perimeter if half_perimeter > 0 else panel_width
-    L = np.abs(params.L_c.detach().cpu().numpy()).reshape(len(c), 2, nk, 2).sum(axis=(1, 3))  # (Nc, Nk)
-    panel_of = np.asarray(c.panel, dtype=np.int64)
-    scale = np.ones(nk)
-    for k in range(nk):
-        moved = np.nonzero(L[:, k] > 1e-12)[0]
-        if len(moved):
-            scale[k] = min(1.0, float(width[panel_of[moved]].min()) / panel_width)
+    width = np.empty(len(c.panel_names))
+    for p, name in enumerate(c.panel_names):
+        panel = params.pattern.panels[name]
+        half_perimeter = 0.5 * sum(edge_length(panel, i) for i in range(len(panel.edges)))
+        width[p] = panel_area(panel) / half_perimeter if half_perimeter > 0 else panel_width
+    moves = np.abs(params.L_c.detach().cpu().numpy()).reshape(len(c), 2, nk, 2).sum(axis=(1, 3)) > 1e-12  # (Nc, Nk)
+    w = np.where(moves, width[np.asarray(c.panel, dtype=np.int64)][:, None], np.inf).min(axis=0)  # (Nk,) [m]
+    scale = np.minimum(1.0, np.where(np.isfinite(w), w, panel_width) / panel_width)
     return torch.as_tensor(scale, dtype=torch.float64).reshape(nk, 1)
 
 
@@ -178,6 +173,7 @@ class PhaseTwo:
         o = cfg.optimizer
         self.opt_k = torch.optim.Adam([self.K], lr=o.lr, betas=o.betas)
         self.k_scale = step_scales(self.params, o.panel_width).to(dev)
+        self._scaled = bool((self.k_scale < 1).any())  # any narrow panel: checked once, not every step
         self.opt_m = torch.optim.Adam([self.theta], lr=cfg.material.lr, betas=o.betas)
         self.x_prev = torch.as_tensor(np.asarray(s.x), dtype=torch.float64, device=dev)
         with torch.no_grad():
@@ -245,7 +241,7 @@ class PhaseTwo:
         K_before = self.K.detach().clone()
         if it >= self.cfg.optimizer.pattern_start:
             self.opt_k.step()
-            if bool((self.k_scale < 1).any()):
+            if self._scaled:
                 with torch.no_grad():  # narrow panels' points take shorter steps (step_scales)
                     short = K_before + self.k_scale * (self.K - K_before)
                     self.K.copy_(torch.where(self.k_scale < 1, short, self.K))

@@ -373,9 +373,8 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
 
     A waistband (:func:`_is_band`: open only along its top) keeps its height: its edit loses its
     upright component, and its waist's upward move lengthens the panels sewn to its bottom instead
-    (:func:`_carry_down`). Held like the others, the band took the whole change itself: graded
-    from 4 to 5.7-7.6 cm on the foreign benchmark's banded trousers, shorts and skirt, whose bands
-    are 4 cm (docs/benchmarks.md, "Band grading").
+    (:func:`_carry_down`); held like the others, the band took the whole change and grew taller
+    (docs/benchmarks.md, "Band grading").
 
     Why the tops are held: the panel's 2D position also sets where it is placed around the body
     before sewing. A waist found 3.5 cm higher on the target than on the base drape
