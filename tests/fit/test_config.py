@@ -120,9 +120,11 @@ def test_cli_flags_map_onto_the_groups():
     p = argparse.ArgumentParser()
     add_fit_options(p)
     args = p.parse_args(["--iterations", "4", "--edge-length", "0.03", "--steps", "9", "--material", "silk",
-                         "--no-grading", "--plain-chamfer", "--no-seam-loss", "--no-material", "--no-report"])
+                         "--no-grading", "--plain-chamfer", "--no-seam-loss", "--no-material", "--no-report",
+                         "--time-limit", "300"])
     c = config_from_args(args, defaults={"optimizer": {"iterations": 80}})
     assert (c.optimizer.iterations, c.drape.edge_length, c.drape.steps, c.material.start) == (4, 0.03, 9, "silk")
     assert not c.grading and not c.loss.curvature_weighted and c.loss.seam == 0.0
-    assert c.material.fit == () and not c.output.report
-    assert config_from_args(p.parse_args([]), defaults={"optimizer": {"iterations": 80}}).optimizer.iterations == 80
+    assert c.material.fit == () and not c.output.report and c.time_limit == 300.0
+    c = config_from_args(p.parse_args([]), defaults={"optimizer": {"iterations": 80}})
+    assert c.optimizer.iterations == 80 and c.time_limit == 540.0

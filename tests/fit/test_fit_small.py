@@ -475,3 +475,36 @@ def test_report_says_when_phase_two_was_refused():
     assert "cannot be meshed afresh" in note and "waistband_front" in note and "graded pattern" in note
     kept = _redress_note({"fit_redressed_mm": 6.0, "graded_mm": 7.5, "phase_two_kept": True, "refused": ""})
     assert "6.00 mm" in kept and "phase two's pattern is returned" in kept
+
+
+def test_a_spent_time_limit_leaves_out_the_optional_work_and_says_so(small_case, tmp_path):
+    """With the time limit spent before phase two (1 ms), the material choice grades in no other
+    fabric and searches no stiffness, phase two makes no iteration, the mesh spread is skipped,
+    and the fit still ends with a complete result (the graded pattern) whose metrics.json lists
+    each cut; without the limit the same settings do all of it."""
+    import numpy as np
+
+    from unsew.body.case import load_case
+    from unsew.fit.run import run_fit
+
+    auto = {**SMALL, "material": "auto", "material_candidates": "cotton,silk", "material_regrade": 1,
+            "material_refine": 1, "report": False}
+    out = tmp_path / "limited"
+    result, metrics = run_fit(load_case(small_case), load_config(**{**auto, "report": True}, time_limit=0.001), out,
+                              progress=False, log=lambda s: None)
+    cuts = json.loads((out / "metrics.json").read_text())["time_limit"]["cuts"]
+    assert cuts == ["material choice: not graded again in silk (half the limit spent)",
+                    "material choice: stiffness search stopped (half the limit spent)",
+                    "phase two stopped after 0 of 3 iterations", "mesh spread skipped"]
+    assert metrics["iterations"] == 0 and "mesh_spread" not in metrics and "redress" not in metrics
+    np.testing.assert_array_equal(result.x, result.x_graded)
+    assert (out / "pattern.json").is_file() and metrics["drape_check"]["ok"]
+    assert "time limit 0 s (--time-limit): material choice" in (out / "report.html").read_text()
+    table = {r["material"] for r in result.material_choice}
+    assert table == {"cotton", "silk"}  # the two candidates, nothing graded again or scaled
+
+    whole, m2 = run_fit(load_case(small_case), load_config(**auto, time_limit=0), tmp_path / "whole",
+                        progress=False, log=lambda s: None)
+    assert m2["time_limit"] == {"limit_s": None, "cuts": []}
+    assert m2["iterations"] == 3 and "mesh_spread" in m2
+    assert len(whole.material_choice) > 2  # graded again in silk, stiffness scaled

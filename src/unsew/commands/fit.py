@@ -23,6 +23,9 @@ def add_fit_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--no-seam-loss", action="store_true", help="ablation: drop the seam-length loss")
     p.add_argument("--no-material", action="store_true", help="ablation: keep the material fixed")
     p.add_argument("--device", help="torch device (cpu, cuda)")
+    p.add_argument("--time-limit", type=float, metavar="SECONDS",
+                   help="seconds the fit aims to end within (default 540): the material search, phase two and the "
+                   "mesh spread give way; 0: no limit")
     p.add_argument("--no-report", action="store_true", help="skip report.html")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
 
@@ -38,6 +41,7 @@ def config_from_args(args: argparse.Namespace, *, defaults: dict | None = None):
         "loss": {},
         "output": {},
         "device": args.device,
+        "time_limit": args.time_limit,
         "base": getattr(args, "base", None),
     }
     if args.no_grading:

@@ -98,6 +98,7 @@ class FitConfig:
     grading: bool = True  #: run linear grading before the optimization (ablation: False)
     seed: int = 0  #: seed of every random choice [-]
     device: str = "cpu"  #: torch device for the simulation ("cpu", "cuda")
+    time_limit: float = 540.0  #: seconds the fit (base choice to checks, not the writing of the result) aims to end within: the material choice's optional steps, phase two's iterations and the mesh spread give way (unsew.fit.budget); 0: no limit [s]
     drape: DrapeSettings = field(default_factory=DrapeSettings)  #: meshing, sewing, settling and drape steps
     material: MaterialSettings = field(default_factory=MaterialSettings)
     optimizer: OptimizerSettings = field(default_factory=OptimizerSettings)
@@ -273,6 +274,8 @@ def _check(cfg: FitConfig, names: dict) -> None:
         raise InputError(f"{say('drape.dt')} {d.dt} s must be in (0, 0.2]")
     if not o.friction_eps > 0:
         raise InputError(f"{say('optimizer.friction_eps')} must be positive, got {o.friction_eps} m/s")
+    if not cfg.time_limit >= 0:
+        raise InputError(f"{say('time_limit')} must be >= 0 s (0: no limit), got {cfg.time_limit}")
     if not 0 <= cfg.checks.mesh_spread < 0.5:
         raise InputError(f"{say('checks.mesh_spread')} must be in [0, 0.5), got {cfg.checks.mesh_spread}")
     for place in ("material.refine", "material.regrade", "material.warm_steps", "drape.sew_steps", "drape.settle_steps"):

@@ -23,6 +23,7 @@ from unsew._memory import bound_heap, peak_rss_mb, release_free_memory
 from unsew.body.sdf import BodySDF
 from unsew.dress import resolve_material
 from unsew.errors import InputError
+from unsew.fit.budget import TimeBudget
 from unsew.fit.checkpoint import load_checkpoint, save_checkpoint
 from unsew.fit.checks import MeshSpread, RedressCheck, mesh_spread, redress_check
 from unsew.fit.config import FitConfig
@@ -55,7 +56,8 @@ class FitResult:
     off the body, exploded, inside it); :func:`unsew.fit.run.run_fit` refuses a bad one.
     memory_mb: the process's peak resident memory [MB] at the end of each stage (keys as
     ``timings``, "loaded" at the fit's start), so the stage that set the peak is the first one
-    reaching the last value.
+    reaching the last value. time_limit: the fit's time limit and what gave way to it
+    (:meth:`unsew.fit.budget.TimeBudget.as_dict`).
     """
 
     pattern: object
@@ -86,6 +88,7 @@ class FitResult:
     mesh_spread: MeshSpread | None = None
     drape_check: DrapeVerdict | None = None
     memory_mb: dict | None = None
+    time_limit: dict | None = None
 
 
 def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: Path | None = None,
@@ -99,6 +102,7 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
     """
     bound_heap()  # freed memory goes back to the system (unsew._memory); peak memory: metrics.json
     clock, bar = _Clock(), progress if isinstance(progress, Progress) else Progress(progress)
+    budget = TimeBudget(cfg.time_limit, log=log)
     torch.manual_seed(cfg.seed)
     _check_device(cfg.device)
     material0 = resolve_material(AUTO_START_MATERIAL if cfg.material.start == "auto" else cfg.material.start)
@@ -115,7 +119,8 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
         first = start(base.pattern, case.body, target, sdf, cfg, material0, progress=bar, garment=garment)
         first = first.replace(base_name=base.name, base_choice=tuple(base.table))
         clock.lap("grading_s")
-        choice = choose_start(first, case.body, target, sdf, cfg, progress=bar, log=log, garment=garment)
+        choice = choose_start(first, case.body, target, sdf, cfg, progress=bar, log=log, garment=garment,
+                              budget=budget)
         clock.lap("material_choice_s", keep=cfg.material.start == "auto")
     two = PhaseTwo(choice, target, sdf, cfg)
     if saved is not None:
@@ -123,7 +128,10 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
     shown = bar.iterations(cfg.optimizer.iterations, two.iteration,
                            lambda info: target.distance_mm(info.x.cpu().numpy(), info.faces, n_samples=BAR_SAMPLES))
 
+    ticks = [time.perf_counter()]  # when each iteration ended (the first: when phase two began)
+
     def on_iteration(info: Iteration) -> None:
+        ticks.append(time.perf_counter())
         release_free_memory()  # an iteration's tape, freed in pieces all over the heap
         shown(info)
         if checkpoint is not None:
@@ -131,18 +139,30 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
         if callback is not None:
             callback(info)
 
+    # phase two stops while one more iteration and the re-dress check (a drape from scratch) fit
+    redress_s = choice.start.dress_s if cfg.checks.redress else 0.0
+
+    def out_of_time() -> bool:
+        recent = np.diff(ticks[-6:])  # the last iterations' durations [s]
+        iteration_s = float(recent.max()) if len(recent) else 0.5 * choice.start.dress_s
+        if budget.fits(iteration_s + redress_s):
+            return False
+        budget.cut(f"phase two stopped after {two.iteration} of {cfg.optimizer.iterations} iterations")
+        return True
+
     try:
-        two.run(on_iteration)
+        two.run(on_iteration, stop=out_of_time)
     finally:
         shown.close()
     clock.lap("optimization_s")
-    return _checked_result(case, cfg, choice, two, target, sdf, clock, bar, log)
+    return _checked_result(case, cfg, choice, two, target, sdf, clock, bar, log, budget)
 
 
 def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo, target: Target, sdf, clock,
-                    bar: Progress, log) -> FitResult:
+                    bar: Progress, log, budget: TimeBudget) -> FitResult:
     """Phase two's best iterate, put through the re-dress check (which may return the graded
-    pattern instead) and the mesh spread, as a FitResult."""
+    pattern instead) and the mesh spread (skipped when its two drapes would overrun ``budget``),
+    as a FitResult."""
     s = choice.start
     pattern, uv, x, material = two.best_fit()
     redress = None
@@ -152,7 +172,9 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
             pattern, uv, x, material = s.graded, np.asarray(s.mesh.uv, dtype=np.float64), np.asarray(s.x), s.material
         clock.lap("redress_s")
     spread = None
-    if cfg.checks.mesh_spread > 0:
+    if cfg.checks.mesh_spread > 0 and not budget.fits(2 * s.dress_s):
+        budget.cut("mesh spread skipped")
+    elif cfg.checks.mesh_spread > 0:
         result_mm = (redress.fit_redressed_mm if redress.phase_two_kept else redress.graded_mm) if redress \
             else target.distance_mm(x, s.mesh.faces)
         spread = mesh_spread(pattern, material, case.body, target, sdf, cfg, result_mm, progress=bar, log=log)
@@ -167,7 +189,7 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
         material_start_iteration=cfg.material.start_iteration if cfg.fits_material else None,
         gamma_last=two.gamma_last(), redress=redress, mesh_spread=spread,
         drape_check=check_drape(x, faces=s.mesh.faces, uv=uv, faces_uv=s.mesh.faces_uv, body=case.body, sdf=sdf),
-        memory_mb=clock.peaks,
+        memory_mb=clock.peaks, time_limit=budget.as_dict(),
     )
 
 

@@ -16,10 +16,12 @@ import dataclasses
 import math
 import time
 from dataclasses import dataclass, field
+from typing import Callable
 
 from unsew._memory import release_free_memory
 from unsew.dress import dress, settle
 from unsew.errors import InputError
+from unsew.fit.budget import TimeBudget
 from unsew.fit.config import FitConfig, material_candidates
 from unsew.fit.progress import Progress
 from unsew.fit.start import Start, start
@@ -74,7 +76,7 @@ def choose_material(names, dress_in, objective, *, progress: Progress | None = N
 
 
 def refine_material(material, label: str, x0, cf0: float, dress_in, objective, *, rounds: int = 2,
-                    progress: Progress | None = None):
+                    progress: Progress | None = None, keep_going: Callable[[], bool] | None = None):
     """Coordinate search on the chosen fabric's stiffness, by draping: scale the stretch entries
     (H00, H01, H11, H22 together, so the Poisson ratio stays) and then the bending stiffness by
     1/s and s, s = 2, then sqrt(2), ... (``rounds`` steps), and keep a scaling when the pattern,
@@ -82,7 +84,8 @@ def refine_material(material, label: str, x0, cf0: float, dress_in, objective, *
 
     material: the start (unsew.sim.material.Material) named ``label`` in the table; x0, cf0: its
     drape (Nx, 3) [m] and distance [mm]; dress_in, objective as for :func:`choose_material` (each
-    scaling is draped from the best drape so far).
+    scaling is draped from the best drape so far); keep_going() -> False stops the search before
+    the next scaling (the fit's time limit).
     Returns (Material, drape, rows): rows list every scaling tried, {"material", "chamfer_mm"}.
     """
     progress = progress or Progress(False)
@@ -92,6 +95,8 @@ def refine_material(material, label: str, x0, cf0: float, dress_in, objective, *
         s = 2.0 ** (0.5**r)
         for group, names in REFINE_GROUPS.items():
             for f in (1.0 / s, s):
+                if keep_going is not None and not keep_going():
+                    return best, x_best, rows
                 cand = dataclasses.replace(best, **{k: getattr(best, k) * f for k in names})
                 with progress.phase(f"{group} x{scale[group] * f:.2g}") as bar:
                     x = dress_in(cand, bar, x_best)
@@ -127,9 +132,13 @@ def _dresser(s: Start, body, sdf, cfg: FitConfig):
 
 
 def choose_start(first: Start, body, target: Target, sdf, cfg: FitConfig, *, progress: Progress,
-                 log=print, garment: str = "") -> MaterialChoice:
+                 log=print, garment: str = "", budget: TimeBudget | None = None) -> MaterialChoice:
     """The material stage: ``first`` unchanged when ``cfg.material.start`` names a material, else
-    the auto choice (module docstring) starting from ``first`` (graded in cotton)."""
+    the auto choice (module docstring) starting from ``first`` (graded in cotton). With a
+    ``budget``, the grading in other fabrics and the stiffness search stop once half its limit is
+    spent (:mod:`unsew.fit.budget`)."""
+    budget = budget or TimeBudget(0)
+    half = 0.5  # share of the fit's time limit the optional steps may start within
     if cfg.material.start != "auto":
         return MaterialChoice(first)
     t0 = time.perf_counter()
@@ -149,6 +158,9 @@ def choose_start(first: Start, body, target: Target, sdf, cfg: FitConfig, *, pro
     best_cf = table[0]["chamfer_mm"]
     others = [r["material"] for r in table if r["material"] != AUTO_START_MATERIAL]
     for name in others[: cfg.material.regrade] if cfg.grading else []:
+        if not budget.within(half):
+            budget.cut(f"material choice: not graded again in {name} (half the limit spent)")
+            continue
         try:
             s = start(first.base, body, target, sdf, cfg, get_material(name), progress=progress,
                       label=f"grade in {name}", garment=garment, base_from=(first.mesh_base, first.x_base))
@@ -165,8 +177,15 @@ def choose_start(first: Start, body, target: Target, sdf, cfg: FitConfig, *, pro
     table.sort(key=lambda r: r["chamfer_mm"])
     r0 = table[0]
     if cfg.material.refine > 0:
+
+        def keep_going() -> bool:
+            if budget.within(half):
+                return True
+            budget.cut("material choice: stiffness search stopped (half the limit spent)")
+            return False
+
         mat, x, rows = refine_material(cur.material, r0["material"], cur.x, best_cf, _dresser(cur, body, sdf, cfg),
-                                       objective, rounds=cfg.material.refine, progress=progress)
+                                       objective, rounds=cfg.material.refine, progress=progress, keep_going=keep_going)
         cur = cur.replace(x=x, material=mat)
         table = sorted(table + [{**row, "pattern": r0["pattern"]} for row in rows], key=lambda r: r["chamfer_mm"])
         r0 = table[0]

@@ -278,10 +278,14 @@ class PhaseTwo:
             return (old - min(h[-o.patience:])) < o.tol * abs(old)
         return False
 
-    def run(self, callback: Callable[[Iteration], None] | None = None) -> None:
+    def run(self, callback: Callable[[Iteration], None] | None = None, *,
+            stop: Callable[[], bool] | None = None) -> None:
         """Iterate until the budget is spent or the loss has converged; ``callback(Iteration)``
-        after every iteration (progress, checkpoints, traces)."""
+        after every iteration (progress, checkpoints, traces); ``stop() -> True`` ends the loop
+        before the next iteration (the fit's time limit)."""
         while self.iteration < self.cfg.optimizer.iterations and not self.converged:
+            if stop is not None and stop():
+                return
             info = self.step()
             if callback is not None:
                 callback(info)

@@ -97,6 +97,8 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     if result.mesh_spread is not None:
         m["mesh_spread"] = result.mesh_spread.as_dict()  # the returned pattern on two other meshes
     m["timings_s"] = result.timings
+    if getattr(result, "time_limit", None):
+        m["time_limit"] = result.time_limit  # the fit's time limit [s] and what gave way to it
     m["peak_memory_mb"] = peak_rss_mb()  # the process's peak resident memory so far [MB]
     if getattr(result, "memory_mb", None):
         m["peak_memory_stages_mb"] = result.memory_mb  # the peak so far at the end of each stage [MB]

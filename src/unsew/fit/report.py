@@ -62,6 +62,9 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
                      f"and {100 * ms['edge_lengths_m'][1]:.2f} cm meshes lies {cf} from the target, the result "
                      f"{ms['result_mm']:.2f} mm; differences smaller than these are within how far the triangulation "
                      "alone moves the folds")
+    tl = metrics.get("time_limit") or {}
+    if tl.get("cuts"):
+        notes.append(f"time limit {tl['limit_s']:.0f} s (--time-limit): " + "; ".join(tl["cuts"]))
     top = max((max(v) for v in result.history.values() if v), default=0.0)
     # terms that stay at round-off level (e.g. the seam loss of a symmetric skirt) would stretch
     # the log axis over 30 decades: leave them out of the plot (they are in the metrics table)

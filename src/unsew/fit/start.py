@@ -48,7 +48,9 @@ class Start:
     base: the base Pattern; graded: the graded pattern U_LG (the base itself without grading);
     mesh: its GarmentMesh; x: its drape X_LG (n_x, 3) float64 [m] on ``mesh``; grade_table: the
     contour rows of grading; x_base, mesh_base: the base pattern's drape and mesh; material: the
-    Material all of these were dressed in; base_name, base_choice: which base, and how it was chosen.
+    Material all of these were dressed in; base_name, base_choice: which base, and how it was chosen;
+    dress_s: how long the base took to dress from scratch [s] (0: settled from another drape), the
+    fit's estimate of a drape from scratch (:mod:`unsew.fit.budget`).
     """
 
     base: object
@@ -61,6 +63,7 @@ class Start:
     material: object
     base_name: str = ""  #: the base's library name or JSON path
     base_choice: tuple = ()  #: the automatic base choice's rows, best first (BaseChoice.table)
+    dress_s: float = 0.0  #: seconds the base's drape from scratch took [s] (0: not dressed from scratch)
 
     def replace(self, **changes) -> "Start":
         return dataclasses.replace(self, **changes)
@@ -161,6 +164,7 @@ def start(base, body, target: Target, sdf, cfg: FitConfig, material, *, progress
     base_from: (mesh, x) the base already dressed in another material: then, when
     ``cfg.material.warm_steps`` > 0, the base drape is settled from it (:func:`unsew.dress.settle`)
     instead of dressed from scratch."""
+    t0, dress_s = time.perf_counter(), 0.0
     with progress.phase(label) as bar:
         if base_from is not None and cfg.material.warm_steps > 0:
             mesh_b = base_from[0]
@@ -169,13 +173,14 @@ def start(base, body, target: Target, sdf, cfg: FitConfig, material, *, progress
         else:
             dressed = dress(base, body, sdf=sdf, material=material, settings=cfg.drape, progress=bar)
             mesh_b, x_b = dressed.mesh, dressed.x.numpy().copy()
+            dress_s = time.perf_counter() - t0
     _check_contours_compatible(len(open_contours(x_b, mesh_b.faces)), len(target.contours), garment)
     if not cfg.grading:
-        return Start(base, base, mesh_b, x_b, [], x_b, mesh_b, material)
+        return Start(base, base, mesh_b, x_b, [], x_b, mesh_b, material, dress_s=dress_s)
 
     def drape_fn(p, m, b):
         return dress(p, b, sdf=sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
 
     g = grade(base, body, target.verts, target.faces, settings=cfg.drape, material=material, sdf=sdf,
               mesh=mesh_b, x_init=x_b, drape_fn=drape_fn)
-    return Start(base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, mesh_b, material)
+    return Start(base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, mesh_b, material, dress_s=dress_s)

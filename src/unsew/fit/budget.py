@@ -1,0 +1,67 @@
+"""The fit's time limit (``FitConfig.time_limit``): the optional work of a fit gives way so the
+whole fit ends in time, and what gave way is recorded (metrics.json's ``time_limit``).
+
+What gives way, in the order a fit reaches it:
+
+- the material choice's optional steps (grading again in other fabrics, the stiffness search)
+  run only while less than half the limit is spent;
+- phase two stops before an iteration that would leave too little time for one more iteration
+  and the re-dress check (one drape from scratch);
+- the mesh spread (two drapes from scratch, a diagnostic) is skipped when it would not fit.
+
+The base choice, grading and the re-dress check always run: without them there is no result, or
+no judgement of phase two's. Times to come are estimated from ones measured in this fit: a drape
+from scratch (the base's, in phase one) and phase two's iterations.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Callable
+
+__all__ = ["TimeBudget", "RESERVE_FACTOR"]
+
+#: an estimated duration is reserved this many times over (drapes of a moved pattern, on another
+#: mesh, settle in more or fewer steps than the one timed) [-]
+RESERVE_FACTOR = 1.3
+
+
+class TimeBudget:
+    """Seconds left of ``limit_s`` (0 or less: no limit) since the budget was made; ``cuts``
+    lists, in words, what was left out to stay within it."""
+
+    def __init__(self, limit_s: float, *, log: Callable[[str], None] = print,
+                 clock: Callable[[], float] = time.perf_counter):
+        self.limit_s = float(limit_s)
+        self._clock, self._log = clock, log
+        self.t0 = clock()
+        self.cuts: list[str] = []
+
+    @property
+    def limited(self) -> bool:
+        return self.limit_s > 0
+
+    def elapsed(self) -> float:
+        """Seconds since the budget was made [s]."""
+        return self._clock() - self.t0
+
+    def left(self) -> float:
+        """Seconds left [s] (inf without a limit; negative once overrun)."""
+        return self.limit_s - self.elapsed() if self.limited else math.inf
+
+    def fits(self, seconds: float) -> bool:
+        """Whether work estimated at ``seconds`` [s], reserved RESERVE_FACTOR times over, ends in time."""
+        return self.left() >= RESERVE_FACTOR * seconds
+
+    def within(self, share: float) -> bool:
+        """Whether less than ``share`` (0-1) of the limit is spent (always, without a limit)."""
+        return not self.limited or self.elapsed() < share * self.limit_s
+
+    def cut(self, what: str) -> None:
+        """Record (and log) that ``what`` was left out for the limit."""
+        self.cuts.append(what)
+        self._log(f"time limit {self.limit_s:.0f} s: {what}")
+
+    def as_dict(self) -> dict:
+        return {"limit_s": self.limit_s if self.limited else None, "cuts": list(self.cuts)}

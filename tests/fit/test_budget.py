@@ -1,0 +1,46 @@
+"""TimeBudget (unsew.fit.budget) on a clock the test moves."""
+
+import math
+
+import pytest
+
+from unsew.fit.budget import RESERVE_FACTOR, TimeBudget
+
+
+class FakeClock:
+    def __init__(self):
+        self.t = 100.0
+
+    def __call__(self):
+        return self.t
+
+
+def test_time_budget_counts_down_and_reserves_margin():
+    clock, said = FakeClock(), []
+    b = TimeBudget(60.0, clock=clock, log=said.append)
+    clock.t += 20.0
+    assert b.elapsed() == pytest.approx(20.0) and b.left() == pytest.approx(40.0)
+    assert b.fits(40.0 / RESERVE_FACTOR - 1e-6) and not b.fits(40.0 / RESERVE_FACTOR + 1e-6)
+    assert b.within(0.5) and not b.within(0.3)
+    b.cut("mesh spread skipped")
+    assert b.as_dict() == {"limit_s": 60.0, "cuts": ["mesh spread skipped"]}
+    assert said == ["time limit 60 s: mesh spread skipped"]
+    clock.t += 100.0
+    assert b.left() < 0 and not b.fits(0.0 + 1e-9)
+
+
+def test_no_limit_always_fits():
+    clock = FakeClock()
+    b = TimeBudget(0, clock=clock)
+    clock.t += 1e6
+    assert b.left() == math.inf and b.fits(1e9) and b.within(0.0)
+    assert b.as_dict() == {"limit_s": None, "cuts": []}
+
+
+def test_a_negative_time_limit_is_refused():
+    from unsew.errors import InputError
+    from unsew.fit.config import load_config
+
+    assert load_config(time_limit=0).time_limit == 0.0
+    with pytest.raises(InputError, match="time_limit must be >= 0"):
+        load_config(time_limit=-5)
