@@ -116,3 +116,28 @@ def test_pattern_metrics_with_different_panel_sets():
     assert m2["unmatched"] == {"estimated": ["pocket"], "true": []} and m2["area_error_rel_mean"] == 0.0
     assert_close(m2["area_error_weighted_rel"], 0.09 / 2.2, rtol=1e-9)
     assert_close(m2["area_error_total_rel"], 0.09 / 2.2, rtol=1e-9)
+
+
+def test_the_report_draws_each_true_panel_over_its_match():
+    """unsew.fit.report.truth_over: a true panel matched to a final one (metrics.json's pattern.panels)
+    takes its name and is moved so the area centroids coincide; an unmatched true panel keeps its
+    name and place, marked "(true)" when a final panel has that name."""
+    from unsew.fit.report import truth_over
+    from unsew.metrics.panels import panel_centroid2d
+
+    belt = np.asarray(SQ) * [2, 0.1]
+    gt = Pattern("gt", {"front_l": _poly_panel("front_l", np.asarray(SQ) + 5),
+                        "back_l": _poly_panel("back_l", PENT),
+                        "left_back": _poly_panel("left_back", belt)}, panel_order=["left_back", "front_l", "back_l"])
+    est = Pattern("est", {"left_front": _poly_panel("left_front", np.asarray(SQ) * 1.1),
+                          "left_back": _poly_panel("left_back", np.asarray(PENT) - 2)})
+    matched = {"panels": {"front_l": {"estimated_panel": "left_front"}, "back_l": {"estimated_panel": "left_back"}}}
+    drawn = truth_over(gt, est, matched)
+    assert drawn.panel_order == ["left_back (true)", "left_front", "left_back"]
+    assert set(drawn.panels) == set(drawn.panel_order) and drawn.panels["left_front"].name == "left_front"
+    for name in ("left_front", "left_back"):
+        assert_close(panel_centroid2d(drawn.panels[name]), panel_centroid2d(est.panels[name]), atol=1e-12)
+    assert_close(drawn.panels["left_back"].vertices, np.asarray(PENT) - 2.0, atol=1e-12)  # the same shape, moved
+    assert_close(drawn.panels["left_back (true)"].vertices, belt, atol=0)
+    assert truth_over(gt, est, None) is gt
+    assert set(truth_over(gt, est, pattern_metrics(est, gt)).panels) >= set(est.panels)  # the real matching's form

@@ -13,7 +13,7 @@ from unsew.metrics.surface import closest_points
 from unsew.report.fit_report import write_fit_report as _write
 from unsew.sim.material import material_to_dict
 
-__all__ = ["write_fit_report"]
+__all__ = ["write_fit_report", "truth_over"]
 
 
 def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | None = None) -> Path:
@@ -24,7 +24,7 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     if result.graded_pattern is not None and result.graded_pattern is not result.base_pattern:
         patterns.append(("graded", result.graded_pattern))
     if case.pattern_gt is not None:
-        patterns.append(("true", case.pattern_gt))
+        patterns.append(("true", truth_over(case.pattern_gt, result.pattern, metrics.get("pattern"))))
     patterns.append(("final", result.pattern))
     s = metrics.get("surface", {})
     summary = {
@@ -92,6 +92,31 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
         history=hist or None, phases=phases if hist else None, patterns=patterns, config=config, notes=notes or None,
         material=material_to_dict(result.material),
     )
+
+
+def truth_over(pattern_gt, final, matched: dict | None):
+    """The true pattern as the report draws it over the final one: each true panel matched to a
+    final panel (``matched``: metrics.json's ``pattern``, whose ``panels`` map a true name to its
+    ``estimated_panel``) takes that panel's name, so both share a cell of the figure and a column
+    of the measurements, and is moved in its own frame so its area centroid lies on the final
+    panel's. Unmatched true panels keep their names (with " (true)" added where a final panel's
+    name is taken); without a matching, ``pattern_gt`` as is."""
+    import dataclasses
+
+    from unsew.metrics.panels import panel_centroid2d
+
+    pairs = {ng: row["estimated_panel"] for ng, row in ((matched or {}).get("panels") or {}).items()
+             if isinstance(row, dict) and row.get("estimated_panel") in final.panels and ng in pattern_gt.panels}
+    if not pairs:
+        return pattern_gt
+    taken = set(pairs.values())
+    names = {ng: pairs.get(ng, f"{ng} (true)" if ng in taken else ng) for ng in pattern_gt.panels}
+    panels = {}
+    for ng, panel in pattern_gt.panels.items():
+        shift = panel_centroid2d(final.panels[pairs[ng]]) - panel_centroid2d(panel) if ng in pairs else 0.0
+        panels[names[ng]] = dataclasses.replace(panel, name=names[ng], vertices=np.asarray(panel.vertices) + shift)
+    order = [names[n] for n in (pattern_gt.panel_order or pattern_gt.panels)]
+    return dataclasses.replace(pattern_gt, panels=panels, panel_order=order, stitches=[])
 
 
 def _flat(row) -> dict:

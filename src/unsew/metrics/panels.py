@@ -37,6 +37,7 @@ from unsew.pattern.model import euler_xyz_to_matrix
 
 __all__ = [
     "panel_area",
+    "panel_centroid2d",
     "panel_centroid3d",
     "match_panels",
     "area_error",
@@ -63,16 +64,20 @@ def panel_area(panel) -> float:
     return abs(_shoelace(_outline(panel)))
 
 
-def panel_centroid3d(panel) -> np.ndarray:
-    """Area centroid of the panel placed in 3D by its translation/rotation, shape (3,) [m]."""
+def panel_centroid2d(panel) -> np.ndarray:
+    """Area centroid of the panel's outline in its own frame, shape (2,) [m] (curved edges sampled)."""
     p = _outline(panel, 32)
     x, y = p[:, 0], p[:, 1]
     cr = x * np.roll(y, -1) - np.roll(x, -1) * y
     A = 0.5 * cr.sum()
     if abs(A) < 1e-300:
-        c = p.mean(0)
-    else:
-        c = np.array([((x + np.roll(x, -1)) * cr).sum(), ((y + np.roll(y, -1)) * cr).sum()]) / (6 * A)
+        return p.mean(0)
+    return np.array([((x + np.roll(x, -1)) * cr).sum(), ((y + np.roll(y, -1)) * cr).sum()]) / (6 * A)
+
+
+def panel_centroid3d(panel) -> np.ndarray:
+    """Area centroid of the panel placed in 3D by its translation/rotation, shape (3,) [m]."""
+    c = panel_centroid2d(panel)
     return euler_xyz_to_matrix(panel.rotation) @ np.array([c[0], c[1], 0.0]) + panel.translation
 
 
