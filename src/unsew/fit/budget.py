@@ -40,6 +40,7 @@ class TimeBudget:
 
     @property
     def limited(self) -> bool:
+        """Whether there is a limit at all (``limit_s`` > 0)."""
         return self.limit_s > 0
 
     def elapsed(self) -> float:
@@ -64,4 +65,5 @@ class TimeBudget:
         self._log(f"time limit {self.limit_s:.0f} s: {what}")
 
     def as_dict(self) -> dict:
+        """{"limit_s": the limit [s] or None, "cuts": what gave way}, as metrics.json holds it."""
         return {"limit_s": self.limit_s if self.limited else None, "cuts": list(self.cuts)}

@@ -100,7 +100,10 @@ def truth_over(pattern_gt, final, matched: dict | None):
     ``estimated_panel``) takes that panel's name, so both share a cell of the figure and a column
     of the measurements, and is moved in its own frame so its area centroid lies on the final
     panel's. Unmatched true panels keep their names (with " (true)" added where a final panel's
-    name is taken); without a matching, ``pattern_gt`` as is."""
+    name is taken); without a matching, ``pattern_gt`` as is.
+
+    pattern_gt, final: :class:`unsew.pattern.model.Pattern` (vertices [m]); returns a new Pattern
+    (no stitches: it is drawn and measured, never sewn)."""
     import dataclasses
 
     from unsew.metrics.panels import panel_centroid2d
