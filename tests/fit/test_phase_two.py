@@ -150,3 +150,28 @@ def test_step_scales_shorten_only_narrow_panels():
         else:
             assert (s == 1).all()
         assert (step_scales(P, 0.0).numpy() == 1).all()
+
+
+def test_step_scales_hold_the_waistbands_phase_two_is_told_to():
+    """optimizer.hold_bands: every point that moves a waistband of pants_band gets 0 (with or
+    without panel_width), every other point keeps its factor; a bandless base has nothing held."""
+    from unsew.fit.optimize import step_scales
+    from unsew.grading.grade import waistbands
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.base import make_base_pattern
+    from unsew.pattern.params import PatternParams
+
+    p = make_base_pattern("pants_band")
+    P = PatternParams.build(p, mesh_pattern(p, edge_length=0.05))
+    held = waistbands(p)
+    assert sorted(held) == ["waistband_back", "waistband_front"]
+    L = np.abs(P.L_c.numpy()).reshape(len(P.controls), 2, P.n_k, 2).sum(axis=(1, 3))
+    band = [P.controls.panel_names.index(n) for n in held]
+    moves_band = (L[np.isin(np.asarray(P.controls.panel), band)] > 0).any(axis=0)
+    assert moves_band.any() and not moves_band.all()
+    for width in (0.1, 0.0):
+        free = step_scales(P, width).numpy().ravel()
+        s = step_scales(P, width, held).numpy().ravel()
+        assert (s[moves_band] == 0).all()
+        assert np.array_equal(s[~moves_band], free[~moves_band]) and (s[~moves_band] > 0).all()
+    assert waistbands(make_base_pattern("pants")) == []

@@ -58,6 +58,7 @@ class OptimizerSettings:
     warm_start: bool = True  #: start each drape from the previous iteration's (the paper); False: always from the graded drape
     friction_eps: float = 1e-2  #: slip speed below which friction is viscous in phase two's drapes (only) [m/s]
     panel_width: float = 0.1  #: a control point of a panel narrower than this (area / half perimeter) moves by lr x width / panel_width per step (waistbands: 3.6 cm, x0.36); 0: every point at lr [m]
+    hold_bands: bool = True  #: waistbands (panels open only along their top) keep the shape grading gave them: their control points do not move; False: they move like the others (at the panel_width factor)
     tol: float = 1e-3  #: stop when the loss changed by less than this fraction over `patience` iterations [-]
     patience: int = 15  #: iterations over which convergence is judged [-]
 

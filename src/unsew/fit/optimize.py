@@ -31,6 +31,7 @@ from unsew.errors import InputError
 from unsew.fit.config import FitConfig, material_mask
 from unsew.fit.material import MaterialChoice
 from unsew.fit.target import Target
+from unsew.grading.grade import waistbands
 from unsew.losses.chamfer import loss_chamfer
 from unsew.losses.contours import loss_open_contours, open_contours
 from unsew.losses.curvature import curvature_weights
@@ -116,28 +117,37 @@ def material_params(gamma0: torch.Tensor):
     return theta, gamma_of
 
 
-def step_scales(params, panel_width: float) -> torch.Tensor:
+def step_scales(params, panel_width: float, held: tuple[str, ...] | list[str] = ()) -> torch.Tensor:
     """(Nk, 1) float64 factors on Adam's step of each effective control point: min(1, w /
     ``panel_width``) for the narrowest panel it moves, w = area / half perimeter of the panel's
     outline [m] (a long strip's short side; :func:`unsew.metrics.panels.panel_area`,
-    :func:`unsew.pattern.curves.edge_length`); all 1 when ``panel_width`` [m] is 0.
+    :func:`unsew.pattern.curves.edge_length`); all 1 when ``panel_width`` [m] is 0. A point that
+    moves a panel named in ``held`` gets 0: it stays where grading left it.
 
     Why: Adam moves every coordinate by about lr per step whatever its gradient's size, and the
     same move is a small change of a 30 cm wide trouser leg but a large one of a 4 cm waistband;
     scaled, each panel's relative edit per step is about the same (measured: docs/benchmarks.md,
-    "Foreign benchmark: fits")."""
+    "Foreign benchmark: fits"). Held waistbands: even at x0.36 phase two reshaped them to lower
+    the distance (docs/benchmarks.md, "Waistbands held in phase two")."""
     nk = params.n_k
-    if panel_width <= 0:
+    if panel_width <= 0 and not held:
         return torch.ones(nk, 1, dtype=torch.float64)
     c = params.controls
     width = np.empty(len(c.panel_names))
     for p, name in enumerate(c.panel_names):
+        if name in held:
+            width[p] = 0.0
+            continue
+        if panel_width <= 0:
+            width[p] = np.inf
+            continue
         panel = params.pattern.panels[name]
         half_perimeter = 0.5 * sum(edge_length(panel, i) for i in range(len(panel.edges)))
         width[p] = panel_area(panel) / half_perimeter if half_perimeter > 0 else panel_width
     moves = np.abs(params.L_c.detach().cpu().numpy()).reshape(len(c), 2, nk, 2).sum(axis=(1, 3)) > 1e-12  # (Nc, Nk)
     w = np.where(moves, width[np.asarray(c.panel, dtype=np.int64)][:, None], np.inf).min(axis=0)  # (Nk,) [m]
-    scale = np.minimum(1.0, np.where(np.isfinite(w), w, panel_width) / panel_width)
+    scale = np.ones(nk) if panel_width <= 0 else np.minimum(1.0, np.where(np.isfinite(w), w, panel_width) / panel_width)
+    scale[w == 0] = 0.0
     return torch.as_tensor(scale, dtype=torch.float64).reshape(nk, 1)
 
 
@@ -172,7 +182,8 @@ class PhaseTwo:
         self.free_mat = torch.tensor(material_mask(cfg.material.fit), dtype=self.theta.dtype, device=dev)
         o = cfg.optimizer
         self.opt_k = torch.optim.Adam([self.K], lr=o.lr, betas=o.betas)
-        self.k_scale = step_scales(self.params, o.panel_width).to(dev)
+        self.held = tuple(waistbands(s.graded)) if o.hold_bands else ()
+        self.k_scale = step_scales(self.params, o.panel_width, self.held).to(dev)
         self._scaled = bool((self.k_scale < 1).any())  # any narrow panel: checked once, not every step
         self.opt_m = torch.optim.Adam([self.theta], lr=cfg.material.lr, betas=o.betas)
         self.x_prev = torch.as_tensor(np.asarray(s.x), dtype=torch.float64, device=dev)

@@ -37,7 +37,7 @@ from unsew.sim.drape import DrapeSettings
 
 __all__ = [
     "GradeResult", "grade", "moved_mesh", "dress_drape", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH",
-    "REMESH_MODES", "LENGTH_MODES", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL", "GRADE_SETTINGS", "GradePass",
+    "REMESH_MODES", "LENGTH_MODES", "waistbands", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL", "GRADE_SETTINGS", "GradePass",
     "GradingError", "MESH_RETRIES",
 ]
 
@@ -428,6 +428,16 @@ def _is_band(panel, height: np.ndarray, open_edges: set) -> bool:
     mid = 0.5 * (lo + hi)
     opened = [e for k, e in enumerate(panel.edges) if (panel.name, k) in open_edges]
     return bool(opened) and all(ys[e.start] > mid and ys[e.end] > mid for e in opened)
+
+
+def waistbands(pattern) -> list[str]:
+    """Names of the panels of ``pattern`` that are waistbands (:func:`_is_band`, judged on the
+    panel's vertices as placed): a band's shape is the design's, not the wearer's, so phase two
+    holds it (``optimizer.hold_bands``)."""
+    stitched = stitched_edges(pattern)
+    open_edges = {(n, k) for n, pan in pattern.panels.items() for k in range(len(pan.edges)) if (n, k) not in stitched}
+    return [n for n, pan in pattern.panels.items()
+            if _is_band(pan, pan.to_world(pan.vertices)[:, 1], open_edges)]
 
 
 def _sewn_below(pattern, band) -> list[str]:
