@@ -152,26 +152,42 @@ def test_step_scales_shorten_only_narrow_panels():
         assert (step_scales(P, 0.0).numpy() == 1).all()
 
 
-def test_step_scales_hold_the_waistbands_phase_two_is_told_to():
-    """optimizer.hold_bands: every point that moves a waistband of pants_band gets 0 (with or
-    without panel_width), every other point keeps its factor; a bandless base has nothing held."""
-    from unsew.fit.optimize import step_scales
-    from unsew.grading.grade import waistbands
+def test_band_projectors_keep_a_waistbands_height_and_nothing_else():
+    """optimizer.bands: with "height" a step of pants_band's K moves no waistband control point
+    up or down (as placed) yet changes the band's girth; "held" moves no band point at all; the
+    legs' points and a bandless base are left alone; "free" holds nothing."""
+    import torch
+
+    from unsew.fit.optimize import band_projectors
+    from unsew.grading.grade import upright, waistbands
     from unsew.meshing import mesh_pattern
     from unsew.pattern.base import make_base_pattern
     from unsew.pattern.params import PatternParams
 
     p = make_base_pattern("pants_band")
     P = PatternParams.build(p, mesh_pattern(p, edge_length=0.05))
-    held = waistbands(p)
-    assert sorted(held) == ["waistband_back", "waistband_front"]
-    L = np.abs(P.L_c.numpy()).reshape(len(P.controls), 2, P.n_k, 2).sum(axis=(1, 3))
-    band = [P.controls.panel_names.index(n) for n in held]
-    moves_band = (L[np.isin(np.asarray(P.controls.panel), band)] > 0).any(axis=0)
+    bands = waistbands(p)
+    assert sorted(bands) == ["waistband_back", "waistband_front"]
+    c = P.controls
+    band_pts = [g for n in bands for g in c.of_panel(c.panel_names.index(n))]
+    L = np.abs(P.L_c.numpy()).reshape(len(c), 2, P.n_k, 2).sum(axis=(1, 3)) > 0
+    moves_band = L[band_pts].any(axis=0)
     assert moves_band.any() and not moves_band.all()
-    for width in (0.1, 0.0):
-        free = step_scales(P, width).numpy().ravel()
-        s = step_scales(P, width, held).numpy().ravel()
-        assert (s[moves_band] == 0).all()
-        assert np.array_equal(s[~moves_band], free[~moves_band]) and (s[~moves_band] > 0).all()
-    assert waistbands(make_base_pattern("pants")) == []
+    step = torch.as_tensor(np.random.default_rng(0).normal(size=(P.n_k, 2)) * 1e-3)
+
+    def moved(mode):
+        Pk = band_projectors(P, bands, mode)
+        dK = torch.einsum("kij,kj->ki", Pk, step)
+        return (P.L_c @ dK.reshape(-1)).numpy().reshape(-1, 2), dK.numpy()  # (Nc, 2) control point moves
+
+    dC, dK = moved("height")
+    for n in bands:
+        up = upright(p.panels[n])
+        idx = c.of_panel(c.panel_names.index(n))
+        assert np.abs(dC[idx] @ up).max() < 1e-12  # no band point rises or falls
+        assert np.abs(dC[idx]).max() > 1e-5  # but the band does change (its girth)
+    np.testing.assert_allclose(dK[~moves_band], step.numpy()[~moves_band])
+    dC, dK = moved("held")
+    assert np.abs(dC[band_pts]).max() == 0 and np.allclose(dK[~moves_band], step.numpy()[~moves_band])
+    assert band_projectors(P, bands, "free") is None
+    assert band_projectors(P, waistbands(make_base_pattern("pants")), "height") is None

@@ -46,6 +46,10 @@ class MaterialSettings:
     lr: float = 5e-2  #: Adam learning rate of the log-material parameters [-]
 
 
+#: What phase two may change of a waistband (``optimizer.bands``).
+BAND_MODES = ("height", "held", "free")
+
+
 @dataclass(frozen=True)
 class OptimizerSettings:
     """Phase two's Adam loop and its stopping rule."""
@@ -58,7 +62,7 @@ class OptimizerSettings:
     warm_start: bool = True  #: start each drape from the previous iteration's (the paper); False: always from the graded drape
     friction_eps: float = 1e-2  #: slip speed below which friction is viscous in phase two's drapes (only) [m/s]
     panel_width: float = 0.1  #: a control point of a panel narrower than this (area / half perimeter) moves by lr x width / panel_width per step (waistbands: 3.6 cm, x0.36); 0: every point at lr [m]
-    hold_bands: bool = True  #: waistbands (panels open only along their top) keep the shape grading gave them: their control points do not move; False: they move like the others (at the panel_width factor)
+    bands: str = "height"  #: what phase two may change of a waistband (a panel open only along its top): "height" its girth only (its points move along the band, never up or down it), "held" nothing, "free" anything (at the panel_width factor)
     tol: float = 1e-3  #: stop when the loss changed by less than this fraction over `patience` iterations [-]
     patience: int = 15  #: iterations over which convergence is judged [-]
 
@@ -273,6 +277,8 @@ def _check(cfg: FitConfig, names: dict) -> None:
         raise InputError(f"{say('drape.edge_length')} {d.edge_length} m is outside 0.005-0.1 m")
     if d.dt <= 0 or d.dt > 0.2:
         raise InputError(f"{say('drape.dt')} {d.dt} s must be in (0, 0.2]")
+    if o.bands not in BAND_MODES:
+        raise InputError(f"{say('optimizer.bands')} must be one of {', '.join(BAND_MODES)}, got {o.bands!r}")
     if not o.friction_eps > 0:
         raise InputError(f"{say('optimizer.friction_eps')} must be positive, got {o.friction_eps} m/s")
     if not cfg.time_limit >= 0:

@@ -31,7 +31,7 @@ from unsew.errors import InputError
 from unsew.fit.config import FitConfig, material_mask
 from unsew.fit.material import MaterialChoice
 from unsew.fit.target import Target
-from unsew.grading.grade import waistbands
+from unsew.grading.grade import upright, waistbands
 from unsew.losses.chamfer import loss_chamfer
 from unsew.losses.contours import loss_open_contours, open_contours
 from unsew.losses.curvature import curvature_weights
@@ -47,7 +47,7 @@ from unsew.sim.model import SimModel
 from unsew.sim.state import SimState
 from unsew.tolerances import MIN_TRIANGLE_QUALITY
 
-__all__ = ["PhaseTwo", "LossTerms", "Iterate", "Iteration", "material_params", "LOSS_TERMS"]
+__all__ = ["PhaseTwo", "step_scales", "band_projectors", "LossTerms", "Iterate", "Iteration", "material_params", "LOSS_TERMS"]
 
 #: Names of the loss terms, in the order of :class:`LossTerms` (and of ``FitResult.history``).
 LOSS_TERMS = ("total", "chamfer", "open", "seam", "material", "prior")
@@ -117,38 +117,64 @@ def material_params(gamma0: torch.Tensor):
     return theta, gamma_of
 
 
-def step_scales(params, panel_width: float, held: tuple[str, ...] | list[str] = ()) -> torch.Tensor:
+def step_scales(params, panel_width: float) -> torch.Tensor:
     """(Nk, 1) float64 factors on Adam's step of each effective control point: min(1, w /
     ``panel_width``) for the narrowest panel it moves, w = area / half perimeter of the panel's
     outline [m] (a long strip's short side; :func:`unsew.metrics.panels.panel_area`,
-    :func:`unsew.pattern.curves.edge_length`); all 1 when ``panel_width`` [m] is 0. A point that
-    moves a panel named in ``held`` gets 0: it stays where grading left it.
+    :func:`unsew.pattern.curves.edge_length`); all 1 when ``panel_width`` [m] is 0.
 
     Why: Adam moves every coordinate by about lr per step whatever its gradient's size, and the
     same move is a small change of a 30 cm wide trouser leg but a large one of a 4 cm waistband;
     scaled, each panel's relative edit per step is about the same (measured: docs/benchmarks.md,
-    "Foreign benchmark: fits"). Held waistbands: even at x0.36 phase two reshaped them to lower
-    the distance (docs/benchmarks.md, "Waistbands held in phase two")."""
+    "Foreign benchmark: fits")."""
     nk = params.n_k
-    if panel_width <= 0 and not held:
+    if panel_width <= 0:
         return torch.ones(nk, 1, dtype=torch.float64)
     c = params.controls
     width = np.empty(len(c.panel_names))
     for p, name in enumerate(c.panel_names):
-        if name in held:
-            width[p] = 0.0
-            continue
-        if panel_width <= 0:
-            width[p] = np.inf
-            continue
         panel = params.pattern.panels[name]
         half_perimeter = 0.5 * sum(edge_length(panel, i) for i in range(len(panel.edges)))
         width[p] = panel_area(panel) / half_perimeter if half_perimeter > 0 else panel_width
-    moves = np.abs(params.L_c.detach().cpu().numpy()).reshape(len(c), 2, nk, 2).sum(axis=(1, 3)) > 1e-12  # (Nc, Nk)
+    moves = _moves(params)
     w = np.where(moves, width[np.asarray(c.panel, dtype=np.int64)][:, None], np.inf).min(axis=0)  # (Nk,) [m]
-    scale = np.ones(nk) if panel_width <= 0 else np.minimum(1.0, np.where(np.isfinite(w), w, panel_width) / panel_width)
-    scale[w == 0] = 0.0
+    scale = np.minimum(1.0, np.where(np.isfinite(w), w, panel_width) / panel_width)
     return torch.as_tensor(scale, dtype=torch.float64).reshape(nk, 1)
+
+
+def _moves(params) -> np.ndarray:
+    """(Nc, Nk) bool: whether effective point k moves control point c (a non-zero block of L_c)."""
+    nc, nk = len(params.controls), params.n_k
+    return np.abs(params.L_c.detach().cpu().numpy()).reshape(nc, 2, nk, 2).sum(axis=(1, 3)) > 1e-12
+
+
+def band_projectors(params, bands: tuple[str, ...] | list[str], mode: str) -> torch.Tensor | None:
+    """(Nk, 2, 2) float64 maps applied to each effective control point's step, or None when
+    nothing is held: the identity for points that move no panel named in ``bands``; for those
+    that do, 0 (``mode`` "held") or, for "height", the projection that leaves every band control
+    point it moves still at its placed height: its step loses the component along B^T up, B the
+    (2, 2) block of L_c from the point to the band's control point, up the band's upright 2D
+    direction (:func:`unsew.grading.grade.upright`). A band then changes its girth, as grading
+    changes it, never its height (docs/benchmarks.md, "Waistbands in phase two")."""
+    if mode == "free" or not bands:
+        return None
+    c, nk = params.controls, params.n_k
+    L = params.L_c.detach().cpu().numpy().reshape(len(c), 2, nk, 2)
+    moves = _moves(params)
+    P = np.tile(np.eye(2), (nk, 1, 1))
+    for name in bands:
+        p = c.panel_names.index(name)
+        up = upright(params.pattern.panels[name])
+        for g in c.of_panel(p):
+            for k in np.flatnonzero(moves[g]):
+                if mode == "held" or up is None:
+                    P[k] = 0.0
+                    continue
+                v = P[k].T @ (L[g, :, k, :].T @ up)  # the part of k's step that still lifts point g
+                n2 = float(v @ v)
+                if n2 > 1e-24:
+                    P[k] = P[k] - np.outer(P[k] @ v, v) / n2
+    return torch.as_tensor(P, dtype=torch.float64)
 
 
 class PhaseTwo:
@@ -182,8 +208,10 @@ class PhaseTwo:
         self.free_mat = torch.tensor(material_mask(cfg.material.fit), dtype=self.theta.dtype, device=dev)
         o = cfg.optimizer
         self.opt_k = torch.optim.Adam([self.K], lr=o.lr, betas=o.betas)
-        self.held = tuple(waistbands(s.graded)) if o.hold_bands else ()
-        self.k_scale = step_scales(self.params, o.panel_width, self.held).to(dev)
+        self.k_scale = step_scales(self.params, o.panel_width).to(dev)
+        self.bands = tuple(waistbands(s.graded))
+        P = band_projectors(self.params, self.bands, o.bands)
+        self.k_project = None if P is None else P.to(dev)
         self._scaled = bool((self.k_scale < 1).any())  # any narrow panel: checked once, not every step
         self.opt_m = torch.optim.Adam([self.theta], lr=cfg.material.lr, betas=o.betas)
         self.x_prev = torch.as_tensor(np.asarray(s.x), dtype=torch.float64, device=dev)
@@ -256,6 +284,9 @@ class PhaseTwo:
                 with torch.no_grad():  # narrow panels' points take shorter steps (step_scales)
                     short = K_before + self.k_scale * (self.K - K_before)
                     self.K.copy_(torch.where(self.k_scale < 1, short, self.K))
+            if self.k_project is not None:
+                with torch.no_grad():  # waistbands keep their height (band_projectors)
+                    self.K.copy_(K_before + torch.einsum("kij,kj->ki", self.k_project, self.K - K_before))
         if mat_on:
             if self.theta.grad is not None:
                 self.theta.grad.mul_(self.free_mat)  # entries left out of material.fit stay put

@@ -37,7 +37,7 @@ from unsew.sim.drape import DrapeSettings
 
 __all__ = [
     "GradeResult", "grade", "moved_mesh", "dress_drape", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH",
-    "REMESH_MODES", "LENGTH_MODES", "waistbands", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL", "GRADE_SETTINGS", "GradePass",
+    "REMESH_MODES", "LENGTH_MODES", "waistbands", "upright", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL", "GRADE_SETTINGS", "GradePass",
     "GradingError", "MESH_RETRIES",
 ]
 
@@ -394,7 +394,7 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
         top = {int(g) for g, h in zip(cidx, height) if h >= height.max() - TOP_BAND}
         if not any(top <= c for c in curves):
             continue
-        up = _upright(panel)
+        up = upright(panel)
         if up is None:  # a panel placed lying down has no top to hold
             continue
         rise = float(np.mean([out[g] @ up for g in top]))
@@ -409,7 +409,7 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
     return out
 
 
-def _upright(panel) -> np.ndarray | None:
+def upright(panel) -> np.ndarray | None:
     """The unit 2D direction of ``panel`` that its placement points up (world +y); None when the
     panel is placed lying down."""
     up = panel.rotation_matrix()[1, :2]
@@ -433,7 +433,7 @@ def _is_band(panel, height: np.ndarray, open_edges: set) -> bool:
 def waistbands(pattern) -> list[str]:
     """Names of the panels of ``pattern`` that are waistbands (:func:`_is_band`, judged on the
     panel's vertices as placed): a band's shape is the design's, not the wearer's, so phase two
-    holds it (``optimizer.hold_bands``)."""
+    changes only its girth (``optimizer.bands``)."""
     stitched = stitched_edges(pattern)
     open_edges = {(n, k) for n, pan in pattern.panels.items() for k in range(len(pan.edges)) if (n, k) not in stitched}
     return [n for n, pan in pattern.panels.items()
@@ -462,7 +462,7 @@ def _carry_down(pattern, controls, C0: np.ndarray, out: np.ndarray, name: str, r
         return
     p = controls.panel_names.index(name)
     panel = pattern.panels[name]
-    up = _upright(panel)
+    up = upright(panel)
     if up is None:
         return
     cidx = controls.of_panel(p)
