@@ -73,7 +73,7 @@ def test_a_result_folders_config_loads(tmp_path):
         ("seam_loss: maybe\n", "seam_loss"),
         ("mesh_spread: 0.6\n", "mesh_spread"),
         ("mesh_spread: -0.1\n", "mesh_spread"),
-        ("optimizer:\n  bands: loose\n", "optimizer.bands must be one of height, held, free"),
+        ("optimizer:\n  bands: loose\n", "optimizer.bands must be one of free, height, held"),
         ("material: auto\nmaterial_candidates: silk,tweed\n", "unknown material 'tweed'"),
         ("material:\n  candidates: [silk, tweed]\n", "unknown material 'tweed'"),
     ],
