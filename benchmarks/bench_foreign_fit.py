@@ -29,7 +29,7 @@ prints one row per case:
 Resumable: a case whose result folder exists is not fitted again (nor one whose earlier failure is
 recorded in OUT/_status/CASE.json, unless --retry); an interrupted fit resumes from its checkpoint.
 
-    python -m benchmarks foreign_fit [--cases a,b] [--out bench-out/foreign_fit] [--no-run] [--retry]
+    python -m benchmarks foreign_fit [--cases a,b] [--out bench-out/foreign_fit] [--no-run] [--retry] [--config fit.yaml]
 """
 
 from __future__ import annotations
@@ -75,8 +75,10 @@ def _last_line(text: str) -> str:
     return lines[-1] if lines else ""
 
 
-def run_case(case: Path, out: Path, *, retry: bool = False, python: str = sys.executable) -> dict:
-    """Fit one case with the CLI into ``out/<case>`` unless done; returns its status dict:
+def run_case(case: Path, out: Path, *, retry: bool = False, python: str = sys.executable,
+             config: str | None = None) -> dict:
+    """Fit one case with the CLI into ``out/<case>`` unless done (``config``: a fit.yaml passed as
+    ``--config``); returns its status dict:
     rc (exit code), exit ('ok' or the last stderr line), time_s (wall time of the command [s])."""
     res = out / case.name
     status_file = out / "_status" / f"{case.name}.json"
@@ -88,6 +90,8 @@ def run_case(case: Path, out: Path, *, retry: bool = False, python: str = sys.ex
         return json.loads(status_file.read_text())
     status_file.parent.mkdir(parents=True, exist_ok=True)
     cmd = [python, "-m", "unsew", "fit", str(case), "--out", str(res)]
+    if config is not None:
+        cmd += ["--config", str(Path(config).resolve())]
     partial = res.with_name(res.name + ".partial")
     if (partial / "checkpoint.pt").is_file():
         cmd.append("--resume")
@@ -187,6 +191,7 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default=str(ROOT / "bench-out" / "foreign_fit"), help="results folder")
     ap.add_argument("--no-run", action="store_true", help="only tabulate the results already in --out")
     ap.add_argument("--retry", action="store_true", help="fit again the cases whose earlier fit failed")
+    ap.add_argument("--config", default=None, help="a fit.yaml handed to every fit (default: the default configuration)")
     ap.add_argument("--sheet", type=Path, default=None,
                     help="also write one PNG of every fitted case's target-vs-result figure, to look at them all")
     args = ap.parse_args(argv)
@@ -199,7 +204,7 @@ def main(argv=None) -> int:
         if args.no_run and not (out / case.name / "metrics.json").is_file():
             status = json.loads(sf.read_text()) if sf.is_file() else {"exit": "not run", "time_s": None}
         else:
-            status = run_case(case, out, retry=args.retry)
+            status = run_case(case, out, retry=args.retry, config=args.config)
         rows.append(row(case, out, status))
     from tables import print_table
 
