@@ -191,3 +191,44 @@ def test_band_projectors_keep_a_waistbands_height_and_nothing_else():
     assert np.abs(dC[band_pts]).max() == 0 and np.allclose(dK[~moves_band], step.numpy()[~moves_band])
     assert band_projectors(P, bands, "free") is None
     assert band_projectors(P, waistbands(make_base_pattern("pants")), "height") is None
+
+
+def test_phase_two_in_height_mode_keeps_a_banded_bases_band_heights():
+    """optimizer.bands in a real phase two (three Adam steps from the banded base shorts_band,
+    draped on a foreign case's target, no grading): with "height" no waistband control point
+    moves up or down its panel yet the bands change; with "free" (the default) they move
+    both ways. Small mode: 5 cm mesh, 8-step drapes."""
+    import dataclasses
+    from pathlib import Path
+
+    import torch
+
+    from unsew.body.case import load_case
+    from unsew.body.sdf import BodySDF
+    from unsew.fit.material import MaterialChoice
+    from unsew.fit.optimize import PhaseTwo
+    from unsew.fit.progress import Progress
+    from unsew.fit.start import base_pattern_for, start
+    from unsew.fit.target import Target
+    from unsew.grading.grade import upright, waistbands
+    from unsew.sim.material import get_material
+
+    case = load_case(Path(__file__).resolve().parents[2] / "benchmarks/foreign/cases/shorts_short__default")
+    cfg = load_config(**dict(SMALL, edge_length=0.05, iterations=3, target_points=1000), grading=False, base="shorts_band")
+    sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
+    s = start(base_pattern_for(case, cfg), case.body, target, sdf, cfg, get_material("cotton"), progress=Progress(False))
+    moved = {}
+    for mode in ("height", "free"):
+        two = PhaseTwo(MaterialChoice(s), target, sdf,
+                       dataclasses.replace(cfg, optimizer=dataclasses.replace(cfg.optimizer, bands=mode)))
+        assert sorted(two.bands) == ["waistband_back", "waistband_front"]
+        K0 = two.K.detach().clone()
+        two.run()
+        c, pat = two.params.controls, two.params.pattern
+        with torch.no_grad():
+            dC = (two.params.L_c @ (two.K.detach() - K0).reshape(-1)).numpy().reshape(-1, 2)
+        rise = [np.abs(dC[c.of_panel(c.panel_names.index(n))] @ upright(pat.panels[n])).max() for n in two.bands]
+        any_move = [np.abs(dC[c.of_panel(c.panel_names.index(n))]).max() for n in two.bands]
+        moved[mode] = (max(rise), max(any_move))
+    assert moved["height"][0] < 1e-10 and moved["height"][1] > 1e-5, moved
+    assert moved["free"][0] > 1e-5, moved
