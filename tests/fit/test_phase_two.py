@@ -193,13 +193,12 @@ def test_band_projectors_keep_a_waistbands_height_and_nothing_else():
     assert band_projectors(P, waistbands(make_base_pattern("pants")), "height") is None
 
 
-def test_phase_two_in_height_mode_keeps_a_banded_bases_band_heights():
+def test_phase_two_in_height_mode_keeps_a_banded_bases_band_heights(tmp_path):
     """optimizer.bands in a real phase two (three Adam steps from the banded base shorts_band,
-    draped on a foreign case's target, no grading): with "height" no waistband control point
-    moves up or down its panel yet the bands change; with "free" (the default) they move
-    both ways. Small mode: 5 cm mesh, 8-step drapes."""
+    no grading, on a shorts target on the embedded default body): with "height" no waistband
+    control point moves up or down its panel yet the bands change; with "free" (the default)
+    they move both ways. Small mode: 5 cm mesh, 8-step drapes."""
     import dataclasses
-    from pathlib import Path
 
     import torch
 
@@ -209,12 +208,14 @@ def test_phase_two_in_height_mode_keeps_a_banded_bases_band_heights():
     from unsew.fit.optimize import PhaseTwo
     from unsew.fit.progress import Progress
     from unsew.fit.start import base_pattern_for, start
+    from unsew.fit.synthetic import DEFAULT_ALTERATIONS, make_truth_case
     from unsew.fit.target import Target
     from unsew.grading.grade import upright, waistbands
     from unsew.sim.material import get_material
 
-    case = load_case(Path(__file__).resolve().parents[2] / "benchmarks/foreign/cases/shorts_short__default")
     cfg = load_config(**dict(SMALL, edge_length=0.05, iterations=3, target_points=1000), grading=False, base="shorts_band")
+    case = load_case(make_truth_case(tmp_path / "shorts", garment="shorts", alteration=DEFAULT_ALTERATIONS["shorts"],
+                                     settings=cfg.drape))
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
     s = start(base_pattern_for(case, cfg), case.body, target, sdf, cfg, get_material("cotton"), progress=Progress(False))
     moved = {}

@@ -432,8 +432,8 @@ def _is_band(panel, height: np.ndarray, open_edges: set) -> bool:
 
 def waistbands(pattern) -> list[str]:
     """Names of the panels of ``pattern`` that are waistbands (:func:`_is_band`, judged on the
-    panel's vertices as placed): a band's shape is the design's, not the wearer's, so phase two
-    changes only its girth (``optimizer.bands``)."""
+    panel's vertices as placed): the panels phase two can be told to leave the height of, or
+    leave alone (``optimizer.bands``)."""
     stitched = stitched_edges(pattern)
     open_edges = {(n, k) for n, pan in pattern.panels.items() for k in range(len(pan.edges)) if (n, k) not in stitched}
     return [n for n, pan in pattern.panels.items()
