@@ -67,6 +67,8 @@ def base_spread(case_dir: Path, res: Path) -> dict:
     mid = red["fit_redressed_mm"] if red.get("phase_two_kept") else spread["result_mm"]
     result = [spread["chamfer_mm"][0], mid, spread["chamfer_mm"][1]]
     ok = [v for v in base if v is not None]
+    if not ok:
+        return {"case": case_dir.name, "base": m.get("base"), "base_mm": "every base drape failed"}
     bm, rm = sum(ok) / len(ok), sum(result) / 3
     cfb, cff = m["surface_base"]["chamfer_mm"], m["surface"]["chamfer_mm"]
     return {"case": case_dir.name, "base": m.get("base"),

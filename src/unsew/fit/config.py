@@ -62,7 +62,7 @@ class OptimizerSettings:
     warm_start: bool = True  #: start each drape from the previous iteration's (the paper); False: always from the graded drape
     friction_eps: float = 1e-2  #: slip speed below which friction is viscous in phase two's drapes (only) [m/s]
     panel_width: float = 0.1  #: a control point of a panel narrower than this (area / half perimeter) moves by lr x width / panel_width per step (waistbands: 3.6 cm, x0.36); 0: every point at lr [m]
-    bands: str = "free"  #: what phase two may change of a waistband (a panel open only along its top): "free" anything (at the panel_width factor), "height" its girth only (its points move along the band, never up or down it), "held" nothing; measured on nine banded fits, neither hold wins on both distance and pattern error (docs/benchmarks.md, "Waistbands in phase two")
+    bands: str = "free"  #: what phase two may change of a waistband (a panel open only along its top): "free" anything (at the panel_width factor), "height" its girth only (its points move along the band, never up or down it), "held" nothing (why free is the default: docs/benchmarks.md, "Waistbands in phase two")
     tol: float = 1e-3  #: stop when the loss changed by less than this fraction over `patience` iterations [-]
     patience: int = 15  #: iterations over which convergence is judged [-]
 

@@ -410,8 +410,8 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
 
 
 def upright(panel) -> np.ndarray | None:
-    """The unit 2D direction of ``panel`` that its placement points up (world +y); None when the
-    panel is placed lying down."""
+    """The unit 2D direction of ``panel`` (a (2,) float64 vector in its own frame) that its
+    placement points up (world +y); None when the panel is placed lying down."""
     up = panel.rotation_matrix()[1, :2]
     n = float(np.linalg.norm(up))
     return up / n if n >= 0.5 else None
