@@ -141,3 +141,48 @@ def test_the_report_draws_each_true_panel_over_its_match():
     assert_close(drawn.panels["left_back (true)"].vertices, belt, atol=0)
     assert truth_over(gt, est, None) is gt
     assert set(truth_over(gt, est, pattern_metrics(est, gt)).panels) >= set(est.panels)  # the real matching's form
+
+
+def _halves_patterns():
+    """A front drawn as two halves sewn at the centre (GarmentCode's way) with a belt on top, and
+    one whole front; the same back in both, sewn to the front's sides."""
+    from unsew.pattern.model import Stitch, StitchSide
+
+    half = [[0, 0], [0.5, 0], [0.5, 1], [0, 1]]
+    back = np.asarray(SQ) * [1, 0.6]
+    gt = Pattern("gt", {"rf": _poly_panel("rf", half, translation=(-0.5, 0, 0.2)),
+                        "lf": _poly_panel("lf", half, translation=(0, 0, 0.2)),
+                        "back": _poly_panel("back", back, translation=(-0.5, 0, -0.2)),
+                        "belt": _poly_panel("belt", np.asarray(SQ) * [1, 0.1], translation=(-0.5, 1, 0.2))})
+    gt.stitches = [Stitch(StitchSide("rf", 1), StitchSide("lf", 3)),  # centre front
+                   Stitch(StitchSide("lf", 1), StitchSide("back", 1)),  # side seams
+                   Stitch(StitchSide("rf", 3), StitchSide("back", 3)),
+                   Stitch(StitchSide("belt", 0), StitchSide("lf", 2))]
+    est = Pattern("est", {"front": _poly_panel("front", np.asarray(SQ) * [1, 1.1], translation=(-0.5, 0, 0.2)),
+                          "back": _poly_panel("back", back, translation=(-0.5, 0, -0.2))})
+    est.stitches = [Stitch(StitchSide("front", 1), StitchSide("back", 1)), Stitch(StitchSide("front", 3), StitchSide("back", 3))]
+    return est, gt
+
+
+def test_two_halves_sewn_at_the_centre_are_compared_as_one_panel():
+    """GarmentCode's left and right halves against one whole panel: the areas are compared summed;
+    the belt (a fifth of a half) stays missing, and the left half is not taken for the back's other
+    half though it is sewn to it and near its area (their pair lies farther from the back)."""
+    from unsew.metrics.panels import merge_halves
+
+    est, gt = _halves_patterns()
+    m = pattern_metrics(est, gt)
+    assert m["unmatched"] == {"estimated": [], "true": ["belt"]}
+    (front_gt,) = [g for g, v in m["panels"].items() if v["estimated_panel"] == "front"]
+    v = m["panels"][front_gt]
+    assert set(v["halves"].values()) == {None, ({"rf", "lf"} - {front_gt}).pop()}
+    assert_close(v["area_error_rel"], 0.1, rtol=1e-9)  # 1.1 against 0.5 + 0.5
+    assert m["panels"]["back"]["area_error_rel"] == 0.0 and "halves" not in m["panels"]["back"]
+    assert_close(m["area_error_weighted_rel"], (0.1 + 0.1) / 1.7, rtol=1e-9)  # the belt in full
+    # the other way round: halves on the estimated side
+    m2 = pattern_metrics(gt, est)
+    assert m2["unmatched"] == {"estimated": ["belt"], "true": []}
+    assert_close(m2["panels"]["front"]["area_error_rel"], 0.1 / 1.1, rtol=1e-9)
+    # without the centre seam the two halves are two panels, one of them missing
+    gt.stitches = gt.stitches[1:]
+    assert merge_halves(est, gt, match_panels(est, gt, strict=False)) == {"estimated": {}, "true": {}}

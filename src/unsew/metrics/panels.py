@@ -22,6 +22,14 @@ the estimate has and the design not) get three area errors in :func:`pattern_met
   estimated panel its whole area. It is at least ``area_error_total_rel`` and, when the panels
   match one to one, the area-weighted mean of the per-panel errors. This is the figure issue 21's
   "total panel area error" bar is judged on (docs/benchmarks.md).
+
+Halves (:func:`merge_halves`): GarmentCode draws a torso as a left and a right half sewn at the
+centre and a sleeve as a front and a back half, where unsew's bases have one panel. After the one
+to one correspondence, a panel left without a counterpart joins a matched panel of its own
+pattern as the other half of one piece when the two are sewn together, their areas differ by at
+most ``HALVES_AREA_RATIO`` and the pair's placed area centroid lies nearer the counterpart's than
+the matched panel's alone does. The areas of a pair are then compared as one (a waistband, much
+smaller than the panel it is sewn to, stays a missing panel).
 """
 
 from __future__ import annotations
@@ -40,6 +48,7 @@ __all__ = [
     "panel_centroid2d",
     "panel_centroid3d",
     "match_panels",
+    "merge_halves",
     "area_error",
     "AreaError",
     "panel_vertex_l2_cm",
@@ -139,6 +148,54 @@ def match_panels(pattern_est, pattern_gt, *, placement_weight: float = 2.0, stri
     return match
 
 
+#: Largest ratio of the areas of two panels sewn together that are taken for the halves of one piece.
+HALVES_AREA_RATIO = 1.5
+
+
+def _sewn_to(pattern) -> dict[str, set[str]]:
+    out: dict[str, set[str]] = {n: set() for n in pattern.panels}
+    for st in pattern.stitches:
+        a, b = st.a.panel, st.b.panel
+        if a != b and a in out and b in out:
+            out[a].add(b)
+            out[b].add(a)
+    return out
+
+
+def merge_halves(pattern_est, pattern_gt, correspondence: dict[str, str]) -> dict[str, dict[str, str]]:
+    """The panels left out of ``correspondence`` that are the other half of a matched panel of
+    their own pattern (module docstring).
+
+    pattern_est, pattern_gt: :class:`unsew.pattern.model.Pattern`; correspondence: estimated name
+    -> true name (one to one).
+    Returns ``{"estimated": {half: matched estimated panel}, "true": {half: matched true panel}}``;
+    a matched panel takes at most one half.
+    """
+    out: dict[str, dict[str, str]] = {"estimated": {}, "true": {}}
+    back = {g: e for e, g in correspondence.items()}
+    for side, pat, other, pairs in (("estimated", pattern_est, pattern_gt, correspondence),
+                                    ("true", pattern_gt, pattern_est, back)):
+        names = list(pat.panel_order or pat.panels)
+        sewn = _sewn_to(pat)
+        area = {n: panel_area(pat.panels[n]) for n in names}
+        cen = {n: panel_centroid3d(pat.panels[n]) for n in names}
+        taken: set[str] = set()
+        for u in (n for n in names if n not in pairs):
+            best, best_d = None, np.inf
+            for v in sewn[u]:
+                if v not in pairs or v in taken or max(area[u], area[v]) > HALVES_AREA_RATIO * min(area[u], area[v]):
+                    continue
+                c_other = panel_centroid3d(other.panels[pairs[v]])
+                c_pair = (area[u] * cen[u] + area[v] * cen[v]) / (area[u] + area[v])
+                d = float(np.linalg.norm(c_pair - c_other))
+                if d < float(np.linalg.norm(cen[v] - c_other)) and d < best_d:
+                    best, best_d = v, d
+            if best is not None:
+                out[side][u] = best
+                taken.add(best)
+    return out
+
+
 @dataclass
 class AreaError:
     """Relative panel area errors |A_est - A_gt| / A_gt (dimensionless), keyed by true panel name,
@@ -203,7 +260,8 @@ def pattern_metrics(pattern_est, pattern_gt, *, correspondence: dict[str, str] |
     correspondence: estimated name -> true name; default :func:`match_panels` (non-strict unless
         ``strict``: panels left without a counterpart are reported, not an error).
     Returns: ``panels`` (per matched true panel: estimated_panel, turning_distance [rad],
-    area_error_rel [-], area_est_m2, area_gt_m2, vertex_l2_cm), ``unmatched``
+    area_error_rel [-], area_est_m2, area_gt_m2, vertex_l2_cm; a pair of halves (:func:`merge_halves`)
+    is compared by its summed areas and named under ``halves``), ``unmatched``
     (``{"estimated": [...], "true": [...]}`` panel names) and ``unmatched_area_m2`` (their areas,
     ``{"estimated": {name: m^2}, "true": {...}}``), the means over matched panels
     ``turning_distance_mean`` [rad], ``area_error_rel_mean`` [-] and ``vertex_l2_cm_mean`` [cm]
@@ -222,19 +280,26 @@ def pattern_metrics(pattern_est, pattern_gt, *, correspondence: dict[str, str] |
     for n, a in area_g.items():
         if a <= 0:
             raise PatternError(f"true panel {n!r} has zero area; fix the reference pattern")
+    halves = merge_halves(pattern_est, pattern_gt, correspondence)
+    half_e = {v: u for u, v in halves["estimated"].items()}
+    half_g = {v: u for u, v in halves["true"].items()}
     per = {}
     for ne, ng in correspondence.items():
         pe, pg = pattern_est.panels[ne], pattern_gt.panels[ng]
+        a_e = area_e[ne] + (area_e[half_e[ne]] if ne in half_e else 0.0)
+        a_g = area_g[ng] + (area_g[half_g[ng]] if ng in half_g else 0.0)
         per[ng] = {
             "estimated_panel": ne,
             "turning_distance": panel_turning_distance(pe, pg),
-            "area_error_rel": abs(area_e[ne] - area_g[ng]) / area_g[ng],
-            "area_est_m2": area_e[ne],
-            "area_gt_m2": area_g[ng],
+            "area_error_rel": abs(a_e - a_g) / a_g,
+            "area_est_m2": a_e,
+            "area_gt_m2": a_g,
             "vertex_l2_cm": panel_vertex_l2_cm(pe, pg),
         }
-    un_e = [n for n in est_names if n not in correspondence]
-    un_g = [n for n in gt_names if n not in correspondence.values()]
+        if ne in half_e or ng in half_g:
+            per[ng]["halves"] = {"estimated": half_e.get(ne), "true": half_g.get(ng)}
+    un_e = [n for n in est_names if n not in correspondence and n not in halves["estimated"]]
+    un_g = [n for n in gt_names if n not in correspondence.values() and n not in halves["true"]]
     tot_e, tot_g = sum(area_e.values()), sum(area_g.values())
     moved = sum(abs(v["area_est_m2"] - v["area_gt_m2"]) for v in per.values())
     moved += sum(area_g[n] for n in un_g) + sum(area_e[n] for n in un_e)
