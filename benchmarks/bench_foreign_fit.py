@@ -29,7 +29,7 @@ prints one row per case:
 Resumable: a case whose result folder exists is not fitted again (nor one whose earlier failure is
 recorded in OUT/_status/CASE.json, unless --retry); an interrupted fit resumes from its checkpoint.
 
-    python -m benchmarks foreign_fit [--cases a,b] [--out bench-out/foreign_fit] [--no-run] [--retry] [--config fit.yaml]
+    python -m benchmarks foreign_fit [--cases a,b] [--out bench-out/foreign_fit] [--no-run] [--retry] [--config fit.yaml] [--recompute]
 """
 
 from __future__ import annotations
@@ -112,12 +112,12 @@ def run_case(case: Path, out: Path, *, retry: bool = False, python: str = sys.ex
     return status
 
 
-def _pattern_errors(m: dict, key: str, est_path: Path, gt_path: Path) -> dict | None:
+def _pattern_errors(m: dict, key: str, est_path: Path, gt_path: Path, *, recompute: bool = False) -> dict | None:
     """The pattern metrics of one pattern: metrics.json's ``key`` when it has the area-weighted
-    error, else :func:`unsew.metrics.panels.pattern_metrics` of ``est_path`` (if saved) against
-    ``gt_path``; None when neither is there."""
+    error (and not ``recompute``), else :func:`unsew.metrics.panels.pattern_metrics` of
+    ``est_path`` (if saved) against ``gt_path``; None when neither is there."""
     p = m.get(key) or {}
-    if "area_error_weighted_rel" in p:
+    if "area_error_weighted_rel" in p and not (recompute and est_path.is_file()):
         return p
     if not est_path.is_file():
         return None
@@ -134,8 +134,9 @@ def _unmatched(p: dict) -> str:
     return "; ".join(x for x in parts if x) or "-"
 
 
-def row(case: Path, out: Path, status: dict) -> dict:
-    """The table row of one case from its meta.json, status and (if any) result folder."""
+def row(case: Path, out: Path, status: dict, *, recompute: bool = False) -> dict:
+    """The table row of one case from its meta.json, status and (if any) result folder
+    (``recompute``: the pattern metrics computed anew from the saved patterns, by today's code)."""
     meta = json.loads((case / "meta.json").read_text())
     floor = (meta.get("floor") or {}).get("chamfer_mm")
     r = {"case": case.name, "garment": meta.get("garment"),
@@ -151,7 +152,7 @@ def row(case: Path, out: Path, status: dict) -> dict:
     for key, col in (("surface_base", "cf_base_mm"), ("surface_graded", "cf_graded_mm"), ("surface", "cf_final_mm")):
         r[col] = (m.get(key) or {}).get("chamfer_mm")
     for tag, key, fname in PATTERNS:
-        p = _pattern_errors(m, key, res / fname, case / "pattern_gt.json")
+        p = _pattern_errors(m, key, res / fname, case / "pattern_gt.json", recompute=recompute)
         if p is None:
             continue
         r[f"area_{tag}_pct"] = 100.0 * p["area_error_weighted_rel"]
@@ -191,6 +192,8 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default=str(ROOT / "bench-out" / "foreign_fit"), help="results folder")
     ap.add_argument("--no-run", action="store_true", help="only tabulate the results already in --out")
     ap.add_argument("--retry", action="store_true", help="fit again the cases whose earlier fit failed")
+    ap.add_argument("--recompute", action="store_true",
+                    help="compute the pattern metrics anew from each result's saved patterns instead of reading metrics.json")
     ap.add_argument("--config", default=None, help="a fit.yaml handed to every fit (default: the default configuration)")
     ap.add_argument("--sheet", type=Path, default=None,
                     help="also write one PNG of every fitted case's target-vs-result figure, to look at them all")
@@ -205,7 +208,7 @@ def main(argv=None) -> int:
             status = json.loads(sf.read_text()) if sf.is_file() else {"exit": "not run", "time_s": None}
         else:
             status = run_case(case, out, retry=args.retry, config=args.config)
-        rows.append(row(case, out, status))
+        rows.append(row(case, out, status, recompute=args.recompute))
     from tables import print_table
 
     print_table(rows, COLUMNS, title=f"Foreign benchmark: default fit per case (results in {out})", digits=1)

@@ -102,6 +102,14 @@ CASES = {
     "skirt_flared_midi__default": ("skirt_flared_midi", "anny_default"),
     "shorts_short__tall_thin": ("shorts_short", "anny_tall_thin"),
     "tee_fitted_short__leg_forward": ("tee_fitted_short", "anny_leg_forward"),
+    # GarmentCode's own samples (shared/foreign/patterns, MIT), placed by today's placement,
+    # which reads their layout (0ad8915): session 17
+    "shirt_gc__default": ("gc:shirt_mean_specification.json", "anny_default"),
+    "hoody_gc__default": ("gc:hoody_mean_specification.json", "anny_default"),
+    "shirt_gc__male_heavy": ("gc:shirt_mean_specification.json", "anny_male_heavy"),
+    "dress_pencil_gc__tall_thin": ("gc:dress_pencil_specification.json", "anny_tall_thin"),
+    "shirt_gc__tpose": ("gc:shirt_mean_specification.json", "anny_tpose"),
+    "dress_pencil_gc__male_heavy": ("gc:dress_pencil_specification.json", "anny_male_heavy"),
 }
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").
@@ -134,7 +142,7 @@ def _pattern(design, body):
 
     if design.startswith("gc:"):
         return json.loads((FOREIGN_PATTERNS / design[3:]).read_text()), {
-            "dress_pencil": "dress"}[design[3:].rsplit("_", 1)[0]]
+            "dress_pencil": "dress", "shirt_mean": "tshirt", "hoody_mean": "tshirt"}[design[3:].rsplit("_", 1)[0]]
     typ, fn = designs.DESIGNS[design]
     m = measure_body(body).as_dict()
     J = {n: p for n, p in zip(body.skeleton.names, body.skeleton.positions)}
