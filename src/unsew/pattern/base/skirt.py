@@ -22,7 +22,7 @@ from unsew.pattern.base._frame import body_frame
 from unsew.pattern.curves import edge_length, sample_edge
 from unsew.pattern.model import Curvature, Pattern
 
-__all__ = ["make_skirt", "make_skirt_band", "make_skirt_circle", "sector_panel"]
+__all__ = ["make_skirt", "make_skirt_band", "make_skirt_circle"]
 
 WAIST_EASE = 0.02  #: [m]
 HIP_EASE = 0.06  #: [m]
@@ -32,10 +32,7 @@ LENGTH_PER_LEG = 0.75
 EXTRA_FLARE = 0.35
 
 
-def sector_panel(name: str, r_w: float, r_h: float, half_angle: float):
-    """A skirt panel: the sector of an annulus of radii ``r_w`` (waist) and ``r_h`` (hem) [m]
-    spanning ``2 * half_angle`` [rad], centred on x = 0 with the circles' centre above it
-    (edges 0 hem, 1 right side, 2 waist, 3 left side)."""
+def _panel(name: str, r_w: float, r_h: float, half_angle: float):
     s, c = np.sin(half_angle), np.cos(half_angle)
     # Circle centre at (0, r_h): hem corners at radius r_h, waist corners at r_w, below it.
     cy = r_h
@@ -61,8 +58,8 @@ def _skirt(m: Measurements, name: str, *, band: bool, theta: float | None = None
         theta = (hip - top) / (drop - top_drop) + EXTRA_FLARE  # unrolled angle of the whole cone [rad]
     r_w = top / theta
     r_h = r_w + LENGTH_PER_LEG * m.leg_length - top_drop
-    front = sector_panel("front", r_w, r_h, theta / 4)
-    back = sector_panel("back", r_w, r_h, theta / 4)
+    front = _panel("front", r_w, r_h, theta / 4)
+    back = _panel("back", r_w, r_h, theta / 4)
     local_waist = (0.0, r_h - r_w)  # centre of the waist arc (its lowest point) at the waist
     if band:
         # the arc's mean height at the band's lower edge: wrapped round the body the arc is level,
