@@ -3,7 +3,8 @@
 warm-started from the previous iteration's result.
 
 Loss (eqs. 5-9): L = L_CF(X, T) [curvature-weighted, eq. 7] + lambda_open L_CF(X_open, T_open)
-+ lambda_mat relu(1e-6 - Gamma) + lambda_seam L_seam(U(K)) (+ lambda_prior, off by default).
++ lambda_mat relu(1e-6 - Gamma) + lambda_seam L_seam(U(K)) (+ lambda_prior and lambda_area, off by
+default).
 
 Material parameterisation (a deviation from the paper, which does not say how Gamma is scaled):
 the four stiffness entries H00, H11, H22, k are optimised as log-factors on the starting
@@ -32,6 +33,7 @@ from unsew.fit.config import FitConfig, material_mask
 from unsew.fit.material import MaterialChoice
 from unsew.fit.target import Target
 from unsew.grading.grade import upright, waistbands
+from unsew.losses.area import loss_area
 from unsew.losses.chamfer import loss_chamfer
 from unsew.losses.contours import loss_open_contours, open_contours
 from unsew.losses.curvature import curvature_weights
@@ -50,13 +52,13 @@ from unsew.tolerances import MIN_TRIANGLE_QUALITY
 __all__ = ["PhaseTwo", "step_scales", "band_projectors", "LossTerms", "Iterate", "Iteration", "material_params", "LOSS_TERMS"]
 
 #: Names of the loss terms, in the order of :class:`LossTerms` (and of ``FitResult.history``).
-LOSS_TERMS = ("total", "chamfer", "open", "seam", "material", "prior")
+LOSS_TERMS = ("total", "chamfer", "open", "seam", "material", "prior", "area")
 
 
 @dataclass
 class LossTerms:
     """The loss of one drape, term by term (0-d torch tensors): ``total`` is the weighted sum
-    of ``chamfer`` [m^2], ``open`` [m^2], ``seam`` [m^2], ``material`` and ``prior`` [m^2]."""
+    of ``chamfer`` [m^2], ``open`` [m^2], ``seam`` [m^2], ``material``, ``prior`` [m^2] and ``area`` [-]."""
 
     total: torch.Tensor
     chamfer: torch.Tensor
@@ -64,6 +66,7 @@ class LossTerms:
     seam: torch.Tensor
     material: torch.Tensor
     prior: torch.Tensor
+    area: torch.Tensor
 
     def floats(self) -> dict[str, float]:
         """The terms as plain floats, keyed by :data:`LOSS_TERMS`."""
@@ -230,6 +233,10 @@ class PhaseTwo:
         self.T = torch.as_tensor(tv, dtype=torch.float64, device=dev)  # (M, 3) [m]: the open contours' target
         self.T_sub = self.T[torch.as_tensor(sub, device=dev)]
         self.w_sub = torch.as_tensor(np.asarray(w, dtype=np.float64)[sub], dtype=torch.float64, device=dev)
+        tf = np.asarray(target.faces)
+        e1, e2 = tv[tf[:, 1]] - tv[tf[:, 0]], tv[tf[:, 2]] - tv[tf[:, 0]]
+        self.area_target = 0.5 * float(np.linalg.norm(np.cross(e1, e2), axis=1).sum())  # A_T [m^2]
+        self.faces_uv = torch.as_tensor(np.asarray(self.mesh.faces_uv), dtype=torch.int64, device=dev)
         self.contours_t = target.contours
 
     def material_on(self, it: int | None = None) -> bool:
@@ -251,8 +258,9 @@ class PhaseTwo:
         l_seam = loss_seam(uv, pairs=self.seam_pairs) if w.seam > 0 else zero_uv
         l_mat = loss_material(gamma)
         l_prior = loss_prior(uv, self.uv_start) if w.prior > 0 else zero_uv
-        total = l_cf + w.open * l_open + w.seam * l_seam + w.material * l_mat + w.prior * l_prior
-        return LossTerms(total, l_cf, l_open, l_seam, l_mat, l_prior), gamma, x
+        l_area = loss_area(uv, self.faces_uv, self.area_target) if w.area > 0 else zero_uv
+        total = l_cf + w.open * l_open + w.seam * l_seam + w.material * l_mat + w.prior * l_prior + w.area * l_area
+        return LossTerms(total, l_cf, l_open, l_seam, l_mat, l_prior, l_area), gamma, x
 
     def _set_learning_rates(self) -> None:
         o = self.cfg.optimizer
@@ -349,7 +357,8 @@ class PhaseTwo:
         self.opt_k.load_state_dict(state["opt_k"])
         self.opt_m.load_state_dict(state["opt_m"])
         self.x_prev = state["x_prev"].to(dev)
-        self.history = {k: list(v) for k, v in state["history"].items()}
+        h = state["history"]  # a checkpoint written before a term existed lacks it: zeros
+        self.history = {k: list(h.get(k, [0.0] * len(h["total"]))) for k in LOSS_TERMS}
         best = dict(state["best"])  # a checkpoint is read onto the CPU (checkpoint.py): tensors back to dev
         self.best = Iterate(**{k: v.to(dev) if torch.is_tensor(v) else v for k, v in best.items()})
         self.iteration = int(state["iteration"])
