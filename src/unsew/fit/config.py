@@ -76,7 +76,7 @@ class LossWeights:
     seam: float = 1.0  #: seam-length loss, eq. 8 [-] (paper: 0.01; see the module docstring)
     material: float = 0.01  #: material range penalty [-]
     prior: float = 0.0  #: pull towards the graded pattern: mean squared 2D rest-vertex move [m^2] (0: the paper's loss) [-]
-    area: float = 0.005  #: pull of the pattern's total area towards the target's surface area, (A / A_T - 1)^2 (unsew.losses.area; 0: the paper's loss; why 0.005: docs/benchmarks.md, "The target's area") [m^2]
+    area: float = 0.0  #: pull of the pattern's total area towards the target's surface area, (A / A_T - 1)^2 (unsew.losses.area; 0: the paper's loss; measured at 0.005 and left off: docs/benchmarks.md, "The target's area") [m^2]
     target_points: int = 8000  #: target vertices kept for the Chamfer (random subset, seeded) [-]
 
 

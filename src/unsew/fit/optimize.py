@@ -3,8 +3,8 @@
 warm-started from the previous iteration's result.
 
 Loss (eqs. 5-9): L = L_CF(X, T) [curvature-weighted, eq. 7] + lambda_open L_CF(X_open, T_open)
-+ lambda_mat relu(1e-6 - Gamma) + lambda_seam L_seam(U(K)) + lambda_area L_area(U(K)) (not in the
-paper: the pattern's total area against the target's surface area) (+ lambda_prior, off by default).
++ lambda_mat relu(1e-6 - Gamma) + lambda_seam L_seam(U(K)) (+ lambda_prior and lambda_area, the
+pattern's total area against the target's surface area, both off by default).
 
 Material parameterisation (a deviation from the paper, which does not say how Gamma is scaled):
 the four stiffness entries H00, H11, H22, k are optimised as log-factors on the starting

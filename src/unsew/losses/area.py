@@ -1,5 +1,5 @@
 """Pull of the pattern's total area towards the target's surface area (not in the paper;
-``loss.area``, 0.005 by default)::
+``loss.area``, off by default)::
 
     L_area(U) = (A(U) / A_T - 1)^2   [-]
 
