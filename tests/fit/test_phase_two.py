@@ -193,14 +193,12 @@ def test_band_projectors_keep_a_waistbands_height_and_nothing_else():
     assert band_projectors(P, waistbands(make_base_pattern("pants")), "height") is None
 
 
-def test_phase_two_in_height_mode_keeps_a_banded_bases_band_heights(tmp_path):
-    """optimizer.bands in a real phase two (three Adam steps from the banded base shorts_band,
-    no grading, on a shorts target on the embedded default body): with "height" no waistband
-    control point moves up or down its panel yet the bands change; with "free" (the default)
-    they move both ways. Small mode: 5 cm mesh, 8-step drapes."""
+def _shorts_phase_two(tmp_path, base: str):
+    """A phase two's start in small mode (5 cm mesh, 8-step drapes, three iterations, no grading)
+    from the library base ``base`` on a shorts target drawn from altered shorts on the embedded
+    default body; returns ``build(**groups)``, which makes a PhaseTwo from that start with the
+    config's groups changed (``build(loss={"area": 1.0})``)."""
     import dataclasses
-
-    import torch
 
     from unsew.body.case import load_case
     from unsew.body.sdf import BodySDF
@@ -210,18 +208,35 @@ def test_phase_two_in_height_mode_keeps_a_banded_bases_band_heights(tmp_path):
     from unsew.fit.start import base_pattern_for, start
     from unsew.fit.synthetic import DEFAULT_ALTERATIONS, make_truth_case
     from unsew.fit.target import Target
-    from unsew.grading.grade import upright, waistbands
     from unsew.sim.material import get_material
 
-    cfg = load_config(**dict(SMALL, edge_length=0.05, iterations=3, target_points=1000), grading=False, base="shorts_band")
+    cfg = load_config(**dict(SMALL, edge_length=0.05, iterations=3, target_points=1000), grading=False, base=base)
     case = load_case(make_truth_case(tmp_path / "shorts", garment="shorts", alteration=DEFAULT_ALTERATIONS["shorts"],
                                      settings=cfg.drape))
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
     s = start(base_pattern_for(case, cfg), case.body, target, sdf, cfg, get_material("cotton"), progress=Progress(False))
+
+    def build(**groups):
+        """A PhaseTwo from this start, ``groups``: config group -> field changes."""
+        c = dataclasses.replace(cfg, **{g: dataclasses.replace(getattr(cfg, g), **kw) for g, kw in groups.items()})
+        return PhaseTwo(MaterialChoice(s), target, sdf, c)
+
+    return build
+
+
+def test_phase_two_in_height_mode_keeps_a_banded_bases_band_heights(tmp_path):
+    """optimizer.bands in a real phase two (three Adam steps from the banded base shorts_band,
+    no grading, on a shorts target on the embedded default body): with "height" no waistband
+    control point moves up or down its panel yet the bands change; with "free" (the default)
+    they move both ways. Small mode: 5 cm mesh, 8-step drapes."""
+    import torch
+
+    from unsew.grading.grade import upright
+
+    build = _shorts_phase_two(tmp_path, "shorts_band")
     moved = {}
     for mode in ("height", "free"):
-        two = PhaseTwo(MaterialChoice(s), target, sdf,
-                       dataclasses.replace(cfg, optimizer=dataclasses.replace(cfg.optimizer, bands=mode)))
+        two = build(optimizer={"bands": mode})
         assert sorted(two.bands) == ["waistband_back", "waistband_front"]
         K0 = two.K.detach().clone()
         two.run()
@@ -240,29 +255,14 @@ def test_the_area_term_pulls_the_patterns_area_towards_the_targets(tmp_path):
     target drawn from altered shorts, embedded default body): the gap between the pattern's rest
     area and the target's surface area closes faster with the term than without it, and the
     term is recorded. Small mode: 5 cm mesh, 8-step drapes."""
-    import dataclasses
-
     import torch
 
-    from unsew.body.case import load_case
-    from unsew.body.sdf import BodySDF
-    from unsew.fit.material import MaterialChoice
-    from unsew.fit.optimize import PhaseTwo
-    from unsew.fit.progress import Progress
-    from unsew.fit.start import base_pattern_for, start
-    from unsew.fit.synthetic import DEFAULT_ALTERATIONS, make_truth_case
-    from unsew.fit.target import Target
     from unsew.losses.area import rest_area
-    from unsew.sim.material import get_material
 
-    cfg = load_config(**dict(SMALL, edge_length=0.05, iterations=3, target_points=1000), grading=False, base="shorts")
-    case = load_case(make_truth_case(tmp_path / "shorts", garment="shorts", alteration=DEFAULT_ALTERATIONS["shorts"],
-                                     settings=cfg.drape))
-    sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
-    s = start(base_pattern_for(case, cfg), case.body, target, sdf, cfg, get_material("cotton"), progress=Progress(False))
+    build = _shorts_phase_two(tmp_path, "shorts")
     gap = {}
     for w in (0.0, 1.0):
-        two = PhaseTwo(MaterialChoice(s), target, sdf, dataclasses.replace(cfg, loss=dataclasses.replace(cfg.loss, area=w)))
+        two = build(loss={"area": w})
         area = lambda: float(rest_area(two.params.uv(two.K), two.faces_uv)) / two.area_target - 1  # noqa: E731
         with torch.no_grad():
             g0 = area()
