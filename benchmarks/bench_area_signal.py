@@ -26,11 +26,11 @@ COLUMNS = ["case", "target_area_m2", "true_area_m2", "target_vs_true_pct", "grad
 
 def _mesh_area(path: Path) -> float:
     """Summed triangle area [m^2] of an OBJ."""
+    from unsew.geometry.repair import triangle_areas
     from unsew.io.mesh import read_mesh
 
     v, f = read_mesh(path)[:2]
-    v, f = np.asarray(v, dtype=np.float64), np.asarray(f)
-    return 0.5 * float(np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1).sum())
+    return float(triangle_areas(v, f).sum())
 
 
 def _pattern_area(path: Path) -> float:

@@ -286,7 +286,8 @@ def _check(cfg: FitConfig, names: dict) -> None:
         raise InputError(f"{say('time_limit')} must be >= 0 s (0: no limit), got {cfg.time_limit}")
     if not 0 <= cfg.checks.mesh_spread < 0.5:
         raise InputError(f"{say('checks.mesh_spread')} must be in [0, 0.5), got {cfg.checks.mesh_spread}")
-    for place in ("material.refine", "material.regrade", "material.warm_steps", "drape.sew_steps", "drape.settle_steps"):
+    for place in ("material.refine", "material.regrade", "material.warm_steps", "drape.sew_steps", "drape.settle_steps",
+                  "loss.open", "loss.seam", "loss.material", "loss.prior", "loss.area"):
         g, n = place.split(".")
         if getattr(getattr(cfg, g), n) < 0:
             raise InputError(f"{say(place)} must be >= 0, got {getattr(getattr(cfg, g), n)}")

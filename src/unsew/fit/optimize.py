@@ -32,6 +32,7 @@ from unsew.errors import InputError
 from unsew.fit.config import FitConfig, material_mask
 from unsew.fit.material import MaterialChoice
 from unsew.fit.target import Target
+from unsew.geometry.repair import triangle_areas
 from unsew.grading.grade import upright, waistbands
 from unsew.losses.area import loss_area
 from unsew.losses.chamfer import loss_chamfer
@@ -233,9 +234,7 @@ class PhaseTwo:
         self.T = torch.as_tensor(tv, dtype=torch.float64, device=dev)  # (M, 3) [m]: the open contours' target
         self.T_sub = self.T[torch.as_tensor(sub, device=dev)]
         self.w_sub = torch.as_tensor(np.asarray(w, dtype=np.float64)[sub], dtype=torch.float64, device=dev)
-        tf = np.asarray(target.faces)
-        e1, e2 = tv[tf[:, 1]] - tv[tf[:, 0]], tv[tf[:, 2]] - tv[tf[:, 0]]
-        self.area_target = 0.5 * float(np.linalg.norm(np.cross(e1, e2), axis=1).sum())  # A_T [m^2]
+        self.area_target = float(triangle_areas(tv, target.faces).sum())  # A_T [m^2]
         self.faces_uv = torch.as_tensor(np.asarray(self.mesh.faces_uv), dtype=torch.int64, device=dev)
         self.contours_t = target.contours
 

@@ -35,7 +35,7 @@ from unsew.errors import InputError
 from unsew.geometry import topology
 from unsew.geometry.distance import MeshQuery
 
-__all__ = ["MeshRepair", "repair_garment", "MERGE_TOL", "DEGENERATE_REL", "SMALL_PIECE", "SEPARATE_GAP"]
+__all__ = ["MeshRepair", "repair_garment", "MERGE_TOL", "DEGENERATE_REL", "SMALL_PIECE", "SEPARATE_GAP", "triangle_areas"]
 
 #: vertices closer than this are one vertex [m]
 MERGE_TOL = 1e-7
@@ -78,8 +78,10 @@ def _where(p: np.ndarray) -> str:
     return "(" + ", ".join(f"{c:.3f}" for c in p) + ") m"
 
 
-def _areas(v: np.ndarray, f: np.ndarray) -> np.ndarray:
-    t = v[f]
+def triangle_areas(v: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """Area [m^2] of every triangle, (F,) float64, of vertices ``v`` (V, 3) [m] and faces ``f``
+    (F, 3) int."""
+    t = np.asarray(v, dtype=np.float64)[np.asarray(f)]
     return 0.5 * np.linalg.norm(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]), axis=1)
 
 
@@ -121,7 +123,7 @@ def repair_garment(verts, faces, *, what: str = "target") -> tuple[np.ndarray, n
     rep.unreferenced_vertices = int((~used0).sum())
     f, rep.merged_vertices = _merge_vertices(v, f)
     f = _drop_bad_faces(v, f, rep, what)
-    area = _areas(v, f)
+    area = triangle_areas(v, f)
     f, area = _cut_fins(v, f, area, rep, what)
     f, rep.components = _drop_debris(v, f, area, rep, what)
 
@@ -154,7 +156,7 @@ def _check_arrays(verts, faces, what: str) -> tuple[np.ndarray, np.ndarray]:
 def _drop_bad_faces(v: np.ndarray, f: np.ndarray, rep: MeshRepair, what: str) -> np.ndarray:
     """Faces without degenerate (repeated vertex or area below DEGENERATE_REL of the median) and
     duplicate triangles, counted in ``rep``; InputError when none is left."""
-    area = _areas(v, f)
+    area = triangle_areas(v, f)
     med = float(np.median(area)) if len(area) else 0.0
     bad = (f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0]) | (area <= DEGENERATE_REL * med)
     rep.degenerate_faces = int(bad.sum())
@@ -228,7 +230,7 @@ def _drop_debris(v, f, area, rep: MeshRepair, what: str) -> tuple[np.ndarray, in
 
 def _check_separate(v, f, lab, n, what) -> None:
     """Raise InputError when a piece lies farther than SEPARATE_GAP from every other piece."""
-    area = _areas(v, f)
+    area = triangle_areas(v, f)
     a_comp = np.bincount(lab, weights=area, minlength=n)
     for c in range(n):
         mine = f[lab == c]

@@ -4,11 +4,10 @@
     L_area(U) = (A(U) / A_T - 1)^2   [-]
 
 A(U) [m^2] is the summed area of the rest triangles of every panel (U, (Nu, 2) [m]), A_T [m^2]
-the summed area of the target's triangles. Cloth barely stretches: a garment's surface area is
-its pattern's area within a few per cent (the foreign benchmark's newton drapes: 0.0-1.6 %,
-unsew's own drapes 0.0-0.6 %; docs/benchmarks.md, "The target's area"), while the Chamfer
-distance cannot see area hidden in folds. Only for a target that is one whole garment surface: a
-scan with holes or a doubled layer gives a wrong A_T.
+the summed area of the target's triangles. Cloth barely stretches, so a garment's surface area
+is close to its pattern's area, while the Chamfer distance cannot see area hidden in folds (how
+close, and what the term does to the fit: docs/benchmarks.md, "The target's area"). Only for a
+target that is one whole garment surface: a scan with holes or a doubled layer gives a wrong A_T.
 """
 
 from __future__ import annotations

@@ -23,6 +23,7 @@ import numpy as np
 
 from unsew.errors import InputError
 from unsew.geometry.distance import MeshQuery
+from unsew.geometry.repair import triangle_areas
 
 __all__ = [
     "sample_surface",
@@ -46,7 +47,7 @@ def _check(verts, faces, what):
     f = f.astype(np.int64)
     if f.min() < 0 or f.max() >= len(v):
         raise InputError(f"{what} has face indices outside 0..{len(v) - 1}; fix the mesh")
-    area = 0.5 * np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1)
+    area = triangle_areas(v, f)
     if not area.sum() > 0:
         raise InputError(f"{what} has zero surface area; give a non-degenerate mesh")
     return v, f, area
