@@ -272,3 +272,57 @@ def test_the_area_term_pulls_the_patterns_area_towards_the_targets(tmp_path):
         assert (max(two.history["area"]) > 0) == (w > 0)
     assert gap[0.0][0] > 0.01, gap  # the base is off the target's area to begin with
     assert gap[1.0][1] < 0.5 * gap[0.0][1] and gap[1.0][1] < gap[1.0][0], gap  # measured: 0.089 -> 0.021
+
+
+@pytest.mark.parametrize("name", ["pants_band", "tshirt", "skirt_circle"])
+def test_area_hold_scales_every_panel_onto_the_start_area(name):
+    """area: target: after a random step, AreaHold brings the total rest area back to the
+    start's (1e-9) by one similarity per panel: every panel's rest triangles keep the shapes the
+    step gave them (edge length ratios), only their size changes, by one factor for all panels,
+    and the symmetric parameters stay symmetric (the rebuilt control points are those of K)."""
+    import torch
+
+    from unsew.fit.optimize import AreaHold
+    from unsew.losses.area import rest_area
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.base import make_base_pattern
+    from unsew.pattern.params import PatternParams
+
+    p = make_base_pattern(name)
+    mesh = mesh_pattern(p, edge_length=0.05)
+    P = PatternParams.build(p, mesh)
+    fuv = torch.as_tensor(np.asarray(mesh.faces_uv), dtype=torch.int64)
+    hold = AreaHold(P, fuv, P.K0)
+    K1 = P.K0 + torch.as_tensor(np.random.default_rng(1).normal(size=(P.n_k, 2)) * 4e-3)
+    a1 = float(rest_area(P.uv(K1), fuv))
+    assert abs(a1 / hold.area0 - 1) > 1e-3  # the step did change the area
+    K2 = hold(K1)
+    assert abs(float(rest_area(P.uv(K2), fuv)) / hold.area0 - 1) < 1e-9
+    u1, u2 = P.uv(K1).numpy(), P.uv(K2).numpy()
+    f = np.asarray(mesh.faces_uv)
+    e1 = np.linalg.norm(u1[f[:, 1]] - u1[f[:, 0]], axis=1)
+    e2 = np.linalg.norm(u2[f[:, 1]] - u2[f[:, 0]], axis=1)
+    s = e2 / e1
+    np.testing.assert_allclose(s, np.sqrt(hold.area0 / a1), rtol=1e-7)  # one factor everywhere
+
+
+def test_scale_to_area_keeps_seams_and_placement():
+    """unsew.grading.area.scale_to_area: the copy's total area is the one asked for, every edge
+    (curves included) is s times as long, so sewn edges still match, and each panel's area
+    centroid keeps its 3D place; a factor beyond MAX_AREA_SCALE is clipped."""
+    from unsew.grading.area import MAX_AREA_SCALE, pattern_area, scale_to_area
+    from unsew.metrics.panels import panel_centroid3d
+    from unsew.pattern.base import make_base_pattern
+    from unsew.pattern.curves import edge_length
+
+    p = make_base_pattern("skirt_circle")
+    a0 = pattern_area(p)
+    q, s = scale_to_area(p, 1.1 * a0)
+    assert abs(pattern_area(q) / (1.1 * a0) - 1) < 1e-6 and abs(s - np.sqrt(1.1)) < 1e-12
+    for name, panel in p.panels.items():
+        for i in range(len(panel.edges)):
+            assert abs(edge_length(q.panels[name], i) / edge_length(panel, i) - s) < 1e-6
+        np.testing.assert_allclose(panel_centroid3d(q.panels[name]), panel_centroid3d(panel), atol=1e-9)
+    assert scale_to_area(p, 4 * a0)[1] == MAX_AREA_SCALE
+    with pytest.raises(ValueError):
+        scale_to_area(p, 0.0)

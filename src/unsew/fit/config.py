@@ -46,6 +46,9 @@ class MaterialSettings:
     lr: float = 5e-2  #: Adam learning rate of the log-material parameters [-]
 
 
+#: What the fit does with the target's surface area (``area``).
+AREA_MODES = ("free", "target")
+
 #: What phase two may change of a waistband (``optimizer.bands``).
 BAND_MODES = ("free", "height", "held")
 
@@ -102,6 +105,7 @@ class FitConfig:
     base: str = ""  #: base pattern: a garment type or library base name (unsew.pattern.base.BASES), or a GarmentCode JSON path; "" = chosen by draping among the library's bases of meta.json's garment type
     base_choice_edge: float = 0.04  #: mesh edge length of the candidate drapes of the automatic base choice [m]
     grading: bool = True  #: run linear grading before the optimization (ablation: False)
+    area: str = "free"  #: "target": grading scales each graded pattern to the target's surface area (unsew.grading.area) and phase two holds its total rest area (its steps end with one scaling of every panel about its centroid); "free": the paper's fit, the area goes where grading and the loss take it (measured: docs/benchmarks.md, "The target's area")
     seed: int = 0  #: seed of every random choice [-]
     device: str = "cpu"  #: torch device for the simulation ("cpu", "cuda")
     time_limit: float = 540.0  #: seconds the fit (base choice to checks, not the writing of the result) aims to end within: the material choice's optional steps, phase two's iterations and the mesh spread give way (unsew.fit.budget); 0: no limit [s]
@@ -278,6 +282,8 @@ def _check(cfg: FitConfig, names: dict) -> None:
         raise InputError(f"{say('drape.edge_length')} {d.edge_length} m is outside 0.005-0.1 m")
     if d.dt <= 0 or d.dt > 0.2:
         raise InputError(f"{say('drape.dt')} {d.dt} s must be in (0, 0.2]")
+    if cfg.area not in AREA_MODES:
+        raise InputError(f"{say('area')} must be one of {', '.join(AREA_MODES)}, got {cfg.area!r}")
     if o.bands not in BAND_MODES:
         raise InputError(f"{say('optimizer.bands')} must be one of {', '.join(BAND_MODES)}, got {o.bands!r}")
     if not o.friction_eps > 0:

@@ -4,7 +4,9 @@ warm-started from the previous iteration's result.
 
 Loss (eqs. 5-9): L = L_CF(X, T) [curvature-weighted, eq. 7] + lambda_open L_CF(X_open, T_open)
 + lambda_mat relu(1e-6 - Gamma) + lambda_seam L_seam(U(K)) (+ lambda_prior and lambda_area, the
-pattern's total area against the target's surface area, both off by default).
+pattern's total area against the target's surface area, both off by default). With ``area:
+target`` every step ends on the start's total rest area (:class:`AreaHold`): the Chamfer then
+moves area between panels and places, never adds or drops it.
 
 Material parameterisation (a deviation from the paper, which does not say how Gamma is scaled):
 the four stiffness entries H00, H11, H22, k are optimised as log-factors on the starting
@@ -32,9 +34,8 @@ from unsew.errors import InputError
 from unsew.fit.config import FitConfig, material_mask
 from unsew.fit.material import MaterialChoice
 from unsew.fit.target import Target
-from unsew.geometry.repair import triangle_areas
 from unsew.grading.grade import upright, waistbands
-from unsew.losses.area import loss_area
+from unsew.losses.area import loss_area, rest_area
 from unsew.losses.chamfer import loss_chamfer
 from unsew.losses.contours import loss_open_contours, open_contours
 from unsew.losses.curvature import curvature_weights
@@ -50,7 +51,7 @@ from unsew.sim.model import SimModel
 from unsew.sim.state import SimState
 from unsew.tolerances import MIN_TRIANGLE_QUALITY
 
-__all__ = ["PhaseTwo", "step_scales", "band_projectors", "LossTerms", "Iterate", "Iteration", "material_params", "LOSS_TERMS"]
+__all__ = ["PhaseTwo", "AreaHold", "step_scales", "band_projectors", "LossTerms", "Iterate", "Iteration", "material_params", "LOSS_TERMS"]
 
 #: Names of the loss terms, in the order of :class:`LossTerms` (and of ``FitResult.history``).
 LOSS_TERMS = ("total", "chamfer", "open", "seam", "material", "prior", "area")
@@ -181,6 +182,48 @@ def band_projectors(params, bands: tuple[str, ...] | list[str], mode: str) -> to
     return torch.as_tensor(P, dtype=torch.float64)
 
 
+class AreaHold:
+    """Ends each of phase two's steps on the start's total rest area (``area: target``): K is
+    replaced by K_c + s (K - K_c), where K_c puts every control point at its panel's centroid of
+    control points and s = sqrt(A_0 / A(uv(K))). uv is affine in K and each panel's vertices are
+    affine combinations of its own control points (:mod:`unsew.pattern.params`), so this scales
+    every panel about that centroid by s: a similarity, seams scaled alike, no triangle inverted.
+    Read through the symmetric parameters (K_c = pinv(L_c) (M C(K) - b_c), M averaging within a
+    panel), which holds exactly because a centroid of mirrored points is the mirror of theirs.
+
+    params: the PatternParams; faces_uv: (F, 3) int64 tensor; K0: (Nk, 2) [m], whose area A_0 [m^2] is held.
+    """
+
+    def __init__(self, params, faces_uv: torch.Tensor, K0: torch.Tensor):
+        c = params.controls
+        nc, nk = len(c), params.n_k
+        M = np.zeros((nc, nc))
+        for p in range(len(c.panel_names)):
+            idx = c.of_panel(p)
+            M[np.ix_(idx, idx)] = 1.0 / len(idx)
+        M2 = np.kron(M, np.eye(2))  # on xy-flattened control points
+        L, b = params.L_c.detach().cpu().numpy(), params.b_c.detach().cpu().numpy()
+        P = np.linalg.pinv(L)
+        dev = K0.device
+        self.A = torch.as_tensor(P @ M2 @ L, dtype=torch.float64, device=dev)  # (2 Nk, 2 Nk)
+        self.c = torch.as_tensor(P @ (M2 @ b - b), dtype=torch.float64, device=dev)  # (2 Nk,) [m]
+        self.params, self.faces_uv, self.nk = params, faces_uv, nk
+        with torch.no_grad():
+            self.area0 = float(rest_area(params.uv(K0), faces_uv))
+
+    def __call__(self, K: torch.Tensor) -> torch.Tensor:
+        """K (Nk, 2) [m] scaled onto the held area (no gradient)."""
+        with torch.no_grad():
+            for _ in range(3):  # exact in one when the symmetric rebuild is; more guard round-off
+                a = float(rest_area(self.params.uv(K), self.faces_uv))
+                s = math.sqrt(self.area0 / a)
+                if abs(s - 1.0) < 1e-12:
+                    break
+                Kc = (self.A @ K.reshape(-1) + self.c).reshape(-1, 2)
+                K = Kc + s * (K - Kc)
+        return K
+
+
 class PhaseTwo:
     """The optimisation of phase two from a :class:`~unsew.fit.material.MaterialChoice`.
 
@@ -217,6 +260,7 @@ class PhaseTwo:
         P = band_projectors(self.params, self.bands, o.bands)
         self.k_project = None if P is None else P.to(dev)
         self._scaled = bool((self.k_scale < 1).any())  # any narrow panel: checked once, not every step
+        self.area_hold = AreaHold(self.params, self.faces_uv, self.K.detach()) if cfg.area == "target" else None
         self.opt_m = torch.optim.Adam([self.theta], lr=cfg.material.lr, betas=o.betas)
         self.x_prev = torch.as_tensor(np.asarray(s.x), dtype=torch.float64, device=dev)
         with torch.no_grad():
@@ -234,7 +278,7 @@ class PhaseTwo:
         self.T = torch.as_tensor(tv, dtype=torch.float64, device=dev)  # (M, 3) [m]: the open contours' target
         self.T_sub = self.T[torch.as_tensor(sub, device=dev)]
         self.w_sub = torch.as_tensor(np.asarray(w, dtype=np.float64)[sub], dtype=torch.float64, device=dev)
-        self.area_target = float(triangle_areas(tv, target.faces).sum())  # A_T [m^2]
+        self.area_target = target.area  # A_T [m^2]
         self.faces_uv = torch.as_tensor(np.asarray(self.mesh.faces_uv), dtype=torch.int64, device=dev)
         self.contours_t = target.contours
 
@@ -299,6 +343,9 @@ class PhaseTwo:
                 self.theta.grad.mul_(self.free_mat)  # entries left out of material.fit stay put
             self.opt_m.step()
         self._backtrack_inversions(K_before)
+        if self.area_hold is not None:
+            with torch.no_grad():
+                self.K.copy_(self.area_hold(self.K.detach()))
         if self.cfg.optimizer.warm_start:
             self.x_prev = x.detach()
         self.iteration += 1

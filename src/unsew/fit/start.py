@@ -182,5 +182,5 @@ def start(base, body, target: Target, sdf, cfg: FitConfig, material, *, progress
         return dress(p, b, sdf=sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
 
     g = grade(base, body, target.verts, target.faces, settings=cfg.drape, material=material, sdf=sdf,
-              mesh=mesh_b, x_init=x_b, drape_fn=drape_fn)
+              mesh=mesh_b, x_init=x_b, drape_fn=drape_fn, area=target.area if cfg.area == "target" else None)
     return Start(base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, mesh_b, material, dress_s=dress_s)

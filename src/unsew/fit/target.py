@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from unsew.geometry.repair import triangle_areas
 from unsew.losses.contours import open_contours
 from unsew.metrics.surface import surface_metrics
 
@@ -35,6 +36,11 @@ class Target:
         tv = np.asarray(case.target_verts, dtype=np.float64)
         tf = np.asarray(case.target_faces, dtype=np.int64)
         return cls(tv, tf, open_contours(tv, tf), seed)
+
+    @property
+    def area(self) -> float:
+        """The target's surface area A_T [m^2] (summed triangle areas)."""
+        return float(triangle_areas(self.verts, self.faces).sum())
 
     def distance_mm(self, x, faces, *, n_samples: int = OBJECTIVE_SAMPLES) -> float:
         """Mean surface distance [mm] between the drape ``x`` (N, 3) [m] on ``faces`` and the target.

@@ -26,6 +26,7 @@ import torch
 
 from unsew.dress import DRESS_SETTINGS, dress
 from unsew.errors import InputError, PatternError, SimulationError, UnsewError
+from unsew.grading.area import scale_to_area
 from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
 from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, place_contours
 from unsew.grading.curves import curves_of_contour, rest_length, stitched_edges
@@ -84,6 +85,8 @@ class GradeResult:
     x_init: the drape of the base pattern, (n_x0, 3) float64 [m], on ``mesh_init``.
     mesh_init: the base pattern's GarmentMesh.
     matches: the contour pairs (:class:`~unsew.grading.contours.ContourMatch`).
+    area_scales: the length factor of each pass's area scaling (``grade(area=...)``, in pass
+        order; empty without it). ``K`` is then the last contour edit's, before its scaling.
     """
 
     pattern: object
@@ -96,6 +99,7 @@ class GradeResult:
     x_init: np.ndarray | None = None
     mesh_init: object = None
     matches: list = field(default_factory=list)
+    area_scales: list = field(default_factory=list)
 
 
 #: Keys of every row of ``GradeResult.table``.
@@ -170,6 +174,7 @@ def grade(
     hold_top: bool = True,
     remesh: str = "always",
     length: str = "cloth",
+    area: float | None = None,
 ) -> GradeResult:
     """Grade ``pattern`` so that its draped open contours land where the target's are (phase one).
 
@@ -198,6 +203,10 @@ def grade(
         the garment's top opening, target minus drape, read on the pattern's rest mesh
         (:mod:`unsew.grading.cloth`; contours without such a path move axially); ``"axial"``, by
         the axial extension along the bone (Algorithm 2).
+    area: the target's surface area [m^2]: each pass's pattern is scaled to it (every panel by
+        one factor about its centroid, :func:`unsew.grading.area.scale_to_area`) and meshed
+        afresh before it is draped, so the next pass measures its contours on the scaled drape
+        and the graded pattern's total area is ``area`` (None: no scaling, Algorithm 2).
 
     Returns a :class:`GradeResult`.
     """
@@ -215,7 +224,7 @@ def grade(
                        waist_bound(body))
     first = _grade_pass(pattern, mesh, x_init, ctx)
     cur, rows = first, list(first.rows)
-    x_lg = None
+    x_lg, scales = None, []
     for k in range(max(int(passes), 1)):
         if k > 0:
             nxt = _further_pass(cur, x_lg, ctx)
@@ -223,12 +232,17 @@ def grade(
                 break
             rows += [{**r, "edits": [f"pass {k + 1}: {e}" for e in r["edits"]]} for r in nxt.rows if r["edits"]]
             cur = nxt
+        if area is not None:
+            scaled, s = scale_to_area(cur.pattern, area)
+            cur = replace(cur, pattern=scaled, mesh=mesh_pattern(scaled, edge_length=mesh.edge_length), remeshed=True)
+            scales.append(s)
         if not redrape:
             break
         x_lg = np.asarray(drape_fn(cur.pattern, cur.mesh, body), dtype=np.float64)
     return GradeResult(
         pattern=cur.pattern, mesh=cur.mesh, x_draped=x_lg, table=rows, K=cur.K, fraction=first.fraction,
         remeshed=first.remeshed or cur.remeshed, x_init=x_init, mesh_init=mesh, matches=first.matches,
+        area_scales=scales,
     )
 
 
