@@ -41,6 +41,7 @@ def test_result_folder_is_complete(small_fit):
     assert saved["iterations"] == 3
     assert saved["drape_check"]["ok"] and saved["drape_check"]["inside_pct"] < 0.5
     from unsew.io.garmentcode import load_pattern
+    from unsew.metrics.panels import panel_area
 
     p = load_pattern(out / "pattern.json")
     assert set(p.panels) == set(result.pattern.panels)
@@ -49,17 +50,21 @@ def test_result_folder_is_complete(small_fit):
     assert set(base.panels) == set(result.base_pattern.panels)
     assert saved["pattern_base"]["area_error_weighted_rel"] >= saved["pattern_base"]["area_error_total_rel"]
     assert saved["pattern_graded"]["unmatched"] == {"estimated": [], "true": []}
+    a = saved["area_m2"]  # total panel areas against the target's surface area
+    assert set(a) == {"target", "base", "graded", "result"} and min(a.values()) > 0
+    assert a["result"] == pytest.approx(sum(panel_area(q) for q in p.panels.values()), rel=1e-6)
 
 
 def test_fit_improves_on_the_base(small_fit):
     _, result, metrics = small_fit
     assert metrics["surface"]["chamfer_mm"] < metrics["surface_base"]["chamfer_mm"]
     assert metrics["pattern"]["area_error_rel_mean"] < metrics["pattern_base"]["area_error_rel_mean"]
-    # phase two's loss falls: measured 516 -> 405 (x0.79) over the three iterations; with the
-    # control points and material held (pattern_start past the budget) it rises to 526 and
-    # min(h) is h[0], so this fails when phase two does nothing
+    # phase two's loss falls: measured 3.94e-4 -> 3.65e-4 (x0.925) over the three iterations
+    # (graded to the target's area, area: target; x0.79 from a start that was not); with the
+    # control points and material held (pattern_start past the budget) it rises and min(h) is
+    # h[0], so this fails when phase two does nothing
     h = result.history["total"]
-    assert min(h) < 0.9 * h[0]
+    assert min(h) < 0.95 * h[0]
 
 
 def test_phase_two_is_kept_and_lowers_the_redressed_distance(small_fit):

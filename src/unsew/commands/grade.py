@@ -30,6 +30,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--length", choices=["cloth", "axial"], default="cloth",
                    help="move hems and cuffs by the cloth length to the top opening (default) or by the axial distance "
                         "along the bone (the paper's Algorithm 2)")
+    p.add_argument("--area", choices=["free", "target"], default="free",
+                   help="target: scale each graded pattern to the target's surface area before it is draped (the fit's "
+                        "area: target); free: the contours alone (default)")
     p.add_argument("--flat", action="store_true", help="no simulation: use the flat-placed panels as drapes (quick look)")
     p.add_argument("--overwrite", action="store_true", help="replace --out if it exists")
     p.set_defaults(func=run)
@@ -41,6 +44,7 @@ def run(args: argparse.Namespace) -> int:
     from unsew.body.case import load_case
     from unsew.fit.config import FitConfig
     from unsew.fit.start import base_pattern_for
+    from unsew.geometry.repair import triangle_areas
     from unsew.grading.grade import GRADE_SETTINGS, flat_drape, format_table, grade
     from unsew.io.garmentcode import save_pattern
     from unsew.io.mesh import write_obj
@@ -59,7 +63,8 @@ def run(args: argparse.Namespace) -> int:
         res = grade(
             pattern, case.body, case.target_verts, case.target_faces,
             settings=GRADE_SETTINGS.replace(edge_length=args.edge_length), material=args.material,
-            length=args.length, **kw,
+            length=args.length, area=float(triangle_areas(case.target_verts, case.target_faces).sum())
+            if args.area == "target" else None, **kw,
         )
         save_pattern(res.pattern, tmp / "pattern.json")
         m = res.mesh
@@ -74,6 +79,8 @@ def run(args: argparse.Namespace) -> int:
             "material": args.material,
             "flat": bool(args.flat),
             "length": args.length,
+            "area": args.area,
+            "area_scales": res.area_scales,
             "edit_fraction": res.fraction,
             "remeshed": res.remeshed,
             "contours": res.table,

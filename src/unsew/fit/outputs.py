@@ -22,6 +22,8 @@ from unsew import __version__
 from unsew._memory import peak_rss_mb
 from unsew.fit.config import config_to_dict
 from unsew.fit.report import write_fit_report
+from unsew.geometry.repair import triangle_areas
+from unsew.grading.area import pattern_area
 from unsew.io.dxf import write_dxf
 from unsew.io.garmentcode import save_pattern
 from unsew.io.mesh import write_obj
@@ -79,6 +81,11 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
                                               n_samples=n_samples)
     if case.pattern_gt is not None:
         m.update(pattern_errors(result, case.pattern_gt))
+    # total panel areas [m^2] against the target's surface area (a drape barely stretches, so a
+    # pattern that fits has about the target's area; config "area", unsew.grading.area)
+    m["area_m2"] = {"target": float(triangle_areas(case.target_verts, case.target_faces).sum()),
+                    **{k: pattern_area(p) for k, p in (("base", result.base_pattern), ("graded", result.graded_pattern),
+                                                        ("result", result.pattern)) if p is not None}}
     h = result.history
     m["loss_final"] = {k: (v[-1] if v else None) for k, v in h.items()}
     m["loss_history"] = {k: [float(f"{x:.6g}") for x in v] for k, v in h.items()}  # per iteration
