@@ -65,6 +65,8 @@ def main() -> None:
     ap.add_argument("--steps", type=int, default=8, help="steps of each of phase two's drapes")
     ap.add_argument("--warm-steps", type=int, nargs="+", default=[8, 40])
     ap.add_argument("--prior", type=float, default=0.0, help="loss.prior: pull towards the graded pattern [-]")
+    ap.add_argument("--area", choices=["free", "target"], default="free",
+                    help="the fit's area option (default free: the paper's fit, which the docs' tables were measured with)")
     ap.add_argument("--out", type=Path, default=None, help="case folder (default: a temporary one)")
     ap.add_argument("--case", choices=["dress-hip", "tshirt"], default="dress-hip")
     args = ap.parse_args()
@@ -87,7 +89,7 @@ def main() -> None:
 
     cfg = load_config(edge_length=args.edge_length, iterations=args.iterations, steps=args.steps, sew_steps=60,
                       settle_steps=20, target_points=1500, material="cotton", optimize_material=False,
-                      lr=args.lr, lambda_prior=args.prior, report=False, mesh_spread=0.0)
+                      lr=args.lr, lambda_prior=args.prior, report=False, mesh_spread=0.0, area=args.area)
     out = args.out or Path(tempfile.mkdtemp(prefix="unsew-phase-two-"))
     t0 = time.perf_counter()
     case = load_case(make_truth_case(out / "case", garment="dress",

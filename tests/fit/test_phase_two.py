@@ -31,7 +31,7 @@ def hip_fit(tmp_path_factory):
     from unsew.fit.run import run_fit
     from unsew.fit.synthetic import Alteration, make_truth_case
 
-    cfg = load_config(**SMALL)
+    cfg = load_config(**SMALL, area="free")  # the paper's fit, which the figures below were measured with
     d = make_truth_case(tmp_path_factory.mktemp("case") / "dress", garment="dress",
                         alteration=Alteration({"waist": (-0.03, 0.0)}, "cotton"), settings=cfg.drape)
     case = load_case(d)
@@ -73,7 +73,10 @@ SMALL16 = {**SMALL, "steps": 16, "iterations": 8}
 @pytest.fixture(scope="module")
 def hip_phase_two(tmp_path_factory):
     """Phase two alone (unsew.fit.optimize.PhaseTwo, material held) from the graded default dress,
-    and its best iterate as a pattern."""
+    and its best iterate as a pattern; the paper's fit (``area: free``): graded to the target's
+    area the start is already closer (mean panel area error 1.4 %, hip corners 2.1 cm) and what
+    eight small-mode iterations then do depends on the thread count (docs/benchmarks.md, "Phase
+    two on a case grading cannot fit")."""
     import torch
 
     from unsew.body.case import load_case
@@ -86,7 +89,7 @@ def hip_phase_two(tmp_path_factory):
     from unsew.fit.target import Target
     from unsew.sim.material import get_material
 
-    cfg = load_config(**SMALL16)
+    cfg = load_config(**SMALL16, area="free")
     case = load_case(make_truth_case(tmp_path_factory.mktemp("case16") / "dress", garment="dress",
                                      alteration=Alteration({"waist": (-0.03, 0.0)}, "cotton"), settings=cfg.drape))
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
@@ -197,7 +200,7 @@ def _shorts_phase_two(tmp_path, base: str):
     """A phase two's start in small mode (5 cm mesh, 8-step drapes, three iterations, no grading)
     from the library base ``base`` on a shorts target drawn from altered shorts on the embedded
     default body; returns ``build(**groups)``, which makes a PhaseTwo from that start with the
-    config's groups changed (``build(loss={"area": 1.0})``)."""
+    config's groups changed (``build(loss={"area": 1.0})``) and ``area`` the top-level option."""
     import dataclasses
 
     from unsew.body.case import load_case
@@ -216,9 +219,10 @@ def _shorts_phase_two(tmp_path, base: str):
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
     s = start(base_pattern_for(case, cfg), case.body, target, sdf, cfg, get_material("cotton"), progress=Progress(False))
 
-    def build(**groups):
+    def build(area: str = cfg.area, **groups):
         """A PhaseTwo from this start, ``groups``: config group -> field changes."""
-        c = dataclasses.replace(cfg, **{g: dataclasses.replace(getattr(cfg, g), **kw) for g, kw in groups.items()})
+        c = dataclasses.replace(cfg, area=area,
+                                **{g: dataclasses.replace(getattr(cfg, g), **kw) for g, kw in groups.items()})
         return PhaseTwo(MaterialChoice(s), target, sdf, c)
 
     return build
@@ -251,10 +255,11 @@ def test_phase_two_in_height_mode_keeps_a_banded_bases_band_heights(tmp_path):
 
 
 def test_the_area_term_pulls_the_patterns_area_towards_the_targets(tmp_path):
-    """loss.area in a real phase two (three Adam steps from the ungraded base shorts on a shorts
-    target drawn from altered shorts, embedded default body): the gap between the pattern's rest
-    area and the target's surface area closes faster with the term than without it, and the
-    term is recorded. Small mode: 5 cm mesh, 8-step drapes."""
+    """loss.area in a real phase two of the paper's fit (``area: free``; three Adam steps from the
+    ungraded base shorts on a shorts target drawn from altered shorts, embedded default body):
+    the gap between the pattern's rest area and the target's surface area closes faster with the
+    term than without it, and the term is recorded; the default, ``area: target``, holds the
+    start's rest area through every step. Small mode: 5 cm mesh, 8-step drapes."""
     import torch
 
     from unsew.losses.area import rest_area
@@ -262,7 +267,7 @@ def test_the_area_term_pulls_the_patterns_area_towards_the_targets(tmp_path):
     build = _shorts_phase_two(tmp_path, "shorts")
     gap = {}
     for w in (0.0, 1.0):
-        two = build(loss={"area": w})
+        two = build(area="free", loss={"area": w})
         area = lambda: float(rest_area(two.params.uv(two.K), two.faces_uv)) / two.area_target - 1  # noqa: E731
         with torch.no_grad():
             g0 = area()
@@ -271,6 +276,10 @@ def test_the_area_term_pulls_the_patterns_area_towards_the_targets(tmp_path):
             gap[w] = (abs(g0), abs(area()))
         assert (max(two.history["area"]) > 0) == (w > 0)
     assert gap[0.0][0] > 0.01, gap  # the base is off the target's area to begin with
+    two = build()  # area: target
+    a0 = float(rest_area(two.params.uv(two.K), two.faces_uv).detach())
+    two.run()
+    assert abs(float(rest_area(two.params.uv(two.K), two.faces_uv).detach()) / a0 - 1) < 1e-9
     assert gap[1.0][1] < 0.5 * gap[0.0][1] and gap[1.0][1] < gap[1.0][0], gap  # measured: 0.089 -> 0.021
 
 

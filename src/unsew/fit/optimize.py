@@ -191,16 +191,19 @@ class AreaHold:
     Read through the symmetric parameters (K_c = pinv(L_c) (M C(K) - b_c), M averaging within a
     panel), which holds exactly because a centroid of mirrored points is the mirror of theirs.
 
-    params: the PatternParams; faces_uv: (F, 3) int64 tensor; K0: (Nk, 2) [m], whose area A_0 [m^2] is held.
+    params: the PatternParams; faces_uv: (F, 3) int64 tensor; K0: (Nk, 2) [m], whose area A_0 [m^2]
+    is held; kept: names of panels left unscaled (waistbands whose height ``optimizer.bands``
+    holds): their control points are their own centre, so the others take the whole change (the
+    factor is then found in a few rounds instead of one).
     """
 
-    def __init__(self, params, faces_uv: torch.Tensor, K0: torch.Tensor):
+    def __init__(self, params, faces_uv: torch.Tensor, K0: torch.Tensor, kept: tuple[str, ...] = ()):
         c = params.controls
         nc, nk = len(c), params.n_k
         M = np.zeros((nc, nc))
-        for p in range(len(c.panel_names)):
+        for p, name in enumerate(c.panel_names):
             idx = c.of_panel(p)
-            M[np.ix_(idx, idx)] = 1.0 / len(idx)
+            M[np.ix_(idx, idx)] = np.eye(len(idx)) if name in kept else 1.0 / len(idx)
         M2 = np.kron(M, np.eye(2))  # on xy-flattened control points
         L, b = params.L_c.detach().cpu().numpy(), params.b_c.detach().cpu().numpy()
         P = np.linalg.pinv(L)
@@ -214,7 +217,7 @@ class AreaHold:
     def __call__(self, K: torch.Tensor) -> torch.Tensor:
         """K (Nk, 2) [m] scaled onto the held area (no gradient)."""
         with torch.no_grad():
-            for _ in range(3):  # exact in one when the symmetric rebuild is; more guard round-off
+            for _ in range(8):  # one round when every panel scales; kept panels converge geometrically
                 a = float(rest_area(self.params.uv(K), self.faces_uv))
                 s = math.sqrt(self.area0 / a)
                 if abs(s - 1.0) < 1e-12:
@@ -260,7 +263,8 @@ class PhaseTwo:
         P = band_projectors(self.params, self.bands, o.bands)
         self.k_project = None if P is None else P.to(dev)
         self._scaled = bool((self.k_scale < 1).any())  # any narrow panel: checked once, not every step
-        self.area_hold = AreaHold(self.params, self.faces_uv, self.K.detach()) if cfg.area == "target" else None
+        self.area_hold = None if cfg.area != "target" else AreaHold(
+            self.params, self.faces_uv, self.K.detach(), kept=self.bands if o.bands != "free" else ())
         self.opt_m = torch.optim.Adam([self.theta], lr=cfg.material.lr, betas=o.betas)
         self.x_prev = torch.as_tensor(np.asarray(s.x), dtype=torch.float64, device=dev)
         with torch.no_grad():
