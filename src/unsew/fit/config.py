@@ -105,7 +105,7 @@ class FitConfig:
     base: str = ""  #: base pattern: a garment type or library base name (unsew.pattern.base.BASES), or a GarmentCode JSON path; "" = chosen by draping among the library's bases of meta.json's garment type
     base_choice_edge: float = 0.04  #: mesh edge length of the candidate drapes of the automatic base choice [m]
     grading: bool = True  #: run linear grading before the optimization (ablation: False)
-    area: str = "target"  #: "target": grading scales each graded pattern to the target's surface area (unsew.grading.area) and phase two holds its total rest area (its steps end with one scaling of every panel about its centroid); "free": the paper's fit, the area goes where grading and the loss take it (measured: docs/benchmarks.md, "The target's area")
+    area: str = "target"  #: "target": grading scales each graded pattern to the target's surface area (unsew.grading.area) and phase two holds its total rest area (its steps end with one scaling of every panel about its centroid); "free": the paper's fit, the area goes where grading and the loss take it (measured: docs/benchmarks.md, "fits sized to the target's area")
     seed: int = 0  #: seed of every random choice [-]
     device: str = "cpu"  #: torch device for the simulation ("cpu", "cuda")
     time_limit: float = 540.0  #: seconds the fit (base choice to checks, not the writing of the result) aims to end within: the material choice's optional steps, phase two's iterations and the mesh spread give way (unsew.fit.budget); 0: no limit [s]
