@@ -53,6 +53,7 @@ def test_result_folder_is_complete(small_fit):
     a = saved["area_m2"]  # total panel areas against the target's surface area
     assert set(a) == {"target", "base", "graded", "result"} and min(a.values()) > 0
     assert a["result"] == pytest.approx(sum(panel_area(q) for q in p.panels.values()), rel=1e-6)
+    assert a["graded"] == pytest.approx(a["target"], rel=1e-6)  # area: target, grading scaled it there
 
 
 def test_fit_improves_on_the_base(small_fit):

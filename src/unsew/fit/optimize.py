@@ -199,7 +199,7 @@ class AreaHold:
 
     def __init__(self, params, faces_uv: torch.Tensor, K0: torch.Tensor, kept: tuple[str, ...] = ()):
         c = params.controls
-        nc, nk = len(c), params.n_k
+        nc = len(c)
         M = np.zeros((nc, nc))
         for p, name in enumerate(c.panel_names):
             idx = c.of_panel(p)
@@ -210,7 +210,7 @@ class AreaHold:
         dev = K0.device
         self.A = torch.as_tensor(P @ M2 @ L, dtype=torch.float64, device=dev)  # (2 Nk, 2 Nk)
         self.c = torch.as_tensor(P @ (M2 @ b - b), dtype=torch.float64, device=dev)  # (2 Nk,) [m]
-        self.params, self.faces_uv, self.nk = params, faces_uv, nk
+        self.params, self.faces_uv = params, faces_uv
         with torch.no_grad():
             self.area0 = float(rest_area(params.uv(K0), faces_uv))
 

@@ -1,9 +1,8 @@
 """The pattern sized to the target's surface area (not in the paper; the fit's ``area: target``).
 
-Cloth barely stretches, so a draped garment's surface area is its pattern's total panel area: on
-every case of the foreign benchmark the target's surface area lies within 1.6 % of its true
-pattern's (median 0.2 %), while the Chamfer distance cannot see area folded away
-(docs/benchmarks.md, "The target's area"). :func:`scale_to_area` scales every panel about its own
+Cloth barely stretches, so a draped garment's surface area is close to its pattern's total panel
+area, while the Chamfer distance cannot see area folded away (how close: docs/benchmarks.md,
+"The target's area"). :func:`scale_to_area` scales every panel about its own
 area centroid by one factor s so that the pattern's total area is the target's. Every length
 changes by s, so sewn edges still match; Bezier curvature is relative to its edge and follows, a
 circular arc's radius [m] is scaled with it. A panel's area centroid keeps its place on the body
@@ -27,12 +26,13 @@ MAX_AREA_SCALE = 1.3
 
 
 def pattern_area(pattern) -> float:
-    """Total area [m^2] of a pattern's panels, curved edges included."""
+    """Total area [m^2] of a :class:`~unsew.pattern.model.Pattern`'s panels, curved edges included."""
     return float(sum(panel_area(p) for p in pattern.panels.values()))
 
 
 def scale_to_area(pattern, area: float):
-    """(a copy of ``pattern`` whose total panel area is ``area`` [m^2], the length factor s [-]).
+    """(a copy of ``pattern`` (a Pattern; its panel vertices (N, 2) float64 [m]) whose total panel
+    area is ``area`` [m^2], the length factor s [-]). The input is not changed.
 
     Every panel is scaled by s = sqrt(area / current area) about its own area centroid (module
     docstring); s is clipped to [1 / MAX_AREA_SCALE, MAX_AREA_SCALE]."""
