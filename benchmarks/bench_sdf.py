@@ -1,13 +1,18 @@
-"""Body SDF benchmark: grid build time for the default body (no cache), accuracy against exact
-point-to-mesh distance, and query time of 8K points with gradient (forward + backward).
+"""Body SDF benchmark: grid build time and the process's peak memory for the default body or a
+case's body (no cache), accuracy against exact point-to-mesh distance, and query time of 8K
+points with gradient (forward + backward).
 
-    OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_sdf.py [--threads 2] [--voxel 0.005]
+    OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_sdf.py [--threads 2] [--voxel 0.005] [--case DIR]
+
+The peak (``ru_maxrss``) is read before and after the build; the build is the first large
+allocation after the body is loaded, so run one body per process.
 
 Prints a table; never asserts timings.
 """
 
 import argparse
 import os
+import resource
 import time
 
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
@@ -19,6 +24,7 @@ def main() -> None:
     ap.add_argument("--voxel", type=float, default=0.005)
     ap.add_argument("--points", type=int, default=8192)
     ap.add_argument("--accuracy-points", type=int, default=1000)
+    ap.add_argument("--case", default=None, help="a fitting case folder: its body instead of the default body")
     ap.add_argument("--compare-igl", action="store_true",
                     help="also time libigl's exact unsigned distance (AABB tree) at every grid node")
     args = ap.parse_args()
@@ -31,10 +37,17 @@ def main() -> None:
     from unsew.body.body import default_body
     from unsew.body.sdf import BodySDF, mesh_distance
 
-    body = default_body()
+    if args.case:
+        from unsew.body.case import load_case
+
+        body, name = load_case(args.case).body, os.path.basename(os.path.normpath(args.case)) + "'s body"
+    else:
+        body, name = default_body(), "default body"
+    rss0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # [MB] (Linux: KiB)
     t = time.perf_counter()
     sdf = BodySDF.build(body, voxel=args.voxel, use_cache=False)
     t_build = time.perf_counter() - t
+    rss1 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     nz, ny, nx = sdf.shape
 
     m = body.to_trimesh()
@@ -65,10 +78,10 @@ def main() -> None:
             ts_fb.append(time.perf_counter() - t)
         rows.append((f"{str(dtype).replace('torch.', '')}, {order} order", np.median(ts_f) * 1e3, np.median(ts_fb) * 1e3))
 
-    print(f"default body: {len(body.verts)} verts, {len(body.faces)} faces; torch threads {args.threads}")
-    print(f"| grid | voxel [mm] | nodes | build [s] | RMS err <5cm [mm] | max err <5cm [mm] |")
-    print(f"|---|---|---|---|---|---|")
-    print(f"| {nx}x{ny}x{nz} | {args.voxel * 1e3:.1f} | {nx * ny * nz / 1e6:.1f}M | {t_build:.1f} | "
+    print(f"{name}: {len(body.verts)} verts, {len(body.faces)} faces; torch threads {args.threads}")
+    print("| grid | voxel [mm] | nodes | build [s] | peak before / after the build [MB] | RMS err <5cm [mm] | max err <5cm [mm] |")
+    print("|---|---|---|---|---|---|---|")
+    print(f"| {nx}x{ny}x{nz} | {args.voxel * 1e3:.1f} | {nx * ny * nz / 1e6:.1f}M | {t_build:.1f} | {rss0:.0f} / {rss1:.0f} | "
           f"{np.sqrt(np.mean(err[near] ** 2)) * 1e3:.2f} | {np.abs(err[near]).max() * 1e3:.2f} |")
     print()
     print(f"| query {args.points} points | forward [ms] | forward + gradient [ms] |")

@@ -44,6 +44,9 @@ __all__ = ["BodySDF", "closest_point_on_triangles", "mesh_distance", "default_ca
 
 #: Bump when the build changes, so cached grids are rebuilt.
 _SDF_VERSION = 3
+#: Node-triangle pairs the band step takes at once (its temporaries are ~20 (pairs, 3) float64
+#: arrays: 1e6 pairs hold ~0.5 GB; docs/benchmarks.md, "The body's SDF: build memory").
+_BAND_PAIRS = 1_000_000
 #: Nodes closer than this to the surface get a neighbour sweep after propagation [m].
 _SWEEP_RADIUS = 0.06
 
@@ -161,7 +164,7 @@ def _band(verts, faces, origin, h, shape, r):
     best_d = np.full(nx * ny * nz, np.inf)
     best_t = np.full(nx * ny * nz, -1, dtype=np.int64)
     F = len(faces)
-    budget = 3_000_000
+    budget = _BAND_PAIRS
     s = 0
     while s < F:
         # triangles s..e with at most `budget` node-triangle pairs
@@ -378,56 +381,87 @@ def _grid_frame(verts: np.ndarray, h: float, margin: float):
     return origin, (nz, ny, nx), plane
 
 
+#: Grid nodes handled at once where a step needs their positions (bounds the build's memory:
+#: (chunk, 3) float64 temporaries instead of (nodes, 3)).
+_NODE_CHUNK = 1 << 20
+
+
 @dataclass
 class _Nearest:
-    """Closest surface point of every grid node: node positions ``pts`` (nnodes, 3) [m], band
-    closest points ``Q`` (B, 3) [m] with their Voronoi ``region`` (B,) and triangle ``bt`` (B,),
-    ``src`` (nnodes,) the band entry each node takes, ``dist`` (nnodes,) unsigned distance [m]."""
+    """Closest surface point of every grid node: the grid (``origin`` (3,) [m], spacing ``h``
+    [m], ``shape`` (nz, ny, nx)), band closest points ``Q`` (B, 3) [m] with their Voronoi
+    ``region`` (B,) and triangle ``bt`` (B,), ``src`` (nnodes,) the band entry each node takes,
+    ``dist`` (nnodes,) unsigned distance [m]."""
 
-    pts: np.ndarray
+    origin: np.ndarray
+    h: float
+    shape: tuple
     Q: np.ndarray
     region: np.ndarray
     bt: np.ndarray
     src: np.ndarray
     dist: np.ndarray
 
+    def points(self, nodes) -> np.ndarray:
+        """(n, 3) float64 [m] positions of the flat node indices ``nodes`` (n,)."""
+        return _node_points(nodes, self.origin, self.h, self.shape)
+
+
+def _node_points(nodes, origin, h: float, shape) -> np.ndarray:
+    """(n, 3) float64 [m] positions of flat node indices (n,) int, node (ix, iy, iz) at
+    ``(iz * ny + iy) * nx + ix``."""
+    _, ny, nx = shape
+    gz, rem = np.divmod(np.asarray(nodes, dtype=np.int64), ny * nx)
+    gy, gx = np.divmod(rem, nx)
+    return origin + h * np.stack([gx, gy, gz], axis=1).astype(np.float64)
+
 
 def _nearest_surface(verts, faces, origin, h: float, shape) -> _Nearest:
     """Exact closest points in a band of 1.5 h about the surface, propagated to every node by a
-    Euclidean distance transform and corrected by one neighbour sweep near the surface."""
+    Euclidean distance transform and corrected by one neighbour sweep near the surface.
+    Per-node arrays are at most (nodes,) 8-byte wide; positions are made chunk by chunk."""
     from scipy import ndimage
 
     nz, ny, nx = shape
     r = 1.5 * h
     best_d, best_t = _band(verts, faces, origin, h, shape, r)
     band = best_d <= r  # exact there: every triangle within r of such a node was visited
+    del best_d
     # closest points of band nodes
     bidx = np.flatnonzero(band)
     bt = best_t[bidx]
-    gz, rem = np.divmod(bidx, ny * nx)
-    gy, gx = np.divmod(rem, nx)
-    P = origin + h * np.stack([gx, gy, gz], axis=1).astype(np.float64)
-    Q, region = closest_point_on_triangles(P, verts[faces[bt, 0]], verts[faces[bt, 1]], verts[faces[bt, 2]])
+    del best_t
+    Q, region = closest_point_on_triangles(_node_points(bidx, origin, h, shape), verts[faces[bt, 0]],
+                                           verts[faces[bt, 1]], verts[faces[bt, 2]])
     # propagate: every node takes the closest point of its nearest band node
+    ind = ndimage.distance_transform_edt(~band.reshape(shape), return_distances=False, return_indices=True)
+    del band
+    src = ind[0].astype(np.int64).ravel()  # the nearest band node's flat index, built in place
+    src *= ny
+    src += ind[1].ravel()
+    src *= nx
+    src += ind[2].ravel()
+    del ind
     lut = np.full(nx * ny * nz, -1, dtype=np.int64)
     lut[bidx] = np.arange(len(bidx))
-    ind = ndimage.distance_transform_edt(~band.reshape(shape), return_distances=False, return_indices=True)
-    near = ((ind[0].astype(np.int64) * ny + ind[1]) * nx + ind[2]).ravel()
-    del ind
-    src = lut[near]  # (nnodes,) index into band arrays
-    Z, rem = np.divmod(np.arange(nx * ny * nz), ny * nx)
-    Y, X = np.divmod(rem, nx)
-    pts = origin + h * np.stack([X, Y, Z], axis=1).astype(np.float64)
-    del X, Y, Z, rem
+    src = lut[src]  # (nnodes,) index into band arrays
+    del lut
 
     def sqdist(cand, nodes):
-        v = pts[nodes] - Q[cand]
+        v = _node_points(nodes, origin, h, shape) - Q[cand]
         return np.einsum("ij,ij->i", v, v)
 
-    dist2 = sqdist(src, slice(None))
+    n_nodes = nx * ny * nz
+    dist2 = np.empty(n_nodes)
+    for s in range(0, n_nodes, _NODE_CHUNK):
+        e = min(s + _NODE_CHUNK, n_nodes)
+        dist2[s:e] = sqdist(src[s:e], np.arange(s, e))
+    in_band = np.zeros(n_nodes, dtype=bool)
+    in_band[bidx] = True
     # one sweep near the surface (where contact happens): take a neighbour's closest point
     # when it is closer
-    act = np.flatnonzero((dist2 < _SWEEP_RADIUS**2) & ~band)
+    act = np.flatnonzero((dist2 < _SWEEP_RADIUS**2) & ~in_band)
+    del in_band
     for ax in range(3):
         for sh in (1, -1):
             cand = np.roll(src.reshape(shape), sh, axis=ax).ravel()[act]
@@ -435,7 +469,8 @@ def _nearest_surface(verts, faces, origin, h: float, shape) -> _Nearest:
             m = dc < dist2[act]
             dist2[act[m]] = dc[m]
             src[act[m]] = cand[m]
-    return _Nearest(pts=pts, Q=Q, region=region, bt=bt, src=src, dist=np.sqrt(dist2))
+    np.sqrt(dist2, out=dist2)
+    return _Nearest(origin=origin, h=h, shape=shape, Q=Q, region=region, bt=bt, src=src, dist=dist2)
 
 
 def _grid_sign(verts, faces, near: _Nearest, h: float, shape) -> np.ndarray:
@@ -443,7 +478,7 @@ def _grid_sign(verts, faces, near: _Nearest, h: float, shape) -> np.ndarray:
     half-voxel shell, a pseudonormal vote for enclosed regions, pseudonormals on the shell."""
     from scipy import ndimage
 
-    dist, src, bt, region, Q, pts = near.dist, near.src, near.bt, near.region, near.Q, near.pts
+    dist, src, bt, region, Q = near.dist, near.src, near.bt, near.region, near.Q
     shell = (dist <= 0.5 * h * 1.05).reshape(shape)
     lab, nlab = ndimage.label(~shell)  # 6-connected by default
     lab = lab.ravel()
@@ -460,7 +495,7 @@ def _grid_sign(verts, faces, near: _Nearest, h: float, shape) -> np.ndarray:
         for rr, col in ((4, 0), (5, 1), (6, 2)):
             m = reg == rr
             N[m] = en[tri[m], col]
-        dot = np.einsum("ij,ij->i", pts[nodes] - Q[k], N)
+        dot = np.einsum("ij,ij->i", near.points(nodes) - Q[k], N)
         return np.where(dot < 0, -1.0, 1.0)
 
     sign = np.where(lab == outside_label, 1.0, -1.0)
