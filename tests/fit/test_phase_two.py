@@ -318,8 +318,9 @@ def test_area_hold_scales_every_panel_onto_the_start_area(name):
 def test_scale_to_area_keeps_seams_and_placement():
     """unsew.grading.area.scale_to_area: the copy's total area is the one asked for, every edge
     (curves included) is s times as long, so sewn edges still match, and each panel's area
-    centroid keeps its 3D place; a factor beyond MAX_AREA_SCALE is clipped."""
-    from unsew.grading.area import MAX_AREA_SCALE, pattern_area, scale_to_area
+    centroid keeps its 3D place; a factor beyond MAX_AREA_SCALE is clipped, and clip_note says so
+    in one line only then."""
+    from unsew.grading.area import MAX_AREA_SCALE, clip_note, pattern_area, scale_to_area
     from unsew.metrics.panels import panel_centroid3d
     from unsew.pattern.base import make_base_pattern
     from unsew.pattern.curves import edge_length
@@ -332,6 +333,12 @@ def test_scale_to_area_keeps_seams_and_placement():
         for i in range(len(panel.edges)):
             assert abs(edge_length(q.panels[name], i) / edge_length(panel, i) - s) < 1e-6
         np.testing.assert_allclose(panel_centroid3d(q.panels[name]), panel_centroid3d(panel), atol=1e-9)
-    assert scale_to_area(p, 4 * a0)[1] == MAX_AREA_SCALE
+    assert clip_note(s, 1.1 * a0, q) is None
+    big, s_big = scale_to_area(p, 4 * a0)
+    assert s_big == MAX_AREA_SCALE
+    note = clip_note(s_big, 4 * a0, big)
+    assert note is not None and "\n" not in note and f"{pattern_area(big):.3f}" in note
+    small, s_small = scale_to_area(p, a0 / 4)
+    assert s_small == 1 / MAX_AREA_SCALE and clip_note(s_small, a0 / 4, small) is not None
     with pytest.raises(ValueError):
         scale_to_area(p, 0.0)

@@ -485,3 +485,20 @@ def test_hold_tops_keeps_a_band_and_lengthens_the_panels_below():
             assert np.allclose(out[lq] @ uq, -0.03, atol=1e-12)  # the rest moves down 3 cm
             moved += 1
     assert moved >= 1
+
+
+def test_area_scaling_beyond_its_bound_is_said_in_one_line(body, tshirt):
+    """grade(area=...) sizes the pattern to the target's area; a target area the bounded scaling
+    cannot reach leaves the pattern short of it and logs one warning line, a reachable one none."""
+    from unsew.grading.area import MAX_AREA_SCALE, pattern_area
+
+    p, m = tshirt
+    tx = flat_drape(p, m)
+    a0 = pattern_area(p)
+    for factor, warned in ((1.2, False), (4.0, True)):
+        lines = []
+        res = grade(p, body, tx, m.faces, mesh=m, drape_fn=flat_drape, passes=1, area=factor * a0, log=lines.append)
+        assert len(lines) == int(warned) and all("\n" not in s for s in lines)
+        reached = pattern_area(res.pattern) / (factor * a0)
+        assert (reached < 0.99) == warned, reached
+    assert res.area_scales == [MAX_AREA_SCALE]

@@ -64,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
             pattern, case.body, case.target_verts, case.target_faces,
             settings=GRADE_SETTINGS.replace(edge_length=args.edge_length), material=args.material,
             length=args.length, area=float(triangle_areas(case.target_verts, case.target_faces).sum())
-            if args.area == "target" else None, **kw,
+            if args.area == "target" else None, log=print, **kw,
         )
         save_pattern(res.pattern, tmp / "pattern.json")
         m = res.mesh

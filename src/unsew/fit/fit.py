@@ -116,7 +116,7 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
         base = choose_base(case, target, sdf, cfg, material0, progress=bar, log=log)
         clock.lap("base_choice_s", keep=bool(base.table))
         garment = base.name
-        first = start(base.pattern, case.body, target, sdf, cfg, material0, progress=bar, garment=garment)
+        first = start(base.pattern, case.body, target, sdf, cfg, material0, progress=bar, garment=garment, log=log)
         first = first.replace(base_name=base.name, base_choice=tuple(base.table))
         clock.lap("grading_s")
         choice = choose_start(first, case.body, target, sdf, cfg, progress=bar, log=log, garment=garment,

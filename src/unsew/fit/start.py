@@ -14,6 +14,7 @@ import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 
@@ -156,14 +157,15 @@ def _check_contours_compatible(n_src: int, n_tgt: int, garment: str) -> None:
 
 
 def start(base, body, target: Target, sdf, cfg: FitConfig, material, *, progress: Progress,
-          label: str = "drape base", garment: str = "", base_from: tuple | None = None) -> Start:
+          label: str = "drape base", garment: str = "", base_from: tuple | None = None,
+          log: Callable[[str], None] | None = None) -> Start:
     """Dress ``base`` on ``body`` in ``material`` and, unless ``cfg.grading`` is off, grade it to
     ``target`` in the same material (:func:`unsew.grading.grade.grade`). Raises InputError when
     the base's openings do not match the target's (``garment`` names the base in the message).
 
     base_from: (mesh, x) the base already dressed in another material: then, when
     ``cfg.material.warm_steps`` > 0, the base drape is settled from it (:func:`unsew.dress.settle`)
-    instead of dressed from scratch."""
+    instead of dressed from scratch. log: where grading's one-line warnings go."""
     t0, dress_s = time.perf_counter(), 0.0
     with progress.phase(label) as bar:
         if base_from is not None and cfg.material.warm_steps > 0:
@@ -182,5 +184,5 @@ def start(base, body, target: Target, sdf, cfg: FitConfig, material, *, progress
         return dress(p, b, sdf=sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
 
     g = grade(base, body, target.verts, target.faces, settings=cfg.drape, material=material, sdf=sdf,
-              mesh=mesh_b, x_init=x_b, drape_fn=drape_fn, area=target.area if cfg.area == "target" else None)
+              mesh=mesh_b, x_init=x_b, drape_fn=drape_fn, area=target.area if cfg.area == "target" else None, log=log)
     return Start(base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, mesh_b, material, dress_s=dress_s)

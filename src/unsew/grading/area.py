@@ -17,7 +17,7 @@ import numpy as np
 
 from unsew.metrics.panels import panel_area, panel_centroid2d
 
-__all__ = ["pattern_area", "scale_to_area", "MAX_AREA_SCALE"]
+__all__ = ["pattern_area", "scale_to_area", "clip_note", "MAX_AREA_SCALE"]
 
 #: Largest change of lengths the area scaling makes, s in [1 / MAX, MAX]: a target area more
 #: than 1.3^2 = 1.69 times off the graded pattern's is no garment of this base (a scan with holes,
@@ -50,3 +50,12 @@ def scale_to_area(pattern, area: float):
             if e.curvature is not None and e.curvature.kind == "circle":
                 e.curvature.params[0] = float(e.curvature.params[0]) * s
     return out, s
+
+
+def clip_note(s: float, area: float, pattern) -> str | None:
+    """One line for the user when :func:`scale_to_area` clipped its factor ``s`` (the pattern it
+    returned, ``pattern``, is not at the target's ``area`` [m^2]), else None."""
+    if abs(abs(math.log(s)) - math.log(MAX_AREA_SCALE)) > 1e-9:
+        return None
+    return (f"warning: the target's surface area {area:.3f} m^2 is beyond what the area scaling may reach "
+            f"(lengths x{s:.2f} at most); the graded pattern keeps {pattern_area(pattern):.3f} m^2")

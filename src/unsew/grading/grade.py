@@ -26,7 +26,7 @@ import torch
 
 from unsew.dress import DRESS_SETTINGS, dress
 from unsew.errors import InputError, PatternError, SimulationError, UnsewError
-from unsew.grading.area import scale_to_area
+from unsew.grading.area import clip_note, scale_to_area
 from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
 from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, place_contours
 from unsew.grading.curves import curves_of_contour, rest_length, stitched_edges
@@ -175,6 +175,7 @@ def grade(
     remesh: str = "always",
     length: str = "cloth",
     area: float | None = None,
+    log: Callable[[str], None] | None = None,
 ) -> GradeResult:
     """Grade ``pattern`` so that its draped open contours land where the target's are (phase one).
 
@@ -207,6 +208,7 @@ def grade(
         one factor about its centroid, :func:`unsew.grading.area.scale_to_area`) and meshed
         afresh before it is draped, so the next pass measures its contours on the scaled drape
         and the graded pattern's total area is ``area`` (None: no scaling, Algorithm 2).
+    log: where a one-line warning goes when the last pass's area scaling was clipped (None: nowhere).
 
     Returns a :class:`GradeResult`.
     """
@@ -239,6 +241,9 @@ def grade(
         if not redrape:
             break
         x_lg = np.asarray(drape_fn(cur.pattern, cur.mesh, body), dtype=np.float64)
+    note = clip_note(scales[-1], area, cur.pattern) if scales else None
+    if note and log is not None:  # the last pass decides the graded pattern's area
+        log(note)
     return GradeResult(
         pattern=cur.pattern, mesh=cur.mesh, x_draped=x_lg, table=rows, K=cur.K, fraction=first.fraction,
         remeshed=first.remeshed or cur.remeshed, x_init=x_init, mesh_init=mesh, matches=first.matches,
