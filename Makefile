@@ -4,6 +4,9 @@ SHELL := /bin/bash
 export OMP_WAIT_POLICY := PASSIVE
 export PYTHONDONTWRITEBYTECODE := 1
 VENV := .venv
+# Test processes (pytest-xdist; each runs torch on one thread, tests/conftest.py): one per core of
+# the two we are measured on. `--dist worksteal` evens out the minute-long fit tests at the end.
+TEST_WORKERS ?= 2
 
 .PHONY: setup demo test test-slow bench clean
 
@@ -14,7 +17,7 @@ demo: setup
 	@$(VENV)/bin/unsew demo $(ARGS)
 
 test: setup
-	@$(VENV)/bin/python -m pytest -q -m "not slow" $(ARGS)
+	@$(VENV)/bin/python -m pytest -q -m "not slow" -n $(TEST_WORKERS) --dist worksteal $(ARGS)
 
 test-slow: setup
 	@$(VENV)/bin/python -m pytest -q -m slow $(ARGS)
