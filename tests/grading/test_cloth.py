@@ -61,7 +61,7 @@ def tube(heights, radii, n_around=32):
 
     def ring(k, start):
         idx = np.arange(start, start + n_around)
-        return SimpleNamespace(index=k, contour=SimpleNamespace(indices=idx), centre=v[idx].mean(axis=0))
+        return SimpleNamespace(index=k, contour=SimpleNamespace(indices=idx), rim=idx, centre=v[idx].mean(axis=0))
 
     return v, np.array(f), [ring(0, 0), ring(1, last)]
 
@@ -89,7 +89,7 @@ def test_contour_without_a_path_to_the_top_has_no_cloth_length():
     verts = np.vstack([v, v3])
     faces = np.vstack([f, f3 + len(v)])
     piece = SimpleNamespace(index=2, contour=SimpleNamespace(indices=r3[0].contour.indices + len(v)),
-                            centre=r3[0].centre)
+                            rim=r3[0].rim + len(v), centre=r3[0].centre)
     _, lengths = cloth_lengths(verts, faces, rings + [piece])
     assert set(lengths) == {0}
 

@@ -113,3 +113,38 @@ def test_an_unmeshable_graded_pattern_is_scaled_back(body, skirt, monkeypatch):
     with pytest.raises(GradingError, match="not of the input") as err:
         grade(p, body, tx, tm.faces, mesh=m, drape_fn=flat_drape, passes=1, redrape=False, length="axial")
     assert not isinstance(err.value, InputError)
+
+
+def _hem_with_slits(depth: float, n: int = 120, wave: float = 0.0, slope: float = 0.0) -> np.ndarray:
+    """A 30 x 20 cm elliptic hem at y = 0 walked counter-clockwise (k, 3) [m], with optional
+    folds (``wave``: radial amplitude [m], 12 waves), a slope (``slope`` [m] from front to
+    back) and, when ``depth`` > 0, a slit at each side (x = +-15 cm): from a hem vertex straight
+    up ``depth`` [m] in 8 steps, across to above the next hem vertex and down to it."""
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    r = 1 + wave / 0.15 * np.sin(12 * t)
+    pts = np.stack([0.15 * r * np.cos(t), slope * (0.5 + 0.5 * np.sin(t)), 0.10 * r * np.sin(t)], axis=1)
+    out = []
+    for k, p in enumerate(pts):
+        out.append(p)
+        if depth > 0 and k in (0, n // 2):
+            q = pts[k + 1]
+            out += [p + [0, depth * s / 8, 0] for s in range(1, 9)] + [q + [0, depth * (8 - s) / 8, 0] for s in range(8)]
+    return np.asarray(out)
+
+
+def test_slits_are_cut_from_a_hem_and_folds_or_slopes_are_not():
+    """grading.contours.slits: a hem with a 17 cm slit at each side (the pencil dress's) loses
+    both climbs and returns (2 x 2 x 17 cm) and keeps the rest; a folded or sloped hem keeps all of
+    its length, and a climb out of the cloth is no slit."""
+    from unsew.grading.contours import slits
+
+    up = np.array([0.0, 1.0, 0.0])
+    slit = _hem_with_slits(0.17)
+    kept, cut = slits(slit, up)
+    assert kept is not None and (~kept).sum() == 2 * 16
+    assert cut == pytest.approx(4 * 0.17, rel=1e-6)
+    assert slits(slit[::-1], up)[1] == pytest.approx(cut)  # walked the other way
+    assert slits(slit * [1, -1, 1], -up)[1] == pytest.approx(cut)  # a neckline's slit goes down into the cloth
+    assert slits(slit, -up) == (None, 0.0)
+    for other in (_hem_with_slits(0.0, wave=0.03), _hem_with_slits(0.0, slope=0.12), _hem_with_slits(0.03)):
+        assert slits(other, up) == (None, 0.0)  # folds, a sloped hem, a 3 cm notch

@@ -119,12 +119,12 @@ def cloth_lengths(points: np.ndarray, faces: np.ndarray, placed: list) -> tuple[
     top = top_contour(placed)
     if top is None:
         return None, {}
-    d = cloth_distance(distance_graph(points, faces), top.contour.indices)
+    d = cloth_distance(distance_graph(points, faces), top.rim)
     out = {}
     for c in placed:
         if c is top:
             continue
-        v = d[np.asarray(c.contour.indices, dtype=np.int64)]
+        v = d[c.rim]  # a slit's climb is no cloth length (grading.contours.slits)
         if len(v) and np.all(np.isfinite(v)):
             out[c.index] = float(v.mean())
     return top, out

@@ -24,7 +24,9 @@ and normal angle is taken (Hungarian); pairs beyond the gates (:data:`MAX_CENTRE
 :data:`MAX_PERIMETER_RATIO`) are never made, so a hole that matches nothing stays unmatched.
 
 The girth difference of a pair is the difference of the loops' lengths (grading reads a
-crumpled and stretched loop differently: :func:`unsew.grading.grade.source_girth`).
+crumpled and stretched loop differently: :func:`unsew.grading.grade.source_girth`). A slit or
+vent (a skirt's side slits: the hem loop climbs 17 cm up each side and comes back) is no girth:
+its climb and return are cut from the loop's length, centre and cloth length (:func:`slits`).
 
 The axial distance of a pair is ``distToRoot(P_t) - distToRoot(P_s)`` along the source
 contour's bone chain (the target's own bone when it lies on the same part, else the target
@@ -52,6 +54,7 @@ __all__ = [
     "MAX_CENTRE_DISTANCE",
     "MAX_PERIMETER_RATIO",
     "hull_perimeter",
+    "slits",
 ]
 
 #: Source and target contours whose centres are further apart than this are never paired [m].
@@ -62,6 +65,14 @@ MAX_PERIMETER_RATIO = 2.0
 MIN_ROUNDNESS = 0.2
 #: Edge rings around a contour whose vertices tell on which side of it the cloth lies.
 INWARD_RINGS = 3
+#: A slit: the loop climbs along its bone into the cloth by at least SLIT_RISE [m] in segments
+#: steeper than SLIT_STEEP (|axial step| / step length) and comes back down the same way. A hem's
+#: folds wave across the bone, a sloped hem climbs gently: neither is cut (on the 36 foreign
+#: targets only the pencil dresses' two side slits, 16-17 cm each, are found).
+SLIT_RISE = 0.04
+SLIT_STEEP = 0.7
+#: Segments at a slit's top that may lie flat between its climb and its return.
+SLIT_APEX = 2
 
 
 def part_group(part: str) -> str:
@@ -88,8 +99,10 @@ class PlacedContour:
     inward: (3,) [m] from the centre to the mean of the garment vertices within
         :data:`INWARD_RINGS` edge rings of the contour (the side the cloth lies on); None when
         the mesh gives no such vertices.
-    hull: perimeter of the convex hull of the loop in its least-squares plane [m]
-        (:func:`hull_perimeter`; NaN when not measured).
+    hull: perimeter of the convex hull of the loop (outside its slits) in its least-squares
+        plane [m] (:func:`hull_perimeter`; NaN when not measured).
+    slit_cut: length cut from the perimeter for slits [m] (:func:`slits`; 0 without).
+    kept: (k,) bool over ``contour.indices``, False on a slit's climb and return; None: no slit.
     """
 
     index: int
@@ -104,6 +117,8 @@ class PlacedContour:
     roundness: float = 1.0
     inward: np.ndarray | None = None
     hull: float = float("nan")
+    slit_cut: float = 0.0
+    kept: np.ndarray | None = None
 
     @property
     def crumple(self) -> float:
@@ -115,13 +130,21 @@ class PlacedContour:
 
     @property
     def length(self) -> float:
-        """Perimeter [m]."""
-        return float(self.contour.length)
+        """Perimeter [m], less the climb and return of its slits (``slit_cut``)."""
+        return float(self.contour.length) - self.slit_cut
 
     @property
     def centre(self) -> np.ndarray:
-        """Centre (3,) [m]."""
-        return self.contour.centre
+        """Centre (3,) [m]: the contour's, or with slits the mean of the vertices outside them."""
+        return self.contour.centre if self._centre is None else self._centre
+
+    @property
+    def rim(self) -> np.ndarray:
+        """(k',) int64 mesh vertex indices of the loop outside its slits (all of it without)."""
+        idx = np.asarray(self.contour.indices, dtype=np.int64)
+        return idx if self.kept is None else idx[self.kept]
+
+    _centre: np.ndarray | None = None
 
 
 @dataclass
@@ -221,14 +244,22 @@ def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] 
         across = lambda b: roundness < MIN_ROUNDNESS or abs(float(c.normal @ b.direction)) >= 0.5  # noqa: E731
         cands.sort(key=lambda t: (t[2] >= radius, not across(t[0]), t[2]))
         inward = _inward(adj, v, c)
-        hull = hull_perimeter(pts)
         if cands:
             bone, u, h = cands[0]
-            pos = float(skeleton.distance_to_root(bone, u))
-            out.append(PlacedContour(i, c, radius, bone, float(u), float(h), bone.part, pos, cands, roundness, inward, hull))
+            kept, cut = slits(pts, _into_cloth(bone.direction, inward))
+            hull = hull_perimeter(pts if kept is None else pts[kept])
+            pc = PlacedContour(i, c, radius, bone, float(u), float(h), bone.part, 0.0, cands, roundness, inward, hull,
+                               slit_cut=cut, kept=kept)
+            if kept is not None:
+                pc._centre = pts[kept].mean(axis=0)
+                u = float(axial_coordinate(pc._centre, bone))
+                pc.u = u
+            pc.position = float(skeleton.distance_to_root(bone, u))
+            out.append(pc)
         else:
             out.append(
-                PlacedContour(i, c, radius, None, float("nan"), float("nan"), "", float("nan"), [], roundness, inward, hull)
+                PlacedContour(i, c, radius, None, float("nan"), float("nan"), "", float("nan"), [], roundness, inward,
+                              hull_perimeter(pts))
             )
     return out
 
@@ -249,6 +280,57 @@ def hull_perimeter(points) -> float:
     except QhullError:
         return float("nan")
     return float(np.linalg.norm(np.roll(ring, -1, axis=0) - ring, axis=1).sum())
+
+
+def _into_cloth(direction, inward) -> np.ndarray:
+    """The unit bone direction (3,) signed to point into the cloth (along ``inward`` when known)."""
+    a = np.asarray(direction, dtype=np.float64)
+    a = a / max(float(np.linalg.norm(a)), 1e-12)
+    return -a if inward is not None and float(a @ inward) < 0 else a
+
+
+def slits(points, axis) -> tuple[np.ndarray | None, float]:
+    """Slits and vents of one loop: (kept, cut).
+
+    points: (k, 3) float64 [m], the loop in walking order; axis: (3,) unit, along the bone into
+    the cloth (up from a hem, down from a neckline). A slit is a run of segments climbing along
+    ``axis`` by at least :data:`SLIT_RISE`, each steeper than :data:`SLIT_STEEP`, then (after at
+    most :data:`SLIT_APEX` flat segments at its top) a run coming down by as much.
+    kept: (k,) bool, False on the vertices strictly inside a slit's climb and return; None when
+    the loop has no slit. cut: the slits' length less the chords that close them [m].
+    """
+    p = np.asarray(points, dtype=np.float64)
+    k = len(p)
+    d = np.roll(p, -1, axis=0) - p  # segment t: p[t] -> p[t + 1]
+    seg = np.linalg.norm(d, axis=1)
+    dh = d @ np.asarray(axis, dtype=np.float64)
+    sgn = np.where(np.abs(dh) > SLIT_STEEP * np.maximum(seg, 1e-12), np.sign(dh), 0.0).astype(np.int64)
+    flat = np.flatnonzero(sgn == 0)
+    if k < 4 or len(flat) == 0:
+        return None, 0.0
+    h = p @ np.asarray(axis, dtype=np.float64)
+    start = flat[np.argmin(h[flat])]  # the lowest flat segment: on the hem, not a slit's top
+    order = (start + np.arange(k)) % k  # walked from there, no slit wraps round the end
+    s_, h_, l_ = sgn[order], dh[order], seg[order]
+    kept, cut, t = np.ones(k, dtype=bool), 0.0, 0
+    while t < k:
+        if s_[t] != 1:
+            t += 1
+            continue
+        a = t
+        while t < k and s_[t] == 1:
+            t += 1
+        top = t
+        while t < k and t - top < SLIT_APEX and s_[t] == 0:
+            t += 1
+        b = t
+        while t < k and s_[t] == -1:
+            t += 1
+        if t > b and h_[a:top].sum() >= SLIT_RISE and -h_[b:t].sum() >= SLIT_RISE:
+            i, j = order[a], order[t % k]  # the slit runs from vertex i to vertex j
+            kept[order[a + 1:t]] = False
+            cut += float(l_[a:t].sum() - np.linalg.norm(p[j] - p[i]))
+    return (None, 0.0) if kept.all() else (kept, cut)
 
 
 def _inward(adj, v, c: Contour) -> np.ndarray | None:
