@@ -26,7 +26,7 @@ and normal angle is taken (Hungarian); pairs beyond the gates (:data:`MAX_CENTRE
 The girth difference of a pair is the difference of the loops' lengths (grading reads a
 crumpled and stretched loop differently: :func:`unsew.grading.grade.source_girth`). A slit or
 vent (a skirt's side slits: the hem loop climbs 17 cm up each side and comes back) is no girth:
-its climb and return are cut from the loop's length, centre and cloth length (:func:`slits`).
+its climb and return are cut from the loop's length, centre, plane and cloth length (:func:`slits`).
 
 The axial distance of a pair is ``distToRoot(P_t) - distToRoot(P_s)`` along the source
 contour's bone chain (the target's own bone when it lies on the same part, else the target
@@ -94,8 +94,9 @@ class PlacedContour:
     part: body part of ``bone`` (``""`` when none).
     position: distToRoot of the centre's projection on ``bone`` [m].
     candidates: all qualifying bones, nearest first: (bone, u, h) tuples.
-    roundness: second over first singular value of the centred contour points (0 for a loop
-        collapsed onto a line, whose normal means nothing; about 1 for a round loop).
+    roundness: second over first singular value of the centred contour points, outside its
+        slits (0 for a loop collapsed onto a line, whose normal means nothing; about 1 for a
+        round loop).
     inward: (3,) [m] from the centre to the mean of the garment vertices within
         :data:`INWARD_RINGS` edge rings of the contour (the side the cloth lies on); None when
         the mesh gives no such vertices.
@@ -139,12 +140,18 @@ class PlacedContour:
         return self.contour.centre if self._centre is None else self._centre
 
     @property
+    def normal(self) -> np.ndarray:
+        """Unit normal (3,) of the loop's least-squares plane (outside its slits, when it has some)."""
+        return self.contour.normal if self._normal is None else self._normal
+
+    @property
     def rim(self) -> np.ndarray:
         """(k',) int64 mesh vertex indices of the loop outside its slits (all of it without)."""
         idx = np.asarray(self.contour.indices, dtype=np.int64)
         return idx if self.kept is None else idx[self.kept]
 
     _centre: np.ndarray | None = None
+    _normal: np.ndarray | None = None
 
 
 @dataclass
@@ -250,8 +257,12 @@ def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] 
             hull = hull_perimeter(pts if kept is None else pts[kept])
             pc = PlacedContour(i, c, radius, bone, float(u), float(h), bone.part, 0.0, cands, roundness, inward, hull,
                                slit_cut=cut, kept=kept)
-            if kept is not None:
-                pc._centre = pts[kept].mean(axis=0)
+            if kept is not None:  # the loop's place and plane without its slits
+                rim = pts[kept]
+                pc._centre = rim.mean(axis=0)
+                _, sv, vt = np.linalg.svd(rim - pc._centre, full_matrices=False)
+                pc._normal = vt[2] if float(vt[2] @ c.normal) >= 0 else -vt[2]
+                pc.roundness = float(sv[1] / sv[0]) if sv[0] > 0 else 0.0
                 u = float(axial_coordinate(pc._centre, bone))
                 pc.u = u
             pc.position = float(skeleton.distance_to_root(bone, u))
@@ -395,7 +406,7 @@ def match_contours(
             ratio = max(s.length, t.length) / max(min(s.length, t.length), 1e-9)
             if dc > max_centre_distance or ratio > max_perimeter_ratio:
                 continue
-            cosn = abs(float(s.contour.normal @ t.contour.normal))
+            cosn = abs(float(s.normal @ t.normal))
             if min(s.roundness, t.roundness) < MIN_ROUNDNESS:
                 cosn = 1.0  # a loop collapsed onto a line has no meaningful plane
             elif cosn < 0.5:  # planes more than 60 degrees apart
