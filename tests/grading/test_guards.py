@@ -148,3 +148,42 @@ def test_slits_are_cut_from_a_hem_and_folds_or_slopes_are_not():
     assert slits(slit, -up) == (None, 0.0)
     for other in (_hem_with_slits(0.0, wave=0.03), _hem_with_slits(0.0, slope=0.12), _hem_with_slits(0.03)):
         assert slits(other, up) == (None, 0.0)  # folds, a sloped hem, a 3 cm notch
+
+
+def _skirt_tube(slit_rows: int):
+    """A 40 cm tall tube of radius 0.22 m about the default body's hips (rings every 2.5 cm from
+    y = 0.50 m, 80 vertices round) with, when ``slit_rows`` > 0, a slit at each side: that many
+    rows of one column of faces left out from the hem up. Returns (verts (V, 3), faces (F, 3))."""
+    n, rows = 80, 17
+    t = 2 * np.pi * np.arange(n) / n
+    v = np.concatenate([np.stack([0.22 * np.cos(t), np.full(n, 0.5 + 0.025 * i), 0.22 * np.sin(t)], axis=1)
+                        for i in range(rows)])
+    f = []
+    for i in range(rows - 1):
+        for j in range(n):
+            if i < slit_rows and j in (0, n // 2):
+                continue
+            a, b = i * n + j, i * n + (j + 1) % n
+            f += [[a, b, b + n], [a, b + n, a + n]]
+    return v, np.array(f)
+
+
+def test_a_slitted_hem_is_placed_as_the_hem_without_its_slits(body):
+    """place_contours on a tube with a 15 cm slit at each side: the hem's length, centre height,
+    plane and cloth length to the top are the plain tube's, and its rim leaves the slits out."""
+    from unsew.grading.cloth import cloth_lengths
+
+    plain = place_contours(*_skirt_tube(0), body.skeleton)
+    v, f = _skirt_tube(6)
+    slit = place_contours(v, f, body.skeleton)
+    hem0 = min(plain, key=lambda c: c.centre[1])
+    hem = min(slit, key=lambda c: c.centre[1])
+    assert hem.contour.length > hem0.length + 4 * 0.14  # the loop itself climbs both slits
+    assert hem.kept is not None and hem0.kept is None and hem0.slit_cut == 0.0
+    assert hem.length == pytest.approx(hem0.length, abs=0.02)
+    assert hem.centre[1] == pytest.approx(0.5, abs=0.005) and hem.contour.centre[1] > 0.52
+    assert abs(hem.normal[1]) > 0.999
+    assert np.all(v[hem.rim, 1] < 0.5 + 1e-9)
+    _, lengths = cloth_lengths(v, f, slit)
+    _, lengths0 = cloth_lengths(*_skirt_tube(0), plain)
+    assert lengths[hem.index] == pytest.approx(lengths0[hem0.index], abs=0.005)
