@@ -172,9 +172,7 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
         if not redress.phase_two_kept:  # the graded pattern's rest mesh (= uv(K0)), drape and material
             pattern, uv, x, material = s.graded, np.asarray(s.mesh.uv, dtype=np.float64), np.asarray(s.x), s.material
         # the re-dress is a drape of the result from scratch, timed now: a closer estimate of the
-        # mesh spread's two drapes than the base's (on the tall wide trousers the base's drape let
-        # the spread start with 62 s left, so it predicted at most 48 s; the spread took 87 s,
-        # 26 s past the limit; its re-dress took 43 s)
+        # mesh spread's two drapes than the base's (docs/benchmarks.md, "The mesh spread's estimate")
         drape_s = max(drape_s, time.perf_counter() - t0)
         clock.lap("redress_s")
     spread = None

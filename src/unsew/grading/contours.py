@@ -25,8 +25,8 @@ and normal angle is taken (Hungarian); pairs beyond the gates (:data:`MAX_CENTRE
 
 The girth difference of a pair is the difference of the loops' lengths (grading reads a
 crumpled and stretched loop differently: :func:`unsew.grading.grade.source_girth`). A slit or
-vent (a skirt's side slits: the hem loop climbs 17 cm up each side and comes back) is no girth:
-its climb and return are cut from the loop's length, centre, plane and cloth length (:func:`slits`).
+vent (a skirt's side slit: the hem loop climbs up the side seam and comes back) is no girth: its
+climb and return are cut from the loop's length, centre, plane and cloth length (:func:`slits`).
 
 The axial distance of a pair is ``distToRoot(P_t) - distToRoot(P_s)`` along the source
 contour's bone chain (the target's own bone when it lies on the same part, else the target
@@ -67,8 +67,8 @@ MIN_ROUNDNESS = 0.2
 INWARD_RINGS = 3
 #: A slit: the loop climbs along its bone into the cloth by at least SLIT_RISE [m] in segments
 #: steeper than SLIT_STEEP (|axial step| / step length) and comes back down the same way. A hem's
-#: folds wave across the bone, a sloped hem climbs gently: neither is cut (on the 36 foreign
-#: targets only the pencil dresses' two side slits, 16-17 cm each, are found).
+#: folds wave across the bone, a sloped hem climbs gently: neither is cut (what it finds on the
+#: foreign benchmark: docs/benchmarks.md, "A slit is no girth").
 SLIT_RISE = 0.04
 SLIT_STEEP = 0.7
 #: Segments at a slit's top that may lie flat between its climb and its return.
