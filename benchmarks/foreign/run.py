@@ -56,6 +56,9 @@ BODIES = {
     # GarmentCode's mean body (A-pose): its mesh goes into the case folder as body.obj with no
     # skeleton.json, so the case is rigged from the mesh wherever it is read (and so is the target's body here)
     "gc_mean_all": {"model": "garmentcode", "mesh": "mean_all.obj", "pose": "A"},
+    "gc_mean_female": {"model": "garmentcode", "mesh": "mean_female.obj", "pose": "A"},
+    "gc_mean_male": {"model": "garmentcode", "mesh": "mean_male.obj", "pose": "A"},
+    "gc_mean_all_tpose": {"model": "garmentcode", "mesh": "mean_all_tpose.obj", "pose": "T"},
 }
 
 #: case id -> (design name in designs.DESIGNS, body key). Ordered so that the first 15 give
@@ -110,6 +113,15 @@ CASES = {
     "dress_pencil_gc__tall_thin": ("gc:dress_pencil_specification.json", "anny_tall_thin"),
     "shirt_gc__tpose": ("gc:shirt_mean_specification.json", "anny_tpose"),
     "dress_pencil_gc__male_heavy": ("gc:dress_pencil_specification.json", "anny_male_heavy"),
+    # built in session 20 (the fit fixed at 7061d23) and fitted once: one per garment type on
+    # GarmentCode's bodies the fit had never met (female, male, T-pose), and a skirt over a leg
+    # swung forward
+    "skirt_circle_knee__gc_mean_female": ("skirt_circle_knee", "gc_mean_female"),
+    "trousers_tapered__gc_mean_male": ("trousers_tapered", "gc_mean_male"),
+    "shorts_knee__gc_mean_all_tpose": ("shorts_knee", "gc_mean_all_tpose"),
+    "dress_sheath_sleeveless__gc_mean_female": ("dress_sheath_sleeveless", "gc_mean_female"),
+    "tee_fitted_short__gc_mean_male": ("tee_fitted_short", "gc_mean_male"),
+    "skirt_aline_knee__leg_forward": ("skirt_aline_knee", "anny_leg_forward"),
 }
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").

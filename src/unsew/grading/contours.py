@@ -104,6 +104,9 @@ class PlacedContour:
         plane [m] (:func:`hull_perimeter`; NaN when not measured).
     slit_cut: length cut from the perimeter for slits [m] (:func:`slits`; 0 without).
     kept: (k,) bool over ``contour.indices``, False on a slit's climb and return; None: no slit.
+    rim_centre, rim_normal: (3,) [m] mean and (3,) unit least-squares plane normal of the
+        vertices outside the slits; None without slits (``centre`` and ``normal`` then read
+        the contour's own).
     """
 
     index: int
@@ -120,6 +123,8 @@ class PlacedContour:
     hull: float = float("nan")
     slit_cut: float = 0.0
     kept: np.ndarray | None = None
+    rim_centre: np.ndarray | None = None
+    rim_normal: np.ndarray | None = None
 
     @property
     def crumple(self) -> float:
@@ -137,21 +142,18 @@ class PlacedContour:
     @property
     def centre(self) -> np.ndarray:
         """Centre (3,) [m]: the contour's, or with slits the mean of the vertices outside them."""
-        return self.contour.centre if self._centre is None else self._centre
+        return self.contour.centre if self.rim_centre is None else self.rim_centre
 
     @property
     def normal(self) -> np.ndarray:
         """Unit normal (3,) of the loop's least-squares plane (outside its slits, when it has some)."""
-        return self.contour.normal if self._normal is None else self._normal
+        return self.contour.normal if self.rim_normal is None else self.rim_normal
 
     @property
     def rim(self) -> np.ndarray:
         """(k',) int64 mesh vertex indices of the loop outside its slits (all of it without)."""
         idx = np.asarray(self.contour.indices, dtype=np.int64)
         return idx if self.kept is None else idx[self.kept]
-
-    _centre: np.ndarray | None = None
-    _normal: np.ndarray | None = None
 
 
 @dataclass
@@ -259,11 +261,11 @@ def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] 
                                slit_cut=cut, kept=kept)
             if kept is not None:  # the loop's place and plane without its slits
                 rim = pts[kept]
-                pc._centre = rim.mean(axis=0)
-                _, sv, vt = np.linalg.svd(rim - pc._centre, full_matrices=False)
-                pc._normal = vt[2] if float(vt[2] @ c.normal) >= 0 else -vt[2]
+                pc.rim_centre = rim.mean(axis=0)
+                _, sv, vt = np.linalg.svd(rim - pc.rim_centre, full_matrices=False)
+                pc.rim_normal = vt[2] if float(vt[2] @ c.normal) >= 0 else -vt[2]
                 pc.roundness = float(sv[1] / sv[0]) if sv[0] > 0 else 0.0
-                u = float(axial_coordinate(pc._centre, bone))
+                u = float(axial_coordinate(pc.rim_centre, bone))
                 pc.u = u
             pc.position = float(skeleton.distance_to_root(bone, u))
             out.append(pc)
