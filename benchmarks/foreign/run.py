@@ -122,6 +122,10 @@ CASES = {
     "dress_sheath_sleeveless__gc_mean_female": ("dress_sheath_sleeveless", "gc_mean_female"),
     "tee_fitted_short__gc_mean_male": ("tee_fitted_short", "gc_mean_male"),
     "skirt_aline_knee__leg_forward": ("skirt_aline_knee", "anny_leg_forward"),
+    "tee_fitted_short__gc_mean_female": ("tee_fitted_short", "gc_mean_female"),
+    "skirt_flared_midi__gc_mean_female": ("skirt_flared_midi", "gc_mean_female"),
+    "shirt_gc__gc_mean_male": ("gc:shirt_mean_specification.json", "gc_mean_male"),
+    "dress_pencil_gc__gc_mean_female": ("gc:dress_pencil_specification.json", "gc_mean_female"),
 }
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").
