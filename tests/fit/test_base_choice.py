@@ -12,7 +12,7 @@ from unsew.dress import DRESS_SETTINGS, dress
 from unsew.errors import InputError
 from unsew.fit.config import FitConfig
 from unsew.fit.progress import Progress
-from unsew.fit.start import choose_base
+from unsew.fit.start import arm_openings, choose_base
 from unsew.fit.target import Target
 from unsew.io.garmentcode import save_pattern
 from unsew.losses.contours import open_contours
@@ -52,6 +52,16 @@ def test_sleeveless_tee_target_chooses_the_sleeveless_base(body_sdf):
     ch, cf = _choose("tshirt", _target("tshirt_sleeveless", body, sdf), body, sdf)
     assert ch.name == "tshirt_sleeveless"
     assert cf[1] > 2 * cf[0]  # measured: 5.4 mm against 14.4 (short sleeves) and 34.8 (long)
+    # the sleeved bases' openings on the arms are not the target's
+    assert {r["base"]: r["arms"] for r in ch.table} == {"tshirt_sleeveless": True, "tshirt": False, "tshirt_long": False}
+
+
+def test_openings_on_the_arms_tell_sleeves_from_armholes(body_sdf):
+    """A sleeve's cuff lies on its arm; a sleeveless top's armhole on the torso (the shoulder)."""
+    body, sdf = body_sdf
+    for name, want in (("tshirt", (1, 1)), ("tshirt_sleeveless", (0, 0))):
+        t = _target(name, body, sdf, edge=0.05)
+        assert arm_openings(t.verts, t.faces, body.skeleton, contours=t.contours) == want, name
 
 
 @pytest.mark.slow

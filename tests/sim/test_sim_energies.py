@@ -187,6 +187,22 @@ def test_bending_zero_flat_rigid_invariant(sheet):
     assert_close(g2, g1 @ R.T, atol=1e-15, rtol=1e-8)
 
 
+def test_bending_of_a_triangle_flat_on_a_line_is_finite(sheet):
+    """A placement that folds part of a panel onto a line (zero-area triangles, even coincident
+    vertices) bends nothing there instead of giving NaN forces at step 0."""
+    m, uv, _, _, coef = sheet
+    x = perturbed(flat_embed(uv), 0.01)
+    h0 = m.hinges[0]
+    x[h0[:3], 1:] = x[h0[0], 1:]  # triangle (x0, x1, x2) on a line along x, as a fold clamps it
+    h1 = m.hinges[7]
+    x[h1[1]] = x[h1[0]]  # a zero-length hinge edge
+    e, g, H = energy_bending(x, m.hinges, coef, GAMMA)
+    assert torch.isfinite(e) and torch.isfinite(g).all() and torch.isfinite(H).all()
+    theta, dth = dihedral_angle(x, m.hinges)
+    assert torch.isfinite(theta).all() and torch.isfinite(dth).all()
+    assert float(dth[0, 2].abs().max()) == 0.0 and float(dth[7].abs().max()) == 0.0  # nothing bends them
+
+
 def test_bending_gradient_vs_autograd_and_fd(sheet):
     m, uv, _, _, coef = sheet
     x = perturbed(flat_embed(uv), 0.01).requires_grad_()

@@ -5,7 +5,10 @@ The base is the user's (``--base NAME|P.json``) or, by default, chosen by drapin
 (:func:`choose_base`): every base of the library of the target's garment type
 (:func:`unsew.pattern.base.bases_for`) is dressed on the wearer on a coarse mesh in the start
 material, and the one whose drape lies closest to the target (mean surface Chamfer) is kept, as
-the material is chosen (:mod:`unsew.fit.material`)."""
+the material is chosen (:mod:`unsew.fit.material`). A base whose drape has no opening on an arm
+where the target has one, or the other way round (a sleeveless base for a sleeved target), is
+chosen only when no candidate's arms agree with the target's: grading cannot grow or remove a
+sleeve, and it would pull the armhole out to the target's cuff."""
 
 from __future__ import annotations
 
@@ -24,13 +27,14 @@ from unsew.errors import InputError
 from unsew.fit.config import FitConfig
 from unsew.fit.progress import Progress
 from unsew.fit.target import Target
+from unsew.grading.contours import place_contours
 from unsew.grading.grade import grade
 from unsew.io.garmentcode import load_pattern
 from unsew.losses.contours import open_contours
 from unsew.pattern.base import BASES, bases_for, garment_of, make_base_pattern
 from unsew.sim.checks import check_dressed
 
-__all__ = ["Start", "start", "base_pattern_for", "BaseChoice", "choose_base"]
+__all__ = ["Start", "start", "base_pattern_for", "BaseChoice", "choose_base", "arm_openings", "ARM_PARTS", "SLEEVE_REACH", "SLEEVE_NEAR"]
 
 #: garment types a base pattern may stand in for (same panel topology)
 _COMPATIBLE = {
@@ -92,11 +96,42 @@ def base_pattern_for(case, cfg: FitConfig):
     return load_pattern(p)
 
 
+#: body parts whose openings a base must share with the target (sleeves; :func:`arm_openings`)
+ARM_PARTS = ("left_arm", "right_arm")
+#: how far beyond the shoulder joint along the upper arm [m] an opening on an arm must lie to be
+#: a sleeve's: an armhole's centre lies within 4 cm of the joint, on the shoulder bone or on the
+#: arm (which of the two flips with the mesh); a short sleeve's cuff 20 cm down the arm, a cap
+#: sleeve's 9 cm (GarmentCode's fitted tee on its female body)
+SLEEVE_REACH = 0.06
+#: ... and how near a bone of that arm [m] (a coarse drape's cuff may hang off the arm's line,
+#: and be placed on another bone)
+SLEEVE_NEAR = 0.12
+
+
+def arm_openings(verts, faces, skeleton, *, contours=None) -> tuple[int, int]:
+    """How many open contours of a garment surface (verts (V, 3) [m], faces (F, 3)) are sleeve
+    openings on the left and on the right arm: within :data:`SLEEVE_NEAR` of a bone of the arm
+    (a candidate of :func:`unsew.grading.contours.place_contours`) and at least
+    :data:`SLEEVE_REACH` beyond the shoulder joint. (1, 1) for a tee, (0, 0) for a sleeveless top."""
+    placed = place_contours(verts, faces, skeleton, contours=contours)
+    bones = skeleton.bones()
+    counts = []
+    for side in ARM_PARTS:
+        arm = {b.name: b for b in bones if b.part == side}
+        root = next((b for b in arm.values() if b.parent not in arm), None)
+        counts.append(0 if root is None else sum(
+            1 for pc in placed
+            if any(b.part == side and h < SLEEVE_NEAR for b, _, h in pc.candidates)
+            and float((pc.centre - root.a) @ root.direction) >= SLEEVE_REACH))
+    return tuple(counts)
+
+
 @dataclass
 class BaseChoice:
     """The base pattern phase one starts from: ``pattern``, its ``name`` (a library base, or the
-    JSON path given), and the automatic choice's table, best first: rows {"base", "chamfer_mm"}
-    (a candidate whose drape failed has chamfer_mm None and an "error"); empty when the user named
+    JSON path given), and the automatic choice's table, best first: rows {"base", "chamfer_mm",
+    "arms"} (arms: True when the drape's openings on the arms are the target's, :func:`arm_openings`;
+    a candidate whose drape failed has chamfer_mm None and an "error"); empty when the user named
     the base. ``seconds``: time the choice took [s]."""
 
     pattern: object
@@ -122,6 +157,7 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
     t0 = time.perf_counter()
     settings = cfg.drape.replace(edge_length=cfg.base_choice_edge)
     rows, patterns = [], {}
+    want = arm_openings(target.verts, target.faces, case.body.skeleton, contours=target.contours)
     for name in names:
         pat = make_base_pattern(name, m)
         try:
@@ -131,18 +167,22 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
             if not verdict.ok:  # fallen, exploded, off or inside the body: no candidate
                 raise ValueError(verdict.reason)
             cf = target.distance_mm(d.x.numpy(), d.mesh.faces)
+            arms = arm_openings(d.x.numpy(), d.mesh.faces, case.body.skeleton) == want
         except (InputError, ValueError, RuntimeError) as exc:  # a candidate that cannot be dressed here
             rows.append({"base": name, "chamfer_mm": None, "error": str(exc).splitlines()[0]})
             continue
-        rows.append({"base": name, "chamfer_mm": cf if math.isfinite(cf) else None})
+        rows.append({"base": name, "chamfer_mm": cf if math.isfinite(cf) else None, "arms": arms})
         if math.isfinite(cf):
             patterns[name] = pat
     if not patterns:
         raise InputError(f"no base pattern of type {case.garment} could be dressed on this body; pass --base P.json")
-    rows.sort(key=lambda r: (r["chamfer_mm"] is None, r["chamfer_mm"] or 0.0))
+    # the arms agreeing first, when any candidate's do; then the closest
+    any_arms = any(r.get("arms") and r["base"] in patterns for r in rows)
+    rows.sort(key=lambda r: (r["chamfer_mm"] is None, any_arms and not r.get("arms"), r["chamfer_mm"] or 0.0))
     best = rows[0]["base"]
-    log("base: " + ", ".join(f"{r['base']} {r['chamfer_mm']:.2f} mm" if r["chamfer_mm"] is not None
-                             else f"{r['base']} failed" for r in rows) + f"; {best} chosen")
+    log("base: " + ", ".join(f"{r['base']} {r['chamfer_mm']:.2f} mm" + ("" if r["arms"] else " (arms differ)")
+                             if r["chamfer_mm"] is not None else f"{r['base']} failed" for r in rows)
+        + f"; {best} chosen (target: {want[0]} + {want[1]} openings on the arms)")
     return BaseChoice(patterns[best], best, rows, time.perf_counter() - t0)
 
 

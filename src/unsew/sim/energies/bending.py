@@ -31,6 +31,10 @@ import torch
 
 __all__ = ["bending_rest", "energy_bending", "dihedral_angle"]
 
+#: floor of |n|^2 [m^4] of a hinge's triangle normals: far below any real triangle's
+#: ((1 mm)^4 = 1e-12), only a zero-area one is floored
+_TINY = 1e-30
+
 
 def bending_rest(uv: torch.Tensor, faces_uv: torch.Tensor, hinge_faces, hinge_uv_edges, rest_area):
     """Per-hinge rest coefficient c = |e_r|^2 / (A1_r + A2_r) [-] (dimensionless), shape (H,).
@@ -60,12 +64,16 @@ def dihedral_angle(x: torch.Tensor, hinges: torch.Tensor):
     el = e.norm(dim=-1)
     n1 = _cross(e, x2 - x0)
     n2 = _cross(x3 - x0, e)
-    n1s = (n1 * n1).sum(-1)
-    n2s = (n2 * n2).sum(-1)
-    theta = torch.atan2((_cross(n1, n2) * e).sum(-1) / el, (n1 * n2).sum(-1))
+    # a triangle flat on a line (zero area) has no normal: its angle reads 0 and its gradient
+    # (el / |n|^2) n is 0 rather than 0/0, so a degenerate start (a panel folded flat by its
+    # placement) bends nothing until it opens, instead of a NaN force at step 0
+    n1s = (n1 * n1).sum(-1).clamp_min(_TINY)
+    n2s = (n2 * n2).sum(-1).clamp_min(_TINY)
+    elc = el.clamp_min(_TINY)  # a zero-length edge (two vertices on one point): the same reading
+    theta = torch.atan2((_cross(n1, n2) * e).sum(-1) / elc, (n1 * n2).sum(-1))
     g2 = -(el / n1s)[:, None] * n1
     g3 = -(el / n2s)[:, None] * n2
-    e2 = el * el
+    e2 = (el * el).clamp_min(_TINY)
     t1 = ((x2 - x0) * e).sum(-1) / e2
     t2 = ((x3 - x0) * e).sum(-1) / e2
     g0 = -(1 - t1)[:, None] * g2 - (1 - t2)[:, None] * g3
