@@ -1,14 +1,15 @@
 """Is a fit's drape at rest? A pattern dressed as the fit dresses it, then let settle further.
 
 For a case folder and a fit's result folder, dresses each named pattern of the result (default:
-the graded and the base pattern) from scratch with the fit's drape settings in ``--material``,
+the graded and the base pattern) from scratch with the fit's drape settings in the result's
+fitted material (``material.json``) or ``--material``,
 then settles it ``--rounds`` more times by ``--steps`` steps each (:func:`unsew.dress.settle`,
 restarting at rest), and prints after each round the garment's top and lowest height [m] and its
 Chamfer to the target [mm], and the largest vertex speed [m/s] at the end of the dress. A drape
 whose figures still move after the dress was not at rest when the fit measured it.
 
     python -m benchmarks settle CASE_DIR RESULT_DIR [--patterns pattern_graded.json ...]
-        [--material denim] [--rounds 5] [--steps 40]
+        [--material NAME] [--rounds 5] [--steps 40]
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ def main() -> None:
     ap.add_argument("case", type=Path)
     ap.add_argument("result", type=Path)
     ap.add_argument("--patterns", nargs="+", default=["pattern_graded.json", "pattern_base.json"])
-    ap.add_argument("--material", default="denim", help="library material (the fit's choice: its log)")
+    ap.add_argument("--material", default=None, help="library material (default: RESULT/material.json)")
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--steps", type=int, default=40)
     args = ap.parse_args()
@@ -42,10 +43,15 @@ def main() -> None:
     from unsew.fit.config import FitConfig
     from unsew.fit.target import Target
     from unsew.io.garmentcode import load_pattern
+    from unsew.sim.material import material_from_dict
 
     case = load_case(args.case)
     sdf, target = BodySDF.build(case.body), Target.of_case(case)
-    mat, settings = resolve_material(args.material), FitConfig().drape
+    import json
+
+    mat = resolve_material(args.material) if args.material else \
+        material_from_dict(json.loads((args.result / "material.json").read_text()))
+    settings = FitConfig().drape
     rows = []
     for name in args.patterns:
         d = dress(load_pattern(args.result / name), case.body, sdf=sdf, material=mat, settings=settings)
@@ -58,7 +64,7 @@ def main() -> None:
                          "top_m": float(x[:, 1].max()), "lowest_m": float(x[:, 1].min()),
                          "chamfer_mm": target.distance_mm(x, faces)})
             print(rows[-1], flush=True)
-    print_table(rows, title=f"{args.case.name}: the fit's drapes let settle further ({args.material})", digits=4)
+    print_table(rows, title=f"{args.case.name}: the fit's drapes let settle further ({args.material or 'fitted material'})", digits=4)
 
 
 if __name__ == "__main__":
