@@ -15,6 +15,7 @@ whose figures still move after the dress was not at rest when the fit measured i
 from __future__ import annotations
 
 import argparse
+import json
 import os
 from pathlib import Path
 
@@ -47,8 +48,6 @@ def main() -> None:
 
     case = load_case(args.case)
     sdf, target = BodySDF.build(case.body), Target.of_case(case)
-    import json
-
     mat = resolve_material(args.material) if args.material else \
         material_from_dict(json.loads((args.result / "material.json").read_text()))
     settings = FitConfig().drape
@@ -64,7 +63,8 @@ def main() -> None:
                          "top_m": float(x[:, 1].max()), "lowest_m": float(x[:, 1].min()),
                          "chamfer_mm": target.distance_mm(x, faces)})
             print(rows[-1], flush=True)
-    print_table(rows, title=f"{args.case.name}: the fit's drapes let settle further ({args.material or 'fitted material'})", digits=4)
+    what = args.material or "fitted material"
+    print_table(rows, title=f"{args.case.name}: the fit's drapes let settle further ({what})", digits=4)
 
 
 if __name__ == "__main__":

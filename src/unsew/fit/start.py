@@ -34,7 +34,8 @@ from unsew.losses.contours import open_contours
 from unsew.pattern.base import BASES, bases_for, garment_of, make_base_pattern
 from unsew.sim.checks import check_dressed
 
-__all__ = ["Start", "start", "base_pattern_for", "BaseChoice", "choose_base", "arm_openings", "ARM_PARTS", "SLEEVE_REACH", "SLEEVE_NEAR"]
+__all__ = ["Start", "start", "base_pattern_for", "BaseChoice", "choose_base", "arm_openings", "ARM_PARTS",
+           "SLEEVE_REACH", "SLEEVE_NEAR"]
 
 #: garment types a base pattern may stand in for (same panel topology)
 _COMPATIBLE = {
@@ -100,8 +101,8 @@ def base_pattern_for(case, cfg: FitConfig):
 ARM_PARTS = ("left_arm", "right_arm")
 #: how far beyond the shoulder joint along the upper arm [m] an opening on an arm must lie to be
 #: a sleeve's: an armhole's centre lies within 4 cm of the joint, on the shoulder bone or on the
-#: arm (which of the two flips with the mesh); a short sleeve's cuff 20 cm down the arm, a cap
-#: sleeve's 9 cm (GarmentCode's fitted tee on its female body)
+#: arm (which of the two flips with the mesh); a short sleeve's cuff about 20 cm down the arm,
+#: a cap sleeve's about 9 cm
 SLEEVE_REACH = 0.06
 #: ... and how near a bone of that arm [m] (a coarse drape's cuff may hang off the arm's line,
 #: and be placed on another bone)
