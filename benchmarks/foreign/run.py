@@ -53,6 +53,7 @@ BODIES = {
     "anny_tpose": {"model": "anny", "phenotype": dict(_P), "pose": "T"},
     # left leg swung 0.3 rad forward at the hip (world-frame rotation vector)
     "anny_leg_forward": {"model": "anny", "phenotype": dict(_P), "pose": {"left_hip": [-0.3, 0.0, 0.0]}},
+    "anny_short_curvy": {"model": "anny", "phenotype": dict(_P, gender=1.0, height=0.15, weight=0.75, proportions=0.3), "pose": "A"},
     # GarmentCode's mean body (A-pose): its mesh goes into the case folder as body.obj with no
     # skeleton.json, so the case is rigged from the mesh wherever it is read (and so is the target's body here)
     "gc_mean_all": {"model": "garmentcode", "mesh": "mean_all.obj", "pose": "A"},
@@ -126,6 +127,16 @@ CASES = {
     "skirt_flared_midi__gc_mean_female": ("skirt_flared_midi", "gc_mean_female"),
     "shirt_gc__gc_mean_male": ("gc:shirt_mean_specification.json", "gc_mean_male"),
     "dress_pencil_gc__gc_mean_female": ("gc:dress_pencil_specification.json", "gc_mean_female"),
+    # built in session 21 (the fit fixed at c913a50) and fitted once: a short, curvy female anny
+    # body the fit had never met, and designs on bodies and poses they had not been tried on
+    "dress_shift_sleeved__short_curvy": ("dress_shift_sleeved", "anny_short_curvy"),
+    "skirt_aline_knee__short_curvy": ("skirt_aline_knee", "anny_short_curvy"),
+    "trousers_straight__short_curvy": ("trousers_straight", "anny_short_curvy"),
+    "tee_loose_long__tpose": ("tee_loose_long", "anny_tpose"),
+    "shorts_wide__leg_forward": ("shorts_wide", "anny_leg_forward"),
+    "skirt_pencil_mini__gc_mean_female": ("skirt_pencil_mini", "gc_mean_female"),
+    "shirt_gc__tall_thin": ("gc:shirt_mean_specification.json", "anny_tall_thin"),
+    "trousers_wide__gc_mean_all_tpose": ("trousers_wide", "gc_mean_all_tpose"),
 }
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").
