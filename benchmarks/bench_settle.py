@@ -5,8 +5,10 @@ the graded and the base pattern) from scratch with the fit's drape settings in t
 fitted material (``material.json``) or ``--material``,
 then settles it ``--rounds`` more times by ``--steps`` steps each (:func:`unsew.dress.settle`,
 restarting at rest), and prints after each round the garment's top and lowest height [m] and its
-Chamfer to the target [mm], and the largest vertex speed [m/s] at the end of the dress. A drape
-whose figures still move after the dress was not at rest when the fit measured it.
+Chamfer to the target [mm], and the largest and the 99th-percentile vertex speed [m/s] at the end
+of the dress (the largest only) and of each round. A drape whose figures still move after the
+dress was not at rest when the fit measured it. The largest speed cannot tell: a few vertices in
+contact keep near 0.02 m/s on drapes whose shape no longer changes; the 99th percentile can.
 
     python -m benchmarks settle CASE_DIR RESULT_DIR [--patterns pattern_graded.json ...]
         [--material NAME] [--rounds 5] [--steps 40]
@@ -40,11 +42,13 @@ def main() -> None:
 
     from unsew.body.case import load_case
     from unsew.body.sdf import BodySDF
-    from unsew.dress import dress, resolve_material, settle
+    from unsew.dress import dress, resolve_material
     from unsew.fit.config import FitConfig
     from unsew.fit.target import Target
     from unsew.io.garmentcode import load_pattern
+    from unsew.sim.drape import drape
     from unsew.sim.material import material_from_dict
+    from unsew.sim.state import SimState
 
     case = load_case(args.case)
     sdf, target = BodySDF.build(case.body), Target.of_case(case)
@@ -54,14 +58,20 @@ def main() -> None:
     rows = []
     for name in args.patterns:
         d = dress(load_pattern(args.result / name), case.body, sdf=sdf, material=mat, settings=settings)
-        x, faces = d.x.numpy(), d.mesh.faces
+        x, faces = d.x, d.mesh.faces
+        uv = torch.as_tensor(np.asarray(d.mesh.uv), dtype=torch.float64)
+        vmax, v99 = d.stats["max_speed"], None
         for k in range(args.rounds + 1):
-            if k:
-                x = np.asarray(settle(d.mesh, x, sdf, mat, settings=settings, steps=args.steps))
+            if k:  # as unsew.dress.settle, keeping the state to read its speeds
+                with torch.no_grad():
+                    st = drape(d.model, SimState.at_rest(x), sdf, uv=uv, gamma=mat.gamma(), density=mat.density,
+                               settings=settings, steps=args.steps, friction=mat.friction)
+                x, v = st.x, st.v.norm(dim=1)
+                vmax, v99 = float(v.max()), float(torch.quantile(v, 0.99))
             rows.append({"pattern": name, "steps_after_dress": k * args.steps,
-                         "speed_after_dress_m_s": d.stats["max_speed"] if k == 0 else None,
+                         "max_speed_m_s": vmax, "p99_speed_m_s": v99,
                          "top_m": float(x[:, 1].max()), "lowest_m": float(x[:, 1].min()),
-                         "chamfer_mm": target.distance_mm(x, faces)})
+                         "chamfer_mm": target.distance_mm(x.numpy(), faces)})
             print(rows[-1], flush=True)
     what = args.material or "fitted material"
     print_table(rows, title=f"{args.case.name}: the fit's drapes let settle further ({what})", digits=4)

@@ -254,6 +254,27 @@ def test_phase_two_in_height_mode_keeps_a_banded_bases_band_heights(tmp_path):
     assert moved["free"][0] > 1e-5, moved
 
 
+def test_phase_two_starts_from_a_drape_at_rest_only_when_asked(tmp_path):
+    """optimizer.rest_speed: off (the default), or with a bar the start already meets, phase two
+    starts exactly at the graded drape; with a bar it cannot meet it settles the start in 10-step
+    drapes up to rest_steps and starts where that ended."""
+    import torch
+
+    build = _shorts_phase_two(tmp_path, "shorts")
+    off = build()
+    assert off.rest == {"steps": 0, "speed_p99_m_s": None, "speed_p99_end_m_s": None}
+    x0 = off.x_prev.clone()
+    met = build(optimizer={"rest_speed": 10.0})
+    assert met.rest["steps"] == 0 and 0 < met.rest["speed_p99_m_s"] < 10.0
+    assert torch.equal(met.x_prev, x0) and torch.equal(met.best.x, x0)
+    moving = build(optimizer={"rest_speed": 1e-9, "rest_steps": 25})
+    assert moving.rest["steps"] == 25
+    assert moving.rest["speed_p99_m_s"] > 1e-9 and moving.rest["speed_p99_end_m_s"] > 1e-9
+    moved = (moving.x_prev - x0).norm(dim=1).max()
+    assert 0 < moved < 0.05  # [m]: settled on, not thrown off
+    assert torch.equal(moving.best.x, moving.x_prev)
+
+
 def test_the_area_term_pulls_the_patterns_area_towards_the_targets(tmp_path):
     """loss.area in a real phase two of the paper's fit (``area: free``; three Adam steps from the
     ungraded base shorts on a shorts target drawn from altered shorts, embedded default body):

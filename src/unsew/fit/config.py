@@ -68,6 +68,8 @@ class OptimizerSettings:
     bands: str = "free"  #: what phase two may change of a waistband (a panel open only along its top): "free" anything (at the panel_width factor), "height" its girth only (its points move along the band, never up or down it), "held" nothing (why free is the default: docs/benchmarks.md, "Waistbands in phase two")
     tol: float = 1e-3  #: stop when the loss changed by less than this fraction over `patience` iterations [-]
     patience: int = 15  #: iterations over which convergence is judged [-]
+    rest_speed: float = 0.0  #: > 0: phase two starts from a drape at rest: when the graded drape, draped 10 more steps, ends with the 99th percentile of its vertex speeds above this, it is draped on until it falls below (at most `rest_steps`); 0: off, measured at 5e-3 and left off (docs/benchmarks.md, "Phase two from a drape at rest") [m/s]
+    rest_steps: int = 160  #: most steps the graded drape is let settle before phase two [-]
 
 
 @dataclass(frozen=True)

@@ -54,6 +54,7 @@ class FitResult:
     gamma_last: the last iterate's Gamma (5,); redress, mesh_spread: the checks' figures (None: off);
     drape_check: the returned drape judged on its body (:func:`unsew.sim.checks.check_drape`: fallen,
     off the body, exploded, inside it); :func:`unsew.fit.run.run_fit` refuses a bad one.
+    rest: how phase two's start was let settle (:meth:`unsew.fit.optimize.PhaseTwo._start_at_rest`).
     memory_mb: the process's peak resident memory [MB] at the end of each stage (keys as
     ``timings``, "loaded" at the fit's start), so the stage that set the peak is the first one
     reaching the last value. time_limit: the fit's time limit and what gave way to it
@@ -89,6 +90,7 @@ class FitResult:
     drape_check: DrapeVerdict | None = None
     memory_mb: dict | None = None
     time_limit: dict | None = None
+    rest: dict | None = None
 
 
 def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: Path | None = None,
@@ -123,6 +125,10 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
                               budget=budget)
         clock.lap("material_choice_s", keep=cfg.material.start == "auto")
     two = PhaseTwo(choice, target, sdf, cfg)
+    if two.rest["steps"]:
+        log(f"phase two starts from the graded drape let settle {two.rest['steps']} more steps: it was still "
+            f"moving (99th percentile speed {two.rest['speed_p99_m_s']:.4f} m/s, then "
+            f"{two.rest['speed_p99_end_m_s']:.4f} m/s)")
     if saved is not None:
         two.load_state_dict(state)
     shown = bar.iterations(cfg.optimizer.iterations, two.iteration,
@@ -193,7 +199,7 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
         material_start_iteration=cfg.material.start_iteration if cfg.fits_material else None,
         gamma_last=two.gamma_last(), redress=redress, mesh_spread=spread,
         drape_check=check_drape(x, faces=s.mesh.faces, uv=uv, faces_uv=s.mesh.faces_uv, body=case.body, sdf=sdf),
-        memory_mb=clock.peaks, time_limit=budget.as_dict(),
+        memory_mb=clock.peaks, time_limit=budget.as_dict(), rest=two.rest,
     )
 
 
