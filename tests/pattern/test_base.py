@@ -198,7 +198,7 @@ def test_variants_differ_where_they_should():
     hem = lambda p: edge_length(p.panels["left_sleeve"], 0)  # noqa: E731
     assert hem(long) < hem(tee) - 0.04
     # waistbands: two bands, their top at the natural waist, the rest starting below them
-    for n in ("skirt_band", "skirt_circle", "pants_band", "shorts_band"):
+    for n in ("skirt_band", "skirt_circle", "skirt_pencil", "pants_band", "shorts_band"):
         p = make_base_pattern(n)
         bands = [q for q in p.panels if q.startswith("waistband")]
         assert len(bands) == 2, n
@@ -209,6 +209,15 @@ def test_variants_differ_where_they_should():
     a, c = make_base_pattern("skirt_band"), make_base_pattern("skirt_circle")
     assert edge_length(c.panels["front"], 0) > 1.4 * edge_length(a.panels["front"], 0)
     assert edge_length(c.panels["front"], 2) == pytest.approx(edge_length(a.panels["front"], 2), abs=1e-6)
+    # the pencil skirt: as wide at the hem as at the hips (with their ease), its waist the
+    # A-line's, its hem far narrower than the A-line's; its bands as long as its waist
+    pen = make_base_pattern("skirt_pencil")
+    f = pen.panels["front"]
+    assert edge_length(f, 0) == pytest.approx((m.hip + 0.06) / 2, abs=1e-9)
+    assert np.ptp(f.vertices[[2, 5], 0]) == pytest.approx(edge_length(f, 0), abs=1e-9)
+    assert edge_length(f, 3) == pytest.approx(edge_length(a.panels["front"], 2), abs=0.01)
+    assert edge_length(f, 0) < 0.8 * edge_length(a.panels["front"], 0)
+    assert edge_length(pen.panels["waistband_front"], 0) == pytest.approx(edge_length(f, 3), abs=1e-9)
 
 
 def test_cli_lists_the_library():

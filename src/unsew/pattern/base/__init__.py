@@ -3,7 +3,8 @@
 ``make_base_pattern(name, measurements=None) -> Pattern`` for a garment type (``tshirt``,
 ``dress``, ``pants``, ``shorts``, ``skirt``: its first, default base) or one of the library's
 variants of a type (:data:`BASES`, :func:`bases_for`): tees with long sleeves or none, a
-sleeveless dress, trousers, shorts and skirts under a waistband, a half-circle skirt. Panels are
+sleeveless dress, trousers, shorts and skirts under a waistband, a half-circle skirt, a pencil
+skirt. Panels are
 placed in 3D around the body (world frame: metres, Y up, facing +Z, body's left at +X; see
 :mod:`unsew.pattern.base._frame`).
 """
@@ -30,6 +31,7 @@ _MAKERS = {
     "skirt": ("skirt", "skirt", "make_skirt"),
     "skirt_band": ("skirt", "skirt", "make_skirt_band"),
     "skirt_circle": ("skirt", "skirt", "make_skirt_circle"),
+    "skirt_pencil": ("skirt", "skirt", "make_skirt_pencil"),
 }
 #: The garment types (each is also the name of its default base).
 GARMENTS = ["tshirt", "dress", "pants", "shorts", "skirt"]

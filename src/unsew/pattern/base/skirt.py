@@ -2,7 +2,8 @@
 
 Variants: ``skirt`` (knee-length A-line), ``skirt_band`` (the same under a waistband,
 :mod:`unsew.pattern.base._band`), ``skirt_circle`` (a half-circle skirt, its cone unrolled to
-pi, under a waistband).
+pi, under a waistband), ``skirt_pencil`` (straight from the hips down, under a waistband: not a
+cone, see :func:`make_skirt_pencil`).
 
 The waist and hem are concentric circular arcs (GarmentCode ``circle`` edges), so the skirt
 is a cone: its flare is chosen so that the cone's girth at hip depth clears the hips. Panel
@@ -22,7 +23,7 @@ from unsew.pattern.base._frame import body_frame
 from unsew.pattern.curves import edge_length, sample_edge
 from unsew.pattern.model import Curvature, Pattern
 
-__all__ = ["make_skirt", "make_skirt_band", "make_skirt_circle"]
+__all__ = ["make_skirt", "make_skirt_band", "make_skirt_circle", "make_skirt_pencil"]
 
 WAIST_EASE = 0.02  #: [m]
 HIP_EASE = 0.06  #: [m]
@@ -78,6 +79,37 @@ def _skirt(m: Measurements, name: str, *, band: bool, theta: float | None = None
     return Pattern(name, panels, st, properties={"units_in_meter": 100, "curvature_coords": "relative"})
 
 
+def _pencil(m: Measurements) -> Pattern:
+    """Two-panel pencil skirt under a waistband: each panel a hexagon, straight and as wide as
+    the hips (with HIP_EASE) from the hem up to hip depth, then narrowing to the waist along a
+    straight hip line. A cone (:func:`_skirt`) narrow enough at the hem for a pencil target is too
+    narrow at the hips of a curvy body, and grading, which edits the hem and the waist, cannot put
+    the width back between them: here the side seam has a corner at the hips.
+
+    Edges of each panel: 0 hem, 1 right side (hem to hips), 2 right hip line, 3 waist, 4 left hip
+    line, 5 left side."""
+    f = body_frame(m)
+    drop = f.waist_y - f.hip_y
+    top_drop = BAND_HEIGHT
+    top_y = f.waist_y - top_drop
+    top = m.waist + (m.hip - m.waist) * top_drop / drop + WAIST_EASE
+    hip = m.hip + HIP_EASE
+    length = LENGTH_PER_LEG * m.leg_length - top_drop
+    t, h, d = top / 4, hip / 4, drop - top_drop  # half widths of a panel [m], hips below its top [m]
+    v = np.array([(-h, 0.0), (h, 0.0), (h, length - d), (t, length), (-t, length), (-h, length - d)])
+    labels = ["hem", "right_side", "right_hip", "waist", "left_hip", "left_side"]
+    front, back = loop_panel("front", v, None, labels), loop_panel("back", v, None, labels)
+    place(front, np.eye(3), (0.0, top_y, f.hip_z), (0.0, length))
+    place(back, rot_y180(), (0.0, top_y, -f.hip_z), (0.0, length))
+    st = [stitch("front", 1, "back", 5, "left_side"), stitch("front", 2, "back", 4, "left_hip"),
+          stitch("back", 1, "front", 5, "right_side"), stitch("back", 2, "front", 4, "right_hip")]
+    bf, bb = band_panels(t, f.waist_y, f.hip_z)
+    st += [stitch(bf.name, 0, "front", 3, "front_waist"), stitch(bb.name, 0, "back", 3, "back_waist")]
+    st += band_stitches()
+    return Pattern("skirt_pencil", {"front": front, "back": back, bf.name: bf, bb.name: bb}, st,
+                   properties={"units_in_meter": 100, "curvature_coords": "relative"})
+
+
 def make_skirt(m: Measurements | None = None) -> Pattern:
     """A knee-length A-line skirt sized to ``m`` (default: the default body)."""
     return _skirt(m or Measurements(), "skirt", band=False)
@@ -91,3 +123,8 @@ def make_skirt_band(m: Measurements | None = None) -> Pattern:
 def make_skirt_circle(m: Measurements | None = None) -> Pattern:
     """A knee-length half-circle skirt (two quarter-circle panels) under a waistband."""
     return _skirt(m or Measurements(), "skirt_circle", band=True, theta=np.pi)
+
+
+def make_skirt_pencil(m: Measurements | None = None) -> Pattern:
+    """A knee-length pencil skirt (straight from the hips down) under a waistband."""
+    return _pencil(m or Measurements())
