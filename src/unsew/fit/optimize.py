@@ -283,13 +283,15 @@ class PhaseTwo:
         Every iteration drapes from rest where the last one ended, so a start still moving (a wide
         skirt's hem) goes on settling through the iterations and the loss climbs whatever the
         steps do, and the start, measured before the settling, stays the best iterate. Off by
-        default: on the one foreign case measured, phase two's loss climbed from the settled start
-        as well (docs/benchmarks.md, "Phase two from a drape at rest"). A drape of REST_CHUNK steps probes the start: when
-        the 99th percentile of its vertex speeds ends above ``optimizer.rest_speed`` [m/s] it is
-        draped on (velocities kept) by such chunks until the speed falls below or
-        ``optimizer.rest_steps`` have run, and phase two starts there. The largest speed cannot
-        tell: a few vertices in contact keep near the friction's slip speed on drapes whose shape
-        no longer changes. A start at rest is left exactly as it was.
+        default: on the one foreign case measured, phase two's loss climbed from the settled
+        start as well (docs/benchmarks.md, "Phase two from a drape at rest").
+
+        A drape of REST_CHUNK steps probes the start: when the 99th percentile of its vertex
+        speeds ends above ``optimizer.rest_speed`` [m/s] it is draped on (velocities kept) by such
+        chunks until the speed falls below or ``optimizer.rest_steps`` have run, and phase two
+        starts there. The largest speed cannot tell: a few vertices in contact keep near the
+        friction's slip speed on drapes whose shape no longer changes. A start at rest is left
+        exactly as it was.
 
         Returns {"steps": steps draped before phase two (0: at rest), "speed_p99_m_s": the
         probe's speed, "speed_p99_end_m_s": the speed where phase two starts}."""
