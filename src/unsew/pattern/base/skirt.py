@@ -45,16 +45,21 @@ def _panel(name: str, r_w: float, r_h: float, half_angle: float):
     return loop_panel(name, v, curves, ["hem", "right_side", "waist", "left_side"])
 
 
+def _girths(m: Measurements, top_drop: float):
+    """The body frame, the skirt's top height [m] (``top_drop`` [m] below the waist), the
+    skirt's girth there and at the hips with their ease [m], and the hips' depth below the waist [m]."""
+    f = body_frame(m)
+    drop = f.waist_y - f.hip_y  # waist to hip along the body [m]
+    # girth where the skirt's top sits: linear between waist and hips
+    top = m.waist + (m.hip - m.waist) * top_drop / drop + WAIST_EASE
+    return f, f.waist_y - top_drop, top, m.hip + HIP_EASE, drop
+
+
 def _skirt(m: Measurements, name: str, *, band: bool, theta: float | None = None) -> Pattern:
     """Two-panel conical skirt; ``theta``: the cone's unrolled angle [rad] (None: what the hips
     need plus EXTRA_FLARE); ``band``: with a waistband, the skirt starting BAND_HEIGHT lower."""
-    f = body_frame(m)
-    drop = f.waist_y - f.hip_y  # waist to hip along the body [m]
     top_drop = BAND_HEIGHT if band else 0.0
-    top_y = f.waist_y - top_drop
-    # girth where the skirt's top sits: linear between waist and hips
-    top = m.waist + (m.hip - m.waist) * top_drop / drop + WAIST_EASE
-    hip = m.hip + HIP_EASE
+    f, top_y, top, hip, drop = _girths(m, top_drop)
     if theta is None:
         theta = (hip - top) / (drop - top_drop) + EXTRA_FLARE  # unrolled angle of the whole cone [rad]
     r_w = top / theta
@@ -88,12 +93,8 @@ def _pencil(m: Measurements) -> Pattern:
 
     Edges of each panel: 0 hem, 1 right side (hem to hips), 2 right hip line, 3 waist, 4 left hip
     line, 5 left side."""
-    f = body_frame(m)
-    drop = f.waist_y - f.hip_y
     top_drop = BAND_HEIGHT
-    top_y = f.waist_y - top_drop
-    top = m.waist + (m.hip - m.waist) * top_drop / drop + WAIST_EASE
-    hip = m.hip + HIP_EASE
+    f, top_y, top, hip, drop = _girths(m, top_drop)
     length = LENGTH_PER_LEG * m.leg_length - top_drop
     t, h, d = top / 4, hip / 4, drop - top_drop  # half widths of a panel [m], hips below its top [m]
     v = np.array([(-h, 0.0), (h, 0.0), (h, length - d), (t, length), (-t, length), (-h, length - d)])
