@@ -1,5 +1,5 @@
 """`python -m benchmarks`: lists every benchmark with its question, runs one by name, refuses an
-unknown name with exit 2."""
+unknown name, or bad input to a benchmark, with one line and exit 2."""
 
 import subprocess
 import sys
@@ -25,6 +25,12 @@ def test_unknown_name_exits_2():
     r = _run("no_such_bench")
     assert r.returncode == 2
     assert "no benchmark named 'no_such_bench'" in r.stderr
+
+
+def test_bad_input_to_a_benchmark_exits_2_with_one_line(tmp_path):
+    r = _run("settle", str(tmp_path / "no_case"), str(tmp_path))
+    assert r.returncode == 2
+    assert r.stderr.strip().splitlines() == [f"benchmarks settle: case folder {tmp_path / 'no_case'} does not exist"]
 
 
 def test_runs_a_benchmark_by_name_with_its_options():
