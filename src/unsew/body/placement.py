@@ -317,7 +317,10 @@ def _body_stacks(v, parts, J, cx0, crotch_y, ys, clearance) -> dict:
 def _shoulder_line(v, parts, J, cx0):
     """The shoulder line: top of the torso (below the neck joint) per lateral position, over a
     raised arm's root (T-pose) where there is one: beyond the torso's side the torso's own top
-    is the armpit, and a shoulder folded down to it would run through the arm.
+    is the armpit, and a shoulder folded down to it would run through the arm. A column whose
+    torso top lies below the chest joint is hip, not shoulder (hips wider than the armpits, as
+    on a heavy older body): it takes the line of the shoulder columns beside it, else a lower
+    garment's top, or a top's sides, lying out there would fold flat onto the hip's top.
 
     Returns (xb, ytop): lateral positions (101,) [m] every 1 cm over cx0 +- 0.5 m, and the
     torso's top height at each (101,) [m] (gaps interpolated)."""
@@ -329,6 +332,8 @@ def _shoulder_line(v, parts, J, cx0):
     ytop = np.full(len(xb), -np.inf)
     np.maximum.at(ytop, ib, top[:, 1])
     ok = np.isfinite(ytop)
+    if (ok & (ytop >= J["chest"][1])).any():
+        ok &= ytop >= J["chest"][1]
     ytop = np.interp(xb, xb[ok], ytop[ok])
     return xb, ytop
 
