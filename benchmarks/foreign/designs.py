@@ -406,4 +406,10 @@ DESIGNS = {
     "tank_top": ("tshirt", lambda m, J: top(m, J, length=0.60, ease=0.08, hem_ease=0.12, sleeve=None, neck_depth=0.10, name="tank_top")),
     "dress_sheath_sleeveless": ("dress", lambda m, J: top(m, J, length=0.95, ease=0.08, hem_ease=0.16, sleeve=None, waist_shape=True, name="dress_sheath_sleeveless")),
     "dress_shift_sleeved": ("dress", lambda m, J: top(m, J, length=0.90, ease=0.12, hem_ease=0.30, sleeve=0.07, waist_shape=True, hip_ease=0.16, name="dress_shift_sleeved")),
+    # session 22: lengths and cuts the fit had not met
+    "skirt_aline_midi": ("skirt", lambda m, J: skirt(m, J, length=0.72, flare=0.10, darts=2, waistband=True, name="skirt_aline_midi")),
+    "skirt_circle_mini": ("skirt", lambda m, J: circle_skirt(m, J, length=0.38, waistband=True, name="skirt_circle_mini")),
+    "trousers_capri": ("pants", lambda m, J: trousers(m, J, hem_y=0.30, hem_girth=0.40, darts=1, waistband=True, name="trousers_capri")),
+    "tee_fitted_long": ("tshirt", lambda m, J: top(m, J, length=0.62, ease=0.08, hem_ease=0.14, sleeve=0.45, name="tee_fitted_long")),
+    "dress_shift_sleeveless": ("dress", lambda m, J: top(m, J, length=0.85, ease=0.12, hem_ease=0.30, sleeve=None, waist_shape=True, hip_ease=0.16, name="dress_shift_sleeveless")),
 }

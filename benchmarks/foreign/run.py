@@ -54,6 +54,9 @@ BODIES = {
     # left leg swung 0.3 rad forward at the hip (world-frame rotation vector)
     "anny_leg_forward": {"model": "anny", "phenotype": dict(_P), "pose": {"left_hip": [-0.3, 0.0, 0.0]}},
     "anny_short_curvy": {"model": "anny", "phenotype": dict(_P, gender=1.0, height=0.15, weight=0.75, proportions=0.3), "pose": "A"},
+    "anny_older": {"model": "anny", "phenotype": dict(_P, gender=0.3, age=0.95, muscle=0.2, weight=0.65), "pose": "A"},
+    # left arm swung 0.6 rad forward at the shoulder (world-frame rotation vector)
+    "anny_arm_forward": {"model": "anny", "phenotype": dict(_P), "pose": {"left_shoulder": [-0.6, 0.0, 0.0]}},
     # GarmentCode's mean body (A-pose): its mesh goes into the case folder as body.obj with no
     # skeleton.json, so the case is rigged from the mesh wherever it is read (and so is the target's body here)
     "gc_mean_all": {"model": "garmentcode", "mesh": "mean_all.obj", "pose": "A"},
@@ -137,6 +140,18 @@ CASES = {
     "skirt_pencil_mini__gc_mean_female": ("skirt_pencil_mini", "gc_mean_female"),
     "shirt_gc__tall_thin": ("gc:shirt_mean_specification.json", "anny_tall_thin"),
     "trousers_wide__gc_mean_all_tpose": ("trousers_wide", "gc_mean_all_tpose"),
+    # built in session 22 (the fit fixed at be27548) and fitted once: five designs the fit had
+    # never met (midi A-line, circle mini, capri trousers, fitted long-sleeved tee, sleeveless
+    # shift dress), the tank top, an older anny body and one with an arm swung forward
+    "tank_top__default": ("tank_top", "anny_default"),
+    "tank_top__male_heavy": ("tank_top", "anny_male_heavy"),
+    "tee_fitted_long__short_curvy": ("tee_fitted_long", "anny_short_curvy"),
+    "dress_shift_sleeveless__older": ("dress_shift_sleeveless", "anny_older"),
+    "skirt_aline_midi__tall_thin": ("skirt_aline_midi", "anny_tall_thin"),
+    "skirt_circle_mini__tall_thin": ("skirt_circle_mini", "anny_tall_thin"),
+    "trousers_capri__default": ("trousers_capri", "anny_default"),
+    "shorts_short__older": ("shorts_short", "anny_older"),
+    "tee_fitted_short__arm_forward": ("tee_fitted_short", "anny_arm_forward"),
 }
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").
