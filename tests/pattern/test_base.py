@@ -19,7 +19,8 @@ def test_valid_ccw_no_length_warnings(garment):
     assert validate_pattern(p) == []  # also: closed, no self-intersection, stitches in range
     for pan in p.panels.values():
         assert signed_area(pan) > 0, pan.name
-        assert len(pan.vertices) <= 10, pan.name  # modest number of control points
+        # modest number of control points (a darted panel: two darts of three vertices each)
+        assert len(pan.vertices) <= (12 if garment == "skirt_darts" else 10), pan.name
     sides = [s.a for s in p.stitches] + [s.b for s in p.stitches]
     assert len(sides) == len(set(sides))
 
@@ -199,7 +200,7 @@ def test_variants_differ_where_they_should():
     hem = lambda p: edge_length(p.panels["left_sleeve"], 0)  # noqa: E731
     assert hem(long) < hem(tee) - 0.04
     # waistbands: two bands, their top at the natural waist, the rest starting below them
-    for n in ("skirt_band", "skirt_circle", "skirt_pencil", "pants_band", "shorts_band"):
+    for n in ("skirt_band", "skirt_circle", "skirt_pencil", "skirt_darts", "pants_band", "shorts_band"):
         p = make_base_pattern(n)
         bands = [q for q in p.panels if q.startswith("waistband")]
         assert len(bands) == 2, n
@@ -219,6 +220,19 @@ def test_variants_differ_where_they_should():
     assert edge_length(f, 3) == pytest.approx(edge_length(a.panels["front"], 2), abs=1e-6)
     assert edge_length(f, 0) < 0.8 * edge_length(a.panels["front"], 0)
     assert edge_length(pen.panels["waistband_front"], 0) == pytest.approx(edge_length(f, 3), abs=1e-9)
+    # the darted skirt: two darts per panel with legs of one length, sewn leg to leg; the band's
+    # lower pieces as long as the top pieces they meet; its top without the darts the pencil's
+    # waist, its hips the pencil's, its hem wider
+    dar = make_base_pattern("skirt_darts")
+    f = dar.panels["front"]
+    for a, b in ((4, 5), (7, 8)):
+        assert edge_length(f, a) == pytest.approx(edge_length(f, b), abs=1e-12)
+        assert any({(s.a.panel, s.a.edge), (s.b.panel, s.b.edge)} == {("front", a), ("front", b)} for s in dar.stitches)
+    pieces = [edge_length(dar.panels["waistband_front"], k) for k in range(3)]
+    assert pieces == pytest.approx([edge_length(f, e) for e in (9, 6, 3)], abs=1e-12)
+    assert sum(pieces) == pytest.approx(edge_length(pen.panels["front"], 3), abs=1e-9)
+    assert np.ptp(f.vertices[[2, 11], 0]) == pytest.approx(np.ptp(pen.panels["front"].vertices[[2, 5], 0]), abs=1e-9)
+    assert edge_length(f, 0) > edge_length(pen.panels["front"], 0) + 0.05
 
 
 def test_cli_lists_the_library():

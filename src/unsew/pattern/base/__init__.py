@@ -31,6 +31,7 @@ _MAKERS = {
     "skirt_band": ("skirt", "skirt", "make_skirt_band"),
     "skirt_circle": ("skirt", "skirt", "make_skirt_circle"),
     "skirt_pencil": ("skirt", "skirt", "make_skirt_pencil"),
+    "skirt_darts": ("skirt", "skirt", "make_skirt_darts"),
 }
 #: The garment types (each is also the name of its default base).
 GARMENTS = ["tshirt", "dress", "pants", "shorts", "skirt"]

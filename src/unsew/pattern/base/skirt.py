@@ -3,7 +3,8 @@
 Variants: ``skirt`` (knee-length A-line), ``skirt_band`` (the same under a waistband,
 :mod:`unsew.pattern.base._band`), ``skirt_circle`` (a half-circle skirt, its cone unrolled to
 pi, under a waistband), ``skirt_pencil`` (straight from the hips down, under a waistband: not a
-cone, see :func:`make_skirt_pencil`).
+cone, see :func:`make_skirt_pencil`), ``skirt_darts`` (an A-line shaped to the waist by two
+darts per panel, under a waistband: :func:`make_skirt_darts`).
 
 The waist and hem are concentric circular arcs (GarmentCode ``circle`` edges), so the skirt
 is a cone: its flare is chosen so that the cone's girth at hip depth clears the hips. Panel
@@ -23,7 +24,7 @@ from unsew.pattern.base._frame import body_frame
 from unsew.pattern.curves import edge_length, sample_edge
 from unsew.pattern.model import Curvature, Pattern
 
-__all__ = ["make_skirt", "make_skirt_band", "make_skirt_circle", "make_skirt_pencil"]
+__all__ = ["make_skirt", "make_skirt_band", "make_skirt_circle", "make_skirt_pencil", "make_skirt_darts"]
 
 WAIST_EASE = 0.02  #: [m]
 HIP_EASE = 0.06  #: [m]
@@ -31,6 +32,12 @@ HIP_EASE = 0.06  #: [m]
 LENGTH_PER_LEG = 0.75
 #: Extra flare over what the hips need [rad of the full cone's unrolled angle].
 EXTRA_FLARE = 0.35
+#: The darted skirt: share of the hip-to-waist difference its darts take (the side seams take
+#: the rest), its hem's flare beyond the hips per side seam [m], a dart's length below the
+#: skirt's top as a share of the hips' depth below it.
+DART_SHARE = 0.5
+DART_FLARE = 0.05
+DART_DEPTH = 0.6
 
 
 def _panel(name: str, r_w: float, r_h: float, half_angle: float):
@@ -111,6 +118,51 @@ def _pencil(m: Measurements) -> Pattern:
                    properties={"units_in_meter": 100, "curvature_coords": "relative"})
 
 
+def _darted(m: Measurements) -> Pattern:
+    """Two-panel A-line skirt under a waistband, shaped to the waist by two darts per panel: each
+    panel straight from the hem (DART_FLARE wider than the hips per side) up to hip depth, then a
+    straight hip line to the top; the darts take DART_SHARE of the hip-to-waist difference, so
+    the side seam turns less at the hips than the pencil's, and the cloth over the hips and
+    seat is shaped as a darted design's is. A dartless skirt cut to a darted design's outline
+    drapes differently: the designer's midi A-line on the tall thin body lies 6.1 mm from its
+    target, the same outline without darts 12.1 mm (docs/benchmarks.md, "Fresh cases of
+    session 22").
+
+    Edges of each panel (counter-clockwise from the hem): 0 hem, 1 right side, 2 right hip
+    line, 3 top right of the darts, 4-5 right dart's legs, 6 top between the darts, 7-8 left
+    dart's legs, 9 top left of the darts, 10 left hip line, 11 left side. The band's lower edge
+    is cut in three to meet the three top pieces."""
+    top_drop = BAND_HEIGHT
+    f, top_y, top, hip, drop = _girths(m, top_drop)
+    length = LENGTH_PER_LEG * m.leg_length - top_drop
+    t, h, d = top / 4, hip / 4, drop - top_drop  # half widths of a panel [m], hips below its top [m]
+    dw = DART_SHARE * (h - t)  # one dart's width at the top [m] (one per half panel)
+    tc = t + dw  # top corner, the dart's cloth included [m]
+    xd, dl = 0.5 * tc, DART_DEPTH * d  # a dart's centre [m] and length [m]
+    hh = h + DART_FLARE
+    top_pieces = [tc - xd - dw / 2, 2 * (xd - dw / 2), tc - xd - dw / 2]  # right, middle, left [m]
+    v = np.array([(-hh, 0.0), (hh, 0.0), (h, length - d), (tc, length),
+                  (xd + dw / 2, length), (xd, length - dl), (xd - dw / 2, length),
+                  (-xd + dw / 2, length), (-xd, length - dl), (-xd - dw / 2, length),
+                  (-tc, length), (-h, length - d)])
+    labels = ["hem", "right_side", "right_hip", "top_right", "right_dart_out", "right_dart_in", "top_middle",
+              "left_dart_out", "left_dart_in", "top_left", "left_hip", "left_side"]
+    front, back = loop_panel("front", v, None, labels), loop_panel("back", v, None, labels)
+    place(front, np.eye(3), (0.0, top_y, f.hip_z), (0.0, length))
+    place(back, rot_y180(), (0.0, top_y, -f.hip_z), (0.0, length))
+    st = [stitch("front", 1, "back", 11, "left_side"), stitch("front", 2, "back", 10, "left_hip"),
+          stitch("back", 1, "front", 11, "right_side"), stitch("back", 2, "front", 10, "right_hip")]
+    for pn in ("front", "back"):
+        st += [stitch(pn, 4, pn, 5, f"{pn}_right_dart"), stitch(pn, 7, pn, 8, f"{pn}_left_dart")]
+    bf, bb = band_panels(t, f.waist_y, f.hip_z, cuts=[-t + top_pieces[2], t - top_pieces[0]])
+    for band, pn in ((bf, "front"), (bb, "back")):
+        # band lower edge pieces left to right (+x) against the skirt's top pieces (-x)
+        st += [stitch(band.name, k, pn, e, f"{pn}_waist_{k}") for k, e in enumerate((9, 6, 3))]
+    st += band_stitches(pieces=3)
+    return Pattern("skirt_darts", {"front": front, "back": back, bf.name: bf, bb.name: bb}, st,
+                   properties={"units_in_meter": 100, "curvature_coords": "relative"})
+
+
 def make_skirt(m: Measurements | None = None) -> Pattern:
     """A knee-length A-line skirt sized to ``m`` (default: the default body)."""
     return _skirt(m or Measurements(), "skirt", band=False)
@@ -129,3 +181,8 @@ def make_skirt_circle(m: Measurements | None = None) -> Pattern:
 def make_skirt_pencil(m: Measurements | None = None) -> Pattern:
     """A knee-length pencil skirt (straight from the hips down) under a waistband."""
     return _pencil(m or Measurements())
+
+
+def make_skirt_darts(m: Measurements | None = None) -> Pattern:
+    """A knee-length A-line skirt with two darts per panel under a waistband."""
+    return _darted(m or Measurements())
