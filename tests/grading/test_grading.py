@@ -487,6 +487,34 @@ def test_hold_tops_keeps_a_band_and_lengthens_the_panels_below():
     assert moved >= 1
 
 
+def test_carry_down_keeps_the_darts():
+    """A waist's rise carried below the top of a darted skirt lengthens the panel but not its
+    darts: their tips stay with the top, and the edit inverts no rest triangle (carried down
+    with the rest, a 6.5 cm rise dragged the mesh across the dart legs: only 64 % of it was safe)."""
+    from unsew.grading.edit import project_edit, safe_fraction
+    from unsew.grading.grade import _carry_down, _dart_tips
+    from unsew.pattern.params import PatternParams
+
+    p = make_base_pattern("skirt_darts")
+    params = PatternParams.build(p, mesh_pattern(p, edge_length=0.025))
+    controls = params.controls
+    C0 = params.control_points(params.K0).detach().numpy()
+    out = np.zeros_like(C0)
+    for name in ("front", "back"):
+        _carry_down(p, controls, C0, out, name, 0.065)
+    for name in ("front", "back"):
+        panel = p.panels[name]
+        ys = panel.to_world(panel.vertices)[:, 1]
+        tips = _dart_tips(p, name, ys, ys.max() - 0.01)
+        assert tips == {5, 8}  # the two dart tips of the panel's outline
+        cq = controls.of_panel(controls.panel_names.index(name))
+        for g in cq:
+            v, moved = int(controls.vertex[g]), float(np.linalg.norm(out[g]))
+            low = ys[v] < ys.max() - 0.01
+            assert moved == pytest.approx(0.065 if low and v not in tips else 0.0, abs=1e-12), (name, v)
+    assert safe_fraction(params, params.K0, project_edit(params, C0 + out)) == 1.0
+
+
 def test_area_scaling_beyond_its_bound_is_said_in_one_line(body, tshirt):
     """grade(area=...) sizes the pattern to the target's area; a target area the bounded scaling
     cannot reach leaves the pattern short of it and logs one warning line, a reachable one none."""

@@ -476,7 +476,11 @@ def _sewn_below(pattern, band) -> list[str]:
 def _carry_down(pattern, controls, C0: np.ndarray, out: np.ndarray, name: str, rise: float) -> None:
     """Lengthen panel ``name`` by ``rise`` [m] below its top, in place in ``out``: every control
     point lower than its top (:data:`TOP_BAND`) moves down by ``rise`` along the upright direction,
-    so its top stays sewn to the band and its placement is unchanged."""
+    so its top stays sewn to the band and its placement is unchanged. A dart's tip
+    (:func:`_dart_tips`) whose dart opens at the top stays with the top: the dart keeps its
+    length. Carried down with the rest, a tip dragged the rest mesh beside its narrow wedge across
+    the dart's legs (a 6.5 cm rise on the darted skirt: inverted triangles, the whole edit scaled
+    back to 31 %)."""
     if name not in controls.panel_names:
         return
     p = controls.panel_names.index(name)
@@ -486,8 +490,25 @@ def _carry_down(pattern, controls, C0: np.ndarray, out: np.ndarray, name: str, r
         return
     cidx = controls.of_panel(p)
     height = panel.to_world(C0[cidx])[:, 1]
-    below = [int(g) for g, h in zip(cidx, height) if h < height.max() - TOP_BAND]
+    tips = _dart_tips(pattern, name, panel.to_world(panel.vertices)[:, 1], height.max() - TOP_BAND)
+    below = [int(g) for g, h in zip(cidx, height)
+             if h < height.max() - TOP_BAND and int(controls.vertex[g]) not in tips]
     out[below] -= rise * up
+
+
+def _dart_tips(pattern, name: str, ys: np.ndarray, top: float) -> set:
+    """Vertex indices of panel ``name``'s dart tips that open at its top: the vertex where an
+    edge ends and the next begins, the two stitched to each other, their other ends at or above
+    ``top`` [m] (``ys``: the panel's vertices' placed heights [m])."""
+    panel = pattern.panels[name]
+    n = len(panel.edges)
+    pairs = {frozenset(((s.a.panel, s.a.edge), (s.b.panel, s.b.edge))) for s in pattern.stitches}
+    tips = set()
+    for k, e in enumerate(panel.edges):
+        f = panel.edges[(k + 1) % n]
+        if frozenset(((name, k), (name, (k + 1) % n))) in pairs and ys[e.start] >= top and ys[f.end] >= top:
+            tips.add(int(e.end))
+    return tips
 
 
 def _cloth_wants(src, matches, x, faces, tcloth) -> dict:
