@@ -389,27 +389,28 @@ def _rot(angles):
     return euler_xyz_to_matrix(angles)
 
 
-#: name -> (garment type, function(measurements, joints) -> specification dict)
+#: name -> (garment type, function(measurements, joints, **overrides) -> specification dict);
+#: overrides replace the design's own keywords (`python -m benchmarks foreign design`)
 DESIGNS = {
-    "skirt_aline_knee": ("skirt", lambda m, J: skirt(m, J, length=0.55, flare=0.06, darts=2, waistband=True, name="skirt_aline_knee")),
-    "skirt_pencil_mini": ("skirt", lambda m, J: skirt(m, J, length=0.40, flare=0.0, darts=2, waistband=True, name="skirt_pencil_mini")),
-    "skirt_flared_midi": ("skirt", lambda m, J: skirt(m, J, length=0.68, flare=0.16, darts=0, waistband=False, name="skirt_flared_midi")),
-    "skirt_circle_knee": ("skirt", lambda m, J: circle_skirt(m, J, length=0.50, waistband=True, name="skirt_circle_knee")),
-    "trousers_straight": ("pants", lambda m, J: trousers(m, J, hem_y=0.10, hem_girth=0.44, darts=1, waistband=True, name="trousers_straight")),
-    "trousers_tapered": ("pants", lambda m, J: trousers(m, J, hem_y=0.11, hem_girth=0.36, darts=1, waistband=True, name="trousers_tapered")),
-    "trousers_wide": ("pants", lambda m, J: trousers(m, J, hem_y=0.10, hem_girth=0.60, darts=0, waistband=False, name="trousers_wide")),
-    "shorts_knee": ("shorts", lambda m, J: trousers(m, J, hem_y=m["crotch_height"] - 0.28, hem_girth=m["thigh"] + 0.10, darts=1, waistband=True, name="shorts_knee")),
-    "shorts_short": ("shorts", lambda m, J: trousers(m, J, hem_y=m["crotch_height"] - 0.10, hem_girth=m["thigh"] + 0.12, darts=0, waistband=True, name="shorts_short")),
-    "shorts_wide": ("shorts", lambda m, J: trousers(m, J, hem_y=m["crotch_height"] - 0.18, hem_girth=m["thigh"] + 0.22, darts=0, waistband=False, name="shorts_wide")),
-    "tee_fitted_short": ("tshirt", lambda m, J: top(m, J, length=0.62, ease=0.08, hem_ease=0.14, sleeve=0.06, name="tee_fitted_short")),
-    "tee_loose_long": ("tshirt", lambda m, J: top(m, J, length=0.68, ease=0.18, hem_ease=0.22, sleeve=0.40, neck_depth=0.06, name="tee_loose_long")),
-    "tank_top": ("tshirt", lambda m, J: top(m, J, length=0.60, ease=0.08, hem_ease=0.12, sleeve=None, neck_depth=0.10, name="tank_top")),
-    "dress_sheath_sleeveless": ("dress", lambda m, J: top(m, J, length=0.95, ease=0.08, hem_ease=0.16, sleeve=None, waist_shape=True, name="dress_sheath_sleeveless")),
-    "dress_shift_sleeved": ("dress", lambda m, J: top(m, J, length=0.90, ease=0.12, hem_ease=0.30, sleeve=0.07, waist_shape=True, hip_ease=0.16, name="dress_shift_sleeved")),
+    "skirt_aline_knee": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.55, flare=0.06, darts=2, waistband=True, name="skirt_aline_knee"), **kw})),
+    "skirt_pencil_mini": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.40, flare=0.0, darts=2, waistband=True, name="skirt_pencil_mini"), **kw})),
+    "skirt_flared_midi": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.68, flare=0.16, darts=0, waistband=False, name="skirt_flared_midi"), **kw})),
+    "skirt_circle_knee": ("skirt", lambda m, J, **kw: circle_skirt(m, J, **{**dict(length=0.50, waistband=True, name="skirt_circle_knee"), **kw})),
+    "trousers_straight": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.10, hem_girth=0.44, darts=1, waistband=True, name="trousers_straight"), **kw})),
+    "trousers_tapered": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.11, hem_girth=0.36, darts=1, waistband=True, name="trousers_tapered"), **kw})),
+    "trousers_wide": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.10, hem_girth=0.60, darts=0, waistband=False, name="trousers_wide"), **kw})),
+    "shorts_knee": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.28, hem_girth=m["thigh"] + 0.10, darts=1, waistband=True, name="shorts_knee"), **kw})),
+    "shorts_short": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.10, hem_girth=m["thigh"] + 0.12, darts=0, waistband=True, name="shorts_short"), **kw})),
+    "shorts_wide": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.18, hem_girth=m["thigh"] + 0.22, darts=0, waistband=False, name="shorts_wide"), **kw})),
+    "tee_fitted_short": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.62, ease=0.08, hem_ease=0.14, sleeve=0.06, name="tee_fitted_short"), **kw})),
+    "tee_loose_long": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.68, ease=0.18, hem_ease=0.22, sleeve=0.40, neck_depth=0.06, name="tee_loose_long"), **kw})),
+    "tank_top": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.60, ease=0.08, hem_ease=0.12, sleeve=None, neck_depth=0.10, name="tank_top"), **kw})),
+    "dress_sheath_sleeveless": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.95, ease=0.08, hem_ease=0.16, sleeve=None, waist_shape=True, name="dress_sheath_sleeveless"), **kw})),
+    "dress_shift_sleeved": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.90, ease=0.12, hem_ease=0.30, sleeve=0.07, waist_shape=True, hip_ease=0.16, name="dress_shift_sleeved"), **kw})),
     # session 22: lengths and cuts the fit had not met
-    "skirt_aline_midi": ("skirt", lambda m, J: skirt(m, J, length=0.72, flare=0.10, darts=2, waistband=True, name="skirt_aline_midi")),
-    "skirt_circle_mini": ("skirt", lambda m, J: circle_skirt(m, J, length=0.38, waistband=True, name="skirt_circle_mini")),
-    "trousers_capri": ("pants", lambda m, J: trousers(m, J, hem_y=0.30, hem_girth=0.40, darts=1, waistband=True, name="trousers_capri")),
-    "tee_fitted_long": ("tshirt", lambda m, J: top(m, J, length=0.62, ease=0.08, hem_ease=0.14, sleeve=0.45, name="tee_fitted_long")),
-    "dress_shift_sleeveless": ("dress", lambda m, J: top(m, J, length=0.85, ease=0.12, hem_ease=0.30, sleeve=None, waist_shape=True, hip_ease=0.16, name="dress_shift_sleeveless")),
+    "skirt_aline_midi": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.72, flare=0.10, darts=2, waistband=True, name="skirt_aline_midi"), **kw})),
+    "skirt_circle_mini": ("skirt", lambda m, J, **kw: circle_skirt(m, J, **{**dict(length=0.38, waistband=True, name="skirt_circle_mini"), **kw})),
+    "trousers_capri": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.30, hem_girth=0.40, darts=1, waistband=True, name="trousers_capri"), **kw})),
+    "tee_fitted_long": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.62, ease=0.08, hem_ease=0.14, sleeve=0.45, name="tee_fitted_long"), **kw})),
+    "dress_shift_sleeveless": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.85, ease=0.12, hem_ease=0.30, sleeve=None, waist_shape=True, hip_ease=0.16, name="dress_shift_sleeveless"), **kw})),
 }

@@ -30,6 +30,7 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent))
 
 from tables import print_table  # noqa: E402
+from unsew.errors import InputError  # noqa: E402
 
 #: Target edge length of the panel meshes [m] (a few thousand vertices per garment).
 EDGE_LENGTH = 0.025
@@ -178,17 +179,21 @@ def _body(key):
     return make_anny_body(spec["phenotype"], pose=spec["pose"])
 
 
-def _pattern(design, body):
+def _pattern(design, body, **overrides):
+    """(GarmentCode specification dict, garment type) of ``design`` drafted for ``body``;
+    ``overrides``: keywords replacing the design's own (a generator design only)."""
     import designs
     from unsew.body.measure import measure_body
 
     if design.startswith("gc:"):
+        if overrides:
+            raise InputError(f"{design} is GarmentCode's own pattern: it takes no design keywords")
         return json.loads((FOREIGN_PATTERNS / design[3:]).read_text()), {
             "dress_pencil": "dress", "shirt_mean": "tshirt", "hoody_mean": "tshirt"}[design[3:].rsplit("_", 1)[0]]
     typ, fn = designs.DESIGNS[design]
     m = measure_body(body).as_dict()
     J = {n: p for n, p in zip(body.skeleton.names, body.skeleton.positions)}
-    return fn(m, J), typ
+    return fn(m, J, **overrides), typ
 
 
 def _on_body(typ, x, body):
@@ -383,6 +388,36 @@ def cmd_floor(args):
     return 0
 
 
+def _value(text: str):
+    """A --set value: JSON (numbers, true/false, null), else the text itself."""
+    try:
+        return json.loads(text)
+    except ValueError:
+        return text
+
+
+def cmd_design(args):
+    """Write a case's design, drafted for its body, with keywords changed (``--set darts=0``):
+    what-ifs on the true pattern, dressed with ``python -m benchmarks settle --patterns``."""
+    if args.case not in CASES:
+        raise InputError(f"unknown case {args.case!r}; `python -m benchmarks foreign list --all` names them")
+    overrides = {}
+    for item in args.set or []:
+        key, eq, val = item.partition("=")
+        if not eq or not key:
+            raise InputError(f"--set takes KEY=VALUE, got {item!r}")
+        overrides[key] = _value(val)
+    design, bkey = CASES[args.case]
+    try:
+        spec, _ = _pattern(design, _body(bkey), **overrides)
+    except TypeError as exc:  # a keyword the design's function does not take
+        raise InputError(f"{design}: {exc}") from None
+    out = Path(args.out)
+    out.write_text(json.dumps(spec, indent=1))
+    _log(f"wrote {out}: {design} for {bkey}" + (f" with {overrides}" if overrides else ""))
+    return 0
+
+
 def cmd_list(args):
     root = Path(args.dir)
     rows = []
@@ -421,6 +456,11 @@ def main(argv=None):
     fl.add_argument("--dir", default=str(HERE / "cases"))
     fl.add_argument("--timeout", type=int, default=900, help="seconds per unsew drape")
     fl.set_defaults(func=cmd_floor)
+    dg = sub.add_parser("design", help="a case's design drafted for its body, keywords changed (--set darts=0)")
+    dg.add_argument("case")
+    dg.add_argument("--set", action="append", metavar="KEY=VALUE", help="a design keyword to change (repeatable)")
+    dg.add_argument("--out", required=True, help="GarmentCode JSON to write")
+    dg.set_defaults(func=cmd_design)
     ls = sub.add_parser("list", help="table of the cases and their checks")
     ls.add_argument("--dir", default=str(HERE / "cases"))
     ls.add_argument("--all", action="store_true", help="also name every buildable case")
