@@ -479,8 +479,8 @@ def _carry_down(pattern, controls, C0: np.ndarray, out: np.ndarray, name: str, r
     so its top stays sewn to the band and its placement is unchanged. A dart's tip
     (:func:`_dart_tips`) whose dart opens at the top stays with the top: the dart keeps its
     length. Carried down with the rest, a tip dragged the rest mesh beside its narrow wedge across
-    the dart's legs (a 6.5 cm rise on the darted skirt: inverted triangles, the whole edit scaled
-    back to 31 %)."""
+    the dart's legs, and the edit was scaled back to avoid inverted triangles (docs/benchmarks.md,
+    "Fresh cases of session 22")."""
     if name not in controls.panel_names:
         return
     p = controls.panel_names.index(name)

@@ -4,7 +4,7 @@
 ``dress``, ``pants``, ``shorts``, ``skirt``: its first, default base) or one of the library's
 variants of a type (:data:`BASES`, :func:`bases_for`): tees with long sleeves or none, a
 sleeveless dress, trousers, shorts and skirts under a waistband, a half-circle skirt, a pencil
-skirt. Panels are placed in 3D around the body (world frame: metres, Y up, facing +Z, body's left
+skirt, a darted A-line. Panels are placed in 3D around the body (world frame: metres, Y up, facing +Z, body's left
 at +X; see :mod:`unsew.pattern.base._frame`).
 """
 

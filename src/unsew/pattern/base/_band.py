@@ -12,6 +12,8 @@ Band panel frame (x across, y up, y = 0 at its lower edge), seen from outside::
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from unsew.pattern.base._build import loop_panel, place, rot_y180, stitch
@@ -23,7 +25,7 @@ __all__ = ["BAND_HEIGHT", "band_panels", "band_stitches"]
 BAND_HEIGHT = 0.04
 
 
-def _band(name: str, half_width: float, height: float, split: bool, cuts) -> Panel:
+def _band(name: str, half_width: float, height: float, split: bool, cuts: Sequence[float] | None) -> Panel:
     w, h = half_width, height
     if split:
         v = [(-w, 0.0), (0.0, 0.0), (w, 0.0), (w, h), (-w, h)]
@@ -38,7 +40,7 @@ def _band(name: str, half_width: float, height: float, split: bool, cuts) -> Pan
 
 
 def band_panels(half_width: float, waist_y: float, depth_z: float, *, split: bool = False,
-                height: float = BAND_HEIGHT, cuts=None) -> tuple[Panel, Panel]:
+                height: float = BAND_HEIGHT, cuts: Sequence[float] | None = None) -> tuple[Panel, Panel]:
     """Front and back waistbands, each ``2 * half_width`` [m] wide and ``height`` [m] high, their
     top at the world height ``waist_y`` [m], laid flat at z = +/- ``depth_z`` [m].
     ``split``: the lower edge in two halves (for trousers: one half per leg panel); ``cuts``:

@@ -91,6 +91,27 @@ def _skirt(m: Measurements, name: str, *, band: bool, theta: float | None = None
     return Pattern(name, panels, st, properties={"units_in_meter": 100, "curvature_coords": "relative"})
 
 
+def _banded_sizes(m: Measurements):
+    """The sizes of a straight-sided skirt under a waistband (pencil, darted): the body frame,
+    the skirt's top height [m], its length [m], half widths of a panel at its top and at the hips
+    [m], and the hips' depth below its top [m]."""
+    f, top_y, top, hip, drop = _girths(m, BAND_HEIGHT)
+    return f, top_y, LENGTH_PER_LEG * m.leg_length - BAND_HEIGHT, top / 4, hip / 4, drop - BAND_HEIGHT
+
+
+def _front_back(v: np.ndarray, labels: list[str], f, top_y: float, length: float, hip: tuple[int, int]):
+    """Front and back panels of outline ``v`` ((n, 2) [m], hem at y = 0, top at ``length``),
+    placed with their top at ``top_y`` [m], and their side seams: edges 1 and ``hip[0]`` (hem to
+    hips, hip line) of one panel against ``hip[1]`` + 1 and ``hip[1]`` of the other."""
+    front, back = loop_panel("front", v, None, labels), loop_panel("back", v, None, labels)
+    place(front, np.eye(3), (0.0, top_y, f.hip_z), (0.0, length))
+    place(back, rot_y180(), (0.0, top_y, -f.hip_z), (0.0, length))
+    a, b = hip
+    st = [stitch("front", 1, "back", b + 1, "left_side"), stitch("front", a, "back", b, "left_hip"),
+          stitch("back", 1, "front", b + 1, "right_side"), stitch("back", a, "front", b, "right_hip")]
+    return front, back, st
+
+
 def _pencil(m: Measurements) -> Pattern:
     """Two-panel pencil skirt under a waistband: each panel a hexagon, straight and as wide as
     the hips (with HIP_EASE) from the hem up to hip depth, then narrowing to the waist along a
@@ -100,17 +121,10 @@ def _pencil(m: Measurements) -> Pattern:
 
     Edges of each panel: 0 hem, 1 right side (hem to hips), 2 right hip line, 3 waist, 4 left hip
     line, 5 left side."""
-    top_drop = BAND_HEIGHT
-    f, top_y, top, hip, drop = _girths(m, top_drop)
-    length = LENGTH_PER_LEG * m.leg_length - top_drop
-    t, h, d = top / 4, hip / 4, drop - top_drop  # half widths of a panel [m], hips below its top [m]
+    f, top_y, length, t, h, d = _banded_sizes(m)
     v = np.array([(-h, 0.0), (h, 0.0), (h, length - d), (t, length), (-t, length), (-h, length - d)])
     labels = ["hem", "right_side", "right_hip", "waist", "left_hip", "left_side"]
-    front, back = loop_panel("front", v, None, labels), loop_panel("back", v, None, labels)
-    place(front, np.eye(3), (0.0, top_y, f.hip_z), (0.0, length))
-    place(back, rot_y180(), (0.0, top_y, -f.hip_z), (0.0, length))
-    st = [stitch("front", 1, "back", 5, "left_side"), stitch("front", 2, "back", 4, "left_hip"),
-          stitch("back", 1, "front", 5, "right_side"), stitch("back", 2, "front", 4, "right_hip")]
+    front, back, st = _front_back(v, labels, f, top_y, length, (2, 4))
     bf, bb = band_panels(t, f.waist_y, f.hip_z)
     st += [stitch(bf.name, 0, "front", 3, "front_waist"), stitch(bb.name, 0, "back", 3, "back_waist")]
     st += band_stitches()
@@ -123,19 +137,14 @@ def _darted(m: Measurements) -> Pattern:
     panel straight from the hem (DART_FLARE wider than the hips per side) up to hip depth, then a
     straight hip line to the top; the darts take DART_SHARE of the hip-to-waist difference, so
     the side seam turns less at the hips than the pencil's, and the cloth over the hips and
-    seat is shaped as a darted design's is. A dartless skirt cut to a darted design's outline
-    drapes differently: the designer's midi A-line on the tall thin body lies 6.1 mm from its
-    target, the same outline without darts 12.1 mm (docs/benchmarks.md, "Fresh cases of
-    session 22").
+    seat is shaped as a darted design's is: a dartless skirt cut to a darted design's outline
+    drapes differently (docs/benchmarks.md, "Fresh cases of session 22").
 
     Edges of each panel (counter-clockwise from the hem): 0 hem, 1 right side, 2 right hip
     line, 3 top right of the darts, 4-5 right dart's legs, 6 top between the darts, 7-8 left
     dart's legs, 9 top left of the darts, 10 left hip line, 11 left side. The band's lower edge
     is cut in three to meet the three top pieces."""
-    top_drop = BAND_HEIGHT
-    f, top_y, top, hip, drop = _girths(m, top_drop)
-    length = LENGTH_PER_LEG * m.leg_length - top_drop
-    t, h, d = top / 4, hip / 4, drop - top_drop  # half widths of a panel [m], hips below its top [m]
+    f, top_y, length, t, h, d = _banded_sizes(m)
     dw = DART_SHARE * (h - t)  # one dart's width at the top [m] (one per half panel)
     tc = t + dw  # top corner, the dart's cloth included [m]
     xd, dl = 0.5 * tc, DART_DEPTH * d  # a dart's centre [m] and length [m]
@@ -147,11 +156,7 @@ def _darted(m: Measurements) -> Pattern:
                   (-tc, length), (-h, length - d)])
     labels = ["hem", "right_side", "right_hip", "top_right", "right_dart_out", "right_dart_in", "top_middle",
               "left_dart_out", "left_dart_in", "top_left", "left_hip", "left_side"]
-    front, back = loop_panel("front", v, None, labels), loop_panel("back", v, None, labels)
-    place(front, np.eye(3), (0.0, top_y, f.hip_z), (0.0, length))
-    place(back, rot_y180(), (0.0, top_y, -f.hip_z), (0.0, length))
-    st = [stitch("front", 1, "back", 11, "left_side"), stitch("front", 2, "back", 10, "left_hip"),
-          stitch("back", 1, "front", 11, "right_side"), stitch("back", 2, "front", 10, "right_hip")]
+    front, back, st = _front_back(v, labels, f, top_y, length, (2, 10))
     for pn in ("front", "back"):
         st += [stitch(pn, 4, pn, 5, f"{pn}_right_dart"), stitch(pn, 7, pn, 8, f"{pn}_left_dart")]
     bf, bb = band_panels(t, f.waist_y, f.hip_z, cuts=[-t + top_pieces[2], t - top_pieces[0]])
