@@ -363,3 +363,34 @@ def test_scale_to_area_keeps_seams_and_placement():
     assert s_small == 1 / MAX_AREA_SCALE and clip_note(s_small, a0 / 4, small) is not None
     with pytest.raises(ValueError):
         scale_to_area(p, 0.0)
+
+
+@pytest.mark.parametrize("name", ["skirt_darts", "pants_band"])
+def test_scale_to_area_keeps_the_bands_and_their_seams(name):
+    """scale_to_area(bands=...): the total area is still the one asked for; a waistband keeps
+    its size, every seam to it keeps its length (the panels below are narrowed back there), and
+    the panels below take the change elsewhere (their side seams grow)."""
+    from unsew.grading.area import pattern_area, scale_to_area
+    from unsew.grading.grade import waistbands
+    from unsew.pattern.base import make_base_pattern
+    from unsew.pattern.curves import edge_length
+
+    p = make_base_pattern(name)
+    bands = waistbands(p)
+    assert len(bands) == 2
+    a0 = pattern_area(p)
+    q, s = scale_to_area(p, 1.1 * a0, bands=bands)
+    assert abs(pattern_area(q) / (1.1 * a0) - 1) < 1e-6 and s > np.sqrt(1.1)  # the rest take the bands' share
+    for b in bands:
+        np.testing.assert_allclose(q.panels[b].vertices, p.panels[b].vertices, atol=1e-12)
+    sewn = 0
+    for st in p.stitches:
+        la = edge_length(q.panels[st.a.panel], st.a.edge)
+        lb = edge_length(q.panels[st.b.panel], st.b.edge)
+        if {st.a.panel, st.b.panel} & set(bands):
+            assert abs(la - lb) < 2e-3, (st.a, st.b, la, lb)  # the seam to a band still matches
+            sewn += st.a.panel in bands and st.b.panel not in bands or st.b.panel in bands and st.a.panel not in bands
+    assert sewn >= 2
+    grew = [edge_length(q.panels[n], k) / edge_length(p.panels[n], k) for n in p.panels if n not in bands
+            for k in range(len(p.panels[n].edges))]
+    assert max(grew) > 1.04  # lengths below the band grow

@@ -440,18 +440,16 @@ def test_hold_tops_moves_the_length_change_to_the_hem():
     delta[bottom] -= 0.07 * up  # the hem down 7 cm
     cb = controls.of_panel(back)
     delta[cb] += 0.01  # the back panel edited, but not on a curve through its top
-    out = _hold_tops(p, controls, C0, delta, {front: [set(top)], back: [set()]})
+    out, held = _hold_tops(p, controls, C0, delta, {front: [(set(top), 0, 0.0)], back: [(set(), 1, 0.0)]})
+    assert held == {}
     assert np.allclose(out[top] @ up, 0.0, atol=1e-12)
     assert np.allclose(out[bottom] @ up, -0.105, atol=1e-12)  # the panel grew by the same 10.5 cm
     assert np.allclose(out[cb], delta[cb])
 
 
-def test_hold_tops_keeps_a_band_and_lengthens_the_panels_below():
-    """A waistband (open only along its top) whose waist curve is edited upward keeps its height,
-    with its girth edit; the panels sewn to its bottom take the waist's rise below their tops, so
-    the garment grows by the same length as when the band took it (issue 21: bands graded from
-    4 to 7.6 cm)."""
-    from unsew.grading.grade import _hold_tops
+def _skirt_band_top():
+    """The base skirt_band, its control points (ControlPoints, positions (Nc, 2) [m]), the front
+    band's panel index and control points, those of its top, and its upright unit direction (2,)."""
     from unsew.pattern.controls import find_control_points
 
     p = make_base_pattern("skirt_band")
@@ -463,10 +461,22 @@ def test_hold_tops_keeps_a_band_and_lengthens_the_panels_below():
     h = panel.to_world(C0[cb])[:, 1]
     top = [int(g) for g, y in zip(cb, h) if y >= h.max() - 1e-9]
     up = panel.rotation_matrix()[1, :2] / np.linalg.norm(panel.rotation_matrix()[1, :2])
+    return p, controls, C0, band, cb, top, up
+
+
+def test_hold_tops_keeps_a_band_and_lengthens_the_panels_below():
+    """A waistband (open only along its top) whose waist curve is edited upward keeps its height,
+    with its girth edit; the panels sewn to its bottom take the waist's rise below their tops, so
+    the garment grows by the same length as when the band took it (issue 21: bands graded from
+    4 to 7.6 cm)."""
+    from unsew.grading.grade import _hold_tops
+
+    p, controls, C0, band, cb, top, up = _skirt_band_top()
     side = np.array([up[1], -up[0]])
     delta = np.zeros_like(C0)
     delta[top] += 0.03 * up + 0.01 * side  # the waist moved up 3 cm and widened
-    out = _hold_tops(p, controls, C0, delta, {band: [set(top)]})
+    out, held = _hold_tops(p, controls, C0, delta, {band: [(set(top), 0, 0.005)]})
+    assert held == {}
     assert np.allclose(out[cb] @ up, 0.0, atol=1e-12)  # the band keeps its height
     assert np.allclose(out[top] @ side, 0.01, atol=1e-12)  # and its girth edit
     below = [n for n in controls.panel_names if not n.startswith("waistband")]
@@ -485,6 +495,25 @@ def test_hold_tops_keeps_a_band_and_lengthens_the_panels_below():
             assert np.allclose(out[lq] @ uq, -0.03, atol=1e-12)  # the rest moves down 3 cm
             moved += 1
     assert moved >= 1
+
+
+def test_hold_tops_does_not_carry_a_rise_the_band_girth_explains():
+    """A band top higher on the target and tighter by more than PASS_GIRTH_TOL (or lower and
+    looser) is a band that sits where its girth meets the body: its rise is not carried down (the
+    panels below keep their length) and the contour is named in a warning; the same rise with
+    the girths agreeing, or the band also looser, is carried down."""
+    from unsew.grading.grade import PASS_GIRTH_TOL, _hold_tops
+
+    p, controls, C0, band, cb, top, up = _skirt_band_top()
+    front = controls.of_panel(controls.panel_names.index("front"))
+    for rise, dg, carried in ((0.05, -2 * PASS_GIRTH_TOL, False), (-0.05, 2 * PASS_GIRTH_TOL, False),
+                              (0.05, -0.5 * PASS_GIRTH_TOL, True), (0.05, 2 * PASS_GIRTH_TOL, True)):
+        delta = np.zeros_like(C0)
+        delta[top] += rise * up
+        out, held = _hold_tops(p, controls, C0, delta, {band: [(set(top), 7, dg)]})
+        assert np.allclose(out[cb] @ up, 0.0, atol=1e-12)  # the band keeps its height either way
+        assert (np.abs(out[front]).max() > 0.5 * abs(rise)) == carried, (rise, dg)
+        assert (7 in held) == (not carried) and all("\n" not in w for w in held.values())
 
 
 def test_carry_down_keeps_the_darts():

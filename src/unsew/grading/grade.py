@@ -204,8 +204,9 @@ def grade(
         the garment's top opening, target minus drape, read on the pattern's rest mesh
         (:mod:`unsew.grading.cloth`; contours without such a path move axially); ``"axial"``, by
         the axial extension along the bone (Algorithm 2).
-    area: the target's surface area [m^2]: each pass's pattern is scaled to it (every panel by
-        one factor about its centroid, :func:`unsew.grading.area.scale_to_area`) and meshed
+    area: the target's surface area [m^2]: each pass's pattern is scaled to it (every panel but
+        the waistbands by one factor about its centroid, the seams to a band keeping their
+        girth: :func:`unsew.grading.area.scale_to_area`) and meshed
         afresh before it is draped, so the next pass measures its contours on the scaled drape
         and the graded pattern's total area is ``area`` (None: no scaling, Algorithm 2).
     log: where a one-line warning goes when the last pass's area scaling was clipped (None: nowhere).
@@ -235,7 +236,7 @@ def grade(
             rows += [{**r, "edits": [f"pass {k + 1}: {e}" for e in r["edits"]]} for r in nxt.rows if r["edits"]]
             cur = nxt
         if area is not None:
-            scaled, s = scale_to_area(cur.pattern, area)
+            scaled, s = scale_to_area(cur.pattern, area, bands=waistbands(cur.pattern))
             cur = replace(cur, pattern=scaled, mesh=mesh_pattern(scaled, edge_length=mesh.edge_length), remeshed=True)
             scales.append(s)
         if not redrape:
@@ -384,25 +385,36 @@ def _worth_a_pass(matches, cloth: dict | None = None) -> bool:
 TOP_BAND = 0.01
 
 
-def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dict) -> np.ndarray:
+def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dict) -> tuple[np.ndarray, dict]:
     """The edit with each panel's top held at its height: where a panel's highest control points
     (as placed around the body, within :data:`TOP_BAND`) all lie on one edited open curve (a
     skirt's or trousers' waist), the panel is translated in 2D, along the direction placed
     upright, by minus that curve's upward move, so the length change goes to the other end.
 
+    ``edited``: panel index -> (control points, target contour index, that contour's girth
+    difference [m]) of each edited open curve on the panel.
+
     A waistband (:func:`_is_band`: open only along its top) keeps its height: its edit loses its
     upright component, and its waist's upward move lengthens the panels sewn to its bottom instead
     (:func:`_carry_down`); held like the others, the band took the whole change and grew taller
-    (docs/benchmarks.md, "Band grading").
+    (docs/benchmarks.md, "Band grading"). Not when the band's girth explains the move
+    (:func:`_girth_explains`): a band tighter than the target's and lower, or looser and
+    higher, sits where its girth meets the body, and the girth edit moves it; carried down, the
+    midi A-line's too-loose band lengthened the skirt under it by 7.6 cm and put its hips 24 cm
+    too low (docs/benchmarks.md, "Bands kept out of the area scaling").
 
     Why the tops are held: the panel's 2D position also sets where it is placed around the body
     before sewing. A waist found 3.5 cm higher on the target than on the base drape
     (bench_grading's skirt, whose narrower, longer target hangs higher on the hips) is the drape's
     answer to the pattern, not a waist placed higher; moving the waist curve up both lengthened the
     panel and placed it 2 cm higher, and that placement alone put the drape 4 to 7 mm (Chamfer)
-    from where the same shape placed at the base's height lands. Returns a new (Nc, 2) array [m].
+    from where the same shape placed at the base's height lands.
+
+    Returns (a new (Nc, 2) array [m], target index -> a warning for each band top whose move was
+    not carried down).
     """
     out = delta.copy()
+    held: dict[int, str] = {}
     stitched = stitched_edges(pattern)
     open_edges = {(n, k) for n, pan in pattern.panels.items() for k in range(len(pan.edges)) if (n, k) not in stitched}
     carried: dict[str, list[float]] = {}  # panel name -> upward moves of the bands sewn above it [m]
@@ -411,7 +423,8 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
         cidx = controls.of_panel(p)
         height = panel.to_world(C0[cidx])[:, 1]
         top = {int(g) for g, h in zip(cidx, height) if h >= height.max() - TOP_BAND}
-        if not any(top <= c for c in curves):
+        tops = [(t, dg) for c, t, dg in curves if top <= c]
+        if not tops:
             continue
         up = upright(panel)
         if up is None:  # a panel placed lying down has no top to hold
@@ -419,13 +432,25 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
         rise = float(np.mean([out[g] @ up for g in top]))
         if _is_band(panel, height, open_edges):
             out[cidx] -= np.outer(out[cidx] @ up, up)
+            t, dg = tops[0]
+            if _girth_explains(rise, dg):
+                held[t] = (f"band top {rise * 100:+.1f} cm on the target with its girth {dg * 100:+.1f} cm: read as the "
+                           "band's fit, not carried down to the panels below")
+                continue
             for below in _sewn_below(pattern, panel):
                 carried.setdefault(below, []).append(rise)
             continue
         out[cidx] -= rise * up
     for name, rises in carried.items():
         _carry_down(pattern, controls, C0, out, name, float(np.mean(rises)))
-    return out
+    return out, held
+
+
+def _girth_explains(rise: float, girth_difference: float) -> bool:
+    """Whether a band top's wanted upward move ``rise`` [m] is the answer to its girth: the target's
+    top is tighter and higher, or looser and lower (``girth_difference`` [m]: target minus source,
+    beyond :data:`PASS_GIRTH_TOL`)."""
+    return abs(girth_difference) > PASS_GIRTH_TOL and rise * girth_difference < 0
 
 
 def upright(panel) -> np.ndarray | None:
@@ -576,6 +601,7 @@ class _Edit:
     remeshed: bool
     exts: dict = field(default_factory=dict)  # target index -> extension applied before ``fraction`` [m]
     notes: dict = field(default_factory=dict)  # target index -> warnings of the bounds (grading.guards)
+    held: set = field(default_factory=set)  # targets whose band top move was not carried down (_hold_tops)
 
 
 def _grade_pass(pattern, mesh, x_init, ctx: _PassContext, *, gains: dict | None = None, placed=None) -> GradePass:
@@ -609,7 +635,8 @@ def _grade_pass(pattern, mesh, x_init, ctx: _PassContext, *, gains: dict | None 
         for r in rows:
             if r["edits"]:
                 r["warnings"].append(note)
-    return GradePass(edit.pattern, edit.mesh, rows, matches, {t: edit.fraction * e for t, e in wanted.items()},
+    applied = {t: edit.fraction * e for t, e in wanted.items() if t not in edit.held}  # a held move moved nothing
+    return GradePass(edit.pattern, edit.mesh, rows, matches, applied,
                      edit.K.detach().cpu().numpy(), edit.fraction, edit.remeshed)
 
 
@@ -681,7 +708,7 @@ def _edit(params, mesh, items, exts: dict, ctx: _PassContext) -> _Edit:
     exts, cut = bounded_extensions(params.pattern, C0, items, exts, params.controls)
     notes = {t: [n] for t, n in cut.items()}
     delta = np.zeros_like(C0)
-    edited: dict[int, list[set]] = {}  # panel index -> control points of each edited open curve
+    edited: dict[int, list[tuple]] = {}  # panel index -> (control points, target, girth difference) per edited curve
     for it in items:
         for c, dg in zip(it.curves, it.shares):
             if _whole_panel(params.pattern, c):
@@ -690,14 +717,18 @@ def _edit(params, mesh, items, exts: dict, ctx: _PassContext) -> _Edit:
             if note:
                 notes.setdefault(it.match.target, []).append(note)
             delta += curve_edit(params.pattern, C0, c, params.controls, extension=exts[it.match.target], girth_change=dg)
-            edited.setdefault(c.panel_index, []).append(set(int(g) for g in c.controls))
+            edited.setdefault(c.panel_index, []).append(
+                (set(int(g) for g in c.controls), it.match.target, it.girth_difference))
+    held: dict[int, str] = {}
     if ctx.hold_top:
-        delta = _hold_tops(params.pattern, params.controls, C0, delta, edited)
+        delta, held = _hold_tops(params.pattern, params.controls, C0, delta, edited)
+        for t, note in held.items():
+            notes.setdefault(t, []).append(note)
     K0 = params.K0
     K1 = project_edit(params, C0 + delta)
     frac = safe_fraction(params, K0, K1)
     K, frac, graded, new_mesh, remeshed = _meshed(params, mesh, K0, K1, frac, ctx.remesh)
-    return _Edit(K, float(frac), graded, new_mesh, bool(remeshed), exts, notes)
+    return _Edit(K, float(frac), graded, new_mesh, bool(remeshed), exts, notes, set(held))
 
 
 def _meshed(params, mesh, K0, K1, frac: float, remesh: str):
