@@ -559,3 +559,28 @@ def test_area_scaling_beyond_its_bound_is_said_in_one_line(body, tshirt):
         reached = pattern_area(res.pattern) / (factor * a0)
         assert (reached < 0.99) == warned, reached
     assert res.area_scales == [MAX_AREA_SCALE]
+
+
+def test_a_waistband_is_a_strip():
+    """waistbands(): the bands of the banded bases (4 cm high, a panel's girth wide), not
+    GarmentCode's pencil-dress bodice halves, which are also open only above and sewn below at
+    the waist but taller than wide (0.57 x 0.29 m)."""
+    import warnings
+    from pathlib import Path
+
+    from unsew.grading.grade import BAND_ASPECT, waistbands
+    from unsew.io.garmentcode import load_pattern
+
+    assert waistbands(make_base_pattern("skirt_darts")) == ["waistband_front", "waistband_back"]
+    case = Path(__file__).resolve().parents[2] / "benchmarks" / "foreign" / "cases" / "dress_pencil_gc__default"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # its own seams differ in length; not what is tested
+        dress = load_pattern(case / "pattern_gt.json")
+    assert waistbands(dress) == []
+    p = make_base_pattern("skirt_band")
+    band = p.panels["waistband_front"]
+    v = band.vertices.copy()
+    up = band.rotation_matrix()[1, :2] / np.linalg.norm(band.rotation_matrix()[1, :2])
+    width = np.ptp(v @ np.array([up[1], -up[0]]))
+    band.vertices = v + np.outer((v - v.mean(axis=0)) @ up, up) * (0.6 * width / np.ptp(v @ up) - 1.0)
+    assert 0.6 * width > width / BAND_ASPECT and "waistband_front" not in waistbands(p)  # 0.6 x as high as wide
