@@ -54,11 +54,12 @@ def main(argv: list[str] | None = None) -> int:
     path = scripts[name]
     sys.path.insert(0, str(path.parent))
     sys.argv = [str(path), *rest]
-    from unsew.errors import InputError
+    from unsew.errors import InputError, OutputError
 
     try:
         runpy.run_path(str(path), run_name="__main__")
-    except InputError as exc:  # bad input (a missing case folder, a bad pattern): one line, exit 2
+    except (InputError, OutputError) as exc:  # bad input (a missing case folder, a bad pattern) or an
+        # output that cannot be written: one line, exit 2
         print(f"benchmarks {name}: {str(exc).splitlines()[0]}", file=sys.stderr)
         return 2
     return 0

@@ -31,6 +31,7 @@ sys.path.insert(0, str(HERE.parent))
 
 from tables import print_table  # noqa: E402
 from unsew.errors import InputError  # noqa: E402
+from unsew.io.atomic import atomic_write, check_output  # noqa: E402
 
 #: Target edge length of the panel meshes [m] (a few thousand vertices per garment).
 EDGE_LENGTH = 0.025
@@ -420,13 +421,14 @@ def cmd_design(args):
         if not eq or not key:
             raise InputError(f"--set takes KEY=VALUE, got {item!r}")
         overrides[key] = _value(val)
+    out = check_output(args.out)  # before the body is built: a bad --out is refused at once
     design, bkey = CASES[args.case]
     try:
         spec, _ = _pattern(design, _body(bkey), **overrides)
     except TypeError as exc:  # a keyword the design's function does not take
         raise InputError(f"{design}: {exc}") from None
-    out = Path(args.out)
-    out.write_text(json.dumps(spec, indent=1))
+    with atomic_write(out) as tmp:
+        tmp.write_text(json.dumps(spec, indent=1))
     _log(f"wrote {out}: {design} for {bkey}" + (f" with {overrides}" if overrides else ""))
     return 0
 

@@ -46,3 +46,15 @@ def test_cli_refuses_an_unknown_case_in_one_line():
     assert r.returncode == 2
     assert r.stderr.strip().splitlines()[-1] == ("benchmarks foreign: unknown case 'nope'; "
                                                  "`python -m benchmarks foreign list --all` names them")
+
+
+def test_cli_refuses_an_unwritable_out_in_one_line(tmp_path):
+    """--out under a file: refused before anything is drafted, one line, exit 2, nothing written."""
+    blocker = tmp_path / "f.txt"
+    blocker.write_text("")
+    r = subprocess.run([sys.executable, "-m", "benchmarks", "foreign", "design", "skirt_aline_midi__default",
+                        "--out", str(blocker / "x.json")], cwd=ROOT, capture_output=True, text=True)
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert lines[-1].startswith("benchmarks foreign: cannot write --out") and "Traceback" not in r.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["f.txt"]

@@ -40,9 +40,8 @@ def scale_to_area(pattern, area: float, *, bands=()):
     bands: names of waistband panels (:func:`unsew.grading.grade.waistbands`). A band keeps its
     graded size, and the edges sewn to it keep their girth (:func:`_band_seams_kept`), so s is
     found again (a few rounds) for the other panels to take the whole change. A band sits where
-    its girth meets the body: scaled with the rest, the midi A-line's band lost grading's 2 cm
-    narrowing (0.850 m against the true 0.815 m) and hung low (docs/benchmarks.md, "Bands kept
-    out of the area scaling").
+    its girth meets the body: scaled with the rest, it loses grading's girth edit and hangs where
+    that girth puts it (docs/benchmarks.md, "Bands kept out of the area scaling").
     """
     if not area > 0:
         raise ValueError(f"area must be positive, got {area}")

@@ -399,10 +399,9 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
     (:func:`_carry_down`); held like the others, the band took the whole change and grew taller
     (docs/benchmarks.md, "Band grading"). Not when the band's girth explains the move
     (:func:`_girth_explains`): a band tighter than the target's and lower, or looser and
-    higher, sits where its girth meets the body, and the girth edit moves it; carried down, the
-    midi A-line's too-loose band lengthened the skirt under it by 7.6 cm, and pass two by 15.1 cm
-    more, its hip corners ending 24 cm below the base's (docs/benchmarks.md, "Bands kept out of
-    the area scaling").
+    higher, sits where its girth meets the body, and the girth edit moves it; carried down, a
+    too-loose band's low seat lengthens the panels under it and puts their hips too low
+    (docs/benchmarks.md, "Bands kept out of the area scaling").
 
     Why the tops are held: the panel's 2D position also sets where it is placed around the body
     before sewing. A waist found 3.5 cm higher on the target than on the base drape
@@ -463,9 +462,8 @@ def upright(panel) -> np.ndarray | None:
 
 
 #: A waistband is a strip: at least this many times as wide (across its upright direction) as
-#: it is high. GarmentCode's pencil dress and jumpsuit have bodice halves 0.57 and 0.44 m high,
-#: 0.29 and 0.26 m wide, open only above (neck, armholes) and sewn below at the waist: taken for
-#: bands, they were held at their height and left out of the area scaling.
+#: it is high. A bodice half (GarmentCode's pencil dress, jumpsuit) is also open only above
+#: (neck, armholes) and sewn below at the waist, but taller than wide: not a band.
 BAND_ASPECT = 2.0
 
 
