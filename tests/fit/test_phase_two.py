@@ -394,3 +394,66 @@ def test_scale_to_area_keeps_the_bands_and_their_seams(name):
     grew = [edge_length(q.panels[n], k) / edge_length(p.panels[n], k) for n in p.panels if n not in bands
             for k in range(len(p.panels[n].edges))]
     assert max(grew) > 1.04  # lengths below the band grow
+
+
+@pytest.mark.parametrize("name", ["pants_band", "tshirt", "skirt_circle", "skirt_darts"])
+def test_seam_hold_reads_edge_lengths_and_puts_stitches_back_in_ratio(name):
+    """unsew.pattern.seams.SeamHold: its edge lengths in K are those of the pattern
+    ``to_pattern(K)`` draws (1e-12 m); after a random step (stitches up to a centimetre apart) it
+    brings every stitch back to the start's length ratio (1e-9) by a move of a few millimetres,
+    the symmetric parameters staying symmetric; within band projectors ("height") the band
+    points still keep their height."""
+    import torch
+
+    from unsew.fit.optimize import band_projectors
+    from unsew.grading.grade import upright, waistbands
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.base import make_base_pattern
+    from unsew.pattern.curves import edge_length
+    from unsew.pattern.params import PatternParams
+    from unsew.pattern.seams import SeamHold, stitch_length_ratios
+
+    p = make_base_pattern(name)
+    P = PatternParams.build(p, mesh_pattern(p, edge_length=0.05))
+    hold = SeamHold(P, P.K0)
+    K1 = P.K0 + torch.as_tensor(np.random.default_rng(1).normal(size=(P.n_k, 2)) * 4e-3)
+    q1 = P.to_pattern(K1)
+    lens = np.array([[edge_length(q1.panels[s.a.panel], s.a.edge), edge_length(q1.panels[s.b.panel], s.b.edge)]
+                     for s in q1.stitches])
+    np.testing.assert_allclose(hold.residuals(K1), lens[:, 0] - hold.rho * lens[:, 1], atol=1e-12)
+    assert np.abs(hold.residuals(K1)).max() > 2e-3  # the step did pull seams apart [m]
+    K2 = hold(K1)
+    np.testing.assert_allclose(stitch_length_ratios(P.to_pattern(K2)), stitch_length_ratios(p), atol=1e-9)
+    assert 0 < float((K2 - K1).abs().max()) < 0.01
+    C = P.control_points(K2)
+    np.testing.assert_allclose(P.control_points(P.k_from_control_points(C)), C, atol=1e-12)  # still symmetric
+    bands = waistbands(p)
+    if bands:
+        Pk = band_projectors(P, bands, "height")
+        K3 = SeamHold(P, P.K0, project=Pk)(K1)
+        dC = (P.control_points(K3) - P.control_points(K1)).numpy()
+        c = P.controls
+        for n in bands:
+            assert np.abs(dC[c.of_panel(c.panel_names.index(n))] @ upright(p.panels[n])).max() < 1e-12
+        assert np.abs(SeamHold(P, P.K0).residuals(K3)).max() < 1e-9
+
+
+def test_phase_two_ends_every_step_on_seams_that_sew(tmp_path):
+    """optimizer.seams in a real phase two (three Adam steps from the banded base shorts_band, no
+    grading, small mode): "held" (the default) ends on the graded pattern's
+    stitch length ratios (1e-9) and on its total rest area; "soft" lets them drift."""
+    import torch
+
+    from unsew.losses.area import rest_area
+    from unsew.pattern.seams import stitch_length_ratios
+
+    build = _shorts_phase_two(tmp_path, "shorts_band")
+    drift = {}
+    for mode in ("held", "soft"):
+        two = build(optimizer={"seams": mode})
+        start, a0 = stitch_length_ratios(two.params.pattern), float(rest_area(two.params.uv(two.K), two.faces_uv).detach())
+        two.run()
+        drift[mode] = np.abs(stitch_length_ratios(two.params.to_pattern(two.K.detach())) - start).max()
+        assert abs(float(rest_area(two.params.uv(two.K), two.faces_uv).detach()) / a0 - 1) < 1e-9
+        assert float((two.K.detach() - two.params.K0).abs().max()) > 1e-4  # the steps did move the pattern [m]
+    assert drift["held"] < 1e-9 and drift["soft"] > 1e-5, drift

@@ -52,6 +52,9 @@ AREA_MODES = ("free", "target")
 #: What phase two may change of a waistband (``optimizer.bands``).
 BAND_MODES = ("free", "height", "held")
 
+#: How phase two treats the lengths of stitched edges (``optimizer.seams``).
+SEAM_MODES = ("held", "soft")
+
 
 @dataclass(frozen=True)
 class OptimizerSettings:
@@ -66,6 +69,7 @@ class OptimizerSettings:
     friction_eps: float = 1e-2  #: slip speed below which friction is viscous in phase two's drapes (only) [m/s]
     panel_width: float = 0.1  #: a control point of a panel narrower than this (area / half perimeter) moves by lr x width / panel_width per step (waistbands: 3.6 cm, x0.36); 0: every point at lr [m]
     bands: str = "free"  #: what phase two may change of a waistband (a panel open only along its top): "free" anything (at the panel_width factor), "height" its girth only (its points move along the band, never up or down it), "held" nothing (why free is the default: docs/benchmarks.md, "Waistbands in phase two")
+    seams: str = "held"  #: "held": after every step the two edges of each stitch are put back in the ratio of their lengths the graded pattern has (a pattern that sews; unsew.pattern.seams); "soft": only the seam loss pulls them together (before 2026-11-27; docs/benchmarks.md, "Seams held in phase two")
     tol: float = 1e-3  #: stop when the loss changed by less than this fraction over `patience` iterations [-]
     patience: int = 15  #: iterations over which convergence is judged [-]
     rest_speed: float = 0.0  #: > 0: phase two starts from a drape at rest: when the graded drape, draped 10 more steps, ends with the 99th percentile of its vertex speeds above this, it is draped on until it falls below (at most `rest_steps`); 0: off, measured at 5e-3 and left off (docs/benchmarks.md, "Phase two from a drape at rest") [m/s]
@@ -288,6 +292,8 @@ def _check(cfg: FitConfig, names: dict) -> None:
         raise InputError(f"{say('area')} must be one of {', '.join(AREA_MODES)}, got {cfg.area!r}")
     if o.bands not in BAND_MODES:
         raise InputError(f"{say('optimizer.bands')} must be one of {', '.join(BAND_MODES)}, got {o.bands!r}")
+    if o.seams not in SEAM_MODES:
+        raise InputError(f"{say('optimizer.seams')} must be one of {', '.join(SEAM_MODES)}, got {o.seams!r}")
     if not o.friction_eps > 0:
         raise InputError(f"{say('optimizer.friction_eps')} must be positive, got {o.friction_eps} m/s")
     if not cfg.time_limit >= 0:

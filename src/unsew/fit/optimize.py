@@ -45,6 +45,7 @@ from unsew.losses.seam import loss_seam, seam_segment_pairs
 from unsew.metrics.panels import panel_area
 from unsew.pattern.curves import edge_length
 from unsew.pattern.params import PatternParams, check_inverted
+from unsew.pattern.seams import SeamHold
 from unsew.sim.drape import drape
 from unsew.sim.material import Material
 from unsew.sim.model import SimModel
@@ -213,7 +214,7 @@ class AreaHold:
         dev = K0.device
         self.A = torch.as_tensor(P @ M2 @ L, dtype=torch.float64, device=dev)  # (2 Nk, 2 Nk)
         self.c = torch.as_tensor(P @ (M2 @ b - b), dtype=torch.float64, device=dev)  # (2 Nk,) [m]
-        self.params, self.faces_uv = params, faces_uv
+        self.params, self.faces_uv, self.kept = params, faces_uv, tuple(kept)
         with torch.no_grad():
             self.area0 = float(rest_area(params.uv(K0), faces_uv))
 
@@ -268,6 +269,7 @@ class PhaseTwo:
         self._scaled = bool((self.k_scale < 1).any())  # any narrow panel: checked once, not every step
         self.area_hold = None if cfg.area != "target" else AreaHold(
             self.params, self.faces_uv, self.K.detach(), kept=self.bands if o.bands != "free" else ())
+        self.seam_hold = None if o.seams != "held" else SeamHold(self.params, self.K.detach(), project=self.k_project)
         self.opt_m = torch.optim.Adam([self.theta], lr=cfg.material.lr, betas=o.betas)
         self.x_prev = torch.as_tensor(np.asarray(s.x), dtype=torch.float64, device=dev)
         self.rest = self._start_at_rest()
@@ -390,16 +392,32 @@ class PhaseTwo:
             if self.theta.grad is not None:
                 self.theta.grad.mul_(self.free_mat)  # entries left out of material.fit stay put
             self.opt_m.step()
-        self._backtrack_inversions(K_before)
-        if self.area_hold is not None:
-            with torch.no_grad():
-                self.K.copy_(self.area_hold(self.K.detach()))
+        self._hold(K_before)
         if self.cfg.optimizer.warm_start:
             self.x_prev = x.detach()
         self.iteration += 1
         self.converged = self._has_converged()
         last = self.converged or self.iteration >= self.cfg.optimizer.iterations
         return Iteration(it, values, K_before, gamma.detach(), x.detach(), self.mesh.faces, last)
+
+    def _hold(self, K_before: torch.Tensor) -> None:
+        """End the step on a pattern that sews (``optimizer.seams: held``: every stitch's length
+        ratio as the start has it, :class:`~unsew.pattern.seams.SeamHold`), has no flipped
+        triangle (:meth:`_backtrack_inversions`) and, with ``area: target``, the start's total rest
+        area (:class:`AreaHold`). The area hold scales each panel by one factor, which keeps the
+        ratios; panels it leaves unscaled (held bands) take a few alternating rounds."""
+        with torch.no_grad():
+            if self.seam_hold is not None:
+                self.K.copy_(self.seam_hold(self.K.detach()))
+            self._backtrack_inversions(K_before)
+            for _ in range(4):
+                if self.seam_hold is not None:
+                    self.K.copy_(self.seam_hold(self.K.detach()))
+                if self.area_hold is not None:
+                    self.K.copy_(self.area_hold(self.K.detach()))
+                if self.seam_hold is None or self.area_hold is None or not self.area_hold.kept or \
+                        abs(self.seam_hold.residuals(self.K)).max() < 1e-6:
+                    break
 
     def _backtrack_inversions(self, K_before: torch.Tensor) -> None:
         """A step that inverts pattern triangles, or flattens one below MIN_TRIANGLE_QUALITY, is
