@@ -20,6 +20,9 @@ prints one row per case:
   folder's pattern.json / pattern_base.json / pattern_graded.json when metrics.json predates these
   figures; ``panels`` est/gt panel counts of the final pattern and ``unmatched`` its panels without
   a counterpart (``gt:`` true panels the result lacks, ``est:`` extra ones);
+- ``seam_final_mm``: the largest change of a stitch's length difference L_a - L_b in the final
+  pattern from the base's [mm] (:func:`unsew.pattern.seams.seam_changes_mm`, from the saved
+  pattern files: how far from sewing the fit left a seam, the base's ease left out);
 - the case's cross-simulator floor [mm] (meta.json's floor.chamfer_mm: the true pattern draped by
   ``unsew drape``), and whether phase two's pattern was kept (metrics.json's redress);
 - the fit process's peak resident memory [MB] (metrics.json's peak_memory_mb) and the stage that
@@ -51,7 +54,7 @@ COLUMNS = ["case", "garment", "body", "base", "exit", "time_s",
            "cf_base_mm", "cf_graded_mm", "cf_final_mm", "floor_mm",
            "area_base_pct", "area_graded_pct", "area_final_pct",
            "total_base_pct", "total_graded_pct", "total_final_pct", "matched_final_pct",
-           "panels", "unmatched", "phase2_kept", "peak_mb", "peak_stage"]
+           "seam_final_mm", "panels", "unmatched", "phase2_kept", "peak_mb", "peak_stage"]
 
 #: metrics.json key and result-folder file of each pattern the table judges
 PATTERNS = (("base", "pattern_base", "pattern_base.json"), ("graded", "pattern_graded", "pattern_graded.json"),
@@ -127,6 +130,22 @@ def _pattern_errors(m: dict, key: str, est_path: Path, gt_path: Path, *, recompu
     return pattern_metrics(load_pattern(est_path), load_pattern(gt_path))
 
 
+def _seam_change(res: Path) -> float | None:
+    """The final pattern's largest seam change from the base [mm] (COLUMNS' seam_final_mm), from
+    the result folder's pattern.json and pattern_base.json; None without both."""
+    if not ((res / "pattern.json").is_file() and (res / "pattern_base.json").is_file()):
+        return None
+    import warnings
+
+    from unsew.io.garmentcode import load_pattern
+    from unsew.pattern.seams import seam_changes_mm
+
+    with warnings.catch_warnings():  # a base's ease (a sleeve cap longer than its armhole) is warned on load
+        warnings.simplefilter("ignore", UserWarning)
+        pats = {"base": load_pattern(res / "pattern_base.json"), "result": load_pattern(res / "pattern.json")}
+    return seam_changes_mm(pats)["change_from_base_max_mm"].get("result")
+
+
 def _unmatched(p: dict) -> str:
     un = p.get("unmatched") or {}
     parts = [f"gt: {','.join(un['true'])}" if un.get("true") else "",
@@ -165,6 +184,7 @@ def row(case: Path, out: Path, status: dict, *, recompute: bool = False) -> dict
             n_gt = len(p["panels"]) + len(un.get("true") or [])
             r["panels"] = f"{n_est}/{n_gt}"
             r["unmatched"] = _unmatched(p)
+    r["seam_final_mm"] = _seam_change(res)
     red = m.get("redress")
     r["phase2_kept"] = None if red is None else ("yes" if red.get("phase_two_kept") else "no")
     r["peak_mb"] = m.get("peak_memory_mb")  # the fit process's peak resident memory [MB]
@@ -268,6 +288,10 @@ def bars(rows: list[dict]) -> list[dict]:
         v = [r[col] for r in done if r.get(col) is not None]
         if v:
             out.append({"figure": f"{what}: median / worst", "value": f"{_median(v):.1f} / {max(v):.1f}"})
+    sv = [r["seam_final_mm"] for r in done if r.get("seam_final_mm") is not None]
+    if sv:
+        out.append({"figure": "seams of the final pattern, largest change from the base [mm]: median / worst; over 2 mm",
+                    "value": f"{_median(sv):.1f} / {max(sv):.1f}; {sum(v > 2.0 for v in sv)} of {len(sv)}"})
     cf = [r["cf_final_mm"] for r in done]
     out.append({"figure": "Chamfer of the fit: median / worst [mm]", "value": f"{_median(cf):.1f} / {max(cf):.1f}"})
     within = [r["case"] for r in done if r.get("floor_mm") is not None

@@ -167,6 +167,14 @@ CASES = {
     "skirt_pencil_mini__older": ("skirt_pencil_mini", "anny_older"),
     "skirt_circle_mini__default": ("skirt_circle_mini", "anny_default"),
     "trousers_tapered__tall_thin": ("trousers_tapered", "anny_tall_thin"),
+    # built in session 24 (phase two holding the seams, 082adb2) and fitted once: designs on
+    # bodies they had not been tried on, one per garment type and a second top
+    "dress_shift_sleeved__male_heavy": ("dress_shift_sleeved", "anny_male_heavy"),
+    "trousers_capri__older": ("trousers_capri", "anny_older"),
+    "shorts_wide__short_curvy": ("shorts_wide", "anny_short_curvy"),
+    "skirt_pencil_mini__tall_thin": ("skirt_pencil_mini", "anny_tall_thin"),
+    "tee_fitted_long__male_heavy": ("tee_fitted_long", "anny_male_heavy"),
+    "tank_top__short_curvy": ("tank_top", "anny_short_curvy"),
 }
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").

@@ -58,6 +58,9 @@ def test_row_reads_metrics_and_pattern_files(tmp_path):
     assert r.get("area_graded_pct") is None  # neither in metrics.json nor saved
     assert r["phase2_kept"] == "yes" and r["time_s"] == 12.0 and r["peak_mb"] == 2048.5
     assert r["peak_stage"] == "grading"  # the first stage whose end reached the final peak
+    assert r["seam_final_mm"] is None  # no pattern.json saved
+    shutil.copy(case / "pattern_gt.json", res / "pattern.json")
+    assert mod.row(case, tmp_path, {"exit": "ok", "time_s": None})["seam_final_mm"] == 0.0  # the base's seams
 
 
 def test_peak_stage_is_metrics_when_no_stage_reached_the_peak():

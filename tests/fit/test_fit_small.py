@@ -4,6 +4,7 @@ base. The full-size checks are in benchmarks/bench_fit.py and the slow test belo
 
 import json
 
+import numpy as np
 import pytest
 
 from unsew.fit.config import CheckSettings, load_config
@@ -54,6 +55,12 @@ def test_result_folder_is_complete(small_fit):
     assert set(a) == {"target", "base", "graded", "result"} and min(a.values()) > 0
     assert a["result"] == pytest.approx(sum(panel_area(q) for q in p.panels.values()), rel=1e-6)
     assert a["graded"] == pytest.approx(a["target"], rel=1e-6)  # area: target, grading scaled it there
+    seams = saved["seams"]  # stitched edges' length differences, the base's ease left out
+    assert set(seams["gap_max_mm"]) == {"base", "graded", "result"}
+    assert set(seams["change_from_base_max_mm"]) == {"graded", "result"}
+    from unsew.pattern.seams import stitch_length_gaps
+
+    assert seams["gap_max_mm"]["result"] == pytest.approx(1e3 * np.abs(stitch_length_gaps(p)).max(), abs=1e-6)
 
 
 def test_fit_improves_on_the_base(small_fit):

@@ -31,6 +31,7 @@ from unsew.io.svg import write_svg
 from unsew.meshing import write_rest_obj
 from unsew.metrics.panels import pattern_metrics
 from unsew.metrics.surface import surface_metrics
+from unsew.pattern.seams import seam_changes_mm
 from unsew.sim.material import material_to_dict
 
 __all__ = ["write_result", "result_metrics", "pattern_errors", "file_sha256", "pattern_with_extras",
@@ -86,6 +87,9 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     m["area_m2"] = {"target": float(triangle_areas(case.target_verts, case.target_faces).sum()),
                     **{k: pattern_area(p) for k, p in (("base", result.base_pattern), ("graded", result.graded_pattern),
                                                         ("result", result.pattern)) if p is not None}}
+    # how far apart stitched edges are in length (ease the base has left out): a pattern that sews
+    m["seams"] = seam_changes_mm({"base": result.base_pattern, "graded": result.graded_pattern,
+                                  "result": result.pattern})
     h = result.history
     m["loss_final"] = {k: (v[-1] if v else None) for k, v in h.items()}
     m["loss_history"] = {k: [float(f"{x:.6g}") for x in v] for k, v in h.items()}  # per iteration

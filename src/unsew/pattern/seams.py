@@ -29,7 +29,7 @@ import numpy as np
 
 from unsew.pattern.curves import edge_length
 
-__all__ = ["SeamHold", "stitch_length_ratios"]
+__all__ = ["SeamHold", "stitch_length_ratios", "stitch_length_gaps", "seam_changes_mm"]
 
 #: Seam residual [m] below which the hold stops correcting.
 SEAM_TOL = 1e-9
@@ -39,6 +39,37 @@ def stitch_length_ratios(pattern) -> np.ndarray:
     """(S,) L_a / L_b of every stitch of ``pattern`` (in ``pattern.stitches`` order) [-]."""
     return np.array([edge_length(pattern.panels[s.a.panel], s.a.edge) / edge_length(pattern.panels[s.b.panel], s.b.edge)
                      for s in pattern.stitches], dtype=np.float64)
+
+
+def stitch_length_gaps(pattern) -> np.ndarray:
+    """(S,) L_a - L_b of every stitch of ``pattern`` (in ``pattern.stitches`` order) [m]."""
+    return np.array([edge_length(pattern.panels[s.a.panel], s.a.edge) - edge_length(pattern.panels[s.b.panel], s.b.edge)
+                     for s in pattern.stitches], dtype=np.float64)
+
+
+def _sides(pattern) -> list[tuple]:
+    return [(s.a.panel, s.a.edge, s.b.panel, s.b.edge) for s in pattern.stitches]
+
+
+def seam_changes_mm(patterns: dict, base_key: str = "base") -> dict:
+    """How far apart the stitched edges of each pattern are, for metrics.json and the benchmarks.
+
+    patterns: name -> :class:`unsew.pattern.model.Pattern` (None entries skipped), one of them under
+    ``base_key``. Returns ``{"gap_max_mm": {name: largest |L_a - L_b| over stitches [mm]},
+    "change_from_base_max_mm": {name: largest change of a stitch's L_a - L_b from the base's [mm]}}``:
+    the change leaves out the ease the base was drafted with (a sleeve cap longer than its
+    armhole) and is given only for patterns stitched as the base is (same edges, same order).
+    """
+    gaps = {k: stitch_length_gaps(p) for k, p in patterns.items() if p is not None}
+    out = {"gap_max_mm": {k: float(1e3 * np.abs(g).max()) if len(g) else 0.0 for k, g in gaps.items()},
+           "change_from_base_max_mm": {}}
+    base = patterns.get(base_key)
+    if base is not None:
+        for k, p in patterns.items():
+            if p is not None and k != base_key and _sides(p) == _sides(base):
+                d = gaps[k] - gaps[base_key]
+                out["change_from_base_max_mm"][k] = float(1e3 * np.abs(d).max()) if len(d) else 0.0
+    return out
 
 
 class SeamHold:
