@@ -385,6 +385,9 @@ def cmd_floor(args):
     root = Path(args.dir)
     dirs = [root / c for c in args.cases] if args.cases else sorted(p for p in root.iterdir() if (p / "meta.json").is_file())
     for d in dirs:
+        if not (d / "meta.json").is_file():  # not built, or rejected by the checks (build's log says which)
+            _log(f"{d.name}: no committed case here ({d}), skipped")
+            continue
         meta = json.loads((d / "meta.json").read_text())
         with tempfile.TemporaryDirectory() as tmp:
             out = Path(tmp) / "garment.obj"
