@@ -23,6 +23,9 @@ prints one row per case:
 - ``seam_final_mm``: the largest change of a stitch's length difference L_a - L_b in the final
   pattern from the base's [mm] (:func:`unsew.pattern.seams.seam_changes_mm`, from the saved
   pattern files: how far from sewing the fit left a seam, the base's ease left out);
+- ``loss_spikes``: phase-two iterations whose loss exceeds 5 x the lowest before it, and in
+  brackets how many of them the material range penalty makes (its term over half the loss;
+  metrics.json's loss_history);
 - the case's cross-simulator floor [mm] (meta.json's floor.chamfer_mm: the true pattern draped by
   ``unsew drape``), and whether phase two's pattern was kept (metrics.json's redress);
 - the fit process's peak resident memory [MB] (metrics.json's peak_memory_mb) and the stage that
@@ -54,7 +57,7 @@ COLUMNS = ["case", "garment", "body", "base", "exit", "time_s",
            "cf_base_mm", "cf_graded_mm", "cf_final_mm", "floor_mm",
            "area_base_pct", "area_graded_pct", "area_final_pct",
            "total_base_pct", "total_graded_pct", "total_final_pct", "matched_final_pct",
-           "seam_final_mm", "panels", "unmatched", "phase2_kept", "peak_mb", "peak_stage"]
+           "seam_final_mm", "loss_spikes", "panels", "unmatched", "phase2_kept", "peak_mb", "peak_stage"]
 
 #: metrics.json key and result-folder file of each pattern the table judges
 PATTERNS = (("base", "pattern_base", "pattern_base.json"), ("graded", "pattern_graded", "pattern_graded.json"),
@@ -146,6 +149,17 @@ def _seam_change(res: Path) -> float | None:
     return seam_changes_mm(pats)["change_from_base_max_mm"].get("result")
 
 
+def _loss_spikes(h: dict, factor: float = 5.0) -> str | None:
+    """COLUMNS' loss_spikes from metrics.json's loss_history: "n (m)", n iterations whose total
+    loss exceeds ``factor`` x the lowest before it, m of them mostly the material term."""
+    t, mat = h.get("total") or [], h.get("material") or []
+    if not t:
+        return None
+    spikes = [i for i in range(1, len(t)) if t[i] > factor * min(t[:i])]
+    by_mat = sum(1 for i in spikes if i < len(mat) and mat[i] > 0.5 * t[i])
+    return f"{len(spikes)} ({by_mat})"
+
+
 def _unmatched(p: dict) -> str:
     un = p.get("unmatched") or {}
     parts = [f"gt: {','.join(un['true'])}" if un.get("true") else "",
@@ -185,6 +199,7 @@ def row(case: Path, out: Path, status: dict, *, recompute: bool = False) -> dict
             r["panels"] = f"{n_est}/{n_gt}"
             r["unmatched"] = _unmatched(p)
     r["seam_final_mm"] = _seam_change(res)
+    r["loss_spikes"] = _loss_spikes(m.get("loss_history") or {})
     red = m.get("redress")
     r["phase2_kept"] = None if red is None else ("yes" if red.get("phase_two_kept") else "no")
     r["peak_mb"] = m.get("peak_memory_mb")  # the fit process's peak resident memory [MB]

@@ -59,6 +59,9 @@ def test_row_reads_metrics_and_pattern_files(tmp_path):
     assert r["phase2_kept"] == "yes" and r["time_s"] == 12.0 and r["peak_mb"] == 2048.5
     assert r["peak_stage"] == "grading"  # the first stage whose end reached the final peak
     assert r["seam_final_mm"] is None  # no pattern.json saved
+    assert r["loss_spikes"] is None  # no loss_history
+    assert mod._loss_spikes({"total": [1.0, 0.9, 9.0, 0.8, 3.9], "material": [0, 0, 8.5, 0, 0]}) == "1 (1)"
+    assert mod._loss_spikes({"total": [1.0, 6.0], "material": [0.0, 0.0]}) == "1 (0)"
     shutil.copy(case / "pattern_gt.json", res / "pattern.json")
     assert mod.row(case, tmp_path, {"exit": "ok", "time_s": None})["seam_final_mm"] == 0.0  # the base's seams
 
