@@ -6,9 +6,9 @@ the base has them, so everything the fit gains over the graded pattern is phase 
 The whole fit (run_fit) on it is slow (98 s on the shared 2-core VM: the dress is grading's
 slowest garment). The default suite's proof that phase two lowers the pattern error runs phase
 two alone from the graded pattern, with 16-step drapes (``test_phase_two_lowers_the_area_error``,
-about 40 s): with 8-step drapes the area error fell 2.92 -> 2.44 %, with 16-step drapes by half
-(2.92 -> 1.49 %; since the seams are held, 1.75 %); the settings sweep behind that choice is in
-docs/benchmarks.md, "Phase two on a case grading cannot fit"."""
+about 40 s): with 8-step drapes the area error falls 2.92 -> 2.44 %, with 16-step drapes by half
+(2.92 -> 1.49 %); the settings sweep behind that choice is in docs/benchmarks.md, "Phase two on a
+case grading cannot fit"."""
 
 import numpy as np
 import pytest
@@ -104,13 +104,10 @@ def hip_phase_two(tmp_path_factory):
 def test_phase_two_lowers_the_area_error(hip_phase_two):
     """Issue 21's default-suite proof: on a case grading cannot fit, phase two's pattern (its best
     iterate) has a mean panel area error at most 0.7 x the graded pattern's (measured 2.92 ->
-    1.75 %, x0.60) and hip corners at most 0.95 x as far from the truth's (3.00 -> 2.74 cm), at a
-    best loss at most 0.95 x the first (684 -> 551 [1e-6 m^2]), with every stitch's two edges in
-    the graded pattern's length ratio (the truth's too). With phase two held the best iterate is
-    the graded pattern and every ratio is 1. With ``optimizer.seams: soft`` (before 2026-11-27)
-    the same run measured 1.49 %, 2.30 cm and 609, its side seams 2.7 % apart in length."""
+    1.49 %, x0.51) and hip corners at most 0.9 x as far from the truth's (3.00 -> 2.30 cm), at a
+    best loss at most 0.95 x the first (684 -> 609 [1e-6 m^2]). With phase two held the best
+    iterate is the graded pattern and every ratio is 1."""
     from unsew.metrics.panels import pattern_metrics
-    from unsew.pattern.seams import stitch_length_ratios
 
     case, graded, best, two = hip_phase_two
     truth = case.pattern_gt
@@ -118,10 +115,9 @@ def test_phase_two_lowers_the_area_error(hip_phase_two):
     area_best = pattern_metrics(best, truth)["area_error_rel_mean"]
     assert area_graded > 0.02  # grading alone leaves the hip: 2.9 %
     assert area_best < 0.7 * area_graded
-    assert _hip_error_cm(best, truth) < 0.95 * _hip_error_cm(graded, truth)
+    assert _hip_error_cm(best, truth) < 0.9 * _hip_error_cm(graded, truth)
     h = two.history["total"]
     assert min(h) < 0.95 * h[0]
-    np.testing.assert_allclose(stitch_length_ratios(best), stitch_length_ratios(graded), atol=1e-6)
 
 
 @pytest.mark.xfail(strict=True, reason="phase two moves corners the truth did not move: rigid corner L2 0.40 -> "
@@ -444,8 +440,8 @@ def test_seam_hold_reads_edge_lengths_and_puts_stitches_back_in_ratio(name):
 
 def test_phase_two_ends_every_step_on_seams_that_sew(tmp_path):
     """optimizer.seams in a real phase two (three Adam steps from the banded base shorts_band, no
-    grading, small mode): "held" (the default) ends on the graded pattern's
-    stitch length ratios (1e-9) and on its total rest area; "soft" lets them drift."""
+    grading, small mode): "held" ends on the graded pattern's
+    stitch length ratios (1e-9) and on its total rest area; "soft" (the default) lets them drift."""
     import torch
 
     from unsew.losses.area import rest_area
