@@ -74,7 +74,7 @@ def test_a_result_folders_config_loads(tmp_path):
         ("mesh_spread: 0.6\n", "mesh_spread"),
         ("mesh_spread: -0.1\n", "mesh_spread"),
         ("optimizer:\n  bands: loose\n", "optimizer.bands must be one of free, height, held"),
-        ("optimizer:\n  seams: tight\n", "optimizer.seams must be one of held, soft"),
+        ("optimizer:\n  seams: tight\n", "optimizer.seams must be one of held, soft, trued"),
         ("loss:\n  area: -1\n", "loss.area must be >= 0"),
         ("lambda_prior: -0.5\n", "must be >= 0"),
         ("material: auto\nmaterial_candidates: silk,tweed\n", "unknown material 'tweed'"),

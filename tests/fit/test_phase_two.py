@@ -484,3 +484,32 @@ def test_seam_changes_leave_the_bases_ease_out():
     cut = base.copy()
     cut.stitches = cut.stitches[1:]
     assert "cut" not in seam_changes_mm({"base": base, "cut": cut})["change_from_base_max_mm"]
+
+
+def test_trued_seams_put_the_returned_pattern_back_in_ratio(tmp_path):
+    """optimizer.seams: trued leaves phase two's steps alone (its seams drift as soft ones do) and
+    trues the returned iterate: best_fit() gives a pattern on the graded pattern's stitch length
+    ratios (1e-9) and the same total rest area, with a drape draped on from the iterate's own; the
+    start itself (already in ratio) comes back unchanged."""
+    import torch
+
+    from unsew.fit.optimize import Iterate
+    from unsew.losses.area import rest_area
+    from unsew.pattern.seams import stitch_length_ratios
+
+    build = _shorts_phase_two(tmp_path, "shorts_band")
+    two = build(optimizer={"seams": "trued"})
+    start = stitch_length_ratios(two.params.pattern)
+    p0, _, x0, _ = two.best_fit()  # the start
+    np.testing.assert_array_equal(x0, two.best.x.numpy())
+    two.run()
+    K = two.K.detach().clone()
+    assert np.abs(stitch_length_ratios(two.params.to_pattern(K)) - start).max() > 1e-5  # drifted
+    two.best = Iterate(0.0, K, two.gamma0.clone(), two.x_prev.clone(), two.iteration, False)
+    pattern, uv, x, _ = two.best_fit()
+    np.testing.assert_allclose(stitch_length_ratios(pattern), start, atol=1e-9)
+    fuv = two.faces_uv
+    a0 = float(rest_area(two.params.uv(two.params.K0), fuv))
+    assert abs(float(rest_area(torch.as_tensor(uv), fuv)) / a0 - 1) < 1e-9
+    moved = np.linalg.norm(x - two.x_prev.numpy(), axis=1)
+    assert 0 < moved.max() < 0.05  # draped on, not thrown [m]

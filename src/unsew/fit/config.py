@@ -53,7 +53,7 @@ AREA_MODES = ("free", "target")
 BAND_MODES = ("free", "height", "held")
 
 #: How phase two treats the lengths of stitched edges (``optimizer.seams``).
-SEAM_MODES = ("held", "soft")
+SEAM_MODES = ("held", "soft", "trued")
 
 
 @dataclass(frozen=True)
@@ -69,7 +69,7 @@ class OptimizerSettings:
     friction_eps: float = 1e-2  #: slip speed below which friction is viscous in phase two's drapes (only) [m/s]
     panel_width: float = 0.1  #: a control point of a panel narrower than this (area / half perimeter) moves by lr x width / panel_width per step (waistbands: 3.6 cm, x0.36); 0: every point at lr [m]
     bands: str = "free"  #: what phase two may change of a waistband (a panel open only along its top): "free" anything (at the panel_width factor), "height" its girth only (its points move along the band, never up or down it), "held" nothing (why free is the default: docs/benchmarks.md, "Waistbands in phase two")
-    seams: str = "soft"  #: "soft": only the seam loss pulls stitched edges to equal lengths; "held": after every step the two edges of each stitch are put back in the length ratio the graded pattern has (a pattern that sews; unsew.pattern.seams), measured and not the default: it lost phase two on 5 of 18 foreign fits (docs/benchmarks.md, "Seams held in phase two")
+    seams: str = "soft"  #: "soft": only the seam loss pulls stitched edges to equal lengths; "held": after every step the two edges of each stitch are put back in the length ratio the graded pattern has (a pattern that sews; unsew.pattern.seams), measured and not the default: it lost phase two on 5 of 18 foreign fits (docs/benchmarks.md, "Seams held in phase two"); "trued": the same once, on phase two's best iterate, whose drape is then draped on for one iteration's steps
     tol: float = 1e-3  #: stop when the loss changed by less than this fraction over `patience` iterations [-]
     patience: int = 15  #: iterations over which convergence is judged [-]
     rest_speed: float = 0.0  #: > 0: phase two starts from a drape at rest: when the graded drape, draped 10 more steps, ends with the 99th percentile of its vertex speeds above this, it is draped on until it falls below (at most `rest_steps`); 0: off, measured at 5e-3 and left off (docs/benchmarks.md, "Phase two from a drape at rest") [m/s]

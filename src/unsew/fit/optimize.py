@@ -477,14 +477,35 @@ class PhaseTwo:
 
     def best_fit(self):
         """The best iterate as (pattern, uv (Nu, 2) [m] numpy, drape x (Nx, 3) [m] numpy, Material),
-        all on the CPU whatever ``cfg.device``."""
+        all on the CPU whatever ``cfg.device``. With ``optimizer.seams: trued`` its seams are put
+        back in the graded pattern's length ratios first (:meth:`_trued`)."""
         b = self.best
+        K, x = (b.K, b.x) if self.cfg.optimizer.seams != "trued" else self._trued(b)
         with torch.no_grad():
-            uv = self.params.uv(b.K)
+            uv = self.params.uv(K)
         g = b.gamma.cpu().numpy()
         m0 = self.material0
         material = Material(float(g[0]), float(g[1]), float(g[2]), float(g[3]), float(g[4]), m0.density, m0.friction)
-        return self.params.to_pattern(b.K), uv.cpu().numpy(), b.x.cpu().numpy(), material
+        return self.params.to_pattern(K), uv.cpu().numpy(), x.cpu().numpy(), material
+
+    def _trued(self, b: Iterate) -> tuple[torch.Tensor, torch.Tensor]:
+        """(K, x) of iterate ``b`` with every stitch put back in the start's length ratio (the
+        seam hold once, at the end, then the area hold) and its drape draped on from ``b.x`` for
+        one iteration's steps in its own material; ``b`` unchanged when its seams already are
+        (the start) or when the truing would flip a triangle."""
+        hold = SeamHold(self.params, self.params.K0, project=self.k_project)
+        with torch.no_grad():
+            if abs(hold.residuals(b.K)).max() < 1e-9:
+                return b.K, b.x
+            K = hold(b.K)
+            if self.area_hold is not None:
+                K = self.area_hold(K)
+            uv = self.params.uv(K)
+            if len(check_inverted(uv.cpu().numpy(), self.mesh.faces_uv, min_quality=MIN_TRIANGLE_QUALITY)):
+                return b.K, b.x
+            x = drape(self.model, SimState.at_rest(b.x), self.sdf, uv=uv, gamma=b.gamma,
+                      density=self.material0.density, settings=self.settings, friction=self.material0.friction).x
+        return K, x
 
     def gamma_last(self) -> list[float]:
         """Gamma at the current theta (the last iterate's material, as floats)."""
