@@ -12,7 +12,9 @@ Printed, for the graded pattern, phase two's best iterate and the truth (all on 
 - warm mm / warm loss: the pattern draped the way phase two drapes it (from the graded drape,
   ``--warm-steps`` steps), its Chamfer and phase two's loss [1e-6 m^2];
 - pattern error against the true pattern: mean panel area error, mean control-point distance
-  (all corners, in the panels' own frames), the moved hip corners' distance, rigid vertex L2.
+  (all corners, in the panels' own frames), the moved hip corners' distance, rigid vertex L2;
+- seams mm: the largest change of a stitch's length difference from the graded pattern's
+  (``--seams held`` or ``trued`` keep it at zero; :mod:`unsew.pattern.seams`).
 
 ``--case tshirt`` instead runs the default test suite's small fit (tests/fit/test_fit_small.py:
 the demo's t-shirt, 6 cm longer, hem 6 % wider, sleeves 3 cm longer, in jersey, graded in
