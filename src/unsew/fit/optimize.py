@@ -404,20 +404,26 @@ class PhaseTwo:
         """End the step on a pattern that sews (``optimizer.seams: held``: every stitch's length
         ratio as the start has it, :class:`~unsew.pattern.seams.SeamHold`), has no flipped
         triangle (:meth:`_backtrack_inversions`) and, with ``area: target``, the start's total rest
-        area (:class:`AreaHold`). The area hold scales each panel by one factor, which keeps the
-        ratios; panels it leaves unscaled (held bands) take a few alternating rounds."""
+        area (:class:`AreaHold`; :meth:`_seams_and_area`)."""
         with torch.no_grad():
             if self.seam_hold is not None:
                 self.K.copy_(self.seam_hold(self.K.detach()))
             self._backtrack_inversions(K_before)
-            for _ in range(4):
-                if self.seam_hold is not None:
-                    self.K.copy_(self.seam_hold(self.K.detach()))
-                if self.area_hold is not None:
-                    self.K.copy_(self.area_hold(self.K.detach()))
-                if self.seam_hold is None or self.area_hold is None or not self.area_hold.kept or \
-                        abs(self.seam_hold.residuals(self.K)).max() < 1e-6:
-                    break
+            self.K.copy_(self._seams_and_area(self.K.detach(), self.seam_hold))
+
+    def _seams_and_area(self, K: torch.Tensor, seam_hold: SeamHold | None) -> torch.Tensor:
+        """K (Nk, 2) [m] put through ``seam_hold`` (when given) and the area hold (with ``area:
+        target``). The area hold scales each panel by one factor, which keeps the seam ratios;
+        panels it leaves unscaled (held bands) take a few alternating rounds."""
+        for _ in range(4):
+            if seam_hold is not None:
+                K = seam_hold(K)
+            if self.area_hold is not None:
+                K = self.area_hold(K)
+            if seam_hold is None or self.area_hold is None or not self.area_hold.kept or \
+                    abs(seam_hold.residuals(K)).max() < 1e-6:
+                return K
+        return K
 
     def _backtrack_inversions(self, K_before: torch.Tensor) -> None:
         """A step that inverts pattern triangles, or flattens one below MIN_TRIANGLE_QUALITY, is
@@ -489,17 +495,15 @@ class PhaseTwo:
         return self.params.to_pattern(K), uv.cpu().numpy(), x.cpu().numpy(), material
 
     def _trued(self, b: Iterate) -> tuple[torch.Tensor, torch.Tensor]:
-        """(K, x) of iterate ``b`` with every stitch put back in the start's length ratio (the
-        seam hold once, at the end, then the area hold) and its drape draped on from ``b.x`` for
-        one iteration's steps in its own material; ``b`` unchanged when its seams already are
-        (the start) or when the truing would flip a triangle."""
+        """(K (Nk, 2) [m], x (Nx, 3) [m]) of iterate ``b`` with every stitch put back in the start's
+        length ratio (the seam hold once, at the end, with the area hold) and its drape draped on
+        from ``b.x`` for one iteration's steps in its own material; ``b`` unchanged when its seams
+        already are (the start) or when the truing would flip a triangle."""
         hold = SeamHold(self.params, self.params.K0, project=self.k_project)
         with torch.no_grad():
             if abs(hold.residuals(b.K)).max() < 1e-9:
                 return b.K, b.x
-            K = hold(b.K)
-            if self.area_hold is not None:
-                K = self.area_hold(K)
+            K = self._seams_and_area(b.K, hold)
             uv = self.params.uv(K)
             if len(check_inverted(uv.cpu().numpy(), self.mesh.faces_uv, min_quality=MIN_TRIANGLE_QUALITY)):
                 return b.K, b.x

@@ -35,16 +35,22 @@ __all__ = ["SeamHold", "stitch_length_ratios", "stitch_length_gaps", "seam_chang
 SEAM_TOL = 1e-9
 
 
+def _stitch_lengths(pattern) -> np.ndarray:
+    """(S, 2) float64: the lengths L_a, L_b [m] of every stitch's two edges, in ``pattern.stitches`` order."""
+    return np.array([[edge_length(pattern.panels[s.a.panel], s.a.edge), edge_length(pattern.panels[s.b.panel], s.b.edge)]
+                     for s in pattern.stitches], dtype=np.float64).reshape(-1, 2)
+
+
 def stitch_length_ratios(pattern) -> np.ndarray:
-    """(S,) L_a / L_b of every stitch of ``pattern`` (in ``pattern.stitches`` order) [-]."""
-    return np.array([edge_length(pattern.panels[s.a.panel], s.a.edge) / edge_length(pattern.panels[s.b.panel], s.b.edge)
-                     for s in pattern.stitches], dtype=np.float64)
+    """(S,) float64: L_a / L_b of every stitch of ``pattern`` (in ``pattern.stitches`` order) [-]."""
+    lens = _stitch_lengths(pattern)
+    return lens[:, 0] / lens[:, 1]
 
 
 def stitch_length_gaps(pattern) -> np.ndarray:
-    """(S,) L_a - L_b of every stitch of ``pattern`` (in ``pattern.stitches`` order) [m]."""
-    return np.array([edge_length(pattern.panels[s.a.panel], s.a.edge) - edge_length(pattern.panels[s.b.panel], s.b.edge)
-                     for s in pattern.stitches], dtype=np.float64)
+    """(S,) float64: L_a - L_b of every stitch of ``pattern`` (in ``pattern.stitches`` order) [m]."""
+    lens = _stitch_lengths(pattern)
+    return lens[:, 0] - lens[:, 1]
 
 
 def _sides(pattern) -> list[tuple]:
@@ -105,8 +111,10 @@ class SeamHold:
         self.D, self.d, self.r = D, d, r
         self.ia = np.array([edges[(st.a.panel, st.a.edge)] for st in pat.stitches], dtype=np.int64)
         self.ib = np.array([edges[(st.b.panel, st.b.edge)] for st in pat.stitches], dtype=np.int64)
-        self.P = None if project is None else np.asarray(
+        P = None if project is None else np.asarray(
             project.detach().cpu().numpy() if hasattr(project, "detach") else project, dtype=np.float64)
+        # the projectors as one block-diagonal (2 Nk, 2 Nk) matrix on xy-flattened K, built once
+        self.Pm = None if P is None else np.einsum("jab,jk->jakb", P, np.eye(nk)).reshape(2 * nk, 2 * nk)
         k0 = np.asarray(K0.detach().cpu().numpy() if hasattr(K0, "detach") else K0, dtype=np.float64).reshape(-1)
         la = self.lengths(k0)
         self.rho = la[self.ia] / la[self.ib]
@@ -129,17 +137,15 @@ class SeamHold:
         return dl[self.ia] - self.rho[:, None] * dl[self.ib]
 
     def __call__(self, K, rounds: int = 8):
+        """K (Nk, 2) torch [m] moved by the smallest correction (inside the projectors) that puts
+        every stitch back in its ratio, to SEAM_TOL or for ``rounds`` Gauss-Newton rounds; same
+        dtype and device, no gradient."""
         import torch
 
         if len(self.ia) == 0:
             return K
         k = K.detach().cpu().numpy().astype(np.float64).reshape(-1)
-        Pm = None
-        if self.P is not None:  # block-diagonal (2 Nk, 2 Nk)
-            nk = len(self.P)
-            Pm = np.zeros((2 * nk, 2 * nk))
-            for j in range(nk):
-                Pm[2 * j:2 * j + 2, 2 * j:2 * j + 2] = self.P[j]
+        Pm = self.Pm
         for _ in range(rounds):
             res = self.residuals(k)
             if np.abs(res).max() < SEAM_TOL:
