@@ -522,3 +522,66 @@ def test_a_spent_time_limit_leaves_out_the_optional_work_and_says_so(small_case,
     assert m2["time_limit"] == {"limit_s": None, "cuts": []}
     assert m2["iterations"] == 3 and "mesh_spread" in m2
     assert len(whole.material_choice) > 2  # graded again in silk, stiffness scaled
+
+
+def test_redress_on_three_meshes_compares_fresh_drapes_of_both_patterns(small_case):
+    """checks.redress_meshes 3: with the pattern and material held, phase two's pattern is the
+    graded one up to round-off (1e-16 m). On the fit's mesh both dress from scratch to the same
+    distance, which is the start drape's (its material was named, not settled into); meshed
+    afresh at the spread's edge lengths, round-off alone moves a drape by a few tenths of a mm
+    (0.31 here), so the means are close and the verdict either way. The mesh spread is the
+    judge's own drapes of whichever pattern it returned."""
+    import numpy as np
+
+    from unsew.body.case import load_case
+    from unsew.fit.fit import fit
+
+    case = load_case(small_case)
+    cfg = load_config(**{**SMALL, "iterations": 2, "pattern_start": 5, "optimize_material": False, "report": False,
+                         "redress_meshes": 3})
+    r = fit(case, cfg, progress=False, log=lambda s: None)
+    rd = r.redress
+    h = SMALL["edge_length"]
+    assert rd.meshes == 3 and rd.edge_lengths_m == pytest.approx([h, 0.96 * h, 1.04 * h])
+    assert rd.fit_mm[0] == pytest.approx(rd.graded_fresh_mm[0], abs=1e-6)
+    assert rd.graded_fresh_mm[0] == pytest.approx(rd.graded_mm, abs=1e-6)
+    assert rd.fit_mm[1:] == pytest.approx(rd.graded_fresh_mm[1:], abs=1.0)
+    assert len(set(np.round(rd.fit_mm, 6))) == 3  # three triangulations, three drapes
+    assert rd.fit_mean_mm == pytest.approx(np.mean(rd.fit_mm))
+    assert rd.graded_mean_mm == pytest.approx(np.mean(rd.graded_fresh_mm))
+    assert rd.phase_two_kept == (rd.fit_mean_mm < rd.graded_mean_mm - 0.01)
+    returned = rd.fit_mm if rd.phase_two_kept else rd.graded_fresh_mm
+    assert r.mesh_spread.chamfer_mm == returned[1:]
+    if not rd.phase_two_kept:
+        np.testing.assert_array_equal(r.x, r.x_graded)
+
+
+@pytest.mark.parametrize(
+    "fit_mm, graded_mm, kept, fit_mean",
+    [
+        ([4.0, 5.0, 6.0], [4.5, 5.5, 6.5], True, 5.0),  # lower on every mesh
+        ([3.0, 7.0, 7.0], [4.0, 5.0, 5.0], False, 17 / 3),  # lower on the fit's mesh only: one drape would keep it
+        ([4.0, None, 5.0], [5.0, 6.0, 6.0], False, None),  # phase two's pattern failed a drape the graded one made
+        ([4.0, 5.0, 5.0], [5.0, None, 6.0], True, 4.5),  # a failed graded drape drops that mesh from both means
+    ],
+)
+def test_redress_on_three_keeps_phase_two_by_the_mean(monkeypatch, fit_mm, graded_mm, kept, fit_mean):
+    """The three-mesh verdict from given distances (the drapes replaced)."""
+    from types import SimpleNamespace
+
+    import unsew.fit.checks as checks
+    from unsew.fit.progress import Progress
+
+    fit_pattern, graded_pattern = object(), object()
+    rest = {id(fit_pattern): iter(fit_mm[1:]), id(graded_pattern): iter(graded_mm[1:])}
+    monkeypatch.setattr(checks, "_dressed_mm", lambda pattern, *a: next(rest[id(pattern)]))
+    monkeypatch.setattr(checks, "dress", lambda *a, **k: SimpleNamespace(x=SimpleNamespace(numpy=lambda: None),
+                                                                         mesh=SimpleNamespace(faces=None)))
+    target = SimpleNamespace(distance_mm=lambda x, faces: graded_mm[0])
+    start = SimpleNamespace(graded=graded_pattern, mesh=None, material=None)
+    first = checks.RedressCheck(fit_mm[0], 9.0, fit_mm[0] < 9.0)
+    check, spread = checks.redress_on_three(first, fit_pattern, None, start, None, target, None, load_config(),
+                                            progress=Progress(False), log=lambda s: None)
+    assert check.phase_two_kept is kept and check.fit_mm == fit_mm and check.graded_fresh_mm == graded_mm
+    assert check.fit_mean_mm == (pytest.approx(fit_mean) if fit_mean is not None else None)
+    assert spread.chamfer_mm == (fit_mm[1:] if kept else graded_mm[1:])

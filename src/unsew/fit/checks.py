@@ -6,6 +6,12 @@ its material, is dressed from scratch on the same mesh; unless it lies closer to
 the graded pattern's drape, the graded pattern, its drape and the start material are the result
 (docs/history.md, "Re-dressing a fit's result").
 
+With ``checks.redress_meshes: 3`` the check judges on three meshes instead of one (issue 21: one
+drape of a wide garment moves by more than phase two changes it, and the graded drape it is
+compared with was chosen among the material candidates' drapes for being close): both patterns are
+dressed from scratch on the fit's mesh and on the mesh spread's two, and phase two is kept if its
+mean distance lies below the graded pattern's (:func:`redress_on_three`).
+
 The mesh spread: the returned pattern dressed on two other triangulations; how far the folds move
 with the mesh alone is the floor under the result's distance to the target (docs/history.md,
 "The mesh floor").
@@ -24,7 +30,8 @@ from unsew.fit.target import Target
 from unsew.grading.grade import moved_mesh
 from unsew.meshing import mesh_pattern
 
-__all__ = ["RedressCheck", "MeshSpread", "redress_check", "mesh_spread", "REDRESS_MARGIN_MM"]
+__all__ = ["RedressCheck", "MeshSpread", "redress_check", "redress_on_three", "mesh_spread", "spread_lengths",
+           "REDRESS_MARGIN_MM"]
 
 #: Phase two's pattern is kept only if, dressed from scratch, it lies at least this much closer
 #: to the target than the graded pattern's drape [mm]. An unmoved pattern re-dresses to its
@@ -38,12 +45,24 @@ class RedressCheck:
     [mm] (None when it was refused); graded_mm: the graded drape's [mm]; phase_two_kept: whether
     phase two's pattern is the result; refused: why phase two's pattern was not dressed ("" when
     it was): it cannot be meshed afresh (a panel squeezed to a sliver, an outline crossing itself),
-    so it is no pattern to return."""
+    so it is no pattern to return.
+
+    Judged on three meshes (:func:`redress_on_three`): edge_lengths_m, the fit's mesh and the
+    spread's two [m]; fit_mm and graded_fresh_mm, each pattern dressed from scratch on each of
+    them, its distance to the target [mm] (None: that drape failed); fit_mean_mm and
+    graded_mean_mm, their means over the meshes where the graded drape did not fail [mm]. On one
+    mesh these are None and meshes is 1."""
 
     fit_redressed_mm: float | None
     graded_mm: float
     phase_two_kept: bool
     refused: str = ""
+    meshes: int = 1
+    edge_lengths_m: list | None = None
+    fit_mm: list | None = None
+    graded_fresh_mm: list | None = None
+    fit_mean_mm: float | None = None
+    graded_mean_mm: float | None = None
 
     def as_dict(self) -> dict:
         return asdict(self)
@@ -85,25 +104,75 @@ def redress_check(pattern, uv, material, start: Start, body, target: Target, sdf
     return RedressCheck(cf_re, cf_graded, kept)
 
 
+def redress_on_three(first: RedressCheck, pattern, material, start: Start, body, target: Target, sdf,
+                     cfg: FitConfig, *, progress: Progress, log=print) -> tuple[RedressCheck, MeshSpread]:
+    """The re-dress check judged on three meshes. ``first`` is :func:`redress_check`'s verdict on
+    the fit's mesh (phase two's ``pattern`` in ``material`` dressed from scratch; not refused).
+    The graded pattern is dressed from scratch in its material on the fit's mesh (``start.x`` was
+    let settle from another material's drape, so it is not one), and both patterns on the mesh
+    spread's two meshes (:func:`spread_lengths`). Phase two is kept if its mean distance over the
+    meshes where the graded drape succeeded lies REDRESS_MARGIN_MM below the graded pattern's
+    mean, and it failed on none of them. Also returns the mesh spread of the returned pattern,
+    from these drapes (no further drape is needed)."""
+    lengths = spread_lengths(cfg)
+    with progress.phase("dress the graded pattern afresh") as bar:
+        try:
+            d = dress(start.graded, body, sdf=sdf, mesh=start.mesh, material=start.material, settings=cfg.drape,
+                      progress=bar)
+            g0 = target.distance_mm(d.x.numpy(), d.mesh.faces)
+        except SimulationError:
+            g0 = None
+    fit_mm = [first.fit_redressed_mm] + [_dressed_mm(pattern, material, body, target, sdf, cfg, h, progress,
+                                                     "phase two's pattern") for h in lengths]
+    graded = [g0] + [_dressed_mm(start.graded, start.material, body, target, sdf, cfg, h, progress,
+                                 "the graded pattern") for h in lengths]
+    pairs = [(a, b) for a, b in zip(fit_mm, graded) if b is not None]
+    failed = any(a is None for a, _ in pairs)
+    fit_mean = None if failed or not pairs else sum(a for a, _ in pairs) / len(pairs)
+    graded_mean = sum(b for _, b in pairs) / len(pairs) if pairs else None
+    kept = fit_mean is not None and graded_mean is not None and fit_mean < graded_mean - REDRESS_MARGIN_MM
+    shown = " / ".join("failed" if v is None else f"{v:.2f}" for v in fit_mm)
+    shown_g = " / ".join("failed" if v is None else f"{v:.2f}" for v in graded)
+    log(f"re-dress check on three meshes: the fitted pattern dressed from scratch lies {shown} mm from the target, "
+        f"the graded one {shown_g} mm: " + ("fit kept" if kept else "the graded pattern is returned"))
+    check = RedressCheck(first.fit_redressed_mm, first.graded_mm, kept, meshes=3,
+                         edge_lengths_m=[cfg.drape.edge_length, *lengths], fit_mm=fit_mm, graded_fresh_mm=graded,
+                         fit_mean_mm=fit_mean, graded_mean_mm=graded_mean)
+    spread = MeshSpread(lengths, fit_mm[1:] if kept else graded[1:],
+                        first.fit_redressed_mm if kept else first.graded_mm)
+    return check, spread
+
+
+def spread_lengths(cfg: FitConfig) -> list[float]:
+    """The mesh spread's two edge lengths, x (1 - s) and x (1 + s) the fit's, s =
+    ``cfg.checks.mesh_spread`` [m]."""
+    h0, s = cfg.drape.edge_length, cfg.checks.mesh_spread
+    return [h0 * (1 - s), h0 * (1 + s)]
+
+
+def _dressed_mm(pattern, material, body, target: Target, sdf, cfg: FitConfig, h: float, progress: Progress,
+                what: str) -> float | None:
+    """``pattern`` in ``material`` meshed at edge length ``h`` [m] and dressed from scratch (the
+    fit's settings): its distance to the target [mm], or None when the drape fails
+    (SimulationError, or PatternError: the pattern cannot be meshed at that length)."""
+    with progress.phase(f"dress {what} on a {100 * h:.2f} cm mesh") as bar:
+        try:
+            d = dress(pattern, body, sdf=sdf, material=material, settings=cfg.drape.replace(edge_length=h),
+                      progress=bar)
+            return target.distance_mm(d.x.numpy(), d.mesh.faces)
+        except (SimulationError, PatternError):
+            return None
+
+
 def mesh_spread(pattern, material, body, target: Target, sdf, cfg: FitConfig, result_mm: float, *,
                 progress: Progress, log=print) -> MeshSpread:
-    """``pattern`` in ``material`` dressed from scratch (the fit's settings) on meshes of edge
-    length x (1 - s) and x (1 + s), s = ``cfg.checks.mesh_spread``. A drape that fails
-    (SimulationError, or PatternError: the pattern cannot be meshed at that length) is None: the
-    figure is a diagnostic, not the result."""
-    h0, s = cfg.drape.edge_length, cfg.checks.mesh_spread
-    lengths = [h0 * (1 - s), h0 * (1 + s)]
-    out = []
-    for h in lengths:
-        with progress.phase(f"dress on a {100 * h:.2f} cm mesh") as bar:
-            try:
-                d = dress(pattern, body, sdf=sdf, material=material, settings=cfg.drape.replace(edge_length=h),
-                          progress=bar)
-                out.append(target.distance_mm(d.x.numpy(), d.mesh.faces))
-            except (SimulationError, PatternError):
-                out.append(None)
+    """``pattern`` in ``material`` dressed from scratch (the fit's settings) on the meshes of
+    :func:`spread_lengths`. A drape that fails is None: the figure is a diagnostic, not the
+    result."""
+    lengths = spread_lengths(cfg)
+    out = [_dressed_mm(pattern, material, body, target, sdf, cfg, h, progress, "the result") for h in lengths]
     spread = MeshSpread(lengths, out, result_mm)
-    log(f"mesh spread: the returned pattern dressed on meshes {100 * s:.0f} % finer / coarser lies "
-        f"{' / '.join('failed' if v is None else f'{v:.2f} mm' for v in out)} from the target "
+    log(f"mesh spread: the returned pattern dressed on meshes {100 * cfg.checks.mesh_spread:.0f} % finer / coarser "
+        f"lies {' / '.join('failed' if v is None else f'{v:.2f} mm' for v in out)} from the target "
         f"(the result {result_mm:.2f} mm)")
     return spread

@@ -95,6 +95,7 @@ class CheckSettings:
 
     redress: bool = True  #: dress the fitted pattern from scratch; unless it lies closer to the target than the graded drape, return the graded pattern
     mesh_spread: float = 0.04  #: dress the returned pattern on meshes of edge length x (1 -/+ mesh_spread) and report their distance to the target (0: skip) [-]
+    redress_meshes: int = 1  #: meshes the re-dress check judges on: 1, phase two's pattern dressed from scratch on the fit's mesh against the graded drape; 3, both patterns dressed from scratch on the fit's mesh and the mesh spread's two, compared by their means (unsew.fit.checks) [-]
 
 
 @dataclass(frozen=True)
@@ -145,7 +146,7 @@ LEGACY_KEYS = {
     "fit_friction_eps": "optimizer.friction_eps", "tol": "optimizer.tol", "patience": "optimizer.patience",
     "curvature_weighted": "loss.curvature_weighted", "lambda_open": "loss.open", "lambda_seam": "loss.seam",
     "lambda_mat": "loss.material", "lambda_prior": "loss.prior", "target_points": "loss.target_points",
-    "redress_check": "checks.redress", "mesh_spread": "checks.mesh_spread", "report": "output.report",
+    "redress_check": "checks.redress", "mesh_spread": "checks.mesh_spread", "redress_meshes": "checks.redress_meshes", "report": "output.report",
 }  # fmt: skip
 #: Old on/off switches, now a weight of 0 or an empty list: name -> (place, value when False).
 _LEGACY_SWITCHES = {"seam_loss": ("loss.seam", 0.0), "optimize_material": ("material.fit", ())}
@@ -300,6 +301,11 @@ def _check(cfg: FitConfig, names: dict) -> None:
         raise InputError(f"{say('time_limit')} must be >= 0 s (0: no limit), got {cfg.time_limit}")
     if not 0 <= cfg.checks.mesh_spread < 0.5:
         raise InputError(f"{say('checks.mesh_spread')} must be in [0, 0.5), got {cfg.checks.mesh_spread}")
+    if cfg.checks.redress_meshes not in (1, 3):
+        raise InputError(f"{say('checks.redress_meshes')} must be 1 or 3, got {cfg.checks.redress_meshes}")
+    if cfg.checks.redress_meshes == 3 and not cfg.checks.mesh_spread > 0:
+        raise InputError(f"{say('checks.redress_meshes')} 3 judges on the mesh spread's meshes: "
+                         f"{say('checks.mesh_spread')} must be > 0")
     for place in ("material.refine", "material.regrade", "material.warm_steps", "drape.sew_steps", "drape.settle_steps",
                   "loss.open", "loss.seam", "loss.material", "loss.prior", "loss.area"):
         g, n = place.split(".")

@@ -25,7 +25,7 @@ from unsew.dress import resolve_material
 from unsew.errors import InputError
 from unsew.fit.budget import TimeBudget
 from unsew.fit.checkpoint import load_checkpoint, save_checkpoint
-from unsew.fit.checks import MeshSpread, RedressCheck, mesh_spread, redress_check
+from unsew.fit.checks import MeshSpread, RedressCheck, mesh_spread, redress_check, redress_on_three
 from unsew.fit.config import FitConfig
 from unsew.fit.material import AUTO_START_MATERIAL, MaterialChoice, choose_start
 from unsew.fit.optimize import Iteration, PhaseTwo
@@ -171,20 +171,26 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
     as a FitResult."""
     s = choice.start
     pattern, uv, x, material = two.best_fit()
-    redress, drape_s = None, s.dress_s  # drape_s: a drape from scratch [s], the base's in phase one
+    redress, drape_s, spread = None, s.dress_s, None  # drape_s: a drape from scratch [s], the base's in phase one
     if cfg.checks.redress and two.best.iteration >= 0:
         t0 = time.perf_counter()
         redress = redress_check(pattern, uv, material, s, case.body, target, sdf, cfg, progress=bar, log=log)
-        if not redress.phase_two_kept:  # the graded pattern's rest mesh (= uv(K0)), drape and material
-            pattern, uv, x, material = s.graded, np.asarray(s.mesh.uv, dtype=np.float64), np.asarray(s.x), s.material
         # the re-dress is a drape of the result from scratch, timed now: a closer estimate of the
         # mesh spread's two drapes than the base's (docs/benchmarks.md, "The mesh spread's estimate")
         drape_s = max(drape_s, time.perf_counter() - t0)
+        if cfg.checks.redress_meshes == 3 and not redress.refused:
+            if budget.fits(5 * drape_s):  # the graded pattern on three meshes, phase two's on two more
+                redress, spread = redress_on_three(redress, pattern, material, s, case.body, target, sdf, cfg,
+                                                   progress=bar, log=log)
+            else:
+                budget.cut("re-dress check judged on one mesh (three would overrun)")
+        if not redress.phase_two_kept:  # the graded pattern's rest mesh (= uv(K0)), drape and material
+            pattern, uv, x, material = s.graded, np.asarray(s.mesh.uv, dtype=np.float64), np.asarray(s.x), s.material
         clock.lap("redress_s")
-    spread = None
-    if cfg.checks.mesh_spread > 0 and not budget.fits(2 * drape_s):
+    # the three-mesh check has dressed the returned pattern on the spread's meshes already
+    if spread is None and cfg.checks.mesh_spread > 0 and not budget.fits(2 * drape_s):
         budget.cut("mesh spread skipped")
-    elif cfg.checks.mesh_spread > 0:
+    elif spread is None and cfg.checks.mesh_spread > 0:
         result_mm = (redress.fit_redressed_mm if redress.phase_two_kept else redress.graded_mm) if redress \
             else target.distance_mm(x, s.mesh.faces)
         spread = mesh_spread(pattern, material, case.body, target, sdf, cfg, result_mm, progress=bar, log=log)
