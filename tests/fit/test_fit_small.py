@@ -489,6 +489,11 @@ def test_report_says_when_phase_two_was_refused():
     assert "cannot be meshed afresh" in note and "waistband_front" in note and "graded pattern" in note
     kept = _redress_note({"fit_redressed_mm": 6.0, "graded_mm": 7.5, "phase_two_kept": True, "refused": ""})
     assert "6.00 mm" in kept and "phase two's pattern is returned" in kept
+    three = _redress_note({"fit_redressed_mm": 6.0, "graded_mm": 7.5, "phase_two_kept": False, "refused": "",
+                           "meshes": 3, "edge_lengths_m": [0.025, 0.024, 0.026], "fit_mm": [6.0, 9.0, None],
+                           "graded_fresh_mm": [7.0, 7.2, 7.4], "fit_mean_mm": None, "graded_mean_mm": 7.2})
+    assert "three meshes (2.50 / 2.40 / 2.60 cm" in three and "6.00 / 9.00 / failed" in three
+    assert "no mean" in three and "graded pattern and its drape are returned" in three
 
 
 def test_a_spent_time_limit_leaves_out_the_optional_work_and_says_so(small_case, tmp_path):
