@@ -181,7 +181,10 @@ def test_redress_check_decides_and_returns_what_it_decided(small_fit):
     out, result, metrics = small_fit
     rd = metrics["redress"]
     assert "re-dress check" in (out / "report.html").read_text()
-    assert rd["phase_two_kept"] == (rd["fit_redressed_mm"] < rd["graded_mm"] - 0.01)
+    if rd["meshes"] == 3:  # the default: both patterns dressed from scratch on three meshes, means compared
+        assert rd["phase_two_kept"] == (rd["fit_mean_mm"] < rd["graded_mean_mm"] - 0.01)
+    else:
+        assert rd["phase_two_kept"] == (rd["fit_redressed_mm"] < rd["graded_mm"] - 0.01)
     assert rd["graded_mm"] == pytest.approx(metrics["surface_graded"]["chamfer_mm"], rel=0.1)
     if not rd["phase_two_kept"]:
         np.testing.assert_array_equal(result.x, result.x_graded)
@@ -225,6 +228,9 @@ def test_redress_check_returns_the_graded_pattern_when_phase_two_found_nothing(s
     assert r.mesh_spread is not None
     off = fit(case, cfg.replace(checks=CheckSettings(redress=False, mesh_spread=0.0)), progress=False, log=lambda s: None)
     assert off.redress is None and off.mesh_spread is None
+    one = fit(case, cfg.replace(checks=CheckSettings(redress_meshes=3, mesh_spread=0.0)), progress=False,
+              log=lambda s: None)  # three meshes asked for, but no spread meshes: judged on one
+    assert one.redress.meshes == 1 and one.mesh_spread is None
     assert np.abs(off.x - off.x_graded).max() > 1e-6
 
 

@@ -6,11 +6,15 @@ What gives way, in the order a fit reaches it:
 - the material choice's optional steps (grading again in other fabrics, the stiffness search)
   run only while less than half the limit is spent;
 - phase two stops before an iteration that would leave too little time for one more iteration
-  and the re-dress check (one drape from scratch);
-- the mesh spread (two drapes from scratch, a diagnostic) is skipped when it would not fit.
+  and the re-dress check on the fit's mesh (one drape from scratch);
+- the re-dress check's four drapes on the other two meshes and the graded pattern's on the
+  fit's mesh (``checks.redress_meshes: 3``) run only when five more drapes fit (the re-dress
+  on the fit's mesh, timed, is the estimate); otherwise phase two is judged on one mesh;
+- the mesh spread (two drapes from scratch, a diagnostic; the three-mesh check's own when that
+  ran) is skipped when it would not fit.
 
-The base choice, grading and the re-dress check always run: without them there is no result, or
-no judgement of phase two's. Times to come are estimated from ones measured in this fit: a drape
+The base choice, grading and the re-dress check on the fit's mesh always run: without them
+there is no result, or no judgement of phase two's. Times to come are estimated from ones measured in this fit: a drape
 from scratch (the base's, in phase one) and phase two's iterations.
 """
 
