@@ -26,6 +26,8 @@ from pathlib import Path
 
 from tables import print_table
 
+from unsew.fit.checks import REDRESS_MARGIN_MM
+
 COLUMNS = ["case", "one_mesh", "start_mm", "graded_fresh_mm", "fit_mm", "graded_mm", "fit_mean", "graded_mean",
            "lower_on", "three_mesh", "agree"]
 
@@ -36,7 +38,7 @@ def _mm(values) -> str:
 
 def row(name: str, red: dict) -> dict:
     """One case's row from metrics.json's ``redress`` (judged on three meshes)."""
-    one = red["fit_redressed_mm"] < red["graded_mm"] - 0.01
+    one = red["fit_redressed_mm"] < red["graded_mm"] - REDRESS_MARGIN_MM
     fit, graded = red["fit_mm"], red["graded_fresh_mm"]
     pairs = [(a, b) for a, b in zip(fit, graded) if a is not None and b is not None]
     return {"case": name, "one_mesh": f"{'kept' if one else 'graded'} ({red['fit_redressed_mm']:.1f} vs {red['graded_mm']:.1f})",
