@@ -1,11 +1,12 @@
 """Is phase two's pattern better than the graded one on one fresh drape, and on three?
 
-Reads ``python -m benchmarks foreign_fit --out DIR --config benchmarks/data/fit_redress3.yaml``
-result folders (``checks.redress_meshes: 3``: both patterns dressed from scratch on the fit's mesh
-and the mesh spread's two; metrics.json's ``redress``) and prints per case:
+Reads ``python -m benchmarks foreign_fit --out DIR`` result folders of the default fit
+(``checks.redress_meshes: 3``: both patterns dressed from scratch on the fit's mesh and the mesh
+spread's two; metrics.json's ``redress``) and prints per case:
 
-- ``one_mesh``: the verdict of the one-mesh check, the default (phase two's pattern dressed from
-  scratch on the fit's mesh against the graded start drape) and its two figures [mm];
+- ``one_mesh``: what the one-mesh check (``checks.redress_meshes: 1``, the default before session
+  25: phase two's pattern dressed from scratch on the fit's mesh against the graded start drape)
+  would have decided, and its two figures [mm];
 - ``start_mm`` / ``graded_fresh_mm``: the graded start drape (let settle from another material's
   drape during the material choice, and kept for being closest) and the graded pattern dressed
   from scratch on the same mesh [mm]: how much the start drape's selection flatters the graded
@@ -26,14 +27,10 @@ from pathlib import Path
 
 from tables import print_table
 
-from unsew.fit.checks import REDRESS_MARGIN_MM
+from unsew.fit.checks import REDRESS_MARGIN_MM, mm_list
 
 COLUMNS = ["case", "one_mesh", "start_mm", "graded_fresh_mm", "fit_mm", "graded_mm", "fit_mean", "graded_mean",
            "lower_on", "three_mesh", "agree"]
-
-
-def _mm(values) -> str:
-    return " / ".join("failed" if v is None else f"{v:.1f}" for v in values)
 
 
 def row(name: str, red: dict) -> dict:
@@ -42,7 +39,7 @@ def row(name: str, red: dict) -> dict:
     fit, graded = red["fit_mm"], red["graded_fresh_mm"]
     pairs = [(a, b) for a, b in zip(fit, graded) if a is not None and b is not None]
     return {"case": name, "one_mesh": f"{'kept' if one else 'graded'} ({red['fit_redressed_mm']:.1f} vs {red['graded_mm']:.1f})",
-            "start_mm": red["graded_mm"], "graded_fresh_mm": graded[0], "fit_mm": _mm(fit), "graded_mm": _mm(graded),
+            "start_mm": red["graded_mm"], "graded_fresh_mm": graded[0], "fit_mm": mm_list(fit, 1), "graded_mm": mm_list(graded, 1),
             "fit_mean": red["fit_mean_mm"], "graded_mean": red["graded_mean_mm"],
             "lower_on": f"{sum(a < b for a, b in pairs)}/{len(pairs)}",
             "three_mesh": "kept" if red["phase_two_kept"] else "graded", "agree": "yes" if one == red["phase_two_kept"] else "no"}

@@ -31,7 +31,7 @@ from unsew.grading.grade import moved_mesh
 from unsew.meshing import mesh_pattern
 
 __all__ = ["RedressCheck", "MeshSpread", "redress_check", "redress_on_three", "mesh_spread", "spread_lengths",
-           "REDRESS_MARGIN_MM"]
+           "mm_list", "REDRESS_MARGIN_MM"]
 
 #: Phase two's pattern is kept only if, dressed from scratch, it lies at least this much closer
 #: to the target than the graded pattern's drape [mm]. An unmoved pattern re-dresses to its
@@ -131,16 +131,19 @@ def redress_on_three(first: RedressCheck, pattern, material, start: Start, body,
     fit_mean = None if failed or not pairs else sum(a for a, _ in pairs) / len(pairs)
     graded_mean = sum(b for _, b in pairs) / len(pairs) if pairs else None
     kept = fit_mean is not None and graded_mean is not None and fit_mean < graded_mean - REDRESS_MARGIN_MM
-    shown = " / ".join("failed" if v is None else f"{v:.2f}" for v in fit_mm)
-    shown_g = " / ".join("failed" if v is None else f"{v:.2f}" for v in graded)
-    log(f"re-dress check on three meshes: the fitted pattern dressed from scratch lies {shown} mm from the target, "
-        f"the graded one {shown_g} mm: " + ("fit kept" if kept else "the graded pattern is returned"))
+    log(f"re-dress check on three meshes: the fitted pattern dressed from scratch lies {mm_list(fit_mm)} mm from the "
+        f"target, the graded one {mm_list(graded)} mm: " + ("fit kept" if kept else "the graded pattern is returned"))
     check = RedressCheck(first.fit_redressed_mm, first.graded_mm, kept, meshes=3,
                          edge_lengths_m=[cfg.drape.edge_length, *lengths], fit_mm=fit_mm, graded_fresh_mm=graded,
                          fit_mean_mm=fit_mean, graded_mean_mm=graded_mean)
     spread = MeshSpread(lengths, fit_mm[1:] if kept else graded[1:],
                         first.fit_redressed_mm if kept else first.graded_mm)
     return check, spread
+
+
+def mm_list(values, digits: int = 2) -> str:
+    """Distances [mm] (None: a drape that failed) as "a / b / failed"."""
+    return " / ".join("failed" if v is None else f"{v:.{digits}f}" for v in values)
 
 
 def spread_lengths(cfg: FitConfig) -> list[float]:
@@ -173,6 +176,6 @@ def mesh_spread(pattern, material, body, target: Target, sdf, cfg: FitConfig, re
     out = [_dressed_mm(pattern, material, body, target, sdf, cfg, h, progress, "the result") for h in lengths]
     spread = MeshSpread(lengths, out, result_mm)
     log(f"mesh spread: the returned pattern dressed on meshes {100 * cfg.checks.mesh_spread:.0f} % finer / coarser "
-        f"lies {' / '.join('failed' if v is None else f'{v:.2f} mm' for v in out)} from the target "
+        f"lies {mm_list(out)} mm from the target "
         f"(the result {result_mm:.2f} mm)")
     return spread

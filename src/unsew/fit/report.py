@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from unsew.fit.checks import mm_list
 from unsew.metrics.surface import closest_points
 from unsew.report.fit_report import write_fit_report as _write
 from unsew.sim.material import material_to_dict
@@ -135,13 +136,10 @@ def _redress_note(rd: dict) -> str:
         return f"re-dress check: phase two's pattern cannot be meshed afresh ({rd['refused']}); {graded}"
     verdict = "phase two's pattern is returned" if rd["phase_two_kept"] else graded
     if rd.get("meshes", 1) == 3:
-        def mm(vs):
-            return " / ".join("failed" if v is None else f"{v:.2f}" for v in vs)
-
         means = (f"means {rd['fit_mean_mm']:.2f} against {rd['graded_mean_mm']:.2f} mm"
                  if rd.get("fit_mean_mm") is not None and rd.get("graded_mean_mm") is not None else "no mean")
         return (f"re-dress check on three meshes ({' / '.join(f'{100 * h:.2f}' for h in rd['edge_lengths_m'])} cm "
-                f"edges): the fitted pattern dressed from scratch lies {mm(rd['fit_mm'])} mm from the target, the "
-                f"graded one {mm(rd['graded_fresh_mm'])} mm ({means}); {verdict}")
+                f"edges): the fitted pattern dressed from scratch lies {mm_list(rd['fit_mm'])} mm from the target, the "
+                f"graded one {mm_list(rd['graded_fresh_mm'])} mm ({means}); {verdict}")
     return (f"re-dress check: the fitted pattern dressed from scratch lies {rd['fit_redressed_mm']:.2f} mm from the "
             f"target, the graded one {rd['graded_mm']:.2f} mm; {verdict}")
