@@ -9,7 +9,10 @@ prints one row per case:
   chose by draping, or the one named), exit (``ok`` or the fit's last stderr line), wall
   time of the command [s];
 - Chamfer [mm] of the base drape, the graded drape and the final result against the target
-  (metrics.json: surface_base, surface_graded, surface);
+  (metrics.json: surface_base, surface_graded, surface; since 2026-11 the result's and, judged on
+  three meshes, the graded drape are their patterns dressed from scratch, metrics.json's
+  ``drapes``), and ``cf_warm_mm``, a kept phase two's own warm-started drape (surface_warm), which
+  results before then reported as the final one;
 - panel area errors [%] of the base, graded and final pattern against pattern_gt.json
   (unsew.metrics.panels.pattern_metrics; panels matched by name, then unique label, then a
   Hungarian assignment on turning distance + 3D placement, panels left over reported):
@@ -54,7 +57,7 @@ ROOT = Path(__file__).resolve().parent.parent
 CASES = ROOT / "benchmarks" / "foreign" / "cases"
 
 COLUMNS = ["case", "garment", "body", "base", "exit", "time_s",
-           "cf_base_mm", "cf_graded_mm", "cf_final_mm", "floor_mm",
+           "cf_base_mm", "cf_graded_mm", "cf_final_mm", "cf_warm_mm", "floor_mm",
            "area_base_pct", "area_graded_pct", "area_final_pct",
            "total_base_pct", "total_graded_pct", "total_final_pct", "matched_final_pct",
            "seam_final_mm", "loss_spikes", "panels", "unmatched", "phase2_kept", "peak_mb", "peak_stage"]
@@ -182,7 +185,8 @@ def row(case: Path, out: Path, status: dict, *, recompute: bool = False) -> dict
     if r["time_s"] is None:
         r["time_s"] = (m.get("timings_s") or {}).get("total_s")
     r["base"] = m.get("base")  # the base pattern phase one started from (chosen by draping by default)
-    for key, col in (("surface_base", "cf_base_mm"), ("surface_graded", "cf_graded_mm"), ("surface", "cf_final_mm")):
+    for key, col in (("surface_base", "cf_base_mm"), ("surface_graded", "cf_graded_mm"), ("surface", "cf_final_mm"),
+                     ("surface_warm", "cf_warm_mm")):
         r[col] = (m.get(key) or {}).get("chamfer_mm")
     for tag, key, fname in PATTERNS:
         p = _pattern_errors(m, key, res / fname, case / "pattern_gt.json", recompute=recompute)

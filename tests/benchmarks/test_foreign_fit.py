@@ -42,7 +42,7 @@ def test_row_reads_metrics_and_pattern_files(tmp_path):
              "panels": {"a": {}, "b": {}}, "unmatched": {"estimated": [], "true": ["belt_f", "belt_b"]}}
     metrics = {
         "surface": {"chamfer_mm": 7.0}, "surface_base": {"chamfer_mm": 30.0}, "surface_graded": {"chamfer_mm": 9.0},
-        "pattern": final,
+        "surface_warm": {"chamfer_mm": 6.5}, "pattern": final,
         "pattern_base": {"error": "panels without a counterpart"},
         "redress": {"fit_redressed_mm": 8.0, "graded_mm": 9.0, "phase_two_kept": True},
         "timings_s": {"total_s": 12.0}, "peak_memory_mb": 2048.5,
@@ -50,7 +50,7 @@ def test_row_reads_metrics_and_pattern_files(tmp_path):
     }
     (res / "metrics.json").write_text(json.dumps(metrics))
     r = mod.row(case, tmp_path, {"exit": "ok", "time_s": None})
-    assert (r["cf_base_mm"], r["cf_graded_mm"], r["cf_final_mm"]) == (30.0, 9.0, 7.0)
+    assert (r["cf_base_mm"], r["cf_graded_mm"], r["cf_final_mm"], r["cf_warm_mm"]) == (30.0, 9.0, 7.0, 6.5)
     assert abs(r["area_final_pct"] - 40.0) < 1e-9 and abs(r["total_final_pct"] - 10.0) < 1e-9
     assert abs(r["matched_final_pct"] - 30.0) < 1e-9
     assert r["panels"] == "2/4" and r["unmatched"] == "gt: belt_f,belt_b"

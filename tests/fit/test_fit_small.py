@@ -23,13 +23,21 @@ def small_case(tmp_path_factory):
     return make_truth_case(d, settings=load_config(**SMALL).drape)
 
 
+#: phase two's iterations in the small fit: with 3, one step was the best iterate and whether its
+#: pattern dressed closer than the graded one depended on the machine (kept, 5.64 -> 5.41 mm, on
+#: the VM of session 12; refused, 5.95 against 5.62 mm, on an AMD EPYC VM in session 26); with 6
+#: it is kept on every mesh of the re-dress check there (test below)
+PROOF_ITERATIONS = 6
+
+
 @pytest.fixture(scope="module")
 def small_fit(small_case, tmp_path_factory):
     from unsew.fit.run import run_fit
     from unsew.body.case import load_case
 
     out = tmp_path_factory.mktemp("fit") / "result"
-    result, metrics = run_fit(load_case(small_case), load_config(**SMALL), out, progress=False, log=lambda s: None)
+    result, metrics = run_fit(load_case(small_case), load_config(**{**SMALL, "iterations": PROOF_ITERATIONS}), out,
+                              progress=False, log=lambda s: None)
     return out, result, metrics
 
 
@@ -39,7 +47,7 @@ def test_result_folder_is_complete(small_fit):
         assert (out / name).is_file(), name
     assert not (out.parent / (out.name + ".partial")).exists()
     saved = json.loads((out / "metrics.json").read_text())
-    assert saved["iterations"] == 3
+    assert saved["iterations"] == PROOF_ITERATIONS
     assert saved["drape_check"]["ok"] and saved["drape_check"]["inside_pct"] < 0.5
     from unsew.io.garmentcode import load_pattern
     from unsew.metrics.panels import panel_area
@@ -82,13 +90,17 @@ def test_phase_two_is_kept_and_lowers_the_redressed_distance(small_fit):
     target than the graded one, and the re-dress check must keep it: the returned pattern is
     phase two's. Measured at the merge of session 12's work (graded by the library's base choice,
     seam copies met only on raised arms): re-dressed 5.09 -> 4.55 mm (x0.89); graded to the
-    target's area (area: target, 1a280d9) 5.64 -> 5.41 mm (x0.96); with phase two held
-    (pattern_start past the budget) the graded pattern is returned and this fails."""
+    target's area (area: target, 1a280d9) 5.64 -> 5.41 mm (x0.96). Session 26, 6 iterations,
+    both patterns dressed from scratch on the re-dress check's three meshes: 5.62 / 5.98 / 6.27
+    -> 5.05 / 5.42 / 5.09 mm, means x0.87. With phase two held (pattern_start past the budget)
+    the graded pattern is returned and this fails."""
     import numpy as np
 
     _, result, metrics = small_fit
     rd = metrics["redress"]
-    assert rd["phase_two_kept"] and rd["fit_redressed_mm"] < 0.975 * rd["graded_mm"]
+    assert rd["meshes"] == 3 and rd["phase_two_kept"]
+    assert rd["fit_mean_mm"] < 0.95 * rd["graded_mean_mm"]
+    assert rd["fit_mm"][0] < 0.975 * rd["graded_fresh_mm"][0]
     moved = max(float(np.abs(result.pattern.panels[n].vertices - p.vertices).max())
                 for n, p in result.graded_pattern.panels.items())
     assert moved > 1e-3  # [m]: the returned pattern is not the graded one
@@ -185,9 +197,35 @@ def test_redress_check_decides_and_returns_what_it_decided(small_fit):
         assert rd["phase_two_kept"] == (rd["fit_mean_mm"] < rd["graded_mean_mm"] - 0.01)
     else:
         assert rd["phase_two_kept"] == (rd["fit_redressed_mm"] < rd["graded_mm"] - 0.01)
-    assert rd["graded_mm"] == pytest.approx(metrics["surface_graded"]["chamfer_mm"], rel=0.1)
+    if rd["meshes"] == 3:  # the graded pattern was dressed from scratch: that is its reported drape
+        assert metrics["drapes"]["graded"] == "fresh"
+        assert rd["graded_fresh_mm"][0] == pytest.approx(metrics["surface_graded"]["chamfer_mm"], rel=0.1)
+    else:
+        assert rd["graded_mm"] == pytest.approx(metrics["surface_graded"]["chamfer_mm"], rel=0.1)
     if not rd["phase_two_kept"]:
         np.testing.assert_array_equal(result.x, result.x_graded)
+    else:  # the result is phase two's pattern dressed from scratch, its warm drape reported beside it
+        assert metrics["drapes"]["result"] == "fresh" and result.x_warm is not None
+        assert rd["fit_redressed_mm"] == pytest.approx(metrics["surface"]["chamfer_mm"], rel=0.1)
+        assert metrics["surface_warm"]["chamfer_mm"] > 0 and "warm-started drape lay" in (out / "report.html").read_text()
+
+
+def test_the_result_drape_is_its_pattern_dressed_from_scratch(small_case, small_fit):
+    """garment.obj is what dressing the returned pattern in the returned material from scratch
+    on the result's mesh gives, whichever pattern the re-dress check returned: not a drape
+    warm-started along the optimizer's path, which can lie nearer the target than its pattern
+    dresses (issue 21)."""
+    from unsew.body.case import load_case
+    from unsew.body.sdf import BodySDF
+    from unsew.dress import dress
+    from unsew.grading.grade import moved_mesh
+
+    _, result, metrics = small_fit
+    assert metrics["drapes"]["result"] == "fresh"
+    body = load_case(small_case).body
+    x = dress(result.pattern, body, sdf=BodySDF.build(body), mesh=moved_mesh(result.mesh, result.pattern, result.uv),
+              material=result.material, settings=load_config(**SMALL).drape).x.numpy()
+    np.testing.assert_allclose(x, result.x, atol=1e-9)
 
 
 def test_mesh_spread_dresses_the_returned_pattern_on_two_other_meshes(small_fit):
@@ -201,7 +239,8 @@ def test_mesh_spread_dresses_the_returned_pattern_on_two_other_meshes(small_fit)
     h = SMALL["edge_length"]
     assert ms["edge_lengths_m"] == pytest.approx([0.96 * h, 1.04 * h])
     rd = metrics["redress"]
-    assert ms["result_mm"] == (rd["fit_redressed_mm"] if rd["phase_two_kept"] else rd["graded_mm"])
+    graded = rd["graded_fresh_mm"][0] if rd["meshes"] == 3 else rd["graded_mm"]
+    assert ms["result_mm"] == (rd["fit_redressed_mm"] if rd["phase_two_kept"] else graded)
     for v in ms["chamfer_mm"]:
         assert math.isfinite(v) and 0 < v < 100
         assert abs(v - ms["result_mm"]) > 1e-6  # another triangulation, another drape
@@ -586,10 +625,9 @@ def test_redress_on_three_keeps_phase_two_by_the_mean(monkeypatch, fit_mm, grade
     fit_pattern, graded_pattern = object(), object()
     rest = {id(fit_pattern): iter(fit_mm[1:]), id(graded_pattern): iter(graded_mm[1:])}
     monkeypatch.setattr(checks, "_dressed_mm", lambda pattern, *a: next(rest[id(pattern)]))
-    monkeypatch.setattr(checks, "dress", lambda *a, **k: SimpleNamespace(x=SimpleNamespace(numpy=lambda: None),
-                                                                         mesh=SimpleNamespace(faces=None)))
+    monkeypatch.setattr(checks, "dress", lambda *a, **k: SimpleNamespace(x=SimpleNamespace(numpy=lambda: None)))
     target = SimpleNamespace(distance_mm=lambda x, faces: graded_mm[0])
-    start = SimpleNamespace(graded=graded_pattern, mesh=None, material=None)
+    start = SimpleNamespace(graded=graded_pattern, mesh=SimpleNamespace(faces=None), material=None)
     first = checks.RedressCheck(fit_mm[0], 9.0, fit_mm[0] < 9.0)
     check, spread = checks.redress_on_three(first, fit_pattern, None, start, None, target, None, load_config(),
                                             progress=Progress(False), log=lambda s: None)

@@ -19,7 +19,9 @@ with the mesh alone is the floor under the result's distance to the target (docs
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass, field, fields
+
+import numpy as np
 
 from unsew.dress import dress
 from unsew.errors import PatternError, SimulationError
@@ -51,7 +53,12 @@ class RedressCheck:
     spread's two [m]; fit_mm and graded_fresh_mm, each pattern dressed from scratch on each of
     them, its distance to the target [mm] (None: that drape failed); fit_mean_mm and
     graded_mean_mm, their means over the meshes where the graded drape did not fail [mm]. On one
-    mesh these are None and meshes is 1."""
+    mesh these are None and meshes is 1.
+
+    x_fit, x_graded: the drapes from scratch on the fit's mesh (Nx, 3) [m] of phase two's
+    pattern and of the graded pattern (None: not dressed, or the drape failed); the fit returns
+    the kept pattern's, so the result's drape is one that dressing its pattern reproduces. Not
+    in :meth:`as_dict`."""
 
     fit_redressed_mm: float | None
     graded_mm: float
@@ -63,9 +70,11 @@ class RedressCheck:
     graded_fresh_mm: list | None = None
     fit_mean_mm: float | None = None
     graded_mean_mm: float | None = None
+    x_fit: np.ndarray | None = field(default=None, repr=False)
+    x_graded: np.ndarray | None = field(default=None, repr=False)
 
     def as_dict(self) -> dict:
-        return asdict(self)
+        return {f.name: getattr(self, f.name) for f in fields(self) if f.name not in ("x_fit", "x_graded")}
 
 
 @dataclass
@@ -79,7 +88,7 @@ class MeshSpread:
     result_mm: float
 
     def as_dict(self) -> dict:
-        return asdict(self)
+        return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
 def redress_check(pattern, uv, material, start: Start, body, target: Target, sdf, cfg: FitConfig, *,
@@ -101,7 +110,7 @@ def redress_check(pattern, uv, material, start: Start, body, target: Target, sdf
     kept = bool(cf_re < cf_graded - REDRESS_MARGIN_MM)
     log(f"re-dress check: the fitted pattern dressed from scratch lies {cf_re:.2f} mm from the target, "
         f"the graded one {cf_graded:.2f} mm: " + ("fit kept" if kept else "the graded pattern is returned"))
-    return RedressCheck(cf_re, cf_graded, kept)
+    return RedressCheck(cf_re, cf_graded, kept, x_fit=x)
 
 
 def redress_on_three(first: RedressCheck, pattern, material, start: Start, body, target: Target, sdf,
@@ -117,11 +126,11 @@ def redress_on_three(first: RedressCheck, pattern, material, start: Start, body,
     lengths = spread_lengths(cfg)
     with progress.phase("dress the graded pattern afresh") as bar:
         try:
-            d = dress(start.graded, body, sdf=sdf, mesh=start.mesh, material=start.material, settings=cfg.drape,
-                      progress=bar)
-            g0 = target.distance_mm(d.x.numpy(), d.mesh.faces)
+            x_graded = dress(start.graded, body, sdf=sdf, mesh=start.mesh, material=start.material,
+                             settings=cfg.drape, progress=bar).x.numpy()
+            g0 = target.distance_mm(x_graded, start.mesh.faces)
         except SimulationError:
-            g0 = None
+            g0, x_graded = None, None
     fit_mm = [first.fit_redressed_mm] + [_dressed_mm(pattern, material, body, target, sdf, cfg, h, progress,
                                                      "phase two's pattern") for h in lengths]
     graded = [g0] + [_dressed_mm(start.graded, start.material, body, target, sdf, cfg, h, progress,
@@ -135,9 +144,9 @@ def redress_on_three(first: RedressCheck, pattern, material, start: Start, body,
         f"target, the graded one {mm_list(graded)} mm: " + ("fit kept" if kept else "the graded pattern is returned"))
     check = RedressCheck(first.fit_redressed_mm, first.graded_mm, kept, meshes=3,
                          edge_lengths_m=[cfg.drape.edge_length, *lengths], fit_mm=fit_mm, graded_fresh_mm=graded,
-                         fit_mean_mm=fit_mean, graded_mean_mm=graded_mean)
+                         fit_mean_mm=fit_mean, graded_mean_mm=graded_mean, x_fit=first.x_fit, x_graded=x_graded)
     spread = MeshSpread(lengths, fit_mm[1:] if kept else graded[1:],
-                        first.fit_redressed_mm if kept else first.graded_mm)
+                        fit_mm[0] if kept else (first.graded_mm if g0 is None else g0))
     return check, spread
 
 

@@ -59,6 +59,11 @@ class FitResult:
     ``timings``, "loaded" at the fit's start), so the stage that set the peak is the first one
     reaching the last value. time_limit: the fit's time limit and what gave way to it
     (:meth:`unsew.fit.budget.TimeBudget.as_dict`).
+    x_warm: phase two's own drape of a kept pattern (Nx, 3) [m], warm-started along the
+    optimizer's path (None: phase two not kept); ``x`` is then the pattern dressed from scratch.
+    drapes: where ``x`` and ``x_graded`` come from ({"result": ..., "graded": ...}: "fresh",
+    dressed from scratch on the fit's mesh; "graded start", the material choice's settled drape;
+    "phase two", the optimizer's warm drape, when no re-dress check ran).
     """
 
     pattern: object
@@ -91,6 +96,8 @@ class FitResult:
     memory_mb: dict | None = None
     time_limit: dict | None = None
     rest: dict | None = None
+    x_warm: np.ndarray | None = None
+    drapes: dict | None = None
 
 
 def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: Path | None = None,
@@ -172,6 +179,8 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
     s = choice.start
     pattern, uv, x, material = two.best_fit()
     redress, drape_s, spread = None, s.dress_s, None  # drape_s: a drape from scratch [s], the base's in phase one
+    x_graded, x_warm = np.asarray(s.x), None
+    drapes = {"result": "phase two" if two.best.iteration >= 0 else "graded start", "graded": "graded start"}
     if cfg.checks.redress and two.best.iteration >= 0:
         t0 = time.perf_counter()
         redress = redress_check(pattern, uv, material, s, case.body, target, sdf, cfg, progress=bar, log=log)
@@ -184,8 +193,15 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
                                                    progress=bar, log=log)
             else:
                 budget.cut("re-dress check judged on one mesh (three would overrun)")
-        if not redress.phase_two_kept:  # the graded pattern's rest mesh (= uv(K0)), drape and material
-            pattern, uv, x, material = s.graded, np.asarray(s.mesh.uv, dtype=np.float64), np.asarray(s.x), s.material
+        # the returned drape is the returned pattern dressed from scratch where the check dressed
+        # it: a kept phase two's warm drape can lie nearer the target than its pattern dresses
+        if redress.x_graded is not None:
+            x_graded = redress.x_graded
+        if redress.phase_two_kept:
+            x_warm, x = x, redress.x_fit
+        else:  # the graded pattern's rest mesh (= uv(K0)), drape and material
+            pattern, uv, x, material = s.graded, np.asarray(s.mesh.uv, dtype=np.float64), x_graded, s.material
+        drapes = _fresh_drapes(redress)
         clock.lap("redress_s")
     # the three-mesh check has dressed the returned pattern on the spread's meshes already
     if spread is None and cfg.checks.mesh_spread > 0 and not budget.fits(2 * drape_s):
@@ -198,7 +214,7 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
     return FitResult(
         pattern=pattern, base_pattern=s.base, graded_pattern=s.graded, mesh=s.mesh, x=x, uv=uv, material=material,
         history=two.history, grade_table=s.grade_table, timings=clock.total(), iterations=len(two.history["total"]),
-        converged=two.converged, x_graded=np.asarray(s.x), x_base=s.x_base, params=two.params.to("cpu"),
+        converged=two.converged, x_graded=x_graded, x_base=s.x_base, x_warm=x_warm, drapes=drapes, params=two.params.to("cpu"),
         base_mesh=s.mesh_base, start_material=s.material, material_choice=choice.table, base_name=s.base_name,
         base_choice=list(s.base_choice) or None, best_iteration=two.best.iteration,
         material_fitted=two.best.material_on and (redress is None or redress.phase_two_kept),
@@ -207,6 +223,14 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
         drape_check=check_drape(x, faces=s.mesh.faces, uv=uv, faces_uv=s.mesh.faces_uv, body=case.body, sdf=sdf),
         memory_mb=clock.peaks, time_limit=budget.as_dict(), rest=two.rest,
     )
+
+
+def _fresh_drapes(redress: RedressCheck) -> dict:
+    """Where the result's and the graded drapes come from once the re-dress check has run: "fresh"
+    (the pattern dressed from scratch on the fit's mesh, as ``unsew drape`` of it would) or "graded
+    start" (the graded drape the material choice let settle from another fabric's drape)."""
+    graded = "fresh" if redress.x_graded is not None else "graded start"
+    return {"result": "fresh" if redress.phase_two_kept else graded, "graded": graded}
 
 
 def _check_device(device: str) -> None:

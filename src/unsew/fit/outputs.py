@@ -80,6 +80,11 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     if result.x_graded is not None:
         m["surface_graded"] = surface_metrics(result.x_graded, faces, case.target_verts, case.target_faces,
                                               n_samples=n_samples)
+    if getattr(result, "x_warm", None) is not None:  # a kept phase two's own, warm-started drape
+        m["surface_warm"] = surface_metrics(result.x_warm, faces, case.target_verts, case.target_faces,
+                                            n_samples=n_samples)
+    if getattr(result, "drapes", None):
+        m["drapes"] = result.drapes  # where the result's and the graded drapes come from: fresh or settled
     if case.pattern_gt is not None:
         m.update(pattern_errors(result, case.pattern_gt))
     # total panel areas [m^2] against the target's surface area (a drape barely stretches, so a

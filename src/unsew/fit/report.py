@@ -56,6 +56,8 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     if rd:
         summary["returned"] = "phase two's pattern" if rd["phase_two_kept"] else "the graded pattern"
         notes.append(_redress_note(rd))
+    if metrics.get("drapes"):
+        notes.append(_drapes_note(metrics["drapes"], (metrics.get("surface_warm") or {}).get("chamfer_mm")))
     ms = metrics.get("mesh_spread")
     if ms:
         cf = " / ".join("failed" if v is None else f"{v:.2f} mm" for v in ms["chamfer_mm"])
@@ -127,6 +129,21 @@ def _flat(row) -> dict:
     if not isinstance(row, dict):
         return {"row": str(row)}
     return {k: (v if isinstance(v, (int, float, str)) or v is None else str(v)) for k, v in row.items()}
+
+
+_DRAPE_WORDS = {"fresh": "its pattern dressed from scratch on the fit's mesh",
+                "graded start": "the graded drape the material choice let settle",
+                "phase two": "phase two's own drape, warm-started along the optimizer's path"}
+
+
+def _drapes_note(drapes: dict, warm_mm: float | None) -> str:
+    """The report's line on where the result's and the graded drapes come from (metrics.json's
+    ``drapes``; ``warm_mm``: a kept phase two's own drape's Chamfer [mm], surface_warm)."""
+    line = (f"drapes: the result's is {_DRAPE_WORDS.get(drapes.get('result'), drapes.get('result'))}, the graded "
+            f"pattern's is {_DRAPE_WORDS.get(drapes.get('graded'), drapes.get('graded'))}")
+    if warm_mm is not None:
+        line += f"; phase two's own warm-started drape lay {warm_mm:.2f} mm from the target"
+    return line
 
 
 def _redress_note(rd: dict) -> str:
