@@ -44,3 +44,30 @@ def test_a_negative_time_limit_is_refused():
     assert load_config(time_limit=0).time_limit == 0.0
     with pytest.raises(InputError, match="time_limit must be >= 0"):
         load_config(time_limit=-5)
+
+
+def test_the_limit_counts_from_when_the_command_started():
+    """``started``: the budget counts from the command's start (loading the case and its body
+    included), not from when it was made."""
+    clock = FakeClock()
+    b = TimeBudget(60.0, clock=clock, started=clock.t - 50.0)  # the case took 50 s to load
+    assert b.elapsed() == pytest.approx(50.0) and b.left() == pytest.approx(10.0)
+    assert not b.within(0.5)
+
+
+def test_unsew_fit_starts_the_clock_before_loading_the_case(monkeypatch, tmp_path):
+    """The command hands run_fit the time it began, taken before the case (and its anny body,
+    minutes to build the first time on a machine) was loaded."""
+    import time
+
+    import unsew.body.case
+    import unsew.commands.fit as command
+    import unsew.fit.run
+    from unsew.cli import main
+
+    seen = {}
+    monkeypatch.setattr(unsew.body.case, "load_case", lambda *a, **k: seen.setdefault("loaded", time.perf_counter()))
+    monkeypatch.setattr(command, "_check_inputs", lambda case, cfg: None)
+    monkeypatch.setattr(unsew.fit.run, "run_fit", lambda *a, started=None, **k: seen.setdefault("started", started))
+    assert main(["fit", str(tmp_path / "case"), "--out", str(tmp_path / "out")]) == 0
+    assert seen["started"] is not None and seen["started"] <= seen["loaded"]

@@ -541,6 +541,22 @@ def test_report_says_when_phase_two_was_refused():
     assert "no mean" in three and "graded pattern and its drape are returned" in three
 
 
+def test_the_time_limit_counts_the_time_before_the_fit(small_case):
+    """A command that began 1000 s ago (a case whose body took that long to load) has spent a
+    600 s limit before the fit starts: phase two makes no iteration and the mesh spread is
+    skipped, and timings_s says how long the load took."""
+    import time
+
+    from unsew.body.case import load_case
+    from unsew.fit.fit import fit
+
+    cfg = load_config(**{**SMALL, "iterations": 2, "report": False}, time_limit=600)
+    r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None, started=time.perf_counter() - 1000)
+    assert r.timings["load_s"] >= 1000
+    assert r.time_limit["cuts"] == ["phase two stopped after 0 of 2 iterations", "mesh spread skipped"]
+    assert r.iterations == 0
+
+
 def test_a_spent_time_limit_leaves_out_the_optional_work_and_says_so(small_case, tmp_path):
     """With the time limit spent before phase two (1 ms), the material choice grades in no other
     fabric and searches no stiffness, phase two makes no iteration, the mesh spread is skipped,

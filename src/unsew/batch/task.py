@@ -96,9 +96,11 @@ def prepare_worker(*, ignore_sigint: bool = False) -> None:
 def fit_case_dir(case_dir: Path, out: Path, cfg, *, resume: bool = False, overwrite: bool = False,
                  log: Callable[[str], None] | None = None) -> dict:
     """The real fit of one case folder into ``out`` (load_case + run_fit, no progress bar).
-    Returns the metrics dict."""
+    Returns the metrics dict. The fit's time limit counts from before the case is loaded."""
+    started = time.perf_counter()
     case = load_case(case_dir)
-    _, metrics = run_fit(case, cfg, out, resume=resume, overwrite=overwrite, progress=False, log=log)
+    _, metrics = run_fit(case, cfg, out, resume=resume, overwrite=overwrite, progress=False, log=log,
+                         started=started)
     return metrics
 
 

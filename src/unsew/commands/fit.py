@@ -74,8 +74,10 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    import time
     from pathlib import Path
 
+    started = time.perf_counter()  # the time limit counts from here: loading the case and its body included
     from unsew.fit.run import run_fit
     from unsew.body.case import load_case
 
@@ -85,7 +87,7 @@ def run(args: argparse.Namespace) -> int:
         check_output(out, folder=True)  # an unwritable --out fails now, not after the fit
     case = load_case(args.case, units=args.units, up=args.up, front=args.front)
     _check_inputs(case, cfg)
-    run_fit(case, cfg, out, resume=args.resume, overwrite=args.overwrite, progress=not args.quiet)
+    run_fit(case, cfg, out, resume=args.resume, overwrite=args.overwrite, progress=not args.quiet, started=started)
     return 0
 
 

@@ -1,5 +1,8 @@
 """The fit's time limit (``FitConfig.time_limit``): the optional work of a fit gives way so the
-whole fit ends in time, and what gave way is recorded (metrics.json's ``time_limit``).
+whole fit ends in time, and what gave way is recorded (metrics.json's ``time_limit``). The limit
+counts from the command's start (``unsew fit``, ``unsew batch``): loading the case and building
+its body can take minutes the first time an anny body is built on a machine (its cache), and the
+fit's own clock would not see them.
 
 What gives way, in the order a fit reaches it:
 
@@ -32,14 +35,15 @@ RESERVE_FACTOR = 1.3
 
 
 class TimeBudget:
-    """Seconds left of ``limit_s`` (0 or less: no limit) since the budget was made; ``cuts``
-    lists, in words, what was left out to stay within it."""
+    """Seconds left of ``limit_s`` (0 or less: no limit) since ``started`` (a ``clock`` reading:
+    when the command began, so that loading the case and building its body count; default: when
+    the budget was made); ``cuts`` lists, in words, what was left out to stay within it."""
 
     def __init__(self, limit_s: float, *, log: Callable[[str], None] = print,
-                 clock: Callable[[], float] = time.perf_counter):
+                 clock: Callable[[], float] = time.perf_counter, started: float | None = None):
         self.limit_s = float(limit_s)
         self._clock, self._log = clock, log
-        self.t0 = clock()
+        self.t0 = clock() if started is None else float(started)
         self.cuts: list[str] = []
 
     @property

@@ -115,7 +115,7 @@ class FitConfig:
     area: str = "target"  #: "target": grading scales each graded pattern to the target's surface area (unsew.grading.area) and phase two holds its total rest area (its steps end with one scaling of every panel about its centroid); "free": the paper's fit, the area goes where grading and the loss take it (measured: docs/benchmarks.md, "fits sized to the target's area")
     seed: int = 0  #: seed of every random choice [-]
     device: str = "cpu"  #: torch device for the simulation ("cpu", "cuda")
-    time_limit: float = 540.0  #: seconds the fit (base choice to checks, not the writing of the result) aims to end within: the material choice's optional steps, phase two's iterations, the three-mesh re-dress check and the mesh spread give way (unsew.fit.budget); 0: no limit [s]
+    time_limit: float = 540.0  #: seconds the fit (from the command's start, loading the case and its body included, to the checks; not the writing of the result) aims to end within: the material choice's optional steps, phase two's iterations, the three-mesh re-dress check and the mesh spread give way (unsew.fit.budget); 0: no limit [s]
     drape: DrapeSettings = field(default_factory=DrapeSettings)  #: meshing, sewing, settling and drape steps
     material: MaterialSettings = field(default_factory=MaterialSettings)
     optimizer: OptimizerSettings = field(default_factory=OptimizerSettings)

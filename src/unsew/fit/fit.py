@@ -102,16 +102,22 @@ class FitResult:
 
 def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: Path | None = None,
         resume: bool = False, log: Callable[[str], None] = print,
-        callback: Callable[[Iteration], None] | None = None) -> FitResult:
+        callback: Callable[[Iteration], None] | None = None, started: float | None = None) -> FitResult:
     """Run both phases on a loaded case (from unsew.body.case.load_case) and return the FitResult.
 
     progress: True/False or a :class:`Progress` (its stream decides bars or plain lines).
     checkpoint: file written after every iteration (and read with ``resume=True``).
     callback: called with every phase-two :class:`~unsew.fit.optimize.Iteration` (traces).
+    started: when the command began (a ``time.perf_counter()`` reading, before the case was
+    loaded): the time limit counts from it, so a slow load (an anny body's first build on a
+    machine: minutes) leaves less for the optional work, not an overrun; metrics.json's
+    ``timings_s.load_s`` is that time. Default: now.
     """
     bound_heap()  # freed memory goes back to the system (unsew._memory); peak memory: metrics.json
     clock, bar = _Clock(), progress if isinstance(progress, Progress) else Progress(progress)
-    budget = TimeBudget(cfg.time_limit, log=log)
+    budget = TimeBudget(cfg.time_limit, log=log, started=started)
+    if started is not None:
+        clock.timings["load_s"] = clock.t0 - started
     torch.manual_seed(cfg.seed)
     _check_device(cfg.device)
     material0 = resolve_material(AUTO_START_MATERIAL if cfg.material.start == "auto" else cfg.material.start)

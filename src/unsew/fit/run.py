@@ -22,11 +22,12 @@ def partial_dir(out: Path) -> Path:
 
 
 def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = False, progress=True,
-            log=None, callback=None):
+            log=None, callback=None, started: float | None = None):
     """Fit ``case`` with ``cfg`` and write the result folder ``out``. Returns (FitResult, metrics).
 
     progress: True/False or a :class:`~unsew.fit.progress.Progress`; callback: called with each
-    phase-two iteration (:func:`unsew.fit.fit.fit`).
+    phase-two iteration; started: when the command began, the time limit counts from it
+    (:func:`unsew.fit.fit.fit`).
 
     Ctrl-C or a crash leaves ``out.partial`` with ``checkpoint.pt``; ``resume=True`` continues.
     """
@@ -42,7 +43,7 @@ def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = Fal
     work.mkdir(parents=True, exist_ok=True)
     try:
         result = fit(case, cfg, progress=progress, checkpoint=work / "checkpoint.pt", resume=resume, log=log,
-                     callback=callback)
+                     callback=callback, started=started)
     except BaseException:
         # Keep the work folder only if it holds a checkpoint to resume from.
         if not (work / "checkpoint.pt").is_file():
