@@ -200,7 +200,7 @@ def test_redress_check_decides_and_returns_what_it_decided(small_fit):
     if rd["meshes"] == 3:  # the graded pattern was dressed from scratch: that is its reported drape
         assert metrics["drapes"]["graded"] == "fresh"
         assert rd["graded_fresh_mm"][0] == pytest.approx(metrics["surface_graded"]["chamfer_mm"], rel=0.1)
-    else:
+    elif metrics["drapes"]["graded"] == "graded start":
         assert rd["graded_mm"] == pytest.approx(metrics["surface_graded"]["chamfer_mm"], rel=0.1)
     if not rd["phase_two_kept"]:
         np.testing.assert_array_equal(result.x, result.x_graded)
@@ -270,6 +270,7 @@ def test_redress_check_returns_the_graded_pattern_when_phase_two_found_nothing(s
     one = fit(case, cfg.replace(checks=CheckSettings(redress_meshes=3, mesh_spread=0.0)), progress=False,
               log=lambda s: None)  # three meshes asked for, but no spread meshes: judged on one
     assert one.redress.meshes == 1 and one.mesh_spread is None
+    assert one.drapes == {"result": "fresh", "graded": "fresh"}  # judged on one mesh, then dressed afresh
     assert np.abs(off.x - off.x_graded).max() > 1e-6
 
 

@@ -32,8 +32,8 @@ from unsew.fit.target import Target
 from unsew.grading.grade import moved_mesh
 from unsew.meshing import mesh_pattern
 
-__all__ = ["RedressCheck", "MeshSpread", "redress_check", "redress_on_three", "mesh_spread", "spread_lengths",
-           "mm_list", "REDRESS_MARGIN_MM"]
+__all__ = ["RedressCheck", "MeshSpread", "redress_check", "redress_on_three", "graded_afresh", "mesh_spread",
+           "spread_lengths", "mm_list", "REDRESS_MARGIN_MM"]
 
 #: Phase two's pattern is kept only if, dressed from scratch, it lies at least this much closer
 #: to the target than the graded pattern's drape [mm]. An unmoved pattern re-dresses to its
@@ -124,13 +124,7 @@ def redress_on_three(first: RedressCheck, pattern, material, start: Start, body,
     mean, and it failed on none of them. Also returns the mesh spread of the returned pattern,
     from these drapes (no further drape is needed)."""
     lengths = spread_lengths(cfg)
-    with progress.phase("dress the graded pattern afresh") as bar:
-        try:
-            x_graded = dress(start.graded, body, sdf=sdf, mesh=start.mesh, material=start.material,
-                             settings=cfg.drape, progress=bar).x.numpy()
-            g0 = target.distance_mm(x_graded, start.mesh.faces)
-        except SimulationError:
-            g0, x_graded = None, None
+    x_graded, g0 = graded_afresh(start, body, target, sdf, cfg, progress=progress)
     fit_mm = [first.fit_redressed_mm] + [_dressed_mm(pattern, material, body, target, sdf, cfg, h, progress,
                                                      "phase two's pattern") for h in lengths]
     graded = [g0] + [_dressed_mm(start.graded, start.material, body, target, sdf, cfg, h, progress,
@@ -148,6 +142,20 @@ def redress_on_three(first: RedressCheck, pattern, material, start: Start, body,
     spread = MeshSpread(lengths, fit_mm[1:] if kept else graded[1:],
                         fit_mm[0] if kept else (first.graded_mm if g0 is None else g0))
     return check, spread
+
+
+def graded_afresh(start: Start, body, target: Target, sdf, cfg: FitConfig, *,
+                  progress: Progress) -> tuple[np.ndarray | None, float | None]:
+    """The graded pattern in its material dressed from scratch on the fit's mesh (``start.x`` was
+    let settle from another material's drape): the drape (Nx, 3) [m] and its distance to the
+    target [mm], or (None, None) when the drape fails."""
+    with progress.phase("dress the graded pattern afresh") as bar:
+        try:
+            x = dress(start.graded, body, sdf=sdf, mesh=start.mesh, material=start.material, settings=cfg.drape,
+                      progress=bar).x.numpy()
+        except SimulationError:
+            return None, None
+    return x, target.distance_mm(x, start.mesh.faces)
 
 
 def mm_list(values, digits: int = 2) -> str:

@@ -25,7 +25,7 @@ from unsew.dress import resolve_material
 from unsew.errors import InputError
 from unsew.fit.budget import TimeBudget
 from unsew.fit.checkpoint import load_checkpoint, save_checkpoint
-from unsew.fit.checks import MeshSpread, RedressCheck, mesh_spread, redress_check, redress_on_three
+from unsew.fit.checks import MeshSpread, RedressCheck, graded_afresh, mesh_spread, redress_check, redress_on_three
 from unsew.fit.config import FitConfig
 from unsew.fit.material import AUTO_START_MATERIAL, MaterialChoice, choose_start
 from unsew.fit.optimize import Iteration, PhaseTwo
@@ -199,6 +199,12 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
                                                    progress=bar, log=log)
             else:
                 budget.cut("re-dress check judged on one mesh (three would overrun)")
+        if not redress.phase_two_kept and redress.x_graded is None:  # judged on one mesh, or refused
+            if budget.fits(drape_s):
+                redress.x_graded, _ = graded_afresh(s, case.body, target, sdf, cfg, progress=bar)
+            else:
+                budget.cut("the graded pattern's drape is the one the material choice let settle (no time to dress "
+                           "it afresh)")
         # the returned drape is the returned pattern dressed from scratch where the check dressed
         # it: a kept phase two's warm drape can lie nearer the target than its pattern dresses
         if redress.x_graded is not None:
@@ -213,8 +219,7 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
     if spread is None and cfg.checks.mesh_spread > 0 and not budget.fits(2 * drape_s):
         budget.cut("mesh spread skipped")
     elif spread is None and cfg.checks.mesh_spread > 0:
-        result_mm = (redress.fit_redressed_mm if redress.phase_two_kept else redress.graded_mm) if redress \
-            else target.distance_mm(x, s.mesh.faces)
+        result_mm = redress.fit_redressed_mm if redress and redress.phase_two_kept else target.distance_mm(x, s.mesh.faces)
         spread = mesh_spread(pattern, material, case.body, target, sdf, cfg, result_mm, progress=bar, log=log)
         clock.lap("mesh_spread_s")
     return FitResult(
