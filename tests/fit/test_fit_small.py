@@ -23,10 +23,8 @@ def small_case(tmp_path_factory):
     return make_truth_case(d, settings=load_config(**SMALL).drape)
 
 
-#: phase two's iterations in the small fit: with 3, one step was the best iterate and whether its
-#: pattern dressed closer than the graded one depended on the machine (kept, 5.64 -> 5.41 mm, on
-#: the VM of session 12; refused, 5.95 against 5.62 mm, on an AMD EPYC VM in session 26); with 6
-#: it is kept on every mesh of the re-dress check there (test below)
+#: phase two's iterations in the small fit: with 3 the verdict of the re-dress check depended on
+#: the machine (docs/benchmarks.md, "results reported by fresh drapes")
 PROOF_ITERATIONS = 6
 
 

@@ -19,7 +19,7 @@ with the mesh alone is the floor under the result's distance to the target (docs
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
+from dataclasses import asdict, dataclass, field, fields
 
 import numpy as np
 
@@ -88,7 +88,7 @@ class MeshSpread:
     result_mm: float
 
     def as_dict(self) -> dict:
-        return {f.name: getattr(self, f.name) for f in fields(self)}
+        return asdict(self)
 
 
 def redress_check(pattern, uv, material, start: Start, body, target: Target, sdf, cfg: FitConfig, *,
