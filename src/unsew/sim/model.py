@@ -188,6 +188,8 @@ class SimModel:
         diag_dst: (3N,) int64 value index of each diagonal entry.
         tri_src/tri_dst, hinge_src/hinge_dst, spring_src/spring_dst, vert_src/vert_dst: int64
             index maps from flat element blocks to the value array.
+        hinge_w: (len(hinge_src),) int64 the entry of the flat 12x12 hinge block each hinge_src
+            entry reads (hinge_src % 144), where the "ring" stencil's corner weight is read.
         keep: (nnz,) float64 0 on rows/cols of pinned dofs, 1 elsewhere.
         n_nonmanifold: interior edges skipped for bending (more than two faces).
         bending_stencil: "ring" (hinge blocks without the opposite-vertex coupling, see the
@@ -210,6 +212,7 @@ class SimModel:
     tri_dst: torch.Tensor
     hinge_src: torch.Tensor
     hinge_dst: torch.Tensor
+    hinge_w: torch.Tensor
     spring_src: torch.Tensor
     spring_dst: torch.Tensor
     vert_src: torch.Tensor
@@ -296,6 +299,7 @@ class SimModel:
             tri_dst=maps["tri"][1],
             hinge_src=maps["hinge"][0],
             hinge_dst=maps["hinge"][1],
+            hinge_w=maps["hinge"][0] % 144,
             spring_src=maps["spring"][0],
             spring_dst=maps["spring"][1],
             vert_src=maps["vert"][0],

@@ -49,7 +49,7 @@ def _values(G, H, P, area, bg, bs, vblk, extra, st):
         picked = hb.reshape(-1)[model.hinge_src]
         if w4 is not None:
             w12 = w4.repeat_interleave(3, 0).repeat_interleave(3, 1)
-            picked = picked * w12.reshape(-1)[model.hinge_src % 144]
+            picked = picked * w12.reshape(-1)[model.hinge_w]
         K.index_add_(0, model.hinge_dst, picked)
     A = dt2 * K + scatter_blocks(model.nnz, model.vert_src, model.vert_dst, vblk)
     if extra is not None:
