@@ -19,7 +19,8 @@ with the mesh alone is the floor under the result's distance to the target (docs
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field, fields
+import math
+from dataclasses import asdict, astuple, dataclass, field, fields
 
 import numpy as np
 
@@ -31,14 +32,19 @@ from unsew.fit.start import Start
 from unsew.fit.target import Target
 from unsew.grading.grade import moved_mesh
 from unsew.meshing import mesh_pattern
+from unsew.pattern.curves import panel_outline
 
 __all__ = ["RedressCheck", "MeshSpread", "redress_check", "redress_on_three", "graded_afresh", "mesh_spread",
-           "spread_lengths", "mm_list", "REDRESS_MARGIN_MM"]
+           "spread_lengths", "mm_list", "unmoved", "REDRESS_MARGIN_MM", "UNMOVED_TOL"]
 
 #: Phase two's pattern is kept only if, dressed from scratch, it lies at least this much closer
 #: to the target than the graded pattern's drape [mm]. An unmoved pattern re-dresses to its
 #: graded drape up to round-off, so a tie returns the graded pattern.
 REDRESS_MARGIN_MM = 0.01
+#: Phase two's pattern and material within this of the graded ones (panel vertices [m], stiffness
+#: relative [-]) are the graded ones: phase two moved nothing, and drapes of the two on other
+#: meshes would differ by round-off grown through the steps alone (:func:`unmoved`).
+UNMOVED_TOL = 1e-9
 
 
 @dataclass
@@ -125,10 +131,14 @@ def redress_on_three(first: RedressCheck, pattern, material, start: Start, body,
     from these drapes (no further drape is needed)."""
     lengths = spread_lengths(cfg)
     x_graded, g0 = graded_afresh(start, body, target, sdf, cfg, progress=progress)
-    fit_mm = [first.fit_redressed_mm] + [_dressed_mm(pattern, material, body, target, sdf, cfg, h, progress,
-                                                     "phase two's pattern") for h in lengths]
     graded = [g0] + [_dressed_mm(start.graded, start.material, body, target, sdf, cfg, h, progress,
                                  "the graded pattern") for h in lengths]
+    if unmoved(pattern, material, start):  # the same pattern: its drapes are the graded ones
+        log("re-dress check: phase two moved neither the pattern nor the material")
+        fit_mm = [first.fit_redressed_mm] + graded[1:]
+    else:
+        fit_mm = [first.fit_redressed_mm] + [_dressed_mm(pattern, material, body, target, sdf, cfg, h, progress,
+                                                         "phase two's pattern") for h in lengths]
     pairs = [(a, b) for a, b in zip(fit_mm, graded) if b is not None]
     failed = any(a is None for a, _ in pairs)
     fit_mean = None if failed or not pairs else sum(a for a, _ in pairs) / len(pairs)
@@ -142,6 +152,24 @@ def redress_on_three(first: RedressCheck, pattern, material, start: Start, body,
     spread = MeshSpread(lengths, fit_mm[1:] if kept else graded[1:],
                         fit_mm[0] if kept else (first.graded_mm if g0 is None else g0))
     return check, spread
+
+
+def unmoved(pattern, material, start: Start) -> bool:
+    """Whether phase two's ``pattern`` and ``material`` are the graded ones (``start.graded``,
+    ``start.material``) up to :data:`UNMOVED_TOL`: the same panels with vertices [m] that far
+    apart at most along their outlines (curves sampled), and every material figure that close
+    relatively. Phase two rebuilds the
+    pattern from its parameters, so an unmoved pattern differs from the graded one by round-off,
+    which a drape from scratch on a freshly meshed panel can grow to tenths of a millimetre."""
+    a, b = pattern.panels, start.graded.panels
+    if a.keys() != b.keys() or any(len(a[n].edges) != len(b[n].edges) for n in a):
+        return False
+    for n in a:  # outlines sampled along their curves, so a moved control point of a curve counts
+        oa, ob = panel_outline(a[n]), panel_outline(b[n])
+        if oa.shape != ob.shape or np.abs(oa - ob).max(initial=0.0) > UNMOVED_TOL:
+            return False
+    return all(math.isclose(u, v, rel_tol=UNMOVED_TOL, abs_tol=1e-12)
+               for u, v in zip(astuple(material), astuple(start.material)))
 
 
 def graded_afresh(start: Start, body, target: Target, sdf, cfg: FitConfig, *,
