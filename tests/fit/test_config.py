@@ -80,6 +80,7 @@ def test_a_result_folders_config_loads(tmp_path):
         ("lambda_prior: -0.5\n", "must be >= 0"),
         ("material: auto\nmaterial_candidates: silk,tweed\n", "unknown material 'tweed'"),
         ("material:\n  candidates: [silk, tweed]\n", "unknown material 'tweed'"),
+        ("drape:\n  backend: pardiso\n", "drape.backend: unknown solver backend 'pardiso'"),
     ],
 )
 def test_bad_configs(tmp_path, text, match):

@@ -9,8 +9,12 @@ import pytest
 
 from unsew.fit.config import CheckSettings, load_config
 
-SMALL = dict(edge_length=0.04, iterations=3, steps=8, sew_steps=60, settle_steps=20, target_points=1500,
-             material_start=1, material="cotton")
+#: The solver is pinned: the figures below were measured with cholespy, and where CHOLMOD is
+#: installed ("auto") round-off grown through the drapes moves them by more than their margins.
+#: On CHOLMOD at 71a0347 the proof of phase two read 5.83 / 6.03 / 6.63 -> 6.07 / 5.71 / 5.90 mm
+#: (means x0.956, fit's mesh x1.04; cholespy x0.87): docs/benchmarks.md, "CHOLMOD".
+SMALL = {"edge_length": 0.04, "iterations": 3, "steps": 8, "sew_steps": 60, "settle_steps": 20,
+         "target_points": 1500, "material_start": 1, "material": "cotton", "drape.backend": "cholespy"}
 FILES = ["pattern.json", "pattern.svg", "pattern.dxf", "garment.obj", "garment_rest.obj", "material.json",
          "metrics.json", "config.yaml", "report.html", "pattern_base.json", "pattern_graded.json"]
 

@@ -21,6 +21,7 @@ from pathlib import Path
 
 from unsew.errors import InputError
 from unsew.sim.drape import DrapeSettings
+from unsew.sim.solve import resolve_backend
 from unsew.sim.material import MATERIALS, get_material
 
 __all__ = [
@@ -289,6 +290,10 @@ def _check(cfg: FitConfig, names: dict) -> None:
         raise InputError(f"{say('drape.edge_length')} {d.edge_length} m is outside 0.005-0.1 m")
     if d.dt <= 0 or d.dt > 0.2:
         raise InputError(f"{say('drape.dt')} {d.dt} s must be in (0, 0.2]")
+    try:  # "cholmod" asked for where scikit-sparse is missing: the install line, before any drape
+        resolve_backend(d.backend)
+    except (ValueError, ImportError) as exc:
+        raise InputError(f"{say('drape.backend')}: {exc}") from None
     if cfg.area not in AREA_MODES:
         raise InputError(f"{say('area')} must be one of {', '.join(AREA_MODES)}, got {cfg.area!r}")
     if o.bands not in BAND_MODES:

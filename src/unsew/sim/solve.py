@@ -42,8 +42,13 @@ def resolve_backend(backend: str) -> str:
     if backend in ("auto", "cholmod"):
         if _HAS_CHOLMOD is None:
             try:
+                import os
                 import warnings
 
+                # CHOLMOD's BLAS (OpenBLAS where Debian's libopenblas0 is installed) on one thread,
+                # as torch in the fit: on 2 cores its spinning threads slow the other process
+                # (shared/STACK.md); set before the library loads, a user's own setting kept
+                os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore")
                     import sksparse.cholmod  # noqa: F401
