@@ -45,9 +45,9 @@ def resolve_backend(backend: str) -> str:
                 import os
                 import warnings
 
-                # CHOLMOD's BLAS (OpenBLAS where Debian's libopenblas0 is installed) on one thread,
-                # as torch in the fit: on 2 cores its spinning threads slow the other process
-                # (shared/STACK.md); set before the library loads, a user's own setting kept
+                # CHOLMOD's BLAS (OpenBLAS where Debian's libopenblas0 is installed) on one thread:
+                # on 2 cores its spinning threads slow the other process (shared/STACK.md). Counts
+                # only if the BLAS is not loaded yet; the CLI sets it at its start (unsew._threads)
                 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore")
