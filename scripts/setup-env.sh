@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Create or reuse the project's virtual environment in .venv.
 # Installs exactly torch==2.13.0 (the CPU build that pip finds in the local wheel folder on our
-# machines; never the multi-GB CUDA build), then unsew itself in editable mode with its test extra.
+# machines; never the multi-GB CUDA build), then unsew itself in editable mode with its test extra,
+# and, where it can be built, the optional CHOLMOD solver (below).
 # A second run finds the stamp up to date and returns in well under a second.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -30,4 +31,19 @@ if ! "$VENV/bin/python" -c "import torch, sys; sys.exit(0 if torch.__version__.s
     fi
 fi
 pipq install "${pip_args[@]}" "${links[@]}" -e ".[test]"
+# Optional: CHOLMOD (scikit-sparse) on OpenBLAS factorizes the drape's systems about twice as fast as
+# cholespy, and a fit's drapes run about a quarter faster (docs/benchmarks.md, "CHOLMOD"). It builds
+# against Debian's libsuitesparse-dev: as root with apt-get, that and libopenblas0-pthread are
+# installed here. Anywhere else, or with UNSEW_NO_CHOLMOD=1, the drape uses cholespy.
+if [ "${UNSEW_NO_CHOLMOD:-0}" != 1 ] && ! "$VENV/bin/python" -c "import sksparse.cholmod" 2>/dev/null; then
+    if [ ! -f /usr/include/suitesparse/cholmod.h ] && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then
+        echo "unsew: installing Debian's libsuitesparse-dev and libopenblas0-pthread for CHOLMOD (UNSEW_NO_CHOLMOD=1 skips)" >&2
+        DEBIAN_FRONTEND=noninteractive timeout 300 apt-get install -y -q libsuitesparse-dev libopenblas0-pthread \
+            >/dev/null 2>&1 || echo "unsew: apt-get could not install them; the drape uses cholespy" >&2
+    fi
+    if [ -f /usr/include/suitesparse/cholmod.h ]; then
+        pipq install "${pip_args[@]}" "${links[@]}" -e ".[test,cholmod]" \
+            || echo "unsew: scikit-sparse did not build; the drape uses cholespy" >&2
+    fi
+fi
 echo "$want" > "$STAMP"
