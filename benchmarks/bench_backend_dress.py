@@ -11,7 +11,7 @@ drape to the target. CHOLMOD runs on whatever BLAS scikit-sparse loads (OpenBLAS
 libopenblas0 is installed); ``OPENBLAS_NUM_THREADS`` sets its threads (1 by default, as the fit).
 
     OMP_WAIT_POLICY=PASSIVE python -m benchmarks backend_dress [--cases a,b] [--backends cholespy,cholmod]
-        [--repeat 2]
+        [--repeat 2] [--threads 1]
 """
 
 from __future__ import annotations
@@ -33,12 +33,13 @@ def main() -> None:
     ap.add_argument("--cases", default=DEFAULT_CASES, help="comma-separated case names")
     ap.add_argument("--backends", default="cholespy,cholmod")
     ap.add_argument("--repeat", type=int, default=2)
+    ap.add_argument("--threads", type=int, default=1, help="torch threads (the CLI's fit uses torch's default)")
     args = ap.parse_args()
 
     import numpy as np
     import torch
 
-    torch.set_num_threads(1)
+    torch.set_num_threads(args.threads)
     from tables import print_table
 
     import unsew.sim.solve as solve
@@ -86,7 +87,7 @@ def main() -> None:
                          f"vs {backends[0]} mm": chamfer_mm(x, mesh.faces, ref[2], ref[3].faces).mean_mm,
                          "to target mm": target.distance_mm(x, mesh.faces)})
     print_table(rows, title=f"dress from scratch per solver backend (OPENBLAS_NUM_THREADS="
-                f"{os.environ.get('OPENBLAS_NUM_THREADS')}, torch threads 1, best of {args.repeat})")
+                f"{os.environ.get('OPENBLAS_NUM_THREADS')}, torch threads {args.threads}, best of {args.repeat})")
 
 
 if __name__ == "__main__":

@@ -4,7 +4,9 @@ Reads ``python -m benchmarks foreign_fit --out DIR`` result folders: ``--before`
 folders (the first holding a case wins), ``--after`` one; for every case fitted in both, prints
 the final Chamfer [mm], area-weighted and total panel area errors [%] before -> after, whether the
 fit is better than its base on Chamfer and area error (area-weighted, then total) and whether
-phase two was kept; then issue 21's bars over those cases for each run. Pattern metrics are
+phase two was kept; then issue 21's bars over those cases for each run, and the time each
+stage took (metrics.json's ``timings_s``) with phase two's iterations and what the time limit cut
+(a speed change measured). Pattern metrics are
 computed anew from the saved patterns (foreign_fit's ``--recompute``), so both runs are judged by
 today's metric.
 
@@ -62,6 +64,28 @@ def compare(before: list[Path], after: Path) -> tuple[list[dict], list[dict], li
     return rows, old, new
 
 
+STAGES = ["grading_s", "material_choice_s", "optimization_s", "redress_s", "total_s"]
+
+
+def stage_rows(before: list[Path], after: Path) -> list[dict]:
+    """Per case fitted in both: each stage's seconds before -> after, phase two's iterations and
+    how many things the time limit cut."""
+    out = []
+    for case in ff.case_dirs():
+        od = next((d for d in before if (d / case.name / "metrics.json").is_file()), None)
+        if od is None or not (after / case.name / "metrics.json").is_file():
+            continue
+        mo, mn = (json.loads((d / case.name / "metrics.json").read_text()) for d in (od, after))
+        row = {"case": case.name}
+        for k in STAGES:
+            a, b = mo.get("timings_s", {}).get(k), mn.get("timings_s", {}).get(k)
+            row[k] = f"{a:.0f} -> {b:.0f}" if a is not None and b is not None else "-"
+        row["iterations"] = f"{mo.get('iterations')} -> {mn.get('iterations')}"
+        row["cuts"] = f"{len(mo.get('time_limit', {}).get('cuts', []))} -> {len(mn.get('time_limit', {}).get('cuts', []))}"
+        out.append(row)
+    return out
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--before", nargs="+", type=Path, required=True, help="foreign_fit result folders of the old method")
@@ -77,6 +101,8 @@ def main(argv=None) -> int:
     b_old, b_new = ff.bars(old), ff.bars(new)
     print_table([{"figure": o["figure"], "before": o["value"], "after": n["value"]} for o, n in zip(b_old, b_new)],
                 title="Issue 21's bars over these cases")
+    print_table(stage_rows(args.before, args.after), ["case", *STAGES, "iterations", "cuts"],
+                title="Seconds per stage, phase two's iterations, time-limit cuts (before -> after)")
     return 0
 
 
