@@ -41,8 +41,8 @@ __all__ = ["RedressCheck", "MeshSpread", "redress_check", "redress_on_three", "g
 #: to the target than the graded pattern's drape [mm]. An unmoved pattern re-dresses to its
 #: graded drape up to round-off, so a tie returns the graded pattern.
 REDRESS_MARGIN_MM = 0.01
-#: Phase two's pattern and material within this of the graded ones (panel vertices [m], stiffness
-#: relative [-]) are the graded ones: phase two moved nothing, and drapes of the two on other
+#: Phase two's pattern and material within this of the graded ones (panel outlines [m], material
+#: figures relative [-]) are the graded ones: phase two moved nothing, and drapes of the two on other
 #: meshes would differ by round-off grown through the steps alone (:func:`unmoved`).
 UNMOVED_TOL = 1e-9
 
@@ -156,11 +156,11 @@ def redress_on_three(first: RedressCheck, pattern, material, start: Start, body,
 
 def unmoved(pattern, material, start: Start) -> bool:
     """Whether phase two's ``pattern`` and ``material`` are the graded ones (``start.graded``,
-    ``start.material``) up to :data:`UNMOVED_TOL`: the same panels with vertices [m] that far
-    apart at most along their outlines (curves sampled), and every material figure that close
-    relatively. Phase two rebuilds the
-    pattern from its parameters, so an unmoved pattern differs from the graded one by round-off,
-    which a drape from scratch on a freshly meshed panel can grow to tenths of a millimetre."""
+    ``start.material``) up to :data:`UNMOVED_TOL`: the same panels, their outlines (curves
+    sampled) that far apart at most [m], and every material figure that close relatively. Phase
+    two rebuilds the pattern from its parameters, so an unmoved pattern differs from the graded
+    one by round-off, which a drape from scratch on a freshly meshed panel can grow to tenths of
+    a millimetre."""
     a, b = pattern.panels, start.graded.panels
     if a.keys() != b.keys() or any(len(a[n].edges) != len(b[n].edges) for n in a):
         return False
