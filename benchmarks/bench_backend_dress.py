@@ -51,9 +51,14 @@ def main() -> None:
     from unsew.fit.target import Target
     from unsew.metrics.surface import chamfer_mm
 
+    from unsew.errors import InputError
+
     backends = args.backends.split(",")
     for b in backends:
-        solve.resolve_backend(b)  # ImportError with the install line when CHOLMOD is missing
+        try:  # one line for an unknown name, or CHOLMOD missing (the install line)
+            solve.resolve_backend(b)
+        except (ValueError, ImportError) as exc:
+            raise InputError(f"--backends: {exc}") from None
 
     factor_s = [0.0]
     init = solve._Factor.__init__
