@@ -181,7 +181,8 @@ CASES = {
     "trousers_wide__male_heavy": ("trousers_wide", "anny_male_heavy"),
     "shorts_knee__short_curvy": ("shorts_knee", "anny_short_curvy"),
     "tank_top__tall_thin": ("tank_top", "anny_tall_thin"),
-    "tee_loose_long__older": ("tee_loose_long", "anny_older"),
+    "tee_loose_long__older": ("tee_loose_long", "anny_older"),  # rejected: 3 edges through the body
+    "tee_fitted_long__tall_thin": ("tee_fitted_long", "anny_tall_thin"),  # the spare top
     "dress_sheath_sleeveless__older": ("dress_sheath_sleeveless", "anny_older"),
 }
 
