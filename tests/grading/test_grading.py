@@ -588,3 +588,47 @@ def test_a_waistband_is_a_strip():
     width = np.ptp(v @ np.array([up[1], -up[0]]))
     band.vertices = v + np.outer((v - v.mean(axis=0)) @ up, up) * (0.6 * width / np.ptp(v @ up) - 1.0)
     assert 0.6 * width > width / BAND_ASPECT and "waistband_front" not in waistbands(p)  # 0.6 x as high as wide
+
+
+def _curve_of(p, controls, panel, label):
+    """The OpenCurve of one labelled open edge of ``panel`` (its two end control points)."""
+    from unsew.grading.curves import OpenCurve
+
+    pi = controls.panel_names.index(panel)
+    e = next(i for i, ed in enumerate(p.panels[panel].edges) if ed.label == label)
+    edge = p.panels[panel].edges[e]
+    cidx = controls.of_panel(pi)
+    ends = [int(next(g for g in cidx if int(controls.vertex[g]) == v)) for v in (edge.start, edge.end)]
+    return OpenCurve(panel=panel, panel_index=pi, edges=[e], start=int(edge.start), end=int(edge.end),
+                     controls=np.asarray(ends, dtype=np.int64), length3d=0.2)
+
+
+def test_an_armhole_moved_by_an_arm_contour_deepens():
+    """A sleeveless bodice's armhole found further down the arm lowers its underarm end by the
+    whole move and keeps its shoulder end; a sleeve's hem, and an armhole moved by a torso
+    contour, keep the paper's outward move."""
+    from unsew.grading.edit import curve_edit, edit_directions
+    from unsew.grading.grade import armhole_down, upright
+    from unsew.pattern.controls import find_control_points
+
+    p = make_base_pattern("tshirt_sleeveless")
+    controls = find_control_points(p)
+    C0 = controls.positions
+    arm = _curve_of(p, controls, "front", "left_armhole")
+    up = upright(p.panels["front"])
+    down = armhole_down(p, C0, arm, controls, "left_arm")
+    np.testing.assert_allclose(down, -up, atol=1e-12)
+    assert armhole_down(p, C0, arm, controls, "torso") is None
+    delta = curve_edit(p, C0, arm, controls, extension=0.03, girth_change=0.0, deepen=down)
+    h = C0[arm.controls] @ up
+    low, high = arm.controls[np.argmin(h)], arm.controls[np.argmax(h)]
+    np.testing.assert_allclose(delta[low], -0.03 * up, atol=1e-12)  # the underarm 3 cm lower
+    np.testing.assert_allclose(delta[high], 0.0, atol=1e-12)  # the shoulder stays
+    # the paper's edit of the same curve moves both ends out and up (what flared the underarm)
+    d, _, _ = edit_directions(p, C0, arm, controls)
+    assert d @ up > 0
+    # a sleeve's hem runs down the arm already: no deepening
+    ps = make_base_pattern("tshirt")
+    cs = find_control_points(ps)
+    hem = _curve_of(ps, cs, "left_sleeve", "hem")
+    assert armhole_down(ps, cs.positions, hem, cs, "left_arm") is None
