@@ -64,12 +64,18 @@ def curve_edit(
     *,
     extension: float,
     girth_change: float,
+    deepen: np.ndarray | None = None,
 ) -> np.ndarray:
     """Displacements (Nc, 2) float64 [m] of all control points for one open curve's edit.
 
     pattern, positions (Nc, 2) [m], curve, controls: as :func:`edit_directions`.
     extension: how far the curve moves outward [m] (negative: inward).
     girth_change: change of the curve's length [m] (its share of the contour's girth difference).
+    deepen: None, or the unit (2,) direction in the panel's frame that its placement points down,
+        for an armhole moved by an arm contour (:func:`unsew.grading.grade.armhole_down`): the
+        move then deepens the armhole, the curve's lowest control point moving the whole
+        ``extension`` along ``deepen``, its highest (the shoulder) not at all, those between in
+        proportion to their height.
     Only the curve's own control points move.
     """
     delta = np.zeros_like(positions, dtype=np.float64)
@@ -80,9 +86,15 @@ def curve_edit(
     length2d = sum(edge_length(panel, e) for e in curve.edges)
     dw = girth_change * (chord / length2d if length2d > 0 else 1.0)
     a = positions[curve.controls[0]] if int(controls.vertex[curve.controls[0]]) == curve.start else panel.vertices[curve.start]
+    move = {int(g): extension * d for g in curve.controls}
+    if deepen is not None:
+        depth = np.array([float(positions[g] @ deepen) for g in curve.controls])
+        span = float(depth.max() - depth.min())
+        for g, h in zip(curve.controls, depth):
+            move[int(g)] = extension * ((h - depth.min()) / span if span > 0 else 1.0) * deepen
     for g in curve.controls:
         t = float((positions[g] - a) @ w) / chord if chord > 0 else 0.5
-        delta[g] += extension * d + (t - 0.5) * dw * w
+        delta[g] += move[int(g)] + (t - 0.5) * dw * w
     return delta
 
 

@@ -30,7 +30,7 @@ from unsew.grading.area import clip_note, scale_to_area
 from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
 from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, place_contours
 from unsew.grading.curves import curves_of_contour, rest_length, stitched_edges
-from unsew.grading.edit import curve_edit, project_edit, safe_fraction
+from unsew.grading.edit import curve_edit, edit_directions, project_edit, safe_fraction
 from unsew.grading.guards import WaistBound, bounded_extensions, bounded_girth, bounded_waist, waist_bound
 from unsew.meshing.sew import mesh_pattern
 from unsew.pattern.params import PatternParams
@@ -39,7 +39,7 @@ from unsew.sim.drape import DrapeSettings
 __all__ = [
     "GradeResult", "grade", "moved_mesh", "dress_drape", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH",
     "REMESH_MODES", "LENGTH_MODES", "waistbands", "upright", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL", "GRADE_SETTINGS", "GradePass",
-    "GradingError", "MESH_RETRIES",
+    "GradingError", "MESH_RETRIES", "armhole_down",
 ]
 
 
@@ -446,6 +446,30 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
     return out, held
 
 
+def armhole_down(pattern, positions: np.ndarray, curve, controls, part: str) -> np.ndarray | None:
+    """The unit (2,) direction its placement points down in the frame of ``curve``'s panel when
+    the curve is an armhole moved by an arm contour (``part`` an arm; the curve's outward
+    direction of :func:`unsew.grading.edit.edit_directions` points up on the body), else None.
+
+    Why: a sleeveless bodice's armhole lies above and beside the panel's middle, so its outward
+    direction points out and up, while an arm contour found further down the arm on the target
+    is a deeper armhole. Moved out and up, the armhole's lower end flared out from the side seam
+    (the tank top on the tall thin body: a 3 cm flare under the arm, the graded drape 10.3 mm
+    from the target against the base's 7.0; docs/benchmarks.md, "Armholes deepened"). A
+    sleeve's hem points down the arm already and is left to the paper's edit.
+    """
+    if not part.endswith("arm"):
+        return None
+    panel = pattern.panels[curve.panel]
+    up = upright(panel)
+    if up is None:
+        return None
+    d, _, _ = edit_directions(pattern, positions, curve, controls)
+    if float(d @ up) <= 0.0:
+        return None
+    return -up
+
+
 def _girth_explains(rise: float, girth_difference: float) -> bool:
     """Whether a band top's wanted upward move ``rise`` [m] is the answer to its girth: the target's
     top is tighter and higher, or looser and lower (``girth_difference`` [m]: target minus source,
@@ -727,7 +751,8 @@ def _edit(params, mesh, items, exts: dict, ctx: _PassContext) -> _Edit:
             dg, note = bounded_girth(params.pattern, c, dg)
             if note:
                 notes.setdefault(it.match.target, []).append(note)
-            delta += curve_edit(params.pattern, C0, c, params.controls, extension=exts[it.match.target], girth_change=dg)
+            delta += curve_edit(params.pattern, C0, c, params.controls, extension=exts[it.match.target], girth_change=dg,
+                                deepen=armhole_down(params.pattern, C0, c, params.controls, it.match.part))
             edited.setdefault(c.panel_index, []).append(
                 (set(int(g) for g in c.controls), it.match.target, it.girth_difference))
     held: dict[int, str] = {}
