@@ -604,9 +604,11 @@ def _curve_of(p, controls, panel, label):
 
 
 def test_an_armhole_moved_by_an_arm_contour_deepens():
-    """A sleeveless bodice's armhole found further down the arm lowers its underarm end by the
-    whole move and keeps its shoulder end; a sleeve's hem, and an armhole moved by a torso
-    contour, keep the paper's outward move."""
+    """A sleeveless bodice's armhole found further down a hanging arm lowers its underarm end by
+    the whole move and keeps its shoulder end; a sleeve's hem, an armhole moved by a torso
+    contour and one moved along a T-pose's level arm keep the paper's outward move."""
+    import dataclasses
+
     from unsew.grading.edit import curve_edit, edit_directions
     from unsew.grading.grade import armhole_down, upright
     from unsew.pattern.controls import find_control_points
@@ -616,9 +618,14 @@ def test_an_armhole_moved_by_an_arm_contour_deepens():
     C0 = controls.positions
     arm = _curve_of(p, controls, "front", "left_armhole")
     up = upright(p.panels["front"])
-    down = armhole_down(p, C0, arm, controls, "left_arm")
+    bones = {b.name: b for b in default_body().skeleton.bones()}
+    elbow = bones["left_elbow"]  # the default body's A-pose arm hangs
+    down = armhole_down(p, C0, arm, controls, elbow)
     np.testing.assert_allclose(down, -up, atol=1e-12)
-    assert armhole_down(p, C0, arm, controls, "torso") is None
+    assert armhole_down(p, C0, arm, controls, bones["spine"]) is None
+    level = dataclasses.replace(elbow, b=elbow.a + np.array([elbow.length, 0.0, 0.0]))  # a T-pose arm
+    assert armhole_down(p, C0, arm, controls, level) is None
+    assert armhole_down(p, C0, arm, controls, None) is None
     delta = curve_edit(p, C0, arm, controls, extension=0.03, girth_change=0.0, deepen=down)
     h = C0[arm.controls] @ up
     low, high = arm.controls[np.argmin(h)], arm.controls[np.argmax(h)]
@@ -631,4 +638,4 @@ def test_an_armhole_moved_by_an_arm_contour_deepens():
     ps = make_base_pattern("tshirt")
     cs = find_control_points(ps)
     hem = _curve_of(ps, cs, "left_sleeve", "hem")
-    assert armhole_down(ps, cs.positions, hem, cs, "left_arm") is None
+    assert armhole_down(ps, cs.positions, hem, cs, elbow) is None

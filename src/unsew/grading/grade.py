@@ -39,7 +39,7 @@ from unsew.sim.drape import DrapeSettings
 __all__ = [
     "GradeResult", "grade", "moved_mesh", "dress_drape", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH",
     "REMESH_MODES", "LENGTH_MODES", "waistbands", "upright", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL", "GRADE_SETTINGS", "GradePass",
-    "GradingError", "MESH_RETRIES", "armhole_down",
+    "GradingError", "MESH_RETRIES", "armhole_down", "ARM_HANGS",
 ]
 
 
@@ -446,10 +446,18 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
     return out, held
 
 
-def armhole_down(pattern, positions: np.ndarray, curve, controls, part: str) -> np.ndarray | None:
+#: An arm hangs when its bone points down at least this much (the y of its unit direction below
+#: minus this: 30 degrees under the horizontal). A T-pose arm does not: there the contour further
+#: along the arm is an armhole further out, the paper's move.
+ARM_HANGS = 0.5
+
+
+def armhole_down(pattern, positions: np.ndarray, curve, controls, bone) -> np.ndarray | None:
     """The unit (2,) direction its placement points down in the frame of ``curve``'s panel when
-    the curve is an armhole moved by an arm contour (``part`` an arm; the curve's outward
-    direction of :func:`unsew.grading.edit.edit_directions` points up on the body), else None.
+    the curve is an armhole moved by the contour of a hanging arm (``bone``: the source
+    contour's :class:`~unsew.body.skeleton.Bone`, an arm's, pointing down by :data:`ARM_HANGS`;
+    the curve's outward direction of :func:`unsew.grading.edit.edit_directions` points up on
+    the body), else None.
 
     Why: a sleeveless bodice's armhole lies above and beside the panel's middle, so its outward
     direction points out and up, while an arm contour found further down the arm on the target
@@ -458,7 +466,7 @@ def armhole_down(pattern, positions: np.ndarray, curve, controls, part: str) -> 
     from the target against the base's 7.0; docs/benchmarks.md, "Armholes deepened"). A
     sleeve's hem points down the arm already and is left to the paper's edit.
     """
-    if not part.endswith("arm"):
+    if bone is None or not bone.part.endswith("arm") or float(bone.direction[1]) > -ARM_HANGS:
         return None
     panel = pattern.panels[curve.panel]
     up = upright(panel)
@@ -623,6 +631,7 @@ class _Item:
     warnings: list
     girth: float = 0.0
     weights: list = field(default_factory=list)
+    bone: object = None  # the source contour's Bone (None: on no bone)
 
 
 @dataclass
@@ -703,7 +712,7 @@ def _item(m: ContourMatch, src, tgt, x_init, params, mesh) -> _Item:
     dg = t.length - girth
     total = max(s.length, 1e-12)  # each curve's share of the contour's 3D length
     weights = [c.length3d / total for c in curves]
-    return _Item(m, curves, dg, [dg * w for w in weights], warnings, girth, weights)
+    return _Item(m, curves, dg, [dg * w for w in weights], warnings, girth, weights, s.bone)
 
 
 def _whole_panel(pattern, c) -> bool:
@@ -752,7 +761,7 @@ def _edit(params, mesh, items, exts: dict, ctx: _PassContext) -> _Edit:
             if note:
                 notes.setdefault(it.match.target, []).append(note)
             delta += curve_edit(params.pattern, C0, c, params.controls, extension=exts[it.match.target], girth_change=dg,
-                                deepen=armhole_down(params.pattern, C0, c, params.controls, it.match.part))
+                                deepen=armhole_down(params.pattern, C0, c, params.controls, it.bone))
             edited.setdefault(c.panel_index, []).append(
                 (set(int(g) for g in c.controls), it.match.target, it.girth_difference))
     held: dict[int, str] = {}
