@@ -5,6 +5,8 @@ For each open curve of a matched contour:
 - *length*: all the curve's control points move by the contour's extension along
   ``normalise(midpoint(curve ends) - mean(the panel's other control points))``: away from the
   panel's middle when the target contour lies further out (a longer hem), towards it otherwise;
+  an armhole moved by the contour of a hanging arm deepens instead (``deepen``, not in the paper:
+  :func:`unsew.grading.grade.armhole_down`);
 - *width*: the curve's share of the girth difference (its share of the contour's 3D length)
   widens it along the unit chord ``(end - start) / |end - start|``: the start moves back by half,
   the end forward by half, control points in between in proportion to their place along the chord.
