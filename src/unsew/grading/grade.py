@@ -453,18 +453,19 @@ ARM_HANGS = 0.5
 
 
 def armhole_down(pattern, positions: np.ndarray, curve, controls, bone) -> np.ndarray | None:
-    """The unit (2,) direction its placement points down in the frame of ``curve``'s panel when
-    the curve is an armhole moved by the contour of a hanging arm (``bone``: the source
-    contour's :class:`~unsew.body.skeleton.Bone`, an arm's, pointing down by :data:`ARM_HANGS`;
-    the curve's outward direction of :func:`unsew.grading.edit.edit_directions` points up on
-    the body), else None.
+    """The unit (2,) float64 direction its placement points down in the frame of ``curve``'s
+    panel when the curve is an armhole moved by the contour of a hanging arm, else None.
+
+    pattern, positions (Nc, 2) float64 [m], curve (:class:`~unsew.grading.curves.OpenCurve`),
+    controls: as :func:`unsew.grading.edit.edit_directions`. bone: the source contour's
+    :class:`~unsew.body.skeleton.Bone` (None: on no bone); it must be an arm's pointing down by
+    :data:`ARM_HANGS`, and the curve's outward direction must point up on the body.
 
     Why: a sleeveless bodice's armhole lies above and beside the panel's middle, so its outward
     direction points out and up, while an arm contour found further down the arm on the target
-    is a deeper armhole. Moved out and up, the armhole's lower end flared out from the side seam
-    (the tank top on the tall thin body: a 3 cm flare under the arm, the graded drape 10.3 mm
-    from the target against the base's 7.0; docs/benchmarks.md, "Armholes deepened"). A
-    sleeve's hem points down the arm already and is left to the paper's edit.
+    is a deeper armhole; moved out and up, the armhole's lower end flared out from the side seam
+    (docs/benchmarks.md, "Armholes deepened under a hanging arm"). A sleeve's hem points down
+    the arm already and is left to the paper's edit.
     """
     if bone is None or not bone.part.endswith("arm") or float(bone.direction[1]) > -ARM_HANGS:
         return None
