@@ -31,7 +31,9 @@ from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
 from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, place_contours
 from unsew.grading.curves import curves_of_contour, rest_length, stitched_edges
 from unsew.grading.edit import curve_edit, edit_directions, project_edit, safe_fraction
-from unsew.grading.guards import WaistBound, bounded_extensions, bounded_girth, bounded_waist, waist_bound
+from unsew.grading.guards import (
+    WaistBound, bounded_band, bounded_extensions, bounded_girth, bounded_waist, waist_bound,
+)
 from unsew.meshing.sew import mesh_pattern
 from unsew.pattern.params import PatternParams
 from unsew.sim.drape import DrapeSettings
@@ -707,10 +709,16 @@ def _item(m: ContourMatch, src, tgt, x_init, params, mesh) -> _Item:
     s, t = src[m.source], tgt[m.target]
     curves = curves_of_contour(s.contour.indices, x_init, params.pattern, mesh, params.controls)
     warnings = [] if curves else ["no open pattern curve forms this contour; left alone"]
-    girth, why = source_girth(s, t, rest_length(params.pattern, curves))
+    rest = rest_length(params.pattern, curves)
+    girth, why = source_girth(s, t, rest)
     if why:
         warnings.append(why)
     dg = t.length - girth
+    bands = waistbands(params.pattern) if curves else []
+    if curves and all(c.panel in bands for c in curves):
+        dg, cut = bounded_band(rest, t.length, dg)
+        if cut:
+            warnings.append(cut)
     total = max(s.length, 1e-12)  # each curve's share of the contour's 3D length
     weights = [c.length3d / total for c in curves]
     return _Item(m, curves, dg, [dg * w for w in weights], warnings, girth, weights, s.bone)

@@ -20,7 +20,9 @@ So, per edit (:func:`bounded_extensions`, :func:`bounded_girth`, :func:`bounded_
   than the shoulders) is moved down no lower than :data:`WAIST_ABOVE_HIP` above the hip joints,
   and widened to no more than the body's hip girth less :data:`WAIST_HIP_EASE` (a waist already
   wider is not widened; grading never narrows it for this bound, since a loop measured on a
-  crumpled drape reads longer than the opening is).
+  crumpled drape reads longer than the opening is);
+- *band*: a waistband's top is lengthened to no more than the target's top loop
+  (:func:`bounded_band`): a band drapes stretched or at rest, never gathered shorter than its cloth.
 
 What is cut is reported as a warning on the contour's row of the grading table.
 """
@@ -37,7 +39,7 @@ from unsew.pattern.curves import edge_length
 
 __all__ = [
     "MIN_KEEP_LENGTH", "MIN_KEEP_WIDTH", "WAIST_ABOVE_HIP", "WAIST_HIP_EASE", "WaistBound", "waist_bound",
-    "room_inward", "bounded_extensions", "bounded_girth", "bounded_waist",
+    "room_inward", "bounded_extensions", "bounded_girth", "bounded_waist", "bounded_band",
 ]
 
 #: Length [m] an inward move leaves between a curve and the rest of its panel (a sleeve keeps
@@ -163,3 +165,25 @@ def bounded_waist(bound: WaistBound | None, centre_y: float, extension: float, g
                          f"{bound.hip_girth * 100:.1f} cm")
             girth_change = most
     return extension, girth_change, notes
+
+
+def bounded_band(rest: float, target_length: float, girth_change: float) -> tuple[float, str]:
+    """A waistband top's change of length [m] cut so that its cloth edge is no longer than the
+    target's top loop, and a warning ("" when nothing was cut).
+
+    rest: the rest length [m] of the band's top edges (the cloth the loop is made of).
+    target_length: the target's top loop [m]. girth_change: the wanted change [m] (the target's
+    loop minus the drape's).
+
+    A band is a stiff strip held by the body: its top edge drapes at rest or stretched, never
+    gathered shorter than its cloth. On every banded foreign target the top loop is 0.3 to 8.5 %
+    longer than the true band. Graded by the drapes' difference alone, a band whose own drape sat
+    gathered on the hips (a loop 2 % shorter than its cloth) came out longer than the target's
+    loop, and the skirt under it slid 4 cm down (docs/benchmarks.md, "Waistbands no longer than
+    the target's top loop").
+    """
+    if not rest > 0 or rest + girth_change <= target_length:
+        return girth_change, ""
+    most = target_length - rest
+    return most, (f"band length change cut from {girth_change * 100:+.1f} to {most * 100:+.1f} cm: its top stays no "
+                  f"longer than the target's loop ({target_length * 100:.1f} cm)")
