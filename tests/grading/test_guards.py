@@ -187,3 +187,40 @@ def test_a_slitted_hem_is_placed_as_the_hem_without_its_slits(body):
     _, lengths = cloth_lengths(v, f, slit)
     _, lengths0 = cloth_lengths(*_skirt_tube(0), plain)
     assert lengths[hem.index] == pytest.approx(lengths0[hem0.index], abs=0.005)
+
+
+def test_a_band_is_never_lengthened_past_the_target_top_loop(body):
+    """bounded_band: a waistband's top is graded to no more than the target's top loop (a band
+    drapes stretched or at rest, never gathered shorter than its cloth); a top without a band,
+    and a band graded shorter than the loop, keep the drapes' difference."""
+    from dataclasses import replace
+
+    from unsew.grading.contours import ContourMatch
+    from unsew.grading.curves import curves_of_contour, rest_length
+    from unsew.grading.guards import bounded_band
+    from unsew.pattern.params import PatternParams
+
+    assert bounded_band(0.80, 0.82, 0.05)[0] == pytest.approx(0.02)  # cut to the loop
+    assert bounded_band(0.80, 0.82, 0.01) == (0.01, "")  # shorter than the loop: untouched
+    assert bounded_band(0.0, 0.82, 0.05) == (0.05, "")  # no cloth known: untouched
+
+    def graded_change(name):
+        p = make_base_pattern(name)
+        mesh = mesh_pattern(p, edge_length=EDGE)
+        x = flat_drape(p, mesh, body)
+        top = top_contour(place_contours(x, mesh.faces, body.skeleton))
+        params = PatternParams.build(p, mesh)
+        rest = rest_length(p, curves_of_contour(top.contour.indices, x, p, mesh, params.controls))
+        # the source loop drapes 3 cm shorter than its cloth, the target's 1 cm shorter
+        s = replace(top, slit_cut=top.contour.length - (rest - 0.03))
+        t = replace(top, slit_cut=top.contour.length - (rest - 0.01))
+        m = ContourMatch(0, 0, "torso", "spine", 0.0, 0.0, 0.02, 0.0)
+        return grade_module._item(m, [s], [t], x, params, mesh)
+
+    banded = graded_change("skirt_band")
+    assert banded.girth_difference == pytest.approx(-0.01)  # +2 cm wanted, cut to the loop's length
+    assert sum(banded.shares) == pytest.approx(-0.01 * sum(banded.weights))
+    assert any("no longer than the target's loop" in w for w in banded.warnings)
+    plain = graded_change("skirt")
+    assert plain.girth_difference == pytest.approx(0.02)  # no band: the drapes' difference
+    assert not any("target's loop" in w for w in plain.warnings)
