@@ -659,3 +659,42 @@ def test_redress_on_three_keeps_phase_two_by_the_mean(monkeypatch, fit_mm, grade
     assert check.phase_two_kept is kept and check.fit_mm == fit_mm and check.graded_fresh_mm == graded_mm
     assert check.fit_mean_mm == (pytest.approx(fit_mean) if fit_mean is not None else None)
     assert spread.chamfer_mm == (fit_mm[1:] if kept else graded_mm[1:])
+
+
+def test_a_grading_that_moves_the_drape_away_gives_way_to_the_sized_base(small_case, monkeypatch):
+    """Phase one keeps the base sized to the target's area when grading's drape lies farther from
+    the target than the base's and the sized base drapes closer than grading's (here grading's
+    drape is moved 0.4 m off, as a grading gone wrong); an untouched grading is kept."""
+    from dataclasses import replace
+
+    import unsew.fit.start as start_module
+    from unsew.body.case import load_case
+    from unsew.body.sdf import BodySDF
+    from unsew.fit.progress import Progress
+    from unsew.fit.start import base_pattern_for, start
+    from unsew.fit.target import Target
+    from unsew.grading.area import pattern_area
+    from unsew.sim.material import get_material
+
+    case = load_case(small_case)
+    cfg = load_config(**SMALL)
+    sdf, target = BodySDF.build(case.body), Target.of_case(case)
+    base = base_pattern_for(case, cfg)
+    real_grade = start_module.grade
+
+    def grade_gone_wrong(*args, **kwargs):
+        g = real_grade(*args, **kwargs)
+        return replace(g, x_draped=np.asarray(g.x_draped) + np.array([0.0, 0.0, 0.4]))
+
+    lines = []
+    kept = start(base, case.body, target, sdf, cfg, get_material("cotton"), progress=Progress(False), log=lines.append)
+    monkeypatch.setattr(start_module, "grade", grade_gone_wrong)
+    gave_way = start(base, case.body, target, sdf, cfg, get_material("cotton"), progress=Progress(False),
+                     log=lines.append)
+    assert kept.phase_one == "graded" and kept.graded is not base
+    assert gave_way.phase_one == "base sized to the area"
+    assert pattern_area(gave_way.graded) == pytest.approx(target.area, rel=0.01)
+    assert set(gave_way.graded.panels) == set(base.panels)
+    far = target.distance_mm(kept.x + np.array([0.0, 0.0, 0.4]), kept.mesh.faces)  # grading's drape, moved off
+    assert target.distance_mm(gave_way.x, gave_way.mesh.faces) < far
+    assert sum("moved the drape away" in line for line in lines) == 1 and all("\n" not in line for line in lines)
