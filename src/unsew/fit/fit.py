@@ -61,7 +61,6 @@ class FitResult:
     (:meth:`unsew.fit.budget.TimeBudget.as_dict`).
     x_warm: phase two's own drape of a kept pattern (Nx, 3) [m], warm-started along the
     optimizer's path (None: phase two not kept); ``x`` is then the pattern dressed from scratch.
-    phase_one: what ``graded_pattern`` is (:attr:`unsew.fit.start.Start.phase_one`).
     drapes: where ``x`` and ``x_graded`` come from ({"result": ..., "graded": ...}: "fresh",
     dressed from scratch on the fit's mesh; "graded start", the material choice's settled drape;
     "phase two", the optimizer's warm drape, when no re-dress check ran).
@@ -99,7 +98,6 @@ class FitResult:
     rest: dict | None = None
     x_warm: np.ndarray | None = None
     drapes: dict | None = None
-    phase_one: str = "graded"
 
 
 def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: Path | None = None,
@@ -234,7 +232,7 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
         material_start_iteration=cfg.material.start_iteration if cfg.fits_material else None,
         gamma_last=two.gamma_last(), redress=redress, mesh_spread=spread,
         drape_check=check_drape(x, faces=s.mesh.faces, uv=uv, faces_uv=s.mesh.faces_uv, body=case.body, sdf=sdf),
-        memory_mb=clock.peaks, time_limit=budget.as_dict(), rest=two.rest, phase_one=s.phase_one,
+        memory_mb=clock.peaks, time_limit=budget.as_dict(), rest=two.rest,
     )
 
 

@@ -173,8 +173,7 @@ def choose_start(first: Start, body, target: Target, sdf, cfg: FitConfig, *, pro
         table.append({"material": name, "chamfer_mm": cf, "pattern": f"graded in {name}"})
         if cf < best_cf:
             best_cf = cf
-            cur = cur.replace(graded=s.graded, mesh=s.mesh, x=s.x, grade_table=s.grade_table, material=s.material,
-                              phase_one=s.phase_one)
+            cur = cur.replace(graded=s.graded, mesh=s.mesh, x=s.x, grade_table=s.grade_table, material=s.material)
     table.sort(key=lambda r: r["chamfer_mm"])
     r0 = table[0]
     if cfg.material.refine > 0:

@@ -103,7 +103,6 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     m["material_fitted"] = result.material_fitted
     if getattr(result, "base_name", ""):
         m["base"] = result.base_name  # the base pattern phase one started from
-    m["phase_one"] = getattr(result, "phase_one", "graded")  # what pattern_graded.json is (Start.phase_one)
     if getattr(result, "base_choice", None):
         m["base_choice"] = result.base_choice  # base chosen by draping: candidates, best first
     if result.material_choice:

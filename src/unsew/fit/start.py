@@ -28,11 +28,9 @@ from unsew.fit.config import FitConfig
 from unsew.fit.progress import Progress
 from unsew.fit.target import Target
 from unsew.grading.contours import place_contours
-from unsew.grading.area import scale_to_area
-from unsew.grading.grade import grade, waistbands
+from unsew.grading.grade import grade
 from unsew.io.garmentcode import load_pattern
 from unsew.losses.contours import open_contours
-from unsew.meshing.sew import mesh_pattern
 from unsew.pattern.base import BASES, bases_for, garment_of, make_base_pattern
 from unsew.sim.checks import check_dressed
 
@@ -54,9 +52,7 @@ class Start:
     """Where phase two starts from.
 
     base: the base Pattern; graded: the graded pattern U_LG (the base itself without grading);
-    mesh: its GarmentMesh; x: its drape X_LG (n_x, 3) float64 [m] on ``mesh`` (when grading's drape
-    lies farther from the target than the base's, the base sized to the target's area takes its
-    place if it drapes closer: ``phase_one``); grade_table: the
+    mesh: its GarmentMesh; x: its drape X_LG (n_x, 3) float64 [m] on ``mesh``; grade_table: the
     contour rows of grading; x_base, mesh_base: the base pattern's drape and mesh; material: the
     Material all of these were dressed in; base_name, base_choice: which base, and how it was chosen;
     dress_s: how long the base took to dress from scratch [s] (0: settled from another drape), the
@@ -74,7 +70,6 @@ class Start:
     base_name: str = ""  #: the base's library name or JSON path
     base_choice: tuple = ()  #: the automatic base choice's rows, best first (BaseChoice.table)
     dress_s: float = 0.0  #: seconds the base's drape from scratch took [s] (0: not dressed from scratch)
-    phase_one: str = "graded"  #: what ``graded`` is: "graded", or the base ("base sized to the area", "base") when grading's drape lay farther from the target than the base's and the base's did not
 
     def replace(self, **changes) -> "Start":
         return dataclasses.replace(self, **changes)
@@ -229,21 +224,6 @@ def start(base, body, target: Target, sdf, cfg: FitConfig, material, *, progress
     def drape_fn(p, m, b):
         return dress(p, b, sdf=sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
 
-    area = target.area if cfg.area == "target" else None
     g = grade(base, body, target.verts, target.faces, settings=cfg.drape, material=material, sdf=sdf,
-              mesh=mesh_b, x_init=x_b, drape_fn=drape_fn, area=area, log=log)
-    graded, mesh_g, x_g = g.pattern, g.mesh, np.asarray(g.x_draped)
-    phase_one = "graded"
-    cf_graded, cf_base = target.distance_mm(x_g, mesh_g.faces), target.distance_mm(x_b, mesh_b.faces)
-    if cf_graded > cf_base:  # grading moved the drape away: the base, sized as grading sizes, may start closer
-        sized = scale_to_area(base, area, bands=waistbands(base))[0] if area is not None else base
-        mesh_s = mesh_pattern(sized, edge_length=mesh_g.edge_length)
-        x_s = np.asarray(drape_fn(sized, mesh_s, body))
-        cf_sized = target.distance_mm(x_s, mesh_s.faces)
-        if cf_sized < cf_graded:
-            graded, mesh_g, x_g, phase_one = sized, mesh_s, x_s, "base" if area is None else "base sized to the area"
-        if log is not None:
-            log(f"grading moved the drape away from the target ({cf_graded:.2f} mm against the "
-                f"base's {cf_base:.2f}); the {'base' if area is None else 'base sized to the target area'} lies "
-                f"{cf_sized:.2f} mm from it: {'it' if phase_one != 'graded' else 'the graded pattern'} is kept")
-    return Start(base, graded, mesh_g, x_g, g.table, x_b, mesh_b, material, dress_s=dress_s, phase_one=phase_one)
+              mesh=mesh_b, x_init=x_b, drape_fn=drape_fn, area=target.area if cfg.area == "target" else None, log=log)
+    return Start(base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, mesh_b, material, dress_s=dress_s)
