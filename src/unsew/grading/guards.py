@@ -176,11 +176,9 @@ def bounded_band(rest: float, target_length: float, girth_change: float) -> tupl
     loop minus the drape's).
 
     A band is a stiff strip held by the body: its top edge drapes at rest or stretched, never
-    gathered shorter than its cloth. On every banded foreign target the top loop is 0.3 to 8.5 %
-    longer than the true band. Graded by the drapes' difference alone, a band whose own drape sat
-    gathered on the hips (a loop 2 % shorter than its cloth) came out longer than the target's
-    loop, and the skirt under it slid 4 cm down (docs/benchmarks.md, "Waistbands no longer than
-    the target's top loop").
+    gathered shorter than its cloth (true of every banded foreign target: docs/benchmarks.md,
+    "Waistbands bounded by the target's top loop"). Graded by the drapes' difference alone, a band
+    whose own drape gathered it would come out longer than the target's loop and slide down.
     """
     if not rest > 0 or rest + girth_change <= target_length:
         return girth_change, ""
