@@ -21,22 +21,13 @@ CASES = ROOT / "benchmarks" / "foreign" / "cases"
 
 
 def top_loop_length(verts: np.ndarray, faces: np.ndarray) -> float:
-    """Length [m] of the boundary loop of a triangle mesh whose vertices lie highest on average (y up)."""
-    import networkx as nx
+    """Length [m] of the boundary loop (:func:`unsew.losses.contours.open_contours`) of a garment
+    surface (verts (V, 3) float64 [m], faces (F, 3) int) whose centre lies highest (y up); NaN
+    for a closed mesh."""
+    from unsew.losses.contours import open_contours
 
-    e = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
-    u, c = np.unique(e, axis=0, return_counts=True)
-    g = nx.Graph()
-    g.add_edges_from(map(tuple, u[c == 1]))
-    best = None
-    for comp in nx.connected_components(g):
-        sub = g.subgraph(comp)
-        ab = np.array(sub.edges)
-        length = float(np.linalg.norm(verts[ab[:, 0]] - verts[ab[:, 1]], axis=1).sum())
-        height = float(verts[list(comp), 1].mean())
-        if best is None or height > best[0]:
-            best = (height, length)
-    return float("nan") if best is None else best[1]
+    loops = open_contours(verts, faces)
+    return max(loops, key=lambda c: float(c.centre[1])).length if loops else float("nan")
 
 
 def band_rest_length(pattern) -> float:

@@ -714,8 +714,7 @@ def _item(m: ContourMatch, src, tgt, x_init, params, mesh) -> _Item:
     if why:
         warnings.append(why)
     dg = t.length - girth
-    bands = waistbands(params.pattern) if curves else []
-    if curves and all(c.panel in bands for c in curves):
+    if curves and set(c.panel for c in curves) <= set(waistbands(params.pattern)):
         dg, cut = bounded_band(rest, t.length, dg)
         if cut:
             warnings.append(cut)
