@@ -413,4 +413,13 @@ DESIGNS = {
     "trousers_capri": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.30, hem_girth=0.40, darts=1, waistband=True, name="trousers_capri"), **kw})),
     "tee_fitted_long": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.62, ease=0.08, hem_ease=0.14, sleeve=0.45, name="tee_fitted_long"), **kw})),
     "dress_shift_sleeveless": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.85, ease=0.12, hem_ease=0.30, sleeve=None, waist_shape=True, hip_ease=0.16, name="dress_shift_sleeveless"), **kw})),
+    # session 30: parameters no earlier design had (a knee skirt flared without a band, boot-cut
+    # trousers, mid-thigh shorts with darts, a loose short-sleeved tee, a sheath dress with sleeves,
+    # an A-line mini)
+    "skirt_flared_knee": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.55, flare=0.12, darts=0, waistband=False, name="skirt_flared_knee"), **kw})),
+    "trousers_bootcut": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.09, hem_girth=0.50, darts=1, waistband=True, name="trousers_bootcut"), **kw})),
+    "shorts_mid": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.18, hem_girth=m["thigh"] + 0.14, darts=1, waistband=True, name="shorts_mid"), **kw})),
+    "tee_loose_short": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.64, ease=0.18, hem_ease=0.22, sleeve=0.12, neck_depth=0.06, name="tee_loose_short"), **kw})),
+    "dress_sheath_sleeved": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.95, ease=0.08, hem_ease=0.16, sleeve=0.07, waist_shape=True, name="dress_sheath_sleeved"), **kw})),
+    "skirt_aline_mini": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.42, flare=0.05, darts=2, waistband=True, name="skirt_aline_mini"), **kw})),
 }

@@ -184,6 +184,14 @@ CASES = {
     "tee_loose_long__older": ("tee_loose_long", "anny_older"),  # rejected: 3 edges through the body
     "tee_fitted_long__tall_thin": ("tee_fitted_long", "anny_tall_thin"),  # rejected: 5 edges through the body
     "dress_sheath_sleeveless__older": ("dress_sheath_sleeveless", "anny_older"),
+    # built in session 30 (e674dd6) and fitted once: six designs with parameters no earlier design
+    # had, on bodies of every kind
+    "skirt_flared_knee__older": ("skirt_flared_knee", "anny_older"),
+    "trousers_bootcut__tall_thin": ("trousers_bootcut", "anny_tall_thin"),
+    "shorts_mid__male_heavy": ("shorts_mid", "anny_male_heavy"),
+    "tee_loose_short__short_curvy": ("tee_loose_short", "anny_short_curvy"),
+    "dress_sheath_sleeved__default": ("dress_sheath_sleeved", "anny_default"),
+    "skirt_aline_mini__gc_mean_female": ("skirt_aline_mini", "gc_mean_female"),
 }
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").
