@@ -34,6 +34,7 @@ from unsew.grading.edit import curve_edit, edit_directions, project_edit, safe_f
 from unsew.grading.guards import (
     WaistBound, bounded_band, bounded_extensions, bounded_girth, bounded_waist, waist_bound,
 )
+from unsew.grading.placement import choose_lift, is_lower
 from unsew.meshing.sew import mesh_pattern
 from unsew.pattern.params import PatternParams
 from unsew.sim.drape import DrapeSettings
@@ -177,6 +178,7 @@ def grade(
     remesh: str = "always",
     length: str = "cloth",
     area: float | None = None,
+    lift: bool = True,
     log: Callable[[str], None] | None = None,
 ) -> GradeResult:
     """Grade ``pattern`` so that its draped open contours land where the target's are (phase one).
@@ -211,6 +213,9 @@ def grade(
         girth: :func:`unsew.grading.area.scale_to_area`) and meshed
         afresh before it is draped, so the next pass measures its contours on the scaled drape
         and the graded pattern's total area is ``area`` (None: no scaling, Algorithm 2).
+    lift: for a garment that hangs from the waist (no contour on an arm), dress the last pass's
+        pattern again lifted towards the target's top opening and keep the placement whose drape
+        lies closest (:mod:`unsew.grading.placement`; two more drapes; needs ``redrape``).
     log: where a one-line warning goes when the last pass's area scaling was clipped (None: nowhere).
 
     Returns a :class:`GradeResult`.
@@ -244,6 +249,11 @@ def grade(
         if not redrape:
             break
         x_lg = np.asarray(drape_fn(cur.pattern, cur.mesh, body), dtype=np.float64)
+    if lift and x_lg is not None and is_lower(ctx.tgt):
+        pattern_l, mesh_l, x_lg, tried = choose_lift(cur.pattern, cur.mesh, x_lg, body, drape_fn, tv, tf)
+        if tried is not None:
+            cur = replace(cur, pattern=pattern_l, mesh=mesh_l)
+            rows.append(_lift_row(tried))
     note = clip_note(scales[-1], area, cur.pattern) if scales else None
     if note and log is not None:  # the last pass decides the graded pattern's area
         log(note)
@@ -252,6 +262,15 @@ def grade(
         remeshed=first.remeshed or cur.remeshed, x_init=x_init, mesh_init=mesh, matches=first.matches,
         area_scales=scales,
     )
+
+
+def _lift_row(tried: dict) -> dict:
+    """The contour table's row of the placement choice (:func:`unsew.grading.placement.choose_lift`)."""
+    cands = ", ".join(f"{dy * 100:+.1f} cm {cf:.2f} mm" for dy, cf in zip(tried["tried_m"], tried["chamfer_mm"]))
+    what = (f"placement: every panel {tried['lift_m'] * 100:+.1f} cm up" if tried["lift_m"] else "placement kept")
+    return {**{k: None for k in TABLE_COLUMNS}, "part": "torso", "extension_m": tried["wanted_m"],
+            "edits": [f"{what} (target's waist {tried['wanted_m'] * 100:+.1f} cm above the drape's; drapes {cands})"],
+            "warnings": []}
 
 
 def _base_drape(pattern, mesh, body, x_init, drape_fn) -> np.ndarray:
