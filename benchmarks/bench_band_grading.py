@@ -4,8 +4,11 @@ For each case (default: the three foreign cases whose fit chose a banded base), 
 alone, ``python -m unsew grade CASE --base BASE --edge-length 0.025``, and prints the graded
 pattern's errors against pattern_gt.json (unsew.metrics.panels.pattern_metrics: area-weighted
 with unmatched panels at 100 %, total, mean over matched panels) [%], the graded band's height
-(bounding box of ``waistband_front``) [cm] beside the true band's, and the graded drape's Chamfer
-to the target [mm].
+(bounding box of ``waistband_front``) [cm] beside the true band's, the graded drape's Chamfer
+to the target [mm], and the placement choice (unsew.grading.placement): the height of the target's
+waist above the graded drape's [cm], the lift kept [cm] and the Chamfer of the drape at the
+graded placement [mm] (the Chamfer column is the kept placement's; the cases with a lift kept are
+the ones it moved).
 
     python -m benchmarks band_grading [--cases CASE:BASE ...] [--out DIR]
 """
@@ -13,6 +16,7 @@ to the target [mm].
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import subprocess
 import sys
@@ -70,12 +74,17 @@ def main() -> None:
         g = trimesh.load(res / "garment.obj", process=False)
         cf = surface_metrics(np.asarray(g.vertices), np.asarray(g.faces), np.asarray(t.vertices), np.asarray(t.faces),
                              n_samples=20000, seed=0)["chamfer_mm"]
+        lift = json.loads((res / "contours.json").read_text()).get("placement") or {}
         rows.append({"case": case, "base": base, "area_pct": 100 * m["area_error_weighted_rel"],
                      "total_pct": 100 * m["area_error_total_rel"], "matched_pct": 100 * m["area_error_rel_mean"],
-                     "band_cm": _band_height_cm(est), "true_band_cm": _band_height_cm(gt), "chamfer_mm": cf})
+                     "band_cm": _band_height_cm(est), "true_band_cm": _band_height_cm(gt), "chamfer_mm": cf,
+                     "waist_cm": 100 * lift["wanted_m"] if lift else None,
+                     "lift_cm": 100 * lift["lift_m"] if lift else None,
+                     "unlifted_mm": lift["chamfer_mm"][0] if lift else None})
         print(rows[-1], flush=True)
     print_table(rows, ["case", "base", "area_pct", "total_pct", "matched_pct", "band_cm", "true_band_cm", "chamfer_mm",
-                       "error"], title=f"grading banded bases (results in {out})", digits=1)
+                       "waist_cm", "lift_cm", "unlifted_mm", "error"],
+                title=f"grading banded bases (results in {out})", digits=1)
 
 
 if __name__ == "__main__":

@@ -81,6 +81,7 @@ def run(args: argparse.Namespace) -> int:
             "length": args.length,
             "area": args.area,
             "area_scales": res.area_scales,
+            "placement": res.placement,
             "edit_fraction": res.fraction,
             "remeshed": res.remeshed,
             "contours": res.table,

@@ -90,6 +90,8 @@ class GradeResult:
     matches: the contour pairs (:class:`~unsew.grading.contours.ContourMatch`).
     area_scales: the length factor of each pass's area scaling (``grade(area=...)``, in pass
         order; empty without it). ``K`` is then the last contour edit's, before its scaling.
+    placement: what the placement choice tried (:func:`unsew.grading.placement.choose_lift`'s row:
+        ``lift_m``, ``wanted_m``, ``tried_m``, ``chamfer_mm``); None when it did not run.
     """
 
     pattern: object
@@ -103,6 +105,7 @@ class GradeResult:
     mesh_init: object = None
     matches: list = field(default_factory=list)
     area_scales: list = field(default_factory=list)
+    placement: dict | None = None
 
 
 #: Keys of every row of ``GradeResult.table``.
@@ -249,6 +252,7 @@ def grade(
         if not redrape:
             break
         x_lg = np.asarray(drape_fn(cur.pattern, cur.mesh, body), dtype=np.float64)
+    tried = None
     if lift and x_lg is not None and is_lower(ctx.tgt):
         pattern_l, mesh_l, x_lg, tried = choose_lift(cur.pattern, cur.mesh, x_lg, body, drape_fn, tv, tf)
         if tried is not None:
@@ -260,7 +264,7 @@ def grade(
     return GradeResult(
         pattern=cur.pattern, mesh=cur.mesh, x_draped=x_lg, table=rows, K=cur.K, fraction=first.fraction,
         remeshed=first.remeshed or cur.remeshed, x_init=x_init, mesh_init=mesh, matches=first.matches,
-        area_scales=scales,
+        area_scales=scales, placement=tried,
     )
 
 
