@@ -271,9 +271,10 @@ def grade(
 def _lift_row(tried: dict) -> dict:
     """The contour table's row of the placement choice (:func:`unsew.grading.placement.choose_lift`)."""
     cands = ", ".join(f"{dy * 100:+.1f} cm {cf:.2f} mm" for dy, cf in zip(tried["tried_m"], tried["chamfer_mm"]))
-    what = (f"placement: every panel {tried['lift_m'] * 100:+.1f} cm up" if tried["lift_m"] else "placement kept")
+    what = (f"placement: every panel moved {tried['lift_m'] * 100:+.1f} cm in height" if tried["lift_m"]
+            else "placement kept")
     return {**{k: None for k in TABLE_COLUMNS}, "part": "torso", "extension_m": tried["wanted_m"],
-            "edits": [f"{what} (target's waist {tried['wanted_m'] * 100:+.1f} cm above the drape's; drapes {cands})"],
+            "edits": [f"{what} (the target's waist minus the drape's: {tried['wanted_m'] * 100:+.1f} cm; drapes {cands})"],
             "warnings": []}
 
 

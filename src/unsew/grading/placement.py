@@ -37,7 +37,8 @@ LIFT_SAMPLES = 20_000
 
 def top_height(verts, faces) -> float | None:
     """Mean height [m] (+y) of the vertices of a mesh's highest open contour (by its mean
-    height): the waist of a skirt or trousers. None for a closed mesh."""
+    height): the waist of a skirt or trousers. verts: (V, 3) float [m]; faces: (F, 3) int.
+    None for a closed mesh."""
     v = np.asarray(verts, dtype=np.float64)
     loops = open_contours(v, faces)
     if not loops:
@@ -46,7 +47,7 @@ def top_height(verts, faces) -> float | None:
 
 
 def lifted(pattern, dy: float):
-    """A copy of ``pattern`` with every panel's placement moved ``dy`` [m] up (+y); the panels'
+    """A copy of ``pattern`` (:class:`~unsew.pattern.model.Pattern`) with every panel's placement moved ``dy`` [m] up (+y); the panels'
     shapes are unchanged."""
     out = pattern.copy()
     for panel in out.panels.values():
