@@ -422,4 +422,11 @@ DESIGNS = {
     "tee_loose_short": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.64, ease=0.18, hem_ease=0.22, sleeve=0.12, neck_depth=0.06, name="tee_loose_short"), **kw})),
     "dress_sheath_sleeved": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.95, ease=0.08, hem_ease=0.16, sleeve=0.07, waist_shape=True, name="dress_sheath_sleeved"), **kw})),
     "skirt_aline_mini": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.42, flare=0.05, darts=2, waistband=True, name="skirt_aline_mini"), **kw})),
+    # session 31
+    "skirt_pencil_knee": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.58, flare=0.02, darts=2, waistband=True, name="skirt_pencil_knee"), **kw})),
+    "trousers_wide_band": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.10, hem_girth=0.54, darts=1, waistband=True, name="trousers_wide_band"), **kw})),
+    "shorts_bermuda": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.24, hem_girth=m["thigh"] + 0.16, darts=0, waistband=True, name="shorts_bermuda"), **kw})),
+    "tee_mid_sleeve": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.66, ease=0.12, hem_ease=0.16, sleeve=0.25, neck_depth=0.07, name="tee_mid_sleeve"), **kw})),
+    "dress_shift_short": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.80, ease=0.12, hem_ease=0.24, sleeve=0.15, waist_shape=True, hip_ease=0.14, name="dress_shift_short"), **kw})),
+    "skirt_flared_mini": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.40, flare=0.10, darts=0, waistband=True, name="skirt_flared_mini"), **kw})),
 }

@@ -59,6 +59,8 @@ BODIES = {
     "anny_older": {"model": "anny", "phenotype": dict(_P, gender=0.3, age=0.95, muscle=0.2, weight=0.65), "pose": "A"},
     # left arm swung 0.6 rad forward at the shoulder (world-frame rotation vector)
     "anny_arm_forward": {"model": "anny", "phenotype": dict(_P), "pose": {"left_shoulder": [-0.6, 0.0, 0.0]}},
+    # a muscular, fairly tall man (session 31): broad shoulders and thighs, a narrow waist
+    "anny_muscular": {"model": "anny", "phenotype": dict(_P, gender=0.15, muscle=0.95, weight=0.55, height=0.7), "pose": "A"},
     # GarmentCode's mean body (A-pose): its mesh goes into the case folder as body.obj with no
     # skeleton.json, so the case is rigged from the mesh wherever it is read (and so is the target's body here)
     "gc_mean_all": {"model": "garmentcode", "mesh": "mean_all.obj", "pose": "A"},
@@ -192,6 +194,14 @@ CASES = {
     "tee_loose_short__short_curvy": ("tee_loose_short", "anny_short_curvy"),
     "dress_sheath_sleeved__default": ("dress_sheath_sleeved", "anny_default"),
     "skirt_aline_mini__gc_mean_female": ("skirt_aline_mini", "gc_mean_female"),
+    # built in session 31 (ad7e2cd): six more designs with parameters no earlier design had, and
+    # a body no design had met (anny_muscular)
+    "skirt_pencil_knee__short_curvy": ("skirt_pencil_knee", "anny_short_curvy"),
+    "trousers_wide_band__older": ("trousers_wide_band", "anny_older"),
+    "shorts_bermuda__muscular": ("shorts_bermuda", "anny_muscular"),
+    "tee_mid_sleeve__muscular": ("tee_mid_sleeve", "anny_muscular"),
+    "dress_shift_short__older": ("dress_shift_short", "anny_older"),
+    "skirt_flared_mini__tall_thin": ("skirt_flared_mini", "anny_tall_thin"),
 }
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").
