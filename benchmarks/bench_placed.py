@@ -6,11 +6,12 @@ drape's Chamfer to the case's target [mm] (20,000 samples, seed 0), the heights 
 and lowest point beside the target's [m], and its last speed [m/s]. Variants: ``--lift CM`` (every
 panel placed that much higher, unsew.grading.placement.lifted), ``--narrow F`` (every panel's
 width scaled by F about its own vertical axis), ``--set KEY=VALUE`` (a DrapeSettings field, e.g.
-friction_eps=0.001 or hold_steps=80). Measured with it: docs/benchmarks.md, "A lower garment
+friction_eps=0.001 or hold_steps=80), ``--inflate MM`` (the body's contact grown outward by MM,
+unsew.body.sdf.BodySDF.inflated: cloth kept that much farther from the body). Measured with it: docs/benchmarks.md, "A lower garment
 placed at the target's waist".
 
     python -m benchmarks placed CASE_DIR PATTERN.json [--material cotton] [--lift CM ...]
-        [--narrow F ...] [--set KEY=VALUE ...]
+        [--narrow F ...] [--set KEY=VALUE ...] [--inflate MM ...]
 """
 
 from __future__ import annotations
@@ -38,11 +39,13 @@ def main() -> int:
     ap.add_argument("--lift", type=float, nargs="*", default=[], metavar="CM")
     ap.add_argument("--narrow", type=float, nargs="*", default=[], metavar="F")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
+    ap.add_argument("--inflate", type=float, nargs="*", default=[], metavar="MM")
     args = ap.parse_args()
 
     from tables import print_table
 
     from unsew.body.case import load_case
+    from unsew.body.sdf import BodySDF
     from unsew.dress import DRESS_SETTINGS, dress
     from unsew.errors import UnsewError
     from unsew.fit.target import Target
@@ -69,15 +72,17 @@ def main() -> int:
             panel.vertices = panel.vertices * [f, 1.0]
         return out
 
-    variants = [("as placed", pattern, DRESS_SETTINGS)]
-    variants += [(f"lift {cm:+.1f} cm", lifted(pattern, cm / 100.0), DRESS_SETTINGS) for cm in args.lift]
-    variants += [(f"narrow x{f:g}", narrowed(f), DRESS_SETTINGS) for f in args.narrow]
+    sdf = BodySDF.build(case.body)
+    variants = [("as placed", pattern, DRESS_SETTINGS, sdf)]
+    variants += [(f"lift {cm:+.1f} cm", lifted(pattern, cm / 100.0), DRESS_SETTINGS, sdf) for cm in args.lift]
+    variants += [(f"narrow x{f:g}", narrowed(f), DRESS_SETTINGS, sdf) for f in args.narrow]
     if sets:
-        variants.append((", ".join(args.set), pattern, DRESS_SETTINGS.replace(**sets)))
+        variants.append((", ".join(args.set), pattern, DRESS_SETTINGS.replace(**sets), sdf))
+    variants += [(f"inflate {mm:g} mm", pattern, DRESS_SETTINGS, sdf.inflated(mm / 1000.0)) for mm in args.inflate]
     rows = []
-    for name, p, settings in variants:
+    for name, p, settings, body_sdf in variants:
         try:
-            d = dress(p, case.body, material=args.material, settings=settings)
+            d = dress(p, case.body, sdf=body_sdf, material=args.material, settings=settings)
         except UnsewError as exc:
             rows.append({"variant": name, "error": str(exc)})
             continue

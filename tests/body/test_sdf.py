@@ -190,3 +190,21 @@ def test_sdf_of_a_symmetric_body_is_symmetric(default_sdf):
     d2, n2 = default_sdf.query(torch.as_tensor(x * [-1.0, 1.0, 1.0]))
     assert float((d1 - d2).abs().max()) < 1e-9
     assert float((n1 * torch.tensor([-1.0, 1.0, 1.0], dtype=n1.dtype) - n2).abs().max()) < 1e-6
+
+
+def test_inflated_grid_is_the_body_grown_outward(sphere_sdf):
+    from unsew.errors import InputError
+
+    _, sdf = sphere_sdf
+    x = torch.tensor([[0.12, 0.0, 0.0], [0.0, 0.09, 0.02], [0.0, 0.0, -0.2]], dtype=torch.float64)
+    d0, n0 = sdf.query(x)
+    grown = sdf.inflated(0.003)
+    d1, n1 = grown.query(x)
+    assert_close(d1, d0 - 0.003, atol=1e-12, what="inflated distance: ")
+    assert_close(n1, n0, atol=1e-12, what="inflated normals: ")
+    assert sdf.inflated(0.0) is sdf
+    d2, _ = sdf.query(x)  # the original grid is untouched
+    assert_close(d2, d0, atol=0.0, what="original: ")
+    for bad in (-0.001, float("nan")):
+        with pytest.raises(InputError, match="inflated"):
+            sdf.inflated(bad)

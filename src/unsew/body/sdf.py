@@ -29,6 +29,7 @@ Inside is negative. Any object with this ``query`` method is an SDF for the simu
 from __future__ import annotations
 
 import hashlib
+import math
 import os
 import time
 from dataclasses import dataclass, field
@@ -279,6 +280,16 @@ class BodySDF:
             except OSError:
                 pass  # an unwritable cache only costs a rebuild next time
         return sdf
+
+    def inflated(self, by: float) -> "BodySDF":
+        """The same grid for the body grown outward by ``by`` [m] (every distance lowered by it):
+        contact then keeps cloth ``by`` farther from the body (:mod:`unsew.fit.gap`). ``by`` 0
+        returns this grid itself."""
+        if by == 0.0:
+            return self
+        if not math.isfinite(by) or by < 0:
+            raise InputError(f"a body can be inflated by a distance >= 0 [m], got {by}")
+        return BodySDF(self.values - by, self.origin, self.voxel, build_seconds=self.build_seconds)
 
     # -- querying ---------------------------------------------------------------------------
     def _tensors(self, device, dtype):
