@@ -35,10 +35,17 @@ prints one row per case:
   set it (:func:`peak_stage`: loaded = reading the case and the body, body_sdf, grading,
   material_choice, optimization, redress, mesh_spread, metrics).
 
+``--record FILE --code REV`` also writes each fitted case's row, with the commit REV its fit ran
+on, into FILE (JSON, case -> row; a case's earlier record is replaced), and ``--latest FILE``
+prints FILE's rows, each case's latest recorded fit, and the bars over them: results folders do
+not outlive a machine, the record does (benchmarks/foreign/fits.json is the project's).
+
 Resumable: a case whose result folder exists is not fitted again (nor one whose earlier failure is
 recorded in OUT/_status/CASE.json, unless --retry); an interrupted fit resumes from its checkpoint.
 
     python -m benchmarks foreign_fit [--cases a,b] [--out bench-out/foreign_fit] [--no-run] [--retry] [--config fit.yaml] [--recompute]
+        [--record benchmarks/foreign/fits.json --code REV]
+    python -m benchmarks foreign_fit --latest benchmarks/foreign/fits.json
 """
 
 from __future__ import annotations
@@ -55,6 +62,8 @@ os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 ROOT = Path(__file__).resolve().parent.parent
 CASES = ROOT / "benchmarks" / "foreign" / "cases"
+#: The project's record of each case's latest fit (``--record``, ``--latest``).
+RECORD = ROOT / "benchmarks" / "foreign" / "fits.json"
 
 COLUMNS = ["case", "garment", "body", "base", "exit", "time_s",
            "cf_base_mm", "cf_graded_mm", "cf_final_mm", "cf_warm_mm", "floor_mm",
@@ -236,7 +245,16 @@ def main(argv=None) -> int:
     ap.add_argument("--config", default=None, help="a fit.yaml handed to every fit (default: the default configuration)")
     ap.add_argument("--sheet", type=Path, default=None,
                     help="also write one PNG of every fitted case's target-vs-result figure, to look at them all")
+    ap.add_argument("--record", type=Path, default=None, metavar="FILE",
+                    help=f"also write each fitted case's row into FILE (e.g. {RECORD.relative_to(ROOT)}), with --code")
+    ap.add_argument("--code", default=None, metavar="REV", help="the commit the fits in --out ran on (for --record)")
+    ap.add_argument("--latest", type=Path, default=None, metavar="FILE",
+                    help="only print FILE's recorded rows (each case's latest fit) and the bars over them")
     args = ap.parse_args(argv)
+    if args.latest is not None:
+        return print_latest(args.latest)
+    if args.record is not None and not args.code:
+        ap.error("--record needs --code REV: the commit the fits in --out ran on")
     names = [n for n in args.cases.split(",") if n]
     out = Path(args.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
@@ -257,6 +275,48 @@ def main(argv=None) -> int:
     if args.sheet is not None:
         contact_sheet(rows, out, args.sheet)
         print(f"\nwrote {args.sheet}")
+    if args.record is not None:
+        n = record(rows, args.record, code=args.code, out=out)
+        print(f"\nrecorded {n} fits in {args.record}")
+    return 0
+
+
+def record(rows: list[dict], path: Path, *, code: str, out: Path) -> int:
+    """Write the fitted ``rows`` (those with a final Chamfer) into the record at ``path`` (JSON,
+    case -> row plus ``code``, the commit the fit ran on, and ``results``, the folder it was read
+    from), replacing a case's earlier record; returns how many were written."""
+    from unsew.io.atomic import atomic_write
+
+    old = json.loads(path.read_text()) if path.is_file() else {}
+    done = [r for r in rows if r.get("cf_final_mm") is not None]
+    for r in done:
+        old[r["case"]] = {**r, "code": code, "results": str(out)}
+    with atomic_write(path) as tmp:
+        Path(tmp).write_text(json.dumps(dict(sorted(old.items())), indent=1) + "\n")
+    return len(done)
+
+
+def print_latest(path: Path) -> int:
+    """Print the recorded latest fit of each case (``--latest``), the cases with none, and the
+    bars over the recorded ones."""
+    from tables import print_table
+
+    if not path.is_file():
+        print(f"foreign_fit: no record at {path}", file=sys.stderr)
+        return 2
+    rec = json.loads(path.read_text())
+    rows = [rec[c.name] for c in case_dirs() if c.name in rec]
+    for r in rows:  # today's floor: a case re-floored since its fit is judged on the new one
+        meta = json.loads((CASES / r["case"] / "meta.json").read_text())
+        r["floor_mm"] = (meta.get("floor") or {}).get("chamfer_mm", r.get("floor_mm"))
+    missing = [c.name for c in case_dirs() if c.name not in rec]
+    print_table(rows, ["case", "code", *COLUMNS[1:]], title=f"Foreign benchmark: each case's latest recorded fit ({path})",
+                digits=1)
+    print(f"\n{len(rows)} of {len(rows) + len(missing)} cases recorded"
+          + (f"; no record: {', '.join(missing)}" if missing else ""))
+    summary = bars(rows)
+    if summary:
+        print_table(summary, title="Issue 21's bars over the recorded fits", digits=1)
     return 0
 
 

@@ -89,3 +89,24 @@ def test_base_spread_needs_the_results_mesh_spread_and_passes_config(tmp_path):
     fake.chmod(0o755)
     ff.run_case(case, tmp_path / "out", python=str(fake), config=str(tmp_path / "fit.yaml"))
     assert f"--config {tmp_path / 'fit.yaml'}" in (tmp_path / "args").read_text()
+
+
+def test_record_keeps_each_case_latest_fit_and_latest_prints_it(tmp_path, capsys):
+    """--record writes fitted rows with the commit they ran on, replacing a case's older record and
+    skipping cases without a result; --latest prints them with the bars over them."""
+    mod = _module()
+    cases = mod.case_dirs()[:2]
+    path = tmp_path / "fits.json"
+    rows = [{"case": cases[0].name, "cf_final_mm": 7.0, "cf_base_mm": 9.0, "exit": "ok", "time_s": 100.0},
+            {"case": cases[1].name, "exit": "fell", "time_s": 5.0}]
+    assert mod.record(rows, path, code="aaa1111", out=tmp_path / "a") == 1
+    rows[0] = {**rows[0], "cf_final_mm": 6.0}
+    assert mod.record(rows, path, code="bbb2222", out=tmp_path / "b") == 1
+    rec = json.loads(path.read_text())
+    assert list(rec) == [cases[0].name]
+    assert rec[cases[0].name]["code"] == "bbb2222" and rec[cases[0].name]["cf_final_mm"] == 6.0
+    assert mod.main(["--latest", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "bbb2222" in out and f"1 of {len(mod.case_dirs())} cases recorded" in out
+    assert "Chamfer of the fit: median / worst [mm] | 6.0 / 6.0" in out
+    assert mod.main(["--latest", str(tmp_path / "none.json")]) == 2
