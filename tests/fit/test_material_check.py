@@ -1,0 +1,57 @@
+"""The material choice checked by a drape from scratch (unsew.fit.material._checked): phase two
+starts from the chosen fabric's drape from scratch when it lies closer than the cotton-graded
+pattern's, else from the cotton-graded start; the table says both (fast: the dress is faked)."""
+
+from types import SimpleNamespace
+
+import numpy as np
+import torch
+
+from unsew.fit import material as mat_mod
+from unsew.fit.config import load_config
+from unsew.fit.progress import Progress
+from unsew.fit.start import Start
+from unsew.sim.material import get_material
+
+
+def _start(name, x0):
+    mesh = SimpleNamespace(faces=np.zeros((1, 3), dtype=np.int64))
+    return Start(base=None, graded=f"pattern graded in {name}", mesh=mesh, x=np.full((3, 3), x0), grade_table=[],
+                 x_base=np.zeros((3, 3)), mesh_base=mesh, material=get_material(name))
+
+
+def _run(monkeypatch, fresh_value):
+    """The check with the chosen fabric's drape from scratch at ``fresh_value`` (a target whose
+    distance is the drape's first coordinate) against the cotton start at 7.0."""
+    dressed = []
+
+    def fake_dress(pattern, body, **kw):
+        dressed.append((pattern, kw["material"]))
+        return SimpleNamespace(x=torch.full((3, 3), fresh_value, dtype=torch.float64))
+
+    monkeypatch.setattr(mat_mod, "dress", fake_dress)
+    target = SimpleNamespace(distance_mm=lambda x, faces: float(np.asarray(x)[0, 0]))
+    first, chosen = _start("cotton", 7.0), _start("polyester", 4.0)  # settled: 4.0 mm
+    table = [{"material": "polyester (stretch x0.5, bending x1)", "chamfer_mm": 4.0, "pattern": "graded in polyester"}]
+    cfg = load_config(None)
+    lines = []
+    s, rows = mat_mod._checked(first, chosen, table, None, target, None, cfg, progress=Progress(False),
+                               log=lines.append)
+    assert dressed == [("pattern graded in polyester", chosen.material)]
+    return first, chosen, s, rows, lines
+
+
+def test_a_settled_choice_that_does_not_dress_as_close_gives_way_to_cotton(monkeypatch):
+    first, _, s, rows, lines = _run(monkeypatch, 11.0)
+    assert s is first
+    assert rows[0] == {"material": "cotton", "chamfer_mm": 7.0, "pattern": "graded in cotton, dressed from scratch"}
+    assert rows[1]["chamfer_mm"] == 11.0 and rows[1]["pattern"] == "graded in polyester, dressed from scratch"
+    assert rows[2]["chamfer_mm"] == 4.0  # the settled row stays in the table
+    assert lines and lines[0].endswith("phase two starts from cotton")
+
+
+def test_a_choice_that_dresses_closer_starts_from_its_drape_from_scratch(monkeypatch):
+    _, chosen, s, rows, _ = _run(monkeypatch, 5.0)
+    assert s.graded == chosen.graded and s.material == chosen.material
+    assert np.all(s.x == 5.0)  # the drape from scratch, not the settled one
+    assert rows[0]["material"].startswith("polyester") and rows[0]["chamfer_mm"] == 5.0
