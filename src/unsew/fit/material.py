@@ -34,6 +34,10 @@ __all__ = ["MaterialChoice", "choose_start", "choose_material", "refine_material
 
 #: the material ``material.start: auto`` drapes the base and grades in, before it chooses
 AUTO_START_MATERIAL = "cotton"
+#: The material check (:func:`_checked`) falls back to the cotton-graded start only when the chosen
+#: fabric's drape from scratch lies farther than it by more than this [mm] and this share of it [-].
+CHECK_MARGIN_MM = 0.5
+CHECK_MARGIN_REL = 0.1
 #: The groups of Gamma that :func:`refine_material` scales together: name -> Material fields.
 REFINE_GROUPS = {"stretch": ("h00", "h01", "h11", "h22"), "bending": ("bend",)}
 
@@ -202,9 +206,12 @@ def _checked(first: Start, chosen: Start, table: list, body, target: Target, sdf
     The candidates were let settle from another fabric's drape, and a settled drape can lie
     closer than the same pattern and fabric dressed from scratch (the flared mini on the tall thin
     body: 7.63 mm settled, 11.0 dressed; docs/benchmarks.md, "The material choice checked by a
-    drape from scratch"). So the chosen pattern is dressed from scratch in its fabric; phase two
-    starts from that drape, or from ``first`` (graded in cotton, a drape from scratch) when that
-    lies closer. Returns (the start, the table with the two dressed rows first, the kept one on top).
+    drape from scratch"). So the chosen pattern is dressed from scratch in its fabric, and when
+    that drape lies farther from the target than ``first``'s (graded in cotton, a drape from
+    scratch) by more than :data:`CHECK_MARGIN_MM` or :data:`CHECK_MARGIN_REL` of it (what two
+    drapes from scratch of one pattern on two meshes differ by), phase two starts from ``first``;
+    otherwise the choice stands as it was made (its settled drape). Returns (the start, the table
+    with the two dressed rows first, the kept one on top).
     """
     with progress.phase("dress the chosen material") as bar:
         x = dress(chosen.graded, body, sdf=sdf, mesh=chosen.mesh, material=chosen.material, settings=cfg.drape,
@@ -215,10 +222,10 @@ def _checked(first: Start, chosen: Start, table: list, body, target: Target, sdf
     label, pattern = table[0]["material"], table[0]["pattern"]
     rows = [{"material": label, "chamfer_mm": cf, "pattern": f"{pattern}, dressed from scratch"},
             {"material": AUTO_START_MATERIAL, "chamfer_mm": cf_first, "pattern": f"graded in {AUTO_START_MATERIAL}, dressed from scratch"}]
-    keep = math.isfinite(cf) and cf < cf_first
+    keep = math.isfinite(cf) and cf <= cf_first + max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * cf_first)
     if not keep:
         rows.reverse()
     log(f"material check: {label} dressed from scratch lies {cf:.2f} mm from the target, the pattern graded in "
         f"{AUTO_START_MATERIAL} {cf_first:.2f} mm: phase two starts from "
         + (f"{label}" if keep else f"{AUTO_START_MATERIAL}"))
-    return (chosen.replace(x=x) if keep else first), rows + table
+    return (chosen if keep else first), rows + table
