@@ -358,8 +358,8 @@ def test_cold_start_makes_the_drape_a_function_of_the_parameters(small_case):
 
 def test_auto_material_picks_the_true_fabric(small_case):
     """material=auto dresses the cotton-graded pattern in each candidate, grades again in the best
-    one other than cotton, refines the winner's stiffness by draping, and starts phase two from
-    the closest: the target is the demo t-shirt in jersey, so jersey wins over cotton and denim,
+    one other than cotton, refines the winner's stiffness by draping, checks the winner by a drape
+    from scratch, and starts phase two from the closest: the target is the demo t-shirt in jersey, so jersey wins over cotton and denim,
     and the fit's material is jersey's (density, friction and Poisson ratio; a refinement scales
     only the stiffness)."""
     import math
@@ -372,7 +372,11 @@ def test_auto_material_picks_the_true_fabric(small_case):
                        "material": "auto", "material_candidates": "cotton,denim,jersey",
                        "material_regrade": 1, "material_refine": 1})
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
-    table = r.material_choice
+    # the material check's two drapes from scratch come first, the kept start on top: the choice
+    # in jersey dresses no farther than the cotton-graded pattern, so it stands
+    checked, table = r.material_choice[:2], r.material_choice[2:]
+    assert [row["pattern"].endswith(", dressed from scratch") for row in checked] == [True, True]
+    assert checked[0]["material"].startswith("jersey") and checked[1]["material"] == "cotton"
     library = [row for row in table if "(" not in row["material"]]
     refined = [row for row in table if "(" in row["material"]]
     assert library[0]["material"] == "jersey" and table[0]["material"].startswith("jersey")

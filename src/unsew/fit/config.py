@@ -41,7 +41,7 @@ class MaterialSettings:
     candidates: tuple[str, ...] = ()  #: library materials "auto" tries (empty: every material in the library)
     regrade: int = 2  #: "auto": how many of the best candidates other than cotton are graded again in their own fabric [-]
     warm_steps: int = 40  #: "auto": each candidate fabric or stiffness settles this many steps (at drape.dt) from the drape of the pattern it is tried on instead of being dressed from scratch; 0: dressed from scratch [-]
-    check: bool = False  #: "auto": the chosen pattern and fabric dressed from scratch at the end; when that drape lies clearly farther from the target than the pattern graded in cotton (by 0.5 mm and 10 %), phase two starts from the cotton-graded pattern (unsew.fit.material._checked) [-]
+    check: bool = True  #: "auto": the chosen pattern and fabric dressed from scratch at the end; when that drape lies clearly farther from the target than the pattern graded in cotton (by 0.5 mm and 10 %), phase two starts from the cotton-graded pattern (unsew.fit.material._checked; docs/benchmarks.md, "The material choice checked by a drape from scratch") [-]
     refine: int = 2  #: "auto": rounds of the stiffness search after the choice (stretch and bending scaled by 1/s and s, s = 2, sqrt 2, ...); 0: off [-]
     fit: tuple[str, ...] = GAMMA_NAMES  #: entries of Gamma phase two moves (the others keep the start's value, H01 its ratio to sqrt(H00 H11)); empty: the material stays fixed
     start_iteration: int = 20  #: iteration at which the material joins the variables [-]

@@ -2,7 +2,8 @@
 user): grade in cotton, drape the graded pattern in every library fabric (:func:`choose_material`),
 grade again in the closest others, then search the winner's stretch and bending scale by draping
 (:func:`refine_material`). Phase two starts from the closest of these drapes by mean surface
-distance. Its hand-off is a :class:`MaterialChoice`.
+distance, unless the winner, dressed from scratch, lies clearly farther than the pattern graded
+in cotton (``material.check``, :func:`_checked`). Its hand-off is a :class:`MaterialChoice`.
 
 Each candidate is let settle (``material.warm_steps`` steps, :func:`unsew.dress.settle`) from the
 drape it competes with, the pattern already sewn, instead of being dressed from scratch (placement,
