@@ -283,8 +283,9 @@ class BodySDF:
 
     def inflated(self, by: float) -> "BodySDF":
         """The same grid for the body grown outward by ``by`` [m] (every distance lowered by it):
-        contact then keeps cloth ``by`` farther from the body (:mod:`unsew.fit.gap`). ``by`` 0
-        returns this grid itself."""
+        contact then keeps cloth ``by`` farther from the body (measured with ``python -m benchmarks
+        placed --inflate``: docs/benchmarks.md, "The cloth's gap to the body"). ``by`` 0 returns
+        this grid itself."""
         if by == 0.0:
             return self
         if not math.isfinite(by) or by < 0:

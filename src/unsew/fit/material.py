@@ -46,8 +46,9 @@ REFINE_GROUPS = {"stretch": ("h00", "h01", "h11", "h22"), "bending": ("bend",)}
 @dataclass
 class MaterialChoice:
     """Phase two's start: ``start`` (pattern, mesh, drape; ``start.material`` the fabric) and the
-    choice's table, best first: rows {"material", "chamfer_mm", "pattern"} (empty when the
-    material was given)."""
+    choice's table: rows {"material", "chamfer_mm", "pattern"}, best first, after the material
+    check's two drapes from scratch (the kept start first) when it ran (empty when the material
+    was given)."""
 
     start: Start
     table: list = field(default_factory=list)
@@ -209,8 +210,8 @@ def _checked(first: Start, chosen: Start, table: list, body, target: Target, sdf
     body: 7.63 mm settled, 11.0 dressed; docs/benchmarks.md, "The material choice checked by a
     drape from scratch"). So the chosen pattern is dressed from scratch in its fabric, and when
     that drape lies farther from the target than ``first``'s (graded in cotton, a drape from
-    scratch) by more than :data:`CHECK_MARGIN_MM` or :data:`CHECK_MARGIN_REL` of it (what two
-    drapes from scratch of one pattern on two meshes differ by), phase two starts from ``first``;
+    scratch) by more than both :data:`CHECK_MARGIN_MM` and :data:`CHECK_MARGIN_REL` of it (what
+    two drapes from scratch of one pattern on two meshes differ by), phase two starts from ``first``;
     otherwise the choice stands as it was made (its settled drape). Returns (the start, the table
     with the two dressed rows first, the kept one on top).
     """
