@@ -255,6 +255,11 @@ def main(argv=None) -> int:
         return print_latest(args.latest)
     if args.record is not None and not args.code:
         ap.error("--record needs --code REV: the commit the fits in --out ran on")
+    if args.record is not None and args.record.is_file():
+        try:
+            _read_record(args.record)  # before any fit: a bad record is refused at once
+        except ValueError as exc:
+            ap.error(str(exc))
     names = [n for n in args.cases.split(",") if n]
     out = Path(args.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
@@ -287,13 +292,24 @@ def record(rows: list[dict], path: Path, *, code: str, out: Path) -> int:
     from), replacing a case's earlier record; returns how many were written."""
     from unsew.io.atomic import atomic_write
 
-    old = json.loads(path.read_text()) if path.is_file() else {}
+    old = _read_record(path) if path.is_file() else {}
     done = [r for r in rows if r.get("cf_final_mm") is not None]
     for r in done:
         old[r["case"]] = {**r, "code": code, "results": str(out)}
     with atomic_write(path) as tmp:
         Path(tmp).write_text(json.dumps(dict(sorted(old.items())), indent=1) + "\n")
     return len(done)
+
+
+def _read_record(path: Path) -> dict:
+    """The record at ``path`` (case -> row); ValueError with one line when it is not one."""
+    try:
+        rec = json.loads(path.read_text())
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"{path} is not a fit record (JSON: {exc})") from None
+    if not isinstance(rec, dict) or not all(isinstance(r, dict) for r in rec.values()):
+        raise ValueError(f"{path} is not a fit record (a JSON object of case -> row)")
+    return rec
 
 
 def print_latest(path: Path) -> int:
@@ -304,7 +320,11 @@ def print_latest(path: Path) -> int:
     if not path.is_file():
         print(f"foreign_fit: no record at {path}", file=sys.stderr)
         return 2
-    rec = json.loads(path.read_text())
+    try:
+        rec = _read_record(path)
+    except ValueError as exc:
+        print(f"foreign_fit: {exc}", file=sys.stderr)
+        return 2
     rows = [rec[c.name] for c in case_dirs() if c.name in rec]
     for r in rows:  # today's floor: a case re-floored since its fit is judged on the new one
         meta = json.loads((CASES / r["case"] / "meta.json").read_text())

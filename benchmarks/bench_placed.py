@@ -7,8 +7,9 @@ and lowest point beside the target's [m], and its last speed [m/s]. Variants: ``
 panel placed that much higher, unsew.grading.placement.lifted), ``--narrow F`` (every panel's
 width scaled by F about its own vertical axis), ``--set KEY=VALUE`` (a DrapeSettings field, e.g.
 friction_eps=0.001 or hold_steps=80), ``--inflate MM`` (the body's contact grown outward by MM,
-unsew.body.sdf.BodySDF.inflated: cloth kept that much farther from the body). Measured with it: docs/benchmarks.md, "A lower garment
-placed at the target's waist".
+unsew.body.sdf.BodySDF.inflated: cloth kept that much farther from the body). Measured with it:
+docs/benchmarks.md, "A lower garment placed at the target's waist" and "The cloth's gap to the
+body".
 
     python -m benchmarks placed CASE_DIR PATTERN.json [--material cotton] [--lift CM ...]
         [--narrow F ...] [--set KEY=VALUE ...] [--inflate MM ...]
@@ -60,6 +61,9 @@ def main() -> int:
             if not hasattr(DRESS_SETTINGS, k):
                 raise UnsewError(f"--set {k}: no such drape setting")
             sets[k] = type(getattr(DRESS_SETTINGS, k))(v)
+        bad = [mm for mm in args.inflate if not mm >= 0]
+        if bad:
+            raise UnsewError(f"--inflate {bad[0]:g}: a body grows outward by 0 mm or more")
     except (UnsewError, ValueError, OSError) as exc:
         print(f"placed: {exc}", file=sys.stderr)
         return 2

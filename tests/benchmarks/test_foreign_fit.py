@@ -110,3 +110,12 @@ def test_record_keeps_each_case_latest_fit_and_latest_prints_it(tmp_path, capsys
     assert "bbb2222" in out and f"1 of {len(mod.case_dirs())} cases recorded" in out
     assert "Chamfer of the fit: median / worst [mm] | 6.0 / 6.0" in out
     assert mod.main(["--latest", str(tmp_path / "none.json")]) == 2
+
+
+def test_a_record_that_is_not_one_is_refused_in_one_line(tmp_path, capsys):
+    mod = _module()
+    bad = tmp_path / "fits.json"
+    bad.write_text("[1, 2")
+    assert mod.main(["--latest", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("foreign_fit: ") and "is not a fit record" in err and err.count("\n") == 1

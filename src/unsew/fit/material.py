@@ -206,9 +206,8 @@ def _checked(first: Start, chosen: Start, table: list, body, target: Target, sdf
     """The choice checked by a drape from scratch, as a result is judged (``material.check``).
 
     The candidates were let settle from another fabric's drape, and a settled drape can lie
-    closer than the same pattern and fabric dressed from scratch (the flared mini on the tall thin
-    body: 7.63 mm settled, 11.0 dressed; docs/benchmarks.md, "The material choice checked by a
-    drape from scratch"). So the chosen pattern is dressed from scratch in its fabric, and when
+    closer than the same pattern and fabric dressed from scratch (docs/benchmarks.md, "The
+    material choice checked by a drape from scratch"). So the chosen pattern is dressed from scratch in its fabric, and when
     that drape lies farther from the target than ``first``'s (graded in cotton, a drape from
     scratch) by more than both :data:`CHECK_MARGIN_MM` and :data:`CHECK_MARGIN_REL` of it (what
     two drapes from scratch of one pattern on two meshes differ by), phase two starts from ``first``;
