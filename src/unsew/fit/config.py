@@ -20,6 +20,7 @@ from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 from unsew.errors import InputError
+from unsew.fit.contact import CONTACT_MODES
 from unsew.sim.drape import DrapeSettings
 from unsew.sim.solve import resolve_backend
 from unsew.sim.material import MATERIALS, get_material
@@ -115,6 +116,7 @@ class FitConfig:
     base_choice_edge: float = 0.04  #: mesh edge length of the candidate drapes of the automatic base choice [m]
     grading: bool = True  #: run linear grading before the optimization (ablation: False)
     area: str = "target"  #: "target": grading scales each graded pattern to the target's surface area (unsew.grading.area) and phase two holds its total rest area (its steps end with one scaling of every panel about its centroid); "free": the paper's fit, the area goes where grading and the loss take it (measured: docs/benchmarks.md, "fits sized to the target's area")
+    contact: str = "default"  #: "default": every drape meets the body with drape.contact_stiffness below drape.contact_threshold; "target": the cloth rests where the target's does, the threshold set to the target's gap to the body (its vertices' 1st percentile distance, clamped to 2-10 mm) and the stiffness to 1e9 N/m^4 (unsew.fit.contact; docs/benchmarks.md, "The contact read from the target")
     seed: int = 0  #: seed of every random choice [-]
     device: str = "cpu"  #: torch device for the simulation ("cpu", "cuda")
     time_limit: float = 540.0  #: seconds the fit (from the command's start, loading the case and its body included, to the checks; not the writing of the result) aims to end within: the material choice's optional steps, phase two's iterations, the three-mesh re-dress check and the mesh spread give way (unsew.fit.budget); 0: no limit [s]
@@ -297,6 +299,8 @@ def _check(cfg: FitConfig, names: dict) -> None:
         raise InputError(f"{say('drape.backend')}: {exc}") from None
     if cfg.area not in AREA_MODES:
         raise InputError(f"{say('area')} must be one of {', '.join(AREA_MODES)}, got {cfg.area!r}")
+    if cfg.contact not in CONTACT_MODES:
+        raise InputError(f"{say('contact')} must be one of {', '.join(CONTACT_MODES)}, got {cfg.contact!r}")
     if o.bands not in BAND_MODES:
         raise InputError(f"{say('optimizer.bands')} must be one of {', '.join(BAND_MODES)}, got {o.bands!r}")
     if o.seams not in SEAM_MODES:

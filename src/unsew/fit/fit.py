@@ -27,6 +27,7 @@ from unsew.fit.budget import TimeBudget
 from unsew.fit.checkpoint import load_checkpoint, save_checkpoint
 from unsew.fit.checks import MeshSpread, RedressCheck, graded_afresh, mesh_spread, redress_check, redress_on_three
 from unsew.fit.config import FitConfig
+from unsew.fit.contact import contact_for_target
 from unsew.fit.material import AUTO_START_MATERIAL, MaterialChoice, choose_start
 from unsew.fit.optimize import Iteration, PhaseTwo
 from unsew.fit.progress import BAR_SAMPLES, Progress
@@ -98,6 +99,7 @@ class FitResult:
     rest: dict | None = None
     x_warm: np.ndarray | None = None
     drapes: dict | None = None
+    contact: dict | None = None
 
 
 def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: Path | None = None,
@@ -122,6 +124,10 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
     _check_device(cfg.device)
     material0 = resolve_material(AUTO_START_MATERIAL if cfg.material.start == "auto" else cfg.material.start)
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
+    cfg, contact = contact_for_target(cfg, target.verts, case.body, sdf)
+    if cfg.contact == "target":
+        log(f"contact: the target's cloth rests {contact['gap_mm']:.1f} mm from the body; every drape rests it "
+            f"{contact['threshold_mm']:.1f} mm off (contact stiffness {contact['stiffness']:.0e} N/m^4)")
     clock.lap("body_sdf_s")
     saved = load_checkpoint(checkpoint) if resume and checkpoint and Path(checkpoint).is_file() else None
     if saved is not None:  # phase one and the material choice are in the checkpoint
@@ -174,7 +180,9 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
     finally:
         shown.close()
     clock.lap("optimization_s")
-    return _checked_result(case, cfg, choice, two, target, sdf, clock, bar, log, budget)
+    result = _checked_result(case, cfg, choice, two, target, sdf, clock, bar, log, budget)
+    result.contact = contact
+    return result
 
 
 def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo, target: Target, sdf, clock,

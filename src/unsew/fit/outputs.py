@@ -108,6 +108,8 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     if result.material_choice:
         m["material_choice"] = result.material_choice  # material: auto, best first
     m["converged"] = result.converged
+    if getattr(result, "contact", None):
+        m["contact"] = result.contact  # the body contact every drape of the fit used (unsew.fit.contact)
     if getattr(result, "rest", None):
         m["phase_two_start"] = result.rest  # steps the graded drape settled before phase two
     if result.redress is not None:
