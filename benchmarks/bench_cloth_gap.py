@@ -28,15 +28,10 @@ PERCENTILES = (1, 5, 10)
 def gaps_mm(points, body, sdf) -> list[float]:
     """PERCENTILES of the signed distances [mm] of ``points`` (N, 3) [m] to ``body``'s surface."""
     import numpy as np
-    import torch
 
-    from unsew.geometry.distance import point_mesh_distance
+    from unsew.fit.contact import signed_body_distance
 
-    p = np.asarray(points, dtype=np.float64)
-    d = point_mesh_distance(p, np.asarray(body.verts), np.asarray(body.faces))
-    s, _ = sdf.query(torch.as_tensor(p))
-    d = np.where(s.numpy() < 0, -d, d) * 1e3
-    return [float(v) for v in np.percentile(d, PERCENTILES)]
+    return [float(v) for v in np.percentile(signed_body_distance(points, body, sdf) * 1e3, PERCENTILES)]
 
 
 def main(argv=None) -> int:

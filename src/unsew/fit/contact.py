@@ -1,15 +1,14 @@
 """Where the fit's drapes meet the body (``contact``): as unsew drapes by default, or at the gap the
 target's own cloth keeps from the body.
 
-A simulator rests cloth at its own distance from the body: newton's at its particle radius (4 mm
-on the foreign benchmark's targets), unsew's where the repulsion of :mod:`unsew.sim.energies.contact`
-(kc 1e7 N/m^4 below 5 mm) balances what the cloth presses with, as near as the 1 mm collision
-thickness where it is pulled tight. A band pulled round a waist 3 mm nearer the body is a loop
-2 pi x 3 mm = 1.9 cm shorter, and phase two lengthens the pattern to close that gap
-(docs/benchmarks.md, "The cloth's gap to the body"). With ``contact: target`` the fit reads the gap
-from the target and body it is given and drapes with a contact that rests the cloth there: the
-threshold at the gap, the stiffness CONTACT_STIFF, under which a pressing cloth sinks well under a
-millimetre into the zone (p = kc s^2: 1 kPa, a band's pressure, sinks 1 mm at 1e9).
+Every simulator rests cloth at its own distance from the body: one with particles at its particle
+radius, unsew where the repulsion of :mod:`unsew.sim.energies.contact` balances what the cloth
+presses with, as near as the collision thickness where it is pulled tight. A band pulled round a
+waist s nearer the body is a loop 2 pi s shorter, which phase two then makes up by lengthening the
+pattern. With ``contact: target`` the fit reads the gap from the target and body it is given and
+drapes with a contact that rests the cloth there: the threshold at the gap, the stiffness
+CONTACT_STIFF, under which a cloth pressing with p sinks s = sqrt(p / kc) into the zone (1 kPa, a
+band's pressure: 1 mm). Measured: docs/benchmarks.md, "The contact read from the target".
 """
 
 from __future__ import annotations
@@ -19,7 +18,8 @@ import torch
 
 from unsew.geometry.distance import point_mesh_distance
 
-__all__ = ["CONTACT_MODES", "CONTACT_STIFF", "GAP_PERCENTILE", "GAP_RANGE_M", "target_gap", "contact_for_target"]
+__all__ = ["CONTACT_MODES", "CONTACT_STIFF", "GAP_PERCENTILE", "GAP_RANGE_M", "signed_body_distance", "target_gap",
+           "contact_for_target"]
 
 #: What the fit does with the body contact (``contact``).
 CONTACT_MODES = ("default", "target")
@@ -38,15 +38,20 @@ GAP_PERCENTILE = 1.0
 GAP_RANGE_M = (2e-3, 1e-2)
 
 
-def target_gap(target_verts, body, sdf) -> float:
-    """The GAP_PERCENTILE-th percentile of the signed distances [m] from the target's vertices
-    (V, 3) [m] to the body's surface: exact unsigned distances (BVH), negative where the body's
-    SDF says the vertex is inside."""
-    p = np.asarray(target_verts, dtype=np.float64)
+def signed_body_distance(points, body, sdf) -> np.ndarray:
+    """Signed distances (N,) float64 [m] from ``points`` (N, 3) [m] to the body's surface: exact
+    unsigned distances (BVH, :func:`unsew.geometry.distance.point_mesh_distance`), negative where
+    the body's SDF (a :class:`~unsew.body.sdf.BodySDF`) says the point is inside."""
+    p = np.asarray(points, dtype=np.float64)
     d = point_mesh_distance(p, np.asarray(body.verts, dtype=np.float64), np.asarray(body.faces))
     s, _ = sdf.query(torch.as_tensor(p))
-    d = np.where(s.detach().cpu().numpy() < 0, -d, d)
-    return float(np.percentile(d, GAP_PERCENTILE))
+    return np.where(s.detach().cpu().numpy() < 0, -d, d)
+
+
+def target_gap(target_verts, body, sdf) -> float:
+    """The GAP_PERCENTILE-th percentile [m] of :func:`signed_body_distance` of the target's
+    vertices (V, 3) [m]: where the target's cloth rests on the body."""
+    return float(np.percentile(signed_body_distance(target_verts, body, sdf), GAP_PERCENTILE))
 
 
 def contact_for_target(cfg, target_verts, body, sdf):
