@@ -77,3 +77,40 @@ def test_drape_cli_body_folder(tmp_path, capsys):
     save_skeleton(b.skeleton, folder / "skeleton.json")
     assert main(["drape", str(pj), "--body", str(folder), *small, "--out", str(out)]) == 0
     assert out.is_file()
+
+
+def test_drape_cli_uses_the_contact_a_fit_wrote(tmp_path, capsys):
+    """A fit with ``contact: target`` writes its contact into pattern.json (pattern_with_extras);
+    drape reads it back and rests the cloth with it; a default-contact fit writes none; a broken
+    contact is refused in one line with no --out written."""
+    from types import SimpleNamespace
+
+    from unsew.commands.drape import pattern_contact
+    from unsew.fit.outputs import pattern_with_extras
+    from unsew.io.garmentcode import load_pattern
+    from unsew.sim.material import MATERIALS
+
+    def written(contact):
+        result = SimpleNamespace(pattern=make_base_pattern("skirt"), params=None, material=MATERIALS["cotton"],
+                                 contact=contact)
+        pj = tmp_path / f"{contact['mode']}.json"
+        save_pattern(pattern_with_extras(result), pj)
+        return pj
+
+    plain = written({"mode": "default", "threshold_mm": 5.0, "stiffness": 1e7})
+    assert pattern_contact(load_pattern(plain)) is None
+    fitted = written({"mode": "target", "gap_mm": 3.4, "threshold_mm": 3.4, "stiffness": 1e9})
+    assert pattern_contact(load_pattern(fitted)) == {"contact_threshold": 3.4e-3, "contact_stiffness": 1e9}
+    out = tmp_path / "garment.obj"
+    small = ["--edge-length", "0.05", "--sew-steps", "10", "--settle-steps", "1", "--no-progress"]
+    assert main(["drape", str(fitted), *small, "--out", str(out)]) == 0
+    assert "fitted contact: threshold 3.4 mm, stiffness 1e+09" in capsys.readouterr().out
+    p = load_pattern(fitted)
+    p.unsew = {**p.unsew, "contact": {"threshold_m": -1.0, "stiffness_n_m4": 1e9}}
+    bad = tmp_path / "bad.json"
+    save_pattern(p, bad)
+    out.unlink()
+    assert main(["drape", str(bad), *small, "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "positive threshold" in err and len(err.strip().splitlines()) == 1
+    assert not out.exists()

@@ -5,7 +5,9 @@ Places the pattern's panels around the body, sews them shut and lets the garment
 off the body, exploded or inside it), then writes the draped garment as OBJ with the pattern's
 2D coordinates [m] as UVs, atomically. A bad verdict exits non-zero with one line and writes no
 ``--out`` (with ``--keep-failed`` the garment goes to ``<out stem>.failed.obj`` for a look).
-This is also how a fitted pattern is retargeted to another body or pose (paper Fig. 12).
+This is also how a fitted pattern is retargeted to another body or pose (paper Fig. 12). A
+pattern written by a fit carries its fitted material and, when the fit's drapes did not use the
+default body contact (``contact: target``), that contact; the drape uses both.
 """
 
 from __future__ import annotations
@@ -15,7 +17,26 @@ import argparse
 from unsew.errors import InputError
 from unsew.io.atomic import check_output
 
-__all__ = ["register", "run"]
+__all__ = ["register", "run", "pattern_contact"]
+
+
+def pattern_contact(pattern) -> dict | None:
+    """The body contact a fitted pattern carries (``pattern.unsew["contact"]``, written by a fit
+    whose drapes did not use the default contact: ``contact: target``) as DrapeSettings fields
+    {"contact_threshold" [m], "contact_stiffness" [N/m^4]}, or None when it carries none. A
+    contact that is not two positive finite numbers is refused (InputError)."""
+    import math
+
+    c = (getattr(pattern, "unsew", None) or {}).get("contact")
+    if c is None:
+        return None
+    try:
+        thr, kc = float(c["threshold_m"]), float(c["stiffness_n_m4"])
+    except (TypeError, KeyError, ValueError):
+        raise InputError(f"the pattern's contact {c!r} needs numbers threshold_m and stiffness_n_m4") from None
+    if not (math.isfinite(thr) and math.isfinite(kc) and thr > 0 and kc > 0):
+        raise InputError(f"the pattern's contact needs a positive threshold and stiffness, got {thr} m, {kc} N/m^4")
+    return {"contact_threshold": thr, "contact_stiffness": kc}
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -124,7 +145,8 @@ def run(args: argparse.Namespace) -> int:
     from unsew.dress import DRESS_SETTINGS
 
     kw = {k: getattr(args, k) for k in ("sew_steps", "settle_steps") if getattr(args, k) is not None}
-    settings = DRESS_SETTINGS.replace(edge_length=args.edge_length, **kw)
+    contact = pattern_contact(pattern)  # the fit's contact (contact: target), so the drape rests as the fit's did
+    settings = DRESS_SETTINGS.replace(edge_length=args.edge_length, **kw, **(contact or {}))
     try:
         d = dress(pattern, body, material=material, settings=settings, progress=progress)
     finally:
@@ -143,6 +165,9 @@ def run(args: argparse.Namespace) -> int:
     write_obj(out, d.x.detach().cpu().numpy(), m.faces, uv=m.uv, faces_uv=m.faces_uv,
               header=f"unsew drape: {pattern.name} on {getattr(body, 'name', 'body')}, {material_name}; UVs are pattern coordinates [m]")
     s = d.stats
+    if contact is not None:
+        print(f"the pattern's fitted contact: threshold {contact['contact_threshold'] * 1e3:.1f} mm, "
+              f"stiffness {contact['contact_stiffness']:.0e} N/m^4")
     print(f"wrote {out}: {m.n_x} vertices, seam gap {s.get('seam_gap', 0.0) * 1000:.2f} mm, "
           f"max speed {s.get('max_speed', 0.0):.3f} m/s, {verdict.inside_pct:.2f} % inside the body, "
           f"stretch max {verdict.stretch_max:.2f}, y {verdict.y_min:.2f}..{verdict.y_max:.2f} m")

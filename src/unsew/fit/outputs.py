@@ -53,7 +53,9 @@ def file_sha256(path: str | os.PathLike) -> str:
 
 def pattern_with_extras(result) -> object:
     """The final pattern with unsew's additions under its ``unsew`` key: control points per panel,
-    symmetry (pairs, mirror axes, effective K), and the material."""
+    symmetry (pairs, mirror axes, effective K), the material and, when the fit's drapes did not use
+    the default body contact (``contact: target``), that contact (``{"threshold_m",
+    "stiffness_n_m4"}``, :func:`unsew.commands.drape.pattern_contact` reads it back)."""
     p = result.pattern.copy()
     params = result.params
     extras = dict(p.unsew)
@@ -65,6 +67,9 @@ def pattern_with_extras(result) -> object:
     if sym is not None and hasattr(sym, "to_dict"):
         extras["symmetry"] = sym.to_dict()
     extras["material"] = material_to_dict(result.material)
+    contact = getattr(result, "contact", None) or {}
+    if contact.get("mode", "default") != "default":  # ``unsew drape`` of the pattern rests it as the fit did
+        extras["contact"] = {"threshold_m": contact["threshold_mm"] * 1e-3, "stiffness_n_m4": contact["stiffness"]}
     p.unsew = {k: v for k, v in extras.items() if v is not None}
     return p
 
