@@ -496,10 +496,10 @@ def test_phase_two_stage_loss_step_and_state_dict(small_case):
     w = cfg.loss
     assert tuple(terms.floats()) == LOSS_TERMS and x.shape == (s.mesh.n_x, 3)
     weighted = terms.chamfer + w.open * terms.open + w.seam * terms.seam + w.material * terms.material \
-        + w.prior * terms.prior + w.area * terms.area
+        + w.prior * terms.prior + w.area * terms.area + w.panel_area * terms.panel_area
     assert float(terms.total.detach()) == pytest.approx(float(weighted.detach()), rel=1e-12)
     f = terms.floats()
-    assert f["chamfer"] > 0 and f["open"] > 0 and f["prior"] == 0.0 and f["area"] == 0.0
+    assert f["chamfer"] > 0 and f["open"] > 0 and f["prior"] == 0.0 and f["area"] == 0.0 and f["panel_area"] == 0.0
     info = two.step()
     assert (info.iteration, two.iteration) == (0, 1) and info.terms == {k: v[0] for k, v in two.history.items()}
     other = PhaseTwo(MaterialChoice(s), target, sdf, cfg)

@@ -89,6 +89,7 @@ class LossWeights:
     material: float = 0.01  #: material range penalty [-]
     prior: float = 0.0  #: pull towards the graded pattern: mean squared 2D rest-vertex move [m^2] (0: the paper's loss) [-]
     area: float = 0.0  #: pull of the pattern's total area towards the target's surface area, (A / A_T - 1)^2 (unsew.losses.area; 0: the paper's loss; measured at 0.005 and left off: docs/benchmarks.md, "The target's area") [m^2]
+    panel_area: float = 0.0  #: pull of each panel's rest area towards its graded area, mean over panels of (A_p / A_p0 - 1)^2 (unsew.losses.panel_area; 0: the paper's loss) [-]
     target_points: int = 8000  #: target vertices kept for the Chamfer (random subset, seeded) [-]
 
 
@@ -314,7 +315,7 @@ def _check(cfg: FitConfig, names: dict) -> None:
     if cfg.checks.redress_meshes not in (1, 3):
         raise InputError(f"{say('checks.redress_meshes')} must be 1 or 3, got {cfg.checks.redress_meshes}")
     for place in ("material.refine", "material.regrade", "material.warm_steps", "drape.sew_steps", "drape.settle_steps",
-                  "loss.open", "loss.seam", "loss.material", "loss.prior", "loss.area"):
+                  "loss.open", "loss.seam", "loss.material", "loss.prior", "loss.area", "loss.panel_area"):
         g, n = place.split(".")
         if getattr(getattr(cfg, g), n) < 0:
             raise InputError(f"{say(place)} must be >= 0, got {getattr(getattr(cfg, g), n)}")

@@ -3,8 +3,9 @@
 warm-started from the previous iteration's result.
 
 Loss (eqs. 5-9): L = L_CF(X, T) [curvature-weighted, eq. 7] + lambda_open L_CF(X_open, T_open)
-+ lambda_mat relu(1e-6 - Gamma) + lambda_seam L_seam(U(K)) (+ lambda_prior and lambda_area, the
-pattern's total area against the target's surface area, both off by default). With ``area:
++ lambda_mat relu(1e-6 - Gamma) + lambda_seam L_seam(U(K)) (+ lambda_prior, lambda_area, the
+pattern's total area against the target's surface area, and lambda_panel, each panel's area against
+its graded area, all off by default). With ``area:
 target`` every step ends on the start's total rest area (:class:`AreaHold`): the Chamfer then
 moves area between panels and places, never adds or drops it.
 
@@ -40,6 +41,7 @@ from unsew.losses.chamfer import loss_chamfer
 from unsew.losses.contours import loss_open_contours, open_contours
 from unsew.losses.curvature import curvature_weights
 from unsew.losses.material import loss_material
+from unsew.losses.panel_area import loss_panel_area, panel_areas
 from unsew.losses.prior import loss_prior
 from unsew.losses.seam import loss_seam, seam_segment_pairs
 from unsew.metrics.panels import panel_area
@@ -55,7 +57,7 @@ from unsew.tolerances import MIN_TRIANGLE_QUALITY
 __all__ = ["PhaseTwo", "AreaHold", "step_scales", "band_projectors", "LossTerms", "Iterate", "Iteration", "material_params", "LOSS_TERMS"]
 
 #: Names of the loss terms, in the order of :class:`LossTerms` (and of ``FitResult.history``).
-LOSS_TERMS = ("total", "chamfer", "open", "seam", "material", "prior", "area")
+LOSS_TERMS = ("total", "chamfer", "open", "seam", "material", "prior", "area", "panel_area")
 
 #: Steps of each drape that probes and settles phase two's start (:meth:`PhaseTwo._start_at_rest`) [-].
 REST_CHUNK = 10
@@ -64,7 +66,8 @@ REST_CHUNK = 10
 @dataclass
 class LossTerms:
     """The loss of one drape, term by term (0-d torch tensors): ``total`` is the weighted sum
-    of ``chamfer`` [m^2], ``open`` [m^2], ``seam`` [m^2], ``material``, ``prior`` [m^2] and ``area`` [-]."""
+    of ``chamfer`` [m^2], ``open`` [m^2], ``seam`` [m^2], ``material``, ``prior`` [m^2], ``area`` [-]
+    and ``panel_area`` [-]."""
 
     total: torch.Tensor
     chamfer: torch.Tensor
@@ -73,6 +76,7 @@ class LossTerms:
     material: torch.Tensor
     prior: torch.Tensor
     area: torch.Tensor
+    panel_area: torch.Tensor
 
     def floats(self) -> dict[str, float]:
         """The terms as plain floats, keyed by :data:`LOSS_TERMS`."""
@@ -275,6 +279,7 @@ class PhaseTwo:
         self.rest = self._start_at_rest()
         with torch.no_grad():
             self.uv_start = self.params.uv(self.K).detach()
+            self.panel_areas0 = panel_areas(self.uv_start, self.faces_uv, self.face_panel, len(self.mesh.panel_names))
         self.history: dict[str, list[float]] = {k: [] for k in LOSS_TERMS}
         self.best = Iterate(math.inf, self.K.detach().clone(), self.gamma0.detach().clone(), self.x_prev.clone())
         self.iteration, self.converged = 0, False
@@ -330,6 +335,8 @@ class PhaseTwo:
         self.w_sub = torch.as_tensor(np.asarray(w, dtype=np.float64)[sub], dtype=torch.float64, device=dev)
         self.area_target = target.area  # A_T [m^2]
         self.faces_uv = torch.as_tensor(np.asarray(self.mesh.faces_uv), dtype=torch.int64, device=dev)
+        self.face_panel = torch.as_tensor(np.asarray(self.mesh.uv_panel)[np.asarray(self.mesh.faces_uv)[:, 0]],
+                                          dtype=torch.int64, device=dev)  # (F,) panel of each triangle
         self.contours_t = target.contours
 
     def material_on(self, it: int | None = None) -> bool:
@@ -352,8 +359,10 @@ class PhaseTwo:
         l_mat = loss_material(gamma)
         l_prior = loss_prior(uv, self.uv_start) if w.prior > 0 else zero_uv
         l_area = loss_area(uv, self.faces_uv, self.area_target) if w.area > 0 else zero_uv
-        total = l_cf + w.open * l_open + w.seam * l_seam + w.material * l_mat + w.prior * l_prior + w.area * l_area
-        return LossTerms(total, l_cf, l_open, l_seam, l_mat, l_prior, l_area), gamma, x
+        l_panel = loss_panel_area(uv, self.faces_uv, self.face_panel, self.panel_areas0) if w.panel_area > 0 else zero_uv
+        total = l_cf + w.open * l_open + w.seam * l_seam + w.material * l_mat + w.prior * l_prior + w.area * l_area \
+            + w.panel_area * l_panel
+        return LossTerms(total, l_cf, l_open, l_seam, l_mat, l_prior, l_area, l_panel), gamma, x
 
     def _set_learning_rates(self) -> None:
         o = self.cfg.optimizer
