@@ -429,4 +429,11 @@ DESIGNS = {
     "tee_mid_sleeve": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.66, ease=0.12, hem_ease=0.16, sleeve=0.25, neck_depth=0.07, name="tee_mid_sleeve"), **kw})),
     "dress_shift_short": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.80, ease=0.12, hem_ease=0.24, sleeve=0.15, waist_shape=True, hip_ease=0.14, name="dress_shift_short"), **kw})),
     "skirt_flared_mini": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.40, flare=0.10, darts=0, waistband=True, name="skirt_flared_mini"), **kw})),
+    # session 33: a tea-length A-line, slim trousers without a band, very short shorts, a boxy
+    # cropped tee with elbow sleeves, a straight tunic dress with elbow sleeves
+    "skirt_aline_tea": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.63, flare=0.14, darts=2, waistband=True, name="skirt_aline_tea"), **kw})),
+    "trousers_slim": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.08, hem_girth=0.34, darts=1, waistband=False, name="trousers_slim"), **kw})),
+    "shorts_hot": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.06, hem_girth=m["thigh"] + 0.10, darts=0, waistband=True, name="shorts_hot"), **kw})),
+    "tee_boxy_elbow": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.56, ease=0.22, hem_ease=0.24, sleeve=0.30, neck_depth=0.08, name="tee_boxy_elbow"), **kw})),
+    "dress_tunic_sleeved": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.84, ease=0.10, hem_ease=0.20, sleeve=0.20, hip_ease=0.12, name="dress_tunic_sleeved"), **kw})),
 }

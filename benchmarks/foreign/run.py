@@ -61,6 +61,8 @@ BODIES = {
     "anny_arm_forward": {"model": "anny", "phenotype": dict(_P), "pose": {"left_shoulder": [-0.6, 0.0, 0.0]}},
     # a muscular, fairly tall man (session 31): broad shoulders and thighs, a narrow waist
     "anny_muscular": {"model": "anny", "phenotype": dict(_P, gender=0.15, muscle=0.95, weight=0.55, height=0.7), "pose": "A"},
+    # a petite, slight young woman (session 33): short, narrow shoulders and hips
+    "anny_petite": {"model": "anny", "phenotype": dict(_P, gender=0.9, age=0.35, muscle=0.4, weight=0.3, height=0.05, proportions=0.6), "pose": "A"},
     # GarmentCode's mean body (A-pose): its mesh goes into the case folder as body.obj with no
     # skeleton.json, so the case is rigged from the mesh wherever it is read (and so is the target's body here)
     "gc_mean_all": {"model": "garmentcode", "mesh": "mean_all.obj", "pose": "A"},
@@ -202,6 +204,18 @@ CASES = {
     "tee_mid_sleeve__muscular": ("tee_mid_sleeve", "anny_muscular"),
     "dress_shift_short__older": ("dress_shift_short", "anny_older"),
     "skirt_flared_mini__tall_thin": ("skirt_flared_mini", "anny_tall_thin"),
+    # built in session 33 (08ab043): five designs with parameters no earlier design had, a body
+    # no design had met (anny_petite), and the tank top on GarmentCode's female body
+    "skirt_aline_tea__petite": ("skirt_aline_tea", "anny_petite"),  # rejected: newton's band came unsewn, on the floor
+    "trousers_slim__default": ("trousers_slim", "anny_default"),
+    "shorts_hot__short_curvy": ("shorts_hot", "anny_short_curvy"),
+    "tee_boxy_elbow__male_heavy": ("tee_boxy_elbow", "anny_male_heavy"),
+    "dress_tunic_sleeved__petite": ("dress_tunic_sleeved", "anny_petite"),  # rejected: touches the floor, 0.9 % inside
+    "tee_boxy_elbow__petite": ("tee_boxy_elbow", "anny_petite"),  # rejected: 4 edges through the body
+    "skirt_aline_tea__default": ("skirt_aline_tea", "anny_default"),
+    "dress_tunic_sleeved__default": ("dress_tunic_sleeved", "anny_default"),
+    "tank_top__gc_mean_female": ("tank_top", "gc_mean_female"),
+    "skirt_aline_tea__gc_mean_all": ("skirt_aline_tea", "gc_mean_all"),
 }
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").
