@@ -250,6 +250,9 @@ def main(argv=None) -> int:
     ap.add_argument("--code", default=None, metavar="REV", help="the commit the fits in --out ran on (for --record)")
     ap.add_argument("--latest", type=Path, default=None, metavar="FILE",
                     help="only print FILE's recorded rows (each case's latest fit) and the bars over them")
+    ap.add_argument("--against", type=Path, default=None, metavar="FILE",
+                    help="also print each fitted case in --out against its recorded row in FILE (a variant's "
+                         "fits against the record: Chamfer, per-panel area, phase two kept) and the median changes")
     args = ap.parse_args(argv)
     if args.latest is not None:
         return print_latest(args.latest)
@@ -280,6 +283,11 @@ def main(argv=None) -> int:
     if args.sheet is not None:
         contact_sheet(rows, out, args.sheet)
         print(f"\nwrote {args.sheet}")
+    if args.against is not None:
+        try:
+            print_against(rows, _read_record(args.against), args.against)
+        except ValueError as exc:
+            ap.error(str(exc))
     if args.record is not None:
         n = record(rows, args.record, code=args.code, out=out)
         print(f"\nrecorded {n} fits in {args.record}")
@@ -299,6 +307,40 @@ def record(rows: list[dict], path: Path, *, code: str, out: Path) -> int:
     with atomic_write(path) as tmp:
         Path(tmp).write_text(json.dumps(dict(sorted(old.items())), indent=1) + "\n")
     return len(done)
+
+
+def print_against(rows: list[dict], rec: dict, path: Path) -> None:
+    """Each fitted row of ``rows`` beside its case's recorded row in ``rec`` (read from ``path``):
+    Chamfer, its bar, per-panel area error (unmatched at 100 %) and over matched panels, total
+    area error, phase two kept, "recorded -> now"; then the median changes and how many moved
+    each way (by more than 0.05)."""
+    from tables import print_table
+
+    def f(v):
+        return "-" if v is None else f"{float(v):.1f}"
+
+    out, dcf, dpa = [], [], []
+    for r in rows:
+        old = rec.get(r["case"])
+        if r.get("cf_final_mm") is None or old is None or old.get("cf_final_mm") is None:
+            continue
+        floor = r.get("floor_mm")
+        out.append({"case": r["case"], "recorded at": old.get("code"),
+                    "Chamfer [mm]": f"{f(old['cf_final_mm'])} -> {f(r['cf_final_mm'])}",
+                    "bar [mm]": f(max(5.0, 1.5 * floor)) if floor is not None else "-",
+                    "per panel [%]": f"{f(old.get('area_final_pct'))} -> {f(r.get('area_final_pct'))}",
+                    "matched panels [%]": f"{f(old.get('matched_final_pct'))} -> {f(r.get('matched_final_pct'))}",
+                    "total [%]": f"{f(old.get('total_final_pct'))} -> {f(r.get('total_final_pct'))}",
+                    "phase two kept": f"{old.get('phase2_kept') or '-'} -> {r.get('phase2_kept') or '-'}",
+                    "time [s]": f(r.get("time_s"))})
+        dcf.append(float(r["cf_final_mm"]) - float(old["cf_final_mm"]))
+        if r.get("area_final_pct") is not None and old.get("area_final_pct") is not None:
+            dpa.append(float(r["area_final_pct"]) - float(old["area_final_pct"]))
+    print_table(out, title=f"The fits in --out against their record ({path})")
+    for name, d, unit in (("Chamfer", dcf, "mm"), ("per-panel area error", dpa, "points")):
+        if d:
+            print(f"{name}: median change {_median(d):+.2f} {unit} over {len(d)}; lower on {sum(v < -0.05 for v in d)}, "
+                  f"higher on {sum(v > 0.05 for v in d)}")
 
 
 def _read_record(path: Path) -> dict:
