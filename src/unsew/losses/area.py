@@ -12,7 +12,17 @@ target that is one whole garment surface: a scan with holes or a doubled layer g
 
 from __future__ import annotations
 
-__all__ = ["rest_area", "loss_area"]
+__all__ = ["triangle_areas", "rest_area", "loss_area"]
+
+
+def triangle_areas(uv, faces_uv):
+    """Area [m^2] of each rest triangle whatever its winding, a (F,) tensor.
+
+    uv: (Nu, 2) torch float64 [m]; faces_uv: (F, 3) int64 tensor of rows of uv, same device.
+    """
+    a, b, c = uv[faces_uv[:, 0]], uv[faces_uv[:, 1]], uv[faces_uv[:, 2]]
+    e1, e2 = b - a, c - a
+    return 0.5 * (e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]).abs()
 
 
 def rest_area(uv, faces_uv):
@@ -20,9 +30,7 @@ def rest_area(uv, faces_uv):
 
     uv: (Nu, 2) torch float64 [m]; faces_uv: (F, 3) int64 tensor of rows of uv, same device.
     """
-    a, b, c = uv[faces_uv[:, 0]], uv[faces_uv[:, 1]], uv[faces_uv[:, 2]]
-    e1, e2 = b - a, c - a
-    return 0.5 * (e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]).abs().sum()
+    return triangle_areas(uv, faces_uv).sum()
 
 
 def loss_area(uv, faces_uv, area_target: float):

@@ -9,12 +9,15 @@ cloth comes from: a fold can be fed from the panel beside it as well as from its
 two moves area between panels at an unchanged total (with ``area: target`` it cannot change the
 total at all) and the pattern drifts from the one grading sized panel by panel. The term resists
 that drift, relative to each panel's size, so a 4 cm waistband weighs as much as a skirt panel
-(how it trades against the Chamfer: docs/benchmarks.md, "Each panel's area held in phase two").
+(how it trades against the Chamfer: docs/benchmarks.md, "Fresh cases of session 33; each
+panel's area held in phase two").
 """
 
 from __future__ import annotations
 
 import torch
+
+from unsew.losses.area import triangle_areas
 
 __all__ = ["panel_areas", "loss_panel_area"]
 
@@ -25,9 +28,7 @@ def panel_areas(uv, faces_uv, face_panel, n_panels: int):
     uv: (Nu, 2) torch float64 [m]; faces_uv: (F, 3) int64 tensor of rows of uv; face_panel:
     (F,) int64 tensor, the panel index of each triangle; n_panels: P. Same device throughout.
     """
-    a, b, c = uv[faces_uv[:, 0]], uv[faces_uv[:, 1]], uv[faces_uv[:, 2]]
-    e1, e2 = b - a, c - a
-    tri = 0.5 * (e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]).abs()
+    tri = triangle_areas(uv, faces_uv)
     return torch.zeros(n_panels, dtype=uv.dtype, device=uv.device).index_add(0, face_panel, tri)
 
 
