@@ -235,6 +235,37 @@ def test_variants_differ_where_they_should():
     assert edge_length(f, 0) > edge_length(pen.panels["front"], 0) + 0.05
 
 
+def test_straight_dress_is_unwaisted_and_shorter():
+    """The straight dress: no waist curve (its side seam runs straight from the hips to the
+    underarm, so at the waist it is wider than the waisted dress), its hem at the knee above the
+    waisted dress's mid-calf hem and barely wider than its hips; sleeved and sleeveless share
+    the cut below the underarm."""
+    from unsew.pattern.base.dress import HIP_EASE as DRESS_HIP_EASE, STRAIGHT_FLARE
+
+    m = Measurements()
+    fr = body_frame(m)
+    waisted, straight = make_base_pattern("dress"), make_base_pattern("dress_straight")
+    sleeveless = make_base_pattern("dress_straight_sleeveless")
+    assert "left_sleeve" in straight.panels and "left_sleeve" not in sleeveless.panels
+    f, w = straight.panels["front"], waisted.panels["front"]
+    assert f.edges[2].curvature is None  # hip -> underarm: a straight line
+    assert w.edges[2].curvature is not None
+    assert_close(sleeveless.panels["front"].vertices[:3], f.vertices[:3], atol=1e-12)
+
+    def half_width_at(panel, y_world):
+        """Largest |x| [m] where the panel's outline crosses the height y_world."""
+        o = panel.to_world(panel_outline(panel))
+        a, b = o, np.roll(o, -1, axis=0)
+        cross = (a[:, 1] - y_world) * (b[:, 1] - y_world) < 0
+        t = (y_world - a[cross, 1]) / (b[cross, 1] - a[cross, 1])
+        return np.abs(a[cross, 0] + t * (b[cross, 0] - a[cross, 0])).max()
+
+    assert half_width_at(f, fr.waist_y) > half_width_at(w, fr.waist_y) + 0.02
+    hem_y = lambda p: p.to_world(panel_outline(p))[:, 1].min()  # noqa: E731
+    assert hem_y(f) > hem_y(w) + 0.1
+    assert edge_length(f, 0) == pytest.approx((m.hip + DRESS_HIP_EASE) / 2 + 2 * STRAIGHT_FLARE, abs=1e-9)
+
+
 def test_cli_lists_the_library():
     from unsew.commands.pattern import BASES as CLI_BASES
 

@@ -3,7 +3,7 @@
 ``make_base_pattern(name, measurements=None) -> Pattern`` for a garment type (``tshirt``,
 ``dress``, ``pants``, ``shorts``, ``skirt``: its first, default base) or one of the library's
 variants of a type (:data:`BASES`, :func:`bases_for`): tees with long sleeves or none, a
-sleeveless dress, trousers, shorts and skirts under a waistband, a half-circle skirt, a pencil
+sleeveless dress, straight (unwaisted) dresses, trousers, shorts and skirts under a waistband, a half-circle skirt, a pencil
 skirt, a darted A-line. Panels are placed in 3D around the body (world frame: metres, Y up, facing +Z, body's left
 at +X; see :mod:`unsew.pattern.base._frame`).
 """
@@ -23,6 +23,8 @@ _MAKERS = {
     "tshirt_sleeveless": ("tshirt", "tshirt", "make_tshirt_sleeveless"),
     "dress": ("dress", "dress", "make_dress"),
     "dress_sleeveless": ("dress", "dress", "make_dress_sleeveless"),
+    "dress_straight": ("dress", "dress", "make_dress_straight"),
+    "dress_straight_sleeveless": ("dress", "dress", "make_dress_straight_sleeveless"),
     "pants": ("pants", "pants", "make_pants"),
     "pants_band": ("pants", "pants", "make_pants_band"),
     "shorts": ("shorts", "pants", "make_shorts"),

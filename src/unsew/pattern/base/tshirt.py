@@ -196,7 +196,7 @@ def sleeves_for(m: Measurements, f: BodyFrame, armhole_length: float, sleeves: s
 
 
 def top_pattern(family: str, m: Measurements, f: BodyFrame, spec: TopSpec, sleeves: str) -> Pattern:
-    """A top of ``family`` (``"tshirt"`` or ``"dress"``): front and back of ``spec`` (armholes cut
+    """A top of ``family`` (``"tshirt"``, ``"dress"`` or ``"dress_straight"``): front and back of ``spec`` (armholes cut
     in as :func:`sleeveless_frame` when ``sleeves`` is ``"none"``), the sleeves sized to the
     armhole, and the stitches. Named ``family``, ``family_long`` or ``family_sleeveless``."""
     front, back, k = top_panels(m, sleeveless_frame(f) if sleeves == "none" else f, spec)
