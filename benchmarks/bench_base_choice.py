@@ -3,8 +3,10 @@
 For each case folder, runs :func:`unsew.fit.start.choose_base` (every library base of the case's
 garment type dressed from scratch in cotton on a coarse mesh, its Chamfer to the target) at three
 nearby candidate mesh edges (default 3.8, 4.0 and 4.2 cm; the fit uses 4.0) and prints one row per
-case and edge: each base's Chamfer [mm], whether its openings on the arms are the target's (a sleeveless
-base for a sleeved target: no; :func:`unsew.fit.start.arm_openings`) and the base chosen. A second table gives
+case and edge: each base's Chamfer [mm], for dresses also over the torso, which the choice is made
+on (``<base> torso``; :data:`unsew.fit.start.TORSO_CHOICE`), whether its openings on the arms are
+the target's (a sleeveless base for a sleeved target: no; :func:`unsew.fit.start.arm_openings`)
+and the base chosen. A second table gives
 each base's mean and spread (largest - smallest Chamfer over the edges) [mm].
 
     python -m benchmarks base_choice [CASE_DIR ...] [--edges 0.038 0.04 0.042]
@@ -63,6 +65,8 @@ def main() -> None:
             row = {"case": case_dir.name, "edge_cm": e * 100}
             for r in bc.table:
                 row[r["base"]] = r["chamfer_mm"]
+                if "torso_mm" in r:
+                    row[f"{r['base']} torso"] = r["torso_mm"]
                 row[f"{r['base']} arms"] = r.get("arms")  # its openings on the arms are the target's
                 if r["chamfer_mm"] is not None:
                     seen[r["base"]].append(r["chamfer_mm"])

@@ -84,3 +84,47 @@ def test_named_base_is_used_without_a_choice(body_sdf, tmp_path):
     assert ch.table == [] and set(ch.pattern.panels) == set(make_base_pattern("skirt_circle").panels)
     with pytest.raises(InputError, match="cannot make a skirt"):
         choose_base(case, None, sdf, CFG.replace(base="tshirt_long"), mat, progress=Progress(False))
+
+
+def _choose_dress(target, body, sdf):
+    lines = []
+    ch = choose_base(SimpleNamespace(garment="dress", body=body), target, sdf, CFG, get_material("cotton"),
+                     progress=Progress(False), log=lines.append)
+    assert sorted(r["base"] for r in ch.table) == sorted(bases_for("dress"))
+    agree = [r["torso_mm"] for r in ch.table if r["arms"]]
+    assert all(t is not None for t in agree) and agree == sorted(agree)  # ranked over the torso
+    assert ch.name == ch.table[0]["base"] and "chosen on the torso" in lines[-1]
+    return ch
+
+
+def test_straight_dress_target_chooses_the_straight_base_over_the_torso(body_sdf):
+    body, sdf = body_sdf
+    ch = _choose_dress(_target("dress_straight", body, sdf), body, sdf)
+    assert ch.name == "dress_straight"
+    torso = {r["base"]: r["torso_mm"] for r in ch.table}
+    assert torso["dress"] > 1.5 * torso["dress_straight"]  # measured: 23.8 mm against 4.7
+
+
+def test_torso_band_keeps_the_torso_between_the_heights(body_sdf):
+    """Faces beside a torso bone between the heights are kept; beside the elbow (a sleeve at the
+    waist), above or below the band, not."""
+    from unsew.fit.target import torso_band_faces
+
+    body, _ = body_sdf
+    sk = body.skeleton
+    spine, elbow = sk.position("spine"), sk.position("left_elbow")
+    tri = np.array([[0.0, 0, 0], [0.01, 0, 0], [0, 0.01, 0]])
+    at = [spine + [0, 0, 0.1], elbow + [0.03, 0, 0], spine + [0, 0.5, 0.1], spine + [0, -0.5, 0.1]]
+    verts = np.concatenate([tri + p for p in at])
+    faces = np.arange(12).reshape(4, 3)
+    lo, hi = spine[1] - 0.2, spine[1] + 0.2
+    assert torso_band_faces(verts, faces, sk, lo, hi).tolist() == [True, False, False, False]
+    t = Target(verts[:3], faces[:1], [])
+    assert t.band_distance_mm(verts[:3] + [0, 0, 0.002], faces[:1], sk, lo, hi) == pytest.approx(2.0, abs=1e-6)
+    assert np.isnan(t.band_distance_mm(verts[3:6], faces[:1], sk, lo, hi))
+
+
+@pytest.mark.slow
+def test_waisted_dress_target_chooses_the_waisted_base_over_the_torso(body_sdf):
+    body, sdf = body_sdf
+    assert _choose_dress(_target("dress", body, sdf), body, sdf).name == "dress"

@@ -80,7 +80,9 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     bases = tables.pop("base_choice", None)
     if bases:
         tables["base choice (each base dressed on a coarse mesh, Chamfer mm)"] = {
-            r["base"]: ("failed" if r["chamfer_mm"] is None else round(float(r["chamfer_mm"]), 2)) for r in bases}
+            r["base"]: ("failed" if r["chamfer_mm"] is None else round(float(r["chamfer_mm"]), 2)
+                        if r.get("torso_mm") is None else
+                        f"{float(r['chamfer_mm']):.2f}, over the torso {float(r['torso_mm']):.2f}") for r in bases}
     choice = tables.pop("material_choice", None)
     if choice:
         summary["start_material"] = choice[0]["material"]

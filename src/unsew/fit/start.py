@@ -8,7 +8,9 @@ material, and the one whose drape lies closest to the target (mean surface Chamf
 the material is chosen (:mod:`unsew.fit.material`). A base whose drape has no opening on an arm
 where the target has one, or the other way round (a sleeveless base for a sleeved target), is
 chosen only when no candidate's arms agree with the target's: grading cannot grow or remove a
-sleeve, and it would pull the armhole out to the target's cuff."""
+sleeve, and it would pull the armhole out to the target's cuff. Dresses are told apart by the
+cloth over the torso (:data:`TORSO_CHOICE`): their bases differ at the waist, which grading does
+not reach."""
 
 from __future__ import annotations
 
@@ -22,6 +24,7 @@ from typing import Callable
 import numpy as np
 
 from unsew.body.measure import measure_body
+from unsew.pattern.base._frame import body_frame
 from unsew.dress import dress, settle
 from unsew.errors import InputError
 from unsew.fit.config import FitConfig
@@ -35,7 +38,7 @@ from unsew.pattern.base import BASES, bases_for, garment_of, make_base_pattern
 from unsew.sim.checks import check_dressed
 
 __all__ = ["Start", "start", "base_pattern_for", "BaseChoice", "choose_base", "arm_openings", "ARM_PARTS",
-           "SLEEVE_REACH", "SLEEVE_NEAR"]
+           "SLEEVE_REACH", "SLEEVE_NEAR", "TORSO_CHOICE", "TORSO_BAND_BELOW_ARMPIT"]
 
 #: garment types a base pattern may stand in for (same panel topology)
 _COMPATIBLE = {
@@ -127,13 +130,25 @@ def arm_openings(verts, faces, skeleton, *, contours=None) -> tuple[int, int]:
     return tuple(counts)
 
 
+#: Garment types whose bases are chosen on the cloth over the torso between the hips and
+#: :data:`TORSO_BAND_BELOW_ARMPIT` under the armpits (:meth:`Target.band_distance_mm`), not on the
+#: whole garment. Grading moves a garment's openings (hem, neckline, cuffs) and the cloth next to
+#: them; the dresses' bases differ at the waist (waisted and flared, or straight), between the
+#: openings, where grading leaves them. On the whole garment the straight dress, whose hem lies
+#: nearer most targets' before grading, was chosen for waisted dresses, and their fits ended
+#: farther (docs/benchmarks.md, "A straight dress in the library; dresses chosen over the torso").
+TORSO_CHOICE = ("dress",)
+TORSO_BAND_BELOW_ARMPIT = 0.05  #: [m]
+
+
 @dataclass
 class BaseChoice:
     """The base pattern phase one starts from: ``pattern``, its ``name`` (a library base, or the
     JSON path given), and the automatic choice's table, best first: rows {"base", "chamfer_mm",
     "arms"} (arms: True when the drape's openings on the arms are the target's, :func:`arm_openings`;
-    a candidate whose drape failed has chamfer_mm None and an "error"); empty when the user named
-    the base. ``seconds``: time the choice took [s]."""
+    a candidate whose drape failed has chamfer_mm None and an "error"), and "torso_mm" (the distance
+    over the torso the choice was made on) for the types of :data:`TORSO_CHOICE`; empty when the
+    user named the base. ``seconds``: time the choice took [s]."""
 
     pattern: object
     name: str
@@ -145,18 +160,21 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
                 log=print) -> BaseChoice:
     """The base pattern of the fit: the user's (cfg.base) or, when cfg.base is empty and the
     library has several bases of meta.json's garment type, the one whose drape lies closest to
-    the target. Each candidate, sized to the wearer, is dressed from scratch on a mesh of edge
+    the target (over the torso for :data:`TORSO_CHOICE`). Each candidate, sized to the wearer, is dressed from scratch on a mesh of edge
     ``cfg.base_choice_edge`` [m] (the rest of ``cfg.drape`` as the fit's drapes) in ``material``
     (the start material); its distance is :meth:`Target.distance_mm`. A candidate whose drape
     fails or is judged bad (:func:`unsew.sim.checks.check_dressed`) is listed, not chosen."""
     if cfg.base or not case.garment or case.garment not in BASES:
         return BaseChoice(base_pattern_for(case, cfg), cfg.base or case.garment)
-    names = bases_for(garment_of(case.garment))
+    garment = garment_of(case.garment)
+    names = bases_for(garment)
     m = measure_body(case.body)
     if len(names) == 1:
         return BaseChoice(make_base_pattern(names[0], m), names[0])
     t0 = time.perf_counter()
     settings = cfg.drape.replace(edge_length=cfg.base_choice_edge)
+    frame = body_frame(m)
+    band = (frame.hip_y, frame.armpit_y - TORSO_BAND_BELOW_ARMPIT) if garment in TORSO_CHOICE else None
     rows, patterns = [], {}
     want = arm_openings(target.verts, target.faces, case.body.skeleton, contours=target.contours)
     for name in names:
@@ -169,21 +187,33 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
                 raise ValueError(verdict.reason)
             cf = target.distance_mm(d.x.numpy(), d.mesh.faces)
             arms = arm_openings(d.x.numpy(), d.mesh.faces, case.body.skeleton) == want
+            torso = (target.band_distance_mm(d.x.numpy(), d.mesh.faces, case.body.skeleton, *band)
+                     if band else None)
         except (InputError, ValueError, RuntimeError) as exc:  # a candidate that cannot be dressed here
             rows.append({"base": name, "chamfer_mm": None, "error": str(exc).splitlines()[0]})
             continue
-        rows.append({"base": name, "chamfer_mm": cf if math.isfinite(cf) else None, "arms": arms})
-        if math.isfinite(cf):
+        row = {"base": name, "chamfer_mm": cf if math.isfinite(cf) else None, "arms": arms}
+        if band:
+            row["torso_mm"] = torso if math.isfinite(torso) else None
+        rows.append(row)
+        if math.isfinite(cf) and (not band or math.isfinite(torso)):
             patterns[name] = pat
     if not patterns:
         raise InputError(f"no base pattern of type {case.garment} could be dressed on this body; pass --base P.json")
     # the arms agreeing first, when any candidate's do; then the closest
     any_arms = any(r.get("arms") and r["base"] in patterns for r in rows)
-    rows.sort(key=lambda r: (r["chamfer_mm"] is None, any_arms and not r.get("arms"), r["chamfer_mm"] or 0.0))
+    key = "torso_mm" if band else "chamfer_mm"
+    rows.sort(key=lambda r: (r["base"] not in patterns, any_arms and not r.get("arms"), r.get(key) or 0.0))
     best = rows[0]["base"]
-    log("base: " + ", ".join(f"{r['base']} {r['chamfer_mm']:.2f} mm" + ("" if r["arms"] else " (arms differ)")
-                             if r["chamfer_mm"] is not None else f"{r['base']} failed" for r in rows)
-        + f"; {best} chosen (target: {want[0]} + {want[1]} openings on the arms)")
+
+    def said(r):
+        if r["base"] not in patterns:
+            return f"{r['base']} failed"
+        return (f"{r['base']} {r['chamfer_mm']:.2f} mm" + (f" (torso {r['torso_mm']:.2f} mm)" if band else "")
+                + ("" if r["arms"] else " (arms differ)"))
+
+    log("base: " + ", ".join(said(r) for r in rows) + f"; {best} chosen (target: {want[0]} + {want[1]} openings on the arms"
+        + (f"; chosen on the torso, {band[0]:.2f}-{band[1]:.2f} m up)" if band else ")"))
     return BaseChoice(patterns[best], best, rows, time.perf_counter() - t0)
 
 

@@ -7,11 +7,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from unsew.body.skeleton import distance_to_bone
 from unsew.geometry.repair import triangle_areas
 from unsew.losses.contours import open_contours
 from unsew.metrics.surface import surface_metrics
 
-__all__ = ["Target", "OBJECTIVE_SAMPLES"]
+__all__ = ["Target", "OBJECTIVE_SAMPLES", "torso_band_faces"]
 
 #: Surface samples per side of the distance that choices are made on (material, re-dress check).
 OBJECTIVE_SAMPLES = 20_000
@@ -50,3 +51,31 @@ class Target:
         """
         return surface_metrics(np.asarray(x), faces, self.verts, self.faces, n_samples=n_samples,
                                seed=self.seed)["chamfer_mm"]
+
+    def band_distance_mm(self, x, faces, skeleton, low: float, high: float, *,
+                         n_samples: int = OBJECTIVE_SAMPLES) -> float:
+        """:meth:`distance_mm` over the torso between heights ``low`` and ``high`` [m] only: both
+        surfaces cut to :func:`torso_band_faces` (the drape ``x`` (N, 3) [m] on ``faces``, the
+        body's ``skeleton``). NaN when either has no cloth there."""
+        x, faces = np.asarray(x), np.asarray(faces)
+        mine = torso_band_faces(x, faces, skeleton, low, high)
+        theirs = torso_band_faces(self.verts, self.faces, skeleton, low, high)
+        if not mine.any() or not theirs.any():
+            return float("nan")
+        return surface_metrics(x, faces[mine], self.verts, self.faces[theirs], n_samples=n_samples,
+                               seed=self.seed)["chamfer_mm"]
+
+
+def torso_band_faces(verts, faces, skeleton, low: float, high: float) -> np.ndarray:
+    """Faces (F,) bool of a surface (verts (V, 3) [m], faces (F, 3)) whose centroid lies between
+    heights ``low`` and ``high`` [m] (Y up) and nearer a torso bone of ``skeleton`` than any
+    other (a sleeve or an arm beside the waist is left out)."""
+    c = np.asarray(verts)[np.asarray(faces)].mean(axis=1)
+    keep = (c[:, 1] >= low) & (c[:, 1] <= high)
+    bones = skeleton.bones()
+    if not keep.any() or not bones:
+        return keep
+    d = np.stack([distance_to_bone(c[keep], b) for b in bones], axis=1)
+    torso = np.array([b.part == "torso" for b in bones])
+    keep[np.flatnonzero(keep)] = torso[d.argmin(axis=1)]
+    return keep
