@@ -436,4 +436,6 @@ DESIGNS = {
     "shorts_hot": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.06, hem_girth=m["thigh"] + 0.10, darts=0, waistband=True, name="shorts_hot"), **kw})),
     "tee_boxy_elbow": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.56, ease=0.22, hem_ease=0.24, sleeve=0.30, neck_depth=0.08, name="tee_boxy_elbow"), **kw})),
     "dress_tunic_sleeved": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.84, ease=0.10, hem_ease=0.20, sleeve=0.20, hip_ease=0.12, name="dress_tunic_sleeved"), **kw})),
+    # session 34: a straight sleeveless knee dress (a shift without waist shaping)
+    "dress_straight_tank": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.92, ease=0.10, hem_ease=0.28, sleeve=None, name="dress_straight_tank"), **kw})),
 }

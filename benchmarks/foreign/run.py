@@ -216,6 +216,11 @@ CASES = {
     "dress_tunic_sleeved__default": ("dress_tunic_sleeved", "anny_default"),
     "tank_top__gc_mean_female": ("tank_top", "gc_mean_female"),
     "skirt_aline_tea__gc_mean_all": ("skirt_aline_tea", "gc_mean_all"),
+    # built in session 34: straight dresses, on bodies they had not met, after the straight
+    # dress joined the base library (the tunic on the male body, a straight sleeveless design)
+    "dress_tunic_sleeved__male_heavy": ("dress_tunic_sleeved", "anny_male_heavy"),
+    "dress_straight_tank__tall_thin": ("dress_straight_tank", "anny_tall_thin"),
+    "dress_straight_tank__gc_mean_female": ("dress_straight_tank", "gc_mean_female"),
 }
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").
