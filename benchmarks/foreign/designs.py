@@ -438,4 +438,7 @@ DESIGNS = {
     "dress_tunic_sleeved": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.84, ease=0.10, hem_ease=0.20, sleeve=0.20, hip_ease=0.12, name="dress_tunic_sleeved"), **kw})),
     # session 34: a straight sleeveless knee dress (a shift without waist shaping)
     "dress_straight_tank": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.92, ease=0.10, hem_ease=0.28, sleeve=None, name="dress_straight_tank"), **kw})),
+    # session 34: dresses with long sleeves (the library's dresses have short sleeves or none)
+    "dress_shift_long_sleeve": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.92, ease=0.12, hem_ease=0.30, sleeve=0.42, waist_shape=True, hip_ease=0.16, name="dress_shift_long_sleeve"), **kw})),
+    "dress_tunic_long_sleeve": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.86, ease=0.12, hem_ease=0.24, sleeve=0.44, name="dress_tunic_long_sleeve"), **kw})),
 }

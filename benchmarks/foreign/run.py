@@ -221,6 +221,10 @@ CASES = {
     "dress_tunic_sleeved__male_heavy": ("dress_tunic_sleeved", "anny_male_heavy"),
     "dress_straight_tank__tall_thin": ("dress_straight_tank", "anny_tall_thin"),
     "dress_straight_tank__gc_mean_female": ("dress_straight_tank", "gc_mean_female"),
+    # and two dresses with long sleeves, which no library dress has
+    "dress_shift_long_sleeve__older": ("dress_shift_long_sleeve", "anny_older"),
+    "dress_tunic_long_sleeve__short_curvy": ("dress_tunic_long_sleeve", "anny_short_curvy"),  # rejected: 26 edges through the body
+    "dress_tunic_long_sleeve__default": ("dress_tunic_long_sleeve", "anny_default"),  # rejected: 4 edges through the body
 }
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").
