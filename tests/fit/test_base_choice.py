@@ -128,3 +128,19 @@ def test_torso_band_keeps_the_torso_between_the_heights(body_sdf):
 def test_waisted_dress_target_chooses_the_waisted_base_over_the_torso(body_sdf):
     body, sdf = body_sdf
     assert _choose_dress(_target("dress", body, sdf), body, sdf).name == "dress"
+
+
+def test_dress_without_cloth_over_the_torso_is_chosen_on_the_whole_garment(body_sdf, monkeypatch):
+    """Where the torso cannot be compared (no torso bones, no cloth in the band: a NaN), the
+    dresses are ranked on the whole garment, and the line says so."""
+    import unsew.fit.start as start_mod
+
+    body, sdf = body_sdf
+    monkeypatch.setattr(start_mod, "bases_for", lambda g: ["dress", "dress_straight"])
+    monkeypatch.setattr(Target, "band_distance_mm", lambda self, *a, **k: float("nan"))
+    lines = []
+    ch = choose_base(SimpleNamespace(garment="dress", body=body), _target("dress_straight", body, sdf, edge=0.05),
+                     sdf, CFG, get_material("cotton"), progress=Progress(False), log=lines.append)
+    assert ch.name == "dress_straight" and all(r["torso_mm"] is None for r in ch.table)
+    cf = [r["chamfer_mm"] for r in ch.table]
+    assert cf == sorted(cf) and "chosen on the whole garment" in lines[-1]

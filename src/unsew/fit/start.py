@@ -196,24 +196,31 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
         if band:
             row["torso_mm"] = torso if math.isfinite(torso) else None
         rows.append(row)
-        if math.isfinite(cf) and (not band or math.isfinite(torso)):
+        if math.isfinite(cf):
             patterns[name] = pat
     if not patterns:
         raise InputError(f"no base pattern of type {case.garment} could be dressed on this body; pass --base P.json")
-    # the arms agreeing first, when any candidate's do; then the closest
+    on_torso = bool(band) and all(r.get("torso_mm") is not None for r in rows if r["base"] in patterns)
+    # the arms agreeing first, when any candidate's do; then the closest (over the torso when
+    # every candidate and the target have cloth there: a skeleton without torso bones has none)
     any_arms = any(r.get("arms") and r["base"] in patterns for r in rows)
-    key = "torso_mm" if band else "chamfer_mm"
+    key = "torso_mm" if on_torso else "chamfer_mm"
     rows.sort(key=lambda r: (r["base"] not in patterns, any_arms and not r.get("arms"), r.get(key) or 0.0))
     best = rows[0]["base"]
 
     def said(r):
         if r["base"] not in patterns:
             return f"{r['base']} failed"
-        return (f"{r['base']} {r['chamfer_mm']:.2f} mm" + (f" (torso {r['torso_mm']:.2f} mm)" if band else "")
+        torso = r.get("torso_mm")
+        return (f"{r['base']} {r['chamfer_mm']:.2f} mm" + (f" (torso {torso:.2f} mm)" if torso is not None else "")
                 + ("" if r["arms"] else " (arms differ)"))
 
+    how = ""
+    if band:
+        how = (f"; chosen on the torso, {band[0]:.2f}-{band[1]:.2f} m up" if on_torso
+               else "; no cloth over the torso to compare, chosen on the whole garment")
     log("base: " + ", ".join(said(r) for r in rows) + f"; {best} chosen (target: {want[0]} + {want[1]} openings on the arms"
-        + (f"; chosen on the torso, {band[0]:.2f}-{band[1]:.2f} m up)" if band else ")"))
+        + how + ")")
     return BaseChoice(patterns[best], best, rows, time.perf_counter() - t0)
 
 
