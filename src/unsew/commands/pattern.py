@@ -13,7 +13,8 @@ __all__ = ["register"]
 
 #: unsew.pattern.base.BASES (kept here so --help imports nothing; a test checks they agree)
 BASES = ["tshirt", "tshirt_long", "tshirt_sleeveless", "dress", "dress_sleeveless", "dress_straight",
-         "dress_straight_sleeveless", "pants", "pants_band", "shorts", "shorts_band", "skirt", "skirt_band", "skirt_circle", "skirt_pencil", "skirt_darts"]
+         "dress_straight_sleeveless", "pants", "pants_band", "shorts", "shorts_band", "skirt", "skirt_band",
+         "skirt_circle", "skirt_pencil", "skirt_darts"]
 MAX_TRIANGLES = 250_000  # unsew.commands._checks.MAX_TRIANGLES (kept here so --help imports nothing)
 
 

@@ -24,7 +24,6 @@ from typing import Callable
 import numpy as np
 
 from unsew.body.measure import measure_body
-from unsew.pattern.base._frame import body_frame
 from unsew.dress import dress, settle
 from unsew.errors import InputError
 from unsew.fit.config import FitConfig
@@ -35,6 +34,7 @@ from unsew.grading.grade import grade
 from unsew.io.garmentcode import load_pattern
 from unsew.losses.contours import open_contours
 from unsew.pattern.base import BASES, bases_for, garment_of, make_base_pattern
+from unsew.pattern.base._frame import body_frame
 from unsew.sim.checks import check_dressed
 
 __all__ = ["Start", "start", "base_pattern_for", "BaseChoice", "choose_base", "arm_openings", "ARM_PARTS",
@@ -160,9 +160,10 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
                 log=print) -> BaseChoice:
     """The base pattern of the fit: the user's (cfg.base) or, when cfg.base is empty and the
     library has several bases of meta.json's garment type, the one whose drape lies closest to
-    the target (over the torso for :data:`TORSO_CHOICE`). Each candidate, sized to the wearer, is dressed from scratch on a mesh of edge
-    ``cfg.base_choice_edge`` [m] (the rest of ``cfg.drape`` as the fit's drapes) in ``material``
-    (the start material); its distance is :meth:`Target.distance_mm`. A candidate whose drape
+    the target (over the torso for :data:`TORSO_CHOICE`). Each candidate, sized to the wearer, is
+    dressed from scratch on a mesh of edge ``cfg.base_choice_edge`` [m] (the rest of ``cfg.drape``
+    as the fit's drapes) in ``material`` (the start material); its distance is
+    :meth:`Target.distance_mm` (:meth:`Target.band_distance_mm` over the torso). A candidate whose drape
     fails or is judged bad (:func:`unsew.sim.checks.check_dressed`) is listed, not chosen."""
     if cfg.base or not case.garment or case.garment not in BASES:
         return BaseChoice(base_pattern_for(case, cfg), cfg.base or case.garment)
