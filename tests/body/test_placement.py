@@ -117,6 +117,44 @@ def test_missing_joints_named(bodies, meshes):
         place_garment(pat, mesh, body)
 
 
+def _sleeve_gaps(mesh, x) -> dict:
+    """(torso panel, sleeve panel) -> mean distance [m] between the cap vertices sewn together."""
+    rows = stitch_distances(mesh, x)
+    return {(r["a"][0], r["b"][0]): r["pair"] for r in rows
+            if "sleeve" in r["b"][0] and "sleeve" not in r["a"][0]}
+
+
+def test_sleeve_hint_turned_against_its_armhole(bodies, meshes, monkeypatch):
+    """A sleeve whose hint faces the other way round its arm (GarmentCode's hints on a rigged
+    T-pose body did) is turned back: its caps start as near their armholes as the right hint's;
+    kept as hinted they start 10 cm farther and the sewing dragged them through the armholes."""
+    from unsew.body import placement
+    from unsew.body.placement import _arm_frame, _landmarks
+    from unsew.pattern.model import matrix_to_euler_xyz
+
+    body, sdf = bodies["default"]
+    pat, mesh = meshes["tshirt"]
+    J = _landmarks(body)[0]
+    flipped = pat.copy()
+    for name, p in flipped.panels.items():
+        if "sleeve" not in name:
+            continue
+        _, seg, L = _arm_frame(J, "left" if name.startswith("left") else "right")
+        a = seg[0] / L[0]
+        R = (2 * np.outer(a, a) - np.eye(3)) @ p.rotation_matrix()  # half a turn about the arm
+        c = np.r_[p.vertices.mean(axis=0), 0.0]
+        centre = p.to_world(p.vertices).mean(axis=0)
+        p.rotation, p.translation = matrix_to_euler_xyz(R), centre - R @ c
+    right = _sleeve_gaps(mesh, place_garment(pat, mesh, body, sdf=sdf))
+    turned = _sleeve_gaps(mesh, place_garment(flipped, mesh, body, sdf=sdf))
+    assert len(right) == 4 and right.keys() == turned.keys()
+    for k in right:
+        assert turned[k] < right[k] + 0.005, (k, turned[k], right[k])
+    monkeypatch.setattr(placement, "SLEEVE_TURN_RATIO", np.inf)  # the hint kept
+    kept = _sleeve_gaps(mesh, place_garment(flipped, mesh, body, sdf=sdf))
+    assert min(kept[k] - right[k] for k in right) > 0.05
+
+
 @pytest.fixture(scope="module")
 def arm_up():
     """The default body with its left arm raised to 23 deg below horizontal (under MEET_ARM)."""
