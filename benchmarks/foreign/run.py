@@ -264,7 +264,7 @@ def _pattern(design, body, **overrides):
     """(GarmentCode specification dict, garment type) of ``design`` drafted for ``body``;
     ``overrides``: keywords replacing the design's own (a generator design only)."""
     import designs
-    from unsew.body.measure import measure_body
+    from unsew.body.measure import measure_body, upper_arm_cut
 
     if design.startswith("gc:"):
         if overrides:
@@ -273,6 +273,12 @@ def _pattern(design, body, **overrides):
             "dress_pencil": "dress", "shirt_mean": "tshirt", "hoody_mean": "tshirt"}[design[3:].rsplit("_", 1)[0]]
     typ, fn = designs.DESIGNS[design]
     m = measure_body(body).as_dict()
+    # the designs' sleeves were drafted from the upper arm's cut at 30 %, before measure_body
+    # passed over a cut that reaches the armpit (GarmentCode's A-pose bodies): kept, so that
+    # every committed case rebuilds as it was built
+    sk = body.skeleton
+    m["upper_arm"] = upper_arm_cut(body.verts, body.faces, body.vertex_parts(), sk.position("left_shoulder"),
+                                   sk.position("left_elbow"), 0.3)
     J = {n: p for n, p in zip(body.skeleton.names, body.skeleton.positions)}
     return fn(m, J, **overrides), typ
 

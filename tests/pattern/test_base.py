@@ -189,6 +189,21 @@ def test_variant_symmetric_seams_labelled_and_matched(name):
         assert abs(la - lb) < 2e-3, f"{name} {s.label}: {la:.4f} vs {lb:.4f} m"
 
 
+@pytest.mark.parametrize("name", ["tshirt", "dress", "tshirt_long", "dress_straight"])
+def test_sleeve_caps_sew_into_their_armholes_on_a_thick_arm(name):
+    """An upper arm too thick for the armhole (0.41 m read on GarmentCode's A-pose bodies before
+    measure_body passed over cuts reaching the armpit; the caps came out 20 mm longer than the
+    armholes) still makes caps as long as their armholes: the sleeve narrows."""
+    from unsew.pattern.seams import stitch_length_gaps
+
+    for upper_arm in (0.273, 0.41, 0.6):
+        p = make_base_pattern(name, Measurements(upper_arm=upper_arm))
+        assert np.abs(stitch_length_gaps(p)).max() < 1e-3, (name, upper_arm)
+    thick = make_base_pattern(name, Measurements(upper_arm=0.6)).panels["left_sleeve"]
+    usual = make_base_pattern(name, Measurements(upper_arm=0.273)).panels["left_sleeve"]
+    assert np.ptp(thick.vertices[:, 0]) > np.ptp(usual.vertices[:, 0])  # wider, as wide as can sew
+
+
 def test_variants_differ_where_they_should():
     m = Measurements()
     fr = body_frame(m)

@@ -16,6 +16,10 @@ Girths are convex-hull perimeters of cross-sections, as a tape measure reads the
 - neck: section a quarter of the way from the neck joint to the head joint, of the points within
   8 cm of the neck axis;
 - upper arm: the left arm cut perpendicular to the upper-arm bone at 30 % from the shoulder;
+  where that cut reaches the armpit (its girth more than ``ARM_CUT_JUMP`` times the cut's at
+  40 %: GarmentCode's A-pose bodies, whose arms hang close to the chest, read 0.41 m there
+  against 0.30-0.33 at 40 %; anny bodies 1.03-1.06 times), the girth carried back to 30 % on
+  the line through the cuts at 40 % and 50 %;
 - thigh: the left leg cut horizontally 3 cm below the crotch.
 
 Arms and legs are told apart by the skinning weights when the body has them, else by the nearest
@@ -36,8 +40,8 @@ from unsew.errors import InputError
 from unsew.geometry.topology import unique_edges
 
 __all__ = [
-    "measure_body", "section_points", "hull_perimeter", "arms_raised", "bust_point_girth",
-    "RAISED_ARM_DEG", "RAISED_ARM_BUST", "RAISED_ARM_SHOULDER_OUT",
+    "measure_body", "section_points", "hull_perimeter", "arms_raised", "bust_point_girth", "upper_arm_cut",
+    "RAISED_ARM_DEG", "RAISED_ARM_BUST", "RAISED_ARM_SHOULDER_OUT", "ARM_CUT_JUMP",
 ]
 
 #: An upper arm (shoulder -> elbow) less than this far below horizontal is raised [degrees]
@@ -50,6 +54,10 @@ RAISED_ARM_BUST = 0.993
 #: With an arm raised, the acromion sits this far [m] outside the shoulder joint: the median of
 #: (arms-down shoulder width - raised-arms joint distance) / 2 over the same anny shapes (0.017-0.047).
 RAISED_ARM_SHOULDER_OUT = 0.029
+#: The upper arm's cut at 30 % reaches the armpit when its girth is more than this many times the
+#: cut's at 40 % (anny bodies: 1.03-1.06; GarmentCode's A-pose bodies: 1.27-1.35;
+#: ``python -m benchmarks measure_arm``).
+ARM_CUT_JUMP = 1.15
 
 
 def section_points(verts: np.ndarray, faces: np.ndarray, origin: np.ndarray, normal: np.ndarray) -> np.ndarray:
@@ -209,9 +217,19 @@ def _neck_girth(V, F, neck, head) -> float:
 
 
 def _upper_arm_girth(V, F, parts, shoulder, elbow) -> float:
-    """Girth [m] of the left arm cut perpendicular to the upper-arm bone at 30 % from the shoulder."""
+    """Girth [m] of the left upper arm near the armpit (see the module docstring)."""
+    g30, g40 = (upper_arm_cut(V, F, parts, shoulder, elbow, t) for t in (0.3, 0.4))
+    if g30 <= ARM_CUT_JUMP * g40:
+        return g30
+    return 2.0 * g40 - upper_arm_cut(V, F, parts, shoulder, elbow, 0.5)
+
+
+def upper_arm_cut(V, F, parts, shoulder, elbow, t: float) -> float:
+    """Girth [m] of the left arm (vertices labelled ``left_arm`` in ``parts`` (V,), within 10 cm
+    of the bone) cut perpendicular to the upper-arm bone (``shoulder`` -> ``elbow``, (3,) [m])
+    at the fraction ``t`` of its length from the shoulder."""
     ub = Bone("left_elbow", "left_shoulder", "left_elbow", shoulder, elbow, "left_arm")
-    o = ub.a + 0.3 * (ub.b - ub.a)
+    o = ub.a + t * (ub.b - ub.a)
     near_arm = (parts == "left_arm") & (distance_to_bone(V, ub) < 0.1)
     p = section_points(V, F[near_arm[F].all(axis=1)], o, ub.direction)
     p = p[np.linalg.norm(p - o, axis=1) < 0.1]

@@ -38,6 +38,9 @@ BUST_EASE = 0.12
 HIP_EASE = 0.08
 #: Ease over the upper-arm girth [m].
 ARM_EASE = 0.08
+#: Lowest sleeve cap height [m] (cap top over the underarm points): a flatter cap than the
+#: armhole needs narrows the sleeve instead (:func:`sleeve_panels`).
+CAP_MIN = 0.01
 #: Front and back neckline depths below the neck points [m].
 FRONT_NECK_DEPTH = 0.08
 BACK_NECK_DEPTH = 0.02
@@ -135,7 +138,11 @@ def sleeve_panels(m: Measurements, f: BodyFrame, armhole_length: float, *, lengt
     Returns (left_sleeve, right_sleeve).
     """
     ws = (m.upper_arm + ARM_EASE) / 2
-    cap_h = solve_length(lambda h: _sleeve("s", ws, h, 0.1), 2, armhole_length, 0.01, 0.4)
+    if edge_length(_sleeve("s", ws, CAP_MIN, 0.1), 2) > armhole_length:
+        # even the flattest cap is longer than the armhole (an arm thick for its armhole): the
+        # sleeve narrowed until it is not, so that the cap still sews into the armhole
+        ws = solve_length(lambda w: _sleeve("s", w, CAP_MIN, 0.1), 2, armhole_length, 0.01, ws)
+    cap_h = solve_length(lambda h: _sleeve("s", ws, h, 0.1), 2, armhole_length, CAP_MIN, 0.4)
     under_len = max(length - cap_h, 0.04)
     left = _sleeve("left_sleeve", ws, cap_h, under_len, hem_half)
     right = _sleeve("right_sleeve", ws, cap_h, under_len, hem_half)
