@@ -244,6 +244,11 @@ CASES = {
     # in place of the two rejected: a top on the male body, a dress on the "all" body
     "tank_top__gc_mean_male": ("tank_top", "gc_mean_male"),
     "dress_shift_sleeveless__gc_mean_all": ("dress_shift_sleeveless", "gc_mean_all"),
+    # and a last round: GarmentCode's shirt on its T-pose body, a tee on its A-pose "all" body,
+    # knee shorts on its male body
+    "shirt_gc__gc_mean_all_tpose": ("gc:shirt_mean_specification.json", "gc_mean_all_tpose"),
+    "tee_loose_short__gc_mean_all": ("tee_loose_short", "gc_mean_all"),
+    "shorts_knee__gc_mean_male": ("shorts_knee", "gc_mean_male"),  # rejected: 1 seam edge through the body
 }
 
 #: Acceptance of a case (see docs/benchmarks.md, "Foreign benchmark").
