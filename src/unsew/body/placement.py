@@ -66,10 +66,11 @@ HORIZONTAL_SLOPE = 0.6
 SLEEVE_CAP_IN = 0.02
 #: A sleeve tube keeps the facing of its hint unless its caps then lie, on average, more than
 #: SLEEVE_TURN_RATIO times (and SLEEVE_TURN_GAIN [m]) farther from the armhole points they are
-#: sewn to than the best turn about the arm (tried every SLEEVE_TURN_STEP [deg]). Benchmark
-#: sleeves lie 3-7 cm from their armhole as hinted, within 0.5 cm of the best turn; a
-#: GarmentCode hint turned against its stitches (a rigged T-pose body) 16 cm, best 5 cm, and
-#: the sewing dragged the sleeves through the armholes (an edge stretched 6.4 times).
+#: sewn to than the best turn about the arm (tried every SLEEVE_TURN_STEP [deg]). The foreign
+#: benchmark's sleeves lie 2.8-8.7 cm from their armholes as hinted, at most 1.6 times (3.2 cm)
+#: the best turn's; a GarmentCode hint turned against its stitches (a rigged T-pose body) 16 cm,
+#: best 5 cm, and the sewing dragged the sleeves through the armholes (an edge stretched 6.4
+#: times; docs/benchmarks.md, "Sleeves turned to face their armholes").
 SLEEVE_TURN_RATIO = 2.0
 SLEEVE_TURN_GAIN = 0.03
 SLEEVE_TURN_STEP = 15
