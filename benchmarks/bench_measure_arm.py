@@ -31,7 +31,10 @@ def main() -> None:
     from unsew.body.body import default_body
     from unsew.body.case import load_case
     from unsew.body.measure import ARM_CUT_JUMP, measure_body, upper_arm_cut
+    from unsew.errors import InputError
 
+    if not Path(args.cases).is_dir():
+        raise InputError(f"--cases {args.cases} is not a folder of case folders")
     bodies = [("unsew default", default_body())]
     seen = set()
     for d in sorted(Path(args.cases).iterdir()):

@@ -17,9 +17,8 @@ Girths are convex-hull perimeters of cross-sections, as a tape measure reads the
   8 cm of the neck axis;
 - upper arm: the left arm cut perpendicular to the upper-arm bone at 30 % from the shoulder;
   where that cut reaches the armpit (its girth more than ``ARM_CUT_JUMP`` times the cut's at
-  40 %: GarmentCode's A-pose bodies, whose arms hang close to the chest, read 0.41 m there
-  against 0.30-0.33 at 40 %; anny bodies 1.03-1.06 times), the girth carried back to 30 % on
-  the line through the cuts at 40 % and 50 %;
+  40 %, on a body whose arms hang close to the chest), the girth carried back to 30 % on the
+  line through the cuts at 40 % and 50 %;
 - thigh: the left leg cut horizontally 3 cm below the crotch.
 
 Arms and legs are told apart by the skinning weights when the body has them, else by the nearest
@@ -225,9 +224,14 @@ def _upper_arm_girth(V, F, parts, shoulder, elbow) -> float:
 
 
 def upper_arm_cut(V, F, parts, shoulder, elbow, t: float) -> float:
-    """Girth [m] of the left arm (vertices labelled ``left_arm`` in ``parts`` (V,), within 10 cm
-    of the bone) cut perpendicular to the upper-arm bone (``shoulder`` -> ``elbow``, (3,) [m])
-    at the fraction ``t`` of its length from the shoulder."""
+    """Girth [m] of the left arm cut perpendicular to the upper-arm bone at the fraction ``t`` of
+    its length from the shoulder (convex-hull perimeter of the cut).
+
+    Args:
+        V: (V, 3) float64 body vertices [m]. F: (F, 3) int faces. parts: (V,) str part of each
+            vertex (``Body.vertex_parts``); only ``left_arm`` vertices within 10 cm of the bone
+            are cut. shoulder, elbow: (3,) joint positions [m]. t: fraction in [0, 1].
+    """
     ub = Bone("left_elbow", "left_shoulder", "left_elbow", shoulder, elbow, "left_arm")
     o = ub.a + t * (ub.b - ub.a)
     near_arm = (parts == "left_arm") & (distance_to_bone(V, ub) < 0.1)
