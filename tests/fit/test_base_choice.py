@@ -144,3 +144,77 @@ def test_dress_without_cloth_over_the_torso_is_chosen_on_the_whole_garment(body_
     assert ch.name == "dress_straight" and all(r["torso_mm"] is None for r in ch.table)
     cf = [r["chamfer_mm"] for r in ch.table]
     assert cf == sorted(cf) and "chosen on the whole garment" in lines[-1]
+
+
+def _fake_choice(monkeypatch, distances: dict, arms: dict | None = None):
+    """choose_base with every candidate's drape replaced by a marker: the drape of base ``name``
+    lies ``distances[name]`` mm from the target (whole garment and torso alike) and its openings on
+    the arms are the target's unless ``arms[name]`` is False. Nothing is simulated."""
+    import unsew.fit.start as start_mod
+
+    monkeypatch.setattr(start_mod, "bases_for", lambda g: list(distances))
+    monkeypatch.setattr(start_mod, "measure_body", lambda body: None)
+    monkeypatch.setattr(start_mod, "body_frame", lambda m: SimpleNamespace(hip_y=0.9, armpit_y=1.3))
+    monkeypatch.setattr(start_mod, "make_base_pattern", lambda name, m: SimpleNamespace(name=name))
+    monkeypatch.setattr(start_mod, "dress", lambda pat, body, **k: SimpleNamespace(
+        x=SimpleNamespace(numpy=lambda: pat.name), mesh=SimpleNamespace(faces=None)))
+    monkeypatch.setattr(start_mod, "check_dressed", lambda d, body: SimpleNamespace(ok=True))
+    monkeypatch.setattr(start_mod, "arm_openings", lambda x, f, sk, contours=None: (
+        (0, 0) if x is None else (0, 0) if (arms or {}).get(x, True) else (1, 1)))
+    monkeypatch.setattr(start_mod, "garment_of", lambda g: g)
+    target = SimpleNamespace(verts=None, faces=None, contours=[],
+                             distance_mm=lambda x, f, **k: distances[x],
+                             band_distance_mm=lambda x, f, sk, lo, hi: distances[x])
+    lines = []
+    ch = start_mod.choose_base(SimpleNamespace(garment="skirt", body=SimpleNamespace(skeleton=None)), target, None,
+                               CFG, None, progress=Progress(False), log=lines.append)
+    return ch, lines[-1]
+
+
+def test_a_runner_up_within_the_tie_ratio_is_graded_too(monkeypatch):
+    from unsew.fit.start import BASE_TIE
+
+    ch, line = _fake_choice(monkeypatch, {"a": 10.0, "b": 10.0 * BASE_TIE - 0.01, "c": 10.3})
+    assert ch.name == "a" and ch.tie[0] == "c" and "c within 10 %: both graded" in line  # the runner-up only
+    ch, line = _fake_choice(monkeypatch, {"a": 10.0, "b": 10.0 * BASE_TIE + 0.01})
+    assert ch.name == "a" and ch.tie is None and "both graded" not in line
+    # a runner-up whose arms differ from the target's is no tie, however close
+    ch, _ = _fake_choice(monkeypatch, {"a": 10.0, "b": 10.1}, arms={"b": False})
+    assert ch.name == "a" and ch.tie is None
+
+
+def test_a_tie_keeps_the_base_whose_graded_drape_lies_closer(monkeypatch):
+    """start_chosen grades both bases of a tie and starts from the closer graded drape; its row
+    comes first in the table, with every graded distance; past half the time limit the runner-up
+    is not graded (the cut is recorded)."""
+    import unsew.fit.start as start_mod
+    from unsew.fit.budget import TimeBudget
+    from unsew.fit.start import BaseChoice, Start
+
+    graded = {"straight": 14.5, "waisted": 11.7}  # GarmentCode's waisted sleeveless dress (BASE_TIE)
+    calls = []
+
+    def fake_start(pattern, body, target, sdf, cfg, material, *, garment, **k):
+        calls.append(garment)
+        return Start(pattern, pattern, SimpleNamespace(faces=None), garment, [], None, None, material)
+
+    monkeypatch.setattr(start_mod, "start", fake_start)
+    target = SimpleNamespace(distance_mm=lambda x, f, **k: graded[x])
+    rows = [{"base": "straight", "chamfer_mm": 19.3, "torso_mm": 15.4, "arms": True},
+            {"base": "waisted", "chamfer_mm": 34.2, "torso_mm": 16.7, "arms": True}]
+    choice = BaseChoice("P-straight", "straight", rows, 1.0, ("waisted", "P-waisted"))
+    lines = []
+    s = start_mod.start_chosen(choice, None, target, None, CFG, None, progress=Progress(False), log=lines.append,
+                               budget=TimeBudget(0))
+    assert calls == ["straight", "waisted"] and s.base_name == "waisted" and s.base == "P-waisted"
+    assert [r["base"] for r in s.base_choice] == ["waisted", "straight"]
+    assert [r["graded_mm"] for r in s.base_choice] == [11.7, 14.5]
+    assert lines[-1] == "base tie: graded straight 14.50 mm, waisted 11.70 mm; waisted kept"
+    # half the limit spent: the chosen base alone
+    calls.clear()
+    budget = TimeBudget(100.0, log=lines.append, clock=iter([0.0, 60.0, 60.0]).__next__)
+    s = start_mod.start_chosen(choice, None, target, None, CFG, None, progress=Progress(False), log=lines.append,
+                               budget=budget)
+    assert calls == ["straight"] and s.base_name == "straight" and budget.cuts == [
+        "base choice: waisted not graded (half the limit spent)"]
+    assert all("graded_mm" not in r for r in s.base_choice)

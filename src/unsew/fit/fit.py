@@ -31,7 +31,7 @@ from unsew.fit.contact import contact_for_target
 from unsew.fit.material import AUTO_START_MATERIAL, MaterialChoice, choose_start
 from unsew.fit.optimize import Iteration, PhaseTwo
 from unsew.fit.progress import BAR_SAMPLES, Progress
-from unsew.fit.start import choose_base, start
+from unsew.fit.start import choose_base, start_chosen
 from unsew.fit.target import Target
 from unsew.sim.checks import DrapeVerdict, check_drape
 
@@ -136,9 +136,8 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
     else:
         base = choose_base(case, target, sdf, cfg, material0, progress=bar, log=log)
         clock.lap("base_choice_s", keep=bool(base.table))
-        garment = base.name
-        first = start(base.pattern, case.body, target, sdf, cfg, material0, progress=bar, garment=garment, log=log)
-        first = first.replace(base_name=base.name, base_choice=tuple(base.table))
+        first = start_chosen(base, case.body, target, sdf, cfg, material0, progress=bar, log=log, budget=budget)
+        garment = first.base_name
         clock.lap("grading_s")
         choice = choose_start(first, case.body, target, sdf, cfg, progress=bar, log=log, garment=garment,
                               budget=budget)

@@ -79,10 +79,17 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
         summary["base"] = tables.pop("base")
     bases = tables.pop("base_choice", None)
     if bases:
-        tables["base choice (each base dressed on a coarse mesh, Chamfer mm)"] = {
-            r["base"]: ("failed" if r["chamfer_mm"] is None else round(float(r["chamfer_mm"]), 2)
-                        if r.get("torso_mm") is None else
-                        f"{float(r['chamfer_mm']):.2f}, over the torso {float(r['torso_mm']):.2f}") for r in bases}
+        def said(r):
+            if r["chamfer_mm"] is None:
+                return "failed"
+            s = f"{float(r['chamfer_mm']):.2f}"
+            if r.get("torso_mm") is not None:
+                s += f", over the torso {float(r['torso_mm']):.2f}"
+            if r.get("graded_mm") is not None:
+                s += f", graded {float(r['graded_mm']):.2f}"
+            return s
+
+        tables["base choice (each base dressed on a coarse mesh, Chamfer mm)"] = {r["base"]: said(r) for r in bases}
     choice = tables.pop("material_choice", None)
     if choice:
         summary["start_material"] = choice[0]["material"]

@@ -10,7 +10,9 @@ where the target has one, or the other way round (a sleeveless base for a sleeve
 chosen only when no candidate's arms agree with the target's: grading cannot grow or remove a
 sleeve, and it would pull the armhole out to the target's cuff. Dresses are told apart by the
 cloth over the torso (:data:`TORSO_CHOICE`): their bases differ at the waist, which grading does
-not reach."""
+not reach. When the runner-up lies within :data:`BASE_TIE` of the best, the call is within the
+candidates' own noise, and :func:`start_chosen` grades both and starts from the graded drape
+closer to the target."""
 
 from __future__ import annotations
 
@@ -38,7 +40,7 @@ from unsew.pattern.base._frame import body_frame
 from unsew.sim.checks import check_dressed
 
 __all__ = ["Start", "start", "base_pattern_for", "BaseChoice", "choose_base", "arm_openings", "ARM_PARTS",
-           "SLEEVE_REACH", "SLEEVE_NEAR", "TORSO_CHOICE", "TORSO_BAND_BELOW_ARMPIT"]
+           "SLEEVE_REACH", "SLEEVE_NEAR", "TORSO_CHOICE", "TORSO_BAND_BELOW_ARMPIT", "BASE_TIE", "start_chosen"]
 
 #: garment types a base pattern may stand in for (same panel topology)
 _COMPATIBLE = {
@@ -139,6 +141,13 @@ def arm_openings(verts, faces, skeleton, *, contours=None) -> tuple[int, int]:
 #: farther (docs/benchmarks.md, "A straight dress in the library; dresses chosen over the torso").
 TORSO_CHOICE = ("dress",)
 TORSO_BAND_BELOW_ARMPIT = 0.05  #: [m]
+#: A runner-up base whose drape lies within this ratio of the best's (on the distance the choice is
+#: made on, with the same arms) is a tie: both are graded and the closer graded drape is kept
+#: (:func:`start_chosen`). The candidates' distances move by up to 17 % when their coarse mesh's
+#: edge changes by 2 mm (docs/benchmarks.md, "How noisy is that choice between a band and none?");
+#: on GarmentCode's waisted sleeveless dress on its "all" body the straight base won by 9 % over
+#: the torso (15.4 against 16.7 mm) and graded to 14.5 mm, the waisted one to 11.7.
+BASE_TIE = 1.10
 
 
 @dataclass
@@ -148,12 +157,14 @@ class BaseChoice:
     "arms"} (arms: True when the drape's openings on the arms are the target's, :func:`arm_openings`;
     a candidate whose drape failed has chamfer_mm None and an "error"), and "torso_mm" (the distance
     over the torso the choice was made on) for the types of :data:`TORSO_CHOICE`; empty when the
-    user named the base. ``seconds``: time the choice took [s]."""
+    user named the base. ``seconds``: time the choice took [s]. ``tie``: the runner-up's (name,
+    pattern) when it lies within :data:`BASE_TIE` of the best, else None."""
 
     pattern: object
     name: str
     table: list = field(default_factory=list)
     seconds: float = 0.0
+    tie: tuple | None = None
 
 
 def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress: Progress,
@@ -220,9 +231,50 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
     if band:
         how = (f"; chosen on the torso, {band[0]:.2f}-{band[1]:.2f} m up" if on_torso
                else "; no cloth over the torso to compare, chosen on the whole garment")
+    tie = None
+    if len(rows) > 1 and rows[1]["base"] in patterns and (rows[1].get("arms") or not any_arms):
+        d0, d1 = rows[0].get(key), rows[1].get(key)
+        if d0 and d1 and d1 <= BASE_TIE * d0:
+            tie = (rows[1]["base"], patterns[rows[1]["base"]])
+            how += f"; {tie[0]} within {100 * (BASE_TIE - 1):.0f} %: both graded"
     log("base: " + ", ".join(said(r) for r in rows) + f"; {best} chosen (target: {want[0]} + {want[1]} openings on the arms"
         + how + ")")
-    return BaseChoice(patterns[best], best, rows, time.perf_counter() - t0)
+    return BaseChoice(patterns[best], best, rows, time.perf_counter() - t0, tie)
+
+
+def start_chosen(choice: BaseChoice, body, target: Target, sdf, cfg: FitConfig, material, *, progress: Progress,
+                 log=print, budget=None) -> Start:
+    """Phase one from the base choice: :func:`start` from ``choice.pattern`` and, when the choice
+    was a tie (``choice.tie``) and ``budget`` (a :class:`unsew.fit.budget.TimeBudget`) has more
+    than half its limit left, from the runner-up too; the Start whose graded drape lies closer to
+    the target (:meth:`Target.distance_mm`) is kept. The graded distances go into the base choice
+    table's rows ("graded_mm"); a runner-up whose grading fails is logged and left out."""
+    names = [choice.name] + ([choice.tie[0]] if choice.tie else [])
+    patterns = [choice.pattern] + ([choice.tie[1]] if choice.tie else [])
+    if choice.tie and budget is not None and not budget.within(0.5):
+        budget.cut(f"base choice: {choice.tie[0]} not graded (half the limit spent)")
+        names, patterns = names[:1], patterns[:1]
+    starts = []
+    for name, pattern in zip(names, patterns):
+        try:
+            s = start(pattern, body, target, sdf, cfg, material, progress=progress, garment=name, log=log,
+                      label="drape base" if not starts else f"drape base {name}")
+        except InputError as exc:
+            if not starts:
+                raise
+            log(f"base {name}: grading failed ({str(exc).splitlines()[0]}); left out")
+            continue
+        starts.append((target.distance_mm(s.x, s.mesh.faces) if len(names) > 1 else math.nan, name, s))
+    table = [dict(r) for r in choice.table]
+    for cf, name, _ in starts:
+        for r in table:
+            if r["base"] == name and math.isfinite(cf):
+                r["graded_mm"] = cf
+    best = min(starts, key=lambda t: t[0] if math.isfinite(t[0]) else math.inf) if len(starts) > 1 else starts[0]
+    if len(starts) > 1:
+        log("base tie: graded " + ", ".join(f"{n} {cf:.2f} mm" for cf, n, _ in starts) + f"; {best[1]} kept")
+        table.sort(key=lambda r: r["base"] != best[1])
+    return best[2].replace(base_name=best[1], base_choice=tuple(table))
 
 
 def _check_contours_compatible(n_src: int, n_tgt: int, garment: str) -> None:
