@@ -218,3 +218,23 @@ def test_a_tie_keeps_the_base_whose_graded_drape_lies_closer(monkeypatch):
     assert calls == ["straight"] and s.base_name == "straight" and budget.cuts == [
         "base choice: waisted not graded (half the limit spent)"]
     assert all("graded_mm" not in r for r in s.base_choice)
+
+
+def test_a_tie_whose_runner_up_fails_to_grade_keeps_the_chosen_base(monkeypatch):
+    import unsew.fit.start as start_mod
+    from unsew.fit.start import BaseChoice, Start
+
+    def fake_start(pattern, body, target, sdf, cfg, material, *, garment, **k):
+        if garment == "waisted":
+            raise RuntimeError("simulation diverged at step 3: vertex 7 speed nan")
+        return Start(pattern, pattern, SimpleNamespace(faces=None), garment, [], None, None, material)
+
+    monkeypatch.setattr(start_mod, "start", fake_start)
+    choice = BaseChoice("P-straight", "straight", [{"base": "straight", "chamfer_mm": 19.3, "arms": True},
+                                                   {"base": "waisted", "chamfer_mm": 20.2, "arms": True}],
+                        1.0, ("waisted", "P-waisted"))
+    lines = []
+    s = start_mod.start_chosen(choice, None, SimpleNamespace(distance_mm=lambda x, f, **k: 14.5), None, CFG, None,
+                               progress=Progress(False), log=lines.append)
+    assert s.base_name == "straight" and s.base == "P-straight"
+    assert lines == ["base waisted: grading failed (simulation diverged at step 3: vertex 7 speed nan); left out"]

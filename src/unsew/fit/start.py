@@ -248,7 +248,8 @@ def start_chosen(choice: BaseChoice, body, target: Target, sdf, cfg: FitConfig, 
     was a tie (``choice.tie``) and ``budget`` (a :class:`unsew.fit.budget.TimeBudget`) has more
     than half its limit left, from the runner-up too; the Start whose graded drape lies closer to
     the target (:meth:`Target.distance_mm`) is kept. The graded distances go into the base choice
-    table's rows ("graded_mm"); a runner-up whose grading fails is logged and left out."""
+    table's rows ("graded_mm"); a runner-up whose grading fails (or diverges) is logged and left
+    out."""
     names = [choice.name] + ([choice.tie[0]] if choice.tie else [])
     patterns = [choice.pattern] + ([choice.tie[1]] if choice.tie else [])
     if choice.tie and budget is not None and not budget.within(0.5):
@@ -259,7 +260,7 @@ def start_chosen(choice: BaseChoice, body, target: Target, sdf, cfg: FitConfig, 
         try:
             s = start(pattern, body, target, sdf, cfg, material, progress=progress, garment=name, log=log,
                       label="drape base" if not starts else f"drape base {name}")
-        except InputError as exc:
+        except (InputError, ValueError, RuntimeError) as exc:  # the runner-up's failure is no fit's
             if not starts:
                 raise
             log(f"base {name}: grading failed ({str(exc).splitlines()[0]}); left out")
