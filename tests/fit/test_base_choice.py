@@ -183,10 +183,11 @@ def test_a_runner_up_within_the_tie_ratio_is_graded_too(monkeypatch):
     assert ch.name == "a" and ch.tie is None
 
 
-def test_a_tie_keeps_the_base_whose_graded_drape_lies_closer(monkeypatch):
-    """start_chosen grades both bases of a tie and starts from the closer graded drape; its row
-    comes first in the table, with every graded distance; past half the time limit the runner-up
-    is not graded (the cut is recorded)."""
+def test_a_tie_keeps_the_base_whose_graded_drape_lies_clearly_closer(monkeypatch):
+    """start_chosen grades both bases of a tie and starts from the runner-up's graded drape when it
+    lies closer by more than two drapes of one pattern differ (CHECK_MARGIN_*), its row first, with
+    every graded distance; closer by less, the chosen base stays; past half the time limit the
+    runner-up is not graded (the cut is recorded)."""
     import unsew.fit.start as start_mod
     from unsew.fit.budget import TimeBudget
     from unsew.fit.start import BaseChoice, Start
@@ -218,6 +219,14 @@ def test_a_tie_keeps_the_base_whose_graded_drape_lies_closer(monkeypatch):
     assert calls == ["straight"] and s.base_name == "straight" and budget.cuts == [
         "base choice: waisted not graded (half the limit spent)"]
     assert all("graded_mm" not in r for r in s.base_choice)
+    # closer by 0.4 mm of 15.7 (GarmentCode's shirt on anny's T-pose body: 15.70 / 15.59): a coin flip
+    from unsew.fit.material import CHECK_MARGIN_MM, CHECK_MARGIN_REL
+
+    for d in (0.4, 15.7 * CHECK_MARGIN_REL + 0.01):
+        graded.update(straight=15.7, waisted=15.7 - d)
+        s = start_mod.start_chosen(choice, None, target, None, CFG, None, progress=Progress(False), log=lines.append)
+        assert s.base_name == ("straight" if d <= max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * 15.7) else "waisted"), d
+        assert lines[-1].endswith(f"; {s.base_name} kept")
 
 
 def test_a_tie_whose_runner_up_fails_to_grade_keeps_the_chosen_base(monkeypatch):

@@ -142,8 +142,8 @@ def arm_openings(verts, faces, skeleton, *, contours=None) -> tuple[int, int]:
 TORSO_CHOICE = ("dress",)
 TORSO_BAND_BELOW_ARMPIT = 0.05  #: [m]
 #: A runner-up base whose drape lies within this ratio of the best's (on the distance the choice is
-#: made on, with the same arms) is a tie: both are graded and the closer graded drape is kept
-#: (:func:`start_chosen`). The candidates' distances move by up to 17 % when their coarse mesh's
+#: made on, with the same arms) is a tie: both are graded and the runner-up kept when its graded
+#: drape is clearly closer (:func:`start_chosen`). The candidates' distances move by up to 17 % when their coarse mesh's
 #: edge changes by 2 mm (docs/benchmarks.md, "How noisy is that choice between a band and none?");
 #: on GarmentCode's waisted sleeveless dress on its "all" body the straight base won by 9 % over
 #: the torso (15.4 against 16.7 mm) and graded to 14.5 mm, the waisted one to 11.7.
@@ -246,8 +246,10 @@ def start_chosen(choice: BaseChoice, body, target: Target, sdf, cfg: FitConfig, 
                  log=print, budget=None) -> Start:
     """Phase one from the base choice: :func:`start` from ``choice.pattern`` and, when the choice
     was a tie (``choice.tie``) and ``budget`` (a :class:`unsew.fit.budget.TimeBudget`) has more
-    than half its limit left, from the runner-up too; the Start whose graded drape lies closer to
-    the target (:meth:`Target.distance_mm`) is kept. The graded distances go into the base choice
+    than half its limit left, from the runner-up too. The runner-up's Start is kept when its graded
+    drape lies closer to the target (:meth:`Target.distance_mm`) than the chosen base's by more
+    than :data:`unsew.fit.material.CHECK_MARGIN_MM` and ``CHECK_MARGIN_REL`` of it (what two drapes
+    from scratch of one pattern differ by); otherwise the chosen base's. The graded distances go into the base choice
     table's rows ("graded_mm"); a runner-up whose grading fails (or diverges) is logged and left
     out."""
     names = [choice.name] + ([choice.tie[0]] if choice.tie else [])
@@ -271,7 +273,14 @@ def start_chosen(choice: BaseChoice, body, target: Target, sdf, cfg: FitConfig, 
         for r in table:
             if r["base"] == name and math.isfinite(cf):
                 r["graded_mm"] = cf
-    best = min(starts, key=lambda t: t[0] if math.isfinite(t[0]) else math.inf) if len(starts) > 1 else starts[0]
+    best = starts[0]
+    if len(starts) > 1:  # the runner-up must be closer by more than two drapes of one pattern differ
+        from unsew.fit.material import CHECK_MARGIN_MM, CHECK_MARGIN_REL
+
+        cf0, cf1 = starts[0][0], starts[1][0]
+        if math.isfinite(cf1) and (not math.isfinite(cf0)
+                                   or cf1 < cf0 - max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * cf0)):
+            best = starts[1]
     if len(starts) > 1:
         log("base tie: graded " + ", ".join(f"{n} {cf:.2f} mm" for cf, n, _ in starts) + f"; {best[1]} kept")
         table.sort(key=lambda r: r["base"] != best[1])
