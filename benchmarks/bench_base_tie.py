@@ -5,7 +5,10 @@ contact set from the target, cotton): the base choice (:func:`unsew.fit.start.ch
 when its runner-up lies within ``BASE_TIE`` of the best (on the distance the choice is made on:
 the torso for dresses), the grading of both (:func:`unsew.fit.start.start_chosen`). One row per
 case: the chosen base and the runner-up, their distances' ratio, each graded drape's Chamfer to
-the target [mm] (ties only), the base kept, and the seconds it took. Rows are appended to
+the target [mm] (ties only), the base kept, and the seconds it took; then per garment type, how
+many ties, on how many the runner-up graded closer, and on how many clearly closer (by more than
+``CHECK_MARGIN_MM`` and ``CHECK_MARGIN_REL`` of it: the rule ``start_chosen`` keeps it by since
+b2b380e; rows written before then were kept on "closer" alone). Rows are appended to
 ``--jsonl`` as they finish (cases already there are skipped), so two processes can share a list
 and an interrupted run goes on; the table is printed from the whole file.
 
@@ -19,6 +22,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import statistics
 import time
 from pathlib import Path
 
@@ -103,6 +107,26 @@ def main() -> None:
     changed = [r for r in ties if r["kept"] != r["chosen"]]
     print(f"\nties: {len(ties)} of {len(rows)}; the runner-up kept on {len(changed)}: "
           + ", ".join(r["case"] for r in changed))
+
+    from unsew.fit.material import CHECK_MARGIN_MM, CHECK_MARGIN_REL
+
+    def gap(r):
+        return r["graded_chosen_mm"] - r["graded_runner_up_mm"]
+
+    def clearly(r):  # the runner-up closer by more than two drapes of one pattern differ (start_chosen)
+        return gap(r) > max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * r["graded_chosen_mm"])
+
+    per_type = []
+    for g in dict.fromkeys(r["garment"] for r in sorted(rows, key=lambda r: r["garment"])):
+        t = [r for r in ties if r["garment"] == g]
+        gaps = sorted(abs(gap(r)) for r in t)
+        per_type.append({"type": g, "cases": sum(r["garment"] == g for r in rows), "ties": len(t),
+                         "runner-up closer graded": sum(gap(r) > 0 for r in t),
+                         "clearly closer (kept)": sum(clearly(r) for r in t),
+                         "graded gap median [mm]": statistics.median(gaps) if gaps else None,
+                         "largest [mm]": gaps[-1] if gaps else None})
+    print_table(per_type, title=f"ties per garment type (clearly: by more than max({CHECK_MARGIN_MM} mm, "
+                                f"{100 * CHECK_MARGIN_REL:.0f} %) of the chosen base's graded distance)")
 
 
 if __name__ == "__main__":

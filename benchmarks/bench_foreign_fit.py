@@ -326,6 +326,8 @@ def print_against(rows: list[dict], rec: dict, path: Path) -> None:
             continue
         floor = r.get("floor_mm")
         out.append({"case": r["case"], "recorded at": old.get("code"),
+                    "base": old.get("base") if old.get("base") == r.get("base") else f"{old.get('base')} -> {r.get('base')}",
+                    "graded [mm]": f"{f(old.get('cf_graded_mm'))} -> {f(r.get('cf_graded_mm'))}",
                     "Chamfer [mm]": f"{f(old['cf_final_mm'])} -> {f(r['cf_final_mm'])}",
                     "bar [mm]": f(max(5.0, 1.5 * floor)) if floor is not None else "-",
                     "per panel [%]": f"{f(old.get('area_final_pct'))} -> {f(r.get('area_final_pct'))}",
