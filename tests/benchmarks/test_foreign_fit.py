@@ -122,17 +122,23 @@ def test_a_record_that_is_not_one_is_refused_in_one_line(tmp_path, capsys):
 
 
 def test_against_prints_each_fit_beside_its_record(tmp_path, capsys):
-    """--against: every fitted row beside the same case's recorded row ("recorded -> now"), its bar
-    from the floor, and the median changes; rows without a fit or without a record are left out."""
+    """--against: every fitted row beside the same case's recorded row ("recorded -> now": its base,
+    named once when unchanged, graded and final Chamfer), its bar from the floor, and the median
+    changes; rows without a fit or without a record are left out."""
     mod = _module()
-    rec = {"a": {"case": "a", "code": "aaa1111", "cf_final_mm": 5.0, "area_final_pct": 4.0, "phase2_kept": "yes"},
-           "b": {"case": "b", "code": "aaa1111", "cf_final_mm": 8.0, "area_final_pct": 2.0, "phase2_kept": "yes"}}
-    rows = [{"case": "a", "cf_final_mm": 6.0, "area_final_pct": 1.0, "floor_mm": 4.0, "phase2_kept": "no"},
+    rec = {"a": {"case": "a", "code": "aaa1111", "base": "pants", "cf_graded_mm": 7.0, "cf_final_mm": 5.0,
+                 "area_final_pct": 4.0, "phase2_kept": "yes"},
+           "b": {"case": "b", "code": "aaa1111", "cf_final_mm": 8.0, "area_final_pct": 2.0, "phase2_kept": "yes"},
+           "d": {"case": "d", "code": "aaa1111", "base": "skirt", "cf_final_mm": 8.0}}
+    rows = [{"case": "a", "base": "pants_band", "cf_graded_mm": 6.5, "cf_final_mm": 6.0, "area_final_pct": 1.0,
+             "floor_mm": 4.0, "phase2_kept": "no"},
             {"case": "b", "exit": "fell"},
-            {"case": "c", "cf_final_mm": 3.0, "area_final_pct": 1.0}]
+            {"case": "c", "cf_final_mm": 3.0, "area_final_pct": 1.0},
+            {"case": "d", "base": "skirt", "cf_final_mm": 8.0}]
     mod.print_against(rows, rec, tmp_path / "fits.json")
     out = capsys.readouterr().out
-    assert "| a | aaa1111 | 5.0 -> 6.0 | 6.0 | 4.0 -> 1.0 |" in out and "yes -> no" in out
+    assert "| a | aaa1111 | pants -> pants_band | 7.0 -> 6.5 | 5.0 -> 6.0 | 6.0 | 4.0 -> 1.0 |" in out and "yes -> no" in out
+    assert "| d | aaa1111 | skirt | - -> - | 8.0 -> 8.0 |" in out
     assert "| b |" not in out and "| c |" not in out
-    assert "Chamfer: median change +1.00 mm over 1; lower on 0, higher on 1" in out
+    assert "Chamfer: median change +0.50 mm over 2; lower on 0, higher on 1" in out
     assert "per-panel area error: median change -3.00 points over 1; lower on 1, higher on 0" in out
