@@ -1,7 +1,7 @@
 """How often is the automatic base choice a tie, and which base does grading both keep?
 
 For each case folder, runs the fit's phase one as ``unsew fit`` does (default configuration, the
-contact set from the target, cotton): the base choice (:func:`unsew.fit.start.choose_base`) and,
+contact set from the target, cotton, torch's default threads): the base choice (:func:`unsew.fit.start.choose_base`) and,
 when its runner-up lies within ``BASE_TIE`` of the best (on the distance the choice is made on:
 the torso for dresses), the grading of both (:func:`unsew.fit.start.start_chosen`). One row per
 case: the chosen base and the runner-up, their distances' ratio, each graded drape's Chamfer to
@@ -73,9 +73,8 @@ def main() -> None:
     ap.add_argument("--no-run", action="store_true", help="only print the table of --jsonl")
     args = ap.parse_args()
 
-    import torch
-
-    torch.set_num_threads(1)
+    # torch's own thread count, as ``unsew fit`` runs: the drapes' round-off, and so a close call,
+    # depends on it (one thread here at bbf6dc7 graded up to 3 mm off the fits' two)
     from tables import print_table
 
     from unsew.errors import InputError
