@@ -1,8 +1,8 @@
 """How often is the automatic base choice a tie, and which base does grading both keep?
 
 For each case folder, runs the fit's phase one as ``unsew fit`` does (default configuration, the
-contact set from the target, cotton, torch's default threads): the base choice (:func:`unsew.fit.start.choose_base`) and,
-when its runner-up lies within ``BASE_TIE`` of the best (on the distance the choice is made on:
+contact set from the target, cotton, torch's default threads): the base choice
+(:func:`unsew.fit.start.choose_base`) and, when its runner-up lies within ``BASE_TIE`` of the best (on the distance the choice is made on:
 the torso for dresses), the grading of both (:func:`unsew.fit.start.start_chosen`). One row per
 case: the chosen base and the runner-up, their distances' ratio, each graded drape's Chamfer to
 the target [mm] (ties only), the base kept, and the seconds it took; then per garment type, how

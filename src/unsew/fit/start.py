@@ -11,8 +11,8 @@ chosen only when no candidate's arms agree with the target's: grading cannot gro
 sleeve, and it would pull the armhole out to the target's cuff. Dresses are told apart by the
 cloth over the torso (:data:`TORSO_CHOICE`): their bases differ at the waist, which grading does
 not reach. When the runner-up lies within :data:`BASE_TIE` of the best, the call is within the
-candidates' own noise, and :func:`start_chosen` grades both and starts from the graded drape
-closer to the target."""
+candidates' own noise, and :func:`start_chosen` grades both and starts from the runner-up's
+graded drape when it is clearly closer to the target."""
 
 from __future__ import annotations
 
@@ -143,8 +143,9 @@ TORSO_CHOICE = ("dress",)
 TORSO_BAND_BELOW_ARMPIT = 0.05  #: [m]
 #: A runner-up base whose drape lies within this ratio of the best's (on the distance the choice is
 #: made on, with the same arms) is a tie: both are graded and the runner-up kept when its graded
-#: drape is clearly closer (:func:`start_chosen`). The candidates' distances move by up to 17 % when their coarse mesh's
-#: edge changes by 2 mm (docs/benchmarks.md, "How noisy is that choice between a band and none?");
+#: drape is clearly closer (:func:`start_chosen`). The candidates' distances move by up to 17 %
+#: when their coarse mesh's edge changes by 2 mm (docs/benchmarks.md, "How noisy is that choice
+#: between a band and none?");
 #: on GarmentCode's waisted sleeveless dress on its "all" body the straight base won by 9 % over
 #: the torso (15.4 against 16.7 mm) and graded to 14.5 mm, the waisted one to 11.7.
 BASE_TIE = 1.10
@@ -249,9 +250,9 @@ def start_chosen(choice: BaseChoice, body, target: Target, sdf, cfg: FitConfig, 
     than half its limit left, from the runner-up too. The runner-up's Start is kept when its graded
     drape lies closer to the target (:meth:`Target.distance_mm`) than the chosen base's by more
     than :data:`unsew.fit.material.CHECK_MARGIN_MM` and ``CHECK_MARGIN_REL`` of it (what two drapes
-    from scratch of one pattern differ by); otherwise the chosen base's. The graded distances go into the base choice
-    table's rows ("graded_mm"); a runner-up whose grading fails (or diverges) is logged and left
-    out."""
+    from scratch of one pattern differ by); otherwise the chosen base's. The graded distances
+    [mm] go into the base choice table's rows ("graded_mm"); a runner-up whose grading fails (or
+    diverges) is logged and left out."""
     names = [choice.name] + ([choice.tie[0]] if choice.tie else [])
     patterns = [choice.pattern] + ([choice.tie[1]] if choice.tie else [])
     if choice.tie and budget is not None and not budget.within(0.5):
@@ -275,13 +276,12 @@ def start_chosen(choice: BaseChoice, body, target: Target, sdf, cfg: FitConfig, 
                 r["graded_mm"] = cf
     best = starts[0]
     if len(starts) > 1:  # the runner-up must be closer by more than two drapes of one pattern differ
-        from unsew.fit.material import CHECK_MARGIN_MM, CHECK_MARGIN_REL
+        from unsew.fit.material import CHECK_MARGIN_MM, CHECK_MARGIN_REL  # here: material imports this module
 
         cf0, cf1 = starts[0][0], starts[1][0]
         if math.isfinite(cf1) and (not math.isfinite(cf0)
                                    or cf1 < cf0 - max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * cf0)):
             best = starts[1]
-    if len(starts) > 1:
         log("base tie: graded " + ", ".join(f"{n} {cf:.2f} mm" for cf, n, _ in starts) + f"; {best[1]} kept")
         table.sort(key=lambda r: r["base"] != best[1])
     return best[2].replace(base_name=best[1], base_choice=tuple(table))
