@@ -148,6 +148,11 @@ def test_slits_are_cut_from_a_hem_and_folds_or_slopes_are_not():
     assert slits(slit, -up) == (None, 0.0)
     for other in (_hem_with_slits(0.0, wave=0.03), _hem_with_slits(0.0, slope=0.12), _hem_with_slits(0.03)):
         assert slits(other, up) == (None, 0.0)  # folds, a sloped hem, a 3 cm notch
+    # a tall narrow loop, all climb and return but its two lowest vertices: no rim left, no slit
+    # (cut from it, place_contours found the plane of two points and failed)
+    narrow = np.array([[0.0, 0.0, 0.0], [0.02, 0.0, 0.0], [0.021, 0.1, 0.0], [0.022, 0.2, 0.0], [0.0, 0.2, 0.0],
+                       [-0.001, 0.1, 0.0]])
+    assert slits(narrow, up) == (None, 0.0)
 
 
 def _skirt_tube(slit_rows: int):

@@ -310,7 +310,9 @@ def slits(points, axis) -> tuple[np.ndarray | None, float]:
     ``axis`` by at least :data:`SLIT_RISE`, each steeper than :data:`SLIT_STEEP`, then (after at
     most :data:`SLIT_APEX` flat segments at its top) a run coming down by as much.
     kept: (k,) bool, False on the vertices strictly inside a slit's climb and return; None when
-    the loop has no slit. cut: the slits' length less the chords that close them [m].
+    the loop has no slit, or when its climbs and returns would leave fewer than three of its
+    vertices (a tall narrow loop along ``axis``: no rim to place, and the rim's plane was
+    undefined). cut: the slits' length less the chords that close them [m].
     """
     p = np.asarray(points, dtype=np.float64)
     k = len(p)
@@ -343,7 +345,7 @@ def slits(points, axis) -> tuple[np.ndarray | None, float]:
             i, j = order[a], order[t % k]  # the slit runs from vertex i to vertex j
             kept[order[a + 1:t]] = False
             cut += float(l_[a:t].sum() - np.linalg.norm(p[j] - p[i]))
-    return (None, 0.0) if kept.all() else (kept, cut)
+    return (None, 0.0) if kept.all() or np.count_nonzero(kept) < 3 else (kept, cut)
 
 
 def _inward(adj, v, c: Contour) -> np.ndarray | None:
