@@ -538,6 +538,36 @@ def test_redress_refuses_a_pattern_that_cannot_be_meshed_afresh():
     assert "graded pattern is returned" in lines[0]
 
 
+def test_redress_refuses_a_pattern_its_reader_would_refuse(monkeypatch):
+    """A pattern that meshes but whose outline crosses itself at a corner (phase two moved a side
+    seam's point past the armhole; written, load_pattern refused it and the benchmark's reader
+    crashed) is refused like one that cannot be meshed: the graded pattern is returned. The
+    validator stands in for such an outline here."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    import unsew.fit.checks as checks
+    from unsew.errors import PatternError
+    from unsew.fit.config import FitConfig
+    from unsew.fit.progress import Progress
+    from unsew.pattern.base import make_base_pattern
+
+    def crossing(p):
+        raise PatternError("panel 'front' outline intersects itself: edge 3 crosses edge 4")
+
+    monkeypatch.setattr(checks, "validate_pattern", crossing)
+    meshed = []
+    monkeypatch.setattr(checks, "mesh_pattern", lambda *a, **k: meshed.append(1))
+    start = SimpleNamespace(x=np.zeros((3, 3)), mesh=SimpleNamespace(faces=np.array([[0, 1, 2]])))
+    target = SimpleNamespace(distance_mm=lambda x, f: 7.5)
+    lines = []
+    rd = checks.redress_check(make_base_pattern("tshirt"), None, None, start, None, target, None, FitConfig(),
+                              progress=Progress(False), log=lines.append)
+    assert not rd.phase_two_kept and rd.fit_redressed_mm is None and "crosses edge 4" in rd.refused
+    assert meshed == [] and "graded pattern is returned" in lines[0]
+
+
 def test_report_says_when_phase_two_was_refused():
     from unsew.fit.report import _redress_note
 

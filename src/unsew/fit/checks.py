@@ -33,6 +33,7 @@ from unsew.fit.target import Target
 from unsew.grading.grade import moved_mesh
 from unsew.meshing import mesh_pattern
 from unsew.pattern.curves import panel_outline
+from unsew.pattern.validate import validate_pattern
 
 __all__ = ["RedressCheck", "MeshSpread", "redress_check", "redress_on_three", "graded_afresh", "mesh_spread",
            "spread_lengths", "mm_list", "unmoved", "REDRESS_MARGIN_MM", "UNMOVED_TOL"]
@@ -102,9 +103,13 @@ def redress_check(pattern, uv, material, start: Start, body, target: Target, sdf
     """Dress ``pattern`` (rest positions ``uv`` (Nu, 2) [m] on ``start.mesh``'s topology) in
     ``material`` from scratch and compare it with the graded drape ``start.x``. A pattern that
     cannot be meshed afresh (phase two moved the rest mesh's vertices, which can squeeze a panel
-    flat while the moved mesh still drapes) is refused and the graded pattern returned."""
+    flat while the moved mesh still drapes) or that its own reader would refuse
+    (:func:`unsew.pattern.validate.validate_pattern`: an outline crossing itself at a corner,
+    which meshing can survive) is refused and the graded pattern returned: written, it could not
+    be loaded back."""
     cf_graded = target.distance_mm(start.x, start.mesh.faces)
     try:
+        validate_pattern(pattern.copy())  # an outline crossing itself, which a mesh can survive, is refused too
         mesh_pattern(pattern, edge_length=cfg.drape.edge_length)
     except PatternError as exc:
         log(f"re-dress check: phase two's pattern cannot be meshed afresh ({exc}): the graded pattern is returned")
