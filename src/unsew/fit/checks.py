@@ -112,7 +112,8 @@ def redress_check(pattern, uv, material, start: Start, body, target: Target, sdf
         validate_pattern(pattern.copy())  # an outline crossing itself, which a mesh can survive, is refused too
         mesh_pattern(pattern, edge_length=cfg.drape.edge_length)
     except PatternError as exc:
-        log(f"re-dress check: phase two's pattern cannot be meshed afresh ({exc}): the graded pattern is returned")
+        log(f"re-dress check: phase two's pattern cannot be meshed afresh or read back ({exc}): "
+            "the graded pattern is returned")
         return RedressCheck(None, cf_graded, False, refused=str(exc))
     with progress.phase("re-dress the fit") as bar:
         x = dress(pattern, body, sdf=sdf, mesh=moved_mesh(start.mesh, pattern, uv), material=material,
