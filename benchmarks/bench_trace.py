@@ -102,6 +102,7 @@ def main() -> None:
     start = (res.material_choice or [{"material": cfg.material.start}])[0]["material"]
     print(f"best iteration {res.best_iteration}; start material {start}"
           + (f"; re-dress refused ({rd['refused']}), graded returned" if rd and rd.get("refused") else
+             f"; re-dressed, it failed ({rd['failed']}), graded returned" if rd and rd.get("failed") else
              f"; re-dress {rd['fit_redressed_mm']:.2f} mm against graded {rd['graded_mm']:.2f} mm, "
              f"{'fit kept' if rd['phase_two_kept'] else 'graded returned'}" if rd else ""))
     if args.json:

@@ -568,6 +568,41 @@ def test_redress_refuses_a_pattern_its_reader_would_refuse(monkeypatch):
     assert meshed == [] and "graded pattern is returned" in lines[0]
 
 
+def test_a_drape_from_scratch_that_fails_its_check_decides_nothing(monkeypatch):
+    """A drape from scratch that ends exploded (one edge torn through an armhole) can lie close
+    to the target. Phase two's pattern whose fresh drape failed its check is not kept, the graded
+    pattern is returned and the log says why; the graded pattern's failed fresh drape and a failed
+    drape on another mesh count as failed (None), not by their distance."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    import unsew.fit.checks as checks
+    from unsew.fit.config import FitConfig
+    from unsew.fit.progress import Progress
+    from unsew.pattern.base import make_base_pattern
+
+    torn = "exploded: an edge is stretched to 5.1 times its pattern length (bound 3)"
+    dressed = SimpleNamespace(x=SimpleNamespace(numpy=lambda: np.ones((3, 3))), mesh=SimpleNamespace(faces=None))
+    monkeypatch.setattr(checks, "dress", lambda *a, **k: dressed)
+    monkeypatch.setattr(checks, "moved_mesh", lambda *a: None)
+    monkeypatch.setattr(checks, "mesh_pattern", lambda *a, **k: None)
+    monkeypatch.setattr(checks, "check_dressed", lambda d, body: SimpleNamespace(ok=False, reason=torn))
+    start = SimpleNamespace(x=np.zeros((3, 3)), mesh=SimpleNamespace(faces=None), graded=None, material=None)
+    target = SimpleNamespace(distance_mm=lambda x, f: 1.0 if x.any() else 7.5)  # the torn drape lies closer
+    lines = []
+    rd = checks.redress_check(make_base_pattern("tshirt"), None, None, start, None, target, None, FitConfig(),
+                              progress=Progress(False), log=lines.append)
+    assert not rd.phase_two_kept and rd.fit_redressed_mm is None and rd.failed == torn and rd.refused == ""
+    assert rd.graded_mm == 7.5 and "failed (exploded" in lines[0] and "graded pattern is returned" in lines[0]
+    assert checks.graded_afresh(start, None, target, None, FitConfig(), progress=Progress(False)) == (None, None)
+    assert checks._dressed_mm(None, None, None, target, None, FitConfig(), 0.02, Progress(False), "it") is None
+    monkeypatch.setattr(checks, "check_dressed", lambda d, body: SimpleNamespace(ok=True, reason=""))
+    assert checks._dressed_mm(None, None, None, target, None, FitConfig(), 0.02, Progress(False), "it") == 1.0
+    assert checks.redress_check(make_base_pattern("tshirt"), None, None, start, None, target, None, FitConfig(),
+                                progress=Progress(False), log=lines.append).phase_two_kept
+
+
 def test_report_says_when_phase_two_was_refused():
     from unsew.fit.report import _redress_note
 
@@ -576,6 +611,9 @@ def test_report_says_when_phase_two_was_refused():
     assert "cannot be meshed afresh" in note and "waistband_front" in note and "graded pattern" in note
     kept = _redress_note({"fit_redressed_mm": 6.0, "graded_mm": 7.5, "phase_two_kept": True, "refused": ""})
     assert "6.00 mm" in kept and "phase two's pattern is returned" in kept
+    failed = _redress_note({"fit_redressed_mm": None, "graded_mm": 7.5, "phase_two_kept": False, "refused": "",
+                            "failed": "exploded: an edge is stretched to 5.1 times its pattern length (bound 3)"})
+    assert "dressed from scratch failed (exploded" in failed and "graded pattern" in failed
     three = _redress_note({"fit_redressed_mm": 6.0, "graded_mm": 7.5, "phase_two_kept": False, "refused": "",
                            "meshes": 3, "edge_lengths_m": [0.025, 0.024, 0.026], "fit_mm": [6.0, 9.0, None],
                            "graded_fresh_mm": [7.0, 7.2, 7.4], "fit_mean_mm": None, "graded_mean_mm": 7.2})
@@ -684,6 +722,7 @@ def test_redress_on_three_keeps_phase_two_by_the_mean(monkeypatch, fit_mm, grade
     rest = {id(fit_pattern): iter(fit_mm[1:]), id(graded_pattern): iter(graded_mm[1:])}
     monkeypatch.setattr(checks, "_dressed_mm", lambda pattern, *a: next(rest[id(pattern)]))
     monkeypatch.setattr(checks, "dress", lambda *a, **k: SimpleNamespace(x=SimpleNamespace(numpy=lambda: None)))
+    monkeypatch.setattr(checks, "check_dressed", lambda d, body: SimpleNamespace(ok=True, reason=""))
     monkeypatch.setattr(checks, "unmoved", lambda *a: False)  # two patterns, as told
     target = SimpleNamespace(distance_mm=lambda x, faces: graded_mm[0])
     start = SimpleNamespace(graded=graded_pattern, mesh=SimpleNamespace(faces=None), material=None)

@@ -15,6 +15,12 @@ mean distance lies below the graded pattern's (:func:`redress_on_three`).
 The mesh spread: the returned pattern dressed on two other triangulations; how far the folds move
 with the mesh alone is the floor under the result's distance to the target (docs/history.md,
 "The mesh floor").
+
+Every drape from scratch these checks make is judged as the result is
+(:func:`unsew.sim.checks.check_dressed`): one that ends exploded, fallen, off the body or inside
+it is a failed drape, whatever its distance to the target. A drape with one edge torn through an
+armhole can lie close to the target; kept for that, it became the result and the fit failed at
+its last check (docs/benchmarks.md, "Drapes from scratch judged before they decide").
 """
 
 from __future__ import annotations
@@ -34,6 +40,7 @@ from unsew.grading.grade import moved_mesh
 from unsew.meshing import mesh_pattern
 from unsew.pattern.curves import panel_outline
 from unsew.pattern.validate import validate_pattern
+from unsew.sim.checks import check_dressed
 
 __all__ = ["RedressCheck", "MeshSpread", "redress_check", "redress_on_three", "graded_afresh", "mesh_spread",
            "spread_lengths", "mm_list", "unmoved", "REDRESS_MARGIN_MM", "UNMOVED_TOL"]
@@ -51,10 +58,12 @@ UNMOVED_TOL = 1e-9
 @dataclass
 class RedressCheck:
     """fit_redressed_mm: phase two's pattern dressed from scratch, its distance to the target
-    [mm] (None when it was refused); graded_mm: the graded drape's [mm]; phase_two_kept: whether
-    phase two's pattern is the result; refused: why phase two's pattern was not dressed ("" when
-    it was): it cannot be meshed afresh (a panel squeezed to a sliver, an outline crossing itself),
-    so it is no pattern to return.
+    [mm] (None when it was refused or its drape failed); graded_mm: the graded drape's [mm];
+    phase_two_kept: whether phase two's pattern is the result; refused: why phase two's pattern
+    was not dressed ("" when it was): it cannot be meshed afresh (a panel squeezed to a sliver, an
+    outline crossing itself), so it is no pattern to return; failed: why its drape from scratch
+    on the fit's mesh failed its check (exploded, fallen, ...; "" when it did not), which returns
+    the graded pattern too.
 
     Judged on three meshes (:func:`redress_on_three`): edge_lengths_m, the fit's mesh and the
     spread's two [m]; fit_mm and graded_fresh_mm, each pattern dressed from scratch on each of
@@ -71,6 +80,7 @@ class RedressCheck:
     graded_mm: float
     phase_two_kept: bool
     refused: str = ""
+    failed: str = ""
     meshes: int = 1
     edge_lengths_m: list | None = None
     fit_mm: list | None = None
@@ -116,8 +126,12 @@ def redress_check(pattern, uv, material, start: Start, body, target: Target, sdf
             "the graded pattern is returned")
         return RedressCheck(None, cf_graded, False, refused=str(exc))
     with progress.phase("re-dress the fit") as bar:
-        x = dress(pattern, body, sdf=sdf, mesh=moved_mesh(start.mesh, pattern, uv), material=material,
-                  settings=cfg.drape, progress=bar).x.numpy()
+        x, failed = _judged(dress(pattern, body, sdf=sdf, mesh=moved_mesh(start.mesh, pattern, uv), material=material,
+                                  settings=cfg.drape, progress=bar), body)
+    if failed:
+        log(f"re-dress check: the fitted pattern dressed from scratch failed ({failed}): the graded pattern is "
+            "returned")
+        return RedressCheck(None, cf_graded, False, failed=failed)
     cf_re = target.distance_mm(x, start.mesh.faces)
     kept = bool(cf_re < cf_graded - REDRESS_MARGIN_MM)
     log(f"re-dress check: the fitted pattern dressed from scratch lies {cf_re:.2f} mm from the target, "
@@ -182,14 +196,21 @@ def graded_afresh(start: Start, body, target: Target, sdf, cfg: FitConfig, *,
                   progress: Progress) -> tuple[np.ndarray | None, float | None]:
     """The graded pattern in its material dressed from scratch on the fit's mesh (``start.x`` was
     let settle from another material's drape): the drape (Nx, 3) [m] and its distance to the
-    target [mm], or (None, None) when the drape fails."""
+    target [mm], or (None, None) when the drape fails (raises, or fails its check)."""
     with progress.phase("dress the graded pattern afresh") as bar:
         try:
-            x = dress(start.graded, body, sdf=sdf, mesh=start.mesh, material=start.material, settings=cfg.drape,
-                      progress=bar).x.numpy()
+            x, failed = _judged(dress(start.graded, body, sdf=sdf, mesh=start.mesh, material=start.material,
+                                      settings=cfg.drape, progress=bar), body)
         except SimulationError:
             return None, None
-    return x, target.distance_mm(x, start.mesh.faces)
+    return (None, None) if failed else (x, target.distance_mm(x, start.mesh.faces))
+
+
+def _judged(d, body) -> tuple[np.ndarray, str]:
+    """A :class:`unsew.dress.Dressed` as its drape (Nx, 3) [m] and why it fails its check
+    (:func:`unsew.sim.checks.check_dressed`; "" when it passes)."""
+    verdict = check_dressed(d, body=body)
+    return d.x.numpy(), verdict.reason
 
 
 def mm_list(values, digits: int = 2) -> str:
@@ -208,14 +229,15 @@ def _dressed_mm(pattern, material, body, target: Target, sdf, cfg: FitConfig, h:
                 what: str) -> float | None:
     """``pattern`` in ``material`` meshed at edge length ``h`` [m] and dressed from scratch (the
     fit's settings): its distance to the target [mm], or None when the drape fails
-    (SimulationError, or PatternError: the pattern cannot be meshed at that length)."""
+    (SimulationError, its check, or PatternError: the pattern cannot be meshed at that length)."""
     with progress.phase(f"dress {what} on a {100 * h:.2f} cm mesh") as bar:
         try:
             d = dress(pattern, body, sdf=sdf, material=material, settings=cfg.drape.replace(edge_length=h),
                       progress=bar)
-            return target.distance_mm(d.x.numpy(), d.mesh.faces)
         except (SimulationError, PatternError):
             return None
+    x, failed = _judged(d, body)
+    return None if failed else target.distance_mm(x, d.mesh.faces)
 
 
 def mesh_spread(pattern, material, body, target: Target, sdf, cfg: FitConfig, result_mm: float, *,

@@ -200,13 +200,13 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
         # the re-dress is a drape of the result from scratch, timed now: a closer estimate of the
         # mesh spread's two drapes than the base's (docs/benchmarks.md, "The mesh spread's estimate")
         drape_s = max(drape_s, time.perf_counter() - t0)
-        if cfg.checks.redress_meshes == 3 and cfg.checks.mesh_spread > 0 and not redress.refused:
+        if cfg.checks.redress_meshes == 3 and cfg.checks.mesh_spread > 0 and redress.fit_redressed_mm is not None:
             if budget.fits(5 * drape_s):  # the graded pattern on three meshes, phase two's on two more
                 redress, spread = redress_on_three(redress, pattern, material, s, case.body, target, sdf, cfg,
                                                    progress=bar, log=log)
             else:
                 budget.cut("re-dress check judged on one mesh (three would overrun)")
-        if not redress.phase_two_kept and redress.x_graded is None:  # judged on one mesh, or refused
+        if not redress.phase_two_kept and redress.x_graded is None:  # judged on one mesh, refused or failed
             if budget.fits(drape_s):
                 redress.x_graded, _ = graded_afresh(s, case.body, target, sdf, cfg, progress=bar)
             else:

@@ -160,6 +160,8 @@ def _redress_note(rd: dict) -> str:
     graded = "the graded pattern and its drape are returned (the final and graded patterns coincide)"
     if rd.get("refused"):
         return f"re-dress check: phase two's pattern cannot be meshed afresh or read back ({rd['refused']}); {graded}"
+    if rd.get("failed"):
+        return f"re-dress check: phase two's pattern dressed from scratch failed ({rd['failed']}); {graded}"
     verdict = "phase two's pattern is returned" if rd["phase_two_kept"] else graded
     if rd.get("meshes", 1) == 3:
         means = (f"means {rd['fit_mean_mm']:.2f} against {rd['graded_mean_mm']:.2f} mm"
