@@ -90,6 +90,8 @@ class LossWeights:
     prior: float = 0.0  #: pull towards the graded pattern: mean squared 2D rest-vertex move [m^2] (0: the paper's loss) [-]
     area: float = 0.0  #: pull of the pattern's total area towards the target's surface area, (A / A_T - 1)^2 (unsew.losses.area; 0: the paper's loss; measured at 0.005 and left off: docs/benchmarks.md, "The target's area") [m^2]
     panel_area: float = 0.0  #: pull of each panel's rest area towards its graded area, mean over panels of (A_p / A_p0 - 1)^2 (unsew.losses.panel_area; 0: the paper's loss; measured at 0.2 and 0.05 and left off: docs/benchmarks.md, "Fresh cases of session 33; each panel's area held in phase two") [-]
+    stretch: float = 1e-4  #: barrier against overstretched cloth: sum over the drape's triangle edges of relu(stretch - stretch_bound)^2, zero while every edge is within the bound (unsew.losses.stretch; not in the paper; 0: off; why: docs/benchmarks.md, "A barrier against overstretched cloth") [-]
+    stretch_bound: float = 1.5  #: edge stretch (length over rest length) the barrier lets pass free [-]
     target_points: int = 8000  #: target vertices kept for the Chamfer (random subset, seeded) [-]
 
 
@@ -308,6 +310,8 @@ def _check(cfg: FitConfig, names: dict) -> None:
         raise InputError(f"{say('optimizer.seams')} must be one of {', '.join(SEAM_MODES)}, got {o.seams!r}")
     if not o.friction_eps > 0:
         raise InputError(f"{say('optimizer.friction_eps')} must be positive, got {o.friction_eps} m/s")
+    if not cfg.loss.stretch_bound >= 1:
+        raise InputError(f"{say('loss.stretch_bound')} must be at least 1 (no stretch), got {cfg.loss.stretch_bound}")
     if not cfg.time_limit >= 0:
         raise InputError(f"{say('time_limit')} must be >= 0 s (0: no limit), got {cfg.time_limit}")
     if not 0 <= cfg.checks.mesh_spread < 0.5:
@@ -315,7 +319,7 @@ def _check(cfg: FitConfig, names: dict) -> None:
     if cfg.checks.redress_meshes not in (1, 3):
         raise InputError(f"{say('checks.redress_meshes')} must be 1 or 3, got {cfg.checks.redress_meshes}")
     for place in ("material.refine", "material.regrade", "material.warm_steps", "drape.sew_steps", "drape.settle_steps",
-                  "loss.open", "loss.seam", "loss.material", "loss.prior", "loss.area", "loss.panel_area"):
+                  "loss.open", "loss.seam", "loss.material", "loss.prior", "loss.area", "loss.panel_area", "loss.stretch"):
         g, n = place.split(".")
         if getattr(getattr(cfg, g), n) < 0:
             raise InputError(f"{say(place)} must be >= 0, got {getattr(getattr(cfg, g), n)}")

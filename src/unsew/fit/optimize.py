@@ -44,6 +44,7 @@ from unsew.losses.material import loss_material
 from unsew.losses.panel_area import loss_panel_area, panel_areas
 from unsew.losses.prior import loss_prior
 from unsew.losses.seam import loss_seam, seam_segment_pairs
+from unsew.losses.stretch import loss_stretch, triangle_edges
 from unsew.metrics.panels import panel_area
 from unsew.pattern.curves import edge_length
 from unsew.pattern.params import PatternParams, check_inverted
@@ -57,7 +58,7 @@ from unsew.tolerances import MIN_TRIANGLE_QUALITY
 __all__ = ["PhaseTwo", "AreaHold", "step_scales", "band_projectors", "LossTerms", "Iterate", "Iteration", "material_params", "LOSS_TERMS"]
 
 #: Names of the loss terms, in the order of :class:`LossTerms` (and of ``FitResult.history``).
-LOSS_TERMS = ("total", "chamfer", "open", "seam", "material", "prior", "area", "panel_area")
+LOSS_TERMS = ("total", "chamfer", "open", "seam", "material", "prior", "area", "panel_area", "stretch")
 
 #: Steps of each drape that probes and settles phase two's start (:meth:`PhaseTwo._start_at_rest`) [-].
 REST_CHUNK = 10
@@ -66,8 +67,8 @@ REST_CHUNK = 10
 @dataclass
 class LossTerms:
     """The loss of one drape, term by term (0-d torch tensors): ``total`` is the weighted sum
-    of ``chamfer`` [m^2], ``open`` [m^2], ``seam`` [m^2], ``material``, ``prior`` [m^2], ``area`` [-]
-    and ``panel_area`` [-]."""
+    of ``chamfer`` [m^2], ``open`` [m^2], ``seam`` [m^2], ``material``, ``prior`` [m^2], ``area`` [-],
+    ``panel_area`` [-] and ``stretch`` [-]."""
 
     total: torch.Tensor
     chamfer: torch.Tensor
@@ -77,6 +78,7 @@ class LossTerms:
     prior: torch.Tensor
     area: torch.Tensor
     panel_area: torch.Tensor
+    stretch: torch.Tensor
 
     def floats(self) -> dict[str, float]:
         """The terms as plain floats, keyed by :data:`LOSS_TERMS`."""
@@ -260,6 +262,7 @@ class PhaseTwo:
         self._targets(target, dev)
         self.contours_x = open_contours(np.asarray(s.x), s.mesh.faces)
         self.seam_pairs = torch.as_tensor(seam_segment_pairs(s.mesh, s.graded.stitches), dtype=torch.int64, device=dev)
+        self.edges, self.edges_uv = (e.to(dev) for e in triangle_edges(s.mesh.faces, s.mesh.faces_uv))
         self.gamma0 = s.material.gamma().to(dev)
         self.K = self.params.K0.detach().clone().to(dev).requires_grad_(True)
         self.theta, self.gamma_of = material_params(self.gamma0)
@@ -360,9 +363,10 @@ class PhaseTwo:
         l_prior = loss_prior(uv, self.uv_start) if w.prior > 0 else zero_uv
         l_area = loss_area(uv, self.faces_uv, self.area_target) if w.area > 0 else zero_uv
         l_panel = loss_panel_area(uv, self.faces_uv, self.face_panel, self.panel_areas0) if w.panel_area > 0 else zero_uv
+        l_stretch = loss_stretch(x, uv, self.edges, self.edges_uv, bound=w.stretch_bound) if w.stretch > 0 else zero_x
         total = l_cf + w.open * l_open + w.seam * l_seam + w.material * l_mat + w.prior * l_prior + w.area * l_area \
-            + w.panel_area * l_panel
-        return LossTerms(total, l_cf, l_open, l_seam, l_mat, l_prior, l_area, l_panel), gamma, x
+            + w.panel_area * l_panel + w.stretch * l_stretch
+        return LossTerms(total, l_cf, l_open, l_seam, l_mat, l_prior, l_area, l_panel, l_stretch), gamma, x
 
     def _set_learning_rates(self) -> None:
         o = self.cfg.optimizer
