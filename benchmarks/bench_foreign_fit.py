@@ -69,7 +69,8 @@ COLUMNS = ["case", "garment", "body", "base", "exit", "time_s",
            "cf_base_mm", "cf_graded_mm", "cf_final_mm", "cf_warm_mm", "floor_mm",
            "area_base_pct", "area_graded_pct", "area_final_pct",
            "total_base_pct", "total_graded_pct", "total_final_pct", "matched_final_pct",
-           "seam_final_mm", "loss_spikes", "panels", "unmatched", "phase2_kept", "peak_mb", "peak_stage"]
+           "seam_final_mm", "loss_spikes", "stretch_max", "barrier", "panels", "unmatched", "phase2_kept", "peak_mb",
+           "peak_stage"]
 
 #: metrics.json key and result-folder file of each pattern the table judges
 PATTERNS = (("base", "pattern_base", "pattern_base.json"), ("graded", "pattern_graded", "pattern_graded.json"),
@@ -213,6 +214,9 @@ def row(case: Path, out: Path, status: dict, *, recompute: bool = False) -> dict
             r["unmatched"] = _unmatched(p)
     r["seam_final_mm"] = _seam_change(res)
     r["loss_spikes"] = _loss_spikes(m.get("loss_history") or {})
+    r["stretch_max"] = (m.get("drape_check") or {}).get("stretch_max")  # the returned drape's longest edge / rest
+    stretch = (m.get("loss_history") or {}).get("stretch")
+    r["barrier"] = max(stretch) if stretch else None  # the stretch barrier's largest term in phase two (0: never acted)
     red = m.get("redress")
     r["phase2_kept"] = None if red is None else ("yes" if red.get("phase_two_kept") else "no")
     r["peak_mb"] = m.get("peak_memory_mb")  # the fit process's peak resident memory [MB]
@@ -319,6 +323,9 @@ def print_against(rows: list[dict], rec: dict, path: Path) -> None:
     def f(v):
         return "-" if v is None else f"{float(v):.1f}"
 
+    def f2(v):
+        return "-" if v is None else f"{float(v):.2f}"
+
     out, dcf, dpa = [], [], []
     for r in rows:
         old = rec.get(r["case"])
@@ -334,6 +341,8 @@ def print_against(rows: list[dict], rec: dict, path: Path) -> None:
                     "matched panels [%]": f"{f(old.get('matched_final_pct'))} -> {f(r.get('matched_final_pct'))}",
                     "total [%]": f"{f(old.get('total_final_pct'))} -> {f(r.get('total_final_pct'))}",
                     "phase two kept": f"{old.get('phase2_kept') or '-'} -> {r.get('phase2_kept') or '-'}",
+                    "stretch max": f"{f2(old.get('stretch_max'))} -> {f2(r.get('stretch_max'))}",
+                    "barrier": f2(r.get("barrier")),
                     "time [s]": f(r.get("time_s"))})
         dcf.append(float(r["cf_final_mm"]) - float(old["cf_final_mm"]))
         if r.get("area_final_pct") is not None and old.get("area_final_pct") is not None:

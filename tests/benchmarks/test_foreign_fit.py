@@ -45,6 +45,7 @@ def test_row_reads_metrics_and_pattern_files(tmp_path):
         "surface_warm": {"chamfer_mm": 6.5}, "pattern": final,
         "pattern_base": {"error": "panels without a counterpart"},
         "redress": {"fit_redressed_mm": 8.0, "graded_mm": 9.0, "phase_two_kept": True},
+        "drape_check": {"stretch_max": 1.62}, "loss_history": {"total": [1.0, 0.9], "stretch": [0.0, 0.25]},
         "timings_s": {"total_s": 12.0}, "peak_memory_mb": 2048.5,
         "peak_memory_stages_mb": {"loaded": 600.0, "body_sdf_s": 700.0, "grading_s": 2048.5, "optimization_s": 2048.5},
     }
@@ -59,7 +60,7 @@ def test_row_reads_metrics_and_pattern_files(tmp_path):
     assert r["phase2_kept"] == "yes" and r["time_s"] == 12.0 and r["peak_mb"] == 2048.5
     assert r["peak_stage"] == "grading"  # the first stage whose end reached the final peak
     assert r["seam_final_mm"] is None  # no pattern.json saved
-    assert r["loss_spikes"] is None  # no loss_history
+    assert r["loss_spikes"] == "0 (0)" and r["stretch_max"] == 1.62 and r["barrier"] == 0.25
     assert mod._loss_spikes({"total": [1.0, 0.9, 9.0, 0.8, 3.9], "material": [0, 0, 8.5, 0, 0]}) == "1 (1)"
     assert mod._loss_spikes({"total": [1.0, 6.0], "material": [0.0, 0.0]}) == "1 (0)"
     shutil.copy(case / "pattern_gt.json", res / "pattern.json")
