@@ -9,7 +9,7 @@ length over rest length), where the longest edge lies (height [m], panel), and f
 of the garment (open boundary loop of the sewn mesh; named neck, hem, left/right by where its
 drape lies) its rest length on the pattern and its draped length [cm].
 
-The question it answers (docs/benchmarks.md, "A barrier against overstretched cloth"): does a
+The question it answers (docs/benchmarks.md, "Drapes from scratch judged before they decide; a barrier against overstretched cloth"): does a
 fit hold its garment up by an opening stretched over the body (a neckline pulled round the neck)?
 
     python -m benchmarks stretch --case benchmarks/foreign/cases/CASE --results OUT/CASE [OUT2/CASE ...]

@@ -18,9 +18,9 @@ with the mesh alone is the floor under the result's distance to the target (docs
 
 Every drape from scratch these checks make is judged as the result is
 (:func:`unsew.sim.checks.check_dressed`): one that ends exploded, fallen, off the body or inside
-it is a failed drape, whatever its distance to the target. A drape with one edge torn through an
-armhole can lie close to the target; kept for that, it became the result and the fit failed at
-its last check (docs/benchmarks.md, "Drapes from scratch judged before they decide").
+it is a failed drape, whatever its distance to the target. A drape torn at a shrunk neckline can
+lie close to the target; kept for that, it became the result and the fit failed at its last check
+(docs/benchmarks.md, "Drapes from scratch judged before they decide; a barrier against overstretched cloth").
 """
 
 from __future__ import annotations

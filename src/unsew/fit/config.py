@@ -90,7 +90,7 @@ class LossWeights:
     prior: float = 0.0  #: pull towards the graded pattern: mean squared 2D rest-vertex move [m^2] (0: the paper's loss) [-]
     area: float = 0.0  #: pull of the pattern's total area towards the target's surface area, (A / A_T - 1)^2 (unsew.losses.area; 0: the paper's loss; measured at 0.005 and left off: docs/benchmarks.md, "The target's area") [m^2]
     panel_area: float = 0.0  #: pull of each panel's rest area towards its graded area, mean over panels of (A_p / A_p0 - 1)^2 (unsew.losses.panel_area; 0: the paper's loss; measured at 0.2 and 0.05 and left off: docs/benchmarks.md, "Fresh cases of session 33; each panel's area held in phase two") [-]
-    stretch: float = 1e-4  #: barrier against overstretched cloth: sum over the drape's triangle edges of relu(stretch - stretch_bound)^2, zero while every edge is within the bound (unsew.losses.stretch; not in the paper; 0: off; why: docs/benchmarks.md, "A barrier against overstretched cloth") [-]
+    stretch: float = 1e-4  #: barrier against overstretched cloth: sum over the drape's triangle edges of relu(stretch - stretch_bound)^2, zero while every edge is within the bound (unsew.losses.stretch; not in the paper; 0: off; why: docs/benchmarks.md, "Drapes from scratch judged before they decide; a barrier against overstretched cloth") [-]
     stretch_bound: float = 1.5  #: edge stretch (length over rest length) the barrier lets pass free [-]
     target_points: int = 8000  #: target vertices kept for the Chamfer (random subset, seeded) [-]
 
