@@ -20,10 +20,12 @@ def _start(name, x0):
                  x_base=np.zeros((3, 3)), mesh_base=mesh, material=get_material(name))
 
 
-def _run(monkeypatch, fresh_value):
+def _run(monkeypatch, fresh_value, failed=""):
     """The check with the chosen fabric's drape from scratch at ``fresh_value`` (a target whose
-    distance is the drape's first coordinate) against the cotton start at 7.0."""
+    distance is the drape's first coordinate; its check failing with ``failed`` when given)
+    against the cotton start at 7.0."""
     dressed = []
+    monkeypatch.setattr(mat_mod, "check_dressed", lambda d, body: SimpleNamespace(ok=not failed, reason=failed))
 
     def fake_dress(pattern, body, **kw):
         dressed.append((pattern, kw["material"]))
@@ -57,3 +59,13 @@ def test_a_choice_that_dresses_about_as_close_stands_as_made(monkeypatch):
         assert rows[0]["material"].startswith("polyester") and rows[0]["chamfer_mm"] == fresh
     first, _, s, _, _ = _run(monkeypatch, 7.8)  # farther by more than the margin
     assert s is first
+
+
+def test_a_choice_whose_drape_from_scratch_fails_its_check_gives_way_to_cotton(monkeypatch):
+    """An exploded drape can lie close to the target (a neckline torn round the neck): its
+    distance decides nothing."""
+    torn = "exploded: an edge is stretched to 6.2 times its pattern length (bound 3)"
+    first, _, s, rows, lines = _run(monkeypatch, 5.0, failed=torn)
+    assert s is first and rows[0]["material"] == "cotton"
+    assert rows[1]["chamfer_mm"] == 5.0 and rows[1]["pattern"].endswith(f"dressed from scratch (failed: {torn})")
+    assert "failed (exploded" in lines[0] and lines[0].endswith("phase two starts from cotton")

@@ -27,6 +27,7 @@ from unsew.fit.config import FitConfig, material_candidates
 from unsew.fit.progress import Progress
 from unsew.fit.start import Start, start
 from unsew.fit.target import Target
+from unsew.sim.checks import check_dressed
 from unsew.sim.material import get_material
 from unsew.sim.model import SimModel
 
@@ -211,22 +212,28 @@ def _checked(first: Start, chosen: Start, table: list, body, target: Target, sdf
     that drape lies farther from the target than ``first``'s (graded in cotton, a drape from
     scratch) by more than both :data:`CHECK_MARGIN_MM` and :data:`CHECK_MARGIN_REL` of it (what
     two drapes from scratch of one pattern on two meshes differ by), phase two starts from ``first``;
-    otherwise the choice stands as it was made (its settled drape). Returns (the start, the table
-    with the two dressed rows first, the kept one on top).
+    otherwise the choice stands as it was made (its settled drape). A drape from scratch that fails
+    its check (:func:`unsew.sim.checks.check_dressed`: exploded, fallen, ...) gives way to
+    ``first`` whatever its distance. Returns (the start, the table with the two dressed rows first,
+    the kept one on top).
     """
     with progress.phase("dress the chosen material") as bar:
-        x = dress(chosen.graded, body, sdf=sdf, mesh=chosen.mesh, material=chosen.material, settings=cfg.drape,
-                  progress=bar).x.numpy()
+        d = dress(chosen.graded, body, sdf=sdf, mesh=chosen.mesh, material=chosen.material, settings=cfg.drape,
+                  progress=bar)
+    failed = check_dressed(d, body=body).reason  # exploded, fallen, ...: no start, whatever its distance
+    x = d.x.numpy()
     release_free_memory()
     cf = target.distance_mm(x, chosen.mesh.faces)
     cf_first = target.distance_mm(first.x, first.mesh.faces)
     label, pattern = table[0]["material"], table[0]["pattern"]
-    rows = [{"material": label, "chamfer_mm": cf, "pattern": f"{pattern}, dressed from scratch"},
+    rows = [{"material": label, "chamfer_mm": cf,
+             "pattern": f"{pattern}, dressed from scratch" + (f" (failed: {failed})" if failed else "")},
             {"material": AUTO_START_MATERIAL, "chamfer_mm": cf_first, "pattern": f"graded in {AUTO_START_MATERIAL}, dressed from scratch"}]
-    keep = math.isfinite(cf) and cf <= cf_first + max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * cf_first)
+    keep = not failed and math.isfinite(cf) and cf <= cf_first + max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * cf_first)
     if not keep:
         rows.reverse()
-    log(f"material check: {label} dressed from scratch lies {cf:.2f} mm from the target, the pattern graded in "
+    said = f"failed ({failed})" if failed else f"lies {cf:.2f} mm from the target"
+    log(f"material check: {label} dressed from scratch {said}, the pattern graded in "
         f"{AUTO_START_MATERIAL} {cf_first:.2f} mm: phase two starts from "
         + (f"{label}" if keep else f"{AUTO_START_MATERIAL}"))
     return (chosen if keep else first), rows + table
