@@ -9,8 +9,9 @@ length over rest length), where the longest edge lies (height [m], panel), and f
 of the garment (open boundary loop of the sewn mesh; named neck, hem, left/right by where its
 drape lies) its rest length on the pattern and its draped length [cm].
 
-The question it answers (docs/benchmarks.md, "Drapes from scratch judged before they decide; a barrier against overstretched cloth"): does a
-fit hold its garment up by an opening stretched over the body (a neckline pulled round the neck)?
+The question it answers (docs/benchmarks.md, "Drapes from scratch judged before they decide; a
+barrier against overstretched cloth"): does a fit hold its garment up by an opening stretched over
+the body (a neckline pulled round the neck)?
 
     python -m benchmarks stretch --case benchmarks/foreign/cases/CASE --results OUT/CASE [OUT2/CASE ...]
 """
@@ -27,44 +28,46 @@ import numpy as np
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 
+def _edges(mesh):
+    """The triangles' edges as index pairs into the sewn vertices and into the rest vertices
+    ((3F, 2) int64 each, :func:`unsew.losses.stretch.triangle_edges`) and their rest lengths
+    (3F,) [m]."""
+    from unsew.losses.stretch import triangle_edges
+
+    e, eu = (t.numpy() for t in triangle_edges(mesh.faces, mesh.faces_uv))
+    uv = np.asarray(mesh.uv)
+    return e, eu, np.linalg.norm(uv[eu[:, 0]] - uv[eu[:, 1]], axis=1)
+
+
 def openings(x, mesh) -> list[dict]:
     """The garment's openings: each open boundary loop of the sewn mesh with its rest length
     (the pattern's edges that form it) and its draped length [m], named by where its drape lies
     (the highest "neck", the lowest "hem", the others "left"/"right" by their side, +x the body's
-    left). x: (n_x, 3) [m] on ``mesh`` (a GarmentMesh)."""
+    left). x: (n_x, 3) [m] on ``mesh`` (a GarmentMesh). Returns dicts with "name", "centre"
+    (3,) [m], "rest" and "draped" [m]."""
     from unsew.geometry.topology import boundary_loops
 
-    faces, fuv, uv = np.asarray(mesh.faces), np.asarray(mesh.faces_uv), np.asarray(mesh.uv)
-    rest_of = {}  # sewn boundary edge (a, b) -> its rest length [m]
-    for f, g in zip(faces, fuv):
-        for i in range(3):
-            a, b = int(f[i]), int(f[(i + 1) % 3])
-            rest_of[(a, b)] = float(np.linalg.norm(uv[g[i]] - uv[g[(i + 1) % 3]]))
+    e, _, rest = _edges(mesh)
+    rest_of = dict(zip(map(tuple, e.tolist()), rest.tolist()))  # a boundary edge appears once, as its face has it
     out = []
-    for loop in boundary_loops(faces):
+    for loop in boundary_loops(mesh.faces):
         nxt = np.roll(loop, -1)
-        rest = sum(rest_of.get((int(a), int(b)), rest_of.get((int(b), int(a)), 0.0)) for a, b in zip(loop, nxt))
+        r = sum(rest_of.get((a, b), rest_of.get((b, a), 0.0)) for a, b in zip(loop.tolist(), nxt.tolist()))
         draped = float(np.linalg.norm(x[loop] - x[nxt], axis=1).sum())
-        out.append({"centre": x[loop].mean(axis=0), "rest": rest, "draped": draped})
-    if out:
-        ys = [o["centre"][1] for o in out]
-        for k, o in enumerate(out):
-            o["name"] = ("neck" if k == int(np.argmax(ys)) and len(out) > 1 else "hem" if k == int(np.argmin(ys))
-                         else "left" if o["centre"][0] > 0 else "right")
+        out.append({"centre": x[loop].mean(axis=0), "rest": r, "draped": draped})
+    ys = [o["centre"][1] for o in out]
+    for k, o in enumerate(out):
+        o["name"] = ("neck" if k == int(np.argmax(ys)) and len(out) > 1 else "hem" if k == int(np.argmin(ys))
+                     else "left" if o["centre"][0] > 0 else "right")
     return out
 
 
-def longest_edge(x, mesh) -> tuple[float, float, float, str]:
-    """(largest stretch, 99th percentile [-], height of that edge's midpoint [m], its panel) of
-    the drape x (n_x, 3) [m] on ``mesh``."""
-    faces, fuv, uv = np.asarray(mesh.faces), np.asarray(mesh.faces_uv), np.asarray(mesh.uv)
-    e = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    eu = fuv[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    ratio = np.linalg.norm(x[e[:, 0]] - x[e[:, 1]], axis=1) / np.maximum(
-        np.linalg.norm(uv[eu[:, 0]] - uv[eu[:, 1]], axis=1), 1e-12)
-    k = int(np.argmax(ratio))
-    return (float(ratio[k]), float(np.percentile(ratio, 99)), float(x[e[k]].mean(axis=0)[1]),
-            mesh.panel_names[int(mesh.uv_panel[eu[k, 0]])])
+def longest_edge(x, mesh) -> tuple[float, str]:
+    """Where the drape x (n_x, 3) [m] on ``mesh`` is stretched most: the height of its longest
+    edge (over rest length) [m] and that edge's panel."""
+    e, eu, rest = _edges(mesh)
+    k = int(np.argmax(np.linalg.norm(x[e[:, 0]] - x[e[:, 1]], axis=1) / np.maximum(rest, 1e-12)))
+    return float(x[e[k]].mean(axis=0)[1]), mesh.panel_names[int(mesh.uv_panel[eu[k, 0]])]
 
 
 def main(argv=None) -> int:
@@ -76,6 +79,11 @@ def main(argv=None) -> int:
     for d in [args.case, *args.results]:
         if not d.is_dir():
             print(f"bench stretch: no such folder {d}", file=sys.stderr)
+            return 2
+    for f in [args.case / "meta.json"] + [r / n for r in args.results for n in ("pattern.json", "pattern_graded.json")]:
+        if not f.is_file():
+            print(f"bench stretch: {f} is missing (--case is a case folder, --results result folders of unsew fit)",
+                  file=sys.stderr)
             return 2
     from tables import print_table
 
@@ -93,7 +101,11 @@ def main(argv=None) -> int:
     rows = []
     for res in args.results:
         fitted = load_pattern(res / "pattern.json")
-        material = material_from_dict((fitted.unsew or {})["material"])
+        if not (fitted.unsew or {}).get("material"):
+            print(f"bench stretch: {res / 'pattern.json'} carries no fitted material (not a result of unsew fit)",
+                  file=sys.stderr)
+            return 2
+        material = material_from_dict(fitted.unsew["material"])
         patterns = [("true", case.pattern_gt), ("graded", load_pattern(res / "pattern_graded.json")), ("fitted", fitted)]
         for label, pattern in patterns:
             if pattern is None:
@@ -102,9 +114,10 @@ def main(argv=None) -> int:
                 d = dress(pattern, case.body, sdf=sdf, material=material, settings=cfg.drape.replace(edge_length=h))
                 x = d.x.numpy()
                 v = check_dressed(d, body=case.body)
-                s_max, s99, y, panel = longest_edge(x, d.mesh)
+                y, panel = longest_edge(x, d.mesh)
                 row = {"result": res.parent.name + "/" + res.name, "pattern": label, "edge [cm]": 100 * h,
-                       "verdict": "ok" if v.ok else v.reason.split(":")[0], "stretch max": s_max, "p99": s99,
+                       "verdict": "ok" if v.ok else v.reason.split(":")[0], "stretch max": v.stretch_max,
+                       "p99": v.stretch_p99,
                        "longest at y [m]": y, "panel": panel}
                 for o in openings(x, d.mesh):
                     row[f"{o['name']} rest / draped [cm]"] = f"{100 * o['rest']:.1f} / {100 * o['draped']:.1f}"
