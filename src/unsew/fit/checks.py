@@ -43,7 +43,7 @@ from unsew.pattern.validate import validate_pattern
 from unsew.sim.checks import check_dressed
 
 __all__ = ["RedressCheck", "MeshSpread", "redress_check", "redress_on_three", "graded_afresh", "mesh_spread",
-           "spread_lengths", "mm_list", "unmoved", "REDRESS_MARGIN_MM", "UNMOVED_TOL"]
+           "spread_lengths", "mm_list", "unmoved", "kept_on_meshes", "REDRESS_MARGIN_MM", "UNMOVED_TOL"]
 
 #: Phase two's pattern is kept only if, dressed from scratch, it lies at least this much closer
 #: to the target than the graded pattern's drape [mm]. An unmoved pattern re-dresses to its
@@ -139,6 +139,27 @@ def redress_check(pattern, uv, material, start: Start, body, target: Target, sdf
     return RedressCheck(cf_re, cf_graded, kept, x_fit=x)
 
 
+def kept_on_meshes(fit_mm: list, graded: list) -> tuple[bool, float | None, float | None, str]:
+    """Whether phase two's pattern is kept over its drapes from scratch on several meshes.
+
+    fit_mm, graded: each pattern's distance to the target [mm] on each mesh, None where its drape
+    failed its check. Phase two's pattern is kept when its drapes fail on fewer meshes than the
+    graded pattern's (it is the one that can be dressed); otherwise when it failed on none of the
+    meshes where the graded drape succeeded and its mean distance over those lies
+    REDRESS_MARGIN_MM below the graded one's. Returns (kept, phase two's mean or None, the graded
+    mean or None, a note for the log: "" unless failures decided)."""
+    pairs = [(a, b) for a, b in zip(fit_mm, graded) if b is not None]
+    failed = any(a is None for a, _ in pairs)
+    fit_mean = None if failed or not pairs else sum(a for a, _ in pairs) / len(pairs)
+    graded_mean = sum(b for _, b in pairs) / len(pairs) if pairs else None
+    n_fit, n_graded = sum(a is None for a in fit_mm), sum(b is None for b in graded)
+    if n_fit < n_graded:
+        return True, fit_mean, graded_mean, (f" (the graded pattern's drapes failed on {n_graded} of {len(graded)} "
+                                             f"meshes, phase two's on {n_fit})")
+    kept = fit_mean is not None and graded_mean is not None and fit_mean < graded_mean - REDRESS_MARGIN_MM
+    return kept, fit_mean, graded_mean, ""
+
+
 def redress_on_three(first: RedressCheck, pattern, material, start: Start, body, target: Target, sdf,
                      cfg: FitConfig, *, progress: Progress, log=print) -> tuple[RedressCheck, MeshSpread]:
     """The re-dress check judged on three meshes. ``first`` is :func:`redress_check`'s verdict on
@@ -147,7 +168,8 @@ def redress_on_three(first: RedressCheck, pattern, material, start: Start, body,
     let settle from another material's drape, so it is not one), and both patterns on the mesh
     spread's two meshes (:func:`spread_lengths`). Phase two is kept if its mean distance over the
     meshes where the graded drape succeeded lies REDRESS_MARGIN_MM below the graded pattern's
-    mean, and it failed on none of them. Also returns the mesh spread of the returned pattern,
+    mean, and it failed on none of them, or if its drapes failed on fewer meshes than the graded
+    one's (:func:`kept_on_meshes`). Also returns the mesh spread of the returned pattern,
     from these drapes (no further drape is needed)."""
     lengths = spread_lengths(cfg)
     x_graded, g0 = graded_afresh(start, body, target, sdf, cfg, progress=progress)
@@ -159,13 +181,10 @@ def redress_on_three(first: RedressCheck, pattern, material, start: Start, body,
     else:
         fit_mm = [first.fit_redressed_mm] + [_dressed_mm(pattern, material, body, target, sdf, cfg, h, progress,
                                                          "phase two's pattern") for h in lengths]
-    pairs = [(a, b) for a, b in zip(fit_mm, graded) if b is not None]
-    failed = any(a is None for a, _ in pairs)
-    fit_mean = None if failed or not pairs else sum(a for a, _ in pairs) / len(pairs)
-    graded_mean = sum(b for _, b in pairs) / len(pairs) if pairs else None
-    kept = fit_mean is not None and graded_mean is not None and fit_mean < graded_mean - REDRESS_MARGIN_MM
+    kept, fit_mean, graded_mean, why = kept_on_meshes(fit_mm, graded)
     log(f"re-dress check on three meshes: the fitted pattern dressed from scratch lies {mm_list(fit_mm)} mm from the "
-        f"target, the graded one {mm_list(graded)} mm: " + ("fit kept" if kept else "the graded pattern is returned"))
+        f"target, the graded one {mm_list(graded)} mm: " + ("fit kept" if kept else "the graded pattern is returned")
+        + why)
     check = RedressCheck(first.fit_redressed_mm, first.graded_mm, kept, meshes=3,
                          edge_lengths_m=[cfg.drape.edge_length, *lengths], fit_mm=fit_mm, graded_fresh_mm=graded,
                          fit_mean_mm=fit_mean, graded_mean_mm=graded_mean, x_fit=first.x_fit, x_graded=x_graded)
