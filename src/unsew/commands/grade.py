@@ -33,6 +33,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--area", choices=["free", "target"], default="free",
                    help="target: scale each graded pattern to the target's surface area before it is draped (the fit's "
                         "area: target); free: the contours alone (default)")
+    p.add_argument("--side-seams", choices=["none", "girth"], default="none",
+                   help="girth: also move the side seams between the hips and the armpits by the target's torso "
+                        "girth, the waisted dresses with their waist as a vertex (the fit's side_seams: girth); "
+                        "none: left where the base has them (default)")
     p.add_argument("--flat", action="store_true", help="no simulation: use the flat-placed panels as drapes (quick look)")
     p.add_argument("--overwrite", action="store_true", help="replace --out if it exists")
     p.set_defaults(func=run)
@@ -57,14 +61,14 @@ def run(args: argparse.Namespace) -> int:
     base = args.base or case.garment
     if not base:
         raise InputError(f"case {args.case} names no garment type in meta.json; pass --base")
-    pattern = base_pattern_for(case, FitConfig(base=args.base or ""))  # a bad name fails before --out is made
+    pattern = base_pattern_for(case, FitConfig(base=args.base or "", side_seams=args.side_seams))  # a bad name fails before --out is made
     with atomic_dir(args.out, overwrite=args.overwrite) as tmp:
         kw = {"drape_fn": flat_drape} if args.flat else {}
         res = grade(
             pattern, case.body, case.target_verts, case.target_faces,
             settings=GRADE_SETTINGS.replace(edge_length=args.edge_length), material=args.material,
             length=args.length, area=float(triangle_areas(case.target_verts, case.target_faces).sum())
-            if args.area == "target" else None, log=print, **kw,
+            if args.area == "target" else None, side_seams=args.side_seams, log=print, **kw,
         )
         save_pattern(res.pattern, tmp / "pattern.json")
         m = res.mesh
@@ -80,6 +84,7 @@ def run(args: argparse.Namespace) -> int:
             "flat": bool(args.flat),
             "length": args.length,
             "area": args.area,
+            "side_seams": args.side_seams,
             "area_scales": res.area_scales,
             "placement": res.placement,
             "edit_fraction": res.fraction,

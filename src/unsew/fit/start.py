@@ -95,7 +95,7 @@ def base_pattern_for(case, cfg: FitConfig):
                 f"base pattern {base!r} cannot make a {case.garment} target (meta.json); "
                 f"use --base {case.garment}"
             )
-        return make_base_pattern(base, measure_body(case.body))
+        return make_base_pattern(base, measure_body(case.body), waist_point=cfg.side_seams == "girth")
     p = Path(base)
     if p.suffix.lower() != ".json":
         raise InputError(f"--base {base!r} is neither a base pattern ({', '.join(BASES)}) nor a .json pattern")
@@ -183,7 +183,7 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
     names = bases_for(garment)
     m = measure_body(case.body)
     if len(names) == 1:
-        return BaseChoice(make_base_pattern(names[0], m), names[0])
+        return BaseChoice(make_base_pattern(names[0], m, waist_point=cfg.side_seams == "girth"), names[0])
     t0 = time.perf_counter()
     settings = cfg.drape.replace(edge_length=cfg.base_choice_edge)
     frame = body_frame(m)
@@ -191,7 +191,7 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
     rows, patterns = [], {}
     want = arm_openings(target.verts, target.faces, case.body.skeleton, contours=target.contours)
     for name in names:
-        pat = make_base_pattern(name, m)
+        pat = make_base_pattern(name, m, waist_point=cfg.side_seams == "girth")
         try:
             with progress.phase(f"base {name}") as bar:
                 d = dress(pat, case.body, sdf=sdf, material=material, settings=settings, progress=bar)
@@ -325,5 +325,6 @@ def start(base, body, target: Target, sdf, cfg: FitConfig, material, *, progress
         return dress(p, b, sdf=sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
 
     g = grade(base, body, target.verts, target.faces, settings=cfg.drape, material=material, sdf=sdf,
-              mesh=mesh_b, x_init=x_b, drape_fn=drape_fn, area=target.area if cfg.area == "target" else None, log=log)
+              mesh=mesh_b, x_init=x_b, drape_fn=drape_fn, area=target.area if cfg.area == "target" else None, log=log,
+              side_seams=cfg.side_seams)
     return Start(base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, mesh_b, material, dress_s=dress_s)

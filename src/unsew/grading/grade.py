@@ -35,6 +35,7 @@ from unsew.grading.guards import (
     WaistBound, bounded_band, bounded_extensions, bounded_girth, bounded_waist, waist_bound,
 )
 from unsew.grading.placement import choose_lift, is_lower
+from unsew.grading.profile import SideSeams, side_seam_moves, side_seams_for
 from unsew.meshing.sew import mesh_pattern
 from unsew.pattern.params import PatternParams
 from unsew.sim.drape import DrapeSettings
@@ -42,7 +43,7 @@ from unsew.sim.drape import DrapeSettings
 __all__ = [
     "GradeResult", "grade", "moved_mesh", "dress_drape", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH",
     "REMESH_MODES", "LENGTH_MODES", "waistbands", "upright", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL", "GRADE_SETTINGS", "GradePass",
-    "GradingError", "MESH_RETRIES", "armhole_down", "ARM_HANGS",
+    "GradingError", "MESH_RETRIES", "armhole_down", "ARM_HANGS", "SIDE_SEAM_MODES",
 ]
 
 
@@ -66,6 +67,8 @@ REMESH_STRETCH = 1.5
 REMESH_MODES = ("always", "stretched")
 #: The choices of ``grade(length=...)``: cloth length to the top opening, or Algorithm 2's axial distance.
 LENGTH_MODES = ("cloth", "axial")
+#: The choices of ``grade(side_seams=...)``: left alone, or graded by the torso's girth.
+SIDE_SEAM_MODES = ("none", "girth")
 #: A further grading pass is made only when some contour's cloth length (or, without one, its
 #: position along the bone) is still further than this from the target's [m], or its girth
 #: differs by more than PASS_GIRTH_TOL [m].
@@ -180,6 +183,7 @@ def grade(
     hold_top: bool = True,
     remesh: str = "always",
     length: str = "cloth",
+    side_seams: str = "none",
     area: float | None = None,
     lift: bool = True,
     log: Callable[[str], None] | None = None,
@@ -211,6 +215,10 @@ def grade(
         the garment's top opening, target minus drape, read on the pattern's rest mesh
         (:mod:`unsew.grading.cloth`; contours without such a path move axially); ``"axial"``, by
         the axial extension along the bone (Algorithm 2).
+    side_seams: ``"none"``: the side seams stay where the base has them (Algorithm 2);
+        ``"girth"``: for a garment hanging from the shoulders, each pass also moves the side-seam
+        points between the hips and the armpits across their panels by the target's torso girth
+        at their height minus the drape's (:mod:`unsew.grading.profile`).
     area: the target's surface area [m^2]: each pass's pattern is scaled to it (every panel but
         the waistbands by one factor about its centroid, the seams to a band keeping their
         girth: :func:`unsew.grading.area.scale_to_area`) and meshed
@@ -223,7 +231,7 @@ def grade(
 
     Returns a :class:`GradeResult`.
     """
-    tv, tf = _check_grade_args(target_verts, target_faces, remesh, length)
+    tv, tf = _check_grade_args(target_verts, target_faces, remesh, length, side_seams)
     if drape_fn is None:
         def drape_fn(p, m, b):  # noqa: E306
             return dress_drape(p, m, b, material=material, sdf=sdf, settings=settings)
@@ -235,6 +243,8 @@ def grade(
     ctx = _PassContext(tgt, skel, {} if max_centre_distance is None else {"max_centre_distance": max_centre_distance},
                        cloth_lengths(tv, tf, tgt) if length == "cloth" else (None, {}), hold_top, remesh,
                        waist_bound(body))
+    if side_seams == "girth":
+        ctx.side_seams = side_seams_for(body, tv, tf, tgt)
     first = _grade_pass(pattern, mesh, x_init, ctx)
     cur, rows = first, list(first.rows)
     x_lg, scales = None, []
@@ -286,8 +296,10 @@ def _base_drape(pattern, mesh, body, x_init, drape_fn) -> np.ndarray:
     return x_init
 
 
-def _check_grade_args(target_verts, target_faces, remesh: str, length: str):
+def _check_grade_args(target_verts, target_faces, remesh: str, length: str, side_seams: str = "none"):
     """The target as (V, 3) float64 and (F, 3) int64 arrays; InputError on a bad mode or mesh."""
+    if side_seams not in SIDE_SEAM_MODES:
+        raise InputError(f"side_seams must be one of {', '.join(SIDE_SEAM_MODES)}, got {side_seams!r}")
     if remesh not in REMESH_MODES:
         raise InputError(f"remesh must be one of {', '.join(REMESH_MODES)}, got {remesh!r}")
     if length not in LENGTH_MODES:
@@ -312,6 +324,7 @@ class _PassContext:
     hold_top: bool = True
     remesh: str = "always"
     waist: WaistBound | None = None
+    side_seams: SideSeams | None = None  # the side seams graded by girth (None: left alone)
 
 
 def _further_pass(cur: "GradePass", x_lg: np.ndarray, ctx: _PassContext) -> "GradePass | None":
@@ -697,10 +710,16 @@ def _grade_pass(pattern, mesh, x_init, ctx: _PassContext, *, gains: dict | None 
     exts = {m.target: cloth[m.target] if m.target in cloth else m.extension * gains.get(m.target, 1.0)
             for m in matches}
     _bound_waist(src, items, exts, ctx.waist)
-    edit = _edit_with_cloth_goals(params, mesh, src, items, exts, cloth, ctx)
+    seams, seam_notes = None, []
+    if ctx.side_seams is not None:
+        control_x = mesh.x_of_u[params.control_uv]
+        seams, seam_notes = side_seam_moves(params.pattern, params.controls, control_x, x_init, mesh.faces,
+                                            ctx.side_seams)
+    edit = _edit_with_cloth_goals(params, mesh, src, items, exts, cloth, ctx, seams)
     for it in items:
         it.warnings.extend(edit.notes.get(it.match.target, []))
     rows, wanted = _pass_rows(params.pattern, src, ctx.tgt, matches, items, edit.exts, cloth, gains)
+    rows += [{**{k: None for k in TABLE_COLUMNS}, "part": "torso", "edits": [n], "warnings": []} for n in seam_notes]
     if edit.fraction < 1.0:
         note = f"edit scaled back to {edit.fraction:.0%} to avoid inverted triangles or an invalid panel"
         for r in rows:
@@ -752,9 +771,11 @@ def _whole_panel(pattern, c) -> bool:
     return len(c.edges) == len(pattern.panels[c.panel].edges)
 
 
-def _edit_with_cloth_goals(params, mesh, src, items, exts: dict, cloth: dict, ctx: _PassContext) -> _Edit:
+def _edit_with_cloth_goals(params, mesh, src, items, exts: dict, cloth: dict, ctx: _PassContext,
+                           seams: np.ndarray | None = None) -> _Edit:
     """The edit of the pass, with each cloth-length move corrected on the edited pattern's own
-    rest mesh until its rest cloth length is within CLOTH_TOL of its goal (``exts`` is updated)."""
+    rest mesh until its rest cloth length is within CLOTH_TOL of its goal (``exts`` is updated).
+    ``seams``: the side-seam points' moves (Nc, 2) [m] (:mod:`unsew.grading.profile`), or None."""
     top = top_contour(src) if cloth else None
     keys = {it.match.target: [(c.panel, e) for c in it.curves for e in c.edges] for it in items}
     top_edges = next((keys[it.match.target] for it in items if top is not None and it.match.source == top.index), [])
@@ -764,7 +785,7 @@ def _edit_with_cloth_goals(params, mesh, src, items, exts: dict, cloth: dict, ct
         rest0 = rest_cloth_lengths(mesh, keyed, top_edges)
         goal = {t: rest0[t] + cloth[t] for t in keyed if t in rest0}
     for step in range(CLOTH_STEPS + 1):
-        edit = _edit(params, mesh, items, exts, ctx)
+        edit = _edit(params, mesh, items, exts, ctx, seams)
         if not goal or step == CLOTH_STEPS:
             break
         now = rest_cloth_lengths(edit.mesh, {t: keyed[t] for t in goal}, top_edges)
@@ -776,7 +797,7 @@ def _edit_with_cloth_goals(params, mesh, src, items, exts: dict, cloth: dict, ct
     return edit
 
 
-def _edit(params, mesh, items, exts: dict, ctx: _PassContext) -> _Edit:
+def _edit(params, mesh, items, exts: dict, ctx: _PassContext, seams: np.ndarray | None = None) -> _Edit:
     """Move and widen every item's open curves within the bounds of :mod:`unsew.grading.guards`,
     hold the tops, project on K, scale back to avoid inversions, and mesh the graded pattern
     (afresh or the base mesh moved; scaled back further if a panel cannot be meshed)."""
@@ -796,6 +817,8 @@ def _edit(params, mesh, items, exts: dict, ctx: _PassContext) -> _Edit:
                                 deepen=armhole_down(params.pattern, C0, c, params.controls, it.bone))
             edited.setdefault(c.panel_index, []).append(
                 (set(int(g) for g in c.controls), it.match.target, it.girth_difference))
+    if seams is not None:
+        delta = delta + seams
     held: dict[int, str] = {}
     if ctx.hold_top:
         delta, held = _hold_tops(params.pattern, params.controls, C0, delta, edited)

@@ -55,12 +55,20 @@ def garment_of(name: str) -> str:
     return _MAKERS[name][0]
 
 
-def make_base_pattern(garment: str, measurements=None):
+#: The bases whose side seam curves in at the waist: ``waist_point`` makes that waist a vertex.
+WAISTED = ("dress", "dress_sleeveless")
+
+
+def make_base_pattern(garment: str, measurements=None, *, waist_point: bool = False):
     """The base :class:`~unsew.pattern.model.Pattern` ``garment`` (a garment type or a base name
     of :data:`BASES`) sized to ``measurements`` (a
-    :class:`~unsew.pattern.measurements.Measurements`; default: the default body)."""
+    :class:`~unsew.pattern.measurements.Measurements`; default: the default body).
+    waist_point: a :data:`WAISTED` base's side seam as two straight edges meeting at the waist, a
+    vertex that grading can move (:mod:`unsew.grading.profile`); other bases are unchanged."""
     if garment not in _MAKERS:
         raise InputError(f"unknown garment {garment!r}; choose one of {', '.join(BASES)}")
     _, mod, fn = _MAKERS[garment]
     module = importlib.import_module(f"unsew.pattern.base.{mod}")
+    if waist_point and garment in WAISTED:
+        return getattr(module, fn)(measurements, waist_point=True)
     return getattr(module, fn)(measurements)

@@ -32,10 +32,12 @@ STRAIGHT_HEM_HEIGHT = 0.48
 STRAIGHT_FLARE = 0.03
 
 
-def make_dress(m: Measurements | None = None, *, sleeves: str = "short") -> Pattern:
+def make_dress(m: Measurements | None = None, *, sleeves: str = "short", waist_point: bool = False) -> Pattern:
     """A long flared dress with short sleeves sized to ``m`` (default: the default body);
     ``sleeves="none"``: without sleeves (pattern ``dress_sleeveless``, armholes cut in as
-    :func:`unsew.pattern.base.tshirt.sleeveless_frame`)."""
+    :func:`unsew.pattern.base.tshirt.sleeveless_frame`). ``waist_point``: the side seam from
+    the hips to the underarm as two straight edges meeting at the waist (a control point, as
+    GarmentCode's bodices have it) instead of one curve through it."""
     m = m or Measurements()
     f0 = body_frame(m)
     f = sleeveless_frame(f0) if sleeves == "none" else f0
@@ -48,14 +50,18 @@ def make_dress(m: Measurements | None = None, *, sleeves: str = "short") -> Patt
     under = np.array([bust_w, f.armpit_y - hem_y])
     # Quadratic through the waist: its middle (a + 2c + b)/4 sits at the waist width.
     mid = np.array([waist_w, f.waist_y - hem_y])
-    c = 2 * mid - (hip + under) / 2
-    spec = TopSpec(lower=(tuple(hem), tuple(hip)), lower_curves=(None, quad(hip, under, c)), hem_y=hem_y)
+    if waist_point:
+        lower, curves = (tuple(hem), tuple(hip), tuple(mid)), (None, None, None)
+    else:
+        c = 2 * mid - (hip + under) / 2
+        lower, curves = (tuple(hem), tuple(hip)), (None, quad(hip, under, c))
+    spec = TopSpec(lower=lower, lower_curves=curves, hem_y=hem_y)
     return top_pattern("dress", m, f0, spec, sleeves)
 
 
-def make_dress_sleeveless(m: Measurements | None = None) -> Pattern:
+def make_dress_sleeveless(m: Measurements | None = None, *, waist_point: bool = False) -> Pattern:
     """The flared dress without sleeves."""
-    return make_dress(m, sleeves="none")
+    return make_dress(m, sleeves="none", waist_point=waist_point)
 
 
 def make_dress_straight(m: Measurements | None = None, *, sleeves: str = "short") -> Pattern:
