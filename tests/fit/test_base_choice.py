@@ -155,7 +155,7 @@ def _fake_choice(monkeypatch, distances: dict, arms: dict | None = None):
     monkeypatch.setattr(start_mod, "bases_for", lambda g: list(distances))
     monkeypatch.setattr(start_mod, "measure_body", lambda body: None)
     monkeypatch.setattr(start_mod, "body_frame", lambda m: SimpleNamespace(hip_y=0.9, armpit_y=1.3))
-    monkeypatch.setattr(start_mod, "make_base_pattern", lambda name, m: SimpleNamespace(name=name))
+    monkeypatch.setattr(start_mod, "make_base_pattern", lambda name, m, **k: SimpleNamespace(name=name))
     monkeypatch.setattr(start_mod, "dress", lambda pat, body, **k: SimpleNamespace(
         x=SimpleNamespace(numpy=lambda: pat.name), mesh=SimpleNamespace(faces=None)))
     monkeypatch.setattr(start_mod, "check_dressed", lambda d, body: SimpleNamespace(ok=True))
