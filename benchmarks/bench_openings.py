@@ -70,6 +70,12 @@ def main(argv=None) -> int:
     from unsew.io.garmentcode import load_pattern
     from unsew.meshing.sew import mesh_pattern
 
+    from unsew.meshing.sew import EDGE_LENGTH_RANGE
+
+    lo, hi = EDGE_LENGTH_RANGE
+    if not lo <= args.edge <= hi:
+        print(f"bench openings: --edge {args.edge} m is outside [{lo}, {hi}] m", file=sys.stderr)
+        return 2
     want = [c for c in args.cases.split(",") if c]
     cases = [CASES / c for c in want] if want else sorted(p for p in CASES.iterdir() if (p / "target.obj").is_file())
     missing = [c.name for c in cases if not (c / "target.obj").is_file()]

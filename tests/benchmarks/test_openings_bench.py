@@ -1,27 +1,15 @@
 """benchmarks/bench_openings.py: a target's openings against its true pattern's, by name."""
 
-import importlib.util
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
+from benchmarks_loader import load_benchmark
 
-ROOT = Path(__file__).resolve().parents[2]
-
-
-def _module():
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    spec = importlib.util.spec_from_file_location("bench_openings", ROOT / "benchmarks" / "bench_openings.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def test_a_tube_target_names_its_openings_by_height_and_side():
     """A tube with a thinner tube at each side: the top loop is "neck", the bottom "hem", the
     side tubes' loops "left"/"right" by x, each with its polygon length."""
-    mod = _module()
+    mod = load_benchmark("bench_openings")
 
     def tube(r, y0, y1, cx, n=24, off=0):
         th = np.linspace(0, 2 * np.pi, n, endpoint=False)
@@ -40,9 +28,10 @@ def test_a_tube_target_names_its_openings_by_height_and_side():
 
 def test_a_foreign_case_row(capsys):
     """One committed case end to end: every opening paired, the hem at rest (ratio 1.00)."""
-    mod = _module()
+    mod = load_benchmark("bench_openings")
     assert mod.main(["--cases", "tee_fitted_short__default", "--edge", "0.04"]) == 0
     out = capsys.readouterr().out
     row = next(line for line in out.splitlines() if line.startswith("| tee_fitted_short__default"))
     assert row.count("=") == 4 and row.rstrip(" |").endswith("= 1.00")
     assert mod.main(["--cases", "no_such_case"]) == 2
+    assert mod.main(["--edge", "2"]) == 2

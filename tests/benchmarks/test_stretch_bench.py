@@ -1,11 +1,10 @@
 """benchmarks/bench_stretch.py: a garment's openings and its longest edge, on a flat drape."""
 
-import importlib.util
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from benchmarks_loader import load_benchmark
 
 from unsew.grading.grade import flat_drape
 from unsew.meshing.sew import mesh_pattern
@@ -15,19 +14,11 @@ from unsew.pattern.curves import edge_length
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def _module():
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    spec = importlib.util.spec_from_file_location("bench_stretch", ROOT / "benchmarks" / "bench_stretch.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
-
-
 def test_openings_of_a_tee_and_its_longest_edge():
     """The base tee's panels placed by their hints: four openings (neck, hem, two cuffs), the
     hem's rest length that of the pattern's two hem edges; pull the highest vertex up and the
     longest edge is found there."""
-    mod = _module()
+    mod = load_benchmark("bench_stretch")
     p = make_base_pattern("tshirt")
     m = mesh_pattern(p, edge_length=0.05)
     x = flat_drape(p, m)
@@ -47,7 +38,7 @@ def test_openings_of_a_tee_and_its_longest_edge():
 
 
 def test_missing_result_files_exit_with_one_line(tmp_path, capsys):
-    mod = _module()
+    mod = load_benchmark("bench_stretch")
     case = ROOT / "benchmarks" / "foreign" / "cases" / "tank_top__default"
     assert mod.main(["--case", str(case), "--results", str(tmp_path)]) == 2
     err = capsys.readouterr().err.strip().splitlines()

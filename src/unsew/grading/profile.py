@@ -66,9 +66,10 @@ def side_seams_for(body, target_verts, target_faces, target_contours) -> SideSea
 
 
 def torso_girth(verts: np.ndarray, faces: np.ndarray, y: float, axis_xz: np.ndarray) -> float | None:
-    """The girth [m] of a garment mesh round the torso at height ``y`` [m]: the total length of
-    the pieces of its horizontal slice that sweep at least :data:`MIN_SWEEP` about the torso's
-    axis ``axis_xz`` (x, z) [m]; None when no piece does."""
+    """The girth [m] of a garment mesh (``verts`` (V, 3) float [m], ``faces`` (F, 3) int) round
+    the torso at height ``y`` [m]: the total length of the pieces of its horizontal slice that
+    sweep at least :data:`MIN_SWEEP` about the torso's axis ``axis_xz`` (2,) (x, z) [m]; None
+    when no piece does."""
     import trimesh
 
     mesh = trimesh.Trimesh(np.asarray(verts, dtype=np.float64), np.asarray(faces, dtype=np.int64), process=False)
