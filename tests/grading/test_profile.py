@@ -121,7 +121,7 @@ def test_side_seams_mode_is_checked():
     v, f = cylinder(0.15, 0.6, 1.5)
     with pytest.raises(InputError, match="side_seams"):
         grade(p, None, v, f, side_seams="curved")
-    assert FitConfig().side_seams == "none"
+    assert FitConfig().side_seams == "girth"
 
 
 def test_side_seams_in_a_config_file(tmp_path):

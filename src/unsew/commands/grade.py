@@ -33,10 +33,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--area", choices=["free", "target"], default="free",
                    help="target: scale each graded pattern to the target's surface area before it is draped (the fit's "
                         "area: target); free: the contours alone (default)")
-    p.add_argument("--side-seams", choices=["none", "girth"], default="none",
-                   help="girth: also move the side seams between the hips and the armpits by the target's torso "
-                        "girth, the waisted dresses with their waist as a vertex (the fit's side_seams: girth); "
-                        "none: left where the base has them (default)")
+    p.add_argument("--side-seams", choices=["none", "girth"], default="girth",
+                   help="girth (default, as the fit): also move the side seams between the hips and the armpits by "
+                        "the target's torso girth, the waisted dresses with their waist as a vertex; none: left where "
+                        "the base has them (the paper's Algorithm 2)")
     p.add_argument("--flat", action="store_true", help="no simulation: use the flat-placed panels as drapes (quick look)")
     p.add_argument("--overwrite", action="store_true", help="replace --out if it exists")
     p.set_defaults(func=run)
