@@ -143,6 +143,48 @@ def test_extension_sign_follows_the_cloth_next_to_the_contour(body):
     assert cuff.extension == pytest.approx(0.3 * bone.length, abs=1e-9)
 
 
+def _hem_tube(sk, drop):
+    """A torso tube closed at the top of the spine bone, its hem ``drop`` [m] below the spine's
+    start: one open contour, on the torso."""
+    bone = sk.bone("spine")
+    return tube(bone, 1.0, -drop / bone.length, 0.16, cap=True, n_rings=30)
+
+
+def test_the_only_hems_match_across_more_than_the_centre_gate(body):
+    """A long base's hem far below a short target's: each the only torso contour of its mesh,
+    they match although their centres lie farther apart than MAX_CENTRE_DISTANCE (the tall thin
+    shift's first grading pass left its hem alone at 0.47 m); farther than FAR_CENTRE_FACTOR times
+    that, or beside a second torso contour, they do not."""
+    from unsew.grading.contours import FAR_CENTRE_FACTOR, MAX_CENTRE_DISTANCE
+
+    sk = body.skeleton
+    vs, fs = _hem_tube(sk, 0.70)
+    vt, ft = _hem_tube(sk, 0.10)
+    src, tgt = place_contours(vs, fs, sk), place_contours(vt, ft, sk)
+    assert [c.part for c in src] == [c.part for c in tgt] == ["torso"]
+    gap = float(np.linalg.norm(src[0].centre - tgt[0].centre))
+    assert MAX_CENTRE_DISTANCE < gap < FAR_CENTRE_FACTOR * MAX_CENTRE_DISTANCE
+    (hem,) = match_contours(src, tgt, sk, garment_centre=vs.mean(axis=0))
+    assert hem.extension == pytest.approx(-gap, abs=0.02)  # the target's hem is higher: shorten
+    # too far even so
+    assert match_contours(src, tgt, sk, garment_centre=vs.mean(axis=0), max_centre_distance=0.25 * gap) == []
+    # a second torso contour on the target (a lining's hem round the waist): no longer the only one
+    vl, fl = tube(sk.bone("spine"), 0.9, 0.3, 0.12, cap=True)
+    two = place_contours(np.vstack([vt, vl]), np.vstack([ft, fl + len(vt)]), sk)
+    assert sum(c.part == "torso" for c in two) == 2
+    far = [m for m in match_contours(src, two, sk, garment_centre=vs.mean(axis=0))
+           if np.linalg.norm(src[m.source].centre - two[m.target].centre) > MAX_CENTRE_DISTANCE]
+    assert far == []
+    # not on the arms: a long sleeve's cuff far down the arm and a short one's, each alone there
+    bone = sk.bone("left_elbow")
+    vs, fs = tube(bone, 0.0, 2.2, 0.05, cap=True)
+    vt, ft = tube(bone, 0.0, 0.4, 0.05, cap=True)
+    src, tgt = place_contours(vs, fs, sk), place_contours(vt, ft, sk)
+    assert len(src) == len(tgt) == 1 and src[0].part == tgt[0].part == "left_arm"
+    assert MAX_CENTRE_DISTANCE < float(np.linalg.norm(src[0].centre - tgt[0].centre)) < FAR_CENTRE_FACTOR * MAX_CENTRE_DISTANCE
+    assert match_contours(src, tgt, sk, garment_centre=vs.mean(axis=0)) == []
+
+
 def test_contour_across_bones_of_one_limb_uses_distance_along_the_chain(body):
     sk = body.skeleton
     upper, fore = sk.bone("left_elbow"), sk.bone("left_wrist")

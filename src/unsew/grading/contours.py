@@ -61,6 +61,12 @@ __all__ = [
 MAX_CENTRE_DISTANCE = 0.45
 #: ... nor those whose perimeters differ by more than this factor (either way).
 MAX_PERIMETER_RATIO = 2.0
+#: A pair farther apart than MAX_CENTRE_DISTANCE but within this factor of it still matches when
+#: each contour is the only one of its body part on its mesh and the part is one of FAR_PARTS
+#: (:func:`match_contours`): a hem. Not the arms: a long sleeve's cuff would pair with a tank
+#: top's armhole, each the only contour of its arm, half a metre up.
+FAR_CENTRE_FACTOR = 2.0
+FAR_PARTS = ("torso",)
 #: Contours flatter than this (second/first singular value) have no plane to compare.
 MIN_ROUNDNESS = 0.2
 #: Edge rings around a contour whose vertices tell on which side of it the cloth lies.
@@ -387,7 +393,10 @@ def match_contours(
     garment_centre: (3,) [m] a point in the middle of the source garment (its vertex mean), used
         to sign the extension outward for a contour without neighbouring vertices (else its
         ``inward`` side tells).
-    max_centre_distance [m], max_perimeter_ratio: gates beyond which no pair is made.
+    max_centre_distance [m], max_perimeter_ratio: gates beyond which no pair is made, but for
+        a pair farther apart than max_centre_distance (up to :data:`FAR_CENTRE_FACTOR` times it)
+        whose contours are each the only torso contour of their mesh (a long base's hem half a
+        metre below a short target's: left alone, its cloth went into the area scaling).
 
     Returns the matches (each source and target contour at most once), by source index.
     """
@@ -396,6 +405,7 @@ def match_contours(
     ns, nt = len(source), len(target)
     big = 1e6
     cost = np.full((max(ns, 1), max(nt, 1)), big)
+    far = {}  # (i, j) -> the cost of a pair that failed the centre-distance gate alone
     for i, s in enumerate(source):
         if s.bone is None:
             continue
@@ -408,7 +418,7 @@ def match_contours(
                 continue
             dc = float(np.linalg.norm(s.centre - t.centre))
             ratio = max(s.length, t.length) / max(min(s.length, t.length), 1e-9)
-            if dc > max_centre_distance or ratio > max_perimeter_ratio:
+            if ratio > max_perimeter_ratio or dc > FAR_CENTRE_FACTOR * max_centre_distance:
                 continue
             cosn = abs(float(s.normal @ t.normal))
             if min(s.roundness, t.roundness) < MIN_ROUNDNESS:
@@ -416,7 +426,18 @@ def match_contours(
             elif cosn < 0.5:  # planes more than 60 degrees apart
                 continue
             ref = max(s.radius, 0.05)
-            cost[i, j] = dc / ref + (ratio - 1.0) + (1.0 - cosn)
+            c = dc / ref + (ratio - 1.0) + (1.0 - cosn)
+            if dc > max_centre_distance:
+                far[i, j] = c
+                continue
+            cost[i, j] = c
+    # A pair kept apart by the centre distance alone still matches when each is the only torso
+    # contour of its mesh: a long base's hem half a metre below a short target's.
+    for (i, j), c in far.items():
+        if (source[i].part == target[j].part in FAR_PARTS
+                and sum(x.bone is not None and x.part == source[i].part for x in source) == 1
+                and sum(x.bone is not None and x.part == target[j].part for x in target) == 1):
+            cost[i, j] = c
     if ns == 0 or nt == 0:
         return []
     rows, cols = linear_sum_assignment(cost)
