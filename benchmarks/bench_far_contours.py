@@ -7,8 +7,10 @@ short target's). For every foreign case this dresses the base its fit recorded
 (benchmarks/foreign/fits.json) or, with ``--all-bases``, every library base of its garment type,
 sized to the wearer, in cotton on a mesh of edge ``--edge`` [m] (the base choice's), as a fit's
 first grading pass sees it, and prints each pair matched beyond the gate (part, centre distance
-[m]) and, for comparison, each pair beyond the gate the same rule would match on any part
-(``any part``). A candidate whose openings on the arms differ from the target's is marked: the
+[m]) and, for comparison, ``any part``: each pair of contours on one body part, each the only one
+of that part on its mesh, between the gate and FAR_CENTRE_FACTOR times it (before the matcher's
+other gates: perimeter ratio, plane, and the assignment), i.e. what the rule could reach were it
+not held to the torso. A candidate whose openings on the arms differ from the target's is marked: the
 base choice never grades it as a runner-up when another candidate's agree.
 
     python -m benchmarks far_contours [--cases a,b] [--all-bases] [--edge 0.04]
