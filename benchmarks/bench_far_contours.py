@@ -49,13 +49,12 @@ def lone_far_pairs(source, target, gate: float, factor: float) -> list[tuple[str
     """(part, centre distance [m]) of each pair of contours on one part, each the only one of
     that part on its mesh, farther apart than ``gate`` and within ``factor`` x it: what the rule
     would match were it not held to the torso."""
+    from unsew.grading.contours import lone_parts
+
+    alone = lone_parts(source) & lone_parts(target)
     out = []
-    for s in source:
-        if s.bone is None or sum(x.bone is not None and x.part == s.part for x in source) != 1:
-            continue
-        for t in target:
-            if t.bone is None or t.part != s.part or sum(x.bone is not None and x.part == t.part for x in target) != 1:
-                continue
+    for s in (s for s in source if s.bone is not None and s.part in alone):
+        for t in (t for t in target if t.bone is not None and t.part == s.part):
             d = float(np.linalg.norm(s.centre - t.centre))
             if gate < d <= factor * gate:
                 out.append((s.part, d))
@@ -72,6 +71,12 @@ def main(argv=None) -> int:
     ap.add_argument("--all-bases", action="store_true", help="every library base of the case's type, not the recorded one")
     ap.add_argument("--edge", type=float, default=0.04, help="mesh edge length of the drapes [m]")
     args = ap.parse_args(argv)
+    from unsew.meshing.sew import EDGE_LENGTH_RANGE
+
+    lo, hi = EDGE_LENGTH_RANGE
+    if not lo <= args.edge <= hi:
+        print(f"far_contours: --edge {args.edge} m is outside [{lo}, {hi}] m", file=sys.stderr)
+        return 2
 
     from unsew.body.case import load_case
     from unsew.body.sdf import BodySDF

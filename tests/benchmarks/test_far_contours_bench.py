@@ -27,3 +27,10 @@ def test_lone_far_pairs_need_one_contour_of_the_part_on_each_mesh_within_the_fac
     assert mod.lone_far_pairs(src, tgt, 0.45, 2.0) == [("left_arm", pytest.approx(0.5))]
     assert mod.lone_far_pairs(src, tgt, 0.45, 1.05) == []  # 0.5 m is past 1.05 x the gate
     assert mod.lone_far_pairs([_c("left_arm", 0.9, bone=False)], tgt, 0.45, 2.0) == []  # not on a bone
+
+
+def test_an_edge_outside_the_meshers_range_is_refused_in_one_line(capsys):
+    mod = load_benchmark("bench_far_contours")
+    assert mod.main(["--cases", "tank_top__default", "--edge", "-1"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--edge -1.0 m is outside" in err[0]

@@ -50,9 +50,12 @@ __all__ = [
     "ContourMatch",
     "place_contours",
     "match_contours",
+    "lone_parts",
     "part_group",
     "MAX_CENTRE_DISTANCE",
     "MAX_PERIMETER_RATIO",
+    "FAR_CENTRE_FACTOR",
+    "FAR_PARTS",
     "hull_perimeter",
     "slits",
 ]
@@ -79,6 +82,12 @@ SLIT_RISE = 0.04
 SLIT_STEEP = 0.7
 #: Segments at a slit's top that may lie flat between its climb and its return.
 SLIT_APEX = 2
+
+
+def lone_parts(contours: list[PlacedContour]) -> set[str]:
+    """The body parts on which exactly one of ``contours`` (placed on a bone) lies."""
+    parts = [c.part for c in contours if c.bone is not None]
+    return {p for p in parts if parts.count(p) == 1}
 
 
 def part_group(part: str) -> str:
@@ -433,10 +442,9 @@ def match_contours(
             cost[i, j] = c
     # A pair kept apart by the centre distance alone still matches when each is the only torso
     # contour of its mesh: a long base's hem half a metre below a short target's.
+    alone = lone_parts(source) & lone_parts(target) & set(FAR_PARTS)
     for (i, j), c in far.items():
-        if (source[i].part == target[j].part in FAR_PARTS
-                and sum(x.bone is not None and x.part == source[i].part for x in source) == 1
-                and sum(x.bone is not None and x.part == target[j].part for x in target) == 1):
+        if source[i].part == target[j].part in alone:
             cost[i, j] = c
     if ns == 0 or nt == 0:
         return []
