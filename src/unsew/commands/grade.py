@@ -37,6 +37,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="girth (default, as the fit): also move the side seams between the hips and the armpits by "
                         "the target's torso girth, the waisted dresses with their waist as a vertex; none: left where "
                         "the base has them (the paper's Algorithm 2)")
+    p.add_argument("--band-gap", choices=["none", "target"], default="none",
+                   help="none (default, as the fit): a waistband graded to the target's top loop as measured; target: "
+                        "to that loop less what the target's contact gap adds where it presses on the body")
     p.add_argument("--flat", action="store_true", help="no simulation: use the flat-placed panels as drapes (quick look)")
     p.add_argument("--overwrite", action="store_true", help="replace --out if it exists")
     p.set_defaults(func=run)
@@ -68,7 +71,7 @@ def run(args: argparse.Namespace) -> int:
             pattern, case.body, case.target_verts, case.target_faces,
             settings=GRADE_SETTINGS.replace(edge_length=args.edge_length), material=args.material,
             length=args.length, area=float(triangle_areas(case.target_verts, case.target_faces).sum())
-            if args.area == "target" else None, side_seams=args.side_seams, log=print, **kw,
+            if args.area == "target" else None, side_seams=args.side_seams, band_gap=args.band_gap, log=print, **kw,
         )
         save_pattern(res.pattern, tmp / "pattern.json")
         m = res.mesh
@@ -85,6 +88,7 @@ def run(args: argparse.Namespace) -> int:
             "length": args.length,
             "area": args.area,
             "side_seams": args.side_seams,
+            "band_gap": args.band_gap,
             "area_scales": res.area_scales,
             "placement": res.placement,
             "edit_fraction": res.fraction,

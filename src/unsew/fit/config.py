@@ -55,6 +55,9 @@ AREA_MODES = ("free", "target")
 #: What grading does with the side seams (``side_seams``; unsew.grading.grade.SIDE_SEAM_MODES).
 SIDE_SEAM_MODES = ("none", "girth")
 
+#: How grading reads a waistband's target loop (``band_gap``; unsew.grading.band_gap.BAND_GAP_MODES).
+BAND_GAP_MODES = ("none", "target")
+
 #: What phase two may change of a waistband (``optimizer.bands``).
 BAND_MODES = ("free", "height", "held")
 
@@ -123,6 +126,7 @@ class FitConfig:
     grading: bool = True  #: run linear grading before the optimization (ablation: False)
     area: str = "target"  #: "target": grading scales each graded pattern to the target's surface area (unsew.grading.area) and phase two holds its total rest area (its steps end with one scaling of every panel about its centroid); "free": the paper's fit, the area goes where grading and the loss take it (measured: docs/benchmarks.md, "fits sized to the target's area")
     side_seams: str = "girth"  #: "none": grading leaves the side seams where the base has them (the paper's Algorithm 2); "girth" (default): for a garment hanging from the shoulders, grading also moves the side-seam points between the hips and the armpits by the target's torso girth at their height minus the drape's, and the waisted dress bases get their waist as a vertex (unsew.grading.profile; measured: docs/benchmarks.md, "The side seams graded by girth, the default")
+    band_gap: str = "none"  #: "none" (default): grading sizes a waistband to the target's top loop as measured; "target": to that loop less the length the target's contact gap adds where it presses on the body (newton's cloth rests 4 mm off, unsew's 1 mm: 2 pi x 3 mm = 1.9 cm; unsew.grading.band_gap)
     contact: str = "default"  #: "default": every drape meets the body with drape.contact_stiffness below drape.contact_threshold; "target": the cloth rests where the target's does, the threshold set to the target's gap to the body (its vertices' 1st percentile distance, clamped to 2-10 mm) and the stiffness to 1e9 N/m^4 (unsew.fit.contact; docs/benchmarks.md, "The contact read from the target")
     seed: int = 0  #: seed of every random choice [-]
     device: str = "cpu"  #: torch device for the simulation ("cpu", "cuda")
@@ -308,6 +312,8 @@ def _check(cfg: FitConfig, names: dict) -> None:
         raise InputError(f"{say('area')} must be one of {', '.join(AREA_MODES)}, got {cfg.area!r}")
     if cfg.side_seams not in SIDE_SEAM_MODES:
         raise InputError(f"{say('side_seams')} must be one of {', '.join(SIDE_SEAM_MODES)}, got {cfg.side_seams!r}")
+    if cfg.band_gap not in BAND_GAP_MODES:
+        raise InputError(f"{say('band_gap')} must be one of {', '.join(BAND_GAP_MODES)}, got {cfg.band_gap!r}")
     if cfg.contact not in CONTACT_MODES:
         raise InputError(f"{say('contact')} must be one of {', '.join(CONTACT_MODES)}, got {cfg.contact!r}")
     if o.bands not in BAND_MODES:

@@ -326,5 +326,5 @@ def start(base, body, target: Target, sdf, cfg: FitConfig, material, *, progress
 
     g = grade(base, body, target.verts, target.faces, settings=cfg.drape, material=material, sdf=sdf,
               mesh=mesh_b, x_init=x_b, drape_fn=drape_fn, area=target.area if cfg.area == "target" else None, log=log,
-              side_seams=cfg.side_seams)
+              side_seams=cfg.side_seams, band_gap=cfg.band_gap)
     return Start(base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, mesh_b, material, dress_s=dress_s)

@@ -27,6 +27,7 @@ import torch
 from unsew.dress import DRESS_SETTINGS, dress
 from unsew.errors import InputError, PatternError, SimulationError, UnsewError
 from unsew.grading.area import clip_note, scale_to_area
+from unsew.grading.band_gap import BAND_GAP_MODES, pressed_loop_excess
 from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
 from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, place_contours
 from unsew.grading.curves import curves_of_contour, rest_length, stitched_edges
@@ -184,6 +185,7 @@ def grade(
     remesh: str = "always",
     length: str = "cloth",
     side_seams: str = "none",
+    band_gap: str = "none",
     area: float | None = None,
     lift: bool = True,
     log: Callable[[str], None] | None = None,
@@ -219,6 +221,9 @@ def grade(
         ``"girth"``: for a garment hanging from the shoulders, each pass also moves the side-seam
         points between the hips and the armpits across their panels by the target's torso girth
         at their height minus the drape's (:mod:`unsew.grading.profile`).
+    band_gap: ``"none"``: a waistband is graded to the target's top loop as measured;
+        ``"target"``: to that loop less the length the target's own contact gap adds where it
+        presses on the body (:mod:`unsew.grading.band_gap`: newton's 4 mm against unsew's 1 mm).
     area: the target's surface area [m^2]: each pass's pattern is scaled to it (every panel but
         the waistbands by one factor about its centroid, the seams to a band keeping their
         girth: :func:`unsew.grading.area.scale_to_area`) and meshed
@@ -231,7 +236,7 @@ def grade(
 
     Returns a :class:`GradeResult`.
     """
-    tv, tf = _check_grade_args(target_verts, target_faces, remesh, length, side_seams)
+    tv, tf = _check_grade_args(target_verts, target_faces, remesh, length, side_seams, band_gap)
     if drape_fn is None:
         def drape_fn(p, m, b):  # noqa: E306
             return dress_drape(p, m, b, material=material, sdf=sdf, settings=settings)
@@ -245,6 +250,9 @@ def grade(
                        waist_bound(body))
     if side_seams == "girth":
         ctx.side_seams = side_seams_for(body, tv, tf, tgt)
+    if band_gap == "target":
+        ctx.band_excess = pressed_loop_excess(tv, tgt, body)
+        ctx.band_whole = True
     first = _grade_pass(pattern, mesh, x_init, ctx)
     cur, rows = first, list(first.rows)
     x_lg, scales = None, []
@@ -296,10 +304,13 @@ def _base_drape(pattern, mesh, body, x_init, drape_fn) -> np.ndarray:
     return x_init
 
 
-def _check_grade_args(target_verts, target_faces, remesh: str, length: str, side_seams: str = "none"):
+def _check_grade_args(target_verts, target_faces, remesh: str, length: str, side_seams: str = "none",
+                      band_gap: str = "none"):
     """The target as (V, 3) float64 and (F, 3) int64 arrays; InputError on a bad mode or mesh."""
     if side_seams not in SIDE_SEAM_MODES:
         raise InputError(f"side_seams must be one of {', '.join(SIDE_SEAM_MODES)}, got {side_seams!r}")
+    if band_gap not in BAND_GAP_MODES:
+        raise InputError(f"band_gap must be one of {', '.join(BAND_GAP_MODES)}, got {band_gap!r}")
     if remesh not in REMESH_MODES:
         raise InputError(f"remesh must be one of {', '.join(REMESH_MODES)}, got {remesh!r}")
     if length not in LENGTH_MODES:
@@ -325,6 +336,8 @@ class _PassContext:
     remesh: str = "always"
     waist: WaistBound | None = None
     side_seams: SideSeams | None = None  # the side seams graded by girth (None: left alone)
+    band_excess: dict = field(default_factory=dict)  # target index -> its loop's contact excess [m] (band_gap)
+    band_whole: bool = False  # a band's girth edit carried down its sides into the panels below (band_gap)
 
 
 def _further_pass(cur: "GradePass", x_lg: np.ndarray, ctx: _PassContext) -> "GradePass | None":
@@ -424,7 +437,8 @@ def _worth_a_pass(matches, cloth: dict | None = None) -> bool:
 TOP_BAND = 0.01
 
 
-def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dict) -> tuple[np.ndarray, dict]:
+def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dict,
+               band_whole: bool = False) -> tuple[np.ndarray, dict]:
     """The edit with each panel's top held at its height: where a panel's highest control points
     (as placed around the body, within :data:`TOP_BAND`) all lie on one edited open curve (a
     skirt's or trousers' waist), the panel is translated in 2D, along the direction placed
@@ -449,6 +463,10 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
     panel and placed it 2 cm higher, and that placement alone put the drape 4 to 7 mm (Chamfer)
     from where the same shape placed at the base's height lands.
 
+    ``band_whole``: a band's top widened or narrowed takes its bottom and the panels sewn below
+    with it (:func:`_band_girth_down`), so the band stays a strip and the waist seam under it
+    changes by as much.
+
     Returns (a new (Nc, 2) array [m], target index -> a warning for each band top whose move was
     not carried down).
     """
@@ -471,6 +489,8 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
         rise = float(np.mean([out[g] @ up for g in top]))
         if _is_band(panel, height, open_edges):
             out[cidx] -= np.outer(out[cidx] @ up, up)
+            if band_whole:
+                _band_girth_down(pattern, controls, C0, out, panel)
             t, dg = tops[0]
             if _girth_explains(rise, dg):
                 held[t] = (f"band top {rise * 100:+.1f} cm on the target with its girth {dg * 100:+.1f} cm: read as the "
@@ -565,6 +585,70 @@ def waistbands(pattern) -> list[str]:
     open_edges = {(n, k) for n, pan in pattern.panels.items() for k in range(len(pan.edges)) if (n, k) not in stitched}
     return [n for n, pan in pattern.panels.items()
             if _is_band(pan, pan.to_world(pan.vertices)[:, 1], open_edges)]
+
+
+def _world_x_dir(panel) -> np.ndarray:
+    """The 2D direction (2,) in ``panel``'s frame scaled so that a move along it of 1 moves the
+    placed point by 1 m in world x (zero when the panel's plane is edge-on to x)."""
+    ex = panel.rotation_matrix()[0, :2]
+    n2 = float(ex @ ex)
+    return ex / n2 if n2 > 0.25 else np.zeros(2)
+
+
+def _band_girth_down(pattern, controls, C0: np.ndarray, out: np.ndarray, band) -> None:
+    """The sideways move of ``band``'s two outermost top corners (world x, their edit in ``out``)
+    given, in place, to its two outermost bottom corners and to the vertex each of those is sewn
+    to on the panels below (the end, nearer across the body, of the edge stitched to the band's
+    bottom edge there): the band widens or narrows as a whole and the waist seam under it with it.
+
+    Why: a band graded by its top loop alone became a trapezoid whose bottom, and the skirt's top
+    sewn to it, kept the base's girth. The midi A-line's band on the tall thin body narrowed to
+    0.80 m at its top over a 0.85 m waist seam (the true pattern's: 0.81 m both), and the skirt
+    hung 4 to 6 cm below the target's (docs/benchmarks.md, "Waistbands sized for unsew's contact")."""
+    p = controls.panel_names.index(band.name)
+    cidx = controls.of_panel(p)
+    world = band.to_world(C0[cidx])
+    ex = _world_x_dir(band)
+    if not ex.any():
+        return
+    dx = (out[cidx] @ band.rotation_matrix()[:, :2].T)[:, 0]  # world-x move of each control point [m]
+    top = np.flatnonzero(world[:, 1] >= world[:, 1].max() - TOP_BAND)
+    low = np.flatnonzero(world[:, 1] <= world[:, 1].min() + TOP_BAND)
+    if len(top) < 2 or len(low) < 2:
+        return
+    where = {(int(controls.panel[g]), int(controls.vertex[g])): int(g) for g in range(len(controls))}
+    for pick in (np.argmin, np.argmax):
+        t, b = top[pick(world[top, 0])], low[pick(world[low, 0])]
+        out[cidx[b]] += (dx[t] - dx[b]) * ex
+        corner = int(controls.vertex[cidx[b]])
+        for name, k in _sewn_to_corner(pattern, band, corner, float(world[b, 0])):
+            g = where.get((controls.panel_names.index(name), k))
+            if g is not None:
+                out[g] += dx[t] * _world_x_dir(pattern.panels[name])
+
+
+def _sewn_to_corner(pattern, band, corner: int, x: float) -> list[tuple[str, int]]:
+    """(panel name, vertex index) sewn to vertex ``corner`` of ``band`` on the panels below it:
+    for each stitch of a bottom edge of the band (both ends in the lower half of its placed
+    height) that ends at the corner, the end of the other edge nearer in world x to ``x`` [m]
+    (the corner's). The band's side edges, sewn to the band's other pieces, are not followed."""
+    ys = band.to_world(band.vertices)[:, 1]
+    mid = 0.5 * (float(ys.min()) + float(ys.max()))
+    out = []
+    for st in pattern.stitches:
+        for a, b in ((st.a, st.b), (st.b, st.a)):
+            if a.panel != band.name or b.panel == band.name:
+                continue
+            e = band.edges[a.edge]
+            if corner not in (e.start, e.end) or not (ys[e.start] < mid and ys[e.end] < mid):
+                continue
+            other = pattern.panels[b.panel]
+            f = other.edges[b.edge]
+            ends = other.to_world(other.vertices[[f.start, f.end]])[:, 0]
+            k = f.start if abs(ends[0] - x) <= abs(ends[1] - x) else f.end
+            if (b.panel, int(k)) not in out:
+                out.append((b.panel, int(k)))
+    return out
 
 
 def _sewn_below(pattern, band) -> list[str]:
@@ -706,7 +790,7 @@ def _grade_pass(pattern, mesh, x_init, ctx: _PassContext, *, gains: dict | None 
         src, matches, cloth = placed
     gains = gains or {}
     params = PatternParams.build(pattern, mesh)
-    items = [_item(m, src, ctx.tgt, x_init, params, mesh) for m in matches]
+    items = [_item(m, src, ctx.tgt, x_init, params, mesh, ctx.band_excess) for m in matches]
     exts = {m.target: cloth[m.target] if m.target in cloth else m.extension * gains.get(m.target, 1.0)
             for m in matches}
     _bound_waist(src, items, exts, ctx.waist)
@@ -747,8 +831,10 @@ def _bound_waist(src, items, exts: dict, waist: WaistBound | None) -> None:
     it.warnings.extend(notes)
 
 
-def _item(m: ContourMatch, src, tgt, x_init, params, mesh) -> _Item:
-    """The open curves of a matched source contour and its girth to grade."""
+def _item(m: ContourMatch, src, tgt, x_init, params, mesh, band_excess: dict | None = None) -> _Item:
+    """The open curves of a matched source contour and its girth to grade. ``band_excess``:
+    target index -> the length [m] its loop owes to the target's contact gap, read off when the
+    curves are a waistband's (:mod:`unsew.grading.band_gap`)."""
     s, t = src[m.source], tgt[m.target]
     curves = curves_of_contour(s.contour.indices, x_init, params.pattern, mesh, params.controls)
     warnings = [] if curves else ["no open pattern curve forms this contour; left alone"]
@@ -756,9 +842,15 @@ def _item(m: ContourMatch, src, tgt, x_init, params, mesh) -> _Item:
     girth, why = source_girth(s, t, rest)
     if why:
         warnings.append(why)
-    dg = t.length - girth
-    if curves and set(c.panel for c in curves) <= set(waistbands(params.pattern)):
-        dg, cut = bounded_band(rest, t.length, dg)
+    t_len = t.length
+    band = bool(curves) and set(c.panel for c in curves) <= set(waistbands(params.pattern))
+    excess = (band_excess or {}).get(m.target, 0.0) if band else 0.0
+    if excess:
+        t_len -= excess
+        warnings.append(f"band sized to the target's loop less {excess * 100:.1f} cm, what its contact gap adds")
+    dg = t_len - girth
+    if band:
+        dg, cut = bounded_band(rest, t_len, dg)
         if cut:
             warnings.append(cut)
     total = max(s.length, 1e-12)  # each curve's share of the contour's 3D length
@@ -821,7 +913,7 @@ def _edit(params, mesh, items, exts: dict, ctx: _PassContext, seams: np.ndarray 
         delta = delta + seams
     held: dict[int, str] = {}
     if ctx.hold_top:
-        delta, held = _hold_tops(params.pattern, params.controls, C0, delta, edited)
+        delta, held = _hold_tops(params.pattern, params.controls, C0, delta, edited, ctx.band_whole)
         for t, note in held.items():
             notes.setdefault(t, []).append(note)
     K0 = params.K0
