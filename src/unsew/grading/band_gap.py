@@ -12,7 +12,11 @@ With ``band_gap="target"`` the target loops that press on the body all round hav
 read off before a band is graded to them: ``2 pi (g - OWN_GAP)``, g the gap the target's cloth
 keeps where it presses (the 1st percentile of its vertices' distances to the body, no more than
 the loop's own median distance). Loops farther from the body than ``g + PRESSED_TOL`` (a loose
-band, a hem) are read as they are; only waistband items use the reading.
+band, a hem) are read as they are; only waistband items use the reading, and only on a garment
+that hangs from its band (:func:`hangs_from_band`: a skirt). Trousers and shorts are held up by
+their crotch as well: over 18 of their fits the reading moved the Chamfer by a median +0.2 mm
+(closer on 6, farther on 10), where over 14 skirts it moved it by -0.8 mm (closer on 9), the midi
+A-line on the tall thin body 9.2 -> 5.7 mm.
 """
 
 from __future__ import annotations
@@ -22,7 +26,7 @@ import numpy as np
 from unsew.geometry.distance import point_mesh_distance
 from unsew.tolerances import COLLISION_THICKNESS
 
-__all__ = ["BAND_GAP_MODES", "OWN_GAP", "PRESSED_TOL", "GAP_PERCENTILE", "pressed_loop_excess"]
+__all__ = ["BAND_GAP_MODES", "OWN_GAP", "PRESSED_TOL", "GAP_PERCENTILE", "pressed_loop_excess", "hangs_from_band"]
 
 #: The choices of ``grade(band_gap=...)``: the target's band loops as measured, or less the
 #: excess the target's contact gap adds.
@@ -64,3 +68,10 @@ def pressed_loop_excess(target_verts, contours, body) -> dict[int, float]:
         if excess > 0:
             out[int(c.index)] = float(excess)
     return out
+
+
+def hangs_from_band(contours) -> bool:
+    """Whether the garment whose placed contours are ``contours`` hangs from its top alone: none
+    of its open contours lies on a leg (a skirt, not trousers or shorts, whose crotch also holds
+    them)."""
+    return not any(str(c.part).endswith("leg") for c in contours)

@@ -27,7 +27,7 @@ import torch
 from unsew.dress import DRESS_SETTINGS, dress
 from unsew.errors import InputError, PatternError, SimulationError, UnsewError
 from unsew.grading.area import clip_note, scale_to_area
-from unsew.grading.band_gap import BAND_GAP_MODES, pressed_loop_excess
+from unsew.grading.band_gap import BAND_GAP_MODES, hangs_from_band, pressed_loop_excess
 from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
 from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, place_contours
 from unsew.grading.curves import curves_of_contour, rest_length, stitched_edges
@@ -222,8 +222,10 @@ def grade(
         points between the hips and the armpits across their panels by the target's torso girth
         at their height minus the drape's (:mod:`unsew.grading.profile`).
     band_gap: ``"none"``: a waistband is graded to the target's top loop as measured;
-        ``"target"``: to that loop less the length the target's own contact gap adds where it
-        presses on the body (:mod:`unsew.grading.band_gap`: newton's 4 mm against unsew's 1 mm).
+        ``"target"``: for a garment that hangs from its band (no target contour on a leg:
+        :func:`~unsew.grading.band_gap.hangs_from_band`), to that loop less the length the
+        target's own contact gap adds where it presses on the body, its bottom and the waist seam
+        below with it (:mod:`unsew.grading.band_gap`: newton's 4 mm against unsew's 1 mm).
     area: the target's surface area [m^2]: each pass's pattern is scaled to it (every panel but
         the waistbands by one factor about its centroid, the seams to a band keeping their
         girth: :func:`unsew.grading.area.scale_to_area`) and meshed
@@ -250,7 +252,7 @@ def grade(
                        waist_bound(body))
     if side_seams == "girth":
         ctx.side_seams = side_seams_for(body, tv, tf, tgt)
-    if band_gap == "target":
+    if band_gap == "target" and hangs_from_band(tgt):
         ctx.band_excess = pressed_loop_excess(tv, tgt, body)
         ctx.band_whole = True
     first = _grade_pass(pattern, mesh, x_init, ctx)
