@@ -38,9 +38,10 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "the target's torso girth, the waisted dresses with their waist as a vertex; none: left where "
                         "the base has them (the paper's Algorithm 2)")
     p.add_argument("--band-gap", choices=["none", "target"], default="target",
-                   help="target (default, as the fit): a waistband graded to the target's top loop less what the "
-                        "target's contact gap adds where it presses on the body, its bottom and the waist seam below "
-                        "with it; none: to the loop as measured, its top alone")
+                   help="target (default, as the fit): a skirt's waistband graded to the target's top loop less "
+                        "what the target's contact gap adds where it presses on the body, its bottom and the waist "
+                        "seam below with it (trousers and shorts as with none); none: to the loop as measured, its "
+                        "top alone")
     p.add_argument("--flat", action="store_true", help="no simulation: use the flat-placed panels as drapes (quick look)")
     p.add_argument("--overwrite", action="store_true", help="replace --out if it exists")
     p.set_defaults(func=run)

@@ -21,6 +21,7 @@ from pathlib import Path
 
 from unsew.errors import InputError
 from unsew.fit.contact import CONTACT_MODES
+from unsew.grading.band_gap import BAND_GAP_MODES  # how grading reads a waistband's target loop (``band_gap``)
 from unsew.sim.drape import DrapeSettings
 from unsew.sim.solve import resolve_backend
 from unsew.sim.material import MATERIALS, get_material
@@ -54,9 +55,6 @@ AREA_MODES = ("free", "target")
 
 #: What grading does with the side seams (``side_seams``; unsew.grading.grade.SIDE_SEAM_MODES).
 SIDE_SEAM_MODES = ("none", "girth")
-
-#: How grading reads a waistband's target loop (``band_gap``; unsew.grading.band_gap.BAND_GAP_MODES).
-BAND_GAP_MODES = ("none", "target")
 
 #: What phase two may change of a waistband (``optimizer.bands``).
 BAND_MODES = ("free", "height", "held")
@@ -126,7 +124,7 @@ class FitConfig:
     grading: bool = True  #: run linear grading before the optimization (ablation: False)
     area: str = "target"  #: "target": grading scales each graded pattern to the target's surface area (unsew.grading.area) and phase two holds its total rest area (its steps end with one scaling of every panel about its centroid); "free": the paper's fit, the area goes where grading and the loss take it (measured: docs/benchmarks.md, "fits sized to the target's area")
     side_seams: str = "girth"  #: "none": grading leaves the side seams where the base has them (the paper's Algorithm 2); "girth" (default): for a garment hanging from the shoulders, grading also moves the side-seam points between the hips and the armpits by the target's torso girth at their height minus the drape's, and the waisted dress bases get their waist as a vertex (unsew.grading.profile; measured: docs/benchmarks.md, "The side seams graded by girth, the default")
-    band_gap: str = "target"  #: "target" (default): grading sizes a waistband to the target's top loop less the length the target's contact gap adds where it presses on the body (newton's cloth rests 4 mm off, unsew's 1 mm: 2 pi x 3 mm = 1.8 cm), and carries the band's girth edit down its sides into the waist seam below (unsew.grading.band_gap; measured: docs/benchmarks.md, "Waistbands sized for unsew's contact"); "none": the target's loop as measured, the band's top edited alone
+    band_gap: str = "target"  #: "target" (default): for a garment that hangs from its band (a skirt: no target contour on a leg), grading sizes the waistband to the target's top loop less the length the target's contact gap adds where it presses on the body (newton's cloth rests 4 mm off, unsew's 1 mm: about 1.9 cm), and carries the band's girth edit down its sides into the waist seam below (unsew.grading.band_gap; measured: docs/benchmarks.md, "Waistbands sized for unsew's contact"); "none": the target's loop as measured, the band's top edited alone
     contact: str = "default"  #: "default": every drape meets the body with drape.contact_stiffness below drape.contact_threshold; "target": the cloth rests where the target's does, the threshold set to the target's gap to the body (its vertices' 1st percentile distance, clamped to 2-10 mm) and the stiffness to 1e9 N/m^4 (unsew.fit.contact; docs/benchmarks.md, "The contact read from the target")
     seed: int = 0  #: seed of every random choice [-]
     device: str = "cpu"  #: torch device for the simulation ("cpu", "cuda")

@@ -1,22 +1,19 @@
 """A waistband's target loop read as unsew's contact would drape it (grading's ``band_gap``).
 
 Every simulator rests cloth at its own distance from the body: newton's at its particle radius
-(4 mm), unsew's as near as its collision thickness (1 mm) where the cloth is pulled tight
-(docs/benchmarks.md, "The cloth's gap to the body"). A band pressed round a waist is then a loop
-2 pi (4 - 1) mm = 1.9 cm longer in the target than the same cloth in unsew's drape. Graded to
-the target's loop as measured, the band comes out that much looser than the one unsew needs to
-hang where the target's hangs, and on a waist with no shelf below it (the tall thin body) it
-slides down until a girth holds it (docs/benchmarks.md, "Waistbands sized for unsew's contact").
+(4 mm), unsew's as near as its collision thickness (1 mm) where the cloth is pulled tight. A band
+pressed round a waist is then a loop 2 pi (4 - 1) mm, about 1.9 cm, longer in the target than the
+same cloth in unsew's drape. Graded to the target's loop as measured, the band comes out that much
+looser than the one unsew needs to hang where the target's hangs, and on a waist with no shelf
+below it, it slides down until a girth holds it.
 
 With ``band_gap="target"`` the target loops that press on the body all round have that excess
 read off before a band is graded to them: ``2 pi (g - OWN_GAP)``, g the gap the target's cloth
 keeps where it presses (the 1st percentile of its vertices' distances to the body, no more than
 the loop's own median distance). Loops farther from the body than ``g + PRESSED_TOL`` (a loose
 band, a hem) are read as they are; only waistband items use the reading, and only on a garment
-that hangs from its band (:func:`hangs_from_band`: a skirt). Trousers and shorts are held up by
-their crotch as well: over 18 of their fits the reading moved the Chamfer by a median +0.2 mm
-(closer on 6, farther on 10), where over 14 skirts it moved it by -0.8 mm (closer on 9), the midi
-A-line on the tall thin body 9.2 -> 5.7 mm.
+that hangs from its band (:func:`hangs_from_band`: a skirt; trousers and shorts are held up by
+their crotch as well). Measured: docs/benchmarks.md, "Waistbands sized for unsew's contact".
 """
 
 from __future__ import annotations
@@ -37,8 +34,8 @@ BAND_GAP_MODES = ("none", "target")
 OWN_GAP = COLLISION_THICKNESS
 
 #: A target loop presses on the body when its median distance to it is within the target's gap
-#: plus this [m]: the band tops of the 32 banded foreign targets read 3.9-4.0 mm against gaps of
-#: 3.8-4.0; their hems 18-120 mm.
+#: plus this [m]: the top loops of the banded foreign targets read 3.8-4.0 mm against gaps of
+#: 3.5-4.0 (``python -m benchmarks band_gap``), hems and leg openings 8 mm and more.
 PRESSED_TOL = 2e-3
 
 #: Percentile of the target vertices' distances to the body read as its cloth's contact gap [-]
