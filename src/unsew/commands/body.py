@@ -7,6 +7,7 @@ No heavy imports at module level: the work is imported when a subcommand runs.
 from __future__ import annotations
 
 import argparse
+import sys
 
 from unsew.errors import InputError
 from unsew.io.atomic import atomic_dir, check_output
@@ -72,7 +73,7 @@ def run_rig(args: argparse.Namespace) -> int:
 
     body = _body_from_arg(args, rig=True)
     for note in body.notes:
-        print(f"note: {note}")
+        print(f"note: {note}", file=sys.stderr)  # stdout holds the result alone
     folder = args.body if os.path.isdir(args.body) else os.path.dirname(os.path.abspath(args.body))
     out = args.out or os.path.join(folder, "skeleton.json")
     if os.path.exists(out) and not args.overwrite:
@@ -94,7 +95,7 @@ def run_measure(args: argparse.Namespace) -> int:
 
     body = _body_from_arg(args)
     for note in body.notes:
-        print(f"note: {note}")
+        print(f"note: {note}", file=sys.stderr)  # stdout holds the result alone
     m = measure_body(body).as_dict()
     if args.json:
         print(json.dumps({"units": "m", "rigged": body.rigged, **{k: round(v, 4) for k, v in m.items()}}, indent=1))
