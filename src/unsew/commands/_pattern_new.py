@@ -51,11 +51,13 @@ def load_measurements(path):
 
 
 def run(args: argparse.Namespace) -> int:
+    from unsew.commands._output import check_out
     from unsew.io.garmentcode import save_pattern
     from unsew.pattern.validate import validate_pattern
 
     if not str(args.out).lower().endswith(".json"):
         raise InputError(f"--out {args.out} should name a .json file (GarmentCode specification)")
+    check_out(args.out, overwrite=args.overwrite)
     m = load_measurements(args.measurements) if args.measurements else None
     pattern = make_base_pattern(args.garment, m)
     for w in validate_pattern(pattern):
