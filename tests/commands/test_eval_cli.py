@@ -13,9 +13,10 @@ from unsew.pattern.model import Edge, Panel, Pattern
 
 
 def _plane(z, n=5):
+    """A 0.5 m square at depth z [m] across the default body's torso (worn: it lies on the body)."""
     s = np.linspace(0, 0.5, n)
     X, Y = np.meshgrid(s, s)
-    V = np.stack([X.ravel(), Y.ravel(), np.full(X.size, z)], 1)
+    V = np.stack([X.ravel() - 0.25, Y.ravel() + 0.9, np.full(X.size, z)], 1)
     F = []
     for j in range(n - 1):
         for i in range(n - 1):
@@ -33,6 +34,9 @@ def _pattern(scale=1.0, names=("front", "back")):
     return Pattern("p", panels)
 
 
+META = {"garment": "skirt", "body": "default"}
+
+
 @pytest.fixture
 def folders(tmp_path):
     res, case = tmp_path / "result", tmp_path / "case"
@@ -40,6 +44,7 @@ def folders(tmp_path):
     case.mkdir()
     write_obj(res / "garment.obj", *_plane(0.0))
     write_obj(case / "target.obj", *_plane(0.005, n=7))
+    (case / "meta.json").write_text(json.dumps(META))
     return res, case
 
 
@@ -59,9 +64,10 @@ def test_eval_with_patterns_and_json_flag(folders, capsys):
     res, case = folders
     save_pattern(_pattern(1.1), res / "pattern.json")
     save_pattern(_pattern(1.0), case / "pattern_gt.json")
-    (case / "meta.json").write_text(json.dumps({"garment": "skirt", "units": "m", "up": "y", "front": "z"}))
+    (case / "meta.json").write_text(json.dumps({**META, "units": "m", "up": "y", "front": "z"}))
+    capsys.readouterr()
     assert main(["eval", str(res), str(case), "--samples", "1000", "--json"]) == 0
-    printed = json.loads(capsys.readouterr().out)
+    printed = json.loads(capsys.readouterr().out)  # stdout holds the JSON alone
     ev = json.loads((res / "eval.json").read_text())
     assert printed == ev
     assert_close(ev["2d"]["area_error_rel_mean"], 0.21, rtol=1e-9)
@@ -73,10 +79,40 @@ def test_eval_target_units_from_meta(folders):
     res, case = folders
     # the target written in cm, 0.5 cm = 5 mm above the result
     write_obj(case / "target.obj", _plane(0.0)[0] * 100 + [0, 0, 0.5], _plane(0.0)[1])
-    (case / "meta.json").write_text(json.dumps({"units": "cm"}))
+    (case / "meta.json").write_text(json.dumps({**META, "units": "cm"}))
     assert main(["eval", str(res), str(case), "--samples", "500"]) == 0
     ev = json.loads((res / "eval.json").read_text())
     assert_close(ev["3d"]["chamfer_mm"], 5.0, rtol=1e-6)
+
+
+def test_eval_refuses_a_case_in_the_wrong_units_as_fit_does(folders, capsys):
+    res, case = folders
+    write_obj(case / "target.obj", _plane(0.0)[0] * 100 + [0, 0, 0.5], _plane(0.0)[1])  # cm, meta says m
+    _fails(["eval", str(res), str(case), "--samples", "500"], capsys, match="--units cm")
+    assert not (res / "eval.json").exists()
+    assert main(["eval", str(res), str(case), "--samples", "500", "--units", "cm"]) == 0  # the option fixes it
+    assert_close(json.loads((res / "eval.json").read_text())["3d"]["chamfer_mm"], 5.0, rtol=1e-6)
+
+
+def test_eval_refuses_a_target_off_its_body(folders, tmp_path, capsys):
+    res, case = folders
+    V, F = _plane(0.005, n=7)
+    write_obj(case / "target.obj", V + [0, 0, 5.0], F)  # 5 m in front of the wearer
+    write_obj(res / "garment.obj", _plane(0.0)[0] + [0, 0, 5.0], _plane(0.0)[1])
+    _fails(["eval", str(res), str(case), "--samples", "500"], capsys, match="does not lie on its wearer")
+    assert not (res / "eval.json").exists()
+    # fit refuses the same case with the same line
+    _fails(["fit", str(case), "--out", str(tmp_path / "r"), "--quiet"], capsys, match="does not lie on its wearer")
+
+
+def test_eval_json_is_not_replaced_without_overwrite(folders, capsys):
+    res, case = folders
+    assert main(["eval", str(res), str(case), "--samples", "500"]) == 0
+    first = (res / "eval.json").read_text()
+    _fails(["eval", str(res), str(case), "--samples", "600"], capsys, match="pass --overwrite")
+    assert (res / "eval.json").read_text() == first
+    assert main(["eval", str(res), str(case), "--samples", "600", "--overwrite"]) == 0
+    assert json.loads((res / "eval.json").read_text())["3d"]["n_samples"] == 600
 
 
 def _fails(args, capsys, *, match):

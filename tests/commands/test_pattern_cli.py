@@ -6,6 +6,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from unsew.cli import main
@@ -93,3 +94,41 @@ def test_subprocess_error_is_one_line(tmp_path):
     assert r.returncode == 2
     assert r.stderr.strip().count("\n") == 0 and "empty" in r.stderr and "Traceback" not in r.stderr
     assert not (tmp_path / "o.svg").exists()
+
+
+def test_body_measure_json_feeds_pattern_new(tmp_path, capsys):
+    """`unsew body measure BODY.obj --json > m.json` (a body without skeleton: a note is printed)
+    then `unsew pattern new --measurements m.json`: stdout holds the JSON alone, the pattern is
+    sized to that body."""
+    from unsew.body.body import default_body
+    from unsew.io.mesh import write_obj
+
+    body = default_body().transformed(scale=np.array([1.15, 1.0, 1.15]))  # a wider wearer
+    write_obj(tmp_path / "body.obj", body.verts, body.faces)
+    capsys.readouterr()
+    assert main(["body", "measure", str(tmp_path / "body.obj"), "--json"]) == 0
+    out, err = capsys.readouterr()
+    assert "note:" in err and "note:" not in out
+    m = tmp_path / "m.json"
+    m.write_text(out)
+    a, b = tmp_path / "a.json", tmp_path / "b.json"
+    assert main(["pattern", "new", "tshirt", "--out", str(a)]) == 0
+    assert main(["pattern", "new", "tshirt", "--measurements", str(m), "--out", str(b)]) == 0
+    wa = np.ptp(load_pattern(a).panels["front"].vertices[:, 0])
+    wb = np.ptp(load_pattern(b).panels["front"].vertices[:, 0])
+    assert wb > wa * 1.05  # the front is wider for the wider body
+
+
+def test_measurements_in_centimetres(tmp_path):
+    from unsew.pattern.measurements import Measurements
+
+    d = Measurements()
+    cm, metres = tmp_path / "cm.yaml", tmp_path / "m.yaml"
+    cm.write_text(f"units: cm\nbust: {(d.bust + 0.1) * 100}\n")
+    metres.write_text(f"bust: {d.bust + 0.1}\n")
+    a, b = tmp_path / "a.json", tmp_path / "b.json"
+    assert main(["pattern", "new", "tshirt", "--measurements", str(cm), "--out", str(a)]) == 0
+    assert main(["pattern", "new", "tshirt", "--measurements", str(metres), "--out", str(b)]) == 0
+    assert np.allclose(load_pattern(a).panels["front"].vertices, load_pattern(b).panels["front"].vertices)
+    cm.write_text("units: inch\nbust: 37\n")
+    assert main(["pattern", "new", "tshirt", "--measurements", str(cm), "--out", str(tmp_path / "c.json")]) == 2

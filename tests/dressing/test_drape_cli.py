@@ -46,7 +46,7 @@ def test_drape_cli_uses_the_patterns_fitted_material(tmp_path, capsys):
     small = ["--edge-length", "0.05", "--sew-steps", "10", "--settle-steps", "1", "--no-progress"]
     assert main(["drape", str(pj), *small, "--out", str(out)]) == 0
     assert "the pattern's fitted material" in out.read_text().splitlines()[0]
-    assert main(["drape", str(pj), *small, "--material", "cotton", "--out", str(out)]) == 0
+    assert main(["drape", str(pj), *small, "--material", "cotton", "--out", str(out), "--overwrite"]) == 0
     assert "cotton" in out.read_text().splitlines()[0]
     p.unsew["material"] = {"H00_N_per_m": 1.0}
     save_pattern(p, pj)

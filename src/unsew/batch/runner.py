@@ -68,7 +68,8 @@ def run_batch(cases_dir: str | os.PathLike, out: str | os.PathLike, *, cfg=None,
     ray_init_kwargs: extra ``ray.init`` arguments;
     overwrite: refit cases whose result is complete (otherwise they are skipped); fit_fn: the
     per-case fit, a module-level function like :func:`unsew.batch.task.fit_case_dir` (the
-    default); progress: one tqdm bar on stderr for the batch.
+    default); progress: one tqdm bar on stderr for the batch when stderr is a terminal, else a
+    plain line per finished case (:func:`unsew.fit.progress.is_terminal`).
 
     A failing case is recorded (status "failed", one-line reason) and the batch goes on. On
     Ctrl-C the workers are stopped, the summary of what finished is written and the result has
@@ -111,21 +112,32 @@ def _run(cases, cases_dir, out: Path, *, cfg, workers, ray: bool, overwrite, fit
                                 fit_fn=fit_fn))
         records[c.name] = rec
 
-    bar = None
-    if progress:
+    from unsew.fit.progress import is_terminal
+
+    bar, lines = None, progress and not is_terminal(sys.stderr)
+    if progress and not lines:
         from tqdm import tqdm
 
         bar = tqdm(total=len(cases), initial=len(cases) - len(jobs), desc="batch", unit="case",
                    dynamic_ncols=True, file=sys.stderr)
     counts = {"done": 0, "failed": sum(r.status == "failed" for r in records.values()),
               "skipped": sum(r.status == "skipped" for r in records.values())}
+    if lines:
+        print(f"batch: {len(cases)} cases, {len(jobs)} to fit ({counts['skipped']} skipped, "
+              f"{counts['failed']} failed before fitting)", file=sys.stderr, flush=True)
+    finished = len(cases) - len(jobs)
 
     def on_done(rec: CaseRecord) -> None:
+        nonlocal finished
         records[rec.name] = rec
         counts[rec.status] = counts.get(rec.status, 0) + 1
+        finished += 1
         if bar is not None:
             bar.set_postfix(done=counts["done"], failed=counts["failed"], skipped=counts["skipped"], refresh=False)
             bar.update(1)
+        elif lines:
+            why = f": {rec.reason}" if rec.status != "done" and rec.reason else ""
+            print(f"batch: {finished}/{len(cases)} {rec.name} {rec.status}{why}", file=sys.stderr, flush=True)
 
     if bar is not None:
         bar.set_postfix(done=0, failed=counts["failed"], skipped=counts["skipped"])

@@ -7,8 +7,8 @@ import argparse
 import sys
 import warnings
 
+from unsew.commands._output import check_out
 from unsew.errors import InputError
-from unsew.io.atomic import check_output
 
 __all__ = ["run", "load_pattern_reporting"]
 
@@ -37,7 +37,7 @@ def run(args: argparse.Namespace) -> int:
     pattern = load_pattern_reporting(args.pattern)
     for o, _, flag in outs:
         if o:
-            check_output(o, flag=flag)
+            check_out(o, overwrite=args.overwrite, flag=flag)
     if args.svg:
         from unsew.io.svg import write_svg
 

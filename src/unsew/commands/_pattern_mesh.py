@@ -6,8 +6,8 @@ from __future__ import annotations
 import argparse
 import time
 
+from unsew.commands._output import check_out
 from unsew.errors import InputError
-from unsew.io.atomic import check_output
 
 __all__ = ["run"]
 
@@ -27,7 +27,7 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--max-triangles must be positive, got {args.max_triangles}")
     pattern = load_pattern(args.pattern)
     check_triangle_budget(pattern, h, limit=args.max_triangles)  # before minutes of meshing
-    check_output(args.out)
+    check_out(args.out, overwrite=args.overwrite)
     t0 = time.perf_counter()
     mesh = mesh_pattern(pattern, edge_length=h)
     dt = time.perf_counter() - t0

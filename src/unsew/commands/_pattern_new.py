@@ -12,9 +12,16 @@ from unsew.pattern.measurements import Measurements
 __all__ = ["run", "load_measurements"]
 
 
+#: Keys of ``unsew body measure --json`` that describe the measurements rather than being one.
+_ABOUT = ("rigged",)
+#: Metres per unit of a file's ``units`` key.
+_UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001}
+
+
 def load_measurements(path):
-    """Read body measurements [m] from a YAML mapping (``name: value``); unknown names or
-    implausible values raise :class:`~unsew.errors.InputError`."""
+    """Read body measurements from a YAML (or JSON) mapping ``name: value``, in metres unless
+    the mapping says ``units: cm`` or ``mm`` (``unsew body measure --json`` output is accepted as
+    it is); unknown names or implausible values raise :class:`~unsew.errors.InputError`."""
     from pathlib import Path
 
     import yaml
@@ -32,15 +39,25 @@ def load_measurements(path):
         data = {}
     if not isinstance(data, dict):
         raise InputError(f"measurements file {p} must be a mapping like 'bust: 0.94' (metres)")
+    units = data.pop("units", "m")
+    if units not in _UNITS:
+        raise InputError(f"measurements file {p}: units {units!r} must be one of {', '.join(_UNITS)}")
+    for k in _ABOUT:
+        data.pop(k, None)
+    scale = _UNITS[units]
+    if scale != 1.0:
+        data = {k: v * scale if isinstance(v, (int, float)) and not isinstance(v, bool) else v for k, v in data.items()}
     return Measurements.from_dict(data)
 
 
 def run(args: argparse.Namespace) -> int:
+    from unsew.commands._output import check_out
     from unsew.io.garmentcode import save_pattern
     from unsew.pattern.validate import validate_pattern
 
     if not str(args.out).lower().endswith(".json"):
         raise InputError(f"--out {args.out} should name a .json file (GarmentCode specification)")
+    check_out(args.out, overwrite=args.overwrite)
     m = load_measurements(args.measurements) if args.measurements else None
     pattern = make_base_pattern(args.garment, m)
     for w in validate_pattern(pattern):

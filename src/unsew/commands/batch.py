@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import argparse
 
+from unsew.commands._output import check_out
 from unsew.commands.fit import add_fit_options, config_from_args
-from unsew.io.atomic import check_output
 
 __all__ = ["register", "run"]
 
@@ -40,7 +40,7 @@ def run(args: argparse.Namespace) -> int:
     from unsew.batch.summary import format_table
 
     cfg = _config(args)
-    check_output(args.out, folder=True)  # an unwritable --out fails before any fit
+    check_out(args.out, overwrite=None, folder=True)  # a bad --out fails before any fit; a rerun resumes in it
     res = run_batch(args.cases, args.out, cfg=cfg, workers=args.workers, ray=args.ray, overwrite=args.overwrite,
                     progress=not args.quiet)
     print(format_table(res.records))

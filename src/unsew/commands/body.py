@@ -7,9 +7,11 @@ No heavy imports at module level: the work is imported when a subcommand runs.
 from __future__ import annotations
 
 import argparse
+import sys
 
+from unsew.commands._output import check_out
 from unsew.errors import InputError
-from unsew.io.atomic import atomic_dir, check_output
+from unsew.io.atomic import atomic_dir
 
 __all__ = ["register"]
 
@@ -31,9 +33,7 @@ def run_make(args: argparse.Namespace) -> int:
     from unsew.body.skeleton import save_skeleton
     from unsew.io.mesh import write_obj
 
-    if os.path.exists(args.out) and not args.overwrite:
-        raise InputError(f"output folder {args.out} exists; remove it, pass --overwrite or choose another --out")
-    check_output(args.out, folder=True)  # fail before making the body
+    check_out(args.out, overwrite=args.overwrite, folder=True)  # fail before making the body
     body = make_anny_body(dict(args.phenotype or []), pose=args.pose)
     with atomic_dir(args.out, overwrite=args.overwrite) as tmp:
         write_obj(os.path.join(tmp, "body.obj"), body.verts, body.faces, header=f"unsew body: {body.name}")
@@ -70,13 +70,15 @@ def run_rig(args: argparse.Namespace) -> int:
 
     from unsew.body.skeleton import save_skeleton
 
-    body = _body_from_arg(args, rig=True)
-    for note in body.notes:
-        print(f"note: {note}")
     folder = args.body if os.path.isdir(args.body) else os.path.dirname(os.path.abspath(args.body))
     out = args.out or os.path.join(folder, "skeleton.json")
-    if os.path.exists(out) and not args.overwrite:
-        raise InputError(f"{out} exists; pass --overwrite to replace it or --out another path")
+    if args.body == "default" or os.path.exists(args.body):  # else _body_from_arg says it is missing
+        check_out(out, overwrite=args.overwrite)
+        if args.preview:
+            check_out(args.preview, overwrite=args.overwrite, flag="--preview")
+    body = _body_from_arg(args, rig=True)
+    for note in body.notes:
+        print(f"note: {note}", file=sys.stderr)  # stdout holds the result alone
     save_skeleton(body.skeleton, out)
     print(f"wrote {out} ({len(body.skeleton.names)} joints, height {body.height:.3f} m)")
     if args.preview:
@@ -94,7 +96,7 @@ def run_measure(args: argparse.Namespace) -> int:
 
     body = _body_from_arg(args)
     for note in body.notes:
-        print(f"note: {note}")
+        print(f"note: {note}", file=sys.stderr)  # stdout holds the result alone
     m = measure_body(body).as_dict()
     if args.json:
         print(json.dumps({"units": "m", "rigged": body.rigged, **{k: round(v, 4) for k, v in m.items()}}, indent=1))
@@ -126,7 +128,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     rg.add_argument("body", metavar="BODY.obj|BODY_DIR")
     rg.add_argument("--out", metavar="skeleton.json", help="where to write (default: skeleton.json beside the body)")
     rg.add_argument("--preview", metavar="PNG", help="also draw the body and its joints, front and side")
-    rg.add_argument("--overwrite", action="store_true", help="replace an existing --out file")
+    rg.add_argument("--overwrite", action="store_true", help="replace an existing --out (and --preview) file")
     _frame_options(rg)
     rg.set_defaults(func=run_rig, skeleton=None)
 

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from unsew.commands._output import check_out
 from unsew.commands.fit import add_fit_options, config_from_args
-from unsew.io.atomic import check_output
 
 __all__ = ["register", "run"]
 
@@ -13,6 +13,7 @@ __all__ = ["register", "run"]
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("demo", help="fit a known t-shirt on the embedded default body (a few minutes)")
     p.add_argument("--out", default="demo-out", metavar="DIR", help="folder for the case, the fit and the retarget")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing --out")
     add_fit_options(p)
     p.set_defaults(func=run)
 
@@ -23,6 +24,6 @@ def run(args: argparse.Namespace) -> int:
     from unsew.fit.demo import DEMO_CONFIG, run_demo
 
     cfg = config_from_args(args, defaults=DEMO_CONFIG)
-    check_output(Path(args.out), folder=True)  # an unwritable --out fails now, not after the fit
+    check_out(Path(args.out), overwrite=args.overwrite, folder=True)  # a bad --out fails now, not after the fit
     run_demo(Path(args.out), cfg=cfg, progress=not args.quiet)
     return 0

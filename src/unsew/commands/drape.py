@@ -14,8 +14,8 @@ from __future__ import annotations
 
 import argparse
 
+from unsew.commands._output import check_out
 from unsew.errors import InputError
-from unsew.io.atomic import check_output
 
 __all__ = ["register", "run", "pattern_contact"]
 
@@ -59,6 +59,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--sew-steps", type=int, default=None, help="steps of the sewing phase (default: dress()'s)")
     p.add_argument("--settle-steps", type=int, default=None, help="steps of settling after sewing (default: dress()'s)")
     p.add_argument("--out", required=True, metavar="garment.obj", help="OBJ file to write")
+    p.add_argument("--overwrite", action="store_true", help="replace an existing --out")
     p.add_argument("--keep-failed", action="store_true",
                    help="when the drape fails its checks, write the garment to <out stem>.failed.obj")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
@@ -106,9 +107,7 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out)
     if out.suffix.lower() != ".obj":
         raise InputError(f"--out {out} must end in .obj")
-    if not out.parent.exists():
-        raise InputError(f"folder {out.parent} of --out does not exist")
-    check_output(out)  # an unwritable --out fails now, not after the drape
+    check_out(out, overwrite=args.overwrite)  # a bad --out fails now, not after the drape
 
     from unsew.io.garmentcode import load_pattern
 
@@ -130,28 +129,14 @@ def run(args: argparse.Namespace) -> int:
     else:
         material_name = args.material or "cotton"
         material = resolve_material(material_name)  # a bad name fails before any work
-    bars: dict = {}
-
-    def progress(phase: str, k: int, n: int) -> None:
-        if args.no_progress:
-            return
-        from tqdm import tqdm
-
-        b = bars.get(phase)
-        if b is None:
-            b = bars[phase] = tqdm(total=n, desc=f"drape: {phase}", unit="step", leave=False, dynamic_ncols=True)
-        b.update(k - b.n)
-
     from unsew.dress import DRESS_SETTINGS
+    from unsew.fit.progress import Progress
 
     kw = {k: getattr(args, k) for k in ("sew_steps", "settle_steps") if getattr(args, k) is not None}
     contact = pattern_contact(pattern)  # the fit's contact (contact: target), so the drape rests as the fit's did
     settings = DRESS_SETTINGS.replace(edge_length=args.edge_length, **kw, **(contact or {}))
-    try:
+    with Progress(not args.no_progress).phase("drape") as progress:  # bars on a terminal, else a line per phase
         d = dress(pattern, body, material=material, settings=settings, progress=progress)
-    finally:
-        for b in bars.values():
-            b.close()
     from unsew.sim.checks import check_dressed
 
     m = d.mesh

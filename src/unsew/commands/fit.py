@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from unsew.commands._output import check_out
 from unsew.errors import InputError
-from unsew.io.atomic import check_output
 
 __all__ = ["register", "run", "add_fit_options", "config_from_args"]
 
@@ -83,8 +83,7 @@ def run(args: argparse.Namespace) -> int:
 
     cfg = config_from_args(args)
     out = Path(args.out)
-    if not (out.exists() and not args.overwrite):  # run_fit says "exists; pass --overwrite"
-        check_output(out, folder=True)  # an unwritable --out fails now, not after the fit
+    check_out(out, overwrite=args.overwrite, folder=True)  # a bad --out fails now, not after the fit
     case = load_case(args.case, units=args.units, up=args.up, front=args.front)
     _check_inputs(case, cfg)
     run_fit(case, cfg, out, resume=args.resume, overwrite=args.overwrite, progress=not args.quiet, started=started)

@@ -51,6 +51,7 @@ def run(args: argparse.Namespace) -> int:
     import json
 
     from unsew.body.case import load_case
+    from unsew.commands._output import check_out
     from unsew.fit.config import FitConfig
     from unsew.fit.start import base_pattern_for
     from unsew.geometry.repair import triangle_areas
@@ -62,6 +63,7 @@ def run(args: argparse.Namespace) -> int:
     lo, hi = EDGE_LENGTH_RANGE
     if not (lo <= args.edge_length <= hi):
         raise InputError(f"--edge-length {args.edge_length} m is outside [{lo}, {hi}] m")
+    check_out(args.out, overwrite=args.overwrite, folder=True)
     case = load_case(args.case)
     base = args.base or case.garment
     if not base:

@@ -33,6 +33,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     new.add_argument("garment", choices=BASES, help="garment type or library base")
     new.add_argument("--measurements", metavar="M.yaml", help="body measurements in metres (YAML); default: the default body")
     new.add_argument("--out", required=True, metavar="P.json", help="GarmentCode JSON to write")
+    new.add_argument("--overwrite", action="store_true", help="replace an existing --out")
     new.set_defaults(func=_dispatch("new"))
 
     mesh = psub.add_parser("mesh", help="triangulate the panels and sew them into one garment mesh")
@@ -41,6 +42,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     mesh.add_argument("--out", required=True, metavar="REST.obj", help="flat panels as OBJ (pattern coordinates as UVs)")
     mesh.add_argument("--max-triangles", type=int, default=MAX_TRIANGLES, metavar="N",
                       help=f"refuse a mesh estimated above N triangles (default {MAX_TRIANGLES:,})")
+    mesh.add_argument("--overwrite", action="store_true", help="replace an existing --out")
     mesh.set_defaults(func=_dispatch("mesh"))
 
     sym = psub.add_parser("symmetry", help="detect panel pairs and mirror axes; count control points")
@@ -53,4 +55,5 @@ def register(sub: argparse._SubParsersAction) -> None:
     exp.add_argument("--svg", metavar="P.svg")
     exp.add_argument("--dxf", metavar="P.dxf")
     exp.add_argument("--obj", metavar="P.obj", help="flat panels as OBJ")
+    exp.add_argument("--overwrite", action="store_true", help="replace existing --svg/--dxf/--obj files")
     exp.set_defaults(func=_dispatch("export"))

@@ -1,6 +1,9 @@
 """Progress of a fit, honest on any stream: on a terminal, bars whose figures are the ones the
 report uses (the Chamfer distance in mm); off a terminal (a pipe, CI, a batch log), one plain
-line per phase and one every few iterations or seconds, with no carriage returns or cursor codes."""
+line per phase and one every few iterations or seconds, with no carriage returns or cursor codes.
+
+:func:`is_terminal` is the one place that decides whether a stream gets bars: every command's
+progress (fit, drape, batch, demo) goes through it."""
 
 from __future__ import annotations
 
@@ -9,11 +12,20 @@ import time
 from contextlib import contextmanager
 from typing import Callable, TextIO
 
-__all__ = ["Progress", "BAR_SAMPLES"]
+__all__ = ["Progress", "BAR_SAMPLES", "is_terminal"]
 
 #: Surface samples per side of the Chamfer distance shown beside phase two's bar (a cheaper
 #: estimate of the figure metrics.json reports with 50,000).
 BAR_SAMPLES = 5_000
+
+
+def is_terminal(stream: TextIO | None) -> bool:
+    """Whether ``stream`` is an interactive terminal, the only kind that gets tqdm bars (their
+    redraws are carriage returns and cursor codes: noise in a file, a pipe or a CI log)."""
+    try:
+        return bool(stream is not None and stream.isatty())
+    except (AttributeError, ValueError, OSError):  # no isatty, or a closed stream
+        return False
 
 
 class Progress:
@@ -29,7 +41,7 @@ class Progress:
                  seconds: float = 30.0):
         self.enabled = enabled
         self.stream = stream if stream is not None else sys.stderr
-        self.tty = bool(getattr(self.stream, "isatty", lambda: False)())
+        self.tty = is_terminal(self.stream)
         self.every, self.seconds = max(int(every), 1), float(seconds)
 
     def line(self, text: str) -> None:

@@ -2,8 +2,9 @@
 
 3D (always): the result's draped ``garment.obj`` against the case's ``target.obj``/``target.ply``
 (:func:`unsew.metrics.surface.surface_metrics`). 2D (when the case has ``pattern_gt.json`` and
-the result ``pattern.json``): :func:`unsew.metrics.panels.pattern_metrics`. The case's optional
-``meta.json`` gives the target's ``units``/``up``/``front`` (default m, y, z); the result is in
+the result ``pattern.json``): :func:`unsew.metrics.panels.pattern_metrics`. The case is loaded
+and checked as ``unsew fit`` loads it (:func:`unsew.body.case.load_case`: meta.json's or the
+options' units/up/front, a target of plausible size that lies on its wearer); the result is in
 unsew's world frame (metres).
 """
 
@@ -15,9 +16,8 @@ from pathlib import Path
 
 from unsew.errors import InputError
 from unsew.io.atomic import atomic_write
-from unsew.io.case import read_meta
 from unsew.io.garmentcode import load_pattern
-from unsew.io.mesh import read_garment, read_mesh
+from unsew.io.mesh import read_mesh
 from unsew.metrics.panels import pattern_metrics
 from unsew.metrics.surface import surface_metrics
 
@@ -27,13 +27,15 @@ __all__ = ["evaluate_result", "EVAL_FORMAT_VERSION", "format_table", "write_eval
 EVAL_FORMAT_VERSION = 1
 
 
-def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int = 0) -> dict:
+def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int = 0, units: str | None = None,
+                    up: str | None = None, front: str | None = None) -> dict:
     """All metrics of a result folder against a case folder, as a JSON-ready dict.
 
     result_dir: folder with ``garment.obj`` [m, world frame] and optionally ``pattern.json``.
-    case_dir: folder with ``target.obj``/``target.ply`` and optionally ``meta.json`` and
-        ``pattern_gt.json``.
+    case_dir: a case folder (FORMATS.md: ``target.obj``/``target.ply``, ``meta.json``, the wearer,
+        optionally ``pattern_gt.json``), refused as ``unsew fit`` refuses it.
     n_samples: surface samples per mesh for the 3D metrics. seed: their seed.
+    units, up, front: the case files' frame, overriding meta.json's (as ``unsew fit --units``).
     Returns: ``{"format_version", "result", "case", "3d": {...}, "2d": {...} | None,
     "2d_skipped": reason | None}``, plus ``2d_base`` / ``2d_graded`` when the result folder holds
     the fit's ``pattern_base.json`` / ``pattern_graded.json``. Raises InputError / PatternError on bad input (missing
@@ -47,14 +49,13 @@ def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int
     garment = res / "garment.obj"
     if not garment.is_file():
         raise InputError(f"result folder {res} has no garment.obj (the draped result); run `unsew fit` first")
-    target = next((case / n for n in ("target.obj", "target.ply") if (case / n).is_file()), None)
-    if target is None:
-        raise InputError(f"case folder {case} has no target.obj or target.ply")
     if n_samples < 1:
         raise InputError(f"--samples must be at least 1, got {n_samples}")
-    meta = read_meta(case, required=False)
     gv, gf = read_mesh(garment)
-    tv, tf, _ = read_garment(target, units=meta.get("units", "m"), up=meta.get("up", "y"), front=meta.get("front", "z"))
+    from unsew.body.case import load_case
+
+    loaded = load_case(case, units=units, up=up, front=front)  # the fit's checks: units, frame, on the body
+    tv, tf = loaded.target_verts, loaded.target_faces
     out = {
         "format_version": EVAL_FORMAT_VERSION,
         "result": str(res),
