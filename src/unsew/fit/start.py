@@ -32,6 +32,7 @@ from unsew.fit.config import FitConfig
 from unsew.fit.progress import Progress
 from unsew.fit.target import Target
 from unsew.grading.contours import place_contours
+from unsew.grading.garment_type import read_garment_type
 from unsew.grading.grade import grade
 from unsew.io.garmentcode import load_pattern
 from unsew.losses.contours import open_contours
@@ -78,6 +79,22 @@ class Start:
 
     def replace(self, **changes) -> "Start":
         return dataclasses.replace(self, **changes)
+
+
+def with_garment_read(case, cfg: FitConfig, *, log=print):
+    """``case`` itself when meta.json names its garment type or ``cfg.base`` names a base; else
+    a copy whose garment type is read off the target
+    (:func:`unsew.grading.garment_type.read_garment_type`), with the reading in its notes. Raises
+    InputError for a type the library has no base for (a jumpsuit)."""
+    if case.garment or cfg.base:
+        return case
+    reading = read_garment_type(case.target_verts, case.target_faces, case.body.skeleton)
+    note = f"garment type read off the target: {reading.garment}: {reading.reason}"
+    if reading.garment not in BASES:
+        raise InputError(f"the target reads as a {reading.garment} ({reading.reason}); the library has no "
+                         f"{reading.garment} base: pass --base P.json")
+    log(note)
+    return dataclasses.replace(case, garment=reading.garment, garment_note=note)
 
 
 def base_pattern_for(case, cfg: FitConfig):
