@@ -62,3 +62,26 @@ def test_a_closed_shape_is_refused():
     box.apply_translation((0, 1.2, 0))
     with pytest.raises(InputError, match="no opening"):
         read_garment_type(np.asarray(box.vertices), np.asarray(box.faces), default_body().skeleton)
+
+
+def test_necklines_of_drapes_made_elsewhere_read_round():
+    from unsew.grading.garment_type import read_necklines
+
+    for name in ("dress_sheath_sleeved__default", "tee_fitted_short__default", "tank_top__default"):
+        v, f = _target(name)
+        assert read_necklines(v, f, default_body().skeleton)[0] == ("round", "round"), name
+
+
+def test_a_v_neck_is_read_off_its_drape():
+    """A tee cut with a V in front and a round back, dressed on the default body, reads as cut."""
+    from unsew.body.measure import measure_body
+    from unsew.dress import dress
+    from unsew.grading.garment_type import read_necklines
+    from unsew.pattern.base import make_base_pattern
+    from unsew.sim.drape import DrapeSettings
+
+    body = default_body()
+    d = dress(make_base_pattern("tshirt", measure_body(body), necklines=("v", "round")), body,
+              settings=DrapeSettings(edge_length=0.04))
+    shapes, angles = read_necklines(d.x.numpy(), d.mesh.faces, body.skeleton)
+    assert shapes == ("v", "round"), angles

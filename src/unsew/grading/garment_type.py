@@ -16,7 +16,7 @@ import numpy as np
 from unsew.errors import InputError
 from unsew.losses.contours import open_contours
 
-__all__ = ["GarmentReading", "read_garment_type", "READ_TYPES"]
+__all__ = ["GarmentReading", "read_garment_type", "read_necklines", "READ_TYPES", "V_ANGLE_DEG"]
 
 #: Types the reading can return: the library's five and a one-piece suit (legs and arms or a bodice).
 READ_TYPES = ("tshirt", "dress", "pants", "shorts", "skirt", "jumpsuit")
@@ -34,6 +34,12 @@ CHEST_LEVEL = 0.7
 DRESS_HEM = 0.5
 #: Leg openings higher than this [m] under the knee joints are shorts', lower ones trousers'.
 TROUSER_BELOW_KNEE = 0.08
+#: A neckline half (front or back) is a V when, seen from the front, its lowest point turns by
+#: less than this angle [deg] between the loop's points a third of the neckline's width along it
+#: either way (a round neckline's bottom: about 140 degrees; a V's point: 2 atan(half width / depth)).
+V_ANGLE_DEG = 115.0
+#: ... the arm of that angle, as a fraction of the neckline's width [-].
+V_ARM = 0.35
 
 
 @dataclass
@@ -139,3 +145,73 @@ def read_garment_type(verts, faces, skeleton, *, contours=None) -> GarmentReadin
         why = f"one tube round the hips and legs ({said})"
     return GarmentReading(garment, why, legs, arms, int(torso.sum()), top_y, hem_y,
                           {"hip_y": hip_y, "knee_y": knee_y, "chest_y": chest})
+
+
+def _neck_opening(v: np.ndarray, loops, skeleton):
+    """The neck opening: the highest loop whose centre lies above the chest line and near the
+    torso's centre line (not round an arm), or None."""
+    chains = _limb_chains(skeleton)
+    hip_y = 0.5 * (skeleton.position("left_hip")[1] + skeleton.position("right_hip")[1])
+    shoulder_y = 0.5 * (skeleton.position("left_shoulder")[1] + skeleton.position("right_shoulder")[1])
+    chest = hip_y + CHEST_LEVEL * (shoulder_y - hip_y)
+    mid_x = 0.5 * (skeleton.position("left_shoulder")[0] + skeleton.position("right_shoulder")[0])
+    half_shoulders = 0.5 * abs(skeleton.position("left_shoulder")[0] - skeleton.position("right_shoulder")[0])
+    best = None
+    for c in loops:
+        cen = np.asarray(c.centre, dtype=np.float64)
+        r = float(np.linalg.norm(v[np.asarray(c.indices)] - cen, axis=1).mean())
+        on_arm = any(float(_chain_distance(cen[None], chains[f"{s}_arm"])[0]) < max(r, LIMB_NEAR) for s in ("left", "right"))
+        if cen[1] > chest and abs(cen[0] - mid_x) < 0.5 * half_shoulders and not on_arm:
+            if best is None or cen[1] > best[0]:
+                best = (cen[1], c)
+    return None if best is None else best[1]
+
+
+def _half_is_v(pts: np.ndarray, width: float) -> tuple[bool, float]:
+    """(is a V, angle [deg]) of one neckline half: ``pts`` (k, 2) [m], the half's points in loop
+    order, seen from the front (x across, y up)."""
+    if len(pts) < 5:
+        return False, 180.0
+    seg = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])  # arc length along the half [m]
+    i0 = int(np.argmin(pts[:, 1]))
+    arm = V_ARM * width
+    if s[i0] < 0.5 * arm or s[-1] - s[i0] < 0.5 * arm:
+        return False, 180.0  # the lowest point is a corner of the half (a side), not its bottom
+    a = np.array([np.interp(s[i0] - arm, s, pts[:, k]) for k in range(2)]) - pts[i0]
+    b = np.array([np.interp(s[i0] + arm, s, pts[:, k]) for k in range(2)]) - pts[i0]
+    cosang = float(a @ b / max(np.linalg.norm(a) * np.linalg.norm(b), 1e-12))
+    ang = float(np.degrees(np.arccos(np.clip(cosang, -1.0, 1.0))))
+    return ang < V_ANGLE_DEG, ang
+
+
+def read_necklines(verts, faces, skeleton, *, contours=None) -> tuple[tuple[str, str], dict]:
+    """The front and back neckline shapes of a top or dress, each ``"round"`` or ``"v"``
+    (:data:`unsew.pattern.base.tshirt.NECKLINES`), and what they were read from: ``{"front_deg",
+    "back_deg"}`` (the angle at each half's lowest point, :data:`V_ANGLE_DEG`). Without a neck
+    opening (a strapless top): ("round", "round") and an empty dict.
+
+    verts: (V, 3) float64 [m], world frame (Y up, the body facing +Z); faces: (F, 3) int.
+    """
+    v = np.asarray(verts, dtype=np.float64)
+    loops = open_contours(v, faces) if contours is None else contours
+    neck = _neck_opening(v, loops, skeleton)
+    if neck is None:
+        return ("round", "round"), {}
+    idx = np.asarray(neck.indices)
+    p = v[idx]
+    cz = float(p[:, 2].mean())
+    width = float(np.ptp(p[:, 0]))
+    out, said = [], {}
+    for name, side in (("front", p[:, 2] >= cz), ("back", p[:, 2] < cz)):
+        if side.sum() < 5:
+            out.append("round")
+            continue
+        # the half as one run of the loop: start just after a point of the other half
+        start = int(np.flatnonzero(~side)[0]) if (~side).any() else 0
+        order = np.roll(np.arange(len(p)), -start)
+        run = order[side[order]]
+        is_v, ang = _half_is_v(p[run][:, :2], width)
+        out.append("v" if is_v else "round")
+        said[f"{name}_deg"] = round(ang, 1)
+    return (out[0], out[1]), said
