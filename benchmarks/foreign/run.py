@@ -3,6 +3,7 @@
     python -m benchmarks foreign build [--cases ID ...] [--out DIR]   (needs pip install unsew[bench,anny])
     python -m benchmarks foreign floor [--cases ID ...]   (unsew's own drape of each true pattern)
     python -m benchmarks foreign list [--dir DIR]
+    python -m benchmarks foreign types [--cases ID ...]   (the garment type read off each target)
 
 ``build`` makes each case folder (FORMATS.md): ``target.obj`` (the sewn garment draped by newton's
 Style3D solver, metres, Y up), ``meta.json`` (garment type, the body by model, simulator, version,
@@ -560,6 +561,28 @@ def cmd_list(args):
     return 0
 
 
+def cmd_types(args) -> int:
+    """The garment type read off each case's target (unsew.grading.garment_type) against meta.json's."""
+    from unsew.body.case import load_case_body
+    from unsew.grading.garment_type import read_garment_type
+    from unsew.io.case import read_case
+
+    root = Path(args.dir)
+    dirs = sorted(p for p in root.iterdir() if (p / "meta.json").is_file())
+    if args.cases:
+        dirs = [d for d in dirs if d.name in set(args.cases)]
+    rows = []
+    for d in dirs:
+        files = read_case(d)
+        r = read_garment_type(files.target_verts, files.target_faces, load_case_body(files).skeleton)
+        rows.append({"case": d.name, "true": files.garment, "read": r.garment,
+                     "right": "yes" if r.garment == files.garment else "no", "why": r.reason})
+    print_table(rows, title=f"Garment type read off the targets in {root}")
+    right = sum(r["right"] == "yes" for r in rows)
+    print(f"\n{right} of {len(rows)} read right")
+    return 0
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="python -m benchmarks foreign", description=__doc__.splitlines()[0])
     sub = ap.add_subparsers(dest="cmd", required=True)
@@ -581,6 +604,10 @@ def main(argv=None):
     ls.add_argument("--dir", default=str(HERE / "cases"))
     ls.add_argument("--all", action="store_true", help="also name every buildable case")
     ls.set_defaults(func=cmd_list)
+    ty = sub.add_parser("types", help="the garment type read off each target against meta.json's")
+    ty.add_argument("--cases", nargs="*")
+    ty.add_argument("--dir", default=str(HERE / "cases"))
+    ty.set_defaults(func=cmd_types)
     args = ap.parse_args(argv)
     return args.func(args)
 

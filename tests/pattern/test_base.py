@@ -285,3 +285,37 @@ def test_cli_lists_the_library():
     from unsew.commands.pattern import BASES as CLI_BASES
 
     assert CLI_BASES == BASES
+
+
+TOPS = [b for b in BASES if garment_of(b) in ("tshirt", "dress")]
+
+
+@pytest.mark.parametrize("name", TOPS)
+@pytest.mark.parametrize("necklines", [("v", "round"), ("v", "v"), ("round", "v")])
+def test_v_necklines_are_valid_symmetric_and_sewn(name, necklines):
+    """A top or dress with V necklines: valid, its torso panels still mirror-symmetric with the V's
+    point on the centre line and lower than the round neckline's bottom, every stitch joining edges
+    of equal length, and the V's sides left open (a neckline, not a seam)."""
+    from unsew.pattern.symmetry import detect_symmetry
+
+    p, round_p = make_base_pattern(name, necklines=necklines), make_base_pattern(name)
+    assert validate_pattern(p) == []
+    mirrored = {m.panel for m in detect_symmetry(p).mirrors}
+    for panel, shape in zip(("front", "back"), necklines):
+        v, r = p.panels[panel].vertices, round_p.panels[panel].vertices
+        assert panel in mirrored
+        if shape == "v":
+            assert len(v) == len(r) + 1
+            on_axis = v[np.abs(v[:, 0]) < 1e-9]  # the V's point: the only vertex on the centre line
+            assert len(on_axis) == 1 and on_axis[0, 1] < r[:, 1].max() - 0.06
+    sewn = {(s.a.panel, s.a.edge) for s in p.stitches} | {(s.b.panel, s.b.edge) for s in p.stitches}
+    for panel in ("front", "back"):
+        open_edges = [i for i in range(len(p.panels[panel].edges)) if (panel, i) not in sewn]
+        labels = sorted(p.panels[panel].edges[i].label for i in open_edges)
+        assert labels == sorted(["hem"] + (["left_neckline", "right_neckline"]
+                                           if necklines[panel == "back"] == "v" else ["neckline"])
+                                + ([] if p.panels.keys() - {"front", "back"} else
+                                   ["left_armhole", "right_armhole"])), labels
+    for s in p.stitches:
+        la, lb = edge_length(p.panels[s.a.panel], s.a.edge), edge_length(p.panels[s.b.panel], s.b.edge)
+        assert abs(la - lb) < 2e-3, f"{name} {s.label}: {la:.4f} vs {lb:.4f} m"

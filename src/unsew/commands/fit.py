@@ -54,6 +54,13 @@ def config_from_args(args: argparse.Namespace, *, defaults: dict | None = None):
         over["material"]["fit"] = []
     if args.no_report:
         over["output"]["report"] = False
+    if getattr(args, "material_only", False):
+        base = getattr(args, "base", None) or ""
+        if not base.lower().endswith(".json"):
+            raise InputError("--material-only fits the material of a pattern you give: pass --base P.json")
+        over["grading"], over["area"] = False, "free"
+        over["optimizer"]["pattern_start"] = 1 << 30  # the control points never move
+        over["material"]["start_iteration"] = 0
     groups = {k: {f: v for f, v in g.items() if v is not None} for k, g in over.items() if isinstance(g, dict)}
     tops = {k: v for k, v in over.items() if not isinstance(v, dict) and v is not None}
     return load_config(args.config, defaults=defaults, **tops, **{k: g for k, g in groups.items() if g})
@@ -69,6 +76,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--front", help="the case files' front axis, e.g. -y (default: meta.json's, else z)")
     p.add_argument("--resume", action="store_true", help="continue an interrupted fit from RESULT_DIR.partial/checkpoint.pt")
     p.add_argument("--overwrite", action="store_true", help="replace an existing RESULT_DIR")
+    p.add_argument("--material-only", action="store_true",
+                   help="hold the --base P.json pattern as given (no grading, no area scaling, its control points "
+                   "never move) and fit only its material: how near this simulator can drape that pattern to the "
+                   "target (with the true pattern: the simulator's own floor)")
     add_fit_options(p)
     p.set_defaults(func=run)
 

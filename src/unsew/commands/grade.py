@@ -49,11 +49,12 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     import json
+    import sys
 
     from unsew.body.case import load_case
     from unsew.commands._output import check_out
     from unsew.fit.config import FitConfig
-    from unsew.fit.start import base_pattern_for
+    from unsew.fit.start import base_pattern_for, with_garment_read
     from unsew.geometry.repair import triangle_areas
     from unsew.grading.grade import GRADE_SETTINGS, flat_drape, format_table, grade
     from unsew.io.garmentcode import save_pattern
@@ -64,11 +65,9 @@ def run(args: argparse.Namespace) -> int:
     if not (lo <= args.edge_length <= hi):
         raise InputError(f"--edge-length {args.edge_length} m is outside [{lo}, {hi}] m")
     check_out(args.out, overwrite=args.overwrite, folder=True)
-    case = load_case(args.case)
-    base = args.base or case.garment
-    if not base:
-        raise InputError(f"case {args.case} names no garment type in meta.json; pass --base")
-    pattern = base_pattern_for(case, FitConfig(base=args.base or "", side_seams=args.side_seams))  # a bad name fails before --out is made
+    cfg = FitConfig(base=args.base or "", side_seams=args.side_seams)
+    case = with_garment_read(load_case(args.case), cfg, log=lambda s: print(s, file=sys.stderr))
+    pattern = base_pattern_for(case, cfg)  # a bad name fails before --out is made
     with atomic_dir(args.out, overwrite=args.overwrite) as tmp:
         kw = {"drape_fn": flat_drape} if args.flat else {}
         res = grade(
@@ -85,7 +84,7 @@ def run(args: argparse.Namespace) -> int:
             "format_version": 1,
             "units": "m",
             "case": str(case.path),
-            "base": base,
+            "base": args.base or case.garment,
             "edge_length_m": args.edge_length,
             "material": args.material,
             "flat": bool(args.flat),

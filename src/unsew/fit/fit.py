@@ -31,7 +31,7 @@ from unsew.fit.contact import contact_for_target
 from unsew.fit.material import AUTO_START_MATERIAL, MaterialChoice, choose_start
 from unsew.fit.optimize import Iteration, PhaseTwo
 from unsew.fit.progress import BAR_SAMPLES, Progress
-from unsew.fit.start import choose_base, start_chosen
+from unsew.fit.start import choose_base, start_chosen, with_garment_read
 from unsew.fit.target import Target
 from unsew.sim.checks import DrapeVerdict, check_drape
 
@@ -122,6 +122,7 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
         clock.timings["load_s"] = clock.t0 - started
     torch.manual_seed(cfg.seed)
     _check_device(cfg.device)
+    case = with_garment_read(case, cfg, log=log)
     material0 = resolve_material(AUTO_START_MATERIAL if cfg.material.start == "auto" else cfg.material.start)
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
     cfg, contact = contact_for_target(cfg, target.verts, case.body, sdf)

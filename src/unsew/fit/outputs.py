@@ -34,7 +34,7 @@ from unsew.metrics.surface import surface_metrics
 from unsew.pattern.seams import seam_changes_mm
 from unsew.sim.material import material_to_dict
 
-__all__ = ["write_result", "result_metrics", "pattern_errors", "file_sha256", "pattern_with_extras",
+__all__ = ["write_result", "result_metrics", "fit_verdict", "FAR_MM", "pattern_errors", "file_sha256", "pattern_with_extras",
            "BASE_PATTERN_FILE", "GRADED_PATTERN_FILE"]
 
 #: The starting points of the fit, saved beside pattern.json so their pattern errors can be
@@ -74,6 +74,21 @@ def pattern_with_extras(result) -> object:
     return p
 
 
+#: A result whose drape lies farther than this mean surface distance [mm] from its target is a
+#: miss: its metrics.json says ``"ok": false`` and the command ends with a warning line.
+FAR_MM = 20.0
+
+
+def fit_verdict(surface: dict) -> dict:
+    """``{"ok": bool, "miss": reason or None}`` of a result from its surface metrics (the
+    :func:`unsew.metrics.surface.surface_metrics` dict of its drape against the target)."""
+    cf = float(surface.get("chamfer_mm", float("nan")))
+    if np.isfinite(cf) and cf <= FAR_MM:
+        return {"ok": True, "miss": None}
+    return {"ok": False, "miss": f"the fitted garment lies {cf:.1f} mm from its target on average "
+                                 f"(over {FAR_MM:.0f} mm): its pattern is not the target's"}
+
+
 def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     """3D metrics of the final drape against the target and, if the case has a true pattern,
     the pattern metrics; plus the final loss terms and timings."""
@@ -92,6 +107,7 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
         m["drapes"] = result.drapes  # where the result's and the graded drapes come from: fresh or settled
     if case.pattern_gt is not None:
         m.update(pattern_errors(result, case.pattern_gt))
+    m.update(fit_verdict(m["surface"]))
     # total panel areas [m^2] against the target's surface area (a drape barely stretches, so a
     # pattern that fits has about the target's area; config "area", unsew.grading.area)
     m["area_m2"] = {"target": float(triangle_areas(case.target_verts, case.target_faces).sum()),

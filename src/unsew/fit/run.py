@@ -11,6 +11,7 @@ from pathlib import Path
 from unsew.errors import InputError
 from unsew.fit.fit import fit
 from unsew.fit.outputs import write_result
+from unsew.fit.start import with_garment_read
 
 __all__ = ["run_fit", "partial_dir"]
 
@@ -40,6 +41,7 @@ def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = Fal
         shutil.rmtree(work)
     if resume and not (work / "checkpoint.pt").is_file():
         log(f"no checkpoint in {work}; starting afresh")
+    case = with_garment_read(case, cfg, log=log)  # before the work folder: a type we cannot fit leaves nothing
     work.mkdir(parents=True, exist_ok=True)
     try:
         result = fit(case, cfg, progress=progress, checkpoint=work / "checkpoint.pt", resume=resume, log=log,
@@ -63,4 +65,6 @@ def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = Fal
     s = metrics["surface"]
     log(f"fit done in {result.timings['total_s']:.0f} s, {result.iterations} iterations: "
         f"Chamfer {s['chamfer_mm']:.2f} mm, normal error {s['normal_error_deg']:.1f} deg -> {out}")
+    if not metrics.get("ok", True):
+        log(f"warning: {metrics['miss']} (metrics.json: \"ok\": false)")
     return result, metrics

@@ -32,6 +32,7 @@ from unsew.fit.config import FitConfig
 from unsew.fit.progress import Progress
 from unsew.fit.target import Target
 from unsew.grading.contours import place_contours
+from unsew.grading.garment_type import V_ANGLE_DEG, read_garment_type, read_necklines
 from unsew.grading.grade import grade
 from unsew.io.garmentcode import load_pattern
 from unsew.losses.contours import open_contours
@@ -78,6 +79,22 @@ class Start:
 
     def replace(self, **changes) -> "Start":
         return dataclasses.replace(self, **changes)
+
+
+def with_garment_read(case, cfg: FitConfig, *, log=print):
+    """``case`` itself when meta.json names its garment type or ``cfg.base`` names a base; else
+    a copy whose garment type is read off the target
+    (:func:`unsew.grading.garment_type.read_garment_type`), with the reading in its notes. Raises
+    InputError for a type the library has no base for (a jumpsuit)."""
+    if case.garment or cfg.base:
+        return case
+    reading = read_garment_type(case.target_verts, case.target_faces, case.body.skeleton)
+    note = f"garment type read off the target: {reading.garment}: {reading.reason}"
+    if reading.garment not in BASES:
+        raise InputError(f"the target reads as a {reading.garment} ({reading.reason}); the library has no "
+                         f"{reading.garment} base: pass --base P.json")
+    log(note)
+    return dataclasses.replace(case, garment=reading.garment, garment_note=note)
 
 
 def base_pattern_for(case, cfg: FitConfig):
@@ -182,8 +199,19 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
     garment = garment_of(case.garment)
     names = bases_for(garment)
     m = measure_body(case.body)
+    necklines = None
+    if garment in ("tshirt", "dress"):  # the neckline's cut is read off the target, not drawn from the library
+        necklines, angles = read_necklines(target.verts, target.faces, case.body.skeleton, contours=target.contours)
+        if angles:
+            log(f"neckline read off the target: front {necklines[0]}, back {necklines[1]} (the angle at its lowest "
+                f"point: front {angles.get('front_deg', 180):.0f} deg, back {angles.get('back_deg', 180):.0f} deg; "
+                f"a V under {V_ANGLE_DEG:.0f})")
+
+    def make(name):
+        return make_base_pattern(name, m, waist_point=cfg.side_seams == "girth", necklines=necklines)
+
     if len(names) == 1:
-        return BaseChoice(make_base_pattern(names[0], m, waist_point=cfg.side_seams == "girth"), names[0])
+        return BaseChoice(make(names[0]), names[0])
     t0 = time.perf_counter()
     settings = cfg.drape.replace(edge_length=cfg.base_choice_edge)
     frame = body_frame(m)
@@ -191,7 +219,7 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
     rows, patterns = [], {}
     want = arm_openings(target.verts, target.faces, case.body.skeleton, contours=target.contours)
     for name in names:
-        pat = make_base_pattern(name, m, waist_point=cfg.side_seams == "girth")
+        pat = make(name)
         try:
             with progress.phase(f"base {name}") as bar:
                 d = dress(pat, case.body, sdf=sdf, material=material, settings=settings, progress=bar)

@@ -48,12 +48,13 @@ class Case:
     pattern_gt: object = None
     files: dict = field(default_factory=dict)  #: the files read, for hashing into config.yaml
     target_repair: dict = field(default_factory=dict)  #: what loading cleaned (MeshRepair.as_dict)
+    garment_note: str = ""  #: how the garment type was read off the target when meta.json names none
 
     @property
     def notes(self) -> list[str]:
-        """What loading did to the inputs (the wearer rigged from its mesh, parts dropped), one
-        line each, for the report and metrics.json."""
-        return list(getattr(self.body, "notes", ()))
+        """What loading did to the inputs (the wearer rigged from its mesh, parts dropped, the
+        garment type read off the target), one line each, for the report and metrics.json."""
+        return list(getattr(self.body, "notes", ())) + ([self.garment_note] if self.garment_note else [])
 
 
 @dataclass

@@ -59,16 +59,21 @@ def garment_of(name: str) -> str:
 WAISTED = ("dress", "dress_sleeveless")
 
 
-def make_base_pattern(garment: str, measurements=None, *, waist_point: bool = False):
+def make_base_pattern(garment: str, measurements=None, *, waist_point: bool = False, necklines=None):
     """The base :class:`~unsew.pattern.model.Pattern` ``garment`` (a garment type or a base name
     of :data:`BASES`) sized to ``measurements`` (a
     :class:`~unsew.pattern.measurements.Measurements`; default: the default body).
     waist_point: a :data:`WAISTED` base's side seam as two straight edges meeting at the waist, a
-    vertex that grading can move (:mod:`unsew.grading.profile`); other bases are unchanged."""
+    vertex that grading can move (:mod:`unsew.grading.profile`); other bases are unchanged.
+    necklines: a top's or dress's front and back neckline shapes
+    (:data:`unsew.pattern.base.tshirt.NECKLINES`; None: round); ignored by other garments."""
     if garment not in _MAKERS:
         raise InputError(f"unknown garment {garment!r}; choose one of {', '.join(BASES)}")
-    _, mod, fn = _MAKERS[garment]
+    g, mod, fn = _MAKERS[garment]
     module = importlib.import_module(f"unsew.pattern.base.{mod}")
+    kw = {}
     if waist_point and garment in WAISTED:
-        return getattr(module, fn)(measurements, waist_point=True)
-    return getattr(module, fn)(measurements)
+        kw["waist_point"] = True
+    if necklines is not None and g in ("tshirt", "dress"):
+        kw["necklines"] = tuple(necklines)
+    return getattr(module, fn)(measurements, **kw)

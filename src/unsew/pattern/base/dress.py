@@ -32,12 +32,14 @@ STRAIGHT_HEM_HEIGHT = 0.48
 STRAIGHT_FLARE = 0.03
 
 
-def make_dress(m: Measurements | None = None, *, sleeves: str = "short", waist_point: bool = False) -> Pattern:
+def make_dress(m: Measurements | None = None, *, sleeves: str = "short", waist_point: bool = False,
+               necklines: tuple[str, str] = ("round", "round")) -> Pattern:
     """A long flared dress with short sleeves sized to ``m`` (default: the default body);
     ``sleeves="none"``: without sleeves (pattern ``dress_sleeveless``, armholes cut in as
     :func:`unsew.pattern.base.tshirt.sleeveless_frame`). ``waist_point``: the side seam from
     the hips to the underarm as two straight edges meeting at the waist (a control point, as
-    GarmentCode's bodices have it) instead of one curve through it."""
+    GarmentCode's bodices have it) instead of one curve through it. ``necklines``: front and
+    back, of :data:`unsew.pattern.base.tshirt.NECKLINES`."""
     m = m or Measurements()
     f0 = body_frame(m)
     f = sleeveless_frame(f0) if sleeves == "none" else f0
@@ -56,15 +58,16 @@ def make_dress(m: Measurements | None = None, *, sleeves: str = "short", waist_p
         c = 2 * mid - (hip + under) / 2
         lower, curves = (tuple(hem), tuple(hip)), (None, quad(hip, under, c))
     spec = TopSpec(lower=lower, lower_curves=curves, hem_y=hem_y)
-    return top_pattern("dress", m, f0, spec, sleeves)
+    return top_pattern("dress", m, f0, spec, sleeves, necklines=necklines)
 
 
-def make_dress_sleeveless(m: Measurements | None = None, *, waist_point: bool = False) -> Pattern:
-    """The flared dress without sleeves."""
-    return make_dress(m, sleeves="none", waist_point=waist_point)
+def make_dress_sleeveless(m: Measurements | None = None, **kw) -> Pattern:
+    """The flared dress without sleeves (``kw``: :func:`make_dress`'s)."""
+    return make_dress(m, sleeves="none", **kw)
 
 
-def make_dress_straight(m: Measurements | None = None, *, sleeves: str = "short") -> Pattern:
+def make_dress_straight(m: Measurements | None = None, *, sleeves: str = "short",
+                        necklines: tuple[str, str] = ("round", "round")) -> Pattern:
     """A straight knee-length dress with short sleeves sized to ``m``: no waist shaping, the
     side seam straight from the underarm to the hips and barely flared below them (a shift or
     tunic dress, which the waisted :func:`make_dress` stands out from at the hips);
@@ -77,9 +80,9 @@ def make_dress_straight(m: Measurements | None = None, *, sleeves: str = "short"
     hip = (hip_w, f.hip_y - hem_y)
     hem = (hip_w + STRAIGHT_FLARE, 0.0)
     spec = TopSpec(lower=(hem, hip), lower_curves=(None, None), hem_y=hem_y)
-    return top_pattern("dress_straight", m, f0, spec, sleeves)
+    return top_pattern("dress_straight", m, f0, spec, sleeves, necklines=necklines)
 
 
-def make_dress_straight_sleeveless(m: Measurements | None = None) -> Pattern:
-    """The straight dress without sleeves."""
-    return make_dress_straight(m, sleeves="none")
+def make_dress_straight_sleeveless(m: Measurements | None = None, **kw) -> Pattern:
+    """The straight dress without sleeves (``kw``: :func:`make_dress_straight`'s necklines)."""
+    return make_dress_straight(m, sleeves="none", **kw)

@@ -30,7 +30,7 @@ from unsew.pattern.curves import edge_length
 from unsew.pattern.model import Curvature, Panel, Pattern, Stitch
 
 __all__ = ["make_tshirt", "make_tshirt_long", "make_tshirt_sleeveless", "TopSpec", "top_panels", "sleeve_panels",
-           "sleeves_for", "sleeveless_frame", "BUST_EASE", "SLEEVES"]
+           "sleeves_for", "sleeveless_frame", "BUST_EASE", "SLEEVES", "NECKLINES"]
 
 #: Ease over the bust girth [m] (a regular-fit t-shirt: 8-15 cm).
 BUST_EASE = 0.12
@@ -44,6 +44,12 @@ CAP_MIN = 0.01
 #: Front and back neckline depths below the neck points [m].
 FRONT_NECK_DEPTH = 0.08
 BACK_NECK_DEPTH = 0.02
+#: Neckline shapes of a front or back: a curve between the neck points, or two straight edges
+#: meeting at a point on the centre line (a V, whose point is a control point).
+NECKLINES = ("round", "v")
+#: A V neckline's point below the neck points [m], front and back.
+FRONT_V_DEPTH = 0.15
+BACK_V_DEPTH = 0.08
 #: Short sleeve: cap top to hem [m].
 SHORT_SLEEVE_LENGTH = 0.22
 #: Long sleeve: cap top to hem beyond the arm length (shoulder joint to wrist joint) [m]; the
@@ -90,28 +96,41 @@ def _armhole(under, tip) -> Curvature:
     return cubic(under, tip, (under[0] - 0.9 * dx, under[1] + 0.02 * dy / 0.2), (tip[0] - 0.012, under[1] + 0.55 * dy))
 
 
-def top_panels(m: Measurements, f: BodyFrame, spec: TopSpec) -> tuple[Panel, Panel, int]:
+def top_panels(m: Measurements, f: BodyFrame, spec: TopSpec, *,
+               necklines: tuple[str, str] = ("round", "round")) -> tuple[Panel, Panel, int]:
     """Front and back panels of a top [m]; returns (front, back, number of lower segments k).
+    necklines: the front's and the back's shape, each one of :data:`NECKLINES`.
 
     Edge numbering (k lower segments): 0 hem; 1..k right side below the underarm; k+1 right
-    armhole; k+2 right shoulder; k+3 neckline; then the mirrored left edges.
+    armhole; k+2 right shoulder; k+3 neckline (a V: k+3 its right half, k+4 its left half);
+    then the mirrored left edges.
     """
+    bad = [n for n in necklines if n not in NECKLINES]
+    if bad or len(necklines) != 2:
+        raise ValueError(f"necklines must be two of {NECKLINES} (front, back), not {necklines!r}")
     w = (m.bust + BUST_EASE) / 4
     neck_w = m.neck / (2 * np.pi) + 0.015
     under = np.array([w, f.armpit_y - spec.hem_y])
     tip = np.array([f.shoulder_x + 0.01, f.shoulder_y - spec.hem_y])
     neck = np.array([neck_w, f.neck_y - spec.hem_y])
-    half = [np.asarray(p) for p in spec.lower] + [under, tip, neck]
-    curves = list(spec.lower_curves) + [_armhole(under, tip), None]
     k = len(spec.lower)
     labels = ["right_side"] * k + ["right_armhole", "right_shoulder"]
     panels = []
-    for name, depth in (("front", FRONT_NECK_DEPTH), ("back", BACK_NECK_DEPTH)):
-        neck_l = neck * np.array([-1.0, 1.0])
-        p, _ = symmetric_panel(
-            name, half, curves, top=_neckline(neck, neck_l, depth), half_labels=labels,
-            bottom_label="hem", top_label="neckline",
-        )
+    for name, depth, v_depth, shape in (("front", FRONT_NECK_DEPTH, FRONT_V_DEPTH, necklines[0]),
+                                        ("back", BACK_NECK_DEPTH, BACK_V_DEPTH, necklines[1])):
+        half = [np.asarray(p) for p in spec.lower] + [under, tip, neck]
+        curves = list(spec.lower_curves) + [_armhole(under, tip), None]
+        if shape == "v":  # the half runs on to the V's point on the centre line: an apex, no top edge
+            p, _ = symmetric_panel(
+                name, half + [np.array([0.0, neck[1] - v_depth])], curves + [None],
+                half_labels=labels + ["right_neckline"], bottom_label="hem",
+            )
+        else:
+            neck_l = neck * np.array([-1.0, 1.0])
+            p, _ = symmetric_panel(
+                name, half, curves, top=_neckline(neck, neck_l, depth), half_labels=labels,
+                bottom_label="hem", top_label="neckline",
+            )
         panels.append(p)
     front, back = panels
     place(front, np.eye(3), (0.0, spec.hem_y, f.chest_z))
@@ -157,27 +176,29 @@ def sleeve_panels(m: Measurements, f: BodyFrame, armhole_length: float, *, lengt
     return left, right
 
 
-def top_stitches(k: int, *, sleeves: bool = True) -> list[Stitch]:
-    """Stitches of a top built by :func:`top_panels` (+ :func:`sleeve_panels`).
+def top_stitches(k: int, *, sleeves: bool = True, necklines: tuple[str, str] = ("round", "round")) -> list[Stitch]:
+    """Stitches of a top built by :func:`top_panels` (+ :func:`sleeve_panels`), with the same
+    ``necklines``.
 
     Front +x is the body's left, back +x the body's right (the back is seen from behind).
     """
-    n = 2 * k + 6  # vertices (and edges) of a front/back panel
+    # vertices (and edges) of the front and the back: a V adds its point
+    n = {"front": 2 * k + 6 + (necklines[0] == "v"), "back": 2 * k + 6 + (necklines[1] == "v")}
     right = lambda i: i + 1  # noqa: E731  right-half segment i
-    left = lambda i: n - 1 - i  # noqa: E731  its mirror image
+    left = lambda p, i: n[p] - 1 - i  # noqa: E731  its mirror image on panel p
     arm, sho = k, k + 1  # segment indices of armhole and shoulder
     st = []
     for i in range(k):
-        st.append(stitch("front", right(i), "back", left(i), "left_side" if k == 1 else f"left_side_{i}"))
-        st.append(stitch("back", right(i), "front", left(i), "right_side" if k == 1 else f"right_side_{i}"))
-    st.append(stitch("front", right(sho), "back", left(sho), "left_shoulder"))
-    st.append(stitch("back", right(sho), "front", left(sho), "right_shoulder"))
+        st.append(stitch("front", right(i), "back", left("back", i), "left_side" if k == 1 else f"left_side_{i}"))
+        st.append(stitch("back", right(i), "front", left("front", i), "right_side" if k == 1 else f"right_side_{i}"))
+    st.append(stitch("front", right(sho), "back", left("back", sho), "left_shoulder"))
+    st.append(stitch("back", right(sho), "front", left("front", sho), "right_shoulder"))
     if sleeves:
         # Sleeve edges: 1 +x underarm, 2 +x cap, 3 -x cap, 4 -x underarm. The left sleeve's +x
         # side faces the back, the right sleeve's +x side faces the front.
         st.append(stitch("front", right(arm), "left_sleeve", 3, "left_armhole_front"))
-        st.append(stitch("back", left(arm), "left_sleeve", 2, "left_armhole_back"))
-        st.append(stitch("front", left(arm), "right_sleeve", 2, "right_armhole_front"))
+        st.append(stitch("back", left("back", arm), "left_sleeve", 2, "left_armhole_back"))
+        st.append(stitch("front", left("front", arm), "right_sleeve", 2, "right_armhole_front"))
         st.append(stitch("back", right(arm), "right_sleeve", 3, "right_armhole_back"))
         st.append(stitch("left_sleeve", 1, "left_sleeve", 4, "left_underarm"))
         st.append(stitch("right_sleeve", 1, "right_sleeve", 4, "right_underarm"))
@@ -202,35 +223,39 @@ def sleeves_for(m: Measurements, f: BodyFrame, armhole_length: float, sleeves: s
     return sleeve_panels(m, f, armhole_length, length=m.arm_length + LONG_SLEEVE_EXTRA, hem_half=wrist)
 
 
-def top_pattern(family: str, m: Measurements, f: BodyFrame, spec: TopSpec, sleeves: str) -> Pattern:
+def top_pattern(family: str, m: Measurements, f: BodyFrame, spec: TopSpec, sleeves: str, *,
+                necklines: tuple[str, str] = ("round", "round")) -> Pattern:
     """A top of ``family`` (``"tshirt"``, ``"dress"`` or ``"dress_straight"``): front and back of ``spec`` (armholes cut
-    in as :func:`sleeveless_frame` when ``sleeves`` is ``"none"``), the sleeves sized to the
-    armhole, and the stitches. Named ``family``, ``family_long`` or ``family_sleeveless``."""
-    front, back, k = top_panels(m, sleeveless_frame(f) if sleeves == "none" else f, spec)
+    in as :func:`sleeveless_frame` when ``sleeves`` is ``"none"``, necklines of :data:`NECKLINES`
+    front and back), the sleeves sized to the armhole, and the stitches. Named ``family``,
+    ``family_long`` or ``family_sleeveless``."""
+    front, back, k = top_panels(m, sleeveless_frame(f) if sleeves == "none" else f, spec, necklines=necklines)
     arm = sleeves_for(m, f, edge_length(front, k + 1), sleeves)
     panels = {p.name: p for p in (front, back, *arm)}
     name = family + {"short": "", "long": "_long", "none": "_sleeveless"}[sleeves]
-    st = top_stitches(k, sleeves=bool(arm))
+    st = top_stitches(k, sleeves=bool(arm), necklines=necklines)
     return Pattern(name, panels, st, properties={"units_in_meter": 100, "curvature_coords": "relative"})
 
 
-def make_tshirt(m: Measurements | None = None, *, sleeves: str = "short") -> Pattern:
+def make_tshirt(m: Measurements | None = None, *, sleeves: str = "short",
+                necklines: tuple[str, str] = ("round", "round")) -> Pattern:
     """A t-shirt sized to ``m`` (default: the default body), placed around it; ``sleeves``:
     ``"short"`` (pattern ``tshirt``), ``"long"`` (``tshirt_long``) or ``"none"`` (a tank top,
-    ``tshirt_sleeveless``, cut to :func:`sleeveless_frame`)."""
+    ``tshirt_sleeveless``, cut to :func:`sleeveless_frame`); ``necklines``: front and back, of
+    :data:`NECKLINES`."""
     m = m or Measurements()
     f = body_frame(m)
     hem_y = f.hip_y - 0.02
     w_hem = max((m.hip + HIP_EASE) / 4, (m.bust + BUST_EASE) / 4)
     spec = TopSpec(lower=((w_hem, 0.0),), lower_curves=(None,), hem_y=hem_y)
-    return top_pattern("tshirt", m, f, spec, sleeves)
+    return top_pattern("tshirt", m, f, spec, sleeves, necklines=necklines)
 
 
-def make_tshirt_long(m: Measurements | None = None) -> Pattern:
-    """The t-shirt with long sleeves tapering to the wrist."""
-    return make_tshirt(m, sleeves="long")
+def make_tshirt_long(m: Measurements | None = None, **kw) -> Pattern:
+    """The t-shirt with long sleeves tapering to the wrist (``kw``: :func:`make_tshirt`'s necklines)."""
+    return make_tshirt(m, sleeves="long", **kw)
 
 
-def make_tshirt_sleeveless(m: Measurements | None = None) -> Pattern:
+def make_tshirt_sleeveless(m: Measurements | None = None, **kw) -> Pattern:
     """The t-shirt without sleeves (a tank top), its armholes cut in."""
-    return make_tshirt(m, sleeves="none")
+    return make_tshirt(m, sleeves="none", **kw)

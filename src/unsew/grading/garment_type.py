@@ -1,0 +1,217 @@
+"""The garment type read off a draped garment: which of its openings go round a leg, an arm or the
+torso, how high the garment reaches and how low its hem hangs.
+
+Only the skeleton's joint positions are used (FORMATS.md's required names), never a part label a
+file may set otherwise: a leg opening is a loop round one leg's hip-knee-ankle line that leaves the
+other leg outside it, an arm opening one round the shoulder-elbow-wrist line, and everything else
+goes round the torso (a waist, a hem, a neckline).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from unsew.errors import InputError
+from unsew.losses.contours import open_contours
+
+__all__ = ["GarmentReading", "read_garment_type", "read_necklines", "READ_TYPES", "V_ANGLE_DEG"]
+
+#: Types the reading can return: the library's five and a one-piece suit (legs and arms or a bodice).
+READ_TYPES = ("tshirt", "dress", "pants", "shorts", "skirt", "jumpsuit")
+#: A loop goes round a limb when the limb's line passes within its radius of its centre, or within
+#: this distance [m] of it, whichever is larger (a tight cuff's radius is small, and it hangs
+#: off-centre on a bent arm) ...
+LIMB_NEAR = 0.05
+#: ... the line running on past the wrist and the ankle by this much [m] (a hand, a foot).
+LIMB_END = 0.08
+#: Fraction of the way from the hip joints up to the shoulder joints above which a garment covers
+#: the chest: a skirt's or trousers' waistband stays below it, a bodice reaches above it.
+CHEST_LEVEL = 0.7
+#: Fraction of the way from the hip joints down to the knees below which an upper garment's hem
+#: makes it a dress rather than a top.
+DRESS_HEM = 0.5
+#: Leg openings higher than this [m] under the knee joints are shorts', lower ones trousers'.
+TROUSER_BELOW_KNEE = 0.08
+#: A neckline half (front or back) is a V when, seen from the front, its lowest point turns by
+#: less than this angle [deg] between the loop's points a third of the neckline's width along it
+#: either way (a round neckline's bottom: about 140 degrees; a V's point: 2 atan(half width / depth)).
+V_ANGLE_DEG = 115.0
+#: ... the arm of that angle, as a fraction of the neckline's width [-].
+V_ARM = 0.35
+
+
+@dataclass
+class GarmentReading:
+    """What a garment's shape says of its type.
+
+    garment: one of :data:`READ_TYPES`; reason: one line saying why.
+    legs, arms: openings found round the left and right leg / arm, (left, right).
+    torso: number of openings round the torso (waist, hem, neckline).
+    top_y, hem_y: the garment's highest point and its lowest torso opening's centre height [m]
+    (hem_y NaN without a torso opening).
+    """
+
+    garment: str
+    reason: str
+    legs: tuple = (0, 0)
+    arms: tuple = (0, 0)
+    torso: int = 0
+    top_y: float = float("nan")
+    hem_y: float = float("nan")
+    details: dict = field(default_factory=dict)
+
+
+def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Distance [m] of points p (N, 3) to the segment a-b ((3,), (3,))."""
+    ab = b - a
+    t = np.clip(((p - a) @ ab) / max(float(ab @ ab), 1e-12), 0.0, 1.0)
+    return np.linalg.norm(p - (a + t[:, None] * ab), axis=1)
+
+
+def _chain_distance(p: np.ndarray, joints: list[np.ndarray]) -> np.ndarray:
+    """Distance [m] of points p (N, 3) to the polyline through ``joints``."""
+    return np.min([_segment_distance(p, a, b) for a, b in zip(joints[:-1], joints[1:])], axis=0)
+
+
+def _limb_chains(skeleton) -> dict[str, list[np.ndarray]]:
+    """The four limbs' joint chains [m] from the skeleton's joint names (FORMATS.md)."""
+    need = [f"{s}_{j}" for s in ("left", "right") for j in ("shoulder", "elbow", "wrist", "hip", "knee", "ankle")]
+    missing = [n for n in need if n not in skeleton]
+    if missing:
+        raise InputError(f"the skeleton lacks joint(s) {missing}: the garment type cannot be read; "
+                         "name it in meta.json or pass --base")
+    out = {}
+    for s in ("left", "right"):
+        for limb, joints in (("arm", ("shoulder", "elbow", "wrist")), ("leg", ("hip", "knee", "ankle"))):
+            p = [skeleton.position(f"{s}_{j}") for j in joints]
+            d = p[-1] - p[-2]
+            out[f"{s}_{limb}"] = [*p, p[-1] + LIMB_END * d / max(float(np.linalg.norm(d)), 1e-9)]
+    return out
+
+
+def read_garment_type(verts, faces, skeleton, *, contours=None) -> GarmentReading:
+    """Read the garment type of a draped garment.
+
+    verts: (V, 3) float64 [m], world frame (Y up); faces: (F, 3) int; skeleton: the wearer's
+    :class:`~unsew.body.skeleton.Skeleton` (joint positions by name); contours: the mesh's open
+    contours when already found (:func:`unsew.losses.contours.open_contours`).
+    Raises InputError when the garment has no opening (a closed shape is no garment).
+    """
+    v = np.asarray(verts, dtype=np.float64)
+    loops = open_contours(v, faces) if contours is None else contours
+    if not loops:
+        raise InputError("the target has no opening (no hem, waist or neckline): the garment type cannot be read")
+    chains = _limb_chains(skeleton)
+    centres = np.stack([np.asarray(c.centre, dtype=np.float64) for c in loops])  # (C, 3) [m]
+    radii = np.array([np.linalg.norm(v[np.asarray(c.indices)] - c.centre, axis=1).mean() for c in loops])
+    dist = {k: _chain_distance(centres, j) for k, j in chains.items()}  # limb -> (C,) [m]
+    near = np.maximum(radii, LIMB_NEAR)
+    on = {}
+    for side, other in (("left", "right"), ("right", "left")):
+        for limb in ("arm", "leg"):
+            # round this limb, with the other side's limb outside the loop
+            on[f"{side}_{limb}"] = (dist[f"{side}_{limb}"] < near) & (dist[f"{other}_{limb}"] > radii)
+    leg = on["left_leg"] | on["right_leg"]
+    arm = (on["left_arm"] | on["right_arm"]) & ~leg
+    torso = ~(leg | arm)
+    legs = (int(on["left_leg"].sum()), int(on["right_leg"].sum()))
+    arms = (int((on["left_arm"] & arm).sum()), int((on["right_arm"] & arm).sum()))
+    hip_y = 0.5 * (skeleton.position("left_hip")[1] + skeleton.position("right_hip")[1])
+    shoulder_y = 0.5 * (skeleton.position("left_shoulder")[1] + skeleton.position("right_shoulder")[1])
+    knee_y = 0.5 * (skeleton.position("left_knee")[1] + skeleton.position("right_knee")[1])
+    top_y = float(v[:, 1].max())
+    hem_y = float(centres[torso, 1].min()) if torso.any() else float("nan")
+    chest = hip_y + CHEST_LEVEL * (shoulder_y - hip_y)
+    upper = bool(any(arms)) or top_y > chest
+    split = min(legs) >= 1
+    said = (f"{sum(legs)} leg, {sum(arms)} arm and {int(torso.sum())} torso opening(s), "
+            f"top {100 * (top_y - chest):+.0f} cm from the chest line")
+    if split and upper:
+        garment = "jumpsuit"
+        why = f"openings round both legs and a bodice ({said})"
+    elif split:
+        leg_y = float(centres[leg, 1].mean())
+        garment = "pants" if leg_y < knee_y - TROUSER_BELOW_KNEE else "shorts"
+        why = f"openings round both legs {100 * (leg_y - knee_y):+.0f} cm from the knees ({said})"
+    elif upper:
+        dress_line = hip_y - DRESS_HEM * (hip_y - knee_y)
+        garment = "dress" if np.isfinite(hem_y) and hem_y < dress_line else "tshirt"
+        why = (f"a bodice with its hem {100 * (hem_y - dress_line):+.0f} cm from mid-thigh ({said})"
+               if np.isfinite(hem_y) else f"a bodice ({said})")
+    else:
+        garment = "skirt"
+        why = f"one tube round the hips and legs ({said})"
+    return GarmentReading(garment, why, legs, arms, int(torso.sum()), top_y, hem_y,
+                          {"hip_y": hip_y, "knee_y": knee_y, "chest_y": chest})
+
+
+def _neck_opening(v: np.ndarray, loops, skeleton):
+    """The neck opening: the highest loop whose centre lies above the chest line and near the
+    torso's centre line (not round an arm), or None."""
+    chains = _limb_chains(skeleton)
+    hip_y = 0.5 * (skeleton.position("left_hip")[1] + skeleton.position("right_hip")[1])
+    shoulder_y = 0.5 * (skeleton.position("left_shoulder")[1] + skeleton.position("right_shoulder")[1])
+    chest = hip_y + CHEST_LEVEL * (shoulder_y - hip_y)
+    mid_x = 0.5 * (skeleton.position("left_shoulder")[0] + skeleton.position("right_shoulder")[0])
+    half_shoulders = 0.5 * abs(skeleton.position("left_shoulder")[0] - skeleton.position("right_shoulder")[0])
+    best = None
+    for c in loops:
+        cen = np.asarray(c.centre, dtype=np.float64)
+        r = float(np.linalg.norm(v[np.asarray(c.indices)] - cen, axis=1).mean())
+        on_arm = any(float(_chain_distance(cen[None], chains[f"{s}_arm"])[0]) < max(r, LIMB_NEAR) for s in ("left", "right"))
+        if cen[1] > chest and abs(cen[0] - mid_x) < 0.5 * half_shoulders and not on_arm:
+            if best is None or cen[1] > best[0]:
+                best = (cen[1], c)
+    return None if best is None else best[1]
+
+
+def _half_is_v(pts: np.ndarray, width: float) -> tuple[bool, float]:
+    """(is a V, angle [deg]) of one neckline half: ``pts`` (k, 2) [m], the half's points in loop
+    order, seen from the front (x across, y up)."""
+    if len(pts) < 5:
+        return False, 180.0
+    seg = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])  # arc length along the half [m]
+    i0 = int(np.argmin(pts[:, 1]))
+    arm = V_ARM * width
+    if s[i0] < 0.5 * arm or s[-1] - s[i0] < 0.5 * arm:
+        return False, 180.0  # the lowest point is a corner of the half (a side), not its bottom
+    a = np.array([np.interp(s[i0] - arm, s, pts[:, k]) for k in range(2)]) - pts[i0]
+    b = np.array([np.interp(s[i0] + arm, s, pts[:, k]) for k in range(2)]) - pts[i0]
+    cosang = float(a @ b / max(np.linalg.norm(a) * np.linalg.norm(b), 1e-12))
+    ang = float(np.degrees(np.arccos(np.clip(cosang, -1.0, 1.0))))
+    return ang < V_ANGLE_DEG, ang
+
+
+def read_necklines(verts, faces, skeleton, *, contours=None) -> tuple[tuple[str, str], dict]:
+    """The front and back neckline shapes of a top or dress, each ``"round"`` or ``"v"``
+    (:data:`unsew.pattern.base.tshirt.NECKLINES`), and what they were read from: ``{"front_deg",
+    "back_deg"}`` (the angle at each half's lowest point, :data:`V_ANGLE_DEG`). Without a neck
+    opening (a strapless top): ("round", "round") and an empty dict.
+
+    verts: (V, 3) float64 [m], world frame (Y up, the body facing +Z); faces: (F, 3) int.
+    """
+    v = np.asarray(verts, dtype=np.float64)
+    loops = open_contours(v, faces) if contours is None else contours
+    neck = _neck_opening(v, loops, skeleton)
+    if neck is None:
+        return ("round", "round"), {}
+    idx = np.asarray(neck.indices)
+    p = v[idx]
+    cz = float(p[:, 2].mean())
+    width = float(np.ptp(p[:, 0]))
+    out, said = [], {}
+    for name, side in (("front", p[:, 2] >= cz), ("back", p[:, 2] < cz)):
+        if side.sum() < 5:
+            out.append("round")
+            continue
+        # the half as one run of the loop: start just after a point of the other half
+        start = int(np.flatnonzero(~side)[0]) if (~side).any() else 0
+        order = np.roll(np.arange(len(p)), -start)
+        run = order[side[order]]
+        is_v, ang = _half_is_v(p[run][:, :2], width)
+        out.append("v" if is_v else "round")
+        said[f"{name}_deg"] = round(ang, 1)
+    return (out[0], out[1]), said
