@@ -1,4 +1,4 @@
-"""Batch throughput benchmark (issue 9): fits per hour of ``unsew batch`` on the local process pool
+"""Batch throughput benchmark: fits per hour of ``unsew batch`` on the local process pool
 with 1 and 2 workers (and, with ``--ray``, on a local Ray instance with 2 CPUs).
 
 Cases: small known-truth t-shirts (``unsew.fit.demo.make_truth_case`` with different hem/sleeve

@@ -1,4 +1,4 @@
-"""Linear grading benchmark (issue 6): recover known length and girth changes.
+"""Linear grading benchmark: recover known length and girth changes.
 
 For every garment type, the base pattern is altered by known amounts (hem / sleeve / leg length
 by +/- 5 to 15 cm, their girth by +/- 10 %, :mod:`unsew.grading.alter`), the altered pattern is
@@ -30,7 +30,7 @@ Run: OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_grading.py [--dra
      [--remesh always|stretched] [--length cloth|axial]
 
 ``--flip`` negates every change (the t-shirt's hem -10 cm and 10 % narrower, its sleeves +5 cm
-and 10 % wider, ...), so each garment is graded in both directions the issue names.
+and 10 % wider, ...), so each garment is graded in both directions the benchmark names.
 """
 
 from __future__ import annotations

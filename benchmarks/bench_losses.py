@@ -1,4 +1,4 @@
-"""Timings of the losses and metrics (issue 5) at 2K, 10K and 50K points. Prints tables; asserts nothing.
+"""Timings of the losses and metrics at 2K, 10K and 50K points. Prints tables; asserts nothing.
 
     OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_losses.py [--repeat 3] [--threads 2]
 

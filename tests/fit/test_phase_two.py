@@ -1,5 +1,5 @@
 """Phase two on a shape grading cannot make: a dress whose side seams are taken in 3 cm at the
-hip corners, in the fit's own fabric (benchmarks/bench_phase_two.py prints the same case).
+hip corners, in the fit's own fabric.
 Grading moves hems, cuffs and necklines by a length and a girth and leaves the hip corners where
 the base has them, so everything the fit gains over the graded pattern is phase two's.
 

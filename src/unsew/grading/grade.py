@@ -407,13 +407,9 @@ def source_girth(s: PlacedContour, t: PlacedContour, rest: float | None) -> tupl
 
     A loop longer than its own cloth edge is stretched, and one longer than its convex hull is
     pleated. When the source loop is both, beyond the target's pleats (:data:`CRUMPLE_TOL`) and
-    its rest length (:data:`STRETCH_TOL`), the drape has caught the opening, not sized it: a
-    dress cuff graded 10 % narrower draped to a 0.339 m loop around a 0.306 m hull from 0.304 m
-    of edge, against the target's 0.308 m loop around 0.306 m (``benchmarks/bench_contours.py
-    --garment dress --flip --passes 1``).
-    Read by its length, the next pass narrowed it 3.1 cm more and the cuff crumpled further
-    (0.394 m around 0.228 m); read from its hull, it was left alone and draped smooth (0.301 m
-    around 0.299 m). Its girth is then the hull times the target's crumple. A loop pleated by
+    its rest length (:data:`STRETCH_TOL`), the drape has caught the opening, not sized it: read
+    by its length, the next pass would narrow it further and crumple it more; its girth is then
+    the hull times the target's crumple. A loop pleated by
     its own extra cloth is not stretched, and its length is its girth: the base skirt's flared
     hem, 1.722 m around a 1.520 m hull from 1.722 m of edge, graded to a narrower target.
     """
