@@ -62,7 +62,7 @@ def _have_placement() -> bool:
     return True
 
 
-def main() -> None:
+def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--drape", choices=["auto", "sim", "flat"], default="auto")
     ap.add_argument("--edge-length", type=float, default=0.03)
@@ -80,7 +80,7 @@ def main() -> None:
                     help="grade(length=...): move open curves by the cloth length to the top opening, "
                          "or by the axial distance")
     ap.add_argument("--targets", type=int, default=1, help="target drapes per garment, on meshes of slightly different edge length")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     if args.targets < 1 or args.targets > len(TARGET_SCALES):
         ap.error(f"--targets must be 1 to {len(TARGET_SCALES)}")
 
