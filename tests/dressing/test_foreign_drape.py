@@ -76,7 +76,7 @@ def test_samples_on_the_default_body(default_sdf, name):
 _JUMPSUIT_STEP = pytest.mark.xfail(
     strict=True,
     reason="the 12-panel jumpsuit on pose_step: one edge at the moved leg is 3.3x its length; "
-    "docs/benchmarks.md, 'Draping foreign patterns' (on the T-pose body it drapes since the shoulder "
+    "(on the T-pose body it drapes since the shoulder "
     "line runs over the raised arms' roots)",
 )
 
