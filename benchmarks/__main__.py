@@ -2,7 +2,8 @@
 
 NAME is a script in this folder without its ``bench_`` prefix and ``.py`` suffix (``fit`` runs
 bench_fit.py, ``run`` runs run.py, ``make_cases`` runs make_cases.py); ``python -m benchmarks``
-alone lists them with the question each answers (the first line of its docstring). The script runs
+alone lists them with the question each answers (the first line of its docstring), the benchmarks
+first, then the tools that make their inputs and figures (:data:`TOOLS`). The script runs
 as if it were started directly, with this folder on ``sys.path`` so scripts can share helpers.
 """
 
@@ -14,6 +15,8 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+#: Scripts that make a benchmark's inputs or a figure rather than measure something.
+TOOLS = ("make_cases", "make_bodies", "demo_figure")
 
 
 def _scripts() -> dict[str, Path]:
@@ -45,7 +48,12 @@ def main(argv: list[str] | None = None) -> int:
         print("usage: python -m benchmarks NAME [options]   (NAME --help for a benchmark's options)\n")
         width = max(len(n) for n in scripts)
         for name, path in scripts.items():
-            print(f"  {name:<{width}}  {_question(path)}")
+            if name not in TOOLS:
+                print(f"  {name:<{width}}  {_question(path)}")
+        print("\ntools:")
+        for name in TOOLS:
+            if name in scripts:
+                print(f"  {name:<{width}}  {_question(scripts[name])}")
         return 0 if argv else 2
     name, rest = argv[0], argv[1:]
     if name not in scripts:

@@ -1,4 +1,4 @@
-"""Batch throughput benchmark (issue 9): fits per hour of ``unsew batch`` on the local process pool
+"""Batch throughput benchmark: fits per hour of ``unsew batch`` on the local process pool
 with 1 and 2 workers (and, with ``--ray``, on a local Ray instance with 2 CPUs).
 
 Cases: small known-truth t-shirts (``unsew.fit.demo.make_truth_case`` with different hem/sleeve
@@ -46,7 +46,7 @@ def make_cases(root: Path, n: int, *, edge_length: float) -> Path:
     return cases
 
 
-def main() -> None:
+def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cases", type=int, default=4, help="number of cases")
     ap.add_argument("--workers", type=int, nargs="+", default=[1, 2], help="worker counts to time")
@@ -54,7 +54,7 @@ def main() -> None:
     ap.add_argument("--edge-length", type=float, default=0.05, help="panel mesh edge length [m]")
     ap.add_argument("--ray", action="store_true", help="also time a local Ray instance with 2 CPUs")
     ap.add_argument("--keep", metavar="DIR", help="keep cases and results in DIR (cases are reused)")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
 
     import torch
 

@@ -1,4 +1,4 @@
-"""Per-garment fit accuracy on known-truth cases (issue 7's must-show table).
+"""Per-garment fit accuracy on known-truth cases.
 
 For each garment type, a base pattern altered by known amounts (hem/sleeve/leg lengths and
 widths) in a different material is draped by our simulator on the default body (the target,

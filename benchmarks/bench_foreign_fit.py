@@ -1,4 +1,4 @@
-"""How well does the default fit recover garments unsew did not make (issue 21's foreign cases)?
+"""How well does the default fit recover garments unsew did not make?
 
 For every case folder in benchmarks/foreign/cases (a GarmentCode-style design draped by newton on an
 anny body; see benchmarks/foreign and FORMATS.md), runs the real command-line fit with the default
@@ -17,7 +17,7 @@ prints one row per case:
   (unsew.metrics.panels.pattern_metrics; panels matched by name, then unique label, then a
   Hungarian assignment on turning distance + 3D placement, panels left over reported):
   ``area_*`` the area-weighted error in which an unmatched panel counts at its full area
-  (area_error_weighted_rel: the figure issue 21's area bar is judged on), ``total_*``
+  (area_error_weighted_rel: the figure the area bar is judged on), ``total_*``
   |sum A_est - sum A_gt| / sum A_gt (no correspondence), ``matched_final_pct`` the paper's mean
   over matched panels of |A_est - A_gt| / A_gt; read from metrics.json, or computed from the result
   folder's pattern.json / pattern_base.json / pattern_graded.json when metrics.json predates these
@@ -283,7 +283,7 @@ def main(argv=None) -> int:
     print_table(rows, COLUMNS, title=f"Foreign benchmark: default fit per case (results in {out})", digits=1)
     summary = bars(rows)
     if summary:
-        print_table(summary, title="Issue 21's bars over the fitted cases", digits=1)
+        print_table(summary, title="The bars over the fitted cases", digits=1)
     if args.sheet is not None:
         contact_sheet(rows, out, args.sheet)
         print(f"\nwrote {args.sheet}")
@@ -389,7 +389,7 @@ def print_latest(path: Path) -> int:
           + (f"; no record: {', '.join(missing)}" if missing else ""))
     summary = bars(rows)
     if summary:
-        print_table(summary, title="Issue 21's bars over the recorded fits", digits=1)
+        print_table(summary, title="The bars over the recorded fits", digits=1)
     return 0
 
 
@@ -426,7 +426,7 @@ def _median(v: list[float]) -> float:
 
 
 def bars(rows: list[dict]) -> list[dict]:
-    """Issue 21's must-show figures over the cases that have a result: median and worst area error
+    """The must-show figures over the cases that have a result: median and worst area error
     (weighted, total and matched), median Chamfer, cases within max(5 mm, 1.5 x floor), cases
     better than their base on both, cases under 10 minutes, and phase two's effect (final against
     graded: medians, and cases improved)."""

@@ -204,7 +204,7 @@ def _run(spec: dict, timeout: float) -> dict:
     return json.loads(r.stdout.strip().splitlines()[-1])
 
 
-def main() -> None:
+def main(argv=None) -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     ap.add_argument("--quick", action="store_true", help="5K-triangle meshes and 5K queries only")
@@ -213,7 +213,7 @@ def main() -> None:
     ap.add_argument("--libs", nargs="+", default=["igl", "igl, Morton order", "fcpw", "kdtree (old)"],
                     help="closest-point libraries to measure")
     ap.add_argument("--no-inside", action="store_true", help="skip the inside-test table")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     if args.worker:
         print(json.dumps(_worker(json.loads(args.worker))))
         return

@@ -1,4 +1,4 @@
-"""Linear grading benchmark (issue 6): recover known length and girth changes.
+"""Linear grading benchmark: recover known length and girth changes.
 
 For every garment type, the base pattern is altered by known amounts (hem / sleeve / leg length
 by +/- 5 to 15 cm, their girth by +/- 10 %, :mod:`unsew.grading.alter`), the altered pattern is
@@ -30,7 +30,7 @@ Run: OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_grading.py [--dra
      [--remesh always|stretched] [--length cloth|axial]
 
 ``--flip`` negates every change (the t-shirt's hem -10 cm and 10 % narrower, its sleeves +5 cm
-and 10 % wider, ...), so each garment is graded in both directions the issue names.
+and 10 % wider, ...), so each garment is graded in both directions the benchmark names.
 """
 
 from __future__ import annotations
@@ -62,7 +62,7 @@ def _have_placement() -> bool:
     return True
 
 
-def main() -> None:
+def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--drape", choices=["auto", "sim", "flat"], default="auto")
     ap.add_argument("--edge-length", type=float, default=0.03)
@@ -80,7 +80,7 @@ def main() -> None:
                     help="grade(length=...): move open curves by the cloth length to the top opening, "
                          "or by the axial distance")
     ap.add_argument("--targets", type=int, default=1, help="target drapes per garment, on meshes of slightly different edge length")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     if args.targets < 1 or args.targets > len(TARGET_SCALES):
         ap.error(f"--targets must be 1 to {len(TARGET_SCALES)}")
 

@@ -1,4 +1,4 @@
-"""Timings of the losses and metrics (issue 5) at 2K, 10K and 50K points. Prints tables; asserts nothing.
+"""Timings of the losses and metrics at 2K, 10K and 50K points. Prints tables; asserts nothing.
 
     OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_losses.py [--repeat 3] [--threads 2]
 
@@ -43,12 +43,12 @@ def _cylinder(n):
     return V, F
 
 
-def main() -> None:
+def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--sizes", default="2000,10000,50000")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     torch.set_num_threads(args.threads)
     import trimesh
 

@@ -28,13 +28,13 @@ import time
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 
-def main() -> None:
+def main(argv=None) -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--samples", type=int, nargs="+", default=[50_000, 100_000], help="points sampled per mesh")
     ap.add_argument("--result-verts", type=int, default=5000)
     ap.add_argument("--sizes", type=int, nargs="+", default=[2000, 10000, 20000, 50000], help="target vertices")
     ap.add_argument("--fit", metavar="DIR", help="also run a whole small fit per target size in DIR (minutes each)")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
 
     import numpy as np
 

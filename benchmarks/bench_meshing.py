@@ -17,12 +17,12 @@ import time
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 
-def main() -> None:
+def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--no-params", action="store_true", help="skip timing PatternParams.build")
     ap.add_argument("--garments", nargs="*", default=["tshirt", "dress", "pants", "shorts", "skirt"])
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
 
     import torch
 

@@ -18,7 +18,7 @@ import time
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 
-def main() -> None:
+def main(argv=None) -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--voxel", type=float, default=0.005)
@@ -27,7 +27,7 @@ def main() -> None:
     ap.add_argument("--case", default=None, help="a fitting case folder: its body instead of the default body")
     ap.add_argument("--compare-igl", action="store_true",
                     help="also time libigl's exact unsigned distance (AABB tree) at every grid node")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
 
     import numpy as np
     import torch

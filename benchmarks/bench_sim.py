@@ -99,7 +99,7 @@ def _loop_assembly(model, Hm, Hb):
     return A
 
 
-def main():
+def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sizes", default="1000,2000,3000,8000")
     ap.add_argument("--repeat", type=int, default=2)
@@ -112,7 +112,7 @@ def main():
     ap.add_argument("--no-loop", action="store_true", help="skip the per-element loop assembly baseline")
     ap.add_argument("--sheet", action="store_true", help="use square sheets even if the t-shirt exists")
     ap.add_argument("--checkpoint", action="store_true", help="recompute steps in backward (less memory)")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     torch.set_num_threads(args.threads)
     print(f"load average at start: {os.getloadavg()[0]:.2f} (2 shared cores)")
     from unsew.sim import MATERIALS, SimModel, SimState, SphereSDF

@@ -14,10 +14,7 @@
 # Logs go to $OUT (default /tmp/gpu_check_out): at most 8 files come back from the device, so
 # the full result folders stay in /tmp/gpu_check and only each fit's metrics.json is copied:
 #   check.log (versions, CUDA pytest) fits.log summary.txt metrics_{cuda,cpu}.json
-#   metrics_{cuda,cpu}_medium.json sweep.txt
-# SWEEP=SECONDS also runs benchmarks/phase_two_sweep.sh on the cores beside the first two (the check
-# is pinned to cores 0-1, two threads, as on the 2-core machines it is compared with), each run
-# cut at SECONDS, its tables in sweep.txt.
+#   metrics_{cuda,cpu}_medium.json
 # Dry run on a dev machine:  OUT=/tmp/gco PY=.venv/bin/python GPU_CHECK_NO_WHEELS=1 bash benchmarks/gpu_check.sh
 
 set -u
@@ -47,13 +44,6 @@ fi
 export PYTHONPATH=/tmp/site:$PWD/src${PYTHONPATH:+:$PYTHONPATH}
 export OMP_WAIT_POLICY=PASSIVE PYTHONUNBUFFERED=1 MPLBACKEND=Agg
 
-SWEEP_PID=
-if [ -n "${SWEEP:-}" ] && command -v taskset >/dev/null && [ "$(nproc)" -ge 4 ]; then
-    say "phase-two sweep in the background on cores 2-$(( $(nproc) - 1 ))"
-    taskset -c 2-$(( $(nproc) - 1 )) env JOBS=$(( $(nproc) - 2 )) LIMIT="$SWEEP" PY="$PY" \
-        bash benchmarks/phase_two_sweep.sh >"$OUT/sweep.txt" 2>&1 &
-    SWEEP_PID=$!
-fi
 if command -v taskset >/dev/null && [ "$(nproc)" -ge 4 ]; then
     PY="taskset -c 0,1 $PY"
     export OMP_NUM_THREADS=2
@@ -171,8 +161,4 @@ for name in ("cuda", "cpu", "cuda_medium", "cpu_medium"):
         ch = f"({type(e).__name__})"
     print(f"{name:<12} {rc:>4} {wall:>6} {tot:>9} {opt:>6} {ch:>10} {base:>7} {it!s:>5} {peak:>7}")
 EOF
-if [ -n "$SWEEP_PID" ]; then
-    say "waiting for the phase-two sweep"
-    wait "$SWEEP_PID"
-fi
 say "done"

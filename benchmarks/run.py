@@ -1,4 +1,4 @@
-"""The paper's tables on our known-truth benchmark (issue 8): one command per table, resumable.
+"""The paper's tables on our known-truth benchmark: one command per table, resumable.
 
     OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/run.py --table accuracy [--quick]
         [--cases bench-out/paper/cases] [--out bench-out/paper] [--iterations 100] [--edge-length 0.025]

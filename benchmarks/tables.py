@@ -1,7 +1,7 @@
 """Shared table printing for the benchmarks: a list of row dicts as a Markdown table.
 
-Every benchmark prints its results with :func:`print_table`, so tables read alike and can be pasted
-into docs/benchmarks.md as printed.
+Every benchmark prints its results with :func:`print_table`, so tables read alike; benchmarks/report.py
+writes docs/benchmarks.md with the same tables from the recorded results.
 """
 
 from __future__ import annotations

@@ -32,7 +32,7 @@ if ! "$VENV/bin/python" -c "import torch, sys; sys.exit(0 if torch.__version__.s
 fi
 pipq install "${pip_args[@]}" "${links[@]}" -e ".[test]"
 # Optional: CHOLMOD (scikit-sparse) on OpenBLAS factorizes the drape's systems about twice as fast as
-# cholespy, and a fit's stages run up to a quarter faster (docs/benchmarks.md, "CHOLMOD"). It builds
+# cholespy, and a fit's stages run up to a quarter faster (docs/decisions/010-cholmod.md). It builds
 # against Debian's libsuitesparse-dev: as root with apt-get, that and libopenblas0-pthread are
 # installed here. Anywhere else, or with UNSEW_NO_CHOLMOD=1, the drape uses cholespy.
 if [ "${UNSEW_NO_CHOLMOD:-0}" != 1 ] && ! "$VENV/bin/python" -c "import sksparse.cholmod" 2>/dev/null; then

@@ -16,3 +16,19 @@ def load_benchmark(name: str):
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
     return mod
+
+
+def markdown_rows(text: str) -> list[dict]:
+    """The rows of every Markdown table in ``text`` (benchmarks/tables.py's output) as dicts of
+    header -> cell text."""
+    rows, head = [], None
+    for line in text.splitlines():
+        if not line.startswith("|"):
+            head = None
+            continue
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if head is None:
+            head = cells
+        elif not set("".join(cells)) <= set("-: "):
+            rows.append(dict(zip(head, cells)))
+    return rows

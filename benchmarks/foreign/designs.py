@@ -407,13 +407,13 @@ DESIGNS = {
     "tank_top": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.60, ease=0.08, hem_ease=0.12, sleeve=None, neck_depth=0.10, name="tank_top"), **kw})),
     "dress_sheath_sleeveless": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.95, ease=0.08, hem_ease=0.16, sleeve=None, waist_shape=True, name="dress_sheath_sleeveless"), **kw})),
     "dress_shift_sleeved": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.90, ease=0.12, hem_ease=0.30, sleeve=0.07, waist_shape=True, hip_ease=0.16, name="dress_shift_sleeved"), **kw})),
-    # session 22: lengths and cuts the fit had not met
+    # fresh designs: lengths and cuts the fit had not met
     "skirt_aline_midi": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.72, flare=0.10, darts=2, waistband=True, name="skirt_aline_midi"), **kw})),
     "skirt_circle_mini": ("skirt", lambda m, J, **kw: circle_skirt(m, J, **{**dict(length=0.38, waistband=True, name="skirt_circle_mini"), **kw})),
     "trousers_capri": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.30, hem_girth=0.40, darts=1, waistband=True, name="trousers_capri"), **kw})),
     "tee_fitted_long": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.62, ease=0.08, hem_ease=0.14, sleeve=0.45, name="tee_fitted_long"), **kw})),
     "dress_shift_sleeveless": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.85, ease=0.12, hem_ease=0.30, sleeve=None, waist_shape=True, hip_ease=0.16, name="dress_shift_sleeveless"), **kw})),
-    # session 30: parameters no earlier design had (a knee skirt flared without a band, boot-cut
+    # fresh designs: parameters no earlier design had (a knee skirt flared without a band, boot-cut
     # trousers, mid-thigh shorts with darts, a loose short-sleeved tee, a sheath dress with sleeves,
     # an A-line mini)
     "skirt_flared_knee": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.55, flare=0.12, darts=0, waistband=False, name="skirt_flared_knee"), **kw})),
@@ -422,23 +422,23 @@ DESIGNS = {
     "tee_loose_short": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.64, ease=0.18, hem_ease=0.22, sleeve=0.12, neck_depth=0.06, name="tee_loose_short"), **kw})),
     "dress_sheath_sleeved": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.95, ease=0.08, hem_ease=0.16, sleeve=0.07, waist_shape=True, name="dress_sheath_sleeved"), **kw})),
     "skirt_aline_mini": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.42, flare=0.05, darts=2, waistband=True, name="skirt_aline_mini"), **kw})),
-    # session 31
+    # more fresh designs
     "skirt_pencil_knee": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.58, flare=0.02, darts=2, waistband=True, name="skirt_pencil_knee"), **kw})),
     "trousers_wide_band": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.10, hem_girth=0.54, darts=1, waistband=True, name="trousers_wide_band"), **kw})),
     "shorts_bermuda": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.24, hem_girth=m["thigh"] + 0.16, darts=0, waistband=True, name="shorts_bermuda"), **kw})),
     "tee_mid_sleeve": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.66, ease=0.12, hem_ease=0.16, sleeve=0.25, neck_depth=0.07, name="tee_mid_sleeve"), **kw})),
     "dress_shift_short": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.80, ease=0.12, hem_ease=0.24, sleeve=0.15, waist_shape=True, hip_ease=0.14, name="dress_shift_short"), **kw})),
     "skirt_flared_mini": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.40, flare=0.10, darts=0, waistband=True, name="skirt_flared_mini"), **kw})),
-    # session 33: a tea-length A-line, slim trousers without a band, very short shorts, a boxy
+    # fresh designs: a tea-length A-line, slim trousers without a band, very short shorts, a boxy
     # cropped tee with elbow sleeves, a straight tunic dress with elbow sleeves
     "skirt_aline_tea": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.63, flare=0.14, darts=2, waistband=True, name="skirt_aline_tea"), **kw})),
     "trousers_slim": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.08, hem_girth=0.34, darts=1, waistband=False, name="trousers_slim"), **kw})),
     "shorts_hot": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.06, hem_girth=m["thigh"] + 0.10, darts=0, waistband=True, name="shorts_hot"), **kw})),
     "tee_boxy_elbow": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.56, ease=0.22, hem_ease=0.24, sleeve=0.30, neck_depth=0.08, name="tee_boxy_elbow"), **kw})),
     "dress_tunic_sleeved": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.84, ease=0.10, hem_ease=0.20, sleeve=0.20, hip_ease=0.12, name="dress_tunic_sleeved"), **kw})),
-    # session 34: a straight sleeveless knee dress (a shift without waist shaping)
+    # fresh designs: a straight sleeveless knee dress (a shift without waist shaping)
     "dress_straight_tank": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.92, ease=0.10, hem_ease=0.28, sleeve=None, name="dress_straight_tank"), **kw})),
-    # session 34: dresses with long sleeves (the library's dresses have short sleeves or none)
+    # fresh designs: dresses with long sleeves (the library's dresses have short sleeves or none)
     "dress_shift_long_sleeve": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.92, ease=0.12, hem_ease=0.30, sleeve=0.42, waist_shape=True, hip_ease=0.16, name="dress_shift_long_sleeve"), **kw})),
     "dress_tunic_long_sleeve": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.86, ease=0.12, hem_ease=0.24, sleeve=0.44, name="dress_tunic_long_sleeve"), **kw})),
 }

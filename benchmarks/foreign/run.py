@@ -60,9 +60,9 @@ BODIES = {
     "anny_older": {"model": "anny", "phenotype": dict(_P, gender=0.3, age=0.95, muscle=0.2, weight=0.65), "pose": "A"},
     # left arm swung 0.6 rad forward at the shoulder (world-frame rotation vector)
     "anny_arm_forward": {"model": "anny", "phenotype": dict(_P), "pose": {"left_shoulder": [-0.6, 0.0, 0.0]}},
-    # a muscular, fairly tall man (session 31): broad shoulders and thighs, a narrow waist
+    # a muscular, fairly tall man: broad shoulders and thighs, a narrow waist
     "anny_muscular": {"model": "anny", "phenotype": dict(_P, gender=0.15, muscle=0.95, weight=0.55, height=0.7), "pose": "A"},
-    # a petite, slight young woman (session 33): short, narrow shoulders and hips
+    # a petite, slight young woman: short, narrow shoulders and hips
     "anny_petite": {"model": "anny", "phenotype": dict(_P, gender=0.9, age=0.35, muscle=0.4, weight=0.3, height=0.05, proportions=0.6), "pose": "A"},
     # GarmentCode's mean body (A-pose): its mesh goes into the case folder as body.obj with no
     # skeleton.json, so the case is rigged from the mesh wherever it is read (and so is the target's body here)
@@ -102,14 +102,14 @@ CASES = {
     "skirt_aline_knee__gc_mean_all": ("skirt_aline_knee", "gc_mean_all"),
     "tee_fitted_short__gc_mean_all": ("tee_fitted_short", "gc_mean_all"),
     "trousers_straight__gc_mean_all": ("trousers_straight", "gc_mean_all"),
-    # built in session 15, after the fit's method of that session was fixed, and fitted once:
+    # fresh cases, built once the fit was fixed and fitted once:
     # combinations of designs and bodies the fit had not been tried on
     "skirt_pencil_mini__default": ("skirt_pencil_mini", "anny_default"),
     "trousers_tapered__default": ("trousers_tapered", "anny_default"),
     "dress_shift_sleeved__tall_thin": ("dress_shift_sleeved", "anny_tall_thin"),
     "shorts_knee__tall_thin": ("shorts_knee", "anny_tall_thin"),
     "shorts_wide__default": ("shorts_wide", "anny_default"),
-    # built in session 16 (its fitting code fixed: optimizer.bands added, the fit unchanged) and
+    # fresh cases built (its fitting code fixed: optimizer.bands added, the fit unchanged) and
     # fitted once: one per garment type, on bodies their design had not been tried on
     "dress_sheath_sleeveless__male_heavy": ("dress_sheath_sleeveless", "anny_male_heavy"),
     "trousers_wide__default": ("trousers_wide", "anny_default"),
@@ -117,14 +117,14 @@ CASES = {
     "shorts_short__tall_thin": ("shorts_short", "anny_tall_thin"),
     "tee_fitted_short__leg_forward": ("tee_fitted_short", "anny_leg_forward"),
     # GarmentCode's own samples (shared/foreign/patterns, MIT), placed by today's placement,
-    # which reads their layout (0ad8915): session 17
+    # which reads their layout (0ad8915)
     "shirt_gc__default": ("gc:shirt_mean_specification.json", "anny_default"),
     "hoody_gc__default": ("gc:hoody_mean_specification.json", "anny_default"),
     "shirt_gc__male_heavy": ("gc:shirt_mean_specification.json", "anny_male_heavy"),
     "dress_pencil_gc__tall_thin": ("gc:dress_pencil_specification.json", "anny_tall_thin"),
     "shirt_gc__tpose": ("gc:shirt_mean_specification.json", "anny_tpose"),
     "dress_pencil_gc__male_heavy": ("gc:dress_pencil_specification.json", "anny_male_heavy"),
-    # built in session 20 (the fit fixed at 7061d23) and fitted once: one per garment type on
+    # fresh cases built (the fit fixed at 7061d23) and fitted once: one per garment type on
     # GarmentCode's bodies the fit had never met (female, male, T-pose), and a skirt over a leg
     # swung forward
     "skirt_circle_knee__gc_mean_female": ("skirt_circle_knee", "gc_mean_female"),
@@ -137,7 +137,7 @@ CASES = {
     "skirt_flared_midi__gc_mean_female": ("skirt_flared_midi", "gc_mean_female"),
     "shirt_gc__gc_mean_male": ("gc:shirt_mean_specification.json", "gc_mean_male"),
     "dress_pencil_gc__gc_mean_female": ("gc:dress_pencil_specification.json", "gc_mean_female"),
-    # built in session 21 (the fit fixed at c913a50) and fitted once: a short, curvy female anny
+    # fresh cases built (the fit fixed at c913a50) and fitted once: a short, curvy female anny
     # body the fit had never met, and designs on bodies and poses they had not been tried on
     "dress_shift_sleeved__short_curvy": ("dress_shift_sleeved", "anny_short_curvy"),
     "skirt_aline_knee__short_curvy": ("skirt_aline_knee", "anny_short_curvy"),
@@ -147,7 +147,7 @@ CASES = {
     "skirt_pencil_mini__gc_mean_female": ("skirt_pencil_mini", "gc_mean_female"),
     "shirt_gc__tall_thin": ("gc:shirt_mean_specification.json", "anny_tall_thin"),
     "trousers_wide__gc_mean_all_tpose": ("trousers_wide", "gc_mean_all_tpose"),
-    # built in session 22 (the fit fixed at be27548) and fitted once: five designs the fit had
+    # fresh cases built (the fit fixed at be27548) and fitted once: five designs the fit had
     # never met (midi A-line, circle mini, capri trousers, fitted long-sleeved tee, sleeveless
     # shift dress), the tank top, an older anny body and one with an arm swung forward
     "tank_top__default": ("tank_top", "anny_default"),
@@ -159,7 +159,7 @@ CASES = {
     "trousers_capri__default": ("trousers_capri", "anny_default"),
     "shorts_short__older": ("shorts_short", "anny_older"),
     "tee_fitted_short__arm_forward": ("tee_fitted_short", "anny_arm_forward"),
-    # built in session 23 (the fit fixed at f2500c5) and fitted once: the midi A-line, the capri
+    # fresh cases built (the fit fixed at f2500c5) and fitted once: the midi A-line, the capri
     # trousers, the sleeveless shift dress and the long-sleeved fitted tee on bodies they had not
     # been tried on, knee shorts on the older body; spares (built, kept if they pass, fitted all
     # the same): the pencil mini on the older body, the circle mini and tapered trousers
@@ -172,7 +172,7 @@ CASES = {
     "skirt_pencil_mini__older": ("skirt_pencil_mini", "anny_older"),
     "skirt_circle_mini__default": ("skirt_circle_mini", "anny_default"),
     "trousers_tapered__tall_thin": ("trousers_tapered", "anny_tall_thin"),
-    # built in session 24 (phase two holding the seams, 082adb2) and fitted once: designs on
+    # fresh cases built (phase two holding the seams, 082adb2) and fitted once: designs on
     # bodies they had not been tried on, one per garment type and a second top
     "dress_shift_sleeved__male_heavy": ("dress_shift_sleeved", "anny_male_heavy"),
     "trousers_capri__older": ("trousers_capri", "anny_older"),
@@ -180,7 +180,7 @@ CASES = {
     "skirt_pencil_mini__tall_thin": ("skirt_pencil_mini", "anny_tall_thin"),
     "tee_fitted_long__male_heavy": ("tee_fitted_long", "anny_male_heavy"),
     "tank_top__short_curvy": ("tank_top", "anny_short_curvy"),
-    # built in session 28 (drapes on CHOLMOD, af9814f) and fitted once: designs on bodies they
+    # fresh cases built (drapes on CHOLMOD, af9814f) and fitted once: designs on bodies they
     # had not been tried on, one per garment type; both long-sleeved tees were rejected by the checks
     "skirt_flared_midi__male_heavy": ("skirt_flared_midi", "anny_male_heavy"),
     "trousers_wide__male_heavy": ("trousers_wide", "anny_male_heavy"),
@@ -189,7 +189,7 @@ CASES = {
     "tee_loose_long__older": ("tee_loose_long", "anny_older"),  # rejected: 3 edges through the body
     "tee_fitted_long__tall_thin": ("tee_fitted_long", "anny_tall_thin"),  # rejected: 5 edges through the body
     "dress_sheath_sleeveless__older": ("dress_sheath_sleeveless", "anny_older"),
-    # built in session 30 (e674dd6) and fitted once: six designs with parameters no earlier design
+    # fresh cases built (e674dd6) and fitted once: six designs with parameters no earlier design
     # had, on bodies of every kind
     "skirt_flared_knee__older": ("skirt_flared_knee", "anny_older"),
     "trousers_bootcut__tall_thin": ("trousers_bootcut", "anny_tall_thin"),
@@ -197,7 +197,7 @@ CASES = {
     "tee_loose_short__short_curvy": ("tee_loose_short", "anny_short_curvy"),
     "dress_sheath_sleeved__default": ("dress_sheath_sleeved", "anny_default"),
     "skirt_aline_mini__gc_mean_female": ("skirt_aline_mini", "gc_mean_female"),
-    # built in session 31 (ad7e2cd): six more designs with parameters no earlier design had, and
+    # fresh cases built (ad7e2cd): six more designs with parameters no earlier design had, and
     # a body no design had met (anny_muscular)
     "skirt_pencil_knee__short_curvy": ("skirt_pencil_knee", "anny_short_curvy"),
     "trousers_wide_band__older": ("trousers_wide_band", "anny_older"),
@@ -205,7 +205,7 @@ CASES = {
     "tee_mid_sleeve__muscular": ("tee_mid_sleeve", "anny_muscular"),
     "dress_shift_short__older": ("dress_shift_short", "anny_older"),
     "skirt_flared_mini__tall_thin": ("skirt_flared_mini", "anny_tall_thin"),
-    # built in session 33 (08ab043): five designs with parameters no earlier design had, a body
+    # fresh cases built (08ab043): five designs with parameters no earlier design had, a body
     # no design had met (anny_petite), and the tank top on GarmentCode's female body
     "skirt_aline_tea__petite": ("skirt_aline_tea", "anny_petite"),  # rejected: newton's band came unsewn, on the floor
     "trousers_slim__default": ("trousers_slim", "anny_default"),
@@ -217,7 +217,7 @@ CASES = {
     "dress_tunic_sleeved__default": ("dress_tunic_sleeved", "anny_default"),
     "tank_top__gc_mean_female": ("tank_top", "gc_mean_female"),
     "skirt_aline_tea__gc_mean_all": ("skirt_aline_tea", "gc_mean_all"),
-    # built in session 34: straight dresses, on bodies they had not met, after the straight
+    # fresh cases built: straight dresses, on bodies they had not met, after the straight
     # dress joined the base library (the tunic on the male body, a straight sleeveless design)
     "dress_tunic_sleeved__male_heavy": ("dress_tunic_sleeved", "anny_male_heavy"),
     "dress_straight_tank__tall_thin": ("dress_straight_tank", "anny_tall_thin"),
@@ -229,7 +229,7 @@ CASES = {
     # and dresses in T-pose, which no dress case had met
     "dress_sheath_sleeved__tpose": ("dress_sheath_sleeved", "anny_tpose"),
     "dress_tunic_sleeved__gc_mean_all_tpose": ("dress_tunic_sleeved", "gc_mean_all_tpose"),
-    # built in session 35, after the placement turned sleeves hinted the wrong way round their
+    # fresh cases built after the placement turned sleeves hinted the wrong way round their
     # arm: tops on GarmentCode's bodies, where no sleeved top had been tried in T-pose
     "tee_fitted_short__gc_mean_all_tpose": ("tee_fitted_short", "gc_mean_all_tpose"),
     "tank_top__gc_mean_all_tpose": ("tank_top", "gc_mean_all_tpose"),
@@ -245,12 +245,12 @@ CASES = {
     # in place of the two rejected: a top on the male body, a dress on the "all" body
     "tank_top__gc_mean_male": ("tank_top", "gc_mean_male"),
     "dress_shift_sleeveless__gc_mean_all": ("dress_shift_sleeveless", "gc_mean_all"),
-    # and a last round: GarmentCode's shirt on its T-pose body, a tee on its A-pose "all" body,
+    # and last: GarmentCode's shirt on its T-pose body, a tee on its A-pose "all" body,
     # knee shorts on its male body
     "shirt_gc__gc_mean_all_tpose": ("gc:shirt_mean_specification.json", "gc_mean_all_tpose"),
     "tee_loose_short__gc_mean_all": ("tee_loose_short", "gc_mean_all"),
     "shorts_knee__gc_mean_male": ("shorts_knee", "gc_mean_male"),  # rejected: 1 seam edge through the body
-    # session 36, after base-choice ties were graded both ways: one or two of each garment type
+    # fresh cases built after base-choice ties were graded both ways: one or two of each garment type
     # on bodies they had not met
     "dress_shift_sleeveless__tall_thin": ("dress_shift_sleeveless", "anny_tall_thin"),
     "dress_straight_tank__gc_mean_all": ("dress_straight_tank", "gc_mean_all"),

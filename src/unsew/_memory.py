@@ -5,7 +5,7 @@ reset it (writing 5 to /proc/self/clear_refs), so a stage's own peak can be meas
 Elsewhere the functions fall back to ``resource.getrusage`` (peak since start) or return None.
 
 :func:`bound_heap` and :func:`release_free_memory` keep glibc's heap from holding on to memory
-the fit has freed (docs/benchmarks.md, "Geometry core and memory"); they do nothing elsewhere.
+the fit has freed; they do nothing elsewhere.
 """
 
 from __future__ import annotations

@@ -17,7 +17,7 @@ def test_lists_benchmarks_with_their_question():
     assert r.returncode == 0, r.stderr
     lines = {ln.split()[0]: ln for ln in r.stdout.splitlines()[2:] if ln.strip()}
     assert "fit" in lines and "grading" in lines and "run" in lines
-    assert "truth_cases" not in lines and "tables" not in lines  # helpers, not benchmarks
+    assert "_meshes" not in lines and "tables" not in lines  # helpers, not benchmarks
     assert "Linear grading benchmark" in lines["grading"]
 
 
@@ -28,9 +28,9 @@ def test_unknown_name_exits_2():
 
 
 def test_bad_input_to_a_benchmark_exits_2_with_one_line(tmp_path):
-    r = _run("settle", str(tmp_path / "no_case"), str(tmp_path))
+    r = _run("sdf", "--case", str(tmp_path / "no_case"))
     assert r.returncode == 2
-    assert r.stderr.strip().splitlines() == [f"benchmarks settle: case folder {tmp_path / 'no_case'} does not exist"]
+    assert r.stderr.strip().splitlines() == [f"benchmarks sdf: case folder {tmp_path / 'no_case'} does not exist"]
 
 
 def test_runs_a_benchmark_by_name_with_its_options():
@@ -45,13 +45,3 @@ def test_markdown_table():
 
     t = markdown_table([{"a": 1.234, "b": None}, {"a": "x", "b": 2}], digits=1)
     assert t.splitlines() == ["| a | b |", "|---|---|", "| 1.2 |  |", "| x | 2 |"]
-
-
-def test_code_benchmark_finds_cycles_through_several_packages():
-    """bench_code's cycle finder reports a three-package loop, not only pairs, and no acyclic edge."""
-    sys.path.insert(0, str(ROOT))
-    from benchmarks.bench_code import _cycles
-
-    assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [("a", "b", "c")]
-    assert _cycles({"a": {"b"}, "b": {"a"}, "c": {"a"}}) == [("a", "b")]
-    assert _cycles({"a": {"b"}, "b": {"c"}}) == []

@@ -1,5 +1,5 @@
-"""Fixtures of the body tests: the default body's SDF is built once per session (and cached on
-disk in $UNSEW_CACHE or ~/.cache/unsew, so later sessions load it)."""
+"""Fixtures of the body tests: the default body's SDF is built once per test run (and cached on
+disk in $UNSEW_CACHE or ~/.cache/unsew, so later runs load it)."""
 
 import pytest
 

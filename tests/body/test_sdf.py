@@ -1,5 +1,5 @@
 """Signed distance grid: exact point-triangle distance, accuracy against exact point-to-mesh
-distance, sign, differentiability, cache, and the default body (issue 3 "Must show")."""
+distance, sign, differentiability, cache, and the default body."""
 
 import numpy as np
 import pytest
@@ -156,7 +156,7 @@ def test_query_on_cuda(sphere_sdf):  # pragma: no cover - no GPU on the dev mach
 
 
 def test_default_body_accuracy_and_sign(default_sdf):
-    """Issue 3 'Must show': RMS <= 1 mm within 5 cm of the surface vs exact point-to-mesh
+    """RMS <= 1 mm within 5 cm of the surface vs exact point-to-mesh
     distance; sign right (winding number) for every point farther than one voxel."""
     import trimesh
 

@@ -1,5 +1,5 @@
 """dress(): every base pattern placed, sewn and settled on the default body (small mode: 4 cm
-edges), and on a wider body at 3 cm (slow). Figures as in benchmarks/bench_dress.py."""
+edges), and on a wider body at 3 cm (slow)."""
 
 import numpy as np
 import pytest

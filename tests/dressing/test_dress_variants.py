@@ -22,7 +22,7 @@ def body_sdf():
 def _check(name, d, body, *, strict: bool = True):
     """The verdict, seams and place; ``strict`` also no inverted triangle and no edge stretched
     1.5x (on the anny body at 3 cm, 1-2 triangles of tshirt_long, shorts_band and skirt_band
-    end inverted and dress_sleeveless has an edge at 1.50x: docs/benchmarks.md, base library)."""
+    end inverted and dress_sleeveless has an edge at 1.50x)."""
     v = check_dressed(d, body=body)
     assert v.ok, f"{name}: {v.reason}"
     s = dress_stats(d)

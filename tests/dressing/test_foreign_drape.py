@@ -1,7 +1,7 @@
 """GarmentCode's sample specifications (not made by unsew) draped the way `unsew drape` does:
 on the body, not fallen, not exploded, outside it. Small mode in the default suite (the shirt at
 5 cm edges); every sample on the default body, and the samples and base patterns on a T-pose
-and a moved-limb anny body, as slow tests (benchmarks/bench_gcdrape.py prints the same)."""
+and a moved-limb anny body, as slow tests."""
 
 import warnings
 from pathlib import Path
@@ -76,7 +76,7 @@ def test_samples_on_the_default_body(default_sdf, name):
 _JUMPSUIT_STEP = pytest.mark.xfail(
     strict=True,
     reason="the 12-panel jumpsuit on pose_step: one edge at the moved leg is 3.3x its length; "
-    "docs/benchmarks.md, 'Draping foreign patterns' (on the T-pose body it drapes since the shoulder "
+    "(on the T-pose body it drapes since the shoulder "
     "line runs over the raised arms' roots)",
 )
 
@@ -97,7 +97,7 @@ def test_on_posed_bodies(name, body_name):
         from unsew.io.garmentcode import pattern_from_dict, pattern_to_dict
         from unsew.pattern.base import make_base_pattern
 
-        # through GarmentCode JSON (cm) as benchmarks/bench_gcdrape.py does
+        # through GarmentCode JSON (cm), as a foreign pattern arrives
         pattern = pattern_from_dict(pattern_to_dict(make_base_pattern(name[5:])), name=name[5:])
     else:
         pattern = _sample(name)

@@ -44,7 +44,7 @@ def test_a_moved_vertex_a_moved_curve_or_another_material_is_moved():
 
 
 def test_on_three_meshes_the_pattern_that_can_be_dressed_is_kept():
-    """Measured on the tall thin sleeveless shift (session 39): phase two's pattern dressed from
+    """Measured on the tall thin sleeveless shift (at 6ff367a): phase two's pattern dressed from
     scratch at 16.32 mm on the fit's mesh and failed on the other two, the graded one failed on
     all three; returning the graded pattern made the fit fail at its final drape. The pattern
     whose drapes fail on fewer meshes is kept; otherwise the means decide, as before."""

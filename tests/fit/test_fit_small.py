@@ -12,7 +12,7 @@ from unsew.fit.config import CheckSettings, load_config
 #: The solver is pinned: the figures below were measured with cholespy, and where CHOLMOD is
 #: installed ("auto") round-off grown through the drapes moves them by more than their margins.
 #: On CHOLMOD at 71a0347 the proof of phase two read 5.83 / 6.03 / 6.63 -> 6.07 / 5.71 / 5.90 mm
-#: (means x0.956, fit's mesh x1.04; cholespy x0.87): docs/benchmarks.md, "CHOLMOD".
+#: (means x0.956, fit's mesh x1.04; cholespy x0.87).
 SMALL = {"edge_length": 0.04, "iterations": 3, "steps": 8, "sew_steps": 60, "settle_steps": 20,
          "target_points": 1500, "material_start": 1, "material": "cotton", "drape.backend": "cholespy"}
 FILES = ["pattern.json", "pattern.svg", "pattern.dxf", "garment.obj", "garment_rest.obj", "material.json",
@@ -28,7 +28,7 @@ def small_case(tmp_path_factory):
 
 
 #: phase two's iterations in the small fit: with 3 the verdict of the re-dress check depended on
-#: the machine (docs/benchmarks.md, "results reported by fresh drapes")
+#: the machine
 PROOF_ITERATIONS = 6
 
 
@@ -90,12 +90,9 @@ def test_phase_two_is_kept_and_lowers_the_redressed_distance(small_fit):
     grading cannot change the fabric. Phase two (control points and material, through
     differentiable drapes) must give a pattern that, dressed from scratch, lies closer to the
     target than the graded one, and the re-dress check must keep it: the returned pattern is
-    phase two's. Measured at the merge of session 12's work (graded by the library's base choice,
-    seam copies met only on raised arms): re-dressed 5.09 -> 4.55 mm (x0.89); graded to the
-    target's area (area: target, 1a280d9) 5.64 -> 5.41 mm (x0.96). Session 26, 6 iterations,
-    both patterns dressed from scratch on the re-dress check's three meshes: 5.62 / 5.98 / 6.27
-    -> 5.05 / 5.42 / 5.09 mm, means x0.87; on another VM the first mesh gained only 0.2 %
-    (docs/benchmarks.md, "The test suite's time"), so each mesh is asked to be lower and the
+    phase two's. Measured with 6 iterations, both patterns dressed from scratch on the re-dress
+    check's three meshes: 5.62 / 5.98 / 6.27 -> 5.05 / 5.42 / 5.09 mm, means x0.87; on another
+    machine the first mesh gained only 0.2 %, so each mesh is asked to be lower and the
     means, which the check judges, x0.95 lower. With phase two held (pattern_start past the budget) the graded pattern is returned
     and this fails."""
     import numpy as np
@@ -110,8 +107,8 @@ def test_phase_two_is_kept_and_lowers_the_redressed_distance(small_fit):
     assert moved > 1e-3  # [m]: the returned pattern is not the graded one
 
 
-@pytest.mark.xfail(strict=True, reason="measured at the merge of session 12's work: mean panel area error 0.98 % "
-                   "graded -> 1.09 % final (before that merge 0.92 -> 0.51 %); phase two lowers the drape's distance, "
+@pytest.mark.xfail(strict=True, reason="mean panel area error 0.98 % "
+                   "graded -> 1.09 % final; phase two lowers the drape's distance, "
                    "not yet the pattern error, on this case")
 def test_phase_two_lowers_the_pattern_error_below_grading(small_fit):
     """The pattern error itself: the mean panel area error of phase two's pattern at most 0.7x the
@@ -123,7 +120,7 @@ def test_phase_two_lowers_the_pattern_error_below_grading(small_fit):
 
 
 @pytest.mark.xfail(strict=True, reason="phase two lowers the panel areas' error but moves corners the truth did not "
-                   "move: rigid corner L2 0.14 -> 0.29 cm at the merge of session 12, 0.128 -> 0.225 before (docs/benchmarks.md, 'Phase two on a case grading cannot fit')")
+                   "move: rigid corner L2 0.14 -> 0.29 cm")
 def test_phase_two_lowers_the_corner_distance_below_grading(small_fit):
     """The other pattern error: the panels' corners (rigidly aligned) closer to the truth's after
     phase two than after grading."""
@@ -218,7 +215,7 @@ def test_the_result_drape_is_its_pattern_dressed_from_scratch(small_case, small_
     """garment.obj is what dressing the returned pattern in the returned material from scratch
     on the result's mesh gives, whichever pattern the re-dress check returned: not a drape
     warm-started along the optimizer's path, which can lie nearer the target than its pattern
-    dresses (issue 21)."""
+    dresses."""
     from unsew.body.case import load_case
     from unsew.body.sdf import BodySDF
     from unsew.dress import dress

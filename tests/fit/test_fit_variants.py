@@ -1,4 +1,4 @@
-"""The fit on altered targets (issue 7): 1 mm noise, half the vertices, a file in cm; and (slow)
+"""The fit on altered targets: 1 mm noise, half the vertices, a file in cm; and (slow)
 another pose and another body shape. Small mode: coarse mesh, few iterations; each must still
 improve on the base pattern."""
 

@@ -1,5 +1,5 @@
 """Phase two on a shape grading cannot make: a dress whose side seams are taken in 3 cm at the
-hip corners, in the fit's own fabric (benchmarks/bench_phase_two.py prints the same case).
+hip corners, in the fit's own fabric.
 Grading moves hems, cuffs and necklines by a length and a girth and leaves the hip corners where
 the base has them, so everything the fit gains over the graded pattern is phase two's.
 
@@ -7,8 +7,7 @@ The whole fit (run_fit) on it is slow (98 s on the shared 2-core VM: the dress i
 slowest garment). The default suite's proof that phase two lowers the pattern error runs phase
 two alone from the graded pattern, with 16-step drapes (``test_phase_two_lowers_the_area_error``,
 about 40 s): with 8-step drapes the area error falls 2.92 -> 2.44 %, with 16-step drapes by half
-(2.92 -> 1.49 %); the settings sweep behind that choice is in docs/benchmarks.md, "Phase two on a
-case grading cannot fit"."""
+(2.92 -> 1.49 %; the settings sweep: ``python -m benchmarks phase_two`` at 81f6fbb)."""
 
 import numpy as np
 import pytest
@@ -56,7 +55,7 @@ def test_phase_two_takes_in_the_hip_that_grading_left(hip_fit):
 
 @pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason="phase two's 8-step warm-started loss ranks its own pattern above the "
-                   "truth (688 vs 733 at 8 steps, docs/benchmarks.md): the whole pattern error does not fall yet")
+                   "truth (688 vs 733 at 8 steps): the whole pattern error does not fall yet")
 def test_phase_two_lowers_the_whole_pattern_error_on_the_hip(hip_fit):
     """The must-show on this case: mean panel area error and mean control-point distance both
     at least 30 % below the graded pattern's. Measured: area 2.86 -> 2.91 %, control points
@@ -66,8 +65,7 @@ def test_phase_two_lowers_the_whole_pattern_error_on_the_hip(hip_fit):
     assert metrics["pattern"]["vertex_l2_cm_mean"] < 0.7 * metrics["pattern_graded"]["vertex_l2_cm_mean"]
 
 
-#: the default suite's setting: 16-step drapes, 8 iterations (``python -m benchmarks phase_two
-#: --steps 16 --iterations 8`` prints the same figures)
+#: the default suite's setting: 16-step drapes, 8 iterations
 SMALL16 = {**SMALL, "steps": 16, "iterations": 8}
 
 
@@ -76,8 +74,7 @@ def hip_phase_two(tmp_path_factory):
     """Phase two alone (unsew.fit.optimize.PhaseTwo, material held) from the graded default dress,
     and its best iterate as a pattern; the paper's fit (``area: free``): graded to the target's
     area the start is already closer (mean panel area error 1.4 %, hip corners 2.1 cm) and what
-    eight small-mode iterations then do depends on the thread count (docs/benchmarks.md, "Phase
-    two on a case grading cannot fit")."""
+    eight small-mode iterations then do depends on the thread count."""
     import torch
 
     from unsew.body.case import load_case
@@ -103,7 +100,7 @@ def hip_phase_two(tmp_path_factory):
 
 
 def test_phase_two_lowers_the_area_error(hip_phase_two):
-    """Issue 21's default-suite proof: on a case grading cannot fit, phase two's pattern (its best
+    """The default suite's proof: on a case grading cannot fit, phase two's pattern (its best
     iterate) has a mean panel area error at most 0.7 x the graded pattern's (measured 2.92 ->
     1.49 %, x0.51) and hip corners at most 0.9 x as far from the truth's (3.00 -> 2.30 cm), at a
     best loss at most 0.95 x the first (684 -> 609 [1e-6 m^2]). With phase two held the best
@@ -122,7 +119,7 @@ def test_phase_two_lowers_the_area_error(hip_phase_two):
 
 
 @pytest.mark.xfail(strict=True, reason="phase two moves corners the truth did not move: rigid corner L2 0.40 -> "
-                   "0.68 cm at 16 steps (docs/benchmarks.md, 'Phase two on a case grading cannot fit')")
+                   "0.68 cm at 16 steps")
 def test_phase_two_lowers_the_corner_distance_on_the_hip(hip_phase_two):
     """The other pattern error: rigidly aligned corner L2 of phase two's pattern below the graded one's."""
     from unsew.metrics.panels import pattern_metrics

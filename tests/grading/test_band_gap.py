@@ -175,7 +175,7 @@ def test_grade_refuses_an_unknown_band_gap():
 def test_the_fit_config_takes_band_gap():
     from unsew.fit.config import FitConfig, load_config
 
-    assert FitConfig().band_gap == "target"  # the default since session 41
+    assert FitConfig().band_gap == "target"  # the default (docs/decisions/009)
     assert load_config(band_gap="none").band_gap == "none"
     with pytest.raises(InputError, match="band_gap"):
         load_config(band_gap="tight")

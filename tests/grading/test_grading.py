@@ -1,4 +1,4 @@
-"""Linear grading (issue 6): contours on bones, matching, 2D curves, the edit, grade()."""
+"""Linear grading: contours on bones, matching, 2D curves, the edit, grade()."""
 
 from __future__ import annotations
 
@@ -389,7 +389,7 @@ def _grade_simulated(body, garment, changes, edge, **kw):
     tx = dress_drape(t, tm, body, sdf=sdf)
     # cholespy pinned, as when these figures were measured: on CHOLMOD the small skirt's second pass
     # moves its hem 1.0 cm instead of 1.3, and the pattern, 3 mm apart, drapes 9.3 mm from the
-    # target instead of 5.3 (x0.70 of the base's distance instead of x0.40; docs/benchmarks.md, "CHOLMOD")
+    # target instead of 5.3 (x0.70 of the base's distance instead of x0.40)
     res = grade(p, body, tx, tm.faces, settings=GRADE_SETTINGS.replace(edge_length=edge, backend="cholespy"),
                 sdf=sdf, **kw)
     return res, tx, tm, t
@@ -429,7 +429,7 @@ def _panel_length(pattern, name: str) -> float:
 
 @pytest.mark.slow
 def test_grade_simulated_tshirt_recovers_known_changes(body):
-    """Issue 6 must-show, one case: target draped by our simulator from a t-shirt whose hem is
+    """One case: target draped by our simulator from a t-shirt whose hem is
     10 cm longer and 10 % wider; grading recovers the hem within 1 cm / 2 cm and halves the
     Chamfer distance."""
     res, tx, tm, _ = _grade_simulated(body, "tshirt", {"hem": (0.10, 0.10)}, EDGE)
@@ -513,8 +513,8 @@ def _skirt_band_top():
 def test_hold_tops_keeps_a_band_and_lengthens_the_panels_below():
     """A waistband (open only along its top) whose waist curve is edited upward keeps its height,
     with its girth edit; the panels sewn to its bottom take the waist's rise below their tops, so
-    the garment grows by the same length as when the band took it (issue 21: bands graded from
-    4 to 7.6 cm)."""
+    the garment grows by the same length as when the band took it (held like the other panels,
+    bands grew from 4 to 7.6 cm)."""
     from unsew.grading.grade import _hold_tops
 
     p, controls, C0, band, cb, top, up = _skirt_band_top()

@@ -60,14 +60,14 @@ def test_fit_report_has_measurements_material_and_no_loss_dump(tmp_path, meshes)
 
 
 def test_body_does_not_show_through_close_cloth(tmp_path):
-    """The body's torso pushed out 2 +- 3 mm as cloth (benchmarks/bench_render_bleed.py): with
+    """The body's torso pushed out 2 +- 3 mm as cloth (`python -m benchmarks render --bleed`): with
     the body's depth bias, far fewer body pixels inside the cloth than without it."""
     import sys
     from pathlib import Path
 
     sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
     try:
-        from bench_render_bleed import _bleed, _cloth
+        from bench_render import _bleed, _cloth
     finally:
         sys.path.pop(0)
     import unsew.report.render as render

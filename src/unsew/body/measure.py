@@ -8,7 +8,7 @@ Girths are convex-hull perimeters of cross-sections, as a tape measure reads the
   pulls up and out; the bust is then read at the bust points instead (the level of the trunk's
   greatest depth, below the armpits) and scaled by ``RAISED_ARM_BUST``, the ratio of the
   arms-down bust to that girth with the arms raised, read on anny bodies measured in both poses
-  (``python -m benchmarks rig``);
+  (``python -m benchmarks rig`` at 81f6fbb);
 - waist: the narrowest torso section between the hip level and the chest joint (the natural
   waist); its height is ``waist_height``;
 - hip: the fullest horizontal section of torso and legs (arms cut away) between the crotch and
@@ -47,15 +47,14 @@ __all__ = [
 #: (A-pose arms hang 44-51 degrees below it on anny and GarmentCode bodies, T-pose ones -3-4).
 RAISED_ARM_DEG = 25.0
 #: Arms-down bust / trunk girth at the bust points with both arms raised: the median over eight
-#: anny shapes built in A- and T-pose (0.985-1.007; ``python -m benchmarks rig``, "Bust with the
-#: arms raised").
+#: anny shapes built in A- and T-pose (0.985-1.007; ``python -m benchmarks rig`` at 81f6fbb).
 RAISED_ARM_BUST = 0.993
 #: With an arm raised, the acromion sits this far [m] outside the shoulder joint: the median of
 #: (arms-down shoulder width - raised-arms joint distance) / 2 over the same anny shapes (0.017-0.047).
 RAISED_ARM_SHOULDER_OUT = 0.029
 #: The upper arm's cut at 30 % reaches the armpit when its girth is more than this many times the
 #: cut's at 40 % (anny bodies: 1.03-1.06; GarmentCode's A-pose bodies: 1.27-1.35;
-#: ``python -m benchmarks measure_arm``).
+#: ``python -m benchmarks measure_arm`` at 81f6fbb).
 ARM_CUT_JUMP = 1.15
 
 

@@ -1,4 +1,4 @@
-"""Placement of a pattern's panels around a body: the start of the sewing phase (issue 3, item 6).
+"""Placement of a pattern's panels around a body: the start of the sewing phase.
 
 Each flat panel is wrapped isometrically (arc length along a cross-section = distance across
 the panel) onto a surface a little outside the body, so its rest shape is nearly unstretched
@@ -66,11 +66,8 @@ HORIZONTAL_SLOPE = 0.6
 SLEEVE_CAP_IN = 0.02
 #: A sleeve tube keeps the facing of its hint unless its caps then lie, on average, more than
 #: SLEEVE_TURN_RATIO times (and SLEEVE_TURN_GAIN [m]) farther from the armhole points they are
-#: sewn to than the best turn about the arm (tried every SLEEVE_TURN_STEP [deg]). The foreign
-#: benchmark's sleeves lie 2.8-8.7 cm from their armholes as hinted, at most 1.6 times (3.2 cm)
-#: the best turn's; a GarmentCode hint turned against its stitches (a rigged T-pose body) 16 cm,
-#: best 5 cm, and the sewing dragged the sleeves through the armholes (an edge stretched 6.4
-#: times; docs/benchmarks.md, "Sleeves turned to face their armholes").
+#: sewn to than the best turn about the arm (tried every SLEEVE_TURN_STEP [deg]): a hint turned
+#: against its stitches lets the sewing drag the sleeves through the armholes.
 SLEEVE_TURN_RATIO = 2.0
 SLEEVE_TURN_GAIN = 0.03
 SLEEVE_TURN_STEP = 15
@@ -78,7 +75,7 @@ SLEEVE_TURN_STEP = 15
 SEAM_MEET = 0.02
 #: ... but only on a body with an upper arm less than this far below horizontal [deg]: the meeting
 #: a T-pose (1 deg) and a raised arm (31 deg) need makes an A-pose's (48 deg) drape depend more on
-#: its mesh (docs/benchmarks.md, "Demo").
+#: its mesh.
 MEET_ARM = 40.0
 #: An upper arm less than this far below horizontal is raised [deg] (T-pose: 1; A-pose: 48).
 ARM_RAISED = 30.0

@@ -27,7 +27,7 @@ The method is geometric (no body model, no dependency beyond scipy):
 
 All lengths are shares of the body height H (crown to soles; the shin grows as H^0.61), read on
 anny bodies (MakeHuman's
-skeleton), whose joints the benchmark ``python -m benchmarks rig`` compares against. The torso is
+skeleton), whose joints the benchmark ``python -m benchmarks rig`` (at 81f6fbb) compared against. The torso is
 assumed upright (the spine is not bent); a limb may be moved, a leg up to about 45 degrees.
 """
 

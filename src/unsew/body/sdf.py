@@ -46,7 +46,7 @@ __all__ = ["BodySDF", "closest_point_on_triangles", "mesh_distance", "default_ca
 #: Bump when the build changes, so cached grids are rebuilt.
 _SDF_VERSION = 3
 #: Node-triangle pairs the band step takes at once (its temporaries are ~20 (pairs, 3) float64
-#: arrays: 1e6 pairs hold ~0.5 GB; docs/benchmarks.md, "The body's SDF: build memory").
+#: arrays: 1e6 pairs hold ~0.5 GB; ``python -m benchmarks sdf`` measures the peak).
 _BAND_PAIRS = 1_000_000
 #: Nodes closer than this to the surface get a neighbour sweep after propagation [m].
 _SWEEP_RADIUS = 0.06
@@ -266,8 +266,7 @@ class BodySDF:
         t0 = time.perf_counter()
         values, origin = _build_grid(verts, faces, voxel, margin)
         # the cache stores float32: round a fresh grid the same way, so a run is reproducible
-        # whether its grid was built or read (the drape of loose cloth amplifies the difference;
-        # docs/history.md, "Notes moved from docstrings")
+        # whether its grid was built or read (the drape of loose cloth amplifies the difference)
         values = values.astype(np.float32).astype(np.float64)
         sdf = cls(values, origin, float(voxel), build_seconds=time.perf_counter() - t0)
         if path is not None:
@@ -283,8 +282,7 @@ class BodySDF:
 
     def inflated(self, by: float) -> "BodySDF":
         """The same grid for the body grown outward by ``by`` [m] (every distance lowered by it):
-        contact then keeps cloth ``by`` farther from the body (measured with ``python -m benchmarks
-        placed --inflate``: docs/benchmarks.md, "The cloth's gap to the body"). ``by`` 0 returns
+        contact then keeps cloth ``by`` farther from the body. ``by`` 0 returns
         this grid itself."""
         if by == 0.0:
             return self

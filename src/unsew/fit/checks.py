@@ -3,24 +3,22 @@
 The re-dress check: the optimizer's drapes are warm-started, so a lower loss can come from
 steering the cloth along its path rather than from a better pattern. Phase two's best pattern, in
 its material, is dressed from scratch on the same mesh; unless it lies closer to the target than
-the graded pattern's drape, the graded pattern, its drape and the start material are the result
-(docs/history.md, "Re-dressing a fit's result").
+the graded pattern's drape, the graded pattern, its drape and the start material are the result.
 
-With ``checks.redress_meshes: 3`` the check judges on three meshes instead of one (issue 21: one
+With ``checks.redress_meshes: 3`` the check judges on three meshes instead of one (docs/decisions/005: one
 drape of a wide garment moves by more than phase two changes it, and the graded drape it is
 compared with was chosen among the material candidates' drapes for being close): both patterns are
 dressed from scratch on the fit's mesh and on the mesh spread's two, and phase two is kept if its
 mean distance lies below the graded pattern's (:func:`redress_on_three`).
 
 The mesh spread: the returned pattern dressed on two other triangulations; how far the folds move
-with the mesh alone is the floor under the result's distance to the target (docs/history.md,
-"The mesh floor").
+with the mesh alone is the floor under the result's distance to the target.
 
 Every drape from scratch these checks make is judged as the result is
 (:func:`unsew.sim.checks.check_dressed`): one that ends exploded, fallen, off the body or inside
 it is a failed drape, whatever its distance to the target. A drape torn at a shrunk neckline can
-lie close to the target; kept for that, it became the result and the fit failed at its last check
-(docs/benchmarks.md, "Drapes from scratch judged before they decide; a barrier against overstretched cloth").
+lie close to the target; kept for that, it would become the result and fail the fit's last check
+(docs/decisions/006).
 """
 
 from __future__ import annotations

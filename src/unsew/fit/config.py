@@ -9,8 +9,7 @@ A config file groups its options (``drape:``, ``material:``, ``optimizer:``, ``l
 Defaults follow the paper (4.1): Adam with learning rate 1e-3, betas (0.9, 0.999),
 lambda_open 0.1, lambda_mat 0.01, dt 0.05 s, 10-20 steps per drape; except the seam weight, 1.0
 here instead of the paper's 0.01, and the starting material, which the paper has the user pick
-from the library and ``material.start: auto`` picks by draping (the figures: docs/history.md,
-"Measurements behind the fit's defaults").
+from the library and ``material.start: auto`` picks by draping (docs/decisions/001 and 002).
 """
 
 from __future__ import annotations
@@ -39,11 +38,11 @@ GAMMA_NAMES = ("H00", "H01", "H11", "H22", "k")
 class MaterialSettings:
     """The fabric: where the fit starts and what phase two may change of it."""
 
-    start: str = "auto"  #: a library name (the paper's user choice), or "auto": grade in cotton, dress the graded pattern in each candidate, grade again in the `regrade` best others, scale the winner's stiffness (`refine`) and start from the drape closest to the target
+    start: str = "auto"  #: a library name (the paper's user choice), or "auto": the fabric whose drape of the graded pattern lies closest to the target, its stiffness then refined (docs/decisions/002)
     candidates: tuple[str, ...] = ()  #: library materials "auto" tries (empty: every material in the library)
     regrade: int = 2  #: "auto": how many of the best candidates other than cotton are graded again in their own fabric [-]
-    warm_steps: int = 40  #: "auto": each candidate fabric or stiffness settles this many steps (at drape.dt) from the drape of the pattern it is tried on instead of being dressed from scratch; 0: dressed from scratch [-]
-    check: bool = True  #: "auto": the chosen pattern and fabric dressed from scratch at the end; when that drape lies clearly farther from the target than the pattern graded in cotton (by 0.5 mm and 10 %), phase two starts from the cotton-graded pattern (unsew.fit.material._checked; docs/benchmarks.md, "The material choice checked by a drape from scratch") [-]
+    warm_steps: int = 40  #: "auto": steps (at drape.dt) each candidate fabric settles from the drape it is tried on; 0: dressed from scratch [-]
+    check: bool = True  #: "auto": the chosen pattern and fabric dressed from scratch; clearly farther (0.5 mm and 10 %) than the cotton-graded pattern: start from that one (unsew.fit.material._checked) [-]
     refine: int = 2  #: "auto": rounds of the stiffness search after the choice (stretch and bending scaled by 1/s and s, s = 2, sqrt 2, ...); 0: off [-]
     fit: tuple[str, ...] = GAMMA_NAMES  #: entries of Gamma phase two moves (the others keep the start's value, H01 its ratio to sqrt(H00 H11)); empty: the material stays fixed
     start_iteration: int = 20  #: iteration at which the material joins the variables [-]
@@ -75,11 +74,11 @@ class OptimizerSettings:
     warm_start: bool = True  #: start each drape from the previous iteration's (the paper); False: always from the graded drape
     friction_eps: float = 1e-2  #: slip speed below which friction is viscous in phase two's drapes (only) [m/s]
     panel_width: float = 0.1  #: a control point of a panel narrower than this (area / half perimeter) moves by lr x width / panel_width per step (waistbands: 3.6 cm, x0.36); 0: every point at lr [m]
-    bands: str = "free"  #: what phase two may change of a waistband (a panel open only along its top): "free" anything (at the panel_width factor), "height" its girth only (its points move along the band, never up or down it), "held" nothing (why free is the default: docs/benchmarks.md, "Waistbands in phase two")
-    seams: str = "soft"  #: "soft": only the seam loss pulls stitched edges to equal lengths; "held": after every step the two edges of each stitch are put back in the length ratio the graded pattern has (a pattern that sews; unsew.pattern.seams); "trued": the same once, on phase two's best iterate, whose drape is then draped on for one iteration's steps (why soft is the default: docs/benchmarks.md, "Seams held in phase two")
+    bands: str = "free"  #: what phase two may change of a waistband (a panel open only along its top): "free" anything, "height" its girth only, "held" nothing (docs/decisions/013)
+    seams: str = "soft"  #: stitched edge lengths: "soft" pulled by the seam loss; "held" put back in the graded ratio after every step; "trued" once, on the best iterate (unsew.pattern.seams; docs/decisions/013)
     tol: float = 1e-3  #: stop when the loss changed by less than this fraction over `patience` iterations [-]
     patience: int = 15  #: iterations over which convergence is judged [-]
-    rest_speed: float = 0.0  #: > 0: phase two starts from a drape at rest: when the graded drape, draped 10 more steps, ends with the 99th percentile of its vertex speeds above this, it is draped on until it falls below (at most `rest_steps`); 0: off, measured at 5e-3 and left off (docs/benchmarks.md, "Phase two from a drape at rest") [m/s]
+    rest_speed: float = 0.0  #: > 0: phase two starts from a drape at rest, the graded drape draped on until its 99th-percentile vertex speed falls below this; 0: off (docs/decisions/013) [m/s]
     rest_steps: int = 160  #: most steps the graded drape is let settle before phase two [-]
 
 
@@ -89,12 +88,12 @@ class LossWeights:
 
     curvature_weighted: bool = True  #: curvature-weighted Chamfer, eq. 7 (ablation: plain Chamfer)
     open: float = 0.1  #: open-contour Chamfer, eq. 6 [-]
-    seam: float = 1.0  #: seam-length loss, eq. 8 [-] (paper: 0.01; see the module docstring)
+    seam: float = 1.0  #: seam-length loss, eq. 8 [-] (paper: 0.01; docs/decisions/001)
     material: float = 0.01  #: material range penalty [-]
     prior: float = 0.0  #: pull towards the graded pattern: mean squared 2D rest-vertex move [m^2] (0: the paper's loss) [-]
-    area: float = 0.0  #: pull of the pattern's total area towards the target's surface area, (A / A_T - 1)^2 (unsew.losses.area; 0: the paper's loss; measured at 0.005 and left off: docs/benchmarks.md, "The target's area") [m^2]
-    panel_area: float = 0.0  #: pull of each panel's rest area towards its graded area, mean over panels of (A_p / A_p0 - 1)^2 (unsew.losses.panel_area; 0: the paper's loss; measured at 0.2 and 0.05 and left off: docs/benchmarks.md, "Fresh cases of session 33; each panel's area held in phase two") [-]
-    stretch: float = 1e-4  #: barrier against overstretched cloth: sum over the drape's triangle edges of relu(stretch - stretch_bound)^2, zero while every edge is within the bound (unsew.losses.stretch; not in the paper; 0: off; why: docs/benchmarks.md, "Drapes from scratch judged before they decide; a barrier against overstretched cloth") [-]
+    area: float = 0.0  #: pull of the pattern's total area towards the target's surface area, (A / A_T - 1)^2 (unsew.losses.area; 0: off, docs/decisions/013) [m^2]
+    panel_area: float = 0.0  #: pull of each panel's rest area towards its graded area, mean of (A_p / A_p0 - 1)^2 (unsew.losses.panel_area; 0: off, docs/decisions/013) [-]
+    stretch: float = 1e-4  #: barrier against overstretched cloth, sum over drape edges of relu(stretch - stretch_bound)^2 (unsew.losses.stretch; not in the paper; docs/decisions/006) [-]
     stretch_bound: float = 1.5  #: edge stretch (length over rest length) the barrier lets pass free [-]
     target_points: int = 8000  #: target vertices kept for the Chamfer (random subset, seeded) [-]
 
@@ -105,7 +104,7 @@ class CheckSettings:
 
     redress: bool = True  #: dress the fitted pattern from scratch; unless it lies closer to the target than the graded drape, return the graded pattern
     mesh_spread: float = 0.04  #: dress the returned pattern on meshes of edge length x (1 -/+ mesh_spread) and report their distance to the target (0: skip) [-]
-    redress_meshes: int = 3  #: meshes the re-dress check judges on: 3, both patterns dressed from scratch on the fit's mesh and the mesh spread's two, compared by their means (unsew.fit.checks; with mesh_spread 0 there are no other meshes, and when the time limit would not allow it: one); 1, phase two's pattern dressed from scratch on the fit's mesh against the graded drape (docs/benchmarks.md, "Phase two judged on three fresh drapes") [-]
+    redress_meshes: int = 3  #: meshes the re-dress check judges on: 3, both patterns dressed from scratch on the fit's mesh and the mesh spread's two, means compared; 1, the fit's mesh alone (unsew.fit.checks; docs/decisions/005) [-]
 
 
 @dataclass(frozen=True)
@@ -122,13 +121,13 @@ class FitConfig:
     base: str = ""  #: base pattern: a garment type or library base name (unsew.pattern.base.BASES), or a GarmentCode JSON path; "" = chosen by draping among the library's bases of meta.json's garment type
     base_choice_edge: float = 0.04  #: mesh edge length of the candidate drapes of the automatic base choice [m]
     grading: bool = True  #: run linear grading before the optimization (ablation: False)
-    area: str = "target"  #: "target": grading scales each graded pattern to the target's surface area (unsew.grading.area) and phase two holds its total rest area (its steps end with one scaling of every panel about its centroid); "free": the paper's fit, the area goes where grading and the loss take it (measured: docs/benchmarks.md, "fits sized to the target's area")
-    side_seams: str = "girth"  #: "none": grading leaves the side seams where the base has them (the paper's Algorithm 2); "girth" (default): for a garment hanging from the shoulders, grading also moves the side-seam points between the hips and the armpits by the target's torso girth at their height minus the drape's, and the waisted dress bases get their waist as a vertex (unsew.grading.profile; measured: docs/benchmarks.md, "The side seams graded by girth, the default")
-    band_gap: str = "target"  #: "target" (default): for a garment that hangs from its band (a skirt: no target contour on a leg), grading sizes the waistband to the target's top loop less the length the target's contact gap adds where it presses on the body (newton's cloth rests 4 mm off, unsew's 1 mm: about 1.9 cm), and carries the band's girth edit down its sides into the waist seam below (unsew.grading.band_gap; measured: docs/benchmarks.md, "Waistbands sized for unsew's contact"); "none": the target's loop as measured, the band's top edited alone
-    contact: str = "default"  #: "default": every drape meets the body with drape.contact_stiffness below drape.contact_threshold; "target": the cloth rests where the target's does, the threshold set to the target's gap to the body (its vertices' 1st percentile distance, clamped to 2-10 mm) and the stiffness to 1e9 N/m^4 (unsew.fit.contact; docs/benchmarks.md, "The contact read from the target")
+    area: str = "target"  #: "target": grading scales each graded pattern to the target's surface area and phase two holds its total rest area (unsew.grading.area; docs/decisions/004); "free": the paper's fit
+    side_seams: str = "girth"  #: "girth": for a garment hanging from the shoulders, grading moves the side seams by the target's torso girth (unsew.grading.profile; docs/decisions/008); "none": the paper's Algorithm 2
+    band_gap: str = "target"  #: "target": a garment hanging from its band (a skirt) gets its band sized to the target's top loop less the target's contact gap (unsew.grading.band_gap; docs/decisions/009); "none": the loop as measured
+    contact: str = "default"  #: "default": drape.contact_stiffness below drape.contact_threshold; "target": the threshold at the target's gap to the body, a stiffer contact (unsew.fit.contact; docs/decisions/012)
     seed: int = 0  #: seed of every random choice [-]
     device: str = "cpu"  #: torch device for the simulation ("cpu", "cuda")
-    time_limit: float = 540.0  #: seconds the fit (from the command's start, loading the case and its body included, to the checks; not the writing of the result) aims to end within: the material choice's optional steps, phase two's iterations, the three-mesh re-dress check and the mesh spread give way (unsew.fit.budget); 0: no limit [s]
+    time_limit: float = 540.0  #: seconds the fit aims to end within, from the command's start; the material choice's optional steps, phase two's iterations, the three-mesh re-dress and the mesh spread give way (unsew.fit.budget); 0: no limit [s]
     drape: DrapeSettings = field(default_factory=DrapeSettings)  #: meshing, sewing, settling and drape steps
     material: MaterialSettings = field(default_factory=MaterialSettings)
     optimizer: OptimizerSettings = field(default_factory=OptimizerSettings)

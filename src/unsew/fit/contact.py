@@ -8,7 +8,7 @@ waist s nearer the body is a loop 2 pi s shorter, which phase two then makes up 
 pattern. With ``contact: target`` the fit reads the gap from the target and body it is given and
 drapes with a contact that rests the cloth there: the threshold at the gap, the stiffness
 CONTACT_STIFF, under which a cloth pressing with p sinks s = sqrt(p / kc) into the zone (1 kPa, a
-band's pressure: 1 mm). Measured: docs/benchmarks.md, "The contact read from the target".
+band's pressure: 1 mm). Not the default: docs/decisions/012.
 """
 
 from __future__ import annotations

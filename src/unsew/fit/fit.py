@@ -199,7 +199,7 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
         t0 = time.perf_counter()
         redress = redress_check(pattern, uv, material, s, case.body, target, sdf, cfg, progress=bar, log=log)
         # the re-dress is a drape of the result from scratch, timed now: a closer estimate of the
-        # mesh spread's two drapes than the base's (docs/benchmarks.md, "The mesh spread's estimate")
+        # mesh spread's two drapes than the base's
         drape_s = max(drape_s, time.perf_counter() - t0)
         if cfg.checks.redress_meshes == 3 and cfg.checks.mesh_spread > 0 and redress.fit_redressed_mm is not None:
             if budget.fits(5 * drape_s):  # the graded pattern on three meshes, phase two's on two more

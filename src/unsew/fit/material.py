@@ -7,9 +7,7 @@ in cotton (``material.check``, :func:`_checked`). Its hand-off is a :class:`Mate
 
 Each candidate is let settle (``material.warm_steps`` steps, :func:`unsew.dress.settle`) from the
 drape it competes with, the pattern already sewn, instead of being dressed from scratch (placement,
-sewing and settling), on one SimModel of the start's mesh. Measurements: docs/benchmarks.md,
-"Material choice: settled, not dressed"; docs/history.md, "Measurements behind the fit's
-defaults"."""
+sewing and settling), on one SimModel of the start's mesh (docs/decisions/002)."""
 
 from __future__ import annotations
 
@@ -207,8 +205,7 @@ def _checked(first: Start, chosen: Start, table: list, body, target: Target, sdf
     """The choice checked by a drape from scratch, as a result is judged (``material.check``).
 
     The candidates were let settle from another fabric's drape, and a settled drape can lie
-    closer than the same pattern and fabric dressed from scratch (docs/benchmarks.md, "The
-    material choice checked by a drape from scratch"). So the chosen pattern is dressed from scratch in its fabric, and when
+    closer than the same pattern and fabric dressed from scratch (docs/decisions/002). So the chosen pattern is dressed from scratch in its fabric, and when
     that drape lies farther from the target than ``first``'s (graded in cotton, a drape from
     scratch) by more than both :data:`CHECK_MARGIN_MM` and :data:`CHECK_MARGIN_REL` of it (what
     two drapes from scratch of one pattern on two meshes differ by), phase two starts from ``first``;

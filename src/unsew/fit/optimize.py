@@ -16,8 +16,7 @@ seven orders of magnitude and they stay positive; H01 = 0.995 tanh(phi0 + theta_
 so H stays positive definite. The material range penalty of the paper is kept on Gamma itself.
 
 The result is the iterate of lowest loss, pattern-only or with the material; when a pattern-only
-iterate wins, the reported material is the start material (docs/history.md, "Measurements
-behind the fit's defaults").
+iterate wins, the reported material is the start material.
 """
 
 from __future__ import annotations
@@ -140,8 +139,7 @@ def step_scales(params, panel_width: float) -> torch.Tensor:
 
     Why: Adam moves every coordinate by about lr per step whatever its gradient's size, and the
     same move is a small change of a 30 cm wide trouser leg but a large one of a 4 cm waistband;
-    scaled, each panel's relative edit per step is about the same (measured: docs/benchmarks.md,
-    "Foreign benchmark: fits")."""
+    scaled, each panel's relative edit per step is about the same."""
     nk = params.n_k
     if panel_width <= 0:
         return torch.ones(nk, 1, dtype=torch.float64)
@@ -170,7 +168,7 @@ def band_projectors(params, bands: tuple[str, ...] | list[str], mode: str) -> to
     point it moves still at its placed height: its step loses the component along B^T up, B the
     (2, 2) block of L_c from the point to the band's control point, up the band's upright 2D
     direction (:func:`unsew.grading.grade.upright`). A band then changes its girth, as grading
-    changes it, never its height (docs/benchmarks.md, "Waistbands in phase two")."""
+    changes it, never its height (docs/decisions/013)."""
     if mode == "free" or not bands:
         return None
     c, nk = params.controls, params.n_k
@@ -293,8 +291,7 @@ class PhaseTwo:
         Every iteration drapes from rest where the last one ended, so a start still moving (a wide
         skirt's hem) goes on settling through the iterations and the loss climbs whatever the
         steps do, and the start, measured before the settling, stays the best iterate. Off by
-        default: on the one foreign case measured, phase two's loss climbed from the settled
-        start as well (docs/benchmarks.md, "Phase two from a drape at rest").
+        default (docs/decisions/013).
 
         A drape of REST_CHUNK steps probes the start: when the 99th percentile of its vertex
         speeds ends above ``optimizer.rest_speed`` [m/s] it is draped on (velocities kept) by such

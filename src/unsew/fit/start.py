@@ -155,16 +155,13 @@ def arm_openings(verts, faces, skeleton, *, contours=None) -> tuple[int, int]:
 #: them; the dresses' bases differ at the waist (waisted and flared, or straight), between the
 #: openings, where grading leaves them. On the whole garment the straight dress, whose hem lies
 #: nearer most targets' before grading, was chosen for waisted dresses, and their fits ended
-#: farther (docs/benchmarks.md, "A straight dress in the library; dresses chosen over the torso").
+#: farther (docs/decisions/007).
 TORSO_CHOICE = ("dress",)
 TORSO_BAND_BELOW_ARMPIT = 0.05  #: [m]
 #: A runner-up base whose drape lies within this ratio of the best's (on the distance the choice is
 #: made on, with the same arms) is a tie: both are graded and the runner-up kept when its graded
-#: drape is clearly closer (:func:`start_chosen`). The candidates' distances move by up to 17 %
-#: when their coarse mesh's edge changes by 2 mm (docs/benchmarks.md, "How noisy is that choice
-#: between a band and none?");
-#: on GarmentCode's waisted sleeveless dress on its "all" body the straight base won by 9 % over
-#: the torso (15.4 against 16.7 mm) and graded to 14.5 mm, the waisted one to 11.7.
+#: drape is clearly closer (:func:`start_chosen`): the candidates' distances move by more than
+#: that with their coarse mesh alone (docs/decisions/007).
 BASE_TIE = 1.10
 
 

@@ -124,11 +124,9 @@ def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alte
 
     The target is dressed the way a fit dresses its patterns: ``settings``
     (:class:`~unsew.sim.drape.DrapeSettings`) defaults to :class:`~unsew.fit.config.FitConfig`'s
-    on a 3 cm mesh (pass a fit's own when it differs).
-    Dressed with dress()'s shorter defaults (60 + 20 steps against 80 + 40), a target was an
-    earlier snapshot of a garment that is still settling and creeping: the true skirt pattern of
-    benchmark case skirt_02 in its true fabric, dressed like a fit, lay 2.89 mm from its target
-    then and 0.00 mm now (benchmarks/bench_fabric_gap.py). A body written into the case
+    on a 3 cm mesh (pass a fit's own when it differs), so that the true pattern in the true fabric,
+    dressed like a fit, lies on its target (dress()'s shorter defaults leave a garment still
+    settling). A body written into the case
     (``body_meta=None``) is written first and the target draped on it as loaded back (see below).
     """
     alteration = alteration or DEFAULT_ALTERATIONS[garment]

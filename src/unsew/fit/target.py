@@ -47,7 +47,7 @@ class Target:
         """Mean surface distance [mm] between the drape ``x`` (N, 3) [m] on ``faces`` and the target.
 
         Choices are made on this figure, not on the fit's squared loss, which tells fabrics apart
-        far less (docs/history.md, "Measurements behind the fit's defaults").
+        far less (docs/decisions/002).
         """
         return surface_metrics(np.asarray(x), faces, self.verts, self.faces, n_samples=n_samples,
                                seed=self.seed)["chamfer_mm"]

@@ -1,7 +1,7 @@
 """Point-to-mesh queries on libigl's AABB tree: closest points, distances, ray hits, inside tests.
 
-libigl was chosen over fcpw and embreex on the figures of ``python -m benchmarks geometry``
-(docs/benchmarks.md, "Geometry core and memory"): exact in float64, memory that grows with the
+libigl was chosen over fcpw and embreex on the figures of ``python -m benchmarks geometry``:
+exact in float64, memory that grows with the
 queries and triangles only (never with their product, unlike the KD-tree-of-centroids search it
 replaces), and one library for closest points, winding numbers and rays.
 

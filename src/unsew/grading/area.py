@@ -1,8 +1,8 @@
 """The pattern sized to the target's surface area (not in the paper; the fit's ``area: target``).
 
 Cloth barely stretches, so a draped garment's surface area is close to its pattern's total panel
-area, while the Chamfer distance cannot see area folded away (how close: docs/benchmarks.md,
-"The target's area"). :func:`scale_to_area` scales every panel about its own
+area, while the Chamfer distance cannot see area folded away (docs/decisions/004).
+:func:`scale_to_area` scales every panel about its own
 area centroid by one factor s so that the pattern's total area is the target's. Every length
 changes by s, so sewn edges still match; Bezier curvature is relative to its edge and follows, a
 circular arc's radius [m] is scaled with it. A panel's area centroid keeps its place on the body
@@ -41,7 +41,7 @@ def scale_to_area(pattern, area: float, *, bands=()):
     graded size, and the edges sewn to it keep their girth (:func:`_band_seams_kept`), so s is
     found again (a few rounds) for the other panels to take the whole change. A band sits where
     its girth meets the body: scaled with the rest, it loses grading's girth edit and hangs where
-    that girth puts it (docs/benchmarks.md, "Bands kept out of the area scaling").
+    that girth puts it.
     """
     if not area > 0:
         raise ValueError(f"area must be positive, got {area}")

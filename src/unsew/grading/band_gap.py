@@ -13,7 +13,7 @@ keeps where it presses (the 1st percentile of its vertices' distances to the bod
 the loop's own median distance). Loops farther from the body than ``g + PRESSED_TOL`` (a loose
 band, a hem) are read as they are; only waistband items use the reading, and only on a garment
 that hangs from its band (:func:`hangs_from_band`: a skirt; trousers and shorts are held up by
-their crotch as well). Measured: docs/benchmarks.md, "Waistbands sized for unsew's contact".
+their crotch as well). Why the default: docs/decisions/009.
 """
 
 from __future__ import annotations
@@ -35,7 +35,7 @@ OWN_GAP = COLLISION_THICKNESS
 
 #: A target loop presses on the body when its median distance to it is within the target's gap
 #: plus this [m]: the top loops of the banded foreign targets read 3.8-4.0 mm against gaps of
-#: 3.5-4.0 (``python -m benchmarks band_gap``), hems and leg openings 8 mm and more.
+#: 3.5-4.0 (``python -m benchmarks band_gap`` at 81f6fbb), hems and leg openings 8 mm and more.
 PRESSED_TOL = 2e-3
 
 #: Percentile of the target vertices' distances to the body read as its cloth's contact gap [-]

@@ -4,7 +4,7 @@ Algorithm 2 moves an open curve by the axial distance between the paired contour
 bone. Where the cloth hangs along the bone (a sleeve, a straight hem) the two agree; where it
 does not (a flared skirt whose waist rides up the hips), the drape answers a pattern change
 only in part and the axial distance under-reads the pattern (``python -m benchmarks grading
---drape sim``, the skirt's ``axial cm`` column; docs/history.md). The cloth length reads the change in the cloth itself: the mean, over a contour's vertices, of the shortest path
+--drape sim``, the skirt's ``axial cm`` column; docs/decisions/003). The cloth length reads the change in the cloth itself: the mean, over a contour's vertices, of the shortest path
 *along the surface* to the garment's top contour (the neckline of a top or a dress, the waist of
 trousers or a skirt). A path that runs across folds and flare follows them, so trousers whose
 longer legs fold on the feet still read their length. bench_grading prints, per contour, the

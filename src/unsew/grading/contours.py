@@ -76,8 +76,7 @@ MIN_ROUNDNESS = 0.2
 INWARD_RINGS = 3
 #: A slit: the loop climbs along its bone into the cloth by at least SLIT_RISE [m] in segments
 #: steeper than SLIT_STEEP (|axial step| / step length) and comes back down the same way. A hem's
-#: folds wave across the bone, a sloped hem climbs gently: neither is cut (what it finds on the
-#: foreign benchmark: docs/benchmarks.md, "A slit is no girth").
+#: folds wave across the bone, a sloped hem climbs gently: neither is cut.
 SLIT_RISE = 0.04
 SLIT_STEEP = 0.7
 #: Segments at a slit's top that may lie flat between its climb and its return.

@@ -212,7 +212,7 @@ def grade(
     remesh: ``"always"``: every graded pattern is meshed afresh before it is draped, so X_LG is
         reproducible from U_LG alone; ``"stretched"``: only when a rest edge grew beyond
         :data:`REMESH_STRETCH` times the edge length, else the base mesh is moved with the
-        pattern (:func:`moved_mesh`; docs/history.md, "the graded pattern meshed afresh").
+        pattern (:func:`moved_mesh`).
     length: how far a contour's open curve moves: ``"cloth"``, by the change of cloth length to
         the garment's top opening, target minus drape, read on the pattern's rest mesh
         (:mod:`unsew.grading.cloth`; contours without such a path move axially); ``"axial"``, by
@@ -407,13 +407,9 @@ def source_girth(s: PlacedContour, t: PlacedContour, rest: float | None) -> tupl
 
     A loop longer than its own cloth edge is stretched, and one longer than its convex hull is
     pleated. When the source loop is both, beyond the target's pleats (:data:`CRUMPLE_TOL`) and
-    its rest length (:data:`STRETCH_TOL`), the drape has caught the opening, not sized it: a
-    dress cuff graded 10 % narrower draped to a 0.339 m loop around a 0.306 m hull from 0.304 m
-    of edge, against the target's 0.308 m loop around 0.306 m (``benchmarks/bench_contours.py
-    --garment dress --flip --passes 1``).
-    Read by its length, the next pass narrowed it 3.1 cm more and the cuff crumpled further
-    (0.394 m around 0.228 m); read from its hull, it was left alone and draped smooth (0.301 m
-    around 0.299 m). Its girth is then the hull times the target's crumple. A loop pleated by
+    its rest length (:data:`STRETCH_TOL`), the drape has caught the opening, not sized it: read
+    by its length, the next pass would narrow it further and crumple it more; its girth is then
+    the hull times the target's crumple. A loop pleated by
     its own extra cloth is not stretched, and its length is its girth: the base skirt's flared
     hem, 1.722 m around a 1.520 m hull from 1.722 m of edge, graded to a narrower target.
     """
@@ -451,12 +447,11 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
 
     A waistband (:func:`_is_band`: open only along its top) keeps its height: its edit loses its
     upright component, and its waist's upward move lengthens the panels sewn to its bottom instead
-    (:func:`_carry_down`); held like the others, the band took the whole change and grew taller
-    (docs/benchmarks.md, "Band grading"). Not when the band's girth explains the move
+    (:func:`_carry_down`); held like the others, the band took the whole change and grew taller.
+    Not when the band's girth explains the move
     (:func:`_girth_explains`): a band tighter than the target's and lower, or looser and
     higher, sits where its girth meets the body, and the girth edit moves it; carried down, a
-    too-loose band's low seat lengthens the panels under it and puts their hips too low
-    (docs/benchmarks.md, "Bands kept out of the area scaling").
+    too-loose band's low seat lengthens the panels under it and puts their hips too low.
 
     Why the tops are held: the panel's 2D position also sets where it is placed around the body
     before sewing. A waist found 3.5 cm higher on the target than on the base drape
@@ -525,7 +520,7 @@ def armhole_down(pattern, positions: np.ndarray, curve, controls, bone) -> np.nd
     Why: a sleeveless bodice's armhole lies above and beside the panel's middle, so its outward
     direction points out and up, while an arm contour found further down the arm on the target
     is a deeper armhole; moved out and up, the armhole's lower end flared out from the side seam
-    (docs/benchmarks.md, "Armholes deepened under a hanging arm"). A sleeve's hem points down
+    A sleeve's hem points down
     the arm already and is left to the paper's edit.
     """
     if bone is None or not bone.part.endswith("arm") or float(bone.direction[1]) > -ARM_HANGS:
@@ -604,9 +599,7 @@ def _band_girth_down(pattern, controls, C0: np.ndarray, out: np.ndarray, band) -
     bottom edge there): the band widens or narrows as a whole and the waist seam under it with it.
 
     Why: a band graded by its top loop alone became a trapezoid whose bottom, and the skirt's top
-    sewn to it, kept the base's girth. The midi A-line's band on the tall thin body narrowed to
-    0.80 m at its top over a 0.85 m waist seam (the true pattern's: 0.81 m both), and the skirt
-    hung 4 to 6 cm below the target's (docs/benchmarks.md, "Waistbands sized for unsew's contact")."""
+    sewn to it, kept the base's girth, and the skirt hung below the target's (docs/decisions/009)."""
     p = controls.panel_names.index(band.name)
     cidx = controls.of_panel(p)
     world = band.to_world(C0[cidx])
@@ -673,8 +666,7 @@ def _carry_down(pattern, controls, C0: np.ndarray, out: np.ndarray, name: str, r
     so its top stays sewn to the band and its placement is unchanged. A dart's tip
     (:func:`_dart_tips`) whose dart opens at the top stays with the top: the dart keeps its
     length. Carried down with the rest, a tip dragged the rest mesh beside its narrow wedge across
-    the dart's legs, and the edit was scaled back to avoid inverted triangles (docs/benchmarks.md,
-    "Fresh cases of session 22")."""
+    the dart's legs, and the edit was scaled back to avoid inverted triangles."""
     if name not in controls.panel_names:
         return
     p = controls.panel_names.index(name)

@@ -2,7 +2,7 @@
 
 Linear grading moves an open curve by the offset measured between two drapes; nothing in that
 offset knows how much panel there is to move into, nor where the body holds a waist up. Two
-failures seen on garments unsew did not make (docs/benchmarks.md, foreign fits):
+failures seen on garments unsew did not make (the foreign benchmark):
 
 - the sleeved base dress graded towards a sleeveless target: each cuff was asked 26 cm up a
   sleeve whose side seams are shorter than that, and the sleeve became a zero-width spike that
@@ -176,8 +176,7 @@ def bounded_band(rest: float, target_length: float, girth_change: float) -> tupl
     loop minus the drape's).
 
     A band is a stiff strip held by the body: its top edge drapes at rest or stretched, never
-    gathered shorter than its cloth (true of every banded foreign target: docs/benchmarks.md,
-    "Waistbands bounded by the target's top loop"). Graded by the drapes' difference alone, a band
+    gathered shorter than its cloth (true of every banded foreign target). Graded by the drapes' difference alone, a band
     whose own drape gathered it would come out longer than the target's loop and slide down.
     """
     if not rest > 0 or rest + girth_change <= target_length:

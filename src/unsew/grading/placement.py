@@ -9,8 +9,7 @@ on the target is read as the band's fit or held at its height (:func:`unsew.grad
 because moving the waist curve would also lengthen the panels. The placement is not the pattern's
 shape, so it is chosen as the fabric is, by draping: the graded pattern is dressed again with every
 panel lifted by half and by all of the height between the target's top opening and its drape's,
-and the closest of the three drapes (mean surface distance) is kept. Measured:
-docs/benchmarks.md, "A lower garment placed at the target's waist".
+and the closest of the three drapes (mean surface distance) is kept.
 """
 
 from __future__ import annotations

@@ -3,7 +3,7 @@
 Algorithm 2 grades the open curves (hems, cuffs, necklines, armholes) and leaves the seams
 between them where the base has them; a waisted base's waist and hips, points on its side seams,
 keep the base's girth there, and the area scaling makes up the missing cloth by lengthening the
-garment (docs/benchmarks.md, "the side seams graded by girth"). Here, for a garment that hangs
+garment (docs/decisions/008). Here, for a garment that hangs
 from the shoulders, each side-seam point between :data:`BELOW_HIP` under the hips and
 :data:`BELOW_ARMPIT` under the armpits moves across its panel by its share of the target's torso
 girth at the point's drape height minus the drape's (:func:`torso_girth`): one more term of each

@@ -5,8 +5,8 @@
 
 A(U) [m^2] is the summed area of the rest triangles of every panel (U, (Nu, 2) [m]), A_T [m^2]
 the summed area of the target's triangles. Cloth barely stretches, so a garment's surface area
-is close to its pattern's area, while the Chamfer distance cannot see area hidden in folds (how
-close, and what the term does to the fit: docs/benchmarks.md, "The target's area"). Only for a
+is close to its pattern's area, while the Chamfer distance cannot see area hidden in folds
+(docs/decisions/004 and 013). Only for a
 target that is one whole garment surface: a scan with holes or a doubled layer gives a wrong A_T.
 """
 

@@ -9,8 +9,7 @@ cloth comes from: a fold can be fed from the panel beside it as well as from its
 two moves area between panels at an unchanged total (with ``area: target`` it cannot change the
 total at all) and the pattern drifts from the one grading sized panel by panel. The term resists
 that drift, relative to each panel's size, so a 4 cm waistband weighs as much as a skirt panel
-(how it trades against the Chamfer: docs/benchmarks.md, "Fresh cases of session 33; each
-panel's area held in phase two").
+(how it trades against the Chamfer: docs/decisions/013).
 """
 
 from __future__ import annotations

@@ -5,7 +5,7 @@
 over all 2D rest vertices U (Nu, 2) [m], u0 the graded pattern the optimization starts from. It
 keeps phase two from explaining what the pattern cannot (where one drape's folds happened to land,
 a fabric the material fit has not found) by moving the pattern away from a graded one that is
-already close: measured with bench_fit (docs/benchmarks.md). A rigid move of a whole panel costs too,
+already close. A rigid move of a whole panel costs too,
 which also pins the 2D placement the simulator ignores.
 """
 

@@ -11,7 +11,7 @@ Why: the Chamfer sees where the draped surface lies, not how hard the cloth is p
 there. In a soft fabric phase two can hold a dress up by shrinking an opening (a neckline) until
 the drape hangs from it stretched two or three times its rest length: the distance falls while
 the pattern stops being one a fabric could be sewn from, and a drape of it from scratch can tear
-an edge further, failing the fit's last check (docs/benchmarks.md, "Drapes from scratch judged before they decide; a barrier against overstretched cloth").
+an edge further, failing the fit's last check (docs/decisions/006).
 """
 
 from __future__ import annotations

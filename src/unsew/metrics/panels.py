@@ -20,8 +20,8 @@ the estimate has and the design not) get three area errors in :func:`pattern_met
   unmatched true panel + the area of every unmatched estimated panel) / sum A_gt: the area-weighted
   mean of the per-panel errors in which a missing true panel counts 100 % of its area and an extra
   estimated panel its whole area. It is at least ``area_error_total_rel`` and, when the panels
-  match one to one, the area-weighted mean of the per-panel errors. This is the figure issue 21's
-  "total panel area error" bar is judged on (docs/benchmarks.md).
+  match one to one, the area-weighted mean of the per-panel errors. This is the figure the foreign
+  benchmark's panel area bar is judged on (``python -m benchmarks foreign_fit``).
 
 Halves (:func:`merge_halves`): GarmentCode draws a torso as a left and a right half sewn at the
 centre and a sleeve as a front and a back half, where unsew's bases have one panel. After the one

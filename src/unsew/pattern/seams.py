@@ -4,8 +4,7 @@ Two edges stitched together must be as long as each other, up to the ease the pa
 drafted with (a sleeve cap a little longer than its armhole). Phase two moves the control points
 by gradient steps on the Chamfer distance; its seam loss (:mod:`unsew.losses.seam`) is soft, so
 without a hold a fitted pattern can come out with dart legs or side seams whose lengths differ
-by a centimetre or more: a pattern that does not sew (docs/benchmarks.md, "Seams held in phase
-two").
+by a centimetre or more: a pattern that does not sew (docs/decisions/013).
 
 Edge lengths in K. :meth:`unsew.pattern.params.PatternParams.to_pattern` puts each panel corner
 at ``uv(K)``; a Bezier edge's curvature is relative to its chord and a circular arc's radius is

@@ -55,7 +55,7 @@ HEAT_CMAP = "unsew_heat"
 #: Depth bias [m] of the body in the painter's sort: a body face is drawn as if this much further
 #: from the camera, so cloth lying a few millimetres over the body is not painted over by body
 #: faces whose centroids happen to be nearer (the body "showing through"; measured by
-#: ``python -m benchmarks render_bleed``, see docs/benchmarks.md).
+#: ``python -m benchmarks render --bleed``).
 BODY_DEPTH_BIAS = 0.02
 _INSIDE_DIM = 0.78  # faces seen from their back side (the inside of a garment) are dimmer
 _LIGHT = np.array([-0.55, 0.5, 0.75])  # in camera coordinates (right, up, towards the viewer)

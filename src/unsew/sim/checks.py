@@ -21,8 +21,7 @@ Checks, in order (the first that fails is the reason):
 5. ``inside the body``: more than :data:`INSIDE_MAX_PCT` % of the vertices are inside it.
 
 The thresholds are failure bounds, far from a good drape's figures (a good drape has < 0.5 %
-inside, stretch below 1.5); docs/benchmarks.md ("Draping foreign patterns") lists the figures
-measured on good and bad drapes.
+inside, stretch below 1.5).
 """
 
 from __future__ import annotations

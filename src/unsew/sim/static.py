@@ -1,5 +1,5 @@
 """Quasi-static drape: the equilibrium of the total energy, with gradients by the implicit
-function theorem (issue 4, "Beyond the paper").
+function theorem (not in the paper).
 
 Energy (the dynamic drape's, without kinetic terms and friction), at positions x (N, 3) [m]:
 
@@ -33,8 +33,7 @@ conjugate gradients preconditioned with the Cholesky factor of the projected mat
 the true derivative of x*. ``adjoint="projected"`` uses that factor alone (one solve, cheaper,
 approximate: the projection drops compressive stress, the bending curvature term and the SDF's
 curvature). tests/gradients/test_sim_static_grad.py checks the exact one against central
-differences (1e-5 relative); the projected one is only roughly aligned with it
-(figures in docs/history.md, "Notes moved from docstrings"). The exact products
+differences (1e-5 relative); the projected one is only roughly aligned with it. The exact products
 assume the SDF's normal is the gradient of its distance (true of the analytic SDFs; the body
 grid's trilinear distance and its normals agree only to the grid's accuracy).
 """

@@ -138,7 +138,7 @@ def _darted(m: Measurements) -> Pattern:
     straight hip line to the top; the darts take DART_SHARE of the hip-to-waist difference, so
     the side seam turns less at the hips than the pencil's, and the cloth over the hips and
     seat is shaped as a darted design's is: a dartless skirt cut to a darted design's outline
-    drapes differently (docs/benchmarks.md, "Fresh cases of session 22").
+    drapes differently.
 
     Edges of each panel (counter-clockwise from the hem): 0 hem, 1 right side, 2 right hip
     line, 3 top right of the darts, 4-5 right dart's legs, 6 top between the darts, 7-8 left

@@ -1,0 +1,49 @@
+"""benchmarks/report.py: docs/benchmarks.md is the page the committed records make, and a record
+becomes the bars, a row per garment type and a row per case; a bad record is refused in one line."""
+
+import json
+
+from benchmarks_loader import load_benchmark, markdown_rows
+
+
+def test_committed_page_is_the_one_the_records_make(capsys):
+    assert load_benchmark("report").main(["--check"]) == 0, capsys.readouterr().out
+
+
+def test_a_record_becomes_bars_garments_and_cases(tmp_path):
+    mod = load_benchmark("report")
+    ff = load_benchmark("bench_foreign_fit")
+    cases = ff.case_dirs()[:2]
+    rec = {}
+    for c, cf in zip(cases, (4.0, 50.0)):
+        meta = json.loads((c / "meta.json").read_text())
+        rec[c.name] = {"case": c.name, "garment": meta["garment"], "code": f"abc1234 (ran at {c.name})", "exit": "ok",
+                       "cf_base_mm": 60.0, "cf_graded_mm": 10.0, "cf_final_mm": cf, "time_s": 100.0,
+                       "total_base_pct": 9.0, "total_final_pct": 1.0}
+    (tmp_path / "fits.json").write_text(json.dumps(rec))
+    (tmp_path / "results").mkdir()
+    (tmp_path / "results" / "x.json").write_text(json.dumps(
+        {"title": "A table", "command": "python -m benchmarks x", "commit": "def5678", "rows": [{"a": 1.5}]}))
+    out = tmp_path / "b.md"
+    assert mod.main(["--record", str(tmp_path / "fits.json"), "--results", str(tmp_path / "results"),
+                     "--out", str(out)]) == 0
+    text = out.read_text()
+    rows = markdown_rows(text)
+    assert {"figure": "Chamfer within max(5 mm, 1.5 x floor)", "value": "1 of 2"} in rows  # 50 mm is past any floor here
+    case_rows = [r for r in rows if r.get("case") in rec]
+    assert [r["commit"] for r in case_rows] == ["abc1234", "abc1234"]
+    assert "## A table" in text and "def5678" in text and {"a": "1.50"} in rows
+    assert f"2 of {len(ff.case_dirs())} cases" in text
+
+
+def test_bad_inputs_are_refused_in_one_line(tmp_path, capsys):
+    mod = load_benchmark("report")
+    assert mod.main(["--record", str(tmp_path / "none.json")]) == 2
+    (tmp_path / "fits.json").write_text("{}")
+    (tmp_path / "r").mkdir()
+    (tmp_path / "r" / "bad.json").write_text(json.dumps({"title": "t"}))
+    assert mod.main(["--record", str(tmp_path / "fits.json"), "--results", str(tmp_path / "r"),
+                     "--out", str(tmp_path / "b.md")]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 2 and err[0].startswith("report: no record") and "not a recorded table" in err[1]
+    assert not (tmp_path / "b.md").exists()
