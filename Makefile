@@ -14,7 +14,7 @@ setup:
 	@bash scripts/setup-env.sh
 
 demo: setup
-	@$(VENV)/bin/unsew demo $(ARGS)
+	@$(VENV)/bin/unsew demo --overwrite $(ARGS)
 
 test: setup
 	@$(VENV)/bin/python -m pytest -q -m "not slow" -n $(TEST_WORKERS) --dist worksteal $(ARGS)
