@@ -16,8 +16,13 @@ Prints one row per body and skeleton (measured / the yaml's, cm) and the largest
 over the acceptance's three skeletons (none, rig, limb) and over all four. A skeleton refused
 (one line) is printed as such.
 
+``--anny``: the same on the anny bodies of benchmarks/data and the default body written as files
+(body.obj and its own skeleton.json, so without skinning weights), against the girths the body
+reads with its own skinning weights; the skeleton ``own`` is anny's joints, ``limb`` and ``smpl``
+are made from them; and the reading with the rig's skeleton (``none``) beside them.
+
 Run: PYTHONPATH=src:benchmarks .venv/bin/python -m benchmarks body_measure
-     [--bodies ../shared/foreign/bodies] [--names mean_female,mean_male] [--quick]
+     [--bodies ../shared/foreign/bodies] [--names mean_female,mean_male] [--quick] [--anny]
 """
 
 from __future__ import annotations
@@ -90,7 +95,6 @@ def measure_variants(mesh: Path, variants=VARIANTS) -> dict:
     """{variant: Measurements or the one-line refusal (str)} for one body mesh."""
     from unsew.body.body import load_body
     from unsew.body.measure import cross_check_rig
-    from unsew.errors import InputError
 
     rigged = load_body(mesh)
     rig = rigged.skeleton.to_dict()
@@ -98,17 +102,53 @@ def measure_variants(mesh: Path, variants=VARIANTS) -> dict:
     out = {}
     with tempfile.TemporaryDirectory() as tmp:
         for v in variants:
-            try:
-                if v == "none":
-                    body = rigged
-                else:
-                    path = Path(tmp) / f"{v}.json"
-                    path.write_text(json.dumps(files[v]))
-                    body = load_body(mesh, path)
-                out[v] = cross_check_rig(body)
-            except InputError as exc:
-                out[v] = str(exc)
+            if v == "none":
+                out[v] = cross_check_rig(rigged)
+                continue
+            path = Path(tmp) / f"{v}.json"
+            path.write_text(json.dumps(files[v]))
+            out[v] = _measured(mesh, path)
     return out
+
+
+def anny_rows() -> list[dict]:
+    """Rows {body, variant, measured, reference} for the default body and benchmarks/data's anny
+    bodies as files: the reference is the girths [cm] read with the body's skinning weights."""
+    from unsew.body.body import body_from_npz, default_body
+    from unsew.body.measure import measure_body
+    from unsew.body.skeleton import save_skeleton
+    from unsew.errors import InputError
+    from unsew.io.mesh import write_obj
+
+    bodies = [("default", default_body())]
+    bodies += [(p.stem, body_from_npz(p)) for p in sorted((HERE / "data").glob("body_*.npz"))]
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, b in bodies:
+            m0 = measure_body(b)
+            ref = {rk: getattr(m0, k) * 100 for k, rk in GIRTHS}
+            mesh = Path(tmp) / f"{name}.obj"
+            write_obj(mesh, b.verts, b.faces)
+            save_skeleton(b.skeleton, Path(tmp) / "own.json")
+            own = json.loads((Path(tmp) / "own.json").read_text())
+            got = measure_variants(mesh, ("none",))
+            for v, d in (("own", own), ("limb", limb_labelled(own)), ("smpl", smpl_style(own))):
+                (Path(tmp) / f"{v}.json").write_text(json.dumps(d))
+                got[v] = _measured(mesh, Path(tmp) / f"{v}.json")
+            rows += [{"body": name, "variant": v, "measured": m, "reference": ref} for v, m in got.items()]
+    return rows
+
+
+def _measured(mesh: Path, skeleton: Path):
+    """What ``unsew body measure`` reads: Measurements, or its one-line refusal (str)."""
+    from unsew.body.body import load_body
+    from unsew.body.measure import cross_check_rig
+    from unsew.errors import InputError
+
+    try:
+        return cross_check_rig(load_body(mesh, skeleton))
+    except InputError as exc:
+        return str(exc)
 
 
 def table(rows: list[dict], variants=VARIANTS) -> tuple[str, dict]:
@@ -153,9 +193,15 @@ def main() -> None:
     ap.add_argument("--bodies", default=str(BODIES), help="folder of GarmentCode's body .obj and .yaml files")
     ap.add_argument("--names", default="", help="comma-separated body names (default: every .obj there)")
     ap.add_argument("--quick", action="store_true", help="one body (mean_all_tpose) only")
+    ap.add_argument("--anny", action="store_true", help="anny's bodies as files, against their skinning weights' reading")
     args = ap.parse_args()
     from unsew.errors import InputError
 
+    if args.anny:
+        text, worst = table(anny_rows())
+        print(text)
+        print(f"\nmax abs error against the weights' reading: {worst['all']:.1f} cm")
+        return
     bodies = Path(args.bodies)
     if not bodies.is_dir():
         raise InputError(f"--bodies {bodies} is not a folder")
