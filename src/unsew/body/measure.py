@@ -122,6 +122,7 @@ def measure_body(body) -> Measurements:
     """
     V, F, sk = body.verts, body.faces, body.skeleton
     P = sk.position
+    _check_trunk_order(sk)
     floor = float(V[:, 1].min())
     height = float(V[:, 1].max() - floor)
     parts = body.vertex_parts()
@@ -244,6 +245,21 @@ def check_human(body, parts, *, bust: float, waist: float, waist_y: float, bust_
             f"waist level {waist_y:.2f} m is not below the bust's {bust_y:.2f} m: the waist is sought up to "
             f"skeleton joint 'chest' at {body.skeleton.position('chest')[1]:.2f} m; check its position in skeleton.json"
         )
+
+
+def _check_trunk_order(sk) -> None:
+    """Refuse a trunk whose joints do not rise from the pelvis to the head (the levels every girth
+    is sought between), naming the first joint out of order."""
+    chain = ("pelvis", "spine", "chest", "neck", "head")
+    for a, b in zip(chain[:-1], chain[1:]):
+        ya, yb = sk.position(a)[1], sk.position(b)[1]
+        if not ya < yb:
+            bad = b if b in ("spine", "chest") or a in ("neck", "head") else a
+            raise InputError(
+                f"skeleton joint {bad!r} is out of the trunk's order: {a!r} at {ya:.2f} m is not below {b!r} at "
+                f"{yb:.2f} m (pelvis, spine, chest, neck and head rise in that order on a standing body); "
+                "check it in skeleton.json"
+            )
 
 
 def _trunk_taken(body, parts, y: float) -> tuple[str, str]:

@@ -335,12 +335,25 @@ def structural_parts(names: list[str], parents: np.ndarray) -> list[str]:
         for k in joints:
             if k in owner and owner[k][0] != part:
                 raise InputError(
-                    f"skeleton joint {names[k]!r} hangs below both {names[owner[k][1]]!r} and {names[by]!r}; "
-                    "each limb and the head must hang from the trunk on their own"
+                    f"skeleton joint {names[k]!r} would be both {owner[k][0]} and {part} (it hangs below "
+                    f"{names[owner[k][1]]!r} and {names[by]!r}); each limb and the head must hang from the trunk on "
+                    "their own"
                 )
             owner[k] = (part, by)
             parts[k] = part
 
+    # the trunk's joints hang from the root through trunk joints only
+    limbs = {idx["head"]} | {idx[f"{s}_{n}"] for s in ("left", "right")
+                             for n in ("shoulder", "elbow", "wrist", "hip", "knee", "ankle")}
+    for n in ("pelvis", "spine", "chest", "neck", *(f"{s}_{j}" for s in ("left", "right") for j in ("shoulder", "hip"))):
+        k = int(parents[idx[n]])
+        while k != -1:
+            if k in limbs:
+                raise InputError(
+                    f"skeleton joint {n!r} hangs below {names[k]!r}; the trunk's joints must hang from the root, "
+                    "not from a limb or the head"
+                )
+            k = int(parents[k])
     neck, head = idx["neck"], idx["head"]
     chain, k = [], head
     while k != -1 and k != neck:
@@ -355,14 +368,6 @@ def structural_parts(names: list[str], parents: np.ndarray) -> list[str]:
             below = set(_subtree(children, r)) - {r}
             below |= set(_subtree(children, m)) | set(_subtree(children, e))
             claim(below, f"{side}_{limb}", r)
-    for n in REQUIRED_JOINTS:  # a required joint of the trunk claimed by a limb or the head
-        if n in ("pelvis", "spine", "chest", "neck") or n.endswith(("_shoulder", "_hip")):
-            k = idx[n]
-            if parts[k] != "torso":
-                raise InputError(
-                    f"skeleton joint {n!r} hangs below {names[owner[k][1]]!r}; the trunk's joints must hang "
-                    "from the root, not from a limb or the head"
-                )
     return parts
 
 
