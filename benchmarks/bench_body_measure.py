@@ -192,7 +192,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--bodies", default=str(BODIES), help="folder of GarmentCode's body .obj and .yaml files")
     ap.add_argument("--names", default="", help="comma-separated body names (default: every .obj there)")
-    ap.add_argument("--quick", action="store_true", help="one body (mean_all_tpose) only")
+    ap.add_argument("--quick", action="store_true", help="one body (mean_female) only")
     ap.add_argument("--anny", action="store_true", help="anny's bodies as files, against their skinning weights' reading")
     args = ap.parse_args()
     from unsew.errors import InputError
@@ -207,7 +207,7 @@ def main() -> None:
         raise InputError(f"--bodies {bodies} is not a folder")
     names = [n for n in args.names.split(",") if n] or sorted(p.stem for p in bodies.glob("*.obj"))
     if args.quick:
-        names = ["mean_all_tpose"]
+        names = ["mean_female"]
     text, worst = run(bodies, names)
     print(text)
     print(f"\nmax abs error, skeletons none/rig/limb: {worst['acceptance']:.1f} cm; with smpl: {worst['all']:.1f} cm")

@@ -97,7 +97,7 @@ def test_default_body_measures_the_same_in_every_convention(files, convention):
         assert abs(getattr(m, k) - getattr(ref, k)) <= 0.025, f"{k}: {getattr(m, k):.3f} vs {getattr(ref, k):.3f} m"
 
 
-@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize("seed", [0, 3, 9, 10])  # together: every convention of combined()
 def test_default_body_measures_the_same_with_conventions_combined(files, seed):
     d, sk, ref = files
     body = load_body(d / "body.obj", _write(d, combined(sk, seed), f"combined{seed}"))

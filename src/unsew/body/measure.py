@@ -197,15 +197,11 @@ def cross_check_rig(body, *, tol: dict | None = None):
     girth name -> [m], default :data:`RIG_CROSS_TOL`). Bodies
     rigged already or made by a body model (with skinning weights) are only measured; so is a
     body the rig cannot read (a pose it does not know: the given skeleton is all there is)."""
-    from unsew.body.body import Body
-    from unsew.body.rig import rig_skeleton
-
     m = measure_body(body)
     if body.rigged or body.weights is not None:
         return m
     try:
-        rig = rig_skeleton(body.verts, body.faces)
-        mr = measure_body(Body(body.verts, body.faces, rig, None, rigged=True))
+        rig, mr = _rigged_reading(body.verts, body.faces)
     except (InputError, IndexError, ValueError):
         return m
     sk = body.skeleton
@@ -221,6 +217,24 @@ def cross_check_rig(body, *, tol: dict | None = None):
                 "or remove the file to rig the body from its mesh"
             )
     return m
+
+
+_LAST_RIG: dict = {}
+
+
+def _rigged_reading(verts: np.ndarray, faces: np.ndarray):
+    """(skeleton rigged from the mesh, its Measurements); the last mesh's are kept."""
+    import hashlib
+
+    from unsew.body.body import Body
+    from unsew.body.rig import rig_skeleton
+
+    key = hashlib.sha1(np.ascontiguousarray(verts).tobytes() + np.ascontiguousarray(faces).tobytes()).hexdigest()
+    if key not in _LAST_RIG:
+        rig = rig_skeleton(verts, faces)
+        _LAST_RIG.clear()
+        _LAST_RIG[key] = (rig, measure_body(Body(verts, faces, rig, None, rigged=True)))
+    return _LAST_RIG[key]
 
 
 def check_human(body, parts, *, bust: float, waist: float, waist_y: float, bust_y: float, hip: float) -> None:
