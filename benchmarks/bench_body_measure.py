@@ -117,7 +117,6 @@ def anny_rows() -> list[dict]:
     from unsew.body.body import body_from_npz, default_body
     from unsew.body.measure import measure_body
     from unsew.body.skeleton import save_skeleton
-    from unsew.errors import InputError
     from unsew.io.mesh import write_obj
 
     bodies = [("default", default_body())]

@@ -12,7 +12,12 @@ from skeleton_conventions import CONVENTIONS, combined, limb_labelled
 
 from unsew.body.body import Body, default_body, load_body
 from unsew.body.measure import cross_check_rig, measure_body
-from unsew.body.skeleton import REQUIRED_JOINTS, Skeleton, save_skeleton, structural_parts
+from unsew.body.skeleton import (
+    REQUIRED_JOINTS,
+    Skeleton,
+    save_skeleton,
+    structural_parts,
+)
 from unsew.errors import InputError
 from unsew.io.mesh import write_obj
 

@@ -27,9 +27,15 @@ hip->knee->ankle, torso = neck base to the waist level, shoulder width = between
 surface points 3 cm above the shoulder joints (acromion level); with an arm raised, whose top
 then continues the shoulder's, the distance between the shoulder joints plus
 ``RAISED_ARM_SHOULDER_OUT`` on each side (read on anny bodies in both poses). All in metres.
+
+A reading no person has (a waist under ``HUMAN_WAIST``, a waist level not below the bust's, trunk
+joints out of order) is refused in one line naming the skeleton joint behind it; ``cross_check_rig``
+also compares bust, waist and hip with the reading on the skeleton rigged from the mesh alone.
 """
 
 from __future__ import annotations
+
+import itertools
 
 import numpy as np
 
@@ -265,7 +271,7 @@ def _check_trunk_order(sk) -> None:
     """Refuse a trunk whose joints do not rise from the pelvis to the head (the levels every girth
     is sought between), naming the first joint out of order."""
     chain = ("pelvis", "spine", "chest", "neck", "head")
-    for a, b in zip(chain[:-1], chain[1:]):
+    for a, b in itertools.pairwise(chain):
         ya, yb = sk.position(a)[1], sk.position(b)[1]
         if not ya < yb:
             bad = b if b in ("spine", "chest") or a in ("neck", "head") else a

@@ -236,7 +236,9 @@ class Skeleton:
     def from_dict(cls, d: dict, *, scale: float = 1.0, require: tuple = REQUIRED_JOINTS) -> "Skeleton":
         """Build from a skeleton.json mapping. ``scale`` converts its positions to metres (0.01 for
         cm); a ``units`` key in ``d`` overrides it. Missing required joints raise InputError
-        naming them."""
+        naming them. With the required joints present, the parts come from the structure
+        (:func:`structural_parts`); the joints' ``part`` labels must be names of :data:`PARTS`
+        and are otherwise not read."""
         if not isinstance(d, dict) or not isinstance(d.get("joints"), list) or not d["joints"]:
             raise InputError('skeleton must be a JSON object with a non-empty "joints" list (see FORMATS.md)')
         units = d.get("units")
