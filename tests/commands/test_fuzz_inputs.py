@@ -279,7 +279,29 @@ def _short_position(sk):
     return sk
 
 
+def _reparent(name, parent):
+    def damage(sk):
+        _joint(sk, name)["parent"] = parent
+        return sk
+
+    return damage
+
+
+def _moved(names, dy):
+    def damage(sk):
+        for n in names:
+            _joint(sk, n)["position"][1] += dy
+        return sk
+
+    return damage
+
+
 SKELETONS = {
+    "skeleton_knee_under_elbow": _skeleton_case(_reparent("left_knee", "left_elbow")),
+    "skeleton_chest_under_hip": _skeleton_case(_reparent("chest", "left_hip")),
+    "skeleton_shoulder_under_head": _skeleton_case(_reparent("right_shoulder", "head")),
+    "skeleton_chest_above_neck": _skeleton_case(_moved(["chest"], 0.3)),
+    "skeleton_hips_at_the_waist": _skeleton_case(_moved(["left_hip", "right_hip"], 0.15)),
     "skeleton_not_json": _skeleton_case(lambda sk: "joints: [pelvis"),
     "skeleton_no_joints": _skeleton_case(lambda sk: {"units": "m", "joints": []}),
     "skeleton_missing_left_knee": _skeleton_case(_drop_joint("left_knee")),
@@ -415,3 +437,33 @@ def test_damaged_input_is_one_line_and_exit_2(name, tmp_path, valid, no_fit, cap
     assert raised and isinstance(raised[-1], InputError), f"{name}: {type(raised[-1]).__name__ if raised else None}"
     # nothing that looks like a result
     assert not any(p.name in ("result", "p.svg", "p.obj", "g.obj") for p in tmp_path.iterdir())
+
+
+# ---------------------------------------------------------------------------- other conventions
+# skeleton.json files as other rigs write them (tests/skeleton_conventions.py): accepted, and the
+# body measures as with its own skeleton
+
+
+@pytest.mark.parametrize("seed", [1, 4, 7])  # together: every convention of combined()
+def test_skeletons_of_other_conventions_measure_the_body(seed, tmp_path, valid, capsys):
+    """Limb-labelled parts, SMPL-style joint placements, extra joints with other names, random
+    or no labels, shuffled joints, centimetres, combined at random: ``unsew body measure``
+    accepts each and reads bust, waist and hip within 2.5 cm of the body's reading with its own
+    skinning weights."""
+    from skeleton_conventions import combined
+
+    from unsew.body.body import default_body
+    from unsew.body.measure import measure_body
+
+    ref = measure_body(default_body()).as_dict()
+    d = tmp_path / "body"
+    d.mkdir()
+    (d / "body.obj").write_text((valid / "body.obj").read_text())
+    own = json.loads((valid / "skeleton.json").read_text())
+    (d / "skeleton.json").write_text(json.dumps(combined(own, seed)))
+    code = main(["body", "measure", str(d), "--json"])
+    out, err = capsys.readouterr()
+    assert code == 0, err
+    got = json.loads(out)
+    for k in ("bust", "waist", "hip"):
+        assert abs(got[k] - ref[k]) <= 0.025, f"{k}: {got[k]} vs {ref[k]} m"

@@ -146,10 +146,11 @@ def test_dress_without_cloth_over_the_torso_is_chosen_on_the_whole_garment(body_
     assert cf == sorted(cf) and "chosen on the whole garment" in lines[-1]
 
 
-def _fake_choice(monkeypatch, distances: dict, arms: dict | None = None):
+def _fake_choice(monkeypatch, distances: dict, arms: dict | None = None, bad: dict | None = None):
     """choose_base with every candidate's drape replaced by a marker: the drape of base ``name``
     lies ``distances[name]`` mm from the target (whole garment and torso alike) and its openings on
-    the arms are the target's unless ``arms[name]`` is False. Nothing is simulated."""
+    the arms are the target's unless ``arms[name]`` is False; it is judged bad for the reason
+    ``bad[name]`` when given. Nothing is simulated."""
     import unsew.fit.start as start_mod
 
     monkeypatch.setattr(start_mod, "bases_for", lambda g: list(distances))
@@ -158,7 +159,8 @@ def _fake_choice(monkeypatch, distances: dict, arms: dict | None = None):
     monkeypatch.setattr(start_mod, "make_base_pattern", lambda name, m, **k: SimpleNamespace(name=name))
     monkeypatch.setattr(start_mod, "dress", lambda pat, body, **k: SimpleNamespace(
         x=SimpleNamespace(numpy=lambda: pat.name), mesh=SimpleNamespace(faces=None)))
-    monkeypatch.setattr(start_mod, "check_dressed", lambda d, body: SimpleNamespace(ok=True))
+    monkeypatch.setattr(start_mod, "check_dressed", lambda d, body: SimpleNamespace(
+        ok=(bad or {}).get(d.x.numpy()) is None, reason=(bad or {}).get(d.x.numpy())))
     monkeypatch.setattr(start_mod, "arm_openings", lambda x, f, sk, contours=None: (
         (0, 0) if x is None else (0, 0) if (arms or {}).get(x, True) else (1, 1)))
     monkeypatch.setattr(start_mod, "garment_of", lambda g: g)
@@ -247,3 +249,14 @@ def test_a_tie_whose_runner_up_fails_to_grade_keeps_the_chosen_base(monkeypatch)
                                progress=Progress(False), log=lines.append)
     assert s.base_name == "straight" and s.base == "P-straight"
     assert lines == ["base waisted: grading failed (simulation diverged at step 3: vertex 7 speed nan); left out"]
+
+
+def test_no_base_dressed_says_each_candidates_reason_in_one_line(monkeypatch):
+    """Every candidate's drape judged bad: the refusal names each base with its own reason."""
+    reasons = {"a": "exploded: an edge stretched 40 times", "b": "fell off the body"}
+    with pytest.raises(InputError) as exc:
+        _fake_choice(monkeypatch, {"a": 10.0, "b": 11.0}, bad=reasons)
+    msg = str(exc.value)
+    assert "\n" not in msg and "--base" in msg
+    for name, why in reasons.items():
+        assert f"{name}: {why}" in msg

@@ -44,9 +44,15 @@ def load_case(
 
 def load_case_body(files: CaseFiles) -> Body:
     """The wearer of a read case: its body mesh (rigged when it has no skeleton.json) or the
-    body model its meta.json names."""
+    body model its meta.json names. A skeleton.json whose body measures otherwise than the
+    mesh alone says (``unsew.body.measure.cross_check_rig``) is refused in one line."""
     if files.body_mesh is not None:
-        return load_body(files.body_mesh, files.skeleton, units=files.units, up=files.up, front=files.front)
+        body = load_body(files.body_mesh, files.skeleton, units=files.units, up=files.up, front=files.front)
+        if files.skeleton is not None:  # a skeleton of another convention must measure as the mesh does
+            from unsew.body.measure import cross_check_rig
+
+            cross_check_rig(body)
+        return body
     spec = files.body_spec
     if spec == "default":
         return default_body()

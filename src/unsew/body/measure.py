@@ -27,9 +27,15 @@ hip->knee->ankle, torso = neck base to the waist level, shoulder width = between
 surface points 3 cm above the shoulder joints (acromion level); with an arm raised, whose top
 then continues the shoulder's, the distance between the shoulder joints plus
 ``RAISED_ARM_SHOULDER_OUT`` on each side (read on anny bodies in both poses). All in metres.
+
+A reading no person has (a waist under ``HUMAN_WAIST``, a waist level not below the bust's, trunk
+joints out of order) is refused in one line naming the skeleton joint behind it; ``cross_check_rig``
+also compares bust, waist and hip with the reading on the skeleton rigged from the mesh alone.
 """
 
 from __future__ import annotations
+
+import itertools
 
 import numpy as np
 
@@ -39,7 +45,8 @@ from unsew.errors import InputError
 from unsew.geometry.topology import unique_edges
 
 __all__ = [
-    "measure_body", "section_points", "hull_perimeter", "arms_raised", "bust_point_girth", "upper_arm_cut",
+    "measure_body", "check_human", "cross_check_rig", "HUMAN_WAIST", "RIG_CROSS_TOL",
+    "section_points", "hull_perimeter", "arms_raised", "bust_point_girth", "upper_arm_cut",
     "RAISED_ARM_DEG", "RAISED_ARM_BUST", "RAISED_ARM_SHOULDER_OUT", "ARM_CUT_JUMP",
 ]
 
@@ -56,6 +63,23 @@ RAISED_ARM_SHOULDER_OUT = 0.029
 #: cut's at 40 % (anny bodies: 1.03-1.06; GarmentCode's A-pose bodies: 1.27-1.35;
 #: ``python -m benchmarks measure_arm`` at 81f6fbb).
 ARM_CUT_JUMP = 1.15
+#: The narrowest and widest waist girth of a person [m] (adults' waists lie at 0.55-1.5 m; the
+#: range is wide so that only a wrong reading, never a body, is refused).
+HUMAN_WAIST = (0.40, 2.5)
+#: Bust, waist or hip read with a given skeleton farther than this [m] from the reading with the
+#: skeleton rigged from the mesh alone is refused (:func:`cross_check_rig`). Waist and hip read
+#: the same (within 0.002) with anny's own joints and with the rig's on anny's default, T-pose,
+#: stepping, small and tall heavy bodies, and with the rig's, limb-labelled or SMPL-style joints on
+#: GarmentCode's four bodies; the bust moves with the arms' joints (which faces are cut away as
+#: arms): up to 0.031 on GarmentCode's bodies, 0.075 on the tall heavy anny body
+#: (``python -m benchmarks body_measure``; ``python -m benchmarks body_measure --anny``).
+RIG_CROSS_TOL = {"bust": 0.10, "waist": 0.05, "hip": 0.05}
+#: The joints each girth's reading depends on (its levels and the parts cut away).
+_GIRTH_JOINTS = {
+    "bust": ("spine", "chest", "left_shoulder", "right_shoulder", "left_elbow", "right_elbow"),
+    "waist": ("pelvis", "chest", "left_hip", "right_hip", "left_shoulder", "right_shoulder"),
+    "hip": ("pelvis", "left_hip", "right_hip", "left_knee", "right_knee"),
+}
 
 
 def section_points(verts: np.ndarray, faces: np.ndarray, origin: np.ndarray, normal: np.ndarray) -> np.ndarray:
@@ -103,6 +127,7 @@ def measure_body(body) -> Measurements:
     """
     V, F, sk = body.verts, body.faces, body.skeleton
     P = sk.position
+    _check_trunk_order(sk)
     floor = float(V[:, 1].min())
     height = float(V[:, 1].max() - floor)
     parts = body.vertex_parts()
@@ -122,10 +147,11 @@ def measure_body(body) -> Measurements:
 
     # bust: fullest torso level between spine and shoulders (arms cut away), arms down
     if arms_raised(sk):
-        bust = RAISED_ARM_BUST * bust_point_girth(body)[0]
+        g_b, bust_y = bust_point_girth(body)
+        bust = RAISED_ARM_BUST * g_b
     else:
         ys, g = _scan(V, F, torso_face, spine[1] + 0.3 * (chest[1] - spine[1]), sh_y - 0.03)
-        bust = float(g.max())
+        bust, bust_y = float(g.max()), float(ys[int(np.argmax(g))])
     # waist: narrowest torso level between hip level and chest
     ys_w, g_w = _scan(V, F, torso_face, pelvis[1] + 0.04, chest[1])
     k = int(np.argmin(np.where(g_w > 0, g_w, np.inf)))
@@ -133,6 +159,8 @@ def measure_body(body) -> Measurements:
     # hip: fullest torso + legs level between the crotch and the pelvis joint
     ys_h, g_h = _scan(V, F, no_arm_face, crotch_y + 0.02, pelvis[1] + 0.02)
     hip = float(g_h.max())
+
+    check_human(body, parts, bust=bust, waist=waist, waist_y=waist_y, bust_y=bust_y, hip=hip)
 
     neck_g = _neck_girth(V, F, neck, head)
     upper_arm = _upper_arm_girth(V, F, parts, l_sh, P("left_elbow"))
@@ -164,6 +192,123 @@ def measure_body(body) -> Measurements:
         crotch_height=crotch_y - floor,
         neck_height=float(neck[1] - floor),
     )
+
+
+def cross_check_rig(body, *, tol: dict | None = None):
+    """Measure a body with its given skeleton and check bust, waist and hip against the readings
+    with the skeleton rigged from the mesh alone (``unsew.body.rig``); returns the given
+    skeleton's ``Measurements``. A girth farther than ``tol`` [m] from the rig's is refused in
+    one line naming it and the joint, of those it depends on, farthest from the rig's (``tol``:
+    girth name -> [m], default :data:`RIG_CROSS_TOL`). Bodies
+    rigged already or made by a body model (with skinning weights) are only measured; so is a
+    body the rig cannot read (a pose it does not know: the given skeleton is all there is)."""
+    m = measure_body(body)
+    if body.rigged or body.weights is not None:
+        return m
+    try:
+        rig, mr = _rigged_reading(body.verts, body.faces)
+    except (InputError, IndexError, ValueError):
+        return m
+    sk = body.skeleton
+    tol = {**RIG_CROSS_TOL, **(tol or {})}
+    for k, joints in _GIRTH_JOINTS.items():
+        a, b = getattr(m, k), getattr(mr, k)
+        if abs(a - b) > tol[k]:
+            off = {n: float(np.linalg.norm(sk.position(n) - rig.position(n))) for n in joints}
+            j = max(off, key=off.get)
+            raise InputError(
+                f"{k} {a * 100:.1f} cm with the given skeleton but {b * 100:.1f} cm from the mesh alone: skeleton "
+                f"joint {j!r} lies {off[j] * 100:.0f} cm from where the mesh puts it; check it in skeleton.json, "
+                "or remove the file to rig the body from its mesh"
+            )
+    return m
+
+
+_LAST_RIG: dict = {}
+
+
+def _rigged_reading(verts: np.ndarray, faces: np.ndarray):
+    """(skeleton rigged from the mesh, its Measurements); the last mesh's are kept."""
+    import hashlib
+
+    from unsew.body.body import Body
+    from unsew.body.rig import rig_skeleton
+
+    key = hashlib.sha1(np.ascontiguousarray(verts).tobytes() + np.ascontiguousarray(faces).tobytes()).hexdigest()
+    if key not in _LAST_RIG:
+        rig = rig_skeleton(verts, faces)
+        _LAST_RIG.clear()
+        _LAST_RIG[key] = (rig, measure_body(Body(verts, faces, rig, None, rigged=True)))
+    return _LAST_RIG[key]
+
+
+def check_human(body, parts, *, bust: float, waist: float, waist_y: float, bust_y: float, hip: float) -> None:
+    """Refuse girths no person has, in one line naming the reading and the skeleton joint behind it.
+
+    A waist under ``HUMAN_WAIST[0]`` means the trunk at the waist level was taken for another part:
+    the joint named ends the bone nearest the cut-away points there (a hip or shoulder joint
+    placed too high). A waist at or above the bust's level means the waist scan reached past the
+    bust: it is bounded by the ``chest`` joint. body: the measured ``Body``; parts: (V,) str
+    (``Body.vertex_parts``); girths [m], heights [m, world y]."""
+    if waist < HUMAN_WAIST[0]:
+        part, joint = _trunk_taken(body, parts, waist_y)
+        raise InputError(
+            f"waist {waist * 100:.1f} cm at {waist_y:.2f} m is under {HUMAN_WAIST[0] * 100:.0f} cm: the trunk there "
+            f"is read as {part} from skeleton joint {joint!r}; check its "
+            "position and parent in skeleton.json"
+        )
+    if waist > HUMAN_WAIST[1]:
+        raise InputError(f"waist {waist * 100:.0f} cm is more than any person's; check the body's units")
+    if waist_y >= bust_y:
+        raise InputError(
+            f"waist level {waist_y:.2f} m is not below the bust's {bust_y:.2f} m: the waist is sought up to "
+            f"skeleton joint 'chest' at {body.skeleton.position('chest')[1]:.2f} m; check its position in skeleton.json"
+        )
+
+
+def _check_trunk_order(sk) -> None:
+    """Refuse a trunk whose joints do not rise from the pelvis to the head (the levels every girth
+    is sought between), naming the first joint out of order."""
+    chain = ("pelvis", "spine", "chest", "neck", "head")
+    for a, b in itertools.pairwise(chain):
+        ya, yb = sk.position(a)[1], sk.position(b)[1]
+        if not ya < yb:
+            bad = b if b in ("spine", "chest") or a in ("neck", "head") else a
+            raise InputError(
+                f"skeleton joint {bad!r} is out of the trunk's order: {a!r} at {ya:.2f} m is not below {b!r} at "
+                f"{yb:.2f} m (pelvis, spine, chest, neck and head rise in that order on a standing body); "
+                "check it in skeleton.json"
+            )
+
+
+def _trunk_taken(body, parts, y: float) -> tuple[str, str]:
+    """At height y [m]: the part most of the trunk's non-torso points are read as, and the joint
+    ending that part's bone nearest them (the trunk: the section's loop around the pelvis'
+    vertical axis). ("torso", "pelvis") when nothing there is read as another part."""
+    from scipy.spatial import cKDTree
+
+    from unsew.body.rig import level_loops, surrounds
+
+    V = body.verts
+    axis = body.skeleton.position("pelvis")[[0, 2]]
+    loops = level_loops(V, body.faces, V[:, 1], y)
+    trunk = [lp for lp in loops if surrounds(axis, lp[2][:, [0, 2]])] or loops
+    if not trunk:
+        return "torso", "pelvis"
+    pts = max(trunk, key=lambda lp: lp[1])[2]
+    p = parts[cKDTree(V).query(pts)[1]]
+    if (p == "torso").all():
+        return "torso", "pelvis"
+    part = _common(p[p != "torso"])
+    pts = pts[p == part]
+    bones = [b for b in body.skeleton.bones() if b.part == part]
+    d = np.stack([distance_to_bone(pts, b) for b in bones], axis=1)  # (k, nbones)
+    return part, _common(np.array([b.name for b in bones])[np.argmin(d, axis=1)])
+
+
+def _common(values: np.ndarray) -> str:
+    u, c = np.unique(values, return_counts=True)
+    return str(u[np.argmax(c)])
 
 
 def arms_raised(skeleton) -> bool:

@@ -4,6 +4,11 @@ A bone is the segment from a joint's parent to the joint (shared/FORMATS.md), so
 the root ends exactly one bone, named after that joint; ``Skeleton.parts[j]`` is the body part of
 that bone (``torso``, ``head``, ``left_arm``, ``right_arm``, ``left_leg``, ``right_leg``).
 
+A skeleton read from a file gets its parts from its structure (:func:`structural_parts`), not
+from the file's ``part`` labels: rigs disagree on them (many label the shoulder and hip joints
+with their limb, where the bone chest -> shoulder is a clavicle and the bone pelvis -> hip lies
+in the pelvis), and a measurement that takes the lower trunk for a leg reads a 6 cm waist.
+
 Also here: the axial coordinate and distance of points to a bone, and the paper's
 ``EncircledBones`` test (supplementary Algorithm 2) used by grading to measure how far an open
 contour (a cuff, a hem) sits along the skeleton.
@@ -32,6 +37,7 @@ __all__ = [
     "Encircled",
     "load_skeleton",
     "save_skeleton",
+    "structural_parts",
     "axial_coordinate",
     "distance_to_bone",
     "encircled_bones",
@@ -230,7 +236,9 @@ class Skeleton:
     def from_dict(cls, d: dict, *, scale: float = 1.0, require: tuple = REQUIRED_JOINTS) -> "Skeleton":
         """Build from a skeleton.json mapping. ``scale`` converts its positions to metres (0.01 for
         cm); a ``units`` key in ``d`` overrides it. Missing required joints raise InputError
-        naming them."""
+        naming them. With the required joints present, the parts come from the structure
+        (:func:`structural_parts`); the joints' ``part`` labels must be names of :data:`PARTS`
+        and are otherwise not read."""
         if not isinstance(d, dict) or not isinstance(d.get("joints"), list) or not d["joints"]:
             raise InputError('skeleton must be a JSON object with a non-empty "joints" list (see FORMATS.md)')
         units = d.get("units")
@@ -249,7 +257,10 @@ class Skeleton:
             names.append(str(jt["name"]))
             parent_names.append(jt.get("parent"))
             positions.append([float(v) for v in pos])
-            parts.append(str(jt.get("part", "")) or _guess_part(str(jt["name"])))
+            part = str(jt.get("part", "") or "")
+            if part and part not in PARTS:
+                raise InputError(f"skeleton joint {jt['name']!r}: part {part!r} unknown; use one of {list(PARTS)}")
+            parts.append(part or _guess_part(str(jt["name"])))
         missing = [n for n in require if n not in names]
         if missing:
             raise InputError(
@@ -265,7 +276,101 @@ class Skeleton:
                 raise InputError(f"skeleton joint {n!r} has parent {p!r}, which is not a joint")
             else:
                 parents.append(idx[p])
-        return cls(names, np.array(parents), np.array(positions) * scale, parts)
+        parents = np.array(parents, dtype=np.int64)
+        if all(n in idx for n in REQUIRED_JOINTS):
+            _check_tree(names, parents)
+            parts = structural_parts(names, parents)
+        return cls(names, parents, np.array(positions) * scale, parts)
+
+
+def _check_tree(names: list[str], parents: np.ndarray) -> None:
+    """Refuse parents that do not form one tree (one root, no cycle), naming a joint."""
+    roots = [names[i] for i in np.flatnonzero(parents == -1)]
+    if len(roots) != 1:
+        raise InputError(f"skeleton must have exactly one root joint (parent null); found {roots}")
+    for j in range(len(names)):
+        k, steps = j, 0
+        while k != -1:
+            k = int(parents[k])
+            steps += 1
+            if steps > len(names):
+                raise InputError(f"skeleton parents form a cycle through joint {names[j]!r}")
+
+
+def _subtree(children: list[list[int]], j: int) -> list[int]:
+    out, todo = [], [j]
+    while todo:
+        k = todo.pop()
+        out.append(k)
+        todo.extend(children[k])
+    return out
+
+
+def structural_parts(names: list[str], parents: np.ndarray) -> list[str]:
+    """The part of the bone ending at each joint, from the skeleton's structure alone (the joint
+    names of FORMATS.md and the parent chain; no ``part`` label is read).
+
+    - a limb's bones are those below its root joint: every joint in the subtree of the shoulder
+      (hip) other than the shoulder (hip) itself ends an arm (leg) bone; so do the elbow and the
+      wrist (knee, ankle) and their subtrees when a rig hangs them elsewhere. The bone ending at
+      the shoulder (hip) is torso: it runs inside the trunk (a clavicle, a half pelvis), whatever
+      joints (a collar) lie on the way;
+    - the head's bones: the chain from the neck down to the head joint (not the neck's own bone)
+      and the head's subtree;
+    - every other bone, the root's included, is torso.
+
+    names: J joint names with :data:`REQUIRED_JOINTS` among them; parents: (J,) int64, -1 for
+    the root, forming a tree. Returns J part names from :data:`PARTS`. Raises InputError when a
+    required joint of one part hangs below another part's (a knee under an elbow, a shoulder
+    under the head), naming both joints.
+    """
+    J = len(names)
+    idx = {n: i for i, n in enumerate(names)}
+    children: list[list[int]] = [[] for _ in range(J)]
+    for j, p in enumerate(parents):
+        if p >= 0:
+            children[int(p)].append(j)
+    parts = ["torso"] * J
+    owner = {}  # joint -> the required joint whose rule set its part
+
+    def claim(joints, part, by):
+        for k in joints:
+            if k in owner and owner[k][0] != part:
+                raise InputError(
+                    f"skeleton joint {names[k]!r} would be both {owner[k][0]} and {part} (it hangs below "
+                    f"{names[owner[k][1]]!r} and {names[by]!r}); each limb and the head must hang from the trunk on "
+                    "their own"
+                )
+            owner[k] = (part, by)
+            parts[k] = part
+
+    # the trunk's joints hang from the root through trunk joints only
+    limbs = {idx["head"]} | {idx[f"{s}_{n}"] for s in ("left", "right")
+                             for n in ("shoulder", "elbow", "wrist", "hip", "knee", "ankle")}
+    for n in ("pelvis", "spine", "chest", "neck", *(f"{s}_{j}" for s in ("left", "right") for j in ("shoulder", "hip"))):
+        k = int(parents[idx[n]])
+        while k != -1:
+            if k in limbs:
+                raise InputError(
+                    f"skeleton joint {n!r} hangs below {names[k]!r}; the trunk's joints must hang from the root, "
+                    "not from a limb or the head"
+                )
+            k = int(parents[k])
+    neck, head = idx["neck"], idx["head"]
+    chain, k = [], head
+    while k != -1 and k != neck:
+        chain.append(k)
+        k = int(parents[k])
+    if k != neck:
+        raise InputError("skeleton joint 'head' does not hang below 'neck'; give the head's parent chain through the neck")
+    claim(set(chain) | set(_subtree(children, head)), "head", head)
+    for side in ("left", "right"):
+        for limb, (root, mid, end) in (("arm", ("shoulder", "elbow", "wrist")), ("leg", ("hip", "knee", "ankle"))):
+            r, m, e = (idx[f"{side}_{n}"] for n in (root, mid, end))
+            below = set(_subtree(children, r)) - {r}
+            below |= set(_subtree(children, m)) | set(_subtree(children, e))
+            claim(below, f"{side}_{limb}", r)
+    return parts
 
 
 def _guess_part(name: str) -> str:

@@ -92,12 +92,12 @@ def run_rig(args: argparse.Namespace) -> int:
 def run_measure(args: argparse.Namespace) -> int:
     import json
 
-    from unsew.body.measure import measure_body
+    from unsew.body.measure import cross_check_rig
 
     body = _body_from_arg(args)
     for note in body.notes:
         print(f"note: {note}", file=sys.stderr)  # stdout holds the result alone
-    m = measure_body(body).as_dict()
+    m = cross_check_rig(body).as_dict()
     if args.json:
         print(json.dumps({"units": "m", "rigged": body.rigged, **{k: round(v, 4) for k, v in m.items()}}, indent=1))
     else:

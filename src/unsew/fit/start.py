@@ -237,7 +237,8 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
         if math.isfinite(cf):
             patterns[name] = pat
     if not patterns:
-        raise InputError(f"no base pattern of type {case.garment} could be dressed on this body; pass --base P.json")
+        why = "; ".join(f"{r['base']}: {r.get('error') or 'its distance to the target is not finite'}" for r in rows)
+        raise InputError(f"no base pattern of type {case.garment} could be dressed on this body ({why}); pass --base P.json")
     on_torso = bool(band) and all(r.get("torso_mm") is not None for r in rows if r["base"] in patterns)
     # the arms agreeing first, when any candidate's do; then the closest (over the torso when
     # every candidate and the target have cloth there: a skeleton without torso bones has none)
