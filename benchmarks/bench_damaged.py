@@ -5,7 +5,7 @@ as exports and scans are: ``--duplicates`` (default 50) faces repeated, each cop
 random place in the face list; a fin of 3 triangles (2 new vertices standing one edge length off
 the surface on an interior edge, a third twice as far) hanging on an interior edge of the target,
 so that edge has 3 faces; and one degenerate face (a repeated vertex). Then it fits both with the
-real command line, ``python -m unsew fit CASE --out OUT --config CONFIG --quiet``, each in a fresh
+real command line, ``python -m unsew fit CASE --out OUT --config CONFIG --no-progress``, each in a fresh
 process, and prints:
 
 - one row per fit: exit, Chamfer [mm] of the result against that case's target (metrics.json
@@ -91,7 +91,7 @@ def _fit(case: Path, out: Path, config: Path) -> dict:
     shutil.rmtree(out, ignore_errors=True)
     shutil.rmtree(out.with_name(out.name + ".partial"), ignore_errors=True)
     env = dict(os.environ, PYTHONPATH=str(ROOT / "src"), OMP_WAIT_POLICY="PASSIVE")
-    cmd = [sys.executable, "-m", "unsew", "fit", str(case), "--out", str(out), "--config", str(config), "--quiet"]
+    cmd = [sys.executable, "-m", "unsew", "fit", str(case), "--out", str(out), "--config", str(config), "--no-progress"]
     print(f"fitting {case} -> {out}", file=sys.stderr, flush=True)
     t = time.perf_counter()
     r = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=ROOT)

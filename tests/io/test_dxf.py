@@ -6,10 +6,10 @@ import pytest
 
 ezdxf = pytest.importorskip("ezdxf")
 
-from unsew.io.dxf import LAYERS, write_dxf  # noqa: E402
-from unsew.io.garmentcode import load_pattern  # noqa: E402
-from unsew.pattern.base import make_base_pattern  # noqa: E402
-from unsew.pattern.curves import panel_outline  # noqa: E402
+from unsew.io.dxf import LAYERS, write_dxf
+from unsew.io.garmentcode import load_pattern
+from unsew.pattern.base import make_base_pattern
+from unsew.pattern.curves import panel_outline
 
 
 @pytest.mark.parametrize("source", ["tshirt", "pants", "handmade"])

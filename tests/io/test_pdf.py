@@ -3,7 +3,6 @@ the tiles covering every piece."""
 
 import re
 
-import numpy as np
 import pytest
 
 from unsew.errors import InputError

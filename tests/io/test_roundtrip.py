@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from unsew.io.garmentcode import load_pattern, save_pattern
-from unsew.pattern.base import make_base_pattern
 from unsew.io.sheet import edge_point
+from unsew.pattern.base import make_base_pattern
 from unsew.pattern.curves import panel_outline
 
 NS = {"s": "http://www.w3.org/2000/svg"}
@@ -90,7 +90,6 @@ def test_seam_allowance_from_the_command_line_and_the_pattern(tmp_path):
     doc = ezdxf.readfile(f)
     for name in ("front", "back"):
         blk = doc.blocks.get(name)
-        sew = np.array([v[:2] for v in blk.query("LWPOLYLINE[layer=='14']")[0].get_points()])
         cut = np.array([v[:2] for v in blk.query("LWPOLYLINE[layer=='1']")[0].get_points()])
         pan = p.panels[name]
         for label, want in (("hem", 20.0), ("waist", 5.0 if name == "front" else 15.0), ("right_side", 15.0)):

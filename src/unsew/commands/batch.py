@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 
+from unsew.commands._help import HelpFormatter, examples
 from unsew.commands.fit import add_fit_options, config_from_args
 from unsew.io.atomic import check_output
 
@@ -19,6 +20,9 @@ __all__ = ["register", "run"]
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "batch", help="fit every case folder of a folder (local processes, or a Ray cluster); resumable",
+        formatter_class=HelpFormatter,
+        epilog=examples("unsew batch cases/ --out results/", "unsew batch cases/ --out results/ --workers 2 --iterations 40",
+                        "unsew batch cases/ --out results/ --ray auto"),
         description="Fit every case folder (a subfolder holding meta.json) of CASES_DIR into RESULTS_DIR/<case>/. "
         "Rerun the same command to continue an interrupted batch: complete results are skipped, interrupted "
         "fits resume from their checkpoints, failed cases are tried again.")

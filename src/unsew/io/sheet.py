@@ -14,7 +14,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from unsew.io.cutlines import CuttingNote, PieceLines, cutting_notes, piece_lines, seam_allowances
+from unsew.io.cutlines import (
+    CuttingNote,
+    PieceLines,
+    cutting_notes,
+    piece_lines,
+    seam_allowances,
+)
 from unsew.pattern.curves import edge_length, sample_edge
 from unsew.pattern.model import Pattern
 

@@ -25,7 +25,14 @@ from xml.sax.saxutils import escape
 import numpy as np
 
 from unsew.io.atomic import atomic_write
-from unsew.io.sheet import TEST_SQUARE_M, SeamMark, edge_point, make_sheet, seam_marks, stitch_code
+from unsew.io.sheet import (
+    TEST_SQUARE_M,
+    SeamMark,
+    edge_point,
+    make_sheet,
+    seam_marks,
+    stitch_code,
+)
 from unsew.pattern.model import Pattern
 
 __all__ = ["write_svg", "seam_marks", "SeamMark", "edge_point", "stitch_code"]
