@@ -122,7 +122,12 @@ def test_seam_table_and_girths_of_a_tshirt():
 def test_graded_and_final_said_to_coincide_and_the_phases_honest():
     from types import SimpleNamespace
 
-    from unsew.fit.report import choices_made, loss_phases, material_for_reading, patterns_coincide
+    from unsew.fit.report import (
+        choices_made,
+        loss_phases,
+        material_for_reading,
+        patterns_coincide,
+    )
     from unsew.pattern.base import make_base_pattern
 
     a = make_base_pattern("skirt")

@@ -11,8 +11,8 @@ import numpy as np
 
 from unsew.fit.checks import mm_list
 from unsew.metrics.surface import closest_points
-from unsew.report.measure import seam_table
 from unsew.report.fit_report import write_fit_report as _write
+from unsew.report.measure import seam_table
 from unsew.sim.material import material_to_dict
 
 __all__ = ["write_fit_report", "truth_over", "patterns_coincide", "loss_phases", "material_for_reading", "choices_made"]
