@@ -118,7 +118,7 @@ def seam_table(pattern) -> dict[str, dict]:
             "a [cm]": round(100.0 * la, 2),
             "side b": f"{st.b.panel}: {pb.edges[st.b.edge].label or 'edge ' + str(st.b.edge)}",
             "b [cm]": round(100.0 * lb, 2),
-            "difference [mm]": round(1000.0 * (la - lb), 1),
+            "difference [mm]": round(1000.0 * (la - lb), 1) + 0.0,  # no "-0"
         }
     return out
 
