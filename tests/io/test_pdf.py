@@ -3,10 +3,11 @@ the tiles covering every piece."""
 
 import re
 
+import numpy as np
 import pytest
 
 from unsew.errors import InputError
-from unsew.io.pdf import PAPER_MM, tile_grid, write_pdf
+from unsew.io.pdf import PAPER_MM, _tiled, tile_grid, write_pdf
 from unsew.io.sheet import make_sheet
 from unsew.pattern.base import make_base_pattern
 
@@ -22,10 +23,17 @@ def test_pages_are_the_paper_size_and_cover_the_pieces(paper, tmp_path):
     assert len(boxes) == n == len(re.findall(rb"/Type /Page\b", data))
     w, h = (float(v) for v in boxes[0])
     assert (w, h) == pytest.approx(tuple(x * 72 / 25.4 for x in PAPER_MM[paper]), abs=0.01)
-    sheet = make_sheet(p)
-    tile, rows, cols = tile_grid(sheet.size * 1000.0, paper)
-    assert tile.min() > 150 and rows * tile[1] >= sheet.size[1] * 1000 and cols * tile[0] >= sheet.size[0] * 1000
-    assert 1 + 1 <= n <= 1 + rows * cols  # the cover, then no more than one page per tile
+    sheet, tile, rows, cols, top, tiles = _tiled(make_sheet(p), paper)
+    assert n == 1 + len(tiles) and tile.min() > 150
+    for pc in sheet.pieces:  # every point of every cut line lies on a page that is printed
+        pts = (pc.lines.cut + pc.offset) * 1000.0
+        r = np.floor((top - pts[:, 1]) / tile[1]).astype(int)
+        c = np.floor(pts[:, 0] / tile[0]).astype(int)
+        assert all((int(a), int(b)) in set(tiles) for a, b in zip(r, c)), pc.name
+    # laid out for the pages: no more pages than the SVG's layout has tiles
+    svg = make_sheet(p)
+    t2, r2, c2 = tile_grid(svg.size * 1000.0, paper)
+    assert len(tiles) <= r2 * c2
     assert b"Title (skirt: sewing pattern, 1:1)" in data
 
 

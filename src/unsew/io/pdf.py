@@ -3,8 +3,9 @@ home and taping together.
 
 Page 1 holds a 10 cm test square at 1:1 (print at 100 %, "actual size", and measure it), how to
 assemble the pages and a map of the page grid over the pieces. Then one page per tile of the
-sheet (the same drawing as the SVG and DXF, :mod:`unsew.io.sheet`: cut lines solid, sew lines
-dashed, notches on both, grain and fold lines, names, cutting notes and seam labels); tiles
+sheet (the same pieces as the SVG and DXF, :mod:`unsew.io.sheet`: cut lines solid, sew lines
+dashed, notches on both, grain and fold lines, names, cutting notes and seam labels, laid out
+again for the fewest pages: rows 2 to 9 tiles wide, in pattern order or tallest first); tiles
 that hold nothing are left out, the others keep their place in the grid. Each tile page draws
 its tile in a frame of exactly the tile's size; tiles are named by row letter (A at the top)
 and column number (1 at the left), the name printed in the page margin, and at the middle of
@@ -115,31 +116,15 @@ def write_pdf(pattern: Pattern, path: str | os.PathLike, *, paper: str = "a4", a
         raise InputError(f"paper {paper!r} is not known: use one of {', '.join(PAPER_MM)}")
     from matplotlib.backends.backend_pdf import PdfPages
 
-    sheet = make_sheet(pattern, allowance=allowance, hem=hem)
-    size = sheet.size * 1000.0
     pw, ph = PAPER_MM[paper]
     m = PAGE_MARGIN_MM
-    tile, rows, cols = tile_grid(size, paper)
-    # the grid starts at the sheet's top left: row 0 is the top row
-    top = float(size[1])
+    s_mm = TEST_SQUARE_M * 1000.0
+    sheet, tile, rows, cols, top, tiles = _tiled(make_sheet(pattern, allowance=allowance, hem=hem), paper)
+    sq = np.array([-1e9, -1e9])  # the test square is on page 1, not on the tiles
 
     def box(r, c):
-        x0, y1 = c * tile[0], top - r * tile[1]
-        return (x0, y1 - tile[1], x0 + tile[0], y1)
+        return _box(r, c, tile, top)
 
-    sq = sheet.square * 1000.0
-    s_mm = TEST_SQUARE_M * 1000.0
-
-    def used(r, c) -> bool:
-        b = box(r, c)
-        for pc in sheet.pieces:
-            cut = (pc.lines.cut + pc.offset) * 1000.0
-            lo, hi = cut.min(0), cut.max(0)
-            if not (hi[0] < b[0] or lo[0] > b[2] or hi[1] < b[1] or lo[1] > b[3]):
-                return True
-        return not (sq[0] + s_mm < b[0] or sq[0] > b[2] or sq[1] + s_mm < b[1] or sq[1] > b[3])
-
-    tiles = [(r, c) for r in range(rows) for c in range(cols) if used(r, c)]
     have = set(tiles)
     with atomic_write(path) as tmp, PdfPages(tmp, metadata={"Title": f"{pattern.name}: sewing pattern, 1:1",
                                                             "Creator": "unsew"}) as pdf:
@@ -197,6 +182,39 @@ def write_pdf(pattern: Pattern, path: str | os.PathLike, *, paper: str = "a4", a
                      ha="center", va="center", fontsize=9)
             pdf.savefig(fig)
     return len(tiles) + 1
+
+
+def _box(r: int, c: int, tile: np.ndarray, top: float) -> tuple[float, float, float, float]:
+    """Tile (r, c) as (x0, y0, x1, y1) [mm] on the sheet; row 0 is the top row, at ``top``."""
+    x0, y1 = c * tile[0], top - r * tile[1]
+    return (x0, y1 - tile[1], x0 + tile[0], y1)
+
+
+def _tiled(sheet: Sheet, paper: str):
+    """The pieces laid out for the fewest pages on ``paper`` (rows of 2 to 9 tiles' width, in
+    pattern order or tallest first; the test square goes to page 1) and that layout's tiles:
+    (sheet, tile (2,) [mm], rows, cols, top [mm], [(r, c) of the tiles holding ink])."""
+    from unsew.io.sheet import relayout
+
+    tile0, _, _ = tile_grid(np.ones(2), paper)
+    best = None
+    for k in range(2, 10):
+        for tallest in (False, True):
+            sh = relayout(sheet, row_width=k * tile0[0] / 1000.0 - 1e-6, tallest_first=tallest, square=False)
+            size = sh.size * 1000.0
+            tile, rows, cols = tile_grid(size, paper)
+            top = float(size[1])
+            boxes = [((pc.lines.cut + pc.offset) * 1000.0) for pc in sh.pieces]
+            boxes = [(b.min(0), b.max(0)) for b in boxes]
+            tiles = [(r, c) for r in range(rows) for c in range(cols)
+                     if any(_overlap(_box(r, c, tile, top), lo, hi) for lo, hi in boxes)]
+            if best is None or len(tiles) < len(best[5]):
+                best = (sh, tile, rows, cols, top, tiles)
+    return best
+
+
+def _overlap(b, lo, hi) -> bool:
+    return not (hi[0] < b[0] or lo[0] > b[2] or hi[1] < b[1] or lo[1] > b[3])
 
 
 def _meets(b, sq, s_mm) -> bool:

@@ -24,7 +24,7 @@ from unsew.io.cutlines import (
 from unsew.pattern.curves import edge_length, sample_edge
 from unsew.pattern.model import Pattern
 
-__all__ = ["Sheet", "Piece", "Label", "make_sheet", "seam_marks", "SeamMark", "edge_point", "stitch_code",
+__all__ = ["Sheet", "Piece", "Label", "make_sheet", "relayout", "seam_marks", "SeamMark", "edge_point", "stitch_code",
            "TEST_SQUARE_M", "NOTCH_LENGTH", "SIZE_TEXT"]
 
 #: Gap between laid-out pieces [m]; width after which a new row starts [m].
@@ -198,8 +198,21 @@ def make_sheet(pattern: Pattern, *, allowance: float | None = None, hem: float |
     notes = cutting_notes(pattern)
     marks = seam_marks(pattern)
     pieces = [_piece(pattern, n, widths[n], notes[n], marks) for n in pattern.panel_order]
+    return relayout(Sheet(pattern.name, pieces, np.zeros(2), np.zeros(2)), gap=gap, row_width=row_width)
+
+
+def relayout(sheet: Sheet, *, gap: float = LAYOUT_GAP, row_width: float = ROW_WIDTH, tallest_first: bool = False,
+             square: bool = True) -> Sheet:
+    """The same pieces laid out again (a new Sheet; the pieces' offsets change): in rows no wider
+    than ``row_width`` [m] where possible, in pattern order or, ``tallest_first``, by decreasing
+    height (fewer rows of mixed heights); ``square``: the test square in a row of its own above
+    (False: none, its corner at the origin)."""
+    import copy
+
+    pieces = [copy.copy(pc) for pc in sheet.pieces]
+    order = sorted(pieces, key=lambda pc: -float(np.ptp(pc.lines.cut[:, 1]))) if tallest_first else pieces
     x, y, row_h = gap, gap, 0.0
-    for pc in pieces:
+    for pc in order:
         lo, hi = pc.lines.cut.min(0), pc.lines.cut.max(0)
         w, h = hi - lo
         if x > gap and x + w > row_width:
@@ -208,7 +221,8 @@ def make_sheet(pattern: Pattern, *, allowance: float | None = None, hem: float |
         x += w + gap
         row_h = max(row_h, h)
     top = max((pc.lines.cut.max(0)[1] + pc.offset[1] for pc in pieces), default=0.0)
-    square = np.array([gap, top + gap])
-    right = max([pc.lines.cut.max(0)[0] + pc.offset[0] for pc in pieces] + [gap + 2.5 * TEST_SQUARE_M])
-    size = np.array([right + gap, square[1] + TEST_SQUARE_M + gap])
-    return Sheet(pattern.name, pieces, size, square)
+    right = max([pc.lines.cut.max(0)[0] + pc.offset[0] for pc in pieces] + [gap + (2.5 * TEST_SQUARE_M if square else 0)])
+    if not square:
+        return Sheet(sheet.name, pieces, np.array([right + gap, top + gap]), np.zeros(2))
+    corner = np.array([gap, top + gap])
+    return Sheet(sheet.name, pieces, np.array([right + gap, corner[1] + TEST_SQUARE_M + gap]), corner)
