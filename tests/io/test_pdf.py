@@ -40,3 +40,16 @@ def test_pages_are_the_paper_size_and_cover_the_pieces(paper, tmp_path):
 def test_unknown_paper_is_refused(tmp_path):
     with pytest.raises(InputError, match="a4, letter"):
         write_pdf(make_base_pattern("skirt"), tmp_path / "p.pdf", paper="a3")
+
+
+def test_export_command_writes_the_pdf_and_refuses_an_allowance_in_centimetres(tmp_path, capsys):
+    from unsew.cli import main
+    from unsew.io.garmentcode import save_pattern
+
+    src = tmp_path / "s.json"
+    save_pattern(make_base_pattern("skirt"), src)
+    out = tmp_path / "s.pdf"
+    assert main(["pattern", "export", str(src), "--pdf", str(out), "--paper", "letter", "--seam-allowance", "0.015"]) == 0
+    assert out.read_bytes().startswith(b"%PDF") and "pages" in capsys.readouterr().out
+    assert main(["pattern", "export", str(src), "--dxf", str(tmp_path / "s.dxf"), "--seam-allowance", "1.5"]) == 2
+    assert "in metres" in capsys.readouterr().err and not (tmp_path / "s.dxf").exists()

@@ -52,6 +52,13 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
             notes.append(f"{what} pattern: panels without a counterpart, estimated {un.get('estimated') or []}, "
                          f"true {un.get('true') or []} (left out of the per-panel means; the area-weighted "
                          "area error counts each at its full area)")
+    if graded is not None and not same and set(graded.panels) == set(result.pattern.panels):
+        moved = [np.abs(np.asarray(result.pattern.panels[n].vertices) - np.asarray(p.vertices)).max(initial=0.0)
+                 for n, p in graded.panels.items() if np.shape(p.vertices) == np.shape(result.pattern.panels[n].vertices)]
+        if moved:
+            notes.append(f"final pattern: its corners lie at most {1e3 * max(moved):.1f} mm from the graded "
+                         "pattern's (in the pattern figure the graded outline shows only where they differ by more "
+                         "than the line width)")
     for row in result.grade_table or []:
         for w in (row.get("warnings") or []) if isinstance(row, dict) else []:
             notes.append(f"grading: {w}")
