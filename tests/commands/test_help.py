@@ -23,7 +23,8 @@ def test_every_command_has_examples_and_states_its_defaults():
         for action in parser._actions:
             if action.help in (None, argparse.SUPPRESS) or not action.option_strings:
                 continue
-            if action.default not in (None, False, True, argparse.SUPPRESS):
+            plain_switch = isinstance(action, (argparse._StoreTrueAction, argparse._HelpAction, argparse._VersionAction))
+            if not plain_switch and not action.required:  # every option a user may leave out says what then
                 assert "default" in parser._get_formatter()._expand_help(action), (path, action.dest)
         seen += 1
     assert seen >= 15
@@ -58,3 +59,12 @@ def test_top_level_help_exits_cleanly(capsys):
     with pytest.raises(SystemExit) as e:
         main(["--help"])
     assert e.value.code == 0 and "examples:" in capsys.readouterr().out
+
+
+def test_drape_help_states_the_dressing_defaults():
+    from unsew.dress import DRESS_SETTINGS
+
+    text = build_parser()._subparsers._group_actions[0].choices["drape"].format_help().replace("\n", " ")
+    text = " ".join(text.split())
+    assert f"sewing phase (default: {DRESS_SETTINGS.sew_steps}," in text
+    assert f"after sewing (default: {DRESS_SETTINGS.settle_steps}," in text

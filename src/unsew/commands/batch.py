@@ -31,7 +31,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--workers", type=int, metavar="N", help="local worker processes (default: min(CPU count, cases))")
     p.add_argument("--ray", metavar="ADDRESS",
                    help="run the fits as Ray tasks: 'auto' (running cluster), 'local' (start one here) or an address; "
-                   "RESULTS_DIR must be on a shared filesystem for a multi-machine cluster (needs unsew[ray])")
+                   "RESULTS_DIR must be on a shared filesystem for a multi-machine cluster (needs unsew[ray]) (default: local processes)")
     p.add_argument("--overwrite", action="store_true", help="refit cases whose result folder is already complete")
     add_fit_options(p)
     p.set_defaults(func=run)

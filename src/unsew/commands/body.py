@@ -134,7 +134,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                                          "--front -y --out skeleton.json --preview joints.png"))
     rg.add_argument("body", metavar="BODY.obj|BODY_DIR")
     rg.add_argument("--out", metavar="skeleton.json", help="where to write (default: skeleton.json beside the body)")
-    rg.add_argument("--preview", metavar="PNG", help="also draw the body and its joints, front and side")
+    rg.add_argument("--preview", metavar="PNG", help="also draw the body and its joints, front and side (default: no picture)")
     rg.add_argument("--overwrite", action="store_true", help="replace an existing --out file")
     _frame_options(rg)
     rg.set_defaults(func=run_rig, skeleton=None)

@@ -66,15 +66,15 @@ def register(sub: argparse._SubParsersAction) -> None:
                           epilog=examples("unsew pattern export result/pattern.json --svg p.svg --dxf p.dxf --pdf p.pdf",
                                           "unsew pattern export p.json --pdf p.pdf --paper letter --seam-allowance 0.015"))
     exp.add_argument("pattern", metavar="P.json")
-    exp.add_argument("--svg", metavar="P.svg", help="true-scale SVG in millimetres with a 10 cm test square")
+    exp.add_argument("--svg", metavar="P.svg", help="true-scale SVG in millimetres with a 10 cm test square (default: not written)")
     exp.add_argument("--dxf", metavar="P.dxf", help="DXF in millimetres, one block per piece, AAMA/ASTM layers "
-                     "(1 cut line, 2 turn points, 4 notches, 6 fold line, 7 grain line, 14 sew line, 15 text)")
-    exp.add_argument("--pdf", metavar="P.pdf", help="tiled PDF at 1:1 for home printing (see --paper)")
+                     "(1 cut line, 2 turn points, 4 notches, 6 fold line, 7 grain line, 14 sew line, 15 text) (default: not written)")
+    exp.add_argument("--pdf", metavar="P.pdf", help="tiled PDF at 1:1 for home printing, see --paper (default: not written)")
     exp.add_argument("--paper", choices=["a4", "letter"], default="a4", help="page size of --pdf (default: a4)")
     exp.add_argument("--seam-allowance", type=float, metavar="M", default=None,
                      help="seam allowance of every edge but hems [m] (default: the pattern's unsew.seam_allowance, "
                      "else 0.01 = 1 cm); per-edge values in the pattern's unsew.seam_allowance win")
     exp.add_argument("--hem-allowance", type=float, metavar="M", default=None,
                      help="allowance of edges labelled hem [m] (default: the pattern's, else 0.02 = 2 cm)")
-    exp.add_argument("--obj", metavar="P.obj", help="flat panels as OBJ (pattern coordinates as UVs)")
+    exp.add_argument("--obj", metavar="P.obj", help="flat panels as OBJ, pattern coordinates as UVs (default: not written)")
     exp.set_defaults(func=_dispatch("export"))
