@@ -71,3 +71,14 @@ def test_bad_allowances_are_refused():
     p.unsew["seam_allowance"] = {"panels": {"front": {"armhole": 0.01}}}
     with pytest.raises(InputError, match="neither an edge label"):
         seam_allowances(p)
+
+
+@pytest.mark.parametrize("garment", ["tshirt", "pants", "skirt"])
+def test_unlabelled_hems_are_found_where_the_labels_put_them(garment):
+    p = make_base_pattern(garment)
+    hems = {(n, i) for n, pan in p.panels.items() for i, e in enumerate(pan.edges) if e.label == "hem"}
+    for pan in p.panels.values():  # GarmentCode's own patterns label no edge
+        for e in pan.edges:
+            e.label = ""
+    widths = seam_allowances(p)
+    assert {(n, i) for n, w in widths.items() for i in np.nonzero(w == 0.02)[0]} == hems

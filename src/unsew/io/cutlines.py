@@ -3,7 +3,8 @@ PDF writers.
 
 A panel's outline in a pattern is its *sew line* (the seam itself). A workroom cuts along the
 *cut line*: the sew line offset outward by the seam allowance of each edge (default
-:data:`SEAM_ALLOWANCE_M`, edges labelled ``hem`` :data:`HEM_ALLOWANCE_M`). Each edge's offset
+:data:`SEAM_ALLOWANCE_M`, edges labelled ``hem`` :data:`HEM_ALLOWANCE_M`; in a pattern without
+such labels, each panel's lowest free edge on the body, :func:`_guess_hems`). Each edge's offset
 lines are joined by their intersection (a mitre); a convex corner whose mitre would reach
 further than :data:`MITER_LIMIT` allowances from the sew corner is clipped square to the
 bisector there, and the small loops an outward offset makes in a concave corner are cut away.
@@ -57,10 +58,13 @@ def seam_allowances(pattern: Pattern, *, default: float | None = None, hem: floa
     d = float(spec.get("default_m", SEAM_ALLOWANCE_M)) if default is None else float(default)
     h = float(spec.get("hem_m", HEM_ALLOWANCE_M)) if hem is None else float(hem)
     overrides = spec.get("panels") or {}
+    labelled = any(_is_hem(e.label) for pan in pattern.panels.values() for e in pan.edges)
+    guessed = {} if labelled else _guess_hems(pattern)
     out = {}
     for name in pattern.panel_order:
         pan = pattern.panels[name]
-        w = np.array([h if _is_hem(e.label) else d for e in pan.edges], dtype=np.float64)
+        w = np.array([h if _is_hem(e.label) or (name, i) in guessed else d for i, e in enumerate(pan.edges)],
+                     dtype=np.float64)
         ov = overrides.get(name) or {}
         for key in sorted(ov, key=lambda k: str(k).isdigit()):  # labels first, indices win
             hit = [int(key)] if str(key).isdigit() else [i for i, e in enumerate(pan.edges) if e.label == key]
@@ -73,6 +77,28 @@ def seam_allowances(pattern: Pattern, *, default: float | None = None, hem: floa
         if not np.all(np.isfinite(w)) or (w < 0).any() or (w > 0.1).any():
             raise InputError(f"seam allowance of panel {name!r} must lie in 0..10 cm, got "
                              f"{', '.join(f'{100 * x:g}' for x in w)} cm")
+    return out
+
+
+def _guess_hems(pattern: Pattern) -> set[tuple[str, int]]:
+    """Hems of a pattern whose edges carry no ``hem`` label (GarmentCode's own patterns label no
+    edges): on each panel, the free (unstitched) edge lowest on the body in its 3D placement,
+    when its middle lies below the panel's middle (a neckline or waist, at the top, never is).
+    Returns {(panel name, edge index)}."""
+    sewn = {(s.a.panel, s.a.edge) for s in pattern.stitches} | {(s.b.panel, s.b.edge) for s in pattern.stitches}
+    out = set()
+    for name, pan in pattern.panels.items():
+        free = [i for i in range(len(pan.edges)) if (name, i) not in sewn]
+        if not free:
+            continue
+        try:
+            mids = {i: float(pan.to_world(sample_edge(pan, i, 8)[4][None])[0, 1]) for i in free}
+            middle = float(pan.to_world(np.asarray(pan.vertices, dtype=np.float64))[:, 1].mean())
+        except Exception:  # a panel without a usable placement: no guess
+            continue
+        low = min(mids, key=mids.get)
+        if mids[low] < middle:
+            out.add((name, low))
     return out
 
 
