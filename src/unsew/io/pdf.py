@@ -120,7 +120,6 @@ def write_pdf(pattern: Pattern, path: str | os.PathLike, *, paper: str = "a4", a
     m = PAGE_MARGIN_MM
     s_mm = TEST_SQUARE_M * 1000.0
     sheet, tile, rows, cols, top, tiles = _tiled(make_sheet(pattern, allowance=allowance, hem=hem), paper)
-    sq = np.array([-1e9, -1e9])  # the test square is on page 1, not on the tiles
 
     def box(r, c):
         return _box(r, c, tile, top)
@@ -168,11 +167,6 @@ def write_pdf(pattern: Pattern, path: str | os.PathLike, *, paper: str = "a4", a
             b = box(r, c)
             ax = _mm_axes(fig, (pw, ph), m, m, tile[0], tile[1])
             _draw_pieces(ax, sheet, b)
-            if _meets(b, sq, s_mm):
-                ax.plot(sq[0] + np.array([0, s_mm, s_mm, 0, 0]), sq[1] + np.array([0, 0, s_mm, s_mm, 0]),
-                        color="black", linewidth=0.3 * _PT)
-                ax.text(sq[0] + s_mm + 8, sq[1] + 0.5 * s_mm, "10 cm test square", fontsize=9, va="center",
-                        clip_on=True)
             ax.set_xlim(b[0], b[2])
             ax.set_ylim(b[1], b[3])
             ax.plot([b[0], b[2], b[2], b[0], b[0]], [b[1], b[1], b[3], b[3], b[1]], color="#2f6fd0",
@@ -215,10 +209,6 @@ def _tiled(sheet: Sheet, paper: str):
 
 def _overlap(b, lo, hi) -> bool:
     return not (hi[0] < b[0] or lo[0] > b[2] or hi[1] < b[1] or lo[1] > b[3])
-
-
-def _meets(b, sq, s_mm) -> bool:
-    return not (sq[0] + s_mm < b[0] or sq[0] > b[2] or sq[1] + s_mm < b[1] or sq[1] > b[3])
 
 
 def _rect(b, on: bool):
