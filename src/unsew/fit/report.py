@@ -104,6 +104,10 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
         summary["start_material"] = choice[0]["material"]
         tables["material choice (pattern dressed in each from scratch, Chamfer mm)"] = {
             f"{r['material']} ({r.get('pattern', '?')})": round(float(r["chamfer_mm"]), 2) for r in choice}
+    if isinstance(tables.get("contact"), dict) and "stiffness" in tables["contact"]:
+        c = dict(tables["contact"])  # body repulsion kc of unsew.sim.drape.DrapeSettings
+        c["stiffness [N/m⁴]"] = c.pop("stiffness")
+        tables["contact"] = c
     if result.grade_table:
         tables["grading"] = {str(i): _flat(r) for i, r in enumerate(result.grade_table)}
     tables = {"seams of the returned pattern (sew-line lengths; codes as printed on the pieces)":
