@@ -5,7 +5,7 @@ result below, front and side) and ``figures/patterns.png`` (base, graded, true a
 patterns, panel by panel), both heights scaled to the taller one's. Nothing is measured here:
 the picture shows the result folder given.
 
-    python -m unsew demo --out DEMO --quiet
+    python -m unsew demo --out DEMO --no-progress
     python -m benchmarks demo_figure DEMO/fit --out docs/figures/demo.png
 """
 

@@ -114,7 +114,7 @@ fit() {  # fit DEVICE NAME LIMIT_S [flags...]: a CLI fit of the case, timed; met
     echo "### fit $name: --device $dev $*" >>"$OUT/fits.log"
     t1=$(date +%s.%N)
     timeout "$limit" $PY -m unsew fit "$WORK/case" --out "$WORK/fit_$name" --config "$WORK/small.yaml" \
-        --device "$dev" --quiet "$@" >"$WORK/fit_$name.log" 2>&1
+        --device "$dev" --no-progress "$@" >"$WORK/fit_$name.log" 2>&1
     rc=$?
     t2=$(date +%s.%N)
     cat "$WORK/fit_$name.log" >>"$OUT/fits.log"

@@ -81,7 +81,7 @@ def test_small_batch_equals_single_fit_and_reports_broken_case(tmp_path):
     assert no_time(_metrics(tmp_path / "out" / "tshirt")) == no_time(json.loads(json.dumps(single)))  # bitwise, in fact
     # the rerun, through the CLI: the finished case is skipped, the broken one fails again (exit 1)
     p = subprocess.run([sys.executable, "-m", "unsew", "batch", str(cases), "--out", str(tmp_path / "out"),
-                        "--workers", "2", "--quiet"], capture_output=True, text=True, timeout=300,
+                        "--workers", "2", "--no-progress"], capture_output=True, text=True, timeout=300,
                        env={**os.environ, "OMP_WAIT_POLICY": "PASSIVE"})
     assert p.returncode == 1, p.stderr
     assert "skipped" in p.stdout and "failed: garment 'sweater'" in p.stdout and "1 skipped, 1 failed" in p.stdout

@@ -76,11 +76,11 @@ def test_result_folder_under_a_file_fails_before_the_fit(tmp_path, capsys):
     (tmp_path / "afile").write_text("x")
     case = tmp_path / "case"
     case.mkdir()  # an empty case: the --out check must come first, before the case is read
-    code = main(["fit", str(case), "--out", str(tmp_path / "afile" / "r"), "--quiet"])
+    code = main(["fit", str(case), "--out", str(tmp_path / "afile" / "r"), "--no-progress"])
     _one_line_error(capsys, code, "cannot write --out")
-    code = main(["batch", str(case), "--out", str(tmp_path / "afile" / "r"), "--quiet"])
+    code = main(["batch", str(case), "--out", str(tmp_path / "afile" / "r"), "--no-progress"])
     _one_line_error(capsys, code, "cannot write --out")
-    code = main(["demo", "--out", str(tmp_path / "afile" / "r"), "--quiet"])
+    code = main(["demo", "--out", str(tmp_path / "afile" / "r"), "--no-progress"])
     _one_line_error(capsys, code, "cannot write --out")
 
 
@@ -176,7 +176,7 @@ def test_target_beside_the_body_is_refused(tmp_path, capsys):
 
     load_case(_tube_case(tmp_path / "a"))  # worn: loads
     d = _tube_case(tmp_path / "b", shift=(0.0, 0.0, 0.5))  # half a metre in front of the body
-    for cmd in (["fit", str(d), "--out", str(tmp_path / "r"), "--quiet"], ["grade", str(d), "--out", str(tmp_path / "r"), "--flat"]):
+    for cmd in (["fit", str(d), "--out", str(tmp_path / "r"), "--no-progress"], ["grade", str(d), "--out", str(tmp_path / "r"), "--flat"]):
         _one_line_error(capsys, main(cmd), "does not lie on its wearer")
         assert not (tmp_path / "r").exists() and not (tmp_path / "r.partial").exists()
 

@@ -55,7 +55,7 @@ def test_closed_sphere_is_not_a_garment(tmp_path, capsys):
 
 def test_wrong_base_type(tmp_path, capsys):
     d = _case(tmp_path)
-    code, err = _run(["fit", str(d), "--base", "pants", "--out", str(tmp_path / "r"), "--quiet"], capsys)
+    code, err = _run(["fit", str(d), "--base", "pants", "--out", str(tmp_path / "r"), "--no-progress"], capsys)
     assert code == 2 and "cannot make a tshirt" in err
     assert not (tmp_path / "r").exists() and not (tmp_path / "r.partial").exists()
 
@@ -97,6 +97,6 @@ def test_unavailable_device(tmp_path, capsys):
     if torch.cuda.is_available():
         pytest.skip("a CUDA device is present")
     d = _case(tmp_path)
-    code, err = _run(["fit", str(d), "--device", "cuda", "--out", str(tmp_path / "r"), "--quiet"], capsys)
+    code, err = _run(["fit", str(d), "--device", "cuda", "--out", str(tmp_path / "r"), "--no-progress"], capsys)
     assert code == 2 and "--device cpu" in err
     assert not (tmp_path / "r").exists() and not (tmp_path / "r.partial").exists()

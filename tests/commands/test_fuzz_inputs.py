@@ -76,7 +76,7 @@ def _obj(v, f) -> str:
 
 
 def _fit(d: Path, tmp: Path, *extra: str) -> list[str]:
-    return ["fit", str(d), "--out", str(tmp / "result"), "--quiet", *extra]
+    return ["fit", str(d), "--out", str(tmp / "result"), "--no-progress", *extra]
 
 
 def _mesh_case(text_of):

@@ -120,7 +120,7 @@ def test_fit_cli_on_cuda(case_dir, tmp_path, capsys):  # pragma: no cover - no G
     cfg = tmp_path / "small.yaml"
     cfg.write_text(yaml.safe_dump({**SMALL, "mesh_spread": 0.0}))
     out = tmp_path / "result"
-    code = main(["fit", str(case_dir), "--out", str(out), "--config", str(cfg), "--device", "cuda", "--quiet"])
+    code = main(["fit", str(case_dir), "--out", str(out), "--config", str(cfg), "--device", "cuda", "--no-progress"])
     err = capsys.readouterr().err
     assert code == 0, err
     metrics = json.loads((out / "metrics.json").read_text())

@@ -15,7 +15,7 @@ from unsew.fit.config import CheckSettings, load_config
 #: (means x0.956, fit's mesh x1.04; cholespy x0.87).
 SMALL = {"edge_length": 0.04, "iterations": 3, "steps": 8, "sew_steps": 60, "settle_steps": 20,
          "target_points": 1500, "material_start": 1, "material": "cotton", "drape.backend": "cholespy"}
-FILES = ["pattern.json", "pattern.svg", "pattern.dxf", "garment.obj", "garment_rest.obj", "material.json",
+FILES = ["pattern.json", "pattern.svg", "pattern.dxf", "pattern.pdf", "garment.obj", "garment_rest.obj", "material.json",
          "metrics.json", "config.yaml", "report.html", "pattern_base.json", "pattern_graded.json"]
 
 

@@ -1,4 +1,5 @@
-"""SVG export: true scale in mm, panel sizes to 0.1 mm, no overlap, labels and notches on both sides."""
+"""SVG export: true scale in mm, panel sizes to 0.1 mm, no overlap of the cut pieces, labels and notches on
+both sides of a seam and on both lines, the test square."""
 
 import re
 import xml.etree.ElementTree as ET
@@ -16,7 +17,7 @@ NS = {"s": "http://www.w3.org/2000/svg"}
 
 def _parse(path):
     root = ET.parse(path).getroot()
-    return root, {g.get("id")[6:]: g for g in root.findall("s:g", NS)}
+    return root, {g.get("id")[6:]: g for g in root.findall("s:g[@class='panel']", NS)}
 
 
 def _path_points(d):
@@ -37,15 +38,20 @@ def test_true_scale_and_panel_sizes(garment, tmp_path):
     assert set(groups) == set(p.panels)
     boxes = []
     for name, g in groups.items():
-        pts = _path_points(g.find("s:path[@class='outline']", NS).get("d"))
+        pts = _path_points(g.find("s:path[@class='sew-line']", NS).get("d"))
         size = pts.max(0) - pts.min(0)
         exact = panel_outline(p.panels[name], points_per_edge=4000) * 1000.0  # [mm]
         np.testing.assert_allclose(size, exact.max(0) - exact.min(0), atol=0.1)
-        assert (pts >= 0).all() and (pts[:, 0] <= W).all() and (pts[:, 1] <= H).all()
-        boxes.append((pts.min(0), pts.max(0)))
+        cut = _path_points(g.find("s:path[@class='cut-line']", NS).get("d"))
+        assert (cut >= 0).all() and (cut[:, 0] <= W).all() and (cut[:, 1] <= H).all()
+        assert (cut.max(0) - cut.min(0) >= size + 2 * 10.0 - 1e-6).all()  # 1 cm allowance at least, each side
+        boxes.append((cut.min(0), cut.max(0)))
         assert g.find("s:text[@class='panel-name']", NS).text == name
         assert g.find("s:path[@class='grainline']", NS) is not None
-    for i in range(len(boxes)):  # no two panels' boxes overlap
+    sq = _path_points(root.find("s:g[@id='test-square']/s:path", NS).get("d"))
+    np.testing.assert_allclose(sq.max(0) - sq.min(0), [100.0, 100.0])  # the 10 cm test square
+    boxes.append((sq.min(0), sq.max(0)))
+    for i in range(len(boxes)):  # no two pieces' boxes overlap
         for j in range(i + 1, len(boxes)):
             (a0, a1), (b0, b1) = boxes[i], boxes[j]
             assert (a1 < b0).any() or (b1 < a0).any()
@@ -59,7 +65,7 @@ def test_seam_labels_and_notches_on_both_sides(tmp_path):
     labels = {n: sorted(t.text for t in g.findall("s:text[@class='seam-label']", NS)) for n, g in groups.items()}
     assert labels == {"front": ["A", "B"], "back": ["A", "B"]}
     notches = {n: len(g.findall("s:path[@class='notch']", NS)) for n, g in groups.items()}
-    assert notches == {"front": 1 + 2, "back": 1 + 2}  # stitch A has one notch, B two
+    assert notches == {"front": 2 * (1 + 2), "back": 2 * (1 + 2)}  # A one notch, B two; on both lines
 
 
 def test_notches_match_along_the_seam():

@@ -1,5 +1,6 @@
-"""``unsew pattern export P.json [--svg P.svg] [--dxf P.dxf] [--obj P.obj]``: write the pattern
-as a true-scale SVG, an AAMA/ASTM-style DXF and/or the flat panels as OBJ."""
+"""``unsew pattern export P.json [--svg P.svg] [--dxf P.dxf] [--pdf P.pdf] [--obj P.obj]``: write the
+pattern as a true-scale SVG, an AAMA/ASTM-style DXF, a tiled 1:1 PDF (cut and sew lines, seam
+allowance ``--seam-allowance`` / ``--hem-allowance`` [m]) and/or the flat panels as OBJ."""
 
 from __future__ import annotations
 
@@ -26,9 +27,14 @@ def load_pattern_reporting(path):
 
 
 def run(args: argparse.Namespace) -> int:
-    outs = [(args.svg, ".svg", "--svg"), (args.dxf, ".dxf", "--dxf"), (getattr(args, "obj", None), ".obj", "--obj")]
+    outs = [(args.svg, ".svg", "--svg"), (args.dxf, ".dxf", "--dxf"), (getattr(args, "pdf", None), ".pdf", "--pdf"),
+            (getattr(args, "obj", None), ".obj", "--obj")]
     if not any(o for o, _, _ in outs):
-        raise InputError("nothing to export: give --svg P.svg, --dxf P.dxf and/or --obj P.obj")
+        raise InputError("nothing to export: give --svg P.svg, --dxf P.dxf, --pdf P.pdf and/or --obj P.obj")
+    sa = {"allowance": getattr(args, "seam_allowance", None), "hem": getattr(args, "hem_allowance", None)}
+    for flag, v in (("--seam-allowance", sa["allowance"]), ("--hem-allowance", sa["hem"])):
+        if v is not None and not 0.0 <= v <= 0.1:
+            raise InputError(f"{flag} {v:g} is in metres and must lie in 0..0.1 (1 cm is 0.01)")
     for o, ext, flag in outs:
         if o and not str(o).lower().endswith(ext):
             raise InputError(f"{flag} {o} should name a {ext} file")
@@ -41,13 +47,18 @@ def run(args: argparse.Namespace) -> int:
     if args.svg:
         from unsew.io.svg import write_svg
 
-        write_svg(pattern, args.svg)
+        write_svg(pattern, args.svg, **sa)
         print(f"wrote {args.svg}")
     if args.dxf:
         from unsew.io.dxf import write_dxf
 
-        write_dxf(pattern, args.dxf)
+        write_dxf(pattern, args.dxf, **sa)
         print(f"wrote {args.dxf}")
+    if getattr(args, "pdf", None):
+        from unsew.io.pdf import write_pdf
+
+        pages = write_pdf(pattern, args.pdf, paper=getattr(args, "paper", "a4"), **sa)
+        print(f"wrote {args.pdf} ({pages} pages)")
     if getattr(args, "obj", None):
         from unsew.commands._checks import check_triangle_budget
         from unsew.meshing import mesh_pattern, write_rest_obj

@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 
 from unsew.commands._output import check_out
+from unsew.commands._help import HelpFormatter, examples
 from unsew.commands.fit import add_fit_options, config_from_args
 
 __all__ = ["register", "run"]
@@ -19,6 +20,9 @@ __all__ = ["register", "run"]
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "batch", help="fit every case folder of a folder (local processes, or a Ray cluster); resumable",
+        formatter_class=HelpFormatter,
+        epilog=examples("unsew batch cases/ --out results/", "unsew batch cases/ --out results/ --workers 2 --iterations 40",
+                        "unsew batch cases/ --out results/ --ray auto"),
         description="Fit every case folder (a subfolder holding meta.json) of CASES_DIR into RESULTS_DIR/<case>/. "
         "Rerun the same command to continue an interrupted batch: complete results are skipped, interrupted "
         "fits resume from their checkpoints, failed cases are tried again.")
@@ -27,7 +31,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--workers", type=int, metavar="N", help="local worker processes (default: min(CPU count, cases))")
     p.add_argument("--ray", metavar="ADDRESS",
                    help="run the fits as Ray tasks: 'auto' (running cluster), 'local' (start one here) or an address; "
-                   "RESULTS_DIR must be on a shared filesystem for a multi-machine cluster (needs unsew[ray])")
+                   "RESULTS_DIR must be on a shared filesystem for a multi-machine cluster (needs unsew[ray]) (default: local processes)")
     p.add_argument("--overwrite", action="store_true", help="refit cases whose result folder is already complete")
     add_fit_options(p)
     p.set_defaults(func=run)

@@ -10,6 +10,7 @@ import argparse
 import sys
 
 from unsew.commands._output import check_out
+from unsew.commands._help import HelpFormatter, examples
 from unsew.errors import InputError
 from unsew.io.atomic import atomic_dir
 
@@ -107,33 +108,42 @@ def run_measure(args: argparse.Namespace) -> int:
 
 
 def _frame_options(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--units", default="m", choices=["m", "cm", "mm"], help="units of the body files")
-    p.add_argument("--up", default="y", help="the files' up axis (x, y, z, -x, ...)")
-    p.add_argument("--front", default="z", help="the files' front axis")
+    p.add_argument("--units", default="m", choices=["m", "cm", "mm"], help="units of the body files (default: m)")
+    p.add_argument("--up", default="y", help="the files' up axis: x, y, z, -x, ... (default: y)")
+    p.add_argument("--front", default="z", help="the files' front axis (default: z)")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("body", help="make a wearer (anny) or measure a body")
+    p = sub.add_parser("body", help="make a wearer (anny) or measure a body", formatter_class=HelpFormatter,
+                       epilog=examples("unsew body make --phenotype height=0.7 --out bodies/tall/",
+                                       "unsew body measure default"))
     psub = p.add_subparsers(dest="body_command", metavar="VERB", required=True)
 
-    mk = psub.add_parser("make", help="make a body with anny (pip install unsew[anny]): body.obj + skeleton.json")
+    mk = psub.add_parser("make", help="make a body with anny (pip install unsew[anny]): body.obj + skeleton.json",
+                         formatter_class=HelpFormatter,
+                         epilog=examples("unsew body make --out bodies/average/",
+                                         "unsew body make --phenotype height=0.7 --phenotype weight=0.3 --pose T --out bodies/tall/"))
     mk.add_argument("--phenotype", type=_phenotype, action="append", metavar="NAME=VALUE",
                     help="gender, age, muscle, weight, height or proportions in [0, 1] (default 0.5); repeatable")
-    mk.add_argument("--pose", default="A", help="A (rest), T, or a JSON file of joint rotation vectors [rad]")
+    mk.add_argument("--pose", default="A", help="A (rest), T, or a JSON file of joint rotation vectors [rad] (default: A)")
     mk.add_argument("--out", required=True, metavar="DIR", help="folder to write")
     mk.add_argument("--overwrite", action="store_true", help="replace an existing --out folder")
     mk.set_defaults(func=run_make)
 
-    rg = psub.add_parser("rig", help="estimate the 17 joints of a body mesh that has no skeleton: skeleton.json")
+    rg = psub.add_parser("rig", help="estimate the 17 joints of a body mesh that has no skeleton: skeleton.json",
+                         formatter_class=HelpFormatter,
+                         epilog=examples("unsew body rig case/body.obj", "unsew body rig scan.obj --units mm --up z "
+                                         "--front -y --out skeleton.json --preview joints.png"))
     rg.add_argument("body", metavar="BODY.obj|BODY_DIR")
     rg.add_argument("--out", metavar="skeleton.json", help="where to write (default: skeleton.json beside the body)")
-    rg.add_argument("--preview", metavar="PNG", help="also draw the body and its joints, front and side")
+    rg.add_argument("--preview", metavar="PNG", help="also draw the body and its joints, front and side (default: no picture)")
     rg.add_argument("--overwrite", action="store_true", help="replace an existing --out (and --preview) file")
     _frame_options(rg)
     rg.set_defaults(func=run_rig, skeleton=None)
 
     me = psub.add_parser("measure", help="girths and lengths of a body (body.obj [+ skeleton.json], its folder, or 'default'); "
-                         "a body without skeleton.json is rigged from its mesh")
+                         "a body without skeleton.json is rigged from its mesh", formatter_class=HelpFormatter,
+                         epilog=examples("unsew body measure default", "unsew body measure case/ --json"))
     me.add_argument("body", metavar="BODY.obj|BODY_DIR|default")
     me.add_argument("--skeleton", metavar="skeleton.json", help="the joints of a BODY.obj (default: rigged from the mesh)")
     me.add_argument("--json", action="store_true", help="print JSON (metres)")

@@ -15,6 +15,7 @@ from __future__ import annotations
 import argparse
 
 from unsew.commands._output import check_out
+from unsew.commands._help import HelpFormatter, add_progress_switch, examples
 from unsew.errors import InputError
 
 __all__ = ["register", "run", "pattern_contact"]
@@ -47,22 +48,25 @@ def register(sub: argparse._SubParsersAction) -> None:
         "a case folder or a body folder (its body.obj + skeleton.json, as `unsew body make` writes it), "
         "or a body mesh with --skeleton. A drape that ends fallen, off the body, exploded or inside it "
         "exits non-zero with one line and writes no --out.",
+        formatter_class=HelpFormatter,
+        epilog=examples("unsew drape result/pattern.json --out garment.obj",
+                        "unsew drape pattern.json --body bodies/tall/ --material denim --edge-length 0.02 --out garment.obj"),
     )
     p.add_argument("pattern", metavar="PATTERN.json", help="sewing pattern (GarmentCode specification JSON)")
     p.add_argument("--body", default="default", help="default | CASE_DIR | BODY_DIR | body.obj/ply (default: default)")
-    p.add_argument("--skeleton", default=None, help="skeleton.json of a body mesh given with --body")
-    p.add_argument("--units", default="m", choices=["m", "cm", "mm"], help="units of a body mesh file (default m)")
+    p.add_argument("--skeleton", default=None, help="skeleton.json of a body mesh given with --body (default: the mesh is rigged from its shape)")
+    p.add_argument("--units", default="m", choices=["m", "cm", "mm"], help="units of a body mesh file (default: m)")
     p.add_argument("--material", default=None,
                    help="material name from the library (default: the pattern's own fitted material when "
                         "pattern.json carries one, as unsew fit writes it; else cotton)")
-    p.add_argument("--edge-length", type=float, default=0.025, help="target triangle edge length [m] (default 0.025)")
-    p.add_argument("--sew-steps", type=int, default=None, help="steps of the sewing phase (default: dress()'s)")
-    p.add_argument("--settle-steps", type=int, default=None, help="steps of settling after sewing (default: dress()'s)")
+    p.add_argument("--edge-length", type=float, default=0.025, help="target triangle edge length [m] (default: 0.025)")
+    p.add_argument("--sew-steps", type=int, default=None, help="steps of the sewing phase (default: 60, unsew.dress.DRESS_SETTINGS)")
+    p.add_argument("--settle-steps", type=int, default=None, help="steps of settling after sewing (default: 20, unsew.dress.DRESS_SETTINGS)")
     p.add_argument("--out", required=True, metavar="garment.obj", help="OBJ file to write")
     p.add_argument("--overwrite", action="store_true", help="replace an existing --out")
     p.add_argument("--keep-failed", action="store_true",
                    help="when the drape fails its checks, write the garment to <out stem>.failed.obj")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_progress_switch(p, dest="no_progress")
     p.set_defaults(func=run)
 
 

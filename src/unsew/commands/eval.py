@@ -11,6 +11,8 @@ from __future__ import annotations
 import argparse
 
 from unsew.commands._output import check_out
+from unsew.commands._help import HelpFormatter, examples
+from unsew.io.atomic import check_output
 
 __all__ = ["register", "run"]
 
@@ -36,12 +38,14 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="score a fit result against a case: Chamfer [mm], normal error, and 2D pattern metrics",
         description="Compare RESULT_DIR/garment.obj with CASE_DIR/target.obj (3D) and, when both exist, "
         "RESULT_DIR/pattern.json with CASE_DIR/pattern_gt.json (2D). Writes RESULT_DIR/eval.json.",
+        formatter_class=HelpFormatter,
+        epilog=examples("unsew eval result/ case/", "unsew eval result/ case/ --json --samples 20000"),
     )
     p.add_argument("result_dir", metavar="RESULT_DIR", help="fit result folder (garment.obj, pattern.json)")
     p.add_argument("case_dir", metavar="CASE_DIR", help="case folder (target.obj, optional pattern_gt.json)")
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
-    p.add_argument("--samples", type=int, default=100_000, help="surface samples per mesh (default 100000)")
-    p.add_argument("--seed", type=int, default=0, help="sampling seed (default 0)")
+    p.add_argument("--samples", type=int, default=100_000, help="surface samples per mesh (default: 100000)")
+    p.add_argument("--seed", type=int, default=0, help="sampling seed (default: 0)")
     p.add_argument("--units", choices=["m", "cm", "mm"], help="units of the case's meshes (default: meta.json's, else m)")
     p.add_argument("--up", help="the case files' up axis, e.g. z (default: meta.json's, else y)")
     p.add_argument("--front", help="the case files' front axis, e.g. -y (default: meta.json's, else z)")

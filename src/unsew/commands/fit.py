@@ -5,29 +5,40 @@ from __future__ import annotations
 import argparse
 
 from unsew.commands._output import check_out
+from unsew.commands._help import HelpFormatter, add_progress_switch, examples
 from unsew.errors import InputError
 
 __all__ = ["register", "run", "add_fit_options", "config_from_args"]
 
 
-def add_fit_options(p: argparse.ArgumentParser) -> None:
-    """Options shared by ``fit`` and ``demo`` (each maps to a FitConfig field)."""
-    p.add_argument("--config", metavar="FIT.yaml", help="fit configuration (YAML); flags below override it")
-    p.add_argument("--iterations", type=int, help="iteration budget of phase two")
-    p.add_argument("--edge-length", type=float, help="panel mesh edge length [m]")
+def add_fit_options(p: argparse.ArgumentParser, *, demo: bool = False) -> None:
+    """Options shared by ``fit``, ``demo`` and ``batch`` (each maps to a FitConfig field);
+    ``demo``: state the demo's defaults (unsew.fit.demo.DEMO_CONFIG) instead of FitConfig's."""
+    d = DEMO_DEFAULTS if demo else FIT_DEFAULTS
+    p.add_argument("--config", metavar="FIT.yaml", help="fit configuration (YAML); flags below override it "
+                   "(default: none, the built-in configuration)")
+    p.add_argument("--iterations", type=int, metavar="N",
+                   help=f"iteration budget of phase two (default: {d['iterations']})")
+    p.add_argument("--edge-length", type=float, metavar="M",
+                   help=f"panel mesh edge length [m] (default: {d['edge_length']})")
     p.add_argument("--material", help="starting material from the library (e.g. cotton, denim, silk), or auto: the library "
-                   "material whose drape of the graded pattern is closest to the target")
-    p.add_argument("--steps", type=int, help="drape steps per iteration")
+                   "material whose drape of the graded pattern is closest to the target (default: auto)")
+    p.add_argument("--steps", type=int, metavar="N", help=f"drape steps per iteration (default: {d['steps']})")
     p.add_argument("--no-grading", action="store_true", help="ablation: skip phase one (linear grading)")
     p.add_argument("--plain-chamfer", action="store_true", help="ablation: Chamfer without curvature weights")
     p.add_argument("--no-seam-loss", action="store_true", help="ablation: drop the seam-length loss")
     p.add_argument("--no-material", action="store_true", help="ablation: keep the material fixed")
-    p.add_argument("--device", help="torch device (cpu, cuda)")
+    p.add_argument("--device", help="torch device, cpu or cuda (default: cpu)")
     p.add_argument("--time-limit", type=float, metavar="SECONDS",
                    help="seconds the fit aims to end within (default 540): the material search, phase two and the "
                    "mesh spread give way; 0: no limit")
     p.add_argument("--no-report", action="store_true", help="skip report.html")
-    p.add_argument("--quiet", action="store_true", help="no progress bars")
+    add_progress_switch(p)
+
+
+#: Defaults --help states (FitConfig's, and the demo's overrides); a test checks they agree.
+FIT_DEFAULTS = {"iterations": 100, "edge_length": 0.025, "steps": 15}
+DEMO_DEFAULTS = {"iterations": 80, "edge_length": 0.03, "steps": 12}
 
 
 def config_from_args(args: argparse.Namespace, *, defaults: dict | None = None):
@@ -67,7 +78,15 @@ def config_from_args(args: argparse.Namespace, *, defaults: dict | None = None):
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("fit", help="recover the sewing pattern and material of a draped garment (case folder)")
+    p = sub.add_parser(
+        "fit", help="recover the sewing pattern and material of a draped garment (case folder)",
+        formatter_class=HelpFormatter,
+        description="Recover the sewing pattern and material of a draped garment: phase one grades a base pattern "
+        "to the target, phase two optimises pattern and material through the differentiable drape. Writes "
+        "RESULT_DIR/ with pattern.json, pattern.svg, pattern.dxf, pattern.pdf, garment.obj, metrics.json, "
+        "report.html (FORMATS.md).",
+        epilog=examples("unsew fit case/ --out result/",
+                        "unsew fit case/ --out result/ --material denim --iterations 40 --edge-length 0.03 --no-progress"))
     p.add_argument("case", metavar="CASE_DIR", help="case folder: target.obj, body.obj + skeleton.json or meta body, meta.json")
     p.add_argument("--out", required=True, metavar="RESULT_DIR", help="result folder to create")
     p.add_argument("--base", help="base pattern: a garment type or library base (unsew pattern new --help lists them) or a GarmentCode JSON (default: chosen by draping among the library's bases of meta.json's garment)")

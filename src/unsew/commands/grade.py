@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 
+from unsew.commands._help import HelpFormatter, examples
 from unsew.errors import InputError
 from unsew.io.atomic import atomic_dir
 from unsew.pattern.base import BASES
@@ -19,14 +20,16 @@ __all__ = ["register", "run"]
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("grade", help="grade a base pattern to a target's hems, cuffs, necklines (phase one)")
+    p = sub.add_parser("grade", help="grade a base pattern to a target's hems, cuffs, necklines (phase one)",
+                       formatter_class=HelpFormatter,
+                       epilog=examples("unsew grade case/ --out graded/", "unsew grade case/ --base skirt_band --flat --out graded/"))
     p.add_argument("case", metavar="CASE_DIR", help="case folder (target.obj, body, meta.json; see FORMATS.md)")
     p.add_argument("--base", default=None, metavar="NAME|P.json",
                    help=f"base pattern, sized to the wearer as the fit sizes it: {', '.join(BASES)}, or a GarmentCode "
                         "JSON file (default: the case's garment type)")
     p.add_argument("--out", required=True, metavar="DIR", help="result folder to create")
-    p.add_argument("--edge-length", type=float, default=0.03, help="rest edge length of the panel meshes [m]")
-    p.add_argument("--material", default="cotton", help="material name from the library (default cotton)")
+    p.add_argument("--edge-length", type=float, default=0.03, help="rest edge length of the panel meshes [m] (default: 0.03)")
+    p.add_argument("--material", default="cotton", help="material name from the library (default: cotton)")
     p.add_argument("--length", choices=["cloth", "axial"], default="cloth",
                    help="move hems and cuffs by the cloth length to the top opening (default) or by the axial distance "
                         "along the bone (the paper's Algorithm 2)")

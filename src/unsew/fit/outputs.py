@@ -1,4 +1,5 @@
-"""The result folder of a fit (FORMATS.md): pattern.json, pattern.svg, pattern.dxf, garment.obj,
+"""The result folder of a fit (FORMATS.md): pattern.json, pattern.svg, pattern.dxf, pattern.pdf (tiled
+A4 pages at 1:1), garment.obj,
 garment_rest.obj, material.json, metrics.json, config.yaml, report.html and its figures; and, an
 addition FORMATS.md does not list (docs/ARCHITECTURE.md), the fit's starting points
 pattern_base.json (the base pattern before grading) and pattern_graded.json (after grading;
@@ -27,6 +28,7 @@ from unsew.grading.area import pattern_area
 from unsew.io.dxf import write_dxf
 from unsew.io.garmentcode import save_pattern
 from unsew.io.mesh import write_obj
+from unsew.io.pdf import write_pdf
 from unsew.io.svg import write_svg
 from unsew.meshing import write_rest_obj
 from unsew.metrics.panels import pattern_metrics
@@ -189,6 +191,7 @@ def write_result(work: Path, result, case, cfg, *, report: bool = True, metrics:
         save_pattern(result.graded_pattern, work / GRADED_PATTERN_FILE)
     write_svg(pattern, work / "pattern.svg")
     write_dxf(pattern, work / "pattern.dxf")
+    write_pdf(pattern, work / "pattern.pdf")
     mesh = result.mesh
     write_obj(work / "garment.obj", result.x, mesh.faces, uv=result.uv, faces_uv=mesh.faces_uv,
               header="unsew draped garment; vt = pattern coordinates [m]")

@@ -12,9 +12,10 @@ import numpy as np
 from unsew.fit.checks import mm_list
 from unsew.metrics.surface import closest_points
 from unsew.report.fit_report import write_fit_report as _write
+from unsew.report.measure import seam_table
 from unsew.sim.material import material_to_dict
 
-__all__ = ["write_fit_report", "truth_over"]
+__all__ = ["write_fit_report", "truth_over", "patterns_coincide", "loss_phases", "material_for_reading", "choices_made"]
 
 
 def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | None = None) -> Path:
@@ -22,11 +23,13 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     faces = np.asarray(result.mesh.faces)
     _, dist, _ = closest_points(np.asarray(result.x), np.asarray(case.target_verts), np.asarray(case.target_faces))
     patterns = [("base", result.base_pattern)]
-    if result.graded_pattern is not None and result.graded_pattern is not result.base_pattern:
-        patterns.append(("graded", result.graded_pattern))
+    graded = result.graded_pattern
+    same = graded is not None and patterns_coincide(graded, result.pattern)
+    if graded is not None and graded is not result.base_pattern and not same:
+        patterns.append(("graded", graded))
     if case.pattern_gt is not None:
         patterns.append(("true", truth_over(case.pattern_gt, result.pattern, metrics.get("pattern"))))
-    patterns.append(("final", result.pattern))
+    patterns.append(("final = graded" if same else "final", result.pattern))
     s = metrics.get("surface", {})
     summary = {
         "case": Path(case.path).name,
@@ -49,6 +52,13 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
             notes.append(f"{what} pattern: panels without a counterpart, estimated {un.get('estimated') or []}, "
                          f"true {un.get('true') or []} (left out of the per-panel means; the area-weighted "
                          "area error counts each at its full area)")
+    if graded is not None and not same and set(graded.panels) == set(result.pattern.panels):
+        moved = [np.abs(np.asarray(result.pattern.panels[n].vertices) - np.asarray(p.vertices)).max(initial=0.0)
+                 for n, p in graded.panels.items() if np.shape(p.vertices) == np.shape(result.pattern.panels[n].vertices)]
+        if moved:
+            notes.append(f"final pattern: its corners lie at most {1e3 * max(moved):.1f} mm from the graded "
+                         "pattern's (in the pattern figure the graded outline shows only where they differ by more "
+                         "than the line width)")
     for row in result.grade_table or []:
         for w in (row.get("warnings") or []) if isinstance(row, dict) else []:
             notes.append(f"grading: {w}")
@@ -72,8 +82,7 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     # terms that stay at round-off level (e.g. the seam loss of a symmetric skirt) would stretch
     # the log axis over 30 decades: leave them out of the plot (they are in the metrics table)
     hist = {k: v for k, v in result.history.items() if v and max(v) > 1e-12 * top}
-    start = result.material_start_iteration
-    phases = [(0, "pattern")] + ([(start, "pattern + material")] if start is not None and start < result.iterations else [])
+    phases = loss_phases(result, metrics)
     tables = dict(metrics)
     if "base" in tables:
         summary["base"] = tables.pop("base")
@@ -95,15 +104,117 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
         summary["start_material"] = choice[0]["material"]
         tables["material choice (pattern dressed in each from scratch, Chamfer mm)"] = {
             f"{r['material']} ({r.get('pattern', '?')})": round(float(r["chamfer_mm"]), 2) for r in choice}
+    if isinstance(tables.get("contact"), dict) and "stiffness" in tables["contact"]:
+        c = dict(tables["contact"])  # body repulsion kc of unsew.sim.drape.DrapeSettings
+        c["stiffness [N/m⁴]"] = c.pop("stiffness")
+        tables["contact"] = c
     if result.grade_table:
         tables["grading"] = {str(i): _flat(r) for i, r in enumerate(result.grade_table)}
+    tables = {"seams of the returned pattern (sew-line lengths; codes as printed on the pieces)":
+              seam_table(result.pattern), **tables}
     return _write(
         work, title=f"unsew fit: {Path(case.path).name}", summary=summary, metrics=tables,
         target=(np.asarray(case.target_verts), np.asarray(case.target_faces)), result=(np.asarray(result.x), faces),
         body=(np.asarray(case.body.verts), np.asarray(case.body.faces)), distance_mm=1e3 * np.asarray(dist),
         history=hist or None, phases=phases if hist else None, patterns=patterns, config=config, notes=notes or None,
-        material=material_to_dict(result.material),
+        material=material_for_reading(material_to_dict(result.material)), choices=choices_made(result, metrics),
     )
+
+
+def patterns_coincide(a, b, *, tol: float = 1e-9) -> bool:
+    """Whether patterns ``a`` and ``b`` have the same panels with the same corners (within
+    ``tol`` [m]) and edges (a phase two that was not kept returns the graded pattern itself)."""
+    if a is b:
+        return True
+    if set(a.panels) != set(b.panels):
+        return False
+    for n, pa in a.panels.items():
+        pb = b.panels[n]
+        if np.shape(pa.vertices) != np.shape(pb.vertices) or len(pa.edges) != len(pb.edges):
+            return False
+        if np.abs(np.asarray(pa.vertices) - np.asarray(pb.vertices)).max(initial=0.0) > tol:
+            return False
+        for ea, eb in zip(pa.edges, pb.edges):
+            ca, cb = ea.curvature, eb.curvature
+            if (ca is None) != (cb is None) or (ca is not None and (ca.kind != cb.kind or not np.allclose(
+                    np.asarray(ca.params, float), np.asarray(cb.params, float), atol=tol, rtol=0))):
+                return False
+    return True
+
+
+def loss_phases(result, metrics: dict) -> list[tuple[int, str]]:
+    """The phases the loss plot shades: the pattern alone from iteration 0; 'pattern + material'
+    from the material's start only where the material did move there (a material held fixed,
+    by the configuration or because the start came after the last iteration, shades nothing);
+    each name says when phase two's result was not kept."""
+    start = result.material_start_iteration
+    moved = start is not None and start < result.iterations
+    last, first = getattr(result, "gamma_last", None), getattr(result, "start_material", None)
+    if moved and last is not None and first is not None and hasattr(first, "gamma"):
+        g0 = np.asarray(first.gamma() if callable(first.gamma) else first.gamma, dtype=float)
+        moved = not np.allclose(np.asarray(last, dtype=float), g0, rtol=1e-9, atol=0.0)
+    rd = metrics.get("redress") or {}
+    tail = " (not kept)" if rd and not rd.get("phase_two_kept", True) else ""
+    return [(0, "pattern" + tail)] + ([(start, "pattern + material" + tail)] if moved else [])
+
+
+#: How the report names the material's entries (material.json keeps its keys).
+MATERIAL_WORDS = {
+    "H00_N_per_m": "stretch stiffness along the panels' x (warp, u) [N/m]",
+    "H11_N_per_m": "stretch stiffness along the panels' y (weft, v) [N/m]",
+    "H01_N_per_m": "coupling of the two stretches (Poisson effect) [N/m]",
+    "H22_N_per_m": "shear stiffness [N/m]",
+    "bending_N_m": "bending stiffness [N·m]",
+    "density_kg_per_m2": "mass per area [kg/m²]",
+    "friction": "friction coefficient against the body [-]",
+}
+
+
+def material_for_reading(m: dict) -> dict:
+    """The material's entries under the names a pattern maker reads (:data:`MATERIAL_WORDS`),
+    the file's key kept in brackets for the symbol (H00 ... H22 of the membrane stiffness)."""
+    out = {}
+    for k, v in m.items():
+        word = MATERIAL_WORDS.get(k)
+        sym = k.split("_")[0]
+        if word and sym.startswith("H"):
+            word = f"{word[: word.rindex(' [')]} ({sym}) {word[word.rindex(' ['):].strip()}"
+        out[word or k] = v
+    return out
+
+
+def choices_made(result, metrics: dict) -> list[str]:
+    """'What was chosen and why': the base pattern, the fabric and whether phase two's pattern
+    was kept, each with the figures that decided it (from metrics.json)."""
+    out = []
+    bases = metrics.get("base_choice") or []
+    base = metrics.get("base") or getattr(result, "base_name", "") or "the given pattern"
+    if bases:
+        ok = [r for r in bases if r.get("chamfer_mm") is not None]
+        rest = ", ".join(f"{r['base']} {float(r['chamfer_mm']):.2f} mm" for r in ok[1:4])
+        out.append(f"Base pattern: {base}, whose coarse drape lay {float(ok[0]['chamfer_mm']):.2f} mm (Chamfer) "
+                   f"from the target" + (f", closer than {rest}" if rest else "") + "." if ok else
+                   f"Base pattern: {base} (no candidate could be draped).")
+    else:
+        out.append(f"Base pattern: {base}, as given (--base or the configuration); no other base was tried.")
+    choice = metrics.get("material_choice") or []
+    mat_name = choice[0]["material"] if choice else None
+    if choice:
+        rest = ", ".join(f"{r['material']} {float(r['chamfer_mm']):.2f} mm" for r in choice[1:4])
+        out.append(f"Fabric to start from: {mat_name}, whose drape lay {float(choice[0]['chamfer_mm']):.2f} mm from "
+                   "the target" + (f", closer than {rest}" if rest else "") + ".")
+    else:
+        start = getattr(result, "start_material", None)
+        out.append("Fabric to start from: as configured (material.start)" + (f", {start.name}" if getattr(start, "name", "")
+                                                                             else "") + "; no other fabric was tried.")
+    out.append("Fabric returned: fitted in phase two." if result.material_fitted else
+               "Fabric returned: the starting fabric (phase two's material was not kept or not fitted).")
+    rd = metrics.get("redress")
+    if rd:
+        out.append("Phase two: " + _redress_note(rd).split(": ", 1)[1] + ".")
+    else:
+        out.append("Phase two: its pattern is returned (no re-dress check was run).")
+    return out
 
 
 def truth_over(pattern_gt, final, matched: dict | None):
@@ -135,9 +246,25 @@ def truth_over(pattern_gt, final, matched: dict | None):
 
 
 def _flat(row) -> dict:
+    """A grading row as table cells: numbers and words as they are, a list of numbers as one
+    cell (the table prints it as "a, b, c"), nested entries under dotted keys, anything else as
+    words."""
     if not isinstance(row, dict):
         return {"row": str(row)}
-    return {k: (v if isinstance(v, (int, float, str)) or v is None else str(v)) for k, v in row.items()}
+    out = {}
+    for k, v in row.items():
+        if isinstance(v, dict):
+            for k2, v2 in _flat(v).items():
+                out[f"{k}.{k2}"] = v2
+        elif isinstance(v, (list, tuple)) and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v):
+            out[k] = [round(float(x), 4) for x in v]
+        elif isinstance(v, (list, tuple)):
+            out[k] = "; ".join(str(x) for x in v)
+        elif isinstance(v, (int, float, str)) or v is None:
+            out[k] = v
+        else:
+            out[k] = str(v)
+    return out
 
 
 _DRAPE_WORDS = {"fresh": "its pattern dressed from scratch on the fit's mesh",

@@ -57,6 +57,7 @@ def write_fit_report(
     notes: Sequence[str] | None = None,
     views: Sequence[str] = ("front", "side"),
     material: Mapping[str, Any] | None = None,
+    choices: Sequence[str] | None = None,
 ) -> Path:
     """Draw the figures of a fit into ``out_dir/figures`` and write ``out_dir/report.html``.
 
@@ -66,7 +67,7 @@ def write_fit_report(
     history, phases: as :func:`unsew.report.figures.plot_loss_curves`.
     patterns: (label, Pattern or list of (name, outline (M, 2) [m])) in drawing order, e.g.
         ``[("base", base), ("graded", graded), ("final", final), ("ground truth", gt)]``.
-    summary, metrics, config, notes: as :func:`unsew.report.html.write_report`. The metrics
+    summary, metrics, config, notes, choices: as :func:`unsew.report.html.write_report`. The metrics
         tables are preceded by the panel measurements of ``patterns``
         (:func:`unsew.report.measure.measurement_table`, cm) and the result's ``material`` (SI
         values, as ``unsew.sim.material.material_to_dict`` gives them); a per-iteration
@@ -83,7 +84,7 @@ def write_fit_report(
     tables = _fit_tables(patterns=patterns, material=material, metrics=metrics, history=history)
     return write_report(out / "report.html", title=title, summary=dict(summary or {}),
                         metrics=tables, figures=figures, config=config,
-                        notes=notes or None)
+                        notes=notes or None, choices=choices)
 
 
 def _fit_figures(fig_dir: Path, *, history, phases, target, result, body, distance_mm, views,

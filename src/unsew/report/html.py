@@ -3,7 +3,10 @@ it survives being moved or mailed), written atomically so a failure leaves no re
 
 Metric names carry their unit. A key's unit suffix is shown in brackets: ``chamfer_mm`` is
 shown as ``chamfer [mm]`` (the raw key stays in the cell's tooltip), keys already holding
-``[...]`` are shown as they are.
+``[...]`` are shown as they are. The rows of a table whose own key carries a unit (``timings_s``,
+``peak_memory_stages_mb``) are in that unit: their keys are shown without a unit suffix of their
+own (a stage named ``body_sdf_s`` in the memory table is "body sdf", not "body sdf [s]"). There
+is no minutes suffix: ``y_min`` is "y min".
 """
 
 from __future__ import annotations
@@ -25,6 +28,7 @@ __all__ = ["write_report", "pretty_key"]
 # key suffix -> unit shown in brackets (longest suffixes first when matching)
 _UNITS = {
     "kg_per_m2": "kg/m²",
+    "m_s": "m/s",
     "n_per_m": "N/m",
     "n_m": "N·m",
     "percent": "%",
@@ -37,7 +41,7 @@ _UNITS = {
     "m": "m",
     "ms": "ms",
     "s": "s",
-    "min": "min",
+    "mb": "MB",
     "kg": "kg",
     "px": "px",
 }
@@ -64,6 +68,27 @@ def pretty_key(key: str) -> str:
         if low.endswith(tail) and len(k) > len(tail):
             return f"{k[: -len(tail)].replace('_', ' ')} [{_UNITS[suffix]}]"
     return k.replace("_", " ")
+
+
+def _unit(key: str) -> str | None:
+    """The unit a key's suffix names (``chamfer_mm`` -> ``mm``), or None."""
+    k = str(key)
+    if "[" in k:
+        return k[k.index("[") + 1: k.rindex("]")] if "]" in k else None
+    low = k.lower()
+    for suffix in sorted(_UNITS, key=len, reverse=True):
+        if low.endswith("_" + suffix) and len(k) > len(suffix) + 1:
+            return _UNITS[suffix]
+    return None
+
+
+def _bare_key(key: str) -> str:
+    """A key as shown in a table whose heading gives the unit: no unit suffix of its own."""
+    k = str(key)
+    if "[" in k:
+        return k[: k.index("[")].strip()
+    shown = pretty_key(k)
+    return shown[: shown.index(" [")] if shown.endswith("]") and " [" in shown else shown
 
 
 def _fmt(v: Any) -> str:
@@ -118,13 +143,15 @@ def _num_class(v: Any) -> str:
     return ' class="num"' if isinstance(v, (int, float)) and not isinstance(v, bool) else ""
 
 
-def _kv_table(items: Sequence[tuple[str, Any]], *, head=("quantity", "value")) -> str:
+def _kv_table(items: Sequence[tuple[str, Any]], *, head=("quantity", "value"), unit: str | None = None) -> str:
+    show = _bare_key if unit else pretty_key
     rows = "".join(
-        f'<tr><th scope="row" title="{_esc(k)}">{_esc(pretty_key(k))}</th>'
+        f'<tr><th scope="row" title="{_esc(k)}">{_esc(show(k))}</th>'
         f"<td{_num_class(_py(v))}>{_esc(_fmt(v))}</td></tr>"
         for k, v in items
     )
-    return (f'<table class="kv"><thead><tr><th>{_esc(head[0])}</th><th>{_esc(head[1])}</th></tr>'
+    head1 = f"{head[1]} [{unit}]" if unit else head[1]
+    return (f'<table class="kv"><thead><tr><th>{_esc(head[0])}</th><th>{_esc(head1)}</th></tr>'
             f"</thead><tbody>{rows}</tbody></table>")
 
 
@@ -135,7 +162,7 @@ def _records_table(rows: Sequence[tuple[str, Mapping]], *, first: str) -> str:
     head = f"<th>{_esc(first)}</th>" + "".join(
         f'<th title="{_esc(c)}">{_esc(pretty_key(c))}</th>' for c in cols)
     body = "".join(
-        f'<tr><th scope="row">{_esc(name)}</th>'
+        f'<tr><th scope="row" title="{_esc(name)}">{_esc(pretty_key(name) if _unit(name) else name)}</th>'
         + "".join(f"<td{_num_class(_py(r.get(c)))}>{_esc(_fmt(r.get(c)))}</td>" for c in cols)
         + "</tr>"
         for name, r in rows
@@ -154,18 +181,19 @@ def _py(v):
     return v
 
 
-def _metrics_html(metrics: Mapping, depth: int = 0) -> str:
+def _metrics_html(metrics: Mapping, depth: int = 0, unit: str | None = None) -> str:
     """Nested metrics as tables: scalars of one level in a two-column table, a dict of flat dicts
-    (or a list of flat dicts) as one table with a row per entry, deeper levels as subsections."""
+    (or a list of flat dicts) as one table with a row per entry, deeper levels as subsections.
+    ``unit``: the unit the enclosing key names, which its entries are in."""
     out = []
     scalars = [(k, v) for k, v in metrics.items() if _is_scalar(v)]
     if scalars:
-        out.append(_kv_table(scalars))
+        out.append(_kv_table(scalars, unit=unit))
     hn = min(3 + depth, 6)
     for k, v in metrics.items():
         if _is_scalar(v):
             continue
-        title = f"<h{hn}>{_esc(pretty_key(k))}</h{hn}>"
+        title = f"<h{hn}>{_esc(_bare_key(k) if unit else pretty_key(k))}</h{hn}>"
         if isinstance(v, Mapping) and v and all(
                 isinstance(r, Mapping) and all(_is_scalar(x) for x in r.values()) for r in v.values()):
             out.append(title + _records_table([(str(n), r) for n, r in v.items()], first="name"))
@@ -173,7 +201,7 @@ def _metrics_html(metrics: Mapping, depth: int = 0) -> str:
                 isinstance(r, Mapping) and all(_is_scalar(x) for x in r.values()) for r in v):
             out.append(title + _records_table([(str(i), r) for i, r in enumerate(v)], first="#"))
         elif isinstance(v, Mapping):
-            out.append(f'<section class="sub">{title}{_metrics_html(v, depth + 1)}</section>')
+            out.append(f'<section class="sub">{title}{_metrics_html(v, depth + 1, _unit(k) or unit)}</section>')
         else:  # a list holding lists or mixed things
             out.append(title + f"<pre>{_esc(v)}</pre>")
     return "".join(out)
@@ -281,6 +309,7 @@ def write_report(
     figures: Sequence[tuple[str, str | os.PathLike]],
     config: Mapping[str, Any] | None = None,
     notes: Sequence[str] | None = None,
+    choices: Sequence[str] | None = None,
 ) -> Path:
     """Write the report of a fit as one self-contained HTML file; returns its path.
 
@@ -292,6 +321,8 @@ def write_report(
     in order; PNG (or JPEG, GIF, SVG) files, embedded as base64 data URIs; a relative path that
     does not exist from the working folder is looked up beside ``path_html``. config: shown as
     YAML in a folded block. notes: short lines (warnings, remarks) listed under the summary.
+    choices: sentences saying what was chosen and why (base, fabric, phase two kept or not),
+    shown as "What was chosen and why" right after the summary cards.
 
     Every figure is read and checked before anything is written; a missing or non-image figure
     raises :class:`unsew.errors.InputError` naming it. The file is written to a temporary name
@@ -303,7 +334,7 @@ def write_report(
     embedded = _embed_figures(figures, path.parent)
     parts = _head(title)
     parts.append(_nav(notes=bool(notes), figures=bool(embedded), config=config is not None))
-    parts += _summary_section(summary, notes)
+    parts += _summary_section(summary, notes, choices)
     parts += _figures_section(embedded)
     parts.append('<section id="metrics"><h2>Metrics</h2>')
     parts.append(_metrics_html(metrics) if metrics else "<p>No metrics were recorded.</p>")
@@ -362,13 +393,18 @@ def _nav(*, notes: bool, figures: bool, config: bool) -> str:
     return "<nav>" + "".join(f'<a href="#{a}">{_esc(t)}</a>' for a, t in nav) + "</nav>"
 
 
-def _summary_section(summary: Mapping[str, Any], notes: Sequence[str] | None) -> list[str]:
-    """The summary cards, then the notes (when any) as a list."""
+def _summary_section(summary: Mapping[str, Any], notes: Sequence[str] | None,
+                     choices: Sequence[str] | None = None) -> list[str]:
+    """The summary cards, what was chosen and why (when given), then the notes (when any)."""
     parts = ['<section id="summary"><h2>Summary</h2><div class="cards">']
     for k, v in summary.items():
         parts.append(f'<div class="card"><div class="k" title="{_esc(k)}">{_esc(pretty_key(k))}</div>'
                      f'<div class="v">{_esc(_fmt(v))}</div></div>')
     parts.append("</div></section>")
+    if choices:
+        parts.append('<section id="choices"><h2>What was chosen and why</h2><ul class="notes">')
+        parts += [f"<li>{_esc(c)}</li>" for c in choices]
+        parts.append("</ul></section>")
     if notes:
         parts.append('<section id="notes"><h2>Notes</h2><ul class="notes">')
         parts += [f"<li>{_esc(n)}</li>" for n in notes]

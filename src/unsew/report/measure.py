@@ -1,15 +1,19 @@
 """The panel measurements a pattern maker reads off a pattern: hem, side seam, sleeve, inseam and
 waist lengths, found by the edge labels of GarmentCode patterns (``hem``, ``right_side``,
-``right_underarm``, ``inseam``, ``waist``, ...), and the report's table of them for the base,
-graded, final and true patterns."""
+``right_underarm``, ``inseam``, ``waist``, ...), the girths the pattern gives the body (chest at
+the armhole's foot, sleeve at the underarm), and the report's tables of them for the base,
+graded, final and true patterns; and the length of every seam on both its sides
+(:func:`seam_table`)."""
 
 from __future__ import annotations
 
 from typing import Sequence
 
+import numpy as np
+
 from unsew.pattern.curves import edge_length
 
-__all__ = ["panel_measurements", "measurement_table", "MEASUREMENTS"]
+__all__ = ["panel_measurements", "measurement_table", "seam_table", "MEASUREMENTS"]
 
 #: The measurements in table order, with what each one is.
 MEASUREMENTS = {
@@ -18,6 +22,8 @@ MEASUREMENTS = {
     "sleeve": "sleeve underarm seam: the right_underarm edge of the first sleeve",
     "inseam": "inseam: the inseam edge of the first trouser panel",
     "waist": "waist girth: every waist edge",
+    "chest girth": "chest girth: the body panels' widths at the foot of the armhole, summed",
+    "sleeve girth": "sleeve girth at the underarm: the first sleeve's width where underarm seam and cap meet",
 }
 
 _SIDE = ("right_side", "outseam_upper", "outseam_lower")
@@ -63,6 +69,57 @@ def panel_measurements(pattern) -> dict[str, float]:
     waist = total(body, ("waist",))
     if waist > 0:
         out["waist"] = waist
+    chest = 0.0
+    for p in body:
+        arm = _edges(p, ("right_armhole", "left_armhole", "armhole"))
+        if arm:
+            foot = min(min(p.vertices[p.edges[i].start][1], p.vertices[p.edges[i].end][1]) for i in arm)
+            chest += _width_at(p, foot + 1e-6)
+    if chest > 0:
+        out["chest girth"] = float(chest)
+    for p in sleeves:
+        under = _edges(p, ("right_underarm", "underarm"))
+        if under:
+            e = p.edges[under[0]]
+            y = max(p.vertices[e.start][1], p.vertices[e.end][1])
+            out["sleeve girth"] = float(_width_at(p, y - 1e-6))
+            break
+    return out
+
+
+def _width_at(panel, y: float) -> float:
+    """Total width [m] of ``panel`` along the horizontal line at height ``y`` (its outline's
+    crossings, paired)."""
+    from unsew.pattern.curves import panel_outline
+
+    poly = panel_outline(panel, points_per_edge=64)
+    a, b = poly, np.roll(poly, -1, axis=0)
+    m = (a[:, 1] - y) * (b[:, 1] - y) < 0
+    if not m.any():
+        return 0.0
+    t = (y - a[m, 1]) / (b[m, 1] - a[m, 1])
+    xs = np.sort(a[m, 0] + t * (b[m, 0] - a[m, 0]))
+    return float(sum(xs[i + 1] - xs[i] for i in range(0, len(xs) - 1, 2)))
+
+
+def seam_table(pattern) -> dict[str, dict]:
+    """The length of every seam on both its sides: ``{"A": {"side a": "front: right_side",
+    "a [cm]": 52.1, "side b": "back: left_side", "b [cm]": 52.1, "difference [mm]": 0.0}, ...}``,
+    seams named by the codes the SVG, DXF and PDF print (A, B, ...); lengths are arc lengths of
+    the sew line."""
+    from unsew.io.sheet import stitch_code
+
+    out = {}
+    for k, st in enumerate(pattern.stitches):
+        pa, pb = pattern.panels[st.a.panel], pattern.panels[st.b.panel]
+        la, lb = edge_length(pa, st.a.edge), edge_length(pb, st.b.edge)
+        out[stitch_code(k)] = {
+            "side a": f"{st.a.panel}: {pa.edges[st.a.edge].label or 'edge ' + str(st.a.edge)}",
+            "a [cm]": round(100.0 * la, 2),
+            "side b": f"{st.b.panel}: {pb.edges[st.b.edge].label or 'edge ' + str(st.b.edge)}",
+            "b [cm]": round(100.0 * lb, 2),
+            "difference [mm]": round(1000.0 * (la - lb), 1) + 0.0,  # no "-0"
+        }
     return out
 
 

@@ -1,0 +1,51 @@
+"""What every command's ``--help`` shares: a formatter that keeps the examples' line breaks and
+states each option's default, and the deprecated ``--quiet`` spelling of ``--no-progress``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+__all__ = ["HelpFormatter", "examples", "add_progress_switch"]
+
+
+class HelpFormatter(argparse.HelpFormatter):
+    """Descriptions wrapped, example lists (:func:`examples`) as written; an option with a real
+    default (not None, not a plain on/off switch) and no ``default`` in its help gets
+    ``(default: VALUE)`` appended."""
+
+    def _fill_text(self, text: str, width: int, indent: str) -> str:
+        if text.startswith("examples:"):
+            return "".join(indent + line for line in text.splitlines(keepends=True))
+        return super()._fill_text(text, width, indent)
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        text = action.help or ""
+        if "default" in text or action.default in (None, False, True, argparse.SUPPRESS):
+            return text
+        if action.option_strings or action.nargs in (argparse.OPTIONAL, argparse.ZERO_OR_MORE):
+            text += " (default: %(default)s)"
+        return text
+
+
+def examples(*lines: str) -> str:
+    """An epilog listing example command lines."""
+    return "examples:\n" + "\n".join(f"  {line}" for line in lines)
+
+
+class _Deprecated(argparse.Action):
+    """A hidden old spelling: sets the new switch and says which name to use."""
+
+    def __init__(self, option_strings, dest, *, new: str, **kw):
+        self.new = new
+        super().__init__(option_strings, dest, nargs=0, default=False, help=argparse.SUPPRESS, **kw)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"unsew: warning: {option_string} is deprecated, use {self.new}", file=sys.stderr)
+        setattr(namespace, self.dest, True)
+
+
+def add_progress_switch(p: argparse.ArgumentParser, *, dest: str = "quiet") -> None:
+    """``--no-progress`` (stored in ``dest``), and ``--quiet`` as its hidden deprecated alias."""
+    p.add_argument("--no-progress", dest=dest, action="store_true", help="no progress bars")
+    p.add_argument("--quiet", dest=dest, action=_Deprecated, new="--no-progress")
