@@ -102,7 +102,7 @@ def test_eval_refuses_a_target_off_its_body(folders, tmp_path, capsys):
     _fails(["eval", str(res), str(case), "--samples", "500"], capsys, match="does not lie on its wearer")
     assert not (res / "eval.json").exists()
     # fit refuses the same case with the same line
-    _fails(["fit", str(case), "--out", str(tmp_path / "r"), "--quiet"], capsys, match="does not lie on its wearer")
+    _fails(["fit", str(case), "--out", str(tmp_path / "r"), "--no-progress"], capsys, match="does not lie on its wearer")
 
 
 def test_eval_json_is_not_replaced_without_overwrite(folders, capsys):

@@ -40,7 +40,7 @@ def test_material_only_keeps_the_pattern_and_fits_the_fabric(tmp_path):
     (tmp_path / "small.yaml").write_text("drape: {edge_length: 0.04, steps: 6}\noptimizer: {iterations: 3}\n"
                                          "output: {report: false}\n")
     code = main(["fit", str(case), "--out", str(tmp_path / "r"), "--material-only", "--base",
-                 str(case / "pattern_gt.json"), "--config", str(tmp_path / "small.yaml"), "--quiet"])
+                 str(case / "pattern_gt.json"), "--config", str(tmp_path / "small.yaml"), "--no-progress"])
     assert code == 0
     got = load_pattern(tmp_path / "r" / "pattern.json")
     for name, panel in truth.panels.items():

@@ -144,8 +144,8 @@ def stand_ins(monkeypatch):
 
 def _folder_commands(case: Path) -> dict:
     return {
-        "fit": ["fit", str(case), "--quiet", "--out"],
-        "demo": ["demo", "--quiet", "--out"],
+        "fit": ["fit", str(case), "--no-progress", "--out"],
+        "demo": ["demo", "--no-progress", "--out"],
         "body make": ["body", "make", "--out"],
     }
 
@@ -165,7 +165,7 @@ def test_result_folders(name, tmp_path, case, stand_ins, capsys):
 
 
 def test_batch_reuses_its_folder_but_not_a_missing_parent(tmp_path, case, stand_ins, capsys):
-    argv = ["batch", str(case.parent), "--quiet", "--out"]
+    argv = ["batch", str(case.parent), "--no-progress", "--out"]
     _refused(capsys, main([*argv, str(tmp_path / "missing" / "r")]), "does not exist")
     assert not (tmp_path / "missing").exists() and stand_ins == []
     (tmp_path / "r").mkdir()  # a rerun continues in its results folder
