@@ -1,6 +1,7 @@
 """What do the recorded results say now? Writes docs/benchmarks.md from them, rerunning nothing.
 
     python -m benchmarks report [--out docs/benchmarks.md] [--check]
+    python -m benchmarks report --demo demo-out --commit REV   (record a `make demo` run, then write)
 
 Sources, all committed:
 
@@ -118,6 +119,28 @@ def results_sections(folder: Path) -> list[str]:
     return lines
 
 
+def demo_table(demo_out: Path, commit: str) -> dict:
+    """The recorded table of a finished ``unsew demo`` run (its ``fit/metrics.json``): the base,
+    graded and final garments' Chamfer [mm], normal error [deg], panel area error [%] and turning
+    distance, and the re-drape on the wider body when the demo wrote it."""
+    m = json.loads((Path(demo_out) / "fit" / "metrics.json").read_text())
+    stages = {"base": "_base", "graded": "_graded", "final": ""}
+
+    def row(name, get):
+        return {"metric": name, **{k: get(suffix) for k, suffix in stages.items()}}
+
+    def pat(suffix, key, scale=1.0):
+        v = (m.get("pattern" + suffix) or {}).get(key)
+        return None if v is None else round(scale * v, 3)
+
+    rows = [row("Chamfer [mm]", lambda s: round(m["surface" + s]["chamfer_mm"], 3)),
+            row("normal error [deg]", lambda s: round(m["surface" + s]["normal_error_deg"], 3)),
+            row("panel area error [%]", lambda s: pat(s, "area_error_rel_mean", 100.0)),
+            row("turning distance [rad]", lambda s: pat(s, "turning_distance_mean"))]
+    return {"title": "Demo: a known t-shirt fitted on the default body", "command": "make demo",
+            "commit": commit, "rows": rows}
+
+
 def render(record: Path, results: Path = RESULTS) -> str:
     """The whole page (Markdown)."""
     lines = [
@@ -140,7 +163,14 @@ def main(argv=None) -> int:
     ap.add_argument("--record", type=Path, default=HERE / "foreign" / "fits.json", help="the foreign fits' record")
     ap.add_argument("--results", type=Path, default=RESULTS, help="folder of other recorded tables")
     ap.add_argument("--check", action="store_true", help="write nothing; exit 1 when --out is not what would be written")
+    ap.add_argument("--demo", type=Path, help="a finished `unsew demo` folder: record its figures as results/demo.json first")
+    ap.add_argument("--commit", default="", help="with --demo: the commit the demo ran on")
     args = ap.parse_args(argv)
+    if args.demo is not None:
+        if not (args.demo / "fit" / "metrics.json").is_file() or not args.commit:
+            print(f"report: --demo needs a finished demo folder ({args.demo}/fit/metrics.json) and --commit", file=sys.stderr)
+            return 2
+        (args.results / "demo.json").write_text(json.dumps(demo_table(args.demo, args.commit), indent=1) + "\n")
     if not args.record.is_file():
         print(f"report: no record at {args.record}", file=sys.stderr)
         return 2

@@ -47,3 +47,24 @@ def test_bad_inputs_are_refused_in_one_line(tmp_path, capsys):
     err = capsys.readouterr().err.splitlines()
     assert len(err) == 2 and err[0].startswith("report: no record") and "not a recorded table" in err[1]
     assert not (tmp_path / "b.md").exists()
+
+
+def test_a_demo_run_is_recorded_from_its_metrics(tmp_path, capsys):
+    mod = load_benchmark("report")
+    surf = {s: {"chamfer_mm": c, "normal_error_deg": 10.0} for s, c in (("", 2.5), ("_base", 8.2), ("_graded", 2.7))}
+    pats = {f"pattern{s}": {"area_error_rel_mean": a, "turning_distance_mean": 0.05}
+            for s, a in (("", 0.004), ("_base", 0.135), ("_graded", 0.003))}
+    (tmp_path / "demo" / "fit").mkdir(parents=True)
+    (tmp_path / "demo" / "fit" / "metrics.json").write_text(json.dumps({**{f"surface{k}": v for k, v in surf.items()},
+                                                                         **pats}))
+    fits = tmp_path / "fits.json"
+    fits.write_text("{}")
+    (tmp_path / "results").mkdir()
+    assert mod.main(["--demo", str(tmp_path / "demo"), "--record", str(fits), "--results", str(tmp_path / "results"),
+                     "--out", str(tmp_path / "b.md")]) == 2  # no --commit
+    assert mod.main(["--demo", str(tmp_path / "demo"), "--commit", "abc1234", "--record", str(fits),
+                     "--results", str(tmp_path / "results"), "--out", str(tmp_path / "b.md")]) == 0
+    t = json.loads((tmp_path / "results" / "demo.json").read_text())
+    assert t["commit"] == "abc1234"
+    assert {"metric": "Chamfer [mm]", "base": 8.2, "graded": 2.7, "final": 2.5} in t["rows"]
+    assert {"metric": "panel area error [%]", "base": 13.5, "graded": 0.3, "final": 0.4} in t["rows"]
