@@ -1,4 +1,4 @@
-"""bench true_patterns in its small mode: GarmentCode's hoodie, dressed by `unsew drape` on
+"""bench true_patterns in its small mode: GarmentCode's shirt, dressed by `unsew drape` on
 GarmentCode's mean body on a coarse mesh, exits 0 and lies on the body, whole (the full run's
 table is docs/true_patterns.md)."""
 
@@ -8,7 +8,7 @@ from benchmarks_loader import load_benchmark
 bench = load_benchmark("bench_true_patterns")
 
 
-def test_small_mode_dresses_the_hoodie(tmp_path):
+def test_small_mode_dresses_the_shirt(tmp_path):
     try:
         bench.foreign_dir()
     except SystemExit:
