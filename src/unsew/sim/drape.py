@@ -75,7 +75,7 @@ class DrapeSettings:
     max_speed: float = 50.0  #: a vertex faster than this means divergence [m/s]
     backend: str = "auto"  #: linear solver (see :class:`~unsew.sim.integrator.StepParams`)
     fused: bool = True  #: one Function per step for assembly + solve (step_solve.py)
-    line_search: bool = True  #: backtrack a step that raises its incremental potential (integrator.py)
+    line_search: bool = True  #: backtrack a step far off its linearization (integrator.py)
 
     def replace(self, **changes) -> "DrapeSettings":
         """A copy with ``changes`` applied."""

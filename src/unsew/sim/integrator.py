@@ -21,10 +21,15 @@ blocks) and its gradient is -(M v + dt f), so the solution v' is a descent direc
 the linearization (cloth crushed into a fold, then popping open: the Green-strain membrane
 stiffens as the fourth power of stretch) the full step can overshoot and tear edges to many times
 their length. The step is therefore backtracked (``StepParams.line_search``): v' is scaled by the
-largest alpha in 1, 1/2, 1/4, ... (``max_halvings``) with Armijo's decrease
-Phi(alpha v') <= Phi(0) - 1e-4 alpha (M v + dt f) . v' (free dofs; pinned ones keep their
-velocity), the last tried alpha if none qualifies. A step that passes at alpha = 1, a sound drape's
-usual step, is unchanged; the adjoint treats alpha as a constant.
+largest alpha in 1, 1/2, 1/4, ... (``max_halvings``) with
+
+    Phi(alpha v') <= Phi(0) + alpha |Phi'(0) . v'|,   Phi'(0) . v' = -(M v + dt f) . v'
+
+(free dofs; pinned ones keep their velocity), the last tried alpha if none qualifies: a step may
+raise Phi by at most what its linear model promised to lower it; a larger rise means the
+linearization is far off, an explosion starting. A sound drape's steps pass at alpha = 1 and are
+unchanged (why not Armijo's strict decrease: docs/decisions/001-step-line-search.md); the adjoint
+treats alpha as a constant.
 
 All of it is torch: a loss on the result back-propagates to the rest shape (through areas, B,
 masses, bending coefficients), to Gamma, and to the state, with the linear solve's adjoint
@@ -76,8 +81,9 @@ class StepParams:
         fused: assemble, factorize and solve in one Function with a structured adjoint
             (step_solve.py); False: separate assembly Functions + ``sparse_solve``. Either way
             the assembly runs on the state's device and the factorization on the CPU.
-        line_search: backtrack a step that does not lower the step's incremental potential
-            (module docstring); False: always the full linearized step.
+        line_search: backtrack a step that raises the step's incremental potential by more
+            than its linear model promised to lower it (module docstring); False: always the full
+            linearized step.
         max_halvings: most halvings of the step the line search tries [-].
     """
 
@@ -247,8 +253,8 @@ def total_energy(model, rest, x, sdf, gamma, params: StepParams, *, gravity=None
 
 def _backtrack(model, rest, x, v, w, rhs, D, E0, sdf, gamma, params: StepParams, gravity) -> float:
     """The step length alpha in (0, 1] of the new velocity w (N, 3) [m/s] (module docstring):
-    the first of 1, 1/2, 1/4, ... with Armijo's decrease of the step's incremental potential Phi,
-    or the last one tried. rhs (N, 3) = M v + dt f [kg m/s]; D (N, 3, 3) friction damping [kg/s];
+    the first of 1, 1/2, 1/4, ... whose incremental potential Phi rises by at most
+    alpha |Phi'(0) . w|, or the last one tried. rhs (N, 3) = M v + dt f [kg m/s]; D (N, 3, 3) friction damping [kg/s];
     E0 the potential energy at x [J] (:func:`total_energy`)."""
     dt = params.dt
     with torch.no_grad():
@@ -267,7 +273,7 @@ def _backtrack(model, rest, x, v, w, rhs, D, E0, sdf, gamma, params: StepParams,
             dw = (wa - v) * free
             E = float(total_energy(model, rest_d, x_d + dt * wa, sdf, gamma_d, params, gravity=gravity))
             phi = 0.5 * float((m * dw * dw).sum()) + 0.5 * dt * alpha * alpha * wDw + E
-            if phi <= phi0 + 1e-4 * alpha * slope:
+            if phi <= phi0 - alpha * slope:  # a rise of at most |Phi'(0) . alpha w| (module docstring)
                 return alpha
             alpha *= 0.5
         return 2.0 * alpha
