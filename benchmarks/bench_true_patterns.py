@@ -11,10 +11,11 @@ for ``*_mean`` and ``*_mean_all``; the pencil dress names none and is drafted fo
 body), and measures the garment it wrote (``NAME.obj``, or ``NAME.failed.obj`` when the drape
 failed its checks): the share of vertices inside the body [%] (the body's signed distance grid),
 the largest and 99th-percentile edge stretch (3D edge length over its length on the pattern, read
-from the OBJ's UVs, which are pattern coordinates [m]), and the wall time [s]. A good drape exits
+from the OBJ's UVs, which are pattern coordinates [m]), and the wall time [s]; with ``--seams`` also
+each garment's most stretched pattern edges (:func:`seam_rows`). A good drape exits
 0, has at most 0.5 % of its vertices inside and no edge over 1.5 times its length.
 
-    python -m benchmarks true_patterns [--patterns shirt_mean ...] [--out DIR] [--edge-length 0.025]
+    python -m benchmarks true_patterns [--patterns shirt_mean ...] [--out DIR] [--edge-length 0.025] [--seams]
     python -m benchmarks true_patterns --small     # one pattern, coarse mesh, short sewing (tests)
 """
 
@@ -88,6 +89,33 @@ def measure(obj: Path, sdf) -> dict:
             "stretch_max": float(r.max()), "stretch_p99": float(np.percentile(r, 99))}
 
 
+def seam_rows(name: str, obj: Path, *, foreign: Path, edge_length: float = 0.025, top: int = 3) -> list[dict]:
+    """The ``top`` pattern edges of a draped OBJ with the longest mesh edge over its rest length:
+    per (panel, edge) its largest and its overall stretch (3D length along the edge over its
+    pattern length) and its mean height [m]. The pattern is meshed again at ``edge_length``, as
+    ``unsew drape`` meshed it (the same mesh: checked by its vertex count)."""
+    import warnings
+
+    from unsew.io.garmentcode import load_pattern
+    from unsew.meshing import mesh_pattern
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # clockwise panels mirrored, seam length warnings
+        mesh = mesh_pattern(load_pattern(foreign / "patterns" / f"{name}_specification.json"), edge_length=edge_length)
+    x = read_obj_uv(obj)[0]
+    if len(x) != mesh.n_x:
+        return []
+    rows = []
+    for (panel, edge), vs in mesh.edge_verts.items():
+        xv, uv = x[mesh.x_of_u[vs]], mesh.uv[vs]
+        l3 = np.linalg.norm(np.diff(xv, axis=0), axis=1)
+        l2 = np.linalg.norm(np.diff(uv, axis=0), axis=1)
+        rows.append({"pattern": name, "panel": panel, "edge": edge, "rest_cm": float(100.0 * l2.sum()),
+                     "stretch_max": float((l3 / l2).max()), "stretch_whole": float(l3.sum() / l2.sum()),
+                     "y_m": float(xv[:, 1].mean())})
+    return sorted(rows, key=lambda r: -r["stretch_max"])[:top]
+
+
 def drape_one(name: str, body: str, out: Path, *, foreign: Path, sdf, edge_length=None, sew_steps=None,
               settle_steps=None) -> dict:
     """Run ``unsew drape`` on one true pattern and measure what it wrote (module docstring)."""
@@ -135,6 +163,7 @@ def main() -> None:
     ap.add_argument("--out", default=None, help="folder for the draped OBJs (default: a temporary one)")
     ap.add_argument("--edge-length", type=float, default=None, help="mesh edge length [m] (default: unsew drape's)")
     ap.add_argument("--small", action="store_true", help="one pattern, coarse mesh, short sewing (for tests)")
+    ap.add_argument("--seams", action="store_true", help="also list each garment's most stretched pattern edges")
     args = ap.parse_args()
     from tables import print_table
 
@@ -149,9 +178,19 @@ def main() -> None:
         out = Path(args.out or tmp)
         out.mkdir(parents=True, exist_ok=True)
         rows = run(names, out=out, **kw)
+        seams = []
+        if args.seams:
+            for r in rows:
+                obj = out / f"{r['pattern']}.obj"
+                obj = obj if obj.is_file() else obj.with_name(obj.stem + ".failed.obj")
+                if obj.is_file():
+                    seams += seam_rows(r["pattern"], obj, foreign=foreign_dir(), edge_length=kw.get("edge_length", 0.025))
     print()
     print_table(rows, ["pattern", "body", "exit", "inside_pct", "stretch_max", "stretch_p99", "vertices", "time_s",
                        "ok", "message"])
+    if seams:
+        print_table(seams, ["pattern", "panel", "edge", "rest_cm", "stretch_max", "stretch_whole", "y_m"],
+                    title="most stretched pattern edges")
     n_ok = sum(r["ok"] for r in rows)
     print(f"\n{n_ok} of {len(rows)} dressed (exit 0, <= {INSIDE_MAX_PCT} % inside, no edge over {STRETCH_MAX}x)")
 
