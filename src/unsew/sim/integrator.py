@@ -254,8 +254,8 @@ def total_energy(model, rest, x, sdf, gamma, params: StepParams, *, gravity=None
 def _backtrack(model, rest, x, v, w, rhs, D, E0, sdf, gamma, params: StepParams, gravity) -> float:
     """The step length alpha in (0, 1] of the new velocity w (N, 3) [m/s] (module docstring):
     the first of 1, 1/2, 1/4, ... whose incremental potential Phi rises by at most
-    alpha |Phi'(0) . w|, or the last one tried. rhs (N, 3) = M v + dt f [kg m/s]; D (N, 3, 3) friction damping [kg/s];
-    E0 the potential energy at x [J] (:func:`total_energy`)."""
+    alpha |Phi'(0) . w|, or the last one tried. rhs (N, 3) = M v + dt f [kg m/s]; D (N, 3, 3)
+    friction damping [kg/s]; E0 the potential energy at x [J] (:func:`total_energy`)."""
     dt = params.dt
     with torch.no_grad():
         free = (~model.pinned)[:, None].to(x)
