@@ -47,7 +47,7 @@ PATTERNS = {
 INSIDE_MAX_PCT = 0.5
 STRETCH_MAX = 1.5
 #: --small: the pattern, edge length [m] and sewing / settling steps of the quick run
-SMALL = {"pattern": "shirt_mean", "edge_length": 0.04, "sew_steps": 30, "settle_steps": 5}
+SMALL = {"pattern": "hoody_mean", "edge_length": 0.04, "sew_steps": 40, "settle_steps": 10}
 
 
 def foreign_dir() -> Path:
