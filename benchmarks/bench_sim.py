@@ -11,7 +11,8 @@ cholespy, CHOLMOD with the symbolic analysis reused, scipy splu tuned for SPD).
 Simulator variants (--variants, "stencil:backend" pairs) are run interleaved, repeat by repeat,
 so they see the same machine load: stencil "full" (exact Gauss-Newton hinge blocks, the
 original) or "ring" (model.py), backend "cholespy", "cholmod" or "scipy" (solve.py), and
-":unfused" for separate assembly Functions + sparse_solve instead of the fused step_solve.
+":unfused" for separate assembly Functions + sparse_solve instead of the fused step_solve, ":nols"
+for steps without the line search on the step's incremental potential (integrator.py).
 
 Timings on a shared 2-core machine are noisy: each figure is the minimum of --repeat runs, and the
 load average is printed with every row.
@@ -60,14 +61,14 @@ def _mesh(n_target: int, use_tshirt: bool):
     return "sheet", f, f, uv, x, len(uv)
 
 
-def _run(model, st, sdf, uv, gamma, steps, backward, checkpoint=False, backend="auto", fused=True):
+def _run(model, st, sdf, uv, gamma, steps, backward, checkpoint=False, backend="auto", fused=True, line_search=True):
     from unsew.sim import DrapeSettings, drape
 
     uvp = uv.clone().requires_grad_(backward)
     gp = gamma.clone().requires_grad_(backward)
     t0 = time.perf_counter()
     out = drape(model, st, sdf, uv=uvp, gamma=gp, density=0.15, steps=steps, checkpoint=checkpoint,
-                settings=DrapeSettings(backend=backend, fused=fused))
+                settings=DrapeSettings(backend=backend, fused=fused, line_search=line_search))
     t1 = time.perf_counter()
     if backward:
         (out.x**2).sum().backward()
@@ -107,7 +108,7 @@ def main(argv=None):
     ap.add_argument(
         "--variants",
         default="full:cholespy:unfused,ring:cholespy,ring:cholmod:unfused,ring:cholmod",
-        help="stencil:backend[:unfused],... (unfused: assembly Functions + sparse_solve instead of step_solve)",
+        help="stencil:backend[:unfused][:nols],... (unfused: assembly Functions + sparse_solve instead of step_solve; nols: no line search)",
     )
     ap.add_argument("--no-loop", action="store_true", help="skip the per-element loop assembly baseline")
     ap.add_argument("--sheet", action="store_true", help="use square sheets even if the t-shirt exists")
@@ -135,7 +136,7 @@ def main(argv=None):
         except ImportError as exc:
             print(f"(skipping {v}: {exc})")
             continue
-        variants.append((stencil, backend, "unfused" not in rest_))
+        variants.append((stencil, backend, "unfused" not in rest_, "nols" not in rest_))
     print(f"torch {torch.__version__}, {args.threads} torch thread(s), min of {args.repeat} runs, seconds")
     hdr = (
         f"{'mesh':>6} {'verts':>6} {'faces':>6} {'variant':>23} | {'fwd 1':>6} {'fwd 20':>7} {'rev 1':>6} {'rev 20':>7} "
@@ -151,12 +152,12 @@ def main(argv=None):
         st = SimState.at_rest(x)
         res = {v: {} for v in variants}
         for v in variants:  # warm-up (CHOLMOD's one analysis per topology is not timed)
-            _run(models[v[0]], st, sdf, uvt, gamma, 1, True, args.checkpoint, v[1], v[2])
+            _run(models[v[0]], st, sdf, uvt, gamma, 1, True, args.checkpoint, v[1], v[2], v[3])
         for steps in (1, 20):
             for _ in range(args.repeat):
                 for v in variants:
                     r0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-                    fw, rv = _run(models[v[0]], st, sdf, uvt, gamma, steps, True, args.checkpoint, v[1], v[2])
+                    fw, rv = _run(models[v[0]], st, sdf, uvt, gamma, steps, True, args.checkpoint, v[1], v[2], v[3])
                     r1 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
                     b = res[v].get(steps, (np.inf, np.inf))
                     res[v][steps] = (min(b[0], fw), min(b[1], rv))
@@ -166,7 +167,7 @@ def main(argv=None):
         for v in variants:
             r = res[v]
             print(
-                f"{kind:>6} {n:>6} {f.shape[0]:>6} {v[0] + ':' + v[1] + ('' if v[2] else ':unfused'):>23} | {r[1][0]:6.3f} {r[20][0]:7.3f} {r[1][1]:6.3f} "
+                f"{kind:>6} {n:>6} {f.shape[0]:>6} {v[0] + ':' + v[1] + ('' if v[2] else ':unfused') + ('' if v[3] else ':nols'):>23} | {r[1][0]:6.3f} {r[20][0]:7.3f} {r[1][1]:6.3f} "
                 f"{r[20][1]:7.3f} {r[20][0] + r[20][1]:7.3f} | {r['rss']:7.0f} | {load:4.1f}",
                 flush=True,
             )

@@ -75,6 +75,7 @@ class DrapeSettings:
     max_speed: float = 50.0  #: a vertex faster than this means divergence [m/s]
     backend: str = "auto"  #: linear solver (see :class:`~unsew.sim.integrator.StepParams`)
     fused: bool = True  #: one Function per step for assembly + solve (step_solve.py)
+    line_search: bool = True  #: backtrack a step far off its linearization (integrator.py)
 
     def replace(self, **changes) -> "DrapeSettings":
         """A copy with ``changes`` applied."""
@@ -87,7 +88,7 @@ class DrapeSettings:
             dt=self.sew_dt if sewing else self.dt, gravity=self.gravity, friction=friction,
             contact_stiffness=self.contact_stiffness, contact_threshold=self.contact_threshold,
             thickness=self.thickness, spring_stiffness=self.spring_stiffness, max_speed=self.max_speed,
-            friction_eps=self.friction_eps, backend=self.backend, fused=self.fused,
+            friction_eps=self.friction_eps, backend=self.backend, fused=self.fused, line_search=self.line_search,
         )
 
 

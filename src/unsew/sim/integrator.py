@@ -11,6 +11,26 @@ After the step, vertices inside the body are projected out (paper eq. 4) and los
 normal component of their velocity that points into the body (an inelastic impact; the paper
 does not say what it does with velocities).
 
+The linear system is one Newton step on the incremental potential of the step (in the new
+velocity w, x fixed at the start of the step):
+
+    Phi(w) = 1/2 (w - v)^T M (w - v) + dt/2 w^T D w + E(x + dt w),
+
+from w = 0: Phi's Hessian there is the system matrix (positive definite: masses plus PSD
+blocks) and its gradient is -(M v + dt f), so the solution v' is a descent direction. Far from
+the linearization (cloth crushed into a fold, then popping open: the Green-strain membrane
+stiffens as the fourth power of stretch) the full step can overshoot and tear edges to many times
+their length. The step is therefore backtracked (``StepParams.line_search``): v' is scaled by the
+largest alpha in 1, 1/2, 1/4, ... (``max_halvings``) with
+
+    Phi(alpha v') <= Phi(0) + alpha |Phi'(0) . v'|,   Phi'(0) . v' = -(M v + dt f) . v'
+
+(free dofs; pinned ones keep their velocity), the last tried alpha if none qualifies: a step may
+raise Phi by at most what its linear model promised to lower it; a larger rise means the
+linearization is far off, an explosion starting. A sound drape's steps pass at alpha = 1 and are
+unchanged (why not Armijo's strict decrease: docs/decisions/001-step-line-search.md); the adjoint
+treats alpha as a constant.
+
 All of it is torch: a loss on the result back-propagates to the rest shape (through areas, B,
 masses, bending coefficients), to Gamma, and to the state, with the linear solve's adjoint
 reusing the forward factorization (solve.py).
@@ -61,6 +81,10 @@ class StepParams:
         fused: assemble, factorize and solve in one Function with a structured adjoint
             (step_solve.py); False: separate assembly Functions + ``sparse_solve``. Either way
             the assembly runs on the state's device and the factorization on the CPU.
+        line_search: backtrack a step that raises the step's incremental potential by more
+            than its linear model promised to lower it (module docstring); False: always the full
+            linearized step.
+        max_halvings: most halvings of the step the line search tries [-].
     """
 
     dt: float = 0.05
@@ -74,6 +98,8 @@ class StepParams:
     friction_eps: float = 1e-2
     backend: str = "auto"
     fused: bool = True
+    line_search: bool = True
+    max_halvings: int = 8
 
 
 @dataclass
@@ -88,6 +114,10 @@ class RestData:
     coef: torch.Tensor
     mass: torch.Tensor
     vert_area: torch.Tensor
+
+    def detached(self) -> RestData:
+        """The same quantities without their autograd graph."""
+        return RestData(self.area.detach(), self.B.detach(), self.coef.detach(), self.mass.detach(), self.vert_area.detach())
 
 
 def rest_data(model: SimModel, uv: torch.Tensor, density) -> RestData:
@@ -160,35 +190,42 @@ def _ring_weight(like: torch.Tensor) -> torch.Tensor:
     return w
 
 
-def forces(model, rest, x, v, sdf, gamma, params: StepParams, *, gravity=None, hessian=True, parts=False):
+def forces(model, rest, x, v, sdf, gamma, params: StepParams, *, gravity=None, hessian=True, parts=False, energy=False):
     """Forces and system blocks at (x, v).
 
     Returns f (N, 3) [N] (internal + gravity + contact + springs, without friction),
     K values (nnz,) [N/m] (PSD stiffness, lower triangle), vertex blocks (N, 3, 3) [N/m] of
     contact stiffness, friction damping D (N, 3, 3) [kg/s], and the SDF values (d, n).
     With ``parts=True`` K is replaced by (membrane factors (G, H, Pgeo, area), bending factors
-    (g, s), spring values (nnz,) or None) for :func:`~unsew.sim.step_solve.step_solve`."""
+    (g, s), spring values (nnz,) or None) for :func:`~unsew.sim.step_solve.step_solve`.
+    With ``energy=True`` a sixth item follows: the total potential energy [J] (as
+    :func:`total_energy`; a float)."""
     g = params.gravity if gravity is None else gravity
     d, n = sdf.query(x)
-    _, gm, Hm = energy_membrane(x, model.faces, rest.area, rest.B, gamma, hessian=hessian, parts=True)
-    _, gb, Hb = energy_bending(x, model.hinges, rest.coef, gamma, hessian=hessian, parts=True)
-    _, gc, Hc, fn = energy_contact(
+    em, gm, Hm = energy_membrane(x, model.faces, rest.area, rest.B, gamma, hessian=hessian, parts=True)
+    eb, gb, Hb = energy_bending(x, model.hinges, rest.coef, gamma, hessian=hessian, parts=True)
+    ec, gc, Hc, fn = energy_contact(
         d, n, rest.vert_area, stiffness=params.contact_stiffness, threshold=params.contact_threshold, hessian=hessian
     )
     grad = scatter_vertex(model.n, model.faces, gm) + scatter_vertex(model.n, model.hinges, gb) + gc
     Hs = None
+    es = 0.0
     if model.springs.shape[0]:
-        _, gs, Hs = energy_spring(x, model.springs, params.spring_stiffness, hessian=hessian)
+        es, gs, Hs = energy_spring(x, model.springs, params.spring_stiffness, hessian=hessian)
         grad = grad + scatter_vertex(model.n, model.springs, gs)
     f = -grad
     f = torch.cat([f[:, :1], f[:, 1:2] - g * rest.mass[:, None], f[:, 2:]], 1)
+    extra = ()
+    if energy:
+        with torch.no_grad():
+            extra = (float(em + eb + ec + es + energy_gravity(x, rest.mass, g)[0]),)
     if not hessian:
-        return f, None, None, None, (d, n)
+        return (f, None, None, None, (d, n), *extra)
     nnz = model.nnz
     if parts:
         Ks = scatter_blocks(nnz, model.spring_src, model.spring_dst, Hs) if Hs is not None else None
         D = friction_damping(v, n, fn, params.friction, eps_v=params.friction_eps)
-        return f, ((*Hm, rest.area), Hb, Ks), Hc, D, (d, n)
+        return (f, ((*Hm, rest.area), Hb, Ks), Hc, D, (d, n), *extra)
     # element blocks go straight into the system values; the hand-written backward of the
     # assembly (assembly.py) never materialises the (E, m, m) blocks' autograd graph
     K = assemble_membrane(nnz, model.tri_src, model.tri_dst, *Hm, rest.area, maps=_tri_maps(model))
@@ -198,7 +235,7 @@ def forces(model, rest, x, v, sdf, gamma, params: StepParams, *, gravity=None, h
     if Hs is not None:
         K = K + scatter_blocks(nnz, model.spring_src, model.spring_dst, Hs)
     D = friction_damping(v, n, fn, params.friction, eps_v=params.friction_eps)
-    return f, K, Hc, D, (d, n)
+    return (f, K, Hc, D, (d, n), *extra)
 
 
 def total_energy(model, rest, x, sdf, gamma, params: StepParams, *, gravity=None):
@@ -212,6 +249,34 @@ def total_energy(model, rest, x, sdf, gamma, params: StepParams, *, gravity=None
     if model.springs.shape[0]:
         e = e + energy_spring(x, model.springs, params.spring_stiffness, hessian=False)[0]
     return e
+
+
+def _backtrack(model, rest, x, v, w, rhs, D, E0, sdf, gamma, params: StepParams, gravity) -> float:
+    """The step length alpha in (0, 1] of the new velocity w (N, 3) [m/s] (module docstring):
+    the first of 1, 1/2, 1/4, ... whose incremental potential Phi rises by at most
+    alpha |Phi'(0) . w|, or the last one tried. rhs (N, 3) = M v + dt f [kg m/s]; D (N, 3, 3)
+    friction damping [kg/s]; E0 the potential energy at x [J] (:func:`total_energy`)."""
+    dt = params.dt
+    with torch.no_grad():
+        free = (~model.pinned)[:, None].to(x)
+        w, v = w.detach(), v.detach()
+        m = rest.mass.detach()[:, None]
+        slope = -float((rhs.detach() * w * free).sum())  # Phi'(0) . w < 0 (A positive definite)
+        if not slope < 0.0:
+            return 1.0
+        phi0 = 0.5 * float((m * v * v * free).sum()) + E0
+        wDw = float((w * torch.einsum("nij,nj->ni", D.detach(), w) * free).sum())
+        rest_d, x_d, gamma_d = rest.detached(), x.detach(), gamma.detach()
+        alpha = 1.0
+        for _ in range(params.max_halvings + 1):
+            wa = torch.where(free > 0, alpha * w, w)
+            dw = (wa - v) * free
+            E = float(total_energy(model, rest_d, x_d + dt * wa, sdf, gamma_d, params, gravity=gravity))
+            phi = 0.5 * float((m * dw * dw).sum()) + 0.5 * dt * alpha * alpha * wDw + E
+            if phi <= phi0 - alpha * slope:  # a rise of at most |Phi'(0) . alpha w| (module docstring)
+                return alpha
+            alpha *= 0.5
+        return 2.0 * alpha
 
 
 def step(model: SimModel, rest: RestData, state: SimState, sdf, gamma, params: StepParams, *, index: int = 0, gravity=None) -> SimState:
@@ -233,7 +298,7 @@ def step(model: SimModel, rest: RestData, state: SimState, sdf, gamma, params: S
     x, v = state.x, state.v
     N = model.n
     fused = params.fused
-    f, K, Hc, D, _ = forces(model, rest, x, v, sdf, gamma, params, gravity=gravity, parts=fused)
+    f, K, Hc, D, _, E0 = forces(model, rest, x, v, sdf, gamma, params, gravity=gravity, parts=fused, energy=True)
     eye = torch.eye(3, dtype=x.dtype, device=x.device)
     vblk = rest.mass[:, None, None] * eye + dt * D + (dt * dt) * Hc  # (N, 3, 3)
     pat = _pattern(model)
@@ -252,6 +317,10 @@ def step(model: SimModel, rest: RestData, state: SimState, sdf, gamma, params: S
         A = (dt * dt) * K + scatter_blocks(model.nnz, model.vert_src, model.vert_dst, vblk)
         A = A * model.keep.to(A) + pat.pin_diag.to(A)
         v_new = sparse_solve(A, rhs.reshape(-1), pat, backend=params.backend).reshape(N, 3)
+    if params.line_search:
+        alpha = _backtrack(model, rest, x, v, v_new, rhs, D, E0, sdf, gamma, params, gravity)
+        if alpha < 1.0:
+            v_new = torch.where(pinned, v_new, alpha * v_new)
     with torch.no_grad():
         speed = v_new.norm(dim=1)
         bad = ~torch.isfinite(speed) | (speed > params.max_speed)

@@ -16,6 +16,16 @@ dissection ordering) and keeps that symbolic factorization on the :class:`Sparse
 pays the numeric factorization only; ``"cholespy"`` (a hard dependency) redoes the analysis
 every factorization; ``"scipy"`` is splu tuned for SPD. ``"auto"`` (the default) is "cholmod"
 when scikit-sparse imports and "cholespy" otherwise. ``benchmarks/bench_sim.py`` measures them.
+
+Round-off. The step's matrix is positive definite in exact arithmetic (masses plus PSD element
+blocks: the membrane's stress term projected, Gauss-Newton bending, n n^T contact), but a
+state with stiffness entries some 1e16 times a vertex mass can still meet a pivot <= 0 in floating
+point. A failed factorization of a finite matrix is retried with its diagonal raised by
+tau diag(|A|), tau in SHIFTS (1e-12 up to 1e-4): a step damped slightly along its stiffest
+directions instead of no step. The forward and the adjoint solve both use that factor, and the
+adjoint treats the shift as a constant (it is the exact derivative of x = (A + S)^-1 b for fixed
+S). ``_Factor.shift`` says which tau was needed; a non-finite matrix, or one still failing at
+the largest shift, raises SimulationError.
 """
 
 from __future__ import annotations
@@ -111,10 +121,50 @@ class SparsePattern:
         return A.index_put((self.cols, self.rows), off, accumulate=True)
 
 
+#: relative diagonal shifts tau tried, in order, when a Cholesky factorization of a finite matrix
+#: fails: A + tau diag(|A|) (module docstring, "Round-off")
+SHIFTS = (1e-12, 1e-10, 1e-8, 1e-6, 1e-4)
+
+
+class _NotPositiveDefinite(Exception):
+    """A Cholesky factorization met a pivot <= 0."""
+
+
 class _Factor:
+    """The factorization of the matrix with lower values ``values`` (nnz,) float64 on ``pattern``.
+
+    ``shift`` is the relative diagonal shift tau that was needed (0.0 for none): the factor is that
+    of A + tau diag(|A|) (module docstring, "Round-off")."""
+
     def __init__(self, pattern: SparsePattern, values: np.ndarray, backend: str):
         self.backend = backend
         self.n = pattern.n
+        self.shift = 0.0
+        if not np.all(np.isfinite(values)):
+            bad = int(np.count_nonzero(~np.isfinite(values)))
+            raise SimulationError(f"the system matrix holds {bad} NaN or infinite values; the state or material "
+                                  "is not finite (lower dt, check the material stiffness and the initial state)")
+        try:
+            self.solver = self._factorize(pattern, values)
+            return
+        except _NotPositiveDefinite as exc:
+            first = exc
+        diag = np.abs(values) * (pattern.rows_np == pattern.cols_np)
+        for tau in SHIFTS:
+            try:
+                self.solver = self._factorize(pattern, values + tau * diag)
+                self.shift = tau
+                return
+            except _NotPositiveDefinite:
+                continue
+        kind = "LU" if self.backend == "scipy" else "Cholesky"
+        raise SimulationError(
+            f"sparse {kind} factorization failed ({first}); the system is not positive definite, even with "
+            f"its diagonal raised by {SHIFTS[-1]:g} of itself"
+        ) from None
+
+    def _factorize(self, pattern: SparsePattern, values: np.ndarray):
+        backend = self.backend
         if backend == "cholmod":
             import warnings
 
@@ -126,19 +176,17 @@ class _Factor:
                 if pattern._cholmod_symbolic is None:
                     pattern._cholmod_symbolic = analyze(A, mode="supernodal", ordering_method="nesdis")
                 try:
-                    self.solver = pattern._cholmod_symbolic.cholesky(A)
+                    return pattern._cholmod_symbolic.cholesky(A)
                 except CholmodError as exc:
-                    raise SimulationError(
-                        f"sparse Cholesky factorization failed ({exc}); the system is not positive definite"
-                    ) from None
-        elif backend == "cholespy":
+                    raise _NotPositiveDefinite(str(exc)) from None
+        if backend == "cholespy":
             from cholespy import CholeskySolverD, MatrixType
 
             try:
-                self.solver = CholeskySolverD(self.n, pattern.rows_np, pattern.cols_np, values, MatrixType.COO)
+                return CholeskySolverD(self.n, pattern.rows_np, pattern.cols_np, values, MatrixType.COO)
             except Exception as exc:  # cholespy raises a bare exception on a non-PD matrix
-                raise SimulationError(f"sparse Cholesky factorization failed ({exc}); the system is not positive definite") from None
-        elif backend == "scipy":
+                raise _NotPositiveDefinite(str(exc)) from None
+        if backend == "scipy":
             import scipy.sparse as sp
             import scipy.sparse.linalg as spla
 
@@ -149,13 +197,10 @@ class _Factor:
                 shape=(self.n, self.n),
             )
             try:
-                self.solver = spla.splu(
-                    A, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options=dict(SymmetricMode=True)
-                )
+                return spla.splu(A, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
             except RuntimeError as exc:
-                raise SimulationError(f"sparse LU factorization failed ({exc}); the system is singular") from None
-        else:
-            raise ValueError(f"unknown solver backend {backend!r}; choose one of {BACKENDS}")
+                raise _NotPositiveDefinite(str(exc)) from None
+        raise ValueError(f"unknown solver backend {backend!r}; choose one of {BACKENDS}")
 
     def solve(self, b: np.ndarray) -> np.ndarray:
         b = np.ascontiguousarray(b, dtype=np.float64)

@@ -23,6 +23,16 @@ Gradient (Bridson 2003 / Tamstorf and Grinspun 2013), checked against autograd i
     t_i = (x_{i+1} - x0) . e / |e|^2 (projection of the opposite vertex on the edge).
 Hessian for the system: the Gauss-Newton part 2 c (d theta/dx)(d theta/dx)^T, PSD (rank 1);
 the term 2 c (theta - theta0) d2 theta/dx2 is left out of the matrix (not of the forces).
+
+Crushed triangles. |d theta/dx2| = 1/h1, h1 = |n1|/|e| the height of x2 over the edge, so a
+triangle squashed onto its hinge edge (a fold pressed flat, cloth compressed into a crease) gives
+forces growing as 1/h and a Gauss-Newton block as 1/h^2, until the assembled system, positive
+definite in exact arithmetic, is indefinite in floating point and its Cholesky factorization
+fails (docs/decisions/001-step-line-search.md). The heights
+entering d theta/dx are therefore floored at HEIGHT_FLOOR times the triangle's size (the root
+mean square of its edge lengths): below that (a triangle 1000 times flatter than wide) the
+hinge's gradient and block stay those of a triangle of that height, bounded, while theta itself
+is untouched. Any triangle of a sound drape is far above the floor, where nothing changes.
 """
 
 from __future__ import annotations
@@ -34,6 +44,10 @@ __all__ = ["bending_rest", "energy_bending", "dihedral_angle"]
 #: floor of |n|^2 [m^4] of a hinge's triangle normals: far below any real triangle's
 #: ((1 mm)^4 = 1e-12), only a zero-area one is floored
 _TINY = 1e-30
+
+#: smallest height over hinge edge length [-] at which d theta/dx is taken exactly; flatter
+#: (crushed) triangles use this height (module docstring, "Crushed triangles")
+HEIGHT_FLOOR = 1e-3
 
 
 def bending_rest(uv: torch.Tensor, faces_uv: torch.Tensor, hinge_faces, hinge_uv_edges, rest_area):
@@ -67,8 +81,11 @@ def dihedral_angle(x: torch.Tensor, hinges: torch.Tensor):
     # a triangle flat on a line (zero area) has no normal: its angle reads 0 and its gradient
     # (el / |n|^2) n is 0 rather than 0/0, so a degenerate start (a panel folded flat by its
     # placement) bends nothing until it opens, instead of a NaN force at step 0
-    n1s = (n1 * n1).sum(-1).clamp_min(_TINY)
-    n2s = (n2 * n2).sum(-1).clamp_min(_TINY)
+    # |n|^2 = (h |e|)^2 with h floored at HEIGHT_FLOOR * (the triangle's rms edge length)
+    s1 = (el * el + ((x2 - x0) ** 2).sum(-1) + ((x2 - x1) ** 2).sum(-1)) / 3.0
+    s2 = (el * el + ((x3 - x0) ** 2).sum(-1) + ((x3 - x1) ** 2).sum(-1)) / 3.0
+    n1s = torch.maximum((n1 * n1).sum(-1), (HEIGHT_FLOOR**2 * el * el * s1).clamp_min(_TINY))
+    n2s = torch.maximum((n2 * n2).sum(-1), (HEIGHT_FLOOR**2 * el * el * s2).clamp_min(_TINY))
     elc = el.clamp_min(_TINY)  # a zero-length edge (two vertices on one point): the same reading
     theta = torch.atan2((_cross(n1, n2) * e).sum(-1) / elc, (n1 * n2).sum(-1))
     g2 = -(el / n1s)[:, None] * n1
