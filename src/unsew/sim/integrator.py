@@ -28,7 +28,7 @@ largest alpha in 1, 1/2, 1/4, ... (``max_halvings``) with
 (free dofs; pinned ones keep their velocity), the last tried alpha if none qualifies: a step may
 raise Phi by at most what its linear model promised to lower it; a larger rise means the
 linearization is far off, an explosion starting. A sound drape's steps pass at alpha = 1 and are
-unchanged (why not Armijo's strict decrease: docs/decisions/001-step-line-search.md); the adjoint
+unchanged (why not Armijo's strict decrease: docs/decisions/017-step-line-search.md); the adjoint
 treats alpha as a constant.
 
 All of it is torch: a loss on the result back-propagates to the rest shape (through areas, B,

@@ -28,7 +28,7 @@ Crushed triangles. |d theta/dx2| = 1/h1, h1 = |n1|/|e| the height of x2 over the
 triangle squashed onto its hinge edge (a fold pressed flat, cloth compressed into a crease) gives
 forces growing as 1/h and a Gauss-Newton block as 1/h^2, until the assembled system, positive
 definite in exact arithmetic, is indefinite in floating point and its Cholesky factorization
-fails (docs/decisions/001-step-line-search.md). The heights
+fails (docs/decisions/017-step-line-search.md). The heights
 entering d theta/dx are therefore floored at HEIGHT_FLOOR times the triangle's size (the root
 mean square of its edge lengths): below that (a triangle 1000 times flatter than wide) the
 hinge's gradient and block stay those of a triangle of that height, bounded, while theta itself
