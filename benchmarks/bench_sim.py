@@ -61,14 +61,25 @@ def _mesh(n_target: int, use_tshirt: bool):
     return "sheet", f, f, uv, x, len(uv)
 
 
-def _run(model, st, sdf, uv, gamma, steps, backward, checkpoint=False, backend="auto", fused=True, line_search=True):
+def _run(
+    model, st, sdf, uv, gamma, steps, backward, checkpoint=False, backend="auto", fused=True, line_search=True
+):
     from unsew.sim import DrapeSettings, drape
 
     uvp = uv.clone().requires_grad_(backward)
     gp = gamma.clone().requires_grad_(backward)
     t0 = time.perf_counter()
-    out = drape(model, st, sdf, uv=uvp, gamma=gp, density=0.15, steps=steps, checkpoint=checkpoint,
-                settings=DrapeSettings(backend=backend, fused=fused, line_search=line_search))
+    out = drape(
+        model,
+        st,
+        sdf,
+        uv=uvp,
+        gamma=gp,
+        density=0.15,
+        steps=steps,
+        checkpoint=checkpoint,
+        settings=DrapeSettings(backend=backend, fused=fused, line_search=line_search),
+    )
     t1 = time.perf_counter()
     if backward:
         (out.x**2).sum().backward()
@@ -147,7 +158,9 @@ def main(argv=None):
     solver_rows = []
     for n_target in [int(s) for s in args.sizes.split(",")]:
         kind, f, fuv, uv, x, n = _mesh(n_target, not args.sheet)
-        models = {st_: SimModel.build(f, fuv, n=n, bending_stencil=st_) for st_ in sorted({v[0] for v in variants})}
+        models = {
+            st_: SimModel.build(f, fuv, n=n, bending_stencil=st_) for st_ in sorted({v[0] for v in variants})
+        }
         uvt = torch.as_tensor(uv, dtype=torch.float64)
         st = SimState.at_rest(x)
         res = {v: {} for v in variants}
@@ -157,7 +170,9 @@ def main(argv=None):
             for _ in range(args.repeat):
                 for v in variants:
                     r0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-                    fw, rv = _run(models[v[0]], st, sdf, uvt, gamma, steps, True, args.checkpoint, v[1], v[2], v[3])
+                    fw, rv = _run(
+                        models[v[0]], st, sdf, uvt, gamma, steps, True, args.checkpoint, v[1], v[2], v[3]
+                    )
                     r1 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
                     b = res[v].get(steps, (np.inf, np.inf))
                     res[v][steps] = (min(b[0], fw), min(b[1], rv))
@@ -193,7 +208,9 @@ def main(argv=None):
             tb = {}
             for stencil, m in sorted(models.items()):
                 Hb_s = Hb * _ring_weight(Hb) if stencil == "ring" else Hb
-                K = scatter_blocks(m.nnz, m.tri_src, m.tri_dst, Hm) + scatter_blocks(m.nnz, m.hinge_src, m.hinge_dst, Hb_s)
+                K = scatter_blocks(m.nnz, m.tri_src, m.tri_dst, Hm) + scatter_blocks(
+                    m.nnz, m.hinge_src, m.hinge_dst, Hb_s
+                )
                 A = 0.0025 * K
                 A[m.diag_dst] += rest.mass.repeat_interleave(3)
                 pat = SparsePattern(3 * n, m.rows, m.cols)
@@ -215,12 +232,18 @@ def main(argv=None):
                     tb[(stencil, be)] = (t, m.nnz)
         solver_rows.append((kind, n, t_loop, t_ours, tb, os.getloadavg()[0]))
     print()
-    print(f"{'mesh':>6} {'verts':>6} | {'asm loop':>8} {'asm ours':>8} {'speedup':>7} | factor + 2 solves [ms] (nnz of the lower triangle)")
+    print(
+        f"{'mesh':>6} {'verts':>6} | {'asm loop':>8} {'asm ours':>8} {'speedup':>7} | factor + 2 solves [ms] (nnz of the lower triangle)"
+    )
     for kind, n, t_loop, t_ours, tb, load in solver_rows:
         cells = "  ".join(f"{st_}:{be} {t * 1e3:6.1f} ({nnz})" for (st_, be), (t, nnz) in tb.items())
-        print(f"{kind:>6} {n:>6} | {t_loop:8.3f} {t_ours:8.4f} {t_loop / t_ours:6.0f}x | {cells}  load {load:.1f}")
+        print(
+            f"{kind:>6} {n:>6} | {t_loop:8.3f} {t_ours:8.4f} {t_loop / t_ours:6.0f}x | {cells}  load {load:.1f}"
+        )
     print("fwd/rev: drape forward and backward (loss = sum |x|^2 on the final state) wrt uv and Gamma;")
-    print("RSS+: growth of peak resident memory during the 20-step runs (0 when an earlier size peaked higher);")
+    print(
+        "RSS+: growth of peak resident memory during the 20-step runs (0 when an earlier size peaked higher);"
+    )
     print("asm: assembly of the membrane + bending system blocks (one step); f+s: factor + two solves.")
 
 

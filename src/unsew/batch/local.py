@@ -26,8 +26,9 @@ def _init_worker() -> None:
 
 
 def _new_pool(workers: int) -> ProcessPoolExecutor:
-    return ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"),
-                               initializer=_init_worker)
+    return ProcessPoolExecutor(
+        max_workers=workers, mp_context=multiprocessing.get_context("spawn"), initializer=_init_worker
+    )
 
 
 def _stop(pool: ProcessPoolExecutor) -> None:
@@ -79,8 +80,15 @@ def run_local(jobs: Sequence[CaseJob], *, workers: int, on_done: Callable[[CaseR
                     if not solo:  # a suspect: tried again, alone
                         pending.appendleft((job, True))
                     else:
-                        on_done(CaseRecord(job.name, job.case_dir, job.out_dir, status="failed",
-                                           reason="a worker process died while fitting it (killed, or out of memory)"))
+                        on_done(
+                            CaseRecord(
+                                job.name,
+                                job.case_dir,
+                                job.out_dir,
+                                status="failed",
+                                reason="a worker process died while fitting it (killed, or out of memory)",
+                            )
+                        )
     except BaseException:
         _stop(pool)
         raise

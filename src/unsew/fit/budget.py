@@ -39,8 +39,14 @@ class TimeBudget:
     when the command began, so that loading the case and building its body count; default: when
     the budget was made); ``cuts`` lists, in words, what was left out to stay within it."""
 
-    def __init__(self, limit_s: float, *, log: Callable[[str], None] = print,
-                 clock: Callable[[], float] = time.perf_counter, started: float | None = None):
+    def __init__(
+        self,
+        limit_s: float,
+        *,
+        log: Callable[[str], None] = print,
+        clock: Callable[[], float] = time.perf_counter,
+        started: float | None = None,
+    ):
         self.limit_s = float(limit_s)
         self._clock, self._log = clock, log
         self.t0 = clock() if started is None else float(started)

@@ -35,7 +35,15 @@ from unsew.errors import InputError
 from unsew.geometry import topology
 from unsew.geometry.distance import MeshQuery
 
-__all__ = ["MeshRepair", "repair_garment", "MERGE_TOL", "DEGENERATE_REL", "SMALL_PIECE", "SEPARATE_GAP", "triangle_areas"]
+__all__ = [
+    "MeshRepair",
+    "repair_garment",
+    "MERGE_TOL",
+    "DEGENERATE_REL",
+    "SMALL_PIECE",
+    "SEPARATE_GAP",
+    "triangle_areas",
+]
 
 #: vertices closer than this are one vertex [m]
 MERGE_TOL = 1e-7

@@ -75,8 +75,9 @@ def distance_graph(points: np.ndarray, faces: np.ndarray):
     w = np.concatenate([np.linalg.norm(x[edges[:, 0]] - x[edges[:, 1]], axis=1), w_across])
     pairs, w = _shortest_once(pairs, w)
     n = len(x)
-    return sp.coo_matrix((np.r_[w, w], (np.r_[pairs[:, 0], pairs[:, 1]], np.r_[pairs[:, 1], pairs[:, 0]])),
-                         shape=(n, n)).tocsr()
+    return sp.coo_matrix(
+        (np.r_[w, w], (np.r_[pairs[:, 0], pairs[:, 1]], np.r_[pairs[:, 1], pairs[:, 0]])), shape=(n, n)
+    ).tocsr()
 
 
 def _shortest_once(pairs: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -146,8 +147,9 @@ def rest_cloth_lengths(mesh, curves: dict, top_edges: list) -> dict:
     # a seam edge is in both panels: each sewn pair once, at its shorter reading
     pairs, w = _shortest_once(np.stack([np.minimum(xi, xj), np.maximum(xi, xj)], axis=1), g.data)
     n = mesh.n_x
-    graph = sp.coo_matrix((np.r_[w, w], (np.r_[pairs[:, 0], pairs[:, 1]], np.r_[pairs[:, 1], pairs[:, 0]])),
-                          shape=(n, n)).tocsr()
+    graph = sp.coo_matrix(
+        (np.r_[w, w], (np.r_[pairs[:, 0], pairs[:, 1]], np.r_[pairs[:, 1], pairs[:, 0]])), shape=(n, n)
+    ).tocsr()
 
     def verts(edges):
         if not edges:

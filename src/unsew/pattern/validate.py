@@ -155,7 +155,9 @@ def _check_panel(p: Panel) -> None:
             )
     hit = find_self_intersection(p)
     if hit is not None:
-        raise PatternError(f"{w} outline intersects itself: edge {hit[0]} crosses edge {hit[1]}; fix the vertices or curvature")
+        raise PatternError(
+            f"{w} outline intersects itself: edge {hit[0]} crosses edge {hit[1]}; fix the vertices or curvature"
+        )
 
 
 def validate_pattern(pattern: Pattern) -> list[str]:
@@ -184,7 +186,9 @@ def validate_pattern(pattern: Pattern) -> list[str]:
     for k, s in enumerate(pattern.stitches):
         for side in (s.a, s.b):
             if side.panel not in pattern.panels:
-                raise PatternError(f"stitch {k} refers to a missing panel {side.panel!r}; fix the stitch or add the panel")
+                raise PatternError(
+                    f"stitch {k} refers to a missing panel {side.panel!r}; fix the stitch or add the panel"
+                )
             ne = len(pattern.panels[side.panel].edges)
             if not (0 <= side.edge < ne):
                 raise PatternError(

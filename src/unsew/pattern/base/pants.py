@@ -129,7 +129,9 @@ def make_shorts(m: Measurements | None = None, *, band: bool = False) -> Pattern
     m = m or Measurements()
     f = body_frame(m)
     hem_y = f.crotch_y - CROTCH_DROP - SHORTS_INSEAM
-    return _legs(m, hem_y, (m.thigh + SHORTS_HEM_EASE) / 4 - 0.01, "shorts_band" if band else "shorts", band=band)
+    return _legs(
+        m, hem_y, (m.thigh + SHORTS_HEM_EASE) / 4 - 0.01, "shorts_band" if band else "shorts", band=band
+    )
 
 
 def make_shorts_band(m: Measurements | None = None) -> Pattern:
