@@ -100,7 +100,7 @@ def main(argv=None) -> None:
     )
     print()
     print(f"| query {args.points} points | forward [ms] | forward + gradient [ms] |")
-    print(f"|---|---|---|")
+    print("|---|---|---|")
     for name, f, fb in rows:
         print(f"| {name} | {f:.2f} | {fb:.2f} |")
     if args.compare_igl:

@@ -94,9 +94,12 @@ def test_small_batch_equals_single_fit_and_reports_broken_case(tmp_path):
     assert st["tshirt"] == ("done", "")
     assert st["broken"][0] == "failed" and "garment 'sweater'" in st["broken"][1]
     assert_same_metrics(_metrics(tmp_path / "out" / "tshirt"), single)
-    no_time = lambda m: {
-        k: v for k, v in m.items() if k not in ("timings_s", "peak_memory_mb", "peak_memory_stages_mb")
-    }  # noqa: E731
+
+    def no_time(m):
+        return {
+            k: v for k, v in m.items() if k not in ("timings_s", "peak_memory_mb", "peak_memory_stages_mb")
+        }
+
     assert no_time(_metrics(tmp_path / "out" / "tshirt")) == no_time(
         json.loads(json.dumps(single))
     )  # bitwise, in fact

@@ -8,9 +8,8 @@ import numpy as np
 import pytest
 from helpers import assert_close
 
-from unsew.body.body import Body, default_body, load_body
+from unsew.body.body import default_body, load_body
 from unsew.body.skeleton import (
-    REQUIRED_JOINTS,
     Skeleton,
     axial_coordinate,
     distance_to_bone,

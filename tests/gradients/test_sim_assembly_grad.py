@@ -34,7 +34,10 @@ def test_gradcheck_assemble_membrane():
     P = torch.randn(F, 3, 3, generator=g, dtype=torch.float64)
     P = P.requires_grad_()  # any: the Function uses its symmetric part (B S+ B^T is symmetric)
     area = torch.rand(F, generator=g, dtype=torch.float64).add(0.5).requires_grad_()
-    fn = lambda G_, H_, P_, a_: assemble_membrane(m.nnz, m.tri_src, m.tri_dst, G_, H_, P_, a_)
+
+    def fn(G_, H_, P_, a_):
+        return assemble_membrane(m.nnz, m.tri_src, m.tri_dst, G_, H_, P_, a_)
+
     assert torch.autograd.gradcheck(fn, (G, H, P, area), eps=1e-6, atol=1e-8, rtol=1e-6)
 
 
@@ -44,7 +47,10 @@ def test_gradcheck_assemble_outer():
     gv = torch.randn(E, 12, generator=g, dtype=torch.float64, requires_grad=True)
     s = torch.rand(E, generator=g, dtype=torch.float64).add(0.5).requires_grad_()
     w = _ring_weight(gv)
-    fn = lambda g_, s_: assemble_outer(m.nnz, m.hinge_src, m.hinge_dst, g_, s_, w)
+
+    def fn(g_, s_):
+        return assemble_outer(m.nnz, m.hinge_src, m.hinge_dst, g_, s_, w)
+
     assert torch.autograd.gradcheck(fn, (gv, s), eps=1e-6, atol=1e-8, rtol=1e-6)
 
 

@@ -44,7 +44,10 @@ def test_gradcheck_sparse_solve(backend):
     g = torch.Generator().manual_seed(0)
     w = torch.randn(p.rows.shape[0], generator=g, dtype=torch.float64).requires_grad_()
     b = torch.randn(N, generator=g, dtype=torch.float64).requires_grad_()
-    f = lambda w_, b_: sparse_solve(_values(p, w_), b_, p, backend=backend)
+
+    def f(w_, b_):
+        return sparse_solve(_values(p, w_), b_, p, backend=backend)
+
     assert torch.autograd.gradcheck(f, (w, b), eps=1e-6, atol=1e-8, rtol=1e-6)
 
 

@@ -4,12 +4,12 @@ the sew line by the seam allowance, notches on both lines, the AAMA texts."""
 import numpy as np
 import pytest
 
-ezdxf = pytest.importorskip("ezdxf")
-
 from unsew.io.dxf import LAYERS, write_dxf
 from unsew.io.garmentcode import load_pattern
 from unsew.pattern.base import make_base_pattern
 from unsew.pattern.curves import panel_outline
+
+ezdxf = pytest.importorskip("ezdxf")
 
 
 @pytest.mark.parametrize("source", ["tshirt", "pants", "handmade"])

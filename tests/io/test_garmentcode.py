@@ -9,7 +9,7 @@ import pytest
 
 from helpers import assert_close
 from unsew.errors import InputError, PatternError
-from unsew.io.garmentcode import load_pattern, pattern_from_dict, pattern_to_dict, save_pattern
+from unsew.io.garmentcode import load_pattern, pattern_from_dict, save_pattern
 from unsew.pattern.base import GARMENTS, make_base_pattern
 from unsew.pattern.curves import relative_to_absolute
 from unsew.pattern.model import pattern_diff

@@ -12,7 +12,6 @@ from unsew.sim.energies.contact import energy_contact, friction_damping, project
 from unsew.sim.energies.gravity import energy_gravity, mass_lumped
 from unsew.sim.energies.membrane import energy_membrane, membrane_rest
 from unsew.sim.energies.spring import energy_spring
-from unsew.sim.material import MATERIALS
 from unsew.sim.meshes import grid_sheet
 from unsew.sim.model import SimModel
 from unsew.sim.sdf_analytic import CapsuleSDF, PlaneSDF, SphereSDF
@@ -108,11 +107,11 @@ def test_membrane_hessian_vs_torch_func_and_jacobian_fd(sheet):
     assert_close(H, H.transpose(1, 2), atol=1e-12, what="symmetry ")
     # Jacobian of the assembled force against finite differences of the force
     Kd = _dense_hess(m.faces, m.n, H)
-    f = lambda xx: (
-        -scatter_vertex(m.n, m.faces, energy_membrane(xx, m.faces, area, B, GAMMA, hessian=False)[1]).reshape(
-            -1
-        )
-    )
+
+    def f(xx):
+        grad = energy_membrane(xx, m.faces, area, B, GAMMA, hessian=False)[1]
+        return -scatter_vertex(m.n, m.faces, grad).reshape(-1)
+
     h = 1e-7
     cols = [0, 5, 13, 20, 31, 44]
     for c in cols:
@@ -232,7 +231,10 @@ def test_bending_hessian_gauss_newton_exact_at_rest_angle(sheet):
     m, uv, _, _, coef = sheet
     x = perturbed(flat_embed(uv), 0.01)
     theta, _ = dihedral_angle(x, m.hinges)
-    Ef = lambda xx: energy_bending(xx, m.hinges, coef, GAMMA, theta0=theta, hessian=False)[0]
+
+    def Ef(xx):
+        return energy_bending(xx, m.hinges, coef, GAMMA, theta0=theta, hessian=False)[0]
+
     Href = torch.autograd.functional.hessian(Ef, x).reshape(3 * m.n, 3 * m.n)
     _, _, H = energy_bending(x, m.hinges, coef, GAMMA, theta0=theta)
     assert_close(_dense_hess(m.hinges, m.n, H), Href, atol=1e-12, rtol=1e-8)

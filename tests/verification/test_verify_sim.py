@@ -6,7 +6,7 @@ import pytest
 import torch
 from helpers import assert_close
 
-from unsew.sim import DrapeSettings, Material, PlaneSDF, SimModel, SimState, drape
+from unsew.sim import DrapeSettings, PlaneSDF, SimModel, SimState, drape
 from unsew.sim.energies.bending import bending_rest, energy_bending
 from unsew.sim.energies.membrane import membrane_rest
 from unsew.sim.integrator import StepParams, forces, rest_data

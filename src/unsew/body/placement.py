@@ -442,6 +442,7 @@ def _wrap_lifted(pattern, mesh, info, uv, stacks, ys, crotch_y, J, xb, ytop, cle
     if not shoulder_edges:
         _lower_garment_lifts(lifts, info, links, J, crotch_y)
     hist: dict = {name: [] for name in shoulder_edges}  # (lift, residual) per iteration
+    folds: dict = {}  # name -> positions before the shoulder fold; set by the first pass (it == 0)
     for it in range(LIFT_ITERS + 1 if shoulder_edges else 1):
         if it:
             for name, idx in shoulder_edges.items():

@@ -12,7 +12,6 @@ import argparse
 
 from unsew.commands._output import check_out
 from unsew.commands._help import HelpFormatter, examples
-from unsew.io.atomic import check_output
 
 __all__ = ["register", "run"]
 

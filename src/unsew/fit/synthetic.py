@@ -7,7 +7,7 @@ can be judged against the truth. Used by the demo, the tests and the benchmarks.
 from __future__ import annotations
 
 import json
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np

@@ -52,7 +52,7 @@ from unsew.sim.assembly import (
 )
 from unsew.sim.energies.bending import bending_rest, energy_bending
 from unsew.sim.energies.contact import energy_contact, friction_damping, project_out
-from unsew.sim.energies.gravity import energy_gravity, mass_lumped
+from unsew.sim.energies.gravity import energy_gravity
 from unsew.sim.energies.membrane import energy_membrane, membrane_rest
 from unsew.sim.energies.spring import energy_spring
 from unsew.sim.model import SimModel
