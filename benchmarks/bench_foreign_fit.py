@@ -43,8 +43,8 @@ not outlive a machine, the record does (benchmarks/foreign/fits.json is the proj
 Resumable: a case whose result folder exists is not fitted again (nor one whose earlier failure is
 recorded in OUT/_status/CASE.json, unless --retry); an interrupted fit resumes from its checkpoint.
 
-    python -m benchmarks foreign_fit [--cases a,b] [--out bench-out/foreign_fit] [--no-run] [--retry] [--config fit.yaml] [--recompute]
-        [--record benchmarks/foreign/fits.json --code REV]
+    python -m benchmarks foreign_fit [--cases a,b] [--out bench-out/foreign_fit] [--no-run] [--retry]
+        [--config fit.yaml] [--recompute] [--record benchmarks/foreign/fits.json --code REV]
     python -m benchmarks foreign_fit --latest benchmarks/foreign/fits.json
 """
 

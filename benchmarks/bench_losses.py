@@ -71,18 +71,23 @@ def main(argv=None) -> None:
         x = torch.rand(n, 3, generator=g, dtype=torch.float64, requires_grad=True)
         t = torch.rand(n, 3, generator=g, dtype=torch.float64)
         w = torch.rand(n, generator=g, dtype=torch.float64) + 0.5
+
+        def nn_both_ways(**kw):
+            return nearest_indices(x, t, **kw), nearest_indices(t, x, **kw)
+
         put(
             "nn indices, KD-tree (both ways)",
-            f"{_best(lambda: (nearest_indices(x, t, method='kdtree'), nearest_indices(t, x, method='kdtree')), args.repeat):.1f}",
+            f"{_best(lambda: nn_both_ways(method='kdtree'), args.repeat):.1f}",
         )
         if n <= 10000:
             put(
                 "nn indices, chunked cdist mm (both ways)",
-                f"{_best(lambda: (nearest_indices(x, t, method='cdist'), nearest_indices(t, x, method='cdist')), args.repeat):.1f}",
+                f"{_best(lambda: nn_both_ways(method='cdist'), args.repeat):.1f}",
             )
+            exact = dict(method="cdist", compute_mode="donot_use_mm_for_euclid_dist")
             put(
                 "nn indices, chunked cdist exact (both ways)",
-                f"{_best(lambda: (nearest_indices(x, t, method='cdist', compute_mode='donot_use_mm_for_euclid_dist'), nearest_indices(t, x, method='cdist', compute_mode='donot_use_mm_for_euclid_dist')), args.repeat):.1f}",
+                f"{_best(lambda: nn_both_ways(**exact), args.repeat):.1f}",
             )
         else:
             put("nn indices, chunked cdist mm (both ways)", "-")
@@ -120,9 +125,10 @@ def main(argv=None) -> None:
         put("loss_open_contours fwd+bwd", f"{_best(oc, args.repeat):.1f}")
         a = trimesh.creation.icosphere(subdivisions=4, radius=0.3)
         b = trimesh.creation.icosphere(subdivisions=3, radius=0.31)
+        reps = 1 if n > 10000 else args.repeat
         put(
             "surface_metrics (N samples per mesh)",
-            f"{_best(lambda: surface_metrics(a.vertices, a.faces, b.vertices, b.faces, n_samples=n), 1 if n > 10000 else args.repeat):.1f}",
+            f"{_best(lambda: surface_metrics(a.vertices, a.faces, b.vertices, b.faces, n_samples=n), reps):.1f}",
         )
 
     w0 = 52

@@ -2,7 +2,8 @@
 case's body (no cache), accuracy against exact point-to-mesh distance, and query time of 8K
 points with gradient (forward + backward).
 
-    OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_sdf.py [--threads 2] [--voxel 0.005] [--case DIR]
+    OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_sdf.py [--threads 2] [--voxel 0.005]
+        [--case DIR]
 
 The peak (``ru_maxrss``) is read before and after the build; the build is the first large
 allocation after the body is loaded, so run one body per process.

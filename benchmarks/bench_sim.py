@@ -17,8 +17,8 @@ for steps without the line search on the step's incremental potential (integrato
 Timings on a shared 2-core machine are noisy: each figure is the minimum of --repeat runs, and the
 load average is printed with every row.
 
-    OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_sim.py [--sizes 1000,2000,3000,8000] [--repeat 2]
-        [--variants full:cholespy:unfused,ring:cholespy,ring:cholmod:unfused,ring:cholmod] [--no-loop]
+    OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_sim.py [--sizes 1000,2000,3000,8000]
+        [--repeat 2] [--variants full:cholespy:unfused,ring:cholespy,ring:cholmod:unfused,ring:cholmod] [--no-loop]
 """
 
 from __future__ import annotations
@@ -181,8 +181,9 @@ def main(argv=None):
         load = os.getloadavg()[0]
         for v in variants:
             r = res[v]
+            name = v[0] + ":" + v[1] + ("" if v[2] else ":unfused") + ("" if v[3] else ":nols")
             print(
-                f"{kind:>6} {n:>6} {f.shape[0]:>6} {v[0] + ':' + v[1] + ('' if v[2] else ':unfused') + ('' if v[3] else ':nols'):>23} | {r[1][0]:6.3f} {r[20][0]:7.3f} {r[1][1]:6.3f} "
+                f"{kind:>6} {n:>6} {f.shape[0]:>6} {name:>23} | {r[1][0]:6.3f} {r[20][0]:7.3f} {r[1][1]:6.3f} "
                 f"{r[20][1]:7.3f} {r[20][0] + r[20][1]:7.3f} | {r['rss']:7.0f} | {load:4.1f}",
                 flush=True,
             )

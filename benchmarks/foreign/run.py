@@ -482,7 +482,8 @@ def build_case(cid, out_root: Path):
         },
         "checks": res,
     }
-    title = f"{cid}  inside {inside:.2%}  stretch p95 {res['stretch_p95']:.3f}  {'PASS' if not fails else 'FAIL: ' + '; '.join(fails)}"
+    verdict = "PASS" if not fails else "FAIL: " + "; ".join(fails)
+    title = f"{cid}  inside {inside:.2%}  stretch p95 {res['stretch_p95']:.3f}  {verdict}"
     d = out_root / cid
     tmp = out_root / f".{cid}.tmp"
     shutil.rmtree(tmp, ignore_errors=True)
@@ -637,7 +638,9 @@ def cmd_list(args):
                 "body": meta["source"]["body_key"],
                 "verts": sum(1 for ln in open(d / "target.obj") if ln.startswith("v ")),
                 "inside %": 100 * c["inside_fraction"],
-                "stretch p50/p95/p99/max": f"{c['stretch_p50']:.3f}/{c['stretch_p95']:.3f}/{c['stretch_p99']:.3f}/{c['stretch_max']:.2f}",
+                "stretch p50/p95/p99/max": (
+                    f"{c['stretch_p50']:.3f}/{c['stretch_p95']:.3f}/{c['stretch_p99']:.3f}/{c['stretch_max']:.2f}"
+                ),
                 "cut edges (seam)": f"{c['edges_through_body']} ({c['seam_edges_through_body']})",
                 "seam gap mm": c["seam_gap_after_sewing_mm"],
                 "sewing": "default"

@@ -102,7 +102,9 @@ sys.path.insert(0, {tests!r})
 from batch.fakes import fake_fit
 from unsew.batch import run_batch
 from unsew.fit.config import load_config
-run_batch({cases!r}, {out!r}, cfg=load_config(iterations=2, report=False), workers=1, fit_fn=fake_fit, progress=True)
+run_batch(
+    {cases!r}, {out!r}, cfg=load_config(iterations=2, report=False), workers=1, fit_fn=fake_fit, progress=True
+)
 """
 
 
