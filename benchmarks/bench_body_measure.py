@@ -215,7 +215,8 @@ def main() -> None:
     text, worst = run(bodies, names)
     print(text)
     print(
-        f"\nmax abs error, skeletons none/rig/limb: {worst['acceptance']:.1f} cm; with smpl: {worst['all']:.1f} cm"
+        f"\nmax abs error, skeletons none/rig/limb: {worst['acceptance']:.1f} cm; with smpl: "
+        f"{worst['all']:.1f} cm"
     )
 
 

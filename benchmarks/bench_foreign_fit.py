@@ -295,7 +295,8 @@ def main(argv=None) -> int:
     ap.add_argument(
         "--recompute",
         action="store_true",
-        help="compute the pattern metrics anew from each result's saved patterns instead of reading metrics.json",
+        help="compute the pattern metrics anew from each result's saved patterns instead of reading "
+        "metrics.json",
     )
     ap.add_argument(
         "--config", default=None, help="a fit.yaml handed to every fit (default: the default configuration)"
@@ -432,8 +433,8 @@ def print_against(rows: list[dict], rec: dict, path: Path) -> None:
     for name, d, unit in (("Chamfer", dcf, "mm"), ("per-panel area error", dpa, "points")):
         if d:
             print(
-                f"{name}: median change {_median(d):+.2f} {unit} over {len(d)}; lower on {sum(v < -0.05 for v in d)}, "
-                f"higher on {sum(v > 0.05 for v in d)}"
+                f"{name}: median change {_median(d):+.2f} {unit} over {len(d)}; lower on "
+                f"{sum(v < -0.05 for v in d)}, higher on {sum(v > 0.05 for v in d)}"
             )
 
 
@@ -542,7 +543,8 @@ def bars(rows: list[dict]) -> list[dict]:
     if sv:
         out.append(
             {
-                "figure": "seams of the final pattern, largest change from the base [mm]: median / worst; over 2 mm",
+                "figure": "seams of the final pattern, largest change from the base [mm]: median / worst; "
+                "over 2 mm",
                 "value": f"{_median(sv):.1f} / {max(sv):.1f}; {sum(v > 2.0 for v in sv)} of {len(sv)}",
             }
         )
@@ -567,7 +569,8 @@ def bars(rows: list[dict]) -> list[dict]:
         ]
         out.append(
             {
-                "figure": f"better than the base on Chamfer and {'total area' if col == 'total' else 'area'} error",
+                "figure": "better than the base on Chamfer and "
+                f"{'total area' if col == 'total' else 'area'} error",
                 "value": f"{len(better)} of {len(done)}",
             }
         )
@@ -594,8 +597,10 @@ def bars(rows: list[dict]) -> list[dict]:
             change = _median([b - a for a, b in pairs])
             out.append(
                 {
-                    "figure": f"phase two, {what}: median graded -> final; median change; cases lower / higher",
-                    "value": f"{_median(list(g)):.1f} -> {_median(list(f)):.1f}; {change:+.1f}; {lower} / {higher}",
+                    "figure": f"phase two, {what}: median graded -> final; median change; cases lower / "
+                    "higher",
+                    "value": f"{_median(list(g)):.1f} -> {_median(list(f)):.1f}; {change:+.1f}; {lower} / "
+                    f"{higher}",
                 }
             )
     return out

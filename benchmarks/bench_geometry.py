@@ -266,7 +266,8 @@ def main(argv=None) -> None:
             print(rows[-1], file=sys.stderr, flush=True)
     print_table(
         rows,
-        title="Closest points on a triangle mesh (time [s], peak memory growth [MB], error against libigl [um])",
+        title="Closest points on a triangle mesh (time [s], peak memory growth [MB], error against libigl "
+        "[um])",
         digits=3,
     )
 

@@ -137,11 +137,13 @@ def main(argv=None) -> None:
         drape_fn = flat_drape
     flipped = "; changes negated (--flip)" if args.flip else ""
     print(
-        f"drape: {mode}; edge length {args.edge_length} m; material {args.material}; length {args.length}{flipped}"
+        f"drape: {mode}; edge length {args.edge_length} m; material {args.material}; length "
+        f"{args.length}{flipped}"
     )
     head = (
-        f"{'garment':<8} {'contour':<10} {'known dL cm':>11} {'known dG %':>10} {'axial cm':>9} {'girth cm':>9} "
-        f"{'res L cm':>9} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9} {'cloth cm':>9} {'rest cm':>8}"
+        f"{'garment':<8} {'contour':<10} {'known dL cm':>11} {'known dG %':>10} {'axial cm':>9} "
+        f"{'girth cm':>9} {'res L cm':>9} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9} {'cloth cm':>9} "
+        f"{'rest cm':>8}"
     )
     print(head)
     print("-" * len(head))
@@ -221,9 +223,10 @@ def main(argv=None) -> None:
                     rest1[t.index] - rest0[t.index] if t.index in rest1 and t.index in rest0 else float("nan")
                 )
                 print(
-                    f"{g:<8} {s.part:<10} {known[0] * 100:>+11.1f} {known[1] * 100:>+10.0f} {m.axial_distance * 100:>+9.1f} "
-                    f"{m.girth_difference * 100:>+9.1f} {res_l * 100:>9.2f} {abs(a.length - t.length) * 100:>9.2f} "
-                    f"{pat_l * 100:>9.2f} {pat_g * 100:>9.2f} {cloth * 100:>+9.1f} {rest * 100:>+8.1f}"
+                    f"{g:<8} {s.part:<10} {known[0] * 100:>+11.1f} {known[1] * 100:>+10.0f} "
+                    f"{m.axial_distance * 100:>+9.1f} {m.girth_difference * 100:>+9.1f} {res_l * 100:>9.2f} "
+                    f"{abs(a.length - t.length) * 100:>9.2f} {pat_l * 100:>9.2f} {pat_g * 100:>9.2f} "
+                    f"{cloth * 100:>+9.1f} {rest * 100:>+8.1f}"
                 )
                 got = (res_l, abs(a.length - t.length), pat_l, pat_g)
                 worst[g] = [float(np.nanmax([w, v])) for w, v in zip(worst.get(g, got), got)]
@@ -243,13 +246,14 @@ def main(argv=None) -> None:
             )
     print()
     print(
-        f"{'garment':<8} {'target':>6} {'Chamfer base mm':>15} {'graded mm':>10} {'ratio':>6} {'floor mm':>9} "
-        f"{'floor ratio':>11} {'edit':>5} {'remeshed':>8} {'time s':>7}"
+        f"{'garment':<8} {'target':>6} {'Chamfer base mm':>15} {'graded mm':>10} {'ratio':>6} "
+        f"{'floor mm':>9} {'floor ratio':>11} {'edit':>5} {'remeshed':>8} {'time s':>7}"
     )
     for g, ti, b, a, fl, f, rm, dt in summary:
         r = lambda v: v / b if b > 0 else float("nan")  # noqa: E731
         print(
-            f"{g:<8} {ti:>6} {b:>15.1f} {a:>10.1f} {r(a):>6.2f} {fl:>9.1f} {r(fl):>11.2f} {f:>5.2f} {str(rm):>8} {dt:>7.1f}"
+            f"{g:<8} {ti:>6} {b:>15.1f} {a:>10.1f} {r(a):>6.2f} {fl:>9.1f} {r(fl):>11.2f} {f:>5.2f} "
+            f"{str(rm):>8} {dt:>7.1f}"
         )
     if args.targets > 1:
         for g in args.garments:
@@ -257,14 +261,16 @@ def main(argv=None) -> None:
             b, a, fl = (float(np.mean([x[k] for x in rows])) for k in (2, 3, 4))
             ratios = [x[3] / x[2] for x in rows if x[2] > 0]
             print(
-                f"{g:<8} {'mean':>6} {b:>15.1f} {a:>10.1f} {float(np.mean(ratios)):>6.2f} {fl:>9.1f} {fl / b:>11.2f}"
+                f"{g:<8} {'mean':>6} {b:>15.1f} {a:>10.1f} {float(np.mean(ratios)):>6.2f} {fl:>9.1f} "
+                f"{fl / b:>11.2f}"
             )
     print(
         "floor: the target pattern draped on a second mesh, against the target drape (the drape's own noise)"
     )
     print()
     print(
-        f"{'garment':<8} {'worst res L cm':>14} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9}   (over contours and targets)"
+        f"{'garment':<8} {'worst res L cm':>14} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9}   (over "
+        "contours and targets)"
     )
     for g, w in worst.items():
         print(f"{g:<8} {w[0] * 100:>14.2f} {w[1] * 100:>9.2f} {w[2] * 100:>9.2f} {w[3] * 100:>9.2f}")

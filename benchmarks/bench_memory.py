@@ -85,7 +85,8 @@ def main(argv=None) -> None:
             print(rows[-1], flush=True) if os.environ.get("BENCH_VERBOSE") else None
     print_table(
         rows,
-        title="3D metrics of a fit (surface_metrics + the report's per-vertex distances): time [s] and peak memory [MB]",
+        title="3D metrics of a fit (surface_metrics + the report's per-vertex distances): time [s] and peak "
+        "memory [MB]",
         digits=2,
     )
     if args.fit:

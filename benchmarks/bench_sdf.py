@@ -92,12 +92,13 @@ def main(argv=None) -> None:
 
     print(f"{name}: {len(body.verts)} verts, {len(body.faces)} faces; torch threads {args.threads}")
     print(
-        "| grid | voxel [mm] | nodes | build [s] | peak before / after the build [MB] | RMS err <5cm [mm] | max err <5cm [mm] |"
+        "| grid | voxel [mm] | nodes | build [s] | peak before / after the build [MB] | RMS err <5cm [mm] | "
+        "max err <5cm [mm] |"
     )
     print("|---|---|---|---|---|---|---|")
     print(
-        f"| {nx}x{ny}x{nz} | {args.voxel * 1e3:.1f} | {nx * ny * nz / 1e6:.1f}M | {t_build:.1f} | {rss0:.0f} / {rss1:.0f} | "
-        f"{np.sqrt(np.mean(err[near] ** 2)) * 1e3:.2f} | {np.abs(err[near]).max() * 1e3:.2f} |"
+        f"| {nx}x{ny}x{nz} | {args.voxel * 1e3:.1f} | {nx * ny * nz / 1e6:.1f}M | {t_build:.1f} | {rss0:.0f} "
+        f"/ {rss1:.0f} | {np.sqrt(np.mean(err[near] ** 2)) * 1e3:.2f} | {np.abs(err[near]).max() * 1e3:.2f} |"
     )
     print()
     print(f"| query {args.points} points | forward [ms] | forward + gradient [ms] |")

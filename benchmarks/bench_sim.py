@@ -18,7 +18,8 @@ Timings on a shared 2-core machine are noisy: each figure is the minimum of --re
 load average is printed with every row.
 
     OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_sim.py [--sizes 1000,2000,3000,8000]
-        [--repeat 2] [--variants full:cholespy:unfused,ring:cholespy,ring:cholmod:unfused,ring:cholmod] [--no-loop]
+        [--repeat 2] [--variants full:cholespy:unfused,ring:cholespy,ring:cholmod:unfused,ring:cholmod]
+        [--no-loop]
 """
 
 from __future__ import annotations
@@ -119,7 +120,8 @@ def main(argv=None):
     ap.add_argument(
         "--variants",
         default="full:cholespy:unfused,ring:cholespy,ring:cholmod:unfused,ring:cholmod",
-        help="stencil:backend[:unfused][:nols],... (unfused: assembly Functions + sparse_solve instead of step_solve; nols: no line search)",
+        help="stencil:backend[:unfused][:nols],... (unfused: assembly Functions + sparse_solve instead of "
+        "step_solve; nols: no line search)",
     )
     ap.add_argument("--no-loop", action="store_true", help="skip the per-element loop assembly baseline")
     ap.add_argument("--sheet", action="store_true", help="use square sheets even if the t-shirt exists")
@@ -150,8 +152,8 @@ def main(argv=None):
         variants.append((stencil, backend, "unfused" not in rest_, "nols" not in rest_))
     print(f"torch {torch.__version__}, {args.threads} torch thread(s), min of {args.repeat} runs, seconds")
     hdr = (
-        f"{'mesh':>6} {'verts':>6} {'faces':>6} {'variant':>23} | {'fwd 1':>6} {'fwd 20':>7} {'rev 1':>6} {'rev 20':>7} "
-        f"{'f+r 20':>7} | {'RSS+ MB':>7} | {'load':>4}"
+        f"{'mesh':>6} {'verts':>6} {'faces':>6} {'variant':>23} | {'fwd 1':>6} {'fwd 20':>7} {'rev 1':>6} "
+        f"{'rev 20':>7} {'f+r 20':>7} | {'RSS+ MB':>7} | {'load':>4}"
     )
     print(hdr)
     print("-" * len(hdr))
@@ -183,8 +185,8 @@ def main(argv=None):
             r = res[v]
             name = v[0] + ":" + v[1] + ("" if v[2] else ":unfused") + ("" if v[3] else ":nols")
             print(
-                f"{kind:>6} {n:>6} {f.shape[0]:>6} {name:>23} | {r[1][0]:6.3f} {r[20][0]:7.3f} {r[1][1]:6.3f} "
-                f"{r[20][1]:7.3f} {r[20][0] + r[20][1]:7.3f} | {r['rss']:7.0f} | {load:4.1f}",
+                f"{kind:>6} {n:>6} {f.shape[0]:>6} {name:>23} | {r[1][0]:6.3f} {r[20][0]:7.3f} "
+                f"{r[1][1]:6.3f} {r[20][1]:7.3f} {r[20][0] + r[20][1]:7.3f} | {r['rss']:7.0f} | {load:4.1f}",
                 flush=True,
             )
         model = models.get("full", next(iter(models.values())))
@@ -234,12 +236,14 @@ def main(argv=None):
         solver_rows.append((kind, n, t_loop, t_ours, tb, os.getloadavg()[0]))
     print()
     print(
-        f"{'mesh':>6} {'verts':>6} | {'asm loop':>8} {'asm ours':>8} {'speedup':>7} | factor + 2 solves [ms] (nnz of the lower triangle)"
+        f"{'mesh':>6} {'verts':>6} | {'asm loop':>8} {'asm ours':>8} {'speedup':>7} | factor + 2 solves [ms] "
+        "(nnz of the lower triangle)"
     )
     for kind, n, t_loop, t_ours, tb, load in solver_rows:
         cells = "  ".join(f"{st_}:{be} {t * 1e3:6.1f} ({nnz})" for (st_, be), (t, nnz) in tb.items())
         print(
-            f"{kind:>6} {n:>6} | {t_loop:8.3f} {t_ours:8.4f} {t_loop / t_ours:6.0f}x | {cells}  load {load:.1f}"
+            f"{kind:>6} {n:>6} | {t_loop:8.3f} {t_ours:8.4f} {t_loop / t_ours:6.0f}x | {cells}  load "
+            f"{load:.1f}"
         )
     print("fwd/rev: drape forward and backward (loss = sum |x|^2 on the final state) wrt uv and Gamma;")
     print(

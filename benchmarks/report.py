@@ -79,11 +79,11 @@ def foreign_section(record: Path) -> list[str]:
         f"{len(rows)} of {len(cases)} cases in `benchmarks/foreign/cases` have a recorded fit"
         + (f" (none yet: {', '.join(missing)})" if missing else "")
         + ". A case is a GarmentCode-format design draped "
-        "by NVIDIA newton on an anny or GarmentCode body; its floor is its true pattern draped by `unsew drape`, "
-        "and its bar is max(5 mm, 1.5 x floor). Each row names the commit its fit ran on "
+        "by NVIDIA newton on an anny or GarmentCode body; its floor is its true pattern draped by `unsew "
+        "drape`, and its bar is max(5 mm, 1.5 x floor). Each row names the commit its fit ran on "
         f"({len(commits)} commits). Command: `python -m benchmarks foreign_fit --out OUT --cases ...`, then "
-        "`--no-run --record benchmarks/foreign/fits.json --code REV`; `--latest benchmarks/foreign/fits.json` "
-        "prints this table.",
+        "`--no-run --record benchmarks/foreign/fits.json --code REV`; `--latest "
+        "benchmarks/foreign/fits.json` prints this table.",
         "",
         markdown_table(bars(rows), digits=1),
         "",
@@ -238,7 +238,8 @@ def main(argv=None) -> int:
     if args.check:
         same = args.out.is_file() and args.out.read_text() == text
         print(
-            f"{args.out}: {'up to date' if same else 'differs from the records; run python -m benchmarks report'}"
+            f"{args.out}: "
+            f"{'up to date' if same else 'differs from the records; run python -m benchmarks report'}"
         )
         return 0 if same else 1
     args.out.parent.mkdir(parents=True, exist_ok=True)

@@ -393,7 +393,8 @@ def table_accuracy(args, cases: dict[str, list[Path]]) -> list[dict]:
     )
     text = (
         f"## Accuracy (Table 2)\n\n{header(args, 'measured')}\n\n"
-        f"Per garment type (mean over its cases):\n\n{md_table(heads, rows, fmts)}\n\nPer case:\n\n{per_case}\n"
+        f"Per garment type (mean over its cases):\n\n{md_table(heads, rows, fmts)}\n\nPer "
+        f"case:\n\n{per_case}\n"
     )
     emit(args, "accuracy", text)
     return recs
@@ -418,7 +419,8 @@ def table_ablation(args, cases: dict[str, list[Path]]) -> None:
             + [_mean([(r["metrics"] or {}).get("timings_s", {}).get("total_s") for r in recs])]
         )
     text = (
-        f"## Ablation (Table 3)\n\n{header(args, 'measured')}\n\nCases: {', '.join(c.name for c in chosen)}\n\n"
+        f"## Ablation (Table 3)\n\n{header(args, 'measured')}\n\nCases: "
+        f"{', '.join(c.name for c in chosen)}\n\n"
         + md_table(
             ["variant", "fits done", "Chamfer mm", "normal deg", "turning rad", "area err %", "fit s"],
             rows,
@@ -578,8 +580,8 @@ def table_material(args) -> None:
         f"## Material recovery (paper 4.3, Fig. 10)\n\n{header(args, 'measured')}\n\n"
         f"One skirt pattern (base skirt, hem {MATERIAL_SKIRT['hem']}) draped in {MATERIAL_BASE} "
         f"(bending {b.bend:.3g} N m, H00 {b.h00:g} N/m) with the listed stiffnesses scaled; each fitted "
-        f"with material: {cfg.material.start}. `recovered` is the fit's bending [N m] or H00 [N/m]; `A between` is the mean panel "
-        "area error between the pair's two recovered patterns.\n\n"
+        f"with material: {cfg.material.start}. `recovered` is the fit's bending [N m] or H00 [N/m]; `A "
+        "between` is the mean panel area error between the pair's two recovered patterns.\n\n"
         + md_table(
             [
                 "pair",

@@ -43,7 +43,8 @@ def assert_close(actual, expected, *, atol: float = 0.0, rtol: float = 1e-7, wha
     raise AssertionError(
         f"{what}not close: largest difference {diff[idx]:.3e} at index {tuple(int(i) for i in idx)} "
         f"(actual {a_b[idx]!r}, expected {e_b[idx]!r}, atol {atol:g}, rtol {rtol:g}); "
-        f"shapes actual {a.shape} expected {e.shape}; {int((diff > tol).sum())} of {diff.size} out of tolerance"
+        f"shapes actual {a.shape} expected {e.shape}; {int((diff > tol).sum())} of {diff.size} out of "
+        "tolerance"
     )
 
 

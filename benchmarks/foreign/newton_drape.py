@@ -196,7 +196,8 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
         log(f"  widest seam gap between {pn[0]} and {pn[1]} at y {x1[sp[w, 0], 1]:.3f} m")
     info["sew_s"] = time.time() - t0
     log(
-        f"  sewing: {s['sew_frames']} frames {info['sew_s']:.0f} s, largest seam gap {info['gap_after_sewing_m'] * 1000:.1f} mm"
+        f"  sewing: {s['sew_frames']} frames {info['sew_s']:.0f} s, largest seam gap "
+        f"{info['gap_after_sewing_m'] * 1000:.1f} mm"
     )
 
     # phase 2: the sewn garment

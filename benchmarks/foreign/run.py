@@ -97,7 +97,8 @@ BODIES = {
         "pose": "A",
     },
     # GarmentCode's mean body (A-pose): its mesh goes into the case folder as body.obj with no
-    # skeleton.json, so the case is rigged from the mesh wherever it is read (and so is the target's body here)
+    # skeleton.json, so the case is rigged from the mesh wherever it is read (and so is the target's body
+    # here)
     "gc_mean_all": {"model": "garmentcode", "mesh": "mean_all.obj", "pose": "A"},
     "gc_mean_female": {"model": "garmentcode", "mesh": "mean_female.obj", "pose": "A"},
     "gc_mean_male": {"model": "garmentcode", "mesh": "mean_male.obj", "pose": "A"},

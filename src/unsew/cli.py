@@ -94,7 +94,8 @@ def main(argv: list[str] | None = None) -> int:
         if args.debug:
             raise
         print(
-            f"unsew: internal error: {type(exc).__name__}: {_one_line(exc)} (rerun with --debug for the traceback)",
+            f"unsew: internal error: {type(exc).__name__}: {_one_line(exc)} (rerun with --debug for the "
+            "traceback)",
             file=sys.stderr,
         )
         return 1

@@ -32,7 +32,8 @@ def fake_fit(
     meta = json.loads((Path(case_dir) / "meta.json").read_text())
     if meta.get("garment") not in GARMENT_TYPES:
         raise InputError(
-            f"garment {meta.get('garment')!r} in {case_dir}/meta.json must be one of {', '.join(GARMENT_TYPES)}"
+            f"garment {meta.get('garment')!r} in {case_dir}/meta.json must be one of "
+            f"{', '.join(GARMENT_TYPES)}"
         )
     if meta.get("crash"):
         os._exit(3)

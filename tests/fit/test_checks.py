@@ -1,4 +1,5 @@
-"""The re-dress check: whether phase two moved anything (unsew.fit.checks.unmoved), and which pattern its drapes on three meshes keep (kept_on_meshes)."""
+"""The re-dress check: whether phase two moved anything (unsew.fit.checks.unmoved), and which pattern
+its drapes on three meshes keep (kept_on_meshes)."""
 
 import dataclasses
 from types import SimpleNamespace

@@ -119,8 +119,8 @@ def test_phase_two_is_kept_and_lowers_the_redressed_distance(small_fit):
     phase two's. Measured with 6 iterations, both patterns dressed from scratch on the re-dress
     check's three meshes: 5.62 / 5.98 / 6.27 -> 5.05 / 5.42 / 5.09 mm, means x0.87; on another
     machine the first mesh gained only 0.2 %, so each mesh is asked to be lower and the
-    means, which the check judges, x0.95 lower. With phase two held (pattern_start past the budget) the graded pattern is returned
-    and this fails."""
+    means, which the check judges, x0.95 lower. With phase two held (pattern_start past the budget) the graded
+    pattern is returned and this fails."""
     import numpy as np
 
     _, result, metrics = small_fit
@@ -165,8 +165,8 @@ def test_phase_two_lowers_the_corner_distance_below_grading(small_fit):
 
 
 def test_a_result_off_the_body_is_no_result(small_case, tmp_path, monkeypatch):
-    """The fit's drape judged fallen (here: the real check shown the result 1.2 m lower, through the floor) ends in
-    one SimulationError line and leaves neither the result folder nor its .partial."""
+    """The fit's drape judged fallen (here: the real check shown the result 1.2 m lower, through the floor)
+    ends in one SimulationError line and leaves neither the result folder nor its .partial."""
     import numpy as np
 
     import unsew.fit.fit as fit_module
@@ -450,9 +450,9 @@ def test_cold_start_makes_the_drape_a_function_of_the_parameters(small_case):
 def test_auto_material_picks_the_true_fabric(small_case):
     """material=auto dresses the cotton-graded pattern in each candidate, grades again in the best
     one other than cotton, refines the winner's stiffness by draping, checks the winner by a drape
-    from scratch, and starts phase two from the closest: the target is the demo t-shirt in jersey, so jersey wins over cotton and denim,
-    and the fit's material is jersey's (density, friction and Poisson ratio; a refinement scales
-    only the stiffness)."""
+    from scratch, and starts phase two from the closest: the target is the demo t-shirt in jersey, so jersey
+    wins over cotton and denim, and the fit's material is jersey's (density, friction and Poisson ratio; a
+    refinement scales only the stiffness)."""
     import math
 
     from unsew.fit.fit import fit

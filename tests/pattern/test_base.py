@@ -78,8 +78,8 @@ def test_tshirt_seams_join_the_right_corners():
     p = make_base_pattern("tshirt")
     find = _join_classes(p)
     f, b = p.panels["front"], p.panels["back"]
-    # Front/back vertex layout: 0 hem -x, 1 hem +x, 2 underarm +x, 3 shoulder tip +x, 4 neck +x, 5..7 mirrored.
-    # Front +x is the body's left; back +x is the body's right.
+    # Front/back vertex layout: 0 hem -x, 1 hem +x, 2 underarm +x, 3 shoulder tip +x, 4 neck +x, 5..7
+    # mirrored. Front +x is the body's left; back +x is the body's right.
     assert find(("front", 3)) == find(("back", 6)) == find(("left_sleeve", 3))  # left shoulder tip = cap top
     assert find(("front", 6)) == find(("back", 3)) == find(("right_sleeve", 3))
     assert find(("front", 4)) == find(("back", 5))  # left neck point

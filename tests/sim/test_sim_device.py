@@ -28,7 +28,8 @@ def _sheet(n=5, size=0.3, y=0.12, stretch=1.03):
 
 
 def _drape_and_grads(model, uv, x, device, fused):
-    """A sheet draped 6 steps over a sphere on ``device``; (x (N, 3), d loss/d uv, d loss/d gamma) on the CPU."""
+    """A sheet draped 6 steps over a sphere on ``device``; (x (N, 3), d loss/d uv, d loss/d gamma) on the
+    CPU."""
     uv = uv.detach().clone().to(device).requires_grad_(True)  # leaves of their own (.to("cpu") is a no-op)
     gamma = GAMMA.detach().clone().to(device).requires_grad_(True)
     out = drape(

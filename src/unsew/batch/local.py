@@ -3,8 +3,8 @@
 Jobs are handed out one at a time per worker, so at most ``workers`` cases are in flight. A
 worker that dies (killed, out of memory) breaks the pool: every case then in flight is tried once
 more, alone in a fresh pool, and recorded as failed if its worker dies again (so a crash is pinned
-on the case that caused it, not on the cases that happened to run beside it). Ctrl-C reaches the driver only (workers ignore
-SIGINT); the driver terminates the workers and re-raises, leaving each interrupted fit's
+on the case that caused it, not on the cases that happened to run beside it). Ctrl-C reaches the driver only
+(workers ignore SIGINT); the driver terminates the workers and re-raises, leaving each interrupted fit's
 checkpoint for a rerun.
 """
 

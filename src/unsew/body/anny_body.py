@@ -125,7 +125,8 @@ def _anny_pose_tensor(model, rest_out, rotations_world: dict, torch):
         bone = JOINT_MAP[name][0] if name in JOINT_MAP else name
         if bone not in labels:
             raise InputError(
-                f"pose names unknown joint {name!r}; use one of {sorted(k for k in JOINT_MAP if JOINT_MAP[k][0])}"
+                f"pose names unknown joint {name!r}; use one of "
+                f"{sorted(k for k in JOINT_MAP if JOINT_MAP[k][0])}"
             )
         # world frame -> anny frame
         local_rot[labels.index(bone)] = ANNY_TO_WORLD.T @ _rotvec_to_matrix(np.asarray(rv)) @ ANNY_TO_WORLD

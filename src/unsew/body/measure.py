@@ -236,9 +236,9 @@ def cross_check_rig(body, *, tol: dict | None = None):
             off = {n: float(np.linalg.norm(sk.position(n) - rig.position(n))) for n in joints}
             j = max(off, key=off.get)
             raise InputError(
-                f"{k} {a * 100:.1f} cm with the given skeleton but {b * 100:.1f} cm from the mesh alone: skeleton "
-                f"joint {j!r} lies {off[j] * 100:.0f} cm from where the mesh puts it; check it in skeleton.json, "
-                "or remove the file to rig the body from its mesh"
+                f"{k} {a * 100:.1f} cm with the given skeleton but {b * 100:.1f} cm from the mesh alone: "
+                f"skeleton joint {j!r} lies {off[j] * 100:.0f} cm from where the mesh puts it; check it in "
+                "skeleton.json, or remove the file to rig the body from its mesh"
             )
     return m
 
@@ -274,8 +274,8 @@ def check_human(body, parts, *, bust: float, waist: float, waist_y: float, bust_
     if waist < HUMAN_WAIST[0]:
         part, joint = _trunk_taken(body, parts, waist_y)
         raise InputError(
-            f"waist {waist * 100:.1f} cm at {waist_y:.2f} m is under {HUMAN_WAIST[0] * 100:.0f} cm: the trunk there "
-            f"is read as {part} from skeleton joint {joint!r}; check its "
+            f"waist {waist * 100:.1f} cm at {waist_y:.2f} m is under {HUMAN_WAIST[0] * 100:.0f} cm: the "
+            f"trunk there is read as {part} from skeleton joint {joint!r}; check its "
             "position and parent in skeleton.json"
         )
     if waist > HUMAN_WAIST[1]:
@@ -283,7 +283,8 @@ def check_human(body, parts, *, bust: float, waist: float, waist_y: float, bust_
     if waist_y >= bust_y:
         raise InputError(
             f"waist level {waist_y:.2f} m is not below the bust's {bust_y:.2f} m: the waist is sought up to "
-            f"skeleton joint 'chest' at {body.skeleton.position('chest')[1]:.2f} m; check its position in skeleton.json"
+            f"skeleton joint 'chest' at {body.skeleton.position('chest')[1]:.2f} m; check its position in "
+            "skeleton.json"
         )
 
 
@@ -296,8 +297,8 @@ def _check_trunk_order(sk) -> None:
         if not ya < yb:
             bad = b if b in ("spine", "chest") or a in ("neck", "head") else a
             raise InputError(
-                f"skeleton joint {bad!r} is out of the trunk's order: {a!r} at {ya:.2f} m is not below {b!r} at "
-                f"{yb:.2f} m (pelvis, spine, chest, neck and head rise in that order on a standing body); "
+                f"skeleton joint {bad!r} is out of the trunk's order: {a!r} at {ya:.2f} m is not below {b!r} "
+                f"at {yb:.2f} m (pelvis, spine, chest, neck and head rise in that order on a standing body); "
                 "check it in skeleton.json"
             )
 

@@ -19,8 +19,8 @@ Build (numpy/scipy, once per body, cached on disk):
 
 Query: ``sdf.query(x)`` trilinearly interpolates the distance grid and its gradient grid (central
 differences, precomputed) by one gather of the 8 corners of each point's cell from a
-channel-last table (faster than ``torch.nn.functional.grid_sample`` with 4 channels here): ``d`` is differentiable in
-``x`` (first and second derivatives, those of the trilinear interpolant), ``n`` is the
+channel-last table (faster than ``torch.nn.functional.grid_sample`` with 4 channels here): ``d`` is
+differentiable in ``x`` (first and second derivatives, those of the trilinear interpolant), ``n`` is the
 interpolated gradient normalised (continuous across cells, unlike autograd's gradient of ``d``).
 Points outside the grid get the distance at the nearest grid point plus the distance to it.
 Inside is negative. Any object with this ``query`` method is an SDF for the simulator.

@@ -340,8 +340,8 @@ def structural_parts(names: list[str], parents: np.ndarray) -> list[str]:
             if k in owner and owner[k][0] != part:
                 raise InputError(
                     f"skeleton joint {names[k]!r} would be both {owner[k][0]} and {part} (it hangs below "
-                    f"{names[owner[k][1]]!r} and {names[by]!r}); each limb and the head must hang from the trunk on "
-                    "their own"
+                    f"{names[owner[k][1]]!r} and {names[by]!r}); each limb and the head must hang from the "
+                    "trunk on their own"
                 )
             owner[k] = (part, by)
             parts[k] = part
@@ -363,8 +363,8 @@ def structural_parts(names: list[str], parents: np.ndarray) -> list[str]:
         while k != -1:
             if k in limbs:
                 raise InputError(
-                    f"skeleton joint {n!r} hangs below {names[k]!r}; the trunk's joints must hang from the root, "
-                    "not from a limb or the head"
+                    f"skeleton joint {n!r} hangs below {names[k]!r}; the trunk's joints must hang from the "
+                    "root, not from a limb or the head"
                 )
             k = int(parents[k])
     neck, head = idx["neck"], idx["head"]

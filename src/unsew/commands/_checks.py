@@ -63,9 +63,9 @@ def check_triangle_budget(
     if n > limit:
         area = _pattern_area(pattern)
         raise InputError(
-            f"pattern {pattern.name!r} has {area:.3g} m^2 of panels: at edge length {edge_length:g} m its mesh "
-            f"would have about {n:,} triangles (limit {limit:,}): check the pattern's units_in_meter or use a "
-            "larger --edge-length" + (f", or raise {override}" if override else "")
+            f"pattern {pattern.name!r} has {area:.3g} m^2 of panels: at edge length {edge_length:g} m its "
+            f"mesh would have about {n:,} triangles (limit {limit:,}): check the pattern's units_in_meter or "
+            "use a larger --edge-length" + (f", or raise {override}" if override else "")
         )
     return n
 

@@ -27,9 +27,9 @@ def register(sub: argparse._SubParsersAction) -> None:
             "unsew batch cases/ --out results/ --workers 2 --iterations 40",
             "unsew batch cases/ --out results/ --ray auto",
         ),
-        description="Fit every case folder (a subfolder holding meta.json) of CASES_DIR into RESULTS_DIR/<case>/. "
-        "Rerun the same command to continue an interrupted batch: complete results are skipped, interrupted "
-        "fits resume from their checkpoints, failed cases are tried again.",
+        description="Fit every case folder (a subfolder holding meta.json) of CASES_DIR into "
+        "RESULTS_DIR/<case>/. Rerun the same command to continue an interrupted batch: complete results are "
+        "skipped, interrupted fits resume from their checkpoints, failed cases are tried again.",
     )
     p.add_argument("cases", metavar="CASES_DIR", help="folder of case folders (FORMATS.md)")
     p.add_argument(
@@ -42,7 +42,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--ray",
         metavar="ADDRESS",
         help="run the fits as Ray tasks: 'auto' (running cluster), 'local' (start one here) or an address; "
-        "RESULTS_DIR must be on a shared filesystem for a multi-machine cluster (needs unsew[ray]) (default: local processes)",
+        "RESULTS_DIR must be on a shared filesystem for a multi-machine cluster (needs unsew[ray]) "
+        "(default: local processes)",
     )
     p.add_argument(
         "--overwrite", action="store_true", help="refit cases whose result folder is already complete"

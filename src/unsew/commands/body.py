@@ -40,7 +40,8 @@ def run_make(args: argparse.Namespace) -> int:
         write_obj(os.path.join(tmp, "body.obj"), body.verts, body.faces, header=f"unsew body: {body.name}")
         save_skeleton(body.skeleton, os.path.join(tmp, "skeleton.json"))
     print(
-        f"wrote {args.out}/body.obj ({len(body.verts)} vertices, height {body.height:.3f} m) and skeleton.json"
+        f"wrote {args.out}/body.obj ({len(body.verts)} vertices, height {body.height:.3f} m) and "
+        "skeleton.json"
     )
     return 0
 

@@ -55,7 +55,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         formatter_class=HelpFormatter,
         epilog=examples(
             "unsew drape result/pattern.json --out garment.obj",
-            "unsew drape pattern.json --body bodies/tall/ --material denim --edge-length 0.02 --out garment.obj",
+            "unsew drape pattern.json --body bodies/tall/ --material denim --edge-length 0.02 --out "
+            "garment.obj",
         ),
     )
     p.add_argument("pattern", metavar="PATTERN.json", help="sewing pattern (GarmentCode specification JSON)")
@@ -203,7 +204,8 @@ def run(args: argparse.Namespace) -> int:
         m.faces,
         uv=m.uv,
         faces_uv=m.faces_uv,
-        header=f"unsew drape: {pattern.name} on {getattr(body, 'name', 'body')}, {material_name}; UVs are pattern coordinates [m]",
+        header=f"unsew drape: {pattern.name} on {getattr(body, 'name', 'body')}, {material_name}; UVs are "
+        "pattern coordinates [m]",
     )
     s = d.stats
     if contact is not None:

@@ -104,10 +104,10 @@ def register(sub: argparse._SubParsersAction) -> None:
         "fit",
         help="recover the sewing pattern and material of a draped garment (case folder)",
         formatter_class=HelpFormatter,
-        description="Recover the sewing pattern and material of a draped garment: phase one grades a base pattern "
-        "to the target, phase two optimises pattern and material through the differentiable drape. Writes "
-        "RESULT_DIR/ with pattern.json, pattern.svg, pattern.dxf, pattern.pdf, garment.obj, metrics.json, "
-        "report.html (FORMATS.md).",
+        description="Recover the sewing pattern and material of a draped garment: phase one grades a base "
+        "pattern to the target, phase two optimises pattern and material through the differentiable drape. "
+        "Writes RESULT_DIR/ with pattern.json, pattern.svg, pattern.dxf, pattern.pdf, garment.obj, "
+        "metrics.json, report.html (FORMATS.md).",
         epilog=examples(
             "unsew fit case/ --out result/",
             "unsew fit case/ --out result/ --material denim --iterations 40 --edge-length 0.03 --no-progress",
@@ -121,7 +121,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--out", required=True, metavar="RESULT_DIR", help="result folder to create")
     p.add_argument(
         "--base",
-        help="base pattern: a garment type or library base (unsew pattern new --help lists them) or a GarmentCode JSON (default: chosen by draping among the library's bases of meta.json's garment)",
+        help="base pattern: a garment type or library base (unsew pattern new --help lists them) or a "
+        "GarmentCode JSON (default: chosen by draping among the library's bases of meta.json's garment)",
     )
     p.add_argument(
         "--units", choices=["m", "cm", "mm"], help="units of the case's meshes (default: meta.json's, else m)"

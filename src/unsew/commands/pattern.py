@@ -130,7 +130,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--dxf",
         metavar="P.dxf",
         help="DXF in millimetres, one block per piece, AAMA/ASTM layers "
-        "(1 cut line, 2 turn points, 4 notches, 6 fold line, 7 grain line, 14 sew line, 15 text) (default: not written)",
+        "(1 cut line, 2 turn points, 4 notches, 6 fold line, 7 grain line, 14 sew line, 15 text) (default: "
+        "not written)",
     )
     exp.add_argument(
         "--pdf",

@@ -17,8 +17,8 @@ What gives way, in the order a fit reaches it:
   ran) is skipped when it would not fit.
 
 The base choice, grading and the re-dress check on the fit's mesh always run: without them
-there is no result, or no judgement of phase two's. Times to come are estimated from ones measured in this fit: a drape
-from scratch (the base's, in phase one) and phase two's iterations.
+there is no result, or no judgement of phase two's. Times to come are estimated from ones measured in this
+fit: a drape from scratch (the base's, in phase one) and phase two's iterations.
 """
 
 from __future__ import annotations

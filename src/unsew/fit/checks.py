@@ -165,8 +165,8 @@ def redress_check(
         )
     if failed:
         log(
-            f"re-dress check: the fitted pattern dressed from scratch failed ({failed}): the graded pattern is "
-            "returned"
+            f"re-dress check: the fitted pattern dressed from scratch failed ({failed}): the graded pattern "
+            "is returned"
         )
         return RedressCheck(None, cf_graded, False, failed=failed)
     cf_re = target.distance_mm(x, start.mesh.faces)
@@ -244,8 +244,8 @@ def redress_on_three(
         ]
     kept, fit_mean, graded_mean, why = kept_on_meshes(fit_mm, graded)
     log(
-        f"re-dress check on three meshes: the fitted pattern dressed from scratch lies {mm_list(fit_mm)} mm from the "
-        f"target, the graded one {mm_list(graded)} mm: "
+        f"re-dress check on three meshes: the fitted pattern dressed from scratch lies {mm_list(fit_mm)} mm "
+        f"from the target, the graded one {mm_list(graded)} mm: "
         + ("fit kept" if kept else "the graded pattern is returned")
         + why
     )
@@ -375,8 +375,8 @@ def mesh_spread(
     out = [_dressed_mm(pattern, material, body, target, sdf, cfg, h, progress, "the result") for h in lengths]
     spread = MeshSpread(lengths, out, result_mm)
     log(
-        f"mesh spread: the returned pattern dressed on meshes {100 * cfg.checks.mesh_spread:.0f} % finer / coarser "
-        f"lies {mm_list(out)} mm from the target "
+        f"mesh spread: the returned pattern dressed on meshes {100 * cfg.checks.mesh_spread:.0f} % finer / "
+        f"coarser lies {mm_list(out)} mm from the target "
         f"(the result {result_mm:.2f} mm)"
     )
     return spread

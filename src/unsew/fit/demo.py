@@ -172,7 +172,8 @@ def _table(s: dict) -> str:
     lines = [f"{'metric':<22}{'base':>12}{'graded':>12}{'final':>12}", "-" * 58]
     for name, d, pct in rows:
         lines.append(
-            f"{name:<22}{_fmt(d.get('base'), pct):>12}{_fmt(d.get('graded'), pct):>12}{_fmt(d.get('final'), pct):>12}"
+            f"{name:<22}{_fmt(d.get('base'), pct):>12}{_fmt(d.get('graded'), pct):>12}"
+            f"{_fmt(d.get('final'), pct):>12}"
         )
     lines.append(
         f"time: {s['time_s']['total']:.0f} s in all ({s['time_s']['target']:.0f} s to make the target)"

@@ -143,8 +143,8 @@ def fit(
     cfg, contact = contact_for_target(cfg, target.verts, case.body, sdf)
     if cfg.contact == "target":
         log(
-            f"contact: the target's cloth rests {contact['gap_mm']:.1f} mm from the body; every drape rests it "
-            f"{contact['threshold_mm']:.1f} mm off (contact stiffness {contact['stiffness']:.0e} N/m^4)"
+            f"contact: the target's cloth rests {contact['gap_mm']:.1f} mm from the body; every drape rests "
+            f"it {contact['threshold_mm']:.1f} mm off (contact stiffness {contact['stiffness']:.0e} N/m^4)"
         )
     clock.lap("body_sdf_s")
     saved = load_checkpoint(checkpoint) if resume and checkpoint and Path(checkpoint).is_file() else None

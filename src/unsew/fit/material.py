@@ -279,13 +279,13 @@ def _checked(
     """The choice checked by a drape from scratch, as a result is judged (``material.check``).
 
     The candidates were let settle from another fabric's drape, and a settled drape can lie
-    closer than the same pattern and fabric dressed from scratch (docs/decisions/002). So the chosen pattern is dressed from scratch in its fabric, and when
-    that drape lies farther from the target than ``first``'s (graded in cotton, a drape from
-    scratch) by more than both :data:`CHECK_MARGIN_MM` and :data:`CHECK_MARGIN_REL` of it (what
-    two drapes from scratch of one pattern on two meshes differ by), phase two starts from ``first``;
-    otherwise the choice stands as it was made (its settled drape). A drape from scratch that fails
-    its check (:func:`unsew.sim.checks.check_dressed`: exploded, fallen, ...) gives way to
-    ``first`` whatever its distance. Returns (the start, the table with the two dressed rows first,
+    closer than the same pattern and fabric dressed from scratch (docs/decisions/002). So the chosen pattern
+    is dressed from scratch in its fabric, and when that drape lies farther from the target than ``first``'s
+    (graded in cotton, a drape from scratch) by more than both :data:`CHECK_MARGIN_MM` and
+    :data:`CHECK_MARGIN_REL` of it (what two drapes from scratch of one pattern on two meshes differ by),
+    phase two starts from ``first``; otherwise the choice stands as it was made (its settled drape). A drape
+    from scratch that fails its check (:func:`unsew.sim.checks.check_dressed`: exploded, fallen, ...) gives
+    way to ``first`` whatever its distance. Returns (the start, the table with the two dressed rows first,
     the kept one on top).
     """
     with progress.phase("dress the chosen material") as bar:

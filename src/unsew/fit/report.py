@@ -351,7 +351,10 @@ def _redress_note(rd: dict) -> str:
     """The report's line on the re-dress check (metrics.json's ``redress``)."""
     graded = "the graded pattern and its drape are returned (the final and graded patterns coincide)"
     if rd.get("refused"):
-        return f"re-dress check: phase two's pattern cannot be meshed afresh or read back ({rd['refused']}); {graded}"
+        return (
+            "re-dress check: phase two's pattern cannot be meshed afresh or read back "
+            f"({rd['refused']}); {graded}"
+        )
     if rd.get("failed"):
         return f"re-dress check: phase two's pattern dressed from scratch failed ({rd['failed']}); {graded}"
     verdict = "phase two's pattern is returned" if rd["phase_two_kept"] else graded
@@ -362,11 +365,11 @@ def _redress_note(rd: dict) -> str:
             else "no mean"
         )
         return (
-            f"re-dress check on three meshes ({' / '.join(f'{100 * h:.2f}' for h in rd['edge_lengths_m'])} cm "
-            f"edges): the fitted pattern dressed from scratch lies {mm_list(rd['fit_mm'])} mm from the target, the "
-            f"graded one {mm_list(rd['graded_fresh_mm'])} mm ({means}); {verdict}"
+            f"re-dress check on three meshes ({' / '.join(f'{100 * h:.2f}' for h in rd['edge_lengths_m'])} "
+            f"cm edges): the fitted pattern dressed from scratch lies {mm_list(rd['fit_mm'])} mm from the "
+            f"target, the graded one {mm_list(rd['graded_fresh_mm'])} mm ({means}); {verdict}"
         )
     return (
-        f"re-dress check: the fitted pattern dressed from scratch lies {rd['fit_redressed_mm']:.2f} mm from the "
-        f"target, the graded one {rd['graded_mm']:.2f} mm; {verdict}"
+        f"re-dress check: the fitted pattern dressed from scratch lies {rd['fit_redressed_mm']:.2f} mm from "
+        f"the target, the graded one {rd['graded_mm']:.2f} mm; {verdict}"
     )

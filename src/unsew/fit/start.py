@@ -230,9 +230,9 @@ def choose_base(
         )
         if angles:
             log(
-                f"neckline read off the target: front {necklines[0]}, back {necklines[1]} (the angle at its lowest "
-                f"point: front {angles.get('front_deg', 180):.0f} deg, back {angles.get('back_deg', 180):.0f} deg; "
-                f"a V under {V_ANGLE_DEG:.0f})"
+                f"neckline read off the target: front {necklines[0]}, back {necklines[1]} (the angle at its "
+                f"lowest point: front {angles.get('front_deg', 180):.0f} deg, back "
+                f"{angles.get('back_deg', 180):.0f} deg; a V under {V_ANGLE_DEG:.0f})"
             )
 
     def make(name):
@@ -275,7 +275,8 @@ def choose_base(
             f"{r['base']}: {r.get('error') or 'its distance to the target is not finite'}" for r in rows
         )
         raise InputError(
-            f"no base pattern of type {case.garment} could be dressed on this body ({why}); pass --base P.json"
+            f"no base pattern of type {case.garment} could be dressed on this body ({why}); pass --base "
+            "P.json"
         )
     on_torso = bool(band) and all(r.get("torso_mm") is not None for r in rows if r["base"] in patterns)
     # the arms agreeing first, when any candidate's do; then the closest (over the torso when

@@ -36,8 +36,8 @@ class Alteration:
     alters only that panel's edges of the group, which grading (one length and girth per
     contour) cannot express; "waist" -> (length, _): the waist corners of the side seams (where
     two side-seam edges meet, dresses) move outward by ``length`` (negative: a fitted waist),
-    a shape that no open contour carries, so grading cannot make it either. material: the true fabric (library name). A group the garment does
-    not have is ignored.
+    a shape that no open contour carries, so grading cannot make it either. material: the true fabric (library
+    name). A group the garment does not have is ignored.
     """
 
     changes: dict = field(default_factory=dict)

@@ -249,5 +249,6 @@ def _check_separate(v, f, lab, n, what) -> None:
             raise InputError(
                 f"{what} has {n} separate surfaces (areas "
                 + ", ".join(f"{a:.3f}" for a in sorted(a_comp, reverse=True))
-                + f" m^2); the one near {_where(centre)} is {gap * 100:.0f} cm from the rest: give one garment per case"
+                + f" m^2); the one near {_where(centre)} is {gap * 100:.0f} cm from the rest: give one "
+                "garment per case"
             )

@@ -231,7 +231,8 @@ def grade(
     drape_fn: ``drape_fn(pattern, mesh, body) -> (n_x, 3) [m]`` used for both drapes (default:
         :func:`dress_drape` with ``material``, ``sdf`` and ``settings``; :func:`flat_drape` for a quick look).
     redrape: drape the graded pattern (X_LG); False leaves ``x_draped`` None.
-    max_centre_distance: contour pairing gate [m] (default :data:`~unsew.grading.contours.MAX_CENTRE_DISTANCE`).
+    max_centre_distance: contour pairing gate [m] (default
+        :data:`~unsew.grading.contours.MAX_CENTRE_DISTANCE`).
     passes: grading passes; a further pass grades the graded pattern again from its own drape
         while a contour is off by more than :data:`PASS_LENGTH_TOL` or :data:`PASS_GIRTH_TOL`
         (one edit cannot know how the drape answers; the next measures it). One drape each.
@@ -351,7 +352,8 @@ def _lift_row(tried: dict) -> dict:
         "part": "torso",
         "extension_m": tried["wanted_m"],
         "edits": [
-            f"{what} (the target's waist minus the drape's: {tried['wanted_m'] * 100:+.1f} cm; drapes {cands})"
+            f"{what} (the target's waist minus the drape's: {tried['wanted_m'] * 100:+.1f} cm; drapes "
+            f"{cands})"
         ],
         "warnings": [],
     }
@@ -562,8 +564,8 @@ def _hold_tops(
             t, dg = tops[0]
             if _girth_explains(rise, dg):
                 held[t] = (
-                    f"band top {rise * 100:+.1f} cm on the target with its girth {dg * 100:+.1f} cm: read as the "
-                    "band's fit, not carried down to the panels below"
+                    f"band top {rise * 100:+.1f} cm on the target with its girth {dg * 100:+.1f} cm: read as "
+                    "the band's fit, not carried down to the panels below"
                 )
                 continue
             for below in _sewn_below(pattern, panel):
@@ -1130,8 +1132,8 @@ def _row(
 def format_table(table: list) -> str:
     """The contour table as aligned text (lengths in cm)."""
     head = (
-        f"{'source':<24} {'target':<24} {'part':<10} {'axial cm':>9} {'ext cm':>8} {'cloth cm':>9} {'girth cm':>9}"
-        "  edits / warnings"
+        f"{'source':<24} {'target':<24} {'part':<10} {'axial cm':>9} {'ext cm':>8} {'cloth cm':>9} "
+        f"{'girth cm':>9}  edits / warnings"
     )
     lines = [head, "-" * len(head)]
     cm = lambda v: "" if v is None else f"{v * 100:+.1f}"  # noqa: E731

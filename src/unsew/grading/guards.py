@@ -199,8 +199,8 @@ def bounded_band(rest: float, target_length: float, girth_change: float) -> tupl
     loop minus the drape's).
 
     A band is a stiff strip held by the body: its top edge drapes at rest or stretched, never
-    gathered shorter than its cloth (true of every banded foreign target). Graded by the drapes' difference alone, a band
-    whose own drape gathered it would come out longer than the target's loop and slide down.
+    gathered shorter than its cloth (true of every banded foreign target). Graded by the drapes' difference
+    alone, a band whose own drape gathered it would come out longer than the target's loop and slide down.
     """
     if not rest > 0 or rest + girth_change <= target_length:
         return girth_change, ""

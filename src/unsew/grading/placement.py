@@ -54,8 +54,8 @@ def top_height(verts, faces) -> float | None:
 
 
 def lifted(pattern, dy: float):
-    """A copy of ``pattern`` (:class:`~unsew.pattern.model.Pattern`) with every panel's placement moved ``dy`` [m] up (+y); the panels'
-    shapes are unchanged."""
+    """A copy of ``pattern`` (:class:`~unsew.pattern.model.Pattern`) with every panel's placement moved ``dy``
+    [m] up (+y); the panels' shapes are unchanged."""
     out = pattern.copy()
     for panel in out.panels.values():
         panel.translation = panel.translation + np.array([0.0, float(dy), 0.0])

@@ -270,8 +270,8 @@ def _remove_loops(q: np.ndarray, flag: np.ndarray) -> tuple[np.ndarray, np.ndarr
 class CuttingNote:
     """What the workroom cuts of one piece: ``quantity`` pieces; ``text`` the human line
     ('cut 1', 'cut 1; mirror of right_front; (as a pair: cut 2 from doubled fabric)', 'cut 1 on fold
-    (...)'; parts after '; ' are printed on lines of their own); ``fold``: for a piece symmetric about a line, (point (2,), unit direction
-    (2,)) [m] in the panel frame, else None."""
+    (...)'; parts after '; ' are printed on lines of their own); ``fold``: for a piece symmetric about a line,
+    (point (2,), unit direction (2,)) [m] in the panel frame, else None."""
 
     quantity: int
     text: str

@@ -140,8 +140,8 @@ def _segments_per_edge(pattern: Pattern, edge_length: float, even: frozenset = f
         for side in (s.a, s.b):
             if (side.panel, side.edge) not in index:
                 raise PatternError(
-                    f"stitch {s.label or ''} refers to panel {side.panel!r} edge {side.edge}, which does not exist; "
-                    "fix the stitch or add the panel"
+                    f"stitch {s.label or ''} refers to panel {side.panel!r} edge {side.edge}, which does not "
+                    "exist; fix the stitch or add the panel"
                 )
         uf.union(index[(s.a.panel, s.a.edge)], index[(s.b.panel, s.b.edge)])
     roots = np.array([uf.find(j) for j in range(len(keys))])

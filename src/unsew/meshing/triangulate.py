@@ -39,8 +39,8 @@ def _check_meshable(boundary: np.ndarray, name: str) -> None:
     spikes = np.flatnonzero(cos > math.cos(math.radians(0.5)))  # the outline turns back on itself
     if spikes.size:
         raise PatternError(
-            f"panel {name!r}: outline folds back on itself at outline point {int(spikes[0])} of {len(boundary)} "
-            "(a spike of zero width); check its vertices and curvature"
+            f"panel {name!r}: outline folds back on itself at outline point {int(spikes[0])} of "
+            f"{len(boundary)} (a spike of zero width); check its vertices and curvature"
         )
     crossing = _first_crossing(boundary)
     if crossing is not None:

@@ -46,8 +46,8 @@ def evaluate_result(
     units, up, front: the case files' frame, overriding meta.json's (as ``unsew fit --units``).
     Returns: ``{"format_version", "result", "case", "3d": {...}, "2d": {...} | None,
     "2d_skipped": reason | None}``, plus ``2d_base`` / ``2d_graded`` when the result folder holds
-    the fit's ``pattern_base.json`` / ``pattern_graded.json``. Raises InputError / PatternError on bad input (missing
-    files, empty or non-finite meshes, a pattern without panels); panels without a counterpart
+    the fit's ``pattern_base.json`` / ``pattern_graded.json``. Raises InputError / PatternError on bad input
+    (missing files, empty or non-finite meshes, a pattern without panels); panels without a counterpart
     are listed in ``2d["unmatched"]``.
     """
     res, case = Path(result_dir), Path(case_dir)
@@ -123,7 +123,8 @@ def format_table(ev: dict) -> str:
             lines.append(f"  {lab:<24}{p['turning_distance']:>14.4f}{p['area_error_rel']:>10.4f}{l2:>9}")
         l2m = "-" if d2["vertex_l2_cm_mean"] is None else f"{d2['vertex_l2_cm_mean']:.2f}"
         lines.append(
-            f"  {'mean (matched)':<24}{d2['turning_distance_mean']:>14.4f}{d2['area_error_rel_mean']:>10.4f}{l2m:>9}"
+            f"  {'mean (matched)':<24}{d2['turning_distance_mean']:>14.4f}"
+            f"{d2['area_error_rel_mean']:>10.4f}{l2m:>9}"
         )
         un = d2.get("unmatched") or {}
         if un.get("estimated") or un.get("true"):
@@ -132,8 +133,9 @@ def format_table(ev: dict) -> str:
             )
         if d2.get("area_error_weighted_rel") is not None:
             lines.append(
-                f"  area error, area-weighted (unmatched count in full) {100 * d2['area_error_weighted_rel']:.2f} %, "
-                f"total area {100 * d2['area_error_total_rel']:.2f} %"
+                "  area error, area-weighted (unmatched count in full) "
+                f"{100 * d2['area_error_weighted_rel']:.2f} %, total area "
+                f"{100 * d2['area_error_total_rel']:.2f} %"
             )
     return "\n".join(lines)
 

@@ -145,7 +145,8 @@ def match_panels(
         if ue or ug:
             raise PatternError(
                 f"panels without a counterpart: estimated {ue or '[]'}, true {ug or '[]'} "
-                f"({len(est)} vs {len(gt)} panels); compare patterns with the same panels or pass a correspondence"
+                f"({len(est)} vs {len(gt)} panels); compare patterns with the same panels or pass a "
+                "correspondence"
             )
     return match
 

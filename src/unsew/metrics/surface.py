@@ -45,7 +45,8 @@ def _check(verts, faces, what):
         raise InputError(f"{what} has no triangles (faces shape {f.shape}); give a non-empty triangle mesh")
     if not np.isfinite(v).all():
         raise InputError(
-            f"{what} has {int((~np.isfinite(v)).any(1).sum())} vertices with NaN/inf coordinates; fix the mesh"
+            f"{what} has {int((~np.isfinite(v)).any(1).sum())} vertices with NaN/inf coordinates; fix the "
+            "mesh"
         )
     f = f.astype(np.int64)
     if f.min() < 0 or f.max() >= len(v):

@@ -215,7 +215,10 @@ def _first_failure(s_max, s_99, y_min, y_max, drop, far_pct, inside_pct, *, floo
             f"exploded: an edge is stretched to {s_max:.1f} times its pattern length (bound {STRETCH_MAX:g})"
         )
     if s_99 > STRETCH_P99_MAX:
-        return f"exploded: 1 % of the edges are stretched beyond {s_99:.2f} times their pattern length (bound {STRETCH_P99_MAX:g})"
+        return (
+            f"exploded: 1 % of the edges are stretched beyond {s_99:.2f} times their pattern length "
+            f"(bound {STRETCH_P99_MAX:g})"
+        )
     if y_min < floor - FLOOR_TOL:
         return f"fallen: the garment reaches {floor - y_min:.2f} m below the body's feet"
     if y_max < crotch:
@@ -223,7 +226,10 @@ def _first_failure(s_max, s_99, y_min, y_max, drop, far_pct, inside_pct, *, floo
     if np.isfinite(drop) and drop > DROP_MAX:
         return f"fallen: the garment slid {drop:.2f} m down from where it was put on (bound {DROP_MAX:g} m)"
     if far_pct > FAR_MAX_PCT:
-        return f"off the body: {far_pct:.0f} % of the vertices are more than {FAR_DIST:g} m from it (bound {FAR_MAX_PCT:g} %)"
+        return (
+            f"off the body: {far_pct:.0f} % of the vertices are more than {FAR_DIST:g} m from it "
+            f"(bound {FAR_MAX_PCT:g} %)"
+        )
     if inside_pct > INSIDE_MAX_PCT:
         return f"inside the body: {inside_pct:.1f} % of the vertices (bound {INSIDE_MAX_PCT:g} %)"
     return ""

@@ -34,7 +34,8 @@ def check_drape_inputs(model: SimModel, state: SimState, sdf, uv, gamma) -> None
         )
     if not torch.is_tensor(uv) or uv.dim() != 2 or uv.shape != (model.n_rest, 2):
         raise InputError(
-            f"uv must be a torch tensor of shape ({model.n_rest}, 2) [m], got {getattr(uv, 'shape', type(uv))}"
+            f"uv must be a torch tensor of shape ({model.n_rest}, 2) [m], got "
+            f"{getattr(uv, 'shape', type(uv))}"
         )
     if not torch.is_tensor(gamma) or gamma.shape != (5,):
         raise InputError("gamma must be a torch tensor (5,) = (H00, H01, H11, H22, k); see Material.gamma()")

@@ -271,9 +271,9 @@ def top_pattern(
     *,
     necklines: tuple[str, str] = ("round", "round"),
 ) -> Pattern:
-    """A top of ``family`` (``"tshirt"``, ``"dress"`` or ``"dress_straight"``): front and back of ``spec`` (armholes cut
-    in as :func:`sleeveless_frame` when ``sleeves`` is ``"none"``, necklines of :data:`NECKLINES`
-    front and back), the sleeves sized to the armhole, and the stitches. Named ``family``,
+    """A top of ``family`` (``"tshirt"``, ``"dress"`` or ``"dress_straight"``): front and back of ``spec``
+    (armholes cut in as :func:`sleeveless_frame` when ``sleeves`` is ``"none"``, necklines of
+    :data:`NECKLINES` front and back), the sleeves sized to the armhole, and the stitches. Named ``family``,
     ``family_long`` or ``family_sleeveless``."""
     front, back, k = top_panels(m, sleeveless_frame(f) if sleeves == "none" else f, spec, necklines=necklines)
     arm = sleeves_for(m, f, edge_length(front, k + 1), sleeves)
