@@ -157,9 +157,8 @@ def main(argv=None):
 
     out = Path(args.out)
     cfg = load_config(edge_length=args.edge_length, iterations=args.iterations)
-    target_drape = DrapeSettings(
-        edge_length=args.edge_length
-    )  # the targets' dressing (FitConfig's, not --set's)
+    # the targets' dressing (FitConfig's, not --set's)
+    target_drape = DrapeSettings(edge_length=args.edge_length)
     if args.set:
         from run import apply_sets
 

@@ -258,13 +258,11 @@ def row(case: Path, out: Path, status: dict, *, recompute: bool = False) -> dict
             r["unmatched"] = _unmatched(p)
     r["seam_final_mm"] = _seam_change(res)
     r["loss_spikes"] = _loss_spikes(m.get("loss_history") or {})
-    r["stretch_max"] = (m.get("drape_check") or {}).get(
-        "stretch_max"
-    )  # the returned drape's longest edge / rest
+    # the returned drape's longest edge / rest
+    r["stretch_max"] = (m.get("drape_check") or {}).get("stretch_max")
     stretch = (m.get("loss_history") or {}).get("stretch")
-    r["barrier"] = (
-        max(stretch) if stretch else None
-    )  # the stretch barrier's largest term in phase two (0: never acted)
+    # the stretch barrier's largest term in phase two (0: never acted)
+    r["barrier"] = max(stretch) if stretch else None
     red = m.get("redress")
     r["phase2_kept"] = None if red is None else ("yes" if red.get("phase_two_kept") else "no")
     r["peak_mb"] = m.get("peak_memory_mb")  # the fit process's peak resident memory [MB]

@@ -100,9 +100,8 @@ def test_small_batch_equals_single_fit_and_reports_broken_case(tmp_path):
             k: v for k, v in m.items() if k not in ("timings_s", "peak_memory_mb", "peak_memory_stages_mb")
         }
 
-    assert no_time(_metrics(tmp_path / "out" / "tshirt")) == no_time(
-        json.loads(json.dumps(single))
-    )  # bitwise, in fact
+    # bitwise, in fact
+    assert no_time(_metrics(tmp_path / "out" / "tshirt")) == no_time(json.loads(json.dumps(single)))
     # the rerun, through the CLI: the finished case is skipped, the broken one fails again (exit 1)
     p = subprocess.run(
         [

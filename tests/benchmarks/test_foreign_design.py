@@ -36,9 +36,8 @@ def test_overrides_change_only_what_they_name(designs):
     plain = fn(m, J, darts=0)["pattern"]["panels"]
     darted = same["pattern"]["panels"]
     front = [k for k in darted if "front" in k and "band" not in k][0]
-    assert (
-        len(darted[front]["edges"]) == len(plain[front]["edges"]) + 6
-    )  # the top's one edge: three pieces and four dart legs
+    # the top's one edge: three pieces and four dart legs
+    assert len(darted[front]["edges"]) == len(plain[front]["edges"]) + 6
     for key in ("waistband_front", "waistband_back"):
         band = lambda p: np.ptp(np.asarray(p[key]["vertices"])[:, 0])  # noqa: E731
         assert band(plain) == pytest.approx(band(darted), abs=1e-12)

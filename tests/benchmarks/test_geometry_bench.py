@@ -16,6 +16,5 @@ def test_small_mode_measures_each_mesh_in_a_worker(capsys):
         ("tube", "30 cm"),
         ("uneven tube", "30 cm"),
     ]
-    assert all(
-        r["status"] == "ok" and float(r["err um"]) < 1.0 for r in rows
-    )  # reordering changes no distance
+    # reordering changes no distance
+    assert all(r["status"] == "ok" and float(r["err um"]) < 1.0 for r in rows)

@@ -40,10 +40,8 @@ def test_rig_finds_the_default_bodys_joints():
 @pytest.mark.parametrize(
     "pose",
     [
-        {
-            "left_shoulder": (0.0, 0.0, np.deg2rad(45.0)),
-            "right_shoulder": (0.0, 0.0, -np.deg2rad(45.0)),
-        },  # T-pose
+        # T-pose
+        {"left_shoulder": (0.0, 0.0, np.deg2rad(45.0)), "right_shoulder": (0.0, 0.0, -np.deg2rad(45.0))},
         "left_arm_up",
         "right_leg_forward",
         {"left_elbow": (-np.deg2rad(60.0), 0.0, 0.0)},  # forearm raised forwards
@@ -186,9 +184,8 @@ def test_cli_rig_writes_skeleton_and_preview(tmp_path):
     r = subprocess.run(
         [sys.executable, "-m", "unsew", "body", "rig", str(tmp_path)], capture_output=True, text=True
     )
-    assert (
-        r.returncode == 2 and "--overwrite" in r.stderr
-    )  # a folder's skeleton.json, never silently replaced
+    # a folder's skeleton.json, never silently replaced
+    assert r.returncode == 2 and "--overwrite" in r.stderr
     r = subprocess.run(
         [sys.executable, "-m", "unsew", "body", "measure", str(tmp_path / "body.obj"), "--json"],
         capture_output=True,

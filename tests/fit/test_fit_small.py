@@ -127,9 +127,8 @@ def test_phase_two_is_kept_and_lowers_the_redressed_distance(small_fit):
     rd = metrics["redress"]
     assert rd["meshes"] == 3 and rd["phase_two_kept"]
     assert rd["fit_mean_mm"] < 0.95 * rd["graded_mean_mm"]
-    assert all(
-        f < g for f, g in zip(rd["fit_mm"], rd["graded_fresh_mm"])
-    )  # closer on each of the three meshes
+    # closer on each of the three meshes
+    assert all(f < g for f, g in zip(rd["fit_mm"], rd["graded_fresh_mm"]))
     moved = max(
         float(np.abs(result.pattern.panels[n].vertices - p.vertices).max())
         for n, p in result.graded_pattern.panels.items()
@@ -936,24 +935,12 @@ def test_redress_on_three_meshes_compares_fresh_drapes_of_both_patterns(small_ca
     "fit_mm, graded_mm, kept, fit_mean",
     [
         ([4.0, 5.0, 6.0], [4.5, 5.5, 6.5], True, 5.0),  # lower on every mesh
-        (
-            [3.0, 7.0, 7.0],
-            [4.0, 5.0, 5.0],
-            False,
-            17 / 3,
-        ),  # lower on the fit's mesh only: one drape would keep it
-        (
-            [4.0, None, 5.0],
-            [5.0, 6.0, 6.0],
-            False,
-            None,
-        ),  # phase two's pattern failed a drape the graded one made
-        (
-            [4.0, 5.0, 5.0],
-            [5.0, None, 6.0],
-            True,
-            4.5,
-        ),  # a failed graded drape drops that mesh from both means
+        # lower on the fit's mesh only: one drape would keep it
+        ([3.0, 7.0, 7.0], [4.0, 5.0, 5.0], False, 17 / 3),
+        # phase two's pattern failed a drape the graded one made
+        ([4.0, None, 5.0], [5.0, 6.0, 6.0], False, None),
+        # a failed graded drape drops that mesh from both means
+        ([4.0, 5.0, 5.0], [5.0, None, 6.0], True, 4.5),
     ],
 )
 def test_redress_on_three_keeps_phase_two_by_the_mean(monkeypatch, fit_mm, graded_mm, kept, fit_mean):

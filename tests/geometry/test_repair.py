@@ -22,9 +22,8 @@ def _damaged(v, f, rng):
     fin_v = np.array([v[a] + out, v[b] + out, mid + 2 * out])
     fin_f = np.array([[a, b, n + 1], [a, n + 1, n], [n, n + 1, n + 2]])
     copy_of_vertex = v[f[5, 1]][None]  # a duplicate of vertex f[5, 1], used by the degenerate face
-    deg_f = np.array(
-        [[f[3, 0], f[3, 1], f[3, 1]], [n + 3, f[5, 1], f[5, 2]]]
-    )  # repeated corner; collapses on merge
+    # repeated corner; collapses on merge
+    deg_f = np.array([[f[3, 0], f[3, 1], f[3, 1]], [n + 3, f[5, 1], f[5, 2]]])
     lone = np.array([[9.0, 9.0, 9.0]])
     v2 = np.concatenate([v, fin_v, copy_of_vertex, lone])
     f2 = np.concatenate([f[:40], dup, f[40:], fin_f, deg_f])

@@ -108,9 +108,8 @@ def test_a_band_narrowed_at_its_top_narrows_its_bottom_and_the_waist_seam_below(
         corners = low & ((w[:, 0] == w[low, 0].min()) | (w[:, 0] == w[low, 0].max()))
         assert np.allclose(np.abs(dx[corners]), 0.01 if whole else 0.0, atol=1e-12)
         assert np.allclose(dx[low & ~corners], 0.0)
-        assert np.allclose(
-            dx[corners] * np.sign(w[corners, 0]), -0.01 if whole else 0.0, atol=1e-12
-        )  # inward
+        # inward
+        assert np.allclose(dx[corners] * np.sign(w[corners, 0]), -0.01 if whole else 0.0, atol=1e-12)
         moved_below = 0
         for other in controls.panel_names:
             if other == "waistband_front":

@@ -214,12 +214,8 @@ def test_tshirt_contours_parts_and_curves(body, tshirt):
     placed = place_contours(x, m.faces, body.skeleton)
     parts = sorted(c.part for c in placed)
     assert parts[:2] == ["left_arm", "right_arm"] or parts[1:3] == ["left_arm", "right_arm"]
-    assert sorted(part_group(q) for q in parts) == [
-        "left_arm",
-        "right_arm",
-        "torso",
-        "torso",
-    ]  # neckline: neck or head
+    # neckline: neck or head
+    assert sorted(part_group(q) for q in parts) == ["left_arm", "right_arm", "torso", "torso"]
     params = PatternParams.build(p, m)
     hem = max((c for c in placed if part_group(c.part) == "torso"), key=lambda c: c.length)
     curves = curves_of_contour(hem.contour.indices, x, p, m, params.controls)
@@ -354,9 +350,8 @@ def test_a_cuff_moved_past_the_sleeve_is_cut_not_collapsed(body, tshirt):
         n = len(panel.edges)
         for nb in ((hem - 1) % n, (hem + 1) % n):  # the underarm seams beside the cuff
             assert edge_length(panel, nb) > MIN_KEEP_LENGTH - 0.005, (side, nb)
-            assert (
-                edge_length(panel, nb) < edge_length(p.panels[f"{side}_sleeve"], nb) - 0.05
-            )  # it did shorten
+            # it did shorten
+            assert edge_length(panel, nb) < edge_length(p.panels[f"{side}_sleeve"], nb) - 0.05
 
 
 def test_safe_fraction_scales_back_an_inverting_edit(tshirt):
@@ -674,9 +669,8 @@ def test_a_waistband_is_a_strip():
     up = band.rotation_matrix()[1, :2] / np.linalg.norm(band.rotation_matrix()[1, :2])
     width = np.ptp(v @ np.array([up[1], -up[0]]))
     band.vertices = v + np.outer((v - v.mean(axis=0)) @ up, up) * (0.6 * width / np.ptp(v @ up) - 1.0)
-    assert 0.6 * width > width / BAND_ASPECT and "waistband_front" not in waistbands(
-        p
-    )  # 0.6 x as high as wide
+    # 0.6 x as high as wide
+    assert 0.6 * width > width / BAND_ASPECT and "waistband_front" not in waistbands(p)
 
 
 def _curve_of(p, controls, panel, label):

@@ -77,9 +77,8 @@ def test_a_waist_is_not_widened_past_the_hips():
     bound = WaistBound(hip_height=0.86, shoulder_height=1.29, hip_girth=0.90)
     ext, dg, notes = bounded_waist(bound, 1.0, -0.05, girth=0.78, girth_change=0.40)
     assert ext == -0.05 and dg == pytest.approx(0.90 - WAIST_HIP_EASE - 0.78) and len(notes) == 1
-    assert (
-        bounded_waist(bound, 1.0, 0.0, girth=0.95, girth_change=0.10)[1] == 0.0
-    )  # already too wide: not widened
+    # already too wide: not widened
+    assert bounded_waist(bound, 1.0, 0.0, girth=0.95, girth_change=0.10)[1] == 0.0
     assert bounded_waist(bound, 1.0, 0.0, girth=0.95, girth_change=-0.10)[1] == -0.10  # narrowing is free
     # a neckline (nearer the shoulders) is no waist: left alone
     assert bounded_waist(bound, 1.25, -0.5, girth=0.4, girth_change=2.0) == (-0.5, 2.0, [])
@@ -164,9 +163,8 @@ def test_slits_are_cut_from_a_hem_and_folds_or_slopes_are_not():
     assert kept is not None and (~kept).sum() == 2 * 16
     assert cut == pytest.approx(4 * 0.17, rel=1e-6)
     assert slits(slit[::-1], up)[1] == pytest.approx(cut)  # walked the other way
-    assert slits(slit * [1, -1, 1], -up)[1] == pytest.approx(
-        cut
-    )  # a neckline's slit goes down into the cloth
+    # a neckline's slit goes down into the cloth
+    assert slits(slit * [1, -1, 1], -up)[1] == pytest.approx(cut)
     assert slits(slit, -up) == (None, 0.0)
     for other in (_hem_with_slits(0.0, wave=0.03), _hem_with_slits(0.0, slope=0.12), _hem_with_slits(0.03)):
         assert slits(other, up) == (None, 0.0)  # folds, a sloped hem, a 3 cm notch

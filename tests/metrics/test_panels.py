@@ -118,9 +118,8 @@ def test_pattern_metrics_with_different_panel_sets():
     ] == {}
     assert set(m["panels"]) == {"front", "back"}
     assert_close(m["area_error_rel_mean"], 0.05, rtol=1e-9)  # (0.1 + 0) / 2 over matched panels
-    assert_close(
-        m["area_error_total_rel"], abs(2.1 - 2.2) / 2.2, rtol=1e-9
-    )  # 0.045: the belt hidden by front
+    # 0.045: the belt hidden by front
+    assert_close(m["area_error_total_rel"], abs(2.1 - 2.2) / 2.2, rtol=1e-9)
     assert_close(m["area_error_weighted_rel"], (0.1 + 0.2) / 2.2, rtol=1e-9)  # the belt counts in full
     with pytest.raises(PatternError, match="without a counterpart"):
         pattern_metrics(est, gt, strict=True)
@@ -166,14 +165,12 @@ def test_the_report_draws_each_true_panel_over_its_match():
     assert set(drawn.panels) == set(drawn.panel_order) and drawn.panels["left_front"].name == "left_front"
     for name in ("left_front", "left_back"):
         assert_close(panel_centroid2d(drawn.panels[name]), panel_centroid2d(est.panels[name]), atol=1e-12)
-    assert_close(
-        drawn.panels["left_back"].vertices, np.asarray(PENT) - 2.0, atol=1e-12
-    )  # the same shape, moved
+    # the same shape, moved
+    assert_close(drawn.panels["left_back"].vertices, np.asarray(PENT) - 2.0, atol=1e-12)
     assert_close(drawn.panels["left_back (true)"].vertices, belt, atol=0)
     assert truth_over(gt, est, None) is gt
-    assert set(truth_over(gt, est, pattern_metrics(est, gt)).panels) >= set(
-        est.panels
-    )  # the real matching's form
+    # the real matching's form
+    assert set(truth_over(gt, est, pattern_metrics(est, gt)).panels) >= set(est.panels)
 
 
 def _halves_patterns():

@@ -59,9 +59,8 @@ def run(args: argparse.Namespace) -> int:
     from unsew.batch.summary import format_table
 
     cfg = _config(args)
-    check_out(
-        args.out, overwrite=None, folder=True
-    )  # a bad --out fails before any fit; a rerun resumes in it
+    # a bad --out fails before any fit; a rerun resumes in it
+    check_out(args.out, overwrite=None, folder=True)
     res = run_batch(
         args.cases,
         args.out,

@@ -34,8 +34,7 @@ def run(args: argparse.Namespace) -> int:
     from unsew.fit.demo import DEMO_CONFIG, run_demo
 
     cfg = config_from_args(args, defaults=DEMO_CONFIG)
-    check_out(
-        Path(args.out), overwrite=args.overwrite, folder=True
-    )  # a bad --out fails now, not after the fit
+    # a bad --out fails now, not after the fit
+    check_out(Path(args.out), overwrite=args.overwrite, folder=True)
     run_demo(Path(args.out), cfg=cfg, progress=not args.quiet)
     return 0

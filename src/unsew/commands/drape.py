@@ -174,13 +174,11 @@ def run(args: argparse.Namespace) -> int:
     from unsew.fit.progress import Progress
 
     kw = {k: getattr(args, k) for k in ("sew_steps", "settle_steps") if getattr(args, k) is not None}
-    contact = pattern_contact(
-        pattern
-    )  # the fit's contact (contact: target), so the drape rests as the fit's did
+    # the fit's contact (contact: target), so the drape rests as the fit's did
+    contact = pattern_contact(pattern)
     settings = DRESS_SETTINGS.replace(edge_length=args.edge_length, **kw, **(contact or {}))
-    with Progress(not args.no_progress).phase(
-        "drape"
-    ) as progress:  # bars on a terminal, else a line per phase
+    # bars on a terminal, else a line per phase
+    with Progress(not args.no_progress).phase("drape") as progress:
         d = dress(pattern, body, material=material, settings=settings, progress=progress)
     from unsew.sim.checks import check_dressed
 

@@ -23,9 +23,8 @@ def run(args: argparse.Namespace) -> int:
     from unsew.metrics.evaluate import evaluate_result, format_table, write_eval_json
 
     if Path(args.result_dir).is_dir():
-        check_out(
-            Path(args.result_dir) / "eval.json", overwrite=args.overwrite, flag="output"
-        )  # before the work
+        # before the work
+        check_out(Path(args.result_dir) / "eval.json", overwrite=args.overwrite, flag="output")
     ev = evaluate_result(
         args.result_dir,
         args.case_dir,

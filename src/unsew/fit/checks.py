@@ -140,9 +140,8 @@ def redress_check(
     be loaded back."""
     cf_graded = target.distance_mm(start.x, start.mesh.faces)
     try:
-        validate_pattern(
-            pattern.copy()
-        )  # an outline crossing itself, which a mesh can survive, is refused too
+        # an outline crossing itself, which a mesh can survive, is refused too
+        validate_pattern(pattern.copy())
         mesh_pattern(pattern, edge_length=cfg.drape.edge_length)
     except PatternError as exc:
         log(

@@ -227,11 +227,8 @@ def _checked_result(
     as a FitResult."""
     s = choice.start
     pattern, uv, x, material = two.best_fit()
-    redress, drape_s, spread = (
-        None,
-        s.dress_s,
-        None,
-    )  # drape_s: a drape from scratch [s], the base's in phase one
+    # drape_s: a drape from scratch [s], the base's in phase one
+    redress, drape_s, spread = None, s.dress_s, None
     x_graded, x_warm = np.asarray(s.x), None
     drapes = {"result": "phase two" if two.best.iteration >= 0 else "graded start", "graded": "graded start"}
     if cfg.checks.redress and two.best.iteration >= 0:

@@ -127,9 +127,8 @@ class IterationProgress:
         done = info.iteration + 1
         if self.bar is not None:
             self.bar.update(1)
-            self.bar.set_postfix_str(
-                f"Chamfer {self.chamfer_mm(info):.2f} mm"
-            )  # redraws: an iteration takes seconds
+            # redraws: an iteration takes seconds
+            self.bar.set_postfix_str(f"Chamfer {self.chamfer_mm(info):.2f} mm")
             return
         now = time.perf_counter()
         if done % self.p.every == 0 or now - self.last >= self.p.seconds or done == self.total or info.last:

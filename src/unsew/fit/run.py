@@ -51,9 +51,8 @@ def run_fit(
         shutil.rmtree(work)
     if resume and not (work / "checkpoint.pt").is_file():
         log(f"no checkpoint in {work}; starting afresh")
-    case = with_garment_read(
-        case, cfg, log=log
-    )  # before the work folder: a type we cannot fit leaves nothing
+    # before the work folder: a type we cannot fit leaves nothing
+    case = with_garment_read(case, cfg, log=log)
     work.mkdir(parents=True, exist_ok=True)
     try:
         result = fit(

@@ -221,10 +221,8 @@ def choose_base(
     names = bases_for(garment)
     m = measure_body(case.body)
     necklines = None
-    if garment in (
-        "tshirt",
-        "dress",
-    ):  # the neckline's cut is read off the target, not drawn from the library
+    # the neckline's cut is read off the target, not drawn from the library
+    if garment in ("tshirt", "dress"):
         necklines, angles = read_necklines(
             target.verts, target.faces, case.body.skeleton, contours=target.contours
         )

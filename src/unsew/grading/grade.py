@@ -402,9 +402,8 @@ class _PassContext:
     remesh: str = "always"
     waist: WaistBound | None = None
     side_seams: SideSeams | None = None  # the side seams graded by girth (None: left alone)
-    band_excess: dict = field(
-        default_factory=dict
-    )  # target index -> its loop's contact excess [m] (band_gap)
+    # target index -> its loop's contact excess [m] (band_gap)
+    band_excess: dict = field(default_factory=dict)
     band_whole: bool = False  # a band's girth edit carried down its sides into the panels below (band_gap)
 
 
@@ -892,9 +891,8 @@ def _grade_pass(
         for r in rows:
             if r["edits"]:
                 r["warnings"].append(note)
-    applied = {
-        t: edit.fraction * e for t, e in wanted.items() if t not in edit.held
-    }  # a held move moved nothing
+    # a held move moved nothing
+    applied = {t: edit.fraction * e for t, e in wanted.items() if t not in edit.held}
     return GradePass(
         edit.pattern,
         edit.mesh,
@@ -995,9 +993,8 @@ def _edit(params, mesh, items, exts: dict, ctx: _PassContext, seams: np.ndarray 
     exts, cut = bounded_extensions(params.pattern, C0, items, exts, params.controls)
     notes = {t: [n] for t, n in cut.items()}
     delta = np.zeros_like(C0)
-    edited: dict[
-        int, list[tuple]
-    ] = {}  # panel index -> (control points, target, girth difference) per edited curve
+    # panel index -> (control points, target, girth difference) per edited curve
+    edited: dict[int, list[tuple]] = {}
     for it in items:
         for c, dg in zip(it.curves, it.shares):
             if _whole_panel(params.pattern, c):

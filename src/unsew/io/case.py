@@ -163,9 +163,8 @@ def read_case(
 
 
 def _check_target(v: np.ndarray, f: np.ndarray, path: Path) -> None:
-    area = (
-        0.5 * np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1).sum()
-    )  # [m^2]
+    # [m^2]
+    area = 0.5 * np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1).sum()
     if area <= 0:
         raise InputError(f"target {path} has zero area")
     # A garment is an open surface: hems, cuffs, necklines and waists are boundary loops.

@@ -171,8 +171,7 @@ class SeamHold:
             J = self._jacobian(k)
             if Pm is not None:
                 J = J @ Pm
-            step = -np.linalg.lstsq(J, res, rcond=1e-10)[
-                0
-            ]  # the minimum-norm move that meets the linearised seams
+            # the minimum-norm move that meets the linearised seams
+            step = -np.linalg.lstsq(J, res, rcond=1e-10)[0]
             k = k + (Pm @ step if Pm is not None else step)
         return torch.as_tensor(k.reshape(-1, 2), dtype=K.dtype, device=K.device)

@@ -291,9 +291,8 @@ def _corresponding_samples(samples: np.ndarray, sigma: np.ndarray, reverse: bool
     if not reverse:  # curve j -> curve sigma(j), same fractions
         return samples[sigma]
     # reversed: curve j (c_j -> c_j+1) corresponds to curve sigma(j+1) -> sigma(j) run backwards
-    nxt = np.concatenate(
-        [samples[:, 1:], samples[np.roll(np.arange(n), -1), :1]], axis=1
-    )  # (n, m+1, 2) incl. end
+    # (n, m+1, 2) incl. end
+    nxt = np.concatenate([samples[:, 1:], samples[np.roll(np.arange(n), -1), :1]], axis=1)
     out = np.empty_like(samples)
     for j in range(n):
         c = sigma[(j + 1) % n]  # the corresponding curve runs from sigma(j+1) to sigma(j)

@@ -141,9 +141,8 @@ class _AssembleMembrane(torch.autograd.Function):
         P = 0.5 * (P + P.transpose(1, 2))
         HGa = torch.matmul(H, G) * area[:, None, None]  # (F, 3, 9)
         blocks = torch.bmm(G.transpose(1, 2), HGa)  # (F, 9, 9) area G^T H G
-        blocks.view(F, 3, 3, 3, 3).diagonal(dim1=2, dim2=4).add_(
-            area[:, None, None, None] * P[..., None]
-        )  # + area P kron I3
+        # + area P kron I3
+        blocks.view(F, 3, 3, 3, 3).diagonal(dim1=2, dim2=4).add_(area[:, None, None, None] * P[..., None])
         ctx.save_for_backward(G, H, P, area)
         ctx.maps = (fdst, h)
         return blocks.new_zeros(nnz).index_add_(0, dst, blocks.reshape(-1)[src])
@@ -157,9 +156,8 @@ class _AssembleMembrane(torch.autograd.Function):
         W = (torch.cat([gvals, gvals.new_zeros(1)])[fdst] * h).view(F, 9, 9)  # symmetric adjoint
         GW = torch.bmm(G, W)  # (F, 3, 9)
         GWG = torch.bmm(GW, G.transpose(1, 2))  # (F, 3, 3) = G W G^T
-        wgeo = torch.diagonal(W.view(F, 3, 3, 3, 3), dim1=2, dim2=4).sum(
-            -1
-        )  # (F, 3, 3): sum_c W[(k,c),(l,c)]
+        # (F, 3, 3): sum_c W[(k,c),(l,c)]
+        wgeo = torch.diagonal(W.view(F, 3, 3, 3, 3), dim1=2, dim2=4).sum(-1)
         grad_G = grad_H = grad_P = grad_area = None
         if ctx.needs_input_grad[0]:
             grad_G = (2.0 * area[:, None, None]) * torch.matmul(H, GW)

@@ -71,9 +71,8 @@ class DrapeSettings:
     sew_steps: int = 80  #: steps of the sewing phase [-]
     settle_steps: int = 40  #: steps of plain draping after sewing [-]
     sew_dt: float = 0.02  #: time step of the sewing phase [s] (smaller: seams move fast)
-    spring_stiffness: float = (
-        1000.0  #: zero-length seam springs while sewing [N/m] (100 left seams 2-4 mm open)
-    )
+    #: zero-length seam springs while sewing [N/m] (100 left seams 2-4 mm open)
+    spring_stiffness: float = 1000.0
     hold_steps: int = 20  #: sewing steps a lower garment's waistline is held still [-]
     ramp_steps: int = 30  #: sewing steps over which gravity rises to full [-]
     gravity: float = 9.81  #: gravitational acceleration along -Y [m/s^2]

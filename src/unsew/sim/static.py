@@ -222,9 +222,8 @@ class _StaticDrape(torch.autograd.Function):
             f = forces(model, rest, xs, torch.zeros_like(xs), sdf, gam_, params, hessian=False)[0]
             b = gx * free
             with torch.no_grad():
-                _, fac = _system(
-                    model, rest, x, sdf, gamma.detach(), params, ctx.mu, opts["backend"]
-                )  # projected H at x*
+                # projected H at x*
+                _, fac = _system(model, rest, x, sdf, gamma.detach(), params, ctx.mu, opts["backend"])
 
             def precond(r):
                 return torch.from_numpy(fac.solve(r.reshape(-1).numpy())).reshape_as(r) * free
