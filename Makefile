@@ -8,7 +8,7 @@ VENV := .venv
 # the two we are measured on. `--dist worksteal` evens out the minute-long fit tests at the end.
 TEST_WORKERS ?= 2
 
-.PHONY: setup demo test test-slow bench clean
+.PHONY: setup demo test test-slow lint bench clean
 
 setup:
 	@bash scripts/setup-env.sh
@@ -21,6 +21,10 @@ test: setup
 
 test-slow: setup
 	@$(VENV)/bin/python -m pytest -q -m slow $(ARGS)
+
+# pycodestyle and pyflakes through ruff (settings in pyproject.toml); `ruff format` lays the code out.
+lint: setup
+	@$(VENV)/bin/ruff check src tests benchmarks
 
 # `make bench NAME=fit ARGS="--edge-length 0.025"`; `make bench` lists the benchmarks.
 bench: setup

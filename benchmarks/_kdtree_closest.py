@@ -15,7 +15,8 @@ K = 8
 
 
 def closest_points_kdtree(points, verts, faces):
-    """points (P, 3), verts (V, 3) float64 [m], faces (F, 3) int -> (closest (P, 3), distance (P,), face (P,))."""
+    """points (P, 3), verts (V, 3) float64 [m], faces (F, 3) int -> (closest (P, 3), distance (P,),
+    face (P,))."""
     from scipy.spatial import cKDTree
 
     from unsew.body.sdf import closest_point_on_triangles

@@ -29,8 +29,15 @@ os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 def _truths(n: int):
     from unsew.fit.demo import DemoTruth
 
-    return [DemoTruth(hem_length=0.02 + 0.02 * (i % 4), hem_girth=0.02 + 0.02 * (i % 3),
-                      sleeve_length=0.01 + 0.01 * (i % 3), material=("jersey", "cotton")[i % 2]) for i in range(n)]
+    return [
+        DemoTruth(
+            hem_length=0.02 + 0.02 * (i % 4),
+            hem_girth=0.02 + 0.02 * (i % 3),
+            sleeve_length=0.01 + 0.01 * (i % 3),
+            material=("jersey", "cotton")[i % 2],
+        )
+        for i in range(n)
+    ]
 
 
 def make_cases(root: Path, n: int, *, edge_length: float) -> Path:
@@ -67,11 +74,20 @@ def main(argv=None) -> None:
     t0 = time.perf_counter()
     cases = make_cases(root, args.cases, edge_length=args.edge_length)
     print(f"{args.cases} cases in {cases} ({time.perf_counter() - t0:.0f} s to make)")
-    cfg = load_config(edge_length=args.edge_length, iterations=args.iterations, sew_steps=20, settle_steps=10,
-                      steps=5, target_points=2000, report=False)
+    cfg = load_config(
+        edge_length=args.edge_length,
+        iterations=args.iterations,
+        sew_steps=20,
+        settle_steps=10,
+        steps=5,
+        target_points=2000,
+        report=False,
+    )
     d = cfg.drape
-    print(f"fit: edge_length {d.edge_length} m, {cfg.optimizer.iterations} iterations, {d.steps} drape steps, "
-          f"sew/settle {d.sew_steps}/{d.settle_steps} steps, no report; cpu count {os.cpu_count()}")
+    print(
+        f"fit: edge_length {d.edge_length} m, {cfg.optimizer.iterations} iterations, {d.steps} drape steps, "
+        f"sew/settle {d.sew_steps}/{d.settle_steps} steps, no report; cpu count {os.cpu_count()}"
+    )
     runs = [(f"local, {w} worker{'s' if w > 1 else ''}", {"workers": w}) for w in args.workers]
     if args.ray:
         runs.append(("Ray local, 2 CPUs", {"ray": "local", "ray_init_kwargs": {"num_cpus": 2}}))
@@ -86,7 +102,10 @@ def main(argv=None) -> None:
         ok = sum(r.status == "done" for r in res.records)
         fit_s = [r.time_s for r in res.records if r.status == "done"]
         rows.append((label, ok, len(res.records), wall, sum(fit_s) / max(len(fit_s), 1), 3600 * ok / wall))
-        print(f"  {label}: {ok}/{len(res.records)} done in {wall:.1f} s (load average before: {load:.1f})", flush=True)
+        print(
+            f"  {label}: {ok}/{len(res.records)} done in {wall:.1f} s (load average before: {load:.1f})",
+            flush=True,
+        )
     print()
     print(f"{'backend':<22}{'fits':>8}{'wall [s]':>10}{'s per fit':>11}{'fits/hour':>11}{'speed-up':>10}")
     print("-" * 72)

@@ -153,7 +153,10 @@ def _measured(mesh: Path, skeleton: Path):
 def table(rows: list[dict], variants=VARIANTS) -> tuple[str, dict]:
     """The Markdown table of rows {body, variant, measured, reference} and the largest absolute
     error [cm] per group of variants ({"acceptance": ..., "all": ...}; inf when one was refused)."""
-    lines = ["| body | skeleton | bust [cm] | waist [cm] | hips [cm] | max abs error [cm] |", "|---|---|---|---|---|---|"]
+    lines = [
+        "| body | skeleton | bust [cm] | waist [cm] | hips [cm] | max abs error [cm] |",
+        "|---|---|---|---|---|---|",
+    ]
     worst = {"acceptance": 0.0, "all": 0.0}
     for r in rows:
         m, ref = r["measured"], r["reference"]
@@ -192,7 +195,9 @@ def main() -> None:
     ap.add_argument("--bodies", default=str(BODIES), help="folder of GarmentCode's body .obj and .yaml files")
     ap.add_argument("--names", default="", help="comma-separated body names (default: every .obj there)")
     ap.add_argument("--quick", action="store_true", help="one body (mean_female) only")
-    ap.add_argument("--anny", action="store_true", help="anny's bodies as files, against their skinning weights' reading")
+    ap.add_argument(
+        "--anny", action="store_true", help="anny's bodies as files, against their skinning weights' reading"
+    )
     args = ap.parse_args()
     from unsew.errors import InputError
 
@@ -209,7 +214,10 @@ def main() -> None:
         names = ["mean_female"]
     text, worst = run(bodies, names)
     print(text)
-    print(f"\nmax abs error, skeletons none/rig/limb: {worst['acceptance']:.1f} cm; with smpl: {worst['all']:.1f} cm")
+    print(
+        f"\nmax abs error, skeletons none/rig/limb: {worst['acceptance']:.1f} cm; with smpl: "
+        f"{worst['all']:.1f} cm"
+    )
 
 
 if __name__ == "__main__":

@@ -51,14 +51,25 @@ def _row(name, result, m, secs, nverts):
     p, pb = m.get("pattern", {}) or {}, m.get("pattern_base", {}) or {}
     mat = result.material
     return {
-        "case": name, "verts": nverts,
-        "cf_base_mm": sb.get("chamfer_mm"), "cf_graded_mm": sg.get("chamfer_mm"), "cf_final_mm": s["chamfer_mm"],
-        "nrm_base_deg": sb.get("normal_error_deg"), "nrm_final_deg": s["normal_error_deg"],
+        "case": name,
+        "verts": nverts,
+        "cf_base_mm": sb.get("chamfer_mm"),
+        "cf_graded_mm": sg.get("chamfer_mm"),
+        "cf_final_mm": s["chamfer_mm"],
+        "nrm_base_deg": sb.get("normal_error_deg"),
+        "nrm_final_deg": s["normal_error_deg"],
         "area_base_pct": 100 * pb.get("area_error_rel_mean", float("nan")),
         "area_final_pct": 100 * p.get("area_error_rel_mean", float("nan")),
-        "turn_base": pb.get("turning_distance_mean"), "turn_final": p.get("turning_distance_mean"),
-        "H00": mat.h00, "H11": mat.h11, "H22": mat.h22, "k": mat.bend,
-        "iters": result.iterations, "returned": _returned(m), "peak_mb": m.get("peak_memory_mb"), "time_s": secs,
+        "turn_base": pb.get("turning_distance_mean"),
+        "turn_final": p.get("turning_distance_mean"),
+        "H00": mat.h00,
+        "H11": mat.h11,
+        "H22": mat.h22,
+        "k": mat.bend,
+        "iters": result.iterations,
+        "returned": _returned(m),
+        "peak_mb": m.get("peak_memory_mb"),
+        "time_s": secs,
     }
 
 
@@ -71,18 +82,46 @@ def _returned(m) -> str | None:
 
 
 def _print(rows):
-    cols = [("case", 10, "s"), ("verts", 6, "d"), ("cf_base_mm", 8, ".2f"), ("cf_graded_mm", 8, ".2f"),
-            ("cf_final_mm", 8, ".2f"), ("nrm_base_deg", 8, ".1f"), ("nrm_final_deg", 8, ".1f"),
-            ("area_base_pct", 8, ".2f"), ("area_final_pct", 8, ".2f"), ("turn_final", 8, ".3f"),
-            ("iters", 6, "d"), ("returned", 9, "s"), ("peak_mb", 7, ".0f"), ("time_s", 7, ".0f")]
-    heads = ["case", "verts", "CF base", "CF grad", "CF fit", "N base", "N fit", "A base%", "A fit%",
-             "turn", "iters", "returned", "peak MB", "time s"]
+    cols = [
+        ("case", 10, "s"),
+        ("verts", 6, "d"),
+        ("cf_base_mm", 8, ".2f"),
+        ("cf_graded_mm", 8, ".2f"),
+        ("cf_final_mm", 8, ".2f"),
+        ("nrm_base_deg", 8, ".1f"),
+        ("nrm_final_deg", 8, ".1f"),
+        ("area_base_pct", 8, ".2f"),
+        ("area_final_pct", 8, ".2f"),
+        ("turn_final", 8, ".3f"),
+        ("iters", 6, "d"),
+        ("returned", 9, "s"),
+        ("peak_mb", 7, ".0f"),
+        ("time_s", 7, ".0f"),
+    ]
+    heads = [
+        "case",
+        "verts",
+        "CF base",
+        "CF grad",
+        "CF fit",
+        "N base",
+        "N fit",
+        "A base%",
+        "A fit%",
+        "turn",
+        "iters",
+        "returned",
+        "peak MB",
+        "time s",
+    ]
     print(" ".join(f"{h:>{w}}" for h, (_, w, _) in zip(heads, cols)))
     for r in rows:
         out = []
         for k, w, f in cols:
             v = r.get(k)
-            out.append(f"{'-':>{w}}" if v is None or (isinstance(v, float) and np.isnan(v)) else f"{v:>{w}{f}}")
+            out.append(
+                f"{'-':>{w}}" if v is None or (isinstance(v, float) and np.isnan(v)) else f"{v:>{w}{f}}"
+            )
         print(" ".join(out))
     sys.stdout.flush()
 
@@ -94,11 +133,19 @@ def main(argv=None):
     ap.add_argument("--iterations", type=int, default=100)
     ap.add_argument("--out", default="bench-out/fit")
     ap.add_argument("--variants", default="", help="comma list of noise,decimate,cm,pose,body (t-shirt only)")
-    ap.add_argument("--off-library", action="store_true",
-                    help="drape each target in its fabric with every stiffness, density and friction moved "
-                         "at random (synthetic.off_library, seeded), so no library material is the truth")
-    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
-                    help="override a FitConfig option for every fit (repeatable)")
+    ap.add_argument(
+        "--off-library",
+        action="store_true",
+        help="drape each target in its fabric with every stiffness, density and friction moved "
+        "at random (synthetic.off_library, seeded), so no library material is the truth",
+    )
+    ap.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="override a FitConfig option for every fit (repeatable)",
+    )
     args = ap.parse_args(argv)
 
     import torch
@@ -110,7 +157,8 @@ def main(argv=None):
 
     out = Path(args.out)
     cfg = load_config(edge_length=args.edge_length, iterations=args.iterations)
-    target_drape = DrapeSettings(edge_length=args.edge_length)  # the targets' dressing (FitConfig's, not --set's)
+    # the targets' dressing (FitConfig's, not --set's)
+    target_drape = DrapeSettings(edge_length=args.edge_length)
     if args.set:
         from run import apply_sets
 
@@ -145,8 +193,11 @@ def main(argv=None):
                 from unsew.body.body import default_body
                 from unsew.body.pose import pose_body
 
-                b = pose_body(default_body(), "left_arm_up") if var == "pose" else default_body().transformed(
-                    scale=np.array([1.08, 1.0, 1.08]))
+                b = (
+                    pose_body(default_body(), "left_arm_up")
+                    if var == "pose"
+                    else default_body().transformed(scale=np.array([1.08, 1.0, 1.08]))
+                )
                 make_truth_case(d, garment="tshirt", body=b, body_meta=None, settings=target_drape)
                 nverts = sum(1 for line in open(d / "target.obj") if line.startswith("v "))
                 result, m, secs = _fit(d, out / "results" / f"tshirt_{var}", cfg)

@@ -43,8 +43,8 @@ not outlive a machine, the record does (benchmarks/foreign/fits.json is the proj
 Resumable: a case whose result folder exists is not fitted again (nor one whose earlier failure is
 recorded in OUT/_status/CASE.json, unless --retry); an interrupted fit resumes from its checkpoint.
 
-    python -m benchmarks foreign_fit [--cases a,b] [--out bench-out/foreign_fit] [--no-run] [--retry] [--config fit.yaml] [--recompute]
-        [--record benchmarks/foreign/fits.json --code REV]
+    python -m benchmarks foreign_fit [--cases a,b] [--out bench-out/foreign_fit] [--no-run] [--retry]
+        [--config fit.yaml] [--recompute] [--record benchmarks/foreign/fits.json --code REV]
     python -m benchmarks foreign_fit --latest benchmarks/foreign/fits.json
 """
 
@@ -65,16 +65,42 @@ CASES = ROOT / "benchmarks" / "foreign" / "cases"
 #: The project's record of each case's latest fit (``--record``, ``--latest``).
 RECORD = ROOT / "benchmarks" / "foreign" / "fits.json"
 
-COLUMNS = ["case", "garment", "body", "base", "exit", "time_s",
-           "cf_base_mm", "cf_graded_mm", "cf_final_mm", "cf_warm_mm", "floor_mm",
-           "area_base_pct", "area_graded_pct", "area_final_pct",
-           "total_base_pct", "total_graded_pct", "total_final_pct", "matched_final_pct",
-           "seam_final_mm", "loss_spikes", "stretch_max", "barrier", "panels", "unmatched", "phase2_kept", "peak_mb",
-           "peak_stage"]
+COLUMNS = [
+    "case",
+    "garment",
+    "body",
+    "base",
+    "exit",
+    "time_s",
+    "cf_base_mm",
+    "cf_graded_mm",
+    "cf_final_mm",
+    "cf_warm_mm",
+    "floor_mm",
+    "area_base_pct",
+    "area_graded_pct",
+    "area_final_pct",
+    "total_base_pct",
+    "total_graded_pct",
+    "total_final_pct",
+    "matched_final_pct",
+    "seam_final_mm",
+    "loss_spikes",
+    "stretch_max",
+    "barrier",
+    "panels",
+    "unmatched",
+    "phase2_kept",
+    "peak_mb",
+    "peak_stage",
+]
 
 #: metrics.json key and result-folder file of each pattern the table judges
-PATTERNS = (("base", "pattern_base", "pattern_base.json"), ("graded", "pattern_graded", "pattern_graded.json"),
-            ("final", "pattern", "pattern.json"))
+PATTERNS = (
+    ("base", "pattern_base", "pattern_base.json"),
+    ("graded", "pattern_graded", "pattern_graded.json"),
+    ("final", "pattern", "pattern.json"),
+)
 
 
 def case_dirs(names: list[str] | None = None) -> list[Path]:
@@ -94,8 +120,9 @@ def _last_line(text: str) -> str:
     return lines[-1] if lines else ""
 
 
-def run_case(case: Path, out: Path, *, retry: bool = False, python: str = sys.executable,
-             config: str | None = None) -> dict:
+def run_case(
+    case: Path, out: Path, *, retry: bool = False, python: str = sys.executable, config: str | None = None
+) -> dict:
     """Fit one case with the CLI into ``out/<case>`` unless done (``config``: a fit.yaml passed as
     ``--config``); returns its status dict:
     rc (exit code), exit ('ok' or the last stderr line), time_s (wall time of the command [s])."""
@@ -123,15 +150,21 @@ def run_case(case: Path, out: Path, *, retry: bool = False, python: str = sys.ex
     secs = time.perf_counter() - t
     text = log.read_text(errors="replace")
     ok = proc.returncode == 0 and (res / "metrics.json").is_file()
-    status = {"rc": proc.returncode, "exit": "ok" if ok else (_last_line(text) or f"exit {proc.returncode}"),
-              "time_s": round(secs, 1), "command": " ".join(cmd[1:])}
+    status = {
+        "rc": proc.returncode,
+        "exit": "ok" if ok else (_last_line(text) or f"exit {proc.returncode}"),
+        "time_s": round(secs, 1),
+        "command": " ".join(cmd[1:]),
+    }
     if not ok and proc.returncode < 0:
         status["exit"] = f"killed by signal {-proc.returncode}; last line: {_last_line(text)}"
     status_file.write_text(json.dumps(status, indent=1) + "\n")
     return status
 
 
-def _pattern_errors(m: dict, key: str, est_path: Path, gt_path: Path, *, recompute: bool = False) -> dict | None:
+def _pattern_errors(
+    m: dict, key: str, est_path: Path, gt_path: Path, *, recompute: bool = False
+) -> dict | None:
     """The pattern metrics of one pattern: metrics.json's ``key`` when it has the area-weighted
     error (and not ``recompute``), else :func:`unsew.metrics.panels.pattern_metrics` of
     ``est_path`` (if saved) against ``gt_path``; None when neither is there."""
@@ -175,8 +208,10 @@ def _loss_spikes(h: dict, factor: float = 5.0) -> str | None:
 
 def _unmatched(p: dict) -> str:
     un = p.get("unmatched") or {}
-    parts = [f"gt: {','.join(un['true'])}" if un.get("true") else "",
-             f"est: {','.join(un['estimated'])}" if un.get("estimated") else ""]
+    parts = [
+        f"gt: {','.join(un['true'])}" if un.get("true") else "",
+        f"est: {','.join(un['estimated'])}" if un.get("estimated") else "",
+    ]
     return "; ".join(x for x in parts if x) or "-"
 
 
@@ -185,9 +220,14 @@ def row(case: Path, out: Path, status: dict, *, recompute: bool = False) -> dict
     (``recompute``: the pattern metrics computed anew from the saved patterns, by today's code)."""
     meta = json.loads((case / "meta.json").read_text())
     floor = (meta.get("floor") or {}).get("chamfer_mm")
-    r = {"case": case.name, "garment": meta.get("garment"),
-         "body": (meta.get("source") or {}).get("body_key", (meta.get("body") or {}).get("model")),
-         "exit": status["exit"], "time_s": status.get("time_s"), "floor_mm": floor}
+    r = {
+        "case": case.name,
+        "garment": meta.get("garment"),
+        "body": (meta.get("source") or {}).get("body_key", (meta.get("body") or {}).get("model")),
+        "exit": status["exit"],
+        "time_s": status.get("time_s"),
+        "floor_mm": floor,
+    }
     res = out / case.name
     if not (res / "metrics.json").is_file():
         return r
@@ -195,8 +235,12 @@ def row(case: Path, out: Path, status: dict, *, recompute: bool = False) -> dict
     if r["time_s"] is None:
         r["time_s"] = (m.get("timings_s") or {}).get("total_s")
     r["base"] = m.get("base")  # the base pattern phase one started from (chosen by draping by default)
-    for key, col in (("surface_base", "cf_base_mm"), ("surface_graded", "cf_graded_mm"), ("surface", "cf_final_mm"),
-                     ("surface_warm", "cf_warm_mm")):
+    for key, col in (
+        ("surface_base", "cf_base_mm"),
+        ("surface_graded", "cf_graded_mm"),
+        ("surface", "cf_final_mm"),
+        ("surface_warm", "cf_warm_mm"),
+    ):
         r[col] = (m.get(key) or {}).get("chamfer_mm")
     for tag, key, fname in PATTERNS:
         p = _pattern_errors(m, key, res / fname, case / "pattern_gt.json", recompute=recompute)
@@ -214,9 +258,11 @@ def row(case: Path, out: Path, status: dict, *, recompute: bool = False) -> dict
             r["unmatched"] = _unmatched(p)
     r["seam_final_mm"] = _seam_change(res)
     r["loss_spikes"] = _loss_spikes(m.get("loss_history") or {})
-    r["stretch_max"] = (m.get("drape_check") or {}).get("stretch_max")  # the returned drape's longest edge / rest
+    # the returned drape's longest edge / rest
+    r["stretch_max"] = (m.get("drape_check") or {}).get("stretch_max")
     stretch = (m.get("loss_history") or {}).get("stretch")
-    r["barrier"] = max(stretch) if stretch else None  # the stretch barrier's largest term in phase two (0: never acted)
+    # the stretch barrier's largest term in phase two (0: never acted)
+    r["barrier"] = max(stretch) if stretch else None
     red = m.get("redress")
     r["phase2_kept"] = None if red is None else ("yes" if red.get("phase_two_kept") else "no")
     r["peak_mb"] = m.get("peak_memory_mb")  # the fit process's peak resident memory [MB]
@@ -244,19 +290,46 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default=str(ROOT / "bench-out" / "foreign_fit"), help="results folder")
     ap.add_argument("--no-run", action="store_true", help="only tabulate the results already in --out")
     ap.add_argument("--retry", action="store_true", help="fit again the cases whose earlier fit failed")
-    ap.add_argument("--recompute", action="store_true",
-                    help="compute the pattern metrics anew from each result's saved patterns instead of reading metrics.json")
-    ap.add_argument("--config", default=None, help="a fit.yaml handed to every fit (default: the default configuration)")
-    ap.add_argument("--sheet", type=Path, default=None,
-                    help="also write one PNG of every fitted case's target-vs-result figure, to look at them all")
-    ap.add_argument("--record", type=Path, default=None, metavar="FILE",
-                    help=f"also write each fitted case's row into FILE (e.g. {RECORD.relative_to(ROOT)}), with --code")
-    ap.add_argument("--code", default=None, metavar="REV", help="the commit the fits in --out ran on (for --record)")
-    ap.add_argument("--latest", type=Path, default=None, metavar="FILE",
-                    help="only print FILE's recorded rows (each case's latest fit) and the bars over them")
-    ap.add_argument("--against", type=Path, default=None, metavar="FILE",
-                    help="also print each fitted case in --out against its recorded row in FILE (a variant's "
-                         "fits against the record: Chamfer, per-panel area, phase two kept) and the median changes")
+    ap.add_argument(
+        "--recompute",
+        action="store_true",
+        help="compute the pattern metrics anew from each result's saved patterns instead of reading "
+        "metrics.json",
+    )
+    ap.add_argument(
+        "--config", default=None, help="a fit.yaml handed to every fit (default: the default configuration)"
+    )
+    ap.add_argument(
+        "--sheet",
+        type=Path,
+        default=None,
+        help="also write one PNG of every fitted case's target-vs-result figure, to look at them all",
+    )
+    ap.add_argument(
+        "--record",
+        type=Path,
+        default=None,
+        metavar="FILE",
+        help=f"also write each fitted case's row into FILE (e.g. {RECORD.relative_to(ROOT)}), with --code",
+    )
+    ap.add_argument(
+        "--code", default=None, metavar="REV", help="the commit the fits in --out ran on (for --record)"
+    )
+    ap.add_argument(
+        "--latest",
+        type=Path,
+        default=None,
+        metavar="FILE",
+        help="only print FILE's recorded rows (each case's latest fit) and the bars over them",
+    )
+    ap.add_argument(
+        "--against",
+        type=Path,
+        default=None,
+        metavar="FILE",
+        help="also print each fitted case in --out against its recorded row in FILE (a variant's "
+        "fits against the record: Chamfer, per-panel area, phase two kept) and the median changes",
+    )
     args = ap.parse_args(argv)
     if args.latest is not None:
         return print_latest(args.latest)
@@ -332,26 +405,35 @@ def print_against(rows: list[dict], rec: dict, path: Path) -> None:
         if r.get("cf_final_mm") is None or old is None or old.get("cf_final_mm") is None:
             continue
         floor = r.get("floor_mm")
-        out.append({"case": r["case"], "recorded at": old.get("code"),
-                    "base": old.get("base") if old.get("base") == r.get("base") else f"{old.get('base')} -> {r.get('base')}",
-                    "graded [mm]": f"{f(old.get('cf_graded_mm'))} -> {f(r.get('cf_graded_mm'))}",
-                    "Chamfer [mm]": f"{f(old['cf_final_mm'])} -> {f(r['cf_final_mm'])}",
-                    "bar [mm]": f(max(5.0, 1.5 * floor)) if floor is not None else "-",
-                    "per panel [%]": f"{f(old.get('area_final_pct'))} -> {f(r.get('area_final_pct'))}",
-                    "matched panels [%]": f"{f(old.get('matched_final_pct'))} -> {f(r.get('matched_final_pct'))}",
-                    "total [%]": f"{f(old.get('total_final_pct'))} -> {f(r.get('total_final_pct'))}",
-                    "phase two kept": f"{old.get('phase2_kept') or '-'} -> {r.get('phase2_kept') or '-'}",
-                    "stretch max": f"{f2(old.get('stretch_max'))} -> {f2(r.get('stretch_max'))}",
-                    "barrier": f2(r.get("barrier")),
-                    "time [s]": f(r.get("time_s"))})
+        out.append(
+            {
+                "case": r["case"],
+                "recorded at": old.get("code"),
+                "base": old.get("base")
+                if old.get("base") == r.get("base")
+                else f"{old.get('base')} -> {r.get('base')}",
+                "graded [mm]": f"{f(old.get('cf_graded_mm'))} -> {f(r.get('cf_graded_mm'))}",
+                "Chamfer [mm]": f"{f(old['cf_final_mm'])} -> {f(r['cf_final_mm'])}",
+                "bar [mm]": f(max(5.0, 1.5 * floor)) if floor is not None else "-",
+                "per panel [%]": f"{f(old.get('area_final_pct'))} -> {f(r.get('area_final_pct'))}",
+                "matched panels [%]": f"{f(old.get('matched_final_pct'))} -> {f(r.get('matched_final_pct'))}",
+                "total [%]": f"{f(old.get('total_final_pct'))} -> {f(r.get('total_final_pct'))}",
+                "phase two kept": f"{old.get('phase2_kept') or '-'} -> {r.get('phase2_kept') or '-'}",
+                "stretch max": f"{f2(old.get('stretch_max'))} -> {f2(r.get('stretch_max'))}",
+                "barrier": f2(r.get("barrier")),
+                "time [s]": f(r.get("time_s")),
+            }
+        )
         dcf.append(float(r["cf_final_mm"]) - float(old["cf_final_mm"]))
         if r.get("area_final_pct") is not None and old.get("area_final_pct") is not None:
             dpa.append(float(r["area_final_pct"]) - float(old["area_final_pct"]))
     print_table(out, title=f"The fits in --out against their record ({path})")
     for name, d, unit in (("Chamfer", dcf, "mm"), ("per-panel area error", dpa, "points")):
         if d:
-            print(f"{name}: median change {_median(d):+.2f} {unit} over {len(d)}; lower on {sum(v < -0.05 for v in d)}, "
-                  f"higher on {sum(v > 0.05 for v in d)}")
+            print(
+                f"{name}: median change {_median(d):+.2f} {unit} over {len(d)}; lower on "
+                f"{sum(v < -0.05 for v in d)}, higher on {sum(v > 0.05 for v in d)}"
+            )
 
 
 def _read_record(path: Path) -> dict:
@@ -383,10 +465,16 @@ def print_latest(path: Path) -> int:
         meta = json.loads((CASES / r["case"] / "meta.json").read_text())
         r["floor_mm"] = (meta.get("floor") or {}).get("chamfer_mm", r.get("floor_mm"))
     missing = [c.name for c in case_dirs() if c.name not in rec]
-    print_table(rows, ["case", "code", *COLUMNS[1:]], title=f"Foreign benchmark: each case's latest recorded fit ({path})",
-                digits=1)
-    print(f"\n{len(rows)} of {len(rows) + len(missing)} cases recorded"
-          + (f"; no record: {', '.join(missing)}" if missing else ""))
+    print_table(
+        rows,
+        ["case", "code", *COLUMNS[1:]],
+        title=f"Foreign benchmark: each case's latest recorded fit ({path})",
+        digits=1,
+    )
+    print(
+        f"\n{len(rows)} of {len(rows) + len(missing)} cases recorded"
+        + (f"; no record: {', '.join(missing)}" if missing else "")
+    )
     summary = bars(rows)
     if summary:
         print_table(summary, title="The bars over the recorded fits", digits=1)
@@ -411,8 +499,10 @@ def contact_sheet(rows: list[dict], out: Path, path: Path, *, cols: int = 4) -> 
         ax.axis("off")
     for ax, r in zip(axes.flat, shown):
         ax.imshow(mpimg.imread(out / r["case"] / "figures" / "target_vs_result.png"))
-        ax.set_title(f"{r['case']}\nChamfer {r['cf_final_mm']:.1f} mm (floor {r.get('floor_mm') or float('nan'):.1f})",
-                     fontsize=9)
+        ax.set_title(
+            f"{r['case']}\nChamfer {r['cf_final_mm']:.1f} mm (floor {r.get('floor_mm') or float('nan'):.1f})",
+            fontsize=9,
+        )
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=60)
@@ -433,39 +523,84 @@ def bars(rows: list[dict]) -> list[dict]:
     done = [r for r in rows if r.get("cf_final_mm") is not None]
     if not done:
         return []
-    out = [{"figure": "cases fitted (exit 0, on the body)", "value": f"{sum(r['exit'] == 'ok' for r in done)} of {len(rows)}"}]
-    for col, what in (("area_final_pct", "area error, unmatched panels at 100 % [%]"),
-                      ("total_final_pct", "total area error, abs(sum A - sum A_gt) / sum A_gt [%]"),
-                      ("matched_final_pct", "area error over matched panels [%]")):
+    out = [
+        {
+            "figure": "cases fitted (exit 0, on the body)",
+            "value": f"{sum(r['exit'] == 'ok' for r in done)} of {len(rows)}",
+        }
+    ]
+    for col, what in (
+        ("area_final_pct", "area error, unmatched panels at 100 % [%]"),
+        ("total_final_pct", "total area error, abs(sum A - sum A_gt) / sum A_gt [%]"),
+        ("matched_final_pct", "area error over matched panels [%]"),
+    ):
         v = [r[col] for r in done if r.get(col) is not None]
         if v:
             out.append({"figure": f"{what}: median / worst", "value": f"{_median(v):.1f} / {max(v):.1f}"})
     sv = [r["seam_final_mm"] for r in done if r.get("seam_final_mm") is not None]
     if sv:
-        out.append({"figure": "seams of the final pattern, largest change from the base [mm]: median / worst; over 2 mm",
-                    "value": f"{_median(sv):.1f} / {max(sv):.1f}; {sum(v > 2.0 for v in sv)} of {len(sv)}"})
+        out.append(
+            {
+                "figure": "seams of the final pattern, largest change from the base [mm]: median / worst; "
+                "over 2 mm",
+                "value": f"{_median(sv):.1f} / {max(sv):.1f}; {sum(v > 2.0 for v in sv)} of {len(sv)}",
+            }
+        )
     cf = [r["cf_final_mm"] for r in done]
-    out.append({"figure": "Chamfer of the fit: median / worst [mm]", "value": f"{_median(cf):.1f} / {max(cf):.1f}"})
-    within = [r["case"] for r in done if r.get("floor_mm") is not None
-              and r["cf_final_mm"] <= max(5.0, 1.5 * r["floor_mm"])]
+    out.append(
+        {"figure": "Chamfer of the fit: median / worst [mm]", "value": f"{_median(cf):.1f} / {max(cf):.1f}"}
+    )
+    within = [
+        r["case"]
+        for r in done
+        if r.get("floor_mm") is not None and r["cf_final_mm"] <= max(5.0, 1.5 * r["floor_mm"])
+    ]
     out.append({"figure": "Chamfer within max(5 mm, 1.5 x floor)", "value": f"{len(within)} of {len(done)}"})
     for col in ("area", "total"):
-        better = [r for r in done if r.get(f"{col}_final_pct") is not None and r.get(f"{col}_base_pct") is not None
-                  and r[f"{col}_final_pct"] < r[f"{col}_base_pct"] and r["cf_final_mm"] < r["cf_base_mm"]]
-        out.append({"figure": f"better than the base on Chamfer and {'total area' if col == 'total' else 'area'} error",
-                    "value": f"{len(better)} of {len(done)}"})
+        better = [
+            r
+            for r in done
+            if r.get(f"{col}_final_pct") is not None
+            and r.get(f"{col}_base_pct") is not None
+            and r[f"{col}_final_pct"] < r[f"{col}_base_pct"]
+            and r["cf_final_mm"] < r["cf_base_mm"]
+        ]
+        out.append(
+            {
+                "figure": "better than the base on Chamfer and "
+                f"{'total area' if col == 'total' else 'area'} error",
+                "value": f"{len(better)} of {len(done)}",
+            }
+        )
     timed = [r for r in done if r.get("time_s") is not None]
-    out.append({"figure": "under 10 minutes (as run; see the load)", "value": f"{sum(r['time_s'] < 600 for r in timed)} of {len(timed)}"})
+    out.append(
+        {
+            "figure": "under 10 minutes (as run; see the load)",
+            "value": f"{sum(r['time_s'] < 600 for r in timed)} of {len(timed)}",
+        }
+    )
     for col, what in (("cf", "Chamfer [mm]"), ("area", "area error [%]"), ("total", "total area error [%]")):
-        pairs = [(r[f"{col}_graded{'_mm' if col == 'cf' else '_pct'}"], r[f"{col}_final{'_mm' if col == 'cf' else '_pct'}"])
-                 for r in done if r.get(f"{col}_graded{'_mm' if col == 'cf' else '_pct'}") is not None]
+        pairs = [
+            (
+                r[f"{col}_graded{'_mm' if col == 'cf' else '_pct'}"],
+                r[f"{col}_final{'_mm' if col == 'cf' else '_pct'}"],
+            )
+            for r in done
+            if r.get(f"{col}_graded{'_mm' if col == 'cf' else '_pct'}") is not None
+        ]
         if pairs:
             g, f = zip(*pairs)
             lower = sum(b < a - 1e-9 for a, b in pairs)
             higher = sum(b > a + 1e-9 for a, b in pairs)
             change = _median([b - a for a, b in pairs])
-            out.append({"figure": f"phase two, {what}: median graded -> final; median change; cases lower / higher",
-                        "value": f"{_median(list(g)):.1f} -> {_median(list(f)):.1f}; {change:+.1f}; {lower} / {higher}"})
+            out.append(
+                {
+                    "figure": f"phase two, {what}: median graded -> final; median change; cases lower / "
+                    "higher",
+                    "value": f"{_median(list(g)):.1f} -> {_median(list(f)):.1f}; {change:+.1f}; {lower} / "
+                    f"{higher}",
+                }
+            )
     return out
 
 

@@ -78,7 +78,9 @@ def _closest(lib, V, F, Q):
         scene = _fcpw_scene(V, F)
         t1 = time.perf_counter()
         hits = fcpw.interaction_3D_list()
-        scene.find_closest_points(np.asfortranarray(Q, dtype=np.float32), np.full(len(Q), np.inf, np.float32), hits)
+        scene.find_closest_points(
+            np.asfortranarray(Q, dtype=np.float32), np.full(len(Q), np.inf, np.float32), hits
+        )
         d = np.array([h.d for h in hits], dtype=np.float64)  # results come back as Python objects
         return t1 - t, time.perf_counter() - t1, d
     if lib == "kdtree (old)":
@@ -193,8 +195,13 @@ def _run(spec: dict, timeout: float) -> dict:
     here = os.path.dirname(os.path.abspath(__file__))
     env["PYTHONPATH"] = os.pathsep.join([here, env.get("PYTHONPATH", "")])
     try:
-        r = subprocess.run([sys.executable, os.path.abspath(__file__), "--worker", json.dumps(spec)],
-                           capture_output=True, text=True, timeout=timeout, env=env)
+        r = subprocess.run(
+            [sys.executable, os.path.abspath(__file__), "--worker", json.dumps(spec)],
+            capture_output=True,
+            text=True,
+            timeout=timeout,
+            env=env,
+        )
     except subprocess.TimeoutExpired:
         return {"status": f"not done in {timeout:g} s"}
     if r.returncode != 0:
@@ -210,8 +217,12 @@ def main(argv=None) -> None:
     ap.add_argument("--quick", action="store_true", help="5K-triangle meshes and 5K queries only")
     ap.add_argument("--mem-limit-gb", type=float, default=4.0, help="address-space limit of the old search")
     ap.add_argument("--timeout", type=float, default=300.0, help="seconds per measurement")
-    ap.add_argument("--libs", nargs="+", default=["igl", "igl, Morton order", "fcpw", "kdtree (old)"],
-                    help="closest-point libraries to measure")
+    ap.add_argument(
+        "--libs",
+        nargs="+",
+        default=["igl", "igl, Morton order", "fcpw", "kdtree (old)"],
+        help="closest-point libraries to measure",
+    )
     ap.add_argument("--no-inside", action="store_true", help="skip the inside-test table")
     args = ap.parse_args(argv)
     if args.worker:
@@ -227,28 +238,66 @@ def main(argv=None) -> None:
     cases += [(big, big, True, 0.0), (big, big, False, 0.3), (big, big, True, 0.3)]
     for faces, nq, uneven, away in cases:
         for lib in libs:
-            spec = {"kind": "closest", "lib": lib, "faces": faces, "queries": nq, "uneven": uneven, "away": away,
-                    "mem_limit_gb": args.mem_limit_gb if lib.startswith("kdtree") else None}
+            spec = {
+                "kind": "closest",
+                "lib": lib,
+                "faces": faces,
+                "queries": nq,
+                "uneven": uneven,
+                "away": away,
+                "mem_limit_gb": args.mem_limit_gb if lib.startswith("kdtree") else None,
+            }
             r = _run(spec, args.timeout)
             mesh = ("uneven " if uneven else "") + "tube"
-            rows.append({"library": lib, "mesh": mesh, "triangles": r.get("faces", faces), "queries": nq,
-                         "away": f"{away * 100:g} cm", "build s": r.get("build_s"), "query s": r.get("query_s"),
-                         "peak MB": r.get("peak_MB"), "err um": r.get("err_um"), "status": r["status"]})
+            rows.append(
+                {
+                    "library": lib,
+                    "mesh": mesh,
+                    "triangles": r.get("faces", faces),
+                    "queries": nq,
+                    "away": f"{away * 100:g} cm",
+                    "build s": r.get("build_s"),
+                    "query s": r.get("query_s"),
+                    "peak MB": r.get("peak_MB"),
+                    "err um": r.get("err_um"),
+                    "status": r["status"],
+                }
+            )
             print(rows[-1], file=sys.stderr, flush=True)
-    print_table(rows, title="Closest points on a triangle mesh (time [s], peak memory growth [MB], error against libigl [um])",
-                digits=3)
+    print_table(
+        rows,
+        title="Closest points on a triangle mesh (time [s], peak memory growth [MB], error against libigl "
+        "[um])",
+        digits=3,
+    )
 
     if args.no_inside:
         return
     rows = []
     for nq in sizes:
-        for lib in ["igl fast winding number", "igl winding number (exact)", "fcpw contains", "embreex rays (trimesh)"]:
+        for lib in [
+            "igl fast winding number",
+            "igl winding number (exact)",
+            "fcpw contains",
+            "embreex rays (trimesh)",
+        ]:
             r = _run({"kind": "inside", "lib": lib, "queries": nq}, args.timeout)
-            rows.append({"library": lib, "triangles": r.get("faces"), "queries": nq, "build s": r.get("build_s"),
-                         "query s": r.get("query_s"), "peak MB": r.get("peak_MB"),
-                         "wrong vs exact winding": r.get("disagree"), "status": r["status"]})
+            rows.append(
+                {
+                    "library": lib,
+                    "triangles": r.get("faces"),
+                    "queries": nq,
+                    "build s": r.get("build_s"),
+                    "query s": r.get("query_s"),
+                    "peak MB": r.get("peak_MB"),
+                    "wrong vs exact winding": r.get("disagree"),
+                    "status": r["status"],
+                }
+            )
             print(rows[-1], file=sys.stderr, flush=True)
-    print_table(rows, title="Inside tests on the default body (closed, queries uniform in its bounding box)", digits=3)
+    print_table(
+        rows, title="Inside tests on the default body (closed, queries uniform in its bounding box)", digits=3
+    )
 
 
 if __name__ == "__main__":

@@ -70,16 +70,38 @@ def main(argv=None) -> None:
     ap.add_argument("--garments", nargs="*", default=list(CHANGES))
     ap.add_argument("--samples", type=int, default=20000, help="Chamfer samples per mesh")
     ap.add_argument("--passes", type=int, default=None, help="grading passes (default: grade()'s)")
-    ap.add_argument("--floor-scale", type=float, default=0.97, help="edge length factor of the noise-floor mesh (0: skip)")
-    ap.add_argument("--flip", action="store_true",
-                    help="negate every known change (lengths and girths): the opposite case of each garment")
-    ap.add_argument("--no-hold-top", action="store_true", help="let a waist edit move the panel's placement (grade(hold_top=False))")
-    ap.add_argument("--remesh", choices=["always", "stretched"], default="always",
-                    help="grade(remesh=...): mesh every graded pattern afresh, or only when an edge stretched 1.5x")
-    ap.add_argument("--length", choices=["cloth", "axial"], default="cloth",
-                    help="grade(length=...): move open curves by the cloth length to the top opening, "
-                         "or by the axial distance")
-    ap.add_argument("--targets", type=int, default=1, help="target drapes per garment, on meshes of slightly different edge length")
+    ap.add_argument(
+        "--floor-scale", type=float, default=0.97, help="edge length factor of the noise-floor mesh (0: skip)"
+    )
+    ap.add_argument(
+        "--flip",
+        action="store_true",
+        help="negate every known change (lengths and girths): the opposite case of each garment",
+    )
+    ap.add_argument(
+        "--no-hold-top",
+        action="store_true",
+        help="let a waist edit move the panel's placement (grade(hold_top=False))",
+    )
+    ap.add_argument(
+        "--remesh",
+        choices=["always", "stretched"],
+        default="always",
+        help="grade(remesh=...): mesh every graded pattern afresh, or only when an edge stretched 1.5x",
+    )
+    ap.add_argument(
+        "--length",
+        choices=["cloth", "axial"],
+        default="cloth",
+        help="grade(length=...): move open curves by the cloth length to the top opening, "
+        "or by the axial distance",
+    )
+    ap.add_argument(
+        "--targets",
+        type=int,
+        default=1,
+        help="target drapes per garment, on meshes of slightly different edge length",
+    )
     args = ap.parse_args(argv)
     if args.targets < 1 or args.targets > len(TARGET_SCALES):
         ap.error(f"--targets must be 1 to {len(TARGET_SCALES)}")
@@ -114,10 +136,14 @@ def main(argv=None) -> None:
     else:
         drape_fn = flat_drape
     flipped = "; changes negated (--flip)" if args.flip else ""
-    print(f"drape: {mode}; edge length {args.edge_length} m; material {args.material}; length {args.length}{flipped}")
+    print(
+        f"drape: {mode}; edge length {args.edge_length} m; material {args.material}; length "
+        f"{args.length}{flipped}"
+    )
     head = (
-        f"{'garment':<8} {'contour':<10} {'known dL cm':>11} {'known dG %':>10} {'axial cm':>9} {'girth cm':>9} "
-        f"{'res L cm':>9} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9} {'cloth cm':>9} {'rest cm':>8}"
+        f"{'garment':<8} {'contour':<10} {'known dL cm':>11} {'known dG %':>10} {'axial cm':>9} "
+        f"{'girth cm':>9} {'res L cm':>9} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9} {'cloth cm':>9} "
+        f"{'rest cm':>8}"
     )
     print(head)
     print("-" * len(head))
@@ -139,8 +165,17 @@ def main(argv=None) -> None:
             kw = {"hold_top": not args.no_hold_top, "remesh": args.remesh, "length": args.length}
             if args.passes is not None:
                 kw["passes"] = args.passes
-            res = grade(base, body, tx, tm.faces, settings=GRADE_SETTINGS.replace(edge_length=args.edge_length),
-                        drape_fn=drape_fn, mesh=bm, x_init=bx, **kw)
+            res = grade(
+                base,
+                body,
+                tx,
+                tm.faces,
+                settings=GRADE_SETTINGS.replace(edge_length=args.edge_length),
+                drape_fn=drape_fn,
+                mesh=bm,
+                x_init=bx,
+                **kw,
+            )
             sk = body.skeleton
             after = place_contours(res.x_draped, res.mesh.faces, sk)
             tgt = place_contours(tx, tm.faces, sk)
@@ -149,11 +184,21 @@ def main(argv=None) -> None:
             _, cl_t = cloth_lengths(tx, tm.faces, tgt)
             _, cl_s = cloth_lengths(res.x_init, res.mesh_init.faces, src)
             ttop = top_contour(tgt)
-            top_edges = [(c.panel, e) for c in curves_of_contour(ttop.contour.indices, tx, target, tm, tcontrols)
-                         for e in c.edges]
+            top_edges = [
+                (c.panel, e)
+                for c in curves_of_contour(ttop.contour.indices, tx, target, tm, tcontrols)
+                for e in c.edges
+            ]
             # the true patterns' rest cloth lengths of every target contour, on each pattern's own mesh
-            keyed = {t.index: [(c.panel, e) for c in curves_of_contour(t.contour.indices, tx, target, tm, tcontrols)
-                               for e in c.edges] for t in tgt if t is not ttop}
+            keyed = {
+                t.index: [
+                    (c.panel, e)
+                    for c in curves_of_contour(t.contour.indices, tx, target, tm, tcontrols)
+                    for e in c.edges
+                ]
+                for t in tgt
+                if t is not ttop
+            }
             keyed = {k: v for k, v in keyed.items() if v}
             rest1 = rest_cloth_lengths(tm, keyed, top_edges) if top_edges else {}
             rest0 = rest_cloth_lengths(res.mesh_init, keyed, top_edges) if top_edges else {}
@@ -163,8 +208,10 @@ def main(argv=None) -> None:
                 cands = [a for a in after if a.part == s.part] or after
                 a = min(cands, key=lambda a: float(np.linalg.norm(a.centre - t.centre)))
                 known = _known(g, s.part, args.flip)
-                res_l = abs(a.position - t.position) if a.bone is not None and a.bone.part == t.part else float(
-                    np.linalg.norm(a.centre - t.centre)
+                res_l = (
+                    abs(a.position - t.position)
+                    if a.bone is not None and a.bone.part == t.part
+                    else float(np.linalg.norm(a.centre - t.centre))
                 )
                 curves = curves_of_contour(t.contour.indices, tx, target, tm, tcontrols)
                 edges = [(c.panel, e) for c in curves for e in c.edges]
@@ -172,11 +219,14 @@ def main(argv=None) -> None:
                 # cloth: the drapes' cloth-length difference (target - base) grading reads; rest: the
                 # true patterns' own, at rest (unsew.grading.cloth)
                 cloth = cl_t[t.index] - cl_s[s.index] if t.index in cl_t and s.index in cl_s else float("nan")
-                rest = rest1[t.index] - rest0[t.index] if t.index in rest1 and t.index in rest0 else float("nan")
+                rest = (
+                    rest1[t.index] - rest0[t.index] if t.index in rest1 and t.index in rest0 else float("nan")
+                )
                 print(
-                    f"{g:<8} {s.part:<10} {known[0] * 100:>+11.1f} {known[1] * 100:>+10.0f} {m.axial_distance * 100:>+9.1f} "
-                    f"{m.girth_difference * 100:>+9.1f} {res_l * 100:>9.2f} {abs(a.length - t.length) * 100:>9.2f} "
-                    f"{pat_l * 100:>9.2f} {pat_g * 100:>9.2f} {cloth * 100:>+9.1f} {rest * 100:>+8.1f}"
+                    f"{g:<8} {s.part:<10} {known[0] * 100:>+11.1f} {known[1] * 100:>+10.0f} "
+                    f"{m.axial_distance * 100:>+9.1f} {m.girth_difference * 100:>+9.1f} {res_l * 100:>9.2f} "
+                    f"{abs(a.length - t.length) * 100:>9.2f} {pat_l * 100:>9.2f} {pat_g * 100:>9.2f} "
+                    f"{cloth * 100:>+9.1f} {rest * 100:>+8.1f}"
                 )
                 got = (res_l, abs(a.length - t.length), pat_l, pat_g)
                 worst[g] = [float(np.nanmax([w, v])) for w, v in zip(worst.get(g, got), got)]
@@ -188,23 +238,40 @@ def main(argv=None) -> None:
             floor = float("nan")
             if args.floor_scale > 0:
                 fm = mesh_pattern(target, edge_length=args.edge_length * scale * args.floor_scale)
-                floor = chamfer_mm(drape_fn(target, fm, body), fm.faces, tx, tm.faces, n_samples=args.samples).mean_mm
-            summary.append((g, ti, before, graded, floor, res.fraction, res.remeshed, time.perf_counter() - t0))
+                floor = chamfer_mm(
+                    drape_fn(target, fm, body), fm.faces, tx, tm.faces, n_samples=args.samples
+                ).mean_mm
+            summary.append(
+                (g, ti, before, graded, floor, res.fraction, res.remeshed, time.perf_counter() - t0)
+            )
     print()
-    print(f"{'garment':<8} {'target':>6} {'Chamfer base mm':>15} {'graded mm':>10} {'ratio':>6} {'floor mm':>9} "
-          f"{'floor ratio':>11} {'edit':>5} {'remeshed':>8} {'time s':>7}")
+    print(
+        f"{'garment':<8} {'target':>6} {'Chamfer base mm':>15} {'graded mm':>10} {'ratio':>6} "
+        f"{'floor mm':>9} {'floor ratio':>11} {'edit':>5} {'remeshed':>8} {'time s':>7}"
+    )
     for g, ti, b, a, fl, f, rm, dt in summary:
-        r = (lambda v: v / b if b > 0 else float("nan"))  # noqa: E731
-        print(f"{g:<8} {ti:>6} {b:>15.1f} {a:>10.1f} {r(a):>6.2f} {fl:>9.1f} {r(fl):>11.2f} {f:>5.2f} {str(rm):>8} {dt:>7.1f}")
+        r = lambda v: v / b if b > 0 else float("nan")  # noqa: E731
+        print(
+            f"{g:<8} {ti:>6} {b:>15.1f} {a:>10.1f} {r(a):>6.2f} {fl:>9.1f} {r(fl):>11.2f} {f:>5.2f} "
+            f"{str(rm):>8} {dt:>7.1f}"
+        )
     if args.targets > 1:
         for g in args.garments:
             rows = [x for x in summary if x[0] == g]
             b, a, fl = (float(np.mean([x[k] for x in rows])) for k in (2, 3, 4))
             ratios = [x[3] / x[2] for x in rows if x[2] > 0]
-            print(f"{g:<8} {'mean':>6} {b:>15.1f} {a:>10.1f} {float(np.mean(ratios)):>6.2f} {fl:>9.1f} {fl / b:>11.2f}")
-    print("floor: the target pattern draped on a second mesh, against the target drape (the drape's own noise)")
+            print(
+                f"{g:<8} {'mean':>6} {b:>15.1f} {a:>10.1f} {float(np.mean(ratios)):>6.2f} {fl:>9.1f} "
+                f"{fl / b:>11.2f}"
+            )
+    print(
+        "floor: the target pattern draped on a second mesh, against the target drape (the drape's own noise)"
+    )
     print()
-    print(f"{'garment':<8} {'worst res L cm':>14} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9}   (over contours and targets)")
+    print(
+        f"{'garment':<8} {'worst res L cm':>14} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9}   (over "
+        "contours and targets)"
+    )
     for g, w in worst.items():
         print(f"{g:<8} {w[0] * 100:>14.2f} {w[1] * 100:>9.2f} {w[2] * 100:>9.2f} {w[3] * 100:>9.2f}")
 
@@ -239,7 +306,9 @@ def pattern_residuals(true, graded, edges) -> tuple[float, float]:
             return float(mid @ n - (panel.vertices @ n).min())
 
         dl.append(abs(reach(gp) - reach(tp)))
-    dg = sum(edge_length(graded.panels[p], i) for p, i in edges) - sum(edge_length(true.panels[p], i) for p, i in edges)
+    dg = sum(edge_length(graded.panels[p], i) for p, i in edges) - sum(
+        edge_length(true.panels[p], i) for p, i in edges
+    )
     return float(max(dl)), float(abs(dg))
 
 

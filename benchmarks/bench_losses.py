@@ -71,10 +71,24 @@ def main(argv=None) -> None:
         x = torch.rand(n, 3, generator=g, dtype=torch.float64, requires_grad=True)
         t = torch.rand(n, 3, generator=g, dtype=torch.float64)
         w = torch.rand(n, generator=g, dtype=torch.float64) + 0.5
-        put("nn indices, KD-tree (both ways)", f"{_best(lambda: (nearest_indices(x, t, method='kdtree'), nearest_indices(t, x, method='kdtree')), args.repeat):.1f}")
+
+        def nn_both_ways(**kw):
+            return nearest_indices(x, t, **kw), nearest_indices(t, x, **kw)
+
+        put(
+            "nn indices, KD-tree (both ways)",
+            f"{_best(lambda: nn_both_ways(method='kdtree'), args.repeat):.1f}",
+        )
         if n <= 10000:
-            put("nn indices, chunked cdist mm (both ways)", f"{_best(lambda: (nearest_indices(x, t, method='cdist'), nearest_indices(t, x, method='cdist')), args.repeat):.1f}")
-            put("nn indices, chunked cdist exact (both ways)", f"{_best(lambda: (nearest_indices(x, t, method='cdist', compute_mode='donot_use_mm_for_euclid_dist'), nearest_indices(t, x, method='cdist', compute_mode='donot_use_mm_for_euclid_dist')), args.repeat):.1f}")
+            put(
+                "nn indices, chunked cdist mm (both ways)",
+                f"{_best(lambda: nn_both_ways(method='cdist'), args.repeat):.1f}",
+            )
+            exact = dict(method="cdist", compute_mode="donot_use_mm_for_euclid_dist")
+            put(
+                "nn indices, chunked cdist exact (both ways)",
+                f"{_best(lambda: nn_both_ways(**exact), args.repeat):.1f}",
+            )
         else:
             put("nn indices, chunked cdist mm (both ways)", "-")
             put("nn indices, chunked cdist exact (both ways)", "-")
@@ -84,14 +98,20 @@ def main(argv=None) -> None:
             loss_chamfer(x, t, **kw).backward()
 
         put("Chamfer fwd+bwd (KD-tree)", f"{_best(lambda: fb(), args.repeat):.1f}")
-        put("Chamfer fwd+bwd curvature-weighted (KD-tree)", f"{_best(lambda: fb(weights_t=w), args.repeat):.1f}")
+        put(
+            "Chamfer fwd+bwd curvature-weighted (KD-tree)",
+            f"{_best(lambda: fb(weights_t=w), args.repeat):.1f}",
+        )
         if n <= 10000:
             put("Chamfer fwd+bwd (cdist mm)", f"{_best(lambda: fb(method='cdist'), args.repeat):.1f}")
         else:
             put("Chamfer fwd+bwd (cdist mm)", "-")
 
         m = trimesh.creation.icosphere(subdivisions=sub.get(n, 5), radius=0.3)
-        put("curvature_weights (icosphere, verts)", f"{_best(lambda: curvature_weights(m.vertices, m.faces), args.repeat):.1f} ({len(m.vertices)})")
+        put(
+            "curvature_weights (icosphere, verts)",
+            f"{_best(lambda: curvature_weights(m.vertices, m.faces), args.repeat):.1f} ({len(m.vertices)})",
+        )
         V, F = _cylinder(n)
         put("open_contours (open cylinder)", f"{_best(lambda: open_contours(V, F), args.repeat):.1f}")
         cs = open_contours(V, F)
@@ -105,7 +125,12 @@ def main(argv=None) -> None:
         put("loss_open_contours fwd+bwd", f"{_best(oc, args.repeat):.1f}")
         a = trimesh.creation.icosphere(subdivisions=4, radius=0.3)
         b = trimesh.creation.icosphere(subdivisions=3, radius=0.31)
-        put("surface_metrics (N samples per mesh)", f"{_best(lambda: surface_metrics(a.vertices, a.faces, b.vertices, b.faces, n_samples=n), 1 if n > 10000 else args.repeat):.1f}")
+        reps = 1 if n > 10000 else args.repeat
+
+        def sm():
+            return surface_metrics(a.vertices, a.faces, b.vertices, b.faces, n_samples=n)
+
+        put("surface_metrics (N samples per mesh)", f"{_best(sm, reps):.1f}")
 
     w0 = 52
     print(f"torch {torch.__version__}, {torch.get_num_threads()} threads, min of {args.repeat} runs [ms]")
@@ -121,6 +146,7 @@ def main(argv=None) -> None:
     print("turning_distance between two random star polygons [ms]")
     rng = np.random.default_rng(0)
     for k in (16, 64, 256):
+
         def star():
             th = np.sort(rng.uniform(0, 2 * np.pi, k))
             r = rng.uniform(0.5, 1.5, k)

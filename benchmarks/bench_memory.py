@@ -30,10 +30,16 @@ os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--samples", type=int, nargs="+", default=[50_000, 100_000], help="points sampled per mesh")
+    ap.add_argument(
+        "--samples", type=int, nargs="+", default=[50_000, 100_000], help="points sampled per mesh"
+    )
     ap.add_argument("--result-verts", type=int, default=5000)
-    ap.add_argument("--sizes", type=int, nargs="+", default=[2000, 10000, 20000, 50000], help="target vertices")
-    ap.add_argument("--fit", metavar="DIR", help="also run a whole small fit per target size in DIR (minutes each)")
+    ap.add_argument(
+        "--sizes", type=int, nargs="+", default=[2000, 10000, 20000, 50000], help="target vertices"
+    )
+    ap.add_argument(
+        "--fit", metavar="DIR", help="also run a whole small fit per target size in DIR (minutes each)"
+    )
     args = ap.parse_args(argv)
 
     import numpy as np
@@ -61,23 +67,47 @@ def main(argv=None) -> None:
             _, d, _ = closest_points(rv, tv, tf)
             t_report = time.perf_counter() - t
             peak = peak_rss_mb()
-            rows.append({
-                "target verts": len(tv), "triangles": len(tf), "max/median area": float(a.max() / np.median(a)),
-                "result verts": len(rv), "away": f"{away * 100:g} cm", "samples/mesh": ns,
-                "metrics s": t_metrics, "report distances s": t_report,
-                "peak MB": None if base is None else peak - base, "process peak MB": peak,
-                "chamfer mm": m["chamfer_mm"],
-            })
+            rows.append(
+                {
+                    "target verts": len(tv),
+                    "triangles": len(tf),
+                    "max/median area": float(a.max() / np.median(a)),
+                    "result verts": len(rv),
+                    "away": f"{away * 100:g} cm",
+                    "samples/mesh": ns,
+                    "metrics s": t_metrics,
+                    "report distances s": t_report,
+                    "peak MB": None if base is None else peak - base,
+                    "process peak MB": peak,
+                    "chamfer mm": m["chamfer_mm"],
+                }
+            )
             print(rows[-1], flush=True) if os.environ.get("BENCH_VERBOSE") else None
-    print_table(rows, title="3D metrics of a fit (surface_metrics + the report's per-vertex distances): time [s] and peak memory [MB]",
-                digits=2)
+    print_table(
+        rows,
+        title="3D metrics of a fit (surface_metrics + the report's per-vertex distances): time [s] and peak "
+        "memory [MB]",
+        digits=2,
+    )
     if args.fit:
-        print_table(_fit_rows(args.sizes, args.fit), title="Whole small fits (peak memory from metrics.json)", digits=2)
+        print_table(
+            _fit_rows(args.sizes, args.fit),
+            title="Whole small fits (peak memory from metrics.json)",
+            digits=2,
+        )
 
 
 #: tests/fit/test_fit_small.py's small mode
-SMALL = dict(edge_length=0.04, iterations=3, steps=8, sew_steps=60, settle_steps=20, target_points=1500,
-             material_start=1, material="cotton")
+SMALL = dict(
+    edge_length=0.04,
+    iterations=3,
+    steps=8,
+    sew_steps=60,
+    settle_steps=20,
+    target_points=1500,
+    material_start=1,
+    material="cotton",
+)
 
 _FIT = """
 import sys
@@ -122,15 +152,25 @@ def _fit_rows(sizes, folder) -> list[dict]:
         out = work / f"fit_{n}"
         shutil.rmtree(out, ignore_errors=True)
         t = time.perf_counter()
-        r = subprocess.run([sys.executable, "-c", _FIT.format(small=SMALL), str(d), str(out)], capture_output=True, text=True)
+        r = subprocess.run(
+            [sys.executable, "-c", _FIT.format(small=SMALL), str(d), str(out)], capture_output=True, text=True
+        )
         wall = time.perf_counter() - t
         if r.returncode != 0:
             rows.append({"target verts": len(v), "status": (r.stderr.strip().splitlines() or ["?"])[-1][:80]})
             continue
         m = json.loads((out / "metrics.json").read_text())
-        rows.append({"target verts": len(v), "target triangles": len(f), "fit s": m["timings_s"].get("total_s"),
-                     "wall s": wall, "peak MB (metrics.json)": m.get("peak_memory_mb"),
-                     "chamfer mm": m["surface"]["chamfer_mm"], "status": "ok"})
+        rows.append(
+            {
+                "target verts": len(v),
+                "target triangles": len(f),
+                "fit s": m["timings_s"].get("total_s"),
+                "wall s": wall,
+                "peak MB (metrics.json)": m.get("peak_memory_mb"),
+                "chamfer mm": m["surface"]["chamfer_mm"],
+                "status": "ok",
+            }
+        )
         print(rows[-1], file=sys.stderr, flush=True)
     return rows
 

@@ -31,7 +31,10 @@ def main(argv=None) -> None:
     from unsew.pattern.base import make_base_pattern
     from unsew.pattern.params import PatternParams
 
-    head = f"{'pattern':<8} {'h [cm]':>6} {'U verts':>8} {'X verts':>8} {'triangles':>9} {'min angle':>9} {'bad':>4} {'mesh [ms]':>9}"
+    head = (
+        f"{'pattern':<8} {'h [cm]':>6} {'U verts':>8} {'X verts':>8} {'triangles':>9} {'min angle':>9} "
+        f"{'bad':>4} {'mesh [ms]':>9}"
+    )
     if not args.no_params:
         head += f" {'params [ms]':>11}"
     print(head)

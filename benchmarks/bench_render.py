@@ -39,8 +39,9 @@ def wavy_tube(n_faces: int) -> tuple[np.ndarray, np.ndarray]:
     j = np.arange(nv - 1)[:, None]
     a = j * nu + i
     b = j * nu + (i + 1) % nu
-    f = np.concatenate([np.stack([a, b, b + nu], -1).reshape(-1, 3),
-                        np.stack([a, b + nu, a + nu], -1).reshape(-1, 3)])
+    f = np.concatenate(
+        [np.stack([a, b, b + nu], -1).reshape(-1, 3), np.stack([a, b + nu, a + nu], -1).reshape(-1, 3)]
+    )
     return v, f
 
 
@@ -51,14 +52,16 @@ def ellipsoid(n_faces: int) -> tuple[np.ndarray, np.ndarray]:
     th = np.linspace(0, 2 * np.pi, nu, endpoint=False)
     ph = np.linspace(0.05, np.pi - 0.05, nv)
     T, P = np.meshgrid(th, ph)
-    v = np.stack([0.16 * np.sin(P) * np.sin(T), 1.0 - 0.75 * np.cos(P),
-                  0.11 * np.sin(P) * np.cos(T)], -1).reshape(-1, 3)
+    v = np.stack(
+        [0.16 * np.sin(P) * np.sin(T), 1.0 - 0.75 * np.cos(P), 0.11 * np.sin(P) * np.cos(T)], -1
+    ).reshape(-1, 3)
     i = np.arange(nu)
     j = np.arange(nv - 1)[:, None]
     a = j * nu + i
     b = j * nu + (i + 1) % nu
-    f = np.concatenate([np.stack([a, b + nu, b], -1).reshape(-1, 3),
-                        np.stack([a, a + nu, b + nu], -1).reshape(-1, 3)])
+    f = np.concatenate(
+        [np.stack([a, b + nu, b], -1).reshape(-1, 3), np.stack([a, a + nu, b + nu], -1).reshape(-1, 3)]
+    )
     return v, f
 
 
@@ -122,8 +125,11 @@ def bleed(gaps, out_dir: Path | None) -> list[dict]:
     c = bv[bf].mean(axis=1)
     bf = bf[(np.abs(c[:, 0]) < 0.2) | (c[:, 1] < 0.9)]  # no arms (legs, torso and head kept)
     bn = _normals(bv, bf)
-    fixes = [("none", 0.0, 0.0)] + [(f"depth bias {b * 1000:g} mm", b, 0.0) for b in (0.005, 0.01, 0.02, 0.04)] \
+    fixes = (
+        [("none", 0.0, 0.0)]
+        + [(f"depth bias {b * 1000:g} mm", b, 0.0) for b in (0.005, 0.01, 0.02, 0.04)]
         + [(f"body inset {s * 1000:g} mm", 0.0, s) for s in (0.005, 0.01)]
+    )
     rows = []
     default_bias = render.BODY_DEPTH_BIAS
     try:
@@ -131,13 +137,21 @@ def bleed(gaps, out_dir: Path | None) -> list[dict]:
             cv, cf = _cloth(bv, bf, gap)
             masks = {}
             for view in ("front", "side"):
-                masks[view] = render.render_mesh(out / f"cloth_{gap}_{view}.png", cv, cf, view=view, frame="all")
+                masks[view] = render.render_mesh(
+                    out / f"cloth_{gap}_{view}.png", cv, cf, view=view, frame="all"
+                )
             for name, bias, inset in fixes:
                 render.BODY_DEPTH_BIAS = bias
                 row = {"gap [mm]": gap * 1000, "fix": name}
                 for view in ("front", "side"):
-                    p = render.render_mesh(out / f"{gap}_{name.replace(' ', '_')}_{view}.png", cv, cf, view=view,
-                                           body=(bv - inset * bn, bf), frame="all")
+                    p = render.render_mesh(
+                        out / f"{gap}_{name.replace(' ', '_')}_{view}.png",
+                        cv,
+                        cf,
+                        view=view,
+                        body=(bv - inset * bn, bf),
+                        frame="all",
+                    )
                     row[f"{view}: body px in cloth [%]"] = _bleed(p, masks[view])
                 rows.append(row)
     finally:
@@ -152,8 +166,12 @@ def main(argv=None) -> None:
     ap.add_argument("--sizes", type=int, nargs="+", default=[5000, 20000, 60000])
     ap.add_argument("--repeat", type=int, default=2)
     ap.add_argument("--out", type=Path, default=None, help="keep the PNGs here")
-    ap.add_argument("--bleed", action="store_true", help="measure the body showing through close cloth instead")
-    ap.add_argument("--gaps", type=float, nargs="+", default=[0.002, 0.005, 0.01], help="--bleed: cloth-body gaps [m]")
+    ap.add_argument(
+        "--bleed", action="store_true", help="measure the body showing through close cloth instead"
+    )
+    ap.add_argument(
+        "--gaps", type=float, nargs="+", default=[0.002, 0.005, 0.01], help="--bleed: cloth-body gaps [m]"
+    )
     args = ap.parse_args(argv)
     if args.bleed:
         bleed(args.gaps, args.out)
@@ -167,15 +185,19 @@ def main(argv=None) -> None:
     v, f = wavy_tube(500)
     render_mesh(out / "warmup.png", v, f, size_px=(200, 200))
 
-    print(f"{'faces':>8} {'garment only [s]':>17} {'+ heat map [s]':>15} {'+ body [s]':>11} "
-          f"{'faces with body':>16}")
+    print(
+        f"{'faces':>8} {'garment only [s]':>17} {'+ heat map [s]':>15} {'+ body [s]':>11} "
+        f"{'faces with body':>16}"
+    )
     for n in args.sizes:
         gv, gf = wavy_tube(n)
         bv, bf = ellipsoid(n)
         d = np.abs(gv[:, 0]) * 1000.0
         t0 = _best(lambda: render_mesh(out / f"g{n}.png", gv, gf), args.repeat)
-        t1 = _best(lambda: render_mesh(out / f"h{n}.png", gv, gf, vertex_values=d,
-                                       colorbar_label="distance [mm]"), args.repeat)
+        t1 = _best(
+            lambda: render_mesh(out / f"h{n}.png", gv, gf, vertex_values=d, colorbar_label="distance [mm]"),
+            args.repeat,
+        )
         t2 = _best(lambda: render_mesh(out / f"b{n}.png", gv, gf, body=(bv, bf)), args.repeat)
         print(f"{len(gf):>8} {t0:>17.2f} {t1:>15.2f} {t2:>11.2f} {len(gf) + len(bf):>16}")
     print(f"PNGs in {out}")

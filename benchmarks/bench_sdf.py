@@ -2,7 +2,8 @@
 case's body (no cache), accuracy against exact point-to-mesh distance, and query time of 8K
 points with gradient (forward + backward).
 
-    OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_sdf.py [--threads 2] [--voxel 0.005] [--case DIR]
+    OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_sdf.py [--threads 2] [--voxel 0.005]
+        [--case DIR]
 
 The peak (``ru_maxrss``) is read before and after the build; the build is the first large
 allocation after the body is loaded, so run one body per process.
@@ -24,9 +25,14 @@ def main(argv=None) -> None:
     ap.add_argument("--voxel", type=float, default=0.005)
     ap.add_argument("--points", type=int, default=8192)
     ap.add_argument("--accuracy-points", type=int, default=1000)
-    ap.add_argument("--case", default=None, help="a fitting case folder: its body instead of the default body")
-    ap.add_argument("--compare-igl", action="store_true",
-                    help="also time libigl's exact unsigned distance (AABB tree) at every grid node")
+    ap.add_argument(
+        "--case", default=None, help="a fitting case folder: its body instead of the default body"
+    )
+    ap.add_argument(
+        "--compare-igl",
+        action="store_true",
+        help="also time libigl's exact unsigned distance (AABB tree) at every grid node",
+    )
     args = ap.parse_args(argv)
 
     import numpy as np
@@ -76,16 +82,27 @@ def main(argv=None) -> None:
             dd, nn = sdf.query(xx)
             (g,) = torch.autograd.grad(dd.sum(), xx)
             ts_fb.append(time.perf_counter() - t)
-        rows.append((f"{str(dtype).replace('torch.', '')}, {order} order", np.median(ts_f) * 1e3, np.median(ts_fb) * 1e3))
+        rows.append(
+            (
+                f"{str(dtype).replace('torch.', '')}, {order} order",
+                np.median(ts_f) * 1e3,
+                np.median(ts_fb) * 1e3,
+            )
+        )
 
     print(f"{name}: {len(body.verts)} verts, {len(body.faces)} faces; torch threads {args.threads}")
-    print("| grid | voxel [mm] | nodes | build [s] | peak before / after the build [MB] | RMS err <5cm [mm] | max err <5cm [mm] |")
+    print(
+        "| grid | voxel [mm] | nodes | build [s] | peak before / after the build [MB] | RMS err <5cm [mm] | "
+        "max err <5cm [mm] |"
+    )
     print("|---|---|---|---|---|---|---|")
-    print(f"| {nx}x{ny}x{nz} | {args.voxel * 1e3:.1f} | {nx * ny * nz / 1e6:.1f}M | {t_build:.1f} | {rss0:.0f} / {rss1:.0f} | "
-          f"{np.sqrt(np.mean(err[near] ** 2)) * 1e3:.2f} | {np.abs(err[near]).max() * 1e3:.2f} |")
+    print(
+        f"| {nx}x{ny}x{nz} | {args.voxel * 1e3:.1f} | {nx * ny * nz / 1e6:.1f}M | {t_build:.1f} | {rss0:.0f} "
+        f"/ {rss1:.0f} | {np.sqrt(np.mean(err[near] ** 2)) * 1e3:.2f} | {np.abs(err[near]).max() * 1e3:.2f} |"
+    )
     print()
     print(f"| query {args.points} points | forward [ms] | forward + gradient [ms] |")
-    print(f"|---|---|---|")
+    print("|---|---|---|")
     for name, f, fb in rows:
         print(f"| {name} | {f:.2f} | {fb:.2f} |")
     if args.compare_igl:
@@ -100,7 +117,9 @@ def main(argv=None) -> None:
         t_igl = time.perf_counter() - t
         diff = np.abs(np.abs(sdf.values) - exact)
         print()
-        print("| unsigned distance at every node | time [s] | max abs difference from the grid, < 5 cm [mm] |")
+        print(
+            "| unsigned distance at every node | time [s] | max abs difference from the grid, < 5 cm [mm] |"
+        )
         print("|---|---|---|")
         print(f"| unsew grid build (band + propagation + sign) | {t_build:.1f} | |")
         print(f"| libigl AABB, exact, unsigned only | {t_igl:.1f} | {diff[exact < 0.05].max() * 1e3:.2f} |")

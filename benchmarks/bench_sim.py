@@ -17,8 +17,9 @@ for steps without the line search on the step's incremental potential (integrato
 Timings on a shared 2-core machine are noisy: each figure is the minimum of --repeat runs, and the
 load average is printed with every row.
 
-    OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_sim.py [--sizes 1000,2000,3000,8000] [--repeat 2]
-        [--variants full:cholespy:unfused,ring:cholespy,ring:cholmod:unfused,ring:cholmod] [--no-loop]
+    OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_sim.py [--sizes 1000,2000,3000,8000]
+        [--repeat 2] [--variants full:cholespy:unfused,ring:cholespy,ring:cholmod:unfused,ring:cholmod]
+        [--no-loop]
 """
 
 from __future__ import annotations
@@ -61,14 +62,25 @@ def _mesh(n_target: int, use_tshirt: bool):
     return "sheet", f, f, uv, x, len(uv)
 
 
-def _run(model, st, sdf, uv, gamma, steps, backward, checkpoint=False, backend="auto", fused=True, line_search=True):
+def _run(
+    model, st, sdf, uv, gamma, steps, backward, checkpoint=False, backend="auto", fused=True, line_search=True
+):
     from unsew.sim import DrapeSettings, drape
 
     uvp = uv.clone().requires_grad_(backward)
     gp = gamma.clone().requires_grad_(backward)
     t0 = time.perf_counter()
-    out = drape(model, st, sdf, uv=uvp, gamma=gp, density=0.15, steps=steps, checkpoint=checkpoint,
-                settings=DrapeSettings(backend=backend, fused=fused, line_search=line_search))
+    out = drape(
+        model,
+        st,
+        sdf,
+        uv=uvp,
+        gamma=gp,
+        density=0.15,
+        steps=steps,
+        checkpoint=checkpoint,
+        settings=DrapeSettings(backend=backend, fused=fused, line_search=line_search),
+    )
     t1 = time.perf_counter()
     if backward:
         (out.x**2).sum().backward()
@@ -108,7 +120,8 @@ def main(argv=None):
     ap.add_argument(
         "--variants",
         default="full:cholespy:unfused,ring:cholespy,ring:cholmod:unfused,ring:cholmod",
-        help="stencil:backend[:unfused][:nols],... (unfused: assembly Functions + sparse_solve instead of step_solve; nols: no line search)",
+        help="stencil:backend[:unfused][:nols],... (unfused: assembly Functions + sparse_solve instead of "
+        "step_solve; nols: no line search)",
     )
     ap.add_argument("--no-loop", action="store_true", help="skip the per-element loop assembly baseline")
     ap.add_argument("--sheet", action="store_true", help="use square sheets even if the t-shirt exists")
@@ -139,15 +152,17 @@ def main(argv=None):
         variants.append((stencil, backend, "unfused" not in rest_, "nols" not in rest_))
     print(f"torch {torch.__version__}, {args.threads} torch thread(s), min of {args.repeat} runs, seconds")
     hdr = (
-        f"{'mesh':>6} {'verts':>6} {'faces':>6} {'variant':>23} | {'fwd 1':>6} {'fwd 20':>7} {'rev 1':>6} {'rev 20':>7} "
-        f"{'f+r 20':>7} | {'RSS+ MB':>7} | {'load':>4}"
+        f"{'mesh':>6} {'verts':>6} {'faces':>6} {'variant':>23} | {'fwd 1':>6} {'fwd 20':>7} {'rev 1':>6} "
+        f"{'rev 20':>7} {'f+r 20':>7} | {'RSS+ MB':>7} | {'load':>4}"
     )
     print(hdr)
     print("-" * len(hdr))
     solver_rows = []
     for n_target in [int(s) for s in args.sizes.split(",")]:
         kind, f, fuv, uv, x, n = _mesh(n_target, not args.sheet)
-        models = {st_: SimModel.build(f, fuv, n=n, bending_stencil=st_) for st_ in sorted({v[0] for v in variants})}
+        models = {
+            st_: SimModel.build(f, fuv, n=n, bending_stencil=st_) for st_ in sorted({v[0] for v in variants})
+        }
         uvt = torch.as_tensor(uv, dtype=torch.float64)
         st = SimState.at_rest(x)
         res = {v: {} for v in variants}
@@ -157,7 +172,9 @@ def main(argv=None):
             for _ in range(args.repeat):
                 for v in variants:
                     r0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-                    fw, rv = _run(models[v[0]], st, sdf, uvt, gamma, steps, True, args.checkpoint, v[1], v[2], v[3])
+                    fw, rv = _run(
+                        models[v[0]], st, sdf, uvt, gamma, steps, True, args.checkpoint, v[1], v[2], v[3]
+                    )
                     r1 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
                     b = res[v].get(steps, (np.inf, np.inf))
                     res[v][steps] = (min(b[0], fw), min(b[1], rv))
@@ -166,9 +183,10 @@ def main(argv=None):
         load = os.getloadavg()[0]
         for v in variants:
             r = res[v]
+            name = v[0] + ":" + v[1] + ("" if v[2] else ":unfused") + ("" if v[3] else ":nols")
             print(
-                f"{kind:>6} {n:>6} {f.shape[0]:>6} {v[0] + ':' + v[1] + ('' if v[2] else ':unfused') + ('' if v[3] else ':nols'):>23} | {r[1][0]:6.3f} {r[20][0]:7.3f} {r[1][1]:6.3f} "
-                f"{r[20][1]:7.3f} {r[20][0] + r[20][1]:7.3f} | {r['rss']:7.0f} | {load:4.1f}",
+                f"{kind:>6} {n:>6} {f.shape[0]:>6} {name:>23} | {r[1][0]:6.3f} {r[20][0]:7.3f} "
+                f"{r[1][1]:6.3f} {r[20][1]:7.3f} {r[20][0] + r[20][1]:7.3f} | {r['rss']:7.0f} | {load:4.1f}",
                 flush=True,
             )
         model = models.get("full", next(iter(models.values())))
@@ -193,7 +211,9 @@ def main(argv=None):
             tb = {}
             for stencil, m in sorted(models.items()):
                 Hb_s = Hb * _ring_weight(Hb) if stencil == "ring" else Hb
-                K = scatter_blocks(m.nnz, m.tri_src, m.tri_dst, Hm) + scatter_blocks(m.nnz, m.hinge_src, m.hinge_dst, Hb_s)
+                K = scatter_blocks(m.nnz, m.tri_src, m.tri_dst, Hm) + scatter_blocks(
+                    m.nnz, m.hinge_src, m.hinge_dst, Hb_s
+                )
                 A = 0.0025 * K
                 A[m.diag_dst] += rest.mass.repeat_interleave(3)
                 pat = SparsePattern(3 * n, m.rows, m.cols)
@@ -215,12 +235,20 @@ def main(argv=None):
                     tb[(stencil, be)] = (t, m.nnz)
         solver_rows.append((kind, n, t_loop, t_ours, tb, os.getloadavg()[0]))
     print()
-    print(f"{'mesh':>6} {'verts':>6} | {'asm loop':>8} {'asm ours':>8} {'speedup':>7} | factor + 2 solves [ms] (nnz of the lower triangle)")
+    print(
+        f"{'mesh':>6} {'verts':>6} | {'asm loop':>8} {'asm ours':>8} {'speedup':>7} | factor + 2 solves [ms] "
+        "(nnz of the lower triangle)"
+    )
     for kind, n, t_loop, t_ours, tb, load in solver_rows:
         cells = "  ".join(f"{st_}:{be} {t * 1e3:6.1f} ({nnz})" for (st_, be), (t, nnz) in tb.items())
-        print(f"{kind:>6} {n:>6} | {t_loop:8.3f} {t_ours:8.4f} {t_loop / t_ours:6.0f}x | {cells}  load {load:.1f}")
+        print(
+            f"{kind:>6} {n:>6} | {t_loop:8.3f} {t_ours:8.4f} {t_loop / t_ours:6.0f}x | {cells}  load "
+            f"{load:.1f}"
+        )
     print("fwd/rev: drape forward and backward (loss = sum |x|^2 on the final state) wrt uv and Gamma;")
-    print("RSS+: growth of peak resident memory during the 20-step runs (0 when an earlier size peaked higher);")
+    print(
+        "RSS+: growth of peak resident memory during the 20-step runs (0 when an earlier size peaked higher);"
+    )
     print("asm: assembly of the membrane + bending system blocks (one step); f+s: factor + two solves.")
 
 

@@ -56,7 +56,9 @@ def foreign_dir() -> Path:
         d = up / "shared" / "foreign"
         if (d / "patterns").is_dir() and (d / "bodies").is_dir():
             return d
-    raise SystemExit("no shared/foreign/{patterns,bodies} found beside the repository (../shared from its root)")
+    raise SystemExit(
+        "no shared/foreign/{patterns,bodies} found beside the repository (../shared from its root)"
+    )
 
 
 def read_obj_uv(path: Path):
@@ -85,8 +87,12 @@ def measure(obj: Path, sdf) -> dict:
     r = np.linalg.norm(x[e[:, 0]] - x[e[:, 1]], axis=1) / np.linalg.norm(uv[eu[:, 0]] - uv[eu[:, 1]], axis=1)
     with torch.no_grad():
         d, _ = sdf.query(torch.as_tensor(x))
-    return {"vertices": len(x), "inside_pct": float((d < 0).double().mean()) * 100.0,
-            "stretch_max": float(r.max()), "stretch_p99": float(np.percentile(r, 99))}
+    return {
+        "vertices": len(x),
+        "inside_pct": float((d < 0).double().mean()) * 100.0,
+        "stretch_max": float(r.max()),
+        "stretch_p99": float(np.percentile(r, 99)),
+    }
 
 
 def seam_rows(name: str, obj: Path, *, foreign: Path, edge_length: float = 0.025, top: int = 3) -> list[dict]:
@@ -101,7 +107,9 @@ def seam_rows(name: str, obj: Path, *, foreign: Path, edge_length: float = 0.025
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # clockwise panels mirrored, seam length warnings
-        mesh = mesh_pattern(load_pattern(foreign / "patterns" / f"{name}_specification.json"), edge_length=edge_length)
+        mesh = mesh_pattern(
+            load_pattern(foreign / "patterns" / f"{name}_specification.json"), edge_length=edge_length
+        )
     x = read_obj_uv(obj)[0]
     if len(x) != mesh.n_x:
         return []
@@ -110,19 +118,51 @@ def seam_rows(name: str, obj: Path, *, foreign: Path, edge_length: float = 0.025
         xv, uv = x[mesh.x_of_u[vs]], mesh.uv[vs]
         l3 = np.linalg.norm(np.diff(xv, axis=0), axis=1)
         l2 = np.linalg.norm(np.diff(uv, axis=0), axis=1)
-        rows.append({"pattern": name, "panel": panel, "edge": edge, "rest_cm": float(100.0 * l2.sum()),
-                     "stretch_max": float((l3 / l2).max()), "stretch_whole": float(l3.sum() / l2.sum()),
-                     "y_m": float(xv[:, 1].mean())})
+        rows.append(
+            {
+                "pattern": name,
+                "panel": panel,
+                "edge": edge,
+                "rest_cm": float(100.0 * l2.sum()),
+                "stretch_max": float((l3 / l2).max()),
+                "stretch_whole": float(l3.sum() / l2.sum()),
+                "y_m": float(xv[:, 1].mean()),
+            }
+        )
     return sorted(rows, key=lambda r: -r["stretch_max"])[:top]
 
 
-def drape_one(name: str, body: str, out: Path, *, foreign: Path, sdf, edge_length=None, sew_steps=None,
-              settle_steps=None) -> dict:
+def drape_one(
+    name: str,
+    body: str,
+    out: Path,
+    *,
+    foreign: Path,
+    sdf,
+    edge_length=None,
+    sew_steps=None,
+    settle_steps=None,
+) -> dict:
     """Run ``unsew drape`` on one true pattern and measure what it wrote (module docstring)."""
     obj = out / f"{name}.obj"
-    cmd = [sys.executable, "-m", "unsew", "drape", str(foreign / "patterns" / f"{name}_specification.json"),
-           "--body", str(foreign / "bodies" / f"{body}.obj"), "--out", str(obj), "--keep-failed", "--no-progress"]
-    for flag, val in (("--edge-length", edge_length), ("--sew-steps", sew_steps), ("--settle-steps", settle_steps)):
+    cmd = [
+        sys.executable,
+        "-m",
+        "unsew",
+        "drape",
+        str(foreign / "patterns" / f"{name}_specification.json"),
+        "--body",
+        str(foreign / "bodies" / f"{body}.obj"),
+        "--out",
+        str(obj),
+        "--keep-failed",
+        "--no-progress",
+    ]
+    for flag, val in (
+        ("--edge-length", edge_length),
+        ("--sew-steps", sew_steps),
+        ("--settle-steps", settle_steps),
+    ):
         if val is not None:
             cmd += [flag, str(val)]
     env = {**os.environ, "OMP_WAIT_POLICY": "PASSIVE"}
@@ -134,8 +174,11 @@ def drape_one(name: str, body: str, out: Path, *, foreign: Path, sdf, edge_lengt
         row.update(measure(written, sdf))
     lines = (r.stderr.strip() or r.stdout.strip()).splitlines()
     row["message"] = "" if r.returncode == 0 else (lines[-1] if lines else "")
-    row["ok"] = bool(r.returncode == 0 and row.get("inside_pct", 100.0) <= INSIDE_MAX_PCT
-                     and row.get("stretch_max", np.inf) <= STRETCH_MAX)
+    row["ok"] = bool(
+        r.returncode == 0
+        and row.get("inside_pct", 100.0) <= INSIDE_MAX_PCT
+        and row.get("stretch_max", np.inf) <= STRETCH_MAX
+    )
     return row
 
 
@@ -150,8 +193,16 @@ def run(names, *, out: Path, edge_length=None, sew_steps=None, settle_steps=None
         body = PATTERNS[name]
         if body not in sdfs:
             sdfs[body] = BodySDF.build(load_body(foreign / "bodies" / f"{body}.obj", None))
-        row = drape_one(name, body, out, foreign=foreign, sdf=sdfs[body], edge_length=edge_length,
-                        sew_steps=sew_steps, settle_steps=settle_steps)
+        row = drape_one(
+            name,
+            body,
+            out,
+            foreign=foreign,
+            sdf=sdfs[body],
+            edge_length=edge_length,
+            sew_steps=sew_steps,
+            settle_steps=settle_steps,
+        )
         rows.append(row)
         print({k: (round(v, 3) if isinstance(v, float) else v) for k, v in row.items()}, flush=True)
     return rows
@@ -161,9 +212,13 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--patterns", nargs="*", default=list(PATTERNS), choices=list(PATTERNS))
     ap.add_argument("--out", default=None, help="folder for the draped OBJs (default: a temporary one)")
-    ap.add_argument("--edge-length", type=float, default=None, help="mesh edge length [m] (default: unsew drape's)")
+    ap.add_argument(
+        "--edge-length", type=float, default=None, help="mesh edge length [m] (default: unsew drape's)"
+    )
     ap.add_argument("--small", action="store_true", help="one pattern, coarse mesh, short sewing (for tests)")
-    ap.add_argument("--seams", action="store_true", help="also list each garment's most stretched pattern edges")
+    ap.add_argument(
+        "--seams", action="store_true", help="also list each garment's most stretched pattern edges"
+    )
     args = ap.parse_args()
     from tables import print_table
 
@@ -184,15 +239,35 @@ def main() -> None:
                 obj = out / f"{r['pattern']}.obj"
                 obj = obj if obj.is_file() else obj.with_name(obj.stem + ".failed.obj")
                 if obj.is_file():
-                    seams += seam_rows(r["pattern"], obj, foreign=foreign_dir(), edge_length=kw.get("edge_length", 0.025))
+                    seams += seam_rows(
+                        r["pattern"], obj, foreign=foreign_dir(), edge_length=kw.get("edge_length", 0.025)
+                    )
     print()
-    print_table(rows, ["pattern", "body", "exit", "inside_pct", "stretch_max", "stretch_p99", "vertices", "time_s",
-                       "ok", "message"])
+    print_table(
+        rows,
+        [
+            "pattern",
+            "body",
+            "exit",
+            "inside_pct",
+            "stretch_max",
+            "stretch_p99",
+            "vertices",
+            "time_s",
+            "ok",
+            "message",
+        ],
+    )
     if seams:
-        print_table(seams, ["pattern", "panel", "edge", "rest_cm", "stretch_max", "stretch_whole", "y_m"],
-                    title="most stretched pattern edges")
+        print_table(
+            seams,
+            ["pattern", "panel", "edge", "rest_cm", "stretch_max", "stretch_whole", "y_m"],
+            title="most stretched pattern edges",
+        )
     n_ok = sum(r["ok"] for r in rows)
-    print(f"\n{n_ok} of {len(rows)} dressed (exit 0, <= {INSIDE_MAX_PCT} % inside, no edge over {STRETCH_MAX}x)")
+    print(
+        f"\n{n_ok} of {len(rows)} dressed (exit 0, <= {INSIDE_MAX_PCT} % inside, no edge over {STRETCH_MAX}x)"
+    )
 
 
 if __name__ == "__main__":

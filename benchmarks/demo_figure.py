@@ -28,7 +28,9 @@ def compose(result_dir: Path, out: Path, *, dpi: int = 100) -> Path:
     paths = [result_dir / "figures" / n for n in names]
     missing = [str(p) for p in paths if not p.is_file()]
     if missing:
-        raise SystemExit(f"demo_figure: {', '.join(missing)} missing; is {result_dir} a fit's result folder with a report?")
+        raise SystemExit(
+            f"demo_figure: {', '.join(missing)} missing; is {result_dir} a fit's result folder with a report?"
+        )
     images = [mpimg.imread(p) for p in paths]
     h = max(im.shape[0] for im in images)
     widths = [im.shape[1] * h / im.shape[0] for im in images]

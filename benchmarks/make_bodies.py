@@ -52,7 +52,9 @@ def main() -> None:
             "generator": "benchmarks/make_bodies.py",
         }
         save_body_npz(body, out, top_k=4, meta=meta)
-        print(f"{out}: {len(body.verts)} verts, height {body.height:.3f} m, {os.path.getsize(out) / 1e3:.0f} KB")
+        print(
+            f"{out}: {len(body.verts)} verts, height {body.height:.3f} m, {os.path.getsize(out) / 1e3:.0f} KB"
+        )
 
 
 if __name__ == "__main__":

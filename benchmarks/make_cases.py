@@ -28,7 +28,6 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import sys
 import time
 from pathlib import Path
 
@@ -64,7 +63,9 @@ def body_by_name(name: str):
         return default_body()
     path = DATA / f"body_{name}.npz"
     if not path.is_file():
-        raise SystemExit(f"{path} is missing: run benchmarks/make_bodies.py (needs anny) or restore it from git")
+        raise SystemExit(
+            f"{path} is missing: run benchmarks/make_bodies.py (needs anny) or restore it from git"
+        )
     return body_from_npz(path)
 
 
@@ -86,8 +87,16 @@ def _git_version() -> str:
     import subprocess
 
     try:
-        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=HERE.parent, capture_output=True,
-                              text=True, timeout=10).stdout.strip() or "?"
+        return (
+            subprocess.run(
+                ["git", "rev-parse", "--short", "HEAD"],
+                cwd=HERE.parent,
+                capture_output=True,
+                text=True,
+                timeout=10,
+            ).stdout.strip()
+            or "?"
+        )
     except (OSError, subprocess.SubprocessError):
         return "?"
 
@@ -96,7 +105,9 @@ def case_name(garment: str, index: int) -> str:
     return f"{garment}_{index:02d}"
 
 
-def make_case(out: Path, garment: str, index: int, *, seed: int = 0, edge_length: float = 0.025, settings=None) -> Path:
+def make_case(
+    out: Path, garment: str, index: int, *, seed: int = 0, edge_length: float = 0.025, settings=None
+) -> Path:
     """Write (or keep, if present) case ``index`` of ``garment`` under ``out``. Returns its folder.
     ``settings``: DrapeSettings of the target's drape (default: FitConfig's, as the fits dress),
     its edge length replaced by ``edge_length``."""
@@ -108,12 +119,23 @@ def make_case(out: Path, garment: str, index: int, *, seed: int = 0, edge_length
         return d
     alt, bname = design(garment, index, seed)
     body = body_by_name(bname)
-    make_truth_case(d, garment=garment, alteration=alt, body=None if bname == "default" else body,
-                    body_meta="default" if bname == "default" else None,
-                    settings=(settings or FitConfig().drape).replace(edge_length=edge_length))
+    make_truth_case(
+        d,
+        garment=garment,
+        alteration=alt,
+        body=None if bname == "default" else body,
+        body_meta="default" if bname == "default" else None,
+        settings=(settings or FitConfig().drape).replace(edge_length=edge_length),
+    )
     meta = json.loads((d / "meta.json").read_text())
-    meta["benchmark"] = {"body_name": bname, "seed": seed, "index": index, "edge_length_m": edge_length,
-                         "generator": "benchmarks/make_cases.py", "unsew_commit": _git_version()}
+    meta["benchmark"] = {
+        "body_name": bname,
+        "seed": seed,
+        "index": index,
+        "edge_length_m": edge_length,
+        "generator": "benchmarks/make_cases.py",
+        "unsew_commit": _git_version(),
+    }
     (d / "meta.json").write_text(json.dumps(meta, indent=2))
     return d
 
@@ -136,8 +158,11 @@ def main(argv=None):
             d = make_case(Path(args.out), g, i, seed=args.seed, edge_length=args.edge_length)
             meta = json.loads((d / "meta.json").read_text())
             nv = sum(1 for line in open(d / "target.obj") if line.startswith("v "))
-            print(f"{d}: {meta['benchmark']['body_name']:>10} {meta['truth']['material']:>9} "
-                  f"{json.dumps(meta['truth']['changes'])}  {nv} verts  {time.perf_counter() - t:.0f} s", flush=True)
+            print(
+                f"{d}: {meta['benchmark']['body_name']:>10} {meta['truth']['material']:>9} "
+                f"{json.dumps(meta['truth']['changes'])}  {nv} verts  {time.perf_counter() - t:.0f} s",
+                flush=True,
+            )
 
 
 if __name__ == "__main__":

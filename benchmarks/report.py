@@ -29,9 +29,19 @@ RESULTS = HERE / "results"
 OUT = ROOT / "docs" / "benchmarks.md"
 
 #: Columns of the per-case table of the foreign fits: record key -> heading.
-CASE_COLUMNS = {"case": "case", "code": "commit", "base": "base", "cf_base_mm": "base mm", "cf_graded_mm": "graded mm",
-                "cf_final_mm": "fit mm", "floor_mm": "floor mm", "total_final_pct": "total area %",
-                "area_final_pct": "panel area %", "phase2_kept": "phase two kept", "time_s": "time s"}
+CASE_COLUMNS = {
+    "case": "case",
+    "code": "commit",
+    "base": "base",
+    "cf_base_mm": "base mm",
+    "cf_graded_mm": "graded mm",
+    "cf_final_mm": "fit mm",
+    "floor_mm": "floor mm",
+    "total_final_pct": "total area %",
+    "area_final_pct": "panel area %",
+    "phase2_kept": "phase two kept",
+    "time_s": "time s",
+}
 
 
 def _median(v: list[float]) -> float:
@@ -67,12 +77,13 @@ def foreign_section(record: Path) -> list[str]:
         "## Foreign targets: garments unsew did not make",
         "",
         f"{len(rows)} of {len(cases)} cases in `benchmarks/foreign/cases` have a recorded fit"
-        + (f" (none yet: {', '.join(missing)})" if missing else "") + ". A case is a GarmentCode-format design draped "
-        "by NVIDIA newton on an anny or GarmentCode body; its floor is its true pattern draped by `unsew drape`, "
-        "and its bar is max(5 mm, 1.5 x floor). Each row names the commit its fit ran on "
+        + (f" (none yet: {', '.join(missing)})" if missing else "")
+        + ". A case is a GarmentCode-format design draped "
+        "by NVIDIA newton on an anny or GarmentCode body; its floor is its true pattern draped by `unsew "
+        "drape`, and its bar is max(5 mm, 1.5 x floor). Each row names the commit its fit ran on "
         f"({len(commits)} commits). Command: `python -m benchmarks foreign_fit --out OUT --cases ...`, then "
-        "`--no-run --record benchmarks/foreign/fits.json --code REV`; `--latest benchmarks/foreign/fits.json` "
-        "prints this table.",
+        "`--no-run --record benchmarks/foreign/fits.json --code REV`; `--latest "
+        "benchmarks/foreign/fits.json` prints this table.",
         "",
         markdown_table(bars(rows), digits=1),
         "",
@@ -87,12 +98,28 @@ def foreign_section(record: Path) -> list[str]:
         rs = [r for r in by[g] if r.get("cf_final_mm") is not None]
         cf = [r["cf_final_mm"] for r in rs]
         tot = [r["total_final_pct"] for r in rs if r.get("total_final_pct") is not None]
-        within = sum(r.get("floor_mm") is not None and r["cf_final_mm"] <= max(5.0, 1.5 * r["floor_mm"]) for r in rs)
-        summary.append({"garment": g, "cases": len(rs), "fit mm median": _median(cf), "fit mm worst": max(cf),
-                        "within bar": f"{within} of {len(rs)}",
-                        "total area % median": _median(tot) if tot else None, "total area % worst": max(tot) if tot else None})
-    lines += [markdown_table(summary, digits=1), "", "### Each case's latest recorded fit", "",
-              markdown_table([{h: r.get(k) for k, h in CASE_COLUMNS.items()} for r in rows], digits=1), ""]
+        within = sum(
+            r.get("floor_mm") is not None and r["cf_final_mm"] <= max(5.0, 1.5 * r["floor_mm"]) for r in rs
+        )
+        summary.append(
+            {
+                "garment": g,
+                "cases": len(rs),
+                "fit mm median": _median(cf),
+                "fit mm worst": max(cf),
+                "within bar": f"{within} of {len(rs)}",
+                "total area % median": _median(tot) if tot else None,
+                "total area % worst": max(tot) if tot else None,
+            }
+        )
+    lines += [
+        markdown_table(summary, digits=1),
+        "",
+        "### Each case's latest recorded fit",
+        "",
+        markdown_table([{h: r.get(k) for k, h in CASE_COLUMNS.items()} for r in rows], digits=1),
+        "",
+    ]
     return lines
 
 
@@ -114,8 +141,14 @@ def results_sections(folder: Path) -> list[str]:
         missing = {"title", "command", "commit", "rows"} - set(t)
         if missing:
             raise ValueError(f"{p} is not a recorded table: no {', '.join(sorted(missing))}")
-        lines += [f"## {t['title']}", "", f"Command: `{t['command']}` at {t['commit']} (`{_shown(p)}`).", "",
-                  markdown_table(t["rows"], digits=2), ""]
+        lines += [
+            f"## {t['title']}",
+            "",
+            f"Command: `{t['command']}` at {t['commit']} (`{_shown(p)}`).",
+            "",
+            markdown_table(t["rows"], digits=2),
+            "",
+        ]
     return lines
 
 
@@ -133,12 +166,18 @@ def demo_table(demo_out: Path, commit: str) -> dict:
         v = (m.get("pattern" + suffix) or {}).get(key)
         return None if v is None else round(scale * v, 3)
 
-    rows = [row("Chamfer [mm]", lambda s: round(m["surface" + s]["chamfer_mm"], 3)),
-            row("normal error [deg]", lambda s: round(m["surface" + s]["normal_error_deg"], 3)),
-            row("panel area error [%]", lambda s: pat(s, "area_error_rel_mean", 100.0)),
-            row("turning distance [rad]", lambda s: pat(s, "turning_distance_mean"))]
-    return {"title": "Demo: a known t-shirt fitted on the default body", "command": "make demo",
-            "commit": commit, "rows": rows}
+    rows = [
+        row("Chamfer [mm]", lambda s: round(m["surface" + s]["chamfer_mm"], 3)),
+        row("normal error [deg]", lambda s: round(m["surface" + s]["normal_error_deg"], 3)),
+        row("panel area error [%]", lambda s: pat(s, "area_error_rel_mean", 100.0)),
+        row("turning distance [rad]", lambda s: pat(s, "turning_distance_mean")),
+    ]
+    return {
+        "title": "Demo: a known t-shirt fitted on the default body",
+        "command": "make demo",
+        "commit": commit,
+        "rows": rows,
+    }
 
 
 def render(record: Path, results: Path = RESULTS) -> str:
@@ -153,24 +192,41 @@ def render(record: Path, results: Path = RESULTS) -> str:
     ]
     lines += foreign_section(record)
     lines += results_sections(results) if results.is_dir() else []
-    lines += ["## Decisions behind the defaults", "", "The reasons for the defaults, each with its measurement and command: [docs/decisions](decisions/)."]
+    lines += [
+        "## Decisions behind the defaults",
+        "",
+        "The reasons for the defaults, each with its measurement and command: [docs/decisions](decisions/).",
+    ]
     return "\n".join(lines).rstrip() + "\n"
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", type=Path, default=OUT, help="the page to write")
-    ap.add_argument("--record", type=Path, default=HERE / "foreign" / "fits.json", help="the foreign fits' record")
+    ap.add_argument(
+        "--record", type=Path, default=HERE / "foreign" / "fits.json", help="the foreign fits' record"
+    )
     ap.add_argument("--results", type=Path, default=RESULTS, help="folder of other recorded tables")
-    ap.add_argument("--check", action="store_true", help="write nothing; exit 1 when --out is not what would be written")
-    ap.add_argument("--demo", type=Path, help="a finished `unsew demo` folder: record its figures as results/demo.json first")
+    ap.add_argument(
+        "--check", action="store_true", help="write nothing; exit 1 when --out is not what would be written"
+    )
+    ap.add_argument(
+        "--demo",
+        type=Path,
+        help="a finished `unsew demo` folder: record its figures as results/demo.json first",
+    )
     ap.add_argument("--commit", default="", help="with --demo: the commit the demo ran on")
     args = ap.parse_args(argv)
     if args.demo is not None:
         if not (args.demo / "fit" / "metrics.json").is_file() or not args.commit:
-            print(f"report: --demo needs a finished demo folder ({args.demo}/fit/metrics.json) and --commit", file=sys.stderr)
+            print(
+                f"report: --demo needs a finished demo folder ({args.demo}/fit/metrics.json) and --commit",
+                file=sys.stderr,
+            )
             return 2
-        (args.results / "demo.json").write_text(json.dumps(demo_table(args.demo, args.commit), indent=1) + "\n")
+        (args.results / "demo.json").write_text(
+            json.dumps(demo_table(args.demo, args.commit), indent=1) + "\n"
+        )
     if not args.record.is_file():
         print(f"report: no record at {args.record}", file=sys.stderr)
         return 2
@@ -181,7 +237,10 @@ def main(argv=None) -> int:
         return 2
     if args.check:
         same = args.out.is_file() and args.out.read_text() == text
-        print(f"{args.out}: {'up to date' if same else 'differs from the records; run python -m benchmarks report'}")
+        print(
+            f"{args.out}: "
+            f"{'up to date' if same else 'differs from the records; run python -m benchmarks report'}"
+        )
         return 0 if same else 1
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(text)

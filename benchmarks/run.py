@@ -112,12 +112,23 @@ def fit_case(case_dir: Path, out: Path, cfg, *, log=print, retry_failed: bool | 
         load0 = _loadavg()
         t = time.perf_counter()
         try:
-            result, _ = run_fit(case, cfg, out, resume=resume, overwrite=True, progress=False, log=lambda s: None)
+            result, _ = run_fit(
+                case, cfg, out, resume=resume, overwrite=True, progress=False, log=lambda s: None
+            )
         except Exception as exc:  # a failed fit is a row of the table, not the end of the run
             err = f"{type(exc).__name__}: {exc}".splitlines()[0]
             side.parent.mkdir(parents=True, exist_ok=True)
-            side.write_text(json.dumps({"error": err, "wall_s": time.perf_counter() - t, "load_start": load0,
-                                        "unsew_commit": git_version()}, indent=2))
+            side.write_text(
+                json.dumps(
+                    {
+                        "error": err,
+                        "wall_s": time.perf_counter() - t,
+                        "load_start": load0,
+                        "unsew_commit": git_version(),
+                    },
+                    indent=2,
+                )
+            )
             log(f"  {case_dir.name}: FAILED ({err})")
             return {"out": out, "metrics": None, "material": {}, "bench": {"error": err}}
         wall = time.perf_counter() - t
@@ -129,17 +140,34 @@ def fit_case(case_dir: Path, out: Path, cfg, *, log=print, retry_failed: bool | 
                 graded = pattern_metrics(result.graded_pattern, case.pattern_gt)
             except Exception as exc:  # unmatched panels: report, keep the table going
                 graded = {"error": str(exc)}
-        side.write_text(json.dumps({"pattern_graded": graded, "wall_s": wall, "load_start": load0,
-                                    "unsew_commit": git_version(),
-                                    "load_end": _loadavg(), "resumed": resume}, indent=2))
-    rec = {"out": out, "metrics": json.loads((out / "metrics.json").read_text()),
-           "material": json.loads((out / "material.json").read_text()) if (out / "material.json").is_file() else {},
-           "bench": json.loads(side.read_text()) if side.is_file() else {}}
+        side.write_text(
+            json.dumps(
+                {
+                    "pattern_graded": graded,
+                    "wall_s": wall,
+                    "load_start": load0,
+                    "unsew_commit": git_version(),
+                    "load_end": _loadavg(),
+                    "resumed": resume,
+                },
+                indent=2,
+            )
+        )
+    rec = {
+        "out": out,
+        "metrics": json.loads((out / "metrics.json").read_text()),
+        "material": json.loads((out / "material.json").read_text())
+        if (out / "material.json").is_file()
+        else {},
+        "bench": json.loads(side.read_text()) if side.is_file() else {},
+    }
     s = rec["metrics"]["surface"]
     p = rec["metrics"].get("pattern") or {}
     p = p if "error" not in p else {}
-    log(f"  {case_dir.name}: Chamfer {s['chamfer_mm']:.2f} mm, normal {s['normal_error_deg']:.1f} deg, "
-        f"area error {100 * p.get('area_error_rel_mean', float('nan')):.2f} %")
+    log(
+        f"  {case_dir.name}: Chamfer {s['chamfer_mm']:.2f} mm, normal {s['normal_error_deg']:.1f} deg, "
+        f"area error {100 * p.get('area_error_rel_mean', float('nan')):.2f} %"
+    )
     return rec
 
 
@@ -191,8 +219,10 @@ def ensure_cases(args) -> dict[str, list[Path]]:
     cases_dir = Path(args.cases)
     out: dict[str, list[Path]] = {}
     for g in args.garments:
-        out[g] = [make_cases.make_case(cases_dir, g, i, seed=args.seed, edge_length=args.case_edge_length)
-                  for i in range(args.per_type)]
+        out[g] = [
+            make_cases.make_case(cases_dir, g, i, seed=args.seed, edge_length=args.case_edge_length)
+            for i in range(args.per_type)
+        ]
     return out
 
 
@@ -237,22 +267,30 @@ def git_version() -> str:
     """The checkout's commit (short hash, '+dirty' when tracked files under src/ differ)."""
     root = HERE.parent
     try:
-        rev = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=root, capture_output=True, text=True,
-                             timeout=10).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no", "src"], cwd=root,
-                               capture_output=True, text=True, timeout=10).stdout.strip()
+        rev = subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"], cwd=root, capture_output=True, text=True, timeout=10
+        ).stdout.strip()
+        dirty = subprocess.run(
+            ["git", "status", "--porcelain", "--untracked-files=no", "src"],
+            cwd=root,
+            capture_output=True,
+            text=True,
+            timeout=10,
+        ).stdout.strip()
         return (rev or "?") + ("+dirty" if dirty else "")
     except (OSError, subprocess.SubprocessError):
         return "?"
 
 
 def header(args, what: str) -> str:
-    return (f"{what}: {datetime.datetime.now().isoformat(timespec='minutes')}, unsew at {git_version()}, "
-            f"{platform.node()} "
-            f"({os.cpu_count()} cores, load {_loadavg():.1f}), python {platform.python_version()}, "
-            f"fit edge {args.edge_length} m, {args.iterations} iterations max, "
-            f"{'quick' if args.quick else 'full'} mode"
-            + (f", config overrides {' '.join(args.set)}" if getattr(args, "set", None) else ""))
+    return (
+        f"{what}: {datetime.datetime.now().isoformat(timespec='minutes')}, unsew at {git_version()}, "
+        f"{platform.node()} "
+        f"({os.cpu_count()} cores, load {_loadavg():.1f}), python {platform.python_version()}, "
+        f"fit edge {args.edge_length} m, {args.iterations} iterations max, "
+        f"{'quick' if args.quick else 'full'} mode"
+        + (f", config overrides {' '.join(args.set)}" if getattr(args, "set", None) else "")
+    )
 
 
 def emit(args, name: str, text: str) -> None:
@@ -272,12 +310,24 @@ def _stage_values(rec) -> dict:
     sb, sg, s = m.get("surface_base") or {}, m.get("surface_graded") or {}, m["surface"]
     pb, pg, p = m.get("pattern_base"), b.get("pattern_graded"), m.get("pattern")
     return {
-        "base": (sb.get("chamfer_mm"), sb.get("normal_error_deg"), _pm(pb, "turning_distance_mean"),
-                 _pm(pb, "area_error_rel_mean", 100)),
-        "graded": (sg.get("chamfer_mm"), sg.get("normal_error_deg"), _pm(pg, "turning_distance_mean"),
-                   _pm(pg, "area_error_rel_mean", 100)),
-        "fit": (s.get("chamfer_mm"), s.get("normal_error_deg"), _pm(p, "turning_distance_mean"),
-                _pm(p, "area_error_rel_mean", 100)),
+        "base": (
+            sb.get("chamfer_mm"),
+            sb.get("normal_error_deg"),
+            _pm(pb, "turning_distance_mean"),
+            _pm(pb, "area_error_rel_mean", 100),
+        ),
+        "graded": (
+            sg.get("chamfer_mm"),
+            sg.get("normal_error_deg"),
+            _pm(pg, "turning_distance_mean"),
+            _pm(pg, "area_error_rel_mean", 100),
+        ),
+        "fit": (
+            s.get("chamfer_mm"),
+            s.get("normal_error_deg"),
+            _pm(p, "turning_distance_mean"),
+            _pm(p, "area_error_rel_mean", 100),
+        ),
     }
 
 
@@ -287,8 +337,12 @@ def table_accuracy(args, cases: dict[str, list[Path]]) -> list[dict]:
     for g, cs in cases.items():
         for c in cs:
             r = fit_case(c, Path(args.out) / "results" / "full" / c.name, cfg)
-            r.update(garment=g, case=c.name, verts=n_verts(c),
-                     body=json.loads((c / "meta.json").read_text()).get("benchmark", {}).get("body_name", "?"))
+            r.update(
+                garment=g,
+                case=c.name,
+                verts=n_verts(c),
+                body=json.loads((c / "meta.json").read_text()).get("benchmark", {}).get("body_name", "?"),
+            )
             recs.append(r)
     heads = ["garment", "fits done", "stage", "Chamfer mm", "normal deg", "turning rad", "area err %"]
     fmts = ["s", "s", "s", ".2f", ".1f", ".3f", ".2f"]
@@ -297,25 +351,61 @@ def table_accuracy(args, cases: dict[str, list[Path]]) -> list[dict]:
         rs = [r for r in recs if r["garment"] == g]
         for stage in ("base", "graded", "fit"):
             vals = [_stage_values(r)[stage] for r in rs]
-            rows.append([g, f"{sum(r['metrics'] is not None for r in rs)}/{len(rs)}", stage] + [_mean([v[i] for v in vals]) for i in range(4)])
+            rows.append(
+                [g, f"{sum(r['metrics'] is not None for r in rs)}/{len(rs)}", stage]
+                + [_mean([v[i] for v in vals]) for i in range(4)]
+            )
     per_case = md_table(
-        ["case", "body", "verts", "CF base", "CF graded", "CF fit", "N base", "N fit", "A base %", "A graded %",
-         "A fit %", "turn fit", "iters", "fit s", "failure"],
-        [[r["case"], r["body"], r["verts"], *(_stage_values(r)[k][0] for k in ("base", "graded", "fit")),
-          _stage_values(r)["base"][1], _stage_values(r)["fit"][1],
-          *(_stage_values(r)[k][3] for k in ("base", "graded", "fit")), _stage_values(r)["fit"][2],
-          (r["metrics"] or {}).get("iterations"), (r["metrics"] or {}).get("timings_s", {}).get("total_s"),
-          r["bench"].get("error", "")] for r in recs],
-        ["s", "s", "d", ".2f", ".2f", ".2f", ".1f", ".1f", ".2f", ".2f", ".2f", ".3f", "d", ".0f", "s"])
-    text = (f"## Accuracy (Table 2)\n\n{header(args, 'measured')}\n\n"
-            f"Per garment type (mean over its cases):\n\n{md_table(heads, rows, fmts)}\n\nPer case:\n\n{per_case}\n")
+        [
+            "case",
+            "body",
+            "verts",
+            "CF base",
+            "CF graded",
+            "CF fit",
+            "N base",
+            "N fit",
+            "A base %",
+            "A graded %",
+            "A fit %",
+            "turn fit",
+            "iters",
+            "fit s",
+            "failure",
+        ],
+        [
+            [
+                r["case"],
+                r["body"],
+                r["verts"],
+                *(_stage_values(r)[k][0] for k in ("base", "graded", "fit")),
+                _stage_values(r)["base"][1],
+                _stage_values(r)["fit"][1],
+                *(_stage_values(r)[k][3] for k in ("base", "graded", "fit")),
+                _stage_values(r)["fit"][2],
+                (r["metrics"] or {}).get("iterations"),
+                (r["metrics"] or {}).get("timings_s", {}).get("total_s"),
+                r["bench"].get("error", ""),
+            ]
+            for r in recs
+        ],
+        ["s", "s", "d", ".2f", ".2f", ".2f", ".1f", ".1f", ".2f", ".2f", ".2f", ".3f", "d", ".0f", "s"],
+    )
+    text = (
+        f"## Accuracy (Table 2)\n\n{header(args, 'measured')}\n\n"
+        f"Per garment type (mean over its cases):\n\n{md_table(heads, rows, fmts)}\n\nPer "
+        f"case:\n\n{per_case}\n"
+    )
     emit(args, "accuracy", text)
     return recs
 
 
 def table_ablation(args, cases: dict[str, list[Path]]) -> None:
-    chosen = [smallest([c for cs in cases.values() for c in cs])] if args.quick else \
-        [c for cs in cases.values() for c in cs]
+    chosen = (
+        [smallest([c for cs in cases.values() for c in cs])]
+        if args.quick
+        else [c for cs in cases.values() for c in cs]
+    )
     if args.ablation_cases:
         chosen = [Path(args.cases) / n for n in args.ablation_cases]
     rows = []
@@ -323,23 +413,47 @@ def table_ablation(args, cases: dict[str, list[Path]]) -> None:
         cfg = base_config(args, **changes)
         recs = [fit_case(c, Path(args.out) / "results" / name / c.name, cfg) for c in chosen]
         vals = [_stage_values(r)["fit"] for r in recs]
-        rows.append([name, f"{sum(r['metrics'] is not None for r in recs)}/{len(recs)}"] + [_mean([v[i] for v in vals]) for i in range(4)]
-                    + [_mean([(r["metrics"] or {}).get("timings_s", {}).get("total_s") for r in recs])])
-    text = (f"## Ablation (Table 3)\n\n{header(args, 'measured')}\n\nCases: {', '.join(c.name for c in chosen)}\n\n"
-            + md_table(["variant", "fits done", "Chamfer mm", "normal deg", "turning rad", "area err %", "fit s"], rows,
-                       ["s", "s", ".2f", ".1f", ".3f", ".2f", ".0f"]) + "\n")
+        rows.append(
+            [name, f"{sum(r['metrics'] is not None for r in recs)}/{len(recs)}"]
+            + [_mean([v[i] for v in vals]) for i in range(4)]
+            + [_mean([(r["metrics"] or {}).get("timings_s", {}).get("total_s") for r in recs])]
+        )
+    text = (
+        f"## Ablation (Table 3)\n\n{header(args, 'measured')}\n\nCases: "
+        f"{', '.join(c.name for c in chosen)}\n\n"
+        + md_table(
+            ["variant", "fits done", "Chamfer mm", "normal deg", "turning rad", "area err %", "fit s"],
+            rows,
+            ["s", "s", ".2f", ".1f", ".3f", ".2f", ".0f"],
+        )
+        + "\n"
+    )
     emit(args, "ablation", text)
 
 
 def table_speed(args) -> None:
     parts = [f"## Speed (Table 1)\n\n{header(args, 'measured')}\n"]
     if not args.skip_sim:
-        cmd = [sys.executable, str(HERE / "bench_sim.py"), "--sizes", args.sim_sizes, "--repeat", "1",
-               "--variants", "ring:cholespy"]
+        cmd = [
+            sys.executable,
+            str(HERE / "bench_sim.py"),
+            "--sizes",
+            args.sim_sizes,
+            "--repeat",
+            "1",
+            "--variants",
+            "ring:cholespy",
+        ]
         print("running", " ".join(cmd), flush=True)
         r = subprocess.run(cmd, capture_output=True, text=True)
-        parts.append("Drape timings (`" + " ".join(["benchmarks/bench_sim.py"] + cmd[2:]) + "`):\n\n```\n"
-                     + r.stdout.strip() + ("\n" + r.stderr.strip()[-2000:] if r.returncode else "") + "\n```\n")
+        parts.append(
+            "Drape timings (`"
+            + " ".join(["benchmarks/bench_sim.py"] + cmd[2:])
+            + "`):\n\n```\n"
+            + r.stdout.strip()
+            + ("\n" + r.stderr.strip()[-2000:] if r.returncode else "")
+            + "\n```\n"
+        )
     rows = []
     for mfile in sorted((Path(args.out) / "results").glob("*/*/metrics.json")):
         m = json.loads(mfile.read_text())
@@ -349,15 +463,45 @@ def table_speed(args) -> None:
         it = m.get("iterations") or 0
         gm = mfile.parent / "garment.obj"
         nv = sum(1 for line in open(gm) if line.startswith("v ")) if gm.is_file() else None
-        rows.append([f"{mfile.parent.parent.name}/{mfile.parent.name}", nv, it, t.get("total_s"), t.get("body_sdf_s"),
-                     t.get("grading_s"), t.get("material_choice_s"), t.get("optimization_s"),
-                     (t.get("optimization_s") or 0) / it if it else None, t.get("redress_s"), b.get("wall_s"),
-                     b.get("load_start")])
-    parts.append("End-to-end fits found under the results folder (seconds; `fit` = run_fit's total, `wall` "
-                 "includes writing the result folder and report):\n\n"
-                 + md_table(["variant/case", "verts", "iters", "total s", "body SDF s", "grading s",
-                             "fabric choice s", "optim s", "s/iter", "re-dress s", "wall s", "load"], rows,
-                            ["s", "d", "d", ".0f", ".1f", ".1f", ".0f", ".0f", ".2f", ".1f", ".0f", ".1f"]) + "\n")
+        rows.append(
+            [
+                f"{mfile.parent.parent.name}/{mfile.parent.name}",
+                nv,
+                it,
+                t.get("total_s"),
+                t.get("body_sdf_s"),
+                t.get("grading_s"),
+                t.get("material_choice_s"),
+                t.get("optimization_s"),
+                (t.get("optimization_s") or 0) / it if it else None,
+                t.get("redress_s"),
+                b.get("wall_s"),
+                b.get("load_start"),
+            ]
+        )
+    parts.append(
+        "End-to-end fits found under the results folder (seconds; `fit` = run_fit's total, `wall` "
+        "includes writing the result folder and report):\n\n"
+        + md_table(
+            [
+                "variant/case",
+                "verts",
+                "iters",
+                "total s",
+                "body SDF s",
+                "grading s",
+                "fabric choice s",
+                "optim s",
+                "s/iter",
+                "re-dress s",
+                "wall s",
+                "load",
+            ],
+            rows,
+            ["s", "d", "d", ".0f", ".1f", ".1f", ".0f", ".0f", ".2f", ".1f", ".0f", ".1f"],
+        )
+        + "\n"
+    )
     if rows:
         tot = [r[3] for r in rows if r[3]]
         parts.append(f"{len(rows)} fits: median {np.median(tot):.0f} s, max {np.max(tot):.0f} s.\n")
@@ -387,8 +531,12 @@ def material_cases(args) -> dict[str, list[tuple[float, Path]]]:
             d = Path(args.cases) / f"material_{pair}_x{f:g}"
             if not (d / "meta.json").is_file():
                 mat = dataclasses.replace(base, **{k: getattr(base, k) * f for k in fields})
-                make_truth_case(d, garment="skirt", alteration=Alteration(MATERIAL_SKIRT, mat),
-                                settings=DrapeSettings(edge_length=args.case_edge_length))
+                make_truth_case(
+                    d,
+                    garment="skirt",
+                    alteration=Alteration(MATERIAL_SKIRT, mat),
+                    settings=DrapeSettings(edge_length=args.case_edge_length),
+                )
             out[pair].append((f, d))
     return out
 
@@ -412,22 +560,45 @@ def table_material(args) -> None:
         order_ok = vals[0] is not None and vals[1] is not None and vals[0] < vals[1]
         for (f, r), v in zip(recs, vals):
             m = r["metrics"] or {}
-            rows.append([pair, f"x{f:g} ({'/'.join(fields)})", m.get("surface", {}).get("chamfer_mm"),
-                         _pm(m.get("pattern"), "area_error_rel_mean", 100), v,
-                         100 * between["area_error_rel_mean"], "yes" if order_ok else "NO",
-                         "yes" if between["area_error_rel_mean"] <= 0.02 else "NO"]
-                        + [r["bench"].get("error", "")])
+            rows.append(
+                [
+                    pair,
+                    f"x{f:g} ({'/'.join(fields)})",
+                    m.get("surface", {}).get("chamfer_mm"),
+                    _pm(m.get("pattern"), "area_error_rel_mean", 100),
+                    v,
+                    100 * between["area_error_rel_mean"],
+                    "yes" if order_ok else "NO",
+                    "yes" if between["area_error_rel_mean"] <= 0.02 else "NO",
+                ]
+                + [r["bench"].get("error", "")]
+            )
     from unsew.sim.material import get_material
 
     b = get_material(MATERIAL_BASE)
-    text = (f"## Material recovery (paper 4.3, Fig. 10)\n\n{header(args, 'measured')}\n\n"
-            f"One skirt pattern (base skirt, hem {MATERIAL_SKIRT['hem']}) draped in {MATERIAL_BASE} "
-            f"(bending {b.bend:.3g} N m, H00 {b.h00:g} N/m) with the listed stiffnesses scaled; each fitted "
-            f"with material: {cfg.material.start}. `recovered` is the fit's bending [N m] or H00 [N/m]; `A between` is the mean panel "
-            "area error between the pair's two recovered patterns.\n\n"
-            + md_table(["pair", "truth", "Chamfer mm", "area err vs truth %", "recovered", "A between %",
-                        "order right", "A between <= 2%", "failure"], rows,
-                       ["s", "s", ".2f", ".2f", ".4g", ".2f", "s", "s", "s"]) + "\n")
+    text = (
+        f"## Material recovery (paper 4.3, Fig. 10)\n\n{header(args, 'measured')}\n\n"
+        f"One skirt pattern (base skirt, hem {MATERIAL_SKIRT['hem']}) draped in {MATERIAL_BASE} "
+        f"(bending {b.bend:.3g} N m, H00 {b.h00:g} N/m) with the listed stiffnesses scaled; each fitted "
+        f"with material: {cfg.material.start}. `recovered` is the fit's bending [N m] or H00 [N/m]; `A "
+        "between` is the mean panel area error between the pair's two recovered patterns.\n\n"
+        + md_table(
+            [
+                "pair",
+                "truth",
+                "Chamfer mm",
+                "area err vs truth %",
+                "recovered",
+                "A between %",
+                "order right",
+                "A between <= 2%",
+                "failure",
+            ],
+            rows,
+            ["s", "s", ".2f", ".2f", ".4g", ".2f", "s", "s", "s"],
+        )
+        + "\n"
+    )
     emit(args, "material", text)
 
 
@@ -464,17 +635,36 @@ def table_sensitivity(args, cases: dict[str, list[Path]]) -> None:
             rec = fit_case(c, Path(args.out) / "results" / "full" / c.name, base_config(args))
         else:
             base = _scaled_base(c, garment, s, Path(args.out) / "bases" / f"{c.name}_x{s:g}.json")
-            rec = fit_case(c, Path(args.out) / "results" / f"scale{s:g}" / c.name, base_config(args, base=str(base)))
+            rec = fit_case(
+                c, Path(args.out) / "results" / f"scale{s:g}" / c.name, base_config(args, base=str(base))
+            )
         v = _stage_values(rec)
         vals.append(v["fit"])
-        rows.append([f"x{s:g}", v["base"][0], v["base"][3], *v["fit"], (rec["metrics"] or {}).get("iterations")])
+        rows.append(
+            [f"x{s:g}", v["base"][0], v["base"][3], *v["fit"], (rec["metrics"] or {}).get("iterations")]
+        )
     arr = np.array([[np.nan if x is None else x for x in v] for v in vals], dtype=float)
     spread = list(np.nanmax(arr, axis=0) - np.nanmin(arr, axis=0))
     rows.append(["spread (max-min)", None, None, *spread, None])
-    text = (f"## Sensitivity to the starting pattern\n\n{header(args, 'measured')}\n\nCase {c.name} ({garment}): "
-            "the base pattern scaled about each panel's centroid, then graded and fitted as usual.\n\n"
-            + md_table(["start", "CF start mm", "A start %", "CF fit mm", "normal fit deg", "turning fit rad",
-                        "A fit %", "iters"], rows, ["s", ".2f", ".2f", ".2f", ".1f", ".3f", ".2f", "d"]) + "\n")
+    text = (
+        f"## Sensitivity to the starting pattern\n\n{header(args, 'measured')}\n\nCase {c.name} ({garment}): "
+        "the base pattern scaled about each panel's centroid, then graded and fitted as usual.\n\n"
+        + md_table(
+            [
+                "start",
+                "CF start mm",
+                "A start %",
+                "CF fit mm",
+                "normal fit deg",
+                "turning fit rad",
+                "A fit %",
+                "iters",
+            ],
+            rows,
+            ["s", ".2f", ".2f", ".2f", ".1f", ".3f", ".2f", "d"],
+        )
+        + "\n"
+    )
     emit(args, "sensitivity", text)
 
 
@@ -491,12 +681,18 @@ def main(argv=None):
     ap.add_argument("--edge-length", type=float, default=0.025, help="mesh of the fit [m]")
     ap.add_argument("--iterations", type=int, default=100)
     ap.add_argument("--no-report", action="store_true", help="skip report.html in result folders")
-    ap.add_argument("--ablation-cases", nargs="*", help="case names for the ablation (default: all or smallest)")
+    ap.add_argument(
+        "--ablation-cases", nargs="*", help="case names for the ablation (default: all or smallest)"
+    )
     ap.add_argument("--sensitivity-case", help="case name for the sensitivity table (default: the smallest)")
     ap.add_argument("--sim-sizes", default="1000,2000,3000", help="bench_sim.py sizes for the speed table")
     ap.add_argument("--skip-sim", action="store_true", help="speed table: only the fits' timings")
-    ap.add_argument("--set", action="append", metavar="KEY=VALUE",
-                    help="override a FitConfig option for every fit (repeatable); use a separate --out")
+    ap.add_argument(
+        "--set",
+        action="append",
+        metavar="KEY=VALUE",
+        help="override a FitConfig option for every fit (repeatable); use a separate --out",
+    )
     ap.add_argument("--retry-failed", action="store_true", help="refit cases whose fit raised before")
     args = ap.parse_args(argv)
     global RETRY_FAILED

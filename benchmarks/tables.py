@@ -30,8 +30,9 @@ def markdown_table(rows: Iterable[dict], columns: Sequence[str] | None = None, *
     return "\n".join(lines)
 
 
-def print_table(rows: Iterable[dict], columns: Sequence[str] | None = None, *, title: str | None = None,
-                digits: int = 2) -> None:
+def print_table(
+    rows: Iterable[dict], columns: Sequence[str] | None = None, *, title: str | None = None, digits: int = 2
+) -> None:
     """Print a title line (if given) and the Markdown table of ``rows``."""
     if title:
         print(f"\n{title}\n")

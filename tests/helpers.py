@@ -43,7 +43,8 @@ def assert_close(actual, expected, *, atol: float = 0.0, rtol: float = 1e-7, wha
     raise AssertionError(
         f"{what}not close: largest difference {diff[idx]:.3e} at index {tuple(int(i) for i in idx)} "
         f"(actual {a_b[idx]!r}, expected {e_b[idx]!r}, atol {atol:g}, rtol {rtol:g}); "
-        f"shapes actual {a.shape} expected {e.shape}; {int((diff > tol).sum())} of {diff.size} out of tolerance"
+        f"shapes actual {a.shape} expected {e.shape}; {int((diff > tol).sum())} of {diff.size} out of "
+        "tolerance"
     )
 
 
@@ -60,18 +61,35 @@ def no_default_device():
     import unsew
 
     root = os.path.dirname(os.path.abspath(unsew.__file__)) + os.sep
-    factories = {torch.zeros, torch.ones, torch.empty, torch.full, torch.eye, torch.arange, torch.linspace,
-                 torch.tensor, torch.as_tensor, torch.rand, torch.randn, torch.randint}
+    factories = {
+        torch.zeros,
+        torch.ones,
+        torch.empty,
+        torch.full,
+        torch.eye,
+        torch.arange,
+        torch.linspace,
+        torch.tensor,
+        torch.as_tensor,
+        torch.rand,
+        torch.randn,
+        torch.randint,
+    }
 
     class _Check(TorchFunctionMode):
         def __torch_function__(self, func, types, args=(), kwargs=None):
             kwargs = kwargs or {}
-            if func in factories and kwargs.get("device") is None \
-                    and not (func is torch.as_tensor and args and torch.is_tensor(args[0])):
+            if (
+                func in factories
+                and kwargs.get("device") is None
+                and not (func is torch.as_tensor and args and torch.is_tensor(args[0]))
+            ):
                 caller = [f for f in traceback.extract_stack()[:-1] if f.filename != __file__][-1]
                 if os.path.abspath(caller.filename).startswith(root):
-                    raise AssertionError(f"{func.__name__} without device= at {caller.filename}:{caller.lineno} "
-                                         f"({caller.line}): it lands on the default device, not its inputs'")
+                    raise AssertionError(
+                        f"{func.__name__} without device= at {caller.filename}:{caller.lineno} "
+                        f"({caller.line}): it lands on the default device, not its inputs'"
+                    )
             return func(*args, **kwargs)
 
     with _Check():

@@ -42,8 +42,9 @@ def random_parts(d: dict, *, seed: int = 0) -> dict:
 def _insert(d: dict, name: str, parent: str, child: str, t: float, part: str) -> None:
     """A joint ``t`` of the way from ``parent`` to ``child``, made ``child``'s parent."""
     a, b = _joint(d, parent)["position"], _joint(d, child)["position"]
-    d["joints"].append({"name": name, "parent": parent, "part": part,
-                        "position": [x + t * (y - x) for x, y in zip(a, b)]})
+    d["joints"].append(
+        {"name": name, "parent": parent, "part": part, "position": [x + t * (y - x) for x, y in zip(a, b)]}
+    )
     _joint(d, child)["parent"] = name
 
 
@@ -53,16 +54,28 @@ def extra_joints(d: dict) -> dict:
     and finger and toe ends with other rigs' names."""
     out = copy.deepcopy(d)
     pel = _joint(out, "pelvis")
-    out["joints"].append({"name": "Root", "parent": None, "part": "torso",
-                          "position": [pel["position"][0], 0.0, pel["position"][2]]})
+    out["joints"].append(
+        {
+            "name": "Root",
+            "parent": None,
+            "part": "torso",
+            "position": [pel["position"][0], 0.0, pel["position"][2]],
+        }
+    )
     pel["parent"] = "Root"
     _insert(out, "spine_mid", "spine", "chest", 0.5, "torso")
     for side, s in (("left", "L"), ("right", "R")):
         _insert(out, f"{side}_upperarm_twist", f"{side}_shoulder", f"{side}_elbow", 0.5, "torso")
         _insert(out, f"{side}_thigh_twist", f"{side}_hip", f"{side}_knee", 0.5, "torso")
         w = _joint(out, f"{side}_wrist")["position"]
-        out["joints"].append({"name": f"mixamorig:{s}HandIndex4", "parent": f"{side}_wrist", "part": "torso",
-                              "position": [w[0] + (0.08 if side == "left" else -0.08), w[1] - 0.05, w[2]]})
+        out["joints"].append(
+            {
+                "name": f"mixamorig:{s}HandIndex4",
+                "parent": f"{side}_wrist",
+                "part": "torso",
+                "position": [w[0] + (0.08 if side == "left" else -0.08), w[1] - 0.05, w[2]],
+            }
+        )
     return out
 
 

@@ -41,7 +41,9 @@ def test_bound_heap_gives_a_freed_16mb_block_back():
     import subprocess
 
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
-    out = subprocess.run([sys.executable, "-c", _FREE_16MB], capture_output=True, text=True, env=env, check=True)
+    out = subprocess.run(
+        [sys.executable, "-c", _FREE_16MB], capture_output=True, text=True, env=env, check=True
+    )
     ok, grown = out.stdout.split()
     if ok != "True":
         pytest.skip("not glibc")

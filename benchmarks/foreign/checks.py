@@ -19,7 +19,9 @@ def inside_mask(points: np.ndarray, body_v: np.ndarray, body_f: np.ndarray) -> n
     on 3000 random points it agreed with the exact winding number on all of the 300 compared)."""
     import trimesh
 
-    return np.asarray(trimesh.Trimesh(body_v, body_f, process=False).contains(np.asarray(points, np.float64)), bool)
+    return np.asarray(
+        trimesh.Trimesh(body_v, body_f, process=False).contains(np.asarray(points, np.float64)), bool
+    )
 
 
 def stretch(x: np.ndarray, faces: np.ndarray, uv: np.ndarray, faces_uv: np.ndarray) -> np.ndarray:
@@ -63,10 +65,15 @@ def preview(path, x, faces, body_v, body_f, *, title=""):
     fig, axes = plt.subplots(1, 2, figsize=(9, 7.5))
     light = np.array([0.3, 0.5, 0.8])
     light /= np.linalg.norm(light)
-    for ax, (i, depth, sgn), name in zip(axes, ((0, 2, 1.0), (2, 0, -1.0)), ("front", "side (from the body's left)")):
+    for ax, (i, depth, sgn), name in zip(
+        axes, ((0, 2, 1.0), (2, 0, -1.0)), ("front", "side (from the body's left)")
+    ):
         j = 1
         polys, cols, keys = [], [], []
-        for v, f, base in ((body_v, body_f, np.array([0.75, 0.75, 0.75])), (x, faces, np.array([0.25, 0.45, 0.85]))):
+        for v, f, base in (
+            (body_v, body_f, np.array([0.75, 0.75, 0.75])),
+            (x, faces, np.array([0.25, 0.45, 0.85])),
+        ):
             T = v[f]
             n = np.cross(T[:, 1] - T[:, 0], T[:, 2] - T[:, 0])
             n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-12)
@@ -83,7 +90,10 @@ def preview(path, x, faces, body_v, body_f, *, title=""):
         order = np.argsort(np.concatenate(keys))
         ax.add_collection(PolyCollection(P[order], facecolors=np.clip(C[order], 0, 1), edgecolors="none"))
         allp = np.concatenate([body_v, x])
-        ax.set_xlim((allp[:, i] * (1 if depth == 2 else -1)).min() - 0.05, (allp[:, i] * (1 if depth == 2 else -1)).max() + 0.05)
+        ax.set_xlim(
+            (allp[:, i] * (1 if depth == 2 else -1)).min() - 0.05,
+            (allp[:, i] * (1 if depth == 2 else -1)).max() + 0.05,
+        )
         ax.set_ylim(allp[:, 1].min() - 0.02, allp[:, 1].max() + 0.02)
         ax.set_aspect("equal")
         ax.set_title(name, fontsize=9)

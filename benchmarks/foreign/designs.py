@@ -50,9 +50,15 @@ class Spec:
             e = {"endpoints": [i, (i + 1) % len(pts)]}
             if curve is not None and curve[0] in ("q", "c"):
                 rel = absolute_to_relative(a, b, np.asarray(curve[1], float)).reshape(-1, 2)
-                e["curvature"] = {"type": "quadratic" if curve[0] == "q" else "cubic", "params": rel.round(6).tolist()}
+                e["curvature"] = {
+                    "type": "quadratic" if curve[0] == "q" else "cubic",
+                    "params": rel.round(6).tolist(),
+                }
             elif curve is not None and curve[0] == "arc":
-                e["curvature"] = {"type": "circle", "params": [round(curve[1] * 100, 4), int(curve[2]), int(curve[3])]}
+                e["curvature"] = {
+                    "type": "circle",
+                    "params": [round(curve[1] * 100, 4), int(curve[2]), int(curve[3])],
+                }
             if ename:
                 names[ename] = i
             out_edges.append(e)
@@ -82,7 +88,10 @@ class Spec:
                 if c["type"] == "circle":
                     e["curvature"] = dict(c)
                 else:
-                    e["curvature"] = {"type": c["type"], "params": [[round(1 - s, 6), t] for s, t in c["params"][::-1]]}
+                    e["curvature"] = {
+                        "type": c["type"],
+                        "params": [[round(1 - s, 6), t] for s, t in c["params"][::-1]],
+                    }
             edges.append(e)
         self.panels[name] = {
             "translation": [round(float(t) * 100, 4) for t in translation],
@@ -93,7 +102,9 @@ class Spec:
         self.names[name] = {en: n - 1 - i for en, i in self.names[src].items()}
 
     def stitch(self, pa, ea, pb, eb):
-        self.stitches.append([{"panel": pa, "edge": self.names[pa][ea]}, {"panel": pb, "edge": self.names[pb][eb]}])
+        self.stitches.append(
+            [{"panel": pa, "edge": self.names[pa][ea]}, {"panel": pb, "edge": self.names[pb][eb]}]
+        )
 
     def edge_len(self, panel, ename) -> float:
         p = self.panels[panel]
@@ -104,7 +115,11 @@ class Spec:
     def to_dict(self) -> dict:
         return {
             "pattern": {"panels": self.panels, "stitches": self.stitches, "panel_order": sorted(self.panels)},
-            "properties": {"curvature_coords": "relative", "normalize_panel_translation": False, "units_in_meter": 100},
+            "properties": {
+                "curvature_coords": "relative",
+                "normalize_panel_translation": False,
+                "units_in_meter": 100,
+            },
             "parameters": {"design": self.name, "author": "benchmarks/foreign/designs.py"},
         }
 
@@ -154,14 +169,22 @@ def _waistband(spec, side, panels, y0, height):
     the same side), sewn to them edge by edge; returns its name."""
     segs = []
     for p in panels:  # each panel's waist edges from its smallest x to its largest
-        segs += sorted(((p, e, spec.edge_len(p, e)) for e in _waist_edges(spec, p)), key=lambda t: _edge_x(spec, t[0], t[1]))
+        segs += sorted(
+            ((p, e, spec.edge_len(p, e)) for e in _waist_edges(spec, p)),
+            key=lambda t: _edge_x(spec, t[0], t[1]),
+        )
     total = sum(s[2] for s in segs)
     xs = -total / 2 + np.concatenate([[0.0], np.cumsum([s[2] for s in segs])])
     pts = [(x, 0.0) for x in xs] + [(xs[-1], height), (xs[0], height)]
     edges = [(f"b{i}", None) for i in range(len(segs))] + [("side_r", None), ("top", None), ("side_l", None)]
     name = f"waistband_{side}"
-    spec.panel(name, pts, edges, translation=(0, y0, Z_HINT if side == "front" else -Z_HINT),
-               rotation=(0, 0, 0) if side == "front" else ROT_BACK)
+    spec.panel(
+        name,
+        pts,
+        edges,
+        translation=(0, y0, Z_HINT if side == "front" else -Z_HINT),
+        rotation=(0, 0, 0) if side == "front" else ROT_BACK,
+    )
     for i, (p, e, _) in enumerate(segs):
         spec.stitch(name, f"b{i}", p, e)
     return name
@@ -186,10 +209,22 @@ def skirt(m, J, *, length, flare, darts=2, waistband=True, slit=False, name="ski
         wp, wn = _waist_with_darts([0.45 * wtop, -0.45 * wtop][:darts], L, dart_w, dl)
         pts = [(-hh, 0), (hh, 0), (hq, yh), (wtop, L)] + wp + [(-wtop, L), (-hq, yh)]
         hem = ("q", [(0, -0.35 * flare)]) if flare > 0.02 else None
-        edges = [("hem", hem), ("side_r_lo", None), ("side_r_hi", ("q", [(0.5 * (hq + wtop) + 0.012, 0.5 * (yh + L))]))]
-        edges += wn + [("side_l_hi", ("q", [(-0.5 * (hq + wtop) - 0.012, 0.5 * (yh + L))])), ("side_l_lo", None)]
-        spec.panel(f"skirt_{side}", pts, edges, translation=(0, hem_y, Z_HINT if side == "front" else -Z_HINT),
-                   rotation=(0, 0, 0) if side == "front" else ROT_BACK)
+        edges = [
+            ("hem", hem),
+            ("side_r_lo", None),
+            ("side_r_hi", ("q", [(0.5 * (hq + wtop) + 0.012, 0.5 * (yh + L))])),
+        ]
+        edges += wn + [
+            ("side_l_hi", ("q", [(-0.5 * (hq + wtop) - 0.012, 0.5 * (yh + L))])),
+            ("side_l_lo", None),
+        ]
+        spec.panel(
+            f"skirt_{side}",
+            pts,
+            edges,
+            translation=(0, hem_y, Z_HINT if side == "front" else -Z_HINT),
+            rotation=(0, 0, 0) if side == "front" else ROT_BACK,
+        )
         _sew_darts(spec, f"skirt_{side}")
     for a, b in (("skirt_front", "skirt_back"), ("skirt_back", "skirt_front")):
         spec.stitch(a, "side_r_lo", b, "side_l_lo")
@@ -218,9 +253,19 @@ def circle_skirt(m, J, *, length, waistband=True, name="circle_skirt"):
     p3 = (-rw * c45, rh - rw * c45)
     yc = rh - rw * c45
     for side in ("front", "back"):
-        edges = [("hem", ("arc", rh, 0, 1)), ("side_r", None), ("waist0", ("arc", rw, 0, 0)), ("side_l", None)]
-        spec.panel(f"skirt_{side}", [p0, p1, p2, p3], edges, translation=(0, top - yc, Z_HINT if side == "front" else -Z_HINT),
-                   rotation=(0, 0, 0) if side == "front" else ROT_BACK)
+        edges = [
+            ("hem", ("arc", rh, 0, 1)),
+            ("side_r", None),
+            ("waist0", ("arc", rw, 0, 0)),
+            ("side_l", None),
+        ]
+        spec.panel(
+            f"skirt_{side}",
+            [p0, p1, p2, p3],
+            edges,
+            translation=(0, top - yc, Z_HINT if side == "front" else -Z_HINT),
+            rotation=(0, 0, 0) if side == "front" else ROT_BACK,
+        )
     spec.stitch("skirt_front", "side_r", "skirt_back", "side_l")
     spec.stitch("skirt_back", "side_r", "skirt_front", "side_l")
     if waistband:
@@ -229,9 +274,13 @@ def circle_skirt(m, J, *, length, waistband=True, name="circle_skirt"):
             arc = rw * math.pi / 2
             pts = [(-arc / 2, 0), (arc / 2, 0), (arc / 2, 0.04), (-arc / 2, 0.04)]
             name_b = f"waistband_{side}"
-            spec.panel(name_b, pts, [("b0", None), ("side_r", None), ("top", None), ("side_l", None)],
-                       translation=(0, top, Z_HINT if side == "front" else -Z_HINT),
-                       rotation=(0, 0, 0) if side == "front" else ROT_BACK)
+            spec.panel(
+                name_b,
+                pts,
+                [("b0", None), ("side_r", None), ("top", None), ("side_l", None)],
+                translation=(0, top, Z_HINT if side == "front" else -Z_HINT),
+                rotation=(0, 0, 0) if side == "front" else ROT_BACK,
+            )
             spec.stitch(name_b, "b0", f"skirt_{side}", "waist0")
         spec.stitch("waistband_front", "side_r", "waistband_back", "side_l")
         spec.stitch("waistband_back", "side_r", "waistband_front", "side_l")
@@ -255,13 +304,25 @@ def trousers(m, J, *, hem_y, hem_girth, darts=1, waistband=True, name="trousers"
         hh = hem_girth / 4
         pts = [(cen - hh, 0), (cen + hh, 0), (hq, yh)]
         # waist from the side (wtop) to the centre (0): the waist edges
-        wp, wn = _waist_with_darts([0.5 * wtop] if darts else [], yw, dart_w, 0.08 if side == "front" else 0.11)
+        wp, wn = _waist_with_darts(
+            [0.5 * wtop] if darts else [], yw, dart_w, 0.08 if side == "front" else 0.11
+        )
         pts += [(wtop, yw)] + wp + [(0.0, yw), (-ext, yc)]
         # crotch curve: straight down the centre then out to the crotch point
         crotch_curve = ("q", [(0.0, yc + 0.01)])
-        edges = [("hem", None), ("out_lo", None), ("out_hi", ("q", [(0.5 * (hq + wtop) + 0.01, 0.5 * (yh + yw))]))]
+        edges = [
+            ("hem", None),
+            ("out_lo", None),
+            ("out_hi", ("q", [(0.5 * (hq + wtop) + 0.01, 0.5 * (yh + yw))])),
+        ]
         edges += wn + [("crotch", crotch_curve), ("inseam", None)]
-        spec.panel(f"{side}_l", pts, edges, translation=(0.1, hem_y, dz), rotation=(0, 0, 0) if side == "front" else ROT_BACK)
+        spec.panel(
+            f"{side}_l",
+            pts,
+            edges,
+            translation=(0.1, hem_y, dz),
+            rotation=(0, 0, 0) if side == "front" else ROT_BACK,
+        )
     # front left as drafted (outseam at +x = body's left); back right as drafted (its +x is the
     # body's right when turned); their mirror images are the other two
     spec.panels["back_r"] = spec.panels.pop("back_l")
@@ -301,8 +362,19 @@ def _sleeve_rotation(J, side):
     return matrix_to_euler_xyz(np.stack([x, y, z], axis=1)).round(4).tolist()
 
 
-def top(m, J, *, length, ease, hem_ease, sleeve=None, neck_depth=0.08, waist_shape=False, hip_ease=0.06,
-        name="top"):
+def top(
+    m,
+    J,
+    *,
+    length,
+    ease,
+    hem_ease,
+    sleeve=None,
+    neck_depth=0.08,
+    waist_shape=False,
+    hip_ease=0.06,
+    name="top",
+):
     """Front and back bodice (or sheath dress when ``length`` reaches below the hips) and
     optional one-piece sleeves (``sleeve``: underarm seam length [m], or None).
     ``length``: from the neck point down to the hem [m]; ``ease``: added to the bust girth."""
@@ -325,23 +397,38 @@ def top(m, J, *, length, ease, hem_ease, sleeve=None, neck_depth=0.08, waist_sha
             wq = (m["waist"] + ease + 0.02) / 4
             hq = (m["hip"] + hip_ease) / 4
             pts += [(hq, hip_y), (wq, waist_y)]
-            edges += [("side_r0", None), ("side_r1", ("q", [(0.5 * (hq + wq) + 0.01, 0.5 * (hip_y + waist_y))])),
-                      ("side_r2", None)]
+            edges += [
+                ("side_r0", None),
+                ("side_r1", ("q", [(0.5 * (hq + wq) + 0.01, 0.5 * (hip_y + waist_y))])),
+                ("side_r2", None),
+            ]
         else:
             edges += [("side_r2", None)]
         arm_ctrl = (sw + 0.15 * (cw - sw) - 0.02, ya + 0.35 * arm_depth)
         pts += [(cw, ya), (sw, ysh), (nw, yt), (-nw, yt), (-sw, ysh), (-cw, ya)]
-        edges += [("arm_r", ("q", [arm_ctrl])), ("shoulder_r", None),
-                  ("neck", ("c", [(nw * 0.9, yt - nd), (-nw * 0.9, yt - nd)])),
-                  ("shoulder_l", None), ("arm_l", ("q", [(-arm_ctrl[0], arm_ctrl[1])]))]
+        edges += [
+            ("arm_r", ("q", [arm_ctrl])),
+            ("shoulder_r", None),
+            ("neck", ("c", [(nw * 0.9, yt - nd), (-nw * 0.9, yt - nd)])),
+            ("shoulder_l", None),
+            ("arm_l", ("q", [(-arm_ctrl[0], arm_ctrl[1])])),
+        ]
         if waist_shape and hip_y > 0.05:
             pts += [(-wq, waist_y), (-hq, hip_y)]
-            edges += [("side_l2", None), ("side_l1", ("q", [(-0.5 * (hq + wq) - 0.01, 0.5 * (hip_y + waist_y))])),
-                      ("side_l0", None)]
+            edges += [
+                ("side_l2", None),
+                ("side_l1", ("q", [(-0.5 * (hq + wq) - 0.01, 0.5 * (hip_y + waist_y))])),
+                ("side_l0", None),
+            ]
         else:
             edges += [("side_l2", None)]
-        spec.panel(side, pts, edges, translation=(0, hem_y, Z_HINT if side == "front" else -Z_HINT),
-                   rotation=(0, 0, 0) if side == "front" else ROT_BACK)
+        spec.panel(
+            side,
+            pts,
+            edges,
+            translation=(0, hem_y, Z_HINT if side == "front" else -Z_HINT),
+            rotation=(0, 0, 0) if side == "front" else ROT_BACK,
+        )
     for a, b in (("front", "back"), ("back", "front")):
         spec.stitch(a, "shoulder_r", b, "shoulder_l")
         for e in [k for k in spec.names[a] if k.startswith("side_r")]:
@@ -359,11 +446,20 @@ def top(m, J, *, length, ease, hem_ease, sleeve=None, neck_depth=0.08, waist_sha
         L = cap + sleeve  # the sleeve's underarm seam is ``sleeve`` long
         for arm in ("left", "right"):
             pts = [(-cuff, 0), (cuff, 0), (bw, L - cap), (0, L), (-bw, L - cap)]
-            edges = [("cuff", None), ("under_r", None), ("cap_r", ("q", [(0.55 * bw, L - 0.25 * cap)])),
-                     ("cap_l", ("q", [(-0.55 * bw, L - 0.25 * cap)])), ("under_l", None)]
+            edges = [
+                ("cuff", None),
+                ("under_r", None),
+                ("cap_r", ("q", [(0.55 * bw, L - 0.25 * cap)])),
+                ("cap_l", ("q", [(-0.55 * bw, L - 0.25 * cap)])),
+                ("under_l", None),
+            ]
             sh = np.asarray(J[f"{arm}_shoulder"])
             el = np.asarray(J[f"{arm}_elbow"])
-            c = sh + 0.5 * min(1.0, L / np.linalg.norm(el - sh)) * (el - sh) + np.array([0.08 if arm == "left" else -0.08, 0, 0])
+            c = (
+                sh
+                + 0.5 * min(1.0, L / np.linalg.norm(el - sh)) * (el - sh)
+                + np.array([0.08 if arm == "left" else -0.08, 0, 0])
+            )
             R = np.asarray(_rot(_sleeve_rotation(J, arm)))
             t = c - R @ np.array([0.0, L / 2, 0.0])
             spec.panel(f"sleeve_{arm}", pts, edges, translation=t, rotation=_sleeve_rotation(J, arm))
@@ -392,53 +488,466 @@ def _rot(angles):
 #: name -> (garment type, function(measurements, joints, **overrides) -> specification dict);
 #: overrides replace the design's own keywords (`python -m benchmarks foreign design`)
 DESIGNS = {
-    "skirt_aline_knee": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.55, flare=0.06, darts=2, waistband=True, name="skirt_aline_knee"), **kw})),
-    "skirt_pencil_mini": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.40, flare=0.0, darts=2, waistband=True, name="skirt_pencil_mini"), **kw})),
-    "skirt_flared_midi": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.68, flare=0.16, darts=0, waistband=False, name="skirt_flared_midi"), **kw})),
-    "skirt_circle_knee": ("skirt", lambda m, J, **kw: circle_skirt(m, J, **{**dict(length=0.50, waistband=True, name="skirt_circle_knee"), **kw})),
-    "trousers_straight": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.10, hem_girth=0.44, darts=1, waistband=True, name="trousers_straight"), **kw})),
-    "trousers_tapered": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.11, hem_girth=0.36, darts=1, waistband=True, name="trousers_tapered"), **kw})),
-    "trousers_wide": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.10, hem_girth=0.60, darts=0, waistband=False, name="trousers_wide"), **kw})),
-    "shorts_knee": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.28, hem_girth=m["thigh"] + 0.10, darts=1, waistband=True, name="shorts_knee"), **kw})),
-    "shorts_short": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.10, hem_girth=m["thigh"] + 0.12, darts=0, waistband=True, name="shorts_short"), **kw})),
-    "shorts_wide": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.18, hem_girth=m["thigh"] + 0.22, darts=0, waistband=False, name="shorts_wide"), **kw})),
-    "tee_fitted_short": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.62, ease=0.08, hem_ease=0.14, sleeve=0.06, name="tee_fitted_short"), **kw})),
-    "tee_loose_long": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.68, ease=0.18, hem_ease=0.22, sleeve=0.40, neck_depth=0.06, name="tee_loose_long"), **kw})),
-    "tank_top": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.60, ease=0.08, hem_ease=0.12, sleeve=None, neck_depth=0.10, name="tank_top"), **kw})),
-    "dress_sheath_sleeveless": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.95, ease=0.08, hem_ease=0.16, sleeve=None, waist_shape=True, name="dress_sheath_sleeveless"), **kw})),
-    "dress_shift_sleeved": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.90, ease=0.12, hem_ease=0.30, sleeve=0.07, waist_shape=True, hip_ease=0.16, name="dress_shift_sleeved"), **kw})),
+    "skirt_aline_knee": (
+        "skirt",
+        lambda m, J, **kw: skirt(
+            m, J, **{**dict(length=0.55, flare=0.06, darts=2, waistband=True, name="skirt_aline_knee"), **kw}
+        ),
+    ),
+    "skirt_pencil_mini": (
+        "skirt",
+        lambda m, J, **kw: skirt(
+            m, J, **{**dict(length=0.40, flare=0.0, darts=2, waistband=True, name="skirt_pencil_mini"), **kw}
+        ),
+    ),
+    "skirt_flared_midi": (
+        "skirt",
+        lambda m, J, **kw: skirt(
+            m,
+            J,
+            **{**dict(length=0.68, flare=0.16, darts=0, waistband=False, name="skirt_flared_midi"), **kw},
+        ),
+    ),
+    "skirt_circle_knee": (
+        "skirt",
+        lambda m, J, **kw: circle_skirt(
+            m, J, **{**dict(length=0.50, waistband=True, name="skirt_circle_knee"), **kw}
+        ),
+    ),
+    "trousers_straight": (
+        "pants",
+        lambda m, J, **kw: trousers(
+            m,
+            J,
+            **{**dict(hem_y=0.10, hem_girth=0.44, darts=1, waistband=True, name="trousers_straight"), **kw},
+        ),
+    ),
+    "trousers_tapered": (
+        "pants",
+        lambda m, J, **kw: trousers(
+            m,
+            J,
+            **{**dict(hem_y=0.11, hem_girth=0.36, darts=1, waistband=True, name="trousers_tapered"), **kw},
+        ),
+    ),
+    "trousers_wide": (
+        "pants",
+        lambda m, J, **kw: trousers(
+            m, J, **{**dict(hem_y=0.10, hem_girth=0.60, darts=0, waistband=False, name="trousers_wide"), **kw}
+        ),
+    ),
+    "shorts_knee": (
+        "shorts",
+        lambda m, J, **kw: trousers(
+            m,
+            J,
+            **{
+                **dict(
+                    hem_y=m["crotch_height"] - 0.28,
+                    hem_girth=m["thigh"] + 0.10,
+                    darts=1,
+                    waistband=True,
+                    name="shorts_knee",
+                ),
+                **kw,
+            },
+        ),
+    ),
+    "shorts_short": (
+        "shorts",
+        lambda m, J, **kw: trousers(
+            m,
+            J,
+            **{
+                **dict(
+                    hem_y=m["crotch_height"] - 0.10,
+                    hem_girth=m["thigh"] + 0.12,
+                    darts=0,
+                    waistband=True,
+                    name="shorts_short",
+                ),
+                **kw,
+            },
+        ),
+    ),
+    "shorts_wide": (
+        "shorts",
+        lambda m, J, **kw: trousers(
+            m,
+            J,
+            **{
+                **dict(
+                    hem_y=m["crotch_height"] - 0.18,
+                    hem_girth=m["thigh"] + 0.22,
+                    darts=0,
+                    waistband=False,
+                    name="shorts_wide",
+                ),
+                **kw,
+            },
+        ),
+    ),
+    "tee_fitted_short": (
+        "tshirt",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{**dict(length=0.62, ease=0.08, hem_ease=0.14, sleeve=0.06, name="tee_fitted_short"), **kw},
+        ),
+    ),
+    "tee_loose_long": (
+        "tshirt",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{
+                **dict(
+                    length=0.68, ease=0.18, hem_ease=0.22, sleeve=0.40, neck_depth=0.06, name="tee_loose_long"
+                ),
+                **kw,
+            },
+        ),
+    ),
+    "tank_top": (
+        "tshirt",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{
+                **dict(length=0.60, ease=0.08, hem_ease=0.12, sleeve=None, neck_depth=0.10, name="tank_top"),
+                **kw,
+            },
+        ),
+    ),
+    "dress_sheath_sleeveless": (
+        "dress",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{
+                **dict(
+                    length=0.95,
+                    ease=0.08,
+                    hem_ease=0.16,
+                    sleeve=None,
+                    waist_shape=True,
+                    name="dress_sheath_sleeveless",
+                ),
+                **kw,
+            },
+        ),
+    ),
+    "dress_shift_sleeved": (
+        "dress",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{
+                **dict(
+                    length=0.90,
+                    ease=0.12,
+                    hem_ease=0.30,
+                    sleeve=0.07,
+                    waist_shape=True,
+                    hip_ease=0.16,
+                    name="dress_shift_sleeved",
+                ),
+                **kw,
+            },
+        ),
+    ),
     # fresh designs: lengths and cuts the fit had not met
-    "skirt_aline_midi": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.72, flare=0.10, darts=2, waistband=True, name="skirt_aline_midi"), **kw})),
-    "skirt_circle_mini": ("skirt", lambda m, J, **kw: circle_skirt(m, J, **{**dict(length=0.38, waistband=True, name="skirt_circle_mini"), **kw})),
-    "trousers_capri": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.30, hem_girth=0.40, darts=1, waistband=True, name="trousers_capri"), **kw})),
-    "tee_fitted_long": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.62, ease=0.08, hem_ease=0.14, sleeve=0.45, name="tee_fitted_long"), **kw})),
-    "dress_shift_sleeveless": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.85, ease=0.12, hem_ease=0.30, sleeve=None, waist_shape=True, hip_ease=0.16, name="dress_shift_sleeveless"), **kw})),
+    "skirt_aline_midi": (
+        "skirt",
+        lambda m, J, **kw: skirt(
+            m, J, **{**dict(length=0.72, flare=0.10, darts=2, waistband=True, name="skirt_aline_midi"), **kw}
+        ),
+    ),
+    "skirt_circle_mini": (
+        "skirt",
+        lambda m, J, **kw: circle_skirt(
+            m, J, **{**dict(length=0.38, waistband=True, name="skirt_circle_mini"), **kw}
+        ),
+    ),
+    "trousers_capri": (
+        "pants",
+        lambda m, J, **kw: trousers(
+            m, J, **{**dict(hem_y=0.30, hem_girth=0.40, darts=1, waistband=True, name="trousers_capri"), **kw}
+        ),
+    ),
+    "tee_fitted_long": (
+        "tshirt",
+        lambda m, J, **kw: top(
+            m, J, **{**dict(length=0.62, ease=0.08, hem_ease=0.14, sleeve=0.45, name="tee_fitted_long"), **kw}
+        ),
+    ),
+    "dress_shift_sleeveless": (
+        "dress",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{
+                **dict(
+                    length=0.85,
+                    ease=0.12,
+                    hem_ease=0.30,
+                    sleeve=None,
+                    waist_shape=True,
+                    hip_ease=0.16,
+                    name="dress_shift_sleeveless",
+                ),
+                **kw,
+            },
+        ),
+    ),
     # fresh designs: parameters no earlier design had (a knee skirt flared without a band, boot-cut
     # trousers, mid-thigh shorts with darts, a loose short-sleeved tee, a sheath dress with sleeves,
     # an A-line mini)
-    "skirt_flared_knee": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.55, flare=0.12, darts=0, waistband=False, name="skirt_flared_knee"), **kw})),
-    "trousers_bootcut": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.09, hem_girth=0.50, darts=1, waistband=True, name="trousers_bootcut"), **kw})),
-    "shorts_mid": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.18, hem_girth=m["thigh"] + 0.14, darts=1, waistband=True, name="shorts_mid"), **kw})),
-    "tee_loose_short": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.64, ease=0.18, hem_ease=0.22, sleeve=0.12, neck_depth=0.06, name="tee_loose_short"), **kw})),
-    "dress_sheath_sleeved": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.95, ease=0.08, hem_ease=0.16, sleeve=0.07, waist_shape=True, name="dress_sheath_sleeved"), **kw})),
-    "skirt_aline_mini": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.42, flare=0.05, darts=2, waistband=True, name="skirt_aline_mini"), **kw})),
+    "skirt_flared_knee": (
+        "skirt",
+        lambda m, J, **kw: skirt(
+            m,
+            J,
+            **{**dict(length=0.55, flare=0.12, darts=0, waistband=False, name="skirt_flared_knee"), **kw},
+        ),
+    ),
+    "trousers_bootcut": (
+        "pants",
+        lambda m, J, **kw: trousers(
+            m,
+            J,
+            **{**dict(hem_y=0.09, hem_girth=0.50, darts=1, waistband=True, name="trousers_bootcut"), **kw},
+        ),
+    ),
+    "shorts_mid": (
+        "shorts",
+        lambda m, J, **kw: trousers(
+            m,
+            J,
+            **{
+                **dict(
+                    hem_y=m["crotch_height"] - 0.18,
+                    hem_girth=m["thigh"] + 0.14,
+                    darts=1,
+                    waistband=True,
+                    name="shorts_mid",
+                ),
+                **kw,
+            },
+        ),
+    ),
+    "tee_loose_short": (
+        "tshirt",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{
+                **dict(
+                    length=0.64,
+                    ease=0.18,
+                    hem_ease=0.22,
+                    sleeve=0.12,
+                    neck_depth=0.06,
+                    name="tee_loose_short",
+                ),
+                **kw,
+            },
+        ),
+    ),
+    "dress_sheath_sleeved": (
+        "dress",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{
+                **dict(
+                    length=0.95,
+                    ease=0.08,
+                    hem_ease=0.16,
+                    sleeve=0.07,
+                    waist_shape=True,
+                    name="dress_sheath_sleeved",
+                ),
+                **kw,
+            },
+        ),
+    ),
+    "skirt_aline_mini": (
+        "skirt",
+        lambda m, J, **kw: skirt(
+            m, J, **{**dict(length=0.42, flare=0.05, darts=2, waistband=True, name="skirt_aline_mini"), **kw}
+        ),
+    ),
     # more fresh designs
-    "skirt_pencil_knee": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.58, flare=0.02, darts=2, waistband=True, name="skirt_pencil_knee"), **kw})),
-    "trousers_wide_band": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.10, hem_girth=0.54, darts=1, waistband=True, name="trousers_wide_band"), **kw})),
-    "shorts_bermuda": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.24, hem_girth=m["thigh"] + 0.16, darts=0, waistband=True, name="shorts_bermuda"), **kw})),
-    "tee_mid_sleeve": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.66, ease=0.12, hem_ease=0.16, sleeve=0.25, neck_depth=0.07, name="tee_mid_sleeve"), **kw})),
-    "dress_shift_short": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.80, ease=0.12, hem_ease=0.24, sleeve=0.15, waist_shape=True, hip_ease=0.14, name="dress_shift_short"), **kw})),
-    "skirt_flared_mini": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.40, flare=0.10, darts=0, waistband=True, name="skirt_flared_mini"), **kw})),
+    "skirt_pencil_knee": (
+        "skirt",
+        lambda m, J, **kw: skirt(
+            m, J, **{**dict(length=0.58, flare=0.02, darts=2, waistband=True, name="skirt_pencil_knee"), **kw}
+        ),
+    ),
+    "trousers_wide_band": (
+        "pants",
+        lambda m, J, **kw: trousers(
+            m,
+            J,
+            **{**dict(hem_y=0.10, hem_girth=0.54, darts=1, waistband=True, name="trousers_wide_band"), **kw},
+        ),
+    ),
+    "shorts_bermuda": (
+        "shorts",
+        lambda m, J, **kw: trousers(
+            m,
+            J,
+            **{
+                **dict(
+                    hem_y=m["crotch_height"] - 0.24,
+                    hem_girth=m["thigh"] + 0.16,
+                    darts=0,
+                    waistband=True,
+                    name="shorts_bermuda",
+                ),
+                **kw,
+            },
+        ),
+    ),
+    "tee_mid_sleeve": (
+        "tshirt",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{
+                **dict(
+                    length=0.66, ease=0.12, hem_ease=0.16, sleeve=0.25, neck_depth=0.07, name="tee_mid_sleeve"
+                ),
+                **kw,
+            },
+        ),
+    ),
+    "dress_shift_short": (
+        "dress",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{
+                **dict(
+                    length=0.80,
+                    ease=0.12,
+                    hem_ease=0.24,
+                    sleeve=0.15,
+                    waist_shape=True,
+                    hip_ease=0.14,
+                    name="dress_shift_short",
+                ),
+                **kw,
+            },
+        ),
+    ),
+    "skirt_flared_mini": (
+        "skirt",
+        lambda m, J, **kw: skirt(
+            m, J, **{**dict(length=0.40, flare=0.10, darts=0, waistband=True, name="skirt_flared_mini"), **kw}
+        ),
+    ),
     # fresh designs: a tea-length A-line, slim trousers without a band, very short shorts, a boxy
     # cropped tee with elbow sleeves, a straight tunic dress with elbow sleeves
-    "skirt_aline_tea": ("skirt", lambda m, J, **kw: skirt(m, J, **{**dict(length=0.63, flare=0.14, darts=2, waistband=True, name="skirt_aline_tea"), **kw})),
-    "trousers_slim": ("pants", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=0.08, hem_girth=0.34, darts=1, waistband=False, name="trousers_slim"), **kw})),
-    "shorts_hot": ("shorts", lambda m, J, **kw: trousers(m, J, **{**dict(hem_y=m["crotch_height"] - 0.06, hem_girth=m["thigh"] + 0.10, darts=0, waistband=True, name="shorts_hot"), **kw})),
-    "tee_boxy_elbow": ("tshirt", lambda m, J, **kw: top(m, J, **{**dict(length=0.56, ease=0.22, hem_ease=0.24, sleeve=0.30, neck_depth=0.08, name="tee_boxy_elbow"), **kw})),
-    "dress_tunic_sleeved": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.84, ease=0.10, hem_ease=0.20, sleeve=0.20, hip_ease=0.12, name="dress_tunic_sleeved"), **kw})),
+    "skirt_aline_tea": (
+        "skirt",
+        lambda m, J, **kw: skirt(
+            m, J, **{**dict(length=0.63, flare=0.14, darts=2, waistband=True, name="skirt_aline_tea"), **kw}
+        ),
+    ),
+    "trousers_slim": (
+        "pants",
+        lambda m, J, **kw: trousers(
+            m, J, **{**dict(hem_y=0.08, hem_girth=0.34, darts=1, waistband=False, name="trousers_slim"), **kw}
+        ),
+    ),
+    "shorts_hot": (
+        "shorts",
+        lambda m, J, **kw: trousers(
+            m,
+            J,
+            **{
+                **dict(
+                    hem_y=m["crotch_height"] - 0.06,
+                    hem_girth=m["thigh"] + 0.10,
+                    darts=0,
+                    waistband=True,
+                    name="shorts_hot",
+                ),
+                **kw,
+            },
+        ),
+    ),
+    "tee_boxy_elbow": (
+        "tshirt",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{
+                **dict(
+                    length=0.56, ease=0.22, hem_ease=0.24, sleeve=0.30, neck_depth=0.08, name="tee_boxy_elbow"
+                ),
+                **kw,
+            },
+        ),
+    ),
+    "dress_tunic_sleeved": (
+        "dress",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{
+                **dict(
+                    length=0.84,
+                    ease=0.10,
+                    hem_ease=0.20,
+                    sleeve=0.20,
+                    hip_ease=0.12,
+                    name="dress_tunic_sleeved",
+                ),
+                **kw,
+            },
+        ),
+    ),
     # fresh designs: a straight sleeveless knee dress (a shift without waist shaping)
-    "dress_straight_tank": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.92, ease=0.10, hem_ease=0.28, sleeve=None, name="dress_straight_tank"), **kw})),
+    "dress_straight_tank": (
+        "dress",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{**dict(length=0.92, ease=0.10, hem_ease=0.28, sleeve=None, name="dress_straight_tank"), **kw},
+        ),
+    ),
     # fresh designs: dresses with long sleeves (the library's dresses have short sleeves or none)
-    "dress_shift_long_sleeve": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.92, ease=0.12, hem_ease=0.30, sleeve=0.42, waist_shape=True, hip_ease=0.16, name="dress_shift_long_sleeve"), **kw})),
-    "dress_tunic_long_sleeve": ("dress", lambda m, J, **kw: top(m, J, **{**dict(length=0.86, ease=0.12, hem_ease=0.24, sleeve=0.44, name="dress_tunic_long_sleeve"), **kw})),
+    "dress_shift_long_sleeve": (
+        "dress",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{
+                **dict(
+                    length=0.92,
+                    ease=0.12,
+                    hem_ease=0.30,
+                    sleeve=0.42,
+                    waist_shape=True,
+                    hip_ease=0.16,
+                    name="dress_shift_long_sleeve",
+                ),
+                **kw,
+            },
+        ),
+    ),
+    "dress_tunic_long_sleeve": (
+        "dress",
+        lambda m, J, **kw: top(
+            m,
+            J,
+            **{
+                **dict(length=0.86, ease=0.12, hem_ease=0.24, sleeve=0.44, name="dress_tunic_long_sleeve"),
+                **kw,
+            },
+        ),
+    ),
 }

@@ -90,7 +90,9 @@ def _model(x_z, tris3d, uv, tris_uv, body_v_z, body_f, s):
         tri_aniso_ke=wp.vec3(*s["tri_aniso_ke"]),
         edge_aniso_ke=wp.vec3(*s["edge_aniso_ke"]),
     )
-    builder.add_shape_mesh(body=-1, mesh=newton.Mesh(body_v_z.astype(np.float32), np.asarray(body_f).ravel().astype(np.int32)))
+    builder.add_shape_mesh(
+        body=-1, mesh=newton.Mesh(body_v_z.astype(np.float32), np.asarray(body_f).ravel().astype(np.int32))
+    )
     model = builder.finalize(device="cpu")
     model.soft_contact_ke = s["soft_contact_ke"]
     model.soft_contact_kd = s["soft_contact_kd"]
@@ -121,14 +123,18 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
     wp.config.quiet = True
     s = dict(SETTINGS if settings is None else settings)
     dt = 1.0 / s["fps"] / s["substeps"]
-    solver_cfg = newton.solvers.SolverStyle3D.Config(iterations=s["iterations"], linear_iterations=s["linear_iterations"])
+    solver_cfg = newton.solvers.SolverStyle3D.Config(
+        iterations=s["iterations"], linear_iterations=s["linear_iterations"]
+    )
     bz = _to_z(body_v)
     centre = 0.5 * (bz.min(axis=0) + bz.max(axis=0))
     info = {}
 
     # held: the waist line of a lower garment (vertices within hold_band of its top)
     x_u = np.asarray(x_unsewn, np.float64)
-    held_u = np.flatnonzero(x_u[:, 1] > x_u[:, 1].max() - s["hold_band_m"]) if lower else np.zeros(0, np.int64)
+    held_u = (
+        np.flatnonzero(x_u[:, 1] > x_u[:, 1].max() - s["hold_band_m"]) if lower else np.zeros(0, np.int64)
+    )
 
     def run(model, x0, frames, gravity_of_frame, held, hook=None):
         state0, state1 = model.state(), model.state()
@@ -156,7 +162,9 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
             q = state0.particle_q.numpy()
             far = np.abs(q - centre).max() if np.isfinite(q).all() else np.inf
             if far > MAX_REACH:
-                raise RuntimeError(f"newton diverged at frame {f} (a vertex {far:.1f} m from the body's centre)")
+                raise RuntimeError(
+                    f"newton diverged at frame {f} (a vertex {far:.1f} m from the body's centre)"
+                )
         return _to_y(state0.particle_q.numpy())
 
     # phase 1: sewing on the unsewn panels
@@ -187,7 +195,10 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
         pn = [mesh.panel_names[int(mesh.uv_panel[k])] for k in sp[w]]
         log(f"  widest seam gap between {pn[0]} and {pn[1]} at y {x1[sp[w, 0], 1]:.3f} m")
     info["sew_s"] = time.time() - t0
-    log(f"  sewing: {s['sew_frames']} frames {info['sew_s']:.0f} s, largest seam gap {info['gap_after_sewing_m'] * 1000:.1f} mm")
+    log(
+        f"  sewing: {s['sew_frames']} frames {info['sew_s']:.0f} s, largest seam gap "
+        f"{info['gap_after_sewing_m'] * 1000:.1f} mm"
+    )
 
     # phase 2: the sewn garment
     t0 = time.time()

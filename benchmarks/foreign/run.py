@@ -38,9 +38,17 @@ from unsew.io.atomic import atomic_write, check_output  # noqa: E402
 EDGE_LENGTH = 0.025
 #: GarmentCode's sample specifications: shared/foreign/patterns beside the checkout (the
 #: nearest folder above the repository that holds it), or $UNSEW_FOREIGN_PATTERNS.
-FOREIGN_PATTERNS = Path(os.environ.get("UNSEW_FOREIGN_PATTERNS") or next(
-    (p / "shared" / "foreign" / "patterns" for p in Path(__file__).resolve().parents[2].parents
-     if (p / "shared" / "foreign" / "patterns").is_dir()), Path("shared/foreign/patterns")))
+FOREIGN_PATTERNS = Path(
+    os.environ.get("UNSEW_FOREIGN_PATTERNS")
+    or next(
+        (
+            p / "shared" / "foreign" / "patterns"
+            for p in Path(__file__).resolve().parents[2].parents
+            if (p / "shared" / "foreign" / "patterns").is_dir()
+        ),
+        Path("shared/foreign/patterns"),
+    )
+)
 
 #: GarmentCode's bodies (meshes without skeleton, measurements .yaml in cm): shared/foreign/bodies
 #: beside the checkout, or $UNSEW_FOREIGN_BODIES.
@@ -51,21 +59,46 @@ _P = dict(gender=0.5, age=0.5, muscle=0.5, weight=0.5, height=0.5, proportions=0
 BODIES = {
     "anny_default": {"model": "anny", "phenotype": dict(_P), "pose": "A"},
     # anny interpolates gender from male (0) to female (1)
-    "anny_male_heavy": {"model": "anny", "phenotype": dict(_P, gender=0.0, weight=0.8, muscle=0.6), "pose": "A"},
-    "anny_tall_thin": {"model": "anny", "phenotype": dict(_P, height=0.9, weight=0.15, proportions=0.7), "pose": "A"},
+    "anny_male_heavy": {
+        "model": "anny",
+        "phenotype": dict(_P, gender=0.0, weight=0.8, muscle=0.6),
+        "pose": "A",
+    },
+    "anny_tall_thin": {
+        "model": "anny",
+        "phenotype": dict(_P, height=0.9, weight=0.15, proportions=0.7),
+        "pose": "A",
+    },
     "anny_tpose": {"model": "anny", "phenotype": dict(_P), "pose": "T"},
     # left leg swung 0.3 rad forward at the hip (world-frame rotation vector)
     "anny_leg_forward": {"model": "anny", "phenotype": dict(_P), "pose": {"left_hip": [-0.3, 0.0, 0.0]}},
-    "anny_short_curvy": {"model": "anny", "phenotype": dict(_P, gender=1.0, height=0.15, weight=0.75, proportions=0.3), "pose": "A"},
-    "anny_older": {"model": "anny", "phenotype": dict(_P, gender=0.3, age=0.95, muscle=0.2, weight=0.65), "pose": "A"},
+    "anny_short_curvy": {
+        "model": "anny",
+        "phenotype": dict(_P, gender=1.0, height=0.15, weight=0.75, proportions=0.3),
+        "pose": "A",
+    },
+    "anny_older": {
+        "model": "anny",
+        "phenotype": dict(_P, gender=0.3, age=0.95, muscle=0.2, weight=0.65),
+        "pose": "A",
+    },
     # left arm swung 0.6 rad forward at the shoulder (world-frame rotation vector)
     "anny_arm_forward": {"model": "anny", "phenotype": dict(_P), "pose": {"left_shoulder": [-0.6, 0.0, 0.0]}},
     # a muscular, fairly tall man: broad shoulders and thighs, a narrow waist
-    "anny_muscular": {"model": "anny", "phenotype": dict(_P, gender=0.15, muscle=0.95, weight=0.55, height=0.7), "pose": "A"},
+    "anny_muscular": {
+        "model": "anny",
+        "phenotype": dict(_P, gender=0.15, muscle=0.95, weight=0.55, height=0.7),
+        "pose": "A",
+    },
     # a petite, slight young woman: short, narrow shoulders and hips
-    "anny_petite": {"model": "anny", "phenotype": dict(_P, gender=0.9, age=0.35, muscle=0.4, weight=0.3, height=0.05, proportions=0.6), "pose": "A"},
+    "anny_petite": {
+        "model": "anny",
+        "phenotype": dict(_P, gender=0.9, age=0.35, muscle=0.4, weight=0.3, height=0.05, proportions=0.6),
+        "pose": "A",
+    },
     # GarmentCode's mean body (A-pose): its mesh goes into the case folder as body.obj with no
-    # skeleton.json, so the case is rigged from the mesh wherever it is read (and so is the target's body here)
+    # skeleton.json, so the case is rigged from the mesh wherever it is read (and so is the target's body
+    # here)
     "gc_mean_all": {"model": "garmentcode", "mesh": "mean_all.obj", "pose": "A"},
     "gc_mean_female": {"model": "garmentcode", "mesh": "mean_female.obj", "pose": "A"},
     "gc_mean_male": {"model": "garmentcode", "mesh": "mean_male.obj", "pose": "A"},
@@ -207,11 +240,13 @@ CASES = {
     "skirt_flared_mini__tall_thin": ("skirt_flared_mini", "anny_tall_thin"),
     # fresh cases built (08ab043): five designs with parameters no earlier design had, a body
     # no design had met (anny_petite), and the tank top on GarmentCode's female body
-    "skirt_aline_tea__petite": ("skirt_aline_tea", "anny_petite"),  # rejected: newton's band came unsewn, on the floor
+    # rejected: newton's band came unsewn, on the floor
+    "skirt_aline_tea__petite": ("skirt_aline_tea", "anny_petite"),
     "trousers_slim__default": ("trousers_slim", "anny_default"),
     "shorts_hot__short_curvy": ("shorts_hot", "anny_short_curvy"),
     "tee_boxy_elbow__male_heavy": ("tee_boxy_elbow", "anny_male_heavy"),
-    "dress_tunic_sleeved__petite": ("dress_tunic_sleeved", "anny_petite"),  # rejected: touches the floor, 0.9 % inside
+    # rejected: touches the floor, 0.9 % inside
+    "dress_tunic_sleeved__petite": ("dress_tunic_sleeved", "anny_petite"),
     "tee_boxy_elbow__petite": ("tee_boxy_elbow", "anny_petite"),  # rejected: 4 edges through the body
     "skirt_aline_tea__default": ("skirt_aline_tea", "anny_default"),
     "dress_tunic_sleeved__default": ("dress_tunic_sleeved", "anny_default"),
@@ -224,8 +259,10 @@ CASES = {
     "dress_straight_tank__gc_mean_female": ("dress_straight_tank", "gc_mean_female"),
     # and two dresses with long sleeves, which no library dress has
     "dress_shift_long_sleeve__older": ("dress_shift_long_sleeve", "anny_older"),
-    "dress_tunic_long_sleeve__short_curvy": ("dress_tunic_long_sleeve", "anny_short_curvy"),  # rejected: 26 edges through the body
-    "dress_tunic_long_sleeve__default": ("dress_tunic_long_sleeve", "anny_default"),  # rejected: 4 edges through the body
+    # rejected: 26 edges through the body
+    "dress_tunic_long_sleeve__short_curvy": ("dress_tunic_long_sleeve", "anny_short_curvy"),
+    # rejected: 4 edges through the body
+    "dress_tunic_long_sleeve__default": ("dress_tunic_long_sleeve", "anny_default"),
     # and dresses in T-pose, which no dress case had met
     "dress_sheath_sleeved__tpose": ("dress_sheath_sleeved", "anny_tpose"),
     "dress_tunic_sleeved__gc_mean_all_tpose": ("dress_tunic_sleeved", "gc_mean_all_tpose"),
@@ -238,7 +275,8 @@ CASES = {
     # and, after measure_body's upper arm passed over the armpit, one case of each garment type
     # on a GarmentCode body it had not met
     "tee_loose_long__gc_mean_male": ("tee_loose_long", "gc_mean_male"),  # rejected: 3 edges through the body
-    "dress_sheath_sleeved__gc_mean_all": ("dress_sheath_sleeved", "gc_mean_all"),  # rejected: 1 seam edge through the body
+    # rejected: 1 seam edge through the body
+    "dress_sheath_sleeved__gc_mean_all": ("dress_sheath_sleeved", "gc_mean_all"),
     "skirt_circle_knee__gc_mean_all_tpose": ("skirt_circle_knee", "gc_mean_all_tpose"),
     "shorts_short__gc_mean_female": ("shorts_short", "gc_mean_female"),
     "trousers_slim__gc_mean_male": ("trousers_slim", "gc_mean_male"),
@@ -296,15 +334,24 @@ def _pattern(design, body, **overrides):
         if overrides:
             raise InputError(f"{design} is GarmentCode's own pattern: it takes no design keywords")
         return json.loads((FOREIGN_PATTERNS / design[3:]).read_text()), {
-            "dress_pencil": "dress", "shirt_mean": "tshirt", "hoody_mean": "tshirt"}[design[3:].rsplit("_", 1)[0]]
+            "dress_pencil": "dress",
+            "shirt_mean": "tshirt",
+            "hoody_mean": "tshirt",
+        }[design[3:].rsplit("_", 1)[0]]
     typ, fn = designs.DESIGNS[design]
     m = measure_body(body).as_dict()
     # the designs' sleeves were drafted from the upper arm's cut at 30 %, before measure_body
     # passed over a cut that reaches the armpit (GarmentCode's A-pose bodies): kept, so that
     # every committed case rebuilds as it was built
     sk = body.skeleton
-    m["upper_arm"] = upper_arm_cut(body.verts, body.faces, body.vertex_parts(), sk.position("left_shoulder"),
-                                   sk.position("left_elbow"), 0.3)
+    m["upper_arm"] = upper_arm_cut(
+        body.verts,
+        body.faces,
+        body.vertex_parts(),
+        sk.position("left_shoulder"),
+        sk.position("left_elbow"),
+        0.3,
+    )
     J = {n: p for n, p in zip(body.skeleton.names, body.skeleton.positions)}
     return fn(m, J, **overrides), typ
 
@@ -347,10 +394,19 @@ def build_case(cid, out_root: Path):
     for k, extra in enumerate(newton_drape.FALLBACKS):
         settings = {**newton_drape.SETTINGS, **extra}
         try:
-            x, info = newton_drape.drape_newton(mesh, x0, body.verts, body.faces, lower=typ in LOWER, settings=settings, log=_log)
+            x, info = newton_drape.drape_newton(
+                mesh, x0, body.verts, body.faces, lower=typ in LOWER, settings=settings, log=_log
+            )
             break
         except RuntimeError as exc:
-            _log(f"  {exc}" + ("; retrying with " + str(newton_drape.FALLBACKS[k + 1]) if k + 1 < len(newton_drape.FALLBACKS) else ""))
+            _log(
+                f"  {exc}"
+                + (
+                    "; retrying with " + str(newton_drape.FALLBACKS[k + 1])
+                    if k + 1 < len(newton_drape.FALLBACKS)
+                    else ""
+                )
+            )
             if k + 1 == len(newton_drape.FALLBACKS):
                 raise
     faces = np.asarray(mesh.faces)
@@ -358,7 +414,9 @@ def build_case(cid, out_root: Path):
     inside = float(ins_v.mean())
     st = checks.stretch(x, faces, np.asarray(mesh.uv), np.asarray(mesh.faces_uv))
     seam_x = np.unique(np.asarray(mesh.x_of_u)[np.asarray(mesh.seam_pairs).ravel()])
-    cut, cut_seam = checks.edges_through_body(x, faces, body.verts, body.faces, seam_vertices=seam_x, ins_v=ins_v)
+    cut, cut_seam = checks.edges_through_body(
+        x, faces, body.verts, body.faces, seam_vertices=seam_x, ins_v=ins_v
+    )
     on, on_why = _on_body(typ, x, body)
     res = {
         "inside_fraction": round(inside, 5),
@@ -393,7 +451,8 @@ def build_case(cid, out_root: Path):
         "body": BODIES[bkey],
         "source": {
             "design": design,
-            "pattern": "GarmentCode sample (MIT), shared/foreign/patterns" if design.startswith("gc:")
+            "pattern": "GarmentCode sample (MIT), shared/foreign/patterns"
+            if design.startswith("gc:")
             else "benchmarks/foreign/designs.py",
             "body_key": bkey,
         },
@@ -402,8 +461,11 @@ def build_case(cid, out_root: Path):
             "newton": newton.__version__,
             "warp": __import__("warp").__version__,
             "material": {k: settings[k] for k in ("density_kg_m2", "tri_aniso_ke", "edge_aniso_ke")},
-            "settings": {k: (None if v == float("inf") else v) for k, v in settings.items()
-                         if k not in ("density_kg_m2", "tri_aniso_ke", "edge_aniso_ke")},
+            "settings": {
+                k: (None if v == float("inf") else v)
+                for k, v in settings.items()
+                if k not in ("density_kg_m2", "tri_aniso_ke", "edge_aniso_ke")
+            },
             "mesh_edge_length_m": EDGE_LENGTH,
             "start": "unsew.body.placement.place_garment",
             "frames": info["frames"],
@@ -411,7 +473,8 @@ def build_case(cid, out_root: Path):
         },
         "checks": res,
     }
-    title = f"{cid}  inside {inside:.2%}  stretch p95 {res['stretch_p95']:.3f}  {'PASS' if not fails else 'FAIL: ' + '; '.join(fails)}"
+    verdict = "PASS" if not fails else "FAIL: " + "; ".join(fails)
+    title = f"{cid}  inside {inside:.2%}  stretch p95 {res['stretch_p95']:.3f}  {verdict}"
     d = out_root / cid
     tmp = out_root / f".{cid}.tmp"
     shutil.rmtree(tmp, ignore_errors=True)
@@ -474,7 +537,11 @@ def cmd_floor(args):
     from unsew.metrics.surface import chamfer_mm
 
     root = Path(args.dir)
-    dirs = [root / c for c in args.cases] if args.cases else sorted(p for p in root.iterdir() if (p / "meta.json").is_file())
+    dirs = (
+        [root / c for c in args.cases]
+        if args.cases
+        else sorted(p for p in root.iterdir() if (p / "meta.json").is_file())
+    )
     for d in dirs:
         if not (d / "meta.json").is_file():  # not built, or rejected by the checks (build's log says which)
             _log(f"{d.name}: no committed case here ({d}), skipped")
@@ -483,13 +550,27 @@ def cmd_floor(args):
         with tempfile.TemporaryDirectory() as tmp:
             out = Path(tmp) / "garment.obj"
             t0 = time.time()
-            cmd = [sys.executable, "-m", "unsew", "drape", str(d / "pattern_gt.json"), "--body", str(d), "--out", str(out), "--no-progress"]
+            cmd = [
+                sys.executable,
+                "-m",
+                "unsew",
+                "drape",
+                str(d / "pattern_gt.json"),
+                "--body",
+                str(d),
+                "--out",
+                str(out),
+                "--no-progress",
+            ]
             try:
                 r = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
                 rc, err = r.returncode, (r.stderr.strip().splitlines() or [""])[-1]
             except subprocess.TimeoutExpired:
                 rc, err = -1, f"timed out after {args.timeout} s"
-            floor = {"command": "unsew drape pattern_gt.json --body CASE_DIR", "seconds": round(time.time() - t0, 1)}
+            floor = {
+                "command": "unsew drape pattern_gt.json --body CASE_DIR",
+                "seconds": round(time.time() - t0, 1),
+            }
             if rc == 0 and out.is_file():
                 v, f = _read_obj(out)
                 tv, tf = _read_obj(d / "target.obj")
@@ -541,20 +622,26 @@ def cmd_list(args):
     for d in sorted(p for p in root.iterdir() if (p / "meta.json").is_file()):
         meta = json.loads((d / "meta.json").read_text())
         c = meta["checks"]
-        rows.append({
-            "case": d.name,
-            "type": meta["garment"],
-            "body": meta["source"]["body_key"],
-            "verts": sum(1 for ln in open(d / "target.obj") if ln.startswith("v ")),
-            "inside %": 100 * c["inside_fraction"],
-            "stretch p50/p95/p99/max": f"{c['stretch_p50']:.3f}/{c['stretch_p95']:.3f}/{c['stretch_p99']:.3f}/{c['stretch_max']:.2f}",
-            "cut edges (seam)": f"{c['edges_through_body']} ({c['seam_edges_through_body']})",
-            "seam gap mm": c["seam_gap_after_sewing_mm"],
-            "sewing": "default" if meta["simulator"]["settings"].get("seam_force_max_n") is None else "capped (retry)",
-            "on body": "yes" if c["on_body"] else "no",
-            "floor mm": meta.get("floor", {}).get("chamfer_mm", meta.get("floor", {}).get("error", "")),
-            "passed": "yes" if c["passed"] else "no",
-        })
+        rows.append(
+            {
+                "case": d.name,
+                "type": meta["garment"],
+                "body": meta["source"]["body_key"],
+                "verts": sum(1 for ln in open(d / "target.obj") if ln.startswith("v ")),
+                "inside %": 100 * c["inside_fraction"],
+                "stretch p50/p95/p99/max": (
+                    f"{c['stretch_p50']:.3f}/{c['stretch_p95']:.3f}/{c['stretch_p99']:.3f}/{c['stretch_max']:.2f}"
+                ),
+                "cut edges (seam)": f"{c['edges_through_body']} ({c['seam_edges_through_body']})",
+                "seam gap mm": c["seam_gap_after_sewing_mm"],
+                "sewing": "default"
+                if meta["simulator"]["settings"].get("seam_force_max_n") is None
+                else "capped (retry)",
+                "on body": "yes" if c["on_body"] else "no",
+                "floor mm": meta.get("floor", {}).get("chamfer_mm", meta.get("floor", {}).get("error", "")),
+                "passed": "yes" if c["passed"] else "no",
+            }
+        )
     print_table(rows, title=f"Foreign benchmark cases in {root} (newton Style3D drapes)", digits=2)
     if args.all:
         print("\nbuildable cases:", ", ".join(CASES))
@@ -575,8 +662,15 @@ def cmd_types(args) -> int:
     for d in dirs:
         files = read_case(d)
         r = read_garment_type(files.target_verts, files.target_faces, load_case_body(files).skeleton)
-        rows.append({"case": d.name, "true": files.garment, "read": r.garment,
-                     "right": "yes" if r.garment == files.garment else "no", "why": r.reason})
+        rows.append(
+            {
+                "case": d.name,
+                "true": files.garment,
+                "read": r.garment,
+                "right": "yes" if r.garment == files.garment else "no",
+                "why": r.reason,
+            }
+        )
     print_table(rows, title=f"Garment type read off the targets in {root}")
     right = sum(r["right"] == "yes" for r in rows)
     print(f"\n{right} of {len(rows)} read right")
@@ -590,14 +684,20 @@ def main(argv=None):
     b.add_argument("--cases", nargs="*", help="case ids (default: all)")
     b.add_argument("--out", default=str(HERE / "cases"), help="folder of case folders")
     b.set_defaults(func=cmd_build)
-    fl = sub.add_parser("floor", help="cross-simulator floor: unsew's drape of the true pattern against the target")
+    fl = sub.add_parser(
+        "floor", help="cross-simulator floor: unsew's drape of the true pattern against the target"
+    )
     fl.add_argument("--cases", nargs="*")
     fl.add_argument("--dir", default=str(HERE / "cases"))
     fl.add_argument("--timeout", type=int, default=900, help="seconds per unsew drape")
     fl.set_defaults(func=cmd_floor)
-    dg = sub.add_parser("design", help="a case's design drafted for its body, keywords changed (--set darts=0)")
+    dg = sub.add_parser(
+        "design", help="a case's design drafted for its body, keywords changed (--set darts=0)"
+    )
     dg.add_argument("case")
-    dg.add_argument("--set", action="append", metavar="KEY=VALUE", help="a design keyword to change (repeatable)")
+    dg.add_argument(
+        "--set", action="append", metavar="KEY=VALUE", help="a design keyword to change (repeatable)"
+    )
     dg.add_argument("--out", required=True, help="GarmentCode JSON to write")
     dg.set_defaults(func=cmd_design)
     ls = sub.add_parser("list", help="table of the cases and their checks")

@@ -33,8 +33,11 @@ def build_parser() -> argparse.ArgumentParser:
         prog="unsew",
         description="Turn a 3D garment mesh into the 2D sewing pattern that makes it.",
         formatter_class=HelpFormatter,
-        epilog=examples("unsew demo", "unsew fit case/ --out result/",
-                        "unsew pattern export result/pattern.json --pdf pattern.pdf")
+        epilog=examples(
+            "unsew demo",
+            "unsew fit case/ --out result/",
+            "unsew pattern export result/pattern.json --pdf pattern.pdf",
+        )
         + "\n\n'unsew COMMAND --help' gives each command's options, defaults and examples.",
     )
     parser.add_argument("--version", action="version", version=f"unsew {__version__}")
@@ -91,7 +94,8 @@ def main(argv: list[str] | None = None) -> int:
         if args.debug:
             raise
         print(
-            f"unsew: internal error: {type(exc).__name__}: {_one_line(exc)} (rerun with --debug for the traceback)",
+            f"unsew: internal error: {type(exc).__name__}: {_one_line(exc)} (rerun with --debug for the "
+            "traceback)",
             file=sys.stderr,
         )
         return 1

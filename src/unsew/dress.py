@@ -108,7 +108,9 @@ def _folded_triangles(x, faces) -> int:
     for k in range(3):
         np.add.at(nv, faces[:, k], n)
     nb = nv[faces].sum(axis=1) - n  # (F, 3)
-    c = np.einsum("ij,ij->i", n, nb) / np.maximum(np.linalg.norm(n, axis=1) * np.linalg.norm(nb, axis=1), 1e-30)
+    c = np.einsum("ij,ij->i", n, nb) / np.maximum(
+        np.linalg.norm(n, axis=1) * np.linalg.norm(nb, axis=1), 1e-30
+    )
     return int((c < np.cos(np.radians(150))).sum())
 
 
@@ -166,15 +168,25 @@ def dress(
             # or leave a band's seams open and triangles folded: dress again with the copies
             # started at their midpoint, and keep that when it is sound.
             retry = _dress_once(pattern, body, sdf, mesh, mat, g, uv, settings, progress, force_meet=True)
-            if not _sewing_fault(retry, body) or (not check_dressed(d, body=body).ok and check_dressed(retry, body=body).ok):
+            if not _sewing_fault(retry, body) or (
+                not check_dressed(d, body=body).ok and check_dressed(retry, body=body).ok
+            ):
                 retry.stats["placement_retry"] = fault
                 return retry
     return d
 
 
-def settle(mesh, x_from, sdf, material="cotton", *, settings: DrapeSettings = DRESS_SETTINGS,
-           steps: int | None = None, model: SimModel | None = None,
-           progress: Callable[[str, int, int], None] | None = None) -> np.ndarray:
+def settle(
+    mesh,
+    x_from,
+    sdf,
+    material="cotton",
+    *,
+    settings: DrapeSettings = DRESS_SETTINGS,
+    steps: int | None = None,
+    model: SimModel | None = None,
+    progress: Callable[[str, int, int], None] | None = None,
+) -> np.ndarray:
     """A sewn garment let settle from another drape: ``steps`` (default ``settings.settle_steps``)
     of plain draping at ``settings.dt`` in ``material``, starting at rest from ``x_from``.
 
@@ -194,8 +206,18 @@ def settle(mesh, x_from, sdf, material="cotton", *, settings: DrapeSettings = DR
     model = SimModel.build(mesh.faces, mesh.faces_uv) if model is None else model
     cb = (lambda k, s: progress("settle", k + 1, steps)) if progress else None
     with torch.no_grad():
-        st = drape(model, SimState.at_rest(x0.clone()), sdf, uv=uv, gamma=mat.gamma(), density=mat.density,
-                   settings=settings, steps=steps, friction=mat.friction, callback=cb)
+        st = drape(
+            model,
+            SimState.at_rest(x0.clone()),
+            sdf,
+            uv=uv,
+            gamma=mat.gamma(),
+            density=mat.density,
+            settings=settings,
+            steps=steps,
+            friction=mat.friction,
+            callback=cb,
+        )
     return st.x.detach().numpy()
 
 
@@ -242,8 +264,18 @@ def _dress_once(pattern, body, sdf, mesh, mat, g, uv, settings, progress, *, for
         progress("place", 1, 1)
     model_unsewn = SimModel.build(mesh.faces_uv, mesh.faces_uv, springs=mesh.seam_pairs)
     cb = (lambda k, s: progress("sew", k + 1, settings.sew_steps)) if progress else None
-    xs = sew(model_unsewn, x_unsewn, sdf, uv=uv, gamma=g, density=mat.density, settings=settings,
-             hold=hold if len(hold) else None, friction=mat.friction, callback=cb)
+    xs = sew(
+        model_unsewn,
+        x_unsewn,
+        sdf,
+        uv=uv,
+        gamma=g,
+        density=mat.density,
+        settings=settings,
+        hold=hold if len(hold) else None,
+        friction=mat.friction,
+        callback=cb,
+    )
     sp = torch.as_tensor(np.asarray(mesh.seam_pairs), dtype=torch.int64)
     gap = float((xs[sp[:, 0]] - xs[sp[:, 1]]).norm(dim=1).max()) if len(sp) else 0.0
     x = merge_sewn(xs, mesh.x_of_u, mesh.n_x)
@@ -254,13 +286,32 @@ def _dress_once(pattern, body, sdf, mesh, mat, g, uv, settings, progress, *, for
     if settings.settle_steps > 0:
         cb = (lambda k, s: progress("settle", k + 1, settings.settle_steps)) if progress else None
         with torch.no_grad():
-            st = drape(model, SimState.at_rest(x), sdf, uv=uv, gamma=g, density=mat.density, settings=settings,
-                       steps=settings.settle_steps, friction=mat.friction, callback=cb)
+            st = drape(
+                model,
+                SimState.at_rest(x),
+                sdf,
+                uv=uv,
+                gamma=g,
+                density=mat.density,
+                settings=settings,
+                steps=settings.settle_steps,
+                friction=mat.friction,
+                callback=cb,
+            )
             # still pulled somewhere (a seam just closed, cloth caught under an arm): settle on
             worst = _stretch_max(st.x, mesh)
             while worst > SETTLED_STRETCH and more < SETTLE_MORE * settings.settle_steps:
-                st = drape(model, st, sdf, uv=uv, gamma=g, density=mat.density, settings=settings,
-                           steps=settings.settle_steps, friction=mat.friction)
+                st = drape(
+                    model,
+                    st,
+                    sdf,
+                    uv=uv,
+                    gamma=g,
+                    density=mat.density,
+                    settings=settings,
+                    steps=settings.settle_steps,
+                    friction=mat.friction,
+                )
                 more += settings.settle_steps
                 now = _stretch_max(st.x, mesh)
                 if worst - now < SETTLE_GAIN:
@@ -269,7 +320,14 @@ def _dress_once(pattern, body, sdf, mesh, mat, g, uv, settings, progress, *, for
         x = st.x
         speed = float(st.v.norm(dim=1).max())
     t3 = time.perf_counter()
-    stats = dict(place_s=t1 - t0, sew_s=t2 - t1, settle_s=t3 - t2, seam_gap=gap, max_speed=speed,
-                 start_height=float(merge_sewn(x_unsewn, mesh.x_of_u, mesh.n_x)[:, 1].mean()),
-                 met_seams=force_meet or meets_seams(body), settle_more=more)
+    stats = dict(
+        place_s=t1 - t0,
+        sew_s=t2 - t1,
+        settle_s=t3 - t2,
+        seam_gap=gap,
+        max_speed=speed,
+        start_height=float(merge_sewn(x_unsewn, mesh.x_of_u, mesh.n_x)[:, 1].mean()),
+        met_seams=force_meet or meets_seams(body),
+        settle_more=more,
+    )
     return Dressed(pattern, mesh, model, x.detach(), uv, mat, sdf, stats)

@@ -26,10 +26,15 @@ def make_fake_case(d: Path, *, garment: str = "tshirt", value: float = 1.0, **ex
     return d
 
 
-def fake_fit(case_dir: Path, out: Path, cfg, *, resume: bool = False, overwrite: bool = False, log=None) -> dict:
+def fake_fit(
+    case_dir: Path, out: Path, cfg, *, resume: bool = False, overwrite: bool = False, log=None
+) -> dict:
     meta = json.loads((Path(case_dir) / "meta.json").read_text())
     if meta.get("garment") not in GARMENT_TYPES:
-        raise InputError(f"garment {meta.get('garment')!r} in {case_dir}/meta.json must be one of {', '.join(GARMENT_TYPES)}")
+        raise InputError(
+            f"garment {meta.get('garment')!r} in {case_dir}/meta.json must be one of "
+            f"{', '.join(GARMENT_TYPES)}"
+        )
     if meta.get("crash"):
         os._exit(3)
     out = Path(out)
@@ -49,9 +54,13 @@ def fake_fit(case_dir: Path, out: Path, cfg, *, resume: bool = False, overwrite:
         tmp.write_text(str(it + 1))
         os.replace(tmp, ckpt)
     v = float(meta.get("value", 1.0))
-    metrics = {"surface": {"chamfer_mm": 10.0 * v, "normal_error_deg": 5.0 * v},
-               "loss_final": {"total": v / 3.0, "chamfer": v / 7.0},
-               "iterations": cfg.optimizer.iterations, "timings_s": {"total_s": 0.5}, "resumed_from": start}
+    metrics = {
+        "surface": {"chamfer_mm": 10.0 * v, "normal_error_deg": 5.0 * v},
+        "loss_final": {"total": v / 3.0, "chamfer": v / 7.0},
+        "iterations": cfg.optimizer.iterations,
+        "timings_s": {"total_s": 0.5},
+        "resumed_from": start,
+    }
     if meta.get("pattern_gt"):
         metrics["pattern"] = {"area_error_rel_mean": 0.01 * v, "turning_distance_mean": 0.1 * v}
     (work / "report.html").write_text("<html>fake</html>")

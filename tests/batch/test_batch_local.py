@@ -9,7 +9,6 @@ import os
 import signal
 import subprocess
 import sys
-import textwrap
 import time
 from pathlib import Path
 
@@ -114,8 +113,13 @@ def test_blocked_result_folder_and_bad_inputs(tmp_path):
 
 def test_cli_bad_cases_folder_is_one_line(tmp_path):
     env = {**os.environ, "OMP_WAIT_POLICY": "PASSIVE"}
-    p = subprocess.run([sys.executable, "-m", "unsew", "batch", str(tmp_path / "nope"), "--out", str(tmp_path / "o")],
-                       capture_output=True, text=True, env=env, timeout=120)
+    p = subprocess.run(
+        [sys.executable, "-m", "unsew", "batch", str(tmp_path / "nope"), "--out", str(tmp_path / "o")],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+    )
     assert p.returncode == 2 and p.stderr.strip().count("\n") == 0 and "does not exist" in p.stderr
 
 
@@ -145,8 +149,14 @@ def test_ctrl_c_stops_cleanly_and_rerun_continues(tmp_path):
     out = tmp_path / "out"
     script = _DRIVER.format(tests=str(Path(__file__).parents[1]), cases=str(cases), out=str(out))
     env = {**os.environ, "OMP_WAIT_POLICY": "PASSIVE"}
-    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True, env=env, start_new_session=True)
+    proc = subprocess.Popen(
+        [sys.executable, "-c", script],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+        start_new_session=True,
+    )
     deadline = time.monotonic() + 120
     # interrupt while a slow fit is under way (a checkpoint of the quick case may come and go
     # before the signal lands, and then the batch could legitimately finish)
@@ -167,8 +177,9 @@ def test_ctrl_c_stops_cleanly_and_rerun_continues(tmp_path):
     time.sleep(0.5)
     assert snap == {p: p.read_text() for p in out.glob("*.partial/checkpoint.pt")}
 
-    res = run_batch(cases, out, cfg=load_config(iterations=40, report=False), workers=2, fit_fn=fake_fit,
-                    progress=False)
+    res = run_batch(
+        cases, out, cfg=load_config(iterations=40, report=False), workers=2, fit_fn=fake_fit, progress=False
+    )
     st = {r.name: r for r in res.records}
     assert all(r.status in ("done", "skipped") for r in res.records)
     assert any(r.resumed for r in res.records if r.status == "done")

@@ -8,7 +8,9 @@ from pathlib import Path
 
 import pytest
 
-ray = pytest.importorskip("ray", reason="Ray is optional (pip install 'unsew[ray]'); the Ray backend is untested here")
+ray = pytest.importorskip(
+    "ray", reason="Ray is optional (pip install 'unsew[ray]'); the Ray backend is untested here"
+)
 
 import batch.fakes as fakes  # noqa: E402
 from unsew.batch import run_batch  # noqa: E402
@@ -36,8 +38,12 @@ def ray_local():
     from ray import cloudpickle
 
     cloudpickle.register_pickle_by_value(fakes)
-    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False,
-             runtime_env={"env_vars": {"OMP_WAIT_POLICY": "PASSIVE"}})
+    ray.init(
+        num_cpus=2,
+        include_dashboard=False,
+        log_to_driver=False,
+        runtime_env={"env_vars": {"OMP_WAIT_POLICY": "PASSIVE"}},
+    )
     yield
     ray.shutdown()
     cloudpickle.unregister_pickle_by_value(fakes)
@@ -50,12 +56,18 @@ def test_ray_batch_matches_local_pool(tmp_path, ray_local):
     fakes.make_fake_case(cases / "broken", garment="sweater")
     a = run_batch(cases, tmp_path / "local", cfg=CFG, workers=2, fit_fn=fakes.fake_fit, progress=False)
     b = run_batch(cases, tmp_path / "ray", cfg=CFG, ray="local", fit_fn=fakes.fake_fit, progress=False)
-    assert [(r.name, r.status, r.reason) for r in a.records] == [(r.name, r.status, r.reason) for r in b.records]
+    assert [(r.name, r.status, r.reason) for r in a.records] == [
+        (r.name, r.status, r.reason) for r in b.records
+    ]
     for i in range(3):
         ma = json.loads((tmp_path / "local" / f"case{i}" / "metrics.json").read_text())
         mb = json.loads((tmp_path / "ray" / f"case{i}" / "metrics.json").read_text())
         assert ma == mb
     assert (tmp_path / "ray" / "summary.csv").is_file() and (tmp_path / "ray" / "index.html").is_file()
     c = run_batch(cases, tmp_path / "ray", cfg=CFG, ray="local", fit_fn=fakes.fake_fit, progress=False)
-    assert {r.name: r.status for r in c.records} == {"broken": "failed", "case0": "skipped", "case1": "skipped",
-                                                      "case2": "skipped"}
+    assert {r.name: r.status for r in c.records} == {
+        "broken": "failed",
+        "case0": "skipped",
+        "case1": "skipped",
+        "case2": "skipped",
+    }

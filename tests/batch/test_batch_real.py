@@ -22,10 +22,20 @@ from unsew.fit.config import load_config
 from unsew.fit.demo import DemoTruth, make_truth_case
 
 #: tiny fits: coarse panels, few sewing/settling/drape steps, a small Chamfer subset
-TINY = dict(edge_length=0.05, sew_steps=10, settle_steps=5, steps=3, target_points=1000, report=False,
-            material="cotton")
-TRUTHS = [DemoTruth(), DemoTruth(hem_length=0.03, hem_girth=0.02, sleeve_length=0.01),
-          DemoTruth(hem_length=0.09, hem_girth=0.08, sleeve_length=0.05, material="cotton")]
+TINY = dict(
+    edge_length=0.05,
+    sew_steps=10,
+    settle_steps=5,
+    steps=3,
+    target_points=1000,
+    report=False,
+    material="cotton",
+)
+TRUTHS = [
+    DemoTruth(),
+    DemoTruth(hem_length=0.03, hem_girth=0.02, sleeve_length=0.01),
+    DemoTruth(hem_length=0.09, hem_girth=0.08, sleeve_length=0.05, material="cotton"),
+]
 
 
 def _leaves(d, prefix=""):
@@ -49,9 +59,16 @@ def assert_same_metrics(a: dict, b: dict, *, rtol: float = 1e-9) -> None:
     la = {k: v for k, v in _leaves(a) if not k.startswith(_RUN_MEASURES)}
     lb = {k: v for k, v in _leaves(b) if not k.startswith(_RUN_MEASURES)}
     assert la.keys() == lb.keys()
-    bad = [(k, la[k], lb[k]) for k in la
-           if la[k] != lb[k] and not (isinstance(la[k], float) and isinstance(lb[k], float)
-                                      and abs(la[k] - lb[k]) <= rtol * max(abs(la[k]), abs(lb[k])))]
+    bad = [
+        (k, la[k], lb[k])
+        for k in la
+        if la[k] != lb[k]
+        and not (
+            isinstance(la[k], float)
+            and isinstance(lb[k], float)
+            and abs(la[k] - lb[k]) <= rtol * max(abs(la[k]), abs(lb[k]))
+        )
+    ]
     assert not bad, f"{len(bad)} metrics differ, e.g. {bad[:5]}"
 
 
@@ -77,14 +94,39 @@ def test_small_batch_equals_single_fit_and_reports_broken_case(tmp_path):
     assert st["tshirt"] == ("done", "")
     assert st["broken"][0] == "failed" and "garment 'sweater'" in st["broken"][1]
     assert_same_metrics(_metrics(tmp_path / "out" / "tshirt"), single)
-    no_time = lambda m: {k: v for k, v in m.items() if k not in ("timings_s", "peak_memory_mb", "peak_memory_stages_mb")}  # noqa: E731
-    assert no_time(_metrics(tmp_path / "out" / "tshirt")) == no_time(json.loads(json.dumps(single)))  # bitwise, in fact
+
+    def no_time(m):
+        return {
+            k: v for k, v in m.items() if k not in ("timings_s", "peak_memory_mb", "peak_memory_stages_mb")
+        }
+
+    # bitwise, in fact
+    assert no_time(_metrics(tmp_path / "out" / "tshirt")) == no_time(json.loads(json.dumps(single)))
     # the rerun, through the CLI: the finished case is skipped, the broken one fails again (exit 1)
-    p = subprocess.run([sys.executable, "-m", "unsew", "batch", str(cases), "--out", str(tmp_path / "out"),
-                        "--workers", "2", "--no-progress"], capture_output=True, text=True, timeout=300,
-                       env={**os.environ, "OMP_WAIT_POLICY": "PASSIVE"})
+    p = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "unsew",
+            "batch",
+            str(cases),
+            "--out",
+            str(tmp_path / "out"),
+            "--workers",
+            "2",
+            "--no-progress",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env={**os.environ, "OMP_WAIT_POLICY": "PASSIVE"},
+    )
     assert p.returncode == 1, p.stderr
-    assert "skipped" in p.stdout and "failed: garment 'sweater'" in p.stdout and "1 skipped, 1 failed" in p.stdout
+    assert (
+        "skipped" in p.stdout
+        and "failed: garment 'sweater'" in p.stdout
+        and "1 skipped, 1 failed" in p.stdout
+    )
     with open(tmp_path / "out" / "summary.csv", newline="") as f:
         rows = {r["case"]: r for r in csv.DictReader(f)}
     assert rows["tshirt"]["status"] == "skipped"
@@ -98,8 +140,10 @@ def three_cases(tmp_path_factory):
     for i, truth in enumerate(TRUTHS):
         make_truth_case(root / "cases" / f"tshirt{i}", truth=truth, settings=cfg.drape)
     _broken_copy(root / "cases" / "tshirt0", root / "cases" / "broken")
-    singles = {f"tshirt{i}": fit_case_dir(root / "cases" / f"tshirt{i}", root / "single" / f"tshirt{i}", cfg)
-               for i in range(3)}
+    singles = {
+        f"tshirt{i}": fit_case_dir(root / "cases" / f"tshirt{i}", root / "single" / f"tshirt{i}", cfg)
+        for i in range(3)
+    }
     return root, cfg, singles
 
 
@@ -128,5 +172,7 @@ def test_three_cases_on_local_ray_equal_single_fits(three_cases):
     pytest.importorskip("ray", reason="Ray is optional (pip install 'unsew[ray]')")
     root, cfg, singles = three_cases
     out = root / "ray"
-    res = run_batch(root / "cases", out, cfg=cfg, ray="local", progress=False, ray_init_kwargs={"num_cpus": 2})
+    res = run_batch(
+        root / "cases", out, cfg=cfg, ray="local", progress=False, ray_init_kwargs={"num_cpus": 2}
+    )
     _check_batch(res, out, singles)

@@ -12,7 +12,19 @@ def test_cases_are_distinct_known_truths():
 
 @pytest.mark.slow
 def test_small_mode_fits_one_case(tmp_path, capsys):
-    load_benchmark("bench_batch").main(["--cases", "1", "--workers", "1", "--iterations", "1",
-                                        "--edge-length", "0.08", "--keep", str(tmp_path)])
+    load_benchmark("bench_batch").main(
+        [
+            "--cases",
+            "1",
+            "--workers",
+            "1",
+            "--iterations",
+            "1",
+            "--edge-length",
+            "0.08",
+            "--keep",
+            str(tmp_path),
+        ]
+    )
     out = capsys.readouterr().out
     assert "local, 1 worker: 1/1 done" in out

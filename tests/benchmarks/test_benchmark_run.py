@@ -11,8 +11,17 @@ import pytest
 
 BENCH = Path(__file__).resolve().parents[2] / "benchmarks"
 
-SMALL = dict(edge_length=0.04, iterations=3, steps=8, sew_steps=40, settle_steps=10, target_points=1500,
-             material_start=1, report=False, mesh_spread=0.0)
+SMALL = dict(
+    edge_length=0.04,
+    iterations=3,
+    steps=8,
+    sew_steps=40,
+    settle_steps=10,
+    target_points=1500,
+    material_start=1,
+    report=False,
+    mesh_spread=0.0,
+)
 
 
 def _module(name):
@@ -54,10 +63,13 @@ def test_small_fit_beats_base(tmp_path):
     from unsew.fit.config import load_config
 
     mc, run = _module("make_cases"), _module("run")
-    case = mc.make_case(tmp_path / "cases", "shorts", 3, edge_length=0.04,
-                        settings=load_config(**SMALL).drape)  # small_slim body
+    case = mc.make_case(
+        tmp_path / "cases", "shorts", 3, edge_length=0.04, settings=load_config(**SMALL).drape
+    )  # small_slim body
     assert (case / "body.obj").is_file() and (case / "skeleton.json").is_file()
-    rec = run.fit_case(case, tmp_path / "results" / "full" / case.name, load_config(**SMALL), log=lambda s: None)
+    rec = run.fit_case(
+        case, tmp_path / "results" / "full" / case.name, load_config(**SMALL), log=lambda s: None
+    )
     v = run._stage_values(rec)
     assert v["fit"][0] < v["base"][0]  # Chamfer [mm]
     assert v["fit"][3] < v["base"][3]  # area error [%]
@@ -77,8 +89,20 @@ def test_quick_accuracy_smallest_case_improves_every_metric(tmp_path):
     base 14.0 deg, fit 14.2; at 53e7d49 (material auto with the stiffness refinement, bench-out
     run of run.py --table ablation --quick) base 13.8, graded 12.7, fit 13.0."""
     run = _module("run")
-    run.main(["--table", "accuracy", "--quick", "--garments", "shorts", "--no-report",
-              "--cases", str(tmp_path / "cases"), "--out", str(tmp_path / "out")])
+    run.main(
+        [
+            "--table",
+            "accuracy",
+            "--quick",
+            "--garments",
+            "shorts",
+            "--no-report",
+            "--cases",
+            str(tmp_path / "cases"),
+            "--out",
+            str(tmp_path / "out"),
+        ]
+    )
     (res,) = list((tmp_path / "out" / "results" / "full").glob("*/metrics.json"))
     m = json.loads(res.read_text())
     base, fit = m["surface_base"], m["surface"]
@@ -94,7 +118,9 @@ def test_set_overrides_the_fit_config():
     import argparse
 
     run = _module("run")
-    args = argparse.Namespace(edge_length=0.03, iterations=5, no_report=True, set=["lr_decay=0.1", "steps=12"])
+    args = argparse.Namespace(
+        edge_length=0.03, iterations=5, no_report=True, set=["lr_decay=0.1", "steps=12"]
+    )
     cfg = run.base_config(args, seam_loss=False)
     o, d = cfg.optimizer, cfg.drape
     assert (o.lr_decay, d.steps, d.edge_length, o.iterations, cfg.loss.seam) == (0.1, 12, 0.03, 5, 0.0)

@@ -9,7 +9,9 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def _run(*args):
-    return subprocess.run([sys.executable, "-m", "benchmarks", *args], cwd=ROOT, capture_output=True, text=True)
+    return subprocess.run(
+        [sys.executable, "-m", "benchmarks", *args], cwd=ROOT, capture_output=True, text=True
+    )
 
 
 def test_lists_benchmarks_with_their_question():
@@ -30,7 +32,9 @@ def test_unknown_name_exits_2():
 def test_bad_input_to_a_benchmark_exits_2_with_one_line(tmp_path):
     r = _run("sdf", "--case", str(tmp_path / "no_case"))
     assert r.returncode == 2
-    assert r.stderr.strip().splitlines() == [f"benchmarks sdf: case folder {tmp_path / 'no_case'} does not exist"]
+    assert r.stderr.strip().splitlines() == [
+        f"benchmarks sdf: case folder {tmp_path / 'no_case'} does not exist"
+    ]
 
 
 def test_runs_a_benchmark_by_name_with_its_options():

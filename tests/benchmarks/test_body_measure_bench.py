@@ -31,8 +31,15 @@ def test_table_marks_a_refused_skeleton_and_its_error():
     from unsew.pattern.measurements import Measurements
 
     ref = {"bust": 100.0, "waist": 80.0, "hips": 100.0}
-    rows = [{"body": "b", "variant": "rig", "measured": Measurements(bust=1.01, waist=0.78, hip=1.0), "reference": ref},
-            {"body": "b", "variant": "smpl", "measured": "waist 5.7 cm is under 40 cm", "reference": ref}]
+    rows = [
+        {
+            "body": "b",
+            "variant": "rig",
+            "measured": Measurements(bust=1.01, waist=0.78, hip=1.0),
+            "reference": ref,
+        },
+        {"body": "b", "variant": "smpl", "measured": "waist 5.7 cm is under 40 cm", "reference": ref},
+    ]
     text, worst = mod.table(rows)
     assert "| b | rig | 101.0 / 100.0 | 78.0 / 80.0 | 100.0 / 100.0 | 2.0 |" in text
     assert "refused: waist 5.7 cm" in text
@@ -40,7 +47,12 @@ def test_table_marks_a_refused_skeleton_and_its_error():
 
 
 def test_bad_folder_exits_2_with_one_line(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "benchmarks", "body_measure", "--bodies", str(tmp_path / "none")],
-                       cwd=ROOT, capture_output=True, text=True, check=False)
+    r = subprocess.run(
+        [sys.executable, "-m", "benchmarks", "body_measure", "--bodies", str(tmp_path / "none")],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     assert r.returncode == 2
     assert len(r.stderr.strip().splitlines()) == 1 and "is not a folder" in r.stderr

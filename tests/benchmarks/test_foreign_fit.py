@@ -17,7 +17,9 @@ def test_failed_fit_is_recorded_and_not_rerun(tmp_path):
     case = mod.case_dirs()[0]
     fake = tmp_path / "fake_python"
     calls = tmp_path / "calls"
-    fake.write_text(f"#!/bin/sh\necho x >> {calls}\necho 'progress line'\necho 'error: the garment fell' >&2\nexit 3\n")
+    fake.write_text(
+        f"#!/bin/sh\necho x >> {calls}\necho 'progress line'\necho 'error: the garment fell' >&2\nexit 3\n"
+    )
     fake.chmod(0o755)
     out = tmp_path / "out"
     st = mod.run_case(case, out, python=str(fake))
@@ -38,16 +40,31 @@ def test_row_reads_metrics_and_pattern_files(tmp_path):
     res = tmp_path / case.name
     res.mkdir()
     shutil.copy(case / "pattern_gt.json", res / "pattern_base.json")  # the true pattern as the "base"
-    final = {"area_error_rel_mean": 0.3, "area_error_weighted_rel": 0.4, "area_error_total_rel": 0.1,
-             "panels": {"a": {}, "b": {}}, "unmatched": {"estimated": [], "true": ["belt_f", "belt_b"]}}
+    final = {
+        "area_error_rel_mean": 0.3,
+        "area_error_weighted_rel": 0.4,
+        "area_error_total_rel": 0.1,
+        "panels": {"a": {}, "b": {}},
+        "unmatched": {"estimated": [], "true": ["belt_f", "belt_b"]},
+    }
     metrics = {
-        "surface": {"chamfer_mm": 7.0}, "surface_base": {"chamfer_mm": 30.0}, "surface_graded": {"chamfer_mm": 9.0},
-        "surface_warm": {"chamfer_mm": 6.5}, "pattern": final,
+        "surface": {"chamfer_mm": 7.0},
+        "surface_base": {"chamfer_mm": 30.0},
+        "surface_graded": {"chamfer_mm": 9.0},
+        "surface_warm": {"chamfer_mm": 6.5},
+        "pattern": final,
         "pattern_base": {"error": "panels without a counterpart"},
         "redress": {"fit_redressed_mm": 8.0, "graded_mm": 9.0, "phase_two_kept": True},
-        "drape_check": {"stretch_max": 1.62}, "loss_history": {"total": [1.0, 0.9], "stretch": [0.0, 0.25]},
-        "timings_s": {"total_s": 12.0}, "peak_memory_mb": 2048.5,
-        "peak_memory_stages_mb": {"loaded": 600.0, "body_sdf_s": 700.0, "grading_s": 2048.5, "optimization_s": 2048.5},
+        "drape_check": {"stretch_max": 1.62},
+        "loss_history": {"total": [1.0, 0.9], "stretch": [0.0, 0.25]},
+        "timings_s": {"total_s": 12.0},
+        "peak_memory_mb": 2048.5,
+        "peak_memory_stages_mb": {
+            "loaded": 600.0,
+            "body_sdf_s": 700.0,
+            "grading_s": 2048.5,
+            "optimization_s": 2048.5,
+        },
     }
     (res / "metrics.json").write_text(json.dumps(metrics))
     r = mod.row(case, tmp_path, {"exit": "ok", "time_s": None})
@@ -79,7 +96,7 @@ def test_config_is_handed_to_every_fit(tmp_path):
     ff = _module()
     case = ff.case_dirs()[0]
     fake = tmp_path / "fake_python"
-    fake.write_text(f"#!/bin/sh\necho \"$@\" > {tmp_path / 'args'}\nexit 1\n")
+    fake.write_text(f'#!/bin/sh\necho "$@" > {tmp_path / "args"}\nexit 1\n')
     fake.chmod(0o755)
     ff.run_case(case, tmp_path / "out", python=str(fake), config=str(tmp_path / "fit.yaml"))
     assert f"--config {tmp_path / 'fit.yaml'}" in (tmp_path / "args").read_text()
@@ -91,8 +108,10 @@ def test_record_keeps_each_case_latest_fit_and_latest_prints_it(tmp_path, capsys
     mod = _module()
     cases = mod.case_dirs()[:2]
     path = tmp_path / "fits.json"
-    rows = [{"case": cases[0].name, "cf_final_mm": 7.0, "cf_base_mm": 9.0, "exit": "ok", "time_s": 100.0},
-            {"case": cases[1].name, "exit": "fell", "time_s": 5.0}]
+    rows = [
+        {"case": cases[0].name, "cf_final_mm": 7.0, "cf_base_mm": 9.0, "exit": "ok", "time_s": 100.0},
+        {"case": cases[1].name, "exit": "fell", "time_s": 5.0},
+    ]
     assert mod.record(rows, path, code="aaa1111", out=tmp_path / "a") == 1
     rows[0] = {**rows[0], "cf_final_mm": 6.0}
     assert mod.record(rows, path, code="bbb2222", out=tmp_path / "b") == 1
@@ -120,18 +139,45 @@ def test_against_prints_each_fit_beside_its_record(tmp_path, capsys):
     named once when unchanged, graded and final Chamfer), its bar from the floor, and the median
     changes; rows without a fit or without a record are left out."""
     mod = _module()
-    rec = {"a": {"case": "a", "code": "aaa1111", "base": "pants", "cf_graded_mm": 7.0, "cf_final_mm": 5.0,
-                 "area_final_pct": 4.0, "phase2_kept": "yes"},
-           "b": {"case": "b", "code": "aaa1111", "cf_final_mm": 8.0, "area_final_pct": 2.0, "phase2_kept": "yes"},
-           "d": {"case": "d", "code": "aaa1111", "base": "skirt", "cf_final_mm": 8.0}}
-    rows = [{"case": "a", "base": "pants_band", "cf_graded_mm": 6.5, "cf_final_mm": 6.0, "area_final_pct": 1.0,
-             "floor_mm": 4.0, "phase2_kept": "no"},
-            {"case": "b", "exit": "fell"},
-            {"case": "c", "cf_final_mm": 3.0, "area_final_pct": 1.0},
-            {"case": "d", "base": "skirt", "cf_final_mm": 8.0}]
+    rec = {
+        "a": {
+            "case": "a",
+            "code": "aaa1111",
+            "base": "pants",
+            "cf_graded_mm": 7.0,
+            "cf_final_mm": 5.0,
+            "area_final_pct": 4.0,
+            "phase2_kept": "yes",
+        },
+        "b": {
+            "case": "b",
+            "code": "aaa1111",
+            "cf_final_mm": 8.0,
+            "area_final_pct": 2.0,
+            "phase2_kept": "yes",
+        },
+        "d": {"case": "d", "code": "aaa1111", "base": "skirt", "cf_final_mm": 8.0},
+    }
+    rows = [
+        {
+            "case": "a",
+            "base": "pants_band",
+            "cf_graded_mm": 6.5,
+            "cf_final_mm": 6.0,
+            "area_final_pct": 1.0,
+            "floor_mm": 4.0,
+            "phase2_kept": "no",
+        },
+        {"case": "b", "exit": "fell"},
+        {"case": "c", "cf_final_mm": 3.0, "area_final_pct": 1.0},
+        {"case": "d", "base": "skirt", "cf_final_mm": 8.0},
+    ]
     mod.print_against(rows, rec, tmp_path / "fits.json")
     out = capsys.readouterr().out
-    assert "| a | aaa1111 | pants -> pants_band | 7.0 -> 6.5 | 5.0 -> 6.0 | 6.0 | 4.0 -> 1.0 |" in out and "yes -> no" in out
+    assert (
+        "| a | aaa1111 | pants -> pants_band | 7.0 -> 6.5 | 5.0 -> 6.0 | 6.0 | 4.0 -> 1.0 |" in out
+        and "yes -> no" in out
+    )
     assert "| d | aaa1111 | skirt | - -> - | 8.0 -> 8.0 |" in out
     assert "| b |" not in out and "| c |" not in out
     assert "Chamfer: median change +0.50 mm over 2; lower on 0, higher on 1" in out

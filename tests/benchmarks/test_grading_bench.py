@@ -5,8 +5,20 @@ from benchmarks_loader import load_benchmark
 
 
 def test_small_mode_grades_the_base_onto_the_known_change(capsys):
-    load_benchmark("bench_grading").main(["--drape", "flat", "--garments", "skirt", "--samples", "2000",
-                                          "--floor-scale", "0", "--edge-length", "0.05"])
+    load_benchmark("bench_grading").main(
+        [
+            "--drape",
+            "flat",
+            "--garments",
+            "skirt",
+            "--samples",
+            "2000",
+            "--floor-scale",
+            "0",
+            "--edge-length",
+            "0.05",
+        ]
+    )
     lines = capsys.readouterr().out.splitlines()
     i = next(k for k, ln in enumerate(lines) if ln.startswith("garment  target Chamfer"))
     cells = lines[i + 1].split()

@@ -14,8 +14,13 @@ def test_small_mode_dresses_the_hoodie(tmp_path):
     except SystemExit:
         pytest.skip("no shared/foreign beside the repository")
     s = bench.SMALL
-    (row,) = bench.run([s["pattern"]], out=tmp_path, edge_length=s["edge_length"], sew_steps=s["sew_steps"],
-                       settle_steps=s["settle_steps"])
+    (row,) = bench.run(
+        [s["pattern"]],
+        out=tmp_path,
+        edge_length=s["edge_length"],
+        sew_steps=s["sew_steps"],
+        settle_steps=s["settle_steps"],
+    )
     assert row["exit"] == 0, row["message"]
     # ~700 vertices on the coarse mesh: one vertex inside is 0.14 %, so the small run is held to
     # twice the full run's 0.5 % (a few vertices), and to its stretch bar

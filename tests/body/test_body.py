@@ -8,9 +8,8 @@ import numpy as np
 import pytest
 from helpers import assert_close
 
-from unsew.body.body import Body, default_body, load_body
+from unsew.body.body import default_body, load_body
 from unsew.body.skeleton import (
-    REQUIRED_JOINTS,
     Skeleton,
     axial_coordinate,
     distance_to_bone,
@@ -64,7 +63,9 @@ def test_skeleton_bones_and_roundtrip(tmp_path):
 
 
 def test_axial_coordinate_distance_and_encircled_bones():
-    sk = Skeleton(["a", "b", "c"], [-1, 0, 1], [[0, 0, 0], [0, 1, 0], [1, 1, 0]], ["torso", "torso", "left_arm"])
+    sk = Skeleton(
+        ["a", "b", "c"], [-1, 0, 1], [[0, 0, 0], [0, 1, 0], [1, 1, 0]], ["torso", "torso", "left_arm"]
+    )
     ab, bc = sk.bones()
     p = np.array([[0.3, 0.25, 0.0], [0.0, 2.0, 0.0]])
     assert_close(axial_coordinate(p, ab), [0.25, 2.0], rtol=1e-12)
@@ -181,11 +182,17 @@ def test_body_facing_back_is_detected(tmp_path):
 
 
 def test_cli_body_measure_and_errors(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "unsew", "body", "measure", "default", "--json"], capture_output=True, text=True)
+    r = subprocess.run(
+        [sys.executable, "-m", "unsew", "body", "measure", "default", "--json"],
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
     assert out["units"] == "m" and 0.8 < out["bust"] < 1.0
-    r = subprocess.run([sys.executable, "-m", "unsew", "body", "measure", str(tmp_path)], capture_output=True, text=True)
+    r = subprocess.run(
+        [sys.executable, "-m", "unsew", "body", "measure", str(tmp_path)], capture_output=True, text=True
+    )
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert len(r.stderr.strip().splitlines()) == 1 and "body.obj" in r.stderr
 

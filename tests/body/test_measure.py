@@ -2,7 +2,6 @@
 body's values (printed with -s) compared with published averages."""
 
 import numpy as np
-import pytest
 from helpers import assert_close
 
 from unsew.body.body import default_body

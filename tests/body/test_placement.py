@@ -31,9 +31,17 @@ def meshes():
 def test_roles(bodies):
     b = bodies["default"][0]
     assert panel_roles(make_base_pattern("tshirt"), b) == {
-        "front": "torso", "back": "torso", "left_sleeve": "left_sleeve", "right_sleeve": "right_sleeve"}
+        "front": "torso",
+        "back": "torso",
+        "left_sleeve": "left_sleeve",
+        "right_sleeve": "right_sleeve",
+    }
     assert panel_roles(make_base_pattern("pants"), b) == {
-        "left_front": "left_leg", "right_front": "right_leg", "left_back": "left_leg", "right_back": "right_leg"}
+        "left_front": "left_leg",
+        "right_front": "right_leg",
+        "left_back": "left_leg",
+        "right_back": "right_leg",
+    }
     assert set(panel_roles(make_base_pattern("skirt"), b).values()) == {"torso"}
 
 
@@ -49,7 +57,9 @@ def test_placement_outside_and_facing(bodies, meshes, garment, body_name):
     # each stitch: its two edges are closer to each other than to any other panel (mean distances);
     rows = stitch_distances(mesh, x)
     assert len(rows) >= len(pat.stitches)
-    bad = [(r["a"], r["b"], round(r["pair"], 3), round(r["other"], 3)) for r in rows if r["pair"] >= r["other"]]
+    bad = [
+        (r["a"], r["b"], round(r["pair"], 3), round(r["other"], 3)) for r in rows if r["pair"] >= r["other"]
+    ]
     assert not bad, f"{garment} on {body_name}: stitches not facing: {bad}"
 
 
@@ -79,7 +89,9 @@ def test_placement_nearly_isometric(bodies, meshes, garment):
     pat, mesh = meshes[garment]
     x = place_garment(pat, mesh, body, sdf=sdf, meet_seams=False)
     e = mesh.faces_uv[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    r = np.linalg.norm(x[e[:, 0]] - x[e[:, 1]], axis=1) / np.linalg.norm(mesh.uv[e[:, 0]] - mesh.uv[e[:, 1]], axis=1)
+    r = np.linalg.norm(x[e[:, 0]] - x[e[:, 1]], axis=1) / np.linalg.norm(
+        mesh.uv[e[:, 0]] - mesh.uv[e[:, 1]], axis=1
+    )
     assert 0.95 < np.median(r) < 1.1
     assert np.percentile(r, 95) < 1.35
 
@@ -120,8 +132,9 @@ def test_missing_joints_named(bodies, meshes):
 def _sleeve_gaps(mesh, x) -> dict:
     """(torso panel, sleeve panel) -> mean distance [m] between the cap vertices sewn together."""
     rows = stitch_distances(mesh, x)
-    return {(r["a"][0], r["b"][0]): r["pair"] for r in rows
-            if "sleeve" in r["b"][0] and "sleeve" not in r["a"][0]}
+    return {
+        (r["a"][0], r["b"][0]): r["pair"] for r in rows if "sleeve" in r["b"][0] and "sleeve" not in r["a"][0]
+    }
 
 
 def test_sleeve_hint_turned_against_its_armhole(bodies, meshes, monkeypatch):

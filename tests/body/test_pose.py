@@ -29,7 +29,9 @@ def test_raised_arm_moves_the_arm_only():
     # the left wrist rotates about the left shoulder by 25 degrees, upwards
     R = rotation_matrix(POSES["left_arm_up"]["left_shoulder"])
     s = sk.positions[i("left_shoulder")]
-    assert_close(p.skeleton.positions[i("left_wrist")], R @ (sk.positions[i("left_wrist")] - s) + s, atol=1e-12)
+    assert_close(
+        p.skeleton.positions[i("left_wrist")], R @ (sk.positions[i("left_wrist")] - s) + s, atol=1e-12
+    )
     assert p.skeleton.positions[i("left_wrist"), 1] > sk.positions[i("left_wrist"), 1] + 0.1
     assert_close(p.skeleton.positions[i("right_wrist")], sk.positions[i("right_wrist")], atol=1e-12)
     # vertices far from the left arm stay put; the left hand moves up

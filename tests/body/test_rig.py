@@ -18,7 +18,11 @@ from unsew.io.mesh import write_obj
 
 DATA = Path(__file__).resolve().parents[2] / "benchmarks" / "data"
 #: GarmentCode's bodies: ../shared beside the repository (as in CI), or $UNSEW_SHARED
-FOREIGN = Path(os.environ.get("UNSEW_SHARED", Path(__file__).resolve().parents[3] / "shared")) / "foreign" / "bodies"
+FOREIGN = (
+    Path(os.environ.get("UNSEW_SHARED", Path(__file__).resolve().parents[3] / "shared"))
+    / "foreign"
+    / "bodies"
+)
 
 
 def _errors(body) -> np.ndarray:
@@ -33,12 +37,16 @@ def test_rig_finds_the_default_bodys_joints():
     assert np.median(e) < 0.02 and e.max() < 0.04, dict(zip(RIG_JOINTS, e.round(3)))
 
 
-@pytest.mark.parametrize("pose", [
-    {"left_shoulder": (0.0, 0.0, np.deg2rad(45.0)), "right_shoulder": (0.0, 0.0, -np.deg2rad(45.0))},  # T-pose
-    "left_arm_up",
-    "right_leg_forward",
-    {"left_elbow": (-np.deg2rad(60.0), 0.0, 0.0)},  # forearm raised forwards
-])
+@pytest.mark.parametrize(
+    "pose",
+    [
+        # T-pose
+        {"left_shoulder": (0.0, 0.0, np.deg2rad(45.0)), "right_shoulder": (0.0, 0.0, -np.deg2rad(45.0))},
+        "left_arm_up",
+        "right_leg_forward",
+        {"left_elbow": (-np.deg2rad(60.0), 0.0, 0.0)},  # forearm raised forwards
+    ],
+)
 def test_rig_follows_moved_limbs(pose):
     e = _errors(pose_body(default_body(), pose))
     assert np.median(e) < 0.02 and e.max() < 0.05, dict(zip(RIG_JOINTS, e.round(3)))
@@ -155,18 +163,36 @@ def test_garment_away_from_its_body_is_refused(tmp_path):
 def test_cli_rig_writes_skeleton_and_preview(tmp_path):
     b = default_body()
     write_obj(tmp_path / "body.obj", b.verts, b.faces)
-    r = subprocess.run([sys.executable, "-m", "unsew", "body", "rig", str(tmp_path / "body.obj"),
-                        "--preview", str(tmp_path / "rig.png")], capture_output=True, text=True)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "unsew",
+            "body",
+            "rig",
+            str(tmp_path / "body.obj"),
+            "--preview",
+            str(tmp_path / "rig.png"),
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode == 0, r.stderr
     d = json.loads((tmp_path / "skeleton.json").read_text())
     assert {j["name"] for j in d["joints"]} == set(RIG_JOINTS)
     assert (tmp_path / "rig.png").stat().st_size > 10_000
-    r = subprocess.run([sys.executable, "-m", "unsew", "body", "rig", str(tmp_path)], capture_output=True, text=True)
-    assert r.returncode == 2 and "--overwrite" in r.stderr  # a folder's skeleton.json, never silently replaced
-    r = subprocess.run([sys.executable, "-m", "unsew", "body", "measure", str(tmp_path / "body.obj"), "--json"],
-                       capture_output=True, text=True)
+    r = subprocess.run(
+        [sys.executable, "-m", "unsew", "body", "rig", str(tmp_path)], capture_output=True, text=True
+    )
+    # a folder's skeleton.json, never silently replaced
+    assert r.returncode == 2 and "--overwrite" in r.stderr
+    r = subprocess.run(
+        [sys.executable, "-m", "unsew", "body", "measure", str(tmp_path / "body.obj"), "--json"],
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode == 0, r.stderr
-    out = json.loads(r.stdout[r.stdout.index("{"):])
+    out = json.loads(r.stdout[r.stdout.index("{") :])
     assert out["rigged"] is True and 0.8 < out["bust"] < 1.0
 
 
@@ -179,12 +205,15 @@ def _yaml(path: Path) -> dict:
     return yaml.safe_load(path.read_text())["body"]
 
 
-@pytest.mark.parametrize("name", [
-    "mean_all",
-    "mean_all_tpose",
-    pytest.param("mean_female", marks=pytest.mark.slow),
-    pytest.param("mean_male", marks=pytest.mark.slow),
-])
+@pytest.mark.parametrize(
+    "name",
+    [
+        "mean_all",
+        "mean_all_tpose",
+        pytest.param("mean_female", marks=pytest.mark.slow),
+        pytest.param("mean_male", marks=pytest.mark.slow),
+    ],
+)
 def test_garmentcode_bodies_rigged_and_measured(name):
     from unsew.body.measure import measure_body
 
@@ -196,7 +225,9 @@ def test_garmentcode_bodies_rigged_and_measured(name):
     m = measure_body(body)
     ref = _yaml(mesh.with_suffix(".yaml"))
     for k, rk in (("height", "height"), ("bust", "bust"), ("waist", "waist"), ("hip", "hips")):
-        assert abs(getattr(m, k) * 100 - ref[rk]) <= 2.0, f"{k}: {getattr(m, k) * 100:.1f} cm vs {ref[rk]:.1f} cm"
+        assert abs(getattr(m, k) * 100 - ref[rk]) <= 2.0, (
+            f"{k}: {getattr(m, k) * 100:.1f} cm vs {ref[rk]:.1f} cm"
+        )
     # no upper-arm girth in GarmentCode's measurements; the A-pose bodies' cut at 30 % reaches
     # the armpit (0.41-0.42 m) and is passed over: 0.32-0.35 m, the T-pose body's 0.34
     assert 0.25 < m.upper_arm < 0.36, f"upper arm {m.upper_arm:.3f} m"
@@ -260,8 +291,11 @@ def test_io_knows_no_body():
     bad = []
     for p in sorted(io_dir.glob("*.py")):
         for node in ast.walk(ast.parse(p.read_text())):
-            mods = [node.module or ""] if isinstance(node, ast.ImportFrom) else (
-                [a.name for a in node.names] if isinstance(node, ast.Import) else [])
+            mods = (
+                [node.module or ""]
+                if isinstance(node, ast.ImportFrom)
+                else ([a.name for a in node.names] if isinstance(node, ast.Import) else [])
+            )
             bad += [f"{p.name}: {m}" for m in mods if m == "unsew.body" or m.startswith("unsew.body.")]
     assert not bad, bad
 

@@ -114,7 +114,9 @@ def test_query_keeps_dtype_and_is_twice_differentiable(sphere_sdf):
 
 def test_query_gradcheck_small_grid():
     sdf = BodySDF.from_function(lambda p: np.linalg.norm(p, axis=1) - 0.05, [-0.1] * 3, [0.1] * 3, voxel=0.01)
-    x = torch.tensor([[0.031, 0.012, -0.018], [0.003, -0.061, 0.044]], dtype=torch.float64, requires_grad=True)
+    x = torch.tensor(
+        [[0.031, 0.012, -0.018], [0.003, -0.061, 0.044]], dtype=torch.float64, requires_grad=True
+    )
     assert torch.autograd.gradcheck(lambda y: sdf.query(y)[0], (x,))
     assert torch.autograd.gradcheck(lambda y: sdf.query(y)[1], (x,))
 

@@ -21,7 +21,11 @@ from unsew.body.skeleton import (
 from unsew.errors import InputError
 from unsew.io.mesh import write_obj
 
-FOREIGN = Path(os.environ.get("UNSEW_SHARED", Path(__file__).resolve().parents[3] / "shared")) / "foreign" / "bodies"
+FOREIGN = (
+    Path(os.environ.get("UNSEW_SHARED", Path(__file__).resolve().parents[3] / "shared"))
+    / "foreign"
+    / "bodies"
+)
 GIRTHS = ("bust", "waist", "hip")
 
 
@@ -48,11 +52,27 @@ def _tree(parents: dict) -> tuple[list[str], np.ndarray]:
 
 
 # the 17 joints with a collar between chest and shoulder and a twist joint in each thigh
-_PARENTS = {"pelvis": None, "spine": "pelvis", "chest": "spine", "neck": "chest", "head": "neck", "head_end": "head"}
+_PARENTS = {
+    "pelvis": None,
+    "spine": "pelvis",
+    "chest": "spine",
+    "neck": "chest",
+    "head": "neck",
+    "head_end": "head",
+}
 for _s in ("left", "right"):
-    _PARENTS.update({f"{_s}_collar": "chest", f"{_s}_shoulder": f"{_s}_collar", f"{_s}_elbow": f"{_s}_shoulder",
-                     f"{_s}_wrist": f"{_s}_elbow", f"{_s}_hip": "pelvis", f"{_s}_thigh_twist": f"{_s}_hip",
-                     f"{_s}_knee": f"{_s}_thigh_twist", f"{_s}_ankle": f"{_s}_knee"})
+    _PARENTS.update(
+        {
+            f"{_s}_collar": "chest",
+            f"{_s}_shoulder": f"{_s}_collar",
+            f"{_s}_elbow": f"{_s}_shoulder",
+            f"{_s}_wrist": f"{_s}_elbow",
+            f"{_s}_hip": "pelvis",
+            f"{_s}_thigh_twist": f"{_s}_hip",
+            f"{_s}_knee": f"{_s}_thigh_twist",
+            f"{_s}_ankle": f"{_s}_knee",
+        }
+    )
 
 
 def test_parts_follow_the_structure():
@@ -78,11 +98,14 @@ def test_file_labels_do_not_set_parts(files):
     assert ours[Skeleton.from_dict(sk).index("left_shoulder")] == "torso"
 
 
-@pytest.mark.parametrize("parents, named", [
-    ({"left_knee": "left_elbow"}, "left_knee"),  # a leg joint hanging from an arm
-    ({"left_shoulder": "head"}, "left_shoulder"),  # an arm hanging from the head
-    ({"chest": "left_hip"}, "chest"),  # the trunk hanging from a leg
-])
+@pytest.mark.parametrize(
+    "parents, named",
+    [
+        ({"left_knee": "left_elbow"}, "left_knee"),  # a leg joint hanging from an arm
+        ({"left_shoulder": "head"}, "left_shoulder"),  # an arm hanging from the head
+        ({"chest": "left_hip"}, "chest"),  # the trunk hanging from a leg
+    ],
+)
 def test_joints_under_another_part_are_refused_naming_them(files, parents, named):
     _, sk, _ = files
     sk = json.loads(json.dumps(sk))
@@ -99,7 +122,9 @@ def test_default_body_measures_the_same_in_every_convention(files, convention):
     d, sk, ref = files
     m = measure_body(load_body(d / "body.obj", _write(d, CONVENTIONS[convention](sk), convention)))
     for k in GIRTHS:
-        assert abs(getattr(m, k) - getattr(ref, k)) <= 0.025, f"{k}: {getattr(m, k):.3f} vs {getattr(ref, k):.3f} m"
+        assert abs(getattr(m, k) - getattr(ref, k)) <= 0.025, (
+            f"{k}: {getattr(m, k):.3f} vs {getattr(ref, k):.3f} m"
+        )
 
 
 @pytest.mark.parametrize("seed", [0, 3, 9, 10])  # together: every convention of combined()
@@ -109,7 +134,9 @@ def test_default_body_measures_the_same_with_conventions_combined(files, seed):
     assert not body.skeleton.missing(REQUIRED_JOINTS)
     m = measure_body(body)
     for k in GIRTHS:
-        assert abs(getattr(m, k) - getattr(ref, k)) <= 0.025, f"{k}: {getattr(m, k):.3f} vs {getattr(ref, k):.3f} m"
+        assert abs(getattr(m, k) - getattr(ref, k)) <= 0.025, (
+            f"{k}: {getattr(m, k):.3f} vs {getattr(ref, k):.3f} m"
+        )
 
 
 def test_limb_labels_set_in_code_are_refused_naming_the_joint(files):
@@ -178,4 +205,6 @@ def test_garmentcode_body_with_a_limb_labelled_skeleton(name, tmp_path):
     m = cross_check_rig(load_body(mesh, _write(tmp_path, sk, "limb")))
     ref = yaml.safe_load(mesh.with_suffix(".yaml").read_text())["body"]
     for k, rk in (("bust", "bust"), ("waist", "waist"), ("hip", "hips")):
-        assert abs(getattr(m, k) * 100 - ref[rk]) <= 2.5, f"{k}: {getattr(m, k) * 100:.1f} vs {ref[rk]:.1f} cm"
+        assert abs(getattr(m, k) * 100 - ref[rk]) <= 2.5, (
+            f"{k}: {getattr(m, k) * 100:.1f} vs {ref[rk]:.1f} cm"
+        )

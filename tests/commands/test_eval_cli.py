@@ -90,7 +90,8 @@ def test_eval_refuses_a_case_in_the_wrong_units_as_fit_does(folders, capsys):
     write_obj(case / "target.obj", _plane(0.0)[0] * 100 + [0, 0, 0.5], _plane(0.0)[1])  # cm, meta says m
     _fails(["eval", str(res), str(case), "--samples", "500"], capsys, match="--units cm")
     assert not (res / "eval.json").exists()
-    assert main(["eval", str(res), str(case), "--samples", "500", "--units", "cm"]) == 0  # the option fixes it
+    # the option fixes it
+    assert main(["eval", str(res), str(case), "--samples", "500", "--units", "cm"]) == 0
     assert_close(json.loads((res / "eval.json").read_text())["3d"]["chamfer_mm"], 5.0, rtol=1e-6)
 
 
@@ -102,7 +103,11 @@ def test_eval_refuses_a_target_off_its_body(folders, tmp_path, capsys):
     _fails(["eval", str(res), str(case), "--samples", "500"], capsys, match="does not lie on its wearer")
     assert not (res / "eval.json").exists()
     # fit refuses the same case with the same line
-    _fails(["fit", str(case), "--out", str(tmp_path / "r"), "--no-progress"], capsys, match="does not lie on its wearer")
+    _fails(
+        ["fit", str(case), "--out", str(tmp_path / "r"), "--no-progress"],
+        capsys,
+        match="does not lie on its wearer",
+    )
 
 
 def test_eval_json_is_not_replaced_without_overwrite(folders, capsys):

@@ -30,7 +30,11 @@ def _one_line_error(capsys, code, want: str = "", *, status: int = 2) -> str:
 
 def _no_outputs(folder: Path) -> list[str]:
     """Names under ``folder`` that look like outputs or their temporaries."""
-    return sorted(p.name for p in folder.rglob("*") if p.suffix in (".svg", ".dxf", ".obj", ".part", ".probe", ".partial"))
+    return sorted(
+        p.name
+        for p in folder.rglob("*")
+        if p.suffix in (".svg", ".dxf", ".obj", ".part", ".probe", ".partial")
+    )
 
 
 @pytest.fixture
@@ -51,7 +55,9 @@ def _scaled(pattern_file: Path, units_in_meter: float) -> Path:
 @pytest.mark.parametrize("verb", ["new", "mesh", "export"])
 def test_out_under_a_file(verb, tmp_path, pattern_file, capsys):
     (tmp_path / "afile").write_text("x")
-    target = tmp_path / "afile" / "sub" / ("p.json" if verb == "new" else "p.obj" if verb == "mesh" else "p.svg")
+    target = (
+        tmp_path / "afile" / "sub" / ("p.json" if verb == "new" else "p.obj" if verb == "mesh" else "p.svg")
+    )
     capsys.readouterr()
     args = {
         "new": ["pattern", "new", "tshirt", "--out", str(target)],
@@ -95,10 +101,14 @@ def test_disk_full_leaves_nothing(tmp_path, pattern_file):
     out.mkdir()
     args = ["pattern", "export", str(pattern_file), "--svg", str(out / "p.svg"), "--dxf", str(out / "p.dxf")]
     env = {**os.environ, "PYTHONPATH": str(SRC), "OMP_WAIT_POLICY": "PASSIVE"}
-    r = subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True, env=env, timeout=120)
+    r = subprocess.run(
+        [sys.executable, "-c", code, *args], capture_output=True, text=True, env=env, timeout=120
+    )
     lines = r.stderr.strip().splitlines()
     assert r.returncode == 2, r.stderr
-    assert len(lines) == 1 and lines[0].startswith("unsew: error: cannot write") and "p.svg" in lines[0], r.stderr
+    assert len(lines) == 1 and lines[0].startswith("unsew: error: cannot write") and "p.svg" in lines[0], (
+        r.stderr
+    )
     assert list(out.iterdir()) == []
 
 
@@ -127,16 +137,34 @@ def test_write_failure_inside_atomic_write_is_one_output_error(tmp_path):
 def test_pattern_mesh_of_a_pattern_100x_too_large_is_refused_up_front(tmp_path, pattern_file, capsys):
     big = _scaled(pattern_file, 1)  # centimetre numbers read as metres: 100x too large
     capsys.readouterr()
-    line = _one_line_error(capsys, main(["pattern", "mesh", str(big), "--out", str(tmp_path / "big.obj")]),
-                           "triangles (limit 250,000)")
+    line = _one_line_error(
+        capsys,
+        main(["pattern", "mesh", str(big), "--out", str(tmp_path / "big.obj")]),
+        "triangles (limit 250,000)",
+    )
     assert "units_in_meter" in line and "--max-triangles" in line
-    _one_line_error(capsys, main(["pattern", "export", str(big), "--obj", str(tmp_path / "big.obj")]), "triangles")
+    _one_line_error(
+        capsys, main(["pattern", "export", str(big), "--obj", str(tmp_path / "big.obj")]), "triangles"
+    )
     assert _no_outputs(tmp_path) == []
     # the limit is an option: the ordinary pattern passes the default and fails a small one
     assert main(["pattern", "mesh", str(pattern_file), "--out", str(tmp_path / "ok.obj")]) == 0
     capsys.readouterr()
-    _one_line_error(capsys, main(["pattern", "mesh", str(pattern_file), "--out", str(tmp_path / "no.obj"),
-                                  "--max-triangles", "1000"]), "limit 1,000")
+    _one_line_error(
+        capsys,
+        main(
+            [
+                "pattern",
+                "mesh",
+                str(pattern_file),
+                "--out",
+                str(tmp_path / "no.obj"),
+                "--max-triangles",
+                "1000",
+            ]
+        ),
+        "limit 1,000",
+    )
     assert not (tmp_path / "no.obj").exists()
 
 
@@ -151,7 +179,9 @@ def test_triangle_estimate_is_close():
         assert 0.8 * n <= estimate_triangles(p, 0.03) <= 1.3 * n
 
 
-@pytest.mark.parametrize("units_in_meter,size", [(1, "far too large"), (10, "far too large"), (10000, "far too small")])
+@pytest.mark.parametrize(
+    "units_in_meter,size", [(1, "far too large"), (10, "far too large"), (10000, "far too small")]
+)
 def test_drape_of_a_pattern_out_of_scale_is_refused(units_in_meter, size, tmp_path, pattern_file, capsys):
     p = _scaled(pattern_file, units_in_meter)
     capsys.readouterr()
@@ -176,7 +206,10 @@ def test_target_beside_the_body_is_refused(tmp_path, capsys):
 
     load_case(_tube_case(tmp_path / "a"))  # worn: loads
     d = _tube_case(tmp_path / "b", shift=(0.0, 0.0, 0.5))  # half a metre in front of the body
-    for cmd in (["fit", str(d), "--out", str(tmp_path / "r"), "--no-progress"], ["grade", str(d), "--out", str(tmp_path / "r"), "--flat"]):
+    for cmd in (
+        ["fit", str(d), "--out", str(tmp_path / "r"), "--no-progress"],
+        ["grade", str(d), "--out", str(tmp_path / "r"), "--flat"],
+    ):
         _one_line_error(capsys, main(cmd), "does not lie on its wearer")
         assert not (tmp_path / "r").exists() and not (tmp_path / "r.partial").exists()
 

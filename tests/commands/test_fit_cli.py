@@ -55,14 +55,19 @@ def test_closed_sphere_is_not_a_garment(tmp_path, capsys):
 
 def test_wrong_base_type(tmp_path, capsys):
     d = _case(tmp_path)
-    code, err = _run(["fit", str(d), "--base", "pants", "--out", str(tmp_path / "r"), "--no-progress"], capsys)
+    code, err = _run(
+        ["fit", str(d), "--base", "pants", "--out", str(tmp_path / "r"), "--no-progress"], capsys
+    )
     assert code == 2 and "cannot make a tshirt" in err
     assert not (tmp_path / "r").exists() and not (tmp_path / "r.partial").exists()
 
 
 def test_units_hint(tmp_path, capsys):
     d = _case(tmp_path)
-    v, f = trimesh.load(d / "target.obj", process=False).vertices, trimesh.load(d / "target.obj", process=False).faces
+    v, f = (
+        trimesh.load(d / "target.obj", process=False).vertices,
+        trimesh.load(d / "target.obj", process=False).faces,
+    )
     write_obj(d / "target.obj", v * 100, f)
     code, err = _run(["fit", str(d), "--out", str(tmp_path / "r")], capsys)
     assert code == 2 and "--units cm" in err
@@ -86,8 +91,11 @@ def test_existing_output_is_not_overwritten(tmp_path, capsys):
 
 
 def test_no_traceback_in_a_real_process(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "unsew", "fit", str(tmp_path / "nope"), "--out", str(tmp_path / "r")],
-                       capture_output=True, text=True)
+    r = subprocess.run(
+        [sys.executable, "-m", "unsew", "fit", str(tmp_path / "nope"), "--out", str(tmp_path / "r")],
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode == 2 and "Traceback" not in r.stderr and r.stderr.startswith("unsew: error:")
 
 
@@ -97,6 +105,8 @@ def test_unavailable_device(tmp_path, capsys):
     if torch.cuda.is_available():
         pytest.skip("a CUDA device is present")
     d = _case(tmp_path)
-    code, err = _run(["fit", str(d), "--device", "cuda", "--out", str(tmp_path / "r"), "--no-progress"], capsys)
+    code, err = _run(
+        ["fit", str(d), "--device", "cuda", "--out", str(tmp_path / "r"), "--no-progress"], capsys
+    )
     assert code == 2 and "--device cpu" in err
     assert not (tmp_path / "r").exists() and not (tmp_path / "r.partial").exists()

@@ -50,8 +50,15 @@ def valid(tmp_path_factory):
     return d
 
 
-def _case(root: Path, valid: Path, *, target: str | None = None, meta: dict | str | None = None,
-          body: bool = False, skeleton: str | None = None) -> Path:
+def _case(
+    root: Path,
+    valid: Path,
+    *,
+    target: str | None = None,
+    meta: dict | str | None = None,
+    body: bool = False,
+    skeleton: str | None = None,
+) -> Path:
     """A case folder: the valid tube target and a default-body meta.json unless replaced."""
     d = root / "case"
     d.mkdir()
@@ -61,7 +68,9 @@ def _case(root: Path, valid: Path, *, target: str | None = None, meta: dict | st
     (d / "meta.json").write_text(meta if isinstance(meta, str) else json.dumps(meta))
     if body:
         (d / "body.obj").write_text((valid / "body.obj").read_text())
-        (d / "skeleton.json").write_text(skeleton if skeleton is not None else (valid / "skeleton.json").read_text())
+        (d / "skeleton.json").write_text(
+            skeleton if skeleton is not None else (valid / "skeleton.json").read_text()
+        )
     return d
 
 
@@ -113,12 +122,19 @@ MESHES = {
     "mesh_index_out_of_range": _mesh_case(lambda v, f: _obj(v, f) + f"f 1 2 {len(v) + 50}\n"),
     "mesh_no_faces": _mesh_case(lambda v, f: _obj(v, [])),
     "mesh_segments_only": _mesh_case(_only_segments),
-    "mesh_binary_garbage": _mesh_case(lambda v, f: bytes(np.random.default_rng(0).integers(0, 256, 4000, dtype=np.uint8)).decode("latin-1")),
+    "mesh_binary_garbage": _mesh_case(
+        lambda v, f: bytes(np.random.default_rng(0).integers(0, 256, 4000, dtype=np.uint8)).decode("latin-1")
+    ),
     "mesh_in_centimetres": _mesh_case(lambda v, f: _obj(v * 100.0, f)),
     "mesh_in_millimetres_declared_metres": _mesh_case(lambda v, f: _obj(v * 1000.0, f)),
     "mesh_z_up": _mesh_case(lambda v, f: _obj(v[:, [0, 2, 1]] * [1, -1, 1], f)),
     "mesh_all_degenerate": _mesh_case(lambda v, f: _obj(np.repeat(v[:1], len(v), 0), f)),
-    "mesh_closed_sphere": _mesh_case(lambda v, f: _obj(trimesh.creation.icosphere(2, 0.2).vertices + [0, 1.1, 0], trimesh.creation.icosphere(2, 0.2).faces)),
+    "mesh_closed_sphere": _mesh_case(
+        lambda v, f: _obj(
+            trimesh.creation.icosphere(2, 0.2).vertices + [0, 1.1, 0],
+            trimesh.creation.icosphere(2, 0.2).faces,
+        )
+    ),
     "mesh_far_from_body": _mesh_case(lambda v, f: _obj(v + [0.0, 0.0, 0.5], f)),
 }
 
@@ -200,8 +216,10 @@ def _edge_vertex_out_of_range(s):
 
 
 PATTERNS = {
-    "pattern_not_json": _pattern_case(lambda s: "{\"pattern\": [1, 2"),
-    "pattern_no_panels": _pattern_case(lambda s: {"pattern": {"panels": {}, "stitches": []}, "properties": s["properties"]}),
+    "pattern_not_json": _pattern_case(lambda s: '{"pattern": [1, 2'),
+    "pattern_no_panels": _pattern_case(
+        lambda s: {"pattern": {"panels": {}, "stitches": []}, "properties": s["properties"]}
+    ),
     "pattern_is_a_list": _pattern_case(lambda s: [s]),
     "pattern_open_loop": _pattern_case(_open_loop),
     "pattern_missing_stitch_target": _pattern_case(_missing_stitch_target),
@@ -313,7 +331,11 @@ SKELETONS = {
     "skeleton_unknown_part": _skeleton_case(_bad_part),
     "skeleton_two_coordinates": _skeleton_case(_short_position),
     "skeleton_in_centimetres_declared_metres": _skeleton_case(
-        lambda sk: {**sk, "joints": [{**j, "position": [100 * x for x in j["position"]]} for j in sk["joints"]]}),
+        lambda sk: {
+            **sk,
+            "joints": [{**j, "position": [100 * x for x in j["position"]]} for j in sk["joints"]],
+        }
+    ),
 }
 
 # --- configs: `unsew fit CASE --config bad.yaml` (the config is read before the case)
@@ -381,18 +403,42 @@ CASES = {
     "case_no_meta": _case_maker(_no_meta),
     "case_meta_not_json": _case_maker(lambda tmp, valid: _case(tmp, valid, meta="{garment: tshirt")),
     "case_meta_a_list": _case_maker(lambda tmp, valid: _case(tmp, valid, meta="[1, 2]")),
-    "case_unknown_garment": _case_maker(lambda tmp, valid: _case(tmp, valid, meta={"garment": "poncho", "body": "default"})),
-    "case_unknown_units": _case_maker(lambda tmp, valid: _case(tmp, valid, meta={"garment": "tshirt", "body": "default", "units": "furlong"})),
-    "case_bad_up_axis": _case_maker(lambda tmp, valid: _case(tmp, valid, meta={"garment": "tshirt", "body": "default", "up": "w"})),
-    "case_up_equals_front": _case_maker(lambda tmp, valid: _case(tmp, valid, meta={"garment": "tshirt", "body": "default", "up": "z", "front": "z"})),
+    "case_unknown_garment": _case_maker(
+        lambda tmp, valid: _case(tmp, valid, meta={"garment": "poncho", "body": "default"})
+    ),
+    "case_unknown_units": _case_maker(
+        lambda tmp, valid: _case(
+            tmp, valid, meta={"garment": "tshirt", "body": "default", "units": "furlong"}
+        )
+    ),
+    "case_bad_up_axis": _case_maker(
+        lambda tmp, valid: _case(tmp, valid, meta={"garment": "tshirt", "body": "default", "up": "w"})
+    ),
+    "case_up_equals_front": _case_maker(
+        lambda tmp, valid: _case(
+            tmp, valid, meta={"garment": "tshirt", "body": "default", "up": "z", "front": "z"}
+        )
+    ),
     "case_no_target": _case_maker(_no_target),
     "case_no_body": _case_maker(lambda tmp, valid: _case(tmp, valid, meta={"garment": "tshirt"})),
-    "case_unknown_body_model": _case_maker(lambda tmp, valid: _case(tmp, valid, meta={"garment": "tshirt", "body": {"model": "smurf"}})),
+    "case_unknown_body_model": _case_maker(
+        lambda tmp, valid: _case(tmp, valid, meta={"garment": "tshirt", "body": {"model": "smurf"}})
+    ),
     "case_unriggable_body_without_skeleton": _case_maker(_unriggable_body),
-    "case_body_with_cyclic_skeleton": _case_maker(lambda tmp, valid: _case(
-        tmp, valid, body=True, skeleton=json.dumps(_cycle(json.loads((valid / "skeleton.json").read_text()))))),
-    "case_bad_pattern_gt": lambda tmp, valid: _fit(_write(_case(tmp, valid) / "pattern_gt.json", "{}").parent, tmp),
-    "case_base_pattern_missing": lambda tmp, valid: _fit(_case(tmp, valid), tmp, "--base", str(tmp / "nope.json")),
+    "case_body_with_cyclic_skeleton": _case_maker(
+        lambda tmp, valid: _case(
+            tmp,
+            valid,
+            body=True,
+            skeleton=json.dumps(_cycle(json.loads((valid / "skeleton.json").read_text()))),
+        )
+    ),
+    "case_bad_pattern_gt": lambda tmp, valid: _fit(
+        _write(_case(tmp, valid) / "pattern_gt.json", "{}").parent, tmp
+    ),
+    "case_base_pattern_missing": lambda tmp, valid: _fit(
+        _case(tmp, valid), tmp, "--base", str(tmp / "nope.json")
+    ),
 }
 
 
@@ -434,7 +480,9 @@ def test_damaged_input_is_one_line_and_exit_2(name, tmp_path, valid, no_fit, cap
     assert code == 2, f"{name}: exit {code}; stderr: {err!r}"
     assert len(lines) == 1 and lines[0].startswith("unsew: error: "), f"{name}: {err!r}"
     assert "Traceback" not in err + out
-    assert raised and isinstance(raised[-1], InputError), f"{name}: {type(raised[-1]).__name__ if raised else None}"
+    assert raised and isinstance(raised[-1], InputError), (
+        f"{name}: {type(raised[-1]).__name__ if raised else None}"
+    )
     # nothing that looks like a result
     assert not any(p.name in ("result", "p.svg", "p.obj", "g.obj") for p in tmp_path.iterdir())
 

@@ -23,7 +23,9 @@ def test_every_command_has_examples_and_states_its_defaults():
         for action in parser._actions:
             if action.help in (None, argparse.SUPPRESS) or not action.option_strings:
                 continue
-            plain_switch = isinstance(action, (argparse._StoreTrueAction, argparse._HelpAction, argparse._VersionAction))
+            plain_switch = isinstance(
+                action, (argparse._StoreTrueAction, argparse._HelpAction, argparse._VersionAction)
+            )
             if not plain_switch and not action.required:  # every option a user may leave out says what then
                 assert "default" in parser._get_formatter()._expand_help(action), (path, action.dest)
         seen += 1
@@ -36,21 +38,37 @@ def test_fit_help_states_the_configurations_defaults():
     from unsew.fit.demo import DEMO_CONFIG
 
     cfg = FitConfig()
-    assert FIT_DEFAULTS == {"iterations": cfg.optimizer.iterations, "edge_length": cfg.drape.edge_length,
-                            "steps": cfg.drape.steps}
-    assert DEMO_DEFAULTS == {"iterations": DEMO_CONFIG["optimizer"]["iterations"],
-                             "edge_length": DEMO_CONFIG["drape"]["edge_length"], "steps": DEMO_CONFIG["drape"]["steps"]}
+    assert FIT_DEFAULTS == {
+        "iterations": cfg.optimizer.iterations,
+        "edge_length": cfg.drape.edge_length,
+        "steps": cfg.drape.steps,
+    }
+    assert DEMO_DEFAULTS == {
+        "iterations": DEMO_CONFIG["optimizer"]["iterations"],
+        "edge_length": DEMO_CONFIG["drape"]["edge_length"],
+        "steps": DEMO_CONFIG["drape"]["steps"],
+    }
     assert cfg.device == "cpu" and cfg.material.start == "auto" and cfg.time_limit == 540.0
 
 
-@pytest.mark.parametrize("command", [["fit", "case", "--out", "r"], ["demo"], ["batch", "cases", "--out", "r"],
-                                     ["drape", "p.json", "--out", "g.obj"]])
+@pytest.mark.parametrize(
+    "command",
+    [
+        ["fit", "case", "--out", "r"],
+        ["demo"],
+        ["batch", "cases", "--out", "r"],
+        ["drape", "p.json", "--out", "g.obj"],
+    ],
+)
 def test_no_progress_everywhere_and_quiet_still_works_with_a_warning(command, capsys):
     parser = build_parser()
     dest = "no_progress" if command[0] == "drape" else "quiet"
     assert getattr(parser.parse_args(command + ["--no-progress"]), dest) is True
     assert getattr(parser.parse_args(command), dest) is False
-    assert "--no-progress" in capsys.readouterr().out + parser._subparsers._group_actions[0].choices[command[0]].format_help()
+    assert (
+        "--no-progress"
+        in capsys.readouterr().out + parser._subparsers._group_actions[0].choices[command[0]].format_help()
+    )
     assert getattr(parser.parse_args(command + ["--quiet"]), dest) is True
     assert "--quiet is deprecated, use --no-progress" in capsys.readouterr().err
 

@@ -37,10 +37,23 @@ def test_material_only_keeps_the_pattern_and_fits_the_fabric(tmp_path):
     write_obj(case / "target.obj", d.x.numpy(), d.mesh.faces)
     (case / "meta.json").write_text(json.dumps({"body": "default"}))
     save_pattern(truth, case / "pattern_gt.json")
-    (tmp_path / "small.yaml").write_text("drape: {edge_length: 0.04, steps: 6}\noptimizer: {iterations: 3}\n"
-                                         "output: {report: false}\n")
-    code = main(["fit", str(case), "--out", str(tmp_path / "r"), "--material-only", "--base",
-                 str(case / "pattern_gt.json"), "--config", str(tmp_path / "small.yaml"), "--no-progress"])
+    (tmp_path / "small.yaml").write_text(
+        "drape: {edge_length: 0.04, steps: 6}\noptimizer: {iterations: 3}\noutput: {report: false}\n"
+    )
+    code = main(
+        [
+            "fit",
+            str(case),
+            "--out",
+            str(tmp_path / "r"),
+            "--material-only",
+            "--base",
+            str(case / "pattern_gt.json"),
+            "--config",
+            str(tmp_path / "small.yaml"),
+            "--no-progress",
+        ]
+    )
     assert code == 0
     got = load_pattern(tmp_path / "r" / "pattern.json")
     for name, panel in truth.panels.items():

@@ -52,8 +52,19 @@ def _file_commands(pattern: Path) -> dict:
         "pattern export svg": ["pattern", "export", str(pattern), "--svg", "{out}.svg"],
         "pattern export dxf": ["pattern", "export", str(pattern), "--dxf", "{out}.dxf"],
         "pattern export obj": ["pattern", "export", str(pattern), "--obj", "{out}.obj"],
-        "drape": ["drape", str(pattern), "--edge-length", "0.05", "--sew-steps", "10", "--settle-steps", "5",
-                  "--no-progress", "--out", "{out}.obj"],
+        "drape": [
+            "drape",
+            str(pattern),
+            "--edge-length",
+            "0.05",
+            "--sew-steps",
+            "10",
+            "--settle-steps",
+            "5",
+            "--no-progress",
+            "--out",
+            "{out}.obj",
+        ],
     }
 
 
@@ -103,10 +114,27 @@ def test_body_rig(tmp_path, capsys):
     skel.write_text("mine")  # the default --out, beside the body
     _refused(capsys, main(["body", "rig", str(body)]), "pass --overwrite")
     assert skel.read_text() == "mine"
-    _refused(capsys, main(["body", "rig", str(body), "--out", str(tmp_path / "missing" / "s.json")]), "does not exist")
+    _refused(
+        capsys,
+        main(["body", "rig", str(body), "--out", str(tmp_path / "missing" / "s.json")]),
+        "does not exist",
+    )
     (tmp_path / "rig.png").write_text("mine")
-    _refused(capsys, main(["body", "rig", str(body), "--out", str(tmp_path / "s.json"), "--preview",
-                           str(tmp_path / "rig.png")]), "--preview")
+    _refused(
+        capsys,
+        main(
+            [
+                "body",
+                "rig",
+                str(body),
+                "--out",
+                str(tmp_path / "s.json"),
+                "--preview",
+                str(tmp_path / "rig.png"),
+            ]
+        ),
+        "--preview",
+    )
     assert not (tmp_path / "s.json").exists()
     assert main(["body", "rig", str(body), "--overwrite"]) == 0
     assert json.loads(skel.read_text())["units"] == "m"

@@ -76,7 +76,9 @@ def test_malformed_inputs_one_line_nothing_written(case, tmp_path, capsys):
 def test_bad_measurements_and_outputs(tmp_path, capsys):
     m = tmp_path / "m.yaml"
     m.write_text("bust: 94\n")  # centimetres by mistake
-    assert main(["pattern", "new", "tshirt", "--measurements", str(m), "--out", str(tmp_path / "x.json")]) == 2
+    assert (
+        main(["pattern", "new", "tshirt", "--measurements", str(m), "--out", str(tmp_path / "x.json")]) == 2
+    )
     assert "implausible" in capsys.readouterr().err
     assert not (tmp_path / "x.json").exists()
     assert main(["pattern", "export", str(HANDMADE)]) == 2
@@ -89,7 +91,10 @@ def test_subprocess_error_is_one_line(tmp_path):
     env = dict(os.environ, OMP_WAIT_POLICY="PASSIVE")
     r = subprocess.run(
         [sys.executable, "-m", "unsew", "pattern", "export", str(bad), "--svg", str(tmp_path / "o.svg")],
-        capture_output=True, text=True, env=env, timeout=120,
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
     )
     assert r.returncode == 2
     assert r.stderr.strip().count("\n") == 0 and "empty" in r.stderr and "Traceback" not in r.stderr
@@ -131,4 +136,6 @@ def test_measurements_in_centimetres(tmp_path):
     assert main(["pattern", "new", "tshirt", "--measurements", str(metres), "--out", str(b)]) == 0
     assert np.allclose(load_pattern(a).panels["front"].vertices, load_pattern(b).panels["front"].vertices)
     cm.write_text("units: inch\nbust: 37\n")
-    assert main(["pattern", "new", "tshirt", "--measurements", str(cm), "--out", str(tmp_path / "c.json")]) == 2
+    assert (
+        main(["pattern", "new", "tshirt", "--measurements", str(cm), "--out", str(tmp_path / "c.json")]) == 2
+    )

@@ -29,8 +29,13 @@ def _clean(text: str, what: str) -> None:
 
 def _unsew(*args, timeout=300) -> subprocess.CompletedProcess:
     """``python -m unsew ARGS`` with stdout and stderr to pipes (not terminals)."""
-    return subprocess.run([sys.executable, "-m", "unsew", *map(str, args)], capture_output=True, text=True,
-                          env=ENV, timeout=timeout)
+    return subprocess.run(
+        [sys.executable, "-m", "unsew", *map(str, args)],
+        capture_output=True,
+        text=True,
+        env=ENV,
+        timeout=timeout,
+    )
 
 
 class _Terminal(io.StringIO):
@@ -81,7 +86,9 @@ def test_the_stream_decides_bars_or_lines():
 def test_drape_through_a_pipe_has_no_control_codes(tmp_path):
     pattern, out = tmp_path / "s.json", tmp_path / "g.obj"
     assert _unsew("pattern", "new", "skirt", "--out", pattern).returncode == 0
-    r = _unsew("drape", pattern, "--out", out, "--edge-length", "0.05", "--sew-steps", "10", "--settle-steps", "5")
+    r = _unsew(
+        "drape", pattern, "--out", out, "--edge-length", "0.05", "--sew-steps", "10", "--settle-steps", "5"
+    )
     assert r.returncode == 0, r.stderr
     _clean(r.stdout, "stdout")
     _clean(r.stderr, "stderr")
@@ -95,7 +102,9 @@ sys.path.insert(0, {tests!r})
 from batch.fakes import fake_fit
 from unsew.batch import run_batch
 from unsew.fit.config import load_config
-run_batch({cases!r}, {out!r}, cfg=load_config(iterations=2, report=False), workers=1, fit_fn=fake_fit, progress=True)
+run_batch(
+    {cases!r}, {out!r}, cfg=load_config(iterations=2, report=False), workers=1, fit_fn=fake_fit, progress=True
+)
 """
 
 
@@ -132,8 +141,16 @@ def test_json_flags_print_json_alone(tmp_path):
 
 # ---------------------------------------------------------------- the fit, batch and demo, real
 
-TINY = {"edge_length": 0.05, "sew_steps": 10, "settle_steps": 5, "steps": 3, "target_points": 1000,
-        "report": False, "material": "cotton", "iterations": 1}
+TINY = {
+    "edge_length": 0.05,
+    "sew_steps": 10,
+    "settle_steps": 5,
+    "steps": 3,
+    "target_points": 1000,
+    "report": False,
+    "material": "cotton",
+    "iterations": 1,
+}
 
 
 @pytest.fixture(scope="module")
@@ -153,9 +170,11 @@ def tiny(tmp_path_factory):
 @pytest.mark.parametrize("command", ["fit", "batch", "demo"])
 def test_real_commands_through_a_pipe_have_no_control_codes(command, tiny, tmp_path):
     cfg, cases = tiny / "tiny.yaml", tiny / "cases"
-    args = {"fit": ["fit", cases / "tshirt", "--out", tmp_path / "r", "--config", cfg],
-            "batch": ["batch", cases, "--out", tmp_path / "r", "--config", cfg, "--workers", "1"],
-            "demo": ["demo", "--out", tmp_path / "r", "--config", cfg]}[command]
+    args = {
+        "fit": ["fit", cases / "tshirt", "--out", tmp_path / "r", "--config", cfg],
+        "batch": ["batch", cases, "--out", tmp_path / "r", "--config", cfg, "--workers", "1"],
+        "demo": ["demo", "--out", tmp_path / "r", "--config", cfg],
+    }[command]
     r = _unsew(*args, timeout=900)
     assert r.returncode == 0, r.stderr[-2000:]
     _clean(r.stdout, f"{command}'s stdout")

@@ -11,8 +11,23 @@ def test_drape_cli_writes_obj(tmp_path, capsys):
     pj = tmp_path / "skirt.json"
     save_pattern(make_base_pattern("skirt"), pj)
     out = tmp_path / "garment.obj"
-    rc = main(["drape", str(pj), "--body", "default", "--edge-length", "0.05", "--sew-steps", "20",
-               "--settle-steps", "2", "--no-progress", "--out", str(out)])
+    rc = main(
+        [
+            "drape",
+            str(pj),
+            "--body",
+            "default",
+            "--edge-length",
+            "0.05",
+            "--sew-steps",
+            "20",
+            "--settle-steps",
+            "2",
+            "--no-progress",
+            "--out",
+            str(out),
+        ]
+    )
     assert rc == 0 and out.is_file()
     from unsew.io.mesh import read_mesh
 
@@ -91,8 +106,9 @@ def test_drape_cli_uses_the_contact_a_fit_wrote(tmp_path, capsys):
     from unsew.sim.material import MATERIALS
 
     def written(contact):
-        result = SimpleNamespace(pattern=make_base_pattern("skirt"), params=None, material=MATERIALS["cotton"],
-                                 contact=contact)
+        result = SimpleNamespace(
+            pattern=make_base_pattern("skirt"), params=None, material=MATERIALS["cotton"], contact=contact
+        )
         pj = tmp_path / f"{contact['mode']}.json"
         save_pattern(pattern_with_extras(result), pj)
         return pj

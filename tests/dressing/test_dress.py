@@ -72,8 +72,12 @@ def test_dress_wide_body(garment):
 
     body = default_body().transformed(scale=WIDE)
     sdf = BodySDF.build(body)
-    d = dress(make_base_pattern(garment, measure_body(body)), body, sdf=sdf,
-              settings=DRESS_SETTINGS.replace(edge_length=0.03))
+    d = dress(
+        make_base_pattern(garment, measure_body(body)),
+        body,
+        sdf=sdf,
+        settings=DRESS_SETTINGS.replace(edge_length=0.03),
+    )
     _check(garment, body, dress_stats(d), stretch_max=1.3)
 
 

@@ -53,6 +53,10 @@ def test_variant_dresses_on_anny_default(name):
     from unsew.body.measure import measure_body
 
     body = make_anny_body(phenotype={}, pose="A")
-    d = dress(make_base_pattern(name, measure_body(body)), body, sdf=BodySDF.build(body),
-              settings=DRESS_SETTINGS.replace(edge_length=0.03))
+    d = dress(
+        make_base_pattern(name, measure_body(body)),
+        body,
+        sdf=BodySDF.build(body),
+        settings=DRESS_SETTINGS.replace(edge_length=0.03),
+    )
     _check(name, d, body, strict=False)

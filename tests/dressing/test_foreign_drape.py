@@ -55,7 +55,9 @@ def test_shirt_small_hangs_from_the_shoulders(default_sdf):
     before, it ended at y 0.22-0.53 m."""
     body, sdf = default_sdf
     sk = body.skeleton
-    d, v = _check_on_body("shirt", _sample("shirt_mean"), body, sdf, edge_length=0.05, sew_steps=40, settle_steps=10)
+    d, v = _check_on_body(
+        "shirt", _sample("shirt_mean"), body, sdf, edge_length=0.05, sew_steps=40, settle_steps=10
+    )
     assert v.y_max > sk.position("left_shoulder")[1] and v.y_min > sk.position("pelvis")[1]
     x = d.x.numpy()
     names = d.mesh.panel_names

@@ -37,8 +37,15 @@ def _target(name, body, sdf, edge=0.035):
 
 def _choose(garment, target, body, sdf):
     lines = []
-    ch = choose_base(SimpleNamespace(garment=garment, body=body), target, sdf, CFG, get_material("cotton"),
-                     progress=Progress(False), log=lines.append)
+    ch = choose_base(
+        SimpleNamespace(garment=garment, body=body),
+        target,
+        sdf,
+        CFG,
+        get_material("cotton"),
+        progress=Progress(False),
+        log=lines.append,
+    )
     assert sorted(r["base"] for r in ch.table) == sorted(bases_for(garment))
     cf = [r["chamfer_mm"] for r in ch.table]
     assert all(c is not None for c in cf) and cf == sorted(cf)
@@ -88,8 +95,15 @@ def test_named_base_is_used_without_a_choice(body_sdf, tmp_path):
 
 def _choose_dress(target, body, sdf):
     lines = []
-    ch = choose_base(SimpleNamespace(garment="dress", body=body), target, sdf, CFG, get_material("cotton"),
-                     progress=Progress(False), log=lines.append)
+    ch = choose_base(
+        SimpleNamespace(garment="dress", body=body),
+        target,
+        sdf,
+        CFG,
+        get_material("cotton"),
+        progress=Progress(False),
+        log=lines.append,
+    )
     assert sorted(r["base"] for r in ch.table) == sorted(bases_for("dress"))
     agree = [r["torso_mm"] for r in ch.table if r["arms"]]
     assert all(t is not None for t in agree) and agree == sorted(agree)  # ranked over the torso
@@ -120,7 +134,9 @@ def test_torso_band_keeps_the_torso_between_the_heights(body_sdf):
     lo, hi = spine[1] - 0.2, spine[1] + 0.2
     assert torso_band_faces(verts, faces, sk, lo, hi).tolist() == [True, False, False, False]
     t = Target(verts[:3], faces[:1], [])
-    assert t.band_distance_mm(verts[:3] + [0, 0, 0.002], faces[:1], sk, lo, hi) == pytest.approx(2.0, abs=1e-6)
+    assert t.band_distance_mm(verts[:3] + [0, 0, 0.002], faces[:1], sk, lo, hi) == pytest.approx(
+        2.0, abs=1e-6
+    )
     assert np.isnan(t.band_distance_mm(verts[3:6], faces[:1], sk, lo, hi))
 
 
@@ -139,8 +155,15 @@ def test_dress_without_cloth_over_the_torso_is_chosen_on_the_whole_garment(body_
     monkeypatch.setattr(start_mod, "bases_for", lambda g: ["dress", "dress_straight"])
     monkeypatch.setattr(Target, "band_distance_mm", lambda self, *a, **k: float("nan"))
     lines = []
-    ch = choose_base(SimpleNamespace(garment="dress", body=body), _target("dress_straight", body, sdf, edge=0.05),
-                     sdf, CFG, get_material("cotton"), progress=Progress(False), log=lines.append)
+    ch = choose_base(
+        SimpleNamespace(garment="dress", body=body),
+        _target("dress_straight", body, sdf, edge=0.05),
+        sdf,
+        CFG,
+        get_material("cotton"),
+        progress=Progress(False),
+        log=lines.append,
+    )
     assert ch.name == "dress_straight" and all(r["torso_mm"] is None for r in ch.table)
     cf = [r["chamfer_mm"] for r in ch.table]
     assert cf == sorted(cf) and "chosen on the whole garment" in lines[-1]
@@ -157,19 +180,45 @@ def _fake_choice(monkeypatch, distances: dict, arms: dict | None = None, bad: di
     monkeypatch.setattr(start_mod, "measure_body", lambda body: None)
     monkeypatch.setattr(start_mod, "body_frame", lambda m: SimpleNamespace(hip_y=0.9, armpit_y=1.3))
     monkeypatch.setattr(start_mod, "make_base_pattern", lambda name, m, **k: SimpleNamespace(name=name))
-    monkeypatch.setattr(start_mod, "dress", lambda pat, body, **k: SimpleNamespace(
-        x=SimpleNamespace(numpy=lambda: pat.name), mesh=SimpleNamespace(faces=None)))
-    monkeypatch.setattr(start_mod, "check_dressed", lambda d, body: SimpleNamespace(
-        ok=(bad or {}).get(d.x.numpy()) is None, reason=(bad or {}).get(d.x.numpy())))
-    monkeypatch.setattr(start_mod, "arm_openings", lambda x, f, sk, contours=None: (
-        (0, 0) if x is None else (0, 0) if (arms or {}).get(x, True) else (1, 1)))
+    monkeypatch.setattr(
+        start_mod,
+        "dress",
+        lambda pat, body, **k: SimpleNamespace(
+            x=SimpleNamespace(numpy=lambda: pat.name), mesh=SimpleNamespace(faces=None)
+        ),
+    )
+    monkeypatch.setattr(
+        start_mod,
+        "check_dressed",
+        lambda d, body: SimpleNamespace(
+            ok=(bad or {}).get(d.x.numpy()) is None, reason=(bad or {}).get(d.x.numpy())
+        ),
+    )
+    monkeypatch.setattr(
+        start_mod,
+        "arm_openings",
+        lambda x, f, sk, contours=None: (
+            (0, 0) if x is None else (0, 0) if (arms or {}).get(x, True) else (1, 1)
+        ),
+    )
     monkeypatch.setattr(start_mod, "garment_of", lambda g: g)
-    target = SimpleNamespace(verts=None, faces=None, contours=[],
-                             distance_mm=lambda x, f, **k: distances[x],
-                             band_distance_mm=lambda x, f, sk, lo, hi: distances[x])
+    target = SimpleNamespace(
+        verts=None,
+        faces=None,
+        contours=[],
+        distance_mm=lambda x, f, **k: distances[x],
+        band_distance_mm=lambda x, f, sk, lo, hi: distances[x],
+    )
     lines = []
-    ch = start_mod.choose_base(SimpleNamespace(garment="skirt", body=SimpleNamespace(skeleton=None)), target, None,
-                               CFG, None, progress=Progress(False), log=lines.append)
+    ch = start_mod.choose_base(
+        SimpleNamespace(garment="skirt", body=SimpleNamespace(skeleton=None)),
+        target,
+        None,
+        CFG,
+        None,
+        progress=Progress(False),
+        log=lines.append,
+    )
     return ch, lines[-1]
 
 
@@ -203,12 +252,23 @@ def test_a_tie_keeps_the_base_whose_graded_drape_lies_clearly_closer(monkeypatch
 
     monkeypatch.setattr(start_mod, "start", fake_start)
     target = SimpleNamespace(distance_mm=lambda x, f, **k: graded[x])
-    rows = [{"base": "straight", "chamfer_mm": 19.3, "torso_mm": 15.4, "arms": True},
-            {"base": "waisted", "chamfer_mm": 34.2, "torso_mm": 16.7, "arms": True}]
+    rows = [
+        {"base": "straight", "chamfer_mm": 19.3, "torso_mm": 15.4, "arms": True},
+        {"base": "waisted", "chamfer_mm": 34.2, "torso_mm": 16.7, "arms": True},
+    ]
     choice = BaseChoice("P-straight", "straight", rows, 1.0, ("waisted", "P-waisted"))
     lines = []
-    s = start_mod.start_chosen(choice, None, target, None, CFG, None, progress=Progress(False), log=lines.append,
-                               budget=TimeBudget(0))
+    s = start_mod.start_chosen(
+        choice,
+        None,
+        target,
+        None,
+        CFG,
+        None,
+        progress=Progress(False),
+        log=lines.append,
+        budget=TimeBudget(0),
+    )
     assert calls == ["straight", "waisted"] and s.base_name == "waisted" and s.base == "P-waisted"
     assert [r["base"] for r in s.base_choice] == ["waisted", "straight"]
     assert [r["graded_mm"] for r in s.base_choice] == [11.7, 14.5]
@@ -216,18 +276,26 @@ def test_a_tie_keeps_the_base_whose_graded_drape_lies_clearly_closer(monkeypatch
     # half the limit spent: the chosen base alone
     calls.clear()
     budget = TimeBudget(100.0, log=lines.append, clock=iter([0.0, 60.0, 60.0]).__next__)
-    s = start_mod.start_chosen(choice, None, target, None, CFG, None, progress=Progress(False), log=lines.append,
-                               budget=budget)
-    assert calls == ["straight"] and s.base_name == "straight" and budget.cuts == [
-        "base choice: waisted not graded (half the limit spent)"]
+    s = start_mod.start_chosen(
+        choice, None, target, None, CFG, None, progress=Progress(False), log=lines.append, budget=budget
+    )
+    assert (
+        calls == ["straight"]
+        and s.base_name == "straight"
+        and budget.cuts == ["base choice: waisted not graded (half the limit spent)"]
+    )
     assert all("graded_mm" not in r for r in s.base_choice)
     # closer by 0.4 mm of 15.7 (GarmentCode's shirt on anny's T-pose body: 15.70 / 15.59): a coin flip
     from unsew.fit.material import CHECK_MARGIN_MM, CHECK_MARGIN_REL
 
     for d in (0.4, 15.7 * CHECK_MARGIN_REL + 0.01):
         graded.update(straight=15.7, waisted=15.7 - d)
-        s = start_mod.start_chosen(choice, None, target, None, CFG, None, progress=Progress(False), log=lines.append)
-        assert s.base_name == ("straight" if d <= max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * 15.7) else "waisted"), d
+        s = start_mod.start_chosen(
+            choice, None, target, None, CFG, None, progress=Progress(False), log=lines.append
+        )
+        assert s.base_name == (
+            "straight" if d <= max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * 15.7) else "waisted"
+        ), d
         assert lines[-1].endswith(f"; {s.base_name} kept")
 
 
@@ -241,14 +309,31 @@ def test_a_tie_whose_runner_up_fails_to_grade_keeps_the_chosen_base(monkeypatch)
         return Start(pattern, pattern, SimpleNamespace(faces=None), garment, [], None, None, material)
 
     monkeypatch.setattr(start_mod, "start", fake_start)
-    choice = BaseChoice("P-straight", "straight", [{"base": "straight", "chamfer_mm": 19.3, "arms": True},
-                                                   {"base": "waisted", "chamfer_mm": 20.2, "arms": True}],
-                        1.0, ("waisted", "P-waisted"))
+    choice = BaseChoice(
+        "P-straight",
+        "straight",
+        [
+            {"base": "straight", "chamfer_mm": 19.3, "arms": True},
+            {"base": "waisted", "chamfer_mm": 20.2, "arms": True},
+        ],
+        1.0,
+        ("waisted", "P-waisted"),
+    )
     lines = []
-    s = start_mod.start_chosen(choice, None, SimpleNamespace(distance_mm=lambda x, f, **k: 14.5), None, CFG, None,
-                               progress=Progress(False), log=lines.append)
+    s = start_mod.start_chosen(
+        choice,
+        None,
+        SimpleNamespace(distance_mm=lambda x, f, **k: 14.5),
+        None,
+        CFG,
+        None,
+        progress=Progress(False),
+        log=lines.append,
+    )
     assert s.base_name == "straight" and s.base == "P-straight"
-    assert lines == ["base waisted: grading failed (simulation diverged at step 3: vertex 7 speed nan); left out"]
+    assert lines == [
+        "base waisted: grading failed (simulation diverged at step 3: vertex 7 speed nan); left out"
+    ]
 
 
 def test_no_base_dressed_says_each_candidates_reason_in_one_line(monkeypatch):

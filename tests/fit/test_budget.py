@@ -66,8 +66,12 @@ def test_unsew_fit_starts_the_clock_before_loading_the_case(monkeypatch, tmp_pat
     from unsew.cli import main
 
     seen = {}
-    monkeypatch.setattr(unsew.body.case, "load_case", lambda *a, **k: seen.setdefault("loaded", time.perf_counter()))
+    monkeypatch.setattr(
+        unsew.body.case, "load_case", lambda *a, **k: seen.setdefault("loaded", time.perf_counter())
+    )
     monkeypatch.setattr(command, "_check_inputs", lambda case, cfg: None)
-    monkeypatch.setattr(unsew.fit.run, "run_fit", lambda *a, started=None, **k: seen.setdefault("started", started))
+    monkeypatch.setattr(
+        unsew.fit.run, "run_fit", lambda *a, started=None, **k: seen.setdefault("started", started)
+    )
     assert main(["fit", str(tmp_path / "case"), "--out", str(tmp_path / "out")]) == 0
     assert seen["started"] is not None and seen["started"] <= seen["loaded"]

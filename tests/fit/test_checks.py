@@ -1,4 +1,5 @@
-"""The re-dress check: whether phase two moved anything (unsew.fit.checks.unmoved), and which pattern its drapes on three meshes keep (kept_on_meshes)."""
+"""The re-dress check: whether phase two moved anything (unsew.fit.checks.unmoved), and which pattern
+its drapes on three meshes keep (kept_on_meshes)."""
 
 import dataclasses
 from types import SimpleNamespace
@@ -35,8 +36,11 @@ def test_a_moved_vertex_a_moved_curve_or_another_material_is_moved():
 
     q = s.graded.copy()  # only a curve's control point moves: the outline does, the vertices not
     edge = q.panels[name].edges[0]
-    edge.curvature = Curvature("quadratic", [[0.5, 0.05]]) if edge.curvature is None else Curvature(
-        "quadratic", [[0.5, 0.1]])
+    edge.curvature = (
+        Curvature("quadratic", [[0.5, 0.05]])
+        if edge.curvature is None
+        else Curvature("quadratic", [[0.5, 0.1]])
+    )
     assert not unmoved(q, s.material, s)
 
     assert not unmoved(s.graded.copy(), dataclasses.replace(s.material, bend=s.material.bend * 1.01), s)

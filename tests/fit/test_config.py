@@ -4,7 +4,14 @@ import pytest
 import yaml
 
 from unsew.errors import InputError
-from unsew.fit.config import LEGACY_KEYS, FitConfig, LossWeights, OptimizerSettings, config_to_dict, load_config
+from unsew.fit.config import (
+    LEGACY_KEYS,
+    FitConfig,
+    LossWeights,
+    OptimizerSettings,
+    config_to_dict,
+    load_config,
+)
 from unsew.sim.drape import DrapeSettings
 
 
@@ -17,24 +24,31 @@ def test_defaults_follow_the_paper():
 
 
 def test_yaml_round_trip_and_overrides(tmp_path):
-    c = FitConfig(optimizer=OptimizerSettings(iterations=7, betas=(0.8, 0.99)),
-                  loss=LossWeights(curvature_weighted=False), drape=DrapeSettings(sew_steps=33))
+    c = FitConfig(
+        optimizer=OptimizerSettings(iterations=7, betas=(0.8, 0.99)),
+        loss=LossWeights(curvature_weighted=False),
+        drape=DrapeSettings(sew_steps=33),
+    )
     p = tmp_path / "fit.yaml"
     text = yaml.safe_dump(config_to_dict(c))
     assert "candidates: []" in text and "- H00" in text  # lists as lists
     p.write_text(text)
     assert load_config(p) == c
     assert load_config(p, iterations=3).optimizer.iterations == 3
-    assert load_config(p, optimizer={"iterations": 4}).optimizer == OptimizerSettings(iterations=4, betas=(0.8, 0.99))
+    assert load_config(p, optimizer={"iterations": 4}).optimizer == OptimizerSettings(
+        iterations=4, betas=(0.8, 0.99)
+    )
 
 
 def test_old_flat_file_loads_into_the_groups(tmp_path):
     """A config.yaml of the flat format still loads; its on/off switches become a zero weight
     and an empty list."""
     p = tmp_path / "old.yaml"
-    p.write_text("iterations: 9\nsew_steps: 70\nmaterial: silk\nmaterial_candidates: cotton,silk\n"
-                 "lambda_seam: 0.5\nseam_loss: false\noptimize_material: false\nmaterial_params: H22,k\n"
-                 "redress_check: false\nreport: false\nfit_friction_eps: 0.002\nbetas: [0.8, 0.9]\n")
+    p.write_text(
+        "iterations: 9\nsew_steps: 70\nmaterial: silk\nmaterial_candidates: cotton,silk\n"
+        "lambda_seam: 0.5\nseam_loss: false\noptimize_material: false\nmaterial_params: H22,k\n"
+        "redress_check: false\nreport: false\nfit_friction_eps: 0.002\nbetas: [0.8, 0.9]\n"
+    )
     c = load_config(p)
     assert (c.optimizer.iterations, c.drape.sew_steps, c.material.start) == (9, 70, "silk")
     assert c.material.candidates == ("cotton", "silk") and c.optimizer.betas == (0.8, 0.9)
@@ -50,7 +64,9 @@ def test_old_flat_file_loads_into_the_groups(tmp_path):
 def test_a_result_folders_config_loads(tmp_path):
     c = load_config(iterations=5, edge_length=0.03)
     p = tmp_path / "config.yaml"
-    p.write_text(yaml.safe_dump({"config": config_to_dict(c), "case": "x", "unsew_version": "0"}, sort_keys=False))
+    p.write_text(
+        yaml.safe_dump({"config": config_to_dict(c), "case": "x", "unsew_version": "0"}, sort_keys=False)
+    )
     assert load_config(p) == c
 
 
@@ -125,11 +141,32 @@ def test_cli_flags_map_onto_the_groups():
 
     p = argparse.ArgumentParser()
     add_fit_options(p)
-    args = p.parse_args(["--iterations", "4", "--edge-length", "0.03", "--steps", "9", "--material", "silk",
-                         "--no-grading", "--plain-chamfer", "--no-seam-loss", "--no-material", "--no-report",
-                         "--time-limit", "300"])
+    args = p.parse_args(
+        [
+            "--iterations",
+            "4",
+            "--edge-length",
+            "0.03",
+            "--steps",
+            "9",
+            "--material",
+            "silk",
+            "--no-grading",
+            "--plain-chamfer",
+            "--no-seam-loss",
+            "--no-material",
+            "--no-report",
+            "--time-limit",
+            "300",
+        ]
+    )
     c = config_from_args(args, defaults={"optimizer": {"iterations": 80}})
-    assert (c.optimizer.iterations, c.drape.edge_length, c.drape.steps, c.material.start) == (4, 0.03, 9, "silk")
+    assert (c.optimizer.iterations, c.drape.edge_length, c.drape.steps, c.material.start) == (
+        4,
+        0.03,
+        9,
+        "silk",
+    )
     assert not c.grading and not c.loss.curvature_weighted and c.loss.seam == 0.0
     assert c.material.fit == () and not c.output.report and c.time_limit == 300.0
     c = config_from_args(p.parse_args([]), defaults={"optimizer": {"iterations": 80}})

@@ -18,8 +18,16 @@ from helpers import assert_close, no_default_device
 
 from unsew.fit.config import load_config
 
-SMALL = dict(edge_length=0.04, iterations=2, steps=8, sew_steps=60, settle_steps=20, target_points=1500,
-             material_start=1, material="cotton")
+SMALL = dict(
+    edge_length=0.04,
+    iterations=2,
+    steps=8,
+    sew_steps=60,
+    settle_steps=20,
+    target_points=1500,
+    material_start=1,
+    material="cotton",
+)
 CUDA = pytest.mark.skipif(not torch.cuda.is_available(), reason="no CUDA device")
 
 
@@ -45,8 +53,15 @@ def phase_one(case_dir):
     case = load_case(case_dir)
     cfg = load_config(**SMALL)
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
-    s = start(base_pattern_for(case, cfg), case.body, target, sdf, cfg, get_material("cotton"),
-              progress=Progress(False))
+    s = start(
+        base_pattern_for(case, cfg),
+        case.body,
+        target,
+        sdf,
+        cfg,
+        get_material("cotton"),
+        progress=Progress(False),
+    )
     return MaterialChoice(s), target, sdf, cfg
 
 
@@ -81,7 +96,11 @@ def test_phase_two_on_cuda_matches_cpu(phase_one, tmp_path):  # pragma: no cover
     cpu, gpu = _phase_two(phase_one, "cpu"), _phase_two(phase_one, "cuda")
     cpu.run()
     gpu.run()
-    assert gpu.model.device.type == "cuda" and gpu.params.L_u.device.type == "cuda" and gpu.T.device.type == "cuda"
+    assert (
+        gpu.model.device.type == "cuda"
+        and gpu.params.L_u.device.type == "cuda"
+        and gpu.T.device.type == "cuda"
+    )
     assert gpu.K.device.type == "cuda" and gpu.best.x.device.type == "cuda"
     for k in LOSS_TERMS:
         assert_close(gpu.history[k], cpu.history[k], rtol=1e-6, atol=1e-15, what=f"{k} ")
@@ -120,7 +139,9 @@ def test_fit_cli_on_cuda(case_dir, tmp_path, capsys):  # pragma: no cover - no G
     cfg = tmp_path / "small.yaml"
     cfg.write_text(yaml.safe_dump({**SMALL, "mesh_spread": 0.0}))
     out = tmp_path / "result"
-    code = main(["fit", str(case_dir), "--out", str(out), "--config", str(cfg), "--device", "cuda", "--no-progress"])
+    code = main(
+        ["fit", str(case_dir), "--out", str(out), "--config", str(cfg), "--device", "cuda", "--no-progress"]
+    )
     err = capsys.readouterr().err
     assert code == 0, err
     metrics = json.loads((out / "metrics.json").read_text())

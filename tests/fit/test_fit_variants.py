@@ -11,8 +11,16 @@ import pytest
 from unsew.fit.config import load_config
 from unsew.io.mesh import read_mesh, write_obj
 
-SMALL = dict(edge_length=0.03, iterations=2, steps=8, sew_steps=60, settle_steps=20, target_points=1500,
-             material_start=1, material="cotton")
+SMALL = dict(
+    edge_length=0.03,
+    iterations=2,
+    steps=8,
+    sew_steps=60,
+    settle_steps=20,
+    target_points=1500,
+    material_start=1,
+    material="cotton",
+)
 
 
 def _settings(edge_length):
@@ -24,7 +32,9 @@ def _settings(edge_length):
 def base_case(tmp_path_factory):
     from unsew.fit.synthetic import make_truth_case
 
-    return make_truth_case(tmp_path_factory.mktemp("c") / "tshirt", garment="tshirt", settings=_settings(0.03))
+    return make_truth_case(
+        tmp_path_factory.mktemp("c") / "tshirt", garment="tshirt", settings=_settings(0.03)
+    )
 
 
 def _fit(case_dir, out, **kw):
@@ -72,8 +82,11 @@ def test_other_pose_and_body(tmp_path, which):
     from unsew.body.pose import pose_body
     from unsew.fit.synthetic import make_truth_case
 
-    b = pose_body(default_body(), "left_arm_up") if which == "pose" else default_body().transformed(
-        scale=np.array([1.08, 1.0, 1.08]))
+    b = (
+        pose_body(default_body(), "left_arm_up")
+        if which == "pose"
+        else default_body().transformed(scale=np.array([1.08, 1.0, 1.08]))
+    )
     d = make_truth_case(tmp_path / which, garment="tshirt", body=b, body_meta=None, settings=_settings(0.04))
     assert (d / "body.obj").is_file() and (d / "skeleton.json").is_file()
     _, m = _fit(d, tmp_path / "r")

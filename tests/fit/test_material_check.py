@@ -16,8 +16,16 @@ from unsew.sim.material import get_material
 
 def _start(name, x0):
     mesh = SimpleNamespace(faces=np.zeros((1, 3), dtype=np.int64))
-    return Start(base=None, graded=f"pattern graded in {name}", mesh=mesh, x=np.full((3, 3), x0), grade_table=[],
-                 x_base=np.zeros((3, 3)), mesh_base=mesh, material=get_material(name))
+    return Start(
+        base=None,
+        graded=f"pattern graded in {name}",
+        mesh=mesh,
+        x=np.full((3, 3), x0),
+        grade_table=[],
+        x_base=np.zeros((3, 3)),
+        mesh_base=mesh,
+        material=get_material(name),
+    )
 
 
 def _run(monkeypatch, fresh_value, failed=""):
@@ -25,7 +33,9 @@ def _run(monkeypatch, fresh_value, failed=""):
     distance is the drape's first coordinate; its check failing with ``failed`` when given)
     against the cotton start at 7.0."""
     dressed = []
-    monkeypatch.setattr(mat_mod, "check_dressed", lambda d, body: SimpleNamespace(ok=not failed, reason=failed))
+    monkeypatch.setattr(
+        mat_mod, "check_dressed", lambda d, body: SimpleNamespace(ok=not failed, reason=failed)
+    )
 
     def fake_dress(pattern, body, **kw):
         dressed.append((pattern, kw["material"]))
@@ -34,11 +44,18 @@ def _run(monkeypatch, fresh_value, failed=""):
     monkeypatch.setattr(mat_mod, "dress", fake_dress)
     target = SimpleNamespace(distance_mm=lambda x, faces: float(np.asarray(x)[0, 0]))
     first, chosen = _start("cotton", 7.0), _start("polyester", 4.0)  # settled: 4.0 mm
-    table = [{"material": "polyester (stretch x0.5, bending x1)", "chamfer_mm": 4.0, "pattern": "graded in polyester"}]
+    table = [
+        {
+            "material": "polyester (stretch x0.5, bending x1)",
+            "chamfer_mm": 4.0,
+            "pattern": "graded in polyester",
+        }
+    ]
     cfg = load_config(None)
     lines = []
-    s, rows = mat_mod._checked(first, chosen, table, None, target, None, cfg, progress=Progress(False),
-                               log=lines.append)
+    s, rows = mat_mod._checked(
+        first, chosen, table, None, target, None, cfg, progress=Progress(False), log=lines.append
+    )
     assert dressed == [("pattern graded in polyester", chosen.material)]
     return first, chosen, s, rows, lines
 
@@ -46,7 +63,11 @@ def _run(monkeypatch, fresh_value, failed=""):
 def test_a_settled_choice_that_does_not_dress_as_close_gives_way_to_cotton(monkeypatch):
     first, _, s, rows, lines = _run(monkeypatch, 11.0)
     assert s is first
-    assert rows[0] == {"material": "cotton", "chamfer_mm": 7.0, "pattern": "graded in cotton, dressed from scratch"}
+    assert rows[0] == {
+        "material": "cotton",
+        "chamfer_mm": 7.0,
+        "pattern": "graded in cotton, dressed from scratch",
+    }
     assert rows[1]["chamfer_mm"] == 11.0 and rows[1]["pattern"] == "graded in polyester, dressed from scratch"
     assert rows[2]["chamfer_mm"] == 4.0  # the settled row stays in the table
     assert lines and lines[0].endswith("phase two starts from cotton")
@@ -67,5 +88,7 @@ def test_a_choice_whose_drape_from_scratch_fails_its_check_gives_way_to_cotton(m
     torn = "exploded: an edge is stretched to 6.2 times its pattern length (bound 3)"
     first, _, s, rows, lines = _run(monkeypatch, 5.0, failed=torn)
     assert s is first and rows[0]["material"] == "cotton"
-    assert rows[1]["chamfer_mm"] == 5.0 and rows[1]["pattern"].endswith(f"dressed from scratch (failed: {torn})")
+    assert rows[1]["chamfer_mm"] == 5.0 and rows[1]["pattern"].endswith(
+        f"dressed from scratch (failed: {torn})"
+    )
     assert "failed (exploded" in lines[0] and lines[0].endswith("phase two starts from cotton")

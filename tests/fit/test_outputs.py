@@ -15,10 +15,18 @@ def _rect(name, w, h, z):
 
 
 def test_pattern_errors_with_a_waistband_the_base_lacks():
-    gt = Pattern("gt", {"front": _rect("front", 0.4, 0.5, 0.2), "back": _rect("back", 0.4, 0.5, -0.2),
-                        "waistband": _rect("waistband", 0.8, 0.05, 0.0)})
+    gt = Pattern(
+        "gt",
+        {
+            "front": _rect("front", 0.4, 0.5, 0.2),
+            "back": _rect("back", 0.4, 0.5, -0.2),
+            "waistband": _rect("waistband", 0.8, 0.05, 0.0),
+        },
+    )
     base = Pattern("base", {"front": _rect("front", 0.3, 0.5, 0.2), "back": _rect("back", 0.3, 0.5, -0.2)})
-    graded = Pattern("graded", {"front": _rect("front", 0.4, 0.55, 0.2), "back": _rect("back", 0.4, 0.55, -0.2)})
+    graded = Pattern(
+        "graded", {"front": _rect("front", 0.4, 0.55, 0.2), "back": _rect("back", 0.4, 0.55, -0.2)}
+    )
     result = SimpleNamespace(pattern=graded, base_pattern=base, graded_pattern=graded)
     m = pattern_errors(result, gt)
     assert set(m) == {"pattern", "pattern_base", "pattern_graded"}

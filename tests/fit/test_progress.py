@@ -36,7 +36,11 @@ def test_off_a_terminal_plain_lines_per_phase_and_every_n_iterations():
     lines = text.splitlines()
     assert lines[:2] == ["drape base: sew (80 steps)", "drape base: settle (40 steps)"]
     it_lines = [ln for ln in lines if ln.startswith("fit: iteration")]
-    assert [ln.split(",")[0] for ln in it_lines] == ["fit: iteration 5/12", "fit: iteration 10/12", "fit: iteration 12/12"]
+    assert [ln.split(",")[0] for ln in it_lines] == [
+        "fit: iteration 5/12",
+        "fit: iteration 10/12",
+        "fit: iteration 12/12",
+    ]
     assert all("Chamfer 12.35 mm" in ln for ln in it_lines)
 
 

@@ -27,7 +27,7 @@ def test_target_is_reproducible_from_the_case_folder(tmp_path):
 
 
 def test_alterations_grading_cannot_make():
-    """"hem@back" alters only the back panel's hem; "waist" moves only the dress's side-seam
+    """ "hem@back" alters only the back panel's hem; "waist" moves only the dress's side-seam
     corners (vertices 2 and 9 of front and back), inward for a negative length, and keeps the
     stitched side seams of equal length."""
     from unsew.fit.synthetic import Alteration, make_truth_pattern
@@ -38,16 +38,29 @@ def test_alterations_grading_cannot_make():
     base = {g: make_base_pattern(g, measure_body(default_body())) for g in ("tshirt", "dress")}
     t = make_truth_pattern("tshirt", Alteration({"hem@back": (0.0, 0.2)}, "cotton"))
     assert np.array_equal(t.panels["front"].vertices, base["tshirt"].panels["front"].vertices)
-    moved = np.flatnonzero(np.abs(t.panels["back"].vertices - base["tshirt"].panels["back"].vertices).max(1) > 1e-9)
+    moved = np.flatnonzero(
+        np.abs(t.panels["back"].vertices - base["tshirt"].panels["back"].vertices).max(1) > 1e-9
+    )
     assert moved.tolist() == [0, 1]
 
     d = make_truth_pattern("dress", Alteration({"waist": (-0.03, 0.0)}, "cotton"))
     for name in ("front", "back"):
         delta = d.panels[name].vertices - base["dress"].panels[name].vertices
         assert np.flatnonzero(np.abs(delta).max(1) > 1e-9).tolist() == [2, 9]
-        assert delta[2, 0] == pytest.approx(-0.03) and delta[9, 0] == pytest.approx(0.03) and not delta[:, 1].any()
+        assert (
+            delta[2, 0] == pytest.approx(-0.03)
+            and delta[9, 0] == pytest.approx(0.03)
+            and not delta[:, 1].any()
+        )
     for st in (st for st in d.stitches if "side" in st.label):
-        la, lb = (np.linalg.norm(np.subtract(*d.panels[s.panel].vertices[[d.panels[s.panel].edges[s.edge].start,
-                                                                           d.panels[s.panel].edges[s.edge].end]]))
-                  for s in (st.a, st.b))
+        la, lb = (
+            np.linalg.norm(
+                np.subtract(
+                    *d.panels[s.panel].vertices[
+                        [d.panels[s.panel].edges[s.edge].start, d.panels[s.panel].edges[s.edge].end]
+                    ]
+                )
+            )
+            for s in (st.a, st.b)
+        )
         assert la == pytest.approx(lb, rel=1e-9), st.label

@@ -22,7 +22,8 @@ def _damaged(v, f, rng):
     fin_v = np.array([v[a] + out, v[b] + out, mid + 2 * out])
     fin_f = np.array([[a, b, n + 1], [a, n + 1, n], [n, n + 1, n + 2]])
     copy_of_vertex = v[f[5, 1]][None]  # a duplicate of vertex f[5, 1], used by the degenerate face
-    deg_f = np.array([[f[3, 0], f[3, 1], f[3, 1]], [n + 3, f[5, 1], f[5, 2]]])  # repeated corner; collapses on merge
+    # repeated corner; collapses on merge
+    deg_f = np.array([[f[3, 0], f[3, 1], f[3, 1]], [n + 3, f[5, 1], f[5, 2]]])
     lone = np.array([[9.0, 9.0, 9.0]])
     v2 = np.concatenate([v, fin_v, copy_of_vertex, lone])
     f2 = np.concatenate([f[:40], dup, f[40:], fin_f, deg_f])
@@ -89,7 +90,9 @@ def test_two_garments_refused_and_split_panels_kept():
 def test_loose_debris_removed():
     v, f = grid_tube(24, 12)
     bit = np.array([[0.0, 2.0, 0.0], [0.01, 2.0, 0.0], [0.0, 2.01, 0.0]])
-    v2, f2, rep = repair_garment(np.concatenate([v, bit]), np.concatenate([f, [[len(v), len(v) + 1, len(v) + 2]]]))
+    v2, f2, rep = repair_garment(
+        np.concatenate([v, bit]), np.concatenate([f, [[len(v), len(v) + 1, len(v) + 2]]])
+    )
     assert rep.debris_faces == 1 and (f2 == f).all() and (v2 == v).all()
 
 

@@ -42,7 +42,9 @@ def test_gradcheck_seam():
     from unsew.losses.seam import loss_seam
     from unsew.pattern.model import Stitch, StitchSide
 
-    mesh = SimpleNamespace(edge_verts={("a", 0): [0, 1, 2], ("b", 2): [3, 4, 5], ("a", 1): [2, 6], ("b", 1): [7, 3]})
+    mesh = SimpleNamespace(
+        edge_verts={("a", 0): [0, 1, 2], ("b", 2): [3, 4, 5], ("a", 1): [2, 6], ("b", 1): [7, 3]}
+    )
     st = [Stitch(StitchSide("a", 0), StitchSide("b", 2)), Stitch(StitchSide("a", 1), StitchSide("b", 1))]
     uv = _rand(8, 2).requires_grad_()
     assert gradcheck(lambda u: loss_seam(u, mesh, st), (uv,))

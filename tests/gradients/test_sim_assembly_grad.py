@@ -19,7 +19,9 @@ def _case(stencil="ring"):
     m = SimModel.build(f, f, bending_stencil=stencil)
     g = torch.Generator().manual_seed(0)
     uvt = torch.as_tensor(uv)
-    x = torch.stack([uvt[:, 0] * 1.05, 0.01 * torch.randn(len(uv), generator=g, dtype=torch.float64), uvt[:, 1] * 0.97], 1)
+    x = torch.stack(
+        [uvt[:, 0] * 1.05, 0.01 * torch.randn(len(uv), generator=g, dtype=torch.float64), uvt[:, 1] * 0.97], 1
+    )
     return m, uvt, x, g
 
 
@@ -32,7 +34,10 @@ def test_gradcheck_assemble_membrane():
     P = torch.randn(F, 3, 3, generator=g, dtype=torch.float64)
     P = P.requires_grad_()  # any: the Function uses its symmetric part (B S+ B^T is symmetric)
     area = torch.rand(F, generator=g, dtype=torch.float64).add(0.5).requires_grad_()
-    fn = lambda G_, H_, P_, a_: assemble_membrane(m.nnz, m.tri_src, m.tri_dst, G_, H_, P_, a_)
+
+    def fn(G_, H_, P_, a_):
+        return assemble_membrane(m.nnz, m.tri_src, m.tri_dst, G_, H_, P_, a_)
+
     assert torch.autograd.gradcheck(fn, (G, H, P, area), eps=1e-6, atol=1e-8, rtol=1e-6)
 
 
@@ -42,7 +47,10 @@ def test_gradcheck_assemble_outer():
     gv = torch.randn(E, 12, generator=g, dtype=torch.float64, requires_grad=True)
     s = torch.rand(E, generator=g, dtype=torch.float64).add(0.5).requires_grad_()
     w = _ring_weight(gv)
-    fn = lambda g_, s_: assemble_outer(m.nnz, m.hinge_src, m.hinge_dst, g_, s_, w)
+
+    def fn(g_, s_):
+        return assemble_outer(m.nnz, m.hinge_src, m.hinge_dst, g_, s_, w)
+
     assert torch.autograd.gradcheck(fn, (gv, s), eps=1e-6, atol=1e-8, rtol=1e-6)
 
 
@@ -53,18 +61,26 @@ def test_matches_plain_autograd_through_blocks():
         uvp = uv.clone().requires_grad_()
         gam = GAMMA.clone().requires_grad_()
         area, B, _ = membrane_rest(uvp, m.faces_uv)
-        coef = (torch.rand(m.hinges.shape[0], generator=g, dtype=torch.float64) + 1.0) * area.mean() / area.mean().detach()
+        coef = (
+            (torch.rand(m.hinges.shape[0], generator=g, dtype=torch.float64) + 1.0)
+            * area.mean()
+            / area.mean().detach()
+        )
         w = torch.randn(m.nnz, generator=g, dtype=torch.float64)
         Hm = energy_membrane(x, m.faces, area, B, gam)[2]
         Hb = energy_bending(x, m.hinges, coef, gam)[2]
         if stencil == "ring":
             Hb = Hb * _ring_weight(Hb)
-        ref = scatter_blocks(m.nnz, m.tri_src, m.tri_dst, Hm) + scatter_blocks(m.nnz, m.hinge_src, m.hinge_dst, Hb)
+        ref = scatter_blocks(m.nnz, m.tri_src, m.tri_dst, Hm) + scatter_blocks(
+            m.nnz, m.hinge_src, m.hinge_dst, Hb
+        )
         gref = torch.autograd.grad((ref * w).sum(), (x, uvp, gam), retain_graph=True)
         pm = energy_membrane(x, m.faces, area, B, gam, parts=True)[2]
         pb = energy_bending(x, m.hinges, coef, gam, parts=True)[2]
         wr = _ring_weight(x) if stencil == "ring" else None
-        ours = assemble_membrane(m.nnz, m.tri_src, m.tri_dst, *pm, area) + assemble_outer(m.nnz, m.hinge_src, m.hinge_dst, *pb, wr)
+        ours = assemble_membrane(m.nnz, m.tri_src, m.tri_dst, *pm, area) + assemble_outer(
+            m.nnz, m.hinge_src, m.hinge_dst, *pb, wr
+        )
         gours = torch.autograd.grad((ours * w).sum(), (x, uvp, gam))
         assert_close(ours, ref, rtol=1e-12, atol=1e-9, what=f"{stencil} values ")
         for a, b, name in zip(gours, gref, ("x", "uv", "gamma")):

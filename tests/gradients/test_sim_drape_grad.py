@@ -41,8 +41,19 @@ def _loss(state):
 
 
 def _run(m, uv, gamma, st, checkpoint=False, fused=True):
-    return _loss(drape(m, st, SDF, uv=uv, gamma=gamma, density=DENSITY, steps=20, checkpoint=checkpoint,
-                       settings=DrapeSettings(dt=0.05, fused=fused)))
+    return _loss(
+        drape(
+            m,
+            st,
+            SDF,
+            uv=uv,
+            gamma=gamma,
+            density=DENSITY,
+            steps=20,
+            checkpoint=checkpoint,
+            settings=DrapeSettings(dt=0.05, fused=fused),
+        )
+    )
 
 
 @pytest.fixture(scope="module")
@@ -82,7 +93,10 @@ def test_gradient_vs_central_differences(case):
         # [m]; the FD error falls 1.2e-5 -> 2.8e-7 relative from h = 1e-7 to 1e-8 (truncation: the
         # contact band bends the response), so 1e-8 tests the gradient, not the FD
         h = 1e-8
-        fd = (_run(m, uv, GAMMA, SimState(st.x + h * dirn, st.v)) - _run(m, uv, GAMMA, SimState(st.x - h * dirn, st.v))) / (2 * h)
+        fd = (
+            _run(m, uv, GAMMA, SimState(st.x + h * dirn, st.v))
+            - _run(m, uv, GAMMA, SimState(st.x - h * dirn, st.v))
+        ) / (2 * h)
         assert_close((g_x0 * dirn).sum(), fd, rtol=1e-5, what="initial state ")
 
 

@@ -14,7 +14,9 @@ try:
 
     _CHOLMOD = [pytest.param("cholmod")]
 except ImportError:  # the optional extra
-    _CHOLMOD = [pytest.param("cholmod", marks=pytest.mark.skip(reason="scikit-sparse not installed (unsew[cholmod])"))]
+    _CHOLMOD = [
+        pytest.param("cholmod", marks=pytest.mark.skip(reason="scikit-sparse not installed (unsew[cholmod])"))
+    ]
 
 ALL_BACKENDS = ["cholespy", "scipy", *_CHOLMOD]
 
@@ -42,7 +44,10 @@ def test_gradcheck_sparse_solve(backend):
     g = torch.Generator().manual_seed(0)
     w = torch.randn(p.rows.shape[0], generator=g, dtype=torch.float64).requires_grad_()
     b = torch.randn(N, generator=g, dtype=torch.float64).requires_grad_()
-    f = lambda w_, b_: sparse_solve(_values(p, w_), b_, p, backend=backend)
+
+    def f(w_, b_):
+        return sparse_solve(_values(p, w_), b_, p, backend=backend)
+
     assert torch.autograd.gradcheck(f, (w, b), eps=1e-6, atol=1e-8, rtol=1e-6)
 
 
@@ -68,7 +73,12 @@ def test_non_pd_matrix_raises_simulation_error(backend):
 
     p = SparsePattern(2, [0, 1, 1], [0, 0, 1])
     with pytest.raises(SimulationError):
-        sparse_solve(torch.tensor([1.0, 2.0, 1.0], dtype=torch.float64), torch.ones(2, dtype=torch.float64), p, backend=backend)
+        sparse_solve(
+            torch.tensor([1.0, 2.0, 1.0], dtype=torch.float64),
+            torch.ones(2, dtype=torch.float64),
+            p,
+            backend=backend,
+        )
 
 
 @pytest.mark.parametrize("backend", ALL_BACKENDS)
@@ -131,8 +141,16 @@ def test_a_differentiable_drape_factorizes_once_per_step(fused, monkeypatch):
     m = SimModel.build(f, f)
     x = np.c_[uv[:, 0], np.full(len(uv), 0.05), uv[:, 1]]
     uvt = torch.as_tensor(uv).clone().requires_grad_()
-    out = drape(m, SimState.at_rest(x), PlaneSDF((0, -1, 0)), uv=uvt, gamma=MATERIALS["cotton"].gamma(),
-                density=0.1, steps=3, settings=DrapeSettings(fused=fused, backend="cholespy"))
+    out = drape(
+        m,
+        SimState.at_rest(x),
+        PlaneSDF((0, -1, 0)),
+        uv=uvt,
+        gamma=MATERIALS["cotton"].gamma(),
+        density=0.1,
+        steps=3,
+        settings=DrapeSettings(fused=fused, backend="cholespy"),
+    )
     assert counts == {"factor": 3, "solve": 3}
     out.x.sum().backward()
     assert counts == {"factor": 3, "solve": 6}
@@ -149,7 +167,9 @@ def test_cholmod_symbolic_analysis_is_reused_across_values(backend):
         w = torch.randn(p.rows.shape[0], generator=g, dtype=torch.float64)
         b = torch.randn(N, generator=g, dtype=torch.float64)
         x = sparse_solve(_values(p, w), b, p, backend=backend)
-        assert_close(x, torch.linalg.solve(p.dense(_values(p, w)), b), rtol=1e-12, atol=1e-14, what=f"values {k} ")
+        assert_close(
+            x, torch.linalg.solve(p.dense(_values(p, w)), b), rtol=1e-12, atol=1e-14, what=f"values {k} "
+        )
         first = first or p._cholmod_symbolic
         assert p._cholmod_symbolic is first is not None
 

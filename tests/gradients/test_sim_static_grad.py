@@ -52,7 +52,9 @@ def test_equilibrium_matches_long_dynamic_drape(case):
     assert 0.0 < float(d.min()) < 5e-3  # in the contact band
     assert_close(xs[m.pinned], x0[m.pinned], atol=0.0, what="pinned ")
     with torch.no_grad():
-        dyn = drape(m, SimState.at_rest(x0), SDF, uv=uv, gamma=GAMMA, density=DENSITY, steps=200, friction=0.0)
+        dyn = drape(
+            m, SimState.at_rest(x0), SDF, uv=uv, gamma=GAMMA, density=DENSITY, steps=200, friction=0.0
+        )
     assert_close(dyn.x, xs, atol=1e-7, what="dynamic (200 steps) vs static [m] ")
 
 
@@ -70,7 +72,9 @@ def test_ift_gradient_vs_central_differences(case):
     def L(**kw):
         args = dict(uv=uv, gamma=GAMMA, density=DENSITY, tol=1e-11)
         args.update(kw)
-        return float(_loss(drape_static(m, kw.pop("x0", x0), SDF, **{k: v for k, v in args.items() if k != "x0"})))
+        return float(
+            _loss(drape_static(m, kw.pop("x0", x0), SDF, **{k: v for k, v in args.items() if k != "x0"}))
+        )
 
     gen = torch.Generator().manual_seed(3)
     dirn = torch.randn(uv.shape, generator=gen, dtype=torch.float64)

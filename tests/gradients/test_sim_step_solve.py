@@ -21,7 +21,10 @@ def _case(stencil):
     m = SimModel.build(f, f, springs=[[0, 8]], pinned=[2], bending_stencil=stencil)
     g = torch.Generator().manual_seed(0)
     uvt = torch.as_tensor(uv)
-    x = torch.stack([uvt[:, 0] * 1.02, 0.003 * torch.randn(len(uv), generator=g, dtype=torch.float64), uvt[:, 1] * 0.99], 1)
+    x = torch.stack(
+        [uvt[:, 0] * 1.02, 0.003 * torch.randn(len(uv), generator=g, dtype=torch.float64), uvt[:, 1] * 0.99],
+        1,
+    )
     v = 0.1 * torch.randn(x.shape, generator=g, dtype=torch.float64)
     return m, uvt, x, v
 
@@ -37,11 +40,23 @@ def test_gradcheck_step_solve(stencil):
     w4 = _ring_corner_weight(x) if stencil == "ring" else None
     vblk0 = rest.mass.detach()[:, None, None] * torch.eye(3, dtype=torch.float64) + 0.0025 * Hc
     inputs = [t.detach().clone().requires_grad_() for t in (*mem, *bend, vblk0, 0.0025 * Ks)]
-    rhs = torch.randn(3 * m.n, generator=torch.Generator().manual_seed(1), dtype=torch.float64).requires_grad_()
+    rhs = torch.randn(
+        3 * m.n, generator=torch.Generator().manual_seed(1), dtype=torch.float64
+    ).requires_grad_()
 
     def fn(G, H, P, area, g, s, vb, extra, b):
-        return step_solve(m, pat, dt=0.05, membrane=(G, H, P, area), bending=(g, s), vblk=vb, extra=extra, rhs=b,
-                          w4=w4, backend=resolve_backend("auto"))
+        return step_solve(
+            m,
+            pat,
+            dt=0.05,
+            membrane=(G, H, P, area),
+            bending=(g, s),
+            vblk=vb,
+            extra=extra,
+            rhs=b,
+            w4=w4,
+            backend=resolve_backend("auto"),
+        )
 
     assert torch.autograd.gradcheck(fn, (*inputs, rhs), eps=1e-6, atol=1e-7, rtol=1e-5, fast_mode=True)
 

@@ -108,7 +108,8 @@ def test_a_band_narrowed_at_its_top_narrows_its_bottom_and_the_waist_seam_below(
         corners = low & ((w[:, 0] == w[low, 0].min()) | (w[:, 0] == w[low, 0].max()))
         assert np.allclose(np.abs(dx[corners]), 0.01 if whole else 0.0, atol=1e-12)
         assert np.allclose(dx[low & ~corners], 0.0)
-        assert np.allclose(dx[corners] * np.sign(w[corners, 0]), -0.01 if whole else 0.0, atol=1e-12)  # inward
+        # inward
+        assert np.allclose(dx[corners] * np.sign(w[corners, 0]), -0.01 if whole else 0.0, atol=1e-12)
         moved_below = 0
         for other in controls.panel_names:
             if other == "waistband_front":
@@ -160,7 +161,11 @@ def test_the_band_edit_keeps_the_waist_seam_matched_and_meshable():
     def bottom(pat):  # the front band's bottom edges [m]: the waist seam
         b = pat.panels["waistband_front"]
         ys = b.to_world(b.vertices)[:, 1]
-        return sum(edge_length(b, k) for k, e in enumerate(b.edges) if ys[e.start] < ys.mean() and ys[e.end] < ys.mean())
+        return sum(
+            edge_length(b, k)
+            for k, e in enumerate(b.edges)
+            if ys[e.start] < ys.mean() and ys[e.end] < ys.mean()
+        )
 
     assert bottom(graded) == pytest.approx(bottom(p) - 0.024, abs=1e-3)
 
@@ -169,7 +174,9 @@ def test_grade_refuses_an_unknown_band_gap():
     from unsew.grading.grade import grade
 
     with pytest.raises(InputError, match="band_gap"):
-        grade(make_base_pattern("skirt_darts"), None, np.zeros((3, 3)), np.array([[0, 1, 2]]), band_gap="loose")
+        grade(
+            make_base_pattern("skirt_darts"), None, np.zeros((3, 3)), np.array([[0, 1, 2]]), band_gap="loose"
+        )
 
 
 def test_the_fit_config_takes_band_gap():

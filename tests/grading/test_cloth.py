@@ -61,7 +61,9 @@ def tube(heights, radii, n_around=32):
 
     def ring(k, start):
         idx = np.arange(start, start + n_around)
-        return SimpleNamespace(index=k, contour=SimpleNamespace(indices=idx), rim=idx, centre=v[idx].mean(axis=0))
+        return SimpleNamespace(
+            index=k, contour=SimpleNamespace(indices=idx), rim=idx, centre=v[idx].mean(axis=0)
+        )
 
     return v, np.array(f), [ring(0, 0), ring(1, last)]
 
@@ -88,8 +90,12 @@ def test_contour_without_a_path_to_the_top_has_no_cloth_length():
     v3, f3, r3 = tube(np.linspace(-1.0, -0.8, 3), np.full(3, 0.15))  # a separate piece below
     verts = np.vstack([v, v3])
     faces = np.vstack([f, f3 + len(v)])
-    piece = SimpleNamespace(index=2, contour=SimpleNamespace(indices=r3[0].contour.indices + len(v)),
-                            rim=r3[0].rim + len(v), centre=r3[0].centre)
+    piece = SimpleNamespace(
+        index=2,
+        contour=SimpleNamespace(indices=r3[0].contour.indices + len(v)),
+        rim=r3[0].rim + len(v),
+        centre=r3[0].centre,
+    )
     _, lengths = cloth_lengths(verts, faces, rings + [piece])
     assert set(lengths) == {0}
 

@@ -15,11 +15,16 @@ CASES = Path(__file__).resolve().parents[2] / "benchmarks" / "foreign" / "cases"
 #: one drape of each kind: sleeved and sleeveless dresses, a long-sleeved and a tank top, knee and
 #: short shorts, slim and wide trousers, a pencil and a circle skirt
 KINDS = {
-    "dress_sheath_sleeved__default": "dress", "dress_shift_sleeveless__default": "dress",
-    "tee_fitted_long__default": "tshirt", "tank_top__default": "tshirt",
-    "shorts_knee__default": "shorts", "shorts_short__default": "shorts",
-    "trousers_slim__default": "pants", "trousers_wide__default": "pants",
-    "skirt_pencil_mini__default": "skirt", "skirt_circle_knee__default": "skirt",
+    "dress_sheath_sleeved__default": "dress",
+    "dress_shift_sleeveless__default": "dress",
+    "tee_fitted_long__default": "tshirt",
+    "tank_top__default": "tshirt",
+    "shorts_knee__default": "shorts",
+    "shorts_short__default": "shorts",
+    "trousers_slim__default": "pants",
+    "trousers_wide__default": "pants",
+    "skirt_pencil_mini__default": "skirt",
+    "skirt_circle_knee__default": "skirt",
 }
 
 
@@ -49,9 +54,15 @@ def test_the_reading_does_not_trust_part_labels():
     """Limb joints labelled with the limb (as other rigs label them) read the same."""
     v, f = _target("trousers_slim__default")
     sk = default_body().skeleton
-    relabelled = type(sk)(list(sk.names), sk.parents.copy(), sk.positions.copy(),
-                          [("left_leg" if n.startswith("left_") and n.endswith(("hip", "shoulder")) else p)
-                           for n, p in zip(sk.names, sk.parts)])
+    relabelled = type(sk)(
+        list(sk.names),
+        sk.parents.copy(),
+        sk.positions.copy(),
+        [
+            ("left_leg" if n.startswith("left_") and n.endswith(("hip", "shoulder")) else p)
+            for n, p in zip(sk.names, sk.parts)
+        ],
+    )
     assert read_garment_type(v, f, relabelled).garment == "pants"
 
 
@@ -81,7 +92,10 @@ def test_a_v_neck_is_read_off_its_drape():
     from unsew.sim.drape import DrapeSettings
 
     body = default_body()
-    d = dress(make_base_pattern("tshirt", measure_body(body), necklines=("v", "round")), body,
-              settings=DrapeSettings(edge_length=0.04))
+    d = dress(
+        make_base_pattern("tshirt", measure_body(body), necklines=("v", "round")),
+        body,
+        settings=DrapeSettings(edge_length=0.04),
+    )
     shapes, angles = read_necklines(d.x.numpy(), d.mesh.faces, body.skeleton)
     assert shapes == ("v", "round"), angles

@@ -27,8 +27,16 @@ def case(tmp_path_factory):
 
 def test_grade_cli_writes_pattern_drape_and_table(case, tmp_path, capsys):
     out = tmp_path / "graded"
-    assert main(["grade", str(case), "--base", "tshirt", "--out", str(out), "--flat", "--edge-length", "0.04"]) == 0
-    assert sorted(p.name for p in out.iterdir()) == ["contours.json", "garment.obj", "garment_init.obj", "pattern.json"]
+    assert (
+        main(["grade", str(case), "--base", "tshirt", "--out", str(out), "--flat", "--edge-length", "0.04"])
+        == 0
+    )
+    assert sorted(p.name for p in out.iterdir()) == [
+        "contours.json",
+        "garment.obj",
+        "garment_init.obj",
+        "pattern.json",
+    ]
     doc = json.loads((out / "contours.json").read_text())
     assert doc["units"] == "m" and len(doc["contours"]) == 4
     hem = next(r for r in doc["contours"] if r["part"] == "torso")
@@ -61,7 +69,22 @@ def test_grade_cli_refuses_existing_out_and_leaves_nothing_on_failure(case, tmp_
 
 def test_grade_cli_takes_library_bases_sized_to_the_wearer(case, tmp_path, capsys):
     out = tmp_path / "long"
-    assert main(["grade", str(case), "--base", "tshirt_long", "--out", str(out), "--flat", "--edge-length", "0.04"]) == 0
+    assert (
+        main(
+            [
+                "grade",
+                str(case),
+                "--base",
+                "tshirt_long",
+                "--out",
+                str(out),
+                "--flat",
+                "--edge-length",
+                "0.04",
+            ]
+        )
+        == 0
+    )
     assert json.loads((out / "contours.json").read_text())["base"] == "tshirt_long"
     assert main(["grade", str(case), "--base", "skirt_band", "--out", str(tmp_path / "x"), "--flat"]) == 2
     assert "cannot make a tshirt" in capsys.readouterr().err and not (tmp_path / "x").exists()

@@ -13,8 +13,15 @@ from unsew.grading.alter import alter_pattern, open_edges
 from unsew.grading.cloth import top_contour
 from unsew.grading.contours import place_contours
 from unsew.grading.grade import GradingError, flat_drape, grade
-from unsew.grading.guards import (MIN_KEEP_WIDTH, WAIST_ABOVE_HIP, WAIST_HIP_EASE, WaistBound, bounded_girth,
-                                  bounded_waist, waist_bound)
+from unsew.grading.guards import (
+    MIN_KEEP_WIDTH,
+    WAIST_ABOVE_HIP,
+    WAIST_HIP_EASE,
+    WaistBound,
+    bounded_girth,
+    bounded_waist,
+    waist_bound,
+)
 from unsew.meshing.sew import mesh_pattern
 from unsew.pattern.base import make_base_pattern
 
@@ -43,8 +50,17 @@ def test_a_waist_is_not_moved_below_the_hips(body, skirt):
     t = alter_pattern(p, open_edges(p, "waist"), length=-0.35)
     tm = mesh_pattern(t, edge_length=EDGE)
     x0 = flat_drape(p, m)
-    res = grade(p, body, flat_drape(t, tm), tm.faces, mesh=m, drape_fn=flat_drape, passes=1, redrape=False,
-                length="axial")
+    res = grade(
+        p,
+        body,
+        flat_drape(t, tm),
+        tm.faces,
+        mesh=m,
+        drape_fn=flat_drape,
+        passes=1,
+        redrape=False,
+        length="axial",
+    )
     row = _top_row(res)
     assert row["extension_m"] < -0.3  # what the target asked
     assert any("waist move cut" in w for w in row["warnings"])
@@ -61,7 +77,8 @@ def test_a_waist_is_not_widened_past_the_hips():
     bound = WaistBound(hip_height=0.86, shoulder_height=1.29, hip_girth=0.90)
     ext, dg, notes = bounded_waist(bound, 1.0, -0.05, girth=0.78, girth_change=0.40)
     assert ext == -0.05 and dg == pytest.approx(0.90 - WAIST_HIP_EASE - 0.78) and len(notes) == 1
-    assert bounded_waist(bound, 1.0, 0.0, girth=0.95, girth_change=0.10)[1] == 0.0  # already too wide: not widened
+    # already too wide: not widened
+    assert bounded_waist(bound, 1.0, 0.0, girth=0.95, girth_change=0.10)[1] == 0.0
     assert bounded_waist(bound, 1.0, 0.0, girth=0.95, girth_change=-0.10)[1] == -0.10  # narrowing is free
     # a neckline (nearer the shoulders) is no waist: left alone
     assert bounded_waist(bound, 1.25, -0.5, girth=0.4, girth_change=2.0) == (-0.5, 2.0, [])
@@ -128,7 +145,9 @@ def _hem_with_slits(depth: float, n: int = 120, wave: float = 0.0, slope: float 
         out.append(p)
         if depth > 0 and k in (0, n // 2):
             q = pts[k + 1]
-            out += [p + [0, depth * s / 8, 0] for s in range(1, 9)] + [q + [0, depth * (8 - s) / 8, 0] for s in range(8)]
+            out += [p + [0, depth * s / 8, 0] for s in range(1, 9)] + [
+                q + [0, depth * (8 - s) / 8, 0] for s in range(8)
+            ]
     return np.asarray(out)
 
 
@@ -144,14 +163,23 @@ def test_slits_are_cut_from_a_hem_and_folds_or_slopes_are_not():
     assert kept is not None and (~kept).sum() == 2 * 16
     assert cut == pytest.approx(4 * 0.17, rel=1e-6)
     assert slits(slit[::-1], up)[1] == pytest.approx(cut)  # walked the other way
-    assert slits(slit * [1, -1, 1], -up)[1] == pytest.approx(cut)  # a neckline's slit goes down into the cloth
+    # a neckline's slit goes down into the cloth
+    assert slits(slit * [1, -1, 1], -up)[1] == pytest.approx(cut)
     assert slits(slit, -up) == (None, 0.0)
     for other in (_hem_with_slits(0.0, wave=0.03), _hem_with_slits(0.0, slope=0.12), _hem_with_slits(0.03)):
         assert slits(other, up) == (None, 0.0)  # folds, a sloped hem, a 3 cm notch
     # a tall narrow loop, all climb and return but its two lowest vertices: no rim left, no slit
     # (cut from it, place_contours found the plane of two points and failed)
-    narrow = np.array([[0.0, 0.0, 0.0], [0.02, 0.0, 0.0], [0.021, 0.1, 0.0], [0.022, 0.2, 0.0], [0.0, 0.2, 0.0],
-                       [-0.001, 0.1, 0.0]])
+    narrow = np.array(
+        [
+            [0.0, 0.0, 0.0],
+            [0.02, 0.0, 0.0],
+            [0.021, 0.1, 0.0],
+            [0.022, 0.2, 0.0],
+            [0.0, 0.2, 0.0],
+            [-0.001, 0.1, 0.0],
+        ]
+    )
     assert slits(narrow, up) == (None, 0.0)
 
 
@@ -161,8 +189,12 @@ def _skirt_tube(slit_rows: int):
     rows of one column of faces left out from the hem up. Returns (verts (V, 3), faces (F, 3))."""
     n, rows = 80, 17
     t = 2 * np.pi * np.arange(n) / n
-    v = np.concatenate([np.stack([0.22 * np.cos(t), np.full(n, 0.5 + 0.025 * i), 0.22 * np.sin(t)], axis=1)
-                        for i in range(rows)])
+    v = np.concatenate(
+        [
+            np.stack([0.22 * np.cos(t), np.full(n, 0.5 + 0.025 * i), 0.22 * np.sin(t)], axis=1)
+            for i in range(rows)
+        ]
+    )
     f = []
     for i in range(rows - 1):
         for j in range(n):

@@ -20,7 +20,9 @@ def cylinder(radius, y0, y1, *, centre=(0.0, 0.0), n_around=48, n_rings=21):
     (V, 3) vertices and (F, 3) faces."""
     th = np.linspace(0, 2 * np.pi, n_around, endpoint=False)
     ys = np.linspace(y0, y1, n_rings)
-    v = np.array([[centre[0] + radius * np.cos(t), y, centre[1] + radius * np.sin(t)] for y in ys for t in th])
+    v = np.array(
+        [[centre[0] + radius * np.cos(t), y, centre[1] + radius * np.sin(t)] for y in ys for t in th]
+    )
     f = []
     for r in range(n_rings - 1):
         for k in range(n_around):
@@ -43,7 +45,10 @@ def test_torso_girth_goes_round_the_torso_and_leaves_an_arm_out():
 
 
 def test_side_seam_points_are_the_side_seams_joins_not_hems_armholes_or_darts():
-    plain, waisted = make_base_pattern("dress_sleeveless"), make_base_pattern("dress_sleeveless", waist_point=True)
+    plain, waisted = (
+        make_base_pattern("dress_sleeveless"),
+        make_base_pattern("dress_sleeveless", waist_point=True),
+    )
     for p, n in ((plain, 4), (waisted, 8)):  # the hips; the hips and the waist, front and back, both sides
         c = find_control_points(p)
         pts = side_seam_points(p, c)
@@ -78,8 +83,10 @@ def test_the_waisted_dress_with_its_waist_as_a_vertex_keeps_its_outline_heights(
     assert len(b) == len(a) + 2  # one more vertex on each side seam
     assert b[:, 1].max() == pytest.approx(a[:, 1].max()) and b[:, 1].min() == pytest.approx(a[:, 1].min())
     # the other bases take no waist point
-    assert make_base_pattern("dress_straight", waist_point=True).panels["front"].vertices.shape == \
-        make_base_pattern("dress_straight").panels["front"].vertices.shape
+    assert (
+        make_base_pattern("dress_straight", waist_point=True).panels["front"].vertices.shape
+        == make_base_pattern("dress_straight").panels["front"].vertices.shape
+    )
 
 
 def _moves(drape_r, target_r, lo=0.9, hi=1.3):

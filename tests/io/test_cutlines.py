@@ -44,8 +44,10 @@ def test_sharp_corner_is_clipped_and_concave_notch_leaves_no_loop():
     u /= np.linalg.norm(u)  # the corner's outward bisector: the mitre would reach 12 cm along it
     assert ((cut - tri[1]) @ u).max() == pytest.approx(MITER_LIMIT * 0.01) and len(cut) == 4
     # a slot 1 cm wide: offset by 1 cm outward both sides of it meet, the loop must go
-    slot = np.array([[0, 0], [0.2, 0], [0.2, 0.1], [0.105, 0.1], [0.105, 0.03], [0.095, 0.03], [0.095, 0.1],
-                     [0, 0.1]], float)
+    slot = np.array(
+        [[0, 0], [0.2, 0], [0.2, 0.1], [0.105, 0.1], [0.105, 0.03], [0.095, 0.03], [0.095, 0.1], [0, 0.1]],
+        float,
+    )
     cut, _ = offset_polygon(slot, np.full(len(slot), 0.01))
     assert _simple(cut)
     from matplotlib.path import Path

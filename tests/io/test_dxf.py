@@ -4,17 +4,21 @@ the sew line by the seam allowance, notches on both lines, the AAMA texts."""
 import numpy as np
 import pytest
 
-ezdxf = pytest.importorskip("ezdxf")
-
 from unsew.io.dxf import LAYERS, write_dxf
 from unsew.io.garmentcode import load_pattern
 from unsew.pattern.base import make_base_pattern
 from unsew.pattern.curves import panel_outline
 
+ezdxf = pytest.importorskip("ezdxf")
+
 
 @pytest.mark.parametrize("source", ["tshirt", "pants", "handmade"])
 def test_dxf_audit_blocks_layers_units(source, tmp_path):
-    p = load_pattern("tests/data/handmade_specification.json") if source == "handmade" else make_base_pattern(source)
+    p = (
+        load_pattern("tests/data/handmade_specification.json")
+        if source == "handmade"
+        else make_base_pattern(source)
+    )
     f = tmp_path / "p.dxf"
     write_dxf(p, f)
     doc = ezdxf.readfile(f)
@@ -33,11 +37,17 @@ def test_dxf_audit_blocks_layers_units(source, tmp_path):
         np.testing.assert_allclose(pts.max(0) - pts.min(0), exact.max(0) - exact.min(0), atol=0.1)
         cpts = np.array([v[:2] for v in cut[0].get_points()])
         # the cut line is larger by at least the 1 cm allowance on every side
-        assert (cpts.max(0) - pts.max(0) >= 10.0 - 1e-6).all() and (pts.min(0) - cpts.min(0) >= 10.0 - 1e-6).all()
+        assert (cpts.max(0) - pts.max(0) >= 10.0 - 1e-6).all() and (
+            pts.min(0) - cpts.min(0) >= 10.0 - 1e-6
+        ).all()
         assert len(blk.query("POINT[layer=='2']")) >= len(pan.vertices)
         assert len(blk.query("LINE[layer=='7']")) == 1
         texts = [t.dxf.text for t in blk.query("TEXT[layer=='1']")]
-        assert f"Piece Name: {name}" in texts and "Quantity: 1" in texts and any(t.startswith("Size: ") for t in texts)
+        assert (
+            f"Piece Name: {name}" in texts
+            and "Quantity: 1" in texts
+            and any(t.startswith("Size: ") for t in texts)
+        )
         assert any(t.dxf.text.startswith("cut 1") for t in blk.query("TEXT[layer=='15']"))
     notches = sum(len(doc.blocks.get(n).query("LINE[layer=='4']")) for n in p.panels)
     assert notches == 2 * 2 * sum(k % 3 + 1 for k in range(len(p.stitches)))  # both sides, both lines

@@ -9,7 +9,7 @@ import pytest
 
 from helpers import assert_close
 from unsew.errors import InputError, PatternError
-from unsew.io.garmentcode import load_pattern, pattern_from_dict, pattern_to_dict, save_pattern
+from unsew.io.garmentcode import load_pattern, pattern_from_dict, save_pattern
 from unsew.pattern.base import GARMENTS, make_base_pattern
 from unsew.pattern.curves import relative_to_absolute
 from unsew.pattern.model import pattern_diff
@@ -57,9 +57,20 @@ def test_handmade_file_round_trip_keeps_everything(tmp_path):
     assert saved["unsew"]["format_version"] == 1 and saved["unsew"]["units"] == "m"
     # The file's numbers come back as they were (cm).
     for name in ("front", "back"):
-        assert_close(saved["pattern"]["panels"][name]["vertices"], orig["pattern"]["panels"][name]["vertices"], rtol=1e-12)
-        assert_close(saved["pattern"]["panels"][name]["translation"], orig["pattern"]["panels"][name]["translation"], rtol=1e-12)
-    assert saved["pattern"]["panels"]["front"]["edges"][0]["curvature"] == {"type": "circle", "params": [80.0, 0, 1]}
+        assert_close(
+            saved["pattern"]["panels"][name]["vertices"],
+            orig["pattern"]["panels"][name]["vertices"],
+            rtol=1e-12,
+        )
+        assert_close(
+            saved["pattern"]["panels"][name]["translation"],
+            orig["pattern"]["panels"][name]["translation"],
+            rtol=1e-12,
+        )
+    assert saved["pattern"]["panels"]["front"]["edges"][0]["curvature"] == {
+        "type": "circle",
+        "params": [80.0, 0, 1],
+    }
 
 
 def test_units_converted_to_metres():
@@ -130,7 +141,10 @@ def _handmade_dict():
 def test_open_loop_names_panel_and_edge():
     d = _handmade_dict()
     d["pattern"]["panels"]["back"]["edges"][2]["endpoints"] = [2, 0]
-    with pytest.raises(PatternError, match=r"panel 'back' is not a closed loop: edge 2 ends at vertex 0 but edge 3 starts at vertex 3"):
+    with pytest.raises(
+        PatternError,
+        match=r"panel 'back' is not a closed loop: edge 2 ends at vertex 0 but edge 3 starts at vertex 3",
+    ):
         pattern_from_dict(d)
 
 

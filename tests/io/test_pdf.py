@@ -49,7 +49,25 @@ def test_export_command_writes_the_pdf_and_refuses_an_allowance_in_centimetres(t
     src = tmp_path / "s.json"
     save_pattern(make_base_pattern("skirt"), src)
     out = tmp_path / "s.pdf"
-    assert main(["pattern", "export", str(src), "--pdf", str(out), "--paper", "letter", "--seam-allowance", "0.015"]) == 0
+    assert (
+        main(
+            [
+                "pattern",
+                "export",
+                str(src),
+                "--pdf",
+                str(out),
+                "--paper",
+                "letter",
+                "--seam-allowance",
+                "0.015",
+            ]
+        )
+        == 0
+    )
     assert out.read_bytes().startswith(b"%PDF") and "pages" in capsys.readouterr().out
-    assert main(["pattern", "export", str(src), "--dxf", str(tmp_path / "s.dxf"), "--seam-allowance", "1.5"]) == 2
+    assert (
+        main(["pattern", "export", str(src), "--dxf", str(tmp_path / "s.dxf"), "--seam-allowance", "1.5"])
+        == 2
+    )
     assert "in metres" in capsys.readouterr().err and not (tmp_path / "s.dxf").exists()

@@ -22,9 +22,9 @@ def _seg_dist(pts, poly):
     d = b - a
     out = np.empty(len(pts))
     for i in range(0, len(pts), 512):
-        ap = pts[i:i + 512, None, :] - a[None]
+        ap = pts[i : i + 512, None, :] - a[None]
         t = np.clip((ap * d).sum(-1) / (d * d).sum(-1), 0.0, 1.0)
-        out[i:i + 512] = np.linalg.norm(ap - t[..., None] * d, axis=-1).min(1)
+        out[i : i + 512] = np.linalg.norm(ap - t[..., None] * d, axis=-1).min(1)
     return out
 
 
@@ -37,7 +37,11 @@ def _close(read_mm, panel):
 def _patterns(tmp_path):
     out = []
     for src in ("tshirt", "pants", "handmade"):
-        p = load_pattern("tests/data/handmade_specification.json") if src == "handmade" else make_base_pattern(src)
+        p = (
+            load_pattern("tests/data/handmade_specification.json")
+            if src == "handmade"
+            else make_base_pattern(src)
+        )
         save_pattern(p, tmp_path / f"{src}.json")
         out.append((src, load_pattern(tmp_path / f"{src}.json")))
     return out

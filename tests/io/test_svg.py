@@ -62,7 +62,9 @@ def test_seam_labels_and_notches_on_both_sides(tmp_path):
     f = tmp_path / "h.svg"
     write_svg(p, f)
     _, groups = _parse(f)
-    labels = {n: sorted(t.text for t in g.findall("s:text[@class='seam-label']", NS)) for n, g in groups.items()}
+    labels = {
+        n: sorted(t.text for t in g.findall("s:text[@class='seam-label']", NS)) for n, g in groups.items()
+    }
     assert labels == {"front": ["A", "B"], "back": ["A", "B"]}
     notches = {n: len(g.findall("s:path[@class='notch']", NS)) for n, g in groups.items()}
     assert notches == {"front": 2 * (1 + 2), "back": 2 * (1 + 2)}  # A one notch, B two; on both lines

@@ -21,7 +21,9 @@ def test_loss_value_and_zero_at_the_target_area():
 
 
 def test_gradient_matches_finite_differences_and_pushes_outwards_when_too_small():
-    uv = (SQUARE + 0.05 * torch.randn(4, 2, dtype=torch.float64, generator=torch.Generator().manual_seed(0))).requires_grad_(True)
+    uv = (
+        SQUARE + 0.05 * torch.randn(4, 2, dtype=torch.float64, generator=torch.Generator().manual_seed(0))
+    ).requires_grad_(True)
     assert torch.autograd.gradcheck(lambda u: loss_area(u, FACES, 3.0), (uv,))
     loss_area(uv, FACES, 3.0).backward()
     centre = uv.detach().mean(0)

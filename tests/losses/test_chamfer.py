@@ -89,4 +89,8 @@ def test_bad_shapes_raise():
     with pytest.raises(ValueError):
         loss_chamfer(torch.zeros(3, 3, dtype=torch.float64), torch.zeros(4, 2, dtype=torch.float64))
     with pytest.raises(ValueError):
-        loss_chamfer(torch.zeros(3, 3, dtype=torch.float64), torch.zeros(4, 3, dtype=torch.float64), weights_t=torch.ones(3))
+        loss_chamfer(
+            torch.zeros(3, 3, dtype=torch.float64),
+            torch.zeros(4, 3, dtype=torch.float64),
+            weights_t=torch.ones(3),
+        )

@@ -52,7 +52,9 @@ def test_closed_mesh_has_none_and_orientation_follows_faces():
     m = trimesh.creation.icosphere(subdivisions=1)
     assert open_contours(m.vertices, m.faces) == []
     # a single CCW triangle seen from +Z: its loop's normal is +Z
-    c = open_contours(np.eye(3)[[0, 1, 2]] * 0 + np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0.0]]), np.array([[0, 1, 2]]))
+    c = open_contours(
+        np.eye(3)[[0, 1, 2]] * 0 + np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0.0]]), np.array([[0, 1, 2]])
+    )
     assert len(c) == 1 and c[0].normal[2] > 0.99
 
 

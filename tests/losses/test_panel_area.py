@@ -6,8 +6,10 @@ import torch
 from unsew.losses.panel_area import loss_panel_area, panel_areas
 
 # two panels: a 2 x 1 rectangle (triangles 0, 1) and a unit square beside it (triangles 2, 3)
-UV = torch.tensor([[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0],
-                   [3.0, 0.0], [4.0, 0.0], [4.0, 1.0], [3.0, 1.0]], dtype=torch.float64)
+UV = torch.tensor(
+    [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0], [3.0, 0.0], [4.0, 0.0], [4.0, 1.0], [3.0, 1.0]],
+    dtype=torch.float64,
+)
 FACES = torch.tensor([[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]], dtype=torch.int64)
 PANEL = torch.tensor([0, 0, 1, 1], dtype=torch.int64)
 
@@ -24,10 +26,13 @@ def test_zero_at_the_start_areas_and_relative_to_each_panel():
     moved[[5, 6], 0] += 0.1  # the square widened by 10 %: its term (0.1)^2, the rectangle's 0, mean over 2
     assert loss_panel_area(moved, FACES, PANEL, a0).item() == pytest.approx(0.01 / 2, rel=1e-12)
     shared = UV.clone()
-    shared[[1, 2], 0] -= 0.1  # the rectangle gives 0.1 m^2 (5 %) and the square takes it (10 %): the total is unchanged
+    # the rectangle gives 0.1 m^2 (5 %) and the square takes it (10 %): the total is unchanged
+    shared[[1, 2], 0] -= 0.1
     shared[[4, 7], 0] -= 0.1
     assert panel_areas(shared, FACES, PANEL, 2).sum().item() == pytest.approx(3.0, abs=1e-12)
-    assert loss_panel_area(shared, FACES, PANEL, a0).item() == pytest.approx((0.05 ** 2 + 0.1 ** 2) / 2, rel=1e-12)
+    assert loss_panel_area(shared, FACES, PANEL, a0).item() == pytest.approx(
+        (0.05**2 + 0.1**2) / 2, rel=1e-12
+    )
 
 
 def test_gradient_matches_finite_differences_and_shrinks_a_grown_panel():

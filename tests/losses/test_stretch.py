@@ -28,8 +28,9 @@ def test_zero_at_rest_and_within_the_bound():
 def test_value_sums_the_squared_excess_of_each_edge():
     e, eu = triangle_edges(FACES, FACES)
     x = X.clone()
-    x[1, 0] = 2.0  # edge 0-1 at 2.0 (excess 0.5); edge 1-2 at sqrt(5)/sqrt(2) = 1.581 (excess 0.081); 2-0 at 1
-    want = 0.5 ** 2 + (5 ** 0.5 / 2 ** 0.5 - 1.5) ** 2
+    # edge 0-1 at 2.0 (excess 0.5); edge 1-2 at sqrt(5)/sqrt(2) = 1.581 (excess 0.081); 2-0 at 1
+    x[1, 0] = 2.0
+    want = 0.5**2 + (5**0.5 / 2**0.5 - 1.5) ** 2
     assert loss_stretch(x, UV, e, eu).item() == pytest.approx(want, rel=1e-12)
     assert loss_stretch(x, UV, e, eu, bound=2.5).item() == 0.0
     assert loss_stretch(x, UV * 2, e, eu).item() == 0.0  # a longer rest shape is no stretch

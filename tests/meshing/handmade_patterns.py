@@ -47,13 +47,27 @@ def mini_shirt() -> Pattern:
     """A toy shirt: front and back (mirror-symmetric torso outlines with a curved neckline) and two
     mirror-image sleeves, sewn at the sides, shoulders and armholes."""
     torso = np.array(
-        [[-0.25, 0.0], [0.25, 0.0], [0.25, 0.4], [0.3, 0.55], [0.08, 0.6], [-0.08, 0.6], [-0.3, 0.55], [-0.25, 0.4]],
+        [
+            [-0.25, 0.0],
+            [0.25, 0.0],
+            [0.25, 0.4],
+            [0.3, 0.55],
+            [0.08, 0.6],
+            [-0.08, 0.6],
+            [-0.3, 0.55],
+            [-0.25, 0.4],
+        ],
         float,
     )
     neck = {4: Curvature("quadratic", [[0.5, -0.2]])}
     front = Panel("front", torso, loop_edges(8, neck), translation=[0, 1.0, 0.15])
-    back = Panel("back", torso.copy(), loop_edges(8, {4: Curvature("quadratic", [[0.5, -0.05]])}),
-                 translation=[0, 1.0, -0.15], rotation=[0, 180, 0])
+    back = Panel(
+        "back",
+        torso.copy(),
+        loop_edges(8, {4: Curvature("quadratic", [[0.5, -0.05]])}),
+        translation=[0, 1.0, -0.15],
+        rotation=[0, 180, 0],
+    )
     # Left sleeve: a trapezoid; the right sleeve is its mirror image (x -> -x), re-ordered CCW.
     sl = np.array([[0.0, 0.0], [0.2, 0.03], [0.2, 0.17], [0.0, 0.2]], float)
     sr = sl * [-1, 1]

@@ -45,7 +45,9 @@ def test_boundary_is_the_sampled_outline(make):
             assert_close(m.uv[ev[0]], panel.vertices[e.start], atol=0, what="corner: ")
             assert_close(m.uv[ev[-1]], panel.vertices[e.end], atol=0, what="corner: ")
         loop = m.boundary_loop(p)
-        assert np.array_equal(np.concatenate([m.edge_verts[(name, i)][:-1] for i in range(len(panel.edges))]), loop)
+        assert np.array_equal(
+            np.concatenate([m.edge_verts[(name, i)][:-1] for i in range(len(panel.edges))]), loop
+        )
         # the outline is a boundary of the 2D mesh: each outline segment belongs to exactly one triangle
         f = m.faces_uv[m.uv_panel[m.faces_uv[:, 0]] == p]
         edges = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)

@@ -40,7 +40,9 @@ def test_mirrored_triangulation_is_its_own_mirror_image():
 
 def test_asymmetric_outline_is_refused():
     outline = np.array([[0.0, 0.0], [0.3, 0.0], [0.3, 0.2], [0.0, 0.25]])
-    assert triangulate_mirrored(outline, np.array([0.15, 0.0]), np.array([0.0, 1.0]), edge_length=0.05) is None
+    assert (
+        triangulate_mirrored(outline, np.array([0.15, 0.0]), np.array([0.0, 1.0]), edge_length=0.05) is None
+    )
 
 
 def test_transport_onto_mirrored_panel():
@@ -56,7 +58,10 @@ def test_transport_onto_mirrored_panel():
     assert np.allclose(verts[: len(dst)], dst, atol=1e-12)
     assert (signed_areas(verts, tris) > 0).all()
     assert len(tris) == len(st)
-    assert transport_mesh(src, sv, st, dst + rng.normal(0, 0.02, dst.shape), mirrored=True, edge_length=0.03) is None
+    assert (
+        transport_mesh(src, sv, st, dst + rng.normal(0, 0.02, dst.shape), mirrored=True, edge_length=0.03)
+        is None
+    )
 
 
 @pytest.mark.parametrize("garment", ["tshirt", "pants", "skirt"])

@@ -96,22 +96,37 @@ def test_pattern_metrics_with_different_panel_sets():
     """Missing and extra panels: listed, left out of the matched means, counted at full area in the
     area-weighted error; the total-area error needs no correspondence."""
     belt = np.asarray(SQ) * [2, 0.1]
-    gt = Pattern("gt", {"front": _poly_panel("front", SQ, translation=(0, 0, 0.2)),
-                        "back": _poly_panel("back", SQ, translation=(0, 0, -0.2)),
-                        "belt": _poly_panel("belt", belt, translation=(0, 0.6, 0))})
-    est = Pattern("est", {"front": _poly_panel("front", np.asarray(SQ) * [1, 1.1], translation=(0, 0, 0.2)),
-                          "back": _poly_panel("back", SQ, translation=(0, 0, -0.2))})
+    gt = Pattern(
+        "gt",
+        {
+            "front": _poly_panel("front", SQ, translation=(0, 0, 0.2)),
+            "back": _poly_panel("back", SQ, translation=(0, 0, -0.2)),
+            "belt": _poly_panel("belt", belt, translation=(0, 0.6, 0)),
+        },
+    )
+    est = Pattern(
+        "est",
+        {
+            "front": _poly_panel("front", np.asarray(SQ) * [1, 1.1], translation=(0, 0, 0.2)),
+            "back": _poly_panel("back", SQ, translation=(0, 0, -0.2)),
+        },
+    )
     m = pattern_metrics(est, gt)
     assert m["unmatched"] == {"estimated": [], "true": ["belt"]}
-    assert_close(m["unmatched_area_m2"]["true"]["belt"], 0.2, rtol=1e-9) and m["unmatched_area_m2"]["estimated"] == {}
+    assert_close(m["unmatched_area_m2"]["true"]["belt"], 0.2, rtol=1e-9) and m["unmatched_area_m2"][
+        "estimated"
+    ] == {}
     assert set(m["panels"]) == {"front", "back"}
     assert_close(m["area_error_rel_mean"], 0.05, rtol=1e-9)  # (0.1 + 0) / 2 over matched panels
-    assert_close(m["area_error_total_rel"], abs(2.1 - 2.2) / 2.2, rtol=1e-9)  # 0.045: the belt hidden by front
+    # 0.045: the belt hidden by front
+    assert_close(m["area_error_total_rel"], abs(2.1 - 2.2) / 2.2, rtol=1e-9)
     assert_close(m["area_error_weighted_rel"], (0.1 + 0.2) / 2.2, rtol=1e-9)  # the belt counts in full
     with pytest.raises(PatternError, match="without a counterpart"):
         pattern_metrics(est, gt, strict=True)
     # an extra estimated panel counts at its own area
-    est2 = Pattern("est2", {**gt.panels, "pocket": _poly_panel("pocket", np.asarray(SQ) * 0.3, translation=(0, 0, 0.3))})
+    est2 = Pattern(
+        "est2", {**gt.panels, "pocket": _poly_panel("pocket", np.asarray(SQ) * 0.3, translation=(0, 0, 0.3))}
+    )
     m2 = pattern_metrics(est2, gt)
     assert m2["unmatched"] == {"estimated": ["pocket"], "true": []} and m2["area_error_rel_mean"] == 0.0
     assert_close(m2["area_error_weighted_rel"], 0.09 / 2.2, rtol=1e-9)
@@ -126,21 +141,36 @@ def test_the_report_draws_each_true_panel_over_its_match():
     from unsew.metrics.panels import panel_centroid2d
 
     belt = np.asarray(SQ) * [2, 0.1]
-    gt = Pattern("gt", {"front_l": _poly_panel("front_l", np.asarray(SQ) + 5),
-                        "back_l": _poly_panel("back_l", PENT),
-                        "left_back": _poly_panel("left_back", belt)}, panel_order=["left_back", "front_l", "back_l"])
-    est = Pattern("est", {"left_front": _poly_panel("left_front", np.asarray(SQ) * 1.1),
-                          "left_back": _poly_panel("left_back", np.asarray(PENT) - 2)})
-    matched = {"panels": {"front_l": {"estimated_panel": "left_front"}, "back_l": {"estimated_panel": "left_back"}}}
+    gt = Pattern(
+        "gt",
+        {
+            "front_l": _poly_panel("front_l", np.asarray(SQ) + 5),
+            "back_l": _poly_panel("back_l", PENT),
+            "left_back": _poly_panel("left_back", belt),
+        },
+        panel_order=["left_back", "front_l", "back_l"],
+    )
+    est = Pattern(
+        "est",
+        {
+            "left_front": _poly_panel("left_front", np.asarray(SQ) * 1.1),
+            "left_back": _poly_panel("left_back", np.asarray(PENT) - 2),
+        },
+    )
+    matched = {
+        "panels": {"front_l": {"estimated_panel": "left_front"}, "back_l": {"estimated_panel": "left_back"}}
+    }
     drawn = truth_over(gt, est, matched)
     assert drawn.panel_order == ["left_back (true)", "left_front", "left_back"]
     assert set(drawn.panels) == set(drawn.panel_order) and drawn.panels["left_front"].name == "left_front"
     for name in ("left_front", "left_back"):
         assert_close(panel_centroid2d(drawn.panels[name]), panel_centroid2d(est.panels[name]), atol=1e-12)
-    assert_close(drawn.panels["left_back"].vertices, np.asarray(PENT) - 2.0, atol=1e-12)  # the same shape, moved
+    # the same shape, moved
+    assert_close(drawn.panels["left_back"].vertices, np.asarray(PENT) - 2.0, atol=1e-12)
     assert_close(drawn.panels["left_back (true)"].vertices, belt, atol=0)
     assert truth_over(gt, est, None) is gt
-    assert set(truth_over(gt, est, pattern_metrics(est, gt)).panels) >= set(est.panels)  # the real matching's form
+    # the real matching's form
+    assert set(truth_over(gt, est, pattern_metrics(est, gt)).panels) >= set(est.panels)
 
 
 def _halves_patterns():
@@ -150,17 +180,32 @@ def _halves_patterns():
 
     half = [[0, 0], [0.5, 0], [0.5, 1], [0, 1]]
     back = np.asarray(SQ) * [1, 0.6]
-    gt = Pattern("gt", {"rf": _poly_panel("rf", half, translation=(-0.5, 0, 0.2)),
-                        "lf": _poly_panel("lf", half, translation=(0, 0, 0.2)),
-                        "back": _poly_panel("back", back, translation=(-0.5, 0, -0.2)),
-                        "belt": _poly_panel("belt", np.asarray(SQ) * [1, 0.1], translation=(-0.5, 1, 0.2))})
-    gt.stitches = [Stitch(StitchSide("rf", 1), StitchSide("lf", 3)),  # centre front
-                   Stitch(StitchSide("lf", 1), StitchSide("back", 1)),  # side seams
-                   Stitch(StitchSide("rf", 3), StitchSide("back", 3)),
-                   Stitch(StitchSide("belt", 0), StitchSide("lf", 2))]
-    est = Pattern("est", {"front": _poly_panel("front", np.asarray(SQ) * [1, 1.1], translation=(-0.5, 0, 0.2)),
-                          "back": _poly_panel("back", back, translation=(-0.5, 0, -0.2))})
-    est.stitches = [Stitch(StitchSide("front", 1), StitchSide("back", 1)), Stitch(StitchSide("front", 3), StitchSide("back", 3))]
+    gt = Pattern(
+        "gt",
+        {
+            "rf": _poly_panel("rf", half, translation=(-0.5, 0, 0.2)),
+            "lf": _poly_panel("lf", half, translation=(0, 0, 0.2)),
+            "back": _poly_panel("back", back, translation=(-0.5, 0, -0.2)),
+            "belt": _poly_panel("belt", np.asarray(SQ) * [1, 0.1], translation=(-0.5, 1, 0.2)),
+        },
+    )
+    gt.stitches = [
+        Stitch(StitchSide("rf", 1), StitchSide("lf", 3)),  # centre front
+        Stitch(StitchSide("lf", 1), StitchSide("back", 1)),  # side seams
+        Stitch(StitchSide("rf", 3), StitchSide("back", 3)),
+        Stitch(StitchSide("belt", 0), StitchSide("lf", 2)),
+    ]
+    est = Pattern(
+        "est",
+        {
+            "front": _poly_panel("front", np.asarray(SQ) * [1, 1.1], translation=(-0.5, 0, 0.2)),
+            "back": _poly_panel("back", back, translation=(-0.5, 0, -0.2)),
+        },
+    )
+    est.stitches = [
+        Stitch(StitchSide("front", 1), StitchSide("back", 1)),
+        Stitch(StitchSide("front", 3), StitchSide("back", 3)),
+    ]
     return est, gt
 
 

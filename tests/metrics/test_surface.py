@@ -52,7 +52,9 @@ def test_tilted_plane_normal_angle():
     assert_close(ne.cosine_distance, 1 - np.cos(ang), rtol=1e-9)
     # flipped orientation: unsigned comparison ignores it, oriented sees 180 degrees
     assert normal_error(va, fa, va, fa[:, ::-1], n_samples=500).mean_deg < 1e-5
-    assert_close(normal_error(va, fa, va, fa[:, ::-1], n_samples=500, oriented=True).mean_deg, 180.0, rtol=1e-9)
+    assert_close(
+        normal_error(va, fa, va, fa[:, ::-1], n_samples=500, oriented=True).mean_deg, 180.0, rtol=1e-9
+    )
 
 
 def test_closest_points_match_bruteforce():
@@ -62,7 +64,13 @@ def test_closest_points_match_bruteforce():
     _, d, f = closest_points(P, m.vertices, m.faces)
     v, F = m.vertices, m.faces
     brute = np.array(
-        [np.linalg.norm(_closest_on_triangles(np.repeat(p[None], len(F), 0), v[F[:, 0]], v[F[:, 1]], v[F[:, 2]]) - p, axis=1).min() for p in P]
+        [
+            np.linalg.norm(
+                _closest_on_triangles(np.repeat(p[None], len(F), 0), v[F[:, 0]], v[F[:, 1]], v[F[:, 2]]) - p,
+                axis=1,
+            ).min()
+            for p in P
+        ]
     )
     assert_close(d, brute, atol=1e-15)
 

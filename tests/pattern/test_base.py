@@ -78,8 +78,8 @@ def test_tshirt_seams_join_the_right_corners():
     p = make_base_pattern("tshirt")
     find = _join_classes(p)
     f, b = p.panels["front"], p.panels["back"]
-    # Front/back vertex layout: 0 hem -x, 1 hem +x, 2 underarm +x, 3 shoulder tip +x, 4 neck +x, 5..7 mirrored.
-    # Front +x is the body's left; back +x is the body's right.
+    # Front/back vertex layout: 0 hem -x, 1 hem +x, 2 underarm +x, 3 shoulder tip +x, 4 neck +x, 5..7
+    # mirrored. Front +x is the body's left; back +x is the body's right.
     assert find(("front", 3)) == find(("back", 6)) == find(("left_sleeve", 3))  # left shoulder tip = cap top
     assert find(("front", 6)) == find(("back", 3)) == find(("right_sleeve", 3))
     assert find(("front", 4)) == find(("back", 5))  # left neck point
@@ -106,7 +106,12 @@ def test_pants_seams_join_the_right_corners():
     find = _join_classes(p)
     # Leg layout (left front, right back): 0 hem in, 1 hem out, 2 hip, 3 waist side, 4 centre waist, 5 crotch.
     # Mirrored panels keep vertex indices.
-    assert find(("left_front", 5)) == find(("left_back", 5)) == find(("right_front", 5)) == find(("right_back", 5))
+    assert (
+        find(("left_front", 5))
+        == find(("left_back", 5))
+        == find(("right_front", 5))
+        == find(("right_back", 5))
+    )
     assert find(("left_front", 4)) == find(("right_front", 4))  # centre front waist
     assert find(("left_back", 4)) == find(("right_back", 4))
     assert find(("left_front", 3)) == find(("left_back", 3))  # left waist side
@@ -208,7 +213,9 @@ def test_variants_differ_where_they_should():
     m = Measurements()
     fr = body_frame(m)
     tee, long, tank = (make_base_pattern(n) for n in ("tshirt", "tshirt_long", "tshirt_sleeveless"))
-    assert "left_sleeve" not in tank.panels and "left_sleeve" not in make_base_pattern("dress_sleeveless").panels
+    assert (
+        "left_sleeve" not in tank.panels and "left_sleeve" not in make_base_pattern("dress_sleeveless").panels
+    )
     sleeve = lambda p: np.ptp(panel_outline(p.panels["left_sleeve"])[:, 1])  # noqa: E731
     assert sleeve(long) > m.arm_length > 2 * sleeve(tee)
     # long sleeves narrow to the wrist
@@ -242,11 +249,16 @@ def test_variants_differ_where_they_should():
     f = dar.panels["front"]
     for a, b in ((4, 5), (7, 8)):
         assert edge_length(f, a) == pytest.approx(edge_length(f, b), abs=1e-12)
-        assert any({(s.a.panel, s.a.edge), (s.b.panel, s.b.edge)} == {("front", a), ("front", b)} for s in dar.stitches)
+        assert any(
+            {(s.a.panel, s.a.edge), (s.b.panel, s.b.edge)} == {("front", a), ("front", b)}
+            for s in dar.stitches
+        )
     pieces = [edge_length(dar.panels["waistband_front"], k) for k in range(3)]
     assert pieces == pytest.approx([edge_length(f, e) for e in (9, 6, 3)], abs=1e-12)
     assert sum(pieces) == pytest.approx(edge_length(pen.panels["front"], 3), abs=1e-9)
-    assert np.ptp(f.vertices[[2, 11], 0]) == pytest.approx(np.ptp(pen.panels["front"].vertices[[2, 5], 0]), abs=1e-9)
+    assert np.ptp(f.vertices[[2, 11], 0]) == pytest.approx(
+        np.ptp(pen.panels["front"].vertices[[2, 5], 0]), abs=1e-9
+    )
     assert edge_length(f, 0) > edge_length(pen.panels["front"], 0) + 0.05
 
 
@@ -312,10 +324,11 @@ def test_v_necklines_are_valid_symmetric_and_sewn(name, necklines):
     for panel in ("front", "back"):
         open_edges = [i for i in range(len(p.panels[panel].edges)) if (panel, i) not in sewn]
         labels = sorted(p.panels[panel].edges[i].label for i in open_edges)
-        assert labels == sorted(["hem"] + (["left_neckline", "right_neckline"]
-                                           if necklines[panel == "back"] == "v" else ["neckline"])
-                                + ([] if p.panels.keys() - {"front", "back"} else
-                                   ["left_armhole", "right_armhole"])), labels
+        assert labels == sorted(
+            ["hem"]
+            + (["left_neckline", "right_neckline"] if necklines[panel == "back"] == "v" else ["neckline"])
+            + ([] if p.panels.keys() - {"front", "back"} else ["left_armhole", "right_armhole"])
+        ), labels
     for s in p.stitches:
         la, lb = edge_length(p.panels[s.a.panel], s.a.edge), edge_length(p.panels[s.b.panel], s.b.edge)
         assert abs(la - lb) < 2e-3, f"{name} {s.label}: {la:.4f} vs {lb:.4f} m"

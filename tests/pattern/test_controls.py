@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 from helpers import assert_close
-from meshing.handmade_patterns import curved_panel, loop_edges, mini_shirt, pentagon, two_squares
+from meshing.handmade_patterns import loop_edges, mini_shirt, pentagon, two_squares
 
 from unsew.pattern.controls import corner_turn_angles, find_control_points
 from unsew.pattern.model import Curvature, Panel, Pattern

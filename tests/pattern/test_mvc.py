@@ -39,7 +39,9 @@ def test_curved_panel_and_chunking_agree():
 
 def test_point_collinear_with_an_outline_edge_is_finite():
     # square with a notch: the point (0.5, 0.25) lies on the line through the notch's top edge
-    poly = np.array([[0, 0], [1, 0], [1, 1], [0.6, 1], [0.6, 0.25 + 0.5], [0.4, 0.75], [0.4, 1], [0, 1]], float)
+    poly = np.array(
+        [[0, 0], [1, 0], [1, 1], [0.6, 1], [0.6, 0.25 + 0.5], [0.4, 0.75], [0.4, 1], [0, 1]], float
+    )
     poly[4] = [0.6, 0.75]
     x = np.array([[0.8, 0.75], [0.5, 0.3]])  # the first is on the line of edge (0.6,.75)-(0.4,.75)
     W = mean_value_coordinates(x, poly)

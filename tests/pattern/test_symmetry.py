@@ -5,7 +5,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from helpers import assert_close
-from meshing.handmade_patterns import curved_panel, loop_edges, mini_shirt, nonconvex_panel, pentagon, two_squares
+from meshing.handmade_patterns import (
+    curved_panel,
+    loop_edges,
+    mini_shirt,
+    nonconvex_panel,
+    pentagon,
+    two_squares,
+)
 
 from unsew.pattern.controls import find_control_points
 from unsew.pattern.model import Panel, Pattern
@@ -61,7 +68,9 @@ def test_rotated_copy_is_paired_without_reflection():
     v = nonconvex_panel().panels["L"].vertices.copy()
     v[4, 1] = 0.6  # an L with unequal arms: no mirror symmetry of its own
     w = (v - v.mean(0)) @ _rot(1.1).T + [1.0, 2.0]
-    pat = Pattern("two", {"H": Panel("H", v, loop_edges(6)), "G": Panel("G", np.roll(w, 2, axis=0), loop_edges(6))})
+    pat = Pattern(
+        "two", {"H": Panel("H", v, loop_edges(6)), "G": Panel("G", np.roll(w, 2, axis=0), loop_edges(6))}
+    )
     s = detect_symmetry(pat)
     assert len(s.pairs) == 1 and not s.pairs[0].mirrored
     assert_close(s.pairs[0].matrix, _rot(1.1), atol=1e-9)
@@ -85,8 +94,11 @@ def test_rebuild_is_exact_and_symmetric(make):
     rng = np.random.default_rng(0)
     K = s.k0() + rng.normal(scale=0.02, size=(s.n_k, 2))
     C = s.rebuild(K)
-    assert_close(C[s.k_indices][[i for i, g in enumerate(s.k_indices) if not _on_axis(s, g)]],
-                 K[[i for i, g in enumerate(s.k_indices) if not _on_axis(s, g)]], atol=1e-12)
+    assert_close(
+        C[s.k_indices][[i for i, g in enumerate(s.k_indices) if not _on_axis(s, g)]],
+        K[[i for i, g in enumerate(s.k_indices) if not _on_axis(s, g)]],
+        atol=1e-12,
+    )
     for m in s.mirrors:
         o = s.offsets[s.panel_names.index(m.panel)]
         d = m.direction
@@ -188,16 +200,24 @@ def test_cli_symmetry(tmp_path):
 
     path = tmp_path / "t.json"
     save_pattern(make_base_pattern("tshirt"), path)
-    r = subprocess.run([sys.executable, "-m", "unsew", "pattern", "symmetry", str(path), "--json"],
-                       capture_output=True, text=True)
+    r = subprocess.run(
+        [sys.executable, "-m", "unsew", "pattern", "symmetry", str(path), "--json"],
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode == 0, r.stderr
     rep = json.loads(r.stdout)
     assert 2 * rep["K"] <= rep["control_points"]
     assert {m["panel"] for m in rep["mirror_axes"]} >= {"front", "back"}
-    r = subprocess.run([sys.executable, "-m", "unsew", "pattern", "symmetry", str(path)], capture_output=True, text=True)
+    r = subprocess.run(
+        [sys.executable, "-m", "unsew", "pattern", "symmetry", str(path)], capture_output=True, text=True
+    )
     assert r.returncode == 0 and "effective K" in r.stdout
-    r = subprocess.run([sys.executable, "-m", "unsew", "pattern", "symmetry", str(tmp_path / "missing.json")],
-                       capture_output=True, text=True)
+    r = subprocess.run(
+        [sys.executable, "-m", "unsew", "pattern", "symmetry", str(tmp_path / "missing.json")],
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode != 0 and "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1
 
 
@@ -208,11 +228,17 @@ def test_paired_panel_follows_the_source_translation():
     v = nonconvex_panel().panels["L"].vertices.copy()
     v[4, 1] = 0.6
     w = (v - v.mean(0)) @ _rot(1.1).T + [1.0, 2.0]
-    pat = Pattern("two", {"H": Panel("H", v, loop_edges(6)), "G": Panel("G", np.roll(w, 2, axis=0), loop_edges(6))})
+    pat = Pattern(
+        "two", {"H": Panel("H", v, loop_edges(6)), "G": Panel("G", np.roll(w, 2, axis=0), loop_edges(6))}
+    )
     s = detect_symmetry(pat)
     (pr,) = s.pairs
     t = np.array([0.03, -0.05])
-    src = [i for i, g in enumerate(s.k_indices) if s.panel_names[int(np.searchsorted(s.offsets, g, side="right") - 1)] == pr.source]
+    src = [
+        i
+        for i, g in enumerate(s.k_indices)
+        if s.panel_names[int(np.searchsorted(s.offsets, g, side="right") - 1)] == pr.source
+    ]
     K = s.k0()
     K[src] += t
     C = s.rebuild(K)

@@ -46,7 +46,10 @@ def test_nan_coordinates():
 def test_open_loop():
     p = _square()
     p.edges[2] = Edge(2, 0)
-    with pytest.raises(PatternError, match="panel 'sq' is not a closed loop: edge 2 ends at vertex 0 but edge 3 starts at vertex 3"):
+    with pytest.raises(
+        PatternError,
+        match="panel 'sq' is not a closed loop: edge 2 ends at vertex 0 but edge 3 starts at vertex 3",
+    ):
         validate_pattern(Pattern("x", {"sq": p}))
 
 
@@ -95,7 +98,9 @@ def test_clockwise_panel_mirrored_in_place():
     ccw = _square(curv=curv)
     cw = ccw.copy()
     cw.vertices = cw.vertices * [-1.0, 1.0]  # mirrored outline: clockwise
-    cw.edges = [Edge(e.start, e.end, mirror_curvature(e.curvature) if e.curvature else None) for e in ccw.edges]
+    cw.edges = [
+        Edge(e.start, e.end, mirror_curvature(e.curvature) if e.curvature else None) for e in ccw.edges
+    ]
     cw.translation = np.array([0.1, 0.9, -0.2])
     cw.rotation = np.array([10.0, 20.0, 30.0])
     assert signed_area(cw) < 0

@@ -15,8 +15,11 @@ from unsew.report.figures import (
 
 def _pattern(scale=1.0):
     """Two panels [m]: a rectangle, and a quad whose top edge is a quadratic curve."""
-    rect = Panel("sleeve", np.array([[0, 0], [0.4, 0], [0.4, 0.25], [0, 0.25]]) * scale,
-                 [Edge(i, (i + 1) % 4) for i in range(4)])
+    rect = Panel(
+        "sleeve",
+        np.array([[0, 0], [0.4, 0], [0.4, 0.25], [0, 0.25]]) * scale,
+        [Edge(i, (i + 1) % 4) for i in range(4)],
+    )
     edges = [Edge(0, 1), Edge(1, 2), Edge(2, 3, Curvature("quadratic", [[0.5, -0.3]])), Edge(3, 0)]
     body = Panel("front", np.array([[0, 0], [0.5, 0], [0.5, 0.7], [0, 0.7]]) * scale, edges)
     return Pattern("t", {"sleeve": rect, "front": body}, panel_order=["front", "sleeve"])
@@ -24,10 +27,15 @@ def _pattern(scale=1.0):
 
 def test_loss_curves_are_written(tmp_path, meshes):
     it = np.arange(60)
-    history = {"total": list(1e-2 * np.exp(-it / 20) + 1e-4), "chamfer": list(8e-3 * np.exp(-it / 20)),
-               "seam": [None] * 20 + list(1e-5 * np.ones(40)), "material": [0.0] * 60}
-    p = plot_loss_curves(tmp_path / "loss.png", history, phases=[(0, "pattern"), (30, "material")],
-                         size_px=(640, 360))
+    history = {
+        "total": list(1e-2 * np.exp(-it / 20) + 1e-4),
+        "chamfer": list(8e-3 * np.exp(-it / 20)),
+        "seam": [None] * 20 + list(1e-5 * np.ones(40)),
+        "material": [0.0] * 60,
+    }
+    p = plot_loss_curves(
+        tmp_path / "loss.png", history, phases=[(0, "pattern"), (30, "material")], size_px=(640, 360)
+    )
     img = meshes.read_png(p)
     assert img.shape[:2] == (360, 640)
     assert meshes.ink_mask(img).mean() > 0.02
@@ -60,8 +68,12 @@ def test_patterns_overlay_in_true_proportions(tmp_path, meshes):
     w, h = cols[-1] - cols[0], rows[-1] - rows[0]
     assert w / h == pytest.approx(0.4 / 0.25, rel=0.04)
 
-    pats = [("base", pattern_outlines(_pattern())), ("graded", pattern_outlines(_pattern(1.05))),
-            ("final", pattern_outlines(_pattern(1.08))), ("ground truth", pattern_outlines(_pattern(1.1)))]
+    pats = [
+        ("base", pattern_outlines(_pattern())),
+        ("graded", pattern_outlines(_pattern(1.05))),
+        ("final", pattern_outlines(_pattern(1.08))),
+        ("ground truth", pattern_outlines(_pattern(1.1))),
+    ]
     p = plot_patterns(tmp_path / "all.png", pats)
     img = meshes.read_png(p)
     assert img.shape[1] == 1100

@@ -26,22 +26,47 @@ METRICS = {
     "normal_error_deg": np.float64(7.25),
     "iterations": 200,
     "converged": True,
-    "panels": {"front": {"area_error_pct": 1.25, "turning": 0.0125},
-               "sleeve": {"area_error_pct": 2.5, "turning": 0.05}},
+    "panels": {
+        "front": {"area_error_pct": 1.25, "turning": 0.0125},
+        "sleeve": {"area_error_pct": 2.5, "turning": 0.05},
+    },
     "material": {"fitted": {"bend_n_m": 3.5e-6, "density_kg_per_m2": 0.15}, "note": "ok"},
 }
 
 
 def test_report_holds_metrics_captions_and_images(tmp_path, figs):
-    out = write_report(tmp_path / "res" / "report.html", title="Fit of case <t-shirt>",
-                       summary={"garment": "tshirt", "chamfer_mm": 1.834, "time_s": 61.5},
-                       metrics=METRICS, figures=figs, config={"lr": 1e-3, "betas": (0.9, 0.999)},
-                       notes=["material fixed: <b>not</b> optimized"])
+    out = write_report(
+        tmp_path / "res" / "report.html",
+        title="Fit of case <t-shirt>",
+        summary={"garment": "tshirt", "chamfer_mm": 1.834, "time_s": 61.5},
+        metrics=METRICS,
+        figures=figs,
+        config={"lr": 1e-3, "betas": (0.9, 0.999)},
+        notes=["material fixed: <b>not</b> optimized"],
+    )
     text = out.read_text(encoding="utf-8")
     assert text.startswith("<!DOCTYPE html>") and text.rstrip().endswith("</html>")
-    for shown in ["chamfer [mm]", "1.834", "normal error [deg]", "7.25", "iterations", "200",
-                  "area error [%]", "1.25", "2.5", "turning", "0.0125", "front", "sleeve",
-                  "bend [N·m]", "3.5e-06", "density [kg/m²]", "0.15", "time [s]", "61.5"]:
+    for shown in [
+        "chamfer [mm]",
+        "1.834",
+        "normal error [deg]",
+        "7.25",
+        "iterations",
+        "200",
+        "area error [%]",
+        "1.25",
+        "2.5",
+        "turning",
+        "0.0125",
+        "front",
+        "sleeve",
+        "bend [N·m]",
+        "3.5e-06",
+        "density [kg/m²]",
+        "0.15",
+        "time [s]",
+        "61.5",
+    ]:
         assert shown in text, shown
     # captions and user text are escaped, not interpreted
     assert "Distance to the target" in text
@@ -90,8 +115,9 @@ def test_failure_while_writing_keeps_the_old_report_and_leaves_no_temporary(tmp_
 
 def test_relative_figure_paths_resolve_beside_the_report(tmp_path, figs, monkeypatch):
     monkeypatch.chdir(tmp_path.parent)
-    out = write_report(tmp_path / "report.html", title="t", summary={}, metrics={},
-                       figures=[("a", "figs/a.png")])
+    out = write_report(
+        tmp_path / "report.html", title="t", summary={}, metrics={}, figures=[("a", "figs/a.png")]
+    )
     assert "data:image/png;base64," in out.read_text()
 
 
@@ -113,13 +139,20 @@ def test_write_fit_report_makes_every_figure(tmp_path, meshes):
     d = nearest_distance_mm(gv, tv)
     assert d.shape == (len(gv),) and d.max() > 0 and d.max() < 20
     rect = [("sleeve", np.array([[0, 0], [0.4, 0], [0.4, 0.25], [0, 0.25]]))]
-    out = write_fit_report(tmp_path / "res", title="fit", summary={"chamfer_mm": 1.0},
-                           metrics={"chamfer_mm": 1.0}, target=(tv, gf), result=(gv, gf),
-                           body=(bv, bf), history={"total": [1.0, 0.5, 0.25]},
-                           patterns=[("base", rect), ("final", rect)], views=("front",))
+    out = write_fit_report(
+        tmp_path / "res",
+        title="fit",
+        summary={"chamfer_mm": 1.0},
+        metrics={"chamfer_mm": 1.0},
+        target=(tv, gf),
+        result=(gv, gf),
+        body=(bv, bf),
+        history={"total": [1.0, 0.5, 0.25]},
+        patterns=[("base", rect), ("final", rect)],
+        views=("front",),
+    )
     names = sorted(p.name for p in (tmp_path / "res" / "figures").iterdir())
-    assert names == ["distance.png", "distance_hist.png", "loss.png", "patterns.png",
-                     "target_vs_result.png"]
+    assert names == ["distance.png", "distance_hist.png", "loss.png", "patterns.png", "target_vs_result.png"]
     text = out.read_text()
     assert text.count("data:image/png;base64,") == 5
     assert "nearest target vertex" in text

@@ -65,8 +65,9 @@ def test_views_put_the_bodys_left_where_the_convention_says(tmp_path, meshes):
     v = np.concatenate([bv, mv])
     f = np.concatenate([bf, mf + len(bv)])
     colour = np.r_[np.zeros(len(bv)), np.ones(len(mv))]  # the marker is yellow in viridis
-    p = render_views(tmp_path / "v.png", v, f, views=("front", "back", "side"), vertex_values=colour,
-                     size_px=(900, 400))
+    p = render_views(
+        tmp_path / "v.png", v, f, views=("front", "back", "side"), vertex_values=colour, size_px=(900, 400)
+    )
     img = meshes.read_png(p)
     yellow = (img[..., 0] > 0.6) & (img[..., 1] > 0.6) & (img[..., 2] < 0.45)
     cols = np.flatnonzero(yellow.any(axis=0))
@@ -93,8 +94,9 @@ def test_painter_hides_what_is_behind(tmp_path, meshes):
 def test_colour_map_is_monotonic_along_the_values(tmp_path, meshes):
     v, f = meshes.plane(0.6, 0.3, n=30)
     vals = v[:, 0] * 10.0  # increases to the right in the front view
-    p = render_mesh(tmp_path / "c.png", v, f, vertex_values=vals, cmap="gray", size_px=(400, 300),
-                    colorbar_label="x [dm]")
+    p = render_mesh(
+        tmp_path / "c.png", v, f, vertex_values=vals, cmap="gray", size_px=(400, 300), colorbar_label="x [dm]"
+    )
     img = meshes.read_png(p)
     mask = meshes.ink_mask(img, tol=0.0) & (img.std(axis=2) < 0.02)
     r0, r1, c0, c1 = _bbox(mask[:200])  # the plane (the colour bar is at the bottom)
@@ -114,8 +116,9 @@ def test_colour_map_is_monotonic_along_the_values(tmp_path, meshes):
 def test_values_outside_vmin_vmax_are_clipped(tmp_path, meshes):
     v, f = meshes.plane(0.6, 0.3, n=30)
     vals = v[:, 0] * 10.0  # -3 .. 3
-    p = render_mesh(tmp_path / "c.png", v, f, vertex_values=vals, cmap="gray", vmin=-1, vmax=1,
-                    size_px=(400, 300))
+    p = render_mesh(
+        tmp_path / "c.png", v, f, vertex_values=vals, cmap="gray", vmin=-1, vmax=1, size_px=(400, 300)
+    )
     img = meshes.read_png(p)
     row = img[100]
     ink = np.flatnonzero(meshes.ink_mask(img[:200]).any(axis=0))
@@ -130,14 +133,28 @@ def test_overlay_body_and_comparison(tmp_path, meshes):
     bv, bf = meshes.box((0.25, 0.8, 0.15), n=6)
     base = meshes.read_png(render_mesh(tmp_path / "g.png", gv, gf, size_px=(200, 250)))
     for style in ("ghost", "wire"):
-        p = render_mesh(tmp_path / f"{style}.png", gv, gf, overlay=(tv, gf), overlay_style=style,
-                        body=(bv, bf), size_px=(200, 250))
+        p = render_mesh(
+            tmp_path / f"{style}.png",
+            gv,
+            gf,
+            overlay=(tv, gf),
+            overlay_style=style,
+            body=(bv, bf),
+            size_px=(200, 250),
+        )
         img = meshes.read_png(p)
         assert img.shape == base.shape
         assert np.abs(img - base).max() > 0.2  # the overlay shows
     d = np.linalg.norm(tv - gv, axis=1) * 1000
-    p = render_comparison(tmp_path / "cmp.png", (tv, gf), (gv, gf), distance_mm=d, body=(bv, bf),
-                          views=("front", "three_quarter"), title="target vs result")
+    p = render_comparison(
+        tmp_path / "cmp.png",
+        (tv, gf),
+        (gv, gf),
+        distance_mm=d,
+        body=(bv, bf),
+        views=("front", "three_quarter"),
+        title="target vs result",
+    )
     img = meshes.read_png(p)
     assert img.shape[1] == 720 and meshes.ink_mask(img).mean() > 0.1
 

@@ -47,12 +47,21 @@ def test_fit_report_has_measurements_material_and_no_loss_dump(tmp_path, meshes)
     from unsew.report.fit_report import write_fit_report
 
     v, f = meshes.plane(0.4, 0.6, n=6, z=0.1)
-    hist = {"total": [0.9, 0.5, 0.25, 0.125, 0.0625, 0.03, 0.02, 0.01], "material": [0.8, 0.82, 0, 0, 0, 0, 0, 0]}
+    hist = {
+        "total": [0.9, 0.5, 0.25, 0.125, 0.0625, 0.03, 0.02, 0.01],
+        "material": [0.8, 0.82, 0, 0, 0, 0, 0, 0],
+    }
     material = {"H00_N_per_m": 2855.17, "bending_N_m": 5.6e-6, "friction": 0.35}
-    out = write_fit_report(tmp_path / "res", target=(v, f), result=(v + 0.001, f), history=hist,
-                           phases=[(0, "pattern"), (4, "pattern + material")],
-                           patterns=[("base", make_base_pattern("tshirt"))], material=material,
-                           metrics={"loss_history": hist, "loss_final": {"material": 0.0}})
+    out = write_fit_report(
+        tmp_path / "res",
+        target=(v, f),
+        result=(v + 0.001, f),
+        history=hist,
+        phases=[(0, "pattern"), (4, "pattern + material")],
+        patterns=[("base", make_base_pattern("tshirt"))],
+        material=material,
+        metrics={"loss_history": hist, "loss_final": {"material": 0.0}},
+    )
     html = out.read_text()
     assert "panel measurements" in html.lower() and "side seam" in html
     assert "material of the result" in html.lower() and "2855" in html
@@ -79,12 +88,15 @@ def test_body_does_not_show_through_close_cloth(tmp_path):
     bf = bf[(np.abs(c[:, 0]) < 0.2) | (c[:, 1] < 0.9)]
     cv, cf = _cloth(bv, bf, 0.002)
     mask = render.render_mesh(tmp_path / "cloth.png", cv, cf, view="side", frame="all", size_px=(300, 400))
-    fixed = render.render_mesh(tmp_path / "fixed.png", cv, cf, view="side", body=(bv, bf), frame="all", size_px=(300, 400))
+    fixed = render.render_mesh(
+        tmp_path / "fixed.png", cv, cf, view="side", body=(bv, bf), frame="all", size_px=(300, 400)
+    )
     old = render.BODY_DEPTH_BIAS
     render.BODY_DEPTH_BIAS = 0.0
     try:
-        plain = render.render_mesh(tmp_path / "plain.png", cv, cf, view="side", body=(bv, bf), frame="all",
-                                   size_px=(300, 400))
+        plain = render.render_mesh(
+            tmp_path / "plain.png", cv, cf, view="side", body=(bv, bf), frame="all", size_px=(300, 400)
+        )
     finally:
         render.BODY_DEPTH_BIAS = old
     b_fixed, b_plain = _bleed(fixed, mask), _bleed(plain, mask)
@@ -135,16 +147,33 @@ def test_graded_and_final_said_to_coincide_and_the_phases_honest():
     assert patterns_coincide(a, b)
     b.panels["front"].vertices = b.panels["front"].vertices + 1e-4
     assert not patterns_coincide(a, b)
-    r = SimpleNamespace(material_start_iteration=20, iterations=10, gamma_last=None, start_material=None,
-                        material_fitted=False, base_name="skirt")
+    r = SimpleNamespace(
+        material_start_iteration=20,
+        iterations=10,
+        gamma_last=None,
+        start_material=None,
+        material_fitted=False,
+        base_name="skirt",
+    )
     assert loss_phases(r, {}) == [(0, "pattern")]  # the material would have joined after the last iteration
     r.material_start_iteration = 4
     rd = {"phase_two_kept": False, "fit_redressed_mm": 6.1, "graded_mm": 5.9}
-    assert loss_phases(r, {"redress": rd}) == [(0, "pattern (not kept)"), (4, "pattern + material (not kept)")]
+    assert loss_phases(r, {"redress": rd}) == [
+        (0, "pattern (not kept)"),
+        (4, "pattern + material (not kept)"),
+    ]
     words = material_for_reading({"H00_N_per_m": 3000.0, "H22_N_per_m": 140.0, "friction": 0.35})
     assert all("N_per_m" not in k for k in words) and any("shear" in k and "(H22)" in k for k in words)
-    said = choices_made(r, {"redress": rd, "material_choice": [{"material": "denim", "chamfer_mm": 4.2},
-                                                                 {"material": "cotton", "chamfer_mm": 5.0}]})
+    said = choices_made(
+        r,
+        {
+            "redress": rd,
+            "material_choice": [
+                {"material": "denim", "chamfer_mm": 4.2},
+                {"material": "cotton", "chamfer_mm": 5.0},
+            ],
+        },
+    )
     assert any("denim" in c and "4.20 mm" in c and "cotton 5.00 mm" in c for c in said)
     assert any(c.startswith("Phase two:") and "6.10" in c and "graded pattern" in c for c in said)
 
@@ -152,8 +181,13 @@ def test_graded_and_final_said_to_coincide_and_the_phases_honest():
 def test_grading_edits_read_as_words_not_python_lists():
     from unsew.fit.report import _flat
 
-    row = _flat({"edits": ["front:hem move +6.4 cm", "back:hem move +6.4 cm"], "lengths_m": [0.98, 1.04],
-                 "bone": "spine", "nested": {"a_m": 0.1}})
+    row = _flat(
+        {
+            "edits": ["front:hem move +6.4 cm", "back:hem move +6.4 cm"],
+            "lengths_m": [0.98, 1.04],
+            "bone": "spine",
+            "nested": {"a_m": 0.1},
+        }
+    )
     assert row["edits"] == "front:hem move +6.4 cm; back:hem move +6.4 cm" and "[" not in row["edits"]
     assert row["lengths_m"] == [0.98, 1.04] and row["nested.a_m"] == 0.1
-

@@ -136,8 +136,11 @@ def test_crushed_hinge_gradient_is_bounded_and_exact_above_the_floor():
 
     hinge = torch.tensor([[0, 1, 2, 3]])
     for h, exact in ((1e-2, True), (1e-9, False)):
-        x = torch.tensor([[0.0, 0.0, 0.0], [0.02, 0.0, 0.0], [0.01, 0.02 * h, 0.0], [0.01, -0.01, 0.01]],
-                         dtype=torch.float64, requires_grad=True)
+        x = torch.tensor(
+            [[0.0, 0.0, 0.0], [0.02, 0.0, 0.0], [0.01, 0.02 * h, 0.0], [0.01, -0.01, 0.01]],
+            dtype=torch.float64,
+            requires_grad=True,
+        )
         theta, dth = dihedral_angle(x, hinge)
         size = float(((x[2] - x[0]).pow(2).sum() + (x[2] - x[1]).pow(2).sum() + 0.02**2) / 3.0) ** 0.5
         if exact:

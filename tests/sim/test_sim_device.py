@@ -28,11 +28,20 @@ def _sheet(n=5, size=0.3, y=0.12, stretch=1.03):
 
 
 def _drape_and_grads(model, uv, x, device, fused):
-    """A sheet draped 6 steps over a sphere on ``device``; (x (N, 3), d loss/d uv, d loss/d gamma) on the CPU."""
+    """A sheet draped 6 steps over a sphere on ``device``; (x (N, 3), d loss/d uv, d loss/d gamma) on the
+    CPU."""
     uv = uv.detach().clone().to(device).requires_grad_(True)  # leaves of their own (.to("cpu") is a no-op)
     gamma = GAMMA.detach().clone().to(device).requires_grad_(True)
-    out = drape(model.to(device), SimState.at_rest(x.to(device)), SphereSDF((0, 0, 0), 0.1), uv=uv, gamma=gamma,
-                density=0.12, steps=6, settings=DrapeSettings(fused=fused))
+    out = drape(
+        model.to(device),
+        SimState.at_rest(x.to(device)),
+        SphereSDF((0, 0, 0), 0.1),
+        uv=uv,
+        gamma=gamma,
+        density=0.12,
+        steps=6,
+        settings=DrapeSettings(fused=fused),
+    )
     (out.x[:, 1] ** 2).sum().backward()
     return out.x.detach().cpu(), uv.grad.cpu(), gamma.grad.cpu()
 
@@ -45,7 +54,12 @@ def test_model_to_moves_every_tensor():
     tensors = {k: v for k, v in vars(moved).items() if torch.is_tensor(v)}
     assert set(tensors) == {k for k, v in vars(m).items() if torch.is_tensor(v)} and len(tensors) >= 19
     assert all(v.device.type == "meta" for v in tensors.values())
-    assert (moved.n, moved.n_rest, moved.nnz, moved.bending_stencil) == (m.n, m.n_rest, m.nnz, m.bending_stencil)
+    assert (moved.n, moved.n_rest, moved.nnz, moved.bending_stencil) == (
+        m.n,
+        m.n_rest,
+        m.nnz,
+        m.bending_stencil,
+    )
     assert m.faces.device.type == "cpu"  # the original stays
 
 
@@ -67,8 +81,16 @@ def test_drape_makes_nothing_on_the_default_device(fused):
         mu = SimModel.build(tp["faces_uv"], tp["faces_uv"], springs=tp["seam_pairs"])
         u2 = tp["uv"]
         x0 = torch.as_tensor(np.c_[u2[:, 0], np.full(len(u2), 0.2), u2[:, 1]])
-        xs = sew(mu, x0, SphereSDF((0, 0, 0), 0.05), uv=torch.as_tensor(u2), gamma=GAMMA, density=0.1,
-                 settings=DrapeSettings(sew_steps=3, hold_steps=2, fused=fused), hold=[0])
+        xs = sew(
+            mu,
+            x0,
+            SphereSDF((0, 0, 0), 0.05),
+            uv=torch.as_tensor(u2),
+            gamma=GAMMA,
+            density=0.1,
+            settings=DrapeSettings(sew_steps=3, hold_steps=2, fused=fused),
+            hold=[0],
+        )
         assert merge_sewn(xs, tp["x_of_u"], tp["n_x"]).shape == (tp["n_x"], 3)
 
 

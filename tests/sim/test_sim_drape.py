@@ -6,7 +6,17 @@ import torch
 from helpers import assert_close
 
 from unsew.errors import InputError, PatternError, SimulationError
-from unsew.sim import MATERIALS, DrapeSettings, PlaneSDF, SimModel, SimState, SphereSDF, drape, merge_sewn, sew
+from unsew.sim import (
+    MATERIALS,
+    DrapeSettings,
+    PlaneSDF,
+    SimModel,
+    SimState,
+    SphereSDF,
+    drape,
+    merge_sewn,
+    sew,
+)
 from unsew.sim.meshes import grid_sheet, two_panels
 
 GAMMA = MATERIALS["cotton"].gamma()
@@ -55,11 +65,27 @@ def test_divergence_names_step_and_vertex():
     v = st.v.clone()
     v[7, 1] = -30.0  # one vertex thrown fast
     with pytest.raises(SimulationError, match=r"step 0: vertex \d+"):  # the full linearized step
-        drape(m, SimState(st.x, v), PlaneSDF((0, -1, 0)), uv=uv, gamma=GAMMA, density=0.1, steps=20,
-              settings=DrapeSettings(max_speed=5.0, line_search=False))
+        drape(
+            m,
+            SimState(st.x, v),
+            PlaneSDF((0, -1, 0)),
+            uv=uv,
+            gamma=GAMMA,
+            density=0.1,
+            steps=20,
+            settings=DrapeSettings(max_speed=5.0, line_search=False),
+        )
     # backtracked on the step's incremental potential (the default), the same throw is damped
-    out = drape(m, SimState(st.x, v), PlaneSDF((0, -1, 0)), uv=uv, gamma=GAMMA, density=0.1, steps=3,
-                settings=DrapeSettings(max_speed=5.0))
+    out = drape(
+        m,
+        SimState(st.x, v),
+        PlaneSDF((0, -1, 0)),
+        uv=uv,
+        gamma=GAMMA,
+        density=0.1,
+        steps=3,
+        settings=DrapeSettings(max_speed=5.0),
+    )
     assert float(out.v.norm(dim=1).max()) < 5.0
     x = st.x.clone()
     x[3, 0] = float("nan")
@@ -73,8 +99,15 @@ def test_sew_closes_seam_and_merge():
     uv = torch.as_tensor(p["uv"])
     # panels placed as a tent over a sphere, 2 cm gap at the seam
     x = np.c_[p["uv"][:, 0] - 0.1125, 0.11 + 0.0 * p["uv"][:, 0], p["uv"][:, 1] - 0.05]
-    xs = sew(mu, x, SphereSDF((0, 0, 0), 0.1), uv=uv, gamma=GAMMA, density=0.12,
-             settings=DrapeSettings(sew_steps=60, sew_dt=0.02, spring_stiffness=100.0))
+    xs = sew(
+        mu,
+        x,
+        SphereSDF((0, 0, 0), 0.1),
+        uv=uv,
+        gamma=GAMMA,
+        density=0.12,
+        settings=DrapeSettings(sew_steps=60, sew_dt=0.02, spring_stiffness=100.0),
+    )
     gap = (xs[p["seam_pairs"][:, 0]] - xs[p["seam_pairs"][:, 1]]).norm(dim=1)
     assert float(gap.max()) < 2e-3  # from 25 mm apart to closed within 2 mm
     xm = merge_sewn(xs, p["x_of_u"], p["n_x"])
@@ -89,7 +122,15 @@ def test_pinned_vertices_hold_and_sewing_hold():
     uv, f = grid_sheet(3, 3, 0.1, 0.1)
     m = SimModel.build(f, f, pinned=[0, 3])
     x = np.c_[uv[:, 0], np.zeros(len(uv)), uv[:, 1]]
-    out = drape(m, SimState.at_rest(x), PlaneSDF((0, -1, 0)), uv=torch.as_tensor(uv), gamma=GAMMA, density=0.1, steps=5)
+    out = drape(
+        m,
+        SimState.at_rest(x),
+        PlaneSDF((0, -1, 0)),
+        uv=torch.as_tensor(uv),
+        gamma=GAMMA,
+        density=0.1,
+        steps=5,
+    )
     assert_close(out.x[[0, 3]], torch.as_tensor(x[[0, 3]]), atol=0.0)
     assert float(out.x[15, 1]) < -0.01
 
@@ -108,8 +149,17 @@ def test_friction_eps_bounds_the_creep_on_a_slope():
     plane = PlaneSDF((0.0, 0.0, 0.0), tuple(normal))
 
     def creep(eps):
-        out = drape(m, st, plane, uv=uv, gamma=GAMMA, density=0.12, steps=40, friction=0.3,
-                    settings=DrapeSettings(friction_eps=eps))
+        out = drape(
+            m,
+            st,
+            plane,
+            uv=uv,
+            gamma=GAMMA,
+            density=0.12,
+            steps=40,
+            friction=0.3,
+            settings=DrapeSettings(friction_eps=eps),
+        )
         return float(((out.x - st.x).numpy() @ e1).mean())  # mean downhill travel [m] (e1 points downhill)
 
     fast, slow = creep(1e-2), creep(1e-4)

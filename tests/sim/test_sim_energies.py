@@ -12,7 +12,6 @@ from unsew.sim.energies.contact import energy_contact, friction_damping, project
 from unsew.sim.energies.gravity import energy_gravity, mass_lumped
 from unsew.sim.energies.membrane import energy_membrane, membrane_rest
 from unsew.sim.energies.spring import energy_spring
-from unsew.sim.material import MATERIALS
 from unsew.sim.meshes import grid_sheet
 from unsew.sim.model import SimModel
 from unsew.sim.sdf_analytic import CapsuleSDF, PlaneSDF, SphereSDF
@@ -53,7 +52,9 @@ def _dense_hess(m_elems, n, H):
     k = m_elems.shape[1]
     out = torch.zeros(3 * n, 3 * n, dtype=torch.float64)
     dof = (3 * m_elems[:, :, None] + torch.arange(3)).reshape(-1, 3 * k)
-    out.index_put_((dof[:, :, None].expand(-1, -1, 3 * k), dof[:, None, :].expand(-1, 3 * k, -1)), H, accumulate=True)
+    out.index_put_(
+        (dof[:, :, None].expand(-1, -1, 3 * k), dof[:, None, :].expand(-1, 3 * k, -1)), H, accumulate=True
+    )
     return out
 
 
@@ -95,7 +96,9 @@ def test_membrane_hessian_vs_torch_func_and_jacobian_fd(sheet):
         Fd = Xe.T @ Be
         C = Fd.T @ Fd
         eps = torch.stack([0.5 * (C[0, 0] - 1), 0.5 * (C[1, 1] - 1), C[0, 1]])
-        Hm = torch.tensor([[GAMMA[0], GAMMA[1], 0], [GAMMA[1], GAMMA[2], 0], [0, 0, GAMMA[3]]], dtype=torch.float64)
+        Hm = torch.tensor(
+            [[GAMMA[0], GAMMA[1], 0], [GAMMA[1], GAMMA[2], 0], [0, 0, GAMMA[3]]], dtype=torch.float64
+        )
         return 0.5 * ae * eps @ Hm @ eps
 
     Href = torch.func.vmap(torch.func.hessian(elem_E))(X, B, area).reshape(-1, 9, 9)
@@ -104,7 +107,11 @@ def test_membrane_hessian_vs_torch_func_and_jacobian_fd(sheet):
     assert_close(H, H.transpose(1, 2), atol=1e-12, what="symmetry ")
     # Jacobian of the assembled force against finite differences of the force
     Kd = _dense_hess(m.faces, m.n, H)
-    f = lambda xx: -scatter_vertex(m.n, m.faces, energy_membrane(xx, m.faces, area, B, GAMMA, hessian=False)[1]).reshape(-1)
+
+    def f(xx):
+        grad = energy_membrane(xx, m.faces, area, B, GAMMA, hessian=False)[1]
+        return -scatter_vertex(m.n, m.faces, grad).reshape(-1)
+
     h = 1e-7
     cols = [0, 5, 13, 20, 31, 44]
     for c in cols:
@@ -164,7 +171,9 @@ def test_membrane_projected_hessian_gradient_vs_fd_while_active(sheet):
         assert_close(gx.reshape(-1)[i], d1, rtol=1e-4, atol=1e-3, what=f"dL/dx[{i}] vs FD ")
     for i in range(4):  # H00, H01, H11, H22 (k does not enter the membrane)
         h = 1e-6 * float(GAMMA[i])
-        assert_close(gg[i], fd(lambda gv: L(x0, gv), GAMMA, i, h), rtol=1e-5, atol=1e-9, what=f"dL/dGamma[{i}] vs FD ")
+        assert_close(
+            gg[i], fd(lambda gv: L(x0, gv), GAMMA, i, h), rtol=1e-5, atol=1e-9, what=f"dL/dGamma[{i}] vs FD "
+        )
     xr = flat_embed(uv).clone().requires_grad_()
     gr = torch.autograd.grad(energy_membrane(xr, m.faces, area, B, GAMMA)[2].pow(2).sum(), xr)[0]
     assert torch.isfinite(gr).all()
@@ -222,7 +231,10 @@ def test_bending_hessian_gauss_newton_exact_at_rest_angle(sheet):
     m, uv, _, _, coef = sheet
     x = perturbed(flat_embed(uv), 0.01)
     theta, _ = dihedral_angle(x, m.hinges)
-    Ef = lambda xx: energy_bending(xx, m.hinges, coef, GAMMA, theta0=theta, hessian=False)[0]
+
+    def Ef(xx):
+        return energy_bending(xx, m.hinges, coef, GAMMA, theta0=theta, hessian=False)[0]
+
     Href = torch.autograd.functional.hessian(Ef, x).reshape(3 * m.n, 3 * m.n)
     _, _, H = energy_bending(x, m.hinges, coef, GAMMA, theta0=theta)
     assert_close(_dense_hess(m.hinges, m.n, H), Href, atol=1e-12, rtol=1e-8)
@@ -248,7 +260,12 @@ def test_gravity_masses_and_force():
 
 
 @pytest.mark.parametrize(
-    "sdf", [SphereSDF((0, 0, 0), 0.1), PlaneSDF((0, 0.02, 0), (0.3, 1, 0)), CapsuleSDF((0, -0.1, 0), (0, 0.1, 0), 0.08)]
+    "sdf",
+    [
+        SphereSDF((0, 0, 0), 0.1),
+        PlaneSDF((0, 0.02, 0), (0.3, 1, 0)),
+        CapsuleSDF((0, -0.1, 0), (0, 0.1, 0), 0.08),
+    ],
 )
 def test_contact_energy_gradient_hessian(sdf):
     g = torch.Generator().manual_seed(2)
@@ -279,7 +296,9 @@ def test_contact_energy_gradient_hessian(sdf):
 
 
 def test_friction_damping_is_tangential_psd():
-    n = torch.nn.functional.normalize(torch.randn(10, 3, dtype=torch.float64, generator=torch.Generator().manual_seed(0)), dim=1)
+    n = torch.nn.functional.normalize(
+        torch.randn(10, 3, dtype=torch.float64, generator=torch.Generator().manual_seed(0)), dim=1
+    )
     v = torch.randn(10, 3, dtype=torch.float64, generator=torch.Generator().manual_seed(1))
     D = friction_damping(v, n, torch.full((10,), 2.0, dtype=torch.float64), 0.3)
     assert_close(torch.einsum("nij,nj->ni", D, n), 0.0, atol=1e-12)
@@ -304,5 +323,7 @@ def test_spring_energy():
     s = torch.tensor([[0, 1], [2, 3]])
     e, g, H = energy_spring(x, s, 50.0)
     assert_close(scatter_vertex(4, s, g), torch.autograd.grad(e, x)[0], atol=1e-12)
-    Href = torch.autograd.functional.hessian(lambda xx: energy_spring(xx, s, 50.0, hessian=False)[0], x.detach())
+    Href = torch.autograd.functional.hessian(
+        lambda xx: energy_spring(xx, s, 50.0, hessian=False)[0], x.detach()
+    )
     assert_close(_dense_hess(s, 4, H), Href.reshape(12, 12), atol=1e-12)

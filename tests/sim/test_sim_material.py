@@ -24,7 +24,14 @@ def test_denim_stiffer_and_heavier_than_silk():
 
 @pytest.mark.parametrize(
     "kw",
-    [dict(h00=-1.0), dict(h22=0.0), dict(bend=-1e-6), dict(h01=5000.0), dict(density=0.0), dict(friction=-0.1)],
+    [
+        dict(h00=-1.0),
+        dict(h22=0.0),
+        dict(bend=-1e-6),
+        dict(h01=5000.0),
+        dict(density=0.0),
+        dict(friction=-0.1),
+    ],
 )
 def test_bad_material_raises(kw):
     base = dict(h00=1000.0, h01=100.0, h11=1000.0, h22=50.0, bend=1e-6, density=0.1)

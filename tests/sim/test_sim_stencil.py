@@ -17,7 +17,9 @@ GAMMA = torch.tensor([800.0, 80.0, 600.0, 60.0, 6e-5], dtype=torch.float64)
 def _sheet():
     uv, f = grid_sheet(3, 3, 0.1, 0.1)
     g = torch.Generator().manual_seed(0)
-    x = torch.stack([torch.as_tensor(uv[:, 0]), torch.zeros(len(uv), dtype=torch.float64), torch.as_tensor(uv[:, 1])], 1)
+    x = torch.stack(
+        [torch.as_tensor(uv[:, 0]), torch.zeros(len(uv), dtype=torch.float64), torch.as_tensor(uv[:, 1])], 1
+    )
     x = x + 0.01 * torch.randn(x.shape, generator=g, dtype=torch.float64)
     return uv, f, x
 
@@ -28,7 +30,9 @@ def test_ring_pattern_drops_only_opposite_vertex_pairs():
     ring = SimModel.build(f, f, bending_stencil="ring")
     kf = set(zip((full.rows // 3).tolist(), (full.cols // 3).tolist()))
     kr = set(zip((ring.rows // 3).tolist(), (ring.cols // 3).tolist()))
-    edges = {(max(a, b), min(a, b)) for t in f.tolist() for a, b in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0]))}
+    edges = {
+        (max(a, b), min(a, b)) for t in f.tolist() for a, b in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0]))
+    }
     diag = {(i, i) for i in range(full.n)}
     assert kr == edges | diag  # the mesh's 1-ring exactly
     assert kr < kf and ring.nnz < full.nnz

@@ -6,7 +6,7 @@ import pytest
 import torch
 from helpers import assert_close
 
-from unsew.sim import DrapeSettings, Material, PlaneSDF, SimModel, SimState, drape
+from unsew.sim import DrapeSettings, PlaneSDF, SimModel, SimState, drape
 from unsew.sim.energies.bending import bending_rest, energy_bending
 from unsew.sim.energies.membrane import membrane_rest
 from unsew.sim.integrator import StepParams, forces, rest_data
@@ -25,7 +25,16 @@ def test_free_fall_is_the_implicit_euler_recurrence():
     v0[:, 1] = 0.7
     v0[:, 0] = 0.2
     dt, g, K = 0.05, 9.81, 20
-    out = drape(m, SimState(x0, v0), FAR, uv=torch.as_tensor(uv), gamma=GAMMA, density=0.2, steps=K, settings=DrapeSettings(dt=dt, gravity=g))
+    out = drape(
+        m,
+        SimState(x0, v0),
+        FAR,
+        uv=torch.as_tensor(uv),
+        gamma=GAMMA,
+        density=0.2,
+        steps=K,
+        settings=DrapeSettings(dt=dt, gravity=g),
+    )
     y = 1.0 + K * dt * 0.7 - g * dt * dt * K * (K + 1) / 2
     assert_close(out.x[:, 1], y, atol=1e-12)
     assert_close(out.x[:, 0], x0[:, 0] + K * dt * 0.2, atol=1e-12)
@@ -48,7 +57,16 @@ def test_rigid_motion_no_internal_force():
     assert_close(f, 0.0, atol=1e-12, what="internal force after a rigid motion ")
     # and a rigidly translating sheet with no gravity keeps moving unchanged
     v = torch.tensor([0.5, -0.2, 0.1], dtype=torch.float64).expand_as(xr).clone()
-    out = drape(m, SimState(xr, v), FAR, uv=uv, gamma=GAMMA, density=0.2, steps=10, settings=DrapeSettings(gravity=0.0))
+    out = drape(
+        m,
+        SimState(xr, v),
+        FAR,
+        uv=uv,
+        gamma=GAMMA,
+        density=0.2,
+        steps=10,
+        settings=DrapeSettings(gravity=0.0),
+    )
     assert_close(out.x, xr + 10 * 0.05 * v, atol=1e-12)
 
 
@@ -71,7 +89,16 @@ def test_hanging_strip_static_stretch():
     m = SimModel.build(f, f, pinned=top)
     gamma = torch.tensor([E, 0.0, E, E, 1e-9], dtype=torch.float64)  # no Poisson coupling
     x0 = np.c_[uv[:, 0], uv[:, 1], np.zeros(len(uv))]
-    out = drape(m, SimState.at_rest(x0), FAR, uv=torch.as_tensor(uv), gamma=gamma, density=rho, steps=300, settings=DrapeSettings(dt=0.05))
+    out = drape(
+        m,
+        SimState.at_rest(x0),
+        FAR,
+        uv=torch.as_tensor(uv),
+        gamma=gamma,
+        density=rho,
+        steps=300,
+        settings=DrapeSettings(dt=0.05),
+    )
     assert float(out.v.abs().max()) < 1e-8  # at rest: implicit Euler damps every mode
     # analytic: a point at reference height s sits at y(s) = L - int_s^L lambda
     s_fine = np.linspace(0.0, L, 20001)

@@ -13,5 +13,13 @@ from unsew.batch.cases import find_cases, result_state
 from unsew.batch.runner import BatchResult, default_workers, run_batch
 from unsew.batch.task import CaseJob, CaseRecord, fit_case_dir
 
-__all__ = ["run_batch", "BatchResult", "default_workers", "find_cases", "result_state", "CaseJob", "CaseRecord",
-           "fit_case_dir"]
+__all__ = [
+    "run_batch",
+    "BatchResult",
+    "default_workers",
+    "find_cases",
+    "result_state",
+    "CaseJob",
+    "CaseRecord",
+    "fit_case_dir",
+]

@@ -26,9 +26,13 @@ def find_cases(cases_dir: str | os.PathLike) -> list[Path]:
     d = Path(cases_dir)
     if not d.is_dir():
         raise InputError(f"cases folder {d} does not exist")
-    cases = sorted(p for p in d.iterdir() if p.is_dir() and not p.name.startswith(".") and (p / "meta.json").is_file())
+    cases = sorted(
+        p for p in d.iterdir() if p.is_dir() and not p.name.startswith(".") and (p / "meta.json").is_file()
+    )
     if not cases:
-        raise InputError(f"no case folder in {d} (a case folder is a subfolder holding meta.json; see FORMATS.md)")
+        raise InputError(
+            f"no case folder in {d} (a case folder is a subfolder holding meta.json; see FORMATS.md)"
+        )
     return cases
 
 

@@ -3,8 +3,8 @@
 Jobs are handed out one at a time per worker, so at most ``workers`` cases are in flight. A
 worker that dies (killed, out of memory) breaks the pool: every case then in flight is tried once
 more, alone in a fresh pool, and recorded as failed if its worker dies again (so a crash is pinned
-on the case that caused it, not on the cases that happened to run beside it). Ctrl-C reaches the driver only (workers ignore
-SIGINT); the driver terminates the workers and re-raises, leaving each interrupted fit's
+on the case that caused it, not on the cases that happened to run beside it). Ctrl-C reaches the driver only
+(workers ignore SIGINT); the driver terminates the workers and re-raises, leaving each interrupted fit's
 checkpoint for a rerun.
 """
 
@@ -26,8 +26,9 @@ def _init_worker() -> None:
 
 
 def _new_pool(workers: int) -> ProcessPoolExecutor:
-    return ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"),
-                               initializer=_init_worker)
+    return ProcessPoolExecutor(
+        max_workers=workers, mp_context=multiprocessing.get_context("spawn"), initializer=_init_worker
+    )
 
 
 def _stop(pool: ProcessPoolExecutor) -> None:
@@ -79,8 +80,15 @@ def run_local(jobs: Sequence[CaseJob], *, workers: int, on_done: Callable[[CaseR
                     if not solo:  # a suspect: tried again, alone
                         pending.appendleft((job, True))
                     else:
-                        on_done(CaseRecord(job.name, job.case_dir, job.out_dir, status="failed",
-                                           reason="a worker process died while fitting it (killed, or out of memory)"))
+                        on_done(
+                            CaseRecord(
+                                job.name,
+                                job.case_dir,
+                                job.out_dir,
+                                status="failed",
+                                reason="a worker process died while fitting it (killed, or out of memory)",
+                            )
+                        )
     except BaseException:
         _stop(pool)
         raise

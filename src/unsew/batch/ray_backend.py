@@ -53,8 +53,12 @@ def ray_session(address: str = "auto", *, init_kwargs: dict | None = None) -> It
     if ray.is_initialized():
         yield
         return
-    kw = {"runtime_env": {"env_vars": {"OMP_WAIT_POLICY": "PASSIVE"}}, "include_dashboard": False,
-          "log_to_driver": False, **(init_kwargs or {})}
+    kw = {
+        "runtime_env": {"env_vars": {"OMP_WAIT_POLICY": "PASSIVE"}},
+        "include_dashboard": False,
+        "log_to_driver": False,
+        **(init_kwargs or {}),
+    }
     if address != "local":
         kw["address"] = address
     try:
@@ -91,8 +95,13 @@ def run_ray(jobs: Sequence[CaseJob], *, device: str = "cpu", on_done: Callable[[
                 try:
                     rec = ray.get(ref)
                 except Exception as exc:  # the task's worker died or Ray failed it
-                    rec = CaseRecord(job.name, job.case_dir, job.out_dir, status="failed",
-                                     reason=f"Ray task failed: {one_line(exc)}"[:300])
+                    rec = CaseRecord(
+                        job.name,
+                        job.case_dir,
+                        job.out_dir,
+                        status="failed",
+                        reason=f"Ray task failed: {one_line(exc)}"[:300],
+                    )
                 on_done(rec)
     except BaseException:
         for ref in refs:

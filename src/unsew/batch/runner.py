@@ -56,9 +56,18 @@ def _read_metrics(out: Path) -> dict | None:
         return None
 
 
-def run_batch(cases_dir: str | os.PathLike, out: str | os.PathLike, *, cfg=None, workers: int | None = None,
-              ray: str | None = None, overwrite: bool = False, fit_fn: Callable | None = None,
-              progress: bool = True, ray_init_kwargs: dict | None = None) -> BatchResult:
+def run_batch(
+    cases_dir: str | os.PathLike,
+    out: str | os.PathLike,
+    *,
+    cfg=None,
+    workers: int | None = None,
+    ray: str | None = None,
+    overwrite: bool = False,
+    fit_fn: Callable | None = None,
+    progress: bool = True,
+    ray_init_kwargs: dict | None = None,
+) -> BatchResult:
     """Fit every case folder of ``cases_dir`` into ``out/<case name>/`` and write
     ``out/summary.csv`` and ``out/index.html``.
 
@@ -88,8 +97,17 @@ def run_batch(cases_dir: str | os.PathLike, out: str | os.PathLike, *, cfg=None,
     if ray:  # connect first: a bad address fails before anything is written
         session.enter_context(ray_session(ray, init_kwargs=ray_init_kwargs))
     with session:
-        return _run(cases, cases_dir, out, cfg=cfg, workers=workers, ray=bool(ray), overwrite=overwrite,
-                    fit_fn=fit_fn, progress=progress)
+        return _run(
+            cases,
+            cases_dir,
+            out,
+            cfg=cfg,
+            workers=workers,
+            ray=bool(ray),
+            overwrite=overwrite,
+            fit_fn=fit_fn,
+            progress=progress,
+        )
 
 
 def _run(cases, cases_dir, out: Path, *, cfg, workers, ray: bool, overwrite, fit_fn, progress) -> BatchResult:
@@ -106,10 +124,21 @@ def _run(cases, cases_dir, out: Path, *, cfg, workers, ray: bool, overwrite, fit
             rec.time_s = ((rec.metrics or {}).get("timings_s") or {}).get("total_s")
         elif state == "blocked" and not overwrite:
             rec.status = "failed"
-            rec.reason = f"{res} exists but is not a complete result (no metrics.json); remove it or pass --overwrite"
+            rec.reason = (
+                f"{res} exists but is not a complete result (no metrics.json); remove it or pass --overwrite"
+            )
         else:
-            jobs.append(CaseJob(c.name, str(c), str(res), str(out / f"{c.name}.log"), cfg, overwrite=overwrite,
-                                fit_fn=fit_fn))
+            jobs.append(
+                CaseJob(
+                    c.name,
+                    str(c),
+                    str(res),
+                    str(out / f"{c.name}.log"),
+                    cfg,
+                    overwrite=overwrite,
+                    fit_fn=fit_fn,
+                )
+            )
         records[c.name] = rec
 
     from unsew.fit.progress import is_terminal
@@ -118,13 +147,26 @@ def _run(cases, cases_dir, out: Path, *, cfg, workers, ray: bool, overwrite, fit
     if progress and not lines:
         from tqdm import tqdm
 
-        bar = tqdm(total=len(cases), initial=len(cases) - len(jobs), desc="batch", unit="case",
-                   dynamic_ncols=True, file=sys.stderr)
-    counts = {"done": 0, "failed": sum(r.status == "failed" for r in records.values()),
-              "skipped": sum(r.status == "skipped" for r in records.values())}
+        bar = tqdm(
+            total=len(cases),
+            initial=len(cases) - len(jobs),
+            desc="batch",
+            unit="case",
+            dynamic_ncols=True,
+            file=sys.stderr,
+        )
+    counts = {
+        "done": 0,
+        "failed": sum(r.status == "failed" for r in records.values()),
+        "skipped": sum(r.status == "skipped" for r in records.values()),
+    }
     if lines:
-        print(f"batch: {len(cases)} cases, {len(jobs)} to fit ({counts['skipped']} skipped, "
-              f"{counts['failed']} failed before fitting)", file=sys.stderr, flush=True)
+        print(
+            f"batch: {len(cases)} cases, {len(jobs)} to fit ({counts['skipped']} skipped, "
+            f"{counts['failed']} failed before fitting)",
+            file=sys.stderr,
+            flush=True,
+        )
     finished = len(cases) - len(jobs)
 
     def on_done(rec: CaseRecord) -> None:
@@ -133,7 +175,9 @@ def _run(cases, cases_dir, out: Path, *, cfg, workers, ray: bool, overwrite, fit
         counts[rec.status] = counts.get(rec.status, 0) + 1
         finished += 1
         if bar is not None:
-            bar.set_postfix(done=counts["done"], failed=counts["failed"], skipped=counts["skipped"], refresh=False)
+            bar.set_postfix(
+                done=counts["done"], failed=counts["failed"], skipped=counts["skipped"], refresh=False
+            )
             bar.update(1)
         elif lines:
             why = f": {rec.reason}" if rec.status != "done" and rec.reason else ""

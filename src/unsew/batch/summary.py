@@ -22,8 +22,14 @@ from urllib.parse import quote
 from unsew.batch.task import CaseRecord
 from unsew.io.atomic import atomic_write
 
-__all__ = ["summary_rows", "write_summary_csv", "format_table", "write_index_html", "BASE_COLUMNS",
-           "METRIC_COLUMNS"]
+__all__ = [
+    "summary_rows",
+    "write_summary_csv",
+    "format_table",
+    "write_index_html",
+    "BASE_COLUMNS",
+    "METRIC_COLUMNS",
+]
 
 BASE_COLUMNS = ["case", "garment", "status", "iterations", "time_s"]
 #: (column, section of metrics.json, key)
@@ -45,7 +51,7 @@ def _num(v):
 def _loss_keys(records: Sequence[CaseRecord]) -> list[str]:
     keys: list[str] = []
     for r in records:
-        for k in ((r.metrics or {}).get("loss_final") or {}):
+        for k in (r.metrics or {}).get("loss_final") or {}:
             if k not in keys:
                 keys.append(k)
     return sorted(keys, key=lambda k: (_LOSS_ORDER.index(k) if k in _LOSS_ORDER else len(_LOSS_ORDER), k))
@@ -58,8 +64,13 @@ def summary_rows(records: Sequence[CaseRecord], *, root: str | os.PathLike | Non
     rows = []
     for r in records:
         m = r.metrics or {}
-        row = {"case": r.name, "garment": r.garment, "status": r.status, "iterations": _num(m.get("iterations")),
-               "time_s": r.time_s}
+        row = {
+            "case": r.name,
+            "garment": r.garment,
+            "status": r.status,
+            "iterations": _num(m.get("iterations")),
+            "time_s": r.time_s,
+        }
         for k in losses:
             row[f"loss_{k}"] = _num((m.get("loss_final") or {}).get(k))
         for col, sec, key in METRIC_COLUMNS:
@@ -105,8 +116,15 @@ def _fmt(col: str, v) -> str:
 
 
 #: short headers of the printed table
-_SHORT = {"iterations": "iters", "time_s": "time[s]", "chamfer_mm": "chamfer[mm]", "normal_error_deg": "normal[deg]",
-          "area_error_rel_mean": "area_err", "turning_distance_mean": "turning", "vertex_l2_cm_mean": "vtx_l2[cm]"}
+_SHORT = {
+    "iterations": "iters",
+    "time_s": "time[s]",
+    "chamfer_mm": "chamfer[mm]",
+    "normal_error_deg": "normal[deg]",
+    "area_error_rel_mean": "area_err",
+    "turning_distance_mean": "turning",
+    "vertex_l2_cm_mean": "vtx_l2[cm]",
+}
 
 
 def format_table(records: Sequence[CaseRecord]) -> str:
@@ -119,17 +137,24 @@ def format_table(records: Sequence[CaseRecord]) -> str:
     widths = [max(len(row[i]) for row in cells) for i in range(len(cols))]
     lines = []
     for j, row in enumerate(cells):
-        lines.append("  ".join(v.ljust(w) if i < 3 else v.rjust(w) for i, (v, w) in enumerate(zip(row, widths))))
+        lines.append(
+            "  ".join(v.ljust(w) if i < 3 else v.rjust(w) for i, (v, w) in enumerate(zip(row, widths)))
+        )
         if j == 0:
             lines.append("-" * len(lines[0]))
         elif rows[j - 1]["reason"]:
             lines.append(f"    {rows[j - 1]['status']}: {rows[j - 1]['reason']}")
-    n = {s: sum(r.status == s for r in records) for s in ("done", "skipped", "failed", "interrupted", "pending")}
+    n = {
+        s: sum(r.status == s for r in records)
+        for s in ("done", "skipped", "failed", "interrupted", "pending")
+    }
     lines.append(", ".join(f"{v} {k}" for k, v in n.items() if v) + f" of {len(records)} cases")
     return "\n".join(lines)
 
 
-def write_index_html(records: Sequence[CaseRecord], path: str | os.PathLike, *, title: str = "unsew batch") -> Path:
+def write_index_html(
+    records: Sequence[CaseRecord], path: str | os.PathLike, *, title: str = "unsew batch"
+) -> Path:
     """Write ``index.html`` atomically: counts by status, then the summary table with each case
     linking its ``report.html`` (where it exists) and its result folder. Returns the path."""
     path = Path(path)
@@ -139,16 +164,24 @@ def write_index_html(records: Sequence[CaseRecord], path: str | os.PathLike, *, 
     for r in records:
         counts[r.status] = counts.get(r.status, 0) + 1
     e = html.escape
-    out = ["<!DOCTYPE html>", "<html><head><meta charset='utf-8'>", f"<title>{e(title)}</title>",
-           "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"
-           "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}td.l,th.l{text-align:left}"
-           "tr.failed{background:#fde8e8}tr.interrupted,tr.pending{background:#fff6dd}</style></head><body>",
-           f"<h1>{e(title)}</h1>", "<h2>Summary</h2>",
-           "<p>" + ", ".join(f"{v} {e(k)}" for k, v in sorted(counts.items())) + f" of {len(records)} cases. "
-           "Units: time in s, Chamfer in mm, normal error in degrees, vertex L2 in cm; losses and "
-           "pattern errors are dimensionless. Machine-readable: <a href='summary.csv'>summary.csv</a>.</p>",
-           "<table><tr>" + "".join(f"<th class='{'l' if c in ('case', 'garment', 'status') else ''}'>{e(c)}</th>"
-                                   for c in cols) + "<th class='l'>report / reason</th></tr>"]
+    out = [
+        "<!DOCTYPE html>",
+        "<html><head><meta charset='utf-8'>",
+        f"<title>{e(title)}</title>",
+        "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"
+        "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}td.l,th.l{text-align:left}"
+        "tr.failed{background:#fde8e8}tr.interrupted,tr.pending{background:#fff6dd}</style></head><body>",
+        f"<h1>{e(title)}</h1>",
+        "<h2>Summary</h2>",
+        "<p>" + ", ".join(f"{v} {e(k)}" for k, v in sorted(counts.items())) + f" of {len(records)} cases. "
+        "Units: time in s, Chamfer in mm, normal error in degrees, vertex L2 in cm; losses and "
+        "pattern errors are dimensionless. Machine-readable: <a href='summary.csv'>summary.csv</a>.</p>",
+        "<table><tr>"
+        + "".join(
+            f"<th class='{'l' if c in ('case', 'garment', 'status') else ''}'>{e(c)}</th>" for c in cols
+        )
+        + "<th class='l'>report / reason</th></tr>",
+    ]
     for r, row in zip(records, rows):
         tds = []
         for c in cols:

@@ -93,14 +93,22 @@ def prepare_worker(*, ignore_sigint: bool = False) -> None:
     torch.set_num_threads(1)
 
 
-def fit_case_dir(case_dir: Path, out: Path, cfg, *, resume: bool = False, overwrite: bool = False,
-                 log: Callable[[str], None] | None = None) -> dict:
+def fit_case_dir(
+    case_dir: Path,
+    out: Path,
+    cfg,
+    *,
+    resume: bool = False,
+    overwrite: bool = False,
+    log: Callable[[str], None] | None = None,
+) -> dict:
     """The real fit of one case folder into ``out`` (load_case + run_fit, no progress bar).
     Returns the metrics dict. The fit's time limit counts from before the case is loaded."""
     started = time.perf_counter()
     case = load_case(case_dir)
-    _, metrics = run_fit(case, cfg, out, resume=resume, overwrite=overwrite, progress=False, log=log,
-                         started=started)
+    _, metrics = run_fit(
+        case, cfg, out, resume=resume, overwrite=overwrite, progress=False, log=log, started=started
+    )
     return metrics
 
 
@@ -113,16 +121,25 @@ def run_case(job: CaseJob) -> CaseRecord:
     Path(job.log_path).parent.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
     with open(job.log_path, "a", encoding="utf-8") as logf:
+
         def log(s: str) -> None:
             logf.write(s.rstrip("\n") + "\n")
             logf.flush()
 
-        log(f"== {time.strftime('%Y-%m-%d %H:%M:%S')} fit {job.case_dir} -> {job.out_dir}"
-            f"{' (resuming)' if resume else ''}")
+        log(
+            f"== {time.strftime('%Y-%m-%d %H:%M:%S')} fit {job.case_dir} -> {job.out_dir}"
+            f"{' (resuming)' if resume else ''}"
+        )
         try:
             with contextlib.redirect_stdout(logf), contextlib.redirect_stderr(logf):
-                metrics = fit_fn(Path(job.case_dir), Path(job.out_dir), job.cfg, resume=resume,
-                                 overwrite=job.overwrite, log=log)
+                metrics = fit_fn(
+                    Path(job.case_dir),
+                    Path(job.out_dir),
+                    job.cfg,
+                    resume=resume,
+                    overwrite=job.overwrite,
+                    log=log,
+                )
         except Exception as exc:  # the batch goes on; the reason is recorded
             rec.status, rec.reason = "failed", one_line(exc)
             log(traceback.format_exc())

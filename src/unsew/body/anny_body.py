@@ -40,7 +40,11 @@ JOINT_MAP: dict[str, tuple[str | None, str | None, str]] = {
     "head": ("head", "neck", "head"),
     "head_top": (None, "head", "head"),
     **{
-        f"{side}_{j}": (f"{bone}.{s}", f"{side}_{par}" if par not in ("chest", "pelvis") else par, part.format(side=side))
+        f"{side}_{j}": (
+            f"{bone}.{s}",
+            f"{side}_{par}" if par not in ("chest", "pelvis") else par,
+            part.format(side=side),
+        )
         for side, s in (("left", "L"), ("right", "R"))
         for j, bone, par, part in (
             ("collar", "clavicle", "chest", "torso"),
@@ -64,7 +68,9 @@ def _require_anny():
     try:
         import anny  # noqa: F401
     except ImportError:
-        raise InputError("making a body needs anny, which is not installed: pip install unsew[anny]") from None
+        raise InputError(
+            "making a body needs anny, which is not installed: pip install unsew[anny]"
+        ) from None
     return anny
 
 
@@ -84,7 +90,9 @@ def parse_pose(pose: str) -> dict[str, list[float]]:
     except json.JSONDecodeError as exc:
         raise InputError(f"pose file {pose} is not valid JSON ({exc.msg})") from None
     if not isinstance(d, dict):
-        raise InputError('pose JSON must map joint names to rotation vectors, e.g. {"left_shoulder": [0, 0, 0.5]}')
+        raise InputError(
+            'pose JSON must map joint names to rotation vectors, e.g. {"left_shoulder": [0, 0, 0.5]}'
+        )
     out = {}
     for k, v in d.items():
         if not (isinstance(v, (list, tuple)) and len(v) == 3):
@@ -116,7 +124,10 @@ def _anny_pose_tensor(model, rest_out, rotations_world: dict, torch):
     for name, rv in rotations_world.items():
         bone = JOINT_MAP[name][0] if name in JOINT_MAP else name
         if bone not in labels:
-            raise InputError(f"pose names unknown joint {name!r}; use one of {sorted(k for k in JOINT_MAP if JOINT_MAP[k][0])}")
+            raise InputError(
+                f"pose names unknown joint {name!r}; use one of "
+                f"{sorted(k for k in JOINT_MAP if JOINT_MAP[k][0])}"
+            )
         # world frame -> anny frame
         local_rot[labels.index(bone)] = ANNY_TO_WORLD.T @ _rotvec_to_matrix(np.asarray(rv)) @ ANNY_TO_WORLD
     del inv_map

@@ -117,7 +117,9 @@ class Body:
 
 
 def _data_path() -> str:
-    return os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "data", "default_body.npz")
+    return os.path.join(
+        os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "data", "default_body.npz"
+    )
 
 
 @functools.lru_cache(maxsize=1)
@@ -223,7 +225,9 @@ def default_body() -> Body:
 # -- any body from files ---------------------------------------------------------------------
 
 
-def clean_body_mesh(verts: np.ndarray, faces: np.ndarray, *, what: str = "body mesh") -> tuple[np.ndarray, np.ndarray, list[str]]:
+def clean_body_mesh(
+    verts: np.ndarray, faces: np.ndarray, *, what: str = "body mesh"
+) -> tuple[np.ndarray, np.ndarray, list[str]]:
     """Keep the largest connected component, merge duplicate vertices, fill small holes.
 
     verts: (V, 3) float64 [m]; faces: (F, 3) int64. Returns (verts (V', 3) float64 [m],
@@ -234,7 +238,9 @@ def clean_body_mesh(verts: np.ndarray, faces: np.ndarray, *, what: str = "body m
     import trimesh
 
     notes = []
-    m = trimesh.Trimesh(np.asarray(verts, np.float64), np.asarray(faces, np.int64), process=True, validate=False)
+    m = trimesh.Trimesh(
+        np.asarray(verts, np.float64), np.asarray(faces, np.int64), process=True, validate=False
+    )
     raw = trimesh.Trimesh(np.asarray(verts, np.float64), np.asarray(faces, np.int64), process=False)
     if raw.is_watertight and not m.is_watertight:
         m = raw  # closed as given; merging coincident vertices (touching fingers) would pinch it
@@ -318,7 +324,9 @@ def check_body_plausible(verts: np.ndarray, skeleton: Skeleton | None = None, *,
             f"if the file is {name.lstrip('-')}-up, use {fix}"
         )
     if unit_hint:
-        raise InputError(f"{what} is {h:.4g} m tall, implausible in metres; it looks like {unit_hint[8:]}: use {unit_hint}")
+        raise InputError(
+            f"{what} is {h:.4g} m tall, implausible in metres; it looks like {unit_hint[8:]}: use {unit_hint}"
+        )
     if skeleton is None:
         return
     sk = skeleton
@@ -373,5 +381,12 @@ def load_body(
             raise InputError(f"cannot rig {what} from its mesh ({exc}); give its skeleton.json") from None
         notes = [*notes, "no skeleton.json: the 17 joints were estimated from the mesh (unsew body rig)"]
     check_body_plausible(verts, sk, what=what)
-    return Body(verts, faces, sk, None, name=name or os.path.basename(os.fspath(mesh_path)),
-                rigged=skeleton_path is None, notes=tuple(notes))
+    return Body(
+        verts,
+        faces,
+        sk,
+        None,
+        name=name or os.path.basename(os.fspath(mesh_path)),
+        rigged=skeleton_path is None,
+        notes=tuple(notes),
+    )

@@ -38,8 +38,17 @@ def load_case(
     body = load_case_body(files)
     target = files.files["target"]
     check_garment_on_body(files.target_verts, body, what=f"target {target}")
-    return Case(files.path, files.garment, files.target_verts, files.target_faces, body, files.meta,
-                files.pattern_gt, files.files, files.target_repair)
+    return Case(
+        files.path,
+        files.garment,
+        files.target_verts,
+        files.target_faces,
+        body,
+        files.meta,
+        files.pattern_gt,
+        files.files,
+        files.target_repair,
+    )
 
 
 def load_case_body(files: CaseFiles) -> Body:

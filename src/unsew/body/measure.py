@@ -45,9 +45,20 @@ from unsew.errors import InputError
 from unsew.geometry.topology import unique_edges
 
 __all__ = [
-    "measure_body", "check_human", "cross_check_rig", "HUMAN_WAIST", "RIG_CROSS_TOL",
-    "section_points", "hull_perimeter", "arms_raised", "bust_point_girth", "upper_arm_cut",
-    "RAISED_ARM_DEG", "RAISED_ARM_BUST", "RAISED_ARM_SHOULDER_OUT", "ARM_CUT_JUMP",
+    "measure_body",
+    "check_human",
+    "cross_check_rig",
+    "HUMAN_WAIST",
+    "RIG_CROSS_TOL",
+    "section_points",
+    "hull_perimeter",
+    "arms_raised",
+    "bust_point_girth",
+    "upper_arm_cut",
+    "RAISED_ARM_DEG",
+    "RAISED_ARM_BUST",
+    "RAISED_ARM_SHOULDER_OUT",
+    "ARM_CUT_JUMP",
 ]
 
 #: An upper arm (shoulder -> elbow) less than this far below horizontal is raised [degrees]
@@ -82,7 +93,9 @@ _GIRTH_JOINTS = {
 }
 
 
-def section_points(verts: np.ndarray, faces: np.ndarray, origin: np.ndarray, normal: np.ndarray) -> np.ndarray:
+def section_points(
+    verts: np.ndarray, faces: np.ndarray, origin: np.ndarray, normal: np.ndarray
+) -> np.ndarray:
     """Points where mesh edges cross the plane through ``origin`` with ``normal``.
 
     verts: (V, 3) float64 [m]; faces: (F, 3) int; origin, normal: (3,) [m] / unit.
@@ -134,7 +147,9 @@ def measure_body(body) -> Measurements:
     is_arm = np.isin(parts, ["left_arm", "right_arm"])
     is_head = parts == "head"
     no_arm_face = ~is_arm[F].any(axis=1)
-    torso_face = no_arm_face & ~np.isin(parts, ["left_leg", "right_leg"])[F].any(axis=1) & ~is_head[F].any(axis=1)
+    torso_face = (
+        no_arm_face & ~np.isin(parts, ["left_leg", "right_leg"])[F].any(axis=1) & ~is_head[F].any(axis=1)
+    )
 
     pelvis, spine, chest, neck, head = (P(n) for n in ("pelvis", "spine", "chest", "neck", "head"))
     l_sh, r_sh = P("left_shoulder"), P("right_shoulder")
@@ -173,9 +188,13 @@ def measure_body(body) -> Measurements:
     else:
         shoulder_width = _outer_x(V, l_sh, 1.0) + _outer_x(V, r_sh, -1.0)
     arm = 0.5 * (
-        _length(sk, "left_shoulder", "left_elbow", "left_wrist") + _length(sk, "right_shoulder", "right_elbow", "right_wrist")
+        _length(sk, "left_shoulder", "left_elbow", "left_wrist")
+        + _length(sk, "right_shoulder", "right_elbow", "right_wrist")
     )
-    leg = 0.5 * (_length(sk, "left_hip", "left_knee", "left_ankle") + _length(sk, "right_hip", "right_knee", "right_ankle"))
+    leg = 0.5 * (
+        _length(sk, "left_hip", "left_knee", "left_ankle")
+        + _length(sk, "right_hip", "right_knee", "right_ankle")
+    )
     return Measurements(
         height=height,
         bust=bust,
@@ -217,9 +236,9 @@ def cross_check_rig(body, *, tol: dict | None = None):
             off = {n: float(np.linalg.norm(sk.position(n) - rig.position(n))) for n in joints}
             j = max(off, key=off.get)
             raise InputError(
-                f"{k} {a * 100:.1f} cm with the given skeleton but {b * 100:.1f} cm from the mesh alone: skeleton "
-                f"joint {j!r} lies {off[j] * 100:.0f} cm from where the mesh puts it; check it in skeleton.json, "
-                "or remove the file to rig the body from its mesh"
+                f"{k} {a * 100:.1f} cm with the given skeleton but {b * 100:.1f} cm from the mesh alone: "
+                f"skeleton joint {j!r} lies {off[j] * 100:.0f} cm from where the mesh puts it; check it in "
+                "skeleton.json, or remove the file to rig the body from its mesh"
             )
     return m
 
@@ -234,7 +253,9 @@ def _rigged_reading(verts: np.ndarray, faces: np.ndarray):
     from unsew.body.body import Body
     from unsew.body.rig import rig_skeleton
 
-    key = hashlib.sha1(np.ascontiguousarray(verts).tobytes() + np.ascontiguousarray(faces).tobytes()).hexdigest()
+    key = hashlib.sha1(
+        np.ascontiguousarray(verts).tobytes() + np.ascontiguousarray(faces).tobytes()
+    ).hexdigest()
     if key not in _LAST_RIG:
         rig = rig_skeleton(verts, faces)
         _LAST_RIG.clear()
@@ -253,8 +274,8 @@ def check_human(body, parts, *, bust: float, waist: float, waist_y: float, bust_
     if waist < HUMAN_WAIST[0]:
         part, joint = _trunk_taken(body, parts, waist_y)
         raise InputError(
-            f"waist {waist * 100:.1f} cm at {waist_y:.2f} m is under {HUMAN_WAIST[0] * 100:.0f} cm: the trunk there "
-            f"is read as {part} from skeleton joint {joint!r}; check its "
+            f"waist {waist * 100:.1f} cm at {waist_y:.2f} m is under {HUMAN_WAIST[0] * 100:.0f} cm: the "
+            f"trunk there is read as {part} from skeleton joint {joint!r}; check its "
             "position and parent in skeleton.json"
         )
     if waist > HUMAN_WAIST[1]:
@@ -262,7 +283,8 @@ def check_human(body, parts, *, bust: float, waist: float, waist_y: float, bust_
     if waist_y >= bust_y:
         raise InputError(
             f"waist level {waist_y:.2f} m is not below the bust's {bust_y:.2f} m: the waist is sought up to "
-            f"skeleton joint 'chest' at {body.skeleton.position('chest')[1]:.2f} m; check its position in skeleton.json"
+            f"skeleton joint 'chest' at {body.skeleton.position('chest')[1]:.2f} m; check its position in "
+            "skeleton.json"
         )
 
 
@@ -275,8 +297,8 @@ def _check_trunk_order(sk) -> None:
         if not ya < yb:
             bad = b if b in ("spine", "chest") or a in ("neck", "head") else a
             raise InputError(
-                f"skeleton joint {bad!r} is out of the trunk's order: {a!r} at {ya:.2f} m is not below {b!r} at "
-                f"{yb:.2f} m (pelvis, spine, chest, neck and head rise in that order on a standing body); "
+                f"skeleton joint {bad!r} is out of the trunk's order: {a!r} at {ya:.2f} m is not below {b!r} "
+                f"at {yb:.2f} m (pelvis, spine, chest, neck and head rise in that order on a standing body); "
                 "check it in skeleton.json"
             )
 

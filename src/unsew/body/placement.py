@@ -191,14 +191,21 @@ def _landmarks(body):
     sk = body.skeleton
     missing = sk.missing()
     if missing:
-        raise InputError(f"the body's skeleton lacks joints {', '.join(missing)}; placement needs them (shared/FORMATS.md)")
+        raise InputError(
+            f"the body's skeleton lacks joints {', '.join(missing)}; placement needs them (shared/FORMATS.md)"
+        )
     J = {n: sk.position(n) for n in sk.names}
     parts = np.asarray(body.vertex_parts())
     v = np.asarray(body.verts, np.float64)
     cx = float(J["pelvis"][0])
     # Crotch: the lowest body point on the centre line above the knees.
     knee_y = max(J["left_knee"][1], J["right_knee"][1])
-    m = (np.abs(v[:, 0] - cx) < 0.012) & (v[:, 1] > knee_y) & (v[:, 1] < J["pelvis"][1]) & np.isin(parts, ["torso", "left_leg", "right_leg"])
+    m = (
+        (np.abs(v[:, 0] - cx) < 0.012)
+        & (v[:, 1] > knee_y)
+        & (v[:, 1] < J["pelvis"][1])
+        & np.isin(parts, ["torso", "left_leg", "right_leg"])
+    )
     crotch_y = float(v[m, 1].min()) if m.any() else float(0.5 * (J["pelvis"][1] + knee_y))
     return J, parts, v, cx, crotch_y
 
@@ -224,9 +231,13 @@ def panel_roles(pattern, body) -> dict:
         off_sh = abs(sh[0] - cx)
         if w[:, 1].min() > J["neck"][1] + 0.03 or c[1] > J["neck"][1]:
             roles[name] = "free"  # a collar, a hood
-        elif c[1] > crotch_y + 0.1 and abs(c[0] - cx) > 0.8 * off_sh and (
-            (abs(n[0]) > 0.7 and c[1] > J[f"{side}_wrist"][1] - 0.1)
-            or np.min(np.abs(w[:, 0] - cx)) > SLEEVE_INNER * off_sh
+        elif (
+            c[1] > crotch_y + 0.1
+            and abs(c[0] - cx) > 0.8 * off_sh
+            and (
+                (abs(n[0]) > 0.7 and c[1] > J[f"{side}_wrist"][1] - 0.1)
+                or np.min(np.abs(w[:, 0] - cx)) > SLEEVE_INNER * off_sh
+            )
         ):
             roles[name] = f"{side}_sleeve"
         elif (
@@ -245,8 +256,16 @@ def panel_roles(pattern, body) -> dict:
 # -- placement -------------------------------------------------------------------------------
 
 
-def place_garment(pattern, mesh, body, *, sdf=None, clearance: float = CLEARANCE, meet_seams: bool = True,
-                  force_meet: bool = False) -> np.ndarray:
+def place_garment(
+    pattern,
+    mesh,
+    body,
+    *,
+    sdf=None,
+    clearance: float = CLEARANCE,
+    meet_seams: bool = True,
+    force_meet: bool = False,
+) -> np.ndarray:
     """Put the flat panels of ``pattern`` around ``body``: the start of the sewing phase.
 
     Args:
@@ -293,7 +312,9 @@ def _panel_info(pattern, mesh, roles, x) -> dict:
     for pi, name in enumerate(mesh.panel_names):
         p = pattern.panels[name]
         sl = slice(int(mesh.panel_offsets[pi]), int(mesh.panel_offsets[pi + 1]))
-        info[name] = dict(sl=sl, R=p.rotation_matrix(), hint=x[sl].copy(), bl=mesh.boundary_loop(pi), role=roles[name])
+        info[name] = dict(
+            sl=sl, R=p.rotation_matrix(), hint=x[sl].copy(), bl=mesh.boundary_loop(pi), role=roles[name]
+        )
     return info
 
 
@@ -316,7 +337,11 @@ def _body_stacks(v, parts, J, cx0, crotch_y, ys, clearance) -> dict:
     up = ys >= J["chest"][1]
     stacks["torso"][2][up] = np.maximum.accumulate(stacks["torso"][2][up])
     for side, sgn in (("left", 1.0), ("right", -1.0)):
-        lp = v[np.isin(parts, ["torso", f"{side}_leg"]) & ((v[:, 0] - cx0) * sgn > 0) & (v[:, 1] < crotch_y + 0.05)]
+        lp = v[
+            np.isin(parts, ["torso", f"{side}_leg"])
+            & ((v[:, 0] - cx0) * sgn > 0)
+            & (v[:, 1] < crotch_y + 0.05)
+        ]
         stacks[f"{side}_leg"] = _keep_apart(_section_table(lp, ys), cx0, sgn, clearance)
     return stacks
 
@@ -417,10 +442,13 @@ def _wrap_lifted(pattern, mesh, info, uv, stacks, ys, crotch_y, J, xb, ytop, cle
     if not shoulder_edges:
         _lower_garment_lifts(lifts, info, links, J, crotch_y)
     hist: dict = {name: [] for name in shoulder_edges}  # (lift, residual) per iteration
+    folds: dict = {}  # name -> positions before the shoulder fold; set by the first pass (it == 0)
     for it in range(LIFT_ITERS + 1 if shoulder_edges else 1):
         if it:
             for name, idx in shoulder_edges.items():
-                r = _shoulder_lift(folds[name], idx - info[name]["sl"].start, xb, ytop, clearance, stacks["torso"], ys)
+                r = _shoulder_lift(
+                    folds[name], idx - info[name]["sl"].start, xb, ytop, clearance, stacks["torso"], ys
+                )
                 hist[name].append((lifts[name], r))
                 lifts[name] = _secant_step(hist[name])
             _propagate_lifts(lifts, links, list(shoulder_edges))
@@ -476,8 +504,10 @@ def _put_sleeves(x, pattern, mesh, info, uv, J) -> None:
                 shifts[n] = top - SLEEVE_CAP_IN - float(np.min(axes[n][0][cap[0] - d["sl"].start]))
 
         def wrapped(turn):
-            return {n: _wrap_sleeve(*axes[n], info[n], side, J, radius=radius, shift=shifts.get(n), turn=turn)
-                    for n in names}
+            return {
+                n: _wrap_sleeve(*axes[n], info[n], side, J, radius=radius, shift=shifts.get(n), turn=turn)
+                for n in names
+            }
 
         turn = _sleeve_turn(wrapped, x, caps, info, names)
         for n, xs in wrapped(turn).items():
@@ -547,7 +577,10 @@ def _close_stubs(x, mesh):
     if len(e) == 0:
         return x
     cnt = np.bincount(xu, minlength=n).astype(np.float64)
-    m = np.stack([np.bincount(xu, weights=x[:, k], minlength=n) for k in range(3)], axis=1) / np.maximum(cnt, 1.0)[:, None]
+    m = (
+        np.stack([np.bincount(xu, weights=x[:, k], minlength=n) for k in range(3)], axis=1)
+        / np.maximum(cnt, 1.0)[:, None]
+    )
     g = coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(n, n))
     _, lab = connected_components(g, directed=False)
     c_cnt = np.bincount(lab).astype(np.float64)
@@ -844,8 +877,10 @@ def _horizontal_links(pattern, mesh, info) -> list:
         a, b = st.a.panel, st.b.panel
         if a == b or info[a]["role"] not in wrapped or info[b]["role"] not in wrapped:
             continue
-        ya, yb = [info[s.panel]["hint"][np.asarray(mesh.edge_verts[(s.panel, s.edge)]) - info[s.panel]["sl"].start]
-                  for s in (st.a, st.b)]
+        ya, yb = [
+            info[s.panel]["hint"][np.asarray(mesh.edge_verts[(s.panel, s.edge)]) - info[s.panel]["sl"].start]
+            for s in (st.a, st.b)
+        ]
         if not all(_is_horizontal(y) for y in (ya, yb)):
             continue
         dy = float(ya[:, 1].mean() - yb[:, 1].mean())

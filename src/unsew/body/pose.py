@@ -51,7 +51,9 @@ def pose_body(body, rotations: dict | str, *, name: str | None = None):
     else:
         label = "posed"
     if body.weights is None:
-        raise InputError("this body has no skinning weights, so it cannot be posed; give a posed mesh instead")
+        raise InputError(
+            "this body has no skinning weights, so it cannot be posed; give a posed mesh instead"
+        )
     sk = body.skeleton
     idx = {n: i for i, n in enumerate(sk.names)}
     unknown = [n for n in rotations if n not in idx]
@@ -76,7 +78,9 @@ def pose_body(body, rotations: dict | str, *, name: str | None = None):
             G[j] = local
         else:
             Gp = G[p]
-            G[j] = np.concatenate([Gp[:, :3] @ local[:, :3], (Gp[:, :3] @ local[:, 3] + Gp[:, 3])[:, None]], axis=1)
+            G[j] = np.concatenate(
+                [Gp[:, :3] @ local[:, :3], (Gp[:, :3] @ local[:, 3] + Gp[:, 3])[:, None]], axis=1
+            )
     W = np.asarray(body.weights, dtype=np.float64)  # (V, J)
     v = np.asarray(body.verts, dtype=np.float64)
     vh = np.concatenate([v, np.ones((len(v), 1))], axis=1)  # (V, 4)

@@ -34,7 +34,10 @@ def render_rig_preview(body, path: str | os.PathLike, *, title: str | None = Non
         ax.set_aspect("equal")
         ax.set_xlabel(f"{label} [m]")
         ax.set_ylabel("y [m]")
-    fig.suptitle(title or f"{body.name}: {'rigged from its mesh' if getattr(body, 'rigged', False) else 'skeleton given'}")
+    fig.suptitle(
+        title
+        or f"{body.name}: {'rigged from its mesh' if getattr(body, 'rigged', False) else 'skeleton given'}"
+    )
     fig.tight_layout()
     with atomic_write(path) as tmp:
         fig.savefig(tmp, format="png")

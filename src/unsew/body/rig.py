@@ -201,7 +201,9 @@ class _Column:
     crotch: int
 
 
-def _column(verts: np.ndarray, faces: np.ndarray, top: np.ndarray, y_end: float, step: float, half_width: float) -> _Column:
+def _column(
+    verts: np.ndarray, faces: np.ndarray, top: np.ndarray, y_end: float, step: float, half_width: float
+) -> _Column:
     g = verts[:, 1]
     ga = g[faces]
     lo_f, hi_f = ga.min(axis=1), ga.max(axis=1)
@@ -295,7 +297,10 @@ def rig_skeleton(verts: np.ndarray, faces: np.ndarray, *, debug: dict | None = N
     H = float(head_top[1] - floor)
     if not (0.5 < H < 3.0):
         raise InputError(f"body is {H:.2f} m from soles to head top; cannot rig it (check --units/--up)")
-    if V[[ends[lf], ends[rf]], 1].max() - floor > 0.15 * H or not V[ends[rh], 0] < head_top[0] < V[ends[lh], 0]:
+    if (
+        V[[ends[lf], ends[rf]], 1].max() - floor > 0.15 * H
+        or not V[ends[rh], 0] < head_top[0] < V[ends[lh], 0]
+    ):
         raise InputError(
             "body mesh does not read as a person standing on two feet with the arms apart from the "
             "trunk; give its skeleton.json"
@@ -316,9 +321,21 @@ def rig_skeleton(verts: np.ndarray, faces: np.ndarray, *, debug: dict | None = N
         arms[side] = _limb(V, F, D[i], ends[i], t_max=0.55 * H, step=step, t_min_root=0.25 * H)
     _check_limbs_thin(legs, arms, H)
     if debug is not None:
-        debug.update(ends={n: ends[i] for n, i in (("head", ih), ("left_hand", lh), ("right_hand", rh),
-                                                  ("left_foot", lf), ("right_foot", rf))},
-                     legs=legs, arms=arms, H=H)
+        debug.update(
+            ends={
+                n: ends[i]
+                for n, i in (
+                    ("head", ih),
+                    ("left_hand", lh),
+                    ("right_hand", rh),
+                    ("left_foot", lf),
+                    ("right_foot", rf),
+                )
+            },
+            legs=legs,
+            arms=arms,
+            H=H,
+        )
     col = _column(V, F, head_top, floor + 0.3 * H, 0.003 * H, 0.13 * H)
     J = _torso_joints(col, floor, H)
     for side in ("left", "right"):
@@ -333,7 +350,10 @@ def _check_limbs_thin(legs: dict, arms: dict, H: float) -> None:
     """Refuse a shape whose five extremities do not end limbs: a person's ankle (the narrowest
     ring 10-25 % of H from the toes) and wrist (7-22 % from the finger tips) are far thinner
     than a quarter and a fifth of the height; a 1.7 m capsule's rings there are not."""
-    for limbs, (a, b), most, what in ((legs, (0.10, 0.25), 0.25, "ankle"), (arms, _WRIST_WINDOW, 0.20, "wrist")):
+    for limbs, (a, b), most, what in (
+        (legs, (0.10, 0.25), 0.25, "ankle"),
+        (arms, _WRIST_WINDOW, 0.20, "wrist"),
+    ):
         for side, limb in limbs.items():
             m = (limb.t > a * H) & (limb.t < b * H) & (limb.g > 0)
             if not m.any() or limb.g[m].min() > most * H:
@@ -404,7 +424,9 @@ def _torso_joints(col: _Column, floor: float, H: float) -> dict:
 
     top = col.c[0]
     neck = at(neck_min - _NECK_BELOW_MIN * H, _ZREL["neck"])
-    head = np.array([top[0], neck[1] + _HEAD_SHARE * (top[1] + 0.5 * (col.y[0] - col.y[1]) - neck[1]), top[2]])
+    head = np.array(
+        [top[0], neck[1] + _HEAD_SHARE * (top[1] + 0.5 * (col.y[0] - col.y[1]) - neck[1]), top[2]]
+    )
     crotch = col.y[col.crotch - 1]
     pelvis = at(crotch + _PELVIS_ABOVE_CROTCH * H, _ZREL["pelvis"])
     hip_y = pelvis[1] - _HIP_BELOW_PELVIS * H

@@ -19,8 +19,8 @@ Build (numpy/scipy, once per body, cached on disk):
 
 Query: ``sdf.query(x)`` trilinearly interpolates the distance grid and its gradient grid (central
 differences, precomputed) by one gather of the 8 corners of each point's cell from a
-channel-last table (faster than ``torch.nn.functional.grid_sample`` with 4 channels here): ``d`` is differentiable in
-``x`` (first and second derivatives, those of the trilinear interpolant), ``n`` is the
+channel-last table (faster than ``torch.nn.functional.grid_sample`` with 4 channels here): ``d`` is
+differentiable in ``x`` (first and second derivatives, those of the trilinear interpolant), ``n`` is the
 interpolated gradient normalised (continuous across cells, unlike autograd's gradient of ``d``).
 Points outside the grid get the distance at the nearest grid point plus the distance to it.
 Inside is negative. Any object with this ``query`` method is an SDF for the simulator.
@@ -60,7 +60,9 @@ def default_cache_dir() -> str:
 # -- exact point-triangle distance -----------------------------------------------------------
 
 
-def closest_point_on_triangles(p: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def closest_point_on_triangles(
+    p: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """Closest point on triangle (a, b, c) to p, row by row (Ericson 5.1.5, Voronoi regions).
 
     p, a, b, c: (N, 3) float64 [m]. Returns (q (N, 3) float64 [m], region (N,) int8) with
@@ -106,7 +108,9 @@ def _override(q: np.ndarray, region: np.ndarray, m: np.ndarray, point: np.ndarra
     return np.where(m[:, None], point, q)
 
 
-def mesh_distance(points: np.ndarray, verts: np.ndarray, faces: np.ndarray, *, chunk: int = 2_000_000) -> tuple[np.ndarray, np.ndarray]:
+def mesh_distance(
+    points: np.ndarray, verts: np.ndarray, faces: np.ndarray, *, chunk: int = 2_000_000
+) -> tuple[np.ndarray, np.ndarray]:
     """Exact unsigned distance from points to a triangle mesh by brute force (a test oracle and
     for small meshes; O(N F)).
 
@@ -122,7 +126,9 @@ def mesh_distance(points: np.ndarray, verts: np.ndarray, faces: np.ndarray, *, c
     for s in range(0, len(points), step):
         p = points[s : s + step]
         P = np.repeat(p, F, axis=0)
-        q, _ = closest_point_on_triangles(P, np.tile(A, (len(p), 1)), np.tile(B, (len(p), 1)), np.tile(C, (len(p), 1)))
+        q, _ = closest_point_on_triangles(
+            P, np.tile(A, (len(p), 1)), np.tile(B, (len(p), 1)), np.tile(C, (len(p), 1))
+        )
         d = np.linalg.norm(P - q, axis=1).reshape(len(p), F)
         arg[s : s + step] = d.argmin(axis=1)
         best[s : s + step] = d.min(axis=1)
@@ -138,7 +144,9 @@ def _pseudonormals(verts: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np
     vn = np.zeros_like(verts)
     for k, (P, Q, R) in enumerate(((A, B, C), (B, C, A), (C, A, B))):
         e1, e2 = Q - P, R - P
-        cos = np.einsum("ij,ij->i", e1, e2) / np.maximum(np.linalg.norm(e1, axis=1) * np.linalg.norm(e2, axis=1), 1e-30)
+        cos = np.einsum("ij,ij->i", e1, e2) / np.maximum(
+            np.linalg.norm(e1, axis=1) * np.linalg.norm(e2, axis=1), 1e-30
+        )
         ang = np.arccos(np.clip(cos, -1.0, 1.0))
         np.add.at(vn, faces[:, k], fn * ang[:, None])
 
@@ -360,7 +368,9 @@ class BodySDF:
         return cls(np.asarray(v, np.float64), lo, float(voxel))
 
 
-def _build_grid(verts: np.ndarray, faces: np.ndarray, h: float, margin: float) -> tuple[np.ndarray, np.ndarray]:
+def _build_grid(
+    verts: np.ndarray, faces: np.ndarray, h: float, margin: float
+) -> tuple[np.ndarray, np.ndarray]:
     """(values (nz, ny, nx) float64 [m], origin (3,) [m]) of the signed distance of a closed mesh.
 
     A mirror-symmetric body (:func:`unsew.body.body.mirror_plane`) gets a grid whose nodes are
@@ -441,8 +451,9 @@ def _nearest_surface(verts, faces, origin, h: float, shape) -> _Nearest:
     bidx = np.flatnonzero(band)
     bt = best_t[bidx]
     del best_t
-    Q, region = closest_point_on_triangles(_node_points(bidx, origin, h, shape), verts[faces[bt, 0]],
-                                           verts[faces[bt, 1]], verts[faces[bt, 2]])
+    Q, region = closest_point_on_triangles(
+        _node_points(bidx, origin, h, shape), verts[faces[bt, 0]], verts[faces[bt, 1]], verts[faces[bt, 2]]
+    )
     # propagate: every node takes the closest point of its nearest band node
     ind = ndimage.distance_transform_edt(~band.reshape(shape), return_distances=False, return_indices=True)
     del band

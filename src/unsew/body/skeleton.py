@@ -259,7 +259,9 @@ class Skeleton:
             positions.append([float(v) for v in pos])
             part = str(jt.get("part", "") or "")
             if part and part not in PARTS:
-                raise InputError(f"skeleton joint {jt['name']!r}: part {part!r} unknown; use one of {list(PARTS)}")
+                raise InputError(
+                    f"skeleton joint {jt['name']!r}: part {part!r} unknown; use one of {list(PARTS)}"
+                )
             parts.append(part or _guess_part(str(jt["name"])))
         missing = [n for n in require if n not in names]
         if missing:
@@ -338,22 +340,31 @@ def structural_parts(names: list[str], parents: np.ndarray) -> list[str]:
             if k in owner and owner[k][0] != part:
                 raise InputError(
                     f"skeleton joint {names[k]!r} would be both {owner[k][0]} and {part} (it hangs below "
-                    f"{names[owner[k][1]]!r} and {names[by]!r}); each limb and the head must hang from the trunk on "
-                    "their own"
+                    f"{names[owner[k][1]]!r} and {names[by]!r}); each limb and the head must hang from the "
+                    "trunk on their own"
                 )
             owner[k] = (part, by)
             parts[k] = part
 
     # the trunk's joints hang from the root through trunk joints only
-    limbs = {idx["head"]} | {idx[f"{s}_{n}"] for s in ("left", "right")
-                             for n in ("shoulder", "elbow", "wrist", "hip", "knee", "ankle")}
-    for n in ("pelvis", "spine", "chest", "neck", *(f"{s}_{j}" for s in ("left", "right") for j in ("shoulder", "hip"))):
+    limbs = {idx["head"]} | {
+        idx[f"{s}_{n}"]
+        for s in ("left", "right")
+        for n in ("shoulder", "elbow", "wrist", "hip", "knee", "ankle")
+    }
+    for n in (
+        "pelvis",
+        "spine",
+        "chest",
+        "neck",
+        *(f"{s}_{j}" for s in ("left", "right") for j in ("shoulder", "hip")),
+    ):
         k = int(parents[idx[n]])
         while k != -1:
             if k in limbs:
                 raise InputError(
-                    f"skeleton joint {n!r} hangs below {names[k]!r}; the trunk's joints must hang from the root, "
-                    "not from a limb or the head"
+                    f"skeleton joint {n!r} hangs below {names[k]!r}; the trunk's joints must hang from the "
+                    "root, not from a limb or the head"
                 )
             k = int(parents[k])
     neck, head = idx["neck"], idx["head"]
@@ -362,10 +373,15 @@ def structural_parts(names: list[str], parents: np.ndarray) -> list[str]:
         chain.append(k)
         k = int(parents[k])
     if k != neck:
-        raise InputError("skeleton joint 'head' does not hang below 'neck'; give the head's parent chain through the neck")
+        raise InputError(
+            "skeleton joint 'head' does not hang below 'neck'; give the head's parent chain through the neck"
+        )
     claim(set(chain) | set(_subtree(children, head)), "head", head)
     for side in ("left", "right"):
-        for limb, (root, mid, end) in (("arm", ("shoulder", "elbow", "wrist")), ("leg", ("hip", "knee", "ankle"))):
+        for limb, (root, mid, end) in (
+            ("arm", ("shoulder", "elbow", "wrist")),
+            ("leg", ("hip", "knee", "ankle")),
+        ):
             r, m, e = (idx[f"{side}_{n}"] for n in (root, mid, end))
             below = set(_subtree(children, r)) - {r}
             below |= set(_subtree(children, m)) | set(_subtree(children, e))
@@ -396,7 +412,9 @@ def load_skeleton(path: str | os.PathLike, *, scale: float = 1.0) -> Skeleton:
         with open(path, encoding="utf-8") as fh:
             d = json.load(fh)
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
-        raise InputError(f"skeleton file {path!r} is not valid JSON ({exc.msg if hasattr(exc, 'msg') else exc})") from None
+        raise InputError(
+            f"skeleton file {path!r} is not valid JSON ({exc.msg if hasattr(exc, 'msg') else exc})"
+        ) from None
     try:
         return Skeleton.from_dict(d, scale=scale)
     except InputError as exc:

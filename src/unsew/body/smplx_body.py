@@ -58,8 +58,15 @@ def _smplx_parent(j: int) -> int:
     return 20 if j < 40 else 21  # 25-39 left hand, 40-54 right hand
 
 
-def make_smplx_body(model_path, *, gender: str = "neutral", betas=None, body_pose=None,
-                    global_orient=None, name: str = "smplx"):
+def make_smplx_body(
+    model_path,
+    *,
+    gender: str = "neutral",
+    betas=None,
+    body_pose=None,
+    global_orient=None,
+    name: str = "smplx",
+):
     """A Body from SMPL-X.
 
     model_path: folder with the SMPL-X model files (``smplx.create``'s ``model_path``).
@@ -71,18 +78,26 @@ def make_smplx_body(model_path, *, gender: str = "neutral", betas=None, body_pos
         import smplx
         import torch
     except ImportError:
-        raise InputError("SMPL-X bodies need the smplx package: pip install unsew[smplx] (and SMPL-X's model files)") from None
+        raise InputError(
+            "SMPL-X bodies need the smplx package: pip install unsew[smplx] (and SMPL-X's model files)"
+        ) from None
 
     betas = np.zeros(10) if betas is None else np.asarray(betas, dtype=np.float64).reshape(-1)
     try:
-        model = smplx.create(str(model_path), model_type="smplx", gender=gender, num_betas=len(betas), use_pca=False)
+        model = smplx.create(
+            str(model_path), model_type="smplx", gender=gender, num_betas=len(betas), use_pca=False
+        )
     except Exception as exc:  # missing or unreadable model files
         raise InputError(f"cannot load SMPL-X from {model_path}: {exc}".splitlines()[0]) from None
     kw = {"betas": torch.as_tensor(betas, dtype=torch.float32)[None], "return_verts": True}
     if body_pose is not None:
-        kw["body_pose"] = torch.as_tensor(np.asarray(body_pose, dtype=np.float64).reshape(1, -1), dtype=torch.float32)
+        kw["body_pose"] = torch.as_tensor(
+            np.asarray(body_pose, dtype=np.float64).reshape(1, -1), dtype=torch.float32
+        )
     if global_orient is not None:
-        kw["global_orient"] = torch.as_tensor(np.asarray(global_orient, dtype=np.float64).reshape(1, 3), dtype=torch.float32)
+        kw["global_orient"] = torch.as_tensor(
+            np.asarray(global_orient, dtype=np.float64).reshape(1, 3), dtype=torch.float32
+        )
     with torch.no_grad():
         out = model(**kw)
     v = out.vertices[0].detach().cpu().numpy().astype(np.float64)

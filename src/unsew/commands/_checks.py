@@ -33,7 +33,6 @@ _TRIANGLES_PER_AREA = 3.6
 _AREA_RATIO_RANGE = (0.02, 4.0)
 
 
-
 def _pattern_area(pattern) -> float:
     """Total panel area [m^2] of a pattern (absolute signed areas of the outlines)."""
     from unsew.pattern.validate import signed_area
@@ -51,8 +50,9 @@ def estimate_triangles(pattern, edge_length: float) -> int:
     return int(round(_TRIANGLES_PER_AREA * _pattern_area(pattern) / float(edge_length) ** 2))
 
 
-def check_triangle_budget(pattern, edge_length: float, *, limit: int = MAX_TRIANGLES,
-                          override: str | None = "--max-triangles") -> int:
+def check_triangle_budget(
+    pattern, edge_length: float, *, limit: int = MAX_TRIANGLES, override: str | None = "--max-triangles"
+) -> int:
     """Refuse a pattern whose mesh at ``edge_length`` [m] would exceed ``limit`` triangles.
 
     Returns the estimate. The message names the panel area so a pattern in the wrong units
@@ -63,9 +63,9 @@ def check_triangle_budget(pattern, edge_length: float, *, limit: int = MAX_TRIAN
     if n > limit:
         area = _pattern_area(pattern)
         raise InputError(
-            f"pattern {pattern.name!r} has {area:.3g} m^2 of panels: at edge length {edge_length:g} m its mesh "
-            f"would have about {n:,} triangles (limit {limit:,}): check the pattern's units_in_meter or use a "
-            "larger --edge-length" + (f", or raise {override}" if override else "")
+            f"pattern {pattern.name!r} has {area:.3g} m^2 of panels: at edge length {edge_length:g} m its "
+            f"mesh would have about {n:,} triangles (limit {limit:,}): check the pattern's units_in_meter or "
+            "use a larger --edge-length" + (f", or raise {override}" if override else "")
         )
     return n
 

@@ -21,8 +21,9 @@ from unsew.io.atomic import check_output
 __all__ = ["check_out"]
 
 
-def check_out(path: str | os.PathLike, *, overwrite: bool | None, folder: bool = False,
-              flag: str = "--out") -> Path:
+def check_out(
+    path: str | os.PathLike, *, overwrite: bool | None, folder: bool = False, flag: str = "--out"
+) -> Path:
     """Check that ``path`` may be written by a command; returns it as a Path.
 
     Args:

@@ -27,8 +27,12 @@ def load_pattern_reporting(path):
 
 
 def run(args: argparse.Namespace) -> int:
-    outs = [(args.svg, ".svg", "--svg"), (args.dxf, ".dxf", "--dxf"), (getattr(args, "pdf", None), ".pdf", "--pdf"),
-            (getattr(args, "obj", None), ".obj", "--obj")]
+    outs = [
+        (args.svg, ".svg", "--svg"),
+        (args.dxf, ".dxf", "--dxf"),
+        (getattr(args, "pdf", None), ".pdf", "--pdf"),
+        (getattr(args, "obj", None), ".obj", "--obj"),
+    ]
     if not any(o for o, _, _ in outs):
         raise InputError("nothing to export: give --svg P.svg, --dxf P.dxf, --pdf P.pdf and/or --obj P.obj")
     sa = {"allowance": getattr(args, "seam_allowance", None), "hem": getattr(args, "hem_allowance", None)}

@@ -46,7 +46,10 @@ def load_measurements(path):
         data.pop(k, None)
     scale = _UNITS[units]
     if scale != 1.0:
-        data = {k: v * scale if isinstance(v, (int, float)) and not isinstance(v, bool) else v for k, v in data.items()}
+        data = {
+            k: v * scale if isinstance(v, (int, float)) and not isinstance(v, bool) else v
+            for k, v in data.items()
+        }
     return Measurements.from_dict(data)
 
 

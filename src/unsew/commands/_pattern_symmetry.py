@@ -25,7 +25,12 @@ def symmetry_report(pattern) -> dict:
         "units": "m",
         "panels": per_panel,
         "pairs": [
-            {"source": pr.source, "target": pr.target, "mirrored": bool(pr.mirrored), "error": round(pr.error, 6)}
+            {
+                "source": pr.source,
+                "target": pr.target,
+                "mirrored": bool(pr.mirrored),
+                "error": round(pr.error, 6),
+            }
             for pr in sym.pairs
         ],
         "mirror_axes": [

@@ -19,20 +19,35 @@ __all__ = ["register", "run"]
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
-        "batch", help="fit every case folder of a folder (local processes, or a Ray cluster); resumable",
+        "batch",
+        help="fit every case folder of a folder (local processes, or a Ray cluster); resumable",
         formatter_class=HelpFormatter,
-        epilog=examples("unsew batch cases/ --out results/", "unsew batch cases/ --out results/ --workers 2 --iterations 40",
-                        "unsew batch cases/ --out results/ --ray auto"),
-        description="Fit every case folder (a subfolder holding meta.json) of CASES_DIR into RESULTS_DIR/<case>/. "
-        "Rerun the same command to continue an interrupted batch: complete results are skipped, interrupted "
-        "fits resume from their checkpoints, failed cases are tried again.")
+        epilog=examples(
+            "unsew batch cases/ --out results/",
+            "unsew batch cases/ --out results/ --workers 2 --iterations 40",
+            "unsew batch cases/ --out results/ --ray auto",
+        ),
+        description="Fit every case folder (a subfolder holding meta.json) of CASES_DIR into "
+        "RESULTS_DIR/<case>/. Rerun the same command to continue an interrupted batch: complete results are "
+        "skipped, interrupted fits resume from their checkpoints, failed cases are tried again.",
+    )
     p.add_argument("cases", metavar="CASES_DIR", help="folder of case folders (FORMATS.md)")
-    p.add_argument("--out", required=True, metavar="RESULTS_DIR", help="results folder (created; reused on a rerun)")
-    p.add_argument("--workers", type=int, metavar="N", help="local worker processes (default: min(CPU count, cases))")
-    p.add_argument("--ray", metavar="ADDRESS",
-                   help="run the fits as Ray tasks: 'auto' (running cluster), 'local' (start one here) or an address; "
-                   "RESULTS_DIR must be on a shared filesystem for a multi-machine cluster (needs unsew[ray]) (default: local processes)")
-    p.add_argument("--overwrite", action="store_true", help="refit cases whose result folder is already complete")
+    p.add_argument(
+        "--out", required=True, metavar="RESULTS_DIR", help="results folder (created; reused on a rerun)"
+    )
+    p.add_argument(
+        "--workers", type=int, metavar="N", help="local worker processes (default: min(CPU count, cases))"
+    )
+    p.add_argument(
+        "--ray",
+        metavar="ADDRESS",
+        help="run the fits as Ray tasks: 'auto' (running cluster), 'local' (start one here) or an address; "
+        "RESULTS_DIR must be on a shared filesystem for a multi-machine cluster (needs unsew[ray]) "
+        "(default: local processes)",
+    )
+    p.add_argument(
+        "--overwrite", action="store_true", help="refit cases whose result folder is already complete"
+    )
     add_fit_options(p)
     p.set_defaults(func=run)
 
@@ -44,9 +59,17 @@ def run(args: argparse.Namespace) -> int:
     from unsew.batch.summary import format_table
 
     cfg = _config(args)
-    check_out(args.out, overwrite=None, folder=True)  # a bad --out fails before any fit; a rerun resumes in it
-    res = run_batch(args.cases, args.out, cfg=cfg, workers=args.workers, ray=args.ray, overwrite=args.overwrite,
-                    progress=not args.quiet)
+    # a bad --out fails before any fit; a rerun resumes in it
+    check_out(args.out, overwrite=None, folder=True)
+    res = run_batch(
+        args.cases,
+        args.out,
+        cfg=cfg,
+        workers=args.workers,
+        ray=args.ray,
+        overwrite=args.overwrite,
+        progress=not args.quiet,
+    )
     print(format_table(res.records))
     print(f"summary: {res.summary_csv}  index: {res.index_html}", file=sys.stderr)
     if res.interrupted:

@@ -34,9 +34,13 @@ def pattern_contact(pattern) -> dict | None:
     try:
         thr, kc = float(c["threshold_m"]), float(c["stiffness_n_m4"])
     except (TypeError, KeyError, ValueError):
-        raise InputError(f"the pattern's contact {c!r} needs numbers threshold_m and stiffness_n_m4") from None
+        raise InputError(
+            f"the pattern's contact {c!r} needs numbers threshold_m and stiffness_n_m4"
+        ) from None
     if not (math.isfinite(thr) and math.isfinite(kc) and thr > 0 and kc > 0):
-        raise InputError(f"the pattern's contact needs a positive threshold and stiffness, got {thr} m, {kc} N/m^4")
+        raise InputError(
+            f"the pattern's contact needs a positive threshold and stiffness, got {thr} m, {kc} N/m^4"
+        )
     return {"contact_threshold": thr, "contact_stiffness": kc}
 
 
@@ -49,23 +53,52 @@ def register(sub: argparse._SubParsersAction) -> None:
         "or a body mesh with --skeleton. A drape that ends fallen, off the body, exploded or inside it "
         "exits non-zero with one line and writes no --out.",
         formatter_class=HelpFormatter,
-        epilog=examples("unsew drape result/pattern.json --out garment.obj",
-                        "unsew drape pattern.json --body bodies/tall/ --material denim --edge-length 0.02 --out garment.obj"),
+        epilog=examples(
+            "unsew drape result/pattern.json --out garment.obj",
+            "unsew drape pattern.json --body bodies/tall/ --material denim --edge-length 0.02 --out "
+            "garment.obj",
+        ),
     )
     p.add_argument("pattern", metavar="PATTERN.json", help="sewing pattern (GarmentCode specification JSON)")
-    p.add_argument("--body", default="default", help="default | CASE_DIR | BODY_DIR | body.obj/ply (default: default)")
-    p.add_argument("--skeleton", default=None, help="skeleton.json of a body mesh given with --body (default: the mesh is rigged from its shape)")
-    p.add_argument("--units", default="m", choices=["m", "cm", "mm"], help="units of a body mesh file (default: m)")
-    p.add_argument("--material", default=None,
-                   help="material name from the library (default: the pattern's own fitted material when "
-                        "pattern.json carries one, as unsew fit writes it; else cotton)")
-    p.add_argument("--edge-length", type=float, default=0.025, help="target triangle edge length [m] (default: 0.025)")
-    p.add_argument("--sew-steps", type=int, default=None, help="steps of the sewing phase (default: 60, unsew.dress.DRESS_SETTINGS)")
-    p.add_argument("--settle-steps", type=int, default=None, help="steps of settling after sewing (default: 20, unsew.dress.DRESS_SETTINGS)")
+    p.add_argument(
+        "--body", default="default", help="default | CASE_DIR | BODY_DIR | body.obj/ply (default: default)"
+    )
+    p.add_argument(
+        "--skeleton",
+        default=None,
+        help="skeleton.json of a body mesh given with --body (default: the mesh is rigged from its shape)",
+    )
+    p.add_argument(
+        "--units", default="m", choices=["m", "cm", "mm"], help="units of a body mesh file (default: m)"
+    )
+    p.add_argument(
+        "--material",
+        default=None,
+        help="material name from the library (default: the pattern's own fitted material when "
+        "pattern.json carries one, as unsew fit writes it; else cotton)",
+    )
+    p.add_argument(
+        "--edge-length", type=float, default=0.025, help="target triangle edge length [m] (default: 0.025)"
+    )
+    p.add_argument(
+        "--sew-steps",
+        type=int,
+        default=None,
+        help="steps of the sewing phase (default: 60, unsew.dress.DRESS_SETTINGS)",
+    )
+    p.add_argument(
+        "--settle-steps",
+        type=int,
+        default=None,
+        help="steps of settling after sewing (default: 20, unsew.dress.DRESS_SETTINGS)",
+    )
     p.add_argument("--out", required=True, metavar="garment.obj", help="OBJ file to write")
     p.add_argument("--overwrite", action="store_true", help="replace an existing --out")
-    p.add_argument("--keep-failed", action="store_true",
-                   help="when the drape fails its checks, write the garment to <out stem>.failed.obj")
+    p.add_argument(
+        "--keep-failed",
+        action="store_true",
+        help="when the drape fails its checks, write the garment to <out stem>.failed.obj",
+    )
     add_progress_switch(p, dest="no_progress")
     p.set_defaults(func=run)
 
@@ -82,7 +115,11 @@ def _load_body(args):
         return default_body()
     path = Path(src)
     if path.is_dir():
-        if (path / "target.obj").is_file() or (path / "meta.json").is_file() or not (path / "body.obj").is_file():
+        if (
+            (path / "target.obj").is_file()
+            or (path / "meta.json").is_file()
+            or not (path / "body.obj").is_file()
+        ):
             from unsew.body.case import load_case
 
             return load_case(path).body
@@ -137,9 +174,11 @@ def run(args: argparse.Namespace) -> int:
     from unsew.fit.progress import Progress
 
     kw = {k: getattr(args, k) for k in ("sew_steps", "settle_steps") if getattr(args, k) is not None}
-    contact = pattern_contact(pattern)  # the fit's contact (contact: target), so the drape rests as the fit's did
+    # the fit's contact (contact: target), so the drape rests as the fit's did
+    contact = pattern_contact(pattern)
     settings = DRESS_SETTINGS.replace(edge_length=args.edge_length, **kw, **(contact or {}))
-    with Progress(not args.no_progress).phase("drape") as progress:  # bars on a terminal, else a line per phase
+    # bars on a terminal, else a line per phase
+    with Progress(not args.no_progress).phase("drape") as progress:
         d = dress(pattern, body, material=material, settings=settings, progress=progress)
     from unsew.sim.checks import check_dressed
 
@@ -148,16 +187,33 @@ def run(args: argparse.Namespace) -> int:
     if not verdict.ok:
         if args.keep_failed:
             failed = out.with_name(out.stem + ".failed.obj")
-            write_obj(failed, d.x.detach().cpu().numpy(), m.faces, uv=m.uv, faces_uv=m.faces_uv,
-                      header=f"unsew drape FAILED ({verdict.reason}): {pattern.name}")
+            write_obj(
+                failed,
+                d.x.detach().cpu().numpy(),
+                m.faces,
+                uv=m.uv,
+                faces_uv=m.faces_uv,
+                header=f"unsew drape FAILED ({verdict.reason}): {pattern.name}",
+            )
         verdict.raise_if_bad(f"drape of {pattern.name}")
-    write_obj(out, d.x.detach().cpu().numpy(), m.faces, uv=m.uv, faces_uv=m.faces_uv,
-              header=f"unsew drape: {pattern.name} on {getattr(body, 'name', 'body')}, {material_name}; UVs are pattern coordinates [m]")
+    write_obj(
+        out,
+        d.x.detach().cpu().numpy(),
+        m.faces,
+        uv=m.uv,
+        faces_uv=m.faces_uv,
+        header=f"unsew drape: {pattern.name} on {getattr(body, 'name', 'body')}, {material_name}; UVs are "
+        "pattern coordinates [m]",
+    )
     s = d.stats
     if contact is not None:
-        print(f"the pattern's fitted contact: threshold {contact['contact_threshold'] * 1e3:.1f} mm, "
-              f"stiffness {contact['contact_stiffness']:.0e} N/m^4")
-    print(f"wrote {out}: {m.n_x} vertices, seam gap {s.get('seam_gap', 0.0) * 1000:.2f} mm, "
-          f"max speed {s.get('max_speed', 0.0):.3f} m/s, {verdict.inside_pct:.2f} % inside the body, "
-          f"stretch max {verdict.stretch_max:.2f}, y {verdict.y_min:.2f}..{verdict.y_max:.2f} m")
+        print(
+            f"the pattern's fitted contact: threshold {contact['contact_threshold'] * 1e3:.1f} mm, "
+            f"stiffness {contact['contact_stiffness']:.0e} N/m^4"
+        )
+    print(
+        f"wrote {out}: {m.n_x} vertices, seam gap {s.get('seam_gap', 0.0) * 1000:.2f} mm, "
+        f"max speed {s.get('max_speed', 0.0):.3f} m/s, {verdict.inside_pct:.2f} % inside the body, "
+        f"stretch max {verdict.stretch_max:.2f}, y {verdict.y_min:.2f}..{verdict.y_max:.2f} m"
+    )
     return 0

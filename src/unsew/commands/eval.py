@@ -12,7 +12,6 @@ import argparse
 
 from unsew.commands._output import check_out
 from unsew.commands._help import HelpFormatter, examples
-from unsew.io.atomic import check_output
 
 __all__ = ["register", "run"]
 
@@ -24,9 +23,17 @@ def run(args: argparse.Namespace) -> int:
     from unsew.metrics.evaluate import evaluate_result, format_table, write_eval_json
 
     if Path(args.result_dir).is_dir():
-        check_out(Path(args.result_dir) / "eval.json", overwrite=args.overwrite, flag="output")  # before the work
-    ev = evaluate_result(args.result_dir, args.case_dir, n_samples=args.samples, seed=args.seed, units=args.units,
-                         up=args.up, front=args.front)
+        # before the work
+        check_out(Path(args.result_dir) / "eval.json", overwrite=args.overwrite, flag="output")
+    ev = evaluate_result(
+        args.result_dir,
+        args.case_dir,
+        n_samples=args.samples,
+        seed=args.seed,
+        units=args.units,
+        up=args.up,
+        front=args.front,
+    )
     write_eval_json(ev, Path(args.result_dir) / "eval.json")
     print(json.dumps(ev, indent=2) if args.json else format_table(ev))
     return 0
@@ -46,7 +53,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
     p.add_argument("--samples", type=int, default=100_000, help="surface samples per mesh (default: 100000)")
     p.add_argument("--seed", type=int, default=0, help="sampling seed (default: 0)")
-    p.add_argument("--units", choices=["m", "cm", "mm"], help="units of the case's meshes (default: meta.json's, else m)")
+    p.add_argument(
+        "--units", choices=["m", "cm", "mm"], help="units of the case's meshes (default: meta.json's, else m)"
+    )
     p.add_argument("--up", help="the case files' up axis, e.g. z (default: meta.json's, else y)")
     p.add_argument("--front", help="the case files' front axis, e.g. -y (default: meta.json's, else z)")
     p.add_argument("--overwrite", action="store_true", help="replace an existing RESULT_DIR/eval.json")

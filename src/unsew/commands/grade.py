@@ -20,32 +20,66 @@ __all__ = ["register", "run"]
 
 
 def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("grade", help="grade a base pattern to a target's hems, cuffs, necklines (phase one)",
-                       formatter_class=HelpFormatter,
-                       epilog=examples("unsew grade case/ --out graded/", "unsew grade case/ --base skirt_band --flat --out graded/"))
-    p.add_argument("case", metavar="CASE_DIR", help="case folder (target.obj, body, meta.json; see FORMATS.md)")
-    p.add_argument("--base", default=None, metavar="NAME|P.json",
-                   help=f"base pattern, sized to the wearer as the fit sizes it: {', '.join(BASES)}, or a GarmentCode "
-                        "JSON file (default: the case's garment type)")
+    p = sub.add_parser(
+        "grade",
+        help="grade a base pattern to a target's hems, cuffs, necklines (phase one)",
+        formatter_class=HelpFormatter,
+        epilog=examples(
+            "unsew grade case/ --out graded/", "unsew grade case/ --base skirt_band --flat --out graded/"
+        ),
+    )
+    p.add_argument(
+        "case", metavar="CASE_DIR", help="case folder (target.obj, body, meta.json; see FORMATS.md)"
+    )
+    p.add_argument(
+        "--base",
+        default=None,
+        metavar="NAME|P.json",
+        help=f"base pattern, sized to the wearer as the fit sizes it: {', '.join(BASES)}, or a GarmentCode "
+        "JSON file (default: the case's garment type)",
+    )
     p.add_argument("--out", required=True, metavar="DIR", help="result folder to create")
-    p.add_argument("--edge-length", type=float, default=0.03, help="rest edge length of the panel meshes [m] (default: 0.03)")
+    p.add_argument(
+        "--edge-length",
+        type=float,
+        default=0.03,
+        help="rest edge length of the panel meshes [m] (default: 0.03)",
+    )
     p.add_argument("--material", default="cotton", help="material name from the library (default: cotton)")
-    p.add_argument("--length", choices=["cloth", "axial"], default="cloth",
-                   help="move hems and cuffs by the cloth length to the top opening (default) or by the axial distance "
-                        "along the bone (the paper's Algorithm 2)")
-    p.add_argument("--area", choices=["free", "target"], default="free",
-                   help="target: scale each graded pattern to the target's surface area before it is draped (the fit's "
-                        "area: target); free: the contours alone (default)")
-    p.add_argument("--side-seams", choices=["none", "girth"], default="girth",
-                   help="girth (default, as the fit): also move the side seams between the hips and the armpits by "
-                        "the target's torso girth, the waisted dresses with their waist as a vertex; none: left where "
-                        "the base has them (the paper's Algorithm 2)")
-    p.add_argument("--band-gap", choices=["none", "target"], default="target",
-                   help="target (default, as the fit): a skirt's waistband graded to the target's top loop less "
-                        "what the target's contact gap adds where it presses on the body, its bottom and the waist "
-                        "seam below with it (trousers and shorts as with none); none: to the loop as measured, its "
-                        "top alone")
-    p.add_argument("--flat", action="store_true", help="no simulation: use the flat-placed panels as drapes (quick look)")
+    p.add_argument(
+        "--length",
+        choices=["cloth", "axial"],
+        default="cloth",
+        help="move hems and cuffs by the cloth length to the top opening (default) or by the axial distance "
+        "along the bone (the paper's Algorithm 2)",
+    )
+    p.add_argument(
+        "--area",
+        choices=["free", "target"],
+        default="free",
+        help="target: scale each graded pattern to the target's surface area before it is draped (the fit's "
+        "area: target); free: the contours alone (default)",
+    )
+    p.add_argument(
+        "--side-seams",
+        choices=["none", "girth"],
+        default="girth",
+        help="girth (default, as the fit): also move the side seams between the hips and the armpits by "
+        "the target's torso girth, the waisted dresses with their waist as a vertex; none: left where "
+        "the base has them (the paper's Algorithm 2)",
+    )
+    p.add_argument(
+        "--band-gap",
+        choices=["none", "target"],
+        default="target",
+        help="target (default, as the fit): a skirt's waistband graded to the target's top loop less "
+        "what the target's contact gap adds where it presses on the body, its bottom and the waist "
+        "seam below with it (trousers and shorts as with none); none: to the loop as measured, its "
+        "top alone",
+    )
+    p.add_argument(
+        "--flat", action="store_true", help="no simulation: use the flat-placed panels as drapes (quick look)"
+    )
     p.add_argument("--overwrite", action="store_true", help="replace --out if it exists")
     p.set_defaults(func=run)
 
@@ -74,14 +108,31 @@ def run(args: argparse.Namespace) -> int:
     with atomic_dir(args.out, overwrite=args.overwrite) as tmp:
         kw = {"drape_fn": flat_drape} if args.flat else {}
         res = grade(
-            pattern, case.body, case.target_verts, case.target_faces,
-            settings=GRADE_SETTINGS.replace(edge_length=args.edge_length), material=args.material,
-            length=args.length, area=float(triangle_areas(case.target_verts, case.target_faces).sum())
-            if args.area == "target" else None, side_seams=args.side_seams, band_gap=args.band_gap, log=print, **kw,
+            pattern,
+            case.body,
+            case.target_verts,
+            case.target_faces,
+            settings=GRADE_SETTINGS.replace(edge_length=args.edge_length),
+            material=args.material,
+            length=args.length,
+            area=float(triangle_areas(case.target_verts, case.target_faces).sum())
+            if args.area == "target"
+            else None,
+            side_seams=args.side_seams,
+            band_gap=args.band_gap,
+            log=print,
+            **kw,
         )
         save_pattern(res.pattern, tmp / "pattern.json")
         m = res.mesh
-        write_obj(tmp / "garment.obj", res.x_draped, m.faces, uv=m.uv, faces_uv=m.faces_uv, header="unsew grade: X_LG")
+        write_obj(
+            tmp / "garment.obj",
+            res.x_draped,
+            m.faces,
+            uv=m.uv,
+            faces_uv=m.faces_uv,
+            header="unsew grade: X_LG",
+        )
         write_obj(tmp / "garment_init.obj", res.x_init, res.mesh_init.faces, header="unsew grade: X_init")
         doc = {
             "format_version": 1,
@@ -106,4 +157,3 @@ def run(args: argparse.Namespace) -> int:
     note = "" if res.fraction == 1.0 else f" (edit scaled back to {res.fraction:.0%})"
     print(f"wrote {args.out}: pattern.json, garment.obj, garment_init.obj, contours.json{note}")
     return 0
-

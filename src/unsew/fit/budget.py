@@ -17,8 +17,8 @@ What gives way, in the order a fit reaches it:
   ran) is skipped when it would not fit.
 
 The base choice, grading and the re-dress check on the fit's mesh always run: without them
-there is no result, or no judgement of phase two's. Times to come are estimated from ones measured in this fit: a drape
-from scratch (the base's, in phase one) and phase two's iterations.
+there is no result, or no judgement of phase two's. Times to come are estimated from ones measured in this
+fit: a drape from scratch (the base's, in phase one) and phase two's iterations.
 """
 
 from __future__ import annotations
@@ -39,8 +39,14 @@ class TimeBudget:
     when the command began, so that loading the case and building its body count; default: when
     the budget was made); ``cuts`` lists, in words, what was left out to stay within it."""
 
-    def __init__(self, limit_s: float, *, log: Callable[[str], None] = print,
-                 clock: Callable[[], float] = time.perf_counter, started: float | None = None):
+    def __init__(
+        self,
+        limit_s: float,
+        *,
+        log: Callable[[str], None] = print,
+        clock: Callable[[], float] = time.perf_counter,
+        started: float | None = None,
+    ):
         self.limit_s = float(limit_s)
         self._clock, self._log = clock, log
         self.t0 = clock() if started is None else float(started)

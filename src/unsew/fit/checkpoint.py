@@ -30,7 +30,11 @@ def load_checkpoint(path: Path) -> tuple:
     try:
         data = torch.load(path, map_location="cpu", weights_only=False)
     except Exception as exc:
-        raise InputError(f"checkpoint {path} cannot be read ({type(exc).__name__}); delete it to start afresh") from None
+        raise InputError(
+            f"checkpoint {path} cannot be read ({type(exc).__name__}); delete it to start afresh"
+        ) from None
     if not isinstance(data, dict) or data.get("version") != CHECKPOINT_VERSION:
-        raise InputError(f"checkpoint {path} was written by another version of unsew; delete it to start afresh")
+        raise InputError(
+            f"checkpoint {path} was written by another version of unsew; delete it to start afresh"
+        )
     return data["choice"], data["phase_two"]

@@ -40,8 +40,20 @@ from unsew.pattern.curves import panel_outline
 from unsew.pattern.validate import validate_pattern
 from unsew.sim.checks import check_dressed
 
-__all__ = ["RedressCheck", "MeshSpread", "redress_check", "redress_on_three", "graded_afresh", "mesh_spread",
-           "spread_lengths", "mm_list", "unmoved", "kept_on_meshes", "REDRESS_MARGIN_MM", "UNMOVED_TOL"]
+__all__ = [
+    "RedressCheck",
+    "MeshSpread",
+    "redress_check",
+    "redress_on_three",
+    "graded_afresh",
+    "mesh_spread",
+    "spread_lengths",
+    "mm_list",
+    "unmoved",
+    "kept_on_meshes",
+    "REDRESS_MARGIN_MM",
+    "UNMOVED_TOL",
+]
 
 #: Phase two's pattern is kept only if, dressed from scratch, it lies at least this much closer
 #: to the target than the graded pattern's drape [mm]. An unmoved pattern re-dresses to its
@@ -106,8 +118,19 @@ class MeshSpread:
         return asdict(self)
 
 
-def redress_check(pattern, uv, material, start: Start, body, target: Target, sdf, cfg: FitConfig, *,
-                  progress: Progress, log=print) -> RedressCheck:
+def redress_check(
+    pattern,
+    uv,
+    material,
+    start: Start,
+    body,
+    target: Target,
+    sdf,
+    cfg: FitConfig,
+    *,
+    progress: Progress,
+    log=print,
+) -> RedressCheck:
     """Dress ``pattern`` (rest positions ``uv`` (Nu, 2) [m] on ``start.mesh``'s topology) in
     ``material`` from scratch and compare it with the graded drape ``start.x``. A pattern that
     cannot be meshed afresh (phase two moved the rest mesh's vertices, which can squeeze a panel
@@ -117,23 +140,40 @@ def redress_check(pattern, uv, material, start: Start, body, target: Target, sdf
     be loaded back."""
     cf_graded = target.distance_mm(start.x, start.mesh.faces)
     try:
-        validate_pattern(pattern.copy())  # an outline crossing itself, which a mesh can survive, is refused too
+        # an outline crossing itself, which a mesh can survive, is refused too
+        validate_pattern(pattern.copy())
         mesh_pattern(pattern, edge_length=cfg.drape.edge_length)
     except PatternError as exc:
-        log(f"re-dress check: phase two's pattern cannot be meshed afresh or read back ({exc}): "
-            "the graded pattern is returned")
+        log(
+            f"re-dress check: phase two's pattern cannot be meshed afresh or read back ({exc}): "
+            "the graded pattern is returned"
+        )
         return RedressCheck(None, cf_graded, False, refused=str(exc))
     with progress.phase("re-dress the fit") as bar:
-        x, failed = _judged(dress(pattern, body, sdf=sdf, mesh=moved_mesh(start.mesh, pattern, uv), material=material,
-                                  settings=cfg.drape, progress=bar), body)
+        x, failed = _judged(
+            dress(
+                pattern,
+                body,
+                sdf=sdf,
+                mesh=moved_mesh(start.mesh, pattern, uv),
+                material=material,
+                settings=cfg.drape,
+                progress=bar,
+            ),
+            body,
+        )
     if failed:
-        log(f"re-dress check: the fitted pattern dressed from scratch failed ({failed}): the graded pattern is "
-            "returned")
+        log(
+            f"re-dress check: the fitted pattern dressed from scratch failed ({failed}): the graded pattern "
+            "is returned"
+        )
         return RedressCheck(None, cf_graded, False, failed=failed)
     cf_re = target.distance_mm(x, start.mesh.faces)
     kept = bool(cf_re < cf_graded - REDRESS_MARGIN_MM)
-    log(f"re-dress check: the fitted pattern dressed from scratch lies {cf_re:.2f} mm from the target, "
-        f"the graded one {cf_graded:.2f} mm: " + ("fit kept" if kept else "the graded pattern is returned"))
+    log(
+        f"re-dress check: the fitted pattern dressed from scratch lies {cf_re:.2f} mm from the target, "
+        f"the graded one {cf_graded:.2f} mm: " + ("fit kept" if kept else "the graded pattern is returned")
+    )
     return RedressCheck(cf_re, cf_graded, kept, x_fit=x)
 
 
@@ -152,14 +192,32 @@ def kept_on_meshes(fit_mm: list, graded: list) -> tuple[bool, float | None, floa
     graded_mean = sum(b for _, b in pairs) / len(pairs) if pairs else None
     n_fit, n_graded = sum(a is None for a in fit_mm), sum(b is None for b in graded)
     if n_fit < n_graded:
-        return True, fit_mean, graded_mean, (f" (the graded pattern's drapes failed on {n_graded} of {len(graded)} "
-                                             f"meshes, phase two's on {n_fit})")
+        return (
+            True,
+            fit_mean,
+            graded_mean,
+            (
+                f" (the graded pattern's drapes failed on {n_graded} of {len(graded)} "
+                f"meshes, phase two's on {n_fit})"
+            ),
+        )
     kept = fit_mean is not None and graded_mean is not None and fit_mean < graded_mean - REDRESS_MARGIN_MM
     return kept, fit_mean, graded_mean, ""
 
 
-def redress_on_three(first: RedressCheck, pattern, material, start: Start, body, target: Target, sdf,
-                     cfg: FitConfig, *, progress: Progress, log=print) -> tuple[RedressCheck, MeshSpread]:
+def redress_on_three(
+    first: RedressCheck,
+    pattern,
+    material,
+    start: Start,
+    body,
+    target: Target,
+    sdf,
+    cfg: FitConfig,
+    *,
+    progress: Progress,
+    log=print,
+) -> tuple[RedressCheck, MeshSpread]:
     """The re-dress check judged on three meshes. ``first`` is :func:`redress_check`'s verdict on
     the fit's mesh (phase two's ``pattern`` in ``material`` dressed from scratch; not refused).
     The graded pattern is dressed from scratch in its material on the fit's mesh (``start.x`` was
@@ -171,23 +229,43 @@ def redress_on_three(first: RedressCheck, pattern, material, start: Start, body,
     from these drapes (no further drape is needed)."""
     lengths = spread_lengths(cfg)
     x_graded, g0 = graded_afresh(start, body, target, sdf, cfg, progress=progress)
-    graded = [g0] + [_dressed_mm(start.graded, start.material, body, target, sdf, cfg, h, progress,
-                                 "the graded pattern") for h in lengths]
+    graded = [g0] + [
+        _dressed_mm(start.graded, start.material, body, target, sdf, cfg, h, progress, "the graded pattern")
+        for h in lengths
+    ]
     if unmoved(pattern, material, start):  # the same pattern: its drapes are the graded ones
         log("re-dress check: phase two moved neither the pattern nor the material")
         fit_mm = [first.fit_redressed_mm] + graded[1:]
     else:
-        fit_mm = [first.fit_redressed_mm] + [_dressed_mm(pattern, material, body, target, sdf, cfg, h, progress,
-                                                         "phase two's pattern") for h in lengths]
+        fit_mm = [first.fit_redressed_mm] + [
+            _dressed_mm(pattern, material, body, target, sdf, cfg, h, progress, "phase two's pattern")
+            for h in lengths
+        ]
     kept, fit_mean, graded_mean, why = kept_on_meshes(fit_mm, graded)
-    log(f"re-dress check on three meshes: the fitted pattern dressed from scratch lies {mm_list(fit_mm)} mm from the "
-        f"target, the graded one {mm_list(graded)} mm: " + ("fit kept" if kept else "the graded pattern is returned")
-        + why)
-    check = RedressCheck(first.fit_redressed_mm, first.graded_mm, kept, meshes=3,
-                         edge_lengths_m=[cfg.drape.edge_length, *lengths], fit_mm=fit_mm, graded_fresh_mm=graded,
-                         fit_mean_mm=fit_mean, graded_mean_mm=graded_mean, x_fit=first.x_fit, x_graded=x_graded)
-    spread = MeshSpread(lengths, fit_mm[1:] if kept else graded[1:],
-                        fit_mm[0] if kept else (first.graded_mm if g0 is None else g0))
+    log(
+        f"re-dress check on three meshes: the fitted pattern dressed from scratch lies {mm_list(fit_mm)} mm "
+        f"from the target, the graded one {mm_list(graded)} mm: "
+        + ("fit kept" if kept else "the graded pattern is returned")
+        + why
+    )
+    check = RedressCheck(
+        first.fit_redressed_mm,
+        first.graded_mm,
+        kept,
+        meshes=3,
+        edge_lengths_m=[cfg.drape.edge_length, *lengths],
+        fit_mm=fit_mm,
+        graded_fresh_mm=graded,
+        fit_mean_mm=fit_mean,
+        graded_mean_mm=graded_mean,
+        x_fit=first.x_fit,
+        x_graded=x_graded,
+    )
+    spread = MeshSpread(
+        lengths,
+        fit_mm[1:] if kept else graded[1:],
+        fit_mm[0] if kept else (first.graded_mm if g0 is None else g0),
+    )
     return check, spread
 
 
@@ -205,19 +283,32 @@ def unmoved(pattern, material, start: Start) -> bool:
         oa, ob = panel_outline(a[n]), panel_outline(b[n])
         if oa.shape != ob.shape or np.abs(oa - ob).max(initial=0.0) > UNMOVED_TOL:
             return False
-    return all(math.isclose(u, v, rel_tol=UNMOVED_TOL, abs_tol=1e-12)
-               for u, v in zip(astuple(material), astuple(start.material)))
+    return all(
+        math.isclose(u, v, rel_tol=UNMOVED_TOL, abs_tol=1e-12)
+        for u, v in zip(astuple(material), astuple(start.material))
+    )
 
 
-def graded_afresh(start: Start, body, target: Target, sdf, cfg: FitConfig, *,
-                  progress: Progress) -> tuple[np.ndarray | None, float | None]:
+def graded_afresh(
+    start: Start, body, target: Target, sdf, cfg: FitConfig, *, progress: Progress
+) -> tuple[np.ndarray | None, float | None]:
     """The graded pattern in its material dressed from scratch on the fit's mesh (``start.x`` was
     let settle from another material's drape): the drape (Nx, 3) [m] and its distance to the
     target [mm], or (None, None) when the drape fails (raises, or fails its check)."""
     with progress.phase("dress the graded pattern afresh") as bar:
         try:
-            x, failed = _judged(dress(start.graded, body, sdf=sdf, mesh=start.mesh, material=start.material,
-                                      settings=cfg.drape, progress=bar), body)
+            x, failed = _judged(
+                dress(
+                    start.graded,
+                    body,
+                    sdf=sdf,
+                    mesh=start.mesh,
+                    material=start.material,
+                    settings=cfg.drape,
+                    progress=bar,
+                ),
+                body,
+            )
         except SimulationError:
             return None, None
     return (None, None) if failed else (x, target.distance_mm(x, start.mesh.faces))
@@ -242,30 +333,49 @@ def spread_lengths(cfg: FitConfig) -> list[float]:
     return [h0 * (1 - s), h0 * (1 + s)]
 
 
-def _dressed_mm(pattern, material, body, target: Target, sdf, cfg: FitConfig, h: float, progress: Progress,
-                what: str) -> float | None:
+def _dressed_mm(
+    pattern, material, body, target: Target, sdf, cfg: FitConfig, h: float, progress: Progress, what: str
+) -> float | None:
     """``pattern`` in ``material`` meshed at edge length ``h`` [m] and dressed from scratch (the
     fit's settings): its distance to the target [mm], or None when the drape fails
     (SimulationError, its check, or PatternError: the pattern cannot be meshed at that length)."""
     with progress.phase(f"dress {what} on a {100 * h:.2f} cm mesh") as bar:
         try:
-            d = dress(pattern, body, sdf=sdf, material=material, settings=cfg.drape.replace(edge_length=h),
-                      progress=bar)
+            d = dress(
+                pattern,
+                body,
+                sdf=sdf,
+                material=material,
+                settings=cfg.drape.replace(edge_length=h),
+                progress=bar,
+            )
         except (SimulationError, PatternError):
             return None
     x, failed = _judged(d, body)
     return None if failed else target.distance_mm(x, d.mesh.faces)
 
 
-def mesh_spread(pattern, material, body, target: Target, sdf, cfg: FitConfig, result_mm: float, *,
-                progress: Progress, log=print) -> MeshSpread:
+def mesh_spread(
+    pattern,
+    material,
+    body,
+    target: Target,
+    sdf,
+    cfg: FitConfig,
+    result_mm: float,
+    *,
+    progress: Progress,
+    log=print,
+) -> MeshSpread:
     """``pattern`` in ``material`` dressed from scratch (the fit's settings) on the meshes of
     :func:`spread_lengths`. A drape that fails is None: the figure is a diagnostic, not the
     result."""
     lengths = spread_lengths(cfg)
     out = [_dressed_mm(pattern, material, body, target, sdf, cfg, h, progress, "the result") for h in lengths]
     spread = MeshSpread(lengths, out, result_mm)
-    log(f"mesh spread: the returned pattern dressed on meshes {100 * cfg.checks.mesh_spread:.0f} % finer / coarser "
-        f"lies {mm_list(out)} mm from the target "
-        f"(the result {result_mm:.2f} mm)")
+    log(
+        f"mesh spread: the returned pattern dressed on meshes {100 * cfg.checks.mesh_spread:.0f} % finer / "
+        f"coarser lies {mm_list(out)} mm from the target "
+        f"(the result {result_mm:.2f} mm)"
+    )
     return spread

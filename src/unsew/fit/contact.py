@@ -18,8 +18,15 @@ import torch
 
 from unsew.geometry.distance import point_mesh_distance
 
-__all__ = ["CONTACT_MODES", "CONTACT_STIFF", "GAP_PERCENTILE", "GAP_RANGE_M", "signed_body_distance", "target_gap",
-           "contact_for_target"]
+__all__ = [
+    "CONTACT_MODES",
+    "CONTACT_STIFF",
+    "GAP_PERCENTILE",
+    "GAP_RANGE_M",
+    "signed_body_distance",
+    "target_gap",
+    "contact_for_target",
+]
 
 #: What the fit does with the body contact (``contact``).
 CONTACT_MODES = ("default", "target")

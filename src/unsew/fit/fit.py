@@ -25,7 +25,14 @@ from unsew.dress import resolve_material
 from unsew.errors import InputError
 from unsew.fit.budget import TimeBudget
 from unsew.fit.checkpoint import load_checkpoint, save_checkpoint
-from unsew.fit.checks import MeshSpread, RedressCheck, graded_afresh, mesh_spread, redress_check, redress_on_three
+from unsew.fit.checks import (
+    MeshSpread,
+    RedressCheck,
+    graded_afresh,
+    mesh_spread,
+    redress_check,
+    redress_on_three,
+)
 from unsew.fit.config import FitConfig
 from unsew.fit.contact import contact_for_target
 from unsew.fit.material import AUTO_START_MATERIAL, MaterialChoice, choose_start
@@ -102,9 +109,17 @@ class FitResult:
     contact: dict | None = None
 
 
-def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: Path | None = None,
-        resume: bool = False, log: Callable[[str], None] = print,
-        callback: Callable[[Iteration], None] | None = None, started: float | None = None) -> FitResult:
+def fit(
+    case,
+    cfg: FitConfig,
+    *,
+    progress: bool | Progress = True,
+    checkpoint: Path | None = None,
+    resume: bool = False,
+    log: Callable[[str], None] = print,
+    callback: Callable[[Iteration], None] | None = None,
+    started: float | None = None,
+) -> FitResult:
     """Run both phases on a loaded case (from unsew.body.case.load_case) and return the FitResult.
 
     progress: True/False or a :class:`Progress` (its stream decides bars or plain lines).
@@ -127,8 +142,10 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
     cfg, contact = contact_for_target(cfg, target.verts, case.body, sdf)
     if cfg.contact == "target":
-        log(f"contact: the target's cloth rests {contact['gap_mm']:.1f} mm from the body; every drape rests it "
-            f"{contact['threshold_mm']:.1f} mm off (contact stiffness {contact['stiffness']:.0e} N/m^4)")
+        log(
+            f"contact: the target's cloth rests {contact['gap_mm']:.1f} mm from the body; every drape rests "
+            f"it {contact['threshold_mm']:.1f} mm off (contact stiffness {contact['stiffness']:.0e} N/m^4)"
+        )
     clock.lap("body_sdf_s")
     saved = load_checkpoint(checkpoint) if resume and checkpoint and Path(checkpoint).is_file() else None
     if saved is not None:  # phase one and the material choice are in the checkpoint
@@ -137,21 +154,29 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
     else:
         base = choose_base(case, target, sdf, cfg, material0, progress=bar, log=log)
         clock.lap("base_choice_s", keep=bool(base.table))
-        first = start_chosen(base, case.body, target, sdf, cfg, material0, progress=bar, log=log, budget=budget)
+        first = start_chosen(
+            base, case.body, target, sdf, cfg, material0, progress=bar, log=log, budget=budget
+        )
         garment = first.base_name
         clock.lap("grading_s")
-        choice = choose_start(first, case.body, target, sdf, cfg, progress=bar, log=log, garment=garment,
-                              budget=budget)
+        choice = choose_start(
+            first, case.body, target, sdf, cfg, progress=bar, log=log, garment=garment, budget=budget
+        )
         clock.lap("material_choice_s", keep=cfg.material.start == "auto")
     two = PhaseTwo(choice, target, sdf, cfg)
     if two.rest["steps"]:
-        log(f"phase two starts from the graded drape let settle {two.rest['steps']} more steps: it was still "
+        log(
+            f"phase two starts from the graded drape let settle {two.rest['steps']} more steps: it was still "
             f"moving (99th percentile speed {two.rest['speed_p99_m_s']:.4f} m/s, then "
-            f"{two.rest['speed_p99_end_m_s']:.4f} m/s)")
+            f"{two.rest['speed_p99_end_m_s']:.4f} m/s)"
+        )
     if saved is not None:
         two.load_state_dict(state)
-    shown = bar.iterations(cfg.optimizer.iterations, two.iteration,
-                           lambda info: target.distance_mm(info.x.cpu().numpy(), info.faces, n_samples=BAR_SAMPLES))
+    shown = bar.iterations(
+        cfg.optimizer.iterations,
+        two.iteration,
+        lambda info: target.distance_mm(info.x.cpu().numpy(), info.faces, n_samples=BAR_SAMPLES),
+    )
 
     ticks = [time.perf_counter()]  # when each iteration ended (the first: when phase two began)
 
@@ -185,14 +210,25 @@ def fit(case, cfg: FitConfig, *, progress: bool | Progress = True, checkpoint: P
     return result
 
 
-def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo, target: Target, sdf, clock,
-                    bar: Progress, log, budget: TimeBudget) -> FitResult:
+def _checked_result(
+    case,
+    cfg: FitConfig,
+    choice: MaterialChoice,
+    two: PhaseTwo,
+    target: Target,
+    sdf,
+    clock,
+    bar: Progress,
+    log,
+    budget: TimeBudget,
+) -> FitResult:
     """Phase two's best iterate, put through the re-dress check (which may return the graded
     pattern instead) and the mesh spread (skipped when its two drapes would overrun ``budget``),
     as a FitResult."""
     s = choice.start
     pattern, uv, x, material = two.best_fit()
-    redress, drape_s, spread = None, s.dress_s, None  # drape_s: a drape from scratch [s], the base's in phase one
+    # drape_s: a drape from scratch [s], the base's in phase one
+    redress, drape_s, spread = None, s.dress_s, None
     x_graded, x_warm = np.asarray(s.x), None
     drapes = {"result": "phase two" if two.best.iteration >= 0 else "graded start", "graded": "graded start"}
     if cfg.checks.redress and two.best.iteration >= 0:
@@ -201,18 +237,25 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
         # the re-dress is a drape of the result from scratch, timed now: a closer estimate of the
         # mesh spread's two drapes than the base's
         drape_s = max(drape_s, time.perf_counter() - t0)
-        if cfg.checks.redress_meshes == 3 and cfg.checks.mesh_spread > 0 and redress.fit_redressed_mm is not None:
+        if (
+            cfg.checks.redress_meshes == 3
+            and cfg.checks.mesh_spread > 0
+            and redress.fit_redressed_mm is not None
+        ):
             if budget.fits(5 * drape_s):  # the graded pattern on three meshes, phase two's on two more
-                redress, spread = redress_on_three(redress, pattern, material, s, case.body, target, sdf, cfg,
-                                                   progress=bar, log=log)
+                redress, spread = redress_on_three(
+                    redress, pattern, material, s, case.body, target, sdf, cfg, progress=bar, log=log
+                )
             else:
                 budget.cut("re-dress check judged on one mesh (three would overrun)")
         if not redress.phase_two_kept and redress.x_graded is None:  # judged on one mesh, refused or failed
             if budget.fits(drape_s):
                 redress.x_graded, _ = graded_afresh(s, case.body, target, sdf, cfg, progress=bar)
             else:
-                budget.cut("the graded pattern's drape is the one the material choice let settle (no time to dress "
-                           "it afresh)")
+                budget.cut(
+                    "the graded pattern's drape is the one the material choice let settle (no time to dress "
+                    "it afresh)"
+                )
         # the returned drape is the returned pattern dressed from scratch where the check dressed
         # it: a kept phase two's warm drape can lie nearer the target than its pattern dresses
         if redress.x_graded is not None:
@@ -227,20 +270,48 @@ def _checked_result(case, cfg: FitConfig, choice: MaterialChoice, two: PhaseTwo,
     if spread is None and cfg.checks.mesh_spread > 0 and not budget.fits(2 * drape_s):
         budget.cut("mesh spread skipped")
     elif spread is None and cfg.checks.mesh_spread > 0:
-        result_mm = redress.fit_redressed_mm if redress and redress.phase_two_kept else target.distance_mm(x, s.mesh.faces)
+        result_mm = (
+            redress.fit_redressed_mm
+            if redress and redress.phase_two_kept
+            else target.distance_mm(x, s.mesh.faces)
+        )
         spread = mesh_spread(pattern, material, case.body, target, sdf, cfg, result_mm, progress=bar, log=log)
         clock.lap("mesh_spread_s")
     return FitResult(
-        pattern=pattern, base_pattern=s.base, graded_pattern=s.graded, mesh=s.mesh, x=x, uv=uv, material=material,
-        history=two.history, grade_table=s.grade_table, timings=clock.total(), iterations=len(two.history["total"]),
-        converged=two.converged, x_graded=x_graded, x_base=s.x_base, x_warm=x_warm, drapes=drapes, params=two.params.to("cpu"),
-        base_mesh=s.mesh_base, start_material=s.material, material_choice=choice.table, base_name=s.base_name,
-        base_choice=list(s.base_choice) or None, best_iteration=two.best.iteration,
+        pattern=pattern,
+        base_pattern=s.base,
+        graded_pattern=s.graded,
+        mesh=s.mesh,
+        x=x,
+        uv=uv,
+        material=material,
+        history=two.history,
+        grade_table=s.grade_table,
+        timings=clock.total(),
+        iterations=len(two.history["total"]),
+        converged=two.converged,
+        x_graded=x_graded,
+        x_base=s.x_base,
+        x_warm=x_warm,
+        drapes=drapes,
+        params=two.params.to("cpu"),
+        base_mesh=s.mesh_base,
+        start_material=s.material,
+        material_choice=choice.table,
+        base_name=s.base_name,
+        base_choice=list(s.base_choice) or None,
+        best_iteration=two.best.iteration,
         material_fitted=two.best.material_on and (redress is None or redress.phase_two_kept),
         material_start_iteration=cfg.material.start_iteration if cfg.fits_material else None,
-        gamma_last=two.gamma_last(), redress=redress, mesh_spread=spread,
-        drape_check=check_drape(x, faces=s.mesh.faces, uv=uv, faces_uv=s.mesh.faces_uv, body=case.body, sdf=sdf),
-        memory_mb=clock.peaks, time_limit=budget.as_dict(), rest=two.rest,
+        gamma_last=two.gamma_last(),
+        redress=redress,
+        mesh_spread=spread,
+        drape_check=check_drape(
+            x, faces=s.mesh.faces, uv=uv, faces_uv=s.mesh.faces_uv, body=case.body, sdf=sdf
+        ),
+        memory_mb=clock.peaks,
+        time_limit=budget.as_dict(),
+        rest=two.rest,
     )
 
 

@@ -29,8 +29,14 @@ from unsew.sim.checks import check_dressed
 from unsew.sim.material import get_material
 from unsew.sim.model import SimModel
 
-__all__ = ["MaterialChoice", "choose_start", "choose_material", "refine_material", "AUTO_START_MATERIAL",
-           "REFINE_GROUPS"]
+__all__ = [
+    "MaterialChoice",
+    "choose_start",
+    "choose_material",
+    "refine_material",
+    "AUTO_START_MATERIAL",
+    "REFINE_GROUPS",
+]
 
 #: the material ``material.start: auto`` drapes the base and grades in, before it chooses
 AUTO_START_MATERIAL = "cotton"
@@ -74,14 +80,26 @@ def choose_material(names, dress_in, objective, *, progress: Progress | None = N
         drapes[name] = x
         rows.append({"material": name, "chamfer_mm": loss})
     if not rows:
-        raise InputError("no library material gave a finite drape of the graded pattern; pass --material NAME")
+        raise InputError(
+            "no library material gave a finite drape of the graded pattern; pass --material NAME"
+        )
     rows.sort(key=lambda r: r["chamfer_mm"])
     best = rows[0]["material"]
     return get_material(best), drapes[best], rows
 
 
-def refine_material(material, label: str, x0, cf0: float, dress_in, objective, *, rounds: int = 2,
-                    progress: Progress | None = None, keep_going: Callable[[], bool] | None = None):
+def refine_material(
+    material,
+    label: str,
+    x0,
+    cf0: float,
+    dress_in,
+    objective,
+    *,
+    rounds: int = 2,
+    progress: Progress | None = None,
+    keep_going: Callable[[], bool] | None = None,
+):
     """Coordinate search on the chosen fabric's stiffness, by draping: scale the stretch entries
     (H00, H01, H11, H22 together, so the Poisson ratio stays) and then the bending stiffness by
     1/s and s, s = 2, then sqrt(2), ... (``rounds`` steps), and keep a scaling when the pattern,
@@ -125,19 +143,38 @@ def _dresser(s: Start, body, sdf, cfg: FitConfig):
 
     def dress_in(material, bar=None, x_from=None):
         if model is not None:
-            x = settle(s.mesh, s.x if x_from is None else x_from, sdf, material, settings=cfg.drape,
-                       steps=cfg.material.warm_steps, model=model, progress=bar)
+            x = settle(
+                s.mesh,
+                s.x if x_from is None else x_from,
+                sdf,
+                material,
+                settings=cfg.drape,
+                steps=cfg.material.warm_steps,
+                model=model,
+                progress=bar,
+            )
         else:
-            x = dress(s.graded, body, sdf=sdf, mesh=s.mesh, material=material, settings=cfg.drape,
-                      progress=bar).x.numpy()
+            x = dress(
+                s.graded, body, sdf=sdf, mesh=s.mesh, material=material, settings=cfg.drape, progress=bar
+            ).x.numpy()
         release_free_memory()  # the drape's scratch memory (unsew._memory)
         return x
 
     return dress_in
 
 
-def choose_start(first: Start, body, target: Target, sdf, cfg: FitConfig, *, progress: Progress,
-                 log=print, garment: str = "", budget: TimeBudget | None = None) -> MaterialChoice:
+def choose_start(
+    first: Start,
+    body,
+    target: Target,
+    sdf,
+    cfg: FitConfig,
+    *,
+    progress: Progress,
+    log=print,
+    garment: str = "",
+    budget: TimeBudget | None = None,
+) -> MaterialChoice:
     """The material stage: ``first`` unchanged when ``cfg.material.start`` names a material, else
     the auto choice (module docstring) starting from ``first`` (graded in cotton). With a
     ``budget``, the grading in other fabrics and the stiffness search stop once half its limit is
@@ -152,8 +189,12 @@ def choose_start(first: Start, body, target: Target, sdf, cfg: FitConfig, *, pro
     def objective(x):
         return target.distance_mm(x, cur.mesh.faces)
 
-    mat, x, table = choose_material(material_candidates(cfg.material.candidates), _dresser(cur, body, sdf, cfg),
-                                    objective, progress=progress)
+    mat, x, table = choose_material(
+        material_candidates(cfg.material.candidates),
+        _dresser(cur, body, sdf, cfg),
+        objective,
+        progress=progress,
+    )
     for row in table:
         row["pattern"] = f"graded in {AUTO_START_MATERIAL}"
     cur = cur.replace(x=x, material=mat)
@@ -167,8 +208,18 @@ def choose_start(first: Start, body, target: Target, sdf, cfg: FitConfig, *, pro
             budget.cut(f"material choice: not graded again in {name} (half the limit spent)")
             continue
         try:
-            s = start(first.base, body, target, sdf, cfg, get_material(name), progress=progress,
-                      label=f"grade in {name}", garment=garment, base_from=(first.mesh_base, first.x_base))
+            s = start(
+                first.base,
+                body,
+                target,
+                sdf,
+                cfg,
+                get_material(name),
+                progress=progress,
+                label=f"grade in {name}",
+                garment=garment,
+                base_from=(first.mesh_base, first.x_base),
+            )
         except InputError as exc:
             log(f"material {name}: grading in it failed ({exc}); left out")
             continue
@@ -178,7 +229,9 @@ def choose_start(first: Start, body, target: Target, sdf, cfg: FitConfig, *, pro
         table.append({"material": name, "chamfer_mm": cf, "pattern": f"graded in {name}"})
         if cf < best_cf:
             best_cf = cf
-            cur = cur.replace(graded=s.graded, mesh=s.mesh, x=s.x, grade_table=s.grade_table, material=s.material)
+            cur = cur.replace(
+                graded=s.graded, mesh=s.mesh, x=s.x, grade_table=s.grade_table, material=s.material
+            )
     table.sort(key=lambda r: r["chamfer_mm"])
     r0 = table[0]
     if cfg.material.refine > 0:
@@ -189,10 +242,21 @@ def choose_start(first: Start, body, target: Target, sdf, cfg: FitConfig, *, pro
             budget.cut("material choice: stiffness search stopped (half the limit spent)")
             return False
 
-        mat, x, rows = refine_material(cur.material, r0["material"], cur.x, best_cf, _dresser(cur, body, sdf, cfg),
-                                       objective, rounds=cfg.material.refine, progress=progress, keep_going=keep_going)
+        mat, x, rows = refine_material(
+            cur.material,
+            r0["material"],
+            cur.x,
+            best_cf,
+            _dresser(cur, body, sdf, cfg),
+            objective,
+            rounds=cfg.material.refine,
+            progress=progress,
+            keep_going=keep_going,
+        )
         cur = cur.replace(x=x, material=mat)
-        table = sorted(table + [{**row, "pattern": r0["pattern"]} for row in rows], key=lambda r: r["chamfer_mm"])
+        table = sorted(
+            table + [{**row, "pattern": r0["pattern"]} for row in rows], key=lambda r: r["chamfer_mm"]
+        )
         r0 = table[0]
     log(f"material: {r0['material']} (pattern {r0['pattern']}; {r0['chamfer_mm']:.2f} mm)")
     if cfg.material.check and cur is not first:
@@ -200,37 +264,69 @@ def choose_start(first: Start, body, target: Target, sdf, cfg: FitConfig, *, pro
     return MaterialChoice(cur, table, time.perf_counter() - t0)
 
 
-def _checked(first: Start, chosen: Start, table: list, body, target: Target, sdf, cfg: FitConfig, *,
-             progress: Progress, log=print) -> tuple[Start, list]:
+def _checked(
+    first: Start,
+    chosen: Start,
+    table: list,
+    body,
+    target: Target,
+    sdf,
+    cfg: FitConfig,
+    *,
+    progress: Progress,
+    log=print,
+) -> tuple[Start, list]:
     """The choice checked by a drape from scratch, as a result is judged (``material.check``).
 
     The candidates were let settle from another fabric's drape, and a settled drape can lie
-    closer than the same pattern and fabric dressed from scratch (docs/decisions/002). So the chosen pattern is dressed from scratch in its fabric, and when
-    that drape lies farther from the target than ``first``'s (graded in cotton, a drape from
-    scratch) by more than both :data:`CHECK_MARGIN_MM` and :data:`CHECK_MARGIN_REL` of it (what
-    two drapes from scratch of one pattern on two meshes differ by), phase two starts from ``first``;
-    otherwise the choice stands as it was made (its settled drape). A drape from scratch that fails
-    its check (:func:`unsew.sim.checks.check_dressed`: exploded, fallen, ...) gives way to
-    ``first`` whatever its distance. Returns (the start, the table with the two dressed rows first,
+    closer than the same pattern and fabric dressed from scratch (docs/decisions/002). So the chosen pattern
+    is dressed from scratch in its fabric, and when that drape lies farther from the target than ``first``'s
+    (graded in cotton, a drape from scratch) by more than both :data:`CHECK_MARGIN_MM` and
+    :data:`CHECK_MARGIN_REL` of it (what two drapes from scratch of one pattern on two meshes differ by),
+    phase two starts from ``first``; otherwise the choice stands as it was made (its settled drape). A drape
+    from scratch that fails its check (:func:`unsew.sim.checks.check_dressed`: exploded, fallen, ...) gives
+    way to ``first`` whatever its distance. Returns (the start, the table with the two dressed rows first,
     the kept one on top).
     """
     with progress.phase("dress the chosen material") as bar:
-        d = dress(chosen.graded, body, sdf=sdf, mesh=chosen.mesh, material=chosen.material, settings=cfg.drape,
-                  progress=bar)
+        d = dress(
+            chosen.graded,
+            body,
+            sdf=sdf,
+            mesh=chosen.mesh,
+            material=chosen.material,
+            settings=cfg.drape,
+            progress=bar,
+        )
     failed = check_dressed(d, body=body).reason  # exploded, fallen, ...: no start, whatever its distance
     x = d.x.numpy()
     release_free_memory()
     cf = target.distance_mm(x, chosen.mesh.faces)
     cf_first = target.distance_mm(first.x, first.mesh.faces)
     label, pattern = table[0]["material"], table[0]["pattern"]
-    rows = [{"material": label, "chamfer_mm": cf,
-             "pattern": f"{pattern}, dressed from scratch" + (f" (failed: {failed})" if failed else "")},
-            {"material": AUTO_START_MATERIAL, "chamfer_mm": cf_first, "pattern": f"graded in {AUTO_START_MATERIAL}, dressed from scratch"}]
-    keep = not failed and math.isfinite(cf) and cf <= cf_first + max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * cf_first)
+    rows = [
+        {
+            "material": label,
+            "chamfer_mm": cf,
+            "pattern": f"{pattern}, dressed from scratch" + (f" (failed: {failed})" if failed else ""),
+        },
+        {
+            "material": AUTO_START_MATERIAL,
+            "chamfer_mm": cf_first,
+            "pattern": f"graded in {AUTO_START_MATERIAL}, dressed from scratch",
+        },
+    ]
+    keep = (
+        not failed
+        and math.isfinite(cf)
+        and cf <= cf_first + max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * cf_first)
+    )
     if not keep:
         rows.reverse()
     said = f"failed ({failed})" if failed else f"lies {cf:.2f} mm from the target"
-    log(f"material check: {label} dressed from scratch {said}, the pattern graded in "
+    log(
+        f"material check: {label} dressed from scratch {said}, the pattern graded in "
         f"{AUTO_START_MATERIAL} {cf_first:.2f} mm: phase two starts from "
-        + (f"{label}" if keep else f"{AUTO_START_MATERIAL}"))
+        + (f"{label}" if keep else f"{AUTO_START_MATERIAL}")
+    )
     return (chosen if keep else first), rows + table

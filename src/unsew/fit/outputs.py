@@ -36,8 +36,17 @@ from unsew.metrics.surface import surface_metrics
 from unsew.pattern.seams import seam_changes_mm
 from unsew.sim.material import material_to_dict
 
-__all__ = ["write_result", "result_metrics", "fit_verdict", "FAR_MM", "pattern_errors", "file_sha256", "pattern_with_extras",
-           "BASE_PATTERN_FILE", "GRADED_PATTERN_FILE"]
+__all__ = [
+    "write_result",
+    "result_metrics",
+    "fit_verdict",
+    "FAR_MM",
+    "pattern_errors",
+    "file_sha256",
+    "pattern_with_extras",
+    "BASE_PATTERN_FILE",
+    "GRADED_PATTERN_FILE",
+]
 
 #: The starting points of the fit, saved beside pattern.json so their pattern errors can be
 #: recomputed (``unsew eval``): unsew's base pattern before grading, and the graded pattern.
@@ -71,7 +80,10 @@ def pattern_with_extras(result) -> object:
     extras["material"] = material_to_dict(result.material)
     contact = getattr(result, "contact", None) or {}
     if contact.get("mode", "default") != "default":  # ``unsew drape`` of the pattern rests it as the fit did
-        extras["contact"] = {"threshold_m": contact["threshold_mm"] * 1e-3, "stiffness_n_m4": contact["stiffness"]}
+        extras["contact"] = {
+            "threshold_m": contact["threshold_mm"] * 1e-3,
+            "stiffness_n_m4": contact["stiffness"],
+        }
     p.unsew = {k: v for k, v in extras.items() if v is not None}
     return p
 
@@ -87,24 +99,36 @@ def fit_verdict(surface: dict) -> dict:
     cf = float(surface.get("chamfer_mm", float("nan")))
     if np.isfinite(cf) and cf <= FAR_MM:
         return {"ok": True, "miss": None}
-    return {"ok": False, "miss": f"the fitted garment lies {cf:.1f} mm from its target on average "
-                                 f"(over {FAR_MM:.0f} mm): its pattern is not the target's"}
+    return {
+        "ok": False,
+        "miss": f"the fitted garment lies {cf:.1f} mm from its target on average "
+        f"(over {FAR_MM:.0f} mm): its pattern is not the target's",
+    }
 
 
 def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     """3D metrics of the final drape against the target and, if the case has a true pattern,
     the pattern metrics; plus the final loss terms and timings."""
     faces = np.asarray(result.mesh.faces)
-    m = {"surface": surface_metrics(result.x, faces, case.target_verts, case.target_faces, n_samples=n_samples)}
+    m = {
+        "surface": surface_metrics(result.x, faces, case.target_verts, case.target_faces, n_samples=n_samples)
+    }
     if result.x_base is not None:
-        m["surface_base"] = surface_metrics(result.x_base, _faces_of(result, "base"), case.target_verts,
-                                            case.target_faces, n_samples=n_samples)
+        m["surface_base"] = surface_metrics(
+            result.x_base,
+            _faces_of(result, "base"),
+            case.target_verts,
+            case.target_faces,
+            n_samples=n_samples,
+        )
     if result.x_graded is not None:
-        m["surface_graded"] = surface_metrics(result.x_graded, faces, case.target_verts, case.target_faces,
-                                              n_samples=n_samples)
+        m["surface_graded"] = surface_metrics(
+            result.x_graded, faces, case.target_verts, case.target_faces, n_samples=n_samples
+        )
     if getattr(result, "x_warm", None) is not None:  # a kept phase two's own, warm-started drape
-        m["surface_warm"] = surface_metrics(result.x_warm, faces, case.target_verts, case.target_faces,
-                                            n_samples=n_samples)
+        m["surface_warm"] = surface_metrics(
+            result.x_warm, faces, case.target_verts, case.target_faces, n_samples=n_samples
+        )
     if getattr(result, "drapes", None):
         m["drapes"] = result.drapes  # where the result's and the graded drapes come from: fresh or settled
     if case.pattern_gt is not None:
@@ -112,12 +136,22 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     m.update(fit_verdict(m["surface"]))
     # total panel areas [m^2] against the target's surface area (a drape barely stretches, so a
     # pattern that fits has about the target's area; config "area", unsew.grading.area)
-    m["area_m2"] = {"target": float(triangle_areas(case.target_verts, case.target_faces).sum()),
-                    **{k: pattern_area(p) for k, p in (("base", result.base_pattern), ("graded", result.graded_pattern),
-                                                        ("result", result.pattern)) if p is not None}}
+    m["area_m2"] = {
+        "target": float(triangle_areas(case.target_verts, case.target_faces).sum()),
+        **{
+            k: pattern_area(p)
+            for k, p in (
+                ("base", result.base_pattern),
+                ("graded", result.graded_pattern),
+                ("result", result.pattern),
+            )
+            if p is not None
+        },
+    }
     # how far apart stitched edges are in length (ease the base has left out): a pattern that sews
-    m["seams"] = seam_changes_mm({"base": result.base_pattern, "graded": result.graded_pattern,
-                                  "result": result.pattern})
+    m["seams"] = seam_changes_mm(
+        {"base": result.base_pattern, "graded": result.graded_pattern, "result": result.pattern}
+    )
     h = result.history
     m["loss_final"] = {k: (v[-1] if v else None) for k, v in h.items()}
     m["loss_history"] = {k: [float(f"{x:.6g}") for x in v] for k, v in h.items()}  # per iteration
@@ -161,8 +195,11 @@ def pattern_errors(result, pattern_gt) -> dict:
     listed under each key's ``unmatched``; a pattern that cannot be compared at all gets
     ``{"error": reason}`` under its key without sinking the others."""
     out = {}
-    for key, pat in (("pattern", result.pattern), ("pattern_base", result.base_pattern),
-                     ("pattern_graded", result.graded_pattern)):
+    for key, pat in (
+        ("pattern", result.pattern),
+        ("pattern_base", result.base_pattern),
+        ("pattern_graded", result.graded_pattern),
+    ):
         if pat is None:
             continue
         try:
@@ -193,8 +230,14 @@ def write_result(work: Path, result, case, cfg, *, report: bool = True, metrics:
     write_dxf(pattern, work / "pattern.dxf")
     write_pdf(pattern, work / "pattern.pdf")
     mesh = result.mesh
-    write_obj(work / "garment.obj", result.x, mesh.faces, uv=result.uv, faces_uv=mesh.faces_uv,
-              header="unsew draped garment; vt = pattern coordinates [m]")
+    write_obj(
+        work / "garment.obj",
+        result.x,
+        mesh.faces,
+        uv=result.uv,
+        faces_uv=mesh.faces_uv,
+        header="unsew draped garment; vt = pattern coordinates [m]",
+    )
     write_rest_obj(mesh, work / "garment_rest.obj")
     _write_json(work / "material.json", {"units": "SI", **material_to_dict(result.material)})
     if metrics is None:

@@ -37,8 +37,9 @@ class Progress:
     first) and one at the end.
     """
 
-    def __init__(self, enabled: bool = True, *, stream: TextIO | None = None, every: int = 10,
-                 seconds: float = 30.0):
+    def __init__(
+        self, enabled: bool = True, *, stream: TextIO | None = None, every: int = 10, seconds: float = 30.0
+    ):
         self.enabled = enabled
         self.stream = stream if stream is not None else sys.stderr
         self.tty = is_terminal(self.stream)
@@ -70,8 +71,14 @@ class Progress:
 
                 b = bars.get(phase)
                 if b is None:
-                    b = bars[phase] = tqdm(total=n, desc=f"{desc}: {phase}", unit="step", leave=False,
-                                           dynamic_ncols=True, file=self.stream)
+                    b = bars[phase] = tqdm(
+                        total=n,
+                        desc=f"{desc}: {phase}",
+                        unit="step",
+                        leave=False,
+                        dynamic_ncols=True,
+                        file=self.stream,
+                    )
                 b.update(k - b.n)
             elif phase not in bars:
                 bars[phase] = None
@@ -84,7 +91,9 @@ class Progress:
                 if b is not None:
                     b.close()
 
-    def iterations(self, total: int, initial: int, chamfer_mm: Callable[[object], float]) -> "IterationProgress":
+    def iterations(
+        self, total: int, initial: int, chamfer_mm: Callable[[object], float]
+    ) -> "IterationProgress":
         """A callback for :meth:`unsew.fit.optimize.PhaseTwo.run`; ``chamfer_mm(info)`` gives the
         Chamfer distance [mm] of an iteration's drape (computed only when it is shown)."""
         return IterationProgress(self, total, initial, chamfer_mm)
@@ -100,8 +109,15 @@ class IterationProgress:
         if progress.enabled and progress.tty:
             from tqdm import tqdm
 
-            self.bar = tqdm(total=total, initial=initial, desc="fit", unit="it", leave=False, dynamic_ncols=True,
-                            file=progress.stream)
+            self.bar = tqdm(
+                total=total,
+                initial=initial,
+                desc="fit",
+                unit="it",
+                leave=False,
+                dynamic_ncols=True,
+                file=progress.stream,
+            )
         elif progress.enabled:
             progress.line(f"fit: phase two, iterations {initial + 1}-{total}")
 
@@ -111,13 +127,16 @@ class IterationProgress:
         done = info.iteration + 1
         if self.bar is not None:
             self.bar.update(1)
-            self.bar.set_postfix_str(f"Chamfer {self.chamfer_mm(info):.2f} mm")  # redraws: an iteration takes seconds
+            # redraws: an iteration takes seconds
+            self.bar.set_postfix_str(f"Chamfer {self.chamfer_mm(info):.2f} mm")
             return
         now = time.perf_counter()
         if done % self.p.every == 0 or now - self.last >= self.p.seconds or done == self.total or info.last:
             self.last = now
-            self.p.line(f"fit: iteration {done}/{self.total}, Chamfer {self.chamfer_mm(info):.2f} mm, "
-                        f"{now - self.t0:.0f} s" + (" (converged)" if info.last and done < self.total else ""))
+            self.p.line(
+                f"fit: iteration {done}/{self.total}, Chamfer {self.chamfer_mm(info):.2f} mm, "
+                f"{now - self.t0:.0f} s" + (" (converged)" if info.last and done < self.total else "")
+            )
 
     def close(self) -> None:
         if self.bar is not None:

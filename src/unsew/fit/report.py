@@ -15,13 +15,22 @@ from unsew.report.fit_report import write_fit_report as _write
 from unsew.report.measure import seam_table
 from unsew.sim.material import material_to_dict
 
-__all__ = ["write_fit_report", "truth_over", "patterns_coincide", "loss_phases", "material_for_reading", "choices_made"]
+__all__ = [
+    "write_fit_report",
+    "truth_over",
+    "patterns_coincide",
+    "loss_phases",
+    "material_for_reading",
+    "choices_made",
+]
 
 
 def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | None = None) -> Path:
     """Write report.html (figures embedded) into ``work``; figures go to ``work/figures``."""
     faces = np.asarray(result.mesh.faces)
-    _, dist, _ = closest_points(np.asarray(result.x), np.asarray(case.target_verts), np.asarray(case.target_faces))
+    _, dist, _ = closest_points(
+        np.asarray(result.x), np.asarray(case.target_verts), np.asarray(case.target_faces)
+    )
     patterns = [("base", result.base_pattern)]
     graded = result.graded_pattern
     same = graded is not None and patterns_coincide(graded, result.pattern)
@@ -49,16 +58,23 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     for key, what in (("pattern_base", "base"), ("pattern_graded", "graded"), ("pattern", "final")):
         un = (metrics.get(key) or {}).get("unmatched") or {}
         if un.get("estimated") or un.get("true"):
-            notes.append(f"{what} pattern: panels without a counterpart, estimated {un.get('estimated') or []}, "
-                         f"true {un.get('true') or []} (left out of the per-panel means; the area-weighted "
-                         "area error counts each at its full area)")
+            notes.append(
+                f"{what} pattern: panels without a counterpart, estimated {un.get('estimated') or []}, "
+                f"true {un.get('true') or []} (left out of the per-panel means; the area-weighted "
+                "area error counts each at its full area)"
+            )
     if graded is not None and not same and set(graded.panels) == set(result.pattern.panels):
-        moved = [np.abs(np.asarray(result.pattern.panels[n].vertices) - np.asarray(p.vertices)).max(initial=0.0)
-                 for n, p in graded.panels.items() if np.shape(p.vertices) == np.shape(result.pattern.panels[n].vertices)]
+        moved = [
+            np.abs(np.asarray(result.pattern.panels[n].vertices) - np.asarray(p.vertices)).max(initial=0.0)
+            for n, p in graded.panels.items()
+            if np.shape(p.vertices) == np.shape(result.pattern.panels[n].vertices)
+        ]
         if moved:
-            notes.append(f"final pattern: its corners lie at most {1e3 * max(moved):.1f} mm from the graded "
-                         "pattern's (in the pattern figure the graded outline shows only where they differ by more "
-                         "than the line width)")
+            notes.append(
+                f"final pattern: its corners lie at most {1e3 * max(moved):.1f} mm from the graded "
+                "pattern's (in the pattern figure the graded outline shows only where they differ by more "
+                "than the line width)"
+            )
     for row in result.grade_table or []:
         for w in (row.get("warnings") or []) if isinstance(row, dict) else []:
             notes.append(f"grading: {w}")
@@ -71,10 +87,12 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     ms = metrics.get("mesh_spread")
     if ms:
         cf = " / ".join("failed" if v is None else f"{v:.2f} mm" for v in ms["chamfer_mm"])
-        notes.append(f"mesh spread: the returned pattern dressed from scratch on {100 * ms['edge_lengths_m'][0]:.2f} "
-                     f"and {100 * ms['edge_lengths_m'][1]:.2f} cm meshes lies {cf} from the target, the result "
-                     f"{ms['result_mm']:.2f} mm; differences smaller than these are within how far the triangulation "
-                     "alone moves the folds")
+        notes.append(
+            f"mesh spread: the returned pattern dressed from scratch on {100 * ms['edge_lengths_m'][0]:.2f} "
+            f"and {100 * ms['edge_lengths_m'][1]:.2f} cm meshes lies {cf} from the target, the result "
+            f"{ms['result_mm']:.2f} mm; differences smaller than these are within how far the triangulation "
+            "alone moves the folds"
+        )
     tl = metrics.get("time_limit") or {}
     if tl.get("cuts"):
         notes.append(f"time limit {tl['limit_s']:.0f} s (--time-limit): " + "; ".join(tl["cuts"]))
@@ -88,6 +106,7 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
         summary["base"] = tables.pop("base")
     bases = tables.pop("base_choice", None)
     if bases:
+
         def said(r):
             if r["chamfer_mm"] is None:
                 return "failed"
@@ -98,26 +117,43 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
                 s += f", graded {float(r['graded_mm']):.2f}"
             return s
 
-        tables["base choice (each base dressed on a coarse mesh, Chamfer mm)"] = {r["base"]: said(r) for r in bases}
+        tables["base choice (each base dressed on a coarse mesh, Chamfer mm)"] = {
+            r["base"]: said(r) for r in bases
+        }
     choice = tables.pop("material_choice", None)
     if choice:
         summary["start_material"] = choice[0]["material"]
         tables["material choice (pattern dressed in each from scratch, Chamfer mm)"] = {
-            f"{r['material']} ({r.get('pattern', '?')})": round(float(r["chamfer_mm"]), 2) for r in choice}
+            f"{r['material']} ({r.get('pattern', '?')})": round(float(r["chamfer_mm"]), 2) for r in choice
+        }
     if isinstance(tables.get("contact"), dict) and "stiffness" in tables["contact"]:
         c = dict(tables["contact"])  # body repulsion kc of unsew.sim.drape.DrapeSettings
         c["stiffness [N/m⁴]"] = c.pop("stiffness")
         tables["contact"] = c
     if result.grade_table:
         tables["grading"] = {str(i): _flat(r) for i, r in enumerate(result.grade_table)}
-    tables = {"seams of the returned pattern (sew-line lengths; codes as printed on the pieces)":
-              seam_table(result.pattern), **tables}
+    tables = {
+        "seams of the returned pattern (sew-line lengths; codes as printed on the pieces)": seam_table(
+            result.pattern
+        ),
+        **tables,
+    }
     return _write(
-        work, title=f"unsew fit: {Path(case.path).name}", summary=summary, metrics=tables,
-        target=(np.asarray(case.target_verts), np.asarray(case.target_faces)), result=(np.asarray(result.x), faces),
-        body=(np.asarray(case.body.verts), np.asarray(case.body.faces)), distance_mm=1e3 * np.asarray(dist),
-        history=hist or None, phases=phases if hist else None, patterns=patterns, config=config, notes=notes or None,
-        material=material_for_reading(material_to_dict(result.material)), choices=choices_made(result, metrics),
+        work,
+        title=f"unsew fit: {Path(case.path).name}",
+        summary=summary,
+        metrics=tables,
+        target=(np.asarray(case.target_verts), np.asarray(case.target_faces)),
+        result=(np.asarray(result.x), faces),
+        body=(np.asarray(case.body.verts), np.asarray(case.body.faces)),
+        distance_mm=1e3 * np.asarray(dist),
+        history=hist or None,
+        phases=phases if hist else None,
+        patterns=patterns,
+        config=config,
+        notes=notes or None,
+        material=material_for_reading(material_to_dict(result.material)),
+        choices=choices_made(result, metrics),
     )
 
 
@@ -136,8 +172,15 @@ def patterns_coincide(a, b, *, tol: float = 1e-9) -> bool:
             return False
         for ea, eb in zip(pa.edges, pb.edges):
             ca, cb = ea.curvature, eb.curvature
-            if (ca is None) != (cb is None) or (ca is not None and (ca.kind != cb.kind or not np.allclose(
-                    np.asarray(ca.params, float), np.asarray(cb.params, float), atol=tol, rtol=0))):
+            if (ca is None) != (cb is None) or (
+                ca is not None
+                and (
+                    ca.kind != cb.kind
+                    or not np.allclose(
+                        np.asarray(ca.params, float), np.asarray(cb.params, float), atol=tol, rtol=0
+                    )
+                )
+            ):
                 return False
     return True
 
@@ -178,7 +221,7 @@ def material_for_reading(m: dict) -> dict:
         word = MATERIAL_WORDS.get(k)
         sym = k.split("_")[0]
         if word and sym.startswith("H"):
-            word = f"{word[: word.rindex(' [')]} ({sym}) {word[word.rindex(' ['):].strip()}"
+            word = f"{word[: word.rindex(' [')]} ({sym}) {word[word.rindex(' [') :].strip()}"
         out[word or k] = v
     return out
 
@@ -192,23 +235,34 @@ def choices_made(result, metrics: dict) -> list[str]:
     if bases:
         ok = [r for r in bases if r.get("chamfer_mm") is not None]
         rest = ", ".join(f"{r['base']} {float(r['chamfer_mm']):.2f} mm" for r in ok[1:4])
-        out.append(f"Base pattern: {base}, whose coarse drape lay {float(ok[0]['chamfer_mm']):.2f} mm (Chamfer) "
-                   f"from the target" + (f", closer than {rest}" if rest else "") + "." if ok else
-                   f"Base pattern: {base} (no candidate could be draped).")
+        out.append(
+            f"Base pattern: {base}, whose coarse drape lay {float(ok[0]['chamfer_mm']):.2f} mm (Chamfer) "
+            f"from the target" + (f", closer than {rest}" if rest else "") + "."
+            if ok
+            else f"Base pattern: {base} (no candidate could be draped)."
+        )
     else:
         out.append(f"Base pattern: {base}, as given (--base or the configuration); no other base was tried.")
     choice = metrics.get("material_choice") or []
     mat_name = choice[0]["material"] if choice else None
     if choice:
         rest = ", ".join(f"{r['material']} {float(r['chamfer_mm']):.2f} mm" for r in choice[1:4])
-        out.append(f"Fabric to start from: {mat_name}, whose drape lay {float(choice[0]['chamfer_mm']):.2f} mm from "
-                   "the target" + (f", closer than {rest}" if rest else "") + ".")
+        out.append(
+            f"Fabric to start from: {mat_name}, whose drape lay {float(choice[0]['chamfer_mm']):.2f} mm from "
+            "the target" + (f", closer than {rest}" if rest else "") + "."
+        )
     else:
         start = getattr(result, "start_material", None)
-        out.append("Fabric to start from: as configured (material.start)" + (f", {start.name}" if getattr(start, "name", "")
-                                                                             else "") + "; no other fabric was tried.")
-    out.append("Fabric returned: fitted in phase two." if result.material_fitted else
-               "Fabric returned: the starting fabric (phase two's material was not kept or not fitted).")
+        out.append(
+            "Fabric to start from: as configured (material.start)"
+            + (f", {start.name}" if getattr(start, "name", "") else "")
+            + "; no other fabric was tried."
+        )
+    out.append(
+        "Fabric returned: fitted in phase two."
+        if result.material_fitted
+        else "Fabric returned: the starting fabric (phase two's material was not kept or not fitted)."
+    )
     rd = metrics.get("redress")
     if rd:
         out.append("Phase two: " + _redress_note(rd).split(": ", 1)[1] + ".")
@@ -231,8 +285,11 @@ def truth_over(pattern_gt, final, matched: dict | None):
 
     from unsew.metrics.panels import panel_centroid2d
 
-    pairs = {ng: row["estimated_panel"] for ng, row in ((matched or {}).get("panels") or {}).items()
-             if isinstance(row, dict) and row.get("estimated_panel") in final.panels and ng in pattern_gt.panels}
+    pairs = {
+        ng: row["estimated_panel"]
+        for ng, row in ((matched or {}).get("panels") or {}).items()
+        if isinstance(row, dict) and row.get("estimated_panel") in final.panels and ng in pattern_gt.panels
+    }
     if not pairs:
         return pattern_gt
     taken = set(pairs.values())
@@ -240,7 +297,9 @@ def truth_over(pattern_gt, final, matched: dict | None):
     panels = {}
     for ng, panel in pattern_gt.panels.items():
         shift = panel_centroid2d(final.panels[pairs[ng]]) - panel_centroid2d(panel) if ng in pairs else 0.0
-        panels[names[ng]] = dataclasses.replace(panel, name=names[ng], vertices=np.asarray(panel.vertices) + shift)
+        panels[names[ng]] = dataclasses.replace(
+            panel, name=names[ng], vertices=np.asarray(panel.vertices) + shift
+        )
     order = [names[n] for n in (pattern_gt.panel_order or pattern_gt.panels)]
     return dataclasses.replace(pattern_gt, panels=panels, panel_order=order, stitches=[])
 
@@ -256,7 +315,9 @@ def _flat(row) -> dict:
         if isinstance(v, dict):
             for k2, v2 in _flat(v).items():
                 out[f"{k}.{k2}"] = v2
-        elif isinstance(v, (list, tuple)) and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v):
+        elif isinstance(v, (list, tuple)) and all(
+            isinstance(x, (int, float)) and not isinstance(x, bool) for x in v
+        ):
             out[k] = [round(float(x), 4) for x in v]
         elif isinstance(v, (list, tuple)):
             out[k] = "; ".join(str(x) for x in v)
@@ -267,16 +328,20 @@ def _flat(row) -> dict:
     return out
 
 
-_DRAPE_WORDS = {"fresh": "its pattern dressed from scratch on the fit's mesh",
-                "graded start": "the graded drape the material choice let settle",
-                "phase two": "phase two's own drape, warm-started along the optimizer's path"}
+_DRAPE_WORDS = {
+    "fresh": "its pattern dressed from scratch on the fit's mesh",
+    "graded start": "the graded drape the material choice let settle",
+    "phase two": "phase two's own drape, warm-started along the optimizer's path",
+}
 
 
 def _drapes_note(drapes: dict, warm_mm: float | None) -> str:
     """The report's line on where the result's and the graded drapes come from (metrics.json's
     ``drapes``; ``warm_mm``: a kept phase two's own drape's Chamfer [mm], surface_warm)."""
-    line = (f"drapes: the result's is {_DRAPE_WORDS.get(drapes.get('result'), drapes.get('result'))}, the graded "
-            f"pattern's is {_DRAPE_WORDS.get(drapes.get('graded'), drapes.get('graded'))}")
+    line = (
+        f"drapes: the result's is {_DRAPE_WORDS.get(drapes.get('result'), drapes.get('result'))}, the graded "
+        f"pattern's is {_DRAPE_WORDS.get(drapes.get('graded'), drapes.get('graded'))}"
+    )
     if warm_mm is not None:
         line += f"; phase two's own warm-started drape lay {warm_mm:.2f} mm from the target"
     return line
@@ -286,15 +351,25 @@ def _redress_note(rd: dict) -> str:
     """The report's line on the re-dress check (metrics.json's ``redress``)."""
     graded = "the graded pattern and its drape are returned (the final and graded patterns coincide)"
     if rd.get("refused"):
-        return f"re-dress check: phase two's pattern cannot be meshed afresh or read back ({rd['refused']}); {graded}"
+        return (
+            "re-dress check: phase two's pattern cannot be meshed afresh or read back "
+            f"({rd['refused']}); {graded}"
+        )
     if rd.get("failed"):
         return f"re-dress check: phase two's pattern dressed from scratch failed ({rd['failed']}); {graded}"
     verdict = "phase two's pattern is returned" if rd["phase_two_kept"] else graded
     if rd.get("meshes", 1) == 3:
-        means = (f"means {rd['fit_mean_mm']:.2f} against {rd['graded_mean_mm']:.2f} mm"
-                 if rd.get("fit_mean_mm") is not None and rd.get("graded_mean_mm") is not None else "no mean")
-        return (f"re-dress check on three meshes ({' / '.join(f'{100 * h:.2f}' for h in rd['edge_lengths_m'])} cm "
-                f"edges): the fitted pattern dressed from scratch lies {mm_list(rd['fit_mm'])} mm from the target, the "
-                f"graded one {mm_list(rd['graded_fresh_mm'])} mm ({means}); {verdict}")
-    return (f"re-dress check: the fitted pattern dressed from scratch lies {rd['fit_redressed_mm']:.2f} mm from the "
-            f"target, the graded one {rd['graded_mm']:.2f} mm; {verdict}")
+        means = (
+            f"means {rd['fit_mean_mm']:.2f} against {rd['graded_mean_mm']:.2f} mm"
+            if rd.get("fit_mean_mm") is not None and rd.get("graded_mean_mm") is not None
+            else "no mean"
+        )
+        return (
+            f"re-dress check on three meshes ({' / '.join(f'{100 * h:.2f}' for h in rd['edge_lengths_m'])} "
+            f"cm edges): the fitted pattern dressed from scratch lies {mm_list(rd['fit_mm'])} mm from the "
+            f"target, the graded one {mm_list(rd['graded_fresh_mm'])} mm ({means}); {verdict}"
+        )
+    return (
+        f"re-dress check: the fitted pattern dressed from scratch lies {rd['fit_redressed_mm']:.2f} mm from "
+        f"the target, the graded one {rd['graded_mm']:.2f} mm; {verdict}"
+    )

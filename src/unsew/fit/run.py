@@ -22,8 +22,18 @@ def partial_dir(out: Path) -> Path:
     return out.with_name(out.name + ".partial")
 
 
-def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = False, progress=True,
-            log=None, callback=None, started: float | None = None):
+def run_fit(
+    case,
+    cfg,
+    out: Path,
+    *,
+    resume: bool = False,
+    overwrite: bool = False,
+    progress=True,
+    log=None,
+    callback=None,
+    started: float | None = None,
+):
     """Fit ``case`` with ``cfg`` and write the result folder ``out``. Returns (FitResult, metrics).
 
     progress: True/False or a :class:`~unsew.fit.progress.Progress`; callback: called with each
@@ -41,11 +51,20 @@ def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = Fal
         shutil.rmtree(work)
     if resume and not (work / "checkpoint.pt").is_file():
         log(f"no checkpoint in {work}; starting afresh")
-    case = with_garment_read(case, cfg, log=log)  # before the work folder: a type we cannot fit leaves nothing
+    # before the work folder: a type we cannot fit leaves nothing
+    case = with_garment_read(case, cfg, log=log)
     work.mkdir(parents=True, exist_ok=True)
     try:
-        result = fit(case, cfg, progress=progress, checkpoint=work / "checkpoint.pt", resume=resume, log=log,
-                     callback=callback, started=started)
+        result = fit(
+            case,
+            cfg,
+            progress=progress,
+            checkpoint=work / "checkpoint.pt",
+            resume=resume,
+            log=log,
+            callback=callback,
+            started=started,
+        )
     except BaseException:
         # Keep the work folder only if it holds a checkpoint to resume from.
         if not (work / "checkpoint.pt").is_file():
@@ -63,8 +82,10 @@ def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = Fal
         shutil.rmtree(out)
     os.replace(work, out)
     s = metrics["surface"]
-    log(f"fit done in {result.timings['total_s']:.0f} s, {result.iterations} iterations: "
-        f"Chamfer {s['chamfer_mm']:.2f} mm, normal error {s['normal_error_deg']:.1f} deg -> {out}")
+    log(
+        f"fit done in {result.timings['total_s']:.0f} s, {result.iterations} iterations: "
+        f"Chamfer {s['chamfer_mm']:.2f} mm, normal error {s['normal_error_deg']:.1f} deg -> {out}"
+    )
     if not metrics.get("ok", True):
-        log(f"warning: {metrics['miss']} (metrics.json: \"ok\": false)")
+        log(f'warning: {metrics["miss"]} (metrics.json: "ok": false)')
     return result, metrics

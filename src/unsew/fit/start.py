@@ -40,8 +40,21 @@ from unsew.pattern.base import BASES, bases_for, garment_of, make_base_pattern
 from unsew.pattern.base._frame import body_frame
 from unsew.sim.checks import check_dressed
 
-__all__ = ["Start", "start", "base_pattern_for", "BaseChoice", "choose_base", "arm_openings", "ARM_PARTS",
-           "SLEEVE_REACH", "SLEEVE_NEAR", "TORSO_CHOICE", "TORSO_BAND_BELOW_ARMPIT", "BASE_TIE", "start_chosen"]
+__all__ = [
+    "Start",
+    "start",
+    "base_pattern_for",
+    "BaseChoice",
+    "choose_base",
+    "arm_openings",
+    "ARM_PARTS",
+    "SLEEVE_REACH",
+    "SLEEVE_NEAR",
+    "TORSO_CHOICE",
+    "TORSO_BAND_BELOW_ARMPIT",
+    "BASE_TIE",
+    "start_chosen",
+]
 
 #: garment types a base pattern may stand in for (same panel topology)
 _COMPATIBLE = {
@@ -91,8 +104,10 @@ def with_garment_read(case, cfg: FitConfig, *, log=print):
     reading = read_garment_type(case.target_verts, case.target_faces, case.body.skeleton)
     note = f"garment type read off the target: {reading.garment}: {reading.reason}"
     if reading.garment not in BASES:
-        raise InputError(f"the target reads as a {reading.garment} ({reading.reason}); the library has no "
-                         f"{reading.garment} base: pass --base P.json")
+        raise InputError(
+            f"the target reads as a {reading.garment} ({reading.reason}); the library has no "
+            f"{reading.garment} base: pass --base P.json"
+        )
     log(note)
     return dataclasses.replace(case, garment=reading.garment, garment_note=note)
 
@@ -115,7 +130,9 @@ def base_pattern_for(case, cfg: FitConfig):
         return make_base_pattern(base, measure_body(case.body), waist_point=cfg.side_seams == "girth")
     p = Path(base)
     if p.suffix.lower() != ".json":
-        raise InputError(f"--base {base!r} is neither a base pattern ({', '.join(BASES)}) nor a .json pattern")
+        raise InputError(
+            f"--base {base!r} is neither a base pattern ({', '.join(BASES)}) nor a .json pattern"
+        )
     return load_pattern(p)
 
 
@@ -142,10 +159,16 @@ def arm_openings(verts, faces, skeleton, *, contours=None) -> tuple[int, int]:
     for side in ARM_PARTS:
         arm = {b.name: b for b in bones if b.part == side}
         root = next((b for b in arm.values() if b.parent not in arm), None)
-        counts.append(0 if root is None else sum(
-            1 for pc in placed
-            if any(b.part == side and h < SLEEVE_NEAR for b, _, h in pc.candidates)
-            and float((pc.centre - root.a) @ root.direction) >= SLEEVE_REACH))
+        counts.append(
+            0
+            if root is None
+            else sum(
+                1
+                for pc in placed
+                if any(b.part == side and h < SLEEVE_NEAR for b, _, h in pc.candidates)
+                and float((pc.centre - root.a) @ root.direction) >= SLEEVE_REACH
+            )
+        )
     return tuple(counts)
 
 
@@ -182,8 +205,9 @@ class BaseChoice:
     tie: tuple | None = None
 
 
-def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress: Progress,
-                log=print) -> BaseChoice:
+def choose_base(
+    case, target: Target, sdf, cfg: FitConfig, material, *, progress: Progress, log=print
+) -> BaseChoice:
     """The base pattern of the fit: the user's (cfg.base) or, when cfg.base is empty and the
     library has several bases of meta.json's garment type, the one whose drape lies closest to
     the target (over the torso for :data:`TORSO_CHOICE`). Each candidate, sized to the wearer, is
@@ -197,12 +221,17 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
     names = bases_for(garment)
     m = measure_body(case.body)
     necklines = None
-    if garment in ("tshirt", "dress"):  # the neckline's cut is read off the target, not drawn from the library
-        necklines, angles = read_necklines(target.verts, target.faces, case.body.skeleton, contours=target.contours)
+    # the neckline's cut is read off the target, not drawn from the library
+    if garment in ("tshirt", "dress"):
+        necklines, angles = read_necklines(
+            target.verts, target.faces, case.body.skeleton, contours=target.contours
+        )
         if angles:
-            log(f"neckline read off the target: front {necklines[0]}, back {necklines[1]} (the angle at its lowest "
-                f"point: front {angles.get('front_deg', 180):.0f} deg, back {angles.get('back_deg', 180):.0f} deg; "
-                f"a V under {V_ANGLE_DEG:.0f})")
+            log(
+                f"neckline read off the target: front {necklines[0]}, back {necklines[1]} (the angle at its "
+                f"lowest point: front {angles.get('front_deg', 180):.0f} deg, back "
+                f"{angles.get('back_deg', 180):.0f} deg; a V under {V_ANGLE_DEG:.0f})"
+            )
 
     def make(name):
         return make_base_pattern(name, m, waist_point=cfg.side_seams == "girth", necklines=necklines)
@@ -225,8 +254,11 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
                 raise ValueError(verdict.reason)
             cf = target.distance_mm(d.x.numpy(), d.mesh.faces)
             arms = arm_openings(d.x.numpy(), d.mesh.faces, case.body.skeleton) == want
-            torso = (target.band_distance_mm(d.x.numpy(), d.mesh.faces, case.body.skeleton, *band)
-                     if band else None)
+            torso = (
+                target.band_distance_mm(d.x.numpy(), d.mesh.faces, case.body.skeleton, *band)
+                if band
+                else None
+            )
         except (InputError, ValueError, RuntimeError) as exc:  # a candidate that cannot be dressed here
             rows.append({"base": name, "chamfer_mm": None, "error": str(exc).splitlines()[0]})
             continue
@@ -237,8 +269,13 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
         if math.isfinite(cf):
             patterns[name] = pat
     if not patterns:
-        why = "; ".join(f"{r['base']}: {r.get('error') or 'its distance to the target is not finite'}" for r in rows)
-        raise InputError(f"no base pattern of type {case.garment} could be dressed on this body ({why}); pass --base P.json")
+        why = "; ".join(
+            f"{r['base']}: {r.get('error') or 'its distance to the target is not finite'}" for r in rows
+        )
+        raise InputError(
+            f"no base pattern of type {case.garment} could be dressed on this body ({why}); pass --base "
+            "P.json"
+        )
     on_torso = bool(band) and all(r.get("torso_mm") is not None for r in rows if r["base"] in patterns)
     # the arms agreeing first, when any candidate's do; then the closest (over the torso when
     # every candidate and the target have cloth there: a skeleton without torso bones has none)
@@ -251,26 +288,47 @@ def choose_base(case, target: Target, sdf, cfg: FitConfig, material, *, progress
         if r["base"] not in patterns:
             return f"{r['base']} failed"
         torso = r.get("torso_mm")
-        return (f"{r['base']} {r['chamfer_mm']:.2f} mm" + (f" (torso {torso:.2f} mm)" if torso is not None else "")
-                + ("" if r["arms"] else " (arms differ)"))
+        return (
+            f"{r['base']} {r['chamfer_mm']:.2f} mm"
+            + (f" (torso {torso:.2f} mm)" if torso is not None else "")
+            + ("" if r["arms"] else " (arms differ)")
+        )
 
     how = ""
     if band:
-        how = (f"; chosen on the torso, {band[0]:.2f}-{band[1]:.2f} m up" if on_torso
-               else "; no cloth over the torso to compare, chosen on the whole garment")
+        how = (
+            f"; chosen on the torso, {band[0]:.2f}-{band[1]:.2f} m up"
+            if on_torso
+            else "; no cloth over the torso to compare, chosen on the whole garment"
+        )
     tie = None
     if len(rows) > 1 and rows[1]["base"] in patterns and (rows[1].get("arms") or not any_arms):
         d0, d1 = rows[0].get(key), rows[1].get(key)
         if d0 and d1 and d1 <= BASE_TIE * d0:
             tie = (rows[1]["base"], patterns[rows[1]["base"]])
             how += f"; {tie[0]} within {100 * (BASE_TIE - 1):.0f} %: both graded"
-    log("base: " + ", ".join(said(r) for r in rows) + f"; {best} chosen (target: {want[0]} + {want[1]} openings on the arms"
-        + how + ")")
+    log(
+        "base: "
+        + ", ".join(said(r) for r in rows)
+        + f"; {best} chosen (target: {want[0]} + {want[1]} openings on the arms"
+        + how
+        + ")"
+    )
     return BaseChoice(patterns[best], best, rows, time.perf_counter() - t0, tie)
 
 
-def start_chosen(choice: BaseChoice, body, target: Target, sdf, cfg: FitConfig, material, *, progress: Progress,
-                 log=print, budget=None) -> Start:
+def start_chosen(
+    choice: BaseChoice,
+    body,
+    target: Target,
+    sdf,
+    cfg: FitConfig,
+    material,
+    *,
+    progress: Progress,
+    log=print,
+    budget=None,
+) -> Start:
     """Phase one from the base choice: :func:`start` from ``choice.pattern`` and, when the choice
     was a tie (``choice.tie``) and ``budget`` (a :class:`unsew.fit.budget.TimeBudget`) has more
     than half its limit left, from the runner-up too. The runner-up's Start is kept when its graded
@@ -287,8 +345,18 @@ def start_chosen(choice: BaseChoice, body, target: Target, sdf, cfg: FitConfig, 
     starts = []
     for name, pattern in zip(names, patterns):
         try:
-            s = start(pattern, body, target, sdf, cfg, material, progress=progress, garment=name, log=log,
-                      label="drape base" if not starts else f"drape base {name}")
+            s = start(
+                pattern,
+                body,
+                target,
+                sdf,
+                cfg,
+                material,
+                progress=progress,
+                garment=name,
+                log=log,
+                label="drape base" if not starts else f"drape base {name}",
+            )
         except (InputError, ValueError, RuntimeError) as exc:  # the runner-up's failure is no fit's
             if not starts:
                 raise
@@ -305,8 +373,9 @@ def start_chosen(choice: BaseChoice, body, target: Target, sdf, cfg: FitConfig, 
         from unsew.fit.material import CHECK_MARGIN_MM, CHECK_MARGIN_REL  # here: material imports this module
 
         cf0, cf1 = starts[0][0], starts[1][0]
-        if math.isfinite(cf1) and (not math.isfinite(cf0)
-                                   or cf1 < cf0 - max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * cf0)):
+        if math.isfinite(cf1) and (
+            not math.isfinite(cf0) or cf1 < cf0 - max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * cf0)
+        ):
             best = starts[1]
         log("base tie: graded " + ", ".join(f"{n} {cf:.2f} mm" for cf, n, _ in starts) + f"; {best[1]} kept")
         table.sort(key=lambda r: r["base"] != best[1])
@@ -315,7 +384,9 @@ def start_chosen(choice: BaseChoice, body, target: Target, sdf, cfg: FitConfig, 
 
 def _check_contours_compatible(n_src: int, n_tgt: int, garment: str) -> None:
     if n_tgt == 0:
-        raise InputError("the target has no open contours (hem, cuff, neckline): it does not look like a garment")
+        raise InputError(
+            "the target has no open contours (hem, cuff, neckline): it does not look like a garment"
+        )
     if n_src and abs(n_src - n_tgt) > max(2, n_src // 2):
         raise InputError(
             f"the base pattern's garment has {n_src} openings but the target has {n_tgt}: "
@@ -323,9 +394,20 @@ def _check_contours_compatible(n_src: int, n_tgt: int, garment: str) -> None:
         )
 
 
-def start(base, body, target: Target, sdf, cfg: FitConfig, material, *, progress: Progress,
-          label: str = "drape base", garment: str = "", base_from: tuple | None = None,
-          log: Callable[[str], None] | None = None) -> Start:
+def start(
+    base,
+    body,
+    target: Target,
+    sdf,
+    cfg: FitConfig,
+    material,
+    *,
+    progress: Progress,
+    label: str = "drape base",
+    garment: str = "",
+    base_from: tuple | None = None,
+    log: Callable[[str], None] | None = None,
+) -> Start:
     """Dress ``base`` on ``body`` in ``material`` and, unless ``cfg.grading`` is off, grade it to
     ``target`` in the same material (:func:`unsew.grading.grade.grade`). Raises InputError when
     the base's openings do not match the target's (``garment`` names the base in the message).
@@ -337,8 +419,15 @@ def start(base, body, target: Target, sdf, cfg: FitConfig, material, *, progress
     with progress.phase(label) as bar:
         if base_from is not None and cfg.material.warm_steps > 0:
             mesh_b = base_from[0]
-            x_b = settle(mesh_b, base_from[1], sdf, material, settings=cfg.drape, steps=cfg.material.warm_steps,
-                         progress=bar)
+            x_b = settle(
+                mesh_b,
+                base_from[1],
+                sdf,
+                material,
+                settings=cfg.drape,
+                steps=cfg.material.warm_steps,
+                progress=bar,
+            )
         else:
             dressed = dress(base, body, sdf=sdf, material=material, settings=cfg.drape, progress=bar)
             mesh_b, x_b = dressed.mesh, dressed.x.numpy().copy()
@@ -350,7 +439,22 @@ def start(base, body, target: Target, sdf, cfg: FitConfig, material, *, progress
     def drape_fn(p, m, b):
         return dress(p, b, sdf=sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
 
-    g = grade(base, body, target.verts, target.faces, settings=cfg.drape, material=material, sdf=sdf,
-              mesh=mesh_b, x_init=x_b, drape_fn=drape_fn, area=target.area if cfg.area == "target" else None, log=log,
-              side_seams=cfg.side_seams, band_gap=cfg.band_gap)
-    return Start(base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, mesh_b, material, dress_s=dress_s)
+    g = grade(
+        base,
+        body,
+        target.verts,
+        target.faces,
+        settings=cfg.drape,
+        material=material,
+        sdf=sdf,
+        mesh=mesh_b,
+        x_init=x_b,
+        drape_fn=drape_fn,
+        area=target.area if cfg.area == "target" else None,
+        log=log,
+        side_seams=cfg.side_seams,
+        band_gap=cfg.band_gap,
+    )
+    return Start(
+        base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, mesh_b, material, dress_s=dress_s
+    )

@@ -7,7 +7,7 @@ can be judged against the truth. Used by the demo, the tests and the benchmarks.
 from __future__ import annotations
 
 import json
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -36,8 +36,8 @@ class Alteration:
     alters only that panel's edges of the group, which grading (one length and girth per
     contour) cannot express; "waist" -> (length, _): the waist corners of the side seams (where
     two side-seam edges meet, dresses) move outward by ``length`` (negative: a fitted waist),
-    a shape that no open contour carries, so grading cannot make it either. material: the true fabric (library name). A group the garment does
-    not have is ignored.
+    a shape that no open contour carries, so grading cannot make it either. material: the true fabric (library
+    name). A group the garment does not have is ignored.
     """
 
     changes: dict = field(default_factory=dict)
@@ -45,8 +45,10 @@ class Alteration:
 
     def as_dict(self) -> dict:
         mat = material_to_dict(self.material) if isinstance(self.material, Material) else self.material
-        return {"changes": {k: {"length_m": v[0], "girth_frac": v[1]} for k, v in self.changes.items()},
-                "material": mat}
+        return {
+            "changes": {k: {"length_m": v[0], "girth_frac": v[1]} for k, v in self.changes.items()},
+            "material": mat,
+        }
 
 
 def off_library(name: str, seed: int = 0):
@@ -63,9 +65,15 @@ def off_library(name: str, seed: int = 0):
     f_uu, f_vv, f_s, f_b = (float(f) for f in np.exp(rng.normal(0.0, 0.4, 4)))
     h00, h11 = m.h00 * f_uu, m.h11 * f_vv
     nu = m.h01 / math.sqrt(m.h00 * m.h11)
-    return Material(h00, nu * math.sqrt(h00 * h11), h11, m.h22 * f_s, m.bend * f_b,
-                    m.density * float(np.exp(rng.normal(0.0, 0.15))),
-                    max(0.05, m.friction + float(rng.uniform(-0.05, 0.05))))
+    return Material(
+        h00,
+        nu * math.sqrt(h00 * h11),
+        h11,
+        m.h22 * f_s,
+        m.bend * f_b,
+        m.density * float(np.exp(rng.normal(0.0, 0.15))),
+        max(0.05, m.friction + float(rng.uniform(-0.05, 0.05))),
+    )
 
 
 #: One alteration per garment type, used by the per-garment fit benchmark (bench_fit.py).
@@ -116,8 +124,16 @@ def _move_waist(pattern, length: float):
     return out
 
 
-def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alteration | None = None,
-                    body=None, body_meta="default", settings=None, progress=None) -> Path:
+def make_truth_case(
+    case_dir: Path,
+    *,
+    garment: str = "tshirt",
+    alteration: Alteration | None = None,
+    body=None,
+    body_meta="default",
+    settings=None,
+    progress=None,
+) -> Path:
     """Drape the true pattern and write the case folder. ``body``: a Body (default body when None);
     ``body_meta``: what meta.json says of the body ("default"), or None to write body.obj and
     skeleton.json into the case. Returns the folder.
@@ -151,6 +167,8 @@ def make_truth_case(case_dir: Path, *, garment: str = "tshirt", alteration: Alte
         save_pattern(p, tmp / "pattern_gt.json")
         p = load_pattern(tmp / "pattern_gt.json")
         d = dress(p, body, material=alteration.material, settings=settings, progress=progress)
-        write_obj(tmp / "target.obj", np.asarray(d.x), d.mesh.faces, header=f"unsew known-truth target ({garment})")
+        write_obj(
+            tmp / "target.obj", np.asarray(d.x), d.mesh.faces, header=f"unsew known-truth target ({garment})"
+        )
         (tmp / "meta.json").write_text(json.dumps(meta, indent=2))
     return Path(case_dir)

@@ -49,11 +49,13 @@ class Target:
         Choices are made on this figure, not on the fit's squared loss, which tells fabrics apart
         far less (docs/decisions/002).
         """
-        return surface_metrics(np.asarray(x), faces, self.verts, self.faces, n_samples=n_samples,
-                               seed=self.seed)["chamfer_mm"]
+        return surface_metrics(
+            np.asarray(x), faces, self.verts, self.faces, n_samples=n_samples, seed=self.seed
+        )["chamfer_mm"]
 
-    def band_distance_mm(self, x, faces, skeleton, low: float, high: float, *,
-                         n_samples: int = OBJECTIVE_SAMPLES) -> float:
+    def band_distance_mm(
+        self, x, faces, skeleton, low: float, high: float, *, n_samples: int = OBJECTIVE_SAMPLES
+    ) -> float:
         """:meth:`distance_mm` over the torso between heights ``low`` and ``high`` [m] only: both
         surfaces cut to :func:`torso_band_faces` (the drape ``x`` (N, 3) [m] on ``faces``, the
         body's ``skeleton``). NaN when either has no cloth there."""
@@ -62,8 +64,9 @@ class Target:
         theirs = torso_band_faces(self.verts, self.faces, skeleton, low, high)
         if not mine.any() or not theirs.any():
             return float("nan")
-        return surface_metrics(x, faces[mine], self.verts, self.faces[theirs], n_samples=n_samples,
-                               seed=self.seed)["chamfer_mm"]
+        return surface_metrics(
+            x, faces[mine], self.verts, self.faces[theirs], n_samples=n_samples, seed=self.seed
+        )["chamfer_mm"]
 
 
 def torso_band_faces(verts, faces, skeleton, low: float, high: float) -> np.ndarray:

@@ -49,7 +49,11 @@ def _spatial_order(p: np.ndarray) -> np.ndarray:
     libigl's query time (python -m benchmarks geometry)."""
     lo, hi = p.min(0), p.max(0)
     g = ((p - lo) / np.maximum(hi - lo, 1e-300) * 1023.0).astype(np.int64)
-    code = _spread_bits(g[:, 0]) | (_spread_bits(g[:, 1]) << np.uint64(1)) | (_spread_bits(g[:, 2]) << np.uint64(2))
+    code = (
+        _spread_bits(g[:, 0])
+        | (_spread_bits(g[:, 1]) << np.uint64(1))
+        | (_spread_bits(g[:, 2]) << np.uint64(2))
+    )
     return np.argsort(code, kind="stable")
 
 

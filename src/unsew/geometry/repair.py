@@ -35,7 +35,15 @@ from unsew.errors import InputError
 from unsew.geometry import topology
 from unsew.geometry.distance import MeshQuery
 
-__all__ = ["MeshRepair", "repair_garment", "MERGE_TOL", "DEGENERATE_REL", "SMALL_PIECE", "SEPARATE_GAP", "triangle_areas"]
+__all__ = [
+    "MeshRepair",
+    "repair_garment",
+    "MERGE_TOL",
+    "DEGENERATE_REL",
+    "SMALL_PIECE",
+    "SEPARATE_GAP",
+    "triangle_areas",
+]
 
 #: vertices closer than this are one vertex [m]
 MERGE_TOL = 1e-7
@@ -241,5 +249,6 @@ def _check_separate(v, f, lab, n, what) -> None:
             raise InputError(
                 f"{what} has {n} separate surfaces (areas "
                 + ", ".join(f"{a:.3f}" for a in sorted(a_comp, reverse=True))
-                + f" m^2); the one near {_where(centre)} is {gap * 100:.0f} cm from the rest: give one garment per case"
+                + f" m^2); the one near {_where(centre)} is {gap * 100:.0f} cm from the rest: give one "
+                "garment per case"
             )

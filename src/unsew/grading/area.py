@@ -118,5 +118,7 @@ def clip_note(s: float, area: float, pattern) -> str | None:
     returned, ``pattern``, is not at the target's ``area`` [m^2]), else None."""
     if abs(abs(math.log(s)) - math.log(MAX_AREA_SCALE)) > 1e-9:
         return None
-    return (f"warning: the target's surface area {area:.3f} m^2 is beyond what the area scaling may reach "
-            f"(lengths x{s:.2f} at most); the graded pattern keeps {pattern_area(pattern):.3f} m^2")
+    return (
+        f"warning: the target's surface area {area:.3f} m^2 is beyond what the area scaling may reach "
+        f"(lengths x{s:.2f} at most); the graded pattern keeps {pattern_area(pattern):.3f} m^2"
+    )

@@ -23,7 +23,14 @@ import numpy as np
 from unsew.geometry.distance import point_mesh_distance
 from unsew.tolerances import COLLISION_THICKNESS
 
-__all__ = ["BAND_GAP_MODES", "OWN_GAP", "PRESSED_TOL", "GAP_PERCENTILE", "pressed_loop_excess", "hangs_from_band"]
+__all__ = [
+    "BAND_GAP_MODES",
+    "OWN_GAP",
+    "PRESSED_TOL",
+    "GAP_PERCENTILE",
+    "pressed_loop_excess",
+    "hangs_from_band",
+]
 
 #: The choices of ``grade(band_gap=...)``: the target's band loops as measured, or less the
 #: excess the target's contact gap adds.

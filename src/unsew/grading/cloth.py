@@ -4,19 +4,19 @@ Algorithm 2 moves an open curve by the axial distance between the paired contour
 bone. Where the cloth hangs along the bone (a sleeve, a straight hem) the two agree; where it
 does not (a flared skirt whose waist rides up the hips), the drape answers a pattern change
 only in part and the axial distance under-reads the pattern (``python -m benchmarks grading
---drape sim``, the skirt's ``axial cm`` column; docs/decisions/003). The cloth length reads the change in the cloth itself: the mean, over a contour's vertices, of the shortest path
-*along the surface* to the garment's top contour (the neckline of a top or a dress, the waist of
-trousers or a skirt). A path that runs across folds and flare follows them, so trousers whose
-longer legs fold on the feet still read their length. bench_grading prints, per contour, the
-drapes' cloth-length difference (``cloth cm``) beside the true patterns' own at rest
-(``rest cm``).
+--drape sim``, the skirt's ``axial cm`` column; docs/decisions/003). The cloth length reads the change in the
+cloth itself: the mean, over a contour's vertices, of the shortest path *along the surface* to the garment's
+top contour (the neckline of a top or a dress, the waist of trousers or a skirt). A path that runs across
+folds and flare follows them, so trousers whose longer legs fold on the feet still read their length.
+bench_grading prints, per contour, the drapes' cloth-length difference (``cloth cm``) beside the true
+patterns' own at rest (``rest cm``).
 
 Shortest paths are graph distances (Dijkstra) on the mesh's edges plus, for every pair of
 triangles sharing an edge, the straight path between their two opposite vertices across that edge
 with the two triangles unfolded flat (across a fold the chord would jump it): edges alone
 zig-zag and read straight paths several percent long, the opposite-vertex segments cut that
-excess (``tests/grading/test_cloth.py`` bounds it). The excess depends on the direction of the path across the triangles, much the same on two meshes of
-one garment, so it largely cancels in the difference grading uses.
+excess (``tests/grading/test_cloth.py`` bounds it). The excess depends on the direction of the path across the
+triangles, much the same on two meshes of one garment, so it largely cancels in the difference grading uses.
 
 The same lengths measured at rest (the pattern's 2D edge lengths, seams joined) are what grading
 edits: ``rest_cloth_lengths`` on a :class:`~unsew.meshing.sew.GarmentMesh`.
@@ -75,8 +75,9 @@ def distance_graph(points: np.ndarray, faces: np.ndarray):
     w = np.concatenate([np.linalg.norm(x[edges[:, 0]] - x[edges[:, 1]], axis=1), w_across])
     pairs, w = _shortest_once(pairs, w)
     n = len(x)
-    return sp.coo_matrix((np.r_[w, w], (np.r_[pairs[:, 0], pairs[:, 1]], np.r_[pairs[:, 1], pairs[:, 0]])),
-                         shape=(n, n)).tocsr()
+    return sp.coo_matrix(
+        (np.r_[w, w], (np.r_[pairs[:, 0], pairs[:, 1]], np.r_[pairs[:, 1], pairs[:, 0]])), shape=(n, n)
+    ).tocsr()
 
 
 def _shortest_once(pairs: np.ndarray, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -146,8 +147,9 @@ def rest_cloth_lengths(mesh, curves: dict, top_edges: list) -> dict:
     # a seam edge is in both panels: each sewn pair once, at its shorter reading
     pairs, w = _shortest_once(np.stack([np.minimum(xi, xj), np.maximum(xi, xj)], axis=1), g.data)
     n = mesh.n_x
-    graph = sp.coo_matrix((np.r_[w, w], (np.r_[pairs[:, 0], pairs[:, 1]], np.r_[pairs[:, 1], pairs[:, 0]])),
-                          shape=(n, n)).tocsr()
+    graph = sp.coo_matrix(
+        (np.r_[w, w], (np.r_[pairs[:, 0], pairs[:, 1]], np.r_[pairs[:, 1], pairs[:, 0]])), shape=(n, n)
+    ).tocsr()
 
     def verts(edges):
         if not edges:

@@ -222,7 +222,9 @@ def _chain_end_bones(skeleton: Skeleton) -> list[Bone]:
     return out
 
 
-def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] | None = None) -> list[PlacedContour]:
+def place_contours(
+    verts, faces, skeleton: Skeleton, *, contours: list[Contour] | None = None
+) -> list[PlacedContour]:
     """Open contours of a mesh located on the skeleton (module docstring).
 
     verts: (V, 3) float64 [m] (numpy or torch). faces: (F, 3) int.
@@ -271,8 +273,22 @@ def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] 
             bone, u, h = cands[0]
             kept, cut = slits(pts, _into_cloth(bone.direction, inward))
             hull = hull_perimeter(pts if kept is None else pts[kept])
-            pc = PlacedContour(i, c, radius, bone, float(u), float(h), bone.part, 0.0, cands, roundness, inward, hull,
-                               slit_cut=cut, kept=kept)
+            pc = PlacedContour(
+                i,
+                c,
+                radius,
+                bone,
+                float(u),
+                float(h),
+                bone.part,
+                0.0,
+                cands,
+                roundness,
+                inward,
+                hull,
+                slit_cut=cut,
+                kept=kept,
+            )
             if kept is not None:  # the loop's place and plane without its slits
                 rim = pts[kept]
                 pc.rim_centre = rim.mean(axis=0)
@@ -285,8 +301,20 @@ def place_contours(verts, faces, skeleton: Skeleton, *, contours: list[Contour] 
             out.append(pc)
         else:
             out.append(
-                PlacedContour(i, c, radius, None, float("nan"), float("nan"), "", float("nan"), [], roundness, inward,
-                              hull_perimeter(pts))
+                PlacedContour(
+                    i,
+                    c,
+                    radius,
+                    None,
+                    float("nan"),
+                    float("nan"),
+                    "",
+                    float("nan"),
+                    [],
+                    roundness,
+                    inward,
+                    hull_perimeter(pts),
+                )
             )
     return out
 
@@ -357,7 +385,7 @@ def slits(points, axis) -> tuple[np.ndarray | None, float]:
             t += 1
         if t > b and h_[a:top].sum() >= SLIT_RISE and -h_[b:t].sum() >= SLIT_RISE:
             i, j = order[a], order[t % k]  # the slit runs from vertex i to vertex j
-            kept[order[a + 1:t]] = False
+            kept[order[a + 1 : t]] = False
             cut += float(l_[a:t].sum() - np.linalg.norm(p[j] - p[i]))
     return (None, 0.0) if kept.all() or np.count_nonzero(kept) < 3 else (kept, cut)
 
@@ -464,8 +492,14 @@ def match_contours(
         sign = 1.0 if outward >= 0 else -1.0
         out.append(
             ContourMatch(
-                source=int(i), target=int(j), part=s.part, bone=s.bone.name, axial_distance=float(axial),
-                extension=float(sign * axial), girth_difference=float(t.length - s.length), cost=float(cost[i, j]),
+                source=int(i),
+                target=int(j),
+                part=s.part,
+                bone=s.bone.name,
+                axial_distance=float(axial),
+                extension=float(sign * axial),
+                girth_difference=float(t.length - s.length),
+                cost=float(cost[i, j]),
             )
         )
     out.sort(key=lambda m: m.source)

@@ -114,8 +114,13 @@ def curves_of_contour(
                 length += float(np.linalg.norm(np.diff(v[xs], axis=0), axis=1).sum())
             out.append(
                 OpenCurve(
-                    panel=name, panel_index=p, edges=list(run), start=int(panel.edges[run[0]].start),
-                    end=int(panel.edges[run[-1]].end), controls=np.asarray(on_curve, dtype=np.int64), length3d=length,
+                    panel=name,
+                    panel_index=p,
+                    edges=list(run),
+                    start=int(panel.edges[run[0]].start),
+                    end=int(panel.edges[run[-1]].end),
+                    controls=np.asarray(on_curve, dtype=np.int64),
+                    length3d=length,
                 )
             )
     return out

@@ -33,7 +33,9 @@ from unsew.tolerances import MIN_TRIANGLE_QUALITY
 __all__ = ["curve_edit", "edit_directions", "safe_fraction", "project_edit"]
 
 
-def edit_directions(pattern: Pattern, positions: np.ndarray, curve: OpenCurve, controls) -> tuple[np.ndarray, np.ndarray, float]:
+def edit_directions(
+    pattern: Pattern, positions: np.ndarray, curve: OpenCurve, controls
+) -> tuple[np.ndarray, np.ndarray, float]:
     """The length direction, the unit chord and the chord length of an open curve.
 
     pattern: the pattern (for the curve's end vertices when they are not control points).
@@ -87,7 +89,11 @@ def curve_edit(
     panel = pattern.panels[curve.panel]
     length2d = sum(edge_length(panel, e) for e in curve.edges)
     dw = girth_change * (chord / length2d if length2d > 0 else 1.0)
-    a = positions[curve.controls[0]] if int(controls.vertex[curve.controls[0]]) == curve.start else panel.vertices[curve.start]
+    a = (
+        positions[curve.controls[0]]
+        if int(controls.vertex[curve.controls[0]]) == curve.start
+        else panel.vertices[curve.start]
+    )
     move = {int(g): extension * d for g in curve.controls}
     if deepen is not None:
         depth = np.array([float(positions[g] @ deepen) for g in curve.controls])
@@ -118,7 +124,10 @@ def safe_fraction(params, K0, K1, *, iterations: int = 12) -> float:
 
     def ok(t: float) -> bool:
         with torch.no_grad():
-            return len(check_inverted(params.uv(K0 + t * (K1 - K0)), faces, min_quality=MIN_TRIANGLE_QUALITY)) == 0
+            return (
+                len(check_inverted(params.uv(K0 + t * (K1 - K0)), faces, min_quality=MIN_TRIANGLE_QUALITY))
+                == 0
+            )
 
     if ok(1.0):
         return 1.0

@@ -77,11 +77,15 @@ def _chain_distance(p: np.ndarray, joints: list[np.ndarray]) -> np.ndarray:
 
 def _limb_chains(skeleton) -> dict[str, list[np.ndarray]]:
     """The four limbs' joint chains [m] from the skeleton's joint names (FORMATS.md)."""
-    need = [f"{s}_{j}" for s in ("left", "right") for j in ("shoulder", "elbow", "wrist", "hip", "knee", "ankle")]
+    need = [
+        f"{s}_{j}" for s in ("left", "right") for j in ("shoulder", "elbow", "wrist", "hip", "knee", "ankle")
+    ]
     missing = [n for n in need if n not in skeleton]
     if missing:
-        raise InputError(f"the skeleton lacks joint(s) {missing}: the garment type cannot be read; "
-                         "name it in meta.json or pass --base")
+        raise InputError(
+            f"the skeleton lacks joint(s) {missing}: the garment type cannot be read; "
+            "name it in meta.json or pass --base"
+        )
     out = {}
     for s in ("left", "right"):
         for limb, joints in (("arm", ("shoulder", "elbow", "wrist")), ("leg", ("hip", "knee", "ankle"))):
@@ -102,7 +106,9 @@ def read_garment_type(verts, faces, skeleton, *, contours=None) -> GarmentReadin
     v = np.asarray(verts, dtype=np.float64)
     loops = open_contours(v, faces) if contours is None else contours
     if not loops:
-        raise InputError("the target has no opening (no hem, waist or neckline): the garment type cannot be read")
+        raise InputError(
+            "the target has no opening (no hem, waist or neckline): the garment type cannot be read"
+        )
     chains = _limb_chains(skeleton)
     centres = np.stack([np.asarray(c.centre, dtype=np.float64) for c in loops])  # (C, 3) [m]
     radii = np.array([np.linalg.norm(v[np.asarray(c.indices)] - c.centre, axis=1).mean() for c in loops])
@@ -126,8 +132,10 @@ def read_garment_type(verts, faces, skeleton, *, contours=None) -> GarmentReadin
     chest = hip_y + CHEST_LEVEL * (shoulder_y - hip_y)
     upper = bool(any(arms)) or top_y > chest
     split = min(legs) >= 1
-    said = (f"{sum(legs)} leg, {sum(arms)} arm and {int(torso.sum())} torso opening(s), "
-            f"top {100 * (top_y - chest):+.0f} cm from the chest line")
+    said = (
+        f"{sum(legs)} leg, {sum(arms)} arm and {int(torso.sum())} torso opening(s), "
+        f"top {100 * (top_y - chest):+.0f} cm from the chest line"
+    )
     if split and upper:
         garment = "jumpsuit"
         why = f"openings round both legs and a bodice ({said})"
@@ -138,13 +146,24 @@ def read_garment_type(verts, faces, skeleton, *, contours=None) -> GarmentReadin
     elif upper:
         dress_line = hip_y - DRESS_HEM * (hip_y - knee_y)
         garment = "dress" if np.isfinite(hem_y) and hem_y < dress_line else "tshirt"
-        why = (f"a bodice with its hem {100 * (hem_y - dress_line):+.0f} cm from mid-thigh ({said})"
-               if np.isfinite(hem_y) else f"a bodice ({said})")
+        why = (
+            f"a bodice with its hem {100 * (hem_y - dress_line):+.0f} cm from mid-thigh ({said})"
+            if np.isfinite(hem_y)
+            else f"a bodice ({said})"
+        )
     else:
         garment = "skirt"
         why = f"one tube round the hips and legs ({said})"
-    return GarmentReading(garment, why, legs, arms, int(torso.sum()), top_y, hem_y,
-                          {"hip_y": hip_y, "knee_y": knee_y, "chest_y": chest})
+    return GarmentReading(
+        garment,
+        why,
+        legs,
+        arms,
+        int(torso.sum()),
+        top_y,
+        hem_y,
+        {"hip_y": hip_y, "knee_y": knee_y, "chest_y": chest},
+    )
 
 
 def _neck_opening(v: np.ndarray, loops, skeleton):
@@ -160,7 +179,10 @@ def _neck_opening(v: np.ndarray, loops, skeleton):
     for c in loops:
         cen = np.asarray(c.centre, dtype=np.float64)
         r = float(np.linalg.norm(v[np.asarray(c.indices)] - cen, axis=1).mean())
-        on_arm = any(float(_chain_distance(cen[None], chains[f"{s}_arm"])[0]) < max(r, LIMB_NEAR) for s in ("left", "right"))
+        on_arm = any(
+            float(_chain_distance(cen[None], chains[f"{s}_arm"])[0]) < max(r, LIMB_NEAR)
+            for s in ("left", "right")
+        )
         if cen[1] > chest and abs(cen[0] - mid_x) < 0.5 * half_shoulders and not on_arm:
             if best is None or cen[1] > best[0]:
                 best = (cen[1], c)

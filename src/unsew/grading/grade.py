@@ -33,7 +33,12 @@ from unsew.grading.contours import ContourMatch, PlacedContour, match_contours, 
 from unsew.grading.curves import curves_of_contour, rest_length, stitched_edges
 from unsew.grading.edit import curve_edit, edit_directions, project_edit, safe_fraction
 from unsew.grading.guards import (
-    WaistBound, bounded_band, bounded_extensions, bounded_girth, bounded_waist, waist_bound,
+    WaistBound,
+    bounded_band,
+    bounded_extensions,
+    bounded_girth,
+    bounded_waist,
+    waist_bound,
 )
 from unsew.grading.placement import choose_lift, is_lower
 from unsew.grading.profile import SideSeams, side_seam_moves, side_seams_for
@@ -42,9 +47,28 @@ from unsew.pattern.params import PatternParams
 from unsew.sim.drape import DrapeSettings
 
 __all__ = [
-    "GradeResult", "grade", "moved_mesh", "dress_drape", "flat_drape", "format_table", "TABLE_COLUMNS", "REMESH_STRETCH",
-    "REMESH_MODES", "LENGTH_MODES", "waistbands", "upright", "source_girth", "CRUMPLE_TOL", "STRETCH_TOL", "GRADE_SETTINGS", "GradePass",
-    "GradingError", "MESH_RETRIES", "armhole_down", "ARM_HANGS", "SIDE_SEAM_MODES",
+    "GradeResult",
+    "grade",
+    "moved_mesh",
+    "dress_drape",
+    "flat_drape",
+    "format_table",
+    "TABLE_COLUMNS",
+    "REMESH_STRETCH",
+    "REMESH_MODES",
+    "LENGTH_MODES",
+    "waistbands",
+    "upright",
+    "source_girth",
+    "CRUMPLE_TOL",
+    "STRETCH_TOL",
+    "GRADE_SETTINGS",
+    "GradePass",
+    "GradingError",
+    "MESH_RETRIES",
+    "armhole_down",
+    "ARM_HANGS",
+    "SIDE_SEAM_MODES",
 ]
 
 
@@ -130,7 +154,9 @@ def flat_drape(pattern, mesh, body=None) -> np.ndarray:
     return out / cnt[:, None]
 
 
-def dress_drape(pattern, mesh, body, *, material="cotton", sdf=None, settings: DrapeSettings = DRESS_SETTINGS) -> np.ndarray:
+def dress_drape(
+    pattern, mesh, body, *, material="cotton", sdf=None, settings: DrapeSettings = DRESS_SETTINGS
+) -> np.ndarray:
     """The grading drape: :func:`unsew.dress.dress` (place, sew, merge, settle) on ``mesh``.
 
     pattern, mesh: the pattern and its GarmentMesh. body: the wearer (:class:`Body`).
@@ -144,7 +170,9 @@ def dress_drape(pattern, mesh, body, *, material="cotton", sdf=None, settings: D
     d = dress(pattern, body, sdf=sdf, mesh=mesh, material=material, settings=settings)
     x = d.x.detach().cpu().numpy().astype(np.float64)
     if not np.isfinite(x).all():
-        raise SimulationError("the drape diverged (non-finite positions); try a smaller edge length or another material")
+        raise SimulationError(
+            "the drape diverged (non-finite positions); try a smaller edge length or another material"
+        )
     return x
 
 
@@ -203,7 +231,8 @@ def grade(
     drape_fn: ``drape_fn(pattern, mesh, body) -> (n_x, 3) [m]`` used for both drapes (default:
         :func:`dress_drape` with ``material``, ``sdf`` and ``settings``; :func:`flat_drape` for a quick look).
     redrape: drape the graded pattern (X_LG); False leaves ``x_draped`` None.
-    max_centre_distance: contour pairing gate [m] (default :data:`~unsew.grading.contours.MAX_CENTRE_DISTANCE`).
+    max_centre_distance: contour pairing gate [m] (default
+        :data:`~unsew.grading.contours.MAX_CENTRE_DISTANCE`).
     passes: grading passes; a further pass grades the graded pattern again from its own drape
         while a contour is off by more than :data:`PASS_LENGTH_TOL` or :data:`PASS_GIRTH_TOL`
         (one edit cannot know how the drape answers; the next measures it). One drape each.
@@ -240,6 +269,7 @@ def grade(
     """
     tv, tf = _check_grade_args(target_verts, target_faces, remesh, length, side_seams, band_gap)
     if drape_fn is None:
+
         def drape_fn(p, m, b):  # noqa: E306
             return dress_drape(p, m, b, material=material, sdf=sdf, settings=settings)
 
@@ -247,9 +277,15 @@ def grade(
     x_init = _base_drape(pattern, mesh, body, x_init, drape_fn)
     skel = body.skeleton
     tgt = place_contours(tv, tf, skel)
-    ctx = _PassContext(tgt, skel, {} if max_centre_distance is None else {"max_centre_distance": max_centre_distance},
-                       cloth_lengths(tv, tf, tgt) if length == "cloth" else (None, {}), hold_top, remesh,
-                       waist_bound(body))
+    ctx = _PassContext(
+        tgt,
+        skel,
+        {} if max_centre_distance is None else {"max_centre_distance": max_centre_distance},
+        cloth_lengths(tv, tf, tgt) if length == "cloth" else (None, {}),
+        hold_top,
+        remesh,
+        waist_bound(body),
+    )
     if side_seams == "girth":
         ctx.side_seams = side_seams_for(body, tv, tf, tgt)
     if band_gap == "target" and hangs_from_band(tgt):
@@ -263,11 +299,15 @@ def grade(
             nxt = _further_pass(cur, x_lg, ctx)
             if nxt is None:
                 break
-            rows += [{**r, "edits": [f"pass {k + 1}: {e}" for e in r["edits"]]} for r in nxt.rows if r["edits"]]
+            rows += [
+                {**r, "edits": [f"pass {k + 1}: {e}" for e in r["edits"]]} for r in nxt.rows if r["edits"]
+            ]
             cur = nxt
         if area is not None:
             scaled, s = scale_to_area(cur.pattern, area, bands=waistbands(cur.pattern))
-            cur = replace(cur, pattern=scaled, mesh=mesh_pattern(scaled, edge_length=mesh.edge_length), remeshed=True)
+            cur = replace(
+                cur, pattern=scaled, mesh=mesh_pattern(scaled, edge_length=mesh.edge_length), remeshed=True
+            )
             scales.append(s)
         if not redrape:
             break
@@ -282,20 +322,41 @@ def grade(
     if note and log is not None:  # the last pass decides the graded pattern's area
         log(note)
     return GradeResult(
-        pattern=cur.pattern, mesh=cur.mesh, x_draped=x_lg, table=rows, K=cur.K, fraction=first.fraction,
-        remeshed=first.remeshed or cur.remeshed, x_init=x_init, mesh_init=mesh, matches=first.matches,
-        area_scales=scales, placement=tried,
+        pattern=cur.pattern,
+        mesh=cur.mesh,
+        x_draped=x_lg,
+        table=rows,
+        K=cur.K,
+        fraction=first.fraction,
+        remeshed=first.remeshed or cur.remeshed,
+        x_init=x_init,
+        mesh_init=mesh,
+        matches=first.matches,
+        area_scales=scales,
+        placement=tried,
     )
 
 
 def _lift_row(tried: dict) -> dict:
     """The contour table's row of the placement choice (:func:`unsew.grading.placement.choose_lift`)."""
-    cands = ", ".join(f"{dy * 100:+.1f} cm {cf:.2f} mm" for dy, cf in zip(tried["tried_m"], tried["chamfer_mm"]))
-    what = (f"placement: every panel moved {tried['lift_m'] * 100:+.1f} cm in height" if tried["lift_m"]
-            else "placement kept")
-    return {**{k: None for k in TABLE_COLUMNS}, "part": "torso", "extension_m": tried["wanted_m"],
-            "edits": [f"{what} (the target's waist minus the drape's: {tried['wanted_m'] * 100:+.1f} cm; drapes {cands})"],
-            "warnings": []}
+    cands = ", ".join(
+        f"{dy * 100:+.1f} cm {cf:.2f} mm" for dy, cf in zip(tried["tried_m"], tried["chamfer_mm"])
+    )
+    what = (
+        f"placement: every panel moved {tried['lift_m'] * 100:+.1f} cm in height"
+        if tried["lift_m"]
+        else "placement kept"
+    )
+    return {
+        **{k: None for k in TABLE_COLUMNS},
+        "part": "torso",
+        "extension_m": tried["wanted_m"],
+        "edits": [
+            f"{what} (the target's waist minus the drape's: {tried['wanted_m'] * 100:+.1f} cm; drapes "
+            f"{cands})"
+        ],
+        "warnings": [],
+    }
 
 
 def _base_drape(pattern, mesh, body, x_init, drape_fn) -> np.ndarray:
@@ -306,8 +367,9 @@ def _base_drape(pattern, mesh, body, x_init, drape_fn) -> np.ndarray:
     return x_init
 
 
-def _check_grade_args(target_verts, target_faces, remesh: str, length: str, side_seams: str = "none",
-                      band_gap: str = "none"):
+def _check_grade_args(
+    target_verts, target_faces, remesh: str, length: str, side_seams: str = "none", band_gap: str = "none"
+):
     """The target as (V, 3) float64 and (F, 3) int64 arrays; InputError on a bad mode or mesh."""
     if side_seams not in SIDE_SEAM_MODES:
         raise InputError(f"side_seams must be one of {', '.join(SIDE_SEAM_MODES)}, got {side_seams!r}")
@@ -320,7 +382,9 @@ def _check_grade_args(target_verts, target_faces, remesh: str, length: str, side
     tv = np.asarray(target_verts, dtype=np.float64)
     tf = np.asarray(target_faces, dtype=np.int64)
     if tv.ndim != 2 or tv.shape[1] != 3 or len(tv) == 0 or tf.ndim != 2 or tf.shape[1] != 3 or len(tf) == 0:
-        raise InputError(f"target mesh must be (V, 3) vertices and (F, 3) faces, got {tv.shape} and {tf.shape}")
+        raise InputError(
+            f"target mesh must be (V, 3) vertices and (F, 3) faces, got {tv.shape} and {tf.shape}"
+        )
     return tv, tf
 
 
@@ -338,7 +402,8 @@ class _PassContext:
     remesh: str = "always"
     waist: WaistBound | None = None
     side_seams: SideSeams | None = None  # the side seams graded by girth (None: left alone)
-    band_excess: dict = field(default_factory=dict)  # target index -> its loop's contact excess [m] (band_gap)
+    # target index -> its loop's contact excess [m] (band_gap)
+    band_excess: dict = field(default_factory=dict)
     band_whole: bool = False  # a band's girth edit carried down its sides into the panels below (band_gap)
 
 
@@ -418,8 +483,10 @@ def source_girth(s: PlacedContour, t: PlacedContour, rest: float | None) -> tupl
     if s.crumple > t.crumple + CRUMPLE_TOL and s.length > rest * (1.0 + STRETCH_TOL):
         g = s.hull * t.crumple
         if g < s.length:
-            return float(g), (f"source loop caught by the drape ({s.length:.3f} m from {rest:.3f} m of edge, "
-                              f"loop/hull {s.crumple:.2f} against the target's {t.crumple:.2f}): girth read from its hull")
+            return float(g), (
+                f"source loop caught by the drape ({s.length:.3f} m from {rest:.3f} m of edge, "
+                f"loop/hull {s.crumple:.2f} against the target's {t.crumple:.2f}): girth read from its hull"
+            )
     return s.length, ""
 
 
@@ -427,16 +494,19 @@ def _worth_a_pass(matches, cloth: dict | None = None) -> bool:
     """Whether any contour is still off by more than PASS_LENGTH_TOL in cloth length (``cloth``:
     target index -> difference [m]) or else along its bone, or by PASS_GIRTH_TOL in girth."""
     cloth = cloth or {}
-    return any(abs(cloth.get(m.target, m.extension)) > PASS_LENGTH_TOL or abs(m.girth_difference) > PASS_GIRTH_TOL
-               for m in matches)
+    return any(
+        abs(cloth.get(m.target, m.extension)) > PASS_LENGTH_TOL or abs(m.girth_difference) > PASS_GIRTH_TOL
+        for m in matches
+    )
 
 
 #: Control points within this height [m] of a panel's highest one (as placed) form its top.
 TOP_BAND = 0.01
 
 
-def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dict,
-               band_whole: bool = False) -> tuple[np.ndarray, dict]:
+def _hold_tops(
+    pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dict, band_whole: bool = False
+) -> tuple[np.ndarray, dict]:
     """The edit with each panel's top held at its height: where a panel's highest control points
     (as placed around the body, within :data:`TOP_BAND`) all lie on one edited open curve (a
     skirt's or trousers' waist), the panel is translated in 2D, along the direction placed
@@ -470,7 +540,9 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
     out = delta.copy()
     held: dict[int, str] = {}
     stitched = stitched_edges(pattern)
-    open_edges = {(n, k) for n, pan in pattern.panels.items() for k in range(len(pan.edges)) if (n, k) not in stitched}
+    open_edges = {
+        (n, k) for n, pan in pattern.panels.items() for k in range(len(pan.edges)) if (n, k) not in stitched
+    }
     carried: dict[str, list[float]] = {}  # panel name -> upward moves of the bands sewn above it [m]
     for p, curves in edited.items():
         panel = pattern.panels[controls.panel_names[p]]
@@ -490,8 +562,10 @@ def _hold_tops(pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dic
                 _band_girth_down(pattern, controls, C0, out, panel)
             t, dg = tops[0]
             if _girth_explains(rise, dg):
-                held[t] = (f"band top {rise * 100:+.1f} cm on the target with its girth {dg * 100:+.1f} cm: read as the "
-                           "band's fit, not carried down to the panels below")
+                held[t] = (
+                    f"band top {rise * 100:+.1f} cm on the target with its girth {dg * 100:+.1f} cm: read as "
+                    "the band's fit, not carried down to the panels below"
+                )
                 continue
             for below in _sewn_below(pattern, panel):
                 carried.setdefault(below, []).append(rise)
@@ -579,9 +653,12 @@ def waistbands(pattern) -> list[str]:
     panel's vertices as placed): the panels phase two can be told to leave the height of, or
     leave alone (``optimizer.bands``)."""
     stitched = stitched_edges(pattern)
-    open_edges = {(n, k) for n, pan in pattern.panels.items() for k in range(len(pan.edges)) if (n, k) not in stitched}
-    return [n for n, pan in pattern.panels.items()
-            if _is_band(pan, pan.to_world(pan.vertices)[:, 1], open_edges)]
+    open_edges = {
+        (n, k) for n, pan in pattern.panels.items() for k in range(len(pan.edges)) if (n, k) not in stitched
+    }
+    return [
+        n for n, pan in pattern.panels.items() if _is_band(pan, pan.to_world(pan.vertices)[:, 1], open_edges)
+    ]
 
 
 def _world_x_dir(panel) -> np.ndarray:
@@ -677,8 +754,11 @@ def _carry_down(pattern, controls, C0: np.ndarray, out: np.ndarray, name: str, r
     cidx = controls.of_panel(p)
     height = panel.to_world(C0[cidx])[:, 1]
     tips = _dart_tips(pattern, name, panel.to_world(panel.vertices)[:, 1], height.max() - TOP_BAND)
-    below = [int(g) for g, h in zip(cidx, height)
-             if h < height.max() - TOP_BAND and int(controls.vertex[g]) not in tips]
+    below = [
+        int(g)
+        for g, h in zip(cidx, height)
+        if h < height.max() - TOP_BAND and int(controls.vertex[g]) not in tips
+    ]
     out[below] -= rise * up
 
 
@@ -766,7 +846,9 @@ class _Edit:
     held: set = field(default_factory=set)  # targets whose band top move was not carried down (_hold_tops)
 
 
-def _grade_pass(pattern, mesh, x_init, ctx: _PassContext, *, gains: dict | None = None, placed=None) -> GradePass:
+def _grade_pass(
+    pattern, mesh, x_init, ctx: _PassContext, *, gains: dict | None = None, placed=None
+) -> GradePass:
     """One pass of Algorithm 2: contours of the drape ``x_init`` (on ``mesh``) paired with the
     target's, the open curves moved and widened, projected on K, scaled back if needed, and the
     mesh moved or re-meshed.
@@ -785,27 +867,42 @@ def _grade_pass(pattern, mesh, x_init, ctx: _PassContext, *, gains: dict | None 
     gains = gains or {}
     params = PatternParams.build(pattern, mesh)
     items = [_item(m, src, ctx.tgt, x_init, params, mesh, ctx.band_excess) for m in matches]
-    exts = {m.target: cloth[m.target] if m.target in cloth else m.extension * gains.get(m.target, 1.0)
-            for m in matches}
+    exts = {
+        m.target: cloth[m.target] if m.target in cloth else m.extension * gains.get(m.target, 1.0)
+        for m in matches
+    }
     _bound_waist(src, items, exts, ctx.waist)
     seams, seam_notes = None, []
     if ctx.side_seams is not None:
         control_x = mesh.x_of_u[params.control_uv]
-        seams, seam_notes = side_seam_moves(params.pattern, params.controls, control_x, x_init, mesh.faces,
-                                            ctx.side_seams)
+        seams, seam_notes = side_seam_moves(
+            params.pattern, params.controls, control_x, x_init, mesh.faces, ctx.side_seams
+        )
     edit = _edit_with_cloth_goals(params, mesh, src, items, exts, cloth, ctx, seams)
     for it in items:
         it.warnings.extend(edit.notes.get(it.match.target, []))
     rows, wanted = _pass_rows(params.pattern, src, ctx.tgt, matches, items, edit.exts, cloth, gains)
-    rows += [{**{k: None for k in TABLE_COLUMNS}, "part": "torso", "edits": [n], "warnings": []} for n in seam_notes]
+    rows += [
+        {**{k: None for k in TABLE_COLUMNS}, "part": "torso", "edits": [n], "warnings": []}
+        for n in seam_notes
+    ]
     if edit.fraction < 1.0:
         note = f"edit scaled back to {edit.fraction:.0%} to avoid inverted triangles or an invalid panel"
         for r in rows:
             if r["edits"]:
                 r["warnings"].append(note)
-    applied = {t: edit.fraction * e for t, e in wanted.items() if t not in edit.held}  # a held move moved nothing
-    return GradePass(edit.pattern, edit.mesh, rows, matches, applied,
-                     edit.K.detach().cpu().numpy(), edit.fraction, edit.remeshed)
+    # a held move moved nothing
+    applied = {t: edit.fraction * e for t, e in wanted.items() if t not in edit.held}
+    return GradePass(
+        edit.pattern,
+        edit.mesh,
+        rows,
+        matches,
+        applied,
+        edit.K.detach().cpu().numpy(),
+        edit.fraction,
+        edit.remeshed,
+    )
 
 
 def _bound_waist(src, items, exts: dict, waist: WaistBound | None) -> None:
@@ -841,7 +938,9 @@ def _item(m: ContourMatch, src, tgt, x_init, params, mesh, band_excess: dict | N
     excess = (band_excess or {}).get(m.target, 0.0) if band else 0.0
     if excess:
         t_len -= excess
-        warnings.append(f"band sized to the target's loop less {excess * 100:.1f} cm, what its contact gap adds")
+        warnings.append(
+            f"band sized to the target's loop less {excess * 100:.1f} cm, what its contact gap adds"
+        )
     dg = t_len - girth
     if band:
         dg, cut = bounded_band(rest, t_len, dg)
@@ -857,14 +956,17 @@ def _whole_panel(pattern, c) -> bool:
     return len(c.edges) == len(pattern.panels[c.panel].edges)
 
 
-def _edit_with_cloth_goals(params, mesh, src, items, exts: dict, cloth: dict, ctx: _PassContext,
-                           seams: np.ndarray | None = None) -> _Edit:
+def _edit_with_cloth_goals(
+    params, mesh, src, items, exts: dict, cloth: dict, ctx: _PassContext, seams: np.ndarray | None = None
+) -> _Edit:
     """The edit of the pass, with each cloth-length move corrected on the edited pattern's own
     rest mesh until its rest cloth length is within CLOTH_TOL of its goal (``exts`` is updated).
     ``seams``: the side-seam points' moves (Nc, 2) [m] (:mod:`unsew.grading.profile`), or None."""
     top = top_contour(src) if cloth else None
     keys = {it.match.target: [(c.panel, e) for c in it.curves for e in c.edges] for it in items}
-    top_edges = next((keys[it.match.target] for it in items if top is not None and it.match.source == top.index), [])
+    top_edges = next(
+        (keys[it.match.target] for it in items if top is not None and it.match.source == top.index), []
+    )
     keyed = {t: k for t, k in keys.items() if t in cloth and k}
     goal = {}
     if keyed and top_edges:
@@ -891,7 +993,8 @@ def _edit(params, mesh, items, exts: dict, ctx: _PassContext, seams: np.ndarray 
     exts, cut = bounded_extensions(params.pattern, C0, items, exts, params.controls)
     notes = {t: [n] for t, n in cut.items()}
     delta = np.zeros_like(C0)
-    edited: dict[int, list[tuple]] = {}  # panel index -> (control points, target, girth difference) per edited curve
+    # panel index -> (control points, target, girth difference) per edited curve
+    edited: dict[int, list[tuple]] = {}
     for it in items:
         for c, dg in zip(it.curves, it.shares):
             if _whole_panel(params.pattern, c):
@@ -899,10 +1002,18 @@ def _edit(params, mesh, items, exts: dict, ctx: _PassContext, seams: np.ndarray 
             dg, note = bounded_girth(params.pattern, c, dg)
             if note:
                 notes.setdefault(it.match.target, []).append(note)
-            delta += curve_edit(params.pattern, C0, c, params.controls, extension=exts[it.match.target], girth_change=dg,
-                                deepen=armhole_down(params.pattern, C0, c, params.controls, it.bone))
+            delta += curve_edit(
+                params.pattern,
+                C0,
+                c,
+                params.controls,
+                extension=exts[it.match.target],
+                girth_change=dg,
+                deepen=armhole_down(params.pattern, C0, c, params.controls, it.bone),
+            )
             edited.setdefault(c.panel_index, []).append(
-                (set(int(g) for g in c.controls), it.match.target, it.girth_difference))
+                (set(int(g) for g in c.controls), it.match.target, it.girth_difference)
+            )
     if seams is not None:
         delta = delta + seams
     held: dict[int, str] = {}
@@ -922,20 +1033,28 @@ def _meshed(params, mesh, K0, K1, frac: float, remesh: str):
     the graded pattern cannot be meshed (a panel folded back or crossed), the fraction is halved
     up to :data:`MESH_RETRIES` times and then set to 0 (the base's shape, already meshed). A
     pattern that still fails raises :class:`GradingError`, not the input's PatternError."""
-    tries = [frac * 0.5 ** k for k in range(MESH_RETRIES + 1)] + [0.0]
+    tries = [frac * 0.5**k for k in range(MESH_RETRIES + 1)] + [0.0]
     for f in tries:
         K = K0 + f * (K1 - K0)
         try:
             graded = params.to_pattern(K)
             with torch.no_grad():
                 uv = params.uv(K).cpu().numpy()
-            remeshed = remesh == "always" or _rest_edge_stretch(uv, mesh.faces_uv, mesh.edge_length) > REMESH_STRETCH
-            new_mesh = mesh_pattern(graded, edge_length=mesh.edge_length) if remeshed else moved_mesh(mesh, graded, uv)
+            remeshed = (
+                remesh == "always" or _rest_edge_stretch(uv, mesh.faces_uv, mesh.edge_length) > REMESH_STRETCH
+            )
+            new_mesh = (
+                mesh_pattern(graded, edge_length=mesh.edge_length)
+                if remeshed
+                else moved_mesh(mesh, graded, uv)
+            )
             return K, f, graded, new_mesh, remeshed
         except PatternError as exc:
             last = exc
-    raise GradingError(f"grading made a pattern it cannot mesh, even with its edit undone ({last}); this is a "
-                       "failure of unsew's grading, not of the input: rerun with --no-grading or another --base")
+    raise GradingError(
+        f"grading made a pattern it cannot mesh, even with its edit undone ({last}); this is a "
+        "failure of unsew's grading, not of the input: rerun with --no-grading or another --base"
+    )
 
 
 def _pass_rows(pattern, src, tgt, matches, items, exts, cloth, gains) -> tuple[list, dict]:
@@ -961,10 +1080,16 @@ def _pass_rows(pattern, src, tgt, matches, items, exts, cloth, gains) -> tuple[l
             wanted[m.target] = ext
         rows.append(_row(s, t, m, edits, it.warnings, it.girth_difference, cloth.get(m.target)))
     matched_s, matched_t = {m.source for m in matches}, {m.target for m in matches}
-    rows += [_row(s, None, None, [], ["source contour matches no target contour; left alone"])
-             for s in src if s.index not in matched_s]
-    rows += [_row(None, t, None, [], ["target contour matches no source contour; left alone"])
-             for t in tgt if t.index not in matched_t]
+    rows += [
+        _row(s, None, None, [], ["source contour matches no target contour; left alone"])
+        for s in src
+        if s.index not in matched_s
+    ]
+    rows += [
+        _row(None, t, None, [], ["target contour matches no source contour; left alone"])
+        for t in tgt
+        if t.index not in matched_t
+    ]
     return rows, wanted
 
 
@@ -974,8 +1099,15 @@ def _name(c: PlacedContour | None) -> str | None:
     return f"#{c.index} {c.part or 'no bone'}{' ' + c.bone.name if c.bone is not None else ''}"
 
 
-def _row(s: PlacedContour | None, t: PlacedContour | None, m: ContourMatch | None, edits, warnings,
-         girth_difference: float | None = None, cloth_difference: float | None = None) -> dict:
+def _row(
+    s: PlacedContour | None,
+    t: PlacedContour | None,
+    m: ContourMatch | None,
+    edits,
+    warnings,
+    girth_difference: float | None = None,
+    cloth_difference: float | None = None,
+) -> dict:
     if girth_difference is None and m is not None:
         girth_difference = m.girth_difference
     return {
@@ -996,8 +1128,10 @@ def _row(s: PlacedContour | None, t: PlacedContour | None, m: ContourMatch | Non
 
 def format_table(table: list) -> str:
     """The contour table as aligned text (lengths in cm)."""
-    head = (f"{'source':<24} {'target':<24} {'part':<10} {'axial cm':>9} {'ext cm':>8} {'cloth cm':>9} {'girth cm':>9}"
-            "  edits / warnings")
+    head = (
+        f"{'source':<24} {'target':<24} {'part':<10} {'axial cm':>9} {'ext cm':>8} {'cloth cm':>9} "
+        f"{'girth cm':>9}  edits / warnings"
+    )
     lines = [head, "-" * len(head)]
     cm = lambda v: "" if v is None else f"{v * 100:+.1f}"  # noqa: E731
     for r in table:

@@ -38,8 +38,17 @@ from unsew.grading.edit import edit_directions
 from unsew.pattern.curves import edge_length
 
 __all__ = [
-    "MIN_KEEP_LENGTH", "MIN_KEEP_WIDTH", "WAIST_ABOVE_HIP", "WAIST_HIP_EASE", "WaistBound", "waist_bound",
-    "room_inward", "bounded_extensions", "bounded_girth", "bounded_waist", "bounded_band",
+    "MIN_KEEP_LENGTH",
+    "MIN_KEEP_WIDTH",
+    "WAIST_ABOVE_HIP",
+    "WAIST_HIP_EASE",
+    "WaistBound",
+    "waist_bound",
+    "room_inward",
+    "bounded_extensions",
+    "bounded_girth",
+    "bounded_waist",
+    "bounded_band",
 ]
 
 #: Length [m] an inward move leaves between a curve and the rest of its panel (a sleeve keeps
@@ -120,12 +129,19 @@ def bounded_extensions(pattern, positions: np.ndarray, items, exts: dict, contro
         e = out.get(t, 0.0)
         if e >= 0 or not it.curves:
             continue
-        allowed = min((max(room_inward(pattern, positions, c, controls)[0] - MIN_KEEP_LENGTH, 0.0)
-                       / inward_per_panel[c.panel_index]) for c in it.curves)
+        allowed = min(
+            (
+                max(room_inward(pattern, positions, c, controls)[0] - MIN_KEEP_LENGTH, 0.0)
+                / inward_per_panel[c.panel_index]
+            )
+            for c in it.curves
+        )
         if -e > allowed:
             out[t] = -allowed
-            notes[t] = (f"move cut from {e * 100:+.1f} to {-allowed * 100:+.1f} cm: the panel keeps "
-                        f"{MIN_KEEP_LENGTH * 100:.0f} cm beyond the curve")
+            notes[t] = (
+                f"move cut from {e * 100:+.1f} to {-allowed * 100:+.1f} cm: the panel keeps "
+                f"{MIN_KEEP_LENGTH * 100:.0f} cm beyond the curve"
+            )
     return out, notes
 
 
@@ -136,12 +152,15 @@ def bounded_girth(pattern, curve, girth_change: float) -> tuple[float, str]:
     floor = -max(length - MIN_KEEP_WIDTH, 0.0)
     if girth_change >= floor:
         return girth_change, ""
-    return floor, (f"{curve.panel}: narrowing cut from {girth_change * 100:+.1f} to {floor * 100:+.1f} cm: "
-                   f"the curve keeps {MIN_KEEP_WIDTH * 100:.0f} cm")
+    return floor, (
+        f"{curve.panel}: narrowing cut from {girth_change * 100:+.1f} to {floor * 100:+.1f} cm: "
+        f"the curve keeps {MIN_KEEP_WIDTH * 100:.0f} cm"
+    )
 
 
-def bounded_waist(bound: WaistBound | None, centre_y: float, extension: float, girth: float,
-                  girth_change: float) -> tuple[float, float, list]:
+def bounded_waist(
+    bound: WaistBound | None, centre_y: float, extension: float, girth: float, girth_change: float
+) -> tuple[float, float, list]:
     """The top opening's (extension [m], girth change [m]) bounded by the body, and warnings.
 
     bound: the body's :class:`WaistBound` (None: no bound). centre_y: the opening's centre height
@@ -154,15 +173,19 @@ def bounded_waist(bound: WaistBound | None, centre_y: float, extension: float, g
     notes = []
     lowest = -max(centre_y - (bound.hip_height + WAIST_ABOVE_HIP), 0.0)
     if extension < lowest:
-        notes.append(f"waist move cut from {extension * 100:+.1f} to {lowest * 100:+.1f} cm: it stays "
-                     f"{WAIST_ABOVE_HIP * 100:.0f} cm above the hip joints")
+        notes.append(
+            f"waist move cut from {extension * 100:+.1f} to {lowest * 100:+.1f} cm: it stays "
+            f"{WAIST_ABOVE_HIP * 100:.0f} cm above the hip joints"
+        )
         extension = lowest
     if bound.hip_girth is not None and girth_change > 0:  # a widening only: never narrowed here
         most = max(bound.hip_girth - WAIST_HIP_EASE - girth, 0.0)
         if girth_change > most:
-            notes.append(f"waist widening cut from {girth_change * 100:+.1f} to {most * 100:+.1f} cm: the "
-                         f"opening stays {WAIST_HIP_EASE * 100:.0f} cm under the hip girth "
-                         f"{bound.hip_girth * 100:.1f} cm")
+            notes.append(
+                f"waist widening cut from {girth_change * 100:+.1f} to {most * 100:+.1f} cm: the "
+                f"opening stays {WAIST_HIP_EASE * 100:.0f} cm under the hip girth "
+                f"{bound.hip_girth * 100:.1f} cm"
+            )
             girth_change = most
     return extension, girth_change, notes
 
@@ -176,11 +199,13 @@ def bounded_band(rest: float, target_length: float, girth_change: float) -> tupl
     loop minus the drape's).
 
     A band is a stiff strip held by the body: its top edge drapes at rest or stretched, never
-    gathered shorter than its cloth (true of every banded foreign target). Graded by the drapes' difference alone, a band
-    whose own drape gathered it would come out longer than the target's loop and slide down.
+    gathered shorter than its cloth (true of every banded foreign target). Graded by the drapes' difference
+    alone, a band whose own drape gathered it would come out longer than the target's loop and slide down.
     """
     if not rest > 0 or rest + girth_change <= target_length:
         return girth_change, ""
     most = target_length - rest
-    return most, (f"band length change cut from {girth_change * 100:+.1f} to {most * 100:+.1f} cm: its top stays no "
-                  f"longer than the target's loop ({target_length * 100:.1f} cm)")
+    return most, (
+        f"band length change cut from {girth_change * 100:+.1f} to {most * 100:+.1f} cm: its top stays no "
+        f"longer than the target's loop ({target_length * 100:.1f} cm)"
+    )

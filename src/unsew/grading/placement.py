@@ -23,8 +23,16 @@ from unsew.errors import UnsewError
 from unsew.losses.contours import open_contours
 from unsew.metrics.surface import surface_metrics
 
-__all__ = ["LIFT_TOL", "LIFT_FRACTIONS", "LIFT_SAMPLES", "top_height", "lifted", "lifted_mesh", "is_lower",
-           "choose_lift"]
+__all__ = [
+    "LIFT_TOL",
+    "LIFT_FRACTIONS",
+    "LIFT_SAMPLES",
+    "top_height",
+    "lifted",
+    "lifted_mesh",
+    "is_lower",
+    "choose_lift",
+]
 
 #: Heights [m] between the target's top opening and the drape's below which nothing is tried.
 LIFT_TOL = 0.01
@@ -46,8 +54,8 @@ def top_height(verts, faces) -> float | None:
 
 
 def lifted(pattern, dy: float):
-    """A copy of ``pattern`` (:class:`~unsew.pattern.model.Pattern`) with every panel's placement moved ``dy`` [m] up (+y); the panels'
-    shapes are unchanged."""
+    """A copy of ``pattern`` (:class:`~unsew.pattern.model.Pattern`) with every panel's placement moved ``dy``
+    [m] up (+y); the panels' shapes are unchanged."""
     out = pattern.copy()
     for panel in out.panels.values():
         panel.translation = panel.translation + np.array([0.0, float(dy), 0.0])
@@ -57,7 +65,9 @@ def lifted(pattern, dy: float):
 def lifted_mesh(mesh, dy: float):
     """A copy of the GarmentMesh ``mesh`` whose flat panels are placed ``dy`` [m] higher
     (``uv_placed3d``, where :func:`unsew.dress.dress` places a mesh it is given)."""
-    return replace(mesh, uv_placed3d=np.asarray(mesh.uv_placed3d, dtype=np.float64) + np.array([0.0, float(dy), 0.0]))
+    return replace(
+        mesh, uv_placed3d=np.asarray(mesh.uv_placed3d, dtype=np.float64) + np.array([0.0, float(dy), 0.0])
+    )
 
 
 def is_lower(placed) -> bool:
@@ -66,8 +76,9 @@ def is_lower(placed) -> bool:
     return bool(placed) and all(c.part != "arm" for c in placed)
 
 
-def choose_lift(pattern, mesh, x, body, drape_fn: Callable, target_verts, target_faces, *,
-                seed: int = 0) -> tuple[object, object, np.ndarray, dict | None]:
+def choose_lift(
+    pattern, mesh, x, body, drape_fn: Callable, target_verts, target_faces, *, seed: int = 0
+) -> tuple[object, object, np.ndarray, dict | None]:
     """The placement of ``pattern`` whose drape lies closest to the target.
 
     pattern: the graded Pattern, dressed as ``x`` (n_x, 3) [m] on ``mesh``; drape_fn(pattern,
@@ -84,8 +95,9 @@ def choose_lift(pattern, mesh, x, body, drape_fn: Callable, target_verts, target
         return pattern, mesh, x, None
 
     def distance(xx) -> float:
-        return surface_metrics(np.asarray(xx), mesh.faces, tv, target_faces, n_samples=LIFT_SAMPLES,
-                               seed=seed)["chamfer_mm"]
+        return surface_metrics(
+            np.asarray(xx), mesh.faces, tv, target_faces, n_samples=LIFT_SAMPLES, seed=seed
+        )["chamfer_mm"]
 
     dy = t_top - s_top
     best = (distance(x), 0.0, pattern, mesh, x)

@@ -22,8 +22,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["SideSeams", "side_seams_for", "torso_girth", "side_seam_points", "side_seam_moves",
-           "BELOW_HIP", "BELOW_ARMPIT", "SAME_HEIGHT", "MAX_MOVE", "MIN_SWEEP"]
+__all__ = [
+    "SideSeams",
+    "side_seams_for",
+    "torso_girth",
+    "side_seam_points",
+    "side_seam_moves",
+    "BELOW_HIP",
+    "BELOW_ARMPIT",
+    "SAME_HEIGHT",
+    "MAX_MOVE",
+    "MIN_SWEEP",
+]
 
 #: The graded heights: from this far under the hips [m] ...
 BELOW_HIP = 0.05
@@ -61,8 +71,13 @@ def side_seams_for(body, target_verts, target_faces, target_contours) -> SideSea
     f = body_frame(measure_body(body))
     sk = body.skeleton
     hips = 0.5 * (np.asarray(sk.position("left_hip")) + np.asarray(sk.position("right_hip")))
-    return SideSeams(np.asarray(target_verts, dtype=np.float64), np.asarray(target_faces, dtype=np.int64),
-                     float(f.hip_y - BELOW_HIP), float(f.armpit_y - BELOW_ARMPIT), hips[[0, 2]].astype(np.float64))
+    return SideSeams(
+        np.asarray(target_verts, dtype=np.float64),
+        np.asarray(target_faces, dtype=np.int64),
+        float(f.hip_y - BELOW_HIP),
+        float(f.armpit_y - BELOW_ARMPIT),
+        hips[[0, 2]].astype(np.float64),
+    )
 
 
 def torso_girth(verts: np.ndarray, faces: np.ndarray, y: float, axis_xz: np.ndarray) -> float | None:
@@ -72,7 +87,9 @@ def torso_girth(verts: np.ndarray, faces: np.ndarray, y: float, axis_xz: np.ndar
     when no piece does."""
     import trimesh
 
-    mesh = trimesh.Trimesh(np.asarray(verts, dtype=np.float64), np.asarray(faces, dtype=np.int64), process=False)
+    mesh = trimesh.Trimesh(
+        np.asarray(verts, dtype=np.float64), np.asarray(faces, dtype=np.int64), process=False
+    )
     path = mesh.section(plane_origin=[0.0, float(y), 0.0], plane_normal=[0.0, 1.0, 0.0])
     if path is None:
         return None
@@ -125,8 +142,9 @@ def side_seam_points(pattern, controls) -> list[tuple[int, np.ndarray]]:
     return out
 
 
-def side_seam_moves(pattern, controls, control_x: np.ndarray, x: np.ndarray, faces: np.ndarray,
-                    ctx: SideSeams) -> tuple[np.ndarray, list[str]]:
+def side_seam_moves(
+    pattern, controls, control_x: np.ndarray, x: np.ndarray, faces: np.ndarray, ctx: SideSeams
+) -> tuple[np.ndarray, list[str]]:
     """Each control point's move [m], (Nc, 2) (zero but at the side-seam points in the graded
     heights), and one line per height graded saying what it moved.
 
@@ -149,6 +167,8 @@ def side_seam_moves(pattern, controls, control_x: np.ndarray, x: np.ndarray, fac
         share = float(np.clip((gt - gs) / len(group), -MAX_MOVE, MAX_MOVE))
         for gi, d, _ in group:
             delta[gi] += share * d
-        notes.append(f"side seams at y {yc:.2f} m: girth {100 * gs:.1f} cm against the target's {100 * gt:.1f} cm, "
-                     f"{len(group)} points moved {100 * share:+.1f} cm across")
+        notes.append(
+            f"side seams at y {yc:.2f} m: girth {100 * gs:.1f} cm against the target's {100 * gt:.1f} cm, "
+            f"{len(group)} points moved {100 * share:+.1f} cm across"
+        )
     return delta, notes

@@ -118,7 +118,9 @@ def read_case(
     front = front or meta.get("front", "z")
     garment = garment or meta.get("garment")
     if garment is not None and garment not in GARMENT_TYPES:
-        raise InputError(f"garment {garment!r} in {d / 'meta.json'} must be one of {', '.join(GARMENT_TYPES)}")
+        raise InputError(
+            f"garment {garment!r} in {d / 'meta.json'} must be one of {', '.join(GARMENT_TYPES)}"
+        )
 
     target = next((d / n for n in ("target.obj", "target.ply") if (d / n).is_file()), None)
     if target is None:
@@ -142,12 +144,27 @@ def read_case(
     if gt.is_file():
         pattern_gt = load_pattern(gt)
         files["pattern_gt"] = gt
-    return CaseFiles(d, meta, garment or "", units, up, front, tv, tf, mesh, skel, meta.get("body"), pattern_gt, files,
-                     repair.as_dict())
+    return CaseFiles(
+        d,
+        meta,
+        garment or "",
+        units,
+        up,
+        front,
+        tv,
+        tf,
+        mesh,
+        skel,
+        meta.get("body"),
+        pattern_gt,
+        files,
+        repair.as_dict(),
+    )
 
 
 def _check_target(v: np.ndarray, f: np.ndarray, path: Path) -> None:
-    area = 0.5 * np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1).sum()  # [m^2]
+    # [m^2]
+    area = 0.5 * np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1).sum()
     if area <= 0:
         raise InputError(f"target {path} has zero area")
     # A garment is an open surface: hems, cuffs, necklines and waists are boundary loops.
@@ -160,7 +177,7 @@ def _check_target(v: np.ndarray, f: np.ndarray, path: Path) -> None:
     if ext.max() > 3.0:
         raise InputError(
             f"target {path} is {ext.max():.1f} units across, implausible in metres: "
-            "pass --units cm (or mm) or set \"units\" in meta.json"
+            'pass --units cm (or mm) or set "units" in meta.json'
         )
     if ext.max() < 0.05:
         raise InputError(f"target {path} is only {ext.max():.3f} m across; check its units (--units)")

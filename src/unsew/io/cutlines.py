@@ -28,8 +28,17 @@ from unsew.errors import InputError
 from unsew.pattern.curves import edge_length, sample_edge
 from unsew.pattern.model import Pattern
 
-__all__ = ["SEAM_ALLOWANCE_M", "HEM_ALLOWANCE_M", "MITER_LIMIT", "PieceLines", "seam_allowances",
-           "piece_lines", "offset_polygon", "cutting_notes", "CuttingNote"]
+__all__ = [
+    "SEAM_ALLOWANCE_M",
+    "HEM_ALLOWANCE_M",
+    "MITER_LIMIT",
+    "PieceLines",
+    "seam_allowances",
+    "piece_lines",
+    "offset_polygon",
+    "cutting_notes",
+    "CuttingNote",
+]
 
 #: Seam allowance of an edge [m] unless set otherwise; of edges labelled ``hem`` [m].
 SEAM_ALLOWANCE_M = 0.01
@@ -45,7 +54,9 @@ def _is_hem(label: str) -> bool:
     return "hem" in (label or "").lower()
 
 
-def seam_allowances(pattern: Pattern, *, default: float | None = None, hem: float | None = None) -> dict[str, np.ndarray]:
+def seam_allowances(
+    pattern: Pattern, *, default: float | None = None, hem: float | None = None
+) -> dict[str, np.ndarray]:
     """Seam allowance [m] of each edge of each panel: {panel name: (E,) float64}.
 
     default, hem: allowance of plain and hem edges [m]; None takes the pattern's
@@ -63,20 +74,26 @@ def seam_allowances(pattern: Pattern, *, default: float | None = None, hem: floa
     out = {}
     for name in pattern.panel_order:
         pan = pattern.panels[name]
-        w = np.array([h if _is_hem(e.label) or (name, i) in guessed else d for i, e in enumerate(pan.edges)],
-                     dtype=np.float64)
+        w = np.array(
+            [h if _is_hem(e.label) or (name, i) in guessed else d for i, e in enumerate(pan.edges)],
+            dtype=np.float64,
+        )
         ov = overrides.get(name) or {}
         for key in sorted(ov, key=lambda k: str(k).isdigit()):  # labels first, indices win
             hit = [int(key)] if str(key).isdigit() else [i for i, e in enumerate(pan.edges) if e.label == key]
             if not hit or hit[0] >= len(pan.edges):
-                raise InputError(f"seam allowance for panel {name!r}: {key!r} is neither an edge label nor an "
-                                 f"edge index (0..{len(pan.edges) - 1}) of that panel")
+                raise InputError(
+                    f"seam allowance for panel {name!r}: {key!r} is neither an edge label nor an "
+                    f"edge index (0..{len(pan.edges) - 1}) of that panel"
+                )
             w[hit] = float(ov[key])
         out[name] = w
     for name, w in out.items():
         if not np.all(np.isfinite(w)) or (w < 0).any() or (w > 0.1).any():
-            raise InputError(f"seam allowance of panel {name!r} must lie in 0..10 cm, got "
-                             f"{', '.join(f'{100 * x:g}' for x in w)} cm")
+            raise InputError(
+                f"seam allowance of panel {name!r} must lie in 0..10 cm, got "
+                f"{', '.join(f'{100 * x:g}' for x in w)} cm"
+            )
     return out
 
 
@@ -85,7 +102,9 @@ def _guess_hems(pattern: Pattern) -> set[tuple[str, int]]:
     edges): on each panel, the free (unstitched) edge lowest on the body in its 3D placement,
     when its middle lies below the panel's middle (a neckline or waist, at the top, never is).
     Returns {(panel name, edge index)}."""
-    sewn = {(s.a.panel, s.a.edge) for s in pattern.stitches} | {(s.b.panel, s.b.edge) for s in pattern.stitches}
+    sewn = {(s.a.panel, s.a.edge) for s in pattern.stitches} | {
+        (s.b.panel, s.b.edge) for s in pattern.stitches
+    }
     out = set()
     for name, pan in pattern.panels.items():
         free = [i for i in range(len(pan.edges)) if (name, i) not in sewn]
@@ -136,7 +155,9 @@ def piece_lines(panel, allowance: np.ndarray, *, step: float = CURVE_STEP) -> Pi
     return PieceLines(sew, eid, cut, corner, np.asarray(allowance, dtype=np.float64))
 
 
-def offset_polygon(pts: np.ndarray, width: np.ndarray, group: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+def offset_polygon(
+    pts: np.ndarray, width: np.ndarray, group: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """Offset the closed counter-clockwise polygon ``pts`` (M, 2) [m] outward, segment j (pts[j] ->
     pts[j+1]) by ``width[j]`` [m] (M,).
 
@@ -194,8 +215,12 @@ def _seg_hits(q: np.ndarray) -> tuple[int, int, np.ndarray] | None:
     for i0 in range(0, n, 256):
         i = np.arange(i0, min(n, i0 + 256))
         # box overlap first (cheap), then the exact test on the candidates
-        ov = ((lo[i, None, 0] <= hi[None, :, 0]) & (lo[None, :, 0] <= hi[i, None, 0])
-              & (lo[i, None, 1] <= hi[None, :, 1]) & (lo[None, :, 1] <= hi[i, None, 1]))
+        ov = (
+            (lo[i, None, 0] <= hi[None, :, 0])
+            & (lo[None, :, 0] <= hi[i, None, 0])
+            & (lo[i, None, 1] <= hi[None, :, 1])
+            & (lo[None, :, 1] <= hi[i, None, 1])
+        )
         ii, kk = np.nonzero(ov)
         ii = i[ii]
         keep = (kk > ii + 1) & ~((ii == 0) & (kk == n - 1))
@@ -212,7 +237,9 @@ def _seg_hits(q: np.ndarray) -> tuple[int, int, np.ndarray] | None:
         # segments along one line overlapping (two offset edges meeting head on): the start of
         # segment k inside segment i counts as their crossing
         rr = (r * r).sum(1)
-        line = (np.abs(den) <= 1e-15) & (np.abs(qp[:, 0] * r[:, 1] - qp[:, 1] * r[:, 0]) <= 1e-12 * np.sqrt(rr))
+        line = (np.abs(den) <= 1e-15) & (
+            np.abs(qp[:, 0] * r[:, 1] - qp[:, 1] * r[:, 0]) <= 1e-12 * np.sqrt(rr)
+        )
         tc = (qp * r).sum(1) / rr
         on = line & (tc > 0) & (tc < 1)
         tt = np.where(on, tc, tt)
@@ -231,11 +258,11 @@ def _remove_loops(q: np.ndarray, flag: np.ndarray) -> tuple[np.ndarray, np.ndarr
             break
         i, k, x = hit
         if k - i <= len(q) - (k - i):  # drop points i+1..k, put the crossing in their place
-            q = np.concatenate([q[: i + 1], x[None], q[k + 1:]])
-            flag = np.concatenate([flag[: i + 1], [bool(flag[i + 1: k + 1].any())], flag[k + 1:]])
+            q = np.concatenate([q[: i + 1], x[None], q[k + 1 :]])
+            flag = np.concatenate([flag[: i + 1], [bool(flag[i + 1 : k + 1].any())], flag[k + 1 :]])
         else:  # drop points k+1.. and ..i
-            q = np.concatenate([x[None], q[i + 1: k + 1]])
-            flag = np.concatenate([[bool(flag[k + 1:].any() or flag[: i + 1].any())], flag[i + 1: k + 1]])
+            q = np.concatenate([x[None], q[i + 1 : k + 1]])
+            flag = np.concatenate([[bool(flag[k + 1 :].any() or flag[: i + 1].any())], flag[i + 1 : k + 1]])
     return q, flag
 
 
@@ -243,8 +270,8 @@ def _remove_loops(q: np.ndarray, flag: np.ndarray) -> tuple[np.ndarray, np.ndarr
 class CuttingNote:
     """What the workroom cuts of one piece: ``quantity`` pieces; ``text`` the human line
     ('cut 1', 'cut 1; mirror of right_front; (as a pair: cut 2 from doubled fabric)', 'cut 1 on fold
-    (...)'; parts after '; ' are printed on lines of their own); ``fold``: for a piece symmetric about a line, (point (2,), unit direction
-    (2,)) [m] in the panel frame, else None."""
+    (...)'; parts after '; ' are printed on lines of their own); ``fold``: for a piece symmetric about a line,
+    (point (2,), unit direction (2,)) [m] in the panel frame, else None."""
 
     quantity: int
     text: str
@@ -260,15 +287,19 @@ def cutting_notes(pattern: Pattern) -> dict[str, CuttingNote]:
     pairs, mirrors = [], []
     if isinstance(sym, dict) and "pairs" in sym:
         pairs = [(q["source"], q["target"], bool(q.get("mirrored"))) for q in sym.get("pairs", [])]
-        mirrors = [(m["panel"], np.asarray(m["point"], float), np.asarray(m["direction"], float))
-                   for m in sym.get("mirrors", [])]
+        mirrors = [
+            (m["panel"], np.asarray(m["point"], float), np.asarray(m["direction"], float))
+            for m in sym.get("mirrors", [])
+        ]
     else:
         try:
             from unsew.pattern.symmetry import detect_symmetry
 
             s = detect_symmetry(pattern)
             pairs = [(q.source, q.target, bool(q.mirrored)) for q in s.pairs]
-            mirrors = [(m.panel, np.asarray(m.point, float), np.asarray(m.direction, float)) for m in s.mirrors]
+            mirrors = [
+                (m.panel, np.asarray(m.point, float), np.asarray(m.direction, float)) for m in s.mirrors
+            ]
         except Exception:  # a pattern symmetry cannot be found for is still exported, note-less
             pass
     folds = {name: (point, direction / np.linalg.norm(direction)) for name, point, direction in mirrors}
@@ -283,6 +314,10 @@ def cutting_notes(pattern: Pattern) -> dict[str, CuttingNote]:
         if n in partner:
             other, mirrored = partner[n]
             alike = not mirrored or fold is not None or other in folds  # a symmetric piece's mirror is itself
-            text += (f"; same shape as {other}" if alike else f"; mirror of {other}; (as a pair: cut 2 from doubled fabric)")
+            text += (
+                f"; same shape as {other}"
+                if alike
+                else f"; mirror of {other}; (as a pair: cut 2 from doubled fabric)"
+            )
         notes[n] = CuttingNote(1, text, fold)
     return notes

@@ -51,15 +51,15 @@ def _block_name(name: str) -> str:
     return "".join("_" if c in bad else c for c in name) or "panel"
 
 
-def write_dxf(pattern: Pattern, path: str | os.PathLike, *, allowance: float | None = None,
-              hem: float | None = None) -> None:
+def write_dxf(
+    pattern: Pattern, path: str | os.PathLike, *, allowance: float | None = None, hem: float | None = None
+) -> None:
     """Write ``pattern`` as an AAMA/ASTM-style DXF in millimetres, atomically. allowance, hem:
     seam allowance of plain and hem edges [m] (default: the pattern's ``unsew.seam_allowance``,
     else 1 and 2 cm)."""
     try:
         import ezdxf
     except ImportError as exc:  # pragma: no cover
-
         raise InputError("DXF export needs the ezdxf package: pip install ezdxf") from exc
     from ezdxf import units
 
@@ -87,10 +87,16 @@ def write_dxf(pattern: Pattern, path: str | os.PathLike, *, allowance: float | N
         x0, y0 = name_label.pos * mm
         hh = name_label.height * mm
         # the AAMA attribute texts a cutting system reads, on the boundary layer, under the note
-        for k, line in enumerate((f"Piece Name: {pc.name}", f"Size: {SIZE_TEXT}", f"Quantity: {pc.note.quantity}")):
-            blk.add_text(line, height=0.6 * hh, dxfattribs={"layer": "1", "insert": (x0, y0 - (3.2 + 1.1 * k) * hh)})
+        for k, line in enumerate(
+            (f"Piece Name: {pc.name}", f"Size: {SIZE_TEXT}", f"Quantity: {pc.note.quantity}")
+        ):
+            blk.add_text(
+                line, height=0.6 * hh, dxfattribs={"layer": "1", "insert": (x0, y0 - (3.2 + 1.1 * k) * hh)}
+            )
         for lb in pc.labels:
-            blk.add_text(lb.text, height=lb.height * mm, dxfattribs={"layer": "15", "insert": tuple(lb.pos * mm)})
+            blk.add_text(
+                lb.text, height=lb.height * mm, dxfattribs={"layer": "15", "insert": tuple(lb.pos * mm)}
+            )
         msp.add_blockref(blk.name, tuple(pc.offset * mm), dxfattribs={"layer": "1"})
     with atomic_write(path) as tmp:
         doc.saveas(tmp)

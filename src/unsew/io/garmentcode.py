@@ -75,7 +75,9 @@ def _rel(a: np.ndarray, b: np.ndarray, p) -> list[float]:
     return [float(st[0]), float(st[1])]
 
 
-def _curvature_from(c, a: np.ndarray, b: np.ndarray, absolute: bool, scale: float, where: str) -> Curvature | None:
+def _curvature_from(
+    c, a: np.ndarray, b: np.ndarray, absolute: bool, scale: float, where: str
+) -> Curvature | None:
     """File curvature -> model Curvature (relative, metres). ``a``, ``b``: edge ends [m]."""
     if c is None:
         return None
@@ -84,7 +86,9 @@ def _curvature_from(c, a: np.ndarray, b: np.ndarray, absolute: bool, scale: floa
         st = _rel(a, b, p / scale) if absolute else [float(p[0]), float(p[1])]
         return Curvature("quadratic", [st])
     if not isinstance(c, dict) or "type" not in c:
-        raise InputError(f"{where}: curvature must be {{'type': ..., 'params': ...}} or [x, y]; fix the pattern file")
+        raise InputError(
+            f"{where}: curvature must be {{'type': ..., 'params': ...}} or [x, y]; fix the pattern file"
+        )
     kind, params = c["type"], c.get("params")
     extra = {k: v for k, v in c.items() if k not in ("type", "params")}
     if kind in ("quadratic", "cubic"):
@@ -166,7 +170,12 @@ def _properties_from_dict(data: dict) -> tuple[dict, bool, float]:
     if not isinstance(data.get("properties", {}), dict):
         raise InputError("'properties' must be an object")
     units = props.get("units_in_meter", 100)
-    if isinstance(units, bool) or not isinstance(units, (int, float)) or not math.isfinite(units) or units <= 0:
+    if (
+        isinstance(units, bool)
+        or not isinstance(units, (int, float))
+        or not math.isfinite(units)
+        or units <= 0
+    ):
         raise InputError(f"properties.units_in_meter must be a positive number (100 for cm), got {units!r}")
     coords = props.get("curvature_coords", "relative")
     if coords not in ("relative", "absolute"):
@@ -285,7 +294,14 @@ def pattern_to_dict(pattern: Pattern) -> dict:
     uns["name"] = pattern.name
     if any(s.label for s in pattern.stitches):
         uns["stitch_labels"] = [s.label for s in pattern.stitches]
-    out = {"pattern": {"panels": panels, "stitches": stitches, "panel_order": list(pattern.panel_order), **pat_extra}}
+    out = {
+        "pattern": {
+            "panels": panels,
+            "stitches": stitches,
+            "panel_order": list(pattern.panel_order),
+            **pat_extra,
+        }
+    }
     out.update(extra)
     out["properties"] = props
     out["unsew"] = uns
@@ -307,7 +323,9 @@ def load_pattern(path: str | os.PathLike, *, validate: bool = True) -> Pattern:
     try:
         data = json.loads(text)
     except json.JSONDecodeError as exc:
-        raise InputError(f"pattern file {path} is not valid JSON (line {exc.lineno}, column {exc.colno}: {exc.msg})") from None
+        raise InputError(
+            f"pattern file {path} is not valid JSON (line {exc.lineno}, column {exc.colno}: {exc.msg})"
+        ) from None
     stem = path.stem
     if stem.endswith("_specification"):
         stem = stem[: -len("_specification")]

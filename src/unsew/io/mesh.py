@@ -82,7 +82,9 @@ def read_mesh(path: str | os.PathLike, *, units: str = "m", up: str = "y", front
     return verts, faces
 
 
-def read_garment(path: str | os.PathLike, *, units: str = "m", up: str = "y", front: str = "z", what: str = "target"):
+def read_garment(
+    path: str | os.PathLike, *, units: str = "m", up: str = "y", front: str = "z", what: str = "target"
+):
     """Read a garment mesh (:func:`read_mesh`) and repair it (:func:`unsew.geometry.repair.repair_garment`):
     duplicate/degenerate faces and duplicate/unreferenced vertices cleaned, fins and loose debris
     cut off; a branching surface or several garments raise InputError naming where.
@@ -126,9 +128,7 @@ def write_obj(
     if uv is not None:
         buf.append(_rows("vt", np.asarray(uv, dtype=np.float64), "%.9g %.9g"))
         f = np.concatenate([faces[:, :, None], np.asarray(faces_uv)[:, :, None]], axis=2) + 1
-        body = "\n".join(
-            "f " + " ".join(f"{a}/{b}" for a, b in tri) for tri in f.tolist()
-        )
+        body = "\n".join("f " + " ".join(f"{a}/{b}" for a, b in tri) for tri in f.tolist())
         buf.append((body + "\n").encode())
     else:
         buf.append(_rows("f", faces + 1, "%d %d %d"))

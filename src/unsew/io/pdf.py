@@ -52,8 +52,9 @@ def _tile_name(r: int, c: int) -> str:
     return f"{row}{c + 1}"
 
 
-def _draw_pieces(ax, sheet: Sheet, box: tuple[float, float, float, float] | None, *, scale: float = 1.0,
-                 text: bool = True) -> bool:
+def _draw_pieces(
+    ax, sheet: Sheet, box: tuple[float, float, float, float] | None, *, scale: float = 1.0, text: bool = True
+) -> bool:
     """Draw the sheet's pieces [mm] on ``ax`` (only those meeting ``box`` = x0, y0, x1, y1 [mm]
     when given); ``scale``: drawing mm per page mm (line widths and text shrink by it). Returns
     whether anything was drawn."""
@@ -70,8 +71,14 @@ def _draw_pieces(ax, sheet: Sheet, box: tuple[float, float, float, float] | None
         drew = True
         sew = (pc.lines.sew + pc.offset) * 1000.0
         ax.fill(cut[:, 0], cut[:, 1], facecolor="#f4f4f4", edgecolor="black", linewidth=0.5 * _PT * lw)
-        ax.fill(sew[:, 0], sew[:, 1], facecolor="none", edgecolor="#555555", linewidth=0.3 * _PT * lw,
-                linestyle=(0, (3, 1.5)))
+        ax.fill(
+            sew[:, 0],
+            sew[:, 1],
+            facecolor="none",
+            edgecolor="#555555",
+            linewidth=0.3 * _PT * lw,
+            linestyle=(0, (3, 1.5)),
+        )
         if not text:
             ax.text(*(0.5 * (lo + hi)), pc.name, ha="center", va="center", fontsize=6, clip_on=True)
             continue
@@ -79,17 +86,31 @@ def _draw_pieces(ax, sheet: Sheet, box: tuple[float, float, float, float] | None
             s = (np.array([a, b]) + pc.offset) * 1000.0
             ax.plot(s[:, 0], s[:, 1], color="red", linewidth=0.4 * _PT)
         g = (pc.grain + pc.offset) * 1000.0
-        ax.annotate("", xy=g[1], xytext=g[0], arrowprops=dict(arrowstyle="<|-|>", lw=0.4 * _PT, color="black",
-                                                               mutation_scale=8), annotation_clip=True)
+        ax.annotate(
+            "",
+            xy=g[1],
+            xytext=g[0],
+            arrowprops=dict(arrowstyle="<|-|>", lw=0.4 * _PT, color="black", mutation_scale=8),
+            annotation_clip=True,
+        )
         if pc.fold is not None:
             f = (pc.fold + pc.offset) * 1000.0
             ax.plot(f[:, 0], f[:, 1], color="#2f6fd0", linewidth=0.3 * _PT, linestyle=(0, (6, 2, 1, 2)))
         for lb in pc.labels:
             p = (lb.pos + pc.offset) * 1000.0
             seam = lb.kind == "seam"
-            ax.text(p[0], p[1], lb.text, fontsize=lb.height * 1000.0 * _PT, clip_on=True,
-                    ha="center" if seam else "left", va="center", color="red" if seam else "black",
-                    fontweight="bold" if lb.kind == "name" else "normal", path_effects=halo)
+            ax.text(
+                p[0],
+                p[1],
+                lb.text,
+                fontsize=lb.height * 1000.0 * _PT,
+                clip_on=True,
+                ha="center" if seam else "left",
+                va="center",
+                color="red" if seam else "black",
+                fontweight="bold" if lb.kind == "name" else "normal",
+                path_effects=halo,
+            )
     return drew
 
 
@@ -106,8 +127,14 @@ def _mm_axes(fig, page: tuple[float, float], x: float, y: float, w: float, h: fl
     return ax
 
 
-def write_pdf(pattern: Pattern, path: str | os.PathLike, *, paper: str = "a4", allowance: float | None = None,
-              hem: float | None = None) -> int:
+def write_pdf(
+    pattern: Pattern,
+    path: str | os.PathLike,
+    *,
+    paper: str = "a4",
+    allowance: float | None = None,
+    hem: float | None = None,
+) -> int:
     """Write ``pattern`` as a tiled 1:1 PDF on ``paper`` ('a4' or 'letter'), atomically.
     allowance, hem: seam allowance of plain and hem edges [m] (default: the pattern's
     ``unsew.seam_allowance``, else 1 and 2 cm). Returns the number of pages."""
@@ -125,16 +152,26 @@ def write_pdf(pattern: Pattern, path: str | os.PathLike, *, paper: str = "a4", a
         return _box(r, c, tile, top)
 
     have = set(tiles)
-    with atomic_write(path) as tmp, PdfPages(tmp, metadata={"Title": f"{pattern.name}: sewing pattern, 1:1",
-                                                            "Creator": "unsew"}) as pdf:
+    with (
+        atomic_write(path) as tmp,
+        PdfPages(tmp, metadata={"Title": f"{pattern.name}: sewing pattern, 1:1", "Creator": "unsew"}) as pdf,
+    ):
         fig = _page(pw, ph)
-        fig.text(m / pw, 1 - m / ph, f"{pattern.name}: sewing pattern at 1:1 on {paper.upper()} "
-                 f"({len(tiles)} tile pages)", fontsize=13, fontweight="bold", va="top")
-        lines = ["Print at 100 % (\"actual size\", no fit to page), then measure the square: it must be 10 cm.",
-                 "Solid: cut line (seam allowance included). Dashed: sew line. Red ticks: notches;",
-                 "red letters: seams (sew edges with the same letter together, notches matching).",
-                 "Assemble: trim the margin of a page, lay it on its neighbour so the half diamonds",
-                 "at the frame sides make whole ones and the frame lines meet, then tape."]
+        fig.text(
+            m / pw,
+            1 - m / ph,
+            f"{pattern.name}: sewing pattern at 1:1 on {paper.upper()} ({len(tiles)} tile pages)",
+            fontsize=13,
+            fontweight="bold",
+            va="top",
+        )
+        lines = [
+            'Print at 100 % ("actual size", no fit to page), then measure the square: it must be 10 cm.',
+            "Solid: cut line (seam allowance included). Dashed: sew line. Red ticks: notches;",
+            "red letters: seams (sew edges with the same letter together, notches matching).",
+            "Assemble: trim the margin of a page, lay it on its neighbour so the half diamonds",
+            "at the frame sides make whole ones and the frame lines meet, then tape.",
+        ]
         for k, line in enumerate(lines):
             fig.text(m / pw, 1 - (m + 12 + 5.5 * k) / ph, line, fontsize=8.5, va="top")
         ax = _mm_axes(fig, (pw, ph), m, ph - m - 50 - s_mm, s_mm, s_mm)
@@ -155,12 +192,23 @@ def write_pdf(pattern: Pattern, path: str | os.PathLike, *, paper: str = "a4", a
                 b = box(r, c)
                 on = (r, c) in have
                 axm.add_patch(_rect(b, on))
-                axm.text((b[0] + b[2]) / 2, (b[1] + b[3]) / 2, _tile_name(r, c) if on else "", ha="center",
-                         va="center", fontsize=7, color="#2f6fd0")
+                axm.text(
+                    (b[0] + b[2]) / 2,
+                    (b[1] + b[3]) / 2,
+                    _tile_name(r, c) if on else "",
+                    ha="center",
+                    va="center",
+                    fontsize=7,
+                    color="#2f6fd0",
+                )
         axm.set_xlim(0, cols * tile[0])
         axm.set_ylim(top - rows * tile[1], top)
-        fig.text(m / pw, (m + rows * tile[1] * k + 2) / ph, "Page map (grey: pages left out, nothing on them)",
-                 fontsize=8)
+        fig.text(
+            m / pw,
+            (m + rows * tile[1] * k + 2) / ph,
+            "Page map (grey: pages left out, nothing on them)",
+            fontsize=8,
+        )
         pdf.savefig(fig)
         for i, (r, c) in enumerate(tiles):
             fig = _page(pw, ph)
@@ -169,11 +217,22 @@ def write_pdf(pattern: Pattern, path: str | os.PathLike, *, paper: str = "a4", a
             _draw_pieces(ax, sheet, b)
             ax.set_xlim(b[0], b[2])
             ax.set_ylim(b[1], b[3])
-            ax.plot([b[0], b[2], b[2], b[0], b[0]], [b[1], b[1], b[3], b[3], b[1]], color="#2f6fd0",
-                    linewidth=0.5, clip_on=False)
+            ax.plot(
+                [b[0], b[2], b[2], b[0], b[0]],
+                [b[1], b[1], b[3], b[3], b[1]],
+                color="#2f6fd0",
+                linewidth=0.5,
+                clip_on=False,
+            )
             _match_marks(ax, b, r, c, have)
-            fig.text(0.5, 1 - 5 / ph, f"{pattern.name}   page {_tile_name(r, c)}   ({i + 2} of {len(tiles) + 1})",
-                     ha="center", va="center", fontsize=9)
+            fig.text(
+                0.5,
+                1 - 5 / ph,
+                f"{pattern.name}   page {_tile_name(r, c)}   ({i + 2} of {len(tiles) + 1})",
+                ha="center",
+                va="center",
+                fontsize=9,
+            )
             pdf.savefig(fig)
     return len(tiles) + 1
 
@@ -200,8 +259,12 @@ def _tiled(sheet: Sheet, paper: str):
             top = float(size[1])
             boxes = [((pc.lines.cut + pc.offset) * 1000.0) for pc in sh.pieces]
             boxes = [(b.min(0), b.max(0)) for b in boxes]
-            tiles = [(r, c) for r in range(rows) for c in range(cols)
-                     if any(_overlap(_box(r, c, tile, top), lo, hi) for lo, hi in boxes)]
+            tiles = [
+                (r, c)
+                for r in range(rows)
+                for c in range(cols)
+                if any(_overlap(_box(r, c, tile, top), lo, hi) for lo, hi in boxes)
+            ]
             if best is None or len(tiles) < len(best[5]):
                 best = (sh, tile, rows, cols, top, tiles)
     return best
@@ -214,8 +277,15 @@ def _overlap(b, lo, hi) -> bool:
 def _rect(b, on: bool):
     from matplotlib.patches import Rectangle
 
-    return Rectangle((b[0], b[1]), b[2] - b[0], b[3] - b[1], fill=not on, facecolor="#dddddd",
-                     edgecolor="#2f6fd0", linewidth=0.5)
+    return Rectangle(
+        (b[0], b[1]),
+        b[2] - b[0],
+        b[3] - b[1],
+        fill=not on,
+        facecolor="#dddddd",
+        edgecolor="#2f6fd0",
+        linewidth=0.5,
+    )
 
 
 def _match_marks(ax, b, r: int, c: int, have: set) -> None:
@@ -225,12 +295,20 @@ def _match_marks(ax, b, r: int, c: int, have: set) -> None:
 
     x0, y0, x1, y1 = b
     xm, ym, d = (x0 + x1) / 2, (y0 + y1) / 2, 6.0
-    sides = {(r - 1, c): ([(xm - d, y1), (xm, y1 - d), (xm + d, y1)], (xm, y1 - d - 3), "center", "top"),
-             (r + 1, c): ([(xm - d, y0), (xm, y0 + d), (xm + d, y0)], (xm, y0 + d + 3), "center", "bottom"),
-             (r, c - 1): ([(x0, ym - d), (x0 + d, ym), (x0, ym + d)], (x0 + d + 3, ym), "left", "center"),
-             (r, c + 1): ([(x1, ym - d), (x1 - d, ym), (x1, ym + d)], (x1 - d - 3, ym), "right", "center")}
+    sides = {
+        (r - 1, c): ([(xm - d, y1), (xm, y1 - d), (xm + d, y1)], (xm, y1 - d - 3), "center", "top"),
+        (r + 1, c): ([(xm - d, y0), (xm, y0 + d), (xm + d, y0)], (xm, y0 + d + 3), "center", "bottom"),
+        (r, c - 1): ([(x0, ym - d), (x0 + d, ym), (x0, ym + d)], (x0 + d + 3, ym), "left", "center"),
+        (r, c + 1): ([(x1, ym - d), (x1 - d, ym), (x1, ym + d)], (x1 - d - 3, ym), "right", "center"),
+    }
     for nb, (tri, at, ha, va) in sides.items():
         if nb in have:
             ax.add_patch(Polygon(tri, closed=True, facecolor="#2f6fd0", edgecolor="none", alpha=0.6))
-            ax.text(*at, f"{_tile_name(*nb)}", ha=ha, va=va if va != "center" else "center", fontsize=8,
-                    color="#2f6fd0")
+            ax.text(
+                *at,
+                f"{_tile_name(*nb)}",
+                ha=ha,
+                va=va if va != "center" else "center",
+                fontsize=8,
+                color="#2f6fd0",
+            )

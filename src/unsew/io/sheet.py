@@ -24,8 +24,20 @@ from unsew.io.cutlines import (
 from unsew.pattern.curves import edge_length, sample_edge
 from unsew.pattern.model import Pattern
 
-__all__ = ["Sheet", "Piece", "Label", "make_sheet", "relayout", "seam_marks", "SeamMark", "edge_point", "stitch_code",
-           "TEST_SQUARE_M", "NOTCH_LENGTH", "SIZE_TEXT"]
+__all__ = [
+    "Sheet",
+    "Piece",
+    "Label",
+    "make_sheet",
+    "relayout",
+    "seam_marks",
+    "SeamMark",
+    "edge_point",
+    "stitch_code",
+    "TEST_SQUARE_M",
+    "NOTCH_LENGTH",
+    "SIZE_TEXT",
+]
 
 #: Gap between laid-out pieces [m]; width after which a new row starts [m].
 LAYOUT_GAP = 0.04
@@ -144,7 +156,9 @@ def _chord(poly: np.ndarray, x: float) -> tuple[float, float] | None:
     return max(spans, key=lambda s: s[1] - s[0]) if spans else None
 
 
-def _piece(pattern: Pattern, name: str, allowance: np.ndarray, note: CuttingNote, marks: list[SeamMark]) -> Piece:
+def _piece(
+    pattern: Pattern, name: str, allowance: np.ndarray, note: CuttingNote, marks: list[SeamMark]
+) -> Piece:
     pan = pattern.panels[name]
     lines = piece_lines(pan, allowance)
     sew = lines.sew
@@ -189,8 +203,14 @@ def _piece(pattern: Pattern, name: str, allowance: np.ndarray, note: CuttingNote
     return Piece(name, lines, note, notches_sew, notches_cut, grain, fold, labels)
 
 
-def make_sheet(pattern: Pattern, *, allowance: float | None = None, hem: float | None = None,
-               gap: float = LAYOUT_GAP, row_width: float = ROW_WIDTH) -> Sheet:
+def make_sheet(
+    pattern: Pattern,
+    *,
+    allowance: float | None = None,
+    hem: float | None = None,
+    gap: float = LAYOUT_GAP,
+    row_width: float = ROW_WIDTH,
+) -> Sheet:
     """Lay out every piece of ``pattern`` with its seam allowance (``allowance``, ``hem`` [m] as
     :func:`unsew.io.cutlines.seam_allowances`): side by side in rows by their cut lines, no
     overlap, a margin ``gap`` [m] all round, the test square in a row of its own above them."""
@@ -201,8 +221,14 @@ def make_sheet(pattern: Pattern, *, allowance: float | None = None, hem: float |
     return relayout(Sheet(pattern.name, pieces, np.zeros(2), np.zeros(2)), gap=gap, row_width=row_width)
 
 
-def relayout(sheet: Sheet, *, gap: float = LAYOUT_GAP, row_width: float = ROW_WIDTH, tallest_first: bool = False,
-             square: bool = True) -> Sheet:
+def relayout(
+    sheet: Sheet,
+    *,
+    gap: float = LAYOUT_GAP,
+    row_width: float = ROW_WIDTH,
+    tallest_first: bool = False,
+    square: bool = True,
+) -> Sheet:
     """The same pieces laid out again (a new Sheet; the pieces' offsets change): in rows no wider
     than ``row_width`` [m] where possible, in pattern order or, ``tallest_first``, by decreasing
     height (fewer rows of mixed heights); ``square``: the test square in a row of its own above
@@ -221,7 +247,10 @@ def relayout(sheet: Sheet, *, gap: float = LAYOUT_GAP, row_width: float = ROW_WI
         x += w + gap
         row_h = max(row_h, h)
     top = max((pc.lines.cut.max(0)[1] + pc.offset[1] for pc in pieces), default=0.0)
-    right = max([pc.lines.cut.max(0)[0] + pc.offset[0] for pc in pieces] + [gap + (2.5 * TEST_SQUARE_M if square else 0)])
+    right = max(
+        [pc.lines.cut.max(0)[0] + pc.offset[0] for pc in pieces]
+        + [gap + (2.5 * TEST_SQUARE_M if square else 0)]
+    )
     if not square:
         return Sheet(sheet.name, pieces, np.array([right + gap, top + gap]), np.zeros(2))
     corner = np.array([gap, top + gap])

@@ -42,8 +42,9 @@ def _fmt(v: float) -> str:
     return f"{v:.4f}".rstrip("0").rstrip(".")
 
 
-def write_svg(pattern: Pattern, path: str | os.PathLike, *, allowance: float | None = None,
-              hem: float | None = None) -> None:
+def write_svg(
+    pattern: Pattern, path: str | os.PathLike, *, allowance: float | None = None, hem: float | None = None
+) -> None:
     """Write ``pattern`` as a true-scale SVG (mm), atomically. allowance, hem: seam allowance of
     plain and hem edges [m] (default: the pattern's ``unsew.seam_allowance``, else 1 and 2 cm)."""
     sheet = make_sheet(pattern, allowance=allowance, hem=hem)
@@ -56,10 +57,12 @@ def write_svg(pattern: Pattern, path: str | os.PathLike, *, allowance: float | N
         return "M" + " L".join(xy(p) for p in pts) + " Z"
 
     def text(p, h, s, cls, *, anchor="start", fill="black") -> str:
-        return (f'<text class="{cls}" x="{_fmt(p[0] * 1000)}" y="{_fmt(H - p[1] * 1000)}" '
-                f'font-size="{_fmt(h * 1000)}" font-family="sans-serif" text-anchor="{anchor}" '
-                f'dominant-baseline="middle" fill="{fill}" stroke="white" stroke-width="{_fmt(0.25 * h * 1000)}" '
-                f'paint-order="stroke">{escape(s)}</text>')
+        return (
+            f'<text class="{cls}" x="{_fmt(p[0] * 1000)}" y="{_fmt(H - p[1] * 1000)}" '
+            f'font-size="{_fmt(h * 1000)}" font-family="sans-serif" text-anchor="{anchor}" '
+            f'dominant-baseline="middle" fill="{fill}" stroke="white" stroke-width="{_fmt(0.25 * h * 1000)}" '
+            f'paint-order="stroke">{escape(s)}</text>'
+        )
 
     out = [
         '<?xml version="1.0" encoding="UTF-8"?>',
@@ -67,39 +70,60 @@ def write_svg(pattern: Pattern, path: str | os.PathLike, *, allowance: float | N
         f'viewBox="0 0 {_fmt(W)} {_fmt(H)}" data-units="mm">',
         f"<title>{escape(pattern.name)} (unsew sewing pattern, 1 unit = 1 mm; solid: cut line, "
         "dashed: sew line)</title>",
-        "<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"10\" refY=\"5\" markerWidth=\"4\" markerHeight=\"4\" "
+        '<defs><marker id="arrow" viewBox="0 0 10 10" refX="10" refY="5" markerWidth="4" markerHeight="4" '
         'orient="auto-start-reverse"><path d="M0,0 L10,5 L0,10 z" fill="black"/></marker></defs>',
     ]
     for pc in sheet.pieces:
         off = pc.offset
-        out.append(f'<g id="panel-{escape(pc.name)}" class="panel" data-offset-mm="{_fmt(off[0] * 1000)},'
-                   f'{_fmt(off[1] * 1000)}" data-quantity="{pc.note.quantity}">')
-        out.append(f'<path class="cut-line" d="{poly(pc.lines.cut + off)}" fill="none" stroke="black" '
-                   'stroke-width="0.5"/>')
-        out.append(f'<path class="sew-line" d="{poly(pc.lines.sew + off)}" fill="none" stroke="#555" '
-                   'stroke-width="0.3" stroke-dasharray="3,1.5"/>')
+        out.append(
+            f'<g id="panel-{escape(pc.name)}" class="panel" data-offset-mm="{_fmt(off[0] * 1000)},'
+            f'{_fmt(off[1] * 1000)}" data-quantity="{pc.note.quantity}">'
+        )
+        out.append(
+            f'<path class="cut-line" d="{poly(pc.lines.cut + off)}" fill="none" stroke="black" '
+            'stroke-width="0.5"/>'
+        )
+        out.append(
+            f'<path class="sew-line" d="{poly(pc.lines.sew + off)}" fill="none" stroke="#555" '
+            'stroke-width="0.3" stroke-dasharray="3,1.5"/>'
+        )
         for a, b in pc.notches_sew + pc.notches_cut:
-            out.append(f'<path class="notch" d="M{xy(a + off)} L{xy(b + off)}" stroke="red" stroke-width="0.4"/>')
+            out.append(
+                f'<path class="notch" d="M{xy(a + off)} L{xy(b + off)}" stroke="red" stroke-width="0.4"/>'
+            )
         g0, g1 = pc.grain + off
-        out.append(f'<path class="grainline" d="M{xy(g0)} L{xy(g1)}" stroke="black" stroke-width="0.4" '
-                   'marker-start="url(#arrow)" marker-end="url(#arrow)"/>')
+        out.append(
+            f'<path class="grainline" d="M{xy(g0)} L{xy(g1)}" stroke="black" stroke-width="0.4" '
+            'marker-start="url(#arrow)" marker-end="url(#arrow)"/>'
+        )
         if pc.fold is not None:
             f0, f1 = pc.fold + off
-            out.append(f'<path class="fold-line" d="M{xy(f0)} L{xy(f1)}" stroke="#2f6fd0" stroke-width="0.3" '
-                       'stroke-dasharray="6,2,1,2"/>')
+            out.append(
+                f'<path class="fold-line" d="M{xy(f0)} L{xy(f1)}" stroke="#2f6fd0" stroke-width="0.3" '
+                'stroke-dasharray="6,2,1,2"/>'
+            )
         for lb in pc.labels:
             if lb.kind == "seam":
                 out.append(text(lb.pos + off, lb.height, lb.text, "seam-label", anchor="middle", fill="red"))
             else:
-                out.append(text(lb.pos + off, lb.height, lb.text, "panel-name" if lb.kind == "name" else "cutting-note"))
+                out.append(
+                    text(
+                        lb.pos + off,
+                        lb.height,
+                        lb.text,
+                        "panel-name" if lb.kind == "name" else "cutting-note",
+                    )
+                )
         out.append("</g>")
     s0, s = sheet.square, TEST_SQUARE_M
     sq = np.array([s0, s0 + [s, 0], s0 + [s, s], s0 + [0, s]])
-    out.append('<g id="test-square" class="test-square">'
-               f'<path d="{poly(sq)}" fill="none" stroke="black" stroke-width="0.3"/>'
-               + text(s0 + [s + 0.01, 0.6 * s], 0.006, "10 cm x 10 cm test square:", "note")
-               + text(s0 + [s + 0.01, 0.45 * s], 0.005, "print at 100 % (actual size) and measure", "note")
-               + "</g>")
+    out.append(
+        '<g id="test-square" class="test-square">'
+        f'<path d="{poly(sq)}" fill="none" stroke="black" stroke-width="0.3"/>'
+        + text(s0 + [s + 0.01, 0.6 * s], 0.006, "10 cm x 10 cm test square:", "note")
+        + text(s0 + [s + 0.01, 0.45 * s], 0.005, "print at 100 % (actual size) and measure", "note")
+        + "</g>"
+    )
     out.append("</svg>")
     with atomic_write(path) as tmp:
         Path(tmp).write_text("\n".join(out) + "\n", encoding="utf-8")

@@ -38,16 +38,16 @@ def seam_segment_pairs(mesh, stitches) -> np.ndarray:
             key = (side.panel, side.edge)
             if key not in mesh.edge_verts:
                 raise PatternError(
-                    f"stitch {s.label or ''} names edge {side.edge} of panel {side.panel!r}, which the garment mesh "
-                    "does not have; re-mesh the pattern after editing its stitches"
+                    f"stitch {s.label or ''} names edge {side.edge} of panel {side.panel!r}, which the "
+                    "garment mesh does not have; re-mesh the pattern after editing its stitches"
                 )
             sides.append(np.asarray(mesh.edge_verts[key], dtype=np.int64))
         ia, ib = sides
         ib = ib[::-1]  # a.start meets b.end
         if len(ia) != len(ib):
             raise PatternError(
-                f"stitch {s.a.panel}:{s.a.edge} - {s.b.panel}:{s.b.edge} has {len(ia)} vs {len(ib)} vertices on its "
-                "two sides; mesh the pattern so stitched edges get equal vertex counts"
+                f"stitch {s.a.panel}:{s.a.edge} - {s.b.panel}:{s.b.edge} has {len(ia)} vs {len(ib)} vertices "
+                "on its two sides; mesh the pattern so stitched edges get equal vertex counts"
             )
         if len(ia) < 2:
             continue

@@ -47,8 +47,10 @@ def loss_stretch(x, uv, edges, edges_uv, *, bound: float = STRETCH_BOUND):
     if x.ndim != 2 or x.shape[1] != 3 or uv.ndim != 2 or uv.shape[1] != 2:
         raise ValueError(f"x must be (Nx, 3) and uv (Nu, 2), got {tuple(x.shape)} and {tuple(uv.shape)}")
     if edges.shape != edges_uv.shape or edges.ndim != 2 or edges.shape[1] != 2:
-        raise ValueError(f"edges and edges_uv must be matching (E, 2), got {tuple(edges.shape)} and "
-                         f"{tuple(edges_uv.shape)}")
+        raise ValueError(
+            f"edges and edges_uv must be matching (E, 2), got {tuple(edges.shape)} and "
+            f"{tuple(edges_uv.shape)}"
+        )
     length = (x[edges[:, 0]] - x[edges[:, 1]]).norm(dim=1)  # (E,) [m]
     rest = (uv[edges_uv[:, 0]] - uv[edges_uv[:, 1]]).norm(dim=1)  # (E,) [m]
     return (torch.relu(length / rest - bound) ** 2).sum()

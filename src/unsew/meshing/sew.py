@@ -83,7 +83,9 @@ class GarmentMesh:
     def interior(self, p: int) -> np.ndarray:
         """uv indices (k,) int64 of panel ``p``'s interior (non-outline) vertices."""
         return np.arange(
-            int(self.panel_offsets[p]) + int(self.n_boundary[p]), int(self.panel_offsets[p + 1]), dtype=np.int64
+            int(self.panel_offsets[p]) + int(self.n_boundary[p]),
+            int(self.panel_offsets[p + 1]),
+            dtype=np.int64,
         )
 
     def min_angle(self) -> float:
@@ -130,15 +132,16 @@ def _segments_per_edge(pattern: Pattern, edge_length: float, even: frozenset = f
     keys = [(name, i) for name in pattern.panel_order for i in range(len(pattern.panels[name].edges))]
     index = {k: j for j, k in enumerate(keys)}
     n = np.array(
-        [max(1, math.ceil(_edge_length(pattern.panels[k[0]], k[1]) / edge_length - 1e-9)) for k in keys], dtype=np.int64
+        [max(1, math.ceil(_edge_length(pattern.panels[k[0]], k[1]) / edge_length - 1e-9)) for k in keys],
+        dtype=np.int64,
     )
     uf = _UnionFind(len(keys))
     for s in pattern.stitches:
         for side in (s.a, s.b):
             if (side.panel, side.edge) not in index:
                 raise PatternError(
-                    f"stitch {s.label or ''} refers to panel {side.panel!r} edge {side.edge}, which does not exist; "
-                    "fix the stitch or add the panel"
+                    f"stitch {s.label or ''} refers to panel {side.panel!r} edge {side.edge}, which does not "
+                    "exist; fix the stitch or add the panel"
                 )
         uf.union(index[(s.a.panel, s.a.edge)], index[(s.b.panel, s.b.edge)])
     roots = np.array([uf.find(j) for j in range(len(keys))])
@@ -175,7 +178,9 @@ def mesh_pattern(
     """
     lo, hi = EDGE_LENGTH_RANGE
     if not (lo <= float(edge_length) <= hi):
-        raise InputError(f"edge length {edge_length:g} m is outside {lo:g}-{hi:g} m; pass e.g. --edge-length 0.02")
+        raise InputError(
+            f"edge length {edge_length:g} m is outside {lo:g}-{hi:g} m; pass e.g. --edge-length 0.02"
+        )
     if not (0.0 <= float(min_angle) <= 33.0):
         raise InputError(f"minimum angle {min_angle:g} deg is outside 0-33 deg (Triangle's guaranteed range)")
     if not pattern.panel_order:
@@ -183,7 +188,9 @@ def mesh_pattern(
     sym = _symmetry_of(pattern) if symmetric else None
     mirrors = {mi.panel: mi for mi in sym.mirrors} if sym is not None else {}
     pair_of = {pr.target: pr for pr in sym.pairs} if sym is not None else {}
-    nseg = _segments_per_edge(pattern, edge_length, _axis_edges(pattern, _axes(sym) if sym is not None else {}))
+    nseg = _segments_per_edge(
+        pattern, edge_length, _axis_edges(pattern, _axes(sym) if sym is not None else {})
+    )
     outlines, starts_of = _sample_outlines(pattern, nseg)
     meshed, how = _mesh_panels(pattern, outlines, mirrors, pair_of, edge_length, min_angle)
     rest = _join_panels(pattern, meshed, outlines, starts_of, nseg)
@@ -335,20 +342,25 @@ def _mesh_panels(pattern, outlines, mirrors, pair_of, edge_length, min_angle):
     from unsew.meshing.symmetric import transport_mesh, triangulate_mirrored
 
     meshed, how = {}, {}
-    order = [n for n in pattern.panel_order if n not in pair_of] + [n for n in pattern.panel_order if n in pair_of]
+    order = [n for n in pattern.panel_order if n not in pair_of] + [
+        n for n in pattern.panel_order if n in pair_of
+    ]
     for name in order:
         out = outlines[name]
         res = None
         pr = pair_of.get(name)
         if pr is not None and pr.source in meshed:
             sv, st = meshed[pr.source]
-            res = transport_mesh(outlines[pr.source], sv, st, out, mirrored=pr.mirrored, edge_length=edge_length)
+            res = transport_mesh(
+                outlines[pr.source], sv, st, out, mirrored=pr.mirrored, edge_length=edge_length
+            )
             if res is not None:
                 how[name] = f"pair:{pr.source}"
         if res is None and name in mirrors:
             mi = mirrors[name]
-            res = triangulate_mirrored(out, mi.point, mi.direction, edge_length=edge_length, min_angle=min_angle,
-                                       name=name)
+            res = triangulate_mirrored(
+                out, mi.point, mi.direction, edge_length=edge_length, min_angle=min_angle, name=name
+            )
             if res is not None:
                 how[name] = "mirror"
         if res is None:
@@ -365,6 +377,10 @@ def write_rest_obj(mesh: GarmentMesh, path: str | os.PathLike) -> None:
     from unsew.io.mesh import write_obj
 
     write_obj(
-        path, mesh.uv_placed3d, mesh.faces_uv, uv=mesh.uv, faces_uv=mesh.faces_uv,
+        path,
+        mesh.uv_placed3d,
+        mesh.faces_uv,
+        uv=mesh.uv,
+        faces_uv=mesh.faces_uv,
         header="unsew rest mesh: flat panels placed in 3D; vt = pattern coordinates [m]",
     )

@@ -31,14 +31,16 @@ def _check_meshable(boundary: np.ndarray, name: str) -> None:
     if not np.isfinite(boundary).all():
         raise PatternError(f"panel {name!r}: outline has non-finite coordinates; check its vertices")
     if (d <= 1e-9 * max(perimeter, 1e-12)).any():
-        raise PatternError(f"panel {name!r}: outline repeats a point; check for duplicate vertices or zero-length edges")
+        raise PatternError(
+            f"panel {name!r}: outline repeats a point; check for duplicate vertices or zero-length edges"
+        )
     back, ahead = np.roll(boundary, 1, axis=0) - boundary, np.roll(boundary, -1, axis=0) - boundary
     cos = (back * ahead).sum(axis=1) / (np.linalg.norm(back, axis=1) * np.linalg.norm(ahead, axis=1))
     spikes = np.flatnonzero(cos > math.cos(math.radians(0.5)))  # the outline turns back on itself
     if spikes.size:
         raise PatternError(
-            f"panel {name!r}: outline folds back on itself at outline point {int(spikes[0])} of {len(boundary)} "
-            "(a spike of zero width); check its vertices and curvature"
+            f"panel {name!r}: outline folds back on itself at outline point {int(spikes[0])} of "
+            f"{len(boundary)} (a spike of zero width); check its vertices and curvature"
         )
     crossing = _first_crossing(boundary)
     if crossing is not None:
@@ -66,12 +68,14 @@ def _first_crossing(b: np.ndarray, *, chunk: int = 256) -> tuple[int, int] | Non
     eps = 1e-12 * scale * scale
 
     def orient(a, c, d):  # sign of cross((c - a), (d - a)), broadcast
-        return (c[..., 0] - a[..., 0]) * (d[..., 1] - a[..., 1]) - (c[..., 1] - a[..., 1]) * (d[..., 0] - a[..., 0])
+        return (c[..., 0] - a[..., 0]) * (d[..., 1] - a[..., 1]) - (c[..., 1] - a[..., 1]) * (
+            d[..., 0] - a[..., 0]
+        )
 
     idx = np.arange(m)
     for s in range(0, m, chunk):
-        i = idx[s:s + chunk, None]  # (C, 1)
-        pi, qi = p[s:s + chunk, None], q[s:s + chunk, None]  # (C, 1, 2)
+        i = idx[s : s + chunk, None]  # (C, 1)
+        pi, qi = p[s : s + chunk, None], q[s : s + chunk, None]  # (C, 1, 2)
         pj, qj = p[None], q[None]  # (1, M, 2)
         d1, d2 = orient(pi, qi, pj), orient(pi, qi, qj)  # (C, M)
         d3, d4 = orient(pj, qj, pi), orient(pj, qj, qi)

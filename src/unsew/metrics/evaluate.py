@@ -27,8 +27,16 @@ __all__ = ["evaluate_result", "EVAL_FORMAT_VERSION", "format_table", "write_eval
 EVAL_FORMAT_VERSION = 1
 
 
-def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int = 0, units: str | None = None,
-                    up: str | None = None, front: str | None = None) -> dict:
+def evaluate_result(
+    result_dir,
+    case_dir,
+    *,
+    n_samples: int = 100_000,
+    seed: int = 0,
+    units: str | None = None,
+    up: str | None = None,
+    front: str | None = None,
+) -> dict:
     """All metrics of a result folder against a case folder, as a JSON-ready dict.
 
     result_dir: folder with ``garment.obj`` [m, world frame] and optionally ``pattern.json``.
@@ -38,8 +46,8 @@ def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int
     units, up, front: the case files' frame, overriding meta.json's (as ``unsew fit --units``).
     Returns: ``{"format_version", "result", "case", "3d": {...}, "2d": {...} | None,
     "2d_skipped": reason | None}``, plus ``2d_base`` / ``2d_graded`` when the result folder holds
-    the fit's ``pattern_base.json`` / ``pattern_graded.json``. Raises InputError / PatternError on bad input (missing
-    files, empty or non-finite meshes, a pattern without panels); panels without a counterpart
+    the fit's ``pattern_base.json`` / ``pattern_graded.json``. Raises InputError / PatternError on bad input
+    (missing files, empty or non-finite meshes, a pattern without panels); panels without a counterpart
     are listed in ``2d["unmatched"]``.
     """
     res, case = Path(result_dir), Path(case_dir)
@@ -60,7 +68,13 @@ def evaluate_result(result_dir, case_dir, *, n_samples: int = 100_000, seed: int
         "format_version": EVAL_FORMAT_VERSION,
         "result": str(res),
         "case": str(case),
-        "units": {"chamfer": "mm", "angles": "deg", "vertex_l2": "cm", "turning_distance": "rad", "area": "m^2"},
+        "units": {
+            "chamfer": "mm",
+            "angles": "deg",
+            "vertex_l2": "cm",
+            "turning_distance": "rad",
+            "area": "m^2",
+        },
         "3d": surface_metrics(gv, gf, tv, tf, n_samples=n_samples, seed=seed),
         "2d": None,
         "2d_skipped": None,
@@ -94,8 +108,10 @@ def format_table(ev: dict) -> str:
     for key, what in (("2d_base", "base"), ("2d_graded", "graded")):
         d = ev.get(key)
         if d:
-            lines.append(f"2D of the {what} pattern: area error {100 * d['area_error_weighted_rel']:.2f} % "
-                         f"(area-weighted), total area {100 * d['area_error_total_rel']:.2f} %")
+            lines.append(
+                f"2D of the {what} pattern: area error {100 * d['area_error_weighted_rel']:.2f} % "
+                f"(area-weighted), total area {100 * d['area_error_total_rel']:.2f} %"
+            )
     if d2 is None:
         lines.append(f"2D: skipped ({ev.get('2d_skipped')})")
     else:
@@ -106,13 +122,21 @@ def format_table(ev: dict) -> str:
             lab = f"{name} <- {p['estimated_panel']}" if name != p["estimated_panel"] else name
             lines.append(f"  {lab:<24}{p['turning_distance']:>14.4f}{p['area_error_rel']:>10.4f}{l2:>9}")
         l2m = "-" if d2["vertex_l2_cm_mean"] is None else f"{d2['vertex_l2_cm_mean']:.2f}"
-        lines.append(f"  {'mean (matched)':<24}{d2['turning_distance_mean']:>14.4f}{d2['area_error_rel_mean']:>10.4f}{l2m:>9}")
+        lines.append(
+            f"  {'mean (matched)':<24}{d2['turning_distance_mean']:>14.4f}"
+            f"{d2['area_error_rel_mean']:>10.4f}{l2m:>9}"
+        )
         un = d2.get("unmatched") or {}
         if un.get("estimated") or un.get("true"):
-            lines.append(f"  unmatched panels: estimated {un.get('estimated') or '[]'}, true {un.get('true') or '[]'}")
+            lines.append(
+                f"  unmatched panels: estimated {un.get('estimated') or '[]'}, true {un.get('true') or '[]'}"
+            )
         if d2.get("area_error_weighted_rel") is not None:
-            lines.append(f"  area error, area-weighted (unmatched count in full) {100 * d2['area_error_weighted_rel']:.2f} %, "
-                         f"total area {100 * d2['area_error_total_rel']:.2f} %")
+            lines.append(
+                "  area error, area-weighted (unmatched count in full) "
+                f"{100 * d2['area_error_weighted_rel']:.2f} %, total area "
+                f"{100 * d2['area_error_total_rel']:.2f} %"
+            )
     return "\n".join(lines)
 
 

@@ -90,7 +90,9 @@ def panel_centroid3d(panel) -> np.ndarray:
     return euler_xyz_to_matrix(panel.rotation) @ np.array([c[0], c[1], 0.0]) + panel.translation
 
 
-def match_panels(pattern_est, pattern_gt, *, placement_weight: float = 2.0, strict: bool = True) -> dict[str, str]:
+def match_panels(
+    pattern_est, pattern_gt, *, placement_weight: float = 2.0, strict: bool = True
+) -> dict[str, str]:
     """Correspondence estimated panel name -> true panel name (module docstring).
 
     pattern_est, pattern_gt: :class:`unsew.pattern.model.Pattern`.
@@ -143,7 +145,8 @@ def match_panels(pattern_est, pattern_gt, *, placement_weight: float = 2.0, stri
         if ue or ug:
             raise PatternError(
                 f"panels without a counterpart: estimated {ue or '[]'}, true {ug or '[]'} "
-                f"({len(est)} vs {len(gt)} panels); compare patterns with the same panels or pass a correspondence"
+                f"({len(est)} vs {len(gt)} panels); compare patterns with the same panels or pass a "
+                "correspondence"
             )
     return match
 
@@ -173,8 +176,10 @@ def merge_halves(pattern_est, pattern_gt, correspondence: dict[str, str]) -> dic
     """
     out: dict[str, dict[str, str]] = {"estimated": {}, "true": {}}
     back = {g: e for e, g in correspondence.items()}
-    for side, pat, other, pairs in (("estimated", pattern_est, pattern_gt, correspondence),
-                                    ("true", pattern_gt, pattern_est, back)):
+    for side, pat, other, pairs in (
+        ("estimated", pattern_est, pattern_gt, correspondence),
+        ("true", pattern_gt, pattern_est, back),
+    ):
         names = list(pat.panel_order or pat.panels)
         sewn = _sewn_to(pat)
         area = {n: panel_area(pat.panels[n]) for n in names}
@@ -183,7 +188,11 @@ def merge_halves(pattern_est, pattern_gt, correspondence: dict[str, str]) -> dic
         for u in (n for n in names if n not in pairs):
             best, best_d = None, np.inf
             for v in sewn[u]:
-                if v not in pairs or v in taken or max(area[u], area[v]) > HALVES_AREA_RATIO * min(area[u], area[v]):
+                if (
+                    v not in pairs
+                    or v in taken
+                    or max(area[u], area[v]) > HALVES_AREA_RATIO * min(area[u], area[v])
+                ):
                     continue
                 c_other = panel_centroid3d(other.panels[pairs[v]])
                 c_pair = (area[u] * cen[u] + area[v] * cen[v]) / (area[u] + area[v])
@@ -252,8 +261,9 @@ def panel_vertex_l2_cm(panel_est, panel_gt) -> float | None:
     return 100.0 * best
 
 
-def pattern_metrics(pattern_est, pattern_gt, *, correspondence: dict[str, str] | None = None,
-                    strict: bool = False) -> dict:
+def pattern_metrics(
+    pattern_est, pattern_gt, *, correspondence: dict[str, str] | None = None, strict: bool = False
+) -> dict:
     """All 2D metrics of an estimated pattern against the true one, as a JSON-ready dict.
 
     pattern_est, pattern_gt: :class:`unsew.pattern.model.Pattern` (vertices in m).
@@ -272,7 +282,9 @@ def pattern_metrics(pattern_est, pattern_gt, *, correspondence: dict[str, str] |
     est_names = list(pattern_est.panel_order or pattern_est.panels)
     gt_names = list(pattern_gt.panel_order or pattern_gt.panels)
     if not est_names or not gt_names:
-        raise PatternError(f"cannot compare patterns: {len(est_names)} estimated and {len(gt_names)} true panels")
+        raise PatternError(
+            f"cannot compare patterns: {len(est_names)} estimated and {len(gt_names)} true panels"
+        )
     if correspondence is None:
         correspondence = match_panels(pattern_est, pattern_gt, strict=strict)
     area_e = {n: panel_area(pattern_est.panels[n]) for n in est_names}
@@ -307,8 +319,13 @@ def pattern_metrics(pattern_est, pattern_gt, *, correspondence: dict[str, str] |
     return {
         "panels": per,
         "unmatched": {"estimated": un_e, "true": un_g},
-        "unmatched_area_m2": {"estimated": {n: area_e[n] for n in un_e}, "true": {n: area_g[n] for n in un_g}},
-        "turning_distance_mean": float(np.mean([v["turning_distance"] for v in per.values()])) if per else None,
+        "unmatched_area_m2": {
+            "estimated": {n: area_e[n] for n in un_e},
+            "true": {n: area_g[n] for n in un_g},
+        },
+        "turning_distance_mean": float(np.mean([v["turning_distance"] for v in per.values()]))
+        if per
+        else None,
         "area_error_rel_mean": float(np.mean([v["area_error_rel"] for v in per.values()])) if per else None,
         "vertex_l2_cm_mean": float(np.mean(l2)) if l2 else None,
         "area_total_est_m2": tot_e,

@@ -35,6 +35,7 @@ __all__ = [
     "NormalError",
 ]
 
+
 def _check(verts, faces, what):
     v = np.asarray(verts, dtype=np.float64)
     f = np.asarray(faces)
@@ -43,7 +44,10 @@ def _check(verts, faces, what):
     if f.ndim != 2 or f.shape[1] != 3 or len(f) == 0:
         raise InputError(f"{what} has no triangles (faces shape {f.shape}); give a non-empty triangle mesh")
     if not np.isfinite(v).all():
-        raise InputError(f"{what} has {int((~np.isfinite(v)).any(1).sum())} vertices with NaN/inf coordinates; fix the mesh")
+        raise InputError(
+            f"{what} has {int((~np.isfinite(v)).any(1).sum())} vertices with NaN/inf coordinates; fix the "
+            "mesh"
+        )
     f = f.astype(np.int64)
     if f.min() < 0 or f.max() >= len(v):
         raise InputError(f"{what} has face indices outside 0..{len(v) - 1}; fix the mesh")
@@ -135,10 +139,15 @@ def _normals(cos_ab, cos_ba, oriented):
         c = [np.abs(x) for x in c]
     c = [np.clip(x, -1.0, 1.0) for x in c]
     deg = [np.degrees(np.arccos(x)).mean() for x in c]
-    return NormalError(mean_deg=float(0.5 * (deg[0] + deg[1])), cosine_distance=float(0.5 * ((1 - c[0]).mean() + (1 - c[1]).mean())))
+    return NormalError(
+        mean_deg=float(0.5 * (deg[0] + deg[1])),
+        cosine_distance=float(0.5 * ((1 - c[0]).mean() + (1 - c[1]).mean())),
+    )
 
 
-def chamfer_mm(verts_a, faces_a, verts_b, faces_b, *, n_samples: int = 100_000, seed: int = 0) -> SurfaceDistance:
+def chamfer_mm(
+    verts_a, faces_a, verts_b, faces_b, *, n_samples: int = 100_000, seed: int = 0
+) -> SurfaceDistance:
     """Symmetric point-to-surface Chamfer distance [mm], its 95th percentile and the sampled
     Hausdorff distance (module docstring).
 

@@ -133,9 +133,14 @@ def find_control_points(pattern: Pattern, *, corner_angle: float = CORNER_ANGLE_
     panel_idx = np.asarray(panel_idx, dtype=np.int64)
     vert_idx = np.asarray(vert_idx, dtype=np.int64)
     pos = np.array(
-        [pattern.panels[pattern.panel_order[p]].vertices[v] for p, v in zip(panel_idx, vert_idx)], dtype=np.float64
+        [pattern.panels[pattern.panel_order[p]].vertices[v] for p, v in zip(panel_idx, vert_idx)],
+        dtype=np.float64,
     ).reshape(-1, 2)
     return ControlPoints(
-        list(pattern.panel_order), panel_idx, vert_idx, pos, np.asarray(kinds, dtype=np.int64),
+        list(pattern.panel_order),
+        panel_idx,
+        vert_idx,
+        pos,
+        np.asarray(kinds, dtype=np.int64),
         np.asarray(offsets, dtype=np.int64),
     )

@@ -228,7 +228,7 @@ def reverse_curvature(c: Curvature) -> Curvature:
     reversed direction (``right`` flips).
     """
     if c.kind == "quadratic":
-        (s, t), = c.params
+        ((s, t),) = c.params
         return Curvature("quadratic", [[1.0 - s, -t]], copy.deepcopy(c.extra))
     if c.kind == "cubic":
         (s1, t1), (s2, t2) = c.params

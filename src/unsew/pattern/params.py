@@ -52,7 +52,9 @@ def _control_uv_index(pattern: Pattern, mesh, controls: ControlPoints) -> np.nda
     return out
 
 
-def deformation_matrix(mesh, controls: ControlPoints, control_uv: np.ndarray, p: int) -> tuple[np.ndarray, np.ndarray]:
+def deformation_matrix(
+    mesh, controls: ControlPoints, control_uv: np.ndarray, p: int
+) -> tuple[np.ndarray, np.ndarray]:
     """The map from panel p's control points to its mesh vertices (per-curve frames on the
     outline, mean value coordinates inside).
 
@@ -115,7 +117,14 @@ class PatternParams:
     b_u: "torch.Tensor"  # noqa: F821
 
     @classmethod
-    def build(cls, pattern: Pattern, mesh, *, symmetry: Symmetry | None = None, controls: ControlPoints | None = None):
+    def build(
+        cls,
+        pattern: Pattern,
+        mesh,
+        *,
+        symmetry: Symmetry | None = None,
+        controls: ControlPoints | None = None,
+    ):
         """Precompute the maps for ``pattern`` meshed as ``mesh`` (from ``mesh_pattern(pattern)``).
 
         symmetry: a :class:`Symmetry` to use (default: ``detect_symmetry(pattern)``); its control
@@ -129,7 +138,9 @@ class PatternParams:
         if symmetry is None:
             symmetry = detect_symmetry(pattern, controls=controls)
         if symmetry.n_control != len(controls) or not np.allclose(symmetry.c0, controls.positions, atol=1e-9):
-            raise PatternError("the stored symmetry does not match the pattern's control points; detect it again")
+            raise PatternError(
+                "the stored symmetry does not match the pattern's control points; detect it again"
+            )
         control_uv = _control_uv_index(pattern, mesh, controls)
         Lc, bc = symmetry.rebuild_map()
         nu, nk = mesh.n_uv, symmetry.n_k
@@ -152,8 +163,13 @@ class PatternParams:
         device = torch.device(device)
         if self.L_u.device == device or (device.type == self.L_u.device.type and device.index is None):
             return self
-        return dataclasses.replace(self, L_c=self.L_c.to(device), b_c=self.b_c.to(device), L_u=self.L_u.to(device),
-                                   b_u=self.b_u.to(device))
+        return dataclasses.replace(
+            self,
+            L_c=self.L_c.to(device),
+            b_c=self.b_c.to(device),
+            L_u=self.L_u.to(device),
+            b_u=self.b_u.to(device),
+        )
 
     @property
     def K0(self) -> "torch.Tensor":  # noqa: F821
@@ -236,6 +252,8 @@ def check_inverted(uv, faces_uv, *, min_quality: float = 0.0) -> np.ndarray:
     a, b, c = uv[f[:, 0]], uv[f[:, 1]], uv[f[:, 2]]
     area2 = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
     if min_quality > 0:
-        e2 = np.stack([((b - a) ** 2).sum(1), ((c - b) ** 2).sum(1), ((a - c) ** 2).sum(1)], axis=1).max(axis=1)
+        e2 = np.stack([((b - a) ** 2).sum(1), ((c - b) ** 2).sum(1), ((a - c) ** 2).sum(1)], axis=1).max(
+            axis=1
+        )
         return np.flatnonzero(area2 <= min_quality * np.maximum(e2, 1e-300)).astype(np.int64)
     return np.flatnonzero(area2 <= 0).astype(np.int64)

@@ -36,8 +36,16 @@ SEAM_TOL = 1e-9
 
 def _stitch_lengths(pattern) -> np.ndarray:
     """(S, 2) float64: the lengths L_a, L_b [m] of every stitch's two edges, in ``pattern.stitches`` order."""
-    return np.array([[edge_length(pattern.panels[s.a.panel], s.a.edge), edge_length(pattern.panels[s.b.panel], s.b.edge)]
-                     for s in pattern.stitches], dtype=np.float64).reshape(-1, 2)
+    return np.array(
+        [
+            [
+                edge_length(pattern.panels[s.a.panel], s.a.edge),
+                edge_length(pattern.panels[s.b.panel], s.b.edge),
+            ]
+            for s in pattern.stitches
+        ],
+        dtype=np.float64,
+    ).reshape(-1, 2)
 
 
 def stitch_length_ratios(pattern) -> np.ndarray:
@@ -66,8 +74,10 @@ def seam_changes_mm(patterns: dict, base_key: str = "base") -> dict:
     armhole) and is given only for patterns stitched as the base is (same edges, same order).
     """
     gaps = {k: stitch_length_gaps(p) for k, p in patterns.items() if p is not None}
-    out = {"gap_max_mm": {k: float(1e3 * np.abs(g).max()) if len(g) else 0.0 for k, g in gaps.items()},
-           "change_from_base_max_mm": {}}
+    out = {
+        "gap_max_mm": {k: float(1e3 * np.abs(g).max()) if len(g) else 0.0 for k, g in gaps.items()},
+        "change_from_base_max_mm": {},
+    }
     base = patterns.get(base_key)
     if base is not None:
         for k, p in patterns.items():
@@ -102,19 +112,28 @@ class SeamHold:
         for (name, i), e in edges.items():
             vs = mesh.edge_verts[(name, i)]
             s, t = int(vs[0]), int(vs[-1])
-            D[e] = L[2 * t:2 * t + 2] - L[2 * s:2 * s + 2]
-            d[e] = b[2 * t:2 * t + 2] - b[2 * s:2 * s + 2]
+            D[e] = L[2 * t : 2 * t + 2] - L[2 * s : 2 * s + 2]
+            d[e] = b[2 * t : 2 * t + 2] - b[2 * s : 2 * s + 2]
             panel = pat.panels[name]
-            chord = float(np.linalg.norm(panel.vertices[panel.edges[i].end] - panel.vertices[panel.edges[i].start]))
+            chord = float(
+                np.linalg.norm(panel.vertices[panel.edges[i].end] - panel.vertices[panel.edges[i].start])
+            )
             r[e] = edge_length(panel, i) / chord if chord > 0 else 1.0
         self.D, self.d, self.r = D, d, r
         self.ia = np.array([edges[(st.a.panel, st.a.edge)] for st in pat.stitches], dtype=np.int64)
         self.ib = np.array([edges[(st.b.panel, st.b.edge)] for st in pat.stitches], dtype=np.int64)
-        P = None if project is None else np.asarray(
-            project.detach().cpu().numpy() if hasattr(project, "detach") else project, dtype=np.float64)
+        P = (
+            None
+            if project is None
+            else np.asarray(
+                project.detach().cpu().numpy() if hasattr(project, "detach") else project, dtype=np.float64
+            )
+        )
         # the projectors as one block-diagonal (2 Nk, 2 Nk) matrix on xy-flattened K, built once
         self.Pm = None if P is None else np.einsum("jab,jk->jakb", P, np.eye(nk)).reshape(2 * nk, 2 * nk)
-        k0 = np.asarray(K0.detach().cpu().numpy() if hasattr(K0, "detach") else K0, dtype=np.float64).reshape(-1)
+        k0 = np.asarray(K0.detach().cpu().numpy() if hasattr(K0, "detach") else K0, dtype=np.float64).reshape(
+            -1
+        )
         la = self.lengths(k0)
         self.rho = la[self.ia] / la[self.ib]
 
@@ -152,6 +171,7 @@ class SeamHold:
             J = self._jacobian(k)
             if Pm is not None:
                 J = J @ Pm
-            step = -np.linalg.lstsq(J, res, rcond=1e-10)[0]  # the minimum-norm move that meets the linearised seams
+            # the minimum-norm move that meets the linearised seams
+            step = -np.linalg.lstsq(J, res, rcond=1e-10)[0]
             k = k + (Pm @ step if Pm is not None else step)
         return torch.as_tensor(k.reshape(-1, 2), dtype=K.dtype, device=K.device)

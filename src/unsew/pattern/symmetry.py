@@ -214,15 +214,22 @@ class Symmetry:
             tol=float(d.get("tol", SYMMETRY_REL_TOL)),
             pairs=[
                 PanelPair(
-                    p["source"], p["target"], np.asarray(p["perm"], dtype=np.int64),
-                    np.asarray(p["matrix"], dtype=np.float64), bool(p["mirrored"]), float(p["error"]),
+                    p["source"],
+                    p["target"],
+                    np.asarray(p["perm"], dtype=np.int64),
+                    np.asarray(p["matrix"], dtype=np.float64),
+                    bool(p["mirrored"]),
+                    float(p["error"]),
                 )
                 for p in d.get("pairs", [])
             ],
             mirrors=[
                 MirrorAxis(
-                    m["panel"], np.asarray(m["point"], dtype=np.float64), np.asarray(m["direction"], dtype=np.float64),
-                    np.asarray(m["pairs"], dtype=np.int64).reshape(-1, 2), np.asarray(m["on_axis"], dtype=np.int64),
+                    m["panel"],
+                    np.asarray(m["point"], dtype=np.float64),
+                    np.asarray(m["direction"], dtype=np.float64),
+                    np.asarray(m["pairs"], dtype=np.int64).reshape(-1, 2),
+                    np.asarray(m["on_axis"], dtype=np.int64),
                     float(m["error"]),
                 )
                 for m in d.get("mirrors", [])
@@ -246,7 +253,9 @@ def procrustes(x: np.ndarray, y: np.ndarray, *, det: int | None = None) -> tuple
     return r, float(np.sqrt((res**2).sum(axis=1).mean()))
 
 
-def curve_samples(pattern: Pattern, controls: ControlPoints, p: int, *, m: int = _SAMPLES_PER_CURVE) -> np.ndarray:
+def curve_samples(
+    pattern: Pattern, controls: ControlPoints, p: int, *, m: int = _SAMPLES_PER_CURVE
+) -> np.ndarray:
     """Points (n, m, 2) float64 [m] along each of panel p's n curves (the outline between control
     point j and j+1, CCW), at arc-length fractions k/m, k = 0..m-1 (so [:, 0] are the control points)."""
     name = controls.panel_names[p]
@@ -282,7 +291,8 @@ def _corresponding_samples(samples: np.ndarray, sigma: np.ndarray, reverse: bool
     if not reverse:  # curve j -> curve sigma(j), same fractions
         return samples[sigma]
     # reversed: curve j (c_j -> c_j+1) corresponds to curve sigma(j+1) -> sigma(j) run backwards
-    nxt = np.concatenate([samples[:, 1:], samples[np.roll(np.arange(n), -1), :1]], axis=1)  # (n, m+1, 2) incl. end
+    # (n, m+1, 2) incl. end
+    nxt = np.concatenate([samples[:, 1:], samples[np.roll(np.arange(n), -1), :1]], axis=1)
     out = np.empty_like(samples)
     for j in range(n):
         c = sigma[(j + 1) % n]  # the corresponding curve runs from sigma(j+1) to sigma(j)
@@ -330,9 +340,7 @@ def detect_symmetry(
             removed.update(o + int(j) for _, j in axis.pairs)
             mirrors.append(axis)
 
-    keep = [
-        g for g in range(len(controls)) if int(controls.panel[g]) not in dropped and g not in removed
-    ]
+    keep = [g for g in range(len(controls)) if int(controls.panel[g]) not in dropped and g not in removed]
     return Symmetry(
         panel_names=list(names),
         offsets=controls.offsets.copy(),

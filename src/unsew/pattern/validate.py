@@ -142,8 +142,8 @@ def _check_panel(p: Panel) -> None:
                 chord = float(np.linalg.norm(p.vertices[e.end] - p.vertices[e.start]))
                 if float(c.params[0]) < chord / 2 * (1 - 1e-6):
                     raise PatternError(
-                        f"{w} edge {i}: circle radius {float(c.params[0]):.4g} m is shorter than half the chord "
-                        f"{chord / 2:.4g} m; enlarge the radius"
+                        f"{w} edge {i}: circle radius {float(c.params[0]):.4g} m is shorter than half the "
+                        f"chord {chord / 2:.4g} m; enlarge the radius"
                     )
     for i, e in enumerate(p.edges):
         nxt = p.edges[(i + 1) % len(p.edges)]
@@ -155,7 +155,10 @@ def _check_panel(p: Panel) -> None:
             )
     hit = find_self_intersection(p)
     if hit is not None:
-        raise PatternError(f"{w} outline intersects itself: edge {hit[0]} crosses edge {hit[1]}; fix the vertices or curvature")
+        raise PatternError(
+            f"{w} outline intersects itself: edge {hit[0]} crosses edge {hit[1]}; fix the vertices or "
+            "curvature"
+        )
 
 
 def validate_pattern(pattern: Pattern) -> list[str]:
@@ -184,16 +187,19 @@ def validate_pattern(pattern: Pattern) -> list[str]:
     for k, s in enumerate(pattern.stitches):
         for side in (s.a, s.b):
             if side.panel not in pattern.panels:
-                raise PatternError(f"stitch {k} refers to a missing panel {side.panel!r}; fix the stitch or add the panel")
+                raise PatternError(
+                    f"stitch {k} refers to a missing panel {side.panel!r}; fix the stitch or add the panel"
+                )
             ne = len(pattern.panels[side.panel].edges)
             if not (0 <= side.edge < ne):
                 raise PatternError(
-                    f"stitch {k} refers to edge {side.edge} of panel {side.panel!r}, which has {ne} edges (0-{ne - 1})"
+                    f"stitch {k} refers to edge {side.edge} of panel {side.panel!r}, which has {ne} edges "
+                    f"(0-{ne - 1})"
                 )
             if side in seen:
                 raise PatternError(
-                    f"edge {side.edge} of panel {side.panel!r} is stitched twice (stitches {seen[side]} and {k}); "
-                    "split the edge or remove one stitch"
+                    f"edge {side.edge} of panel {side.panel!r} is stitched twice (stitches {seen[side]} and "
+                    f"{k}); split the edge or remove one stitch"
                 )
             seen[side] = k
 
@@ -210,7 +216,8 @@ def validate_pattern(pattern: Pattern) -> list[str]:
         lb = edge_length(pattern.panels[s.b.panel], s.b.edge)
         if abs(la - lb) > STITCH_LENGTH_WARN_REL * max(la, lb):
             warnings.append(
-                f"stitch {k}: edge {s.a.edge} of panel {s.a.panel!r} is {la * 100:.1f} cm long but edge {s.b.edge} "
-                f"of panel {s.b.panel!r} is {lb * 100:.1f} cm ({abs(la - lb) / max(la, lb) * 100:.0f} % apart)"
+                f"stitch {k}: edge {s.a.edge} of panel {s.a.panel!r} is {la * 100:.1f} cm long but edge "
+                f"{s.b.edge} of panel {s.b.panel!r} is {lb * 100:.1f} cm "
+                f"({abs(la - lb) / max(la, lb) * 100:.0f} % apart)"
             )
     return warnings

@@ -193,8 +193,17 @@ def _draw_phases(ax, phases: Sequence[tuple[int, str]], n_iter: int) -> None:
             ax.axvspan(i, end, color="#f3f3f7", zorder=0)
         if i > 0:
             ax.axvline(i, color="#777777", linestyle="--", linewidth=1.0, zorder=1)
-        ax.text(i, 1.01, f" {pname}", transform=tr, ha="left", va="bottom", fontsize=8.5,
-                color="#444444", clip_on=False)
+        ax.text(
+            i,
+            1.01,
+            f" {pname}",
+            transform=tr,
+            ha="left",
+            va="bottom",
+            fontsize=8.5,
+            color="#444444",
+            clip_on=False,
+        )
 
 
 # --------------------------------------------------------------------------------------------
@@ -301,10 +310,21 @@ def plot_patterns(
 
     from matplotlib.lines import Line2D
 
-    handles = [Line2D([], [], color=st["color"], linestyle=st.get("linestyle", "-"),
-                      linewidth=st.get("linewidth", 1.4)) for st in pstyles]
-    fig.legend(handles, labels, loc="upper center", ncol=min(len(labels), 6), frameon=False,
-               fontsize=10, bbox_to_anchor=(0.5, 1 - (36 if title else 4) / H))
+    handles = [
+        Line2D(
+            [], [], color=st["color"], linestyle=st.get("linestyle", "-"), linewidth=st.get("linewidth", 1.4)
+        )
+        for st in pstyles
+    ]
+    fig.legend(
+        handles,
+        labels,
+        loc="upper center",
+        ncol=min(len(labels), 6),
+        frameon=False,
+        fontsize=10,
+        bbox_to_anchor=(0.5, 1 - (36 if title else 4) / H),
+    )
     if title:
         fig.text(0.5, 1 - 8 / H, title, ha="center", va="top", fontsize=13, weight="bold")
     return _save(fig, path_png)
@@ -326,8 +346,9 @@ def _pattern_cells(patterns, layout: str) -> tuple[dict[str, list[tuple[int, np.
         labels.append(str(label))
         for entry in panels:
             if len(entry) not in (2, 3):
-                raise InputError(f"pattern {label!r}: a panel must be (name, outline) or "
-                                 f"(name, outline, placement_xy)")
+                raise InputError(
+                    f"pattern {label!r}: a panel must be (name, outline) or (name, outline, placement_xy)"
+                )
             name, outline = str(entry[0]), _check_outline(entry[1], f"{label}/{entry[0]}")
             if len(entry) == 3 and layout == "placed":
                 off = np.asarray(entry[2], dtype=np.float64).reshape(2)
@@ -394,21 +415,38 @@ def _draw_cells(ax, cells, boxes, offsets, pstyles, *, layout: str, label_h: flo
             if layout == "placed" and pname not in named:  # name each panel once, at its middle
                 named.add(pname)
                 mid = (outline.min(axis=0) + outline.max(axis=0)) / 2 + off
-                ax.text(mid[0], mid[1], pname, ha="center", va="center", fontsize=9,
-                        color="#333333", zorder=50)
+                ax.text(
+                    mid[0], mid[1], pname, ha="center", va="center", fontsize=9, color="#333333", zorder=50
+                )
             pts = outline + off
             if st.get("fill"):
-                ax.add_patch(Polygon(pts, closed=True, facecolor=st["fill"], alpha=0.07,
-                                     edgecolor="none", zorder=1))
+                ax.add_patch(
+                    Polygon(pts, closed=True, facecolor=st["fill"], alpha=0.07, edgecolor="none", zorder=1)
+                )
             z = st.get("zorder", pi)
-            ax.add_patch(Polygon(pts, closed=True, fill=False, edgecolor=st["color"],
-                                 linestyle=st.get("linestyle", "-"),
-                                 linewidth=st.get("linewidth", 1.4), joinstyle="round",
-                                 zorder=10 + z + pi / 100))
+            ax.add_patch(
+                Polygon(
+                    pts,
+                    closed=True,
+                    fill=False,
+                    edgecolor=st["color"],
+                    linestyle=st.get("linestyle", "-"),
+                    linewidth=st.get("linewidth", 1.4),
+                    joinstyle="round",
+                    zorder=10 + z + pi / 100,
+                )
+            )
         if layout == "grid":
             lo, hi = boxes[name]
-            ax.text(off[0] + (lo[0] + hi[0]) / 2, off[1] + lo[1] - 0.25 * label_h, name,
-                    ha="center", va="top", fontsize=10, color="#333333")
+            ax.text(
+                off[0] + (lo[0] + hi[0]) / 2,
+                off[1] + lo[1] - 0.25 * label_h,
+                name,
+                ha="center",
+                va="top",
+                fontsize=10,
+                color="#333333",
+            )
 
 
 def _draw_scale_bar(ax, x0: float, yb: float, bar: float, tick: float) -> None:
@@ -450,9 +488,11 @@ def plot_histogram(
         half = 0.005 * max(abs(hi), 1e-3)
         lo, hi = lo - half, hi + half
     ax.hist(v, bins=int(bins), range=(lo, hi), color="#5b8fd0", edgecolor="white", linewidth=0.4)
-    marks = [("mean", float(v.mean()), "#111111", "-"),
-             ("median", float(np.median(v)), "#d62728", "--"),
-             ("95th pct", float(np.percentile(v, 95)), "#8c8c8c", ":")]
+    marks = [
+        ("mean", float(v.mean()), "#111111", "-"),
+        ("median", float(np.median(v)), "#d62728", "--"),
+        ("95th pct", float(np.percentile(v, 95)), "#8c8c8c", ":"),
+    ]
     for name, x, c, ls in marks:
         ax.axvline(x, color=c, linestyle=ls, linewidth=1.5, label=f"{name} {x:.3g}")
     ax.set_xlabel(xlabel)

@@ -28,8 +28,7 @@ def nearest_distance_mm(verts: np.ndarray, target_verts: np.ndarray) -> np.ndarr
     target surface, close to it on meshes of similar resolution)."""
     from scipy.spatial import cKDTree
 
-    d, _ = cKDTree(np.asarray(target_verts, dtype=np.float64)).query(
-        np.asarray(verts, dtype=np.float64))
+    d, _ = cKDTree(np.asarray(target_verts, dtype=np.float64)).query(np.asarray(verts, dtype=np.float64))
     return d * 1000.0
 
 
@@ -78,65 +77,112 @@ def write_fit_report(
     fig_dir = out / "figures"
     fig_dir.mkdir(parents=True, exist_ok=True)
     notes = list(notes or [])
-    figures = _fit_figures(fig_dir, history=history, phases=phases, target=target, result=result,
-                           body=body, distance_mm=distance_mm, views=views, patterns=patterns,
-                           notes=notes)
+    figures = _fit_figures(
+        fig_dir,
+        history=history,
+        phases=phases,
+        target=target,
+        result=result,
+        body=body,
+        distance_mm=distance_mm,
+        views=views,
+        patterns=patterns,
+        notes=notes,
+    )
     tables = _fit_tables(patterns=patterns, material=material, metrics=metrics, history=history)
-    return write_report(out / "report.html", title=title, summary=dict(summary or {}),
-                        metrics=tables, figures=figures, config=config,
-                        notes=notes or None, choices=choices)
+    return write_report(
+        out / "report.html",
+        title=title,
+        summary=dict(summary or {}),
+        metrics=tables,
+        figures=figures,
+        config=config,
+        notes=notes or None,
+        choices=choices,
+    )
 
 
-def _fit_figures(fig_dir: Path, *, history, phases, target, result, body, distance_mm, views,
-                 patterns, notes: list) -> list[tuple[str, Path]]:
+def _fit_figures(
+    fig_dir: Path, *, history, phases, target, result, body, distance_mm, views, patterns, notes: list
+) -> list[tuple[str, Path]]:
     """Draw the figures :func:`write_fit_report` has inputs for into ``fig_dir``; returns
     their (caption, PNG path) in report order. A note is appended to ``notes`` when the
     distances are computed here."""
     figures: list[tuple[str, Path]] = []
     if history:
-        figures.append(("Loss per iteration: the total and each term"
-                        + (", with the phases of the fit" if phases else ""),
-                        plot_loss_curves(fig_dir / "loss.png", history, phases=phases)))
+        figures.append(
+            (
+                "Loss per iteration: the total and each term"
+                + (", with the phases of the fit" if phases else ""),
+                plot_loss_curves(fig_dir / "loss.png", history, phases=phases),
+            )
+        )
     if target is not None and result is not None:
-        figures += _distance_figures(fig_dir, target, result, body=body, distance_mm=distance_mm,
-                                     views=views, notes=notes)
+        figures += _distance_figures(
+            fig_dir, target, result, body=body, distance_mm=distance_mm, views=views, notes=notes
+        )
     elif result is not None:
-        figures.append(("Fitted result",
-                        render_views(fig_dir / "result.png", result[0], result[1], views=views,
-                                     body=body)))
+        figures.append(
+            (
+                "Fitted result",
+                render_views(fig_dir / "result.png", result[0], result[1], views=views, body=body),
+            )
+        )
     if patterns:
         pats = [(str(label), _outlines(p)) for label, p in patterns]
-        figures.append((", ".join(label for label, _ in pats) + " patterns, panel by panel, "
-                        "at true scale",
-                        plot_patterns(fig_dir / "patterns.png", pats)))
+        figures.append(
+            (
+                ", ".join(label for label, _ in pats) + " patterns, panel by panel, at true scale",
+                plot_patterns(fig_dir / "patterns.png", pats),
+            )
+        )
     return figures
 
 
-def _distance_figures(fig_dir: Path, target, result, *, body, distance_mm, views,
-                      notes: list) -> list[tuple[str, Path]]:
+def _distance_figures(
+    fig_dir: Path, target, result, *, body, distance_mm, views, notes: list
+) -> list[tuple[str, Path]]:
     """Target against result, the result coloured by its distance to the target [mm] (the
     nearest target vertex when ``distance_mm`` is None, noted in ``notes``) and the distances'
     histogram (when any is finite): (caption, PNG path) each."""
-    figures = [("Target (top) and fitted result (bottom), same views and scale",
-                render_comparison(fig_dir / "target_vs_result.png", target, result,
-                                  body=body, views=views))]
+    figures = [
+        (
+            "Target (top) and fitted result (bottom), same views and scale",
+            render_comparison(fig_dir / "target_vs_result.png", target, result, body=body, views=views),
+        )
+    ]
     if distance_mm is None:
         distance_mm = nearest_distance_mm(result[0], target[0])
         notes.append("Heat map distances are to the nearest target vertex.")
     d = np.asarray(distance_mm, dtype=np.float64)
     finite = d[np.isfinite(d)]
     vmax = float(np.percentile(finite, 98)) if finite.size else 1.0
-    figures.append((f"Distance of the result to the target [mm] (colour scale capped at the "
-                    f"98th percentile, {vmax:.2g} mm)",
-                    render_views(fig_dir / "distance.png", result[0], result[1],
-                                 views=tuple(views) + (("back",) if "back" not in views else ()),
-                                 vertex_values=d, cmap=HEAT_CMAP, vmin=0.0,
-                                 vmax=vmax if vmax > 0 else 1.0,
-                                 colorbar_label="distance to target [mm]", body=body,
-                                 frame="all")))
+    figures.append(
+        (
+            f"Distance of the result to the target [mm] (colour scale capped at the "
+            f"98th percentile, {vmax:.2g} mm)",
+            render_views(
+                fig_dir / "distance.png",
+                result[0],
+                result[1],
+                views=tuple(views) + (("back",) if "back" not in views else ()),
+                vertex_values=d,
+                cmap=HEAT_CMAP,
+                vmin=0.0,
+                vmax=vmax if vmax > 0 else 1.0,
+                colorbar_label="distance to target [mm]",
+                body=body,
+                frame="all",
+            ),
+        )
+    )
     if finite.size:
-        figures.append(("Histogram of the per-vertex distance to the target",
-                        plot_histogram(fig_dir / "distance_hist.png", d)))
+        figures.append(
+            (
+                "Histogram of the per-vertex distance to the target",
+                plot_histogram(fig_dir / "distance_hist.png", d),
+            )
+        )
     return figures
 
 
@@ -147,8 +193,9 @@ def _fit_tables(*, patterns, material, metrics, history) -> dict[str, Any]:
     if patterns:
         rows = measurement_table(list(patterns))
         if rows:
-            tables["panel measurements"] = {r["measurement"]: {k: v for k, v in r.items() if k != "measurement"}
-                                            for r in rows}
+            tables["panel measurements"] = {
+                r["measurement"]: {k: v for k, v in r.items() if k != "measurement"} for r in rows
+            }
     if material:
         tables["material of the result"] = dict(material)
     for k, v in (metrics or {}).items():

@@ -74,7 +74,7 @@ def _unit(key: str) -> str | None:
     """The unit a key's suffix names (``chamfer_mm`` -> ``mm``), or None."""
     k = str(key)
     if "[" in k:
-        return k[k.index("[") + 1: k.rindex("]")] if "]" in k else None
+        return k[k.index("[") + 1 : k.rindex("]")] if "]" in k else None
     low = k.lower()
     for suffix in sorted(_UNITS, key=len, reverse=True):
         if low.endswith("_" + suffix) and len(k) > len(suffix) + 1:
@@ -117,8 +117,10 @@ def _fmt(v: Any) -> str:
     if isinstance(v, (list, tuple)):
         nums = [x for x in v if isinstance(x, (int, float)) and not isinstance(x, bool)]
         if len(v) > _MAX_LISTED and len(nums) == len(v):  # a series: its shape, not a wall of numbers
-            return (f"{len(v)} values, {_fmt(v[0])} → {_fmt(v[-1])} "
-                    f"(min {_fmt(min(nums))}, max {_fmt(max(nums))})")
+            return (
+                f"{len(v)} values, {_fmt(v[0])} → {_fmt(v[-1])} "
+                f"(min {_fmt(min(nums))}, max {_fmt(max(nums))})"
+            )
         return ", ".join(_fmt(x) for x in v)
     return str(v)
 
@@ -143,7 +145,9 @@ def _num_class(v: Any) -> str:
     return ' class="num"' if isinstance(v, (int, float)) and not isinstance(v, bool) else ""
 
 
-def _kv_table(items: Sequence[tuple[str, Any]], *, head=("quantity", "value"), unit: str | None = None) -> str:
+def _kv_table(
+    items: Sequence[tuple[str, Any]], *, head=("quantity", "value"), unit: str | None = None
+) -> str:
     show = _bare_key if unit else pretty_key
     rows = "".join(
         f'<tr><th scope="row" title="{_esc(k)}">{_esc(show(k))}</th>'
@@ -151,8 +155,10 @@ def _kv_table(items: Sequence[tuple[str, Any]], *, head=("quantity", "value"), u
         for k, v in items
     )
     head1 = f"{head[1]} [{unit}]" if unit else head[1]
-    return (f'<table class="kv"><thead><tr><th>{_esc(head[0])}</th><th>{_esc(head1)}</th></tr>'
-            f"</thead><tbody>{rows}</tbody></table>")
+    return (
+        f'<table class="kv"><thead><tr><th>{_esc(head[0])}</th><th>{_esc(head1)}</th></tr>'
+        f"</thead><tbody>{rows}</tbody></table>"
+    )
 
 
 def _records_table(rows: Sequence[tuple[str, Mapping]], *, first: str) -> str:
@@ -160,7 +166,8 @@ def _records_table(rows: Sequence[tuple[str, Mapping]], *, first: str) -> str:
     for _, r in rows:
         cols += [c for c in r if c not in cols]
     head = f"<th>{_esc(first)}</th>" + "".join(
-        f'<th title="{_esc(c)}">{_esc(pretty_key(c))}</th>' for c in cols)
+        f'<th title="{_esc(c)}">{_esc(pretty_key(c))}</th>' for c in cols
+    )
     body = "".join(
         f'<tr><th scope="row" title="{_esc(name)}">{_esc(pretty_key(name) if _unit(name) else name)}</th>'
         + "".join(f"<td{_num_class(_py(r.get(c)))}>{_esc(_fmt(r.get(c)))}</td>" for c in cols)
@@ -194,14 +201,22 @@ def _metrics_html(metrics: Mapping, depth: int = 0, unit: str | None = None) -> 
         if _is_scalar(v):
             continue
         title = f"<h{hn}>{_esc(_bare_key(k) if unit else pretty_key(k))}</h{hn}>"
-        if isinstance(v, Mapping) and v and all(
-                isinstance(r, Mapping) and all(_is_scalar(x) for x in r.values()) for r in v.values()):
+        if (
+            isinstance(v, Mapping)
+            and v
+            and all(isinstance(r, Mapping) and all(_is_scalar(x) for x in r.values()) for r in v.values())
+        ):
             out.append(title + _records_table([(str(n), r) for n, r in v.items()], first="name"))
-        elif isinstance(v, (list, tuple)) and v and all(
-                isinstance(r, Mapping) and all(_is_scalar(x) for x in r.values()) for r in v):
+        elif (
+            isinstance(v, (list, tuple))
+            and v
+            and all(isinstance(r, Mapping) and all(_is_scalar(x) for x in r.values()) for r in v)
+        ):
             out.append(title + _records_table([(str(i), r) for i, r in enumerate(v)], first="#"))
         elif isinstance(v, Mapping):
-            out.append(f'<section class="sub">{title}{_metrics_html(v, depth + 1, _unit(k) or unit)}</section>')
+            out.append(
+                f'<section class="sub">{title}{_metrics_html(v, depth + 1, _unit(k) or unit)}</section>'
+            )
         else:  # a list holding lists or mixed things
             out.append(title + f"<pre>{_esc(v)}</pre>")
     return "".join(out)
@@ -237,8 +252,7 @@ def _config_text(config: Mapping) -> str:
     try:
         import yaml
 
-        return yaml.safe_dump(_plain(config), sort_keys=False, default_flow_style=False,
-                              allow_unicode=True)
+        return yaml.safe_dump(_plain(config), sort_keys=False, default_flow_style=False, allow_unicode=True)
     except ImportError:  # pragma: no cover
         import json
 
@@ -251,15 +265,13 @@ def _load_figure(caption: str, path, base: Path) -> str:
     if not p.is_absolute() and not p.exists() and (base / p).exists():
         p = base / p
     if not p.is_file():
-        raise InputError(f"figure {caption!r}: image file {os.fspath(path)} not found; "
-                         "nothing was written")
+        raise InputError(f"figure {caption!r}: image file {os.fspath(path)} not found; nothing was written")
     data = p.read_bytes()
     mime = next((m for sig, m in _MIME if data.startswith(sig)), None)
     if mime is None and p.suffix.lower() == ".svg" and b"<svg" in data[:4096]:
         mime = "image/svg+xml"
     if mime is None:
-        raise InputError(f"figure {caption!r}: {p} is not a PNG, JPEG, GIF or SVG image; "
-                         "nothing was written")
+        raise InputError(f"figure {caption!r}: {p} is not a PNG, JPEG, GIF or SVG image; nothing was written")
     return f"data:{mime};base64,{base64.b64encode(data).decode('ascii')}"
 
 
@@ -340,9 +352,11 @@ def write_report(
     parts.append(_metrics_html(metrics) if metrics else "<p>No metrics were recorded.</p>")
     parts.append("</section>")
     if config is not None:
-        parts.append('<section id="config"><h2>Configuration</h2><details>'
-                     "<summary>everything needed to rerun (as in config.yaml)</summary>"
-                     f"<pre>{_esc(_config_text(config))}</pre></details></section>")
+        parts.append(
+            '<section id="config"><h2>Configuration</h2><details>'
+            "<summary>everything needed to rerun (as in config.yaml)</summary>"
+            f"<pre>{_esc(_config_text(config))}</pre></details></section>"
+        )
     parts.append(_footer())
     text = "\n".join(parts)
 
@@ -393,13 +407,16 @@ def _nav(*, notes: bool, figures: bool, config: bool) -> str:
     return "<nav>" + "".join(f'<a href="#{a}">{_esc(t)}</a>' for a, t in nav) + "</nav>"
 
 
-def _summary_section(summary: Mapping[str, Any], notes: Sequence[str] | None,
-                     choices: Sequence[str] | None = None) -> list[str]:
+def _summary_section(
+    summary: Mapping[str, Any], notes: Sequence[str] | None, choices: Sequence[str] | None = None
+) -> list[str]:
     """The summary cards, what was chosen and why (when given), then the notes (when any)."""
     parts = ['<section id="summary"><h2>Summary</h2><div class="cards">']
     for k, v in summary.items():
-        parts.append(f'<div class="card"><div class="k" title="{_esc(k)}">{_esc(pretty_key(k))}</div>'
-                     f'<div class="v">{_esc(_fmt(v))}</div></div>')
+        parts.append(
+            f'<div class="card"><div class="k" title="{_esc(k)}">{_esc(pretty_key(k))}</div>'
+            f'<div class="v">{_esc(_fmt(v))}</div></div>'
+        )
     parts.append("</div></section>")
     if choices:
         parts.append('<section id="choices"><h2>What was chosen and why</h2><ul class="notes">')
@@ -418,16 +435,20 @@ def _figures_section(embedded: Sequence[tuple[str, str]]) -> list[str]:
         return []
     parts = ['<section id="figures"><h2>Figures</h2>']
     for i, (caption, uri) in enumerate(embedded, 1):
-        parts.append(f'<figure id="fig{i}"><img src="{uri}" alt="{_esc(caption)}">'
-                     f"<figcaption>Figure {i}. {_esc(caption)}</figcaption></figure>")
+        parts.append(
+            f'<figure id="fig{i}"><img src="{uri}" alt="{_esc(caption)}">'
+            f"<figcaption>Figure {i}. {_esc(caption)}</figcaption></figure>"
+        )
     parts.append("</section>")
     return parts
 
 
 def _footer() -> str:
     """The page's closing line."""
-    return (f"<footer>Made by unsew {_esc(__version__)}. Units are given in the names of the "
-            "quantities; renders are orthographic.</footer></main></body></html>\n")
+    return (
+        f"<footer>Made by unsew {_esc(__version__)}. Units are given in the names of the "
+        "quantities; renders are orthographic.</footer></main></body></html>\n"
+    )
 
 
 def _chmod_like_new_file(p: Path) -> None:

@@ -36,7 +36,9 @@ def _edges(panel, labels) -> list[int]:
 def panel_measurements(pattern) -> dict[str, float]:
     """The measurements of :data:`MEASUREMENTS` that ``pattern`` has, in metres (arc lengths of
     its edges, curves included). A pattern whose edges carry no such labels gives ``{}``."""
-    panels = [pattern.panels[n] for n in pattern.panel_order if n in pattern.panels] or list(pattern.panels.values())
+    panels = [pattern.panels[n] for n in pattern.panel_order if n in pattern.panels] or list(
+        pattern.panels.values()
+    )
     sleeves = [p for p in panels if "sleeve" in p.name]
     body = [p for p in panels if "sleeve" not in p.name]
     legs = [p for p in body if p.name.startswith("left_")]

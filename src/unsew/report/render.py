@@ -242,16 +242,42 @@ def _scene_polys(layers: list[_Layer], view: str):
     )
 
 
-def _layers(verts, faces, *, vertex_values, color, cmap, norm, body, overlay, overlay_style,
-            overlay_color, frame, body_depth_bias=None) -> list[_Layer]:
+def _layers(
+    verts,
+    faces,
+    *,
+    vertex_values,
+    color,
+    cmap,
+    norm,
+    body,
+    overlay,
+    overlay_style,
+    overlay_color,
+    frame,
+    body_depth_bias=None,
+) -> list[_Layer]:
     body_depth_bias = BODY_DEPTH_BIAS if body_depth_bias is None else float(body_depth_bias)
     layers = []
     if body is not None:
         bv, bf = body
-        layers.append(_Layer(bv, bf, _face_rgb(bv, bf, None, BODY_RGB, None, None),
-                             frame=(frame == "all"), depth_bias=-body_depth_bias))
-    layers.append(_Layer(verts, faces, _face_rgb(verts, faces, vertex_values, color, cmap, norm),
-                         ambient=0.22 if vertex_values is None else 0.55))
+        layers.append(
+            _Layer(
+                bv,
+                bf,
+                _face_rgb(bv, bf, None, BODY_RGB, None, None),
+                frame=(frame == "all"),
+                depth_bias=-body_depth_bias,
+            )
+        )
+    layers.append(
+        _Layer(
+            verts,
+            faces,
+            _face_rgb(verts, faces, vertex_values, color, cmap, norm),
+            ambient=0.22 if vertex_values is None else 0.55,
+        )
+    )
     if overlay is not None:
         ov, of = overlay
         rgb = _face_rgb(ov, of, None, overlay_color, None, None)
@@ -265,7 +291,8 @@ def _layers(verts, faces, *, vertex_values, color, cmap, norm, body, overlay, ov
     for L in layers:
         if not L.wire:
             L.verts, L.faces, L.face_rgb = _split_long_faces(
-                L.verts, L.faces, np.asarray(L.face_rgb), max_len, max_faces=3 * len(L.faces) + 50_000)
+                L.verts, L.faces, np.asarray(L.face_rgb), max_len, max_faces=3 * len(L.faces) + 50_000
+            )
     return layers
 
 
@@ -280,8 +307,21 @@ def _px_axes(fig, x0, y0, w, h, W, H):
     return ax
 
 
-def _render(path_png, scenes: list[list[_Layer]], views: Sequence[str], *, titles, size_px,
-            title, cmap, norm, extend="neither", colorbar_label, margin, dpi=100):
+def _render(
+    path_png,
+    scenes: list[list[_Layer]],
+    views: Sequence[str],
+    *,
+    titles,
+    size_px,
+    title,
+    cmap,
+    norm,
+    extend="neither",
+    colorbar_label,
+    margin,
+    dpi=100,
+):
     """Draw a grid (rows = scenes, columns = views) into one PNG of exactly size_px pixels."""
     import matplotlib
 
@@ -320,14 +360,22 @@ def _render(path_png, scenes: list[list[_Layer]], views: Sequence[str], *, title
             cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
             ax.set_xlim(cx - aw / scale / 2, cx + aw / scale / 2)
             ax.set_ylim(cy - ah / scale / 2, cy + ah / scale / 2)
-            pc = PolyCollection(polys, facecolors=fc, edgecolors=ec, linewidths=72.0 / dpi,
-                                antialiaseds=True, closed=True)
+            pc = PolyCollection(
+                polys, facecolors=fc, edgecolors=ec, linewidths=72.0 / dpi, antialiaseds=True, closed=True
+            )
             ax.add_collection(pc, autolim=False)
             label = titles[r] if titles[r] else ""
             if len(views) > 1 or label:
                 text = f"{label} — {views[c]}" if (label and len(views) > 1) else (label or views[c])
-                fig.text((6 + (c + 0.5) * cell_w) / W, (bottom + (nr - r) * cell_h - 4) / H, text,
-                         ha="center", va="top", fontsize=10, color="#333333")
+                fig.text(
+                    (6 + (c + 0.5) * cell_w) / W,
+                    (bottom + (nr - r) * cell_h - 4) / H,
+                    text,
+                    ha="center",
+                    va="top",
+                    fontsize=10,
+                    color="#333333",
+                )
     if title:
         fig.text(0.5, 1 - 8 / H, title, ha="center", va="top", fontsize=13, weight="bold")
     if norm is not None:
@@ -347,8 +395,11 @@ def _render(path_png, scenes: list[list[_Layer]], views: Sequence[str], *, title
 
 def _extend(lo_out: bool, hi_out: bool) -> str:
     """The colour bar's arrows: which ends the data ran past."""
-    return {(False, False): "neither", (True, False): "min", (False, True): "max"}[(lo_out, hi_out)] \
-        if not (lo_out and hi_out) else "both"
+    return (
+        {(False, False): "neither", (True, False): "min", (False, True): "max"}[(lo_out, hi_out)]
+        if not (lo_out and hi_out)
+        else "both"
+    )
 
 
 def _colormap(vertex_values, n_verts, *, cmap, vmin, vmax):
@@ -360,8 +411,9 @@ def _colormap(vertex_values, n_verts, *, cmap, vmin, vmax):
 
     vals = _np(vertex_values).astype(np.float64).reshape(-1)
     if vals.shape != (n_verts,):
-        raise InputError(f"vertex_values must have shape ({n_verts},) (one per vertex), got "
-                         f"{np.shape(vertex_values)}")
+        raise InputError(
+            f"vertex_values must have shape ({n_verts},) (one per vertex), got {np.shape(vertex_values)}"
+        )
     finite = vals[np.isfinite(vals)]
     lo = float(vmin) if vmin is not None else (float(finite.min()) if finite.size else 0.0)
     hi = float(vmax) if vmax is not None else (float(finite.max()) if finite.size else 1.0)
@@ -374,8 +426,7 @@ def _colormap(vertex_values, n_verts, *, cmap, vmin, vmax):
         # would vanish on white and the darkest would read as shadow
         from matplotlib.colors import ListedColormap
 
-        cm_ = ListedColormap(matplotlib.colormaps["inferno_r"](np.linspace(0.1, 0.85, 256)),
-                             name=HEAT_CMAP)
+        cm_ = ListedColormap(matplotlib.colormaps["inferno_r"](np.linspace(0.1, 0.85, 256)), name=HEAT_CMAP)
     else:
         cm_ = matplotlib.colormaps[cmap] if isinstance(cmap, str) else cmap
     cm_ = cm_.with_extremes(bad=(0.6, 0.6, 0.6))
@@ -438,16 +489,35 @@ def render_views(
         raise InputError(f"overlay_style must be 'ghost' or 'wire', got {overlay_style!r}")
     if frame not in ("garment", "all"):
         raise InputError(f"frame must be 'garment' or 'all', got {frame!r}")
-    vals, cm_, norm, lo_out, hi_out = _colormap(vertex_values, len(verts), cmap=cmap, vmin=vmin,
-                                                 vmax=vmax)
+    vals, cm_, norm, lo_out, hi_out = _colormap(vertex_values, len(verts), cmap=cmap, vmin=vmin, vmax=vmax)
     if size_px is None:
         size_px = (420 * len(views), 560 + (52 if vals is not None else 0) + (28 if title else 0))
-    layers = _layers(verts, faces, vertex_values=vals, color=color, cmap=cm_, norm=norm, body=body,
-                     overlay=overlay, overlay_style=overlay_style, overlay_color=overlay_color,
-                     frame=frame)
-    return _render(path_png, [layers], views, titles=[None], size_px=size_px, title=title,
-                   cmap=cm_, norm=norm, extend=_extend(lo_out, hi_out),
-                   colorbar_label=colorbar_label, margin=margin)
+    layers = _layers(
+        verts,
+        faces,
+        vertex_values=vals,
+        color=color,
+        cmap=cm_,
+        norm=norm,
+        body=body,
+        overlay=overlay,
+        overlay_style=overlay_style,
+        overlay_color=overlay_color,
+        frame=frame,
+    )
+    return _render(
+        path_png,
+        [layers],
+        views,
+        titles=[None],
+        size_px=size_px,
+        title=title,
+        cmap=cm_,
+        norm=norm,
+        extend=_extend(lo_out, hi_out),
+        colorbar_label=colorbar_label,
+        margin=margin,
+    )
 
 
 def render_mesh(
@@ -502,23 +572,40 @@ def render_comparison(
         d = d[np.isfinite(d)]
         vmax = float(np.percentile(d, 98)) if d.size else 1.0
         vmax = vmax if vmax > 0 else 1.0
-    vals, cm_, norm, lo_out, hi_out = _colormap(distance_mm, len(rv), cmap=HEAT_CMAP,
-                                                 vmin=0.0 if distance_mm is not None else None,
-                                                 vmax=vmax)
+    vals, cm_, norm, lo_out, hi_out = _colormap(
+        distance_mm, len(rv), cmap=HEAT_CMAP, vmin=0.0 if distance_mm is not None else None, vmax=vmax
+    )
     if size_px is None:
         size_px = (360 * len(views), 2 * 500 + (58 if vals is not None else 0) + (34 if title else 0))
     if frame not in ("garment", "all"):
         raise InputError(f"frame must be 'garment' or 'all', got {frame!r}")
-    common = dict(cmap=cm_, norm=norm, body=body, overlay=None, overlay_style="ghost",
-                  overlay_color=OVERLAY_RGB, frame=frame)
+    common = dict(
+        cmap=cm_,
+        norm=norm,
+        body=body,
+        overlay=None,
+        overlay_style="ghost",
+        overlay_color=OVERLAY_RGB,
+        frame=frame,
+    )
     top = _layers(tv, tf, vertex_values=None, color=TARGET_RGB, **common)
     bot = _layers(rv, rf, vertex_values=vals, color=GARMENT_RGB, **common)
     # frame both rows on the union of target and result so the rows line up
     for layers, other in ((top, (rv, rf)), (bot, (tv, tf))):
         layers.append(_Layer(other[0], other[1][:0], np.zeros((0, 3))))
-    return _render(path_png, [top, bot], views, titles=list(labels), size_px=size_px, title=title,
-                   cmap=cm_, norm=norm, extend=_extend(lo_out, hi_out),
-                   colorbar_label="distance to target [mm]", margin=0.06)
+    return _render(
+        path_png,
+        [top, bot],
+        views,
+        titles=list(labels),
+        size_px=size_px,
+        title=title,
+        cmap=cm_,
+        norm=norm,
+        extend=_extend(lo_out, hi_out),
+        colorbar_label="distance to target [mm]",
+        margin=0.06,
+    )
 
 
 def _unpair(pair, what):

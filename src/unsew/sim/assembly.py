@@ -74,7 +74,9 @@ def outer_adjoint_map(nnz: int, src: torch.Tensor, dst: torch.Tensor, n_elem: in
     only_t = ~has_own[tr]
     fdst[tr[only_t]] = dst[only_t]
     cnt[tr[only_t]] += 1.0
-    h = torch.where(has_own & torch.zeros(EM, dtype=torch.bool, device=dev).index_fill_(0, tr[~only_t], True), 1.0, 0.5)
+    h = torch.where(
+        has_own & torch.zeros(EM, dtype=torch.bool, device=dev).index_fill_(0, tr[~only_t], True), 1.0, 0.5
+    )
     h = torch.where(cnt > 0, h, torch.zeros_like(h)).to(torch.float64)
     if weight is not None:
         h = (h.view(n_elem, m, m) * weight.to(h)).reshape(-1)
@@ -109,7 +111,9 @@ class _AssembleOuter(torch.autograd.Function):
         return grad_g, grad_s, None, None, None, None, None, None
 
 
-def assemble_outer(nnz: int, src, dst, g: torch.Tensor, s: torch.Tensor, weight=None, *, maps=None) -> torch.Tensor:
+def assemble_outer(
+    nnz: int, src, dst, g: torch.Tensor, s: torch.Tensor, weight=None, *, maps=None
+) -> torch.Tensor:
     """System values (nnz,) of rank-one element blocks s_e w * g_e g_e^T, differentiable in g, s.
 
     Equal to ``scatter_blocks(nnz, src, dst, s[:, None, None] * g[:, :, None] * g[:, None, :] * weight)``
@@ -137,7 +141,8 @@ class _AssembleMembrane(torch.autograd.Function):
         P = 0.5 * (P + P.transpose(1, 2))
         HGa = torch.matmul(H, G) * area[:, None, None]  # (F, 3, 9)
         blocks = torch.bmm(G.transpose(1, 2), HGa)  # (F, 9, 9) area G^T H G
-        blocks.view(F, 3, 3, 3, 3).diagonal(dim1=2, dim2=4).add_(area[:, None, None, None] * P[..., None])  # + area P kron I3
+        # + area P kron I3
+        blocks.view(F, 3, 3, 3, 3).diagonal(dim1=2, dim2=4).add_(area[:, None, None, None] * P[..., None])
         ctx.save_for_backward(G, H, P, area)
         ctx.maps = (fdst, h)
         return blocks.new_zeros(nnz).index_add_(0, dst, blocks.reshape(-1)[src])
@@ -151,7 +156,8 @@ class _AssembleMembrane(torch.autograd.Function):
         W = (torch.cat([gvals, gvals.new_zeros(1)])[fdst] * h).view(F, 9, 9)  # symmetric adjoint
         GW = torch.bmm(G, W)  # (F, 3, 9)
         GWG = torch.bmm(GW, G.transpose(1, 2))  # (F, 3, 3) = G W G^T
-        wgeo = torch.diagonal(W.view(F, 3, 3, 3, 3), dim1=2, dim2=4).sum(-1)  # (F, 3, 3): sum_c W[(k,c),(l,c)]
+        # (F, 3, 3): sum_c W[(k,c),(l,c)]
+        wgeo = torch.diagonal(W.view(F, 3, 3, 3, 3), dim1=2, dim2=4).sum(-1)
         grad_G = grad_H = grad_P = grad_area = None
         if ctx.needs_input_grad[0]:
             grad_G = (2.0 * area[:, None, None]) * torch.matmul(H, GW)
@@ -165,7 +171,9 @@ class _AssembleMembrane(torch.autograd.Function):
         return grad_G, grad_H, grad_P, grad_area, None, None, None, None, None
 
 
-def assemble_membrane(nnz: int, src, dst, G: torch.Tensor, H: torch.Tensor, P: torch.Tensor, area: torch.Tensor, *, maps=None):
+def assemble_membrane(
+    nnz: int, src, dst, G: torch.Tensor, H: torch.Tensor, P: torch.Tensor, area: torch.Tensor, *, maps=None
+):
     """System values (nnz,) of membrane element blocks area (G^T H G + P kron I3).
 
     Args:

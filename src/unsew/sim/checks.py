@@ -87,7 +87,9 @@ class DrapeVerdict:
 
     def as_dict(self) -> dict:
         """The verdict as a JSON-able dict (a figure that was not measured, NaN, is None)."""
-        return {k: None if isinstance(v, float) and not np.isfinite(v) else v for k, v in asdict(self).items()}
+        return {
+            k: None if isinstance(v, float) and not np.isfinite(v) else v for k, v in asdict(self).items()
+        }
 
     def raise_if_bad(self, what: str = "drape") -> None:
         """Raise :class:`~unsew.errors.SimulationError` with ``"<what> failed: <reason>"``
@@ -132,21 +134,37 @@ def check_drape(
     uv = _float64(uv)
     nan = float("nan")
     if len(x) == 0:
-        return DrapeVerdict(False, "the garment has no vertices", nan, nan, nan, nan, nan, nan, nan, nan, True)
+        return DrapeVerdict(
+            False, "the garment has no vertices", nan, nan, nan, nan, nan, nan, nan, nan, True
+        )
     finite = bool(np.isfinite(x).all())
     if not finite:
         bad = int(np.flatnonzero(~np.isfinite(x).all(axis=1))[0])
         n_bad = int((~np.isfinite(x).all(axis=1)).sum())
-        return DrapeVerdict(False, f"exploded: {n_bad} vertices are NaN or infinite (first: vertex {bad})",
-                            nan, nan, nan, nan, nan, nan, nan, nan, False)
+        return DrapeVerdict(
+            False,
+            f"exploded: {n_bad} vertices are NaN or infinite (first: vertex {bad})",
+            nan,
+            nan,
+            nan,
+            nan,
+            nan,
+            nan,
+            nan,
+            nan,
+            False,
+        )
     s_max, s_99 = _stretch(x, faces, uv, faces_uv)
     inside_pct, depth_mm, far_pct = _body_gaps(x, body, sdf)
     y_min, y_max = float(x[:, 1].min()), float(x[:, 1].max())
     drop = nan if start_height is None else float(start_height) - float(x[:, 1].mean())
     floor = float(np.asarray(body.verts, dtype=np.float64)[:, 1].min())
-    reason = _first_failure(s_max, s_99, y_min, y_max, drop, far_pct, inside_pct,
-                            floor=floor, crotch=_crotch_height(body))
-    return DrapeVerdict(reason == "", reason, inside_pct, depth_mm, far_pct, s_max, s_99, y_min, y_max, drop, finite)
+    reason = _first_failure(
+        s_max, s_99, y_min, y_max, drop, far_pct, inside_pct, floor=floor, crotch=_crotch_height(body)
+    )
+    return DrapeVerdict(
+        reason == "", reason, inside_pct, depth_mm, far_pct, s_max, s_99, y_min, y_max, drop, finite
+    )
 
 
 def _float64(a) -> np.ndarray:
@@ -193,9 +211,14 @@ def _first_failure(s_max, s_99, y_min, y_max, drop, far_pct, inside_pct, *, floo
     pass). Stretches [-], heights, drop, floor (the body's lowest point) and crotch [m],
     shares [%]."""
     if s_max > STRETCH_MAX:
-        return f"exploded: an edge is stretched to {s_max:.1f} times its pattern length (bound {STRETCH_MAX:g})"
+        return (
+            f"exploded: an edge is stretched to {s_max:.1f} times its pattern length (bound {STRETCH_MAX:g})"
+        )
     if s_99 > STRETCH_P99_MAX:
-        return f"exploded: 1 % of the edges are stretched beyond {s_99:.2f} times their pattern length (bound {STRETCH_P99_MAX:g})"
+        return (
+            f"exploded: 1 % of the edges are stretched beyond {s_99:.2f} times their pattern length "
+            f"(bound {STRETCH_P99_MAX:g})"
+        )
     if y_min < floor - FLOOR_TOL:
         return f"fallen: the garment reaches {floor - y_min:.2f} m below the body's feet"
     if y_max < crotch:
@@ -203,7 +226,10 @@ def _first_failure(s_max, s_99, y_min, y_max, drop, far_pct, inside_pct, *, floo
     if np.isfinite(drop) and drop > DROP_MAX:
         return f"fallen: the garment slid {drop:.2f} m down from where it was put on (bound {DROP_MAX:g} m)"
     if far_pct > FAR_MAX_PCT:
-        return f"off the body: {far_pct:.0f} % of the vertices are more than {FAR_DIST:g} m from it (bound {FAR_MAX_PCT:g} %)"
+        return (
+            f"off the body: {far_pct:.0f} % of the vertices are more than {FAR_DIST:g} m from it "
+            f"(bound {FAR_MAX_PCT:g} %)"
+        )
     if inside_pct > INSIDE_MAX_PCT:
         return f"inside the body: {inside_pct:.1f} % of the vertices (bound {INSIDE_MAX_PCT:g} %)"
     return ""
@@ -232,5 +258,6 @@ def check_dressed(d, *, body=None, start_height=None) -> DrapeVerdict:
     if start_height is None:
         start_height = d.stats.get("start_height")
     m = d.mesh
-    return check_drape(d.x, faces=m.faces, uv=m.uv, faces_uv=m.faces_uv, body=body, sdf=d.sdf,
-                       start_height=start_height)
+    return check_drape(
+        d.x, faces=m.faces, uv=m.uv, faces_uv=m.faces_uv, body=body, sdf=d.sdf, start_height=start_height
+    )

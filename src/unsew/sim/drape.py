@@ -29,17 +29,24 @@ __all__ = ["DrapeSettings", "drape", "sew", "merge_sewn", "check_drape_inputs"]
 def check_drape_inputs(model: SimModel, state: SimState, sdf, uv, gamma) -> None:
     """Boundary checks before any simulation; raise InputError with what to fix."""
     if sdf is None or not callable(getattr(sdf, "query", None)):
-        raise InputError("no body SDF given: pass an object with query(x) -> (d, n), e.g. unsew.body.sdf.BodySDF")
+        raise InputError(
+            "no body SDF given: pass an object with query(x) -> (d, n), e.g. unsew.body.sdf.BodySDF"
+        )
     if not torch.is_tensor(uv) or uv.dim() != 2 or uv.shape != (model.n_rest, 2):
-        raise InputError(f"uv must be a torch tensor of shape ({model.n_rest}, 2) [m], got {getattr(uv, 'shape', type(uv))}")
+        raise InputError(
+            f"uv must be a torch tensor of shape ({model.n_rest}, 2) [m], got "
+            f"{getattr(uv, 'shape', type(uv))}"
+        )
     if not torch.is_tensor(gamma) or gamma.shape != (5,):
         raise InputError("gamma must be a torch tensor (5,) = (H00, H01, H11, H22, k); see Material.gamma()")
     check_gamma(gamma.detach().cpu())
     dev = model.device
     for name, t in (("uv", uv), ("gamma", gamma), ("state.x", state.x), ("state.v", state.v)):
         if t.device != dev:
-            raise InputError(f"{name} is on {t.device}, the SimModel on {dev}: move the model with "
-                             f"model.to({str(t.device)!r}) (or the tensors to its device)")
+            raise InputError(
+                f"{name} is on {t.device}, the SimModel on {dev}: move the model with "
+                f"model.to({str(t.device)!r}) (or the tensors to its device)"
+            )
     for name, t in (("x", state.x), ("v", state.v)):
         if t.shape != (model.n, 3):
             raise InputError(f"state.{name} must have shape ({model.n}, 3), got {tuple(t.shape)}")
@@ -64,7 +71,8 @@ class DrapeSettings:
     sew_steps: int = 80  #: steps of the sewing phase [-]
     settle_steps: int = 40  #: steps of plain draping after sewing [-]
     sew_dt: float = 0.02  #: time step of the sewing phase [s] (smaller: seams move fast)
-    spring_stiffness: float = 1000.0  #: zero-length seam springs while sewing [N/m] (100 left seams 2-4 mm open)
+    #: zero-length seam springs while sewing [N/m] (100 left seams 2-4 mm open)
+    spring_stiffness: float = 1000.0
     hold_steps: int = 20  #: sewing steps a lower garment's waistline is held still [-]
     ramp_steps: int = 30  #: sewing steps over which gravity rises to full [-]
     gravity: float = 9.81  #: gravitational acceleration along -Y [m/s^2]
@@ -85,10 +93,18 @@ class DrapeSettings:
         """The integrator's :class:`StepParams` for a drape (or, ``sewing=True``, the sewing
         phase: its time step and seam springs) with the material's Coulomb ``friction`` [-]."""
         return StepParams(
-            dt=self.sew_dt if sewing else self.dt, gravity=self.gravity, friction=friction,
-            contact_stiffness=self.contact_stiffness, contact_threshold=self.contact_threshold,
-            thickness=self.thickness, spring_stiffness=self.spring_stiffness, max_speed=self.max_speed,
-            friction_eps=self.friction_eps, backend=self.backend, fused=self.fused, line_search=self.line_search,
+            dt=self.sew_dt if sewing else self.dt,
+            gravity=self.gravity,
+            friction=friction,
+            contact_stiffness=self.contact_stiffness,
+            contact_threshold=self.contact_threshold,
+            thickness=self.thickness,
+            spring_stiffness=self.spring_stiffness,
+            max_speed=self.max_speed,
+            friction_eps=self.friction_eps,
+            backend=self.backend,
+            fused=self.fused,
+            line_search=self.line_search,
         )
 
 
@@ -149,15 +165,27 @@ def drape(
     return state
 
 
-def _checkpointed_step(model, rest: RestData, state: SimState, sdf, gamma, params: StepParams, k: int) -> SimState:
+def _checkpointed_step(
+    model, rest: RestData, state: SimState, sdf, gamma, params: StepParams, k: int
+) -> SimState:
     """One step whose intermediate values are recomputed in the backward pass."""
 
     def _f(x, v, gamma_, *rest_t):
         s = step(model, RestData(*rest_t), SimState(x, v), sdf, gamma_, params, index=k)
         return s.x, s.v
 
-    xv = torch_checkpoint(_f, state.x, state.v, gamma, rest.area, rest.B, rest.coef, rest.mass, rest.vert_area,
-                          use_reentrant=False)
+    xv = torch_checkpoint(
+        _f,
+        state.x,
+        state.v,
+        gamma,
+        rest.area,
+        rest.B,
+        rest.coef,
+        rest.mass,
+        rest.vert_area,
+        use_reentrant=False,
+    )
     return SimState(*xv)
 
 
@@ -172,12 +200,16 @@ def merge_sewn(x_unsewn, x_of_u, n_x: int) -> torch.Tensor:
     Returns:
         (n_x, 3) float64 torch [m].
     """
-    xu = torch.as_tensor(np.asarray(x_unsewn) if not torch.is_tensor(x_unsewn) else x_unsewn, dtype=torch.float64)
+    xu = torch.as_tensor(
+        np.asarray(x_unsewn) if not torch.is_tensor(x_unsewn) else x_unsewn, dtype=torch.float64
+    )
     idx = torch.as_tensor(np.asarray(x_of_u), dtype=torch.int64, device=xu.device)
     s = xu.new_zeros(n_x, 3).index_add(0, idx, xu)
     c = xu.new_zeros(n_x).index_add(0, idx, torch.ones_like(idx, dtype=xu.dtype))
     if bool((c == 0).any()):
-        raise InputError(f"sewn vertex {int(torch.nonzero(c == 0)[0])} has no unsewn copy; x_of_u does not cover 0..n_x-1")
+        raise InputError(
+            f"sewn vertex {int(torch.nonzero(c == 0)[0])} has no unsewn copy; x_of_u does not cover 0..n_x-1"
+        )
     return s / c[:, None]
 
 
@@ -210,7 +242,9 @@ def sew(
     Returns:
         (Nu, 3) float64 torch [m] positions on the unsewn topology (see :func:`merge_sewn`).
     """
-    x0 = torch.as_tensor(np.asarray(x_unsewn) if not torch.is_tensor(x_unsewn) else x_unsewn, dtype=torch.float64)
+    x0 = torch.as_tensor(
+        np.asarray(x_unsewn) if not torch.is_tensor(x_unsewn) else x_unsewn, dtype=torch.float64
+    )
     state = SimState.at_rest(x0.detach().clone())
     with torch.no_grad():
         uv = uv.detach()

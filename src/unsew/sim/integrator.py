@@ -52,7 +52,7 @@ from unsew.sim.assembly import (
 )
 from unsew.sim.energies.bending import bending_rest, energy_bending
 from unsew.sim.energies.contact import energy_contact, friction_damping, project_out
-from unsew.sim.energies.gravity import energy_gravity, mass_lumped
+from unsew.sim.energies.gravity import energy_gravity
 from unsew.sim.energies.membrane import energy_membrane, membrane_rest
 from unsew.sim.energies.spring import energy_spring
 from unsew.sim.model import SimModel
@@ -117,7 +117,13 @@ class RestData:
 
     def detached(self) -> RestData:
         """The same quantities without their autograd graph."""
-        return RestData(self.area.detach(), self.B.detach(), self.coef.detach(), self.mass.detach(), self.vert_area.detach())
+        return RestData(
+            self.area.detach(),
+            self.B.detach(),
+            self.coef.detach(),
+            self.mass.detach(),
+            self.vert_area.detach(),
+        )
 
 
 def rest_data(model: SimModel, uv: torch.Tensor, density) -> RestData:
@@ -190,7 +196,20 @@ def _ring_weight(like: torch.Tensor) -> torch.Tensor:
     return w
 
 
-def forces(model, rest, x, v, sdf, gamma, params: StepParams, *, gravity=None, hessian=True, parts=False, energy=False):
+def forces(
+    model,
+    rest,
+    x,
+    v,
+    sdf,
+    gamma,
+    params: StepParams,
+    *,
+    gravity=None,
+    hessian=True,
+    parts=False,
+    energy=False,
+):
     """Forces and system blocks at (x, v).
 
     Returns f (N, 3) [N] (internal + gravity + contact + springs, without friction),
@@ -205,7 +224,12 @@ def forces(model, rest, x, v, sdf, gamma, params: StepParams, *, gravity=None, h
     em, gm, Hm = energy_membrane(x, model.faces, rest.area, rest.B, gamma, hessian=hessian, parts=True)
     eb, gb, Hb = energy_bending(x, model.hinges, rest.coef, gamma, hessian=hessian, parts=True)
     ec, gc, Hc, fn = energy_contact(
-        d, n, rest.vert_area, stiffness=params.contact_stiffness, threshold=params.contact_threshold, hessian=hessian
+        d,
+        n,
+        rest.vert_area,
+        stiffness=params.contact_stiffness,
+        threshold=params.contact_threshold,
+        hessian=hessian,
     )
     grad = scatter_vertex(model.n, model.faces, gm) + scatter_vertex(model.n, model.hinges, gb) + gc
     Hs = None
@@ -244,7 +268,17 @@ def total_energy(model, rest, x, sdf, gamma, params: StepParams, *, gravity=None
     d, n = sdf.query(x)
     e = energy_membrane(x, model.faces, rest.area, rest.B, gamma, hessian=False)[0]
     e = e + energy_bending(x, model.hinges, rest.coef, gamma, hessian=False)[0]
-    e = e + energy_contact(d, n, rest.vert_area, stiffness=params.contact_stiffness, threshold=params.contact_threshold, hessian=False)[0]
+    e = (
+        e
+        + energy_contact(
+            d,
+            n,
+            rest.vert_area,
+            stiffness=params.contact_stiffness,
+            threshold=params.contact_threshold,
+            hessian=False,
+        )[0]
+    )
     e = e + energy_gravity(x, rest.mass, g)[0]
     if model.springs.shape[0]:
         e = e + energy_spring(x, model.springs, params.spring_stiffness, hessian=False)[0]
@@ -279,7 +313,17 @@ def _backtrack(model, rest, x, v, w, rhs, D, E0, sdf, gamma, params: StepParams,
         return 2.0 * alpha
 
 
-def step(model: SimModel, rest: RestData, state: SimState, sdf, gamma, params: StepParams, *, index: int = 0, gravity=None) -> SimState:
+def step(
+    model: SimModel,
+    rest: RestData,
+    state: SimState,
+    sdf,
+    gamma,
+    params: StepParams,
+    *,
+    index: int = 0,
+    gravity=None,
+) -> SimState:
     """Advance one implicit Euler step of length params.dt.
 
     Args:
@@ -298,7 +342,9 @@ def step(model: SimModel, rest: RestData, state: SimState, sdf, gamma, params: S
     x, v = state.x, state.v
     N = model.n
     fused = params.fused
-    f, K, Hc, D, _, E0 = forces(model, rest, x, v, sdf, gamma, params, gravity=gravity, parts=fused, energy=True)
+    f, K, Hc, D, _, E0 = forces(
+        model, rest, x, v, sdf, gamma, params, gravity=gravity, parts=fused, energy=True
+    )
     eye = torch.eye(3, dtype=x.dtype, device=x.device)
     vblk = rest.mass[:, None, None] * eye + dt * D + (dt * dt) * Hc  # (N, 3, 3)
     pat = _pattern(model)
@@ -310,7 +356,15 @@ def step(model: SimModel, rest: RestData, state: SimState, sdf, gamma, params: S
         w4 = _ring_corner_weight(x) if model.bending_stencil == "ring" else None
         extra = (dt * dt) * Ks if Ks is not None else None
         v_new = step_solve(
-            model, pat, dt=dt, membrane=mem, bending=bend, vblk=vblk, extra=extra, rhs=rhs.reshape(-1), w4=w4,
+            model,
+            pat,
+            dt=dt,
+            membrane=mem,
+            bending=bend,
+            vblk=vblk,
+            extra=extra,
+            rhs=rhs.reshape(-1),
+            w4=w4,
             backend=resolve_backend(params.backend),
         ).reshape(N, 3)
     else:

@@ -88,8 +88,15 @@ class Material:
 
 
 #: Keys of a material as written in material.json and in pattern.json's ``unsew.material`` (SI units).
-MATERIAL_KEYS = ("H00_N_per_m", "H01_N_per_m", "H11_N_per_m", "H22_N_per_m", "bending_N_m",
-                 "density_kg_per_m2", "friction")
+MATERIAL_KEYS = (
+    "H00_N_per_m",
+    "H01_N_per_m",
+    "H11_N_per_m",
+    "H22_N_per_m",
+    "bending_N_m",
+    "density_kg_per_m2",
+    "friction",
+)
 
 
 def material_to_dict(m: Material) -> dict:
@@ -157,7 +164,9 @@ MATERIALS: dict[str, Material] = {
     # polyester plain weave ~100 g/m^2, KES B ~0.05
     "polyester": _woven(4000.0, 0.05, 0.2, 0.05, 0.10, 0.3),
     # cotton jersey knit ~180 g/m^2: soft, weft (v) softer than wale, KES B ~0.03
-    "jersey": Material(h00=600.0, h01=60.0, h11=300.0, h22=100.0, bend=0.03 * _KES_B, density=0.18, friction=0.45),
+    "jersey": Material(
+        h00=600.0, h01=60.0, h11=300.0, h22=100.0, bend=0.03 * _KES_B, density=0.18, friction=0.45
+    ),
     # wool suiting ~250 g/m^2, KES B ~0.1
     "wool": _woven(2500.0, 0.06, 0.25, 0.1, 0.25, 0.4),
 }

@@ -78,7 +78,13 @@ def build_hinges(faces: np.ndarray, faces_uv: np.ndarray):
     hinges = np.stack([x0, x1, x2, x3], 1).astype(np.int64)
     hinge_faces = np.stack([fa, fb], 1).astype(np.int64)
     uv_e = np.stack(
-        [faces_uv[fa, slot_a[sa]], faces_uv[fa, slot_b[sa]], faces_uv[fb, slot_a[sb]], faces_uv[fb, slot_b[sb]]], 1
+        [
+            faces_uv[fa, slot_a[sa]],
+            faces_uv[fa, slot_b[sa]],
+            faces_uv[fb, slot_a[sb]],
+            faces_uv[fb, slot_b[sb]],
+        ],
+        1,
     ).astype(np.int64)
     return hinges, hinge_faces, uv_e, int((counts > 2).sum())
 
@@ -238,8 +244,11 @@ class SimModel:
         device = torch.device(device)
         if self.device == device or (device.type == self.device.type and device.index is None):
             return self
-        moved = {f.name: getattr(self, f.name).to(device) for f in dataclasses.fields(self)
-                 if torch.is_tensor(getattr(self, f.name))}
+        moved = {
+            f.name: getattr(self, f.name).to(device)
+            for f in dataclasses.fields(self)
+            if torch.is_tensor(getattr(self, f.name))
+        }
         return dataclasses.replace(self, **moved)
 
     @classmethod

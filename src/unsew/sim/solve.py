@@ -142,8 +142,10 @@ class _Factor:
         self.shift = 0.0
         if not np.all(np.isfinite(values)):
             bad = int(np.count_nonzero(~np.isfinite(values)))
-            raise SimulationError(f"the system matrix holds {bad} NaN or infinite values; the state or material "
-                                  "is not finite (lower dt, check the material stiffness and the initial state)")
+            raise SimulationError(
+                f"the system matrix holds {bad} NaN or infinite values; the state or material "
+                "is not finite (lower dt, check the material stiffness and the initial state)"
+            )
         try:
             self.solver = self._factorize(pattern, values)
             return
@@ -193,11 +195,16 @@ class _Factor:
             r, c = pattern.rows_np, pattern.cols_np
             off = r != c
             A = sp.csc_matrix(
-                (np.concatenate([values, values[off]]), (np.concatenate([r, c[off]]), np.concatenate([c, r[off]]))),
+                (
+                    np.concatenate([values, values[off]]),
+                    (np.concatenate([r, c[off]]), np.concatenate([c, r[off]])),
+                ),
                 shape=(self.n, self.n),
             )
             try:
-                return spla.splu(A, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
+                return spla.splu(
+                    A, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options=dict(SymmetricMode=True)
+                )
             except RuntimeError as exc:
                 raise _NotPositiveDefinite(str(exc)) from None
         raise ValueError(f"unknown solver backend {backend!r}; choose one of {BACKENDS}")

@@ -222,7 +222,8 @@ class _StaticDrape(torch.autograd.Function):
             f = forces(model, rest, xs, torch.zeros_like(xs), sdf, gam_, params, hessian=False)[0]
             b = gx * free
             with torch.no_grad():
-                _, fac = _system(model, rest, x, sdf, gamma.detach(), params, ctx.mu, opts["backend"])  # projected H at x*
+                # projected H at x*
+                _, fac = _system(model, rest, x, sdf, gamma.detach(), params, ctx.mu, opts["backend"])
 
             def precond(r):
                 return torch.from_numpy(fac.solve(r.reshape(-1).numpy())).reshape_as(r) * free
@@ -236,15 +237,29 @@ class _StaticDrape(torch.autograd.Function):
                     (jv,) = torch.autograd.grad(f, xs, grad_outputs=v, retain_graph=True)
                     return -jv * free
 
-                lam, its, rr = _pcg(hvp, b, precond, rtol=opts["adjoint_rtol"], max_iter=opts["adjoint_max_iter"])
+                lam, its, rr = _pcg(
+                    hvp, b, precond, rtol=opts["adjoint_rtol"], max_iter=opts["adjoint_max_iter"]
+                )
                 info.adjoint_iterations, info.adjoint_residual = its, rr
-            want = [xs] + [t for t, need in ((uv_, ctx.needs_input_grad[1]), (gam_, ctx.needs_input_grad[2]), (den_, ctx.needs_input_grad[3])) if need]
+            want = [xs] + [
+                t
+                for t, need in (
+                    (uv_, ctx.needs_input_grad[1]),
+                    (gam_, ctx.needs_input_grad[2]),
+                    (den_, ctx.needs_input_grad[3]),
+                )
+                if need
+            ]
             grads = list(torch.autograd.grad(f, want, grad_outputs=lam, allow_unused=True))
         gxs = grads.pop(0)
-        pinned = (1.0 - free)
+        pinned = 1.0 - free
         g_x0 = (gx + (gxs if gxs is not None else 0.0)) * pinned if ctx.needs_input_grad[0] else None
         out = [g_x0]
-        for need, like in ((ctx.needs_input_grad[1], uv), (ctx.needs_input_grad[2], gamma), (ctx.needs_input_grad[3], density)):
+        for need, like in (
+            (ctx.needs_input_grad[1], uv),
+            (ctx.needs_input_grad[2], gamma),
+            (ctx.needs_input_grad[3], density),
+        ):
             if need:
                 gi = grads.pop(0)
                 out.append(torch.zeros_like(like) if gi is None else gi)

@@ -68,7 +68,9 @@ class _StepSolve(torch.autograd.Function):
         x = torch.from_numpy(fac.solve(rhs.detach().cpu().numpy())).to(rhs.device)
         ctx.fac, ctx.st = fac, st
         ctx.has_extra = extra is not None
-        ctx.save_for_backward(G, H, P, area, bg, bs, vblk, extra if extra is not None else vblk.new_zeros(0), x)
+        ctx.save_for_backward(
+            G, H, P, area, bg, bs, vblk, extra if extra is not None else vblk.new_zeros(0), x
+        )
         return x
 
     @staticmethod
@@ -96,7 +98,9 @@ class _StepSolve(torch.autograd.Function):
             HGl, HGy = Gl @ H, Gy @ H  # H symmetric
             LY = torch.bmm(Le.view(-1, 3, 3), Ye.view(-1, 3, 3).transpose(1, 2))  # (F, 3, 3): l_k . y_l
             if need[0]:
-                gG = (-dt2 * area)[:, None, None] * (HGy[:, :, None] * Le[:, None, :] + HGl[:, :, None] * Ye[:, None, :])
+                gG = (-dt2 * area)[:, None, None] * (
+                    HGy[:, :, None] * Le[:, None, :] + HGl[:, :, None] * Ye[:, None, :]
+                )
             if need[1]:
                 M = torch.einsum("f,fm,fn->mn", area, Gl, Gy)
                 gH = (-0.5 * dt2) * (M + M.T)
@@ -128,7 +132,9 @@ class _StepSolve(torch.autograd.Function):
         return gG, gH, gP, ga, gbg, gbs, gV, gE, lam, None
 
 
-def step_solve(model, pattern: SparsePattern, *, dt: float, membrane, bending, vblk, extra, rhs, w4, backend: str):
+def step_solve(
+    model, pattern: SparsePattern, *, dt: float, membrane, bending, vblk, extra, rhs, w4, backend: str
+):
     """Solve the implicit Euler system of one step (module docstring); differentiable.
 
     Args:

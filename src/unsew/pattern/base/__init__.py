@@ -3,9 +3,9 @@
 ``make_base_pattern(name, measurements=None) -> Pattern`` for a garment type (``tshirt``,
 ``dress``, ``pants``, ``shorts``, ``skirt``: its first, default base) or one of the library's
 variants of a type (:data:`BASES`, :func:`bases_for`): tees with long sleeves or none, a
-sleeveless dress, straight (unwaisted) dresses, trousers, shorts and skirts under a waistband, a half-circle skirt, a pencil
-skirt, a darted A-line. Panels are placed in 3D around the body (world frame: metres, Y up, facing +Z, body's left
-at +X; see :mod:`unsew.pattern.base._frame`).
+sleeveless dress, straight (unwaisted) dresses, trousers, shorts and skirts under a waistband, a half-circle
+skirt, a pencil skirt, a darted A-line. Panels are placed in 3D around the body (world frame: metres, Y up,
+facing +Z, body's left at +X; see :mod:`unsew.pattern.base._frame`).
 """
 
 from __future__ import annotations

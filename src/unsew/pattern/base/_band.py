@@ -39,8 +39,15 @@ def _band(name: str, half_width: float, height: float, split: bool, cuts: Sequen
     return loop_panel(name, np.array(v), labels=labels)
 
 
-def band_panels(half_width: float, waist_y: float, depth_z: float, *, split: bool = False,
-                height: float = BAND_HEIGHT, cuts: Sequence[float] | None = None) -> tuple[Panel, Panel]:
+def band_panels(
+    half_width: float,
+    waist_y: float,
+    depth_z: float,
+    *,
+    split: bool = False,
+    height: float = BAND_HEIGHT,
+    cuts: Sequence[float] | None = None,
+) -> tuple[Panel, Panel]:
     """Front and back waistbands, each ``2 * half_width`` [m] wide and ``height`` [m] high, their
     top at the world height ``waist_y`` [m], laid flat at z = +/- ``depth_z`` [m].
     ``split``: the lower edge in two halves (for trousers: one half per leg panel); ``cuts``:

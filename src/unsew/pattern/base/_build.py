@@ -48,7 +48,9 @@ def cubic(a, b, c1, c2) -> Curvature:
     return Curvature("cubic", [[float(s), float(t)] for s, t in st])
 
 
-def loop_panel(name: str, verts, curves: dict[int, Curvature] | None = None, labels: Sequence[str] = ()) -> Panel:
+def loop_panel(
+    name: str, verts, curves: dict[int, Curvature] | None = None, labels: Sequence[str] = ()
+) -> Panel:
     """A panel whose edge i runs from vertex i to vertex i+1 (closing back to 0).
 
     verts: (N, 2) [m], counter-clockwise. curves: edge index -> curvature (others straight).
@@ -101,7 +103,12 @@ def symmetric_panel(
         j = len(edges)
         c = side_curves[i]
         edges.append(
-            Edge(j, (j + 1) % n, reverse_curvature(mirror_curvature(c)) if c else None, labels[i].replace("right", "left"))
+            Edge(
+                j,
+                (j + 1) % n,
+                reverse_curvature(mirror_curvature(c)) if c else None,
+                labels[i].replace("right", "left"),
+            )
         )
     assert len(edges) == n
 

@@ -32,8 +32,13 @@ STRAIGHT_HEM_HEIGHT = 0.48
 STRAIGHT_FLARE = 0.03
 
 
-def make_dress(m: Measurements | None = None, *, sleeves: str = "short", waist_point: bool = False,
-               necklines: tuple[str, str] = ("round", "round")) -> Pattern:
+def make_dress(
+    m: Measurements | None = None,
+    *,
+    sleeves: str = "short",
+    waist_point: bool = False,
+    necklines: tuple[str, str] = ("round", "round"),
+) -> Pattern:
     """A long flared dress with short sleeves sized to ``m`` (default: the default body);
     ``sleeves="none"``: without sleeves (pattern ``dress_sleeveless``, armholes cut in as
     :func:`unsew.pattern.base.tshirt.sleeveless_frame`). ``waist_point``: the side seam from
@@ -66,8 +71,9 @@ def make_dress_sleeveless(m: Measurements | None = None, **kw) -> Pattern:
     return make_dress(m, sleeves="none", **kw)
 
 
-def make_dress_straight(m: Measurements | None = None, *, sleeves: str = "short",
-                        necklines: tuple[str, str] = ("round", "round")) -> Pattern:
+def make_dress_straight(
+    m: Measurements | None = None, *, sleeves: str = "short", necklines: tuple[str, str] = ("round", "round")
+) -> Pattern:
     """A straight knee-length dress with short sleeves sized to ``m``: no waist shaping, the
     side seam straight from the underarm to the hips and barely flared below them (a shift or
     tunic dress, which the waisted :func:`make_dress` stands out from at the hips);

@@ -10,8 +10,8 @@ near x = 0, y up, y = 0 at the hem), seen from outside::
 The left front and right back legs use this frame as is; the right front and left back are
 its mirror images (edge i of a mirrored panel is the mirror of edge 5 - i, traversed the
 other way). ``pants_band`` and ``shorts_band`` start BAND_HEIGHT below the waist under a front and
-a back waistband (:mod:`unsew.pattern.base._band`). Front and back share the outseam and inseam geometry, so sewn edges have equal
-lengths; the back is wider through a longer crotch extension.
+a back waistband (:mod:`unsew.pattern.base._band`). Front and back share the outseam and inseam geometry, so
+sewn edges have equal lengths; the back is wider through a longer crotch extension.
 """
 
 from __future__ import annotations
@@ -129,7 +129,9 @@ def make_shorts(m: Measurements | None = None, *, band: bool = False) -> Pattern
     m = m or Measurements()
     f = body_frame(m)
     hem_y = f.crotch_y - CROTCH_DROP - SHORTS_INSEAM
-    return _legs(m, hem_y, (m.thigh + SHORTS_HEM_EASE) / 4 - 0.01, "shorts_band" if band else "shorts", band=band)
+    return _legs(
+        m, hem_y, (m.thigh + SHORTS_HEM_EASE) / 4 - 0.01, "shorts_band" if band else "shorts", band=band
+    )
 
 
 def make_shorts_band(m: Measurements | None = None) -> Pattern:

@@ -44,7 +44,9 @@ def _panel(name: str, r_w: float, r_h: float, half_angle: float):
     s, c = np.sin(half_angle), np.cos(half_angle)
     # Circle centre at (0, r_h): hem corners at radius r_h, waist corners at r_w, below it.
     cy = r_h
-    v = np.array([(-r_h * s, cy - r_h * c), (r_h * s, cy - r_h * c), (r_w * s, cy - r_w * c), (-r_w * s, cy - r_w * c)])
+    v = np.array(
+        [(-r_h * s, cy - r_h * c), (r_h * s, cy - r_h * c), (r_w * s, cy - r_w * c), (-r_w * s, cy - r_w * c)]
+    )
     curves = {
         0: Curvature("circle", [r_h, False, True]),  # hem: bulges down, to the right of -> (+x)
         2: Curvature("circle", [r_w, False, False]),  # waist: bulges down, to the left of <- (-x)
@@ -107,8 +109,12 @@ def _front_back(v: np.ndarray, labels: list[str], f, top_y: float, length: float
     place(front, np.eye(3), (0.0, top_y, f.hip_z), (0.0, length))
     place(back, rot_y180(), (0.0, top_y, -f.hip_z), (0.0, length))
     a, b = hip
-    st = [stitch("front", 1, "back", b + 1, "left_side"), stitch("front", a, "back", b, "left_hip"),
-          stitch("back", 1, "front", b + 1, "right_side"), stitch("back", a, "front", b, "right_hip")]
+    st = [
+        stitch("front", 1, "back", b + 1, "left_side"),
+        stitch("front", a, "back", b, "left_hip"),
+        stitch("back", 1, "front", b + 1, "right_side"),
+        stitch("back", a, "front", b, "right_hip"),
+    ]
     return front, back, st
 
 
@@ -128,8 +134,12 @@ def _pencil(m: Measurements) -> Pattern:
     bf, bb = band_panels(t, f.waist_y, f.hip_z)
     st += [stitch(bf.name, 0, "front", 3, "front_waist"), stitch(bb.name, 0, "back", 3, "back_waist")]
     st += band_stitches()
-    return Pattern("skirt_pencil", {"front": front, "back": back, bf.name: bf, bb.name: bb}, st,
-                   properties={"units_in_meter": 100, "curvature_coords": "relative"})
+    return Pattern(
+        "skirt_pencil",
+        {"front": front, "back": back, bf.name: bf, bb.name: bb},
+        st,
+        properties={"units_in_meter": 100, "curvature_coords": "relative"},
+    )
 
 
 def _darted(m: Measurements) -> Pattern:
@@ -150,12 +160,36 @@ def _darted(m: Measurements) -> Pattern:
     xd, dl = 0.5 * tc, DART_DEPTH * d  # a dart's centre [m] and length [m]
     hh = h + DART_FLARE
     top_pieces = [tc - xd - dw / 2, 2 * (xd - dw / 2), tc - xd - dw / 2]  # right, middle, left [m]
-    v = np.array([(-hh, 0.0), (hh, 0.0), (h, length - d), (tc, length),
-                  (xd + dw / 2, length), (xd, length - dl), (xd - dw / 2, length),
-                  (-xd + dw / 2, length), (-xd, length - dl), (-xd - dw / 2, length),
-                  (-tc, length), (-h, length - d)])
-    labels = ["hem", "right_side", "right_hip", "top_right", "right_dart_out", "right_dart_in", "top_middle",
-              "left_dart_out", "left_dart_in", "top_left", "left_hip", "left_side"]
+    v = np.array(
+        [
+            (-hh, 0.0),
+            (hh, 0.0),
+            (h, length - d),
+            (tc, length),
+            (xd + dw / 2, length),
+            (xd, length - dl),
+            (xd - dw / 2, length),
+            (-xd + dw / 2, length),
+            (-xd, length - dl),
+            (-xd - dw / 2, length),
+            (-tc, length),
+            (-h, length - d),
+        ]
+    )
+    labels = [
+        "hem",
+        "right_side",
+        "right_hip",
+        "top_right",
+        "right_dart_out",
+        "right_dart_in",
+        "top_middle",
+        "left_dart_out",
+        "left_dart_in",
+        "top_left",
+        "left_hip",
+        "left_side",
+    ]
     front, back, st = _front_back(v, labels, f, top_y, length, (2, 10))
     for pn in ("front", "back"):
         st += [stitch(pn, 4, pn, 5, f"{pn}_right_dart"), stitch(pn, 7, pn, 8, f"{pn}_left_dart")]
@@ -164,8 +198,12 @@ def _darted(m: Measurements) -> Pattern:
         # band lower edge pieces left to right (+x) against the skirt's top pieces (-x)
         st += [stitch(band.name, k, pn, e, f"{pn}_waist_{k}") for k, e in enumerate((9, 6, 3))]
     st += band_stitches(pieces=3)
-    return Pattern("skirt_darts", {"front": front, "back": back, bf.name: bf, bb.name: bb}, st,
-                   properties={"units_in_meter": 100, "curvature_coords": "relative"})
+    return Pattern(
+        "skirt_darts",
+        {"front": front, "back": back, bf.name: bf, bb.name: bb},
+        st,
+        properties={"units_in_meter": 100, "curvature_coords": "relative"},
+    )
 
 
 def make_skirt(m: Measurements | None = None) -> Pattern:

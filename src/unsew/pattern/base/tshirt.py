@@ -29,8 +29,19 @@ from unsew.pattern.base._frame import BodyFrame, body_frame
 from unsew.pattern.curves import edge_length
 from unsew.pattern.model import Curvature, Panel, Pattern, Stitch
 
-__all__ = ["make_tshirt", "make_tshirt_long", "make_tshirt_sleeveless", "TopSpec", "top_panels", "sleeve_panels",
-           "sleeves_for", "sleeveless_frame", "BUST_EASE", "SLEEVES", "NECKLINES"]
+__all__ = [
+    "make_tshirt",
+    "make_tshirt_long",
+    "make_tshirt_sleeveless",
+    "TopSpec",
+    "top_panels",
+    "sleeve_panels",
+    "sleeves_for",
+    "sleeveless_frame",
+    "BUST_EASE",
+    "SLEEVES",
+    "NECKLINES",
+]
 
 #: Ease over the bust girth [m] (a regular-fit t-shirt: 8-15 cm).
 BUST_EASE = 0.12
@@ -93,11 +104,14 @@ def _armhole(under, tip) -> Curvature:
     """Armhole from the underarm point up to the shoulder tip, scooped towards the centre."""
     under, tip = np.asarray(under), np.asarray(tip)
     dx, dy = under[0] - tip[0], tip[1] - under[1]
-    return cubic(under, tip, (under[0] - 0.9 * dx, under[1] + 0.02 * dy / 0.2), (tip[0] - 0.012, under[1] + 0.55 * dy))
+    return cubic(
+        under, tip, (under[0] - 0.9 * dx, under[1] + 0.02 * dy / 0.2), (tip[0] - 0.012, under[1] + 0.55 * dy)
+    )
 
 
-def top_panels(m: Measurements, f: BodyFrame, spec: TopSpec, *,
-               necklines: tuple[str, str] = ("round", "round")) -> tuple[Panel, Panel, int]:
+def top_panels(
+    m: Measurements, f: BodyFrame, spec: TopSpec, *, necklines: tuple[str, str] = ("round", "round")
+) -> tuple[Panel, Panel, int]:
     """Front and back panels of a top [m]; returns (front, back, number of lower segments k).
     necklines: the front's and the back's shape, each one of :data:`NECKLINES`.
 
@@ -116,20 +130,30 @@ def top_panels(m: Measurements, f: BodyFrame, spec: TopSpec, *,
     k = len(spec.lower)
     labels = ["right_side"] * k + ["right_armhole", "right_shoulder"]
     panels = []
-    for name, depth, v_depth, shape in (("front", FRONT_NECK_DEPTH, FRONT_V_DEPTH, necklines[0]),
-                                        ("back", BACK_NECK_DEPTH, BACK_V_DEPTH, necklines[1])):
+    for name, depth, v_depth, shape in (
+        ("front", FRONT_NECK_DEPTH, FRONT_V_DEPTH, necklines[0]),
+        ("back", BACK_NECK_DEPTH, BACK_V_DEPTH, necklines[1]),
+    ):
         half = [np.asarray(p) for p in spec.lower] + [under, tip, neck]
         curves = list(spec.lower_curves) + [_armhole(under, tip), None]
         if shape == "v":  # the half runs on to the V's point on the centre line: an apex, no top edge
             p, _ = symmetric_panel(
-                name, half + [np.array([0.0, neck[1] - v_depth])], curves + [None],
-                half_labels=labels + ["right_neckline"], bottom_label="hem",
+                name,
+                half + [np.array([0.0, neck[1] - v_depth])],
+                curves + [None],
+                half_labels=labels + ["right_neckline"],
+                bottom_label="hem",
             )
         else:
             neck_l = neck * np.array([-1.0, 1.0])
             p, _ = symmetric_panel(
-                name, half, curves, top=_neckline(neck, neck_l, depth), half_labels=labels,
-                bottom_label="hem", top_label="neckline",
+                name,
+                half,
+                curves,
+                top=_neckline(neck, neck_l, depth),
+                half_labels=labels,
+                bottom_label="hem",
+                top_label="neckline",
             )
         panels.append(p)
     front, back = panels
@@ -143,12 +167,20 @@ def _sleeve(name: str, ws: float, cap_h: float, under_len: float, hem_w: float |
     half = [(hem_w, -under_len), (ws, 0.0), (0.0, cap_h)]
     a, b = np.array(half[1]), np.array(half[2])
     cap = cubic(a, b, (0.55 * ws, 0.15 * cap_h), (0.3 * ws, cap_h))
-    p, _ = symmetric_panel(name, half, [None, cap], half_labels=["right_underarm", "right_cap"], bottom_label="hem")
+    p, _ = symmetric_panel(
+        name, half, [None, cap], half_labels=["right_underarm", "right_cap"], bottom_label="hem"
+    )
     return p
 
 
-def sleeve_panels(m: Measurements, f: BodyFrame, armhole_length: float, *, length: float = SHORT_SLEEVE_LENGTH,
-                  hem_half: float | None = None):
+def sleeve_panels(
+    m: Measurements,
+    f: BodyFrame,
+    armhole_length: float,
+    *,
+    length: float = SHORT_SLEEVE_LENGTH,
+    hem_half: float | None = None,
+):
     """Left and right sleeves whose cap halves are ``armhole_length`` [m] long each, ``length``
     [m] from cap top to hem, the hem ``2 * hem_half`` [m] across (None: 2 cm less than the
     sleeve's width at the underarm).
@@ -176,7 +208,9 @@ def sleeve_panels(m: Measurements, f: BodyFrame, armhole_length: float, *, lengt
     return left, right
 
 
-def top_stitches(k: int, *, sleeves: bool = True, necklines: tuple[str, str] = ("round", "round")) -> list[Stitch]:
+def top_stitches(
+    k: int, *, sleeves: bool = True, necklines: tuple[str, str] = ("round", "round")
+) -> list[Stitch]:
     """Stitches of a top built by :func:`top_panels` (+ :func:`sleeve_panels`), with the same
     ``necklines``.
 
@@ -189,8 +223,12 @@ def top_stitches(k: int, *, sleeves: bool = True, necklines: tuple[str, str] = (
     arm, sho = k, k + 1  # segment indices of armhole and shoulder
     st = []
     for i in range(k):
-        st.append(stitch("front", right(i), "back", left("back", i), "left_side" if k == 1 else f"left_side_{i}"))
-        st.append(stitch("back", right(i), "front", left("front", i), "right_side" if k == 1 else f"right_side_{i}"))
+        st.append(
+            stitch("front", right(i), "back", left("back", i), "left_side" if k == 1 else f"left_side_{i}")
+        )
+        st.append(
+            stitch("back", right(i), "front", left("front", i), "right_side" if k == 1 else f"right_side_{i}")
+        )
     st.append(stitch("front", right(sho), "back", left("back", sho), "left_shoulder"))
     st.append(stitch("back", right(sho), "front", left("front", sho), "right_shoulder"))
     if sleeves:
@@ -207,8 +245,9 @@ def top_stitches(k: int, *, sleeves: bool = True, necklines: tuple[str, str] = (
 
 def sleeveless_frame(f: BodyFrame) -> BodyFrame:
     """The landmarks a sleeveless top is cut to: shoulder seam shorter, armhole higher."""
-    return dataclasses.replace(f, shoulder_x=f.shoulder_x - SLEEVELESS_SHOULDER_IN,
-                               armpit_y=f.armpit_y + SLEEVELESS_ARMHOLE_RAISE)
+    return dataclasses.replace(
+        f, shoulder_x=f.shoulder_x - SLEEVELESS_SHOULDER_IN, armpit_y=f.armpit_y + SLEEVELESS_ARMHOLE_RAISE
+    )
 
 
 def sleeves_for(m: Measurements, f: BodyFrame, armhole_length: float, sleeves: str) -> tuple[Panel, ...]:
@@ -223,11 +262,18 @@ def sleeves_for(m: Measurements, f: BodyFrame, armhole_length: float, sleeves: s
     return sleeve_panels(m, f, armhole_length, length=m.arm_length + LONG_SLEEVE_EXTRA, hem_half=wrist)
 
 
-def top_pattern(family: str, m: Measurements, f: BodyFrame, spec: TopSpec, sleeves: str, *,
-                necklines: tuple[str, str] = ("round", "round")) -> Pattern:
-    """A top of ``family`` (``"tshirt"``, ``"dress"`` or ``"dress_straight"``): front and back of ``spec`` (armholes cut
-    in as :func:`sleeveless_frame` when ``sleeves`` is ``"none"``, necklines of :data:`NECKLINES`
-    front and back), the sleeves sized to the armhole, and the stitches. Named ``family``,
+def top_pattern(
+    family: str,
+    m: Measurements,
+    f: BodyFrame,
+    spec: TopSpec,
+    sleeves: str,
+    *,
+    necklines: tuple[str, str] = ("round", "round"),
+) -> Pattern:
+    """A top of ``family`` (``"tshirt"``, ``"dress"`` or ``"dress_straight"``): front and back of ``spec``
+    (armholes cut in as :func:`sleeveless_frame` when ``sleeves`` is ``"none"``, necklines of
+    :data:`NECKLINES` front and back), the sleeves sized to the armhole, and the stitches. Named ``family``,
     ``family_long`` or ``family_sleeveless``."""
     front, back, k = top_panels(m, sleeveless_frame(f) if sleeves == "none" else f, spec, necklines=necklines)
     arm = sleeves_for(m, f, edge_length(front, k + 1), sleeves)
@@ -237,8 +283,9 @@ def top_pattern(family: str, m: Measurements, f: BodyFrame, spec: TopSpec, sleev
     return Pattern(name, panels, st, properties={"units_in_meter": 100, "curvature_coords": "relative"})
 
 
-def make_tshirt(m: Measurements | None = None, *, sleeves: str = "short",
-                necklines: tuple[str, str] = ("round", "round")) -> Pattern:
+def make_tshirt(
+    m: Measurements | None = None, *, sleeves: str = "short", necklines: tuple[str, str] = ("round", "round")
+) -> Pattern:
     """A t-shirt sized to ``m`` (default: the default body), placed around it; ``sleeves``:
     ``"short"`` (pattern ``tshirt``), ``"long"`` (``tshirt_long``) or ``"none"`` (a tank top,
     ``tshirt_sleeveless``, cut to :func:`sleeveless_frame`); ``necklines``: front and back, of

@@ -6,9 +6,9 @@ shrinks; C2 at the threshold):
     W_i = a_i * kc / 3 * relu(thr - d_i)^3,     d_i = sdf(x_i) [m], a_i the vertex's rest area [m^2],
 
 kc [N/m^4] (pressure per squared depth; default 1e7: 250 Pa at the bottom of a 5 mm band,
-while cloth weighs 1-4 Pa, so the band holds a resting garment at a fraction of a mm). Gradient dW/dx_i = -a_i kc relu(thr - d_i)^2 n_i with
-n_i = grad sdf. System-matrix Hessian: 2 a_i kc relu(thr - d_i) n_i n_i^T (the term with the
-SDF's curvature is left out: PSD).
+while cloth weighs 1-4 Pa, so the band holds a resting garment at a fraction of a mm). Gradient
+dW/dx_i = -a_i kc relu(thr - d_i)^2 n_i with n_i = grad sdf. System-matrix Hessian:
+2 a_i kc relu(thr - d_i) n_i n_i^T (the term with the SDF's curvature is left out: PSD).
 
 Friction (Coulomb, lagged/"IRLS" form): the tangential force opposing the slip velocity
 v_t = (I - n n^T) v has magnitude mu |f_n| once sliding, and a viscous law below a small slip

@@ -57,9 +57,12 @@ def membrane_rest(uv: torch.Tensor, faces_uv: torch.Tensor):
     u = uv[faces_uv]  # (F, 3, 2)
     dm = torch.stack([u[:, 1] - u[:, 0], u[:, 2] - u[:, 0]], dim=-1)  # (F, 2, 2) columns
     det = dm[:, 0, 0] * dm[:, 1, 1] - dm[:, 0, 1] * dm[:, 1, 0]
-    inv = torch.stack(
-        [torch.stack([dm[:, 1, 1], -dm[:, 0, 1]], -1), torch.stack([-dm[:, 1, 0], dm[:, 0, 0]], -1)], -2
-    ) / det[:, None, None]
+    inv = (
+        torch.stack(
+            [torch.stack([dm[:, 1, 1], -dm[:, 0, 1]], -1), torch.stack([-dm[:, 1, 0], dm[:, 0, 0]], -1)], -2
+        )
+        / det[:, None, None]
+    )
     b0 = torch.tensor(_B0, dtype=uv.dtype, device=uv.device)
     B = torch.einsum("ia,fab->fib", b0, inv)
     return 0.5 * det.abs(), B, 0.5 * det
@@ -76,13 +79,17 @@ def _psd2(S: torch.Tensor) -> torch.Tensor:
     lp = 0.5 * tr + root
     lm = 0.5 * tr - root
     eye = torch.eye(2, dtype=S.dtype, device=S.device)
-    one = (lp / torch.where(mixed, lp - lm, torch.ones_like(lp)))[:, None, None] * (S - lm[:, None, None] * eye)
+    one = (lp / torch.where(mixed, lp - lm, torch.ones_like(lp)))[:, None, None] * (
+        S - lm[:, None, None] * eye
+    )
     keep_all = (det >= 0) & (tr >= 0)
     zero = torch.zeros_like(S)
     return torch.where(keep_all[:, None, None], S, torch.where(mixed[:, None, None], one, zero))
 
 
-def energy_membrane(x, faces, area, B, gamma, *, hessian: bool = True, project: bool = True, parts: bool = False):
+def energy_membrane(
+    x, faces, area, B, gamma, *, hessian: bool = True, project: bool = True, parts: bool = False
+):
     """Membrane energy, per-corner gradient and (projected) per-element Hessian.
 
     Args:
