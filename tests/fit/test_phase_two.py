@@ -3,12 +3,11 @@ hip corners, in the fit's own fabric (benchmarks/bench_phase_two.py prints the s
 Grading moves hems, cuffs and necklines by a length and a girth and leaves the hip corners where
 the base has them, so everything the fit gains over the graded pattern is phase two's.
 
-The whole fit (run_fit) on it is slow (98 s on the shared 2-core VM: the dress is grading's
-slowest garment). The default suite's proof that phase two lowers the pattern error runs phase
-two alone from the graded pattern, with 16-step drapes (``test_phase_two_lowers_the_area_error``,
-about 40 s): with 8-step drapes the area error falls 2.92 -> 2.44 %, with 16-step drapes by half
-(2.92 -> 1.49 %); the settings sweep behind that choice is in docs/benchmarks.md, "Phase two on a
-case grading cannot fit"."""
+The whole fit (run_fit) on it is slow (the dress is grading's slowest garment), so it is marked
+slow; the default suite's proof runs phase two alone from the graded pattern with 16-step drapes
+(``test_phase_two_lowers_the_area_error``). Why those settings: docs/benchmarks.md, "Phase two on
+a case grading cannot fit"; the proof per floating-point path: ``python -m benchmarks
+phase_two_paths``."""
 
 import numpy as np
 import pytest
@@ -74,10 +73,8 @@ SMALL16 = {**SMALL, "steps": 16, "iterations": 8}
 @pytest.fixture(scope="module")
 def hip_phase_two(tmp_path_factory):
     """Phase two alone (unsew.fit.optimize.PhaseTwo, material held) from the graded default dress,
-    and its best iterate as a pattern; the paper's fit (``area: free``): graded to the target's
-    area the start is already closer (mean panel area error 1.4 %, hip corners 2.1 cm) and what
-    eight small-mode iterations then do depends on the thread count (docs/benchmarks.md, "Phase
-    two on a case grading cannot fit")."""
+    and its best iterate as a pattern, in the paper's fit (``area: free``), whose grading leaves
+    the hip for phase two to take in."""
     import torch
 
     from unsew.body.case import load_case
@@ -103,11 +100,10 @@ def hip_phase_two(tmp_path_factory):
 
 
 def test_phase_two_lowers_the_area_error(hip_phase_two):
-    """Issue 21's default-suite proof: on a case grading cannot fit, phase two's pattern (its best
-    iterate) has a mean panel area error at most 0.7 x the graded pattern's (measured 2.92 ->
-    1.49 %, x0.51) and hip corners at most 0.9 x as far from the truth's (3.00 -> 2.30 cm), at a
-    best loss at most 0.95 x the first (684 -> 609 [1e-6 m^2]). With phase two held the best
-    iterate is the graded pattern and every ratio is 1."""
+    """On a case grading cannot fit, phase two's pattern (its best iterate) has a mean panel area
+    error at most 0.7 x the graded pattern's and hip corners at most 0.9 x as far from the
+    truth's, at a best loss at most 0.95 x the first. With phase two held the best iterate is the
+    graded pattern and every ratio is 1."""
     from unsew.metrics.panels import pattern_metrics
 
     case, graded, best, two = hip_phase_two
