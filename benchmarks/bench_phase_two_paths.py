@@ -58,7 +58,8 @@ cfg = load_config(**SMALL16, area="free")
 case = load_case(make_truth_case(Path(sys.argv[1]) / "dress", garment="dress",
                  alteration=Alteration({"waist": (-0.03, 0.0)}, "cotton"), settings=cfg.drape))
 sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
-s = start(base_pattern_for(case, cfg), case.body, target, sdf, cfg, get_material("cotton"), progress=Progress(False))
+s = start(base_pattern_for(case, cfg), case.body, target, sdf, cfg, get_material("cotton"),
+          progress=Progress(False))
 torch.manual_seed(cfg.seed)
 two = PhaseTwo(MaterialChoice(s), target, sdf, cfg)
 two.run()
@@ -82,17 +83,37 @@ def main() -> None:
         env_extra, threads = PATHS[name]
         env = {**os.environ, "OMP_WAIT_POLICY": "PASSIVE", "OPENBLAS_NUM_THREADS": "1", **env_extra}
         with tempfile.TemporaryDirectory(prefix="unsew-paths-") as tmp:
-            out = subprocess.run([sys.executable, "-c", _CHILD, tmp, str(threads), str(root)], env=env,
-                                 capture_output=True, text=True, check=True).stdout
+            out = subprocess.run(
+                [sys.executable, "-c", _CHILD, tmp, str(threads), str(root)],
+                env=env,
+                capture_output=True,
+                text=True,
+                check=True,
+            ).stdout
         r = json.loads(out.strip().splitlines()[-1])
         h = r["loss"]
-        holds = (r["area_best"] < 0.7 * r["area_graded"] and r["hip_best"] < 0.9 * r["hip_graded"]
-                 and min(h) < 0.95 * h[0])
-        rows.append({"path": name, "area graded %": 100 * r["area_graded"], "area best %": 100 * r["area_best"],
-                     "hip graded cm": r["hip_graded"], "hip best cm": r["hip_best"], "corner L2 graded cm": r["l2_graded"],
-                     "corner L2 best cm": r["l2_best"], "best iteration": r["best_iteration"],
-                     "loss per iteration": " ".join(f"{1e6 * v:.0f}" for v in h), "bars hold": "yes" if holds else "no"})
-    print_table(rows, title="phase two's proof (tests/fit/test_phase_two.py, hip_phase_two) per floating-point path")
+        holds = (
+            r["area_best"] < 0.7 * r["area_graded"]
+            and r["hip_best"] < 0.9 * r["hip_graded"]
+            and min(h) < 0.95 * h[0]
+        )
+        rows.append(
+            {
+                "path": name,
+                "area graded %": 100 * r["area_graded"],
+                "area best %": 100 * r["area_best"],
+                "hip graded cm": r["hip_graded"],
+                "hip best cm": r["hip_best"],
+                "corner L2 graded cm": r["l2_graded"],
+                "corner L2 best cm": r["l2_best"],
+                "best iteration": r["best_iteration"],
+                "loss per iteration": " ".join(f"{1e6 * v:.0f}" for v in h),
+                "bars hold": "yes" if holds else "no",
+            }
+        )
+    print_table(
+        rows, title="phase two's proof (tests/fit/test_phase_two.py, hip_phase_two) per floating-point path"
+    )
 
 
 if __name__ == "__main__":

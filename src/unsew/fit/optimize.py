@@ -54,7 +54,17 @@ from unsew.sim.model import SimModel
 from unsew.sim.state import SimState
 from unsew.tolerances import MIN_TRIANGLE_QUALITY
 
-__all__ = ["PhaseTwo", "AreaHold", "step_scales", "band_projectors", "LossTerms", "Iterate", "Iteration", "material_params", "LOSS_TERMS"]
+__all__ = [
+    "PhaseTwo",
+    "AreaHold",
+    "step_scales",
+    "band_projectors",
+    "LossTerms",
+    "Iterate",
+    "Iteration",
+    "material_params",
+    "LOSS_TERMS",
+]
 
 #: Names of the loss terms, in the order of :class:`LossTerms` (and of ``FitResult.history``).
 LOSS_TERMS = ("total", "chamfer", "open", "seam", "material", "prior", "area", "panel_area", "stretch")
@@ -259,7 +269,9 @@ class PhaseTwo:
         self.settings = cfg.drape.replace(friction_eps=cfg.optimizer.friction_eps)
         self._targets(target, dev)
         self.contours_x = open_contours(np.asarray(s.x), s.mesh.faces)
-        self.seam_pairs = torch.as_tensor(seam_segment_pairs(s.mesh, s.graded.stitches), dtype=torch.int64, device=dev)
+        self.seam_pairs = torch.as_tensor(
+            seam_segment_pairs(s.mesh, s.graded.stitches), dtype=torch.int64, device=dev
+        )
         self.edges, self.edges_uv = (e.to(dev) for e in triangle_edges(s.mesh.faces, s.mesh.faces_uv))
         self.gamma0 = s.material.gamma().to(dev)
         self.K = self.params.K0.detach().clone().to(dev).requires_grad_(True)
@@ -272,17 +284,28 @@ class PhaseTwo:
         P = band_projectors(self.params, self.bands, o.bands)
         self.k_project = None if P is None else P.to(dev)
         self._scaled = bool((self.k_scale < 1).any())  # any narrow panel: checked once, not every step
-        self.area_hold = None if cfg.area != "target" else AreaHold(
-            self.params, self.faces_uv, self.K.detach(), kept=self.bands if o.bands != "free" else ())
-        self.seam_hold = None if o.seams != "held" else SeamHold(self.params, self.K.detach(), project=self.k_project)
+        self.area_hold = (
+            None
+            if cfg.area != "target"
+            else AreaHold(
+                self.params, self.faces_uv, self.K.detach(), kept=self.bands if o.bands != "free" else ()
+            )
+        )
+        self.seam_hold = (
+            None if o.seams != "held" else SeamHold(self.params, self.K.detach(), project=self.k_project)
+        )
         self.opt_m = torch.optim.Adam([self.theta], lr=cfg.material.lr, betas=o.betas)
         self.x_prev = torch.as_tensor(np.asarray(s.x), dtype=torch.float64, device=dev)
         self.rest = self._start_at_rest()
         with torch.no_grad():
             self.uv_start = self.params.uv(self.K).detach()
-            self.panel_areas0 = panel_areas(self.uv_start, self.faces_uv, self.face_panel, len(self.mesh.panel_names))
+            self.panel_areas0 = panel_areas(
+                self.uv_start, self.faces_uv, self.face_panel, len(self.mesh.panel_names)
+            )
         self.history: dict[str, list[float]] = {k: [] for k in LOSS_TERMS}
-        self.best = Iterate(math.inf, self.K.detach().clone(), self.gamma0.detach().clone(), self.x_prev.clone())
+        self.best = Iterate(
+            math.inf, self.K.detach().clone(), self.gamma0.detach().clone(), self.x_prev.clone()
+        )
         self.iteration, self.converged = 0, False
 
     def _start_at_rest(self) -> dict:
@@ -305,8 +328,13 @@ class PhaseTwo:
         o = self.cfg.optimizer
         if o.rest_speed <= 0 or o.rest_steps <= 0:
             return {"steps": 0, "speed_p99_m_s": None, "speed_p99_end_m_s": None}
-        kw = dict(uv=self.params.uv(self.K.detach()), gamma=self.gamma0, density=self.material0.density,
-                  settings=self.settings, friction=self.material0.friction)
+        kw = dict(
+            uv=self.params.uv(self.K.detach()),
+            gamma=self.gamma0,
+            density=self.material0.density,
+            settings=self.settings,
+            friction=self.material0.friction,
+        )
 
         def p99(st):
             return float(torch.quantile(st.v.norm(dim=1), 0.99))
@@ -335,8 +363,11 @@ class PhaseTwo:
         self.w_sub = torch.as_tensor(np.asarray(w, dtype=np.float64)[sub], dtype=torch.float64, device=dev)
         self.area_target = target.area  # A_T [m^2]
         self.faces_uv = torch.as_tensor(np.asarray(self.mesh.faces_uv), dtype=torch.int64, device=dev)
-        self.face_panel = torch.as_tensor(np.asarray(self.mesh.uv_panel)[np.asarray(self.mesh.faces_uv)[:, 0]],
-                                          dtype=torch.int64, device=dev)  # (F,) panel of each triangle
+        self.face_panel = torch.as_tensor(
+            np.asarray(self.mesh.uv_panel)[np.asarray(self.mesh.faces_uv)[:, 0]],
+            dtype=torch.int64,
+            device=dev,
+        )  # (F,) panel of each triangle
         self.contours_t = target.contours
 
     def material_on(self, it: int | None = None) -> bool:
@@ -350,19 +381,43 @@ class PhaseTwo:
         w = self.cfg.loss
         uv = self.params.uv(self.K)
         gamma = self.gamma_of(self.theta) if self.material_on() else self.gamma0
-        x = drape(self.model, SimState.at_rest(self.x_prev), self.sdf, uv=uv, gamma=gamma,
-                  density=self.material0.density, settings=self.settings, friction=self.material0.friction).x
+        x = drape(
+            self.model,
+            SimState.at_rest(self.x_prev),
+            self.sdf,
+            uv=uv,
+            gamma=gamma,
+            density=self.material0.density,
+            settings=self.settings,
+            friction=self.material0.friction,
+        ).x
         zero_x, zero_uv = x.sum() * 0, uv.sum() * 0
         l_cf = loss_chamfer(x, self.T_sub, weights_t=self.w_sub)
-        l_open = loss_open_contours(x, self.contours_x, self.T, self.contours_t) if self.contours_t else zero_x
+        l_open = (
+            loss_open_contours(x, self.contours_x, self.T, self.contours_t) if self.contours_t else zero_x
+        )
         l_seam = loss_seam(uv, pairs=self.seam_pairs) if w.seam > 0 else zero_uv
         l_mat = loss_material(gamma)
         l_prior = loss_prior(uv, self.uv_start) if w.prior > 0 else zero_uv
         l_area = loss_area(uv, self.faces_uv, self.area_target) if w.area > 0 else zero_uv
-        l_panel = loss_panel_area(uv, self.faces_uv, self.face_panel, self.panel_areas0) if w.panel_area > 0 else zero_uv
-        l_stretch = loss_stretch(x, uv, self.edges, self.edges_uv, bound=w.stretch_bound) if w.stretch > 0 else zero_x
-        total = l_cf + w.open * l_open + w.seam * l_seam + w.material * l_mat + w.prior * l_prior + w.area * l_area \
-            + w.panel_area * l_panel + w.stretch * l_stretch
+        l_panel = (
+            loss_panel_area(uv, self.faces_uv, self.face_panel, self.panel_areas0)
+            if w.panel_area > 0
+            else zero_uv
+        )
+        l_stretch = (
+            loss_stretch(x, uv, self.edges, self.edges_uv, bound=w.stretch_bound) if w.stretch > 0 else zero_x
+        )
+        total = (
+            l_cf
+            + w.open * l_open
+            + w.seam * l_seam
+            + w.material * l_mat
+            + w.prior * l_prior
+            + w.area * l_area
+            + w.panel_area * l_panel
+            + w.stretch * l_stretch
+        )
         return LossTerms(total, l_cf, l_open, l_seam, l_mat, l_prior, l_area, l_panel, l_stretch), gamma, x
 
     def _set_learning_rates(self) -> None:
@@ -380,14 +435,22 @@ class PhaseTwo:
         self.opt_m.zero_grad()
         terms, gamma, x = self.loss()
         if not torch.isfinite(terms.total):
-            raise InputError(f"the loss became non-finite at iteration {it}; try a smaller --lr or a coarser mesh")
+            raise InputError(
+                f"the loss became non-finite at iteration {it}; try a smaller --lr or a coarser mesh"
+            )
         terms.total.backward()
         values = terms.floats()
         for key, val in values.items():
             self.history[key].append(val)
         if values["total"] < self.best.loss:
-            self.best = Iterate(values["total"], self.K.detach().clone(), gamma.detach().clone(), x.detach().clone(),
-                                it, mat_on)
+            self.best = Iterate(
+                values["total"],
+                self.K.detach().clone(),
+                gamma.detach().clone(),
+                x.detach().clone(),
+                it,
+                mat_on,
+            )
         K_before = self.K.detach().clone()
         if it >= self.cfg.optimizer.pattern_start:
             self.opt_k.step()
@@ -430,8 +493,12 @@ class PhaseTwo:
                 K = seam_hold(K)
             if self.area_hold is not None:
                 K = self.area_hold(K)
-            if seam_hold is None or self.area_hold is None or not self.area_hold.kept or \
-                    abs(seam_hold.residuals(K)).max() < 1e-6:
+            if (
+                seam_hold is None
+                or self.area_hold is None
+                or not self.area_hold.kept
+                or abs(seam_hold.residuals(K)).max() < 1e-6
+            ):
                 return K
         return K
 
@@ -453,11 +520,12 @@ class PhaseTwo:
         it = self.iteration - 1
         if len(h) > o.patience and it >= max(self.cfg.material.start_iteration, o.pattern_start) + o.patience:
             old = min(h[: -o.patience])
-            return (old - min(h[-o.patience:])) < o.tol * abs(old)
+            return (old - min(h[-o.patience :])) < o.tol * abs(old)
         return False
 
-    def run(self, callback: Callable[[Iteration], None] | None = None, *,
-            stop: Callable[[], bool] | None = None) -> None:
+    def run(
+        self, callback: Callable[[Iteration], None] | None = None, *, stop: Callable[[], bool] | None = None
+    ) -> None:
         """Iterate until the budget is spent or the loss has converged; ``callback(Iteration)``
         after every iteration (progress, checkpoints, traces); ``stop() -> True`` ends the loop
         before the next iteration (the fit's time limit)."""
@@ -471,10 +539,16 @@ class PhaseTwo:
     def state_dict(self) -> dict:
         """Everything :meth:`load_state_dict` needs to continue from here (copies: stepping on
         does not change it)."""
-        return {"iteration": self.iteration, "K": self.K.detach().clone(), "theta": self.theta.detach().clone(),
-                "opt_k": copy.deepcopy(self.opt_k.state_dict()), "opt_m": copy.deepcopy(self.opt_m.state_dict()),
-                "x_prev": self.x_prev.clone(),
-                "history": {k: list(v) for k, v in self.history.items()}, "best": dataclasses.asdict(self.best)}
+        return {
+            "iteration": self.iteration,
+            "K": self.K.detach().clone(),
+            "theta": self.theta.detach().clone(),
+            "opt_k": copy.deepcopy(self.opt_k.state_dict()),
+            "opt_m": copy.deepcopy(self.opt_m.state_dict()),
+            "x_prev": self.x_prev.clone(),
+            "history": {k: list(v) for k, v in self.history.items()},
+            "best": dataclasses.asdict(self.best),
+        }
 
     def load_state_dict(self, state: dict) -> None:
         """Continue from a :meth:`state_dict` of a PhaseTwo built from the same start."""
@@ -501,7 +575,9 @@ class PhaseTwo:
             uv = self.params.uv(K)
         g = b.gamma.cpu().numpy()
         m0 = self.material0
-        material = Material(float(g[0]), float(g[1]), float(g[2]), float(g[3]), float(g[4]), m0.density, m0.friction)
+        material = Material(
+            float(g[0]), float(g[1]), float(g[2]), float(g[3]), float(g[4]), m0.density, m0.friction
+        )
         return self.params.to_pattern(K), uv.cpu().numpy(), x.cpu().numpy(), material
 
     def _trued(self, b: Iterate) -> tuple[torch.Tensor, torch.Tensor]:
@@ -517,8 +593,16 @@ class PhaseTwo:
             uv = self.params.uv(K)
             if len(check_inverted(uv.cpu().numpy(), self.mesh.faces_uv, min_quality=MIN_TRIANGLE_QUALITY)):
                 return b.K, b.x
-            x = drape(self.model, SimState.at_rest(b.x), self.sdf, uv=uv, gamma=b.gamma,
-                      density=self.material0.density, settings=self.settings, friction=self.material0.friction).x
+            x = drape(
+                self.model,
+                SimState.at_rest(b.x),
+                self.sdf,
+                uv=uv,
+                gamma=b.gamma,
+                density=self.material0.density,
+                settings=self.settings,
+                friction=self.material0.friction,
+            ).x
         return K, x
 
     def gamma_last(self) -> list[float]:
