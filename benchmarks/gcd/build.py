@@ -206,6 +206,34 @@ def spec_placement(spec: dict, mesh) -> np.ndarray:
     return x
 
 
+def bend_around_body(x: np.ndarray, mesh, spec: dict, body_v: np.ndarray) -> np.ndarray:
+    """The spec's placement with each front or back panel (its normal within 30 degrees of the
+    Z axis) bent isometrically around the body's vertical axis at its own distance: a point at
+    arc length ``s = x - cx`` across the panel goes to angle ``s / r`` on the circle of radius
+    ``r = |z - cz|`` (cx, cz: the body's bounding-box centre). Heights, distances from the axis
+    and lengths along the panel are kept; other panels (sleeves, side pieces) stay as placed.
+    x: (Nu, 3) [m] -> (Nu, 3) [m]."""
+    cx, cz = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max()), 0.5 * (body_v[:, 2].min() + body_v[:, 2].max())
+    out = x.copy()
+    for i, name in enumerate(mesh.panel_names):
+        n = spec_rotation(spec["pattern"]["panels"][name].get("rotation", [0, 0, 0]))[:, 2]
+        if abs(n[2]) < np.cos(np.radians(30.0)):
+            continue
+        a, b = int(mesh.panel_offsets[i]), int(mesh.panel_offsets[i + 1])
+        p = x[a:b]
+        dz = p[:, 2] - cz
+        r = np.maximum(np.abs(dz), 0.05)
+        phi = (p[:, 0] - cx) / r
+        out[a:b, 0] = cx + r * np.sin(phi)
+        out[a:b, 2] = cz + np.sign(dz) * r * np.cos(phi)
+    return out
+
+
+#: newton's settings for starts from the specification (flat panels up to half a metre apart):
+#: the foreign benchmark's, with the sewing force and speed capped and four times the sewing frames.
+SEW_FROM_SPEC = {"seam_force_max_n": 1.0, "sew_speed_max_m_s": 0.5, "sew_frames": 120, "hold_frames": 135}
+
+
 def mesh_spec(spec: dict, name: str, edge_length: float):
     """unsew's panel mesh of a specification (the benchmark's simulators need one)."""
     from unsew.io.garmentcode import pattern_from_dict
@@ -230,7 +258,7 @@ def _newton_drape(mesh, x0, body_v, body_f, lower):
     import newton_drape
 
     for k, extra in enumerate(newton_drape.FALLBACKS):
-        settings = {**newton_drape.SETTINGS, **extra}
+        settings = {**newton_drape.SETTINGS, **SEW_FROM_SPEC, **extra}
         try:
             x, info = newton_drape.drape_newton(mesh, x0, body_v, body_f, lower=lower, settings=settings, log=_log)
             return x, info, settings
@@ -265,7 +293,7 @@ def build_case(cid: str, seed: int, index: int, out: Path, *, drape: bool = True
     except Exception as exc:  # unsew cannot mesh this design: the target cannot be made
         rec.update(status="failed", reason=f"meshing: {type(exc).__name__}: {str(exc).splitlines()[0][:160]}")
         return rec
-    x0 = spec_placement(spec, mesh)
+    x0 = bend_around_body(spec_placement(spec, mesh), mesh, spec, body_v)
     rec["start_inside_fraction"] = round(float(checks.inside_mask(x0, body_v, body_f).mean()), 4)
     rec["vertices"] = int(mesh.n_x)
     _log(f"{cid}: {truth['type']}, {truth['panels']} panels, {mesh.n_x} vertices, "
@@ -311,7 +339,7 @@ def build_case(cid: str, seed: int, index: int, out: Path, *, drape: bool = True
         "source": {"design": cid, "seed": seed, "sampler": "shared/garmentcode/sample_designs.py (GarmentCode, MIT)",
                    "body": entry["body"]},
         "simulator": {"name": "newton SolverStyle3D (CPU)", "newton": newton.__version__, "warp": warp.__version__,
-                      "start": "the specification's panel translation and rotation",
+                      "start": "the specification's panel translation and rotation, front and back panels bent around the body's axis (build.bend_around_body)",
                       "settings": {k: (None if v == float("inf") else v) for k, v in settings.items()},
                       "mesh_edge_length_m": m["edge_length_m"], "frames": info["frames"]},
         "checks": {k: rec[k] for k in ("inside_fraction", "stretch_p95", "stretch_max", "seam_gap_after_sewing_mm")},
@@ -327,10 +355,14 @@ def build_case(cid: str, seed: int, index: int, out: Path, *, drape: bool = True
 
 
 def record(out: Path, rec: dict) -> None:
-    """Put one case's status into ``out/build.json`` (keyed by case, kept in manifest order)."""
-    p = out / "build.json"
-    allr = json.loads(p.read_text()) if p.is_file() else {}
-    allr[rec["case"]] = rec
+    """Put one case's status into ``out/_status/<case>.json`` and rebuild ``out/build.json`` from
+    all of them (in manifest order), so that several builds may run side by side."""
+    st = out / "_status"
+    st.mkdir(parents=True, exist_ok=True)
+    (st / f"{rec['case']}.json").write_text(json.dumps(rec, indent=1))
+    allr = {p.stem: json.loads(p.read_text()) for p in st.glob("*.json")}
     order = [c for c, _, _ in case_ids()]
     allr = {k: allr[k] for k in sorted(allr, key=lambda c: order.index(c) if c in order else len(order))}
-    p.write_text(json.dumps(allr, indent=1))
+    tmp = out / f".build.{os.getpid()}.json"
+    tmp.write_text(json.dumps(allr, indent=1))
+    tmp.replace(out / "build.json")

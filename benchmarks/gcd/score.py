@@ -55,7 +55,7 @@ def newton_redrape(spec: dict, case: Path, edge_length: float, lower: bool):
     """(verts (N, 3) [m], faces) of a specification draped by newton from its own placement."""
     body_v, body_f = build.read_body(case)
     mesh = build.mesh_spec(spec, case.name, edge_length)
-    x0 = build.spec_placement(spec, mesh)
+    x0 = build.bend_around_body(build.spec_placement(spec, mesh), mesh, spec, body_v)
     x, _, _ = build._newton_drape(mesh, x0, body_v, body_f, lower)
     return x, np.asarray(mesh.faces)
 
