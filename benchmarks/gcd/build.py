@@ -111,7 +111,7 @@ def anny_body_yaml(folder: Path, shared: Path) -> str:
     """GarmentCode's body measurements (cm) for a body folder with body.obj + skeleton.json.
 
     Measured on the body (unsew.body.measure): height, bust, waist, hips, arm length, shoulder
-    width, neck, the waist level and the arm's angle below horizontal; the other GarmentCode
+    width, the waist level and the arm's angle below horizontal; the other GarmentCode
     measurements are GarmentCode's ``mean_all`` values scaled by the height ratio (lengths) or
     the bust/hip ratio (widths and girths of the upper / lower body)."""
     import yaml
@@ -128,7 +128,7 @@ def anny_body_yaml(folder: Path, shared: Path) -> str:
     out = dict(ref)
     for k in ("head_l", "armscye_depth", "bust_line", "vert_bust_line", "hips_line", "crotch_hip_diff", "waist_over_bust_line"):
         out[k] = ref[k] * kh
-    for k in ("back_width", "bust_points", "underbust"):
+    for k in ("back_width", "bust_points", "underbust", "neck_w"):
         out[k] = ref[k] * kb
     out["waist_back_width"] = ref["waist_back_width"] * kw
     for k in ("hip_back_width", "bum_points", "leg_circ"):
@@ -138,7 +138,7 @@ def anny_body_yaml(folder: Path, shared: Path) -> str:
     arm = sk.position("left_elbow") - sk.position("left_shoulder")
     out.update(
         height=h, bust=m.bust * cm, waist=m.waist * cm, hips=m.hip * cm, arm_length=m.arm_length * cm,
-        shoulder_w=m.shoulder_width * cm, neck_w=m.neck / np.pi * cm,
+        shoulder_w=m.shoulder_width * cm,
         # GarmentCode: waist level = height - head_l - waist_line
         waist_line=h - out["head_l"] - m.waist_height * cm,
         arm_pose_angle=float(np.degrees(np.arctan2(-arm[1], abs(arm[0])))),

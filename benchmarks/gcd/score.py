@@ -106,8 +106,9 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
                                                           for ln in cfg.splitlines())
     rec["type_right"] = rec["type_rec"] == truth["type"]
     ch = choices_of_spec(spec_rec)
-    rec["choices"] = {k: ch[k] == truth["choices"][k] for k in CHOICES}
-    rec["choices_right"] = all(rec["choices"].values())
+    rec["choices_rec"] = ch
+    rec["choices_ok"] = {k: ch[k] == truth["choices"][k] for k in CHOICES}
+    rec["choices_right"] = all(rec["choices_ok"].values())
     cmp = judge.compare_patterns(spec_gt, spec_rec)
     rec.update({k: cmp[k] for k in ("panel_err", "turning", "panels_true", "panels_rec", "panels_true_raw", "panels_rec_raw")})
     gv, gf = read_obj(result / "garment.obj")
@@ -134,7 +135,7 @@ def cmd_score(args, record_file: Path) -> int:
     for cid, _, _ in build.case_ids():
         b = built.get(cid)
         if b is None or b.get("status") != "built":
-            recs[cid] = {"case": cid, "built": False, "build": (b or {}).get("status", "not built"),
+            recs[cid] = {"case": cid, "type_true": (b or {}).get("type"), "built": False, "build": (b or {}).get("status", "not built"),
                          "reason": (b or {}).get("reason"), "fitted": False, "type_right": False, "choices_right": False}
             continue
         res = results / cid
@@ -195,7 +196,7 @@ def print_record(rec: dict) -> None:
         r = rec["cases"].get(cid, {"case": cid})
         rows.append({
             "case": cid,
-            "type": r.get("type_true", ""),
+            "type": r.get("type_true") or "",
             "built": "yes" if r.get("built") else (r.get("build") or "no"),
             "fitted": "yes" if r.get("fitted") else "no",
             "type ok": ("yes" if r.get("type_right") else "no") + (" (given)" if r.get("type_given") else ""),
