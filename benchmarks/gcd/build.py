@@ -274,7 +274,7 @@ def build_case(cid: str, seed: int, index: int, out: Path, *, drape: bool = True
     sys.path.insert(0, str(HERE.parent / "foreign"))
     import checks
 
-    from truth import truth_of_design
+    from truth import built_choices, truth_of_design
 
     m = manifest()
     entry = seed_entry(seed)
@@ -286,6 +286,8 @@ def build_case(cid: str, seed: int, index: int, out: Path, *, drape: bool = True
     design_text = (ddir / "design_params.yaml").read_text()
     truth = truth_of_design(design_text)
     truth["panels"] = len(spec["pattern"]["panels"])
+    truth["design_choices"] = truth["choices"]
+    truth["choices"] = built_choices(truth["choices"], spec)
     rec["type"] = truth["type"]
     body_v, body_f = read_body(body_dir)
     try:

@@ -34,7 +34,7 @@ HERE = Path(__file__).resolve().parent
 
 import build  # noqa: E402
 import judge  # noqa: E402
-from truth import CHOICES, choices_of_spec  # noqa: E402
+from truth import CHOICES, built_choices, choices_of_spec  # noqa: E402
 
 #: The floor of the redrape figure: the true pattern meshed this much finer [share of the edge length].
 FINER = 0.9
@@ -78,6 +78,7 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
     """The score record of one built case (``result``: its fit folder, or None: not fitted)."""
     truth = json.loads((case / "truth.json").read_text())
     spec_gt = json.loads((case / "pattern_gt.json").read_text())
+    truth["choices"] = built_choices(truth.get("design_choices", truth["choices"]), spec_gt)
     tv, tf = read_obj(case / "target.obj")
     edge = build.manifest()["edge_length_m"]
     lower = truth["type"] in build.LOWER_TYPES

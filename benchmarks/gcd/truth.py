@@ -13,6 +13,8 @@ Structural choices (each True/False, compared one by one):
 - ``waistband``: a waistband piece (``meta.wb`` set);
 - ``collar``: a collar piece (``collar.component.style`` set: Turtle, SimpleLapel, Hood2Panels);
 - ``cuffs``: a cuff piece on the sleeves or the trouser legs.
+A choice counts as present only where the design's pattern has the piece (``built_choices``):
+GarmentCode leaves a lapel out on some necklines although the design names one.
 """
 
 from __future__ import annotations
@@ -83,3 +85,9 @@ def choices_of_spec(spec: dict) -> dict:
         "collar": has("collar", "hood", "lapel", "turtle"),
         "cuffs": has("cuff"),
     }
+
+
+def built_choices(design_choices: dict, spec: dict) -> dict:
+    """The design's choices, each kept only where its specification has the piece: {name: bool}."""
+    has = choices_of_spec(spec)
+    return {k: bool(design_choices[k] and has[k]) for k in CHOICES}
