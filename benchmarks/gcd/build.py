@@ -39,6 +39,9 @@ LOWER_TYPES = ("skirt", "pants", "shorts")
 MAX_INSIDE = 0.005
 #: ... and the largest per-triangle stretch (a seam left open shows here).
 MAX_STRETCH = 1.0
+#: ... and how far the garment's top may sink below the specification's placement of it [m]
+#: (a bodice whose shoulder seams did not close slides down the torso).
+MAX_DROP = 0.08
 
 
 def _shared() -> Path:
@@ -318,7 +321,10 @@ def build_case(cid: str, seed: int, index: int, out: Path, *, drape: bool = True
         fails.append(f"largest stretch {float(st.max()):.2f}")
     if x[:, 1].min() < 0.01:
         fails.append("touches the floor")
-    rec.update(inside_fraction=round(inside, 5), stretch_p95=round(float(np.percentile(st, 95)), 4),
+    drop = float(x0[:, 1].max() - x[:, 1].max())
+    if drop > MAX_DROP:
+        fails.append(f"slid down {drop * 100:.0f} cm from where the specification puts its top")
+    rec.update(inside_fraction=round(inside, 5), top_drop_m=round(drop, 3), stretch_p95=round(float(np.percentile(st, 95)), 4),
                stretch_max=round(float(st.max()), 3), seam_gap_after_sewing_mm=round(info["gap_after_sewing_m"] * 1000, 1),
                drape_s=round(info["sew_s"] + info["drape_s"], 1))
     import newton
@@ -344,7 +350,7 @@ def build_case(cid: str, seed: int, index: int, out: Path, *, drape: bool = True
                       "start": "the specification's panel translation and rotation, front and back panels bent around the body's axis (build.bend_around_body)",
                       "settings": {k: (None if v == float("inf") else v) for k, v in settings.items()},
                       "mesh_edge_length_m": m["edge_length_m"], "frames": info["frames"]},
-        "checks": {k: rec[k] for k in ("inside_fraction", "stretch_p95", "stretch_max", "seam_gap_after_sewing_mm")},
+        "checks": {k: rec[k] for k in ("inside_fraction", "stretch_p95", "stretch_max", "seam_gap_after_sewing_mm", "top_drop_m")},
     }
     (tmp / "meta.json").write_text(json.dumps(meta, indent=1))
     shutil.rmtree(d, ignore_errors=True)
@@ -353,6 +359,37 @@ def build_case(cid: str, seed: int, index: int, out: Path, *, drape: bool = True
     if fails:
         rec["reason"] = "; ".join(fails)
     _log(f"{cid}: {rec['status']} in {rec['seconds']:.0f} s" + (f" ({rec['reason']})" if fails else ""))
+    return rec
+
+
+def recheck(out: Path, cid: str) -> dict | None:
+    """Re-run the acceptance checks on a written case (its target against the specification's
+    start) and update its status record; None where the case has no target."""
+    sys.path.insert(0, str(HERE.parent / "foreign"))
+    import checks
+
+    d, st = out / cid, out / "_status" / f"{cid}.json"
+    if not (d / "target.obj").is_file() or not st.is_file():
+        return None
+    rec = json.loads(st.read_text())
+    spec = json.loads((d / "pattern_gt.json").read_text())
+    body_v, body_f = read_body(d)
+    mesh = mesh_spec(spec, cid, manifest()["edge_length_m"])
+    x0 = bend_around_body(spec_placement(spec, mesh), mesh, spec, body_v)
+    import trimesh
+
+    x = np.asarray(trimesh.load(d / "target.obj", process=False, force="mesh").vertices)
+    inside = float(checks.inside_mask(x, body_v, body_f).mean())
+    drop = float(x0[:, 1].max() - x[:, 1].max())
+    fails = [f for f in (rec.get("reason") or "").split("; ") if f and "inside the body" not in f and "slid down" not in f]
+    if inside >= MAX_INSIDE:
+        fails.append(f"{inside:.2%} of vertices inside the body")
+    if drop > MAX_DROP:
+        fails.append(f"slid down {drop * 100:.0f} cm from where the specification puts its top")
+    rec.update(inside_fraction=round(inside, 5), top_drop_m=round(drop, 3), status="failed" if fails else "built")
+    rec.pop("reason", None)
+    if fails:
+        rec["reason"] = "; ".join(fails)
     return rec
 
 

@@ -53,6 +53,12 @@ def cmd_build(args) -> int:
             return 2
         ids = [t for t in ids if t[0] in args.only]
     for cid, seed, index in ids:
+        if args.recheck:
+            rec = build.recheck(out, cid)
+            if rec is not None:
+                build.record(out, rec)
+                print(f"{cid}: {rec['status']}" + (f" ({rec['reason']})" if rec.get("reason") else ""), flush=True)
+            continue
         t0 = time.time()
         try:
             rec = build.build_case(cid, seed, index, out, drape=not args.no_drape, count=args.count)
@@ -75,6 +81,7 @@ def main(argv=None) -> int:
     b.add_argument("--count", type=int, default=None, help="designs per seed (default: the manifest's)")
     b.add_argument("--only", nargs="*", help="case ids to build (gc_s1_000 ...)")
     b.add_argument("--no-drape", action="store_true", help="sample, size, mesh and place only (no newton)")
+    b.add_argument("--recheck", action="store_true", help="re-run the acceptance checks on the written cases (no drape)")
     s = sub.add_parser("score", help="judge fit results against the cases' truth")
     s.add_argument("--results", required=True, help="folder of fit results, one folder per case id")
     s.add_argument("--cases", default=str(DEFAULT_CASES))
