@@ -4,6 +4,7 @@
     python -m benchmarks gcd --summary             one JSON line of the recorded results
     python -m benchmarks gcd build [--out DIR] [--seeds 1-5] [--count 8] [--only gc_s1_000 ...] [--no-drape]
     python -m benchmarks gcd score --results RESULTS_DIR [--cases DIR] [--record]
+    python -m benchmarks gcd status [--out DIR]    every case's build status
     python -m benchmarks gcd judge-check           the judge on synthetic inputs (seconds)
 
 ``build`` samples GarmentCode's designs (seed k sized to and draped on body k of manifest.json),
@@ -70,6 +71,27 @@ def cmd_build(args) -> int:
     return 0
 
 
+def cmd_status(args) -> int:
+    """Table of every case's build status (cases/build.json); cases never attempted listed too."""
+    from tables import print_table
+
+    p = Path(args.out) / "build.json"
+    recs = json.loads(p.read_text()) if p.is_file() else {}
+    rows = []
+    for cid, seed, _ in build.case_ids():
+        r = recs.get(cid, {})
+        rows.append({"case": cid, "body": build.seed_entry(seed)["body"]["name"], "type": r.get("type", ""),
+                     "status": r.get("status", "not attempted"), "vertices": r.get("vertices"),
+                     "inside %": None if r.get("inside_fraction") is None else 100 * r["inside_fraction"],
+                     "top drop cm": None if r.get("top_drop_m") is None else 100 * r["top_drop_m"],
+                     "seam gap mm": r.get("seam_gap_after_sewing_mm"), "s": r.get("seconds"),
+                     "reason": (r.get("reason") or "")[:90]})
+    print_table(rows, title=f"GarmentCode design benchmark: build status ({p})", digits=2)
+    n = {k: sum(1 for r in rows if r["status"] == k) for k in ("built", "failed", "not attempted")}
+    print(json.dumps(n))
+    return 0
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m benchmarks gcd", description=__doc__.splitlines()[0])
     ap.add_argument("--summary", action="store_true", help="one JSON line of the recorded results")
@@ -90,11 +112,15 @@ def main(argv=None) -> int:
     s.add_argument("--no-floor", action="store_true", help="skip unsew's drape of the true pattern")
     s.add_argument("--only-fitted", action="store_true", help="score only the built cases that have a result folder")
     sub.add_parser("judge-check", help="the judge on synthetic inputs")
+    st = sub.add_parser("status", help="table of every case's build status")
+    st.add_argument("--out", default=str(DEFAULT_CASES))
     args = ap.parse_args(argv)
     if args.cmd == "build":
         return cmd_build(args)
     if args.cmd == "score":
         return score.cmd_score(args, Path(args.record_file))
+    if args.cmd == "status":
+        return cmd_status(args)
     if args.cmd == "judge-check":
         return score.judge_check()
     rec = score.load_record(Path(args.record_file))
