@@ -83,17 +83,22 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
     edge = build.manifest()["edge_length_m"]
     lower = truth["type"] in build.LOWER_TYPES
     rec = {"case": case.name, "type_true": truth["type"], "choices_true": truth["choices"]}
-    if floor:
+    cache = case / "floors.json"  # the floors depend on the case alone: computed once
+    known = json.loads(cache.read_text()) if cache.is_file() else {}
+    if floor and "chamfer_bar_mm" not in known:
         d = unsew_drape(case)
-        rec["chamfer_bar_mm"] = round(judge.chamfer_mm(*d, tv, tf)["chamfer_mm"], 2) if isinstance(d, tuple) else None
+        known["chamfer_bar_mm"] = round(judge.chamfer_mm(*d, tv, tf)["chamfer_mm"], 2) if isinstance(d, tuple) else None
         if not isinstance(d, tuple):
-            rec["chamfer_bar_error"] = d
-    if redrape:
+            known["chamfer_bar_error"] = d
+        cache.write_text(json.dumps(known, indent=1))
+    if redrape and "floor_mm" not in known:
         try:
             x, f = newton_redrape(spec_gt, case, edge * FINER, lower)
-            rec["floor_mm"] = round(judge.chamfer_mm(x, f, tv, tf)["chamfer_mm"], 2)
+            known["floor_mm"] = round(judge.chamfer_mm(x, f, tv, tf)["chamfer_mm"], 2)
         except Exception as exc:
-            rec["floor_mm"], rec["floor_error"] = None, f"{type(exc).__name__}: {str(exc)[:160]}"
+            known["floor_mm"], known["floor_error"] = None, f"{type(exc).__name__}: {str(exc)[:160]}"
+        cache.write_text(json.dumps(known, indent=1))
+    rec.update(known)
     if result is None or not (result / "pattern.json").is_file():
         rec.update(fitted=False, type_right=False, choices_right=False)
         return rec
