@@ -28,8 +28,8 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent))
 
-import build  # noqa: E402
-import score  # noqa: E402
+import build
+import score
 
 RESULTS = HERE / "results.json"
 DEFAULT_CASES = HERE / "cases"
@@ -63,7 +63,7 @@ def cmd_build(args) -> int:
         t0 = time.time()
         try:
             rec = build.build_case(cid, seed, index, out, drape=not args.no_drape, count=args.count)
-        except Exception as exc:  # recorded, counted, the rest go on
+        except Exception as exc:  # noqa: BLE001 - recorded, counted, the rest go on
             rec = {"case": cid, "seed": seed, "status": "failed", "reason": f"{type(exc).__name__}: {str(exc)[:200]}",
                    "seconds": round(time.time() - t0, 1)}
             print(f"{cid}: FAILED: {rec['reason']}", flush=True)

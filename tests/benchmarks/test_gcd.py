@@ -132,7 +132,7 @@ def test_one_sampled_design_is_placed_around_its_body(tmp_path):
     the start sits around the body (little of it inside), no newton drape."""
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "src"), str(ROOT)]), OMP_WAIT_POLICY="PASSIVE")
     r = subprocess.run([sys.executable, "-m", "benchmarks", "gcd", "build", "--out", str(tmp_path), "--seeds", "1",
-                        "--count", "1", "--no-drape"], cwd=ROOT, env=env, capture_output=True, text=True, timeout=300)
+                        "--count", "1", "--no-drape"], cwd=ROOT, env=env, capture_output=True, text=True, check=False, timeout=300)
     assert r.returncode == 0, r.stderr[-2000:]
     rec = json.loads((tmp_path / "build.json").read_text())["gc_s1_000"]
     assert rec["status"] == "placed", rec
