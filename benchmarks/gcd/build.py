@@ -297,11 +297,14 @@ def build_case(cid: str, seed: int, index: int, out: Path, *, drape: bool = True
     except Exception as exc:  # noqa: BLE001 - unsew cannot mesh this design: recorded, counted
         rec.update(status="failed", reason=f"meshing: {type(exc).__name__}: {str(exc).splitlines()[0][:160]}")
         return rec
-    x0 = bend_around_body(spec_placement(spec, mesh), mesh, spec, body_v)
+    x_spec = spec_placement(spec, mesh)
+    x0 = bend_around_body(x_spec, mesh, spec, body_v)
+    rec["spec_inside_fraction"] = round(float(checks.inside_mask(x_spec, body_v, body_f).mean()), 4)
     rec["start_inside_fraction"] = round(float(checks.inside_mask(x0, body_v, body_f).mean()), 4)
     rec["vertices"] = int(mesh.n_x)
     _log(f"{cid}: {truth['type']}, {truth['panels']} panels, {mesh.n_x} vertices, "
-         f"{rec['start_inside_fraction']:.1%} of the start inside the body")
+         f"{rec['spec_inside_fraction']:.1%} of the spec's placement and "
+         f"{rec['start_inside_fraction']:.1%} of the bent start inside the body")
     if not drape:
         rec.update(status="placed", seconds=round(time.time() - t0, 1))
         return rec

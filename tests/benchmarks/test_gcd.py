@@ -136,7 +136,7 @@ def test_one_sampled_design_is_placed_around_its_body(tmp_path):
     assert r.returncode == 0, r.stderr[-2000:]
     rec = json.loads((tmp_path / "build.json").read_text())["gc_s1_000"]
     assert rec["status"] == "placed", rec
-    assert rec["start_inside_fraction"] < 0.02
+    assert rec["spec_inside_fraction"] < 0.02
     spec = next((tmp_path / "_designs" / "s1" / "gc_s1_000").glob("*_specification.json"))
     build = _load("build")
     s = json.loads(spec.read_text())
