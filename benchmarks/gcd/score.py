@@ -130,7 +130,8 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
         if rec.get("redrape_mm") and rec.get("floor_mm"):
             rec["redrape_ratio"] = round(rec["redrape_mm"] / rec["floor_mm"], 3)
     t = metrics.get("timings_s") or {}
-    rec["fit_s"] = float(t["total"]) if "total" in t else (round(float(sum(v for v in t.values() if isinstance(v, (int, float)))), 1) if t else None)
+    total = t.get("total_s", t.get("total"))
+    rec["fit_s"] = round(float(total), 1) if total is not None else None
     rec["fitted"] = True
     return rec
 
