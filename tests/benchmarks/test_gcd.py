@@ -145,3 +145,19 @@ def test_one_sampled_design_is_placed_around_its_body(tmp_path):
     body_v, _ = build.read_body(tmp_path / "_bodies" / "gc_mean_female")
     # every panel's start lies within the body's reach, around it (centre within 40 cm of the body's axis)
     assert np.abs(x[:, [0, 2]]).max() < 0.8 and x[:, 1].max() < body_v[:, 1].max()
+
+
+def test_summary_counts_every_case_and_takes_medians_over_the_fitted():
+    score = _load("score")
+    rec = {"cases": {
+        "gc_s1_000": {"built": True, "fitted": True, "type_right": True, "choices_right": False, "panel_err": 0.2,
+                      "turning": 0.1, "chamfer_mm": 10.0, "chamfer_bar_mm": 8.0, "redrape_ratio": 2.0, "fit_s": 100.0,
+                      "floor_mm": 4.0},
+        "gc_s1_001": {"built": True, "fitted": False, "type_right": False, "choices_right": False,
+                      "chamfer_bar_mm": 20.0, "floor_mm": 6.0},
+        "gc_s1_002": {"built": False, "fitted": False, "type_right": False, "choices_right": False},
+    }}
+    s = score.summary(rec)
+    assert s["cases"] == 40 and s["built"] == 2 and s["fitted"] == 1 and s["type_right"] == 1
+    assert s["choices_right"] == 0 and s["panel_err_median"] == 0.2 and s["chamfer_bar_median"] == 14.0
+    assert s["floor_fitted_median"] is None
