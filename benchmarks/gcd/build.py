@@ -1,0 +1,409 @@
+"""Build the GarmentCode design benchmark's cases: sample, size, place by the spec, drape with newton.
+
+Per seed of the manifest: GarmentCode's sampler (``sample_designs.py``, run as a subprocess with
+this Python) draws ``count`` designs sized to the seed's body (its measurement .yaml in cm), and
+each design becomes a case folder (FORMATS.md):
+
+- ``body.obj`` (+ ``skeleton.json`` for an anny body, as ``unsew body make`` writes them);
+- ``target.obj``: the design sewn and draped by newton's Style3D solver (benchmarks/foreign/
+  newton_drape.py) from the specification's own 3D placement: every panel vertex starts at
+  ``R @ (u, v, 0) + t`` with the panel's ``rotation`` (XYZ Euler angles [deg], applied as
+  ``Rz @ Ry @ Rx``, GarmentCode's ``euler_xyz_to_R``) and ``translation`` [cm -> m]; the
+  specification's frame is the body's (Y up, facing +Z, feet at y = 0, cm);
+- ``meta.json`` without the garment type; ``pattern_gt.json`` (the specification);
+- ``truth.json`` (type and structural choices from ``design_params.yaml``; the fit never reads it);
+- ``design_params.yaml`` and ``preview.png``.
+
+Every design is recorded in ``OUT/build.json`` with its status: ``built``, or ``failed`` with the
+reason (meshing refused, newton diverged, a check failed); a failed case still counts.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+MANIFEST = HERE / "manifest.json"
+#: Lower garments have their waist held while gravity ramps in (newton_drape's ``lower``).
+LOWER_TYPES = ("skirt", "pants", "shorts")
+#: Acceptance of a drape (as the foreign benchmark's): share of vertices inside the body.
+MAX_INSIDE = 0.005
+#: ... and the largest per-triangle stretch (a seam left open shows here).
+MAX_STRETCH = 1.0
+#: ... and how far the garment's top may sink below the specification's placement of it [m]
+#: (a bodice whose shoulder seams did not close slides down the torso).
+MAX_DROP = 0.08
+
+
+def _shared() -> Path:
+    """``shared/`` beside the checkout (the nearest folder above that holds it) or $UNSEW_SHARED."""
+    if os.environ.get("UNSEW_SHARED"):
+        return Path(os.environ["UNSEW_SHARED"])
+    for up in HERE.parents:
+        if (up / "shared" / "garmentcode").is_dir():
+            return up / "shared"
+    raise SystemExit("no shared/garmentcode found beside the repository (set UNSEW_SHARED)")
+
+
+def manifest() -> dict:
+    return json.loads(MANIFEST.read_text())
+
+
+def case_ids(seeds=None, count=None) -> list[tuple[str, int, int]]:
+    """[(case id, seed, index)] in order: gc_s{seed}_{index:03d}."""
+    m = manifest()
+    count = m["count"] if count is None else count
+    out = []
+    for s in m["seeds"]:
+        if seeds is None or s["seed"] in seeds:
+            out += [(f"gc_s{s['seed']}_{i:03d}", s["seed"], i) for i in range(count)]
+    return out
+
+
+def seed_entry(seed: int) -> dict:
+    for s in manifest()["seeds"]:
+        if s["seed"] == seed:
+            return s
+    raise SystemExit(f"seed {seed} is not in {MANIFEST}")
+
+
+def _log(*a):
+    print(*a, flush=True)
+
+
+# ---------------------------------------------------------------- bodies
+
+def make_body(entry: dict, root: Path) -> Path:
+    """The body folder (body.obj [+ skeleton.json], body.yaml in GarmentCode's format, cm) of a
+    manifest body, made once under ``root/_bodies``."""
+    b = entry["body"]
+    d = root / "_bodies" / b["name"]
+    if (d / "body.yaml").is_file():
+        return d
+    d.parent.mkdir(parents=True, exist_ok=True)
+    tmp = d.with_name(d.name + ".tmp")
+    shutil.rmtree(tmp, ignore_errors=True)
+    shared = _shared()
+    if b["model"] == "garmentcode":
+        tmp.mkdir()
+        shutil.copyfile(shared / "foreign" / "bodies" / b["mesh"], tmp / "body.obj")
+        shutil.copyfile(shared / "garmentcode" / "assets" / "bodies" / f"{b['yaml']}.yaml", tmp / "body.yaml")
+    else:  # anny, as a user makes it
+        cmd = [sys.executable, "-m", "unsew", "body", "make", "--pose", b.get("pose", "A"), "--out", str(tmp)]
+        for k, v in b["phenotype"].items():
+            cmd += ["--phenotype", f"{k}={v}"]
+        r = subprocess.run(cmd, capture_output=True, text=True, check=False)
+        if r.returncode:
+            raise RuntimeError(f"unsew body make failed: {(r.stderr.strip().splitlines() or [''])[-1]}")
+        (tmp / "body.yaml").write_text(anny_body_yaml(tmp, shared))
+    shutil.rmtree(d, ignore_errors=True)
+    tmp.rename(d)
+    return d
+
+
+def anny_body_yaml(folder: Path, shared: Path) -> str:
+    """GarmentCode's body measurements (cm) for a body folder with body.obj + skeleton.json.
+
+    Measured on the body (unsew.body.measure): height, bust, waist, hips, arm length, shoulder
+    width, the waist level and the arm's angle below horizontal; the other GarmentCode
+    measurements are GarmentCode's ``mean_all`` values scaled by the height ratio (lengths) or
+    the bust/hip ratio (widths and girths of the upper / lower body)."""
+    import yaml
+
+    from unsew.body.body import load_body
+    from unsew.body.measure import measure_body
+
+    body = load_body(folder / "body.obj", folder / "skeleton.json")
+    m = measure_body(body)
+    ref = yaml.safe_load((shared / "garmentcode" / "assets" / "bodies" / "mean_all.yaml").read_text())["body"]
+    cm = 100.0
+    h = m.height * cm
+    kh, kb, kw, kp = h / ref["height"], m.bust * cm / ref["bust"], m.waist * cm / ref["waist"], m.hip * cm / ref["hips"]
+    out = dict(ref)
+    for k in ("head_l", "armscye_depth", "bust_line", "vert_bust_line", "hips_line", "crotch_hip_diff", "waist_over_bust_line"):
+        out[k] = ref[k] * kh
+    for k in ("back_width", "bust_points", "underbust", "neck_w"):
+        out[k] = ref[k] * kb
+    out["waist_back_width"] = ref["waist_back_width"] * kw
+    for k in ("hip_back_width", "bum_points", "leg_circ"):
+        out[k] = ref[k] * kp
+    out["wrist"] = ref["wrist"] * kh
+    sk = body.skeleton
+    arm = sk.position("left_elbow") - sk.position("left_shoulder")
+    out.update(
+        height=h, bust=m.bust * cm, waist=m.waist * cm, hips=m.hip * cm, arm_length=m.arm_length * cm,
+        shoulder_w=m.shoulder_width * cm,
+        # GarmentCode: waist level = height - head_l - waist_line
+        waist_line=h - out["head_l"] - m.waist_height * cm,
+        arm_pose_angle=float(np.degrees(np.arctan2(-arm[1], abs(arm[0])))),
+    )
+    return yaml.safe_dump({"body": {k: round(float(v), 4) for k, v in sorted(out.items())}})
+
+
+def read_body(folder: Path):
+    """(verts (V, 3) float64 [m], faces (F, 3) int64) of a body folder's body.obj."""
+    import trimesh
+
+    m = trimesh.load(folder / "body.obj", process=False, force="mesh")
+    return np.asarray(m.vertices, np.float64), np.asarray(m.faces, np.int64)
+
+
+# ---------------------------------------------------------------- designs
+
+def sample_seed(seed: int, count: int, body_dir: Path, out: Path) -> Path:
+    """Run GarmentCode's sampler for one seed into ``out/_designs/s{seed}`` (skipped when done)."""
+    d = out / "_designs" / f"s{seed}"
+    done = d / "sampled.json"
+    if done.is_file() and json.loads(done.read_text()).get("count") == count:
+        return d
+    shutil.rmtree(d, ignore_errors=True)
+    d.mkdir(parents=True)
+    t0 = time.time()
+    r = subprocess.run([sys.executable, str(_shared() / "garmentcode" / "sample_designs.py"), "--seed", str(seed),
+                        "--count", str(count), "--body", str(body_dir / "body.yaml"), "--out", str(d)],
+                       capture_output=True, text=True, check=False)
+    if r.returncode:
+        raise RuntimeError(f"sample_designs.py failed: {(r.stderr.strip().splitlines() or [''])[-1]}")
+    lines = [json.loads(ln) for ln in r.stdout.splitlines() if ln.startswith("{")]
+    done.write_text(json.dumps({"count": count, "seconds": round(time.time() - t0, 1), "log": lines}, indent=1))
+    return d
+
+
+def spec_rotation(angles_deg) -> np.ndarray:
+    """GarmentCode's panel rotation: XYZ Euler angles [deg] -> (3, 3), ``Rz @ Ry @ Rx``
+    (pygarment.pattern.rotation.euler_xyz_to_R, which its mesh generator applies)."""
+    from scipy.spatial.transform import Rotation
+
+    return Rotation.from_euler("xyz", np.asarray(angles_deg, np.float64), degrees=True).as_matrix()
+
+
+def spec_placement(spec: dict, mesh) -> np.ndarray:
+    """Start positions (Nu, 3) float64 [m] of the mesh's uv vertices from the specification's own
+    panel translation and rotation. unsew's reader may have mirrored a clockwise panel's 2D
+    coordinates (u -> -u); that is told by matching the panel's outline to the file's vertices."""
+    scale = float(spec.get("properties", {}).get("units_in_meter", 100))
+    x = np.zeros((len(mesh.uv), 3))
+    for i, name in enumerate(mesh.panel_names):
+        pd = spec["pattern"]["panels"][name]
+        a, b = int(mesh.panel_offsets[i]), int(mesh.panel_offsets[i + 1])
+        uv = np.asarray(mesh.uv[a:b], np.float64)
+        V = np.asarray(pd["vertices"], np.float64) / scale
+        bnd = uv[: int(mesh.n_boundary[i])]
+
+        def miss(p, V=V):
+            return float(np.linalg.norm(p[:, None] - V[None], axis=2).min(axis=0).max())
+
+        if miss(bnd * [-1.0, 1.0]) < miss(bnd):
+            uv = uv * [-1.0, 1.0]
+        local = np.c_[uv, np.zeros(len(uv))]
+        x[a:b] = local @ spec_rotation(pd.get("rotation", [0, 0, 0])).T + np.asarray(pd.get("translation", [0, 0, 0]), np.float64) / scale
+    return x
+
+
+def bend_around_body(x: np.ndarray, mesh, spec: dict, body_v: np.ndarray) -> np.ndarray:
+    """The spec's placement with each front or back panel (its normal within 30 degrees of the
+    Z axis) bent isometrically around the body's vertical axis at its own distance: a point at
+    arc length ``s = x - cx`` across the panel goes to angle ``s / r`` on the circle of radius
+    ``r = |z - cz|`` (cx, cz: the body's bounding-box centre). Heights, distances from the axis
+    and lengths along the panel are kept; other panels (sleeves, side pieces) stay as placed.
+    x: (Nu, 3) [m] -> (Nu, 3) [m]."""
+    cx, cz = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max()), 0.5 * (body_v[:, 2].min() + body_v[:, 2].max())
+    out = x.copy()
+    for i, name in enumerate(mesh.panel_names):
+        n = spec_rotation(spec["pattern"]["panels"][name].get("rotation", [0, 0, 0]))[:, 2]
+        if abs(n[2]) < np.cos(np.radians(30.0)):
+            continue
+        a, b = int(mesh.panel_offsets[i]), int(mesh.panel_offsets[i + 1])
+        p = x[a:b]
+        dz = p[:, 2] - cz
+        r = np.maximum(np.abs(dz), 0.05)
+        phi = (p[:, 0] - cx) / r
+        out[a:b, 0] = cx + r * np.sin(phi)
+        out[a:b, 2] = cz + np.sign(dz) * r * np.cos(phi)
+    return out
+
+
+#: newton's settings for starts from the specification (flat panels up to half a metre apart):
+#: the foreign benchmark's, with the sewing force and speed capped and four times the sewing frames.
+SEW_FROM_SPEC = {"seam_force_max_n": 1.0, "sew_speed_max_m_s": 0.5, "sew_frames": 120, "hold_frames": 135}
+
+
+def mesh_spec(spec: dict, name: str, edge_length: float):
+    """unsew's panel mesh of a specification (the benchmark's simulators need one)."""
+    from unsew.io.garmentcode import pattern_from_dict
+    from unsew.meshing.sew import mesh_pattern
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        pattern = pattern_from_dict(json.loads(json.dumps(spec)), name=name)
+    return mesh_pattern(pattern, edge_length=edge_length)
+
+
+def write_obj(path: Path, v: np.ndarray, f: np.ndarray, header: str) -> None:
+    with open(path, "w") as fh:
+        fh.write(f"# {header}\n")
+        fh.write("".join(f"v {a:.5f} {b:.5f} {c:.5f}\n" for a, b, c in v))
+        fh.write("".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in f))
+
+
+def _newton_drape(mesh, x0, body_v, body_f, lower):
+    """newton's drape (benchmarks/foreign/newton_drape.py) with its retry settings."""
+    sys.path.insert(0, str(HERE.parent / "foreign"))
+    import newton_drape
+
+    for k, extra in enumerate(newton_drape.FALLBACKS):
+        settings = {**newton_drape.SETTINGS, **SEW_FROM_SPEC, **extra}
+        try:
+            x, info = newton_drape.drape_newton(mesh, x0, body_v, body_f, lower=lower, settings=settings, log=_log)
+            return x, info, settings
+        except RuntimeError as exc:
+            _log(f"  {exc}")
+            if k + 1 == len(newton_drape.FALLBACKS):
+                raise
+
+
+def build_case(cid: str, seed: int, index: int, out: Path, *, drape: bool = True, count: int | None = None) -> dict:
+    """Build one case folder ``out/cid``; returns its status record. ``drape=False``: everything
+    but the newton drape (no target.obj), for a quick check of sampling, sizing and placement."""
+    sys.path.insert(0, str(HERE.parent / "foreign"))
+    import checks
+    from truth import built_choices, truth_of_design
+
+    m = manifest()
+    entry = seed_entry(seed)
+    t0 = time.time()
+    rec = {"case": cid, "seed": seed, "body": entry["body"]["name"]}
+    body_dir = make_body(entry, out)
+    ddir = sample_seed(seed, m["count"] if count is None else count, body_dir, out) / cid
+    spec = json.loads((ddir / f"{cid}_specification.json").read_text())
+    design_text = (ddir / "design_params.yaml").read_text()
+    truth = truth_of_design(design_text)
+    truth["panels"] = len(spec["pattern"]["panels"])
+    truth["design_choices"] = truth["choices"]
+    truth["choices"] = built_choices(truth["choices"], spec)
+    rec["type"] = truth["type"]
+    body_v, body_f = read_body(body_dir)
+    try:
+        mesh = mesh_spec(spec, cid, m["edge_length_m"])
+    except Exception as exc:  # noqa: BLE001 - unsew cannot mesh this design: recorded, counted
+        rec.update(status="failed", reason=f"meshing: {type(exc).__name__}: {str(exc).splitlines()[0][:160]}")
+        return rec
+    x_spec = spec_placement(spec, mesh)
+    x0 = bend_around_body(x_spec, mesh, spec, body_v)
+    rec["spec_inside_fraction"] = round(float(checks.inside_mask(x_spec, body_v, body_f).mean()), 4)
+    rec["start_inside_fraction"] = round(float(checks.inside_mask(x0, body_v, body_f).mean()), 4)
+    rec["vertices"] = int(mesh.n_x)
+    _log(f"{cid}: {truth['type']}, {truth['panels']} panels, {mesh.n_x} vertices, "
+         f"{rec['spec_inside_fraction']:.1%} of the spec's placement and "
+         f"{rec['start_inside_fraction']:.1%} of the bent start inside the body")
+    if not drape:
+        rec.update(status="placed", seconds=round(time.time() - t0, 1))
+        return rec
+    try:
+        x, info, settings = _newton_drape(mesh, x0, body_v, body_f, truth["type"] in LOWER_TYPES)
+    except RuntimeError as exc:
+        rec.update(status="failed", reason=f"newton: {exc}", seconds=round(time.time() - t0, 1))
+        return rec
+    faces = np.asarray(mesh.faces)
+    inside = float(checks.inside_mask(x, body_v, body_f).mean())
+    st = checks.stretch(x, faces, np.asarray(mesh.uv), np.asarray(mesh.faces_uv))
+    fails = []
+    if inside >= MAX_INSIDE:
+        fails.append(f"{inside:.2%} of vertices inside the body")
+    if float(st.max()) > MAX_STRETCH:
+        fails.append(f"largest stretch {float(st.max()):.2f}")
+    if x[:, 1].min() < 0.01:
+        fails.append("touches the floor")
+    drop = float(x0[:, 1].max() - x[:, 1].max())
+    if drop > MAX_DROP:
+        fails.append(f"slid down {drop * 100:.0f} cm from where the specification puts its top")
+    rec.update(inside_fraction=round(inside, 5), top_drop_m=round(drop, 3), stretch_p95=round(float(np.percentile(st, 95)), 4),
+               stretch_max=round(float(st.max()), 3), seam_gap_after_sewing_mm=round(info["gap_after_sewing_m"] * 1000, 1),
+               drape_s=round(info["sew_s"] + info["drape_s"], 1))
+    import newton
+    import warp
+
+    d, tmp = out / cid, out / f".{cid}.tmp"
+    shutil.rmtree(tmp, ignore_errors=True)
+    tmp.mkdir(parents=True)
+    title = f"{cid} {truth['type']}  inside {inside:.2%}  {'ok' if not fails else 'FAIL: ' + '; '.join(fails)}"
+    checks.preview(tmp / "preview.png", x, faces, body_v, body_f, title=title)
+    write_obj(tmp / "target.obj", x, faces, f"GarmentCode design {cid} draped by newton {newton.__version__} SolverStyle3D")
+    shutil.copyfile(body_dir / "body.obj", tmp / "body.obj")
+    if (body_dir / "skeleton.json").is_file():
+        shutil.copyfile(body_dir / "skeleton.json", tmp / "skeleton.json")
+    (tmp / "pattern_gt.json").write_text(json.dumps(spec, indent=1))
+    (tmp / "design_params.yaml").write_text(design_text)
+    (tmp / "truth.json").write_text(json.dumps(truth, indent=1))
+    meta = {
+        "units": "m", "up": "y", "front": "z",
+        "source": {"design": cid, "seed": seed, "sampler": "shared/garmentcode/sample_designs.py (GarmentCode, MIT)",
+                   "body": entry["body"]},
+        "simulator": {"name": "newton SolverStyle3D (CPU)", "newton": newton.__version__, "warp": warp.__version__,
+                      "start": "the specification's panel translation and rotation, front and back panels bent around the body's axis (build.bend_around_body)",
+                      "settings": {k: (None if v == float("inf") else v) for k, v in settings.items()},
+                      "mesh_edge_length_m": m["edge_length_m"], "frames": info["frames"]},
+        "checks": {k: rec[k] for k in ("inside_fraction", "stretch_p95", "stretch_max", "seam_gap_after_sewing_mm", "top_drop_m")},
+    }
+    (tmp / "meta.json").write_text(json.dumps(meta, indent=1))
+    shutil.rmtree(d, ignore_errors=True)
+    tmp.rename(d)
+    rec.update(status="built" if not fails else "failed", seconds=round(time.time() - t0, 1))
+    if fails:
+        rec["reason"] = "; ".join(fails)
+    _log(f"{cid}: {rec['status']} in {rec['seconds']:.0f} s" + (f" ({rec['reason']})" if fails else ""))
+    return rec
+
+
+def recheck(out: Path, cid: str) -> dict | None:
+    """Re-run the acceptance checks on a written case (its target against the specification's
+    start) and update its status record; None where the case has no target."""
+    sys.path.insert(0, str(HERE.parent / "foreign"))
+    import checks
+
+    d, st = out / cid, out / "_status" / f"{cid}.json"
+    if not (d / "target.obj").is_file() or not st.is_file():
+        return None
+    rec = json.loads(st.read_text())
+    spec = json.loads((d / "pattern_gt.json").read_text())
+    body_v, body_f = read_body(d)
+    mesh = mesh_spec(spec, cid, manifest()["edge_length_m"])
+    x0 = bend_around_body(spec_placement(spec, mesh), mesh, spec, body_v)
+    import trimesh
+
+    x = np.asarray(trimesh.load(d / "target.obj", process=False, force="mesh").vertices)
+    inside = float(checks.inside_mask(x, body_v, body_f).mean())
+    drop = float(x0[:, 1].max() - x[:, 1].max())
+    fails = [f for f in (rec.get("reason") or "").split("; ") if f and "inside the body" not in f and "slid down" not in f]
+    if inside >= MAX_INSIDE:
+        fails.append(f"{inside:.2%} of vertices inside the body")
+    if drop > MAX_DROP:
+        fails.append(f"slid down {drop * 100:.0f} cm from where the specification puts its top")
+    rec.update(inside_fraction=round(inside, 5), top_drop_m=round(drop, 3), status="failed" if fails else "built")
+    rec.pop("reason", None)
+    if fails:
+        rec["reason"] = "; ".join(fails)
+    return rec
+
+
+def record(out: Path, rec: dict) -> None:
+    """Put one case's status into ``out/_status/<case>.json`` and rebuild ``out/build.json`` from
+    all of them (in manifest order), so that several builds may run side by side."""
+    st = out / "_status"
+    st.mkdir(parents=True, exist_ok=True)
+    (st / f"{rec['case']}.json").write_text(json.dumps(rec, indent=1))
+    allr = {p.stem: json.loads(p.read_text()) for p in st.glob("*.json")}
+    order = [c for c, _, _ in case_ids()]
+    allr = {k: allr[k] for k in sorted(allr, key=lambda c: order.index(c) if c in order else len(order))}
+    tmp = out / f".build.{os.getpid()}.json"
+    tmp.write_text(json.dumps(allr, indent=1))
+    tmp.replace(out / "build.json")

@@ -1,0 +1,297 @@
+"""The GarmentCode benchmark's judge: its own geometry, sharing nothing with unsew.metrics.
+
+- ``chamfer_mm``: symmetric Chamfer distance between two triangle surfaces [mm]: ``n`` points
+  sampled uniformly by area on each (fixed seed), each one's exact distance to the other surface
+  (trimesh); the mean of the two directions' mean distances.
+- ``panels_of_spec``: a GarmentCode specification's panels as outlines (edges discretized:
+  straight, quadratic and cubic Bezier with relative or absolute control points, circle arcs as
+  GarmentCode's SVG arcs) [m], with each panel's area and 3D centroid from its own placement.
+- ``merge_invisible``: panels joined by a seam the 3D shape cannot show are merged into one: a
+  stitch whose two edges are straight and of equal length (within ``MERGE_LENGTH_TOL``) and
+  whose outline runs on without a corner across both seam ends (the two panels' turning angles
+  at each end add up to half a turn within ``MERGE_ANGLE_TOL``), the panels glued along it by a
+  rigid 2D motion without overlap. A centre-front seam between mirror halves (a fold in the other
+  pattern) and a straight seam between sleeve halves are such seams.
+- ``compare_patterns``: true panels matched to recovered ones (Hungarian assignment on the
+  distance of their 3D centroids [m] plus their relative area difference); per true panel the
+  relative surface-area error |A_rec - A_true| / A_true (1 for a true panel left unmatched) and
+  the turning-function distance (Arkin et al. 1991: outlines scaled to unit perimeter, L2 over
+  arc length of the tangent angle, minimized over the start point and a rotation) [rad];
+  both averaged over the true panels.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+MERGE_LENGTH_TOL = 0.02  #: relative length difference of two straight stitched edges
+MERGE_ANGLE_TOL = np.radians(15.0)  #: how far from half a turn the two corners at a seam end may add up
+CURVE_POINTS = 24  #: points per curved edge
+TURNING_SAMPLES = 200  #: arc-length samples of an outline for the turning function
+
+
+# ------------------------------------------------------------------ surfaces
+
+def sample_surface(v: np.ndarray, f: np.ndarray, n: int, seed: int = 0) -> np.ndarray:
+    """(n, 3) float64 points uniform by area on the triangles f (F, 3) of v (V, 3) [m]."""
+    v, f = np.asarray(v, np.float64), np.asarray(f, np.int64)
+    a, b, c = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
+    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
+    rng = np.random.default_rng(seed)
+    t = rng.choice(len(f), size=n, p=area / area.sum())
+    r1, r2 = rng.random(n), rng.random(n)
+    s = np.sqrt(r1)
+    return (1 - s)[:, None] * a[t] + (s * (1 - r2))[:, None] * b[t] + (s * r2)[:, None] * c[t]
+
+
+def chamfer_mm(va, fa, vb, fb, *, n: int = 10000, seed: int = 0) -> dict:
+    """Symmetric Chamfer between surfaces A and B (vertices [m], faces): {"chamfer_mm": mean of
+    the two directions' mean distances, "a_to_b_mm", "b_to_a_mm", "p95_mm"} [mm]. Each
+    direction: ``n`` points sampled on one surface, their exact distance to the other surface
+    (trimesh's closest point, candidates from an r-tree)."""
+    import trimesh
+
+    A = trimesh.Trimesh(np.asarray(va, np.float64), np.asarray(fa, np.int64), process=False)
+    B = trimesh.Trimesh(np.asarray(vb, np.float64), np.asarray(fb, np.int64), process=False)
+    pa, pb = sample_surface(va, fa, n, seed), sample_surface(vb, fb, n, seed + 1)
+    dab = trimesh.proximity.closest_point(B, pa)[1]
+    dba = trimesh.proximity.closest_point(A, pb)[1]
+    return {"chamfer_mm": 500.0 * (dab.mean() + dba.mean()), "a_to_b_mm": 1000.0 * dab.mean(),
+            "b_to_a_mm": 1000.0 * dba.mean(), "p95_mm": 1000.0 * float(np.percentile(np.r_[dab, dba], 95))}
+
+
+# ------------------------------------------------------------------ pattern outlines
+
+def _rel_to_abs(start, end, p):
+    e = end - start
+    return start + p[0] * e + p[1] * np.array([-e[1], e[0]])
+
+
+def edge_points(start, end, curvature, relative: bool) -> np.ndarray:
+    """(k, 2) points of one GarmentCode edge from start to end (inclusive), same units."""
+    start, end = np.asarray(start, np.float64), np.asarray(end, np.float64)
+    if not curvature:
+        return np.stack([start, end])
+    if isinstance(curvature, list):  # old format: one quadratic control point
+        curvature = {"type": "quadratic", "params": [curvature]}
+    typ, par = curvature["type"], curvature["params"]
+    t = np.linspace(0.0, 1.0, CURVE_POINTS)[:, None]
+    if typ in ("quadratic", "cubic"):
+        cps = [_rel_to_abs(start, end, p) if relative else np.asarray(p, np.float64) for p in par]
+        if typ == "quadratic":
+            c = cps[0]
+            return (1 - t) ** 2 * start + 2 * (1 - t) * t * c + t ** 2 * end
+        c1, c2 = cps[0], cps[1]
+        return (1 - t) ** 3 * start + 3 * (1 - t) ** 2 * t * c1 + 3 * (1 - t) * t ** 2 * c2 + t ** 3 * end
+    if typ == "circle":  # GarmentCode: svgpathtools.Arc(start, r, 0, large_arc, sweep=right, end)
+        import svgpathtools
+
+        r, large, right = float(par[0]), bool(par[1]), bool(par[2])
+        arc = svgpathtools.Arc(complex(*start), complex(r, r), 0.0, large, right, complex(*end))
+        z = np.array([arc.point(float(s)) for s in t[:, 0]])
+        pts = np.stack([z.real, z.imag], axis=1)
+        pts[0], pts[-1] = start, end
+        return pts
+    raise ValueError(f"unknown edge curvature type {typ!r}")
+
+
+def _rotation(angles_deg) -> np.ndarray:
+    from scipy.spatial.transform import Rotation
+
+    return Rotation.from_euler("xyz", np.asarray(angles_deg, np.float64), degrees=True).as_matrix()
+
+
+def _area_centroid(loop: np.ndarray):
+    x, y = loop[:, 0], loop[:, 1]
+    xn, yn = np.roll(x, -1), np.roll(y, -1)
+    cr = x * yn - xn * y
+    a = 0.5 * cr.sum()
+    if abs(a) < 1e-15:
+        return 0.0, loop.mean(axis=0)
+    return a, np.array([((x + xn) * cr).sum(), ((y + yn) * cr).sum()]) / (6.0 * a)
+
+
+class Piece:
+    """A (possibly merged) panel: edges as point lists [m] in one 2D frame, counter-clockwise."""
+
+    def __init__(self, names, edges, area, centroid3d):
+        self.names = names  # panel names merged into this piece
+        self.edges = edges  # list of dicts: key (panel, edge index), pts (k, 2), straight
+        self.area = area  # [m^2]
+        self.centroid3d = centroid3d  # (3,) [m], area-weighted over the merged panels
+
+    def loop(self) -> np.ndarray:
+        return np.concatenate([e["pts"][:-1] for e in self.edges])
+
+
+def panels_of_spec(spec: dict) -> dict:
+    """{panel name: Piece} of a GarmentCode specification dict (lengths in m)."""
+    props = spec.get("properties", {})
+    scale = float(props.get("units_in_meter", 100))
+    relative = props.get("curvature_coords", "relative") == "relative"
+    out = {}
+    for name, pd in spec["pattern"]["panels"].items():
+        V = np.asarray(pd["vertices"], np.float64)
+        edges = []
+        for k, ed in enumerate(pd["edges"]):
+            i, j = ed["endpoints"]
+            pts = edge_points(V[i], V[j], ed.get("curvature"), relative) / scale
+            edges.append({"key": (name, k), "pts": pts, "straight": not ed.get("curvature")})
+        loop = np.concatenate([e["pts"][:-1] for e in edges])
+        a, c = _area_centroid(loop)
+        if a < 0:  # clockwise in the file: reverse the loop (each edge and their order)
+            edges = [dict(e, pts=e["pts"][::-1].copy()) for e in reversed(edges)]
+            a = -a
+        c3 = _rotation(pd.get("rotation", [0, 0, 0])) @ np.r_[c, 0.0] + np.asarray(pd.get("translation", [0, 0, 0]), np.float64) / scale
+        out[name] = Piece([name], edges, a, c3)
+    return out
+
+
+def _turn(d_in, d_out) -> float:
+    """Signed angle [rad] from direction d_in to d_out (left turns positive)."""
+    return float(np.arctan2(d_in[0] * d_out[1] - d_in[1] * d_out[0], d_in @ d_out))
+
+
+def _dir(p, q):
+    d = q - p
+    return d / max(np.linalg.norm(d), 1e-15)
+
+
+def _glue(A: Piece, ia: int, B: Piece, ib: int):
+    """Piece of A and B glued along A's edge ia and B's edge ib, or None where the seam shows (a
+    corner at either end) or the panels would overlap."""
+    ea, eb = A.edges[ia], B.edges[ib]
+    if not (ea["straight"] and eb["straight"]):
+        return None
+    p, q = ea["pts"][0], ea["pts"][-1]
+    bp, bq = eb["pts"][0], eb["pts"][-1]
+    la, lb = np.linalg.norm(q - p), np.linalg.norm(bq - bp)
+    if abs(la - lb) > MERGE_LENGTH_TOL * max(la, lb):
+        return None
+    # rigid motion taking B's edge (bp -> bq) onto A's reversed (q -> p)
+    ang = np.arctan2(*(p - q)[::-1]) - np.arctan2(*(bq - bp)[::-1])
+    R = np.array([[np.cos(ang), -np.sin(ang)], [np.sin(ang), np.cos(ang)]])
+    t = q - R @ bp
+    Bedges = [dict(e, pts=e["pts"] @ R.T + t) for e in B.edges]
+    na, nb = len(A.edges), len(B.edges)
+    a_prev, a_next = A.edges[(ia - 1) % na], A.edges[(ia + 1) % na]
+    b_prev, b_next = Bedges[(ib - 1) % nb], Bedges[(ib + 1) % nb]
+    # at q: A turns from its seam edge into a_next; B turns from b_prev into its seam edge (q -> p)
+    turn_q = _turn(_dir(*ea["pts"][-2:]), _dir(*a_next["pts"][:2])) + _turn(_dir(*b_prev["pts"][-2:]), _dir(*Bedges[ib]["pts"][:2]))
+    turn_p = _turn(_dir(*a_prev["pts"][-2:]), _dir(*ea["pts"][:2])) + _turn(_dir(*Bedges[ib]["pts"][-2:]), _dir(*b_next["pts"][:2]))
+    if abs(turn_q - np.pi) > MERGE_ANGLE_TOL or abs(turn_p - np.pi) > MERGE_ANGLE_TOL:
+        return None
+    edges = A.edges[ia + 1:] + A.edges[:ia] + Bedges[ib + 1:] + Bedges[:ib]
+    loop = np.concatenate([e["pts"][:-1] for e in edges])
+    area, _ = _area_centroid(loop)
+    if abs(area - (A.area + B.area)) > 0.02 * (A.area + B.area) or _self_intersects(loop):
+        return None
+    c3 = (A.area * A.centroid3d + B.area * B.centroid3d) / (A.area + B.area)
+    return Piece(A.names + B.names, edges, area, c3)
+
+
+def _self_intersects(loop: np.ndarray) -> bool:
+    """Whether a closed polyline (N, 2) crosses itself (segments other than neighbours)."""
+    P, Q = loop, np.roll(loop, -1, axis=0)
+    n = len(P)
+    d = Q - P
+
+    def cross(a, b):
+        return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+    i, j = np.triu_indices(n, 2)
+    keep = ~((i == 0) & (j == n - 1))
+    i, j = i[keep], j[keep]
+    den = cross(d[i], d[j])
+    ok = np.abs(den) > 1e-18
+    i, j, den = i[ok], j[ok], den[ok]
+    w = P[j] - P[i]
+    s, u = cross(w, d[j]) / den, cross(w, d[i]) / den
+    eps = 1e-9
+    return bool(((s > eps) & (s < 1 - eps) & (u > eps) & (u < 1 - eps)).any())
+
+
+def merge_invisible(spec: dict, pieces: dict | None = None) -> list:
+    """The pattern's pieces after merging every seam the 3D shape cannot show: list of Piece."""
+    pieces = dict(panels_of_spec(spec) if pieces is None else pieces)
+    owner = {n: n for n in pieces}  # panel name -> key of the piece holding it
+    changed = True
+    while changed:
+        changed = False
+        for st in spec["pattern"].get("stitches", []):
+            if len(st) != 2:
+                continue
+            (pa, ka), (pb, kb) = (st[0]["panel"], st[0]["edge"]), (st[1]["panel"], st[1]["edge"])
+            if pa not in owner or pb not in owner:
+                continue
+            A, B = pieces[owner[pa]], pieces[owner[pb]]
+            if A is B:
+                continue
+            ia = next((i for i, e in enumerate(A.edges) if e["key"] == (pa, ka)), None)
+            ib = next((i for i, e in enumerate(B.edges) if e["key"] == (pb, kb)), None)
+            if ia is None or ib is None:
+                continue
+            M = _glue(A, ia, B, ib)
+            if M is None:
+                continue
+            kA, kB = owner[pa], owner[pb]
+            del pieces[kB]
+            pieces[kA] = M
+            for n in M.names:
+                owner[n] = kA
+            changed = True
+    return list(pieces.values())
+
+
+# ------------------------------------------------------------------ turning function
+
+def turning_distance(loop_a: np.ndarray, loop_b: np.ndarray, n: int = TURNING_SAMPLES) -> float:
+    """Arkin's turning-function distance [rad] between two closed counter-clockwise outlines
+    (N, 2): both resampled at ``n`` equal arc-length steps of unit perimeter; the L2 distance of
+    their tangent-angle functions minimized over the start point and a constant rotation."""
+    ta, tb = _turning(loop_a, n), _turning(loop_b, n)
+    best = np.inf
+    for k in range(n):
+        sh = np.r_[tb[k:], tb[:k] + 2 * np.pi]  # start at sample k; past the end the angle wraps by a turn
+        diff = ta - sh
+        best = min(best, float(np.sqrt(np.mean((diff - diff.mean()) ** 2))))
+    return best
+
+
+def _turning(loop: np.ndarray, n: int) -> np.ndarray:
+    P = np.vstack([loop, loop[:1]])
+    seg = np.linalg.norm(np.diff(P, axis=0), axis=1)
+    s = np.r_[0.0, np.cumsum(seg)]
+    u = np.linspace(0.0, s[-1], n, endpoint=False)
+    Q = np.stack([np.interp(u, s, P[:, 0]), np.interp(u, s, P[:, 1])], axis=1)
+    d = np.roll(Q, -1, axis=0) - Q
+    return np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+
+
+# ------------------------------------------------------------------ pattern against pattern
+
+def compare_patterns(spec_true: dict, spec_rec: dict) -> dict:
+    """Per-panel errors of a recovered pattern against the true one, both merged first:
+    {"panel_err": mean relative area error over true pieces, "turning": mean turning distance
+    over matched true pieces [rad], "panels_true", "panels_rec" (after merging),
+    "panels_true_raw", "panels_rec_raw", "matched": [(true names, recovered names, area error,
+    turning)]}."""
+    from scipy.optimize import linear_sum_assignment
+
+    T, Rp = merge_invisible(spec_true), merge_invisible(spec_rec)
+    cost = np.array([[np.linalg.norm(t.centroid3d - r.centroid3d) + abs(r.area - t.area) / t.area for r in Rp] for t in T])
+    rows, cols = linear_sum_assignment(cost) if len(Rp) else (np.zeros(0, int), np.zeros(0, int))
+    area_err = np.ones(len(T))
+    turn = np.full(len(T), np.nan)
+    matched = []
+    for i, j in zip(rows, cols):
+        area_err[i] = abs(Rp[j].area - T[i].area) / T[i].area
+        turn[i] = turning_distance(T[i].loop(), Rp[j].loop())
+        matched.append((T[i].names, Rp[j].names, round(float(area_err[i]), 4), round(float(turn[i]), 4)))
+    return {
+        "panel_err": float(area_err.mean()),
+        "turning": float(np.nanmean(turn)) if np.isfinite(turn).any() else None,
+        "panels_true": len(T), "panels_rec": len(Rp),
+        "panels_true_raw": len(spec_true["pattern"]["panels"]), "panels_rec_raw": len(spec_rec["pattern"]["panels"]),
+        "matched": matched,
+    }

@@ -1,0 +1,135 @@
+"""GarmentCode design benchmark: designs nobody here drew, draped by another simulator, judged apart.
+
+    python -m benchmarks gcd                       the table of the recorded results (results.json)
+    python -m benchmarks gcd --summary             one JSON line of the recorded results
+    python -m benchmarks gcd build [--out DIR] [--seeds 1-5] [--count 8] [--only gc_s1_000 ...] [--no-drape]
+    python -m benchmarks gcd score --results RESULTS_DIR [--cases DIR] [--record]
+    python -m benchmarks gcd status [--out DIR]    every case's build status
+    python -m benchmarks gcd judge-check           the judge on synthetic inputs (seconds)
+
+``build`` samples GarmentCode's designs (seed k sized to and draped on body k of manifest.json),
+drapes each with newton from the specification's own 3D placement and writes the case folders
+(build.py). ``score`` judges fits: RESULTS_DIR holds one ``unsew fit`` result folder per case
+(named by case id); each is scored against its case's truth by judge.py (no unsew metrics code),
+with the cross-simulator floor (``unsew drape pattern_gt.json --body CASE``) and the recovered
+pattern draped by newton. ``--record`` writes the scores to results.json. Cases default to
+``benchmarks/gcd/cases`` (gitignored, a build step).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(HERE.parent))
+
+import build
+import score
+
+RESULTS = HERE / "results.json"
+DEFAULT_CASES = HERE / "cases"
+
+
+def _seeds(text: str) -> list[int]:
+    out = []
+    for part in text.split(","):
+        a, _, b = part.partition("-")
+        out += list(range(int(a), int(b or a) + 1))
+    return out
+
+
+def cmd_build(args) -> int:
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    ids = build.case_ids(_seeds(args.seeds), args.count)
+    if args.only:
+        unknown = [c for c in args.only if c not in {c for c, _, _ in ids}]
+        if unknown:
+            print(f"gcd build: unknown case(s) {unknown} (ids are gc_s<seed>_<index>)", file=sys.stderr)
+            return 2
+        ids = [t for t in ids if t[0] in args.only]
+    for cid, seed, index in ids:
+        if args.recheck:
+            rec = build.recheck(out, cid)
+            if rec is not None:
+                build.record(out, rec)
+                print(f"{cid}: {rec['status']}" + (f" ({rec['reason']})" if rec.get("reason") else ""), flush=True)
+            continue
+        t0 = time.time()
+        try:
+            rec = build.build_case(cid, seed, index, out, drape=not args.no_drape, count=args.count)
+        except Exception as exc:  # noqa: BLE001 - recorded, counted, the rest go on
+            rec = {"case": cid, "seed": seed, "status": "failed", "reason": f"{type(exc).__name__}: {str(exc)[:200]}",
+                   "seconds": round(time.time() - t0, 1)}
+            print(f"{cid}: FAILED: {rec['reason']}", flush=True)
+        build.record(out, rec)
+    return 0
+
+
+def cmd_status(args) -> int:
+    """Table of every case's build status (cases/build.json); cases never attempted listed too."""
+    from tables import print_table
+
+    p = Path(args.out) / "build.json"
+    recs = json.loads(p.read_text()) if p.is_file() else {}
+    rows = []
+    for cid, seed, _ in build.case_ids():
+        r = recs.get(cid, {})
+        rows.append({"case": cid, "body": build.seed_entry(seed)["body"]["name"], "type": r.get("type", ""),
+                     "status": r.get("status", "not attempted"), "vertices": r.get("vertices"),
+                     "inside %": None if r.get("inside_fraction") is None else 100 * r["inside_fraction"],
+                     "top drop cm": None if r.get("top_drop_m") is None else 100 * r["top_drop_m"],
+                     "seam gap mm": r.get("seam_gap_after_sewing_mm"), "s": r.get("seconds"),
+                     "reason": (r.get("reason") or "")[:90]})
+    print_table(rows, title=f"GarmentCode design benchmark: build status ({p})", digits=2)
+    n = {k: sum(1 for r in rows if r["status"] == k) for k in ("built", "failed", "not attempted")}
+    print(json.dumps(n))
+    return 0
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m benchmarks gcd", description=__doc__.splitlines()[0])
+    ap.add_argument("--summary", action="store_true", help="one JSON line of the recorded results")
+    ap.add_argument("--record-file", default=str(RESULTS), help=argparse.SUPPRESS)
+    sub = ap.add_subparsers(dest="cmd")
+    b = sub.add_parser("build", help="sample, drape with newton and write the case folders")
+    b.add_argument("--out", default=str(DEFAULT_CASES))
+    b.add_argument("--seeds", default="1-5", help="seeds, e.g. 1-5 or 1,3")
+    b.add_argument("--count", type=int, default=None, help="designs per seed (default: the manifest's)")
+    b.add_argument("--only", nargs="*", help="case ids to build (gc_s1_000 ...)")
+    b.add_argument("--no-drape", action="store_true", help="sample, size, mesh and place only (no newton)")
+    b.add_argument("--recheck", action="store_true", help="re-run the acceptance checks on the written cases (no drape)")
+    s = sub.add_parser("score", help="judge fit results against the cases' truth")
+    s.add_argument("--results", required=True, help="folder of fit results, one folder per case id")
+    s.add_argument("--cases", default=str(DEFAULT_CASES))
+    s.add_argument("--record", action="store_true", help="write the scores to results.json")
+    s.add_argument("--no-redrape", action="store_true", help="skip the newton drapes of the recovered and true patterns")
+    s.add_argument("--no-floor", action="store_true", help="skip unsew's drape of the true pattern")
+    s.add_argument("--only-fitted", action="store_true", help="score only the built cases that have a result folder")
+    sub.add_parser("judge-check", help="the judge on synthetic inputs")
+    st = sub.add_parser("status", help="table of every case's build status")
+    st.add_argument("--out", default=str(DEFAULT_CASES))
+    args = ap.parse_args(argv)
+    if args.cmd == "build":
+        return cmd_build(args)
+    if args.cmd == "score":
+        return score.cmd_score(args, Path(args.record_file))
+    if args.cmd == "status":
+        return cmd_status(args)
+    if args.cmd == "judge-check":
+        return score.judge_check()
+    rec = score.load_record(Path(args.record_file))
+    if args.summary:
+        print(json.dumps(score.summary(rec)))
+        return 0
+    score.print_record(rec)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

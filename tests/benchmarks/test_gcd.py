@@ -1,0 +1,163 @@
+"""The GarmentCode design benchmark in seconds: its judge on synthetic inputs, the truth read from
+design parameters, and one sampled design sized, meshed and placed by its own specification."""
+
+import importlib.util
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+GCD = ROOT / "benchmarks" / "gcd"
+
+
+def _load(name):
+    sys.path.insert(0, str(GCD))
+    spec = importlib.util.spec_from_file_location(f"_gcd_{name}", GCD / f"{name}.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+@pytest.fixture(scope="module")
+def judge():
+    return _load("judge")
+
+
+@pytest.fixture(scope="module")
+def truth():
+    return _load("truth")
+
+
+def _grid(n=12, size=0.5):
+    u, v = np.meshgrid(np.linspace(0, size, n), np.linspace(0, size, n))
+    verts = np.c_[u.ravel(), v.ravel(), np.zeros(n * n)]
+    f = []
+    for i in range(n - 1):
+        for j in range(n - 1):
+            a = i * n + j
+            f += [[a, a + 1, a + n + 1], [a, a + n + 1, a + n]]
+    return verts, np.array(f)
+
+
+def test_chamfer_is_zero_on_itself_and_the_offset_when_moved(judge):
+    v, f = _grid()
+    assert judge.chamfer_mm(v, f, v, f)["chamfer_mm"] < 1e-6
+    moved = judge.chamfer_mm(v, f, v + [0.0, 0.0, 0.02], f)
+    assert moved["chamfer_mm"] == pytest.approx(20.0, abs=0.05)
+
+
+def test_turning_distance_ignores_start_and_rotation_not_shape(judge):
+    sq = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
+    c, s = np.cos(0.7), np.sin(0.7)
+    turned = np.roll(sq @ np.array([[c, -s], [s, c]]).T * 3.0, 1, axis=0)
+    assert judge.turning_distance(sq, turned) < 0.05
+    assert judge.turning_distance(sq, sq * [3.0, 1.0]) > 0.3
+
+
+def _spec(panels, stitches):
+    return {"pattern": {"panels": panels, "stitches": stitches},
+            "properties": {"units_in_meter": 100, "curvature_coords": "relative"}}
+
+
+def _panel(verts, t=(0, 0, 0), curved=None):
+    n = len(verts)
+    edges = [{"endpoints": [i, (i + 1) % n]} for i in range(n)]
+    if curved is not None:
+        edges[curved]["curvature"] = {"type": "quadratic", "params": [[0.5, 0.3]]}
+    return {"vertices": verts, "edges": edges, "translation": list(t), "rotation": [0, 0, 0]}
+
+
+def test_mirror_halves_joined_by_a_straight_seam_merge_and_a_cornered_seam_does_not(judge):
+    # two halves of a front (30 x 60 cm) sewn along the centre line: one piece of twice the area
+    left = _panel([[0, 0], [30, 0], [30, 60], [0, 60]], t=(0, 100, 20))
+    right = _panel([[0, 0], [30, 0], [30, 60], [0, 60]], t=(-30, 100, 20))
+    spec = _spec({"left": left, "right": right}, [[{"panel": "left", "edge": 3}, {"panel": "right", "edge": 1}]])
+    merged = judge.merge_invisible(spec)
+    assert len(merged) == 1
+    assert merged[0].area == pytest.approx(2 * 0.3 * 0.6, rel=1e-6)
+    # two triangles meeting at a seam whose ends are corners of the joined outline: kept apart
+    a = _panel([[0, 0], [40, 0], [0, 40]])
+    b = _panel([[0, 0], [40, 0], [0, 40]])
+    spec2 = _spec({"a": a, "b": b}, [[{"panel": "a", "edge": 0}, {"panel": "b", "edge": 0}]])
+    assert len(judge.merge_invisible(spec2)) == 2
+
+
+def test_pattern_errors_zero_on_itself_and_grow_with_a_panel_made_larger(judge):
+    front = _panel([[0, 0], [50, 0], [50, 60], [0, 60]], t=(-25, 90, 20), curved=2)
+    back = _panel([[0, 0], [50, 0], [50, 60], [0, 60]], t=(-25, 90, -20))
+    spec = _spec({"front": front, "back": back}, [])
+    same = judge.compare_patterns(spec, spec)
+    assert same["panel_err"] < 1e-9 and same["turning"] < 1e-6
+    bigger = json.loads(json.dumps(spec))
+    bigger["pattern"]["panels"]["back"]["vertices"] = [[0, 0], [55, 0], [55, 66], [0, 66]]
+    r = judge.compare_patterns(spec, bigger)
+    assert r["panel_err"] == pytest.approx(0.21 / 2, rel=1e-3)  # one of two panels 21 % larger
+    missing = _spec({"front": front}, [])
+    assert judge.compare_patterns(spec, missing)["panel_err"] == pytest.approx(0.5, abs=1e-9)
+
+
+def _design(meta, **params):
+    d = {"meta": {k: {"v": v} for k, v in meta.items()}}
+    for key, v in params.items():
+        group, _, name = key.partition("__")
+        d.setdefault(group, {})[name] = {"v": v}
+    import yaml
+
+    return yaml.safe_dump({"design": d})
+
+
+def test_truth_types_and_choices(truth):
+    t = truth.truth_of_design(_design({"upper": "Shirt", "bottom": "Pants", "wb": None}, pants__length=0.8))
+    assert t["type"] == "jumpsuit"
+    t = truth.truth_of_design(_design({"upper": None, "bottom": "Pants", "wb": "FittedWB"}, pants__length=0.3))
+    assert t["type"] == "shorts" and t["choices"]["waistband"] and not t["choices"]["sleeves"]
+    t = truth.truth_of_design(_design({"upper": "FittedShirt", "bottom": "PencilSkirt", "wb": None},
+                                      sleeve__sleeveless=False))
+    assert t["type"] == "dress" and t["choices"]["sleeves"] and not t["choices"]["waistband"]
+    spec = {"pattern": {"panels": {"left_sleeve_f": {}, "wb_front": {}, "left_hood": {}}}}
+    assert truth.choices_of_spec(spec) == {"sleeves": True, "waistband": True, "collar": True, "cuffs": False}
+
+
+SHARED = next((p / "shared" for p in ROOT.parents if (p / "shared" / "garmentcode").is_dir()), None)
+
+
+@pytest.mark.skipif(SHARED is None, reason="needs shared/garmentcode beside the checkout")
+def test_one_sampled_design_is_placed_around_its_body(tmp_path):
+    """Sampled, sized to GarmentCode's female body, meshed and placed by its own specification:
+    the start sits around the body (little of it inside), no newton drape."""
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "src"), str(ROOT)]), OMP_WAIT_POLICY="PASSIVE")
+    r = subprocess.run([sys.executable, "-m", "benchmarks", "gcd", "build", "--out", str(tmp_path), "--seeds", "1",
+                        "--count", "1", "--no-drape"], cwd=ROOT, env=env, capture_output=True, text=True, check=False, timeout=300)
+    assert r.returncode == 0, r.stderr[-2000:]
+    rec = json.loads((tmp_path / "build.json").read_text())["gc_s1_000"]
+    assert rec["status"] == "placed", rec
+    assert rec["spec_inside_fraction"] < 0.02
+    spec = next((tmp_path / "_designs" / "s1" / "gc_s1_000").glob("*_specification.json"))
+    build = _load("build")
+    s = json.loads(spec.read_text())
+    mesh = build.mesh_spec(s, "gc_s1_000", 0.05)
+    x = build.spec_placement(s, mesh)
+    body_v, _ = build.read_body(tmp_path / "_bodies" / "gc_mean_female")
+    # every panel's start lies within the body's reach, around it (centre within 40 cm of the body's axis)
+    assert np.abs(x[:, [0, 2]]).max() < 0.8 and x[:, 1].max() < body_v[:, 1].max()
+
+
+def test_summary_counts_every_case_and_takes_medians_over_the_fitted():
+    score = _load("score")
+    rec = {"cases": {
+        "gc_s1_000": {"built": True, "fitted": True, "type_right": True, "choices_right": False, "panel_err": 0.2,
+                      "turning": 0.1, "chamfer_mm": 10.0, "chamfer_bar_mm": 8.0, "redrape_ratio": 2.0, "fit_s": 100.0,
+                      "floor_mm": 4.0},
+        "gc_s1_001": {"built": True, "fitted": False, "type_right": False, "choices_right": False,
+                      "chamfer_bar_mm": 20.0, "floor_mm": 6.0},
+        "gc_s1_002": {"built": False, "fitted": False, "type_right": False, "choices_right": False},
+    }}
+    s = score.summary(rec)
+    assert s["cases"] == 40 and s["built"] == 2 and s["fitted"] == 1 and s["type_right"] == 1
+    assert s["choices_right"] == 0 and s["panel_err_median"] == 0.2 and s["chamfer_bar_median"] == 14.0
+    assert s["floor_fitted_median"] is None
