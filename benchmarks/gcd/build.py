@@ -82,6 +82,7 @@ def _log(*a):
 
 # ---------------------------------------------------------------- bodies
 
+
 def make_body(entry: dict, root: Path) -> Path:
     """The body folder (body.obj [+ skeleton.json], body.yaml in GarmentCode's format, cm) of a
     manifest body, made once under ``root/_bodies``."""
@@ -127,9 +128,22 @@ def anny_body_yaml(folder: Path, shared: Path) -> str:
     ref = yaml.safe_load((shared / "garmentcode" / "assets" / "bodies" / "mean_all.yaml").read_text())["body"]
     cm = 100.0
     h = m.height * cm
-    kh, kb, kw, kp = h / ref["height"], m.bust * cm / ref["bust"], m.waist * cm / ref["waist"], m.hip * cm / ref["hips"]
+    kh, kb, kw, kp = (
+        h / ref["height"],
+        m.bust * cm / ref["bust"],
+        m.waist * cm / ref["waist"],
+        m.hip * cm / ref["hips"],
+    )
     out = dict(ref)
-    for k in ("head_l", "armscye_depth", "bust_line", "vert_bust_line", "hips_line", "crotch_hip_diff", "waist_over_bust_line"):
+    for k in (
+        "head_l",
+        "armscye_depth",
+        "bust_line",
+        "vert_bust_line",
+        "hips_line",
+        "crotch_hip_diff",
+        "waist_over_bust_line",
+    ):
         out[k] = ref[k] * kh
     for k in ("back_width", "bust_points", "underbust", "neck_w"):
         out[k] = ref[k] * kb
@@ -140,7 +154,11 @@ def anny_body_yaml(folder: Path, shared: Path) -> str:
     sk = body.skeleton
     arm = sk.position("left_elbow") - sk.position("left_shoulder")
     out.update(
-        height=h, bust=m.bust * cm, waist=m.waist * cm, hips=m.hip * cm, arm_length=m.arm_length * cm,
+        height=h,
+        bust=m.bust * cm,
+        waist=m.waist * cm,
+        hips=m.hip * cm,
+        arm_length=m.arm_length * cm,
         shoulder_w=m.shoulder_width * cm,
         # GarmentCode: waist level = height - head_l - waist_line
         waist_line=h - out["head_l"] - m.waist_height * cm,
@@ -159,6 +177,7 @@ def read_body(folder: Path):
 
 # ---------------------------------------------------------------- designs
 
+
 def sample_seed(seed: int, count: int, body_dir: Path, out: Path) -> Path:
     """Run GarmentCode's sampler for one seed into ``out/_designs/s{seed}`` (skipped when done)."""
     d = out / "_designs" / f"s{seed}"
@@ -168,13 +187,29 @@ def sample_seed(seed: int, count: int, body_dir: Path, out: Path) -> Path:
     shutil.rmtree(d, ignore_errors=True)
     d.mkdir(parents=True)
     t0 = time.time()
-    r = subprocess.run([sys.executable, str(_shared() / "garmentcode" / "sample_designs.py"), "--seed", str(seed),
-                        "--count", str(count), "--body", str(body_dir / "body.yaml"), "--out", str(d)],
-                       capture_output=True, text=True, check=False)
+    r = subprocess.run(
+        [
+            sys.executable,
+            str(_shared() / "garmentcode" / "sample_designs.py"),
+            "--seed",
+            str(seed),
+            "--count",
+            str(count),
+            "--body",
+            str(body_dir / "body.yaml"),
+            "--out",
+            str(d),
+        ],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     if r.returncode:
         raise RuntimeError(f"sample_designs.py failed: {(r.stderr.strip().splitlines() or [''])[-1]}")
     lines = [json.loads(ln) for ln in r.stdout.splitlines() if ln.startswith("{")]
-    done.write_text(json.dumps({"count": count, "seconds": round(time.time() - t0, 1), "log": lines}, indent=1))
+    done.write_text(
+        json.dumps({"count": count, "seconds": round(time.time() - t0, 1), "log": lines}, indent=1)
+    )
     return d
 
 
@@ -205,7 +240,10 @@ def spec_placement(spec: dict, mesh) -> np.ndarray:
         if miss(bnd * [-1.0, 1.0]) < miss(bnd):
             uv = uv * [-1.0, 1.0]
         local = np.c_[uv, np.zeros(len(uv))]
-        x[a:b] = local @ spec_rotation(pd.get("rotation", [0, 0, 0])).T + np.asarray(pd.get("translation", [0, 0, 0]), np.float64) / scale
+        x[a:b] = (
+            local @ spec_rotation(pd.get("rotation", [0, 0, 0])).T
+            + np.asarray(pd.get("translation", [0, 0, 0]), np.float64) / scale
+        )
     return x
 
 
@@ -263,7 +301,9 @@ def _newton_drape(mesh, x0, body_v, body_f, lower):
     for k, extra in enumerate(newton_drape.FALLBACKS):
         settings = {**newton_drape.SETTINGS, **SEW_FROM_SPEC, **extra}
         try:
-            x, info = newton_drape.drape_newton(mesh, x0, body_v, body_f, lower=lower, settings=settings, log=_log)
+            x, info = newton_drape.drape_newton(
+                mesh, x0, body_v, body_f, lower=lower, settings=settings, log=_log
+            )
             return x, info, settings
         except RuntimeError as exc:
             _log(f"  {exc}")
@@ -271,7 +311,9 @@ def _newton_drape(mesh, x0, body_v, body_f, lower):
                 raise
 
 
-def build_case(cid: str, seed: int, index: int, out: Path, *, drape: bool = True, count: int | None = None) -> dict:
+def build_case(
+    cid: str, seed: int, index: int, out: Path, *, drape: bool = True, count: int | None = None
+) -> dict:
     """Build one case folder ``out/cid``; returns its status record. ``drape=False``: everything
     but the newton drape (no target.obj), for a quick check of sampling, sizing and placement."""
     sys.path.insert(0, str(HERE.parent / "foreign"))
@@ -302,9 +344,11 @@ def build_case(cid: str, seed: int, index: int, out: Path, *, drape: bool = True
     rec["spec_inside_fraction"] = round(float(checks.inside_mask(x_spec, body_v, body_f).mean()), 4)
     rec["start_inside_fraction"] = round(float(checks.inside_mask(x0, body_v, body_f).mean()), 4)
     rec["vertices"] = int(mesh.n_x)
-    _log(f"{cid}: {truth['type']}, {truth['panels']} panels, {mesh.n_x} vertices, "
-         f"{rec['spec_inside_fraction']:.1%} of the spec's placement and "
-         f"{rec['start_inside_fraction']:.1%} of the bent start inside the body")
+    _log(
+        f"{cid}: {truth['type']}, {truth['panels']} panels, {mesh.n_x} vertices, "
+        f"{rec['spec_inside_fraction']:.1%} of the spec's placement and "
+        f"{rec['start_inside_fraction']:.1%} of the bent start inside the body"
+    )
     if not drape:
         rec.update(status="placed", seconds=round(time.time() - t0, 1))
         return rec
@@ -326,18 +370,30 @@ def build_case(cid: str, seed: int, index: int, out: Path, *, drape: bool = True
     drop = float(x0[:, 1].max() - x[:, 1].max())
     if drop > MAX_DROP:
         fails.append(f"slid down {drop * 100:.0f} cm from where the specification puts its top")
-    rec.update(inside_fraction=round(inside, 5), top_drop_m=round(drop, 3), stretch_p95=round(float(np.percentile(st, 95)), 4),
-               stretch_max=round(float(st.max()), 3), seam_gap_after_sewing_mm=round(info["gap_after_sewing_m"] * 1000, 1),
-               drape_s=round(info["sew_s"] + info["drape_s"], 1))
+    rec.update(
+        inside_fraction=round(inside, 5),
+        top_drop_m=round(drop, 3),
+        stretch_p95=round(float(np.percentile(st, 95)), 4),
+        stretch_max=round(float(st.max()), 3),
+        seam_gap_after_sewing_mm=round(info["gap_after_sewing_m"] * 1000, 1),
+        drape_s=round(info["sew_s"] + info["drape_s"], 1),
+    )
     import newton
     import warp
 
     d, tmp = out / cid, out / f".{cid}.tmp"
     shutil.rmtree(tmp, ignore_errors=True)
     tmp.mkdir(parents=True)
-    title = f"{cid} {truth['type']}  inside {inside:.2%}  {'ok' if not fails else 'FAIL: ' + '; '.join(fails)}"
+    title = (
+        f"{cid} {truth['type']}  inside {inside:.2%}  {'ok' if not fails else 'FAIL: ' + '; '.join(fails)}"
+    )
     checks.preview(tmp / "preview.png", x, faces, body_v, body_f, title=title)
-    write_obj(tmp / "target.obj", x, faces, f"GarmentCode design {cid} draped by newton {newton.__version__} SolverStyle3D")
+    write_obj(
+        tmp / "target.obj",
+        x,
+        faces,
+        f"GarmentCode design {cid} draped by newton {newton.__version__} SolverStyle3D",
+    )
     shutil.copyfile(body_dir / "body.obj", tmp / "body.obj")
     if (body_dir / "skeleton.json").is_file():
         shutil.copyfile(body_dir / "skeleton.json", tmp / "skeleton.json")
@@ -345,14 +401,35 @@ def build_case(cid: str, seed: int, index: int, out: Path, *, drape: bool = True
     (tmp / "design_params.yaml").write_text(design_text)
     (tmp / "truth.json").write_text(json.dumps(truth, indent=1))
     meta = {
-        "units": "m", "up": "y", "front": "z",
-        "source": {"design": cid, "seed": seed, "sampler": "shared/garmentcode/sample_designs.py (GarmentCode, MIT)",
-                   "body": entry["body"]},
-        "simulator": {"name": "newton SolverStyle3D (CPU)", "newton": newton.__version__, "warp": warp.__version__,
-                      "start": "the specification's panel translation and rotation, front and back panels bent around the body's axis (build.bend_around_body)",
-                      "settings": {k: (None if v == float("inf") else v) for k, v in settings.items()},
-                      "mesh_edge_length_m": m["edge_length_m"], "frames": info["frames"]},
-        "checks": {k: rec[k] for k in ("inside_fraction", "stretch_p95", "stretch_max", "seam_gap_after_sewing_mm", "top_drop_m")},
+        "units": "m",
+        "up": "y",
+        "front": "z",
+        "source": {
+            "design": cid,
+            "seed": seed,
+            "sampler": "shared/garmentcode/sample_designs.py (GarmentCode, MIT)",
+            "body": entry["body"],
+        },
+        "simulator": {
+            "name": "newton SolverStyle3D (CPU)",
+            "newton": newton.__version__,
+            "warp": warp.__version__,
+            "start": "the specification's panel translation and rotation, front and back panels bent "
+            "around the body's axis (build.bend_around_body)",
+            "settings": {k: (None if v == float("inf") else v) for k, v in settings.items()},
+            "mesh_edge_length_m": m["edge_length_m"],
+            "frames": info["frames"],
+        },
+        "checks": {
+            k: rec[k]
+            for k in (
+                "inside_fraction",
+                "stretch_p95",
+                "stretch_max",
+                "seam_gap_after_sewing_mm",
+                "top_drop_m",
+            )
+        },
     }
     (tmp / "meta.json").write_text(json.dumps(meta, indent=1))
     shutil.rmtree(d, ignore_errors=True)
@@ -383,12 +460,18 @@ def recheck(out: Path, cid: str) -> dict | None:
     x = np.asarray(trimesh.load(d / "target.obj", process=False, force="mesh").vertices)
     inside = float(checks.inside_mask(x, body_v, body_f).mean())
     drop = float(x0[:, 1].max() - x[:, 1].max())
-    fails = [f for f in (rec.get("reason") or "").split("; ") if f and "inside the body" not in f and "slid down" not in f]
+    fails = [
+        f
+        for f in (rec.get("reason") or "").split("; ")
+        if f and "inside the body" not in f and "slid down" not in f
+    ]
     if inside >= MAX_INSIDE:
         fails.append(f"{inside:.2%} of vertices inside the body")
     if drop > MAX_DROP:
         fails.append(f"slid down {drop * 100:.0f} cm from where the specification puts its top")
-    rec.update(inside_fraction=round(inside, 5), top_drop_m=round(drop, 3), status="failed" if fails else "built")
+    rec.update(
+        inside_fraction=round(inside, 5), top_drop_m=round(drop, 3), status="failed" if fails else "built"
+    )
     rec.pop("reason", None)
     if fails:
         rec["reason"] = "; ".join(fails)

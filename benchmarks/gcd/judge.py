@@ -32,6 +32,7 @@ TURNING_SAMPLES = 200  #: arc-length samples of an outline for the turning funct
 
 # ------------------------------------------------------------------ surfaces
 
+
 def sample_surface(v: np.ndarray, f: np.ndarray, n: int, seed: int = 0) -> np.ndarray:
     """(n, 3) float64 points uniform by area on the triangles f (F, 3) of v (V, 3) [m]."""
     v, f = np.asarray(v, np.float64), np.asarray(f, np.int64)
@@ -56,11 +57,16 @@ def chamfer_mm(va, fa, vb, fb, *, n: int = 10000, seed: int = 0) -> dict:
     pa, pb = sample_surface(va, fa, n, seed), sample_surface(vb, fb, n, seed + 1)
     dab = trimesh.proximity.closest_point(B, pa)[1]
     dba = trimesh.proximity.closest_point(A, pb)[1]
-    return {"chamfer_mm": 500.0 * (dab.mean() + dba.mean()), "a_to_b_mm": 1000.0 * dab.mean(),
-            "b_to_a_mm": 1000.0 * dba.mean(), "p95_mm": 1000.0 * float(np.percentile(np.r_[dab, dba], 95))}
+    return {
+        "chamfer_mm": 500.0 * (dab.mean() + dba.mean()),
+        "a_to_b_mm": 1000.0 * dab.mean(),
+        "b_to_a_mm": 1000.0 * dba.mean(),
+        "p95_mm": 1000.0 * float(np.percentile(np.r_[dab, dba], 95)),
+    }
 
 
 # ------------------------------------------------------------------ pattern outlines
+
 
 def _rel_to_abs(start, end, p):
     e = end - start
@@ -80,9 +86,9 @@ def edge_points(start, end, curvature, relative: bool) -> np.ndarray:
         cps = [_rel_to_abs(start, end, p) if relative else np.asarray(p, np.float64) for p in par]
         if typ == "quadratic":
             c = cps[0]
-            return (1 - t) ** 2 * start + 2 * (1 - t) * t * c + t ** 2 * end
+            return (1 - t) ** 2 * start + 2 * (1 - t) * t * c + t**2 * end
         c1, c2 = cps[0], cps[1]
-        return (1 - t) ** 3 * start + 3 * (1 - t) ** 2 * t * c1 + 3 * (1 - t) * t ** 2 * c2 + t ** 3 * end
+        return (1 - t) ** 3 * start + 3 * (1 - t) ** 2 * t * c1 + 3 * (1 - t) * t**2 * c2 + t**3 * end
     if typ == "circle":  # GarmentCode: svgpathtools.Arc(start, r, 0, large_arc, sweep=right, end)
         import svgpathtools
 
@@ -142,7 +148,10 @@ def panels_of_spec(spec: dict) -> dict:
         if a < 0:  # clockwise in the file: reverse the loop (each edge and their order)
             edges = [dict(e, pts=e["pts"][::-1].copy()) for e in reversed(edges)]
             a = -a
-        c3 = _rotation(pd.get("rotation", [0, 0, 0])) @ np.r_[c, 0.0] + np.asarray(pd.get("translation", [0, 0, 0]), np.float64) / scale
+        c3 = (
+            _rotation(pd.get("rotation", [0, 0, 0])) @ np.r_[c, 0.0]
+            + np.asarray(pd.get("translation", [0, 0, 0]), np.float64) / scale
+        )
         out[name] = Piece([name], edges, a, c3)
     return out
 
@@ -177,11 +186,15 @@ def _glue(A: Piece, ia: int, B: Piece, ib: int):
     a_prev, a_next = A.edges[(ia - 1) % na], A.edges[(ia + 1) % na]
     b_prev, b_next = Bedges[(ib - 1) % nb], Bedges[(ib + 1) % nb]
     # at q: A turns from its seam edge into a_next; B turns from b_prev into its seam edge (q -> p)
-    turn_q = _turn(_dir(*ea["pts"][-2:]), _dir(*a_next["pts"][:2])) + _turn(_dir(*b_prev["pts"][-2:]), _dir(*Bedges[ib]["pts"][:2]))
-    turn_p = _turn(_dir(*a_prev["pts"][-2:]), _dir(*ea["pts"][:2])) + _turn(_dir(*Bedges[ib]["pts"][-2:]), _dir(*b_next["pts"][:2]))
+    turn_q = _turn(_dir(*ea["pts"][-2:]), _dir(*a_next["pts"][:2])) + _turn(
+        _dir(*b_prev["pts"][-2:]), _dir(*Bedges[ib]["pts"][:2])
+    )
+    turn_p = _turn(_dir(*a_prev["pts"][-2:]), _dir(*ea["pts"][:2])) + _turn(
+        _dir(*Bedges[ib]["pts"][-2:]), _dir(*b_next["pts"][:2])
+    )
     if abs(turn_q - np.pi) > MERGE_ANGLE_TOL or abs(turn_p - np.pi) > MERGE_ANGLE_TOL:
         return None
-    edges = A.edges[ia + 1:] + A.edges[:ia] + Bedges[ib + 1:] + Bedges[:ib]
+    edges = A.edges[ia + 1 :] + A.edges[:ia] + Bedges[ib + 1 :] + Bedges[:ib]
     loop = np.concatenate([e["pts"][:-1] for e in edges])
     area, _ = _area_centroid(loop)
     if abs(area - (A.area + B.area)) > 0.02 * (A.area + B.area) or _self_intersects(loop):
@@ -245,6 +258,7 @@ def merge_invisible(spec: dict, pieces: dict | None = None) -> list:
 
 # ------------------------------------------------------------------ turning function
 
+
 def turning_distance(loop_a: np.ndarray, loop_b: np.ndarray, n: int = TURNING_SAMPLES) -> float:
     """Arkin's turning-function distance [rad] between two closed counter-clockwise outlines
     (N, 2): both resampled at ``n`` equal arc-length steps of unit perimeter; the L2 distance of
@@ -270,6 +284,7 @@ def _turning(loop: np.ndarray, n: int) -> np.ndarray:
 
 # ------------------------------------------------------------------ pattern against pattern
 
+
 def compare_patterns(spec_true: dict, spec_rec: dict) -> dict:
     """Per-panel errors of a recovered pattern against the true one, both merged first:
     {"panel_err": mean relative area error over true pieces, "turning": mean turning distance
@@ -279,7 +294,9 @@ def compare_patterns(spec_true: dict, spec_rec: dict) -> dict:
     from scipy.optimize import linear_sum_assignment
 
     T, Rp = merge_invisible(spec_true), merge_invisible(spec_rec)
-    cost = np.array([[np.linalg.norm(t.centroid3d - r.centroid3d) + abs(r.area - t.area) / t.area for r in Rp] for t in T])
+    cost = np.array(
+        [[np.linalg.norm(t.centroid3d - r.centroid3d) + abs(r.area - t.area) / t.area for r in Rp] for t in T]
+    )
     rows, cols = linear_sum_assignment(cost) if len(Rp) else (np.zeros(0, int), np.zeros(0, int))
     area_err = np.ones(len(T))
     turn = np.full(len(T), np.nan)
@@ -291,7 +308,9 @@ def compare_patterns(spec_true: dict, spec_rec: dict) -> dict:
     return {
         "panel_err": float(area_err.mean()),
         "turning": float(np.nanmean(turn)) if np.isfinite(turn).any() else None,
-        "panels_true": len(T), "panels_rec": len(Rp),
-        "panels_true_raw": len(spec_true["pattern"]["panels"]), "panels_rec_raw": len(spec_rec["pattern"]["panels"]),
+        "panels_true": len(T),
+        "panels_rec": len(Rp),
+        "panels_true_raw": len(spec_true["pattern"]["panels"]),
+        "panels_rec_raw": len(spec_rec["pattern"]["panels"]),
         "matched": matched,
     }

@@ -28,8 +28,8 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent))
 
-import build
-import score
+import build  # noqa: E402  (this folder on the path first)
+import score  # noqa: E402
 
 RESULTS = HERE / "results.json"
 DEFAULT_CASES = HERE / "cases"
@@ -58,14 +58,22 @@ def cmd_build(args) -> int:
             rec = build.recheck(out, cid)
             if rec is not None:
                 build.record(out, rec)
-                print(f"{cid}: {rec['status']}" + (f" ({rec['reason']})" if rec.get("reason") else ""), flush=True)
+                print(
+                    f"{cid}: {rec['status']}" + (f" ({rec['reason']})" if rec.get("reason") else ""),
+                    flush=True,
+                )
             continue
         t0 = time.time()
         try:
             rec = build.build_case(cid, seed, index, out, drape=not args.no_drape, count=args.count)
         except Exception as exc:  # noqa: BLE001 - recorded, counted, the rest go on
-            rec = {"case": cid, "seed": seed, "status": "failed", "reason": f"{type(exc).__name__}: {str(exc)[:200]}",
-                   "seconds": round(time.time() - t0, 1)}
+            rec = {
+                "case": cid,
+                "seed": seed,
+                "status": "failed",
+                "reason": f"{type(exc).__name__}: {str(exc)[:200]}",
+                "seconds": round(time.time() - t0, 1),
+            }
             print(f"{cid}: FAILED: {rec['reason']}", flush=True)
         build.record(out, rec)
     return 0
@@ -80,12 +88,20 @@ def cmd_status(args) -> int:
     rows = []
     for cid, seed, _ in build.case_ids():
         r = recs.get(cid, {})
-        rows.append({"case": cid, "body": build.seed_entry(seed)["body"]["name"], "type": r.get("type", ""),
-                     "status": r.get("status", "not attempted"), "vertices": r.get("vertices"),
-                     "inside %": None if r.get("inside_fraction") is None else 100 * r["inside_fraction"],
-                     "top drop cm": None if r.get("top_drop_m") is None else 100 * r["top_drop_m"],
-                     "seam gap mm": r.get("seam_gap_after_sewing_mm"), "s": r.get("seconds"),
-                     "reason": (r.get("reason") or "")[:90]})
+        rows.append(
+            {
+                "case": cid,
+                "body": build.seed_entry(seed)["body"]["name"],
+                "type": r.get("type", ""),
+                "status": r.get("status", "not attempted"),
+                "vertices": r.get("vertices"),
+                "inside %": None if r.get("inside_fraction") is None else 100 * r["inside_fraction"],
+                "top drop cm": None if r.get("top_drop_m") is None else 100 * r["top_drop_m"],
+                "seam gap mm": r.get("seam_gap_after_sewing_mm"),
+                "s": r.get("seconds"),
+                "reason": (r.get("reason") or "")[:90],
+            }
+        )
     print_table(rows, title=f"GarmentCode design benchmark: build status ({p})", digits=2)
     n = {k: sum(1 for r in rows if r["status"] == k) for k in ("built", "failed", "not attempted")}
     print(json.dumps(n))
@@ -103,14 +119,20 @@ def main(argv=None) -> int:
     b.add_argument("--count", type=int, default=None, help="designs per seed (default: the manifest's)")
     b.add_argument("--only", nargs="*", help="case ids to build (gc_s1_000 ...)")
     b.add_argument("--no-drape", action="store_true", help="sample, size, mesh and place only (no newton)")
-    b.add_argument("--recheck", action="store_true", help="re-run the acceptance checks on the written cases (no drape)")
+    b.add_argument(
+        "--recheck", action="store_true", help="re-run the acceptance checks on the written cases (no drape)"
+    )
     s = sub.add_parser("score", help="judge fit results against the cases' truth")
     s.add_argument("--results", required=True, help="folder of fit results, one folder per case id")
     s.add_argument("--cases", default=str(DEFAULT_CASES))
     s.add_argument("--record", action="store_true", help="write the scores to results.json")
-    s.add_argument("--no-redrape", action="store_true", help="skip the newton drapes of the recovered and true patterns")
+    s.add_argument(
+        "--no-redrape", action="store_true", help="skip the newton drapes of the recovered and true patterns"
+    )
     s.add_argument("--no-floor", action="store_true", help="skip unsew's drape of the true pattern")
-    s.add_argument("--only-fitted", action="store_true", help="score only the built cases that have a result folder")
+    s.add_argument(
+        "--only-fitted", action="store_true", help="score only the built cases that have a result folder"
+    )
     sub.add_parser("judge-check", help="the judge on synthetic inputs")
     st = sub.add_parser("status", help="table of every case's build status")
     st.add_argument("--out", default=str(DEFAULT_CASES))

@@ -32,9 +32,9 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 
-import build
-import judge
-from truth import CHOICES, built_choices, choices_of_spec
+import build  # noqa: E402  (this folder on the path first)
+import judge  # noqa: E402
+from truth import CHOICES, built_choices, choices_of_spec  # noqa: E402
 
 #: The floor of the redrape figure: the true pattern meshed this much finer [share of the edge length].
 FINER = 0.9
@@ -66,7 +66,18 @@ def unsew_drape(case: Path, timeout: int = 1800):
     """(verts, faces) of ``unsew drape pattern_gt.json --body CASE``, or an error string."""
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "garment.obj"
-        cmd = [sys.executable, "-m", "unsew", "drape", str(case / "pattern_gt.json"), "--body", str(case), "--out", str(out), "--no-progress"]
+        cmd = [
+            sys.executable,
+            "-m",
+            "unsew",
+            "drape",
+            str(case / "pattern_gt.json"),
+            "--body",
+            str(case),
+            "--out",
+            str(out),
+            "--no-progress",
+        ]
         try:
             r = subprocess.run(cmd, capture_output=True, text=True, check=False, timeout=timeout)
         except subprocess.TimeoutExpired:
@@ -89,7 +100,9 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
     known = json.loads(cache.read_text()) if cache.is_file() else {}
     if floor and "chamfer_bar_mm" not in known:
         d = unsew_drape(case)
-        known["chamfer_bar_mm"] = round(judge.chamfer_mm(*d, tv, tf)["chamfer_mm"], 2) if isinstance(d, tuple) else None
+        known["chamfer_bar_mm"] = (
+            round(judge.chamfer_mm(*d, tv, tf)["chamfer_mm"], 2) if isinstance(d, tuple) else None
+        )
         if not isinstance(d, tuple):
             known["chamfer_bar_error"] = d
         cache.write_text(json.dumps(known, indent=1))
@@ -110,15 +123,29 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
     rec["type_rec"] = base.split("_")[0] if base else None
     cfg = (result / "config.yaml").read_text() if (result / "config.yaml").is_file() else ""
     meta = json.loads((case / "meta.json").read_text())
-    rec["type_given"] = bool(meta.get("garment")) or any(ln.strip().startswith("base:") and ln.split(":", 1)[1].strip() not in ("", "null", "None")
-                                                          for ln in cfg.splitlines())
+    rec["type_given"] = bool(meta.get("garment")) or any(
+        ln.strip().startswith("base:") and ln.split(":", 1)[1].strip() not in ("", "null", "None")
+        for ln in cfg.splitlines()
+    )
     rec["type_right"] = rec["type_rec"] == truth["type"]
     ch = choices_of_spec(spec_rec)
     rec["choices_rec"] = ch
     rec["choices_ok"] = {k: ch[k] == truth["choices"][k] for k in CHOICES}
     rec["choices_right"] = all(rec["choices_ok"].values())
     cmp = judge.compare_patterns(spec_gt, spec_rec)
-    rec.update({k: cmp[k] for k in ("panel_err", "turning", "panels_true", "panels_rec", "panels_true_raw", "panels_rec_raw")})
+    rec.update(
+        {
+            k: cmp[k]
+            for k in (
+                "panel_err",
+                "turning",
+                "panels_true",
+                "panels_rec",
+                "panels_true_raw",
+                "panels_rec_raw",
+            )
+        }
+    )
     gv, gf = read_obj(result / "garment.obj")
     rec["chamfer_mm"] = round(judge.chamfer_mm(gv, gf, tv, tf)["chamfer_mm"], 2)
     if redrape:
@@ -144,27 +171,44 @@ def cmd_score(args, record_file: Path) -> int:
     for cid, _, _ in build.case_ids():
         b = built.get(cid)
         if b is None or b.get("status") != "built":
-            recs[cid] = {"case": cid, "type_true": (b or {}).get("type"), "built": False, "build": (b or {}).get("status", "not built"),
-                         "reason": (b or {}).get("reason"), "fitted": False, "type_right": False, "choices_right": False}
+            recs[cid] = {
+                "case": cid,
+                "type_true": (b or {}).get("type"),
+                "built": False,
+                "build": (b or {}).get("status", "not built"),
+                "reason": (b or {}).get("reason"),
+                "fitted": False,
+                "type_right": False,
+                "choices_right": False,
+            }
             continue
         res = results / cid
         if not res.is_dir() and args.only_fitted:
             continue
         t0 = time.time()
-        rec = score_case(cases / cid, res if res.is_dir() else None, floor=not args.no_floor, redrape=not args.no_redrape)
+        rec = score_case(
+            cases / cid, res if res.is_dir() else None, floor=not args.no_floor, redrape=not args.no_redrape
+        )
         rec["built"] = True
         rec["score_s"] = round(time.time() - t0, 1)
         recs[cid] = rec
         print(json.dumps(rec), flush=True)
     print_record({"cases": recs})
     if args.record:
-        record_file.write_text(json.dumps({"about": "python -m benchmarks gcd score --results DIR --record", "cases": recs}, indent=1) + "\n")
+        record_file.write_text(
+            json.dumps(
+                {"about": "python -m benchmarks gcd score --results DIR --record", "cases": recs}, indent=1
+            )
+            + "\n"
+        )
     return 0
 
 
 def load_record(path: Path) -> dict:
     if not path.is_file():
-        raise SystemExit(f"no recorded results at {path}; run `python -m benchmarks gcd score --results DIR --record`")
+        raise SystemExit(
+            f"no recorded results at {path}; run `python -m benchmarks gcd score --results DIR --record`"
+        )
     return json.loads(path.read_text())
 
 
@@ -203,22 +247,25 @@ def print_record(rec: dict) -> None:
     rows = []
     for cid, _, _ in build.case_ids():
         r = rec["cases"].get(cid, {"case": cid})
-        rows.append({
-            "case": cid,
-            "type": r.get("type_true") or "",
-            "built": "yes" if r.get("built") else (r.get("build") or "no"),
-            "fitted": "yes" if r.get("fitted") else "no",
-            "type ok": ("yes" if r.get("type_right") else "no") + (" (given)" if r.get("type_given") else ""),
-            "choices ok": "yes" if r.get("choices_right") else "no",
-            "panel err": r.get("panel_err"),
-            "turning": r.get("turning"),
-            "panels t/r": f"{r['panels_true']}/{r['panels_rec']}" if "panels_rec" in r else "",
-            "chamfer mm": r.get("chamfer_mm"),
-            "bar mm": r.get("chamfer_bar_mm"),
-            "redrape mm": r.get("redrape_mm"),
-            "floor mm": r.get("floor_mm"),
-            "fit s": r.get("fit_s"),
-        })
+        rows.append(
+            {
+                "case": cid,
+                "type": r.get("type_true") or "",
+                "built": "yes" if r.get("built") else (r.get("build") or "no"),
+                "fitted": "yes" if r.get("fitted") else "no",
+                "type ok": ("yes" if r.get("type_right") else "no")
+                + (" (given)" if r.get("type_given") else ""),
+                "choices ok": "yes" if r.get("choices_right") else "no",
+                "panel err": r.get("panel_err"),
+                "turning": r.get("turning"),
+                "panels t/r": f"{r['panels_true']}/{r['panels_rec']}" if "panels_rec" in r else "",
+                "chamfer mm": r.get("chamfer_mm"),
+                "bar mm": r.get("chamfer_bar_mm"),
+                "redrape mm": r.get("redrape_mm"),
+                "floor mm": r.get("floor_mm"),
+                "fit s": r.get("fit_s"),
+            }
+        )
     print_table(rows, title="GarmentCode design benchmark (recorded results)", digits=3)
     print(json.dumps(summary(rec)))
 
@@ -228,8 +275,16 @@ def judge_check() -> int:
     sq = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
     v = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], float)
     f = np.array([[0, 1, 2], [0, 2, 3]])
-    print("chamfer self mm", round(judge.chamfer_mm(v, f, v, f)["chamfer_mm"], 3),
-          "shifted 1 cm", round(judge.chamfer_mm(v, f, v + [0, 0, 0.01], f)["chamfer_mm"], 3))
-    print("turning square/square", round(judge.turning_distance(sq, sq), 4),
-          "square/rectangle", round(judge.turning_distance(sq, sq * [2, 1]), 4))
+    print(
+        "chamfer self mm",
+        round(judge.chamfer_mm(v, f, v, f)["chamfer_mm"], 3),
+        "shifted 1 cm",
+        round(judge.chamfer_mm(v, f, v + [0, 0, 0.01], f)["chamfer_mm"], 3),
+    )
+    print(
+        "turning square/square",
+        round(judge.turning_distance(sq, sq), 4),
+        "square/rectangle",
+        round(judge.turning_distance(sq, sq * [2, 1]), 4),
+    )
     return 0

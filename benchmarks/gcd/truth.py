@@ -24,7 +24,15 @@ import yaml
 #: pants at most this share of the leg long are shorts (the knee sits near half the leg).
 SHORTS_MAX_LENGTH = 0.5
 CHOICES = ("sleeves", "waistband", "collar", "cuffs")
-SKIRTS = ("SkirtCircle", "AsymmSkirtCircle", "GodetSkirt", "Skirt2", "SkirtManyPanels", "PencilSkirt", "SkirtLevels")
+SKIRTS = (
+    "SkirtCircle",
+    "AsymmSkirtCircle",
+    "GodetSkirt",
+    "Skirt2",
+    "SkirtManyPanels",
+    "PencilSkirt",
+    "SkirtLevels",
+)
 
 
 def _values(tree: dict, prefix: str = "") -> dict:
@@ -56,17 +64,31 @@ def truth_of_design(design_yaml_text: str) -> dict:
     else:  # pragma: no cover - GarmentCode's sampler never makes an empty design
         typ = "none"
     asym = bool(upper) and bool(d.get("left.enable_asym"))
-    sleeves = bool(upper) and (not d.get("sleeve.sleeveless") or (asym and not d.get("left.sleeve.sleeveless")))
+    sleeves = bool(upper) and (
+        not d.get("sleeve.sleeveless") or (asym and not d.get("left.sleeve.sleeveless"))
+    )
     cuff_sleeve = sleeves and d.get("sleeve.cuff.type") is not None
     cuff_pants = bottom == "Pants" and d.get("pants.cuff.type") is not None
     collar = bool(upper) and d.get("collar.component.style") is not None
-    extra = {"Hood2Panels": "hood", "SimpleLapel": "lapel", "Turtle": "turtle"}.get(d.get("collar.component.style")) if collar else None
+    extra = (
+        {"Hood2Panels": "hood", "SimpleLapel": "lapel", "Turtle": "turtle"}.get(
+            d.get("collar.component.style")
+        )
+        if collar
+        else None
+    )
     return {
         "type": typ,
-        "choices": {"sleeves": bool(sleeves), "waistband": wb is not None, "collar": bool(collar),
-                    "cuffs": bool(cuff_sleeve or cuff_pants)},
+        "choices": {
+            "sleeves": bool(sleeves),
+            "waistband": wb is not None,
+            "collar": bool(collar),
+            "cuffs": bool(cuff_sleeve or cuff_pants),
+        },
         "collar_piece": extra,
-        "upper": upper, "bottom": bottom, "wb": wb,
+        "upper": upper,
+        "bottom": bottom,
+        "wb": wb,
     }
 
 
@@ -81,7 +103,9 @@ def choices_of_spec(spec: dict) -> dict:
 
     return {
         "sleeves": has("sleeve"),
-        "waistband": any(n.startswith("wb") or "waistband" in n or n.endswith("_band") or "waist_band" in n for n in names),
+        "waistband": any(
+            n.startswith("wb") or "waistband" in n or n.endswith("_band") or "waist_band" in n for n in names
+        ),
         "collar": has("collar", "hood", "lapel", "turtle"),
         "cuffs": has("cuff"),
     }

@@ -60,8 +60,10 @@ def test_turning_distance_ignores_start_and_rotation_not_shape(judge):
 
 
 def _spec(panels, stitches):
-    return {"pattern": {"panels": panels, "stitches": stitches},
-            "properties": {"units_in_meter": 100, "curvature_coords": "relative"}}
+    return {
+        "pattern": {"panels": panels, "stitches": stitches},
+        "properties": {"units_in_meter": 100, "curvature_coords": "relative"},
+    }
 
 
 def _panel(verts, t=(0, 0, 0), curved=None):
@@ -76,7 +78,9 @@ def test_mirror_halves_joined_by_a_straight_seam_merge_and_a_cornered_seam_does_
     # two halves of a front (30 x 60 cm) sewn along the centre line: one piece of twice the area
     left = _panel([[0, 0], [30, 0], [30, 60], [0, 60]], t=(0, 100, 20))
     right = _panel([[0, 0], [30, 0], [30, 60], [0, 60]], t=(-30, 100, 20))
-    spec = _spec({"left": left, "right": right}, [[{"panel": "left", "edge": 3}, {"panel": "right", "edge": 1}]])
+    spec = _spec(
+        {"left": left, "right": right}, [[{"panel": "left", "edge": 3}, {"panel": "right", "edge": 1}]]
+    )
     merged = judge.merge_invisible(spec)
     assert len(merged) == 1
     assert merged[0].area == pytest.approx(2 * 0.3 * 0.6, rel=1e-6)
@@ -114,10 +118,13 @@ def _design(meta, **params):
 def test_truth_types_and_choices(truth):
     t = truth.truth_of_design(_design({"upper": "Shirt", "bottom": "Pants", "wb": None}, pants__length=0.8))
     assert t["type"] == "jumpsuit"
-    t = truth.truth_of_design(_design({"upper": None, "bottom": "Pants", "wb": "FittedWB"}, pants__length=0.3))
+    t = truth.truth_of_design(
+        _design({"upper": None, "bottom": "Pants", "wb": "FittedWB"}, pants__length=0.3)
+    )
     assert t["type"] == "shorts" and t["choices"]["waistband"] and not t["choices"]["sleeves"]
-    t = truth.truth_of_design(_design({"upper": "FittedShirt", "bottom": "PencilSkirt", "wb": None},
-                                      sleeve__sleeveless=False))
+    t = truth.truth_of_design(
+        _design({"upper": "FittedShirt", "bottom": "PencilSkirt", "wb": None}, sleeve__sleeveless=False)
+    )
     assert t["type"] == "dress" and t["choices"]["sleeves"] and not t["choices"]["waistband"]
     spec = {"pattern": {"panels": {"left_sleeve_f": {}, "wb_front": {}, "left_hood": {}}}}
     assert truth.choices_of_spec(spec) == {"sleeves": True, "waistband": True, "collar": True, "cuffs": False}
@@ -130,9 +137,31 @@ SHARED = next((p / "shared" for p in ROOT.parents if (p / "shared" / "garmentcod
 def test_one_sampled_design_is_placed_around_its_body(tmp_path):
     """Sampled, sized to GarmentCode's female body, meshed and placed by its own specification:
     the start sits around the body (little of it inside), no newton drape."""
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "src"), str(ROOT)]), OMP_WAIT_POLICY="PASSIVE")
-    r = subprocess.run([sys.executable, "-m", "benchmarks", "gcd", "build", "--out", str(tmp_path), "--seeds", "1",
-                        "--count", "1", "--no-drape"], cwd=ROOT, env=env, capture_output=True, text=True, check=False, timeout=300)
+    env = dict(
+        os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "src"), str(ROOT)]), OMP_WAIT_POLICY="PASSIVE"
+    )
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "benchmarks",
+            "gcd",
+            "build",
+            "--out",
+            str(tmp_path),
+            "--seeds",
+            "1",
+            "--count",
+            "1",
+            "--no-drape",
+        ],
+        cwd=ROOT,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=False,
+        timeout=300,
+    )
     assert r.returncode == 0, r.stderr[-2000:]
     rec = json.loads((tmp_path / "build.json").read_text())["gc_s1_000"]
     assert rec["status"] == "placed", rec
@@ -149,14 +178,32 @@ def test_one_sampled_design_is_placed_around_its_body(tmp_path):
 
 def test_summary_counts_every_case_and_takes_medians_over_the_fitted():
     score = _load("score")
-    rec = {"cases": {
-        "gc_s1_000": {"built": True, "fitted": True, "type_right": True, "choices_right": False, "panel_err": 0.2,
-                      "turning": 0.1, "chamfer_mm": 10.0, "chamfer_bar_mm": 8.0, "redrape_ratio": 2.0, "fit_s": 100.0,
-                      "floor_mm": 4.0},
-        "gc_s1_001": {"built": True, "fitted": False, "type_right": False, "choices_right": False,
-                      "chamfer_bar_mm": 20.0, "floor_mm": 6.0},
-        "gc_s1_002": {"built": False, "fitted": False, "type_right": False, "choices_right": False},
-    }}
+    rec = {
+        "cases": {
+            "gc_s1_000": {
+                "built": True,
+                "fitted": True,
+                "type_right": True,
+                "choices_right": False,
+                "panel_err": 0.2,
+                "turning": 0.1,
+                "chamfer_mm": 10.0,
+                "chamfer_bar_mm": 8.0,
+                "redrape_ratio": 2.0,
+                "fit_s": 100.0,
+                "floor_mm": 4.0,
+            },
+            "gc_s1_001": {
+                "built": True,
+                "fitted": False,
+                "type_right": False,
+                "choices_right": False,
+                "chamfer_bar_mm": 20.0,
+                "floor_mm": 6.0,
+            },
+            "gc_s1_002": {"built": False, "fitted": False, "type_right": False, "choices_right": False},
+        }
+    }
     s = score.summary(rec)
     assert s["cases"] == 40 and s["built"] == 2 and s["fitted"] == 1 and s["type_right"] == 1
     assert s["choices_right"] == 0 and s["panel_err_median"] == 0.2 and s["chamfer_bar_median"] == 14.0
