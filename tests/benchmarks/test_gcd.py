@@ -208,3 +208,15 @@ def test_summary_counts_every_case_and_takes_medians_over_the_fitted():
     assert s["cases"] == 40 and s["built"] == 2 and s["fitted"] == 1 and s["type_right"] == 1
     assert s["choices_right"] == 0 and s["panel_err_median"] == 0.2 and s["chamfer_bar_median"] == 14.0
     assert s["floor_fitted_median"] is None
+
+
+def test_the_neckline_truth_is_the_designs_front_and_back(tmp_path):
+    """``gcd types`` judges a read neckline against the design: GarmentCode's VNeckHalf is a V,
+    every other shape round; a design without a bodice has none."""
+    run = _load("run")
+    (tmp_path / "design_params.yaml").write_text(
+        "design:\n  collar:\n    f_collar: {v: VNeckHalf}\n    b_collar: {v: CircleNeckHalf}\n"
+    )
+    assert run._neckline_truth(tmp_path) == ("v", "round")
+    (tmp_path / "design_params.yaml").write_text("design:\n  waistband: {waist: {v: 1.0}}\n")
+    assert run._neckline_truth(tmp_path) is None
