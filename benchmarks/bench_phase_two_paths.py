@@ -8,7 +8,7 @@ kernels (``OPENBLAS_CORETYPE``), two torch threads. Prints, per path, the graded
 iterate's mean panel area error, hip-corner distance and corner L2, the loss of each iteration
 [1e-6 m^2], and whether the proof's three bars hold (area x0.7, hip x0.9, best loss x0.95).
 
-Run: python -m benchmarks phase_two_paths [--paths base threads2 ...]
+Run: python -m benchmarks phase_two_paths [--paths base threads2 ...] [--small]
 """
 
 from __future__ import annotations
@@ -54,7 +54,7 @@ from unsew.fit.synthetic import Alteration, make_truth_case
 from unsew.fit.target import Target
 from unsew.metrics.panels import pattern_metrics
 from unsew.sim.material import get_material
-cfg = load_config(**SMALL16, area="free")
+cfg = load_config(**{**SMALL16, **json.loads(sys.argv[4])}, area="free")
 case = load_case(make_truth_case(Path(sys.argv[1]) / "dress", garment="dress",
                  alteration=Alteration({"waist": (-0.03, 0.0)}, "cotton"), settings=cfg.drape))
 sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
@@ -73,10 +73,18 @@ print(json.dumps({"area_graded": g["area_error_rel_mean"], "area_best": b["area_
 """
 
 
-def main() -> None:
+#: ``--small``: the proof's case on a coarse mesh with two short iterations (the table's shape, not
+#: its figures: a test runs it)
+SMALL = {"edge_length": 0.06, "iterations": 2, "steps": 4, "sew_steps": 30, "settle_steps": 5}
+
+
+def main(argv: list[str] | None = None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--paths", nargs="+", choices=sorted(PATHS), default=list(PATHS))
-    args = ap.parse_args()
+    ap.add_argument(
+        "--small", action="store_true", help="a coarse mesh and two short iterations (a quick check)"
+    )
+    args = ap.parse_args(argv)
     root = Path(__file__).resolve().parent.parent
     rows = []
     for name in args.paths:
@@ -84,7 +92,15 @@ def main() -> None:
         env = {**os.environ, "OMP_WAIT_POLICY": "PASSIVE", "OPENBLAS_NUM_THREADS": "1", **env_extra}
         with tempfile.TemporaryDirectory(prefix="unsew-paths-") as tmp:
             out = subprocess.run(
-                [sys.executable, "-c", _CHILD, tmp, str(threads), str(root)],
+                [
+                    sys.executable,
+                    "-c",
+                    _CHILD,
+                    tmp,
+                    str(threads),
+                    str(root),
+                    json.dumps(SMALL if args.small else {}),
+                ],
                 env=env,
                 capture_output=True,
                 text=True,
