@@ -1,6 +1,7 @@
 """The GarmentCode design benchmark in seconds: its judge on synthetic inputs, the truth read from
 design parameters, and one sampled design sized, meshed and placed by its own specification."""
 
+import importlib
 import importlib.util
 import json
 import os
@@ -133,10 +134,25 @@ def test_truth_types_and_choices(truth):
 SHARED = next((p / "shared" for p in ROOT.parents if (p / "shared" / "garmentcode").is_dir()), None)
 
 
+def _sampler_missing() -> list[str]:
+    """The sampler's packages (the ``bench`` extra) this environment cannot import."""
+    missing = []
+    for name in ("svgwrite", "svgpathtools", "cairosvg", "psutil"):
+        try:
+            importlib.import_module(name)
+        except Exception:  # absent, or present without its system library (cairo)
+            missing.append(name)
+    return missing
+
+
 @pytest.mark.skipif(SHARED is None, reason="needs shared/garmentcode beside the checkout")
 def test_one_sampled_design_is_placed_around_its_body(tmp_path):
     """Sampled, sized to GarmentCode's female body, meshed and placed by its own specification:
     the start sits around the body (little of it inside), no newton drape."""
+    if _sampler_missing():
+        pytest.skip(
+            f"GarmentCode's sampler needs {', '.join(_sampler_missing())} (pip install 'unsew[bench]')"
+        )
     env = dict(
         os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "src"), str(ROOT)]), OMP_WAIT_POLICY="PASSIVE"
     )
