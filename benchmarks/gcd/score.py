@@ -124,7 +124,8 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
     cfg = (result / "config.yaml").read_text() if (result / "config.yaml").is_file() else ""
     meta = json.loads((case / "meta.json").read_text())
     rec["type_given"] = bool(meta.get("garment")) or any(
-        ln.strip().startswith("base:") and ln.split(":", 1)[1].strip() not in ("", "null", "None")
+        ln.strip().startswith("base:")
+        and ln.split(":", 1)[1].strip().strip("'\"") not in ("", "null", "None")
         for ln in cfg.splitlines()
     )
     rec["type_right"] = rec["type_rec"] == truth["type"]
