@@ -123,11 +123,7 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
     rec["type_rec"] = base.split("_")[0] if base else None
     cfg = (result / "config.yaml").read_text() if (result / "config.yaml").is_file() else ""
     meta = json.loads((case / "meta.json").read_text())
-    rec["type_given"] = bool(meta.get("garment")) or any(
-        ln.strip().startswith("base:")
-        and ln.split(":", 1)[1].strip().strip("'\"") not in ("", "null", "None")
-        for ln in cfg.splitlines()
-    )
+    rec["type_given"] = type_given(meta, cfg)
     rec["type_right"] = rec["type_rec"] == truth["type"]
     ch = choices_of_spec(spec_rec)
     rec["choices_rec"] = ch
@@ -162,6 +158,16 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
     rec["fit_s"] = round(float(total), 1) if total is not None else None
     rec["fitted"] = True
     return rec
+
+
+def type_given(meta: dict, config_yaml: str) -> bool:
+    """Whether a fit was handed its garment type: the case's meta.json names one, or the result's
+    config.yaml names a base (its ``base:`` line not empty)."""
+    import yaml
+
+    cfg = yaml.safe_load(config_yaml) or {} if config_yaml.strip() else {}
+    cfg = cfg.get("config", cfg) if isinstance(cfg, dict) else {}
+    return bool(meta.get("garment")) or bool(cfg.get("base"))
 
 
 def cmd_score(args, record_file: Path) -> int:

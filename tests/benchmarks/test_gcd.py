@@ -236,3 +236,11 @@ def test_the_neckline_truth_is_the_designs_front_and_back(tmp_path):
     assert run._neckline_truth(tmp_path) == ("v", "round")
     (tmp_path / "design_params.yaml").write_text("design:\n  waistband: {waist: {v: 1.0}}\n")
     assert run._neckline_truth(tmp_path) is None
+
+
+def test_a_type_is_given_only_where_meta_or_the_config_names_one():
+    score = _load("score")
+    assert not score.type_given({}, "unsew_version: 0.1.0\nconfig:\n  base: ''\n  seed: 0\n")
+    assert score.type_given({}, "unsew_version: 0.1.0\nconfig:\n  base: shorts\n")
+    assert score.type_given({"garment": "skirt"}, "")
+    assert not score.type_given({}, "")
