@@ -95,6 +95,22 @@ def _limb_chains(skeleton) -> dict[str, list[np.ndarray]]:
     return out
 
 
+def _mid_y(skeleton, joint: str) -> float:
+    """Mean height [m] of the left and right ``joint`` (``"hip"``, ``"shoulder"``, ``"knee"``)."""
+    return 0.5 * float(skeleton.position(f"left_{joint}")[1] + skeleton.position(f"right_{joint}")[1])
+
+
+def _chest_y(skeleton) -> float:
+    """Height [m] of the chest line: :data:`CHEST_LEVEL` of the way from the hips up to the shoulders."""
+    hip_y = _mid_y(skeleton, "hip")
+    return hip_y + CHEST_LEVEL * (_mid_y(skeleton, "shoulder") - hip_y)
+
+
+def _radius(v: np.ndarray, c) -> float:
+    """Mean distance [m] of contour ``c``'s vertices (of ``v`` (V, 3) [m]) to its centre."""
+    return float(np.linalg.norm(v[np.asarray(c.indices)] - c.centre, axis=1).mean())
+
+
 def read_garment_type(verts, faces, skeleton, *, contours=None) -> GarmentReading:
     """Read the garment type of a draped garment.
 
@@ -111,7 +127,7 @@ def read_garment_type(verts, faces, skeleton, *, contours=None) -> GarmentReadin
         )
     chains = _limb_chains(skeleton)
     centres = np.stack([np.asarray(c.centre, dtype=np.float64) for c in loops])  # (C, 3) [m]
-    radii = np.array([np.linalg.norm(v[np.asarray(c.indices)] - c.centre, axis=1).mean() for c in loops])
+    radii = np.array([_radius(v, c) for c in loops])
     dist = {k: _chain_distance(centres, j) for k, j in chains.items()}  # limb -> (C,) [m]
     near = np.maximum(radii, LIMB_NEAR)
     on = {}
@@ -124,12 +140,10 @@ def read_garment_type(verts, faces, skeleton, *, contours=None) -> GarmentReadin
     torso = ~(leg | arm)
     legs = (int(on["left_leg"].sum()), int(on["right_leg"].sum()))
     arms = (int((on["left_arm"] & arm).sum()), int((on["right_arm"] & arm).sum()))
-    hip_y = 0.5 * (skeleton.position("left_hip")[1] + skeleton.position("right_hip")[1])
-    shoulder_y = 0.5 * (skeleton.position("left_shoulder")[1] + skeleton.position("right_shoulder")[1])
-    knee_y = 0.5 * (skeleton.position("left_knee")[1] + skeleton.position("right_knee")[1])
+    hip_y, knee_y = _mid_y(skeleton, "hip"), _mid_y(skeleton, "knee")
     top_y = float(v[:, 1].max())
     hem_y = float(centres[torso, 1].min()) if torso.any() else float("nan")
-    chest = hip_y + CHEST_LEVEL * (shoulder_y - hip_y)
+    chest = _chest_y(skeleton)
     upper = bool(any(arms)) or top_y > chest
     split = min(legs) >= 1
     said = (
@@ -170,15 +184,13 @@ def _neck_opening(v: np.ndarray, loops, skeleton):
     """The neck opening: the highest loop whose centre lies above the chest line and near the
     torso's centre line (not round an arm), or None."""
     chains = _limb_chains(skeleton)
-    hip_y = 0.5 * (skeleton.position("left_hip")[1] + skeleton.position("right_hip")[1])
-    shoulder_y = 0.5 * (skeleton.position("left_shoulder")[1] + skeleton.position("right_shoulder")[1])
-    chest = hip_y + CHEST_LEVEL * (shoulder_y - hip_y)
+    chest = _chest_y(skeleton)
     mid_x = 0.5 * (skeleton.position("left_shoulder")[0] + skeleton.position("right_shoulder")[0])
     half_shoulders = 0.5 * abs(skeleton.position("left_shoulder")[0] - skeleton.position("right_shoulder")[0])
     best = None
     for c in loops:
         cen = np.asarray(c.centre, dtype=np.float64)
-        r = float(np.linalg.norm(v[np.asarray(c.indices)] - cen, axis=1).mean())
+        r = _radius(v, c)
         on_arm = any(
             float(_chain_distance(cen[None], chains[f"{s}_arm"])[0]) < max(r, LIMB_NEAR)
             for s in ("left", "right")
