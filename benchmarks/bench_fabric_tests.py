@@ -1,0 +1,612 @@
+"""Does unsew's cloth simulator pass the fabric laboratory's tests (Cusick drape, Peirce cantilever)?
+
+Two standard fabric tests, simulated with unsew's own static solver (``unsew.sim.drape_static``,
+its membrane and hinge-bending energies, areal density and gravity), and compared with their
+analytic answer (cantilever) and with published figures for real fabrics (docs/fabric_tests.md):
+
+- Cantilever (Peirce 1930; ASTM D1388, BS 3356): a 2.5 cm wide strip clamped flat at an edge
+  overhangs by l; the chord from the edge to its tip makes an angle phi below the horizontal. The
+  instrument reads the overhang l at which phi = 41.5 deg and reports the bending length c = l/2
+  and the flexural rigidity G = w g c^3 (w the areal density [kg/m^2]). We find that overhang for
+  the simulated strip (secant on l), compare it with the exact heavy elastica's (solved here by
+  shooting), and report the rigidity the instrument would read, G_read / D (1 for a bending model of
+  the right scale and Peirce's approximation; the exact elastica alone gives its own ratio).
+- Drape (Cusick 1968; BS 5058, ISO 9073-9): a 30 cm disc of fabric is clamped between two 18 cm
+  discs and hangs under gravity. DC = (shadow area - support area) / (specimen area - support
+  area), the shadow being the vertical projection of the draped specimen; nodes: the number of
+  folds around the hem (local maxima of the shadow's outline radius). The clamp is modelled by
+  pinning every vertex within the support's radius; no contact (nothing is below the specimen).
+  A small seeded random lift of the free vertices breaks the axial symmetry; the equilibrium
+  reached depends on it (as a real specimen's node count depends on how it was laid down).
+
+Prints both tables with the published figures beside ours, writes figures (``--figures``: the
+draped specimen from above with the disc, the strip's profile with the 41.5 deg line) and, with
+``--record``, the tables as benchmarks/results/fabric_{cantilever,drape}.json.
+
+Run: python -m benchmarks fabric_tests [--small] [--figures docs/figures] [--record] [--seeds 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+import numpy as np  # noqa: E402
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+RESULTS = HERE / "results"
+G = 9.81  #: gravity [m/s^2]
+PEIRCE_ANGLE = math.radians(41.5)  #: the cantilever tester's incline [rad]
+
+#: 1 gf*cm^2/cm (KES bending rigidity unit) in N*m
+KES_B = 9.80665e-5
+
+
+@dataclass(frozen=True)
+class Fabric:
+    """A fabric to test: name, bending rigidity D [N*m], areal density w [kg/m^2], membrane
+    (H00, H01, H11, H22) [N/m], where its figures come from (``source``) and a published drape
+    coefficient [-] where one is known (``dc_published``, None otherwise)."""
+
+    name: str
+    bend: float
+    density: float
+    membrane: tuple[float, float, float, float]
+    source: str
+    dc_published: float | None = None
+
+    def gamma(self):
+        import torch
+
+        return torch.tensor([*self.membrane, self.bend], dtype=torch.float64)
+
+    @property
+    def bending_length(self) -> float:
+        """c = (D / (w g))^(1/3) [m], the cantilever's bending length for this D and w."""
+        return (self.bend / (self.density * G)) ** (1.0 / 3.0)
+
+
+def library_fabrics() -> list[Fabric]:
+    """unsew's material library (unsew.sim.MATERIALS), its KES-based bending and weights."""
+    from unsew.sim import MATERIALS
+
+    out = []
+    for name in ("silk", "jersey", "polyester", "cotton", "wool", "denim"):
+        m = MATERIALS[name]
+        out.append(
+            Fabric(
+                name=f"unsew {name}",
+                bend=m.bend,
+                density=m.density,
+                membrane=(m.h00, m.h01, m.h11, m.h22),
+                source="unsew.sim.MATERIALS (KES B, weight as sold)",
+            )
+        )
+    return out
+
+
+#: Wang, O'Brien and Ramamoorthi 2011 ("Data-driven elastic models for cloth", the Berkeley
+#: Garment Library's ARCSim material files): density [kg/m^2] and the first bending sample
+#: (bending[0][0], warp direction, lowest curvature), ARCSim's hinge coefficient ke. ARCSim's
+#: hinge energy is ke |e|^2/(2 (A1+A2)) theta^2/4, which on a grid bent to a cylinder stores
+#: ke/8 kappa^2 per unit area: D = ke/4 in plate terms (docs/fabric_tests.md).
+WANG_2011 = {
+    "gray-interlock": (0.187, 23.191698e-6),
+    "camel-ponte-roma": (0.284, 36.34897e-6),
+    "11oz-black-denim": (0.324, 64.196457e-6),
+    "pink-ribbon-brown": (0.228, 117.10344e-6),
+}
+
+
+def wang_fabrics(names=None) -> list[Fabric]:
+    """Fabrics of Wang et al. 2011 (D = ke/4, their density) with unsew's cotton membrane."""
+    from unsew.sim import MATERIALS
+
+    m = MATERIALS["cotton"]
+    return [
+        Fabric(
+            name=f"Wang11 {n}",
+            bend=ke / 4.0,
+            density=rho,
+            membrane=(m.h00, m.h01, m.h11, m.h22),
+            source="Wang et al. 2011, ARCSim material file: density, bending[0][0]/4",
+        )
+        for n, (rho, ke) in WANG_2011.items()
+        if names is None or n in names
+    ]
+
+
+# -- the heavy elastica (exact cantilever) -----------------------------------------------------
+
+
+def elastica(lam: float, n: int = 2001):
+    """Shape of a heavy cantilever of overhang lam (in units of c = (D/(w g))^(1/3)), clamped
+    horizontal at s = 0: theta'' = -(lam - s) cos theta, theta(0) = 0, theta'(lam) = 0 (theta the
+    slope angle below the horizontal). Returns (x, y) (n,) in units of c, y downward positive."""
+    from scipy.integrate import solve_ivp
+    from scipy.optimize import brentq
+
+    def rhs(s, z):
+        th, k, x, y = z
+        # the physical slope lies in [0, pi/2]; clipping it there in the load term keeps the end
+        # curvature monotone in the root curvature for the shooting (a trial that turns up or
+        # past the vertical does not wrap around)
+        load = math.cos(min(max(th, 0.0), math.pi / 2))
+        return [k, -(lam - s) * load, math.cos(th), math.sin(th)]
+
+    def end_curv(k0):
+        sol = solve_ivp(rhs, (0.0, lam), [0.0, k0, 0.0, 0.0], rtol=1e-11, atol=1e-12)
+        return sol.y[1, -1]
+
+    # the root curvature lies between 0 and the small-deflection value lam^2/2 (gravity's moment
+    # only drops as the strip turns down); a little above it for the bracket's sign
+    k0 = brentq(end_curv, 0.0, lam * lam / 2.0 * 1.01, xtol=1e-13)
+    s = np.linspace(0.0, lam, n)
+    sol = solve_ivp(rhs, (0.0, lam), [0.0, k0, 0.0, 0.0], t_eval=s, rtol=1e-11, atol=1e-12)
+    return sol.y[2], sol.y[3]
+
+
+def chord_angle(x: float, y: float) -> float:
+    """Angle [rad] below the horizontal of the chord from the edge to a tip at (x, y down)."""
+    return math.atan2(y, x)
+
+
+def elastica_overhang(angle: float = PEIRCE_ANGLE) -> float:
+    """Overhang lam = l/c at which the exact elastica's chord angle is ``angle`` [rad]."""
+    from scipy.optimize import brentq
+
+    def f(lam):
+        x, y = elastica(lam)
+        return chord_angle(x[-1], y[-1]) - angle
+
+    return brentq(f, 0.5, 4.0, xtol=1e-10)
+
+
+def peirce_ratio(angle: float = PEIRCE_ANGLE) -> float:
+    """Peirce's c / l = (cos(phi/2) / (8 tan phi))^(1/3) at chord angle phi [rad]."""
+    return (math.cos(angle / 2.0) / (8.0 * math.tan(angle))) ** (1.0 / 3.0)
+
+
+# -- the simulated cantilever ----------------------------------------------------------------
+
+
+def strip_mesh(overhang: float, *, width: float = 0.025, edge: float, clamp: float = 0.01, kind: str):
+    """A strip [-clamp, overhang] x [0, width] [m]. kind "grid": the quads' diagonals alternate
+    (edges across the strip on every column); "tri": an unstructured Delaunay mesh (triangle).
+    Returns uv (V, 2) [m] float64, faces (F, 3) int64 (counter-clockwise)."""
+    if kind == "grid":
+        from unsew.sim.meshes import grid_sheet
+
+        nx = max(2, round((overhang + clamp) / edge))
+        ny = max(1, round(width / edge))
+        # put a column exactly on the edge x = 0
+        nc = max(1, round(clamp / (overhang + clamp) * nx))
+        xs = np.concatenate([np.linspace(-clamp, 0.0, nc + 1)[:-1], np.linspace(0.0, overhang, nx - nc + 1)])
+        uv, f = grid_sheet(len(xs) - 1, ny, 1.0, width)
+        uv[:, 0] = xs[np.round(uv[:, 0] * (len(xs) - 1)).astype(int)]
+        return uv, f
+    import triangle
+
+    corners = np.array([[-clamp, 0], [0, 0], [overhang, 0], [overhang, width], [0, width], [-clamp, width]])
+    segs = np.array([[i, (i + 1) % 6] for i in range(6)] + [[1, 4]])
+    amax = math.sqrt(3) / 4 * edge * edge
+    t = triangle.triangulate({"vertices": corners, "segments": segs}, f"pq30a{amax:.12f}")
+    return np.asarray(t["vertices"], float), np.asarray(t["triangles"], np.int64)
+
+
+def simulate_strip(fab: Fabric, overhang: float, *, edge: float, kind: str):
+    """Static equilibrium of the strip clamped on x <= 0 (pinned), overhang [m].
+
+    Returns uv (V, 2), x (V, 3) [m] and the tip chord angle [rad] (mean of the tip row)."""
+    import torch
+
+    from unsew.sim import PlaneSDF, SimModel, drape_static
+
+    uv, f = strip_mesh(overhang, edge=edge, kind=kind)
+    pinned = uv[:, 0] <= 1e-12
+    model = SimModel.build(f, f, pinned=pinned)
+    x0 = torch.as_tensor(np.c_[uv[:, 0], np.zeros(len(uv)), uv[:, 1]])
+    far = PlaneSDF(point=(0.0, -10.0, 0.0))  # nothing to touch
+    x = drape_static(
+        model, x0, far, uv=torch.as_tensor(uv), gamma=fab.gamma(), density=fab.density, max_iter=200
+    ).numpy()
+    tip = uv[:, 0] >= overhang - 1e-12
+    return uv, x, chord_angle(float(x[tip, 0].mean()), float(-x[tip, 1].mean()))
+
+
+def cantilever_overhang(fab: Fabric, *, edge: float, kind: str, tol: float = 1e-4):
+    """Overhang [m] at which the simulated strip's chord reaches 41.5 deg (secant on l from the
+    exact elastica's), with the last strip simulated (uv, x)."""
+    lam = elastica_overhang()
+    c = fab.bending_length
+    ls = [lam * c, lam * c * 1.05]
+    phis = []
+    for over in ls:
+        uv, x, phi = simulate_strip(fab, over, edge=edge, kind=kind)
+        phis.append(phi)
+    for _ in range(8):
+        l0, l1 = ls[-2], ls[-1]
+        p0, p1 = phis[-2] - PEIRCE_ANGLE, phis[-1] - PEIRCE_ANGLE
+        if abs(p1) < tol:
+            break
+        l2 = l1 - p1 * (l1 - l0) / (p1 - p0)
+        uv, x, phi = simulate_strip(fab, l2, edge=edge, kind=kind)
+        ls.append(l2)
+        phis.append(phi)
+    return ls[-1], uv, x
+
+
+def cantilever_rows(fabrics, *, edge: float, kinds=("grid", "tri"), log=print):
+    """One row per fabric and mesh kind: input D, the elastica's and the simulation's overhang,
+    the instrument's reading G = w g (l/2)^3 and its ratio to D."""
+    lam = elastica_overhang()
+    rows, shapes = [], {}
+    for fab in fabrics:
+        c = fab.bending_length
+        for kind in kinds:
+            t = time.perf_counter()
+            l_sim, uv, x = cantilever_overhang(fab, edge=edge, kind=kind)
+            g_read = fab.density * G * (l_sim / 2.0) ** 3
+            rows.append(
+                {
+                    "fabric": fab.name,
+                    "mesh": f"{kind} {edge * 1000:.0f} mm",
+                    "D input uN m": fab.bend * 1e6,
+                    "w g/m2": fab.density * 1000,
+                    "c input cm": c * 100,
+                    "overhang elastica cm": lam * c * 100,
+                    "overhang sim cm": l_sim * 100,
+                    "c read cm": l_sim / 2 * 100,
+                    "G read uN m": g_read * 1e6,
+                    "G read / D": g_read / fab.bend,
+                    "D effective / D": (l_sim / (lam * c)) ** 3,
+                }
+            )
+            shapes[(fab.name, kind)] = (uv, x, l_sim)
+            log(
+                f"  cantilever {fab.name} {kind}: overhang {l_sim * 100:.2f} cm "
+                f"({time.perf_counter() - t:.1f} s)"
+            )
+    return rows, shapes
+
+
+# -- the simulated Cusick drape --------------------------------------------------------------
+
+
+def specimen_mesh(radius: float, disc: float, edge: float):
+    """A disc of ``radius`` [m] meshed by triangle with a circle of the support's radius ``disc``
+    [m] among its edges; target edge length ``edge`` [m]. Returns uv (V, 2), faces (F, 3)."""
+    import triangle
+
+    def ring(r):
+        n = max(12, round(2 * math.pi * r / edge))
+        a = 2 * math.pi * np.arange(n) / n
+        return np.c_[r * np.cos(a), r * np.sin(a)]
+
+    outer, inner = ring(radius), ring(disc)
+    no, ni = len(outer), len(inner)
+    verts = np.concatenate([outer, inner])
+    segs = np.concatenate(
+        [np.c_[np.arange(no), (np.arange(no) + 1) % no], no + np.c_[np.arange(ni), (np.arange(ni) + 1) % ni]]
+    )
+    amax = math.sqrt(3) / 4 * edge * edge
+    t = triangle.triangulate({"vertices": verts, "segments": segs}, f"pq30a{amax:.12f}")
+    return np.asarray(t["vertices"], float), np.asarray(t["triangles"], np.int64)
+
+
+def shadow_area(x: np.ndarray, faces: np.ndarray, *, pixel: float = 5e-4) -> float:
+    """Area [m^2] of the vertical (-Y) projection of a triangle mesh x (V, 3), rasterized on a
+    grid of ``pixel`` [m] (each pixel centre inside any projected triangle counts)."""
+    p = x[:, [0, 2]]
+    lo = p.min(0) - pixel
+    n = np.ceil((p.max(0) + pixel - lo) / pixel).astype(int)
+    hit = np.zeros((n[0], n[1]), bool)
+    for a, b, c in p[faces]:
+        i0, j0 = np.floor((np.minimum(np.minimum(a, b), c) - lo) / pixel).astype(int)
+        i1, j1 = np.ceil((np.maximum(np.maximum(a, b), c) - lo) / pixel).astype(int)
+        gi, gj = np.meshgrid(np.arange(i0, i1 + 1), np.arange(j0, j1 + 1), indexing="ij")
+        q = lo + (np.stack([gi, gj], -1) + 0.5) * pixel
+        d = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+        if abs(d) < 1e-18:
+            continue
+        l1 = ((b[0] - q[..., 0]) * (c[1] - q[..., 1]) - (b[1] - q[..., 1]) * (c[0] - q[..., 0])) / d
+        l2 = ((c[0] - q[..., 0]) * (a[1] - q[..., 1]) - (c[1] - q[..., 1]) * (a[0] - q[..., 0])) / d
+        inside = (l1 >= 0) & (l2 >= 0) & (l1 + l2 <= 1)
+        ii, jj = gi[inside], gj[inside]
+        ok = (ii < n[0]) & (jj < n[1])
+        hit[ii[ok], jj[ok]] = True
+    return float(hit.sum()) * pixel * pixel
+
+
+def hem_profile(x: np.ndarray, hem: np.ndarray, *, bins: int = 720):
+    """The hem's projected outline radius [m] per angle bin (bins,), the hem polyline resampled
+    densely; bins no hem point falls in are filled by periodic interpolation."""
+    p = x[hem][:, [0, 2]]
+    q = np.concatenate([p, p[:1]])
+    dense = np.concatenate([np.linspace(q[i], q[i + 1], 8, endpoint=False) for i in range(len(p))])
+    ang = np.mod(np.arctan2(dense[:, 1], dense[:, 0]), 2 * math.pi)
+    r = np.hypot(dense[:, 0], dense[:, 1])
+    k = np.minimum((ang / (2 * math.pi) * bins).astype(int), bins - 1)
+    prof = np.full(bins, np.nan)
+    np.fmax.at(prof, k, r)
+    good = ~np.isnan(prof)
+    idx = np.arange(bins)
+    prof[~good] = np.interp(idx[~good], idx[good], prof[good], period=bins)
+    return prof
+
+
+def count_nodes(profile: np.ndarray, *, prominence: float) -> int:
+    """Number of folds: local maxima of the periodic outline radius (m) standing at least
+    ``prominence`` [m] above the deeper of the two troughs beside them."""
+    from scipy.signal import find_peaks
+
+    n = len(profile)
+    ext = np.concatenate([profile, profile, profile])
+    peaks, _ = find_peaks(ext, prominence=prominence)
+    return int(((peaks >= n) & (peaks < 2 * n)).sum())
+
+
+@dataclass
+class DrapeResult:
+    """One simulated Cusick test: DC [-], node count, outline profile (bins,) [m], positions
+    x (V, 3) [m], faces (F, 3), hem indices, wall time [s], Newton iterations."""
+
+    dc: float
+    nodes: int
+    profile: np.ndarray
+    x: np.ndarray
+    faces: np.ndarray
+    hem: np.ndarray
+    wall_s: float
+    iterations: int
+
+
+def simulate_drape(
+    fab: Fabric,
+    *,
+    edge: float,
+    seed: int = 0,
+    radius: float = 0.15,
+    disc: float = 0.09,
+    lift: float = 2e-3,
+) -> DrapeResult:
+    """The Cusick test of ``fab``: specimen of ``radius`` [m] clamped on a support of radius
+    ``disc`` [m], meshed at ``edge`` [m]; the free vertices start lifted by a seeded random
+    height in [0, lift] [m] times their distance from the support over the overhang."""
+    import torch
+
+    from unsew.sim import PlaneSDF, SimModel, StaticInfo, drape_static
+
+    t = time.perf_counter()
+    uv, f = specimen_mesh(radius, disc, edge)
+    r = np.hypot(uv[:, 0], uv[:, 1])
+    pinned = r <= disc + 1e-9
+    hem = np.nonzero(r >= radius - 1e-9)[0]
+    hem = hem[np.argsort(np.arctan2(uv[hem, 1], uv[hem, 0]))]
+    model = SimModel.build(f, f, pinned=pinned)
+    rng = np.random.default_rng(seed)
+    y0 = np.where(pinned, 0.0, rng.uniform(0.0, lift, len(uv)) * (r - disc) / (radius - disc))
+    x0 = torch.as_tensor(np.c_[uv[:, 0], y0, uv[:, 1]])
+    info = StaticInfo()
+    far = PlaneSDF(point=(0.0, -10.0, 0.0))
+    x = drape_static(
+        model,
+        x0,
+        far,
+        uv=torch.as_tensor(uv),
+        gamma=fab.gamma(),
+        density=fab.density,
+        max_iter=400,
+        info=info,
+    ).numpy()
+    a_disc, a_spec = math.pi * disc**2, math.pi * radius**2
+    dc = (shadow_area(x, f) - a_disc) / (a_spec - a_disc)
+    prof = hem_profile(x, hem)
+    nodes = count_nodes(prof, prominence=max(2e-3, 0.05 * (prof.max() - prof.min())))
+    return DrapeResult(dc, nodes, prof, x, f, hem, time.perf_counter() - t, info.iterations)
+
+
+def drape_rows(fabrics, *, edge: float, seeds, log=print):
+    """One row per fabric: DC and nodes per seed (mean and range), with the bending length."""
+    rows, results = [], {}
+    for fab in fabrics:
+        runs = []
+        for seed in seeds:
+            r = simulate_drape(fab, edge=edge, seed=seed)
+            runs.append(r)
+            log(
+                f"  drape {fab.name} seed {seed}: DC {100 * r.dc:.1f} %, {r.nodes} nodes "
+                f"({len(r.x)} vertices, {r.iterations} Newton iterations, {r.wall_s:.1f} s)"
+            )
+        results[fab.name] = runs
+        dcs = [100 * r.dc for r in runs]
+        rows.append(
+            {
+                "fabric": fab.name,
+                "D uN m": fab.bend * 1e6,
+                "w g/m2": fab.density * 1000,
+                "c cm": fab.bending_length * 100,
+                "mesh": f"{edge * 1000:.0f} mm, {len(runs[0].x)} vertices",
+                "DC %": float(np.mean(dcs)),
+                "DC range %": f"{min(dcs):.1f}-{max(dcs):.1f}",
+                "nodes": "/".join(str(r.nodes) for r in runs),
+                "published DC %": None if fab.dc_published is None else 100 * fab.dc_published,
+            }
+        )
+    return rows, results
+
+
+# -- figures ---------------------------------------------------------------------------------
+
+
+def drape_figure(results: dict, path: Path, *, disc: float = 0.09, radius: float = 0.15) -> None:
+    """The first seed's draped specimen of each fabric seen from above: the shadow (projected
+    triangles), the support disc and the flat specimen's outline; DC and nodes in the title."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import PolyCollection
+
+    names = list(results)
+    n = len(names)
+    cols = min(n, 4)
+    rows = math.ceil(n / cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(2.4 * cols, 2.5 * rows), squeeze=False)
+    t = np.linspace(0, 2 * math.pi, 200)
+    for ax, name in zip(axes.flat, names):
+        r = results[name][0]
+        p = r.x[:, [0, 2]] * 100
+        depth = r.x[:, 1] * 100
+        polys = p[r.faces]
+        shade = depth[r.faces].mean(1)
+        pc = PolyCollection(polys, array=shade, cmap="Blues_r", edgecolors="none", clim=(-6.0, 0.0))
+        ax.add_collection(pc)
+        ax.plot(radius * 100 * np.cos(t), radius * 100 * np.sin(t), "k--", lw=0.6)
+        ax.fill(disc * 100 * np.cos(t), disc * 100 * np.sin(t), color="0.55", alpha=0.8)
+        hem = np.concatenate([r.hem, r.hem[:1]])
+        ax.plot(p[hem, 0], p[hem, 1], "r-", lw=0.6)
+        ax.set_aspect("equal")
+        ax.set_xlim(-16, 16)
+        ax.set_ylim(-16, 16)
+        ax.set_xticks([])
+        ax.set_yticks([])
+        ax.set_title(f"{name}\nDC {100 * r.dc:.0f} %, {r.nodes} nodes", fontsize=7)
+    for ax in list(axes.flat)[n:]:
+        ax.axis("off")
+    fig.suptitle("Cusick drape, 30 cm on 18 cm, from above", fontsize=8)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def cantilever_figure(shapes: dict, fabrics, path: Path) -> None:
+    """Each fabric's simulated strip (centre-line profile, side view) at the overhang where its
+    chord meets the 41.5 deg incline, with the exact elastica of the same D and w."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(5.0, 3.4))
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    lam = elastica_overhang()
+    lmax = 0.0
+    for i, fab in enumerate(fabrics):
+        col = colors[i % len(colors)]
+        for (name, kind), (uv, x, l_sim) in shapes.items():
+            if name != fab.name or kind != "grid":
+                continue
+            mid = np.abs(uv[:, 1] - np.median(uv[:, 1])) < 1e-9
+            order = np.argsort(uv[mid, 0])
+            px, py = x[mid][order, 0] * 100, x[mid][order, 1] * 100
+            keep = px >= -1e-9
+            ax.plot(px[keep], py[keep], "-o", color=col, ms=2, lw=1, label=f"{fab.name} (sim)")
+            lmax = max(lmax, l_sim * 100)
+        ex, ey = elastica(lam)
+        c = fab.bending_length * 100
+        ax.plot(ex * c, -ey * c, ":", color=col, lw=1)
+    s = np.linspace(0, lmax * 1.1, 10)
+    ax.plot(s, -np.tan(PEIRCE_ANGLE) * s, "k-", lw=1.2, label="41.5 deg incline")
+    ax.axhline(0, color="0.5", lw=0.5)
+    ax.fill_between([-1.0, 0.0], [-0.3, -0.3], [0.0, 0.0], color="0.6")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [cm] (platform edge at 0)")
+    ax.set_ylabel("y [cm]")
+    ax.set_title(
+        "Cantilever: strips at the overhang their tip meets 41.5 deg\n(dotted: exact elastica)", fontsize=8
+    )
+    ax.legend(fontsize=6, loc="lower left")
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+# -- entry -----------------------------------------------------------------------------------
+
+
+def _commit() -> str:
+    try:
+        return subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True, check=True
+        ).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
+def _print_table(title: str, rows: list[dict]) -> None:
+    from tables import markdown_table
+
+    print(f"\n{title}\n")
+    print(markdown_table(rows, digits=2))
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--small", action="store_true", help="one fabric, coarse meshes, one seed (seconds)")
+    ap.add_argument("--seeds", type=int, default=2, help="drape starts per fabric (default 2)")
+    ap.add_argument("--drape-edge", type=float, default=0.015, help="specimen mesh edge [m] (default 0.015)")
+    ap.add_argument("--strip-edge", type=float, default=0.005, help="strip mesh edge [m] (default 0.005)")
+    ap.add_argument("--figures", type=Path, default=None, help="write the two PNGs into this folder")
+    ap.add_argument("--record", action="store_true", help="write benchmarks/results/fabric_*.json")
+    ap.add_argument("--skip-drape", action="store_true")
+    ap.add_argument("--skip-cantilever", action="store_true")
+    args = ap.parse_args(argv)
+
+    import torch
+
+    torch.set_num_threads(1)
+    fabrics = library_fabrics() + wang_fabrics()
+    if args.small:
+        fabrics = [f for f in fabrics if f.name == "unsew cotton"]
+        args.seeds, args.drape_edge, args.strip_edge = 1, 0.03, 0.01
+    lam = elastica_overhang()
+    print(
+        f"elastica: chord at 41.5 deg when overhang / c = {lam:.4f} (Peirce's formula: "
+        f"{1 / peirce_ratio():.4f}; the instrument reads c = overhang / 2)"
+    )
+    tables = {}
+    if not args.skip_cantilever:
+        kinds = ("grid",) if args.small else ("grid", "tri")
+        rows, shapes = cantilever_rows(fabrics, edge=args.strip_edge, kinds=kinds)
+        _print_table(
+            "Cantilever (41.5 deg): the rigidity the instrument reads from the simulated strip", rows
+        )
+        tables["cantilever"] = rows
+        if args.figures:
+            cantilever_figure(
+                shapes, fabrics[:4] if not args.small else fabrics, args.figures / "fabric_cantilever.png"
+            )
+    if not args.skip_drape:
+        rows, results = drape_rows(fabrics, edge=args.drape_edge, seeds=range(args.seeds))
+        _print_table("Cusick drape (30 cm on 18 cm): drape coefficient and nodes", rows)
+        tables["drape"] = rows
+        if args.figures:
+            drape_figure(results, args.figures / "fabric_drape.png")
+    if args.record:
+        cmd = "python -m benchmarks fabric_tests" + (" --small" if args.small else "") + " --record"
+        titles = {
+            "cantilever": "Cantilever test (Peirce, 41.5 deg) on unsew's strip: overhang, rigidity read",
+            "drape": "Cusick drape test (30 cm specimen, 18 cm support) simulated: DC and nodes",
+        }
+        RESULTS.mkdir(exist_ok=True)
+        for key, rows in tables.items():
+            rec = {"title": titles[key], "command": cmd, "commit": _commit(), "rows": rows}
+            (RESULTS / f"fabric_{key}.json").write_text(json.dumps(rec, indent=1) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
