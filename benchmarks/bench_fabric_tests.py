@@ -29,6 +29,7 @@ Run: python -m benchmarks fabric_tests [--small] [--figures docs/figures] [--rec
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import math
 import os
@@ -55,15 +56,13 @@ KES_B = 9.80665e-5
 @dataclass(frozen=True)
 class Fabric:
     """A fabric to test: name, bending rigidity D [N*m], areal density w [kg/m^2], membrane
-    (H00, H01, H11, H22) [N/m], where its figures come from (``source``) and a published drape
-    coefficient [-] where one is known (``dc_published``, None otherwise)."""
+    (H00, H01, H11, H22) [N/m], and where its figures come from (``source``)."""
 
     name: str
     bend: float
     density: float
     membrane: tuple[float, float, float, float]
     source: str
-    dc_published: float | None = None
 
     def gamma(self):
         import torch
@@ -215,7 +214,14 @@ def simulate_strip(fab: Fabric, overhang: float, *, edge: float, kind: str):
     uv, f = strip_mesh(overhang, edge=edge, kind=kind)
     pinned = uv[:, 0] <= 1e-12
     model = SimModel.build(f, f, pinned=pinned)
-    x0 = torch.as_tensor(np.c_[uv[:, 0], np.zeros(len(uv)), uv[:, 1]])
+    # start from the exact elastica of this D and w (the stable cantilever's equilibrium is
+    # unique, so the start only saves Newton iterations: from flat they take about a hundred)
+    c = fab.bending_length
+    s = np.linspace(0.0, overhang / c, 401)
+    ex, ey = elastica(overhang / c, n=401)
+    u = np.clip(uv[:, 0], 0.0, None) / c
+    xs = np.where(uv[:, 0] > 0, np.interp(u, s, ex) * c, uv[:, 0])
+    x0 = torch.as_tensor(np.c_[xs, -np.interp(u, s, ey) * c, uv[:, 1]])
     far = PlaneSDF(point=(0.0, -10.0, 0.0))  # nothing to touch
     x = drape_static(
         model, x0, far, uv=torch.as_tensor(uv), gamma=fab.gamma(), density=fab.density, max_iter=200
@@ -246,37 +252,36 @@ def cantilever_overhang(fab: Fabric, *, edge: float, kind: str, tol: float = 1e-
     return ls[-1], uv, x
 
 
-def cantilever_rows(fabrics, *, edge: float, kinds=("grid", "tri"), log=print):
-    """One row per fabric and mesh kind: input D, the elastica's and the simulation's overhang,
-    the instrument's reading G = w g (l/2)^3 and its ratio to D."""
+def cantilever_rows(cases, *, log=print):
+    """One row per case (fabric, mesh kind, edge [m]): input D, the elastica's and the
+    simulation's overhang, the instrument's reading G = w g (l/2)^3 and its ratio to D, and the
+    effective rigidity of the discrete strip, (l_sim / l_elastica)^3 D."""
     lam = elastica_overhang()
     rows, shapes = [], {}
-    for fab in fabrics:
+    for fab, kind, edge in cases:
         c = fab.bending_length
-        for kind in kinds:
-            t = time.perf_counter()
-            l_sim, uv, x = cantilever_overhang(fab, edge=edge, kind=kind)
-            g_read = fab.density * G * (l_sim / 2.0) ** 3
-            rows.append(
-                {
-                    "fabric": fab.name,
-                    "mesh": f"{kind} {edge * 1000:.0f} mm",
-                    "D input uN m": fab.bend * 1e6,
-                    "w g/m2": fab.density * 1000,
-                    "c input cm": c * 100,
-                    "overhang elastica cm": lam * c * 100,
-                    "overhang sim cm": l_sim * 100,
-                    "c read cm": l_sim / 2 * 100,
-                    "G read uN m": g_read * 1e6,
-                    "G read / D": g_read / fab.bend,
-                    "D effective / D": (l_sim / (lam * c)) ** 3,
-                }
-            )
-            shapes[(fab.name, kind)] = (uv, x, l_sim)
-            log(
-                f"  cantilever {fab.name} {kind}: overhang {l_sim * 100:.2f} cm "
-                f"({time.perf_counter() - t:.1f} s)"
-            )
+        t = time.perf_counter()
+        l_sim, uv, x = cantilever_overhang(fab, edge=edge, kind=kind)
+        g_read = fab.density * G * (l_sim / 2.0) ** 3
+        rows.append(
+            {
+                "fabric": fab.name,
+                "mesh": f"{kind} {edge * 1000:.1f} mm",
+                "D input uN m": fab.bend * 1e6,
+                "w g/m2": fab.density * 1000,
+                "c input cm": c * 100,
+                "overhang elastica cm": lam * c * 100,
+                "overhang sim cm": l_sim * 100,
+                "G read uN m": g_read * 1e6,
+                "G read / D": g_read / fab.bend,
+                "D effective / D": (l_sim / (lam * c)) ** 3,
+            }
+        )
+        shapes.setdefault((fab.name, kind), (uv, x, l_sim))
+        log(
+            f"  cantilever {fab.name} {kind} {edge * 1000:.1f} mm: overhang {l_sim * 100:.2f} cm "
+            f"({time.perf_counter() - t:.1f} s)"
+        )
     return rows, shapes
 
 
@@ -416,10 +421,11 @@ def simulate_drape(
     return DrapeResult(dc, nodes, prof, x, f, hem, time.perf_counter() - t, info.iterations)
 
 
-def drape_rows(fabrics, *, edge: float, seeds, log=print):
-    """One row per fabric: DC and nodes per seed (mean and range), with the bending length."""
+def drape_rows(cases, *, log=print):
+    """One row per case (fabric, edge [m], seeds): DC per seed (mean and range) and nodes, with
+    the bending length."""
     rows, results = [], {}
-    for fab in fabrics:
+    for fab, edge, seeds in cases:
         runs = []
         for seed in seeds:
             r = simulate_drape(fab, edge=edge, seed=seed)
@@ -428,7 +434,7 @@ def drape_rows(fabrics, *, edge: float, seeds, log=print):
                 f"  drape {fab.name} seed {seed}: DC {100 * r.dc:.1f} %, {r.nodes} nodes "
                 f"({len(r.x)} vertices, {r.iterations} Newton iterations, {r.wall_s:.1f} s)"
             )
-        results[fab.name] = runs
+        results.setdefault(fab.name, runs)
         dcs = [100 * r.dc for r in runs]
         rows.append(
             {
@@ -436,11 +442,11 @@ def drape_rows(fabrics, *, edge: float, seeds, log=print):
                 "D uN m": fab.bend * 1e6,
                 "w g/m2": fab.density * 1000,
                 "c cm": fab.bending_length * 100,
+                "H22 N/m": fab.membrane[3],
                 "mesh": f"{edge * 1000:.0f} mm, {len(runs[0].x)} vertices",
                 "DC %": float(np.mean(dcs)),
                 "DC range %": f"{min(dcs):.1f}-{max(dcs):.1f}",
                 "nodes": "/".join(str(r.nodes) for r in runs),
-                "published DC %": None if fab.dc_published is None else 100 * fab.dc_published,
             }
         )
     return rows, results
@@ -569,9 +575,12 @@ def main(argv=None) -> int:
 
     torch.set_num_threads(1)
     fabrics = library_fabrics() + wang_fabrics()
+    cotton = next(f for f in fabrics if f.name == "unsew cotton")
     if args.small:
-        fabrics = [f for f in fabrics if f.name == "unsew cotton"]
+        fabrics, studies = [cotton], False
         args.seeds, args.drape_edge, args.strip_edge = 1, 0.03, 0.01
+    else:
+        studies = True
     lam = elastica_overhang()
     print(
         f"elastica: chord at 41.5 deg when overhang / c = {lam:.4f} (Peirce's formula: "
@@ -579,22 +588,36 @@ def main(argv=None) -> int:
     )
     tables = {}
     if not args.skip_cantilever:
-        kinds = ("grid",) if args.small else ("grid", "tri")
-        rows, shapes = cantilever_rows(fabrics, edge=args.strip_edge, kinds=kinds)
+        cases = [(f, "grid", args.strip_edge) for f in fabrics]
+        if studies:  # the mesh's share: finer and coarser grids, an unstructured mesh
+            e = args.strip_edge
+            cases += [(cotton, "grid", 2 * e), (cotton, "grid", e / 2), (cotton, "tri", e)]
+        rows, shapes = cantilever_rows(cases)
         _print_table(
             "Cantilever (41.5 deg): the rigidity the instrument reads from the simulated strip", rows
         )
         tables["cantilever"] = rows
         if args.figures:
-            cantilever_figure(
-                shapes, fabrics[:4] if not args.small else fabrics, args.figures / "fabric_cantilever.png"
-            )
+            shown = [cotton] + [f for f in fabrics if f.name in ("unsew silk", "unsew denim")]
+            cantilever_figure(shapes, shown, args.figures / "fabric_cantilever.png")
     if not args.skip_drape:
-        rows, results = drape_rows(fabrics, edge=args.drape_edge, seeds=range(args.seeds))
+        seeds = range(args.seeds)
+        cases = [(f, args.drape_edge, seeds) for f in fabrics]
+        if studies:  # the mesh's and the membrane's share, on cotton
+            e = args.drape_edge
+            cases += [(cotton, 2 * e, seeds), (cotton, 2 * e / 3, range(1))]
+            for k in (0.1, 10.0):
+                h = cotton.membrane
+                soft = dataclasses.replace(
+                    cotton, name=f"unsew cotton, shear x{k:g}", membrane=(h[0], h[1], h[2], k * h[3])
+                )
+                cases.append((soft, e, seeds))
+        rows, results = drape_rows(cases)
         _print_table("Cusick drape (30 cm on 18 cm): drape coefficient and nodes", rows)
         tables["drape"] = rows
         if args.figures:
-            drape_figure(results, args.figures / "fabric_drape.png")
+            shown = {k: v for k, v in results.items() if "shear" not in k}
+            drape_figure(shown, args.figures / "fabric_drape.png")
     if args.record:
         cmd = "python -m benchmarks fabric_tests" + (" --small" if args.small else "") + " --record"
         titles = {
