@@ -285,6 +285,62 @@ def cantilever_rows(cases, *, log=print):
     return rows, shapes
 
 
+def linear_strip_rows(fab: Fabric, cells=((6, 1), (6, 5), (6, 10), (12, 5), (12, 10), (24, 10))):
+    """Small deflections: a strip of ``fab``'s weight a thousand times stiffer (so it barely
+    bends), overhang 3 cm, width 2.5 cm, on grids of nx x ny cells (and one clamp column):
+    tip drop against the beam formula w g l^4 / (8 D), and the hinge-chain's own answer (only
+    the hinges across the strip bending, lumped masses), which has the clamp's O(h) error alone."""
+    import torch
+
+    from unsew.sim import PlaneSDF, SimModel, drape_static
+    from unsew.sim.energies.bending import dihedral_angle
+    from unsew.sim.meshes import grid_sheet
+
+    L, W = 0.03, 0.025
+    stiff = dataclasses.replace(fab, bend=1000 * fab.bend)
+    beam = stiff.density * G * L**4 / (8 * stiff.bend)
+    rows = []
+    for nx, ny in cells:
+        h = L / nx
+        uv, f = grid_sheet(nx + 1, ny, L + h, W)
+        uv[:, 0] -= h
+        model = SimModel.build(f, f, pinned=uv[:, 0] <= 1e-12)
+        x0 = torch.as_tensor(np.c_[uv[:, 0], np.zeros(len(uv)), uv[:, 1]])
+        x = drape_static(
+            model,
+            x0,
+            PlaneSDF(point=(0.0, -10.0, 0.0)),
+            uv=torch.as_tensor(uv),
+            gamma=stiff.gamma(),
+            density=stiff.density,
+        )
+        tip = uv[:, 0] >= L - 1e-12
+        drop = -float(x[torch.as_tensor(tip), 1].mean())
+        # the hinge chain: hinge i at x_i turns by M_i h / (D W), M_i the moment of the lumped
+        # masses beyond it
+        xs = np.arange(nx + 1) * h
+        m = np.full(nx + 1, h)
+        m[-1] = h / 2
+        m[0] = 0.0
+        turn = np.array([(m[i + 1 :] * (xs[i + 1 :] - xs[i])).sum() for i in range(nx)]) * h
+        chain = float((np.cumsum(turn) * h).sum()) * stiff.density * G / stiff.bend
+        th, _ = dihedral_angle(x, model.hinges)
+        e = (x[model.hinges[:, 1]] - x[model.hinges[:, 0]]).numpy()
+        across = torch.as_tensor(np.abs(e[:, 0]) < 1e-6 * h)
+        rows.append(
+            {
+                "cells": f"{nx} x {ny}",
+                "cell aspect (along/across)": h / (W / ny),
+                "tip drop / beam": drop / beam,
+                "hinge chain / beam": chain / beam,
+                "largest other hinge / largest cross hinge": float(
+                    th[~across].abs().max() / th[across].abs().max()
+                ),
+            }
+        )
+    return rows
+
+
 # -- the simulated Cusick drape --------------------------------------------------------------
 
 
@@ -569,6 +625,9 @@ def main(argv=None) -> int:
     ap.add_argument("--record", action="store_true", help="write benchmarks/results/fabric_*.json")
     ap.add_argument("--skip-drape", action="store_true")
     ap.add_argument("--skip-cantilever", action="store_true")
+    ap.add_argument(
+        "--linear", action="store_true", help="only the small-deflection strip on grids of several cells"
+    )
     args = ap.parse_args(argv)
 
     import torch
@@ -587,6 +646,11 @@ def main(argv=None) -> int:
         f"{1 / peirce_ratio():.4f}; the instrument reads c = overhang / 2)"
     )
     tables = {}
+    if args.linear:
+        rows = linear_strip_rows(cotton)
+        _print_table("Small-deflection strip (cotton's weight, 1000 x its D): tip drop / beam formula", rows)
+        tables["strip_linear"] = rows
+        args.skip_cantilever = args.skip_drape = True
     if not args.skip_cantilever:
         cases = [(f, "grid", args.strip_edge) for f in fabrics]
         if studies:  # the mesh's share: finer and coarser grids, an unstructured mesh
@@ -619,8 +683,10 @@ def main(argv=None) -> int:
             shown = {k: v for k, v in results.items() if "shear" not in k}
             drape_figure(shown, args.figures / "fabric_drape.png")
     if args.record:
-        cmd = "python -m benchmarks fabric_tests" + (" --small" if args.small else "") + " --record"
+        flags = " --small" if args.small else " --linear" if args.linear else ""
+        cmd = "python -m benchmarks fabric_tests" + flags + " --record"
         titles = {
+            "strip_linear": "Small-deflection strip on unsew's hinges: tip drop against the beam formula",
             "cantilever": "Cantilever test (Peirce, 41.5 deg) on unsew's strip: overhang, rigidity read",
             "drape": "Cusick drape test (30 cm specimen, 18 cm support) simulated: DC and nodes",
         }
