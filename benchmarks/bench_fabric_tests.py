@@ -19,7 +19,8 @@ analytic answer (cantilever) and with published figures for real fabrics (docs/f
   A small seeded random lift of the free vertices breaks the axial symmetry; the equilibrium
   reached depends on it (as a real specimen's node count depends on how it was laid down).
 
-Prints both tables with the published figures beside ours, writes figures (``--figures``: the
+Prints both tables, each fabric's published bending and weight figures beside what the
+simulation makes of them, writes figures (``--figures``: the
 draped specimen from above with the disc, the strip's profile with the 41.5 deg line) and, with
 ``--record``, the tables as benchmarks/results/fabric_{cantilever,drape}.json.
 
@@ -549,7 +550,7 @@ def drape_figure(results: dict, path: Path, *, disc: float = 0.09, radius: float
     fig.suptitle("Cusick drape, 30 cm on 18 cm, from above", fontsize=8)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=72)
     plt.close(fig)
 
 
@@ -570,7 +571,8 @@ def cantilever_figure(shapes: dict, fabrics, path: Path) -> None:
         for (name, kind), (uv, x, l_sim) in shapes.items():
             if name != fab.name or kind != "grid":
                 continue
-            mid = np.abs(uv[:, 1] - np.median(uv[:, 1])) < 1e-9
+            v0 = uv[np.argmin(np.abs(uv[:, 1] - 0.5 * uv[:, 1].max())), 1]  # the row nearest the middle
+            mid = np.abs(uv[:, 1] - v0) < 1e-9
             order = np.argsort(uv[mid, 0])
             px, py = x[mid][order, 0] * 100, x[mid][order, 1] * 100
             keep = px >= -1e-9
