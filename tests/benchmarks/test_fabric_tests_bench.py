@@ -6,7 +6,6 @@ import math
 import sys
 
 import numpy as np
-import pytest
 from benchmarks_loader import BENCH, markdown_rows
 
 
@@ -68,7 +67,6 @@ def test_hem_profile_of_a_lobed_hem_peaks_at_its_lobes():
     assert abs(prof.max() - 0.14) < 1e-3 and abs(prof.min() - 0.10) < 2e-3
 
 
-@pytest.mark.slow
 def test_stiffer_fabric_drapes_less():
     # the same weight, ten times the bending rigidity: a larger shadow (higher DC)
     soft = bench.library_fabrics()[3]
