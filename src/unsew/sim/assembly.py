@@ -87,7 +87,8 @@ class _AssembleOuter(torch.autograd.Function):
     """values = scatter of s_e * w * (g_e g_e^T) (lower entries); hand-written backward."""
 
     @staticmethod
-    def forward(ctx, g, s, weight, src, dst, nnz, fdst, h):
+    def forward(ctx, g, s, weight, index):
+        src, dst, nnz, fdst, h = index  # scatter maps and the adjoint map (not differentiated)
         sg = s[:, None] * g
         blocks = sg[:, :, None] * g[:, None, :]  # (E, m, m)
         picked = blocks.reshape(-1)[src]
@@ -108,7 +109,7 @@ class _AssembleOuter(torch.autograd.Function):
         Wg = torch.bmm(W, g[:, :, None])[:, :, 0]  # (E, m)
         grad_g = (2.0 * s[:, None]) * Wg if ctx.needs_input_grad[0] else None
         grad_s = (g * Wg).sum(-1) if ctx.needs_input_grad[1] else None
-        return grad_g, grad_s, None, None, None, None, None, None
+        return grad_g, grad_s, None, None
 
 
 def assemble_outer(
@@ -127,7 +128,7 @@ def assemble_outer(
     """
     if maps is None:
         maps = outer_adjoint_map(nnz, src, dst, g.shape[0], g.shape[1], weight)
-    return _AssembleOuter.apply(g, s, weight, src, dst, nnz, *maps)
+    return _AssembleOuter.apply(g, s, weight, (src, dst, nnz, *maps))
 
 
 class _AssembleMembrane(torch.autograd.Function):
@@ -135,7 +136,8 @@ class _AssembleMembrane(torch.autograd.Function):
     hand-written backward (symmetric adjoint blocks from one gather, two batched products)."""
 
     @staticmethod
-    def forward(ctx, G, H, P, area, src, dst, nnz, fdst, h):
+    def forward(ctx, G, H, P, area, index):
+        src, dst, nnz, fdst, h = index  # scatter maps and the adjoint map (not differentiated)
         F = G.shape[0]
         H = 0.5 * (H + H.T)
         P = 0.5 * (P + P.transpose(1, 2))
@@ -168,7 +170,7 @@ class _AssembleMembrane(torch.autograd.Function):
             grad_P = area[:, None, None] * 0.5 * (wgeo + wgeo.transpose(1, 2))
         if ctx.needs_input_grad[3]:
             grad_area = (GWG * H).sum((1, 2)) + (wgeo * P).sum((1, 2))
-        return grad_G, grad_H, grad_P, grad_area, None, None, None, None, None
+        return grad_G, grad_H, grad_P, grad_area, None
 
 
 def assemble_membrane(
@@ -188,4 +190,4 @@ def assemble_membrane(
     """
     if maps is None:
         maps = outer_adjoint_map(nnz, src, dst, G.shape[0], 9)
-    return _AssembleMembrane.apply(G, H, P, area, src, dst, nnz, *maps)
+    return _AssembleMembrane.apply(G, H, P, area, (src, dst, nnz, *maps))

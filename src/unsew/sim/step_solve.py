@@ -35,8 +35,10 @@ from unsew.sim.solve import SparsePattern, _Factor
 __all__ = ["step_solve"]
 
 
-def _values(G, H, P, area, bg, bs, vblk, extra, st):
-    """Forward assembly of A's lower values (no autograd)."""
+def _values(membrane, bending, vblk, extra, st):
+    """Forward assembly of A's lower values (no autograd). membrane: (G, H, P, area); bending: (g, s)."""
+    G, H, P, area = membrane
+    bg, bs = bending
     model, pat, dt2, w4 = st["model"], st["pattern"], st["dt2"], st["w4"]
     F = G.shape[0]
     HGa = torch.matmul(H, G) * area[:, None, None]
@@ -57,13 +59,66 @@ def _values(G, H, P, area, bg, bs, vblk, extra, st):
     return A * model.keep.to(A) + pat.pin_diag.to(A)
 
 
+def _membrane_grads(need, membrane, L, Y, st):
+    """dL/d(G, H, P, area) (module docstring; None where not needed) from the masked adjoint
+    L and solution Y (N, 3)."""
+    G, H, P, area = membrane
+    model, dt2 = st["model"], st["dt2"]
+    gG = gH = gP = ga = None
+    if not any(need):
+        return gG, gH, gP, ga
+    Le = L[model.faces].reshape(-1, 9)  # (F, 9) corner-major
+    Ye = Y[model.faces].reshape(-1, 9)
+    Gl = torch.bmm(G, Le[:, :, None])[:, :, 0]  # (F, 3)
+    Gy = torch.bmm(G, Ye[:, :, None])[:, :, 0]
+    HGl, HGy = Gl @ H, Gy @ H  # H symmetric
+    LY = torch.bmm(Le.view(-1, 3, 3), Ye.view(-1, 3, 3).transpose(1, 2))  # (F, 3, 3): l_k . y_l
+    if need[0]:
+        gG = (-dt2 * area)[:, None, None] * (
+            HGy[:, :, None] * Le[:, None, :] + HGl[:, :, None] * Ye[:, None, :]
+        )
+    if need[1]:
+        M = torch.einsum("f,fm,fn->mn", area, Gl, Gy)
+        gH = (-0.5 * dt2) * (M + M.T)
+    if need[2]:
+        gP = (-0.5 * dt2) * area[:, None, None] * (LY + LY.transpose(1, 2))
+    if need[3]:
+        ga = -dt2 * ((Gl * HGy).sum(-1) + (P * LY).sum((1, 2)))
+    return gG, gH, gP, ga
+
+
+def _bending_grads(need, bending, L, Y, st):
+    """dL/d(g, s) of the bending factors (module docstring; None where not needed)."""
+    bg, bs = bending
+    model, dt2, w4 = st["model"], st["dt2"], st["w4"]
+    if not (need[0] or need[1]):
+        return None, None
+    if not bg.shape[0]:
+        return torch.zeros_like(bg), torch.zeros_like(bs)
+    Lh = L[model.hinges]  # (Hn, 4, 3)
+    Yh = Y[model.hinges]
+    g4 = bg.view(-1, 4, 3)
+    p = (g4 * Lh).sum(-1)  # (Hn, 4)
+    q = (g4 * Yh).sum(-1)
+    wq = q @ w4 if w4 is not None else q.sum(-1, keepdim=True).expand_as(q)
+    wp = p @ w4 if w4 is not None else p.sum(-1, keepdim=True).expand_as(p)
+    gbg = gbs = None
+    if need[0]:
+        gbg = ((-dt2 * bs)[:, None, None] * (Lh * wq[..., None] + Yh * wp[..., None])).reshape(-1, 12)
+    if need[1]:
+        gbs = -dt2 * (p * wq).sum(-1)
+    return gbg, gbs
+
+
 class _StepSolve(torch.autograd.Function):
     @staticmethod
-    def forward(ctx, G, H, P, area, bg, bs, vblk, extra, rhs, st):
+    def forward(ctx, st, *inputs):
+        # inputs: G, H, P, area, bg, bs, vblk, extra, rhs (each an argument so autograd sees it)
+        G, H, P, area, bg, bs, vblk, extra, rhs = inputs
         H = 0.5 * (H + H.T)  # symmetric parts: the adjoint below is that of symmetric blocks
         P = 0.5 * (P + P.transpose(1, 2))
         vblk = 0.5 * (vblk + vblk.transpose(1, 2))
-        A = _values(G, H, P, area, bg, bs, vblk, extra, st)
+        A = _values((G, H, P, area), (bg, bs), vblk, extra, st)
         fac = _Factor(st["pattern"], A.detach().cpu().numpy(), st["backend"])
         x = torch.from_numpy(fac.solve(rhs.detach().cpu().numpy())).to(rhs.device)
         ctx.fac, ctx.st = fac, st
@@ -78,50 +133,20 @@ class _StepSolve(torch.autograd.Function):
     def backward(ctx, g):
         G, H, P, area, bg, bs, vblk, extra, x = ctx.saved_tensors
         st = ctx.st
-        model, dt2, w4 = st["model"], st["dt2"], st["w4"]
+        model = st["model"]
         fac = ctx.fac
         if fac is None:  # a second backward through a retained graph: factorize again
-            A = _values(G, H, P, area, bg, bs, vblk, extra if ctx.has_extra else None, st)
+            A = _values((G, H, P, area), (bg, bs), vblk, extra if ctx.has_extra else None, st)
             fac = _Factor(st["pattern"], A.cpu().numpy(), st["backend"])
         lam = torch.from_numpy(fac.solve(g.detach().cpu().numpy())).to(g.device)
         ctx.fac = None
         free = (~model.pinned).to(lam.dtype).repeat_interleave(3)
         L = (lam * free).view(-1, 3)  # (N, 3)
         Y = (x * free).view(-1, 3)
-        need = ctx.needs_input_grad
-        gG = gH = gP = ga = gbg = gbs = gV = gE = None
-        if any(need[:4]):
-            Le = L[model.faces].reshape(-1, 9)  # (F, 9) corner-major
-            Ye = Y[model.faces].reshape(-1, 9)
-            Gl = torch.bmm(G, Le[:, :, None])[:, :, 0]  # (F, 3)
-            Gy = torch.bmm(G, Ye[:, :, None])[:, :, 0]
-            HGl, HGy = Gl @ H, Gy @ H  # H symmetric
-            LY = torch.bmm(Le.view(-1, 3, 3), Ye.view(-1, 3, 3).transpose(1, 2))  # (F, 3, 3): l_k . y_l
-            if need[0]:
-                gG = (-dt2 * area)[:, None, None] * (
-                    HGy[:, :, None] * Le[:, None, :] + HGl[:, :, None] * Ye[:, None, :]
-                )
-            if need[1]:
-                M = torch.einsum("f,fm,fn->mn", area, Gl, Gy)
-                gH = (-0.5 * dt2) * (M + M.T)
-            if need[2]:
-                gP = (-0.5 * dt2) * area[:, None, None] * (LY + LY.transpose(1, 2))
-            if need[3]:
-                ga = -dt2 * ((Gl * HGy).sum(-1) + (P * LY).sum((1, 2)))
-        if (need[4] or need[5]) and bg.shape[0]:
-            Lh = L[model.hinges]  # (Hn, 4, 3)
-            Yh = Y[model.hinges]
-            g4 = bg.view(-1, 4, 3)
-            p = (g4 * Lh).sum(-1)  # (Hn, 4)
-            q = (g4 * Yh).sum(-1)
-            wq = q @ w4 if w4 is not None else q.sum(-1, keepdim=True).expand_as(q)
-            wp = p @ w4 if w4 is not None else p.sum(-1, keepdim=True).expand_as(p)
-            if need[4]:
-                gbg = ((-dt2 * bs)[:, None, None] * (Lh * wq[..., None] + Yh * wp[..., None])).reshape(-1, 12)
-            if need[5]:
-                gbs = -dt2 * (p * wq).sum(-1)
-        elif need[4] or need[5]:
-            gbg, gbs = torch.zeros_like(bg), torch.zeros_like(bs)
+        need = ctx.needs_input_grad[1:]  # after st
+        gmem = _membrane_grads(need[:4], (G, H, P, area), L, Y, st)
+        gbend = _bending_grads(need[4:6], (bg, bs), L, Y, st)
+        gV = gE = None
         if need[6]:
             LYv = L[:, :, None] * Y[:, None, :]  # (N, 3, 3)
             gV = -0.5 * (LYv + LYv.transpose(1, 2))
@@ -129,25 +154,25 @@ class _StepSolve(torch.autograd.Function):
             r, c = model.rows.long(), model.cols.long()
             lt, yt = L.reshape(-1), Y.reshape(-1)
             gE = -(lt[r] * yt[c] + lt[c] * yt[r]) * st["pattern"].diag_half
-        return gG, gH, gP, ga, gbg, gbs, gV, gE, lam, None
+        return None, *gmem, *gbend, gV, gE, lam
 
 
-def step_solve(
-    model, pattern: SparsePattern, *, dt: float, membrane, bending, vblk, extra, rhs, w4, backend: str
-):
+def step_solve(model, pattern: SparsePattern, *, blocks, rhs, dt: float, w4, backend: str):
     """Solve the implicit Euler system of one step (module docstring); differentiable.
 
     Args:
         model: :class:`~unsew.sim.model.SimModel`. pattern: its :class:`SparsePattern` (with ``pin_diag``).
-        dt: time step [s]. membrane: (G (F, 3, 9), H (3, 3) [N/m], Pgeo (F, 3, 3), area (F,) [m^2]).
-        bending: (g (Hn, 12) [rad/m], s (Hn,) [N*m]). vblk: (N, 3, 3) vertex blocks [kg].
-        extra: (nnz,) more lower values [kg] (e.g. dt^2 * springs) or None.
-        rhs: (3N,) [kg m/s]. w4: (4, 4) bending corner weights or None (all ones).
+        blocks: the matrix's parts (membrane, bending, vblk, extra): membrane (G (F, 3, 9),
+            H (3, 3) [N/m], Pgeo (F, 3, 3), area (F,) [m^2]); bending (g (Hn, 12) [rad/m],
+            s (Hn,) [N*m]); vblk (N, 3, 3) vertex blocks [kg]; extra (nnz,) more lower values
+            [kg] (e.g. dt^2 * springs) or None.
+        rhs: (3N,) [kg m/s]. dt: time step [s]. w4: (4, 4) bending corner weights or None (all ones).
         backend: a concrete solver backend (solve.resolve_backend).
 
     Returns:
         v': (3N,) float64 [m/s].
     """
+    membrane, bending, vblk, extra = blocks
     st = dict(model=model, pattern=pattern, dt2=dt * dt, w4=w4, backend=backend)
     G, H, P, area = membrane
-    return _StepSolve.apply(G, H, P, area, bending[0], bending[1], vblk, extra, rhs, st)
+    return _StepSolve.apply(st, G, H, P, area, bending[0], bending[1], vblk, extra, rhs)
