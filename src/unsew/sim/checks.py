@@ -141,26 +141,17 @@ def check_drape(
     if not finite:
         bad = int(np.flatnonzero(~np.isfinite(x).all(axis=1))[0])
         n_bad = int((~np.isfinite(x).all(axis=1)).sum())
-        return DrapeVerdict(
-            False,
-            f"exploded: {n_bad} vertices are NaN or infinite (first: vertex {bad})",
-            nan,
-            nan,
-            nan,
-            nan,
-            nan,
-            nan,
-            nan,
-            nan,
-            False,
-        )
+        reason = f"exploded: {n_bad} vertices are NaN or infinite (first: vertex {bad})"
+        return DrapeVerdict(False, reason, *([nan] * 8), False)
     s_max, s_99 = _stretch(x, faces, uv, faces_uv)
     inside_pct, depth_mm, far_pct = _body_gaps(x, body, sdf)
     y_min, y_max = float(x[:, 1].min()), float(x[:, 1].max())
     drop = nan if start_height is None else float(start_height) - float(x[:, 1].mean())
     floor = float(np.asarray(body.verts, dtype=np.float64)[:, 1].min())
-    reason = _first_failure(
-        s_max, s_99, y_min, y_max, drop, far_pct, inside_pct, floor=floor, crotch=_crotch_height(body)
+    reason = (
+        _stretch_failure(s_max, s_99)
+        or _height_failure(y_min, y_max, drop, floor=floor, crotch=_crotch_height(body))
+        or _body_failure(far_pct, inside_pct)
     )
     return DrapeVerdict(
         reason == "", reason, inside_pct, depth_mm, far_pct, s_max, s_99, y_min, y_max, drop, finite
@@ -206,10 +197,8 @@ def _body_gaps(x, body, sdf) -> tuple[float, float, float]:
     return inside_pct, depth_mm, far_pct
 
 
-def _first_failure(s_max, s_99, y_min, y_max, drop, far_pct, inside_pct, *, floor, crotch) -> str:
-    """The reason of the first failed check, in the module docstring's order ("" when all
-    pass). Stretches [-], heights, drop, floor (the body's lowest point) and crotch [m],
-    shares [%]."""
+def _stretch_failure(s_max, s_99) -> str:
+    """The reason of the first failed stretch check ("" when both pass); stretches [-]."""
     if s_max > STRETCH_MAX:
         return (
             f"exploded: an edge is stretched to {s_max:.1f} times its pattern length (bound {STRETCH_MAX:g})"
@@ -219,12 +208,23 @@ def _first_failure(s_max, s_99, y_min, y_max, drop, far_pct, inside_pct, *, floo
             f"exploded: 1 % of the edges are stretched beyond {s_99:.2f} times their pattern length "
             f"(bound {STRETCH_P99_MAX:g})"
         )
+    return ""
+
+
+def _height_failure(y_min, y_max, drop, *, floor, crotch) -> str:
+    """The reason of the first failed height check, in the module docstring's order ("" when
+    all pass). Heights, drop, floor (the body's lowest point) and crotch [m]."""
     if y_min < floor - FLOOR_TOL:
         return f"fallen: the garment reaches {floor - y_min:.2f} m below the body's feet"
     if y_max < crotch:
         return f"fallen: the garment's top is at y = {y_max:.2f} m, below the body's crotch ({crotch:.2f} m)"
     if np.isfinite(drop) and drop > DROP_MAX:
         return f"fallen: the garment slid {drop:.2f} m down from where it was put on (bound {DROP_MAX:g} m)"
+    return ""
+
+
+def _body_failure(far_pct, inside_pct) -> str:
+    """The reason of the first failed check against the body ("" when both pass); shares [%]."""
     if far_pct > FAR_MAX_PCT:
         return (
             f"off the body: {far_pct:.0f} % of the vertices are more than {FAR_DIST:g} m from it "
