@@ -65,7 +65,7 @@ def _mesh(n_target: int, use_tshirt: bool):
 def _run(
     model, st, sdf, uv, gamma, steps, backward, checkpoint=False, backend="auto", fused=True, line_search=True
 ):
-    from unsew.sim import DrapeSettings, drape
+    from unsew.sim import Cloth, DrapeSettings, drape
 
     uvp = uv.clone().requires_grad_(backward)
     gp = gamma.clone().requires_grad_(backward)
@@ -74,9 +74,7 @@ def _run(
         model,
         st,
         sdf,
-        uv=uvp,
-        gamma=gp,
-        density=0.15,
+        Cloth(uvp, gp, 0.15),
         steps=steps,
         checkpoint=checkpoint,
         settings=DrapeSettings(backend=backend, fused=fused, line_search=line_search),

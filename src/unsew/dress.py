@@ -19,7 +19,7 @@ from unsew.body.placement import meets_seams, place_garment
 from unsew.body.sdf import BodySDF
 from unsew.meshing import mesh_pattern
 from unsew.sim.checks import check_dressed
-from unsew.sim.drape import DrapeSettings, drape, merge_sewn, sew
+from unsew.sim.drape import Cloth, DrapeSettings, drape, merge_sewn, sew
 from unsew.sim.material import Material, get_material
 from unsew.sim.model import SimModel
 from unsew.sim.state import SimState
@@ -160,14 +160,16 @@ def dress(
     g = mat.gamma() if gamma is None else torch.as_tensor(gamma, dtype=torch.float64).detach()
     uv = torch.as_tensor(np.asarray(mesh.uv), dtype=torch.float64)
 
-    d = _dress_once(pattern, body, sdf, mesh, mat, g, uv, settings, progress, force_meet=False)
+    cloth = Cloth(uv, g, mat.density, friction=mat.friction)
+    job = _Job(pattern, body, sdf, mesh, mat, cloth, settings, progress)
+    d = _dress_once(job, force_meet=False)
     if not d.stats["met_seams"]:
         fault = _sewing_fault(d, body)
         if fault:
             # Seam copies started apart can tear an edge (a loose tee's sleeve on an A-pose body)
             # or leave a band's seams open and triangles folded: dress again with the copies
             # started at their midpoint, and keep that when it is sound.
-            retry = _dress_once(pattern, body, sdf, mesh, mat, g, uv, settings, progress, force_meet=True)
+            retry = _dress_once(job, force_meet=True)
             if not _sewing_fault(retry, body) or (
                 not check_dressed(d, body=body).ok and check_dressed(retry, body=body).ok
             ):
@@ -210,12 +212,9 @@ def settle(
             model,
             SimState.at_rest(x0.clone()),
             sdf,
-            uv=uv,
-            gamma=mat.gamma(),
-            density=mat.density,
+            Cloth(uv, mat.gamma(), mat.density, friction=mat.friction),
             settings=settings,
             steps=steps,
-            friction=mat.friction,
             callback=cb,
         )
     return st.x.detach().numpy()
@@ -254,71 +253,86 @@ def _sewing_fault(d, body) -> str:
     return f"{folded} triangles folded" if folded else ""
 
 
-def _dress_once(pattern, body, sdf, mesh, mat, g, uv, settings, progress, *, force_meet: bool) -> Dressed:
-    """One placement, sewing and settling of :func:`dress` (its arguments resolved)."""
-    t0 = time.perf_counter()
-    x_unsewn = place_garment(pattern, mesh, body, sdf=sdf, force_meet=force_meet)
-    hold = hold_vertices(pattern, mesh, body, x_unsewn)
-    t1 = time.perf_counter()
-    if progress:
-        progress("place", 1, 1)
+@dataclass(frozen=True)
+class _Job:
+    """The resolved arguments of :func:`dress`: the cloth holds the mesh's uv (Nu, 2) [m], the
+    material's (or the given) Gamma, its density and friction."""
+
+    pattern: object
+    body: object
+    sdf: object
+    mesh: object
+    material: Material
+    cloth: Cloth
+    settings: DrapeSettings
+    progress: Callable[[str, int, int], None] | None
+
+
+def _sew_placed(job: _Job, x_unsewn, hold) -> tuple[torch.Tensor, float]:
+    """Sew the placed panels x_unsewn (Nu, 3) [m] shut: (sewn positions (n_x, 3) [m], the widest
+    seam gap left [m])."""
+    mesh, settings, progress = job.mesh, job.settings, job.progress
     model_unsewn = SimModel.build(mesh.faces_uv, mesh.faces_uv, springs=mesh.seam_pairs)
     cb = (lambda k, s: progress("sew", k + 1, settings.sew_steps)) if progress else None
     xs = sew(
         model_unsewn,
         x_unsewn,
-        sdf,
-        uv=uv,
-        gamma=g,
-        density=mat.density,
+        job.sdf,
+        job.cloth,
         settings=settings,
         hold=hold if len(hold) else None,
-        friction=mat.friction,
         callback=cb,
     )
     sp = torch.as_tensor(np.asarray(mesh.seam_pairs), dtype=torch.int64)
     gap = float((xs[sp[:, 0]] - xs[sp[:, 1]]).norm(dim=1).max()) if len(sp) else 0.0
-    x = merge_sewn(xs, mesh.x_of_u, mesh.n_x)
+    return merge_sewn(xs, mesh.x_of_u, mesh.n_x), gap
+
+
+def _settle_sewn(job: _Job, model, x) -> tuple[torch.Tensor, float, int]:
+    """Settle the sewn garment x (n_x, 3) [m]: ``settle_steps``, then more while an edge stays
+    stretched (module constants). Returns (positions [m], largest speed [m/s], steps beyond
+    ``settle_steps``)."""
+    settings, progress, sdf, mesh = job.settings, job.progress, job.sdf, job.mesh
+    more = 0
+    cb = (lambda k, s: progress("settle", k + 1, settings.settle_steps)) if progress else None
+    with torch.no_grad():
+        st = drape(
+            model,
+            SimState.at_rest(x),
+            sdf,
+            job.cloth,
+            settings=settings,
+            steps=settings.settle_steps,
+            callback=cb,
+        )
+        # still pulled somewhere (a seam just closed, cloth caught under an arm): settle on
+        worst = _stretch_max(st.x, mesh)
+        while worst > SETTLED_STRETCH and more < SETTLE_MORE * settings.settle_steps:
+            st = drape(model, st, sdf, job.cloth, settings=settings, steps=settings.settle_steps)
+            more += settings.settle_steps
+            now = _stretch_max(st.x, mesh)
+            if worst - now < SETTLE_GAIN:
+                break
+            worst = now
+    return st.x, float(st.v.norm(dim=1).max()), more
+
+
+def _dress_once(job: _Job, *, force_meet: bool) -> Dressed:
+    """One placement, sewing and settling of :func:`dress` (its arguments resolved)."""
+    pattern, body, mesh = job.pattern, job.body, job.mesh
+    t0 = time.perf_counter()
+    x_unsewn = place_garment(pattern, mesh, body, sdf=job.sdf, force_meet=force_meet)
+    hold = hold_vertices(pattern, mesh, body, x_unsewn)
+    t1 = time.perf_counter()
+    if job.progress:
+        job.progress("place", 1, 1)
+    x, gap = _sew_placed(job, x_unsewn, hold)
     model = SimModel.build(mesh.faces, mesh.faces_uv)
     t2 = time.perf_counter()
     speed = 0.0
     more = 0
-    if settings.settle_steps > 0:
-        cb = (lambda k, s: progress("settle", k + 1, settings.settle_steps)) if progress else None
-        with torch.no_grad():
-            st = drape(
-                model,
-                SimState.at_rest(x),
-                sdf,
-                uv=uv,
-                gamma=g,
-                density=mat.density,
-                settings=settings,
-                steps=settings.settle_steps,
-                friction=mat.friction,
-                callback=cb,
-            )
-            # still pulled somewhere (a seam just closed, cloth caught under an arm): settle on
-            worst = _stretch_max(st.x, mesh)
-            while worst > SETTLED_STRETCH and more < SETTLE_MORE * settings.settle_steps:
-                st = drape(
-                    model,
-                    st,
-                    sdf,
-                    uv=uv,
-                    gamma=g,
-                    density=mat.density,
-                    settings=settings,
-                    steps=settings.settle_steps,
-                    friction=mat.friction,
-                )
-                more += settings.settle_steps
-                now = _stretch_max(st.x, mesh)
-                if worst - now < SETTLE_GAIN:
-                    break
-                worst = now
-        x = st.x
-        speed = float(st.v.norm(dim=1).max())
+    if job.settings.settle_steps > 0:
+        x, speed, more = _settle_sewn(job, model, x)
     t3 = time.perf_counter()
     stats = dict(
         place_s=t1 - t0,
@@ -330,4 +344,4 @@ def _dress_once(pattern, body, sdf, mesh, mat, g, uv, settings, progress, *, for
         met_seams=force_meet or meets_seams(body),
         settle_more=more,
     )
-    return Dressed(pattern, mesh, model, x.detach(), uv, mat, sdf, stats)
+    return Dressed(pattern, mesh, model, x.detach(), job.cloth.uv, job.material, job.sdf, stats)

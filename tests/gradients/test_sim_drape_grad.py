@@ -7,7 +7,7 @@ import pytest
 import torch
 from helpers import assert_close
 
-from unsew.sim import CapsuleSDF, DrapeSettings, SimModel, SimState, drape
+from unsew.sim import CapsuleSDF, Cloth, DrapeSettings, SimModel, SimState, drape
 from unsew.sim.meshes import two_panels
 
 GAMMA = torch.tensor([800.0, 80.0, 600.0, 60.0, 6e-5], dtype=torch.float64)
@@ -30,7 +30,7 @@ def _case(n=4, size=0.1):
     # warm start, as the fitting loop does (paper 3.4.1): a slack flat sheet is ill-conditioned
     # (its out-of-plane stiffness is its tension, zero at rest), a hanging one is not
     with torch.no_grad():
-        warm = drape(m, SimState.at_rest(x0), SDF, uv=uv, gamma=GAMMA, density=DENSITY, steps=WARM)
+        warm = drape(m, SimState.at_rest(x0), SDF, Cloth(uv, GAMMA, DENSITY), steps=WARM)
     return m, uv, warm
 
 
@@ -46,9 +46,7 @@ def _run(m, uv, gamma, st, checkpoint=False, fused=True):
             m,
             st,
             SDF,
-            uv=uv,
-            gamma=gamma,
-            density=DENSITY,
+            Cloth(uv, gamma, DENSITY),
             steps=20,
             checkpoint=checkpoint,
             settings=DrapeSettings(dt=0.05, fused=fused),
@@ -63,7 +61,7 @@ def case():
 
 def test_drape_touches_the_sphere(case):
     m, uv, st = case
-    out = drape(m, st, SDF, uv=uv, gamma=GAMMA, density=DENSITY, steps=20)
+    out = drape(m, st, SDF, Cloth(uv, GAMMA, DENSITY), steps=20)
     d, _ = SDF.query(out.x)
     assert float(d.min()) < 5e-3  # in the contact band: the test exercises contact and friction
     assert float(d.min()) > 0.0

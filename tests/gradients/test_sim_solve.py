@@ -120,7 +120,7 @@ def test_a_differentiable_drape_factorizes_once_per_step(fused, monkeypatch):
 
     import unsew.sim.solve as solve_mod
     import unsew.sim.step_solve as step_mod
-    from unsew.sim import MATERIALS, DrapeSettings, PlaneSDF, SimModel, SimState, drape
+    from unsew.sim import MATERIALS, Cloth, DrapeSettings, PlaneSDF, SimModel, SimState, drape
     from unsew.sim.meshes import grid_sheet
 
     counts = {"factor": 0, "solve": 0}
@@ -145,9 +145,7 @@ def test_a_differentiable_drape_factorizes_once_per_step(fused, monkeypatch):
         m,
         SimState.at_rest(x),
         PlaneSDF((0, -1, 0)),
-        uv=uvt,
-        gamma=MATERIALS["cotton"].gamma(),
-        density=0.1,
+        Cloth(uvt, MATERIALS["cotton"].gamma(), 0.1),
         steps=3,
         settings=DrapeSettings(fused=fused, backend="cholespy"),
     )

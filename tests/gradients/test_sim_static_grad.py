@@ -8,9 +8,9 @@ import torch
 from helpers import assert_close
 
 from unsew.errors import InputError
-from unsew.sim import CapsuleSDF, SimModel, SimState, drape
+from unsew.sim import CapsuleSDF, Cloth, SimModel, SimState, drape
 from unsew.sim.meshes import two_panels
-from unsew.sim.static import StaticInfo, drape_static
+from unsew.sim.static import StaticInfo, StaticSettings, drape_static
 
 GAMMA = torch.tensor([800.0, 80.0, 600.0, 60.0, 6e-5], dtype=torch.float64)
 DENSITY = 0.15
@@ -45,16 +45,14 @@ def _loss(x):
 def test_equilibrium_matches_long_dynamic_drape(case):
     m, uv, x0 = case
     info = StaticInfo()
-    xs = drape_static(m, x0, SDF, uv=uv, gamma=GAMMA, density=DENSITY, info=info)
+    xs = drape_static(m, x0, SDF, Cloth(uv, GAMMA, DENSITY), info=info)
     assert info.residual <= 1e-8 and info.iterations < 40
     assert all(b <= a + 1e-15 for a, b in zip(info.energies, info.energies[1:]))  # monotone descent
     d, _ = SDF.query(xs)
     assert 0.0 < float(d.min()) < 5e-3  # in the contact band
     assert_close(xs[m.pinned], x0[m.pinned], atol=0.0, what="pinned ")
     with torch.no_grad():
-        dyn = drape(
-            m, SimState.at_rest(x0), SDF, uv=uv, gamma=GAMMA, density=DENSITY, steps=200, friction=0.0
-        )
+        dyn = drape(m, SimState.at_rest(x0), SDF, Cloth(uv, GAMMA, DENSITY, friction=0.0), steps=200)
     assert_close(dyn.x, xs, atol=1e-7, what="dynamic (200 steps) vs static [m] ")
 
 
@@ -65,16 +63,15 @@ def test_ift_gradient_vs_central_differences(case):
     dp = torch.tensor(DENSITY, dtype=torch.float64, requires_grad=True)
     x0p = x0.clone().requires_grad_()
     info = StaticInfo()
-    xs = drape_static(m, x0p, SDF, uv=uvp, gamma=gp, density=dp, tol=1e-11, info=info)
+    xs = drape_static(m, x0p, SDF, Cloth(uvp, gp, dp), info=info, settings=StaticSettings(tol=1e-11))
     g_uv, g_gamma, g_density, g_x0 = torch.autograd.grad(_loss(xs), (uvp, gp, dp, x0p))
     assert info.adjoint_residual <= 1e-10
 
     def L(**kw):
-        args = dict(uv=uv, gamma=GAMMA, density=DENSITY, tol=1e-11)
+        args = dict(uv=uv, gamma=GAMMA, density=DENSITY, x0=x0)
         args.update(kw)
-        return float(
-            _loss(drape_static(m, kw.pop("x0", x0), SDF, **{k: v for k, v in args.items() if k != "x0"}))
-        )
+        cloth = Cloth(args["uv"], args["gamma"], args["density"])
+        return float(_loss(drape_static(m, args["x0"], SDF, cloth, settings=StaticSettings(tol=1e-11))))
 
     gen = torch.Generator().manual_seed(3)
     dirn = torch.randn(uv.shape, generator=gen, dtype=torch.float64)
@@ -101,7 +98,9 @@ def test_gradcheck_static_drape_tiny():
     m, uv, x0 = curtain(n=2, size=0.08)
 
     def f(uv_, s_, rho_):  # Gamma through a relative scale so one eps suits all its entries
-        return drape_static(m, x0, SDF, uv=uv_, gamma=GAMMA * (1.0 + s_), density=rho_, tol=1e-11)
+        return drape_static(
+            m, x0, SDF, Cloth(uv_, GAMMA * (1.0 + s_), rho_), settings=StaticSettings(tol=1e-11)
+        )
 
     uvp = uv.clone().requires_grad_()
     s = torch.zeros(5, dtype=torch.float64, requires_grad=True)
@@ -112,4 +111,4 @@ def test_gradcheck_static_drape_tiny():
 def test_bad_adjoint_is_refused(case):
     m, uv, x0 = case
     with pytest.raises(InputError, match="adjoint"):
-        drape_static(m, x0, SDF, uv=uv, gamma=GAMMA, density=DENSITY, adjoint="approx")
+        drape_static(m, x0, SDF, Cloth(uv, GAMMA, DENSITY), settings=StaticSettings(adjoint="approx"))

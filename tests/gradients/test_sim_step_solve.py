@@ -35,7 +35,7 @@ def test_gradcheck_step_solve(stencil):
     params = StepParams(dt=0.05)
     rest = rest_data(m, uv, 0.15)
     with torch.no_grad():
-        _, (mem, bend, Ks), Hc, D, _ = forces(m, rest, x, v, SDF, GAMMA, params, parts=True)
+        _, (mem, bend, Ks), Hc, D, _ = forces(m, rest, SimState(x, v), SDF, GAMMA, params, parts=True)
     pat = _pattern(m)
     w4 = _ring_corner_weight(x) if stencil == "ring" else None
     vblk0 = rest.mass.detach()[:, None, None] * torch.eye(3, dtype=torch.float64) + 0.0025 * Hc
@@ -48,12 +48,9 @@ def test_gradcheck_step_solve(stencil):
         return step_solve(
             m,
             pat,
-            dt=0.05,
-            membrane=(G, H, P, area),
-            bending=(g, s),
-            vblk=vb,
-            extra=extra,
+            blocks=((G, H, P, area), (g, s), vb, extra),
             rhs=b,
+            dt=0.05,
             w4=w4,
             backend=resolve_backend("auto"),
         )

@@ -43,7 +43,7 @@ def _crushed_accordion(n=8, size=0.2, scale=0.6, crush=1e-8, fold=1e-10):
 def _system(m, rest, x, params):
     """The step's matrix (lower values) and pattern, as integrator.step assembles it (unfused)."""
     sdf = PlaneSDF((0, -1, 0))
-    _, K, Hc, D, _ = forces(m, rest, x, torch.zeros_like(x), sdf, MAT.gamma(), params)
+    _, K, Hc, D, _ = forces(m, rest, SimState.at_rest(x), sdf, MAT.gamma(), params)
     dt = params.dt
     vblk = rest.mass[:, None, None] * torch.eye(3, dtype=x.dtype) + dt * D + dt * dt * Hc
     A = dt * dt * K + scatter_blocks(m.nnz, m.vert_src, m.vert_dst, vblk)

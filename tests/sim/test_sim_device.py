@@ -9,7 +9,7 @@ import torch
 from helpers import assert_close, no_default_device
 
 from unsew.errors import InputError
-from unsew.sim import MATERIALS, DrapeSettings, SimModel, SimState, SphereSDF, drape, merge_sewn, sew
+from unsew.sim import MATERIALS, Cloth, DrapeSettings, SimModel, SimState, SphereSDF, drape, merge_sewn, sew
 from unsew.sim.meshes import grid_sheet, two_panels
 
 GAMMA = MATERIALS["cotton"].gamma()
@@ -36,9 +36,7 @@ def _drape_and_grads(model, uv, x, device, fused):
         model.to(device),
         SimState.at_rest(x.to(device)),
         SphereSDF((0, 0, 0), 0.1),
-        uv=uv,
-        gamma=gamma,
-        density=0.12,
+        Cloth(uv, gamma, 0.12),
         steps=6,
         settings=DrapeSettings(fused=fused),
     )
@@ -66,7 +64,7 @@ def test_model_to_moves_every_tensor():
 def test_drape_refuses_a_model_on_another_device():
     m, uv, x = _sheet(3)
     with pytest.raises(InputError, match=r"SimModel on meta: move the model with model.to\('cpu'\)"):
-        drape(m.to("meta"), SimState.at_rest(x), SphereSDF(), uv=uv, gamma=GAMMA, density=0.1, steps=1)
+        drape(m.to("meta"), SimState.at_rest(x), SphereSDF(), Cloth(uv, GAMMA, 0.1), steps=1)
 
 
 @pytest.mark.parametrize("fused", [True, False])
@@ -85,9 +83,7 @@ def test_drape_makes_nothing_on_the_default_device(fused):
             mu,
             x0,
             SphereSDF((0, 0, 0), 0.05),
-            uv=torch.as_tensor(u2),
-            gamma=GAMMA,
-            density=0.1,
+            Cloth(torch.as_tensor(u2), GAMMA, 0.1),
             settings=DrapeSettings(sew_steps=3, hold_steps=2, fused=fused),
             hold=[0],
         )

@@ -8,6 +8,7 @@ from helpers import assert_close
 from unsew.errors import InputError, PatternError, SimulationError
 from unsew.sim import (
     MATERIALS,
+    Cloth,
     DrapeSettings,
     PlaneSDF,
     SimModel,
@@ -32,7 +33,7 @@ def _sheet(n=4, size=0.2, y=0.12):
 def test_drape_over_sphere_stays_outside():
     m, uv, st = _sheet(8, 0.3)
     sdf = SphereSDF((0, 0, 0), 0.1)
-    out = drape(m, st, sdf, uv=uv, gamma=GAMMA, density=0.12, steps=20)
+    out = drape(m, st, sdf, Cloth(uv, GAMMA, 0.12), steps=20)
     d, _ = sdf.query(out.x)
     assert float(d.min()) >= 1e-3 - 1e-12  # projected at least to the collision thickness
     assert float(out.x[:, 1].min()) < 0.05  # the corners fell around the sphere
@@ -41,15 +42,15 @@ def test_drape_over_sphere_stays_outside():
 def test_missing_sdf_bad_material_bad_shapes():
     m, uv, st = _sheet()
     with pytest.raises(InputError, match="SDF"):
-        drape(m, st, None, uv=uv, gamma=GAMMA, density=0.1)
+        drape(m, st, None, Cloth(uv, GAMMA, 0.1))
     bad = GAMMA.clone()
     bad[0] = -5.0
     with pytest.raises(InputError, match="stiffness"):
-        drape(m, st, PlaneSDF(), uv=uv, gamma=bad, density=0.1)
+        drape(m, st, PlaneSDF(), Cloth(uv, bad, 0.1))
     with pytest.raises(InputError, match="uv"):
-        drape(m, st, PlaneSDF(), uv=uv[:-1], gamma=GAMMA, density=0.1)
+        drape(m, st, PlaneSDF(), Cloth(uv[:-1], GAMMA, 0.1))
     with pytest.raises(InputError, match="float64"):
-        drape(m, SimState(st.x.float(), st.v.float()), PlaneSDF(), uv=uv, gamma=GAMMA, density=0.1)
+        drape(m, SimState(st.x.float(), st.v.float()), PlaneSDF(), Cloth(uv, GAMMA, 0.1))
 
 
 def test_degenerate_rest_triangle_is_a_pattern_error():
@@ -57,7 +58,7 @@ def test_degenerate_rest_triangle_is_a_pattern_error():
     uv2 = uv.clone()
     uv2[6] = uv2[0]  # collapse a vertex onto another: zero-area triangles
     with pytest.raises(PatternError, match="triangle"):
-        drape(m, st, PlaneSDF((0, -1, 0)), uv=uv2, gamma=GAMMA, density=0.1)
+        drape(m, st, PlaneSDF((0, -1, 0)), Cloth(uv2, GAMMA, 0.1))
 
 
 def test_divergence_names_step_and_vertex():
@@ -69,9 +70,7 @@ def test_divergence_names_step_and_vertex():
             m,
             SimState(st.x, v),
             PlaneSDF((0, -1, 0)),
-            uv=uv,
-            gamma=GAMMA,
-            density=0.1,
+            Cloth(uv, GAMMA, 0.1),
             steps=20,
             settings=DrapeSettings(max_speed=5.0, line_search=False),
         )
@@ -80,9 +79,7 @@ def test_divergence_names_step_and_vertex():
         m,
         SimState(st.x, v),
         PlaneSDF((0, -1, 0)),
-        uv=uv,
-        gamma=GAMMA,
-        density=0.1,
+        Cloth(uv, GAMMA, 0.1),
         steps=3,
         settings=DrapeSettings(max_speed=5.0),
     )
@@ -90,7 +87,7 @@ def test_divergence_names_step_and_vertex():
     x = st.x.clone()
     x[3, 0] = float("nan")
     with pytest.raises(InputError, match="NaN"):
-        drape(m, SimState(x, st.v), PlaneSDF((0, -1, 0)), uv=uv, gamma=GAMMA, density=0.1)
+        drape(m, SimState(x, st.v), PlaneSDF((0, -1, 0)), Cloth(uv, GAMMA, 0.1))
 
 
 def test_sew_closes_seam_and_merge():
@@ -103,9 +100,7 @@ def test_sew_closes_seam_and_merge():
         mu,
         x,
         SphereSDF((0, 0, 0), 0.1),
-        uv=uv,
-        gamma=GAMMA,
-        density=0.12,
+        Cloth(uv, GAMMA, 0.12),
         settings=DrapeSettings(sew_steps=60, sew_dt=0.02, spring_stiffness=100.0),
     )
     gap = (xs[p["seam_pairs"][:, 0]] - xs[p["seam_pairs"][:, 1]]).norm(dim=1)
@@ -122,15 +117,7 @@ def test_pinned_vertices_hold_and_sewing_hold():
     uv, f = grid_sheet(3, 3, 0.1, 0.1)
     m = SimModel.build(f, f, pinned=[0, 3])
     x = np.c_[uv[:, 0], np.zeros(len(uv)), uv[:, 1]]
-    out = drape(
-        m,
-        SimState.at_rest(x),
-        PlaneSDF((0, -1, 0)),
-        uv=torch.as_tensor(uv),
-        gamma=GAMMA,
-        density=0.1,
-        steps=5,
-    )
+    out = drape(m, SimState.at_rest(x), PlaneSDF((0, -1, 0)), Cloth(torch.as_tensor(uv), GAMMA, 0.1), steps=5)
     assert_close(out.x[[0, 3]], torch.as_tensor(x[[0, 3]]), atol=0.0)
     assert float(out.x[15, 1]) < -0.01
 
@@ -153,11 +140,8 @@ def test_friction_eps_bounds_the_creep_on_a_slope():
             m,
             st,
             plane,
-            uv=uv,
-            gamma=GAMMA,
-            density=0.12,
+            Cloth(uv, GAMMA, 0.12, friction=0.3),
             steps=40,
-            friction=0.3,
             settings=DrapeSettings(friction_eps=eps),
         )
         return float(((out.x - st.x).numpy() @ e1).mean())  # mean downhill travel [m] (e1 points downhill)

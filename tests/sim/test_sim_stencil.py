@@ -6,7 +6,7 @@ import numpy as np
 import torch
 from helpers import assert_close
 
-from unsew.sim import CapsuleSDF, SimModel, SimState, drape
+from unsew.sim import CapsuleSDF, Cloth, SimModel, SimState, drape
 from unsew.sim.energies.bending import energy_bending
 from unsew.sim.integrator import StepParams, _pattern, forces, rest_data
 from unsew.sim.meshes import grid_sheet, two_panels
@@ -46,7 +46,7 @@ def test_ring_system_dominates_full_and_is_psd():
     for s in ("full", "ring"):
         m = SimModel.build(f, f, bending_stencil=s)
         rest = rest_data(m, uvt, 0.15)
-        _, Kv, *_ = forces(m, rest, x, torch.zeros_like(x), sdf, GAMMA, StepParams())
+        _, Kv, *_ = forces(m, rest, SimState.at_rest(x), sdf, GAMMA, StepParams())
         K[s] = _pattern(m).dense(Kv)
     diff = K["ring"] - K["full"]
     assert float(torch.linalg.eigvalsh(diff).min()) > -1e-9 * float(K["full"].abs().max())
@@ -70,5 +70,5 @@ def test_same_equilibrium_for_both_stencils():
     with torch.no_grad():
         for s in ("full", "ring"):
             m = SimModel.build(p["faces"], p["faces_uv"], n=p["n_x"], bending_stencil=s)
-            out[s] = drape(m, SimState.at_rest(x0), sdf, uv=uv, gamma=GAMMA, density=0.15, steps=100).x
+            out[s] = drape(m, SimState.at_rest(x0), sdf, Cloth(uv, GAMMA, 0.15), steps=100).x
     assert_close(out["ring"], out["full"], atol=5e-5, what="equilibria (m) ")

@@ -6,7 +6,7 @@ import pytest
 import torch
 from helpers import assert_close
 
-from unsew.sim import DrapeSettings, PlaneSDF, SimModel, SimState, drape
+from unsew.sim import Cloth, DrapeSettings, PlaneSDF, SimModel, SimState, drape
 from unsew.sim.energies.bending import bending_rest, energy_bending
 from unsew.sim.energies.membrane import membrane_rest
 from unsew.sim.integrator import StepParams, forces, rest_data
@@ -29,9 +29,7 @@ def test_free_fall_is_the_implicit_euler_recurrence():
         m,
         SimState(x0, v0),
         FAR,
-        uv=torch.as_tensor(uv),
-        gamma=GAMMA,
-        density=0.2,
+        Cloth(torch.as_tensor(uv), GAMMA, 0.2),
         steps=K,
         settings=DrapeSettings(dt=dt, gravity=g),
     )
@@ -53,20 +51,11 @@ def test_rigid_motion_no_internal_force():
     xr = x @ q.T + torch.tensor([0.3, 1.0, -0.2], dtype=torch.float64)
     rest = rest_data(m, uv, 0.2)
     params = StepParams(gravity=0.0)
-    f, K, _, _, _ = forces(m, rest, xr, torch.zeros_like(xr), FAR, GAMMA, params)
+    f, K, _, _, _ = forces(m, rest, SimState.at_rest(xr), FAR, GAMMA, params)
     assert_close(f, 0.0, atol=1e-12, what="internal force after a rigid motion ")
     # and a rigidly translating sheet with no gravity keeps moving unchanged
     v = torch.tensor([0.5, -0.2, 0.1], dtype=torch.float64).expand_as(xr).clone()
-    out = drape(
-        m,
-        SimState(xr, v),
-        FAR,
-        uv=uv,
-        gamma=GAMMA,
-        density=0.2,
-        steps=10,
-        settings=DrapeSettings(gravity=0.0),
-    )
+    out = drape(m, SimState(xr, v), FAR, Cloth(uv, GAMMA, 0.2), steps=10, settings=DrapeSettings(gravity=0.0))
     assert_close(out.x, xr + 10 * 0.05 * v, atol=1e-12)
 
 
@@ -93,9 +82,7 @@ def test_hanging_strip_static_stretch():
         m,
         SimState.at_rest(x0),
         FAR,
-        uv=torch.as_tensor(uv),
-        gamma=gamma,
-        density=rho,
+        Cloth(torch.as_tensor(uv), gamma, rho),
         steps=300,
         settings=DrapeSettings(dt=0.05),
     )

@@ -48,7 +48,7 @@ from unsew.metrics.panels import panel_area
 from unsew.pattern.curves import edge_length
 from unsew.pattern.params import PatternParams, check_inverted
 from unsew.pattern.seams import SeamHold
-from unsew.sim.drape import drape
+from unsew.sim.drape import Cloth, drape
 from unsew.sim.material import Material
 from unsew.sim.model import SimModel
 from unsew.sim.state import SimState
@@ -328,11 +328,10 @@ class PhaseTwo:
         o = self.cfg.optimizer
         if o.rest_speed <= 0 or o.rest_steps <= 0:
             return {"steps": 0, "speed_p99_m_s": None, "speed_p99_end_m_s": None}
-        kw = dict(
-            uv=self.params.uv(self.K.detach()),
-            gamma=self.gamma0,
-            density=self.material0.density,
-            settings=self.settings,
+        cloth = Cloth(
+            self.params.uv(self.K.detach()),
+            self.gamma0,
+            self.material0.density,
             friction=self.material0.friction,
         )
 
@@ -340,14 +339,21 @@ class PhaseTwo:
             return float(torch.quantile(st.v.norm(dim=1), 0.99))
 
         with torch.no_grad():
-            st = drape(self.model, SimState.at_rest(self.x_prev), self.sdf, steps=REST_CHUNK, **kw)
+            st = drape(
+                self.model,
+                SimState.at_rest(self.x_prev),
+                self.sdf,
+                cloth,
+                steps=REST_CHUNK,
+                settings=self.settings,
+            )
             first = speed = p99(st)
             if speed <= o.rest_speed:
                 return {"steps": 0, "speed_p99_m_s": first, "speed_p99_end_m_s": first}
             steps = REST_CHUNK
             while speed > o.rest_speed and steps < o.rest_steps:
                 n = min(REST_CHUNK, o.rest_steps - steps)
-                st = drape(self.model, st, self.sdf, steps=n, **kw)
+                st = drape(self.model, st, self.sdf, cloth, steps=n, settings=self.settings)
                 steps, speed = steps + n, p99(st)
         self.x_prev = st.x.detach().clone()
         return {"steps": steps, "speed_p99_m_s": first, "speed_p99_end_m_s": speed}
@@ -385,11 +391,8 @@ class PhaseTwo:
             self.model,
             SimState.at_rest(self.x_prev),
             self.sdf,
-            uv=uv,
-            gamma=gamma,
-            density=self.material0.density,
+            Cloth(uv, gamma, self.material0.density, friction=self.material0.friction),
             settings=self.settings,
-            friction=self.material0.friction,
         ).x
         zero_x, zero_uv = x.sum() * 0, uv.sum() * 0
         l_cf = loss_chamfer(x, self.T_sub, weights_t=self.w_sub)
@@ -597,11 +600,8 @@ class PhaseTwo:
                 self.model,
                 SimState.at_rest(b.x),
                 self.sdf,
-                uv=uv,
-                gamma=b.gamma,
-                density=self.material0.density,
+                Cloth(uv, b.gamma, self.material0.density, friction=self.material0.friction),
                 settings=self.settings,
-                friction=self.material0.friction,
             ).x
         return K, x
 

@@ -23,7 +23,25 @@ from unsew.sim.model import SimModel
 from unsew.sim.state import SimState
 from unsew.tolerances import COLLISION_THICKNESS
 
-__all__ = ["DrapeSettings", "drape", "sew", "merge_sewn", "check_drape_inputs"]
+__all__ = ["Cloth", "DrapeSettings", "drape", "sew", "merge_sewn", "check_drape_inputs"]
+
+
+@dataclass(frozen=True)
+class Cloth:
+    """The cloth a drape moves: its rest shape and its material, as the simulator takes them.
+
+    Attributes:
+        uv: rest positions (Nu, 2) float64 torch [m] (may require grad).
+        gamma: (5,) float64 torch (H00, H01, H11, H22 [N/m], k [N*m]) (may require grad);
+            ``Material.gamma()``.
+        density: areal density [kg/m^2], float or 0-d tensor (may require grad).
+        friction: Coulomb coefficient with the body [-].
+    """
+
+    uv: torch.Tensor
+    gamma: torch.Tensor
+    density: float | torch.Tensor
+    friction: float = 0.3
 
 
 def check_drape_inputs(model: SimModel, state: SimState, sdf, uv, gamma) -> None:
@@ -115,13 +133,10 @@ def drape(
     model: SimModel,
     state: SimState,
     sdf,
+    cloth: Cloth,
     *,
-    uv: torch.Tensor,
-    gamma: torch.Tensor,
-    density,
     settings: DrapeSettings = DEFAULT_SETTINGS,
     steps: int | None = None,
-    friction: float = 0.3,
     checkpoint: bool = False,
     callback=None,
 ) -> SimState:
@@ -131,13 +146,12 @@ def drape(
         model: :class:`SimModel` of the sewn mesh (faces into N sim vertices, faces_uv into Nu).
         state: initial :class:`SimState`, x and v (N, 3) float64 [m], [m/s].
         sdf: body, ``query(x (N,3)) -> (d (N,) [m], n (N,3))``, differentiable.
-        uv: rest positions (Nu, 2) float64 [m] (may require grad).
-        gamma: (5,) float64 (H00, H01, H11, H22 [N/m], k [N*m]) (may require grad).
-        density: areal density [kg/m^2] (float or 0-d tensor).
+        cloth: :class:`Cloth`: uv (Nu, 2) float64 [m], gamma (5,) float64 (H00, H01, H11, H22
+            [N/m], k [N*m]) and density [kg/m^2] (each may require grad), and the material's
+            Coulomb friction with the body [-].
         settings: :class:`DrapeSettings` (dt, gravity, contact, solver); ``settings.steps``
             steps unless ``steps`` is given.
         steps: number of steps (default ``settings.steps``).
-        friction: the material's Coulomb coefficient with the body [-].
         checkpoint: recompute each step in the backward pass instead of storing it (less
             memory, about one more forward in time).
         callback: called as ``callback(k, state)`` after each step k (e.g. a progress bar).
@@ -149,12 +163,13 @@ def drape(
         InputError: missing SDF, bad shapes, bad material. PatternError: degenerate rest
         triangles. SimulationError: divergence (names the step and the worst vertex).
     """
+    uv, gamma = cloth.uv, cloth.gamma
     check_drape_inputs(model, state, sdf, uv, gamma)
     steps = settings.steps if steps is None else steps
     if steps < 0:
         raise InputError(f"steps must be >= 0, got {steps}")
-    params = settings.step_params(friction=friction)
-    rest = rest_data(model, uv, density)
+    params = settings.step_params(friction=cloth.friction)
+    rest = rest_data(model, uv, cloth.density)
     for k in range(steps):
         if checkpoint and torch.is_grad_enabled():
             state = _checkpointed_step(model, rest, state, sdf, gamma, params, k)
@@ -217,13 +232,10 @@ def sew(
     model_unsewn: SimModel,
     x_unsewn,
     sdf,
+    cloth: Cloth,
     *,
-    uv: torch.Tensor,
-    gamma: torch.Tensor,
-    density,
     settings: DrapeSettings = DEFAULT_SETTINGS,
     hold=None,
-    friction: float = 0.3,
     callback=None,
 ) -> torch.Tensor:
     """Sewing phase (no gradients): close the seams of placed panels on the body.
@@ -232,12 +244,13 @@ def sew(
         model_unsewn: :class:`SimModel` built on the unsewn topology: ``SimModel.build(faces_uv,
             faces_uv, springs=seam_pairs)`` (sim vertices = rest vertices, Nu of them).
         x_unsewn: (Nu, 3) [m] placed panels (e.g. ``place_garment``), torch or numpy.
-        sdf: body SDF. uv: (Nu, 2) [m]. gamma: (5,). density: [kg/m^2].
+        sdf: body SDF. cloth: :class:`Cloth` (uv (Nu, 2) [m], gamma (5,), density [kg/m^2],
+            friction [-]); its tensors are used detached.
         settings: :class:`DrapeSettings`: ``sew_steps`` steps of ``sew_dt`` [s] with seam springs
             of ``spring_stiffness`` [N/m]; gravity rises linearly from 0 over ``ramp_steps``.
         hold: (Nu,) bool or (P,) int vertices held still for the first ``settings.hold_steps``
             steps (e.g. a waistline).
-        friction: the material's Coulomb coefficient [-]. callback: ``callback(k, state)``.
+        callback: ``callback(k, state)``.
 
     Returns:
         (Nu, 3) float64 torch [m] positions on the unsewn topology (see :func:`merge_sewn`).
@@ -247,10 +260,10 @@ def sew(
     )
     state = SimState.at_rest(x0.detach().clone())
     with torch.no_grad():
-        uv = uv.detach()
-        gamma = gamma.detach()
+        uv = cloth.uv.detach()
+        gamma = cloth.gamma.detach()
         check_drape_inputs(model_unsewn, state, sdf, uv, gamma)
-        params = settings.step_params(friction=friction, sewing=True)
+        params = settings.step_params(friction=cloth.friction, sewing=True)
         held = None
         if hold is not None and settings.hold_steps > 0:
             held = SimModel.build(
@@ -262,11 +275,11 @@ def sew(
                 n_rest=model_unsewn.n_rest,
                 bending_stencil=model_unsewn.bending_stencil,
             ).to(model_unsewn.device)
-        rest = rest_data(model_unsewn, uv, density)
+        rest = rest_data(model_unsewn, uv, cloth.density)
         for k in range(settings.sew_steps):
             g = settings.gravity * min(1.0, (k + 1) / max(settings.ramp_steps, 1))
             m = held if (held is not None and k < settings.hold_steps) else model_unsewn
-            state = step(m, rest, state, sdf, gamma, params, index=k, gravity=g)
+            state = step(m, rest, state, sdf, gamma, dataclasses.replace(params, gravity=g), index=k)
             if callback is not None:
                 callback(k, state)
     return state.x

@@ -60,7 +60,7 @@ from unsew.sim.solve import SparsePattern, resolve_backend, sparse_solve
 from unsew.sim.state import SimState
 from unsew.sim.step_solve import step_solve
 
-__all__ = ["StepParams", "RestData", "rest_data", "step", "forces", "total_energy"]
+__all__ = ["StepParams", "RestData", "rest_data", "step", "force", "forces", "total_energy"]
 
 
 @dataclass(frozen=True)
@@ -196,30 +196,27 @@ def _ring_weight(like: torch.Tensor) -> torch.Tensor:
     return w
 
 
-def forces(
-    model,
-    rest,
-    x,
-    v,
-    sdf,
-    gamma,
-    params: StepParams,
-    *,
-    gravity=None,
-    hessian=True,
-    parts=False,
-    energy=False,
-):
-    """Forces and system blocks at (x, v).
+@dataclass
+class _Terms:
+    """The energies' terms at one x: f (N, 3) [N] (internal + gravity + contact + springs,
+    without friction); energies (membrane, bending, contact, springs) [J]; the Hessian factors
+    Hm (G, H, Pgeo), Hb (g, s), spring blocks Hs or None, contact blocks Hc (N, 3, 3) (None
+    without Hessians); the contact normal force fn (N,) and the SDF values d (N,), n (N, 3)."""
 
-    Returns f (N, 3) [N] (internal + gravity + contact + springs, without friction),
-    K values (nnz,) [N/m] (PSD stiffness, lower triangle), vertex blocks (N, 3, 3) [N/m] of
-    contact stiffness, friction damping D (N, 3, 3) [kg/s], and the SDF values (d, n).
-    With ``parts=True`` K is replaced by (membrane factors (G, H, Pgeo, area), bending factors
-    (g, s), spring values (nnz,) or None) for :func:`~unsew.sim.step_solve.step_solve`.
-    With ``energy=True`` a sixth item follows: the total potential energy [J] (as
-    :func:`total_energy`; a float)."""
-    g = params.gravity if gravity is None else gravity
+    f: torch.Tensor
+    energies: tuple
+    Hm: tuple | None
+    Hb: tuple | None
+    Hs: torch.Tensor | None
+    Hc: torch.Tensor | None
+    fn: torch.Tensor
+    d: torch.Tensor
+    n: torch.Tensor
+
+
+def _terms(model, rest, x, sdf, gamma, params: StepParams, *, hessian: bool) -> _Terms:
+    """Energies, forces and (``hessian``) element Hessian factors at x (N, 3) [m]."""
+    g = params.gravity
     d, n = sdf.query(x)
     em, gm, Hm = energy_membrane(x, model.faces, rest.area, rest.B, gamma, hessian=hessian, parts=True)
     eb, gb, Hb = energy_bending(x, model.hinges, rest.coef, gamma, hessian=hessian, parts=True)
@@ -239,32 +236,53 @@ def forces(
         grad = grad + scatter_vertex(model.n, model.springs, gs)
     f = -grad
     f = torch.cat([f[:, :1], f[:, 1:2] - g * rest.mass[:, None], f[:, 2:]], 1)
+    return _Terms(f=f, energies=(em, eb, ec, es), Hm=Hm, Hb=Hb, Hs=Hs, Hc=Hc, fn=fn, d=d, n=n)
+
+
+def force(model, rest, x, sdf, gamma, params: StepParams) -> torch.Tensor:
+    """Forces f (N, 3) [N] at x (N, 3) [m] (internal + gravity + contact + springs, without
+    friction), with their autograd graph and without any stiffness blocks."""
+    return _terms(model, rest, x, sdf, gamma, params, hessian=False).f
+
+
+def forces(model, rest, state: SimState, sdf, gamma, params: StepParams, *, parts=False, energy=False):
+    """Forces and system blocks at (x, v) = (state.x, state.v).
+
+    Returns f (N, 3) [N] (internal + gravity + contact + springs, without friction),
+    K values (nnz,) [N/m] (PSD stiffness, lower triangle), vertex blocks (N, 3, 3) [N/m] of
+    contact stiffness, friction damping D (N, 3, 3) [kg/s], and the SDF values (d, n).
+    With ``parts=True`` K is replaced by (membrane factors (G, H, Pgeo, area), bending factors
+    (g, s), spring values (nnz,) or None) for :func:`~unsew.sim.step_solve.step_solve`.
+    With ``energy=True`` a sixth item follows: the total potential energy [J] (as
+    :func:`total_energy`; a float). :func:`force` gives f alone."""
+    x, v = state.x, state.v
+    t = _terms(model, rest, x, sdf, gamma, params, hessian=True)
     extra = ()
     if energy:
+        em, eb, ec, es = t.energies
         with torch.no_grad():
-            extra = (float(em + eb + ec + es + energy_gravity(x, rest.mass, g)[0]),)
-    if not hessian:
-        return (f, None, None, None, (d, n), *extra)
+            extra = (float(em + eb + ec + es + energy_gravity(x, rest.mass, params.gravity)[0]),)
     nnz = model.nnz
+    D = friction_damping(v, t.n, t.fn, params.friction, eps_v=params.friction_eps)
     if parts:
-        Ks = scatter_blocks(nnz, model.spring_src, model.spring_dst, Hs) if Hs is not None else None
-        D = friction_damping(v, n, fn, params.friction, eps_v=params.friction_eps)
-        return (f, ((*Hm, rest.area), Hb, Ks), Hc, D, (d, n), *extra)
+        Ks = scatter_blocks(nnz, model.spring_src, model.spring_dst, t.Hs) if t.Hs is not None else None
+        return (t.f, ((*t.Hm, rest.area), t.Hb, Ks), t.Hc, D, (t.d, t.n), *extra)
     # element blocks go straight into the system values; the hand-written backward of the
     # assembly (assembly.py) never materialises the (E, m, m) blocks' autograd graph
-    K = assemble_membrane(nnz, model.tri_src, model.tri_dst, *Hm, rest.area, maps=_tri_maps(model))
+    K = assemble_membrane(nnz, model.tri_src, model.tri_dst, *t.Hm, rest.area, maps=_tri_maps(model))
     # "ring": doubled (x2, x2), (x3, x3) blocks; (x2, x3) not in the pattern (model.py)
     w = _ring_weight(x) if model.bending_stencil == "ring" else None
-    K = K + assemble_outer(nnz, model.hinge_src, model.hinge_dst, Hb[0], Hb[1], w, maps=_hinge_maps(model))
-    if Hs is not None:
-        K = K + scatter_blocks(nnz, model.spring_src, model.spring_dst, Hs)
-    D = friction_damping(v, n, fn, params.friction, eps_v=params.friction_eps)
-    return (f, K, Hc, D, (d, n), *extra)
+    K = K + assemble_outer(
+        nnz, model.hinge_src, model.hinge_dst, t.Hb[0], t.Hb[1], w, maps=_hinge_maps(model)
+    )
+    if t.Hs is not None:
+        K = K + scatter_blocks(nnz, model.spring_src, model.spring_dst, t.Hs)
+    return (t.f, K, t.Hc, D, (t.d, t.n), *extra)
 
 
-def total_energy(model, rest, x, sdf, gamma, params: StepParams, *, gravity=None):
+def total_energy(model, rest, x, sdf, gamma, params: StepParams):
     """Total potential energy [J] (membrane + bending + contact + gravity + springs) at x (N, 3) [m]."""
-    g = params.gravity if gravity is None else gravity
+    g = params.gravity
     d, n = sdf.query(x)
     e = energy_membrane(x, model.faces, rest.area, rest.B, gamma, hessian=False)[0]
     e = e + energy_bending(x, model.hinges, rest.coef, gamma, hessian=False)[0]
@@ -285,15 +303,18 @@ def total_energy(model, rest, x, sdf, gamma, params: StepParams, *, gravity=None
     return e
 
 
-def _backtrack(model, rest, x, v, w, rhs, D, E0, sdf, gamma, params: StepParams, gravity) -> float:
+def _backtrack(model, rest, state: SimState, w, sdf, gamma, params: StepParams, lin) -> float:
     """The step length alpha in (0, 1] of the new velocity w (N, 3) [m/s] (module docstring):
     the first of 1, 1/2, 1/4, ... whose incremental potential Phi rises by at most
-    alpha |Phi'(0) . w|, or the last one tried. rhs (N, 3) = M v + dt f [kg m/s]; D (N, 3, 3)
-    friction damping [kg/s]; E0 the potential energy at x [J] (:func:`total_energy`)."""
+    alpha |Phi'(0) . w|, or the last one tried. lin = (rhs, D, E0): rhs (N, 3) = M v + dt f
+    [kg m/s]; D (N, 3, 3) friction damping [kg/s]; E0 the potential energy at x [J]
+    (:func:`total_energy`)."""
+    rhs, D, E0 = lin
     dt = params.dt
+    x = state.x
     with torch.no_grad():
         free = (~model.pinned)[:, None].to(x)
-        w, v = w.detach(), v.detach()
+        w, v = w.detach(), state.v.detach()
         m = rest.mass.detach()[:, None]
         slope = -float((rhs.detach() * w * free).sum())  # Phi'(0) . w < 0 (A positive definite)
         if not slope < 0.0:
@@ -305,12 +326,50 @@ def _backtrack(model, rest, x, v, w, rhs, D, E0, sdf, gamma, params: StepParams,
         for _ in range(params.max_halvings + 1):
             wa = torch.where(free > 0, alpha * w, w)
             dw = (wa - v) * free
-            E = float(total_energy(model, rest_d, x_d + dt * wa, sdf, gamma_d, params, gravity=gravity))
+            E = float(total_energy(model, rest_d, x_d + dt * wa, sdf, gamma_d, params))
             phi = 0.5 * float((m * dw * dw).sum()) + 0.5 * dt * alpha * alpha * wDw + E
             if phi <= phi0 - alpha * slope:  # a rise of at most |Phi'(0) . alpha w| (module docstring)
                 return alpha
             alpha *= 0.5
         return 2.0 * alpha
+
+
+def _solve(model: SimModel, K, vblk, rhs, params: StepParams) -> torch.Tensor:
+    """The new velocity v' (N, 3) [m/s] from the system's parts: K as :func:`forces` returns it
+    (its parts when ``params.fused``), vertex blocks vblk (N, 3, 3) [kg], rhs (N, 3) [kg m/s]."""
+    dt = params.dt
+    N = model.n
+    pat = _pattern(model)
+    if params.fused:  # assembly + factorization + structured adjoint in one Function (step_solve.py)
+        mem, bend, Ks = K
+        w4 = _ring_corner_weight(rhs) if model.bending_stencil == "ring" else None
+        extra = (dt * dt) * Ks if Ks is not None else None
+        return step_solve(
+            model,
+            pat,
+            blocks=(mem, bend, vblk, extra),
+            rhs=rhs.reshape(-1),
+            dt=dt,
+            w4=w4,
+            backend=resolve_backend(params.backend),
+        ).reshape(N, 3)
+    A = (dt * dt) * K + scatter_blocks(model.nnz, model.vert_src, model.vert_dst, vblk)
+    A = A * model.keep.to(A) + pat.pin_diag.to(A)
+    return sparse_solve(A, rhs.reshape(-1), pat, backend=params.backend).reshape(N, 3)
+
+
+def _check_speed(v_new: torch.Tensor, params: StepParams, index: int) -> None:
+    """Raise SimulationError when a speed of v_new (N, 3) [m/s] is not finite or over params.max_speed."""
+    with torch.no_grad():
+        speed = v_new.norm(dim=1)
+        bad = ~torch.isfinite(speed) | (speed > params.max_speed)
+        if bool(bad.any()):
+            s = torch.where(torch.isfinite(speed), speed, torch.full_like(speed, float("inf")))
+            i = int(torch.argmax(s))
+            raise SimulationError(
+                f"simulation diverged at step {index}: vertex {i} speed {float(speed[i]):.3g} m/s "
+                f"(limit {params.max_speed:g}); lower dt, check the material stiffness and the initial state"
+            )
 
 
 def step(
@@ -322,15 +381,14 @@ def step(
     params: StepParams,
     *,
     index: int = 0,
-    gravity=None,
 ) -> SimState:
     """Advance one implicit Euler step of length params.dt.
 
     Args:
         model: static model. rest: :func:`rest_data` output. state: x, v (N, 3) [m], [m/s].
         sdf: object with ``query(x) -> (d (N,), n (N, 3))``. gamma: (5,) Gamma.
-        params: :class:`StepParams`. index: step number (for error messages).
-        gravity: override of params.gravity for this step [m/s^2] (sewing ramps it in).
+        params: :class:`StepParams` (the sewing phase ramps gravity in by ``dataclasses.replace``).
+        index: step number (for error messages).
 
     Returns:
         the new :class:`SimState`.
@@ -340,51 +398,18 @@ def step(
     """
     dt = params.dt
     x, v = state.x, state.v
-    N = model.n
-    fused = params.fused
-    f, K, Hc, D, _, E0 = forces(
-        model, rest, x, v, sdf, gamma, params, gravity=gravity, parts=fused, energy=True
-    )
+    f, K, Hc, D, _, E0 = forces(model, rest, state, sdf, gamma, params, parts=params.fused, energy=True)
     eye = torch.eye(3, dtype=x.dtype, device=x.device)
     vblk = rest.mass[:, None, None] * eye + dt * D + (dt * dt) * Hc  # (N, 3, 3)
-    pat = _pattern(model)
     rhs = rest.mass[:, None] * v + dt * f  # (N, 3) [kg m/s]
     pinned = model.pinned[:, None].to(x.device)
     rhs = torch.where(pinned, v, rhs)
-    if fused:  # assembly + factorization + structured adjoint in one Function (step_solve.py)
-        mem, bend, Ks = K
-        w4 = _ring_corner_weight(x) if model.bending_stencil == "ring" else None
-        extra = (dt * dt) * Ks if Ks is not None else None
-        v_new = step_solve(
-            model,
-            pat,
-            dt=dt,
-            membrane=mem,
-            bending=bend,
-            vblk=vblk,
-            extra=extra,
-            rhs=rhs.reshape(-1),
-            w4=w4,
-            backend=resolve_backend(params.backend),
-        ).reshape(N, 3)
-    else:
-        A = (dt * dt) * K + scatter_blocks(model.nnz, model.vert_src, model.vert_dst, vblk)
-        A = A * model.keep.to(A) + pat.pin_diag.to(A)
-        v_new = sparse_solve(A, rhs.reshape(-1), pat, backend=params.backend).reshape(N, 3)
+    v_new = _solve(model, K, vblk, rhs, params)
     if params.line_search:
-        alpha = _backtrack(model, rest, x, v, v_new, rhs, D, E0, sdf, gamma, params, gravity)
+        alpha = _backtrack(model, rest, state, v_new, sdf, gamma, params, (rhs, D, E0))
         if alpha < 1.0:
             v_new = torch.where(pinned, v_new, alpha * v_new)
-    with torch.no_grad():
-        speed = v_new.norm(dim=1)
-        bad = ~torch.isfinite(speed) | (speed > params.max_speed)
-        if bool(bad.any()):
-            s = torch.where(torch.isfinite(speed), speed, torch.full_like(speed, float("inf")))
-            i = int(torch.argmax(s))
-            raise SimulationError(
-                f"simulation diverged at step {index}: vertex {i} speed {float(speed[i]):.3g} m/s "
-                f"(limit {params.max_speed:g}); lower dt, check the material stiffness and the initial state"
-            )
+    _check_speed(v_new, params, index)
     x_new = x + dt * v_new
     d, n = sdf.query(x_new)
     x_new = project_out(x_new, d, n, thickness=params.thickness)

@@ -40,20 +40,68 @@ grid's trilinear distance and its normals agree only to the grid's accuracy).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import torch
 
 from unsew.errors import InputError, SimulationError
 from unsew.sim.assembly import scatter_blocks
-from unsew.sim.drape import check_drape_inputs
-from unsew.sim.integrator import StepParams, _pattern, forces, rest_data, total_energy
+from unsew.sim.drape import Cloth, check_drape_inputs
+from unsew.sim.integrator import StepParams, _pattern, force, forces, rest_data, total_energy
 from unsew.sim.model import SimModel
 from unsew.sim.solve import _Factor, resolve_backend
 from unsew.sim.state import SimState
 
-__all__ = ["drape_static", "StaticInfo"]
+__all__ = ["drape_static", "StaticInfo", "StaticSettings"]
 
 ADJOINTS = ("exact", "projected")
+
+
+@dataclass(frozen=True)
+class StaticSettings:
+    """How :func:`drape_static` finds the equilibrium and its gradients (SI units).
+
+    Attributes:
+        tol: max |grad E| on free vertices relative to the heaviest vertex weight max(m_i g) [-].
+        max_iter: Newton iterations [-].
+        gravity: gravitational acceleration along -Y [m/s^2].
+        contact_stiffness: body repulsion kc [N/m^4] (as :func:`~unsew.sim.drape.drape`).
+        contact_threshold: distance below which repulsion acts [m].
+        spring_stiffness: zero-length seam springs [N/m].
+        mu0: initial Levenberg-Marquardt weight [1/s^2] on the masses.
+        adjoint: "exact" (PCG on exact Hessian products) or "projected" (module docstring).
+        adjoint_rtol: relative residual at which the "exact" adjoint's PCG stops [-].
+        adjoint_max_iter: most PCG iterations of the "exact" adjoint [-].
+        backend: linear solver (solve.py).
+    """
+
+    tol: float = 1e-8
+    max_iter: int = 100
+    gravity: float = 9.81
+    contact_stiffness: float = 1e7
+    contact_threshold: float = 5e-3
+    spring_stiffness: float = 100.0
+    mu0: float = 100.0
+    adjoint: str = "exact"
+    adjoint_rtol: float = 1e-10
+    adjoint_max_iter: int = 500
+    backend: str = "auto"
+
+
+@dataclass(frozen=True)
+class _Problem:
+    """What the Newton solve and its adjoint share: the model, body, the step's energy settings
+    (StepParams), :class:`StaticSettings`, the resolved solver backend, the info filled in and
+    the callback (or None)."""
+
+    model: SimModel
+    sdf: object
+    params: StepParams
+    settings: StaticSettings
+    backend: str
+    info: StaticInfo
+    callback: object = None
 
 
 class StaticInfo:
@@ -76,7 +124,7 @@ class StaticInfo:
 
 def _system(model, rest, x, sdf, gamma, params, mu, backend):
     """Projected matrix K + Hc + mu M at x (pinned rows identity) and its factor; f = -grad E."""
-    f, K, Hc, _, _ = forces(model, rest, x, torch.zeros_like(x), sdf, gamma, params)
+    f, K, Hc, _, _ = forces(model, rest, SimState(x, torch.zeros_like(x)), sdf, gamma, params)
     eye = torch.eye(3, dtype=x.dtype)
     vblk = Hc + mu * rest.mass[:, None, None] * eye
     A = K + scatter_blocks(model.nnz, model.vert_src, model.vert_dst, vblk)
@@ -89,7 +137,7 @@ def _forces_graph(model, rest, x, sdf, gamma, params):
     """f(x) = -grad E with a graph in x, and the exact Hessian product v -> H v = -(df/dx)^T v."""
     xs = x.detach().requires_grad_()
     with torch.enable_grad():
-        f = forces(model, rest, xs, torch.zeros_like(xs), sdf, gamma, params, hessian=False)[0]
+        f = force(model, rest, xs, sdf, gamma, params)
 
     def hvp(v):
         (jv,) = torch.autograd.grad(f, xs, grad_outputs=v, retain_graph=True)
@@ -98,10 +146,12 @@ def _forces_graph(model, rest, x, sdf, gamma, params):
     return f.detach(), hvp
 
 
-def _newton(model, rest, x0, sdf, gamma, params, *, tol, max_iter, mu0, backend, info, callback):
+def _newton(prob: _Problem, rest, x0, gamma):
     """Newton-CG: directions by truncated PCG on the exact Hessian (+ mu M), preconditioned by the
     projected factorization; negative curvature met first falls back to the projected Newton step
     (Nocedal and Wright 2006, Alg. 7.1, with a preconditioner). Armijo backtracking on E."""
+    model, sdf, params, info, backend = prob.model, prob.sdf, prob.params, prob.info, prob.backend
+    tol, max_iter, mu0 = prob.settings.tol, prob.settings.max_iter, prob.settings.mu0
     free = (~model.pinned)[:, None].to(x0.dtype)  # (N, 1)
     x = x0.clone()
     fscale = float((rest.mass * params.gravity).max()) if params.gravity > 0 else 1.0
@@ -146,8 +196,8 @@ def _newton(model, rest, x0, sdf, gamma, params, *, tol, max_iter, mu0, backend,
         x, E = xt, Et
         info.energies.append(E)
         mu = max(mu / 10.0, mu_min) if alpha == 1.0 else min(mu * 10.0, mu_max)
-        if callback is not None:
-            callback(it, x)
+        if prob.callback is not None:
+            prob.callback(it, x)
     if info.residual > tol:
         raise SimulationError(
             f"static drape did not converge in {max_iter} Newton iterations (relative force residual "
@@ -196,13 +246,11 @@ def _pcg(hvp, b, precond, *, rtol, max_iter, truncate=False):
 
 class _StaticDrape(torch.autograd.Function):
     @staticmethod
-    def forward(ctx, x0, uv, gamma, density, cfg):
-        model, sdf, params, opts, info = cfg
+    def forward(ctx, x0, uv, gamma, density, prob: _Problem):
         with torch.no_grad():
-            rest = rest_data(model, uv.detach(), density.detach())
-            newton = {k: opts[k] for k in ("tol", "max_iter", "mu0", "backend", "callback")}
-            x, mu = _newton(model, rest, x0.detach(), sdf, gamma.detach(), params, info=info, **newton)
-        ctx.cfg = cfg
+            rest = rest_data(prob.model, uv.detach(), density.detach())
+            x, mu = _newton(prob, rest, x0.detach(), gamma.detach())
+        ctx.prob = prob
         ctx.mu = mu  # the final Levenberg-Marquardt weight (mu0 * 1e-6 after a converged run)
         ctx.save_for_backward(x, uv, gamma, density)
         return x
@@ -210,7 +258,8 @@ class _StaticDrape(torch.autograd.Function):
     @staticmethod
     @torch.autograd.function.once_differentiable
     def backward(ctx, gx):
-        model, sdf, params, opts, info = ctx.cfg
+        prob = ctx.prob
+        model, sdf, params, opts, info = prob.model, prob.sdf, prob.params, prob.settings, prob.info
         x, uv, gamma, density = ctx.saved_tensors
         free = (~model.pinned)[:, None].to(x.dtype)
         with torch.enable_grad():
@@ -219,16 +268,16 @@ class _StaticDrape(torch.autograd.Function):
             gam_ = gamma.detach().requires_grad_(ctx.needs_input_grad[2])
             den_ = density.detach().requires_grad_(ctx.needs_input_grad[3])
             rest = rest_data(model, uv_, den_)
-            f = forces(model, rest, xs, torch.zeros_like(xs), sdf, gam_, params, hessian=False)[0]
+            f = force(model, rest, xs, sdf, gam_, params)
             b = gx * free
             with torch.no_grad():
                 # projected H at x*
-                _, fac = _system(model, rest, x, sdf, gamma.detach(), params, ctx.mu, opts["backend"])
+                _, fac = _system(model, rest, x, sdf, gamma.detach(), params, ctx.mu, prob.backend)
 
             def precond(r):
                 return torch.from_numpy(fac.solve(r.reshape(-1).numpy())).reshape_as(r) * free
 
-            if opts["adjoint"] == "projected":
+            if opts.adjoint == "projected":
                 lam = precond(b)
                 info.adjoint_iterations, info.adjoint_residual = 1, float("nan")
             else:
@@ -237,9 +286,7 @@ class _StaticDrape(torch.autograd.Function):
                     (jv,) = torch.autograd.grad(f, xs, grad_outputs=v, retain_graph=True)
                     return -jv * free
 
-                lam, its, rr = _pcg(
-                    hvp, b, precond, rtol=opts["adjoint_rtol"], max_iter=opts["adjoint_max_iter"]
-                )
+                lam, its, rr = _pcg(hvp, b, precond, rtol=opts.adjoint_rtol, max_iter=opts.adjoint_max_iter)
                 info.adjoint_iterations, info.adjoint_residual = its, rr
             want = [xs] + [
                 t
@@ -272,21 +319,9 @@ def drape_static(
     model: SimModel,
     x0,
     sdf,
+    cloth: Cloth,
     *,
-    uv: torch.Tensor,
-    gamma: torch.Tensor,
-    density,
-    tol: float = 1e-8,
-    max_iter: int = 100,
-    gravity: float = 9.81,
-    contact_stiffness: float = 1e7,
-    contact_threshold: float = 5e-3,
-    spring_stiffness: float = 100.0,
-    mu0: float = 100.0,
-    adjoint: str = "exact",
-    adjoint_rtol: float = 1e-10,
-    adjoint_max_iter: int = 500,
-    backend: str = "auto",
+    settings: StaticSettings = StaticSettings(),
     info: StaticInfo | None = None,
     callback=None,
 ) -> torch.Tensor:
@@ -297,15 +332,11 @@ def drape_static(
             unique minimum hold the cloth: a free cloth on a frictionless body has sliding modes).
         x0: (N, 3) float64 [m] starting positions (torch; a SimState is accepted and its x used).
         sdf: body, ``query(x) -> (d (N,) [m], n (N, 3))``.
-        uv: (Nu, 2) float64 [m] rest shape. gamma: (5,) float64 Gamma. density: [kg/m^2] float
-            or 0-d tensor. All three may require grad.
-        tol: max |grad E| on free vertices relative to the heaviest vertex weight max(m_i g) [-].
-        max_iter: Newton iterations. gravity [m/s^2] along -Y. contact_stiffness [N/m^4],
-            contact_threshold [m], spring_stiffness [N/m]: as :func:`~unsew.sim.drape.drape`.
-        mu0: initial Levenberg-Marquardt weight [1/s^2] on the masses.
-        adjoint: "exact" (PCG on exact Hessian products, default) or "projected" (see module doc).
-        adjoint_rtol, adjoint_max_iter: PCG stopping rule for "exact".
-        backend: linear solver (solve.py). info: a :class:`StaticInfo` filled in (optional).
+        cloth: :class:`~unsew.sim.drape.Cloth`: uv (Nu, 2) float64 [m] rest shape, gamma (5,)
+            float64 Gamma, density [kg/m^2] float or 0-d tensor; all three may require grad.
+            Its friction does not act (an equilibrium without sliding).
+        settings: :class:`StaticSettings` (tolerances, energy settings, adjoint, solver).
+        info: a :class:`StaticInfo` filled in (optional).
         callback: ``callback(it, x)`` after each accepted Newton step.
 
     Returns:
@@ -318,29 +349,22 @@ def drape_static(
     if isinstance(x0, SimState):
         x0 = x0.x
     x0 = torch.as_tensor(x0, dtype=torch.float64)
+    uv, gamma = cloth.uv, cloth.gamma
     check_drape_inputs(model, SimState(x0.detach(), torch.zeros_like(x0.detach())), sdf, uv, gamma)
-    if adjoint not in ADJOINTS:
-        raise InputError(f"adjoint must be one of {ADJOINTS}, got {adjoint!r}")
+    tol, max_iter = settings.tol, settings.max_iter
+    if settings.adjoint not in ADJOINTS:
+        raise InputError(f"adjoint must be one of {ADJOINTS}, got {settings.adjoint!r}")
     if not tol > 0 or max_iter < 1:
         raise InputError(f"need tol > 0 and max_iter >= 1, got tol={tol}, max_iter={max_iter}")
-    density = torch.as_tensor(density, dtype=torch.float64)
+    density = torch.as_tensor(cloth.density, dtype=torch.float64)
     params = StepParams(
-        gravity=gravity,
-        contact_stiffness=contact_stiffness,
-        contact_threshold=contact_threshold,
-        spring_stiffness=spring_stiffness,
+        gravity=settings.gravity,
+        contact_stiffness=settings.contact_stiffness,
+        contact_threshold=settings.contact_threshold,
+        spring_stiffness=settings.spring_stiffness,
         friction=0.0,
-        backend=backend,
-    )
-    opts = dict(
-        tol=tol,
-        max_iter=max_iter,
-        mu0=mu0,
-        backend=resolve_backend(backend),
-        callback=callback,
-        adjoint=adjoint,
-        adjoint_rtol=adjoint_rtol,
-        adjoint_max_iter=adjoint_max_iter,
+        backend=settings.backend,
     )
     info = StaticInfo() if info is None else info
-    return _StaticDrape.apply(x0, uv, gamma, density, (model, sdf, params, opts, info))
+    prob = _Problem(model, sdf, params, settings, resolve_backend(settings.backend), info, callback)
+    return _StaticDrape.apply(x0, uv, gamma, density, prob)
