@@ -5,6 +5,7 @@ import pytest
 
 from unsew.errors import InputError
 from unsew.report.render import (
+    Layout,
     project,
     render_comparison,
     render_mesh,
@@ -66,7 +67,11 @@ def test_views_put_the_bodys_left_where_the_convention_says(tmp_path, meshes):
     f = np.concatenate([bf, mf + len(bv)])
     colour = np.r_[np.zeros(len(bv)), np.ones(len(mv))]  # the marker is yellow in viridis
     p = render_views(
-        tmp_path / "v.png", v, f, views=("front", "back", "side"), vertex_values=colour, size_px=(900, 400)
+        tmp_path / "v.png",
+        v,
+        f,
+        vertex_values=colour,
+        layout=Layout(views=("front", "back", "side"), size_px=(900, 400)),
     )
     img = meshes.read_png(p)
     yellow = (img[..., 0] > 0.6) & (img[..., 1] > 0.6) & (img[..., 2] < 0.45)
@@ -152,8 +157,7 @@ def test_overlay_body_and_comparison(tmp_path, meshes):
         (gv, gf),
         distance_mm=d,
         body=(bv, bf),
-        views=("front", "three_quarter"),
-        title="target vs result",
+        layout=Layout(views=("front", "three_quarter"), title="target vs result"),
     )
     img = meshes.read_png(p)
     assert img.shape[1] == 720 and meshes.ink_mask(img).mean() > 0.1

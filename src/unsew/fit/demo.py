@@ -22,7 +22,7 @@ from unsew.fit.config import load_config
 from unsew.fit.run import run_fit
 from unsew.fit.synthetic import Alteration, make_truth_case as _make
 from unsew.io.mesh import write_obj
-from unsew.report.render import render_views
+from unsew.report.render import Layout, render_views
 
 __all__ = ["DemoTruth", "DEMO_TRUTH", "DEMO_CONFIG", "make_truth_case", "run_demo", "other_body"]
 
@@ -114,8 +114,7 @@ def run_demo(out: Path, *, cfg=None, progress: bool = True, log=None) -> dict:
             d2.x.numpy(),
             d2.mesh.faces,
             body=(body2.verts, body2.faces),
-            views=("front", "side"),
-            title="fitted t-shirt on another body",
+            layout=Layout(views=("front", "side"), title="fitted t-shirt on another body"),
         )
     except Exception as exc:  # a picture must not sink the demo
         log(f"(retarget picture skipped: {exc})")

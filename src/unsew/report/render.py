@@ -19,9 +19,9 @@ All views of one picture share one scale (metres per pixel), so sizes compare ac
 from __future__ import annotations
 
 import os
+import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Sequence
 
 import numpy as np
 
@@ -35,6 +35,8 @@ __all__ = [
     "render_mesh",
     "render_views",
     "render_comparison",
+    "Colors",
+    "Layout",
 ]
 
 #: Camera azimuth about +Y from the front [deg] and elevation [deg] of each named view.
@@ -61,6 +63,48 @@ _INSIDE_DIM = 0.78  # faces seen from their back side (the inside of a garment) 
 _LIGHT = np.array([-0.55, 0.5, 0.75])  # in camera coordinates (right, up, towards the viewer)
 _LIGHT = _LIGHT / np.linalg.norm(_LIGHT)
 _BG = "white"
+
+
+@dataclass(frozen=True)
+class Colors:
+    """How :func:`render_views` colours the meshes.
+
+    Attributes:
+        color: RGB in [0, 1] of the garment when it has no vertex values.
+        cmap: colour map (a matplotlib name, :data:`HEAT_CMAP` or a Colormap) of the vertex values.
+        vmin, vmax: the colour map's range, in the values' unit (default: the data's range).
+        colorbar_label: label of the colour bar (put the unit in it).
+        overlay_style: ``"ghost"`` (translucent) or ``"wire"`` (a wire frame).
+        overlay_color: RGB in [0, 1] of the overlay.
+    """
+
+    color: tuple = GARMENT_RGB
+    cmap: object = "viridis"
+    vmin: float | None = None
+    vmax: float | None = None
+    colorbar_label: str | None = None
+    overlay_style: str = "ghost"
+    overlay_color: tuple = OVERLAY_RGB
+
+
+@dataclass(frozen=True)
+class Layout:
+    """What a rendered picture shows and how big it is.
+
+    Attributes:
+        views: names from :data:`VIEWS`, drawn left to right at one common scale.
+        frame: ``"garment"`` frames the garment and overlay (the body is cropped), ``"all"``
+            also the body.
+        margin: empty border as a fraction of the framed extent [-].
+        size_px: (width, height) of the PNG in pixels (default: from the number of views).
+        title: a title above the picture, or None.
+    """
+
+    views: tuple[str, ...] = ("front", "side")
+    frame: str = "garment"
+    margin: float = 0.06
+    size_px: tuple[int, int] | None = None
+    title: str | None = None
 
 
 def view_rotation(view: str) -> np.ndarray:
@@ -242,22 +286,11 @@ def _scene_polys(layers: list[_Layer], view: str):
     )
 
 
-def _layers(
-    verts,
-    faces,
-    *,
-    vertex_values,
-    color,
-    cmap,
-    norm,
-    body,
-    overlay,
-    overlay_style,
-    overlay_color,
-    frame,
-    body_depth_bias=None,
-) -> list[_Layer]:
-    body_depth_bias = BODY_DEPTH_BIAS if body_depth_bias is None else float(body_depth_bias)
+def _layers(verts, faces, *, vertex_values, colors: Colors, scale, body, overlay, frame) -> list[_Layer]:
+    """The layers of one scene: the body (light grey), the garment (``colors.color``, or its
+    vertex values through scale = (cmap, norm)), the overlay as ``colors`` says; faces far
+    longer than the garment's typical edge split."""
+    cmap, norm = scale
     layers = []
     if body is not None:
         bv, bf = body
@@ -267,21 +300,21 @@ def _layers(
                 bf,
                 _face_rgb(bv, bf, None, BODY_RGB, None, None),
                 frame=(frame == "all"),
-                depth_bias=-body_depth_bias,
+                depth_bias=-BODY_DEPTH_BIAS,
             )
         )
     layers.append(
         _Layer(
             verts,
             faces,
-            _face_rgb(verts, faces, vertex_values, color, cmap, norm),
+            _face_rgb(verts, faces, vertex_values, colors.color, cmap, norm),
             ambient=0.22 if vertex_values is None else 0.55,
         )
     )
     if overlay is not None:
         ov, of = overlay
-        rgb = _face_rgb(ov, of, None, overlay_color, None, None)
-        if overlay_style == "wire":
+        rgb = _face_rgb(ov, of, None, colors.overlay_color, None, None)
+        if colors.overlay_style == "wire":
             layers.append(_Layer(ov, of, rgb, alpha=0.9, wire=True))
         else:
             layers.append(_Layer(ov, of, rgb, alpha=0.28))
@@ -307,22 +340,36 @@ def _px_axes(fig, x0, y0, w, h, W, H):
     return ax
 
 
-def _render(
-    path_png,
-    scenes: list[list[_Layer]],
-    views: Sequence[str],
-    *,
-    titles,
-    size_px,
-    title,
-    cmap,
-    norm,
-    extend="neither",
-    colorbar_label,
-    margin,
-    dpi=100,
-):
-    """Draw a grid (rows = scenes, columns = views) into one PNG of exactly size_px pixels."""
+def _scale(drawn, cell_w, cell_h, *, row_title, pad, margin) -> float:
+    """One scale for all cells [pixels per metre]: the largest at which every cell's framed
+    extent, grown by ``margin``, fits its cell."""
+    scale = np.inf
+    for row in drawn:
+        for *_, (x0, x1, y0, y1) in row:
+            dx = max(x1 - x0, 1e-9) * (1 + 2 * margin)
+            dy = max(y1 - y0, 1e-9) * (1 + 2 * margin)
+            scale = min(scale, (cell_w - 2 * pad) / dx, (cell_h - row_title - 2 * pad) / dy)
+    return scale
+
+
+def _colorbar(fig, W, H, scale) -> None:
+    """A horizontal colour bar at the bottom of a W x H pixel figure; scale = (cmap, norm,
+    extend, label)."""
+    import matplotlib.cm as cm
+
+    cmap, norm, extend, label = scale
+    cw = min(0.6 * W, 420)
+    cax = fig.add_axes(((W - cw) / 2 / W, 40 / H, cw / W, 12 / H))
+    sm = cm.ScalarMappable(norm=norm, cmap=cmap)
+    cb = fig.colorbar(sm, cax=cax, orientation="horizontal", extend=extend)
+    cb.set_label(label or "", fontsize=9)
+    cb.ax.tick_params(labelsize=8)
+
+
+def _render(path_png, scenes: list[list[_Layer]], *, titles, layout: Layout, scale, dpi=100):
+    """Draw a grid (rows = scenes, columns = layout.views) into one PNG of exactly
+    layout.size_px pixels; scale = (cmap, norm, extend, colour bar label), cmap and norm None
+    for no colour bar."""
     import matplotlib
 
     matplotlib.use("Agg", force=False)
@@ -330,6 +377,7 @@ def _render(
     from matplotlib.figure import Figure
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
+    views, size_px, title = layout.views, layout.size_px, layout.title
     W, H = int(size_px[0]), int(size_px[1])
     if W < 32 or H < 32:
         raise InputError(f"size_px must be at least 32 x 32 pixels, got {size_px}")
@@ -338,28 +386,22 @@ def _render(
 
     top = 34 if title else 6
     row_title = 22 if (any(titles) or len(views) > 1) else 0
-    bottom = 66 if norm is not None else 6
+    bottom = 66 if scale[1] is not None else 6
     nr, nc = len(scenes), len(views)
     cell_w = (W - 12) / nc
     cell_h = (H - top - bottom) / nr
     if cell_h - row_title < 16 or cell_w < 16:
         raise InputError(f"size_px {size_px} is too small for {nr} x {nc} views")
     pad = 6
-    # one scale for all cells: metres per pixel
     drawn = [[_scene_polys(sc, v) for v in views] for sc in scenes]
-    scale = np.inf
-    for row in drawn:
-        for *_, (x0, x1, y0, y1) in row:
-            dx = max(x1 - x0, 1e-9) * (1 + 2 * margin)
-            dy = max(y1 - y0, 1e-9) * (1 + 2 * margin)
-            scale = min(scale, (cell_w - 2 * pad) / dx, (cell_h - row_title - 2 * pad) / dy)
+    px_per_m = _scale(drawn, cell_w, cell_h, row_title=row_title, pad=pad, margin=layout.margin)
+    aw, ah = cell_w - 2 * pad, cell_h - row_title - 2 * pad
     for r, row in enumerate(drawn):
         for c, (polys, fc, ec, (x0, x1, y0, y1)) in enumerate(row):
-            aw, ah = cell_w - 2 * pad, cell_h - row_title - 2 * pad
             ax = _px_axes(fig, 6 + c * cell_w + pad, bottom + (nr - 1 - r) * cell_h + pad, aw, ah, W, H)
             cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
-            ax.set_xlim(cx - aw / scale / 2, cx + aw / scale / 2)
-            ax.set_ylim(cy - ah / scale / 2, cy + ah / scale / 2)
+            ax.set_xlim(cx - aw / px_per_m / 2, cx + aw / px_per_m / 2)
+            ax.set_ylim(cy - ah / px_per_m / 2, cy + ah / px_per_m / 2)
             pc = PolyCollection(
                 polys, facecolors=fc, edgecolors=ec, linewidths=72.0 / dpi, antialiaseds=True, closed=True
             )
@@ -367,26 +409,12 @@ def _render(
             label = titles[r] if titles[r] else ""
             if len(views) > 1 or label:
                 text = f"{label} — {views[c]}" if (label and len(views) > 1) else (label or views[c])
-                fig.text(
-                    (6 + (c + 0.5) * cell_w) / W,
-                    (bottom + (nr - r) * cell_h - 4) / H,
-                    text,
-                    ha="center",
-                    va="top",
-                    fontsize=10,
-                    color="#333333",
-                )
+                x_t, y_t = (6 + (c + 0.5) * cell_w) / W, (bottom + (nr - r) * cell_h - 4) / H
+                fig.text(x_t, y_t, text, ha="center", va="top", fontsize=10, color="#333333")
     if title:
         fig.text(0.5, 1 - 8 / H, title, ha="center", va="top", fontsize=13, weight="bold")
-    if norm is not None:
-        import matplotlib.cm as cm
-
-        cw = min(0.6 * W, 420)
-        cax = fig.add_axes(((W - cw) / 2 / W, 40 / H, cw / W, 12 / H))
-        sm = cm.ScalarMappable(norm=norm, cmap=cmap)
-        cb = fig.colorbar(sm, cax=cax, orientation="horizontal", extend=extend)
-        cb.set_label(colorbar_label or "", fontsize=9)
-        cb.ax.tick_params(labelsize=8)
+    if scale[1] is not None:
+        _colorbar(fig, W, H, scale)
     path = Path(path_png)
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(os.fspath(path), dpi=dpi, facecolor=_BG, format="png")
@@ -439,84 +467,72 @@ def _colormap(vertex_values, n_verts, *, cmap, vmin, vmax):
 # public entry points
 
 
+def _check_layout(layout: Layout) -> tuple[str, ...]:
+    """The layout's views as a tuple; InputError on an unknown view or frame."""
+    views = tuple(layout.views)
+    if not views:
+        raise InputError("views must name at least one view")
+    for v in views:
+        view_rotation(v)  # validates the name
+    if layout.frame not in ("garment", "all"):
+        raise InputError(f"frame must be 'garment' or 'all', got {layout.frame!r}")
+    return views
+
+
 def render_views(
     path_png: str | os.PathLike,
     verts: np.ndarray,
     faces: np.ndarray,
     *,
-    views: Sequence[str] = ("front", "side"),
     vertex_values: np.ndarray | None = None,
-    cmap: str = "viridis",
-    vmin: float | None = None,
-    vmax: float | None = None,
-    colorbar_label: str | None = None,
-    color=GARMENT_RGB,
     body: tuple[np.ndarray, np.ndarray] | None = None,
     overlay: tuple[np.ndarray, np.ndarray] | None = None,
-    overlay_style: str = "ghost",
-    overlay_color=OVERLAY_RGB,
-    frame: str = "garment",
-    margin: float = 0.06,
-    size_px: tuple[int, int] | None = None,
-    title: str | None = None,
+    colors: Colors = Colors(),
+    layout: Layout = Layout(),
 ) -> Path:
     """Render a mesh from several views side by side into one PNG; returns the PNG's path.
 
     verts: garment vertex positions [m], shape (V, 3), float64, world frame (Y up, front +Z).
     faces: triangles, shape (F, 3), int, indices into verts.
-    views: names from :data:`VIEWS`, drawn left to right at one common scale.
     vertex_values: optional per-vertex scalar, shape (V,), float (e.g. distance to the target
-        [mm]); faces are coloured by ``cmap`` at their mean vertex value between ``vmin`` and
-        ``vmax`` (default: the data's range), NaN in grey, with a colour bar labelled
-        ``colorbar_label`` (put the unit in it). Without values the garment is ``color``.
+        [mm]); faces are coloured by ``colors.cmap`` at their mean vertex value between
+        ``colors.vmin`` and ``colors.vmax`` (default: the data's range), NaN in grey, with a
+        colour bar labelled ``colors.colorbar_label``. Without values the garment is ``colors.color``.
     body: optional (verts (Vb, 3) [m], faces (Fb, 3)) drawn in light grey, hidden surfaces
         resolved together with the garment.
     overlay: optional (verts (Vo, 3) [m], faces (Fo, 3)), e.g. the target, drawn in
-        ``overlay_color`` either as a translucent ``"ghost"`` or a ``"wire"`` frame.
-    frame: ``"garment"`` frames the garment and overlay (the body is cropped), ``"all"`` also
-        the body. ``margin``: empty border as a fraction of the framed extent.
-    size_px: (width, height) of the PNG in pixels (default 420 x 560 per view).
+        ``colors.overlay_color`` either as a translucent ``"ghost"`` or a ``"wire"`` frame.
+    colors: :class:`Colors`. layout: :class:`Layout` (views, frame, margin, size, title); its
+        size_px defaults to 420 x 560 per view.
     """
-    views = tuple(views)
-    if not views:
-        raise InputError("views must name at least one view")
-    for v in views:
-        view_rotation(v)  # validates the name
+    views = _check_layout(layout)
     verts, faces = _check_mesh(verts, faces, "garment")
     body = _check_pair(body, "body")
     overlay = _check_pair(overlay, "overlay")
-    if overlay_style not in ("ghost", "wire"):
-        raise InputError(f"overlay_style must be 'ghost' or 'wire', got {overlay_style!r}")
-    if frame not in ("garment", "all"):
-        raise InputError(f"frame must be 'garment' or 'all', got {frame!r}")
-    vals, cm_, norm, lo_out, hi_out = _colormap(vertex_values, len(verts), cmap=cmap, vmin=vmin, vmax=vmax)
+    if colors.overlay_style not in ("ghost", "wire"):
+        raise InputError(f"overlay_style must be 'ghost' or 'wire', got {colors.overlay_style!r}")
+    vals, cm_, norm, lo_out, hi_out = _colormap(
+        vertex_values, len(verts), cmap=colors.cmap, vmin=colors.vmin, vmax=colors.vmax
+    )
+    size_px = layout.size_px
     if size_px is None:
-        size_px = (420 * len(views), 560 + (52 if vals is not None else 0) + (28 if title else 0))
+        size_px = (420 * len(views), 560 + (52 if vals is not None else 0) + (28 if layout.title else 0))
     layers = _layers(
         verts,
         faces,
         vertex_values=vals,
-        color=color,
-        cmap=cm_,
-        norm=norm,
+        colors=colors,
+        scale=(cm_, norm),
         body=body,
         overlay=overlay,
-        overlay_style=overlay_style,
-        overlay_color=overlay_color,
-        frame=frame,
+        frame=layout.frame,
     )
     return _render(
         path_png,
         [layers],
-        views,
         titles=[None],
-        size_px=size_px,
-        title=title,
-        cmap=cm_,
-        norm=norm,
-        extend=_extend(lo_out, hi_out),
-        colorbar_label=colorbar_label,
-        margin=margin,
+        layout=dataclasses.replace(layout, views=views, size_px=size_px),
+        scale=(cm_, norm, _extend(lo_out, hi_out), colors.colorbar_label),
     )
 
 
@@ -531,11 +547,29 @@ def render_mesh(
 ) -> Path:
     """Render one orthographic view of a mesh to a PNG of exactly ``size_px`` pixels.
 
-    ``view``: ``"front"``, ``"side"``, ``"back"`` or ``"three_quarter"``; ``style``: the keyword
-    arguments of :func:`render_views` (vertex values, colours, body, overlay, frame, margin,
-    title). Returns the PNG's path.
+    ``view``: ``"front"``, ``"side"``, ``"back"`` or ``"three_quarter"``; ``style``: the
+    keyword arguments ``vertex_values``, ``body``, ``overlay`` of :func:`render_views` and the
+    fields of :class:`Colors` and :class:`Layout` (frame, margin, title) by name. Returns the
+    PNG's path.
     """
-    return render_views(path_png, verts, faces, views=(view,), size_px=size_px, **style)
+    meshes = {k: style.pop(k) for k in ("vertex_values", "body", "overlay") if k in style}
+    colors = Colors(**{f.name: style.pop(f.name) for f in dataclasses.fields(Colors) if f.name in style})
+    layout = Layout(views=(view,), size_px=size_px, **style)
+    return render_views(path_png, verts, faces, colors=colors, layout=layout, **meshes)
+
+
+def _heat_scale(distance_mm, n_verts: int, vmax_mm):
+    """_colormap of the distances [mm] on the heat map from 0 to vmax_mm (default: their
+    98th percentile)."""
+    vmax = vmax_mm
+    if distance_mm is not None and vmax is None:
+        d = _np(distance_mm).astype(np.float64)
+        d = d[np.isfinite(d)]
+        vmax = float(np.percentile(d, 98)) if d.size else 1.0
+        vmax = vmax if vmax > 0 else 1.0
+    return _colormap(
+        distance_mm, n_verts, cmap=HEAT_CMAP, vmin=0.0 if distance_mm is not None else None, vmax=vmax
+    )
 
 
 def render_comparison(
@@ -546,65 +580,38 @@ def render_comparison(
     distance_mm: np.ndarray | None = None,
     vmax_mm: float | None = None,
     body: tuple[np.ndarray, np.ndarray] | None = None,
-    views: Sequence[str] = ("front", "side"),
     labels: tuple[str, str] = ("target", "result"),
-    frame: str = "all",
-    size_px: tuple[int, int] | None = None,
-    title: str | None = None,
+    layout: Layout = Layout(frame="all"),
 ) -> Path:
     """Target (top row) and result (bottom row) from the same views at one common scale.
 
     target, result: (verts (V, 3) [m], faces (F, 3)) pairs. distance_mm: optional per-vertex
     distance of the result to the target [mm], shape (V_result,); colours the result with
     the :data:`HEAT_CMAP` heat map from 0 to ``vmax_mm`` (default: the 98th percentile). body:
-    optional (verts, faces) drawn under both. frame: ``"all"`` (default) frames the whole body
-    too, ``"garment"`` only target and result. Returns the PNG's path.
+    optional (verts, faces) drawn under both. layout: :class:`Layout`; its frame ``"all"``
+    (default) frames the whole body too, ``"garment"`` only target and result; its size_px
+    defaults to 360 x 1000 per view. Returns the PNG's path.
     """
-    views = tuple(views)
-    for v in views:
-        view_rotation(v)
+    views = _check_layout(layout)
     tv, tf = _check_mesh(*_unpair(target, "target"), "target")
     rv, rf = _check_mesh(*_unpair(result, "result"), "result")
     body = _check_pair(body, "body")
-    vmax = vmax_mm
-    if distance_mm is not None and vmax is None:
-        d = _np(distance_mm).astype(np.float64)
-        d = d[np.isfinite(d)]
-        vmax = float(np.percentile(d, 98)) if d.size else 1.0
-        vmax = vmax if vmax > 0 else 1.0
-    vals, cm_, norm, lo_out, hi_out = _colormap(
-        distance_mm, len(rv), cmap=HEAT_CMAP, vmin=0.0 if distance_mm is not None else None, vmax=vmax
-    )
+    vals, cm_, norm, lo_out, hi_out = _heat_scale(distance_mm, len(rv), vmax_mm)
+    size_px = layout.size_px
     if size_px is None:
-        size_px = (360 * len(views), 2 * 500 + (58 if vals is not None else 0) + (34 if title else 0))
-    if frame not in ("garment", "all"):
-        raise InputError(f"frame must be 'garment' or 'all', got {frame!r}")
-    common = dict(
-        cmap=cm_,
-        norm=norm,
-        body=body,
-        overlay=None,
-        overlay_style="ghost",
-        overlay_color=OVERLAY_RGB,
-        frame=frame,
-    )
-    top = _layers(tv, tf, vertex_values=None, color=TARGET_RGB, **common)
-    bot = _layers(rv, rf, vertex_values=vals, color=GARMENT_RGB, **common)
+        size_px = (360 * len(views), 2 * 500 + (58 if vals is not None else 0) + (34 if layout.title else 0))
+    common = dict(scale=(cm_, norm), body=body, overlay=None, frame=layout.frame)
+    top = _layers(tv, tf, vertex_values=None, colors=Colors(color=TARGET_RGB), **common)
+    bot = _layers(rv, rf, vertex_values=vals, colors=Colors(color=GARMENT_RGB), **common)
     # frame both rows on the union of target and result so the rows line up
     for layers, other in ((top, (rv, rf)), (bot, (tv, tf))):
         layers.append(_Layer(other[0], other[1][:0], np.zeros((0, 3))))
     return _render(
         path_png,
         [top, bot],
-        views,
         titles=list(labels),
-        size_px=size_px,
-        title=title,
-        cmap=cm_,
-        norm=norm,
-        extend=_extend(lo_out, hi_out),
-        colorbar_label="distance to target [mm]",
-        margin=0.06,
+        layout=dataclasses.replace(layout, views=views, size_px=size_px),
+        scale=(cm_, norm, _extend(lo_out, hi_out), "distance to target [mm]"),
     )
 
 
