@@ -307,7 +307,15 @@ def plot_patterns(
     _draw_scale_bar(ax, xmin, ymin - 0.45 * bar_h, bar, 0.12 * bar_h)
     ax.set_xlim(xmin - pad, xmax + pad)
     ax.set_ylim(ymin_all - pad, ymax + pad)
+    _pattern_legend(fig, labels, pstyles, top=(36 if title else 4) / H)
+    if title:
+        fig.text(0.5, 1 - 8 / H, title, ha="center", va="top", fontsize=13, weight="bold")
+    return _save(fig, path_png)
 
+
+def _pattern_legend(fig, labels, pstyles, *, top: float) -> None:
+    """One legend line per pattern label in its style, centred ``top`` (a fraction of the
+    figure's height) below the figure's top."""
     from matplotlib.lines import Line2D
 
     handles = [
@@ -323,11 +331,8 @@ def plot_patterns(
         ncol=min(len(labels), 6),
         frameon=False,
         fontsize=10,
-        bbox_to_anchor=(0.5, 1 - (36 if title else 4) / H),
+        bbox_to_anchor=(0.5, 1 - top),
     )
-    if title:
-        fig.text(0.5, 1 - 8 / H, title, ha="center", va="top", fontsize=13, weight="bold")
-    return _save(fig, path_png)
 
 
 def _pattern_cells(patterns, layout: str) -> tuple[dict[str, list[tuple[int, np.ndarray, str]]], list[str]]:

@@ -9,6 +9,7 @@ just leave their figure out. Call it inside the fit's temporary result folder
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping, Sequence
 
@@ -17,9 +18,9 @@ import numpy as np
 from unsew.report.figures import pattern_outlines, plot_histogram, plot_loss_curves, plot_patterns
 from unsew.report.html import write_report
 from unsew.report.measure import measurement_table
-from unsew.report.render import HEAT_CMAP, render_comparison, render_views
+from unsew.report.render import HEAT_CMAP, Colors, Layout, render_comparison, render_views
 
-__all__ = ["write_fit_report", "nearest_distance_mm"]
+__all__ = ["write_fit_report", "FitReport", "nearest_distance_mm"]
 
 
 def nearest_distance_mm(verts: np.ndarray, target_verts: np.ndarray) -> np.ndarray:
@@ -39,76 +40,76 @@ def _outlines(p) -> list:
     return list(p)
 
 
-def write_fit_report(
-    out_dir: str | os.PathLike,
-    *,
-    title: str = "unsew fit",
-    summary: Mapping[str, Any] | None = None,
-    metrics: Mapping[str, Any] | None = None,
-    target: tuple[np.ndarray, np.ndarray] | None = None,
-    result: tuple[np.ndarray, np.ndarray] | None = None,
-    body: tuple[np.ndarray, np.ndarray] | None = None,
-    distance_mm: np.ndarray | None = None,
-    history: Mapping[str, Sequence[float]] | None = None,
-    phases: Sequence[tuple[int, str]] | None = None,
-    patterns: Sequence[tuple[str, Any]] | None = None,
-    config: Mapping[str, Any] | None = None,
-    notes: Sequence[str] | None = None,
-    views: Sequence[str] = ("front", "side"),
-    material: Mapping[str, Any] | None = None,
-    choices: Sequence[str] | None = None,
-) -> Path:
+@dataclass(frozen=True)
+class FitReport:
+    """What :func:`write_fit_report` draws and tabulates; every field may be left out.
+
+    Attributes:
+        title: the page's title.
+        summary, metrics, config, notes, choices: as :func:`unsew.report.html.write_report`.
+            The metrics tables are preceded by the panel measurements of ``patterns``
+            (:func:`unsew.report.measure.measurement_table`, cm) and the result's ``material``;
+            a per-iteration ``loss_history`` entry is left out of the tables when ``history``
+            is plotted.
+        target, result, body: (verts (V, 3) [m], faces (F, 3) int) in the world frame.
+        distance_mm: per-vertex distance of the result to the target [mm], shape (V_result,);
+            default: to the nearest target vertex (:func:`nearest_distance_mm`).
+        history, phases: as :func:`unsew.report.figures.plot_loss_curves`.
+        patterns: (label, Pattern or list of (name, outline (M, 2) [m])) in drawing order, e.g.
+            ``[("base", base), ("graded", graded), ("final", final), ("ground truth", gt)]``.
+        views: the views of the mesh figures (:data:`unsew.report.render.VIEWS`).
+        material: the result's material (SI values, as ``unsew.sim.material.material_to_dict``
+            gives them).
+    """
+
+    title: str = "unsew fit"
+    summary: Mapping[str, Any] | None = None
+    metrics: Mapping[str, Any] | None = None
+    target: tuple[np.ndarray, np.ndarray] | None = None
+    result: tuple[np.ndarray, np.ndarray] | None = None
+    body: tuple[np.ndarray, np.ndarray] | None = None
+    distance_mm: np.ndarray | None = None
+    history: Mapping[str, Sequence[float]] | None = None
+    phases: Sequence[tuple[int, str]] | None = None
+    patterns: Sequence[tuple[str, Any]] | None = None
+    config: Mapping[str, Any] | None = None
+    notes: Sequence[str] | None = None
+    views: Sequence[str] = ("front", "side")
+    material: Mapping[str, Any] | None = None
+    choices: Sequence[str] | None = None
+
+
+def write_fit_report(out_dir: str | os.PathLike, **fields) -> Path:
     """Draw the figures of a fit into ``out_dir/figures`` and write ``out_dir/report.html``.
 
-    target, result, body: (verts (V, 3) [m], faces (F, 3) int) in the world frame.
-    distance_mm: per-vertex distance of the result to the target [mm], shape (V_result,);
-        default: to the nearest target vertex (:func:`nearest_distance_mm`).
-    history, phases: as :func:`unsew.report.figures.plot_loss_curves`.
-    patterns: (label, Pattern or list of (name, outline (M, 2) [m])) in drawing order, e.g.
-        ``[("base", base), ("graded", graded), ("final", final), ("ground truth", gt)]``.
-    summary, metrics, config, notes, choices: as :func:`unsew.report.html.write_report`. The metrics
-        tables are preceded by the panel measurements of ``patterns``
-        (:func:`unsew.report.measure.measurement_table`, cm) and the result's ``material`` (SI
-        values, as ``unsew.sim.material.material_to_dict`` gives them); a per-iteration
-        ``loss_history`` entry is left out of the tables when ``history`` is plotted.
-    Returns the path of report.html.
+    fields: the fields of :class:`FitReport` by name (all optional; an unknown name is a
+    TypeError). Missing inputs leave their figure or table out. Returns the path of report.html.
     """
+    r = FitReport(**fields)
     out = Path(out_dir)
     fig_dir = out / "figures"
     fig_dir.mkdir(parents=True, exist_ok=True)
-    notes = list(notes or [])
-    figures = _fit_figures(
-        fig_dir,
-        history=history,
-        phases=phases,
-        target=target,
-        result=result,
-        body=body,
-        distance_mm=distance_mm,
-        views=views,
-        patterns=patterns,
-        notes=notes,
-    )
-    tables = _fit_tables(patterns=patterns, material=material, metrics=metrics, history=history)
+    notes = list(r.notes or [])
+    figures = _fit_figures(fig_dir, r, notes)
+    tables = _fit_tables(patterns=r.patterns, material=r.material, metrics=r.metrics, history=r.history)
     return write_report(
         out / "report.html",
-        title=title,
-        summary=dict(summary or {}),
+        title=r.title,
+        summary=dict(r.summary or {}),
         metrics=tables,
         figures=figures,
-        config=config,
+        config=r.config,
         notes=notes or None,
-        choices=choices,
+        choices=r.choices,
     )
 
 
-def _fit_figures(
-    fig_dir: Path, *, history, phases, target, result, body, distance_mm, views, patterns, notes: list
-) -> list[tuple[str, Path]]:
+def _fit_figures(fig_dir: Path, r: FitReport, notes: list) -> list[tuple[str, Path]]:
     """Draw the figures :func:`write_fit_report` has inputs for into ``fig_dir``; returns
     their (caption, PNG path) in report order. A note is appended to ``notes`` when the
     distances are computed here."""
     figures: list[tuple[str, Path]] = []
+    history, phases, target, result, views = r.history, r.phases, r.target, r.result, r.views
     if history:
         figures.append(
             (
@@ -119,17 +120,23 @@ def _fit_figures(
         )
     if target is not None and result is not None:
         figures += _distance_figures(
-            fig_dir, target, result, body=body, distance_mm=distance_mm, views=views, notes=notes
+            fig_dir, target, result, body=r.body, distance_mm=r.distance_mm, views=views, notes=notes
         )
     elif result is not None:
         figures.append(
             (
                 "Fitted result",
-                render_views(fig_dir / "result.png", result[0], result[1], views=views, body=body),
+                render_views(
+                    fig_dir / "result.png",
+                    result[0],
+                    result[1],
+                    body=r.body,
+                    layout=Layout(views=tuple(views)),
+                ),
             )
         )
-    if patterns:
-        pats = [(str(label), _outlines(p)) for label, p in patterns]
+    if r.patterns:
+        pats = [(str(label), _outlines(p)) for label, p in r.patterns]
         figures.append(
             (
                 ", ".join(label for label, _ in pats) + " patterns, panel by panel, at true scale",
@@ -148,7 +155,13 @@ def _distance_figures(
     figures = [
         (
             "Target (top) and fitted result (bottom), same views and scale",
-            render_comparison(fig_dir / "target_vs_result.png", target, result, body=body, views=views),
+            render_comparison(
+                fig_dir / "target_vs_result.png",
+                target,
+                result,
+                body=body,
+                layout=Layout(views=tuple(views), frame="all"),
+            ),
         )
     ]
     if distance_mm is None:
@@ -165,14 +178,15 @@ def _distance_figures(
                 fig_dir / "distance.png",
                 result[0],
                 result[1],
-                views=tuple(views) + (("back",) if "back" not in views else ()),
                 vertex_values=d,
-                cmap=HEAT_CMAP,
-                vmin=0.0,
-                vmax=vmax if vmax > 0 else 1.0,
-                colorbar_label="distance to target [mm]",
                 body=body,
-                frame="all",
+                colors=Colors(
+                    cmap=HEAT_CMAP,
+                    vmin=0.0,
+                    vmax=vmax if vmax > 0 else 1.0,
+                    colorbar_label="distance to target [mm]",
+                ),
+                layout=Layout(views=tuple(views) + (("back",) if "back" not in views else ()), frame="all"),
             ),
         )
     )

@@ -33,6 +33,56 @@ def _edges(panel, labels) -> list[int]:
     return [i for i, e in enumerate(panel.edges) if e.label in labels]
 
 
+def _total(ps, labels) -> float:
+    """Summed arc length [m] of the edges of panels ``ps`` labelled one of ``labels``."""
+    return float(sum(edge_length(p, i) for p in ps for i in _edges(p, labels)))
+
+
+def _first_edge_length(ps, labels) -> float | None:
+    """Arc length [m] of the first edge labelled one of ``labels`` on the first panel of ``ps``
+    that has one (None if none has)."""
+    for p in ps:
+        idx = _edges(p, labels)
+        if idx:
+            return float(edge_length(p, idx[0]))
+    return None
+
+
+def _side_seam(body) -> float | None:
+    """One side seam [m]: the right_side (outseam) edges of the first body panel that has them,
+    else its longest plain side edge (None if no panel has either)."""
+    for p in body:
+        side = _total([p], _SIDE)
+        if side <= 0:
+            plain = [edge_length(p, i) for i in _edges(p, ("side", "left_side"))]
+            side = max(plain, default=0.0)
+        if side > 0:
+            return float(side)
+    return None
+
+
+def _chest_girth(body) -> float:
+    """The body panels' widths [m] at the foot of their armholes, summed (0 without armholes)."""
+    chest = 0.0
+    for p in body:
+        arm = _edges(p, ("right_armhole", "left_armhole", "armhole"))
+        if arm:
+            foot = min(min(p.vertices[p.edges[i].start][1], p.vertices[p.edges[i].end][1]) for i in arm)
+            chest += _width_at(p, foot + 1e-6)
+    return chest
+
+
+def _sleeve_girth(sleeves) -> float | None:
+    """The first sleeve's width [m] where its underarm seam meets the cap (None without one)."""
+    for p in sleeves:
+        under = _edges(p, ("right_underarm", "underarm"))
+        if under:
+            e = p.edges[under[0]]
+            y = max(p.vertices[e.start][1], p.vertices[e.end][1])
+            return float(_width_at(p, y - 1e-6))
+    return None
+
+
 def panel_measurements(pattern) -> dict[str, float]:
     """The measurements of :data:`MEASUREMENTS` that ``pattern`` has, in metres (arc lengths of
     its edges, curves included). A pattern whose edges carry no such labels gives ``{}``."""
@@ -42,51 +92,18 @@ def panel_measurements(pattern) -> dict[str, float]:
     sleeves = [p for p in panels if "sleeve" in p.name]
     body = [p for p in panels if "sleeve" not in p.name]
     legs = [p for p in body if p.name.startswith("left_")]
-    out: dict[str, float] = {}
-
-    def total(ps, labels) -> float:
-        return float(sum(edge_length(p, i) for p in ps for i in _edges(p, labels)))
-
-    hem = total(legs if legs and any(_edges(p, ("inseam",)) for p in legs) else body, ("hem",))
-    if hem > 0:
-        out["hem"] = hem
-    for p in body:
-        side = total([p], _SIDE)
-        if side <= 0:
-            plain = [edge_length(p, i) for i in _edges(p, ("side", "left_side"))]
-            side = max(plain, default=0.0)
-        if side > 0:
-            out["side seam"] = float(side)
-            break
-    for p in sleeves:
-        idx = _edges(p, ("right_underarm", "underarm"))
-        if idx:
-            out["sleeve"] = float(edge_length(p, idx[0]))
-            break
-    for p in body:
-        idx = _edges(p, ("inseam",))
-        if idx:
-            out["inseam"] = float(edge_length(p, idx[0]))
-            break
-    waist = total(body, ("waist",))
-    if waist > 0:
-        out["waist"] = waist
-    chest = 0.0
-    for p in body:
-        arm = _edges(p, ("right_armhole", "left_armhole", "armhole"))
-        if arm:
-            foot = min(min(p.vertices[p.edges[i].start][1], p.vertices[p.edges[i].end][1]) for i in arm)
-            chest += _width_at(p, foot + 1e-6)
-    if chest > 0:
-        out["chest girth"] = float(chest)
-    for p in sleeves:
-        under = _edges(p, ("right_underarm", "underarm"))
-        if under:
-            e = p.edges[under[0]]
-            y = max(p.vertices[e.start][1], p.vertices[e.end][1])
-            out["sleeve girth"] = float(_width_at(p, y - 1e-6))
-            break
-    return out
+    hem = _total(legs if legs and any(_edges(p, ("inseam",)) for p in legs) else body, ("hem",))
+    waist, chest = _total(body, ("waist",)), _chest_girth(body)
+    found = {  # None: the pattern does not have it
+        "hem": hem if hem > 0 else None,
+        "side seam": _side_seam(body),
+        "sleeve": _first_edge_length(sleeves, ("right_underarm", "underarm")),
+        "inseam": _first_edge_length(body, ("inseam",)),
+        "waist": waist if waist > 0 else None,
+        "chest girth": float(chest) if chest > 0 else None,
+        "sleeve girth": _sleeve_girth(sleeves),
+    }
+    return {k: v for k, v in found.items() if v is not None}
 
 
 def _width_at(panel, y: float) -> float:
