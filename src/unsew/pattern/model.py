@@ -250,6 +250,26 @@ def mirror_curvature(c: Curvature) -> Curvature:
     raise ValueError(f"unknown curvature type {c.kind!r}")
 
 
+def _diff_containers(a, b, where: str, atol: float, rtol: float, out: list[str]) -> bool:
+    """:func:`_diff_values` of two dicts or two lists/tuples, entry by entry; False (nothing
+    appended) when a and b are not such a pair."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        if set(a) != set(b):
+            out.append(f"{where}: keys {sorted(a)} != {sorted(b)}")
+            return True
+        for k in a:
+            _diff_values(a[k], b[k], f"{where}.{k}", atol, rtol, out)
+        return True
+    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
+        if len(a) != len(b):
+            out.append(f"{where}: length {len(a)} != {len(b)}")
+            return True
+        for i, (x, y) in enumerate(zip(a, b)):
+            _diff_values(x, y, f"{where}[{i}]", atol, rtol, out)
+        return True
+    return False
+
+
 def _diff_values(a, b, where: str, atol: float, rtol: float, out: list[str]) -> None:
     if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
         a, b = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
@@ -266,19 +286,7 @@ def _diff_values(a, b, where: str, atol: float, rtol: float, out: list[str]) -> 
         if not abs(a - b) <= atol + rtol * abs(b):
             out.append(f"{where}: {a!r} != {b!r}")
         return
-    if isinstance(a, dict) and isinstance(b, dict):
-        if set(a) != set(b):
-            out.append(f"{where}: keys {sorted(a)} != {sorted(b)}")
-            return
-        for k in a:
-            _diff_values(a[k], b[k], f"{where}.{k}", atol, rtol, out)
-        return
-    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
-        if len(a) != len(b):
-            out.append(f"{where}: length {len(a)} != {len(b)}")
-            return
-        for i, (x, y) in enumerate(zip(a, b)):
-            _diff_values(x, y, f"{where}[{i}]", atol, rtol, out)
+    if _diff_containers(a, b, where, atol, rtol, out):
         return
     if a != b:
         out.append(f"{where}: {a!r} != {b!r}")

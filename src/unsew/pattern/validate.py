@@ -116,6 +116,25 @@ def _finite(x) -> bool:
         return False
 
 
+def _check_curvature(p: Panel, i: int, w: str) -> None:
+    """PatternError (prefixed ``w``) when edge i's curvature is of an unknown kind, holds NaN, or
+    is a circle shorter than half its chord."""
+    e = p.edges[i]
+    c = e.curvature
+    if c.kind not in ("quadratic", "cubic", "circle"):
+        raise PatternError(f"{w}: unknown curvature type {c.kind!r}")
+    vals = c.params[:1] if c.kind == "circle" else c.params
+    if not _finite(vals):
+        raise PatternError(f"{w} has NaN curvature parameters; fix them")
+    if c.kind == "circle":
+        chord = float(np.linalg.norm(p.vertices[e.end] - p.vertices[e.start]))
+        if float(c.params[0]) < chord / 2 * (1 - 1e-6):
+            raise PatternError(
+                f"{w}: circle radius {float(c.params[0]):.4g} m is shorter than half the "
+                f"chord {chord / 2:.4g} m; enlarge the radius"
+            )
+
+
 def _check_panel(p: Panel) -> None:
     w = f"panel {p.name!r}"
     nv = len(p.vertices)
@@ -132,19 +151,7 @@ def _check_panel(p: Panel) -> None:
         if e.start == e.end or np.linalg.norm(p.vertices[e.end] - p.vertices[e.start]) <= GEOM_EPS:
             raise PatternError(f"{w} edge {i} has zero length (vertices {e.start} and {e.end} coincide)")
         if e.curvature is not None:
-            c = e.curvature
-            if c.kind not in ("quadratic", "cubic", "circle"):
-                raise PatternError(f"{w} edge {i}: unknown curvature type {c.kind!r}")
-            vals = c.params[:1] if c.kind == "circle" else c.params
-            if not _finite(vals):
-                raise PatternError(f"{w} edge {i} has NaN curvature parameters; fix them")
-            if c.kind == "circle":
-                chord = float(np.linalg.norm(p.vertices[e.end] - p.vertices[e.start]))
-                if float(c.params[0]) < chord / 2 * (1 - 1e-6):
-                    raise PatternError(
-                        f"{w} edge {i}: circle radius {float(c.params[0]):.4g} m is shorter than half the "
-                        f"chord {chord / 2:.4g} m; enlarge the radius"
-                    )
+            _check_curvature(p, i, f"{w} edge {i}")
     for i, e in enumerate(p.edges):
         nxt = p.edges[(i + 1) % len(p.edges)]
         if e.end != nxt.start:
@@ -182,7 +189,30 @@ def validate_pattern(pattern: Pattern) -> list[str]:
     for p in pattern.panels.values():
         _check_panel(p)
 
-    # Stitch targets before any renumbering.
+    _check_stitch_targets(pattern)
+    for name, p in pattern.panels.items():
+        if signed_area(p) < 0:
+            mirror_panel(p)
+            warnings.append(
+                f"panel {name!r} was clockwise (drawn from inside the garment); mirrored it to make it "
+                "counter-clockwise, same place in 3D, same edges and stitches"
+            )
+
+    for k, s in enumerate(pattern.stitches):
+        la = edge_length(pattern.panels[s.a.panel], s.a.edge)
+        lb = edge_length(pattern.panels[s.b.panel], s.b.edge)
+        if abs(la - lb) > STITCH_LENGTH_WARN_REL * max(la, lb):
+            warnings.append(
+                f"stitch {k}: edge {s.a.edge} of panel {s.a.panel!r} is {la * 100:.1f} cm long but edge "
+                f"{s.b.edge} of panel {s.b.panel!r} is {lb * 100:.1f} cm "
+                f"({abs(la - lb) / max(la, lb) * 100:.0f} % apart)"
+            )
+    return warnings
+
+
+def _check_stitch_targets(pattern: Pattern) -> None:
+    """PatternError for a stitch to a missing panel or edge, or an edge stitched twice (checked
+    before any renumbering)."""
     seen: dict[StitchSide, int] = {}
     for k, s in enumerate(pattern.stitches):
         for side in (s.a, s.b):
@@ -202,22 +232,3 @@ def validate_pattern(pattern: Pattern) -> list[str]:
                     f"{k}); split the edge or remove one stitch"
                 )
             seen[side] = k
-
-    for name, p in pattern.panels.items():
-        if signed_area(p) < 0:
-            mirror_panel(p)
-            warnings.append(
-                f"panel {name!r} was clockwise (drawn from inside the garment); mirrored it to make it "
-                "counter-clockwise, same place in 3D, same edges and stitches"
-            )
-
-    for k, s in enumerate(pattern.stitches):
-        la = edge_length(pattern.panels[s.a.panel], s.a.edge)
-        lb = edge_length(pattern.panels[s.b.panel], s.b.edge)
-        if abs(la - lb) > STITCH_LENGTH_WARN_REL * max(la, lb):
-            warnings.append(
-                f"stitch {k}: edge {s.a.edge} of panel {s.a.panel!r} is {la * 100:.1f} cm long but edge "
-                f"{s.b.edge} of panel {s.b.panel!r} is {lb * 100:.1f} cm "
-                f"({abs(la - lb) / max(la, lb) * 100:.0f} % apart)"
-            )
-    return warnings

@@ -142,6 +142,23 @@ def _pencil(m: Measurements) -> Pattern:
     )
 
 
+#: Edge labels of a darted skirt panel, counter-clockwise from the hem (see :func:`_darted`).
+_DARTED_LABELS = (
+    "hem",
+    "right_side",
+    "right_hip",
+    "top_right",
+    "right_dart_out",
+    "right_dart_in",
+    "top_middle",
+    "left_dart_out",
+    "left_dart_in",
+    "top_left",
+    "left_hip",
+    "left_side",
+)
+
+
 def _darted(m: Measurements) -> Pattern:
     """Two-panel A-line skirt under a waistband, shaped to the waist by two darts per panel: each
     panel straight from the hem (DART_FLARE wider than the hips per side) up to hip depth, then a
@@ -176,21 +193,7 @@ def _darted(m: Measurements) -> Pattern:
             (-h, length - d),
         ]
     )
-    labels = [
-        "hem",
-        "right_side",
-        "right_hip",
-        "top_right",
-        "right_dart_out",
-        "right_dart_in",
-        "top_middle",
-        "left_dart_out",
-        "left_dart_in",
-        "top_left",
-        "left_hip",
-        "left_side",
-    ]
-    front, back, st = _front_back(v, labels, f, top_y, length, (2, 10))
+    front, back, st = _front_back(v, list(_DARTED_LABELS), f, top_y, length, (2, 10))
     for pn in ("front", "back"):
         st += [stitch(pn, 4, pn, 5, f"{pn}_right_dart"), stitch(pn, 7, pn, 8, f"{pn}_left_dart")]
     bf, bb = band_panels(t, f.waist_y, f.hip_z, cuts=[-t + top_pieces[2], t - top_pieces[0]])
