@@ -249,20 +249,11 @@ class Skeleton:
             scale = factors[units]
         names, parent_names, positions, parts = [], [], [], []
         for k, jt in enumerate(d["joints"]):
-            if not isinstance(jt, dict) or "name" not in jt or "position" not in jt:
-                raise InputError(f'skeleton joint #{k} needs "name" and "position"')
-            pos = jt["position"]
-            if not (isinstance(pos, (list, tuple)) and len(pos) == 3):
-                raise InputError(f"skeleton joint {jt['name']!r}: position must be [x, y, z]")
-            names.append(str(jt["name"]))
-            parent_names.append(jt.get("parent"))
-            positions.append([float(v) for v in pos])
-            part = str(jt.get("part", "") or "")
-            if part and part not in PARTS:
-                raise InputError(
-                    f"skeleton joint {jt['name']!r}: part {part!r} unknown; use one of {list(PARTS)}"
-                )
-            parts.append(part or _guess_part(str(jt["name"])))
+            name, parent, pos, part = _read_joint(k, jt)
+            names.append(name)
+            parent_names.append(parent)
+            positions.append(pos)
+            parts.append(part)
         missing = [n for n in require if n not in names]
         if missing:
             raise InputError(
@@ -283,6 +274,21 @@ class Skeleton:
             _check_tree(names, parents)
             parts = structural_parts(names, parents)
         return cls(names, parents, np.array(positions) * scale, parts)
+
+
+def _read_joint(k: int, jt) -> tuple[str, object, list[float], str]:
+    """(name, parent name or None, position [x, y, z] in the file's unit, part) of joint #k of
+    a skeleton.json mapping; a missing part is guessed from the name. InputError names what is
+    wrong."""
+    if not isinstance(jt, dict) or "name" not in jt or "position" not in jt:
+        raise InputError(f'skeleton joint #{k} needs "name" and "position"')
+    pos = jt["position"]
+    if not (isinstance(pos, (list, tuple)) and len(pos) == 3):
+        raise InputError(f"skeleton joint {jt['name']!r}: position must be [x, y, z]")
+    part = str(jt.get("part", "") or "")
+    if part and part not in PARTS:
+        raise InputError(f"skeleton joint {jt['name']!r}: part {part!r} unknown; use one of {list(PARTS)}")
+    return str(jt["name"]), jt.get("parent"), [float(v) for v in pos], part or _guess_part(str(jt["name"]))
 
 
 def _check_tree(names: list[str], parents: np.ndarray) -> None:
@@ -346,7 +352,24 @@ def structural_parts(names: list[str], parents: np.ndarray) -> list[str]:
             owner[k] = (part, by)
             parts[k] = part
 
-    # the trunk's joints hang from the root through trunk joints only
+    _check_trunk(names, parents, idx)
+    head = idx["head"]
+    claim(set(_head_chain(parents, idx)) | set(_subtree(children, head)), "head", head)
+    for side in ("left", "right"):
+        for limb, (root, mid, end) in (
+            ("arm", ("shoulder", "elbow", "wrist")),
+            ("leg", ("hip", "knee", "ankle")),
+        ):
+            r, m, e = (idx[f"{side}_{n}"] for n in (root, mid, end))
+            below = set(_subtree(children, r)) - {r}
+            below |= set(_subtree(children, m)) | set(_subtree(children, e))
+            claim(below, f"{side}_{limb}", r)
+    return parts
+
+
+def _check_trunk(names: list[str], parents: np.ndarray, idx: dict[str, int]) -> None:
+    """Refuse a trunk joint (pelvis, spine, chest, neck, shoulders, hips) that hangs below a
+    limb's joint or the head: the trunk's joints hang from the root through trunk joints only."""
     limbs = {idx["head"]} | {
         idx[f"{s}_{n}"]
         for s in ("left", "right")
@@ -367,8 +390,13 @@ def structural_parts(names: list[str], parents: np.ndarray) -> list[str]:
                     "root, not from a limb or the head"
                 )
             k = int(parents[k])
-    neck, head = idx["neck"], idx["head"]
-    chain, k = [], head
+
+
+def _head_chain(parents: np.ndarray, idx: dict[str, int]) -> list[int]:
+    """The joints from the head up to the neck (the neck left out); InputError when the head
+    does not hang below the neck."""
+    neck = idx["neck"]
+    chain, k = [], idx["head"]
     while k != -1 and k != neck:
         chain.append(k)
         k = int(parents[k])
@@ -376,17 +404,7 @@ def structural_parts(names: list[str], parents: np.ndarray) -> list[str]:
         raise InputError(
             "skeleton joint 'head' does not hang below 'neck'; give the head's parent chain through the neck"
         )
-    claim(set(chain) | set(_subtree(children, head)), "head", head)
-    for side in ("left", "right"):
-        for limb, (root, mid, end) in (
-            ("arm", ("shoulder", "elbow", "wrist")),
-            ("leg", ("hip", "knee", "ankle")),
-        ):
-            r, m, e = (idx[f"{side}_{n}"] for n in (root, mid, end))
-            below = set(_subtree(children, r)) - {r}
-            below |= set(_subtree(children, m)) | set(_subtree(children, e))
-            claim(below, f"{side}_{limb}", r)
-    return parts
+    return chain
 
 
 def _guess_part(name: str) -> str:
