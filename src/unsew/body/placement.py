@@ -31,6 +31,8 @@ the body, shared/STACK.md).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from unsew.errors import InputError
@@ -294,7 +296,8 @@ def place_garment(
     info = _panel_info(pattern, mesh, roles, x)
     stacks = _body_stacks(v, parts, J, cx0, crotch_y, ys, clearance)
     xb, ytop = _shoulder_line(v, parts, J, cx0)
-    x_wrap, lifts = _wrap_lifted(pattern, mesh, info, uv, stacks, ys, crotch_y, J, xb, ytop, clearance)
+    frame = _WrapFrame(stacks, ys, crotch_y, xb, ytop, clearance)
+    x_wrap, lifts = _wrap_lifted(pattern, mesh, info, uv, frame, J)
     _put_wrapped(x, info, x_wrap, lifts)
     _put_sleeves(x, pattern, mesh, info, uv, J)
     if meet_seams and (force_meet or _arm_raised(J)):
@@ -424,7 +427,22 @@ def _wrap_stack(stack, y, S, phi_c, ys, clearance, *, perim=None):
     return np.stack([cx + a * np.sin(phi), y, cz + b * np.cos(phi)], axis=1)
 
 
-def _wrap_lifted(pattern, mesh, info, uv, stacks, ys, crotch_y, J, xb, ytop, clearance):
+@dataclass(frozen=True)
+class _WrapFrame:
+    """The body as the torso and leg panels are wrapped on it: the cross-section ``stacks``
+    (name -> per-height arrays at the heights ``ys`` (H,) [m], :func:`_body_stacks`), the
+    crotch height ``crotch_y`` [m], the shoulder line ``ytop`` [m] over ``xb`` [m]
+    (:func:`_shoulder_line`) and the ``clearance`` [m] kept from the body."""
+
+    stacks: dict
+    ys: np.ndarray
+    crotch_y: float
+    xb: np.ndarray
+    ytop: np.ndarray
+    clearance: float
+
+
+def _wrap_lifted(pattern, mesh, info, uv, frame: _WrapFrame, J):
     """Torso and leg panels wrapped on their stacks at their solved heights.
 
     Lifts [m]: a top hangs from its shoulder seams, so its front and back panels are raised
@@ -440,19 +458,25 @@ def _wrap_lifted(pattern, mesh, info, uv, stacks, ys, crotch_y, J, xb, ytop, cle
     shoulder_edges = _shoulder_edges(pattern, mesh, info)
     links = _horizontal_links(pattern, mesh, info)
     if not shoulder_edges:
-        _lower_garment_lifts(lifts, info, links, J, crotch_y)
+        _lower_garment_lifts(lifts, info, links, J, frame.crotch_y)
     hist: dict = {name: [] for name in shoulder_edges}  # (lift, residual) per iteration
     folds: dict = {}  # name -> positions before the shoulder fold; set by the first pass (it == 0)
     for it in range(LIFT_ITERS + 1 if shoulder_edges else 1):
         if it:
             for name, idx in shoulder_edges.items():
                 r = _shoulder_lift(
-                    folds[name], idx - info[name]["sl"].start, xb, ytop, clearance, stacks["torso"], ys
+                    folds[name],
+                    idx - info[name]["sl"].start,
+                    frame.xb,
+                    frame.ytop,
+                    frame.clearance,
+                    frame.stacks["torso"],
+                    frame.ys,
                 )
                 hist[name].append((lifts[name], r))
                 lifts[name] = _secant_step(hist[name])
             _propagate_lifts(lifts, links, list(shoulder_edges))
-        x_wrap, folds = _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance)
+        x_wrap, folds = _wrap_all(info, uv, lifts, frame)
     return x_wrap, lifts
 
 
@@ -693,11 +717,12 @@ def _shoulder_lift(p, idx, xb, ytop, clearance, stack, ys) -> float:
     return float(np.mean(run - (q[:, 1] - y_line)))
 
 
-def _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance):
-    """Torso and leg panels wrapped on their stacks, each raised by ``lifts[name]`` [m].
-    Returns (name -> (k, 3) positions, name -> (k, 3) positions before the shoulder fold)."""
-    # Widths needed around each stack at each height (front + back panels side by side).
-    need = {k: np.zeros(len(ys)) for k in stacks}
+def _needed_widths(info, uv, lifts, frame: _WrapFrame) -> tuple[dict, dict]:
+    """The widths [m] needed around each stack at each height (front + back panels side by
+    side; stack name -> (H,)), and per torso or leg panel its stack coordinates raised by its
+    lift (name -> (along, across, phi0, c_hint, extent))."""
+    ys, crotch_y = frame.ys, frame.crotch_y
+    need = {k: np.zeros(len(ys)) for k in frame.stacks}
     coords = {}
     for name, d in info.items():
         role = d["role"]
@@ -722,36 +747,51 @@ def _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance):
     for key in need:
         p = np.pad(need[key], (0, k), mode="edge")
         need[key] = np.max(np.stack([p[i : i + len(ys)] for i in range(k + 1)]), axis=0)
+    return need, coords
 
+
+def _wrap_leg(d, coords, p_torso, need, frame: _WrapFrame) -> np.ndarray:
+    """A leg panel wrapped on its leg's stack, its inseam edge (the side towards the other leg)
+    on the leg's innermost line, so the front's and back's inseams meet there and any slack
+    goes to the outseam; blended into its torso wrap ``p_torso`` (k, 3) [m] about the crotch."""
+    along, across, _, _, ext = coords
+    role, ys, crotch_y = d["role"], frame.ys, frame.crotch_y
+    sgn = 1.0 if role == "left_leg" else -1.0
+    R = d["R"]
+    a2 = R[:, :2].T @ np.array([0.0, 1.0, 0.0])
+    a2 = a2 / max(np.linalg.norm(a2), 1e-9)
+    b2 = np.array([a2[1], -a2[0]])
+    inward = -np.sign((R[:, :2] @ b2)[0]) * sgn  # +1: the across coordinate grows inwards
+    ok = np.flatnonzero(~np.isnan(ext[:, 0]))
+    edge = np.interp(along, ys[ok], ext[ok, 1] if inward > 0 else ext[ok, 0])
+    phi_in = -0.5 * np.pi * sgn
+    p_leg = _wrap_stack(
+        frame.stacks[role], along, across - edge, phi_in, ys, frame.clearance, perim=need[role]
+    )
+    w = _smoothstep((crotch_y + CROTCH_BLEND - along) / (2 * CROTCH_BLEND))[:, None]
+    return w * p_leg + (1 - w) * p_torso
+
+
+def _wrap_all(info, uv, lifts, frame: _WrapFrame):
+    """Torso and leg panels wrapped on their stacks, each raised by ``lifts[name]`` [m].
+    Returns (name -> (k, 3) positions, name -> (k, 3) positions before the shoulder fold)."""
+    need, coords = _needed_widths(info, uv, lifts, frame)
+    ys, clearance = frame.ys, frame.clearance
     out, folds = {}, {}
     for name, (along, across, phi0, c_hint, ext) in coords.items():
         d = info[name]
-        role = d["role"]
-        st = stacks["torso"]
+        st = frame.stacks["torso"]
         axis_x = np.interp(c_hint[1], ys, st[0])
         axis_z = np.interp(c_hint[1], ys, st[1])
         t_hat = np.array([np.cos(phi0), 0.0, -np.sin(phi0)])
         S_c = t_hat @ (c_hint - np.array([axis_x, 0.0, axis_z]))
         p_flat = _wrap_stack(st, along, across + S_c, phi0, ys, clearance, perim=need["torso"])
         folds[name] = p_flat
-        p_torso = _fold_over_shoulders(p_flat, phi0, xb, ytop, clearance, st, ys)
-        if role == "torso":
+        p_torso = _fold_over_shoulders(p_flat, phi0, frame.xb, frame.ytop, clearance, st, ys)
+        if d["role"] == "torso":
             out[name] = p_torso
-            continue
-        # A leg: its inseam edge (the side towards the other leg) on the leg's innermost line,
-        # so the front's and back's inseams meet there and any slack goes to the outseam.
-        sgn = 1.0 if role == "left_leg" else -1.0
-        R = d["R"]
-        a2 = R[:, :2].T @ np.array([0.0, 1.0, 0.0])
-        a2 = a2 / max(np.linalg.norm(a2), 1e-9)
-        b2 = np.array([a2[1], -a2[0]])
-        inward = -np.sign((R[:, :2] @ b2)[0]) * sgn  # +1: the across coordinate grows inwards
-        ok = np.flatnonzero(~np.isnan(ext[:, 0]))
-        edge = np.interp(along, ys[ok], ext[ok, 1] if inward > 0 else ext[ok, 0])
-        phi_in = -0.5 * np.pi * sgn
-        p_leg = _wrap_stack(stacks[role], along, across - edge, phi_in, ys, clearance, perim=need[role])
-        w = _smoothstep((crotch_y + CROTCH_BLEND - along) / (2 * CROTCH_BLEND))[:, None]
-        out[name] = w * p_leg + (1 - w) * p_torso
+        else:
+            out[name] = _wrap_leg(d, coords[name], p_torso, need, frame)
     return out, folds
 
 
