@@ -132,6 +132,50 @@ def _scan(verts, faces, keep_face, y0, y1, *, step=0.005):
     return ys, np.array([_horizontal_girth(verts, faces, keep_face, y) for y in ys])
 
 
+def _bust(body, torso_face, sh_y: float) -> tuple[float, float]:
+    """(bust girth [m], its height [m]): the fullest torso level (faces ``torso_face``, arms cut
+    away) between spine and shoulders (height sh_y [m]), arms down; with the arms raised,
+    RAISED_ARM_BUST times the girth at the bust points."""
+    V, F, sk = body.verts, body.faces, body.skeleton
+    if arms_raised(sk):
+        g_b, bust_y = bust_point_girth(body)
+        return RAISED_ARM_BUST * g_b, bust_y
+    spine, chest = sk.position("spine"), sk.position("chest")
+    ys, g = _scan(V, F, torso_face, spine[1] + 0.3 * (chest[1] - spine[1]), sh_y - 0.03)
+    return float(g.max()), float(ys[int(np.argmax(g))])
+
+
+def _crotch_y(V, sk) -> float:
+    """Crotch height [m]: the lowest midline surface point of V (n, 3) [m] above the knees
+    (halfway between knees and pelvis when there is none)."""
+    pelvis = sk.position("pelvis")
+    knee_y = 0.5 * (sk.position("left_knee")[1] + sk.position("right_knee")[1])
+    mid = (np.abs(V[:, 0] - pelvis[0]) < 0.015) & (V[:, 1] > knee_y) & (V[:, 1] < pelvis[1])
+    return float(V[mid, 1].min()) if mid.any() else float(0.5 * (knee_y + pelvis[1]))
+
+
+def _shoulder_width(V, sk) -> float:
+    """Shoulder width [m]: between the shoulders' outer edges on V (n, 3) [m]; with the arms
+    raised, between the shoulder joints plus RAISED_ARM_SHOULDER_OUT on each side."""
+    l_sh, r_sh = sk.position("left_shoulder"), sk.position("right_shoulder")
+    if arms_raised(sk):  # the raised arm's top continues the shoulder's: no outer edge to find
+        return float(abs(l_sh[0] - r_sh[0])) + 2 * RAISED_ARM_SHOULDER_OUT
+    return _outer_x(V, l_sh, 1.0) + _outer_x(V, r_sh, -1.0)
+
+
+def _limb_lengths(sk) -> tuple[float, float]:
+    """(arm length, leg length) [m]: each the mean of the left and right joint chains."""
+    arm = 0.5 * (
+        _length(sk, "left_shoulder", "left_elbow", "left_wrist")
+        + _length(sk, "right_shoulder", "right_elbow", "right_wrist")
+    )
+    leg = 0.5 * (
+        _length(sk, "left_hip", "left_knee", "left_ankle")
+        + _length(sk, "right_hip", "right_knee", "right_ankle")
+    )
+    return arm, leg
+
+
 def measure_body(body) -> Measurements:
     """Measurements of a body (see the module docstring for each definition).
 
@@ -155,18 +199,9 @@ def measure_body(body) -> Measurements:
     l_sh, r_sh = P("left_shoulder"), P("right_shoulder")
     sh_y = 0.5 * (l_sh[1] + r_sh[1])
 
-    # crotch: lowest midline surface point above the knees
-    knee_y = 0.5 * (P("left_knee")[1] + P("right_knee")[1])
-    mid = (np.abs(V[:, 0] - pelvis[0]) < 0.015) & (V[:, 1] > knee_y) & (V[:, 1] < pelvis[1])
-    crotch_y = float(V[mid, 1].min()) if mid.any() else float(0.5 * (knee_y + pelvis[1]))
+    crotch_y = _crotch_y(V, sk)
 
-    # bust: fullest torso level between spine and shoulders (arms cut away), arms down
-    if arms_raised(sk):
-        g_b, bust_y = bust_point_girth(body)
-        bust = RAISED_ARM_BUST * g_b
-    else:
-        ys, g = _scan(V, F, torso_face, spine[1] + 0.3 * (chest[1] - spine[1]), sh_y - 0.03)
-        bust, bust_y = float(g.max()), float(ys[int(np.argmax(g))])
+    bust, bust_y = _bust(body, torso_face, sh_y)
     # waist: narrowest torso level between hip level and chest
     ys_w, g_w = _scan(V, F, torso_face, pelvis[1] + 0.04, chest[1])
     k = int(np.argmin(np.where(g_w > 0, g_w, np.inf)))
@@ -183,18 +218,7 @@ def measure_body(body) -> Measurements:
     leg_v = (parts == "left_leg") | ((parts == "torso") & (V[:, 0] > pelvis[0]))
     leg_f = leg_v[F].all(axis=1) & (V[F][:, :, 0].min(axis=1) > pelvis[0])
     thigh = _horizontal_girth(V, F, leg_f, crotch_y - 0.03)
-    if arms_raised(sk):  # the raised arm's top continues the shoulder's: no outer edge to find
-        shoulder_width = float(abs(l_sh[0] - r_sh[0])) + 2 * RAISED_ARM_SHOULDER_OUT
-    else:
-        shoulder_width = _outer_x(V, l_sh, 1.0) + _outer_x(V, r_sh, -1.0)
-    arm = 0.5 * (
-        _length(sk, "left_shoulder", "left_elbow", "left_wrist")
-        + _length(sk, "right_shoulder", "right_elbow", "right_wrist")
-    )
-    leg = 0.5 * (
-        _length(sk, "left_hip", "left_knee", "left_ankle")
-        + _length(sk, "right_hip", "right_knee", "right_ankle")
-    )
+    arm, leg = _limb_lengths(sk)
     return Measurements(
         height=height,
         bust=bust,
@@ -203,7 +227,7 @@ def measure_body(body) -> Measurements:
         neck=neck_g,
         upper_arm=upper_arm,
         thigh=thigh,
-        shoulder_width=shoulder_width,
+        shoulder_width=_shoulder_width(V, sk),
         arm_length=arm,
         leg_length=leg,
         torso_length=float(neck[1] - waist_y),

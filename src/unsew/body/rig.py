@@ -270,6 +270,20 @@ def _limb(verts, faces, d, end, *, t_max, step, t_min_root):
     return _Limb(end, t, c, g, nc, root)
 
 
+def _name_ends(V, ends, D) -> tuple[int, int, int, int, int]:
+    """Which of the five extremities ``ends`` (vertex indices into V (n, 3) [m], geodesic
+    distances D (5, n) [m] from each) is which: (left foot, right foot, left hand, right hand,
+    head), as indices into ``ends``. The feet are the two lowest, the left ones at +X; the head
+    is as far from one hand as from the other (a hand is much nearer the head)."""
+    feet = list(np.argsort(V[ends, 1])[:2])
+    others = [i for i in range(5) if i not in feet]
+    lf, rf = sorted(feet, key=lambda i: -V[ends[i], 0])  # left foot at +X
+    ih = min(others, key=lambda i: abs(float(np.subtract(*[D[i, ends[j]] for j in others if j != i]))))
+    hands = [i for i in others if i != ih]
+    lh, rh = sorted(hands, key=lambda i: -(V[ends[i], 0] - V[ends[ih], 0]))  # left hand at +X
+    return lf, rf, lh, rh, ih
+
+
 def rig_skeleton(verts: np.ndarray, faces: np.ndarray, *, debug: dict | None = None):
     """The 17 joints of a body estimated from its closed surface (see the module docstring).
 
@@ -284,14 +298,7 @@ def rig_skeleton(verts: np.ndarray, faces: np.ndarray, *, debug: dict | None = N
     floor = float(V[:, 1].min())
     graph = _graph(V, F)
     ends, D = _extremities(V, F, graph)
-    ey = V[ends, 1]
-    feet = list(np.argsort(ey)[:2])
-    others = [i for i in range(5) if i not in feet]
-    lf, rf = sorted(feet, key=lambda i: -V[ends[i], 0])  # left foot at +X
-    # the head is as far from one hand as from the other; a hand is much nearer the head
-    ih = min(others, key=lambda i: abs(float(np.subtract(*[D[i, ends[j]] for j in others if j != i]))))
-    hands = [i for i in others if i != ih]
-    lh, rh = sorted(hands, key=lambda i: -(V[ends[i], 0] - V[ends[ih], 0]))  # left hand at +X
+    lf, rf, lh, rh, ih = _name_ends(V, ends, D)
     near_head = np.flatnonzero(np.argmin(D, axis=0) == ih)  # nearer the head's end than any other
     head_top = V[near_head[np.argmax(V[near_head, 1])]]  # the crown, not the forehead or chin
     H = float(head_top[1] - floor)
@@ -321,21 +328,8 @@ def rig_skeleton(verts: np.ndarray, faces: np.ndarray, *, debug: dict | None = N
         arms[side] = _limb(V, F, D[i], ends[i], t_max=0.55 * H, step=step, t_min_root=0.25 * H)
     _check_limbs_thin(legs, arms, H)
     if debug is not None:
-        debug.update(
-            ends={
-                n: ends[i]
-                for n, i in (
-                    ("head", ih),
-                    ("left_hand", lh),
-                    ("right_hand", rh),
-                    ("left_foot", lf),
-                    ("right_foot", rf),
-                )
-            },
-            legs=legs,
-            arms=arms,
-            H=H,
-        )
+        named = zip(("left_foot", "right_foot", "left_hand", "right_hand", "head"), (lf, rf, lh, rh, ih))
+        debug.update(ends={n: ends[i] for n, i in named}, legs=legs, arms=arms, H=H)
     col = _column(V, F, head_top, floor + 0.3 * H, 0.003 * H, 0.13 * H)
     J = _torso_joints(col, floor, H)
     for side in ("left", "right"):

@@ -58,6 +58,19 @@ def _smplx_parent(j: int) -> int:
     return 20 if j < 40 else 21  # 25-39 left hand, 40-54 right hand
 
 
+def _fold_matrix(n_smplx: int) -> np.ndarray:
+    """(n_smplx, J) 0/1 matrix sending each SMPL-X joint's skinning weight to the nearest of its
+    ancestors (itself included) among the J joints of SMPLX_JOINTS."""
+    ours = {idx: k for k, (idx, _, _) in enumerate(SMPLX_JOINTS.values())}
+    fold = np.zeros((n_smplx, len(SMPLX_JOINTS)))
+    for j in range(n_smplx):
+        a = j
+        while a not in ours:
+            a = _smplx_parent(a)
+        fold[j, ours[a]] = 1.0
+    return fold
+
+
 def make_smplx_body(
     model_path,
     *,
@@ -102,19 +115,11 @@ def make_smplx_body(
         out = model(**kw)
     v = out.vertices[0].detach().cpu().numpy().astype(np.float64)
     joints = out.joints[0].detach().cpu().numpy().astype(np.float64)
-    faces = np.asarray(model.faces, dtype=np.int64)
     W55 = np.asarray(model.lbs_weights.detach().cpu().numpy(), dtype=np.float64)  # (V, 55)
 
     names = list(SMPLX_JOINTS)
-    ours = {idx: k for k, (idx, _, _) in enumerate(SMPLX_JOINTS.values())}
-    fold = np.zeros((W55.shape[1], len(names)))
-    for j in range(W55.shape[1]):
-        a = j
-        while a not in ours:
-            a = _smplx_parent(a)
-        fold[j, ours[a]] = 1.0
-    W = W55 @ fold
-
+    W = W55 @ _fold_matrix(W55.shape[1])
+    faces = np.asarray(model.faces, dtype=np.int64)
     keep_v, keep_f, _ = clean_body_mesh(v, faces, what="SMPL-X body")
     # clean_body_mesh may drop components (the eyeballs): carry the weights of the kept vertices
     idx = _match_rows(v, keep_v)
