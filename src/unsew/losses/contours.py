@@ -84,6 +84,45 @@ def _describe(verts, idx):
     return Contour(idx.astype(np.int64), length, centre, normal)
 
 
+def _boundary_topology(f: np.ndarray, b_edges, und, he_face, bmask) -> dict:
+    """Where the boundary walk may turn: ``at`` (vertex -> its boundary edges), the boundary
+    vertices met by more than two of them (``nonmanifold``), and only around those the
+    interior edges' faces (``interior_edges``, sorted pair -> faces) and each one's faces
+    (``faces_at``)."""
+    at = {}
+    for e, (a, b) in enumerate(b_edges):
+        at.setdefault(int(a), []).append(e)
+        at.setdefault(int(b), []).append(e)
+    nonmanifold = {vv for vv, es in at.items() if len(es) > 2}
+    interior_edges = {}
+    faces_at = {}
+    if nonmanifold:
+        nm = np.array(sorted(nonmanifold))
+        sel = np.isin(und, nm).any(axis=1) & ~bmask
+        for (a, b), fi in zip(und[sel], he_face[sel]):
+            interior_edges.setdefault((int(a), int(b)), []).append(int(fi))
+        for fi in np.nonzero(np.isin(f, nm).any(axis=1))[0]:
+            for vv in f[fi]:
+                if int(vv) in nonmanifold:
+                    faces_at.setdefault(int(vv), set()).add(int(fi))
+    return dict(at=at, nonmanifold=nonmanifold, interior_edges=interior_edges, faces_at=faces_at)
+
+
+def _next_edges(v_now: int, cur: int, used, b_edges, b_face, f, topo: dict) -> list[int]:
+    """The unused boundary edges the walk may take on from vertex v_now after edge cur: those
+    leaving v_now (any touching it when the orientation is inconsistent), at a non-manifold
+    vertex those of cur's fan of faces when there are such."""
+    at = topo["at"]
+    cands = [e for e in at[v_now] if not used[e] and int(b_edges[e, 0]) == v_now]
+    if not cands:  # inconsistent orientation: accept an edge walked backwards
+        cands = [e for e in at[v_now] if not used[e]]
+    if len(cands) > 1 and v_now in topo["nonmanifold"]:
+        fan = _fan_component(v_now, int(b_face[cur]), topo["faces_at"][v_now], f, topo["interior_edges"])
+        same = [e for e in cands if int(b_face[e]) in fan]
+        cands = same or cands
+    return cands
+
+
 def open_contours(verts, faces) -> list[Contour]:
     """Boundary loops of a triangle mesh, longest first.
 
@@ -105,23 +144,7 @@ def open_contours(verts, faces) -> list[Contour]:
     b_face = he_face[bmask]
     if len(b_edges) == 0:
         return []
-    # interior edges -> their faces, only needed at non-manifold boundary vertices
-    at = {}
-    for e, (a, b) in enumerate(b_edges):
-        at.setdefault(int(a), []).append(e)
-        at.setdefault(int(b), []).append(e)
-    nonmanifold = {vv for vv, es in at.items() if len(es) > 2}
-    interior_edges = {}
-    faces_at = {}
-    if nonmanifold:
-        nm = np.array(sorted(nonmanifold))
-        sel = np.isin(und, nm).any(axis=1) & ~bmask
-        for (a, b), fi in zip(und[sel], he_face[sel]):
-            interior_edges.setdefault((int(a), int(b)), []).append(int(fi))
-        for fi in np.nonzero(np.isin(f, nm).any(axis=1))[0]:
-            for vv in f[fi]:
-                if int(vv) in nonmanifold:
-                    faces_at.setdefault(int(vv), set()).add(int(fi))
+    topo = _boundary_topology(f, b_edges, und, he_face, bmask)
 
     used = np.zeros(len(b_edges), dtype=bool)
     loops = []
@@ -137,13 +160,7 @@ def open_contours(verts, faces) -> list[Contour]:
             cycle = extend_walk(path, pos, v_now)  # a return to a vertex on the walk closes a cycle
             if cycle is not None and len(cycle) >= 3:
                 loops.append(_describe(v, np.array(cycle)))
-            cands = [e for e in at[v_now] if not used[e] and int(b_edges[e, 0]) == v_now]
-            if not cands:  # inconsistent orientation: accept an edge walked backwards
-                cands = [e for e in at[v_now] if not used[e]]
-            if len(cands) > 1 and v_now in nonmanifold:
-                fan = _fan_component(v_now, int(b_face[cur]), faces_at[v_now], f, interior_edges)
-                same = [e for e in cands if int(b_face[e]) in fan]
-                cands = same or cands
+            cands = _next_edges(v_now, cur, used, b_edges, b_face, f, topo)
             if not cands:
                 break  # nothing left here (an open chain remaining is not a loop and is dropped)
             cur = cands[0]
