@@ -79,6 +79,13 @@ def evaluate_result(
         "2d": None,
         "2d_skipped": None,
     }
+    _pattern_entries(out, res, case)
+    return out
+
+
+def _pattern_entries(out: dict, res: Path, case: Path) -> None:
+    """Fill ``out``'s "2d" (or "2d_skipped"), "2d_base" and "2d_graded" from the result folder's
+    patterns against the case's pattern_gt.json (in place)."""
     gt, est = case / "pattern_gt.json", res / "pattern.json"
     if not gt.is_file():
         out["2d_skipped"] = "case has no pattern_gt.json"
@@ -90,7 +97,6 @@ def evaluate_result(
         for key, name in (("2d_base", "pattern_base.json"), ("2d_graded", "pattern_graded.json")):
             if (res / name).is_file():  # the fit's starting points (unsew.fit.outputs)
                 out[key] = pattern_metrics(load_pattern(res / name), gt_pattern)
-    return out
 
 
 def format_table(ev: dict) -> str:

@@ -90,6 +90,36 @@ def panel_centroid3d(panel) -> np.ndarray:
     return euler_xyz_to_matrix(panel.rotation) @ np.array([c[0], c[1], 0.0]) + panel.translation
 
 
+def _unique_labels(names, pat) -> dict[str, str]:
+    """label -> panel name of the labels that exactly one of the panels ``names`` of ``pat`` carries."""
+    lab = {}
+    for n in names:
+        lb = pat.panels[n].label
+        if lb:
+            lab.setdefault(lb, []).append(n)
+    return {k: v[0] for k, v in lab.items() if len(v) == 1}
+
+
+def _match_by_shape(pattern_est, pattern_gt, rest_e, rest_g, placement_weight: float) -> dict[str, str]:
+    """The cheapest one-to-one assignment of panels ``rest_e`` to ``rest_g``: cost the turning
+    distance of their outlines plus ``placement_weight`` [rad/m] times their 3D centroids'
+    distance [m]."""
+    from scipy.optimize import linear_sum_assignment
+
+    cost = np.empty((len(rest_e), len(rest_g)))
+    out_e = {n: _outline(pattern_est.panels[n], 32) for n in rest_e}
+    out_g = {n: _outline(pattern_gt.panels[n], 32) for n in rest_g}
+    ce = {n: panel_centroid3d(pattern_est.panels[n]) for n in rest_e}
+    cg = {n: panel_centroid3d(pattern_gt.panels[n]) for n in rest_g}
+    for i, ne in enumerate(rest_e):
+        for j, ng in enumerate(rest_g):
+            cost[i, j] = turning_distance(out_e[ne], out_g[ng]) + placement_weight * float(
+                np.linalg.norm(ce[ne] - cg[ng])
+            )
+    r, c = linear_sum_assignment(cost)
+    return {rest_e[i]: rest_g[j] for i, j in zip(r, c)}
+
+
 def match_panels(
     pattern_est, pattern_gt, *, placement_weight: float = 2.0, strict: bool = True
 ) -> dict[str, str]:
@@ -108,37 +138,14 @@ def match_panels(
             match[n] = n
     rest_e = [n for n in est if n not in match]
     rest_g = [n for n in gt if n not in match.values()]
-
-    def _labels(names, pat):
-        lab = {}
-        for n in names:
-            lb = pat.panels[n].label
-            if lb:
-                lab.setdefault(lb, []).append(n)
-        return {k: v[0] for k, v in lab.items() if len(v) == 1}
-
-    le, lg = _labels(rest_e, pattern_est), _labels(rest_g, pattern_gt)
+    le, lg = _unique_labels(rest_e, pattern_est), _unique_labels(rest_g, pattern_gt)
     for lb, n in le.items():
         if lb in lg:
             match[n] = lg[lb]
     rest_e = [n for n in rest_e if n not in match]
     rest_g = [n for n in rest_g if n not in match.values()]
     if rest_e and rest_g:
-        from scipy.optimize import linear_sum_assignment
-
-        cost = np.empty((len(rest_e), len(rest_g)))
-        out_e = {n: _outline(pattern_est.panels[n], 32) for n in rest_e}
-        out_g = {n: _outline(pattern_gt.panels[n], 32) for n in rest_g}
-        ce = {n: panel_centroid3d(pattern_est.panels[n]) for n in rest_e}
-        cg = {n: panel_centroid3d(pattern_gt.panels[n]) for n in rest_g}
-        for i, ne in enumerate(rest_e):
-            for j, ng in enumerate(rest_g):
-                cost[i, j] = turning_distance(out_e[ne], out_g[ng]) + placement_weight * float(
-                    np.linalg.norm(ce[ne] - cg[ng])
-                )
-        r, c = linear_sum_assignment(cost)
-        for i, j in zip(r, c):
-            match[rest_e[i]] = rest_g[j]
+        match.update(_match_by_shape(pattern_est, pattern_gt, rest_e, rest_g, placement_weight))
     if strict:
         ue = [n for n in est if n not in match]
         ug = [n for n in gt if n not in match.values()]
@@ -261,6 +268,31 @@ def panel_vertex_l2_cm(panel_est, panel_gt) -> float | None:
     return 100.0 * best
 
 
+def _per_panel(pattern_est, pattern_gt, correspondence, halves, areas) -> dict:
+    """Per matched true panel: its estimated panel, turning distance [rad], area error [-],
+    areas [m^2] (a matched panel's half, :func:`merge_halves`, added to it) and vertex L2 [cm];
+    areas = (estimated name -> m^2, true name -> m^2)."""
+    area_e, area_g = areas
+    half_e = {v: u for u, v in halves["estimated"].items()}
+    half_g = {v: u for u, v in halves["true"].items()}
+    per = {}
+    for ne, ng in correspondence.items():
+        pe, pg = pattern_est.panels[ne], pattern_gt.panels[ng]
+        a_e = area_e[ne] + (area_e[half_e[ne]] if ne in half_e else 0.0)
+        a_g = area_g[ng] + (area_g[half_g[ng]] if ng in half_g else 0.0)
+        per[ng] = {
+            "estimated_panel": ne,
+            "turning_distance": panel_turning_distance(pe, pg),
+            "area_error_rel": abs(a_e - a_g) / a_g,
+            "area_est_m2": a_e,
+            "area_gt_m2": a_g,
+            "vertex_l2_cm": panel_vertex_l2_cm(pe, pg),
+        }
+        if ne in half_e or ng in half_g:
+            per[ng]["halves"] = {"estimated": half_e.get(ne), "true": half_g.get(ng)}
+    return per
+
+
 def pattern_metrics(
     pattern_est, pattern_gt, *, correspondence: dict[str, str] | None = None, strict: bool = False
 ) -> dict:
@@ -293,23 +325,7 @@ def pattern_metrics(
         if a <= 0:
             raise PatternError(f"true panel {n!r} has zero area; fix the reference pattern")
     halves = merge_halves(pattern_est, pattern_gt, correspondence)
-    half_e = {v: u for u, v in halves["estimated"].items()}
-    half_g = {v: u for u, v in halves["true"].items()}
-    per = {}
-    for ne, ng in correspondence.items():
-        pe, pg = pattern_est.panels[ne], pattern_gt.panels[ng]
-        a_e = area_e[ne] + (area_e[half_e[ne]] if ne in half_e else 0.0)
-        a_g = area_g[ng] + (area_g[half_g[ng]] if ng in half_g else 0.0)
-        per[ng] = {
-            "estimated_panel": ne,
-            "turning_distance": panel_turning_distance(pe, pg),
-            "area_error_rel": abs(a_e - a_g) / a_g,
-            "area_est_m2": a_e,
-            "area_gt_m2": a_g,
-            "vertex_l2_cm": panel_vertex_l2_cm(pe, pg),
-        }
-        if ne in half_e or ng in half_g:
-            per[ng]["halves"] = {"estimated": half_e.get(ne), "true": half_g.get(ng)}
+    per = _per_panel(pattern_est, pattern_gt, correspondence, halves, (area_e, area_g))
     un_e = [n for n in est_names if n not in correspondence and n not in halves["estimated"]]
     un_g = [n for n in gt_names if n not in correspondence.values() and n not in halves["true"]]
     tot_e, tot_g = sum(area_e.values()), sum(area_g.values())
