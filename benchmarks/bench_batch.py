@@ -67,6 +67,7 @@ def main(argv=None) -> None:
 
     torch.set_num_threads(1)
     from unsew.batch import run_batch
+    from unsew.batch.ray_backend import RayCluster
     from unsew.fit.config import load_config
 
     root = Path(args.keep) if args.keep else Path(tempfile.mkdtemp(prefix="bench_batch_"))
@@ -90,7 +91,7 @@ def main(argv=None) -> None:
     )
     runs = [(f"local, {w} worker{'s' if w > 1 else ''}", {"workers": w}) for w in args.workers]
     if args.ray:
-        runs.append(("Ray local, 2 CPUs", {"ray": "local", "ray_init_kwargs": {"num_cpus": 2}}))
+        runs.append(("Ray local, 2 CPUs", {"ray": RayCluster("local", {"num_cpus": 2})}))
     rows = []
     for label, kw in runs:
         out = root / ("results_" + label.replace(" ", "_").replace(",", ""))

@@ -18,6 +18,7 @@ from pathlib import Path
 import pytest
 
 from unsew.batch import fit_case_dir, run_batch
+from unsew.batch.ray_backend import RayCluster
 from unsew.fit.config import load_config
 from unsew.fit.demo import DemoTruth, make_truth_case
 
@@ -172,7 +173,5 @@ def test_three_cases_on_local_ray_equal_single_fits(three_cases):
     pytest.importorskip("ray", reason="Ray is optional (pip install 'unsew[ray]')")
     root, cfg, singles = three_cases
     out = root / "ray"
-    res = run_batch(
-        root / "cases", out, cfg=cfg, ray="local", progress=False, ray_init_kwargs={"num_cpus": 2}
-    )
+    res = run_batch(root / "cases", out, cfg=cfg, ray=RayCluster("local", {"num_cpus": 2}), progress=False)
     _check_batch(res, out, singles)

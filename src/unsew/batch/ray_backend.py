@@ -11,12 +11,13 @@ Ray is optional (``pip install 'unsew[ray]'``) and imported only here, when aske
 from __future__ import annotations
 
 import contextlib
+from dataclasses import dataclass
 from typing import Callable, Iterator, Sequence
 
 from unsew.batch.task import CaseJob, CaseRecord, one_line, prepare_worker, run_case
 from unsew.errors import InputError
 
-__all__ = ["run_ray", "ray_session", "ray_available"]
+__all__ = ["run_ray", "ray_session", "ray_available", "RayCluster"]
 
 
 def ray_available() -> bool:
@@ -37,6 +38,16 @@ def _import_ray():
     except ImportError:
         raise InputError("--ray needs Ray, which is not installed; pip install 'unsew[ray]'") from None
     return ray
+
+
+@dataclass(frozen=True)
+class RayCluster:
+    """Where a batch runs on Ray: ``address`` as :func:`ray_session` takes it ("auto", "local",
+    "host:6379", "ray://host:10001") and extra ``ray.init`` arguments (e.g. num_cpus for a
+    local instance)."""
+
+    address: str = "auto"
+    init_kwargs: dict | None = None
 
 
 @contextlib.contextmanager

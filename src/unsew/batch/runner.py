@@ -20,7 +20,7 @@ from typing import Callable
 
 from unsew.batch.cases import find_cases, read_garment, result_state
 from unsew.batch.local import run_local
-from unsew.batch.ray_backend import ray_session, run_ray
+from unsew.batch.ray_backend import RayCluster, ray_session, run_ray
 from unsew.batch.summary import write_index_html, write_summary_csv
 from unsew.batch.task import CaseJob, CaseRecord
 from unsew.errors import InputError
@@ -62,19 +62,19 @@ def run_batch(
     *,
     cfg=None,
     workers: int | None = None,
-    ray: str | None = None,
+    ray: str | RayCluster | None = None,
     overwrite: bool = False,
     fit_fn: Callable | None = None,
     progress: bool = True,
-    ray_init_kwargs: dict | None = None,
 ) -> BatchResult:
     """Fit every case folder of ``cases_dir`` into ``out/<case name>/`` and write
     ``out/summary.csv`` and ``out/index.html``.
 
     cfg: FitConfig for every case (default FitConfig()); workers: local processes (default
     min(CPU count, cases to fit)); ray: None for the local pool, else a Ray address ("auto",
-    "local", "host:6379", "ray://host:10001"; see :func:`unsew.batch.ray_backend.ray_session`);
-    ray_init_kwargs: extra ``ray.init`` arguments;
+    "local", "host:6379", "ray://host:10001"; see :func:`unsew.batch.ray_backend.ray_session`)
+    or a :class:`~unsew.batch.ray_backend.RayCluster` (an address and extra ``ray.init``
+    arguments);
     overwrite: refit cases whose result is complete (otherwise they are skipped); fit_fn: the
     per-case fit, a module-level function like :func:`unsew.batch.task.fit_case_dir` (the
     default); progress: one tqdm bar on stderr for the batch when stderr is a terminal, else a
@@ -95,23 +95,30 @@ def run_batch(
         raise InputError(f"--workers must be at least 1, got {workers}")
     session = contextlib.ExitStack()
     if ray:  # connect first: a bad address fails before anything is written
-        session.enter_context(ray_session(ray, init_kwargs=ray_init_kwargs))
+        cluster = ray if isinstance(ray, RayCluster) else RayCluster(ray)
+        session.enter_context(ray_session(cluster.address, init_kwargs=cluster.init_kwargs))
+    opts = _Options(
+        cfg=cfg, workers=workers, ray=bool(ray), overwrite=overwrite, fit_fn=fit_fn, progress=progress
+    )
     with session:
-        return _run(
-            cases,
-            cases_dir,
-            out,
-            cfg=cfg,
-            workers=workers,
-            ray=bool(ray),
-            overwrite=overwrite,
-            fit_fn=fit_fn,
-            progress=progress,
-        )
+        return _run(cases, cases_dir, out, opts)
 
 
-def _run(cases, cases_dir, out: Path, *, cfg, workers, ray: bool, overwrite, fit_fn, progress) -> BatchResult:
-    out.mkdir(parents=True, exist_ok=True)
+@dataclass(frozen=True)
+class _Options:
+    """run_batch's arguments as the batch uses them (``ray``: whether it runs on Ray)."""
+
+    cfg: FitConfig
+    workers: int | None
+    ray: bool
+    overwrite: bool
+    fit_fn: Callable | None
+    progress: bool
+
+
+def _plan(cases, out: Path, opts: _Options) -> tuple[dict[str, CaseRecord], list[CaseJob]]:
+    """A record per case (skipped: complete and not overwritten; failed: a folder in the way)
+    and the jobs of the cases to fit."""
     records: dict[str, CaseRecord] = {}
     jobs: list[CaseJob] = []
     for c in cases:
@@ -119,85 +126,104 @@ def _run(cases, cases_dir, out: Path, *, cfg, workers, ray: bool, overwrite, fit
         res = out / c.name
         rec = CaseRecord(c.name, str(c), str(res), garment=read_garment(c))
         state = result_state(res)
-        if state == "complete" and not overwrite:
+        if state == "complete" and not opts.overwrite:
             rec.status, rec.metrics = "skipped", _read_metrics(res)
             rec.time_s = ((rec.metrics or {}).get("timings_s") or {}).get("total_s")
-        elif state == "blocked" and not overwrite:
+        elif state == "blocked" and not opts.overwrite:
             rec.status = "failed"
             rec.reason = (
                 f"{res} exists but is not a complete result (no metrics.json); remove it or pass --overwrite"
             )
         else:
-            jobs.append(
-                CaseJob(
-                    c.name,
-                    str(c),
-                    str(res),
-                    str(out / f"{c.name}.log"),
-                    cfg,
-                    overwrite=overwrite,
-                    fit_fn=fit_fn,
-                )
+            job = CaseJob(
+                c.name,
+                str(c),
+                str(res),
+                str(out / f"{c.name}.log"),
+                opts.cfg,
+                overwrite=opts.overwrite,
+                fit_fn=opts.fit_fn,
             )
+            jobs.append(job)
         records[c.name] = rec
+    return records, jobs
 
-    from unsew.fit.progress import is_terminal
 
-    bar, lines = None, progress and not is_terminal(sys.stderr)
-    if progress and not lines:
-        from tqdm import tqdm
+class _Progress:
+    """The batch's progress on stderr: a tqdm bar on a terminal, else a line per finished case
+    (nothing without ``progress``); :meth:`done` records a finished case in ``records``."""
 
-        bar = tqdm(
-            total=len(cases),
-            initial=len(cases) - len(jobs),
-            desc="batch",
-            unit="case",
-            dynamic_ncols=True,
-            file=sys.stderr,
-        )
-    counts = {
-        "done": 0,
-        "failed": sum(r.status == "failed" for r in records.values()),
-        "skipped": sum(r.status == "skipped" for r in records.values()),
-    }
-    if lines:
-        print(
-            f"batch: {len(cases)} cases, {len(jobs)} to fit ({counts['skipped']} skipped, "
-            f"{counts['failed']} failed before fitting)",
-            file=sys.stderr,
-            flush=True,
-        )
-    finished = len(cases) - len(jobs)
+    def __init__(self, records: dict[str, CaseRecord], n_cases: int, n_jobs: int, progress: bool):
+        from unsew.fit.progress import is_terminal
 
-    def on_done(rec: CaseRecord) -> None:
-        nonlocal finished
-        records[rec.name] = rec
+        self.records, self.n_cases = records, n_cases
+        self.bar, self.lines = None, progress and not is_terminal(sys.stderr)
+        if progress and not self.lines:
+            from tqdm import tqdm
+
+            self.bar = tqdm(
+                total=n_cases,
+                initial=n_cases - n_jobs,
+                desc="batch",
+                unit="case",
+                dynamic_ncols=True,
+                file=sys.stderr,
+            )
+        self.counts = {
+            "done": 0,
+            "failed": sum(r.status == "failed" for r in records.values()),
+            "skipped": sum(r.status == "skipped" for r in records.values()),
+        }
+        if self.lines:
+            print(
+                f"batch: {n_cases} cases, {n_jobs} to fit ({self.counts['skipped']} skipped, "
+                f"{self.counts['failed']} failed before fitting)",
+                file=sys.stderr,
+                flush=True,
+            )
+        self.finished = n_cases - n_jobs
+        if self.bar is not None:
+            self.bar.set_postfix(done=0, failed=self.counts["failed"], skipped=self.counts["skipped"])
+
+    def done(self, rec: CaseRecord) -> None:
+        counts = self.counts
+        self.records[rec.name] = rec
         counts[rec.status] = counts.get(rec.status, 0) + 1
-        finished += 1
-        if bar is not None:
-            bar.set_postfix(
+        self.finished += 1
+        if self.bar is not None:
+            self.bar.set_postfix(
                 done=counts["done"], failed=counts["failed"], skipped=counts["skipped"], refresh=False
             )
-            bar.update(1)
-        elif lines:
+            self.bar.update(1)
+        elif self.lines:
             why = f": {rec.reason}" if rec.status != "done" and rec.reason else ""
-            print(f"batch: {finished}/{len(cases)} {rec.name} {rec.status}{why}", file=sys.stderr, flush=True)
+            print(
+                f"batch: {self.finished}/{self.n_cases} {rec.name} {rec.status}{why}",
+                file=sys.stderr,
+                flush=True,
+            )
 
-    if bar is not None:
-        bar.set_postfix(done=0, failed=counts["failed"], skipped=counts["skipped"])
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _run(cases, cases_dir, out: Path, opts: _Options) -> BatchResult:
+    out.mkdir(parents=True, exist_ok=True)
+    records, jobs = _plan(cases, out, opts)
+    prog = _Progress(records, len(cases), len(jobs), opts.progress)
     t0 = time.perf_counter()
     interrupted = False
     try:
         if jobs:
-            if ray:
-                run_ray(jobs, device=cfg.device, on_done=on_done)
+            if opts.ray:
+                run_ray(jobs, device=opts.cfg.device, on_done=prog.done)
             else:
-                run_local(jobs, workers=workers or default_workers(len(jobs)), on_done=on_done)
+                run_local(jobs, workers=opts.workers or default_workers(len(jobs)), on_done=prog.done)
     except KeyboardInterrupt:
         interrupted = True
     finally:
-        if bar is not None:
-            bar.close()
+        prog.close()
     wall = time.perf_counter() - t0
     for job in jobs:  # cases that never finished
         rec = records[job.name]
