@@ -127,6 +127,85 @@ def _mm_axes(fig, page: tuple[float, float], x: float, y: float, w: float, h: fl
     return ax
 
 
+def _test_square(fig, page: tuple[float, float], y: float) -> None:
+    """The 10 cm test square, with cm ticks, at y [mm from the page's bottom], the page margin in."""
+    pw, ph = page
+    m, s_mm = PAGE_MARGIN_MM, TEST_SQUARE_M * 1000.0
+    ax = _mm_axes(fig, (pw, ph), m, y, s_mm, s_mm)
+    ax.plot([0, s_mm, s_mm, 0, 0], [0, 0, s_mm, s_mm, 0], color="black", linewidth=0.6, clip_on=False)
+    for t in range(1, 10):
+        ax.plot([t * 10, t * 10], [0, 3], color="black", linewidth=0.4, clip_on=False)
+        ax.plot([0, 3], [t * 10, t * 10], color="black", linewidth=0.4, clip_on=False)
+    ax.text(s_mm / 2, s_mm / 2, "10 cm", ha="center", va="center", fontsize=14)
+    ax.set_xlim(0, s_mm)
+    ax.set_ylim(0, s_mm)
+
+
+def _page_map(fig, page: tuple[float, float], sheet, grid) -> None:
+    """The page map, to scale, under the test square: the pieces and every tile, named where it
+    is printed, grey where it is left out. grid = (tile [mm], rows, cols, top [mm], tiles printed)."""
+    pw, ph = page
+    m, s_mm = PAGE_MARGIN_MM, TEST_SQUARE_M * 1000.0
+    tile, rows, cols, top, tiles = grid
+    have = set(tiles)
+    map_w, map_h = pw - 2 * m, ph - 2 * m - 60 - s_mm
+    k = min(map_w / (cols * tile[0]), map_h / (rows * tile[1]))
+    axm = _mm_axes(fig, (pw, ph), m, m, cols * tile[0] * k, rows * tile[1] * k)
+    _draw_pieces(axm, sheet, None, scale=1.0 / max(k, 1e-6) / 4, text=False)
+    for r in range(rows):
+        for c in range(cols):
+            b = _box(r, c, tile, top)
+            on = (r, c) in have
+            axm.add_patch(_rect(b, on))
+            axm.text(
+                (b[0] + b[2]) / 2,
+                (b[1] + b[3]) / 2,
+                _tile_name(r, c) if on else "",
+                ha="center",
+                va="center",
+                fontsize=7,
+                color="#2f6fd0",
+            )
+    axm.set_xlim(0, cols * tile[0])
+    axm.set_ylim(top - rows * tile[1], top)
+    fig.text(
+        m / pw,
+        (m + rows * tile[1] * k + 2) / ph,
+        "Page map (grey: pages left out, nothing on them)",
+        fontsize=8,
+    )
+
+
+#: How to print and assemble the tiles, on the first page.
+_INSTRUCTIONS = (
+    'Print at 100 % ("actual size", no fit to page), then measure the square: it must be 10 cm.',
+    "Solid: cut line (seam allowance included). Dashed: sew line. Red ticks: notches;",
+    "red letters: seams (sew edges with the same letter together, notches matching).",
+    "Assemble: trim the margin of a page, lay it on its neighbour so the half diamonds",
+    "at the frame sides make whole ones and the frame lines meet, then tape.",
+)
+
+
+def _tile_page(fig, page: tuple[float, float], sheet, grid, r: int, c: int) -> None:
+    """Tile (r, c) of the sheet at 1:1 inside the page margin, framed, with the match marks
+    towards its printed neighbours. grid as :func:`_page_map`."""
+    tile, _, _, top, tiles = grid
+    m = PAGE_MARGIN_MM
+    b = _box(r, c, tile, top)
+    ax = _mm_axes(fig, page, m, m, tile[0], tile[1])
+    _draw_pieces(ax, sheet, b)
+    ax.set_xlim(b[0], b[2])
+    ax.set_ylim(b[1], b[3])
+    ax.plot(
+        [b[0], b[2], b[2], b[0], b[0]],
+        [b[1], b[1], b[3], b[3], b[1]],
+        color="#2f6fd0",
+        linewidth=0.5,
+        clip_on=False,
+    )
+    _match_marks(ax, b, r, c, set(tiles))
+
+
 def write_pdf(
     pattern: Pattern,
     path: str | os.PathLike,
@@ -147,11 +226,7 @@ def write_pdf(
     m = PAGE_MARGIN_MM
     s_mm = TEST_SQUARE_M * 1000.0
     sheet, tile, rows, cols, top, tiles = _tiled(make_sheet(pattern, allowance=allowance, hem=hem), paper)
-
-    def box(r, c):
-        return _box(r, c, tile, top)
-
-    have = set(tiles)
+    grid = (tile, rows, cols, top, tiles)
     with (
         atomic_write(path) as tmp,
         PdfPages(tmp, metadata={"Title": f"{pattern.name}: sewing pattern, 1:1", "Creator": "unsew"}) as pdf,
@@ -165,66 +240,14 @@ def write_pdf(
             fontweight="bold",
             va="top",
         )
-        lines = [
-            'Print at 100 % ("actual size", no fit to page), then measure the square: it must be 10 cm.',
-            "Solid: cut line (seam allowance included). Dashed: sew line. Red ticks: notches;",
-            "red letters: seams (sew edges with the same letter together, notches matching).",
-            "Assemble: trim the margin of a page, lay it on its neighbour so the half diamonds",
-            "at the frame sides make whole ones and the frame lines meet, then tape.",
-        ]
-        for k, line in enumerate(lines):
+        for k, line in enumerate(_INSTRUCTIONS):
             fig.text(m / pw, 1 - (m + 12 + 5.5 * k) / ph, line, fontsize=8.5, va="top")
-        ax = _mm_axes(fig, (pw, ph), m, ph - m - 50 - s_mm, s_mm, s_mm)
-        ax.plot([0, s_mm, s_mm, 0, 0], [0, 0, s_mm, s_mm, 0], color="black", linewidth=0.6, clip_on=False)
-        for t in range(1, 10):
-            ax.plot([t * 10, t * 10], [0, 3], color="black", linewidth=0.4, clip_on=False)
-            ax.plot([0, 3], [t * 10, t * 10], color="black", linewidth=0.4, clip_on=False)
-        ax.text(s_mm / 2, s_mm / 2, "10 cm", ha="center", va="center", fontsize=14)
-        ax.set_xlim(0, s_mm)
-        ax.set_ylim(0, s_mm)
-        # the page map, to scale, under the square
-        map_w, map_h = pw - 2 * m, ph - 2 * m - 60 - s_mm
-        k = min(map_w / (cols * tile[0]), map_h / (rows * tile[1]))
-        axm = _mm_axes(fig, (pw, ph), m, m, cols * tile[0] * k, rows * tile[1] * k)
-        _draw_pieces(axm, sheet, None, scale=1.0 / max(k, 1e-6) / 4, text=False)
-        for r in range(rows):
-            for c in range(cols):
-                b = box(r, c)
-                on = (r, c) in have
-                axm.add_patch(_rect(b, on))
-                axm.text(
-                    (b[0] + b[2]) / 2,
-                    (b[1] + b[3]) / 2,
-                    _tile_name(r, c) if on else "",
-                    ha="center",
-                    va="center",
-                    fontsize=7,
-                    color="#2f6fd0",
-                )
-        axm.set_xlim(0, cols * tile[0])
-        axm.set_ylim(top - rows * tile[1], top)
-        fig.text(
-            m / pw,
-            (m + rows * tile[1] * k + 2) / ph,
-            "Page map (grey: pages left out, nothing on them)",
-            fontsize=8,
-        )
+        _test_square(fig, (pw, ph), ph - m - 50 - s_mm)
+        _page_map(fig, (pw, ph), sheet, grid)
         pdf.savefig(fig)
         for i, (r, c) in enumerate(tiles):
             fig = _page(pw, ph)
-            b = box(r, c)
-            ax = _mm_axes(fig, (pw, ph), m, m, tile[0], tile[1])
-            _draw_pieces(ax, sheet, b)
-            ax.set_xlim(b[0], b[2])
-            ax.set_ylim(b[1], b[3])
-            ax.plot(
-                [b[0], b[2], b[2], b[0], b[0]],
-                [b[1], b[1], b[3], b[3], b[1]],
-                color="#2f6fd0",
-                linewidth=0.5,
-                clip_on=False,
-            )
-            _match_marks(ax, b, r, c, have)
+            _tile_page(fig, (pw, ph), sheet, grid, r, c)
             fig.text(
                 0.5,
                 1 - 5 / ph,
