@@ -127,17 +127,8 @@ def _frame_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--front", default="z", help="the files' front axis (default: z)")
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "body",
-        help="make a wearer (anny) or measure a body",
-        formatter_class=HelpFormatter,
-        epilog=examples(
-            "unsew body make --phenotype height=0.7 --out bodies/tall/", "unsew body measure default"
-        ),
-    )
-    psub = p.add_subparsers(dest="body_command", metavar="VERB", required=True)
-
+def _add_make(psub) -> None:
+    """The ``body make`` verb."""
     mk = psub.add_parser(
         "make",
         help="make a body with anny (pip install unsew[anny]): body.obj + skeleton.json",
@@ -161,6 +152,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     mk.add_argument("--overwrite", action="store_true", help="replace an existing --out folder")
     mk.set_defaults(func=run_make)
 
+
+def _add_rig(psub) -> None:
+    """The ``body rig`` verb."""
     rg = psub.add_parser(
         "rig",
         help="estimate the 17 joints of a body mesh that has no skeleton: skeleton.json",
@@ -183,6 +177,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     _frame_options(rg)
     rg.set_defaults(func=run_rig, skeleton=None)
 
+
+def _add_measure(psub) -> None:
+    """The ``body measure`` verb."""
     me = psub.add_parser(
         "measure",
         help="girths and lengths of a body (body.obj [+ skeleton.json], its folder, or 'default'); "
@@ -197,3 +194,19 @@ def register(sub: argparse._SubParsersAction) -> None:
     me.add_argument("--json", action="store_true", help="print JSON (metres)")
     _frame_options(me)
     me.set_defaults(func=run_measure)
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "body",
+        help="make a wearer (anny) or measure a body",
+        formatter_class=HelpFormatter,
+        epilog=examples(
+            "unsew body make --phenotype height=0.7 --out bodies/tall/", "unsew body measure default"
+        ),
+    )
+    psub = p.add_subparsers(dest="body_command", metavar="VERB", required=True)
+
+    _add_make(psub)
+    _add_rig(psub)
+    _add_measure(psub)

@@ -136,7 +136,9 @@ def _load_body(args):
     return load_body(path, args.skeleton or None, units=args.units)
 
 
-def run(args: argparse.Namespace) -> int:
+def _checked_out(args: argparse.Namespace):
+    """--out as a Path, after the checks of the numeric options and of --out itself (a bad
+    --out fails now, not after the drape)."""
     from pathlib import Path
 
     if not (0.005 <= args.edge_length <= 0.1):
@@ -148,7 +150,34 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out)
     if out.suffix.lower() != ".obj":
         raise InputError(f"--out {out} must end in .obj")
-    check_out(out, overwrite=args.overwrite)  # a bad --out fails now, not after the drape
+    check_out(out, overwrite=args.overwrite)
+    return out
+
+
+def _material(args: argparse.Namespace, pattern):
+    """(Material, its name for the OBJ header): --material, else the pattern's fitted material,
+    else cotton. A bad name fails before any work."""
+    from unsew.dress import resolve_material
+
+    fitted = (getattr(pattern, "unsew", None) or {}).get("material")
+    if args.material is None and fitted is not None:
+        from unsew.sim.material import material_from_dict
+
+        return material_from_dict(fitted), "the pattern's fitted material"
+    material_name = args.material or "cotton"
+    return resolve_material(material_name), material_name
+
+
+def _write_garment(path, d, header: str) -> None:
+    """The dressed garment ``d`` as OBJ at ``path``, pattern coordinates as UVs."""
+    from unsew.io.mesh import write_obj
+
+    m = d.mesh
+    write_obj(path, d.x.detach().cpu().numpy(), m.faces, uv=m.uv, faces_uv=m.faces_uv, header=header)
+
+
+def run(args: argparse.Namespace) -> int:
+    out = _checked_out(args)
 
     from unsew.io.garmentcode import load_pattern
 
@@ -159,17 +188,9 @@ def run(args: argparse.Namespace) -> int:
     check_pattern_scale(pattern, body)
     check_triangle_budget(pattern, args.edge_length, override=None)
 
-    from unsew.dress import dress, resolve_material
-    from unsew.io.mesh import write_obj
+    from unsew.dress import dress
 
-    fitted = (getattr(pattern, "unsew", None) or {}).get("material")
-    if args.material is None and fitted is not None:
-        from unsew.sim.material import material_from_dict
-
-        material, material_name = material_from_dict(fitted), "the pattern's fitted material"
-    else:
-        material_name = args.material or "cotton"
-        material = resolve_material(material_name)  # a bad name fails before any work
+    material, material_name = _material(args, pattern)
     from unsew.dress import DRESS_SETTINGS
     from unsew.fit.progress import Progress
 
@@ -187,22 +208,12 @@ def run(args: argparse.Namespace) -> int:
     if not verdict.ok:
         if args.keep_failed:
             failed = out.with_name(out.stem + ".failed.obj")
-            write_obj(
-                failed,
-                d.x.detach().cpu().numpy(),
-                m.faces,
-                uv=m.uv,
-                faces_uv=m.faces_uv,
-                header=f"unsew drape FAILED ({verdict.reason}): {pattern.name}",
-            )
+            _write_garment(failed, d, f"unsew drape FAILED ({verdict.reason}): {pattern.name}")
         verdict.raise_if_bad(f"drape of {pattern.name}")
-    write_obj(
+    _write_garment(
         out,
-        d.x.detach().cpu().numpy(),
-        m.faces,
-        uv=m.uv,
-        faces_uv=m.faces_uv,
-        header=f"unsew drape: {pattern.name} on {getattr(body, 'name', 'body')}, {material_name}; UVs are "
+        d,
+        f"unsew drape: {pattern.name} on {getattr(body, 'name', 'body')}, {material_name}; UVs are "
         "pattern coordinates [m]",
     )
     s = d.stats

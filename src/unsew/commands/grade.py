@@ -19,33 +19,8 @@ from unsew.pattern.base import BASES
 __all__ = ["register", "run"]
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "grade",
-        help="grade a base pattern to a target's hems, cuffs, necklines (phase one)",
-        formatter_class=HelpFormatter,
-        epilog=examples(
-            "unsew grade case/ --out graded/", "unsew grade case/ --base skirt_band --flat --out graded/"
-        ),
-    )
-    p.add_argument(
-        "case", metavar="CASE_DIR", help="case folder (target.obj, body, meta.json; see FORMATS.md)"
-    )
-    p.add_argument(
-        "--base",
-        default=None,
-        metavar="NAME|P.json",
-        help=f"base pattern, sized to the wearer as the fit sizes it: {', '.join(BASES)}, or a GarmentCode "
-        "JSON file (default: the case's garment type)",
-    )
-    p.add_argument("--out", required=True, metavar="DIR", help="result folder to create")
-    p.add_argument(
-        "--edge-length",
-        type=float,
-        default=0.03,
-        help="rest edge length of the panel meshes [m] (default: 0.03)",
-    )
-    p.add_argument("--material", default="cotton", help="material name from the library (default: cotton)")
+def _grading_options(p: argparse.ArgumentParser) -> None:
+    """How the grading moves the pattern: --length, --area, --side-seams, --band-gap."""
     p.add_argument(
         "--length",
         choices=["cloth", "axial"],
@@ -77,6 +52,36 @@ def register(sub: argparse._SubParsersAction) -> None:
         "seam below with it (trousers and shorts as with none); none: to the loop as measured, its "
         "top alone",
     )
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "grade",
+        help="grade a base pattern to a target's hems, cuffs, necklines (phase one)",
+        formatter_class=HelpFormatter,
+        epilog=examples(
+            "unsew grade case/ --out graded/", "unsew grade case/ --base skirt_band --flat --out graded/"
+        ),
+    )
+    p.add_argument(
+        "case", metavar="CASE_DIR", help="case folder (target.obj, body, meta.json; see FORMATS.md)"
+    )
+    p.add_argument(
+        "--base",
+        default=None,
+        metavar="NAME|P.json",
+        help=f"base pattern, sized to the wearer as the fit sizes it: {', '.join(BASES)}, or a GarmentCode "
+        "JSON file (default: the case's garment type)",
+    )
+    p.add_argument("--out", required=True, metavar="DIR", help="result folder to create")
+    p.add_argument(
+        "--edge-length",
+        type=float,
+        default=0.03,
+        help="rest edge length of the panel meshes [m] (default: 0.03)",
+    )
+    p.add_argument("--material", default="cotton", help="material name from the library (default: cotton)")
+    _grading_options(p)
     p.add_argument(
         "--flat", action="store_true", help="no simulation: use the flat-placed panels as drapes (quick look)"
     )
@@ -85,7 +90,6 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    import json
     import sys
 
     from unsew.body.case import load_case
@@ -94,8 +98,6 @@ def run(args: argparse.Namespace) -> int:
     from unsew.fit.start import base_pattern_for, with_garment_read
     from unsew.geometry.repair import triangle_areas
     from unsew.grading.grade import GRADE_SETTINGS, flat_drape, format_table, grade
-    from unsew.io.garmentcode import save_pattern
-    from unsew.io.mesh import write_obj
     from unsew.meshing.sew import EDGE_LENGTH_RANGE
 
     lo, hi = EDGE_LENGTH_RANGE
@@ -123,37 +125,48 @@ def run(args: argparse.Namespace) -> int:
             log=print,
             **kw,
         )
-        save_pattern(res.pattern, tmp / "pattern.json")
-        m = res.mesh
-        write_obj(
-            tmp / "garment.obj",
-            res.x_draped,
-            m.faces,
-            uv=m.uv,
-            faces_uv=m.faces_uv,
-            header="unsew grade: X_LG",
-        )
-        write_obj(tmp / "garment_init.obj", res.x_init, res.mesh_init.faces, header="unsew grade: X_init")
-        doc = {
-            "format_version": 1,
-            "units": "m",
-            "case": str(case.path),
-            "base": args.base or case.garment,
-            "edge_length_m": args.edge_length,
-            "material": args.material,
-            "flat": bool(args.flat),
-            "length": args.length,
-            "area": args.area,
-            "side_seams": args.side_seams,
-            "band_gap": args.band_gap,
-            "area_scales": res.area_scales,
-            "placement": res.placement,
-            "edit_fraction": res.fraction,
-            "remeshed": res.remeshed,
-            "contours": res.table,
-        }
-        (tmp / "contours.json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
+        _write_results(tmp, res, case, args)
     print(format_table(res.table))
     note = "" if res.fraction == 1.0 else f" (edit scaled back to {res.fraction:.0%})"
     print(f"wrote {args.out}: pattern.json, garment.obj, garment_init.obj, contours.json{note}")
     return 0
+
+
+def _write_results(tmp, res, case, args: argparse.Namespace) -> None:
+    """Write pattern.json, garment.obj, garment_init.obj and contours.json of the grading
+    result ``res`` into the folder ``tmp``."""
+    import json
+
+    from unsew.io.garmentcode import save_pattern
+    from unsew.io.mesh import write_obj
+
+    save_pattern(res.pattern, tmp / "pattern.json")
+    m = res.mesh
+    write_obj(
+        tmp / "garment.obj",
+        res.x_draped,
+        m.faces,
+        uv=m.uv,
+        faces_uv=m.faces_uv,
+        header="unsew grade: X_LG",
+    )
+    write_obj(tmp / "garment_init.obj", res.x_init, res.mesh_init.faces, header="unsew grade: X_init")
+    doc = {
+        "format_version": 1,
+        "units": "m",
+        "case": str(case.path),
+        "base": args.base or case.garment,
+        "edge_length_m": args.edge_length,
+        "material": args.material,
+        "flat": bool(args.flat),
+        "length": args.length,
+        "area": args.area,
+        "side_seams": args.side_seams,
+        "band_gap": args.band_gap,
+        "area_scales": res.area_scales,
+        "placement": res.placement,
+        "edit_fraction": res.fraction,
+        "remeshed": res.remeshed,
+        "contours": res.table,
+    }
+    (tmp / "contours.json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")

@@ -42,18 +42,8 @@ def _dispatch(verb: str):
     return run
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "pattern",
-        help="make, mesh, analyse and export sewing patterns",
-        formatter_class=HelpFormatter,
-        epilog=examples(
-            "unsew pattern new tshirt --out tshirt.json",
-            "unsew pattern export result/pattern.json --pdf pattern.pdf --paper letter",
-        ),
-    )
-    psub = p.add_subparsers(dest="pattern_command", metavar="VERB", required=True)
-
+def _add_new(psub) -> None:
+    """The ``pattern new`` verb."""
     new = psub.add_parser(
         "new",
         help="write a base pattern sized to body measurements",
@@ -73,6 +63,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     new.add_argument("--overwrite", action="store_true", help="replace an existing --out")
     new.set_defaults(func=_dispatch("new"))
 
+
+def _add_mesh(psub) -> None:
+    """The ``pattern mesh`` verb."""
     mesh = psub.add_parser(
         "mesh",
         help="triangulate the panels and sew them into one garment mesh",
@@ -99,6 +92,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     mesh.add_argument("--overwrite", action="store_true", help="replace an existing --out")
     mesh.set_defaults(func=_dispatch("mesh"))
 
+
+def _add_symmetry(psub) -> None:
+    """The ``pattern symmetry`` verb."""
     sym = psub.add_parser(
         "symmetry",
         help="detect panel pairs and mirror axes; count control points",
@@ -109,6 +105,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     sym.add_argument("--json", action="store_true", help="print JSON instead of a table")
     sym.set_defaults(func=_dispatch("symmetry"))
 
+
+def _add_export(psub) -> None:
+    """The ``pattern export`` verb."""
     exp = psub.add_parser(
         "export",
         help="write SVG and PDF (true scale), DXF (AAMA/ASTM layers) and/or OBJ",
@@ -163,3 +162,21 @@ def register(sub: argparse._SubParsersAction) -> None:
         "--overwrite", action="store_true", help="replace existing --svg/--dxf/--pdf/--obj files"
     )
     exp.set_defaults(func=_dispatch("export"))
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "pattern",
+        help="make, mesh, analyse and export sewing patterns",
+        formatter_class=HelpFormatter,
+        epilog=examples(
+            "unsew pattern new tshirt --out tshirt.json",
+            "unsew pattern export result/pattern.json --pdf pattern.pdf --paper letter",
+        ),
+    )
+    psub = p.add_subparsers(dest="pattern_command", metavar="VERB", required=True)
+
+    _add_new(psub)
+    _add_mesh(psub)
+    _add_symmetry(psub)
+    _add_export(psub)
