@@ -62,7 +62,7 @@ def _have_placement() -> bool:
     return True
 
 
-def main(argv=None) -> None:
+def _parse(argv):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--drape", choices=["auto", "sim", "flat"], default="auto")
     ap.add_argument("--edge-length", type=float, default=0.03)
@@ -105,145 +105,159 @@ def main(argv=None) -> None:
     args = ap.parse_args(argv)
     if args.targets < 1 or args.targets > len(TARGET_SCALES):
         ap.error(f"--targets must be 1 to {len(TARGET_SCALES)}")
+    return args
 
-    import numpy as np
-    import torch
 
-    torch.set_num_threads(1)
-    from unsew.body.body import default_body
-    from unsew.grading.alter import alter_pattern, alteration_groups
-    from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
-    from unsew.grading.contours import place_contours
-    from unsew.grading.curves import curves_of_contour
-    from unsew.grading.grade import GRADE_SETTINGS, dress_drape, flat_drape, grade
-    from unsew.meshing.sew import mesh_pattern
-    from unsew.metrics.surface import chamfer_mm
-    from unsew.pattern.base import make_base_pattern
-    from unsew.pattern.params import PatternParams
+def _drape_fn(args, body):
+    """(drape mode "sim" or "flat", the drape function grade() takes) for ``--drape``."""
+    from unsew.grading.grade import dress_drape, flat_drape
 
     mode = args.drape
     if mode == "auto":
         mode = "sim" if _have_placement() else "flat"
-    body = default_body()
-    sdf = None
-    if mode == "sim":
-        from unsew.body.sdf import BodySDF
+    if mode != "sim":
+        return mode, flat_drape
+    from unsew.body.sdf import BodySDF
 
-        sdf = BodySDF.build(body)
+    sdf = BodySDF.build(body)
 
-        def drape_fn(p, m, b):
-            return dress_drape(p, m, b, material=args.material, sdf=sdf)
-    else:
-        drape_fn = flat_drape
-    flipped = "; changes negated (--flip)" if args.flip else ""
-    print(
-        f"drape: {mode}; edge length {args.edge_length} m; material {args.material}; length "
-        f"{args.length}{flipped}"
+    def drape_fn(p, m, b):
+        return dress_drape(p, m, b, material=args.material, sdf=sdf)
+
+    return mode, drape_fn
+
+
+def _target_pattern(g: str, base, flip: bool):
+    """The base pattern of garment ``g`` altered by its known changes (negated with ``flip``)."""
+    from unsew.grading.alter import alter_pattern, alteration_groups
+
+    groups = alteration_groups(base)
+    target = base
+    for key, (dl, dg) in _changes(g, flip).items():
+        if key in groups:
+            target = alter_pattern(target, groups[key], length=dl, girth=dg)
+    return target
+
+
+class _Case:
+    """One grading of garment ``g``'s base to a target drape: the target pattern, its mesh
+    ``tm`` and drape ``tx`` (n, 3) [m], the grading result ``res`` and the body."""
+
+    def __init__(self, g, target, tm, tx, res, body):
+        self.g, self.target, self.tm, self.tx, self.res, self.body = g, target, tm, tx, res, body
+
+
+def _edges_of(case: _Case, t, tcontrols) -> list:
+    """(panel, edge) pairs of the target pattern that form target contour ``t``."""
+    from unsew.grading.curves import curves_of_contour
+
+    curves = curves_of_contour(t.contour.indices, case.tx, case.target, case.tm, tcontrols)
+    return [(c.panel, e) for c in curves for e in c.edges]
+
+
+def _rest_lengths(case: _Case, tgt, tcontrols) -> tuple[dict, dict]:
+    """The true patterns' rest cloth lengths of every target contour [m] (contour index ->
+    length), on the target's mesh and on the base's (unsew.grading.cloth)."""
+    from unsew.grading.cloth import rest_cloth_lengths, top_contour
+
+    ttop = top_contour(tgt)
+    top_edges = _edges_of(case, ttop, tcontrols)
+    keyed = {t.index: _edges_of(case, t, tcontrols) for t in tgt if t is not ttop}
+    keyed = {k: v for k, v in keyed.items() if v}
+    rest1 = rest_cloth_lengths(case.tm, keyed, top_edges) if top_edges else {}
+    rest0 = rest_cloth_lengths(case.res.mesh_init, keyed, top_edges) if top_edges else {}
+    return rest1, rest0
+
+
+def _contour_rows(case: _Case, flip: bool) -> list[tuple]:
+    """Print one row per matched contour; returns (res L, res G, pat L, pat G) [m] of each."""
+    import numpy as np
+
+    from unsew.grading.cloth import cloth_lengths
+    from unsew.grading.contours import place_contours
+    from unsew.pattern.params import PatternParams
+
+    res, tx, tm, g = case.res, case.tx, case.tm, case.g
+    sk = case.body.skeleton
+    after = place_contours(res.x_draped, res.mesh.faces, sk)
+    tgt = place_contours(tx, tm.faces, sk)
+    src = place_contours(res.x_init, res.mesh_init.faces, sk)
+    tcontrols = PatternParams.build(case.target, tm).controls
+    _, cl_t = cloth_lengths(tx, tm.faces, tgt)
+    _, cl_s = cloth_lengths(res.x_init, res.mesh_init.faces, src)
+    rest1, rest0 = _rest_lengths(case, tgt, tcontrols)
+    rows = []
+    for m in res.matches:
+        s, t = src[m.source], tgt[m.target]
+        # the graded contour that corresponds to the target one: same part, nearest centre
+        cands = [a for a in after if a.part == s.part] or after
+        a = min(cands, key=lambda a: float(np.linalg.norm(a.centre - t.centre)))
+        known = _known(g, s.part, flip)
+        res_l = (
+            abs(a.position - t.position)
+            if a.bone is not None and a.bone.part == t.part
+            else float(np.linalg.norm(a.centre - t.centre))
+        )
+        pat_l, pat_g = pattern_residuals(case.target, res.pattern, _edges_of(case, t, tcontrols))
+        # cloth: the drapes' cloth-length difference (target - base) grading reads; rest: the
+        # true patterns' own, at rest (unsew.grading.cloth)
+        cloth = cl_t[t.index] - cl_s[s.index] if t.index in cl_t and s.index in cl_s else float("nan")
+        rest = rest1[t.index] - rest0[t.index] if t.index in rest1 and t.index in rest0 else float("nan")
+        print(
+            f"{g:<8} {s.part:<10} {known[0] * 100:>+11.1f} {known[1] * 100:>+10.0f} "
+            f"{m.axial_distance * 100:>+9.1f} {m.girth_difference * 100:>+9.1f} {res_l * 100:>9.2f} "
+            f"{abs(a.length - t.length) * 100:>9.2f} {pat_l * 100:>9.2f} {pat_g * 100:>9.2f} "
+            f"{cloth * 100:>+9.1f} {rest * 100:>+8.1f}"
+        )
+        rows.append((res_l, abs(a.length - t.length), pat_l, pat_g))
+    return rows
+
+
+def _grade_target(g, target, start, scale, args, body, drape_fn) -> _Case:
+    """Drape garment g's target pattern on a mesh of ``scale`` times the edge length and grade
+    the base to it; start = (base pattern, its mesh, its drape (n, 3) [m])."""
+    from unsew.grading.grade import GRADE_SETTINGS, grade
+    from unsew.meshing.sew import mesh_pattern
+
+    base, bm, bx = start
+    tm = mesh_pattern(target, edge_length=args.edge_length * scale)
+    tx = drape_fn(target, tm, body)
+    kw = {"hold_top": not args.no_hold_top, "remesh": args.remesh, "length": args.length}
+    if args.passes is not None:
+        kw["passes"] = args.passes
+    res = grade(
+        base,
+        body,
+        tx,
+        tm.faces,
+        settings=GRADE_SETTINGS.replace(edge_length=args.edge_length),
+        drape_fn=drape_fn,
+        mesh=bm,
+        x_init=bx,
+        **kw,
     )
-    head = (
-        f"{'garment':<8} {'contour':<10} {'known dL cm':>11} {'known dG %':>10} {'axial cm':>9} "
-        f"{'girth cm':>9} {'res L cm':>9} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9} {'cloth cm':>9} "
-        f"{'rest cm':>8}"
-    )
-    print(head)
-    print("-" * len(head))
-    summary = []
-    worst: dict = {}  # garment -> worst (res L, res G, pat L, pat G) over its contours and targets [m]
-    for g in args.garments:
-        base = make_base_pattern(g)
-        groups = alteration_groups(base)
-        target = base
-        for key, (dl, dg) in _changes(g, args.flip).items():
-            if key in groups:
-                target = alter_pattern(target, groups[key], length=dl, girth=dg)
-        bm = mesh_pattern(base, edge_length=args.edge_length)
-        bx = drape_fn(base, bm, body)
-        for ti, scale in enumerate(TARGET_SCALES[: args.targets]):
-            t0 = time.perf_counter()
-            tm = mesh_pattern(target, edge_length=args.edge_length * scale)
-            tx = drape_fn(target, tm, body)
-            kw = {"hold_top": not args.no_hold_top, "remesh": args.remesh, "length": args.length}
-            if args.passes is not None:
-                kw["passes"] = args.passes
-            res = grade(
-                base,
-                body,
-                tx,
-                tm.faces,
-                settings=GRADE_SETTINGS.replace(edge_length=args.edge_length),
-                drape_fn=drape_fn,
-                mesh=bm,
-                x_init=bx,
-                **kw,
-            )
-            sk = body.skeleton
-            after = place_contours(res.x_draped, res.mesh.faces, sk)
-            tgt = place_contours(tx, tm.faces, sk)
-            src = place_contours(res.x_init, res.mesh_init.faces, sk)
-            tcontrols = PatternParams.build(target, tm).controls
-            _, cl_t = cloth_lengths(tx, tm.faces, tgt)
-            _, cl_s = cloth_lengths(res.x_init, res.mesh_init.faces, src)
-            ttop = top_contour(tgt)
-            top_edges = [
-                (c.panel, e)
-                for c in curves_of_contour(ttop.contour.indices, tx, target, tm, tcontrols)
-                for e in c.edges
-            ]
-            # the true patterns' rest cloth lengths of every target contour, on each pattern's own mesh
-            keyed = {
-                t.index: [
-                    (c.panel, e)
-                    for c in curves_of_contour(t.contour.indices, tx, target, tm, tcontrols)
-                    for e in c.edges
-                ]
-                for t in tgt
-                if t is not ttop
-            }
-            keyed = {k: v for k, v in keyed.items() if v}
-            rest1 = rest_cloth_lengths(tm, keyed, top_edges) if top_edges else {}
-            rest0 = rest_cloth_lengths(res.mesh_init, keyed, top_edges) if top_edges else {}
-            for m in res.matches:
-                s, t = src[m.source], tgt[m.target]
-                # the graded contour that corresponds to the target one: same part, nearest centre
-                cands = [a for a in after if a.part == s.part] or after
-                a = min(cands, key=lambda a: float(np.linalg.norm(a.centre - t.centre)))
-                known = _known(g, s.part, args.flip)
-                res_l = (
-                    abs(a.position - t.position)
-                    if a.bone is not None and a.bone.part == t.part
-                    else float(np.linalg.norm(a.centre - t.centre))
-                )
-                curves = curves_of_contour(t.contour.indices, tx, target, tm, tcontrols)
-                edges = [(c.panel, e) for c in curves for e in c.edges]
-                pat_l, pat_g = pattern_residuals(target, res.pattern, edges)
-                # cloth: the drapes' cloth-length difference (target - base) grading reads; rest: the
-                # true patterns' own, at rest (unsew.grading.cloth)
-                cloth = cl_t[t.index] - cl_s[s.index] if t.index in cl_t and s.index in cl_s else float("nan")
-                rest = (
-                    rest1[t.index] - rest0[t.index] if t.index in rest1 and t.index in rest0 else float("nan")
-                )
-                print(
-                    f"{g:<8} {s.part:<10} {known[0] * 100:>+11.1f} {known[1] * 100:>+10.0f} "
-                    f"{m.axial_distance * 100:>+9.1f} {m.girth_difference * 100:>+9.1f} {res_l * 100:>9.2f} "
-                    f"{abs(a.length - t.length) * 100:>9.2f} {pat_l * 100:>9.2f} {pat_g * 100:>9.2f} "
-                    f"{cloth * 100:>+9.1f} {rest * 100:>+8.1f}"
-                )
-                got = (res_l, abs(a.length - t.length), pat_l, pat_g)
-                worst[g] = [float(np.nanmax([w, v])) for w, v in zip(worst.get(g, got), got)]
-            for r in res.table:
-                if r["source_contour"] is None or r["target_contour"] is None:
-                    print(f"{g:<8} unmatched: {r['source_contour'] or r['target_contour']}")
-            before = chamfer_mm(res.x_init, res.mesh_init.faces, tx, tm.faces, n_samples=args.samples).mean_mm
-            graded = chamfer_mm(res.x_draped, res.mesh.faces, tx, tm.faces, n_samples=args.samples).mean_mm
-            floor = float("nan")
-            if args.floor_scale > 0:
-                fm = mesh_pattern(target, edge_length=args.edge_length * scale * args.floor_scale)
-                floor = chamfer_mm(
-                    drape_fn(target, fm, body), fm.faces, tx, tm.faces, n_samples=args.samples
-                ).mean_mm
-            summary.append(
-                (g, ti, before, graded, floor, res.fraction, res.remeshed, time.perf_counter() - t0)
-            )
+    return _Case(g, target, tm, tx, res, body)
+
+
+def _chamfers(case: _Case, scale, args, drape_fn) -> tuple[float, float, float]:
+    """Chamfer [mm] of X_init and of X_LG to T, and of the target re-draped on a mesh of
+    ``--floor-scale`` times its edge length (nan when 0)."""
+    from unsew.meshing.sew import mesh_pattern
+    from unsew.metrics.surface import chamfer_mm
+
+    res, tx, tm, n = case.res, case.tx, case.tm, args.samples
+    before = chamfer_mm(res.x_init, res.mesh_init.faces, tx, tm.faces, n_samples=n).mean_mm
+    graded = chamfer_mm(res.x_draped, res.mesh.faces, tx, tm.faces, n_samples=n).mean_mm
+    floor = float("nan")
+    if args.floor_scale > 0:
+        fm = mesh_pattern(case.target, edge_length=args.edge_length * scale * args.floor_scale)
+        floor = chamfer_mm(drape_fn(case.target, fm, case.body), fm.faces, tx, tm.faces, n_samples=n).mean_mm
+    return before, graded, floor
+
+
+def _print_summary(summary, worst, args) -> None:
+    import numpy as np
+
     print()
     print(
         f"{'garment':<8} {'target':>6} {'Chamfer base mm':>15} {'graded mm':>10} {'ratio':>6} "
@@ -274,6 +288,54 @@ def main(argv=None) -> None:
     )
     for g, w in worst.items():
         print(f"{g:<8} {w[0] * 100:>14.2f} {w[1] * 100:>9.2f} {w[2] * 100:>9.2f} {w[3] * 100:>9.2f}")
+
+
+def main(argv=None) -> None:
+    args = _parse(argv)
+
+    import numpy as np
+    import torch
+
+    torch.set_num_threads(1)
+    from unsew.body.body import default_body
+    from unsew.meshing.sew import mesh_pattern
+    from unsew.pattern.base import make_base_pattern
+
+    body = default_body()
+    mode, drape_fn = _drape_fn(args, body)
+    flipped = "; changes negated (--flip)" if args.flip else ""
+    print(
+        f"drape: {mode}; edge length {args.edge_length} m; material {args.material}; length "
+        f"{args.length}{flipped}"
+    )
+    head = (
+        f"{'garment':<8} {'contour':<10} {'known dL cm':>11} {'known dG %':>10} {'axial cm':>9} "
+        f"{'girth cm':>9} {'res L cm':>9} {'res G cm':>9} {'pat L cm':>9} {'pat G cm':>9} {'cloth cm':>9} "
+        f"{'rest cm':>8}"
+    )
+    print(head)
+    print("-" * len(head))
+    summary = []
+    worst: dict = {}  # garment -> worst (res L, res G, pat L, pat G) over its contours and targets [m]
+    for g in args.garments:
+        base = make_base_pattern(g)
+        target = _target_pattern(g, base, args.flip)
+        bm = mesh_pattern(base, edge_length=args.edge_length)
+        bx = drape_fn(base, bm, body)
+        for ti, scale in enumerate(TARGET_SCALES[: args.targets]):
+            t0 = time.perf_counter()
+            case = _grade_target(g, target, (base, bm, bx), scale, args, body, drape_fn)
+            res = case.res
+            for got in _contour_rows(case, args.flip):
+                worst[g] = [float(np.nanmax([w, v])) for w, v in zip(worst.get(g, got), got)]
+            for r in res.table:
+                if r["source_contour"] is None or r["target_contour"] is None:
+                    print(f"{g:<8} unmatched: {r['source_contour'] or r['target_contour']}")
+            before, graded, floor = _chamfers(case, scale, args, drape_fn)
+            summary.append(
+                (g, ti, before, graded, floor, res.fraction, res.remeshed, time.perf_counter() - t0)
+            )
+    _print_summary(summary, worst, args)
 
 
 def pattern_residuals(true, graded, edges) -> tuple[float, float]:

@@ -62,13 +62,14 @@ def _mesh(n_target: int, use_tshirt: bool):
     return "sheet", f, f, uv, x, len(uv)
 
 
-def _run(
-    model, st, sdf, uv, gamma, steps, backward, checkpoint=False, backend="auto", fused=True, line_search=True
-):
+def _run(model, st, sdf, uv, gamma, steps, *, checkpoint, variant):
+    """Seconds of a drape of ``steps`` steps forward and of its backward (loss sum |x|^2, wrt uv
+    and Gamma); variant = (stencil, backend, fused, line_search)."""
     from unsew.sim import Cloth, DrapeSettings, drape
 
-    uvp = uv.clone().requires_grad_(backward)
-    gp = gamma.clone().requires_grad_(backward)
+    _, backend, fused, line_search = variant
+    uvp = uv.clone().requires_grad_(True)
+    gp = gamma.clone().requires_grad_(True)
     t0 = time.perf_counter()
     out = drape(
         model,
@@ -80,8 +81,7 @@ def _run(
         settings=DrapeSettings(backend=backend, fused=fused, line_search=line_search),
     )
     t1 = time.perf_counter()
-    if backward:
-        (out.x**2).sum().backward()
+    (out.x**2).sum().backward()
     t2 = time.perf_counter()
     return t1 - t0, t2 - t1
 
@@ -110,7 +110,7 @@ def _loop_assembly(model, Hm, Hb):
     return A
 
 
-def main(argv=None):
+def _parse(argv):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sizes", default="1000,2000,3000,8000")
     ap.add_argument("--repeat", type=int, default=2)
@@ -124,23 +124,15 @@ def main(argv=None):
     ap.add_argument("--no-loop", action="store_true", help="skip the per-element loop assembly baseline")
     ap.add_argument("--sheet", action="store_true", help="use square sheets even if the t-shirt exists")
     ap.add_argument("--checkpoint", action="store_true", help="recompute steps in backward (less memory)")
-    args = ap.parse_args(argv)
-    torch.set_num_threads(args.threads)
-    print(f"load average at start: {os.getloadavg()[0]:.2f} (2 shared cores)")
-    from unsew.sim import MATERIALS, SimModel, SimState, SphereSDF
-    from unsew.sim.energies.bending import energy_bending
-    from unsew.sim.energies.membrane import energy_membrane
-    from unsew.sim.integrator import rest_data
-    from unsew.sim.assembly import scatter_blocks
-    from unsew.sim.solve import SparsePattern, _Factor
-    from unsew.sim.integrator import _ring_weight
+    return ap.parse_args(argv)
 
+
+def _variants(spec: str) -> list[tuple]:
+    """(stencil, backend, fused, line_search) of each variant of ``spec`` whose backend is here."""
     from unsew.sim.solve import resolve_backend
 
-    gamma = MATERIALS["cotton"].gamma()
-    sdf = SphereSDF((0.0, 0.0, 0.0), 0.1)
     variants = []
-    for v in args.variants.split(","):
+    for v in spec.split(","):
         stencil, backend, *rest_ = v.split(":")
         try:
             resolve_backend(backend)
@@ -148,90 +140,91 @@ def main(argv=None):
             print(f"(skipping {v}: {exc})")
             continue
         variants.append((stencil, backend, "unfused" not in rest_, "nols" not in rest_))
-    print(f"torch {torch.__version__}, {args.threads} torch thread(s), min of {args.repeat} runs, seconds")
-    hdr = (
-        f"{'mesh':>6} {'verts':>6} {'faces':>6} {'variant':>23} | {'fwd 1':>6} {'fwd 20':>7} {'rev 1':>6} "
-        f"{'rev 20':>7} {'f+r 20':>7} | {'RSS+ MB':>7} | {'load':>4}"
-    )
-    print(hdr)
-    print("-" * len(hdr))
-    solver_rows = []
-    for n_target in [int(s) for s in args.sizes.split(",")]:
-        kind, f, fuv, uv, x, n = _mesh(n_target, not args.sheet)
-        models = {
-            st_: SimModel.build(f, fuv, n=n, bending_stencil=st_) for st_ in sorted({v[0] for v in variants})
-        }
-        uvt = torch.as_tensor(uv, dtype=torch.float64)
-        st = SimState.at_rest(x)
-        res = {v: {} for v in variants}
-        for v in variants:  # warm-up (CHOLMOD's one analysis per topology is not timed)
-            _run(models[v[0]], st, sdf, uvt, gamma, 1, True, args.checkpoint, v[1], v[2], v[3])
-        for steps in (1, 20):
-            for _ in range(args.repeat):
-                for v in variants:
-                    r0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-                    fw, rv = _run(
-                        models[v[0]], st, sdf, uvt, gamma, steps, True, args.checkpoint, v[1], v[2], v[3]
-                    )
-                    r1 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-                    b = res[v].get(steps, (np.inf, np.inf))
-                    res[v][steps] = (min(b[0], fw), min(b[1], rv))
-                    if steps == 20:
-                        res[v]["rss"] = max(res[v].get("rss", 0), (r1 - r0) / 1024)
-        load = os.getloadavg()[0]
-        for v in variants:
-            r = res[v]
-            name = v[0] + ":" + v[1] + ("" if v[2] else ":unfused") + ("" if v[3] else ":nols")
-            print(
-                f"{kind:>6} {n:>6} {f.shape[0]:>6} {name:>23} | {r[1][0]:6.3f} {r[20][0]:7.3f} "
-                f"{r[1][1]:6.3f} {r[20][1]:7.3f} {r[20][0] + r[20][1]:7.3f} | {r['rss']:7.0f} | {load:4.1f}",
-                flush=True,
+    return variants
+
+
+def _time_drapes(models, st, sdf, uvt, gamma, variants, args) -> dict:
+    """variant -> {steps: (forward s, backward s) min over the repeats, "rss": MB}."""
+    res = {v: {} for v in variants}
+    for v in variants:  # warm-up (CHOLMOD's one analysis per topology is not timed)
+        _run(models[v[0]], st, sdf, uvt, gamma, 1, checkpoint=args.checkpoint, variant=v)
+    for steps in (1, 20):
+        for _ in range(args.repeat):
+            for v in variants:
+                r0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+                fw, rv = _run(models[v[0]], st, sdf, uvt, gamma, steps, checkpoint=args.checkpoint, variant=v)
+                r1 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+                b = res[v].get(steps, (np.inf, np.inf))
+                res[v][steps] = (min(b[0], fw), min(b[1], rv))
+                if steps == 20:
+                    res[v]["rss"] = max(res[v].get("rss", 0), (r1 - r0) / 1024)
+    return res
+
+
+def _time_solvers(models, rest, Hm, Hb, n) -> dict:
+    """(stencil, backend) -> (seconds of a factorization and two solves, min of 3; nnz) on the
+    step-0 system of each stencil."""
+    from unsew.sim.assembly import scatter_blocks
+    from unsew.sim.integrator import _ring_weight
+    from unsew.sim.solve import SparsePattern, _Factor, resolve_backend
+
+    tb = {}
+    for stencil, m in sorted(models.items()):
+        Hb_s = Hb * _ring_weight(Hb) if stencil == "ring" else Hb
+        K = scatter_blocks(m.nnz, m.tri_src, m.tri_dst, Hm) + scatter_blocks(
+            m.nnz, m.hinge_src, m.hinge_dst, Hb_s
+        )
+        A = 0.0025 * K
+        A[m.diag_dst] += rest.mass.repeat_interleave(3)
+        pat = SparsePattern(3 * n, m.rows, m.cols)
+        b = np.random.default_rng(0).standard_normal(3 * n)
+        for be in ("cholespy", "cholmod", "scipy"):
+            try:
+                resolve_backend(be)
+            except ImportError:
+                continue
+            _Factor(pat, A.numpy(), be)  # CHOLMOD: analysis once per pattern, not timed
+            t = np.inf
+            for _ in range(3):
+                t0 = time.perf_counter()
+                fac = _Factor(pat, A.numpy(), be)
+                fac.solve(b)
+                fac.solve(b)
+                t = min(t, time.perf_counter() - t0)
+                del fac
+            tb[(stencil, be)] = (t, m.nnz)
+    return tb
+
+
+def _time_assembly(models, st, uvt, gamma, n, no_loop: bool):
+    """(loop assembly s (nan with no_loop), index-map assembly s, :func:`_time_solvers`) on the
+    initial state's element Hessians."""
+    from unsew.sim.assembly import scatter_blocks
+    from unsew.sim.energies.bending import energy_bending
+    from unsew.sim.energies.membrane import energy_membrane
+    from unsew.sim.integrator import rest_data
+
+    model = models.get("full", next(iter(models.values())))
+    rest = rest_data(model, uvt, 0.15)
+    with torch.no_grad():
+        _, _, Hm = energy_membrane(st.x, model.faces, rest.area, rest.B, gamma)
+        _, _, Hb = energy_bending(st.x, model.hinges, rest.coef, gamma)
+        t_loop = np.nan
+        if not no_loop:
+            t0 = time.perf_counter()
+            _loop_assembly(model, Hm, Hb)
+            t_loop = time.perf_counter() - t0
+        t_ours = np.inf
+        for _ in range(5):
+            t0 = time.perf_counter()
+            scatter_blocks(model.nnz, model.tri_src, model.tri_dst, Hm) + scatter_blocks(
+                model.nnz, model.hinge_src, model.hinge_dst, Hb
             )
-        model = models.get("full", next(iter(models.values())))
-        # assembly: loop baseline vs index maps, on the initial state's element Hessians
-        rest = rest_data(model, uvt, 0.15)
-        with torch.no_grad():
-            _, _, Hm = energy_membrane(st.x, model.faces, rest.area, rest.B, gamma)
-            _, _, Hb = energy_bending(st.x, model.hinges, rest.coef, gamma)
-            t_loop = np.nan
-            if not args.no_loop:
-                t0 = time.perf_counter()
-                _loop_assembly(model, Hm, Hb)
-                t_loop = time.perf_counter() - t0
-            t_ours = np.inf
-            for _ in range(5):
-                t0 = time.perf_counter()
-                scatter_blocks(model.nnz, model.tri_src, model.tri_dst, Hm) + scatter_blocks(
-                    model.nnz, model.hinge_src, model.hinge_dst, Hb
-                )
-                t_ours = min(t_ours, time.perf_counter() - t0)
-            # solver backends on the step-0 system, for each stencil
-            tb = {}
-            for stencil, m in sorted(models.items()):
-                Hb_s = Hb * _ring_weight(Hb) if stencil == "ring" else Hb
-                K = scatter_blocks(m.nnz, m.tri_src, m.tri_dst, Hm) + scatter_blocks(
-                    m.nnz, m.hinge_src, m.hinge_dst, Hb_s
-                )
-                A = 0.0025 * K
-                A[m.diag_dst] += rest.mass.repeat_interleave(3)
-                pat = SparsePattern(3 * n, m.rows, m.cols)
-                b = np.random.default_rng(0).standard_normal(3 * n)
-                for be in ("cholespy", "cholmod", "scipy"):
-                    try:
-                        resolve_backend(be)
-                    except ImportError:
-                        continue
-                    _Factor(pat, A.numpy(), be)  # CHOLMOD: analysis once per pattern, not timed
-                    t = np.inf
-                    for _ in range(3):
-                        t0 = time.perf_counter()
-                        fac = _Factor(pat, A.numpy(), be)
-                        fac.solve(b)
-                        fac.solve(b)
-                        t = min(t, time.perf_counter() - t0)
-                        del fac
-                    tb[(stencil, be)] = (t, m.nnz)
-        solver_rows.append((kind, n, t_loop, t_ours, tb, os.getloadavg()[0]))
+            t_ours = min(t_ours, time.perf_counter() - t0)
+        return t_loop, t_ours, _time_solvers(models, rest, Hm, Hb, n)
+
+
+def _print_solver_rows(solver_rows) -> None:
     print()
     print(
         f"{'mesh':>6} {'verts':>6} | {'asm loop':>8} {'asm ours':>8} {'speedup':>7} | factor + 2 solves [ms] "
@@ -248,6 +241,45 @@ def main(argv=None):
         "RSS+: growth of peak resident memory during the 20-step runs (0 when an earlier size peaked higher);"
     )
     print("asm: assembly of the membrane + bending system blocks (one step); f+s: factor + two solves.")
+
+
+def main(argv=None):
+    args = _parse(argv)
+    torch.set_num_threads(args.threads)
+    print(f"load average at start: {os.getloadavg()[0]:.2f} (2 shared cores)")
+    from unsew.sim import MATERIALS, SimModel, SimState, SphereSDF
+
+    gamma = MATERIALS["cotton"].gamma()
+    sdf = SphereSDF((0.0, 0.0, 0.0), 0.1)
+    variants = _variants(args.variants)
+    print(f"torch {torch.__version__}, {args.threads} torch thread(s), min of {args.repeat} runs, seconds")
+    hdr = (
+        f"{'mesh':>6} {'verts':>6} {'faces':>6} {'variant':>23} | {'fwd 1':>6} {'fwd 20':>7} {'rev 1':>6} "
+        f"{'rev 20':>7} {'f+r 20':>7} | {'RSS+ MB':>7} | {'load':>4}"
+    )
+    print(hdr)
+    print("-" * len(hdr))
+    solver_rows = []
+    for n_target in [int(s) for s in args.sizes.split(",")]:
+        kind, f, fuv, uv, x, n = _mesh(n_target, not args.sheet)
+        models = {
+            st_: SimModel.build(f, fuv, n=n, bending_stencil=st_) for st_ in sorted({v[0] for v in variants})
+        }
+        uvt = torch.as_tensor(uv, dtype=torch.float64)
+        st = SimState.at_rest(x)
+        res = _time_drapes(models, st, sdf, uvt, gamma, variants, args)
+        load = os.getloadavg()[0]
+        for v in variants:
+            r = res[v]
+            name = v[0] + ":" + v[1] + ("" if v[2] else ":unfused") + ("" if v[3] else ":nols")
+            print(
+                f"{kind:>6} {n:>6} {f.shape[0]:>6} {name:>23} | {r[1][0]:6.3f} {r[20][0]:7.3f} "
+                f"{r[1][1]:6.3f} {r[20][1]:7.3f} {r[20][0] + r[20][1]:7.3f} | {r['rss']:7.0f} | {load:4.1f}",
+                flush=True,
+            )
+        t_loop, t_ours, tb = _time_assembly(models, st, uvt, gamma, n, args.no_loop)
+        solver_rows.append((kind, n, t_loop, t_ours, tb, os.getloadavg()[0]))
+    _print_solver_rows(solver_rows)
 
 
 if __name__ == "__main__":

@@ -18,6 +18,7 @@ are metres; the JSON is written in cm (``units_in_meter`` 100) with relative cur
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -362,113 +363,144 @@ def _sleeve_rotation(J, side):
     return matrix_to_euler_xyz(np.stack([x, y, z], axis=1)).round(4).tolist()
 
 
-def top(
-    m,
-    J,
-    *,
-    length,
-    ease,
-    hem_ease,
-    sleeve=None,
-    neck_depth=0.08,
-    waist_shape=False,
-    hip_ease=0.06,
-    name="top",
-):
+class TopCut(NamedTuple):
+    """The cut of :func:`top` [m]: ``length`` from the neck point down to the hem; ``ease`` added
+    to the bust girth; ``hem_ease`` to the bust girth at the hem; ``sleeve`` the one-piece
+    sleeves' underarm seam length (None: sleeveless); ``neck_depth`` of the front neckline;
+    ``waist_shape``: side seams shaped in at the waist over the hips (a sheath dress), with
+    ``hip_ease`` added to the hip girth."""
+
+    length: float
+    ease: float
+    hem_ease: float
+    sleeve: float | None = None
+    neck_depth: float = 0.08
+    waist_shape: bool = False
+    hip_ease: float = 0.06
+
+
+def _bodice_panel(spec, side: str, m, c: TopCut, frame: dict) -> None:
+    """The front or back bodice panel; frame: the panel's heights and widths [m] (:func:`top`)."""
+    f = frame
+    yt, ysh, ya, hip_y, waist_y = f["yt"], f["ysh"], f["ya"], f["hip_y"], f["waist_y"]
+    cw, sw, nw, hw = f["cw"], f["sw"], f["nw"], f["hw"]
+    nd = c.neck_depth if side == "front" else 0.025
+    shaped = c.waist_shape and hip_y > 0.05
+    pts, edges = [(-hw, 0.0), (hw, 0.0)], [("hem", None)]
+    if shaped:
+        wq = (m["waist"] + c.ease + 0.02) / 4
+        hq = (m["hip"] + c.hip_ease) / 4
+        pts += [(hq, hip_y), (wq, waist_y)]
+        edges += [
+            ("side_r0", None),
+            ("side_r1", ("q", [(0.5 * (hq + wq) + 0.01, 0.5 * (hip_y + waist_y))])),
+            ("side_r2", None),
+        ]
+    else:
+        edges += [("side_r2", None)]
+    arm_ctrl = f["arm_ctrl"]
+    pts += [(cw, ya), (sw, ysh), (nw, yt), (-nw, yt), (-sw, ysh), (-cw, ya)]
+    edges += [
+        ("arm_r", ("q", [arm_ctrl])),
+        ("shoulder_r", None),
+        ("neck", ("c", [(nw * 0.9, yt - nd), (-nw * 0.9, yt - nd)])),
+        ("shoulder_l", None),
+        ("arm_l", ("q", [(-arm_ctrl[0], arm_ctrl[1])])),
+    ]
+    if shaped:
+        pts += [(-wq, waist_y), (-hq, hip_y)]
+        edges += [
+            ("side_l2", None),
+            ("side_l1", ("q", [(-0.5 * (hq + wq) - 0.01, 0.5 * (hip_y + waist_y))])),
+            ("side_l0", None),
+        ]
+    else:
+        edges += [("side_l2", None)]
+    spec.panel(
+        side,
+        pts,
+        edges,
+        translation=(0, f["hem_y"], Z_HINT if side == "front" else -Z_HINT),
+        rotation=(0, 0, 0) if side == "front" else ROT_BACK,
+    )
+
+
+def _sleeves(spec, m, J, c: TopCut, frame: dict) -> None:
+    """One-piece sleeves whose cap is as long as the armhole (plus ease), sewn in."""
+    f = frame
+    a = np.array([f["cw"], f["ya"]]), np.array(f["arm_ctrl"]), np.array([f["sw"], f["ysh"]])
+    arm_len = _qlen(*a) + 0.01  # cap ease
+    bw = (m["upper_arm"] + 0.07 + 0.3 * c.ease) / 2
+    lo, hi = 0.02, 0.3  # cap height [m] whose curved cap edge is as long as the armhole
+    for _ in range(40):
+        cap = 0.5 * (lo + hi)
+        ln = _qlen(np.array([bw, 0.0]), np.array([0.55 * bw, 0.75 * cap]), np.array([0.0, cap]))
+        lo, hi = (cap, hi) if ln < arm_len else (lo, cap)
+    cuff = bw * (0.95 if c.sleeve < 0.35 else 0.6)
+    L = cap + c.sleeve  # the sleeve's underarm seam is ``sleeve`` long
+    for arm in ("left", "right"):
+        pts = [(-cuff, 0), (cuff, 0), (bw, L - cap), (0, L), (-bw, L - cap)]
+        edges = [
+            ("cuff", None),
+            ("under_r", None),
+            ("cap_r", ("q", [(0.55 * bw, L - 0.25 * cap)])),
+            ("cap_l", ("q", [(-0.55 * bw, L - 0.25 * cap)])),
+            ("under_l", None),
+        ]
+        sh = np.asarray(J[f"{arm}_shoulder"])
+        el = np.asarray(J[f"{arm}_elbow"])
+        centre = (
+            sh
+            + 0.5 * min(1.0, L / np.linalg.norm(el - sh)) * (el - sh)
+            + np.array([0.08 if arm == "left" else -0.08, 0, 0])
+        )
+        R = np.asarray(_rot(_sleeve_rotation(J, arm)))
+        t = centre - R @ np.array([0.0, L / 2, 0.0])
+        spec.panel(f"sleeve_{arm}", pts, edges, translation=t, rotation=_sleeve_rotation(J, arm))
+        spec.stitch(f"sleeve_{arm}", "under_r", f"sleeve_{arm}", "under_l")
+    # left sleeve: panel +x faces the back; right sleeve: panel +x faces the front
+    spec.stitch("sleeve_left", "cap_r", "back", "arm_l")
+    spec.stitch("sleeve_left", "cap_l", "front", "arm_r")
+    spec.stitch("sleeve_right", "cap_r", "front", "arm_l")
+    spec.stitch("sleeve_right", "cap_l", "back", "arm_r")
+
+
+def top(m, J, *, name="top", **cut):
     """Front and back bodice (or sheath dress when ``length`` reaches below the hips) and
-    optional one-piece sleeves (``sleeve``: underarm seam length [m], or None).
-    ``length``: from the neck point down to the hem [m]; ``ease``: added to the bust girth."""
+    optional one-piece sleeves. cut: the fields of :class:`TopCut` by name (length, ease and
+    hem_ease required)."""
+    c = TopCut(**cut)
     spec = Spec(name)
     neck_y = m["neck_height"] + 0.01
-    hem_y = neck_y - length
+    hem_y = neck_y - c.length
     yt = neck_y - hem_y
-    cw = (m["bust"] + ease) / 4
+    cw = (m["bust"] + c.ease) / 4
     sw = max(m["shoulder_width"] / 2 + 0.01, 0.75 * cw)
-    nw = m["neck"] / 2 / math.pi + 0.015
     ysh = yt - 0.045
-    arm_depth = 0.19 + ease * 0.1
+    arm_depth = 0.19 + c.ease * 0.1
     ya = ysh - arm_depth
-    hw = (m["bust"] + hem_ease) / 4
     waist_y = m["waist_height"] - hem_y
-    hip_y = waist_y - 0.2
-    for side, nd in (("front", neck_depth), ("back", 0.025)):
-        pts, edges = [(-hw, 0.0), (hw, 0.0)], [("hem", None)]
-        if waist_shape and hip_y > 0.05:
-            wq = (m["waist"] + ease + 0.02) / 4
-            hq = (m["hip"] + hip_ease) / 4
-            pts += [(hq, hip_y), (wq, waist_y)]
-            edges += [
-                ("side_r0", None),
-                ("side_r1", ("q", [(0.5 * (hq + wq) + 0.01, 0.5 * (hip_y + waist_y))])),
-                ("side_r2", None),
-            ]
-        else:
-            edges += [("side_r2", None)]
-        arm_ctrl = (sw + 0.15 * (cw - sw) - 0.02, ya + 0.35 * arm_depth)
-        pts += [(cw, ya), (sw, ysh), (nw, yt), (-nw, yt), (-sw, ysh), (-cw, ya)]
-        edges += [
-            ("arm_r", ("q", [arm_ctrl])),
-            ("shoulder_r", None),
-            ("neck", ("c", [(nw * 0.9, yt - nd), (-nw * 0.9, yt - nd)])),
-            ("shoulder_l", None),
-            ("arm_l", ("q", [(-arm_ctrl[0], arm_ctrl[1])])),
-        ]
-        if waist_shape and hip_y > 0.05:
-            pts += [(-wq, waist_y), (-hq, hip_y)]
-            edges += [
-                ("side_l2", None),
-                ("side_l1", ("q", [(-0.5 * (hq + wq) - 0.01, 0.5 * (hip_y + waist_y))])),
-                ("side_l0", None),
-            ]
-        else:
-            edges += [("side_l2", None)]
-        spec.panel(
-            side,
-            pts,
-            edges,
-            translation=(0, hem_y, Z_HINT if side == "front" else -Z_HINT),
-            rotation=(0, 0, 0) if side == "front" else ROT_BACK,
-        )
+    frame = dict(
+        hem_y=hem_y,
+        yt=yt,
+        ysh=ysh,
+        ya=ya,
+        waist_y=waist_y,
+        hip_y=waist_y - 0.2,
+        cw=cw,
+        sw=sw,
+        nw=m["neck"] / 2 / math.pi + 0.015,
+        hw=(m["bust"] + c.hem_ease) / 4,
+        arm_ctrl=(sw + 0.15 * (cw - sw) - 0.02, ya + 0.35 * arm_depth),
+    )
+    for side in ("front", "back"):
+        _bodice_panel(spec, side, m, c, frame)
     for a, b in (("front", "back"), ("back", "front")):
         spec.stitch(a, "shoulder_r", b, "shoulder_l")
         for e in [k for k in spec.names[a] if k.startswith("side_r")]:
             spec.stitch(a, e, b, "side_l" + e[-1])
-    if sleeve is not None:
-        a = np.array([cw, ya]), np.array(arm_ctrl), np.array([sw, ysh])
-        arm_len = _qlen(*a) + 0.01  # cap ease
-        bw = (m["upper_arm"] + 0.07 + 0.3 * ease) / 2
-        lo, hi = 0.02, 0.3  # cap height [m] whose curved cap edge is as long as the armhole
-        for _ in range(40):
-            cap = 0.5 * (lo + hi)
-            ln = _qlen(np.array([bw, 0.0]), np.array([0.55 * bw, 0.75 * cap]), np.array([0.0, cap]))
-            lo, hi = (cap, hi) if ln < arm_len else (lo, cap)
-        cuff = bw * (0.95 if sleeve < 0.35 else 0.6)
-        L = cap + sleeve  # the sleeve's underarm seam is ``sleeve`` long
-        for arm in ("left", "right"):
-            pts = [(-cuff, 0), (cuff, 0), (bw, L - cap), (0, L), (-bw, L - cap)]
-            edges = [
-                ("cuff", None),
-                ("under_r", None),
-                ("cap_r", ("q", [(0.55 * bw, L - 0.25 * cap)])),
-                ("cap_l", ("q", [(-0.55 * bw, L - 0.25 * cap)])),
-                ("under_l", None),
-            ]
-            sh = np.asarray(J[f"{arm}_shoulder"])
-            el = np.asarray(J[f"{arm}_elbow"])
-            c = (
-                sh
-                + 0.5 * min(1.0, L / np.linalg.norm(el - sh)) * (el - sh)
-                + np.array([0.08 if arm == "left" else -0.08, 0, 0])
-            )
-            R = np.asarray(_rot(_sleeve_rotation(J, arm)))
-            t = c - R @ np.array([0.0, L / 2, 0.0])
-            spec.panel(f"sleeve_{arm}", pts, edges, translation=t, rotation=_sleeve_rotation(J, arm))
-            spec.stitch(f"sleeve_{arm}", "under_r", f"sleeve_{arm}", "under_l")
-        # left sleeve: panel +x faces the back; right sleeve: panel +x faces the front
-        spec.stitch("sleeve_left", "cap_r", "back", "arm_l")
-        spec.stitch("sleeve_left", "cap_l", "front", "arm_r")
-        spec.stitch("sleeve_right", "cap_r", "front", "arm_l")
-        spec.stitch("sleeve_right", "cap_l", "back", "arm_r")
+    if c.sleeve is not None:
+        _sleeves(spec, m, J, c, frame)
     return spec.to_dict()
 
 
