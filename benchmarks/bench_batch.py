@@ -53,6 +53,16 @@ def make_cases(root: Path, n: int, *, edge_length: float) -> Path:
     return cases
 
 
+def _print_rows(rows) -> None:
+    """The table of (backend, done fits, cases, wall s, s per fit, fits per hour) rows."""
+    print()
+    print(f"{'backend':<22}{'fits':>8}{'wall [s]':>10}{'s per fit':>11}{'fits/hour':>11}{'speed-up':>10}")
+    print("-" * 72)
+    for label, ok, n, wall, per, fph in rows:
+        print(f"{label:<22}{f'{ok}/{n}':>8}{wall:>10.1f}{per:>11.1f}{fph:>11.0f}{fph / rows[0][5]:>10.2f}")
+    print("s per fit: mean wall time of one fit inside its worker; fits/hour: done fits / batch wall time")
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cases", type=int, default=4, help="number of cases")
@@ -107,12 +117,7 @@ def main(argv=None) -> None:
             f"  {label}: {ok}/{len(res.records)} done in {wall:.1f} s (load average before: {load:.1f})",
             flush=True,
         )
-    print()
-    print(f"{'backend':<22}{'fits':>8}{'wall [s]':>10}{'s per fit':>11}{'fits/hour':>11}{'speed-up':>10}")
-    print("-" * 72)
-    for label, ok, n, wall, per, fph in rows:
-        print(f"{label:<22}{f'{ok}/{n}':>8}{wall:>10.1f}{per:>11.1f}{fph:>11.0f}{fph / rows[0][5]:>10.2f}")
-    print("s per fit: mean wall time of one fit inside its worker; fits/hour: done fits / batch wall time")
+    _print_rows(rows)
     if not args.keep:
         shutil.rmtree(root, ignore_errors=True)
 

@@ -126,7 +126,7 @@ def _print(rows):
     sys.stdout.flush()
 
 
-def main(argv=None):
+def _parse(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--garments", nargs="+", default=["tshirt", "dress", "pants", "shorts", "skirt"])
     ap.add_argument("--edge-length", type=float, default=0.02)
@@ -146,14 +146,101 @@ def main(argv=None):
         metavar="KEY=VALUE",
         help="override a FitConfig option for every fit (repeatable)",
     )
-    args = ap.parse_args(argv)
+    return ap.parse_args(argv)
+
+
+def _n_verts(case: Path) -> int:
+    return sum(1 for line in open(case / "target.obj") if line.startswith("v "))
+
+
+def _garment_rows(args, out: Path, cfg, target_drape, rows: list) -> None:
+    """Make each garment's synthetic case (off the library with --off-library), fit it, and
+    append and print its row."""
+    from unsew.fit.synthetic import make_truth_case
+
+    for g in args.garments:
+        alt = None
+        if args.off_library:
+            from dataclasses import replace
+
+            from unsew.fit.synthetic import DEFAULT_ALTERATIONS, off_library
+
+            alt = replace(DEFAULT_ALTERATIONS[g], material=off_library(DEFAULT_ALTERATIONS[g].material))
+            print(f"{g}: true fabric {alt.as_dict()['material']}")
+        case = make_truth_case(out / "cases" / g, garment=g, alteration=alt, settings=target_drape)
+        nverts = _n_verts(case)
+        result, m, secs = _fit(case, out / "results" / g, cfg)
+        rows.append(_row(g, result, m, secs, nverts))
+        _print(rows[-1:] if len(rows) > 1 else rows)
+
+
+def _variant_target(var: str, base: Path, d: Path, v, f):
+    """Copy the t-shirt case ``base`` to ``d`` with its target changed by ``var`` (noise,
+    decimate, cm); returns the target's units for the fit (None: the case's)."""
+    import shutil
+
+    from unsew.io.mesh import write_obj
+
+    if d.exists():
+        shutil.rmtree(d)
+    shutil.copytree(base, d)
+    units = None
+    if var == "noise":
+        rng = np.random.default_rng(0)
+        write_obj(d / "target.obj", v + rng.normal(scale=0.001, size=v.shape), f)
+    elif var == "decimate":
+        import trimesh  # quadric edge collapse (fast-simplification, in the test extra)
+
+        m = trimesh.Trimesh(v, f, process=False).simplify_quadric_decimation(face_count=len(f) // 2)
+        write_obj(d / "target.obj", m.vertices, m.faces)
+    elif var == "cm":
+        write_obj(d / "target.obj", v * 100.0, f)
+        meta = json.loads((d / "meta.json").read_text())
+        meta.pop("units", None)
+        (d / "meta.json").write_text(json.dumps(meta))
+        units = "cm"
+    return units
+
+
+def _variant_rows(variants, out: Path, cfg, target_drape, rows: list) -> None:
+    """Fit the t-shirt case's variants (another pose or body, or a changed target) and append
+    and print their rows."""
+    from unsew.fit.synthetic import make_truth_case
+    from unsew.io.mesh import read_mesh
+
+    base = out / "cases" / "tshirt"
+    if not base.is_dir():
+        make_truth_case(base, garment="tshirt", settings=target_drape)
+    v, f = read_mesh(base / "target.obj")
+    for var in variants:
+        d = out / "cases" / f"tshirt_{var}"
+        units = None
+        if var in ("pose", "body"):
+            from unsew.body.body import default_body
+            from unsew.body.pose import pose_body
+
+            b = (
+                pose_body(default_body(), "left_arm_up")
+                if var == "pose"
+                else default_body().transformed(scale=np.array([1.08, 1.0, 1.08]))
+            )
+            make_truth_case(d, garment="tshirt", body=b, body_meta=None, settings=target_drape)
+        else:
+            units = _variant_target(var, base, d, v, f)
+        nverts = _n_verts(d)
+        result, m, secs = _fit(d, out / "results" / f"tshirt_{var}", cfg, units=units)
+        rows.append(_row(f"t-{var}", result, m, secs, nverts))
+        _print(rows[-1:])
+
+
+def main(argv=None):
+    args = _parse(argv)
 
     import torch
 
     torch.set_num_threads(1)
     from unsew.fit.config import load_config
     from unsew.sim.drape import DrapeSettings
-    from unsew.fit.synthetic import make_truth_case
 
     out = Path(args.out)
     cfg = load_config(edge_length=args.edge_length, iterations=args.iterations)
@@ -165,71 +252,10 @@ def main(argv=None):
         cfg = apply_sets(cfg, args.set)
         print("overrides: " + ", ".join(args.set))
     rows = []
-    for g in args.garments:
-        alt = None
-        if args.off_library:
-            from dataclasses import replace
-
-            from unsew.fit.synthetic import DEFAULT_ALTERATIONS, off_library
-
-            alt = replace(DEFAULT_ALTERATIONS[g], material=off_library(DEFAULT_ALTERATIONS[g].material))
-            print(f"{g}: true fabric {alt.as_dict()['material']}")
-        case = make_truth_case(out / "cases" / g, garment=g, alteration=alt, settings=target_drape)
-        nverts = sum(1 for line in open(case / "target.obj") if line.startswith("v "))
-        result, m, secs = _fit(case, out / "results" / g, cfg)
-        rows.append(_row(g, result, m, secs, nverts))
-        _print(rows[-1:] if len(rows) > 1 else rows)
+    _garment_rows(args, out, cfg, target_drape, rows)
     variants = [v for v in args.variants.split(",") if v]
     if variants:
-        from unsew.io.mesh import read_mesh, write_obj
-
-        base = out / "cases" / "tshirt"
-        if not base.is_dir():
-            make_truth_case(base, garment="tshirt", settings=target_drape)
-        v, f = read_mesh(base / "target.obj")
-        for var in variants:
-            d = out / "cases" / f"tshirt_{var}"
-            if var in ("pose", "body"):
-                from unsew.body.body import default_body
-                from unsew.body.pose import pose_body
-
-                b = (
-                    pose_body(default_body(), "left_arm_up")
-                    if var == "pose"
-                    else default_body().transformed(scale=np.array([1.08, 1.0, 1.08]))
-                )
-                make_truth_case(d, garment="tshirt", body=b, body_meta=None, settings=target_drape)
-                nverts = sum(1 for line in open(d / "target.obj") if line.startswith("v "))
-                result, m, secs = _fit(d, out / "results" / f"tshirt_{var}", cfg)
-                rows.append(_row(f"t-{var}", result, m, secs, nverts))
-                _print(rows[-1:])
-                continue
-            if d.exists():
-                import shutil
-
-                shutil.rmtree(d)
-            import shutil
-
-            shutil.copytree(base, d)
-            units = None
-            if var == "noise":
-                rng = np.random.default_rng(0)
-                write_obj(d / "target.obj", v + rng.normal(scale=0.001, size=v.shape), f)
-            elif var == "decimate":
-                import trimesh  # quadric edge collapse (fast-simplification, in the test extra)
-
-                m = trimesh.Trimesh(v, f, process=False).simplify_quadric_decimation(face_count=len(f) // 2)
-                write_obj(d / "target.obj", m.vertices, m.faces)
-            elif var == "cm":
-                write_obj(d / "target.obj", v * 100.0, f)
-                meta = json.loads((d / "meta.json").read_text())
-                meta.pop("units", None)
-                (d / "meta.json").write_text(json.dumps(meta))
-                units = "cm"
-            nverts = sum(1 for line in open(d / "target.obj") if line.startswith("v "))
-            result, m, secs = _fit(d, out / "results" / f"tshirt_{var}", cfg, units=units)
-            rows.append(_row(f"t-{var}", result, m, secs, nverts))
-            _print(rows[-1:])
+        _variant_rows(variants, out, cfg, target_drape, rows)
     print()
     print("all rows:")
     _print(rows)

@@ -211,26 +211,8 @@ def _run(spec: dict, timeout: float) -> dict:
     return json.loads(r.stdout.strip().splitlines()[-1])
 
 
-def main(argv=None) -> None:
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--worker", help=argparse.SUPPRESS)
-    ap.add_argument("--quick", action="store_true", help="5K-triangle meshes and 5K queries only")
-    ap.add_argument("--mem-limit-gb", type=float, default=4.0, help="address-space limit of the old search")
-    ap.add_argument("--timeout", type=float, default=300.0, help="seconds per measurement")
-    ap.add_argument(
-        "--libs",
-        nargs="+",
-        default=["igl", "igl, Morton order", "fcpw", "kdtree (old)"],
-        help="closest-point libraries to measure",
-    )
-    ap.add_argument("--no-inside", action="store_true", help="skip the inside-test table")
-    args = ap.parse_args(argv)
-    if args.worker:
-        print(json.dumps(_worker(json.loads(args.worker))))
-        return
-    from tables import print_table
-
-    sizes = [5000] if args.quick else [5000, 20000, 50000]
+def _closest_rows(sizes, args) -> list[dict]:
+    """One row per closest-point case and library (each measured in a worker process)."""
     libs = args.libs
     rows = []
     cases = [(f, q, False, 0.0) for f in sizes for q in sizes]
@@ -264,15 +246,11 @@ def main(argv=None) -> None:
                 }
             )
             print(rows[-1], file=sys.stderr, flush=True)
-    print_table(
-        rows,
-        title="Closest points on a triangle mesh (time [s], peak memory growth [MB], error against libigl "
-        "[um])",
-        digits=3,
-    )
+    return rows
 
-    if args.no_inside:
-        return
+
+def _inside_rows(sizes, timeout: float) -> list[dict]:
+    """One row per inside-test library and query count (each measured in a worker process)."""
     rows = []
     for nq in sizes:
         for lib in [
@@ -281,7 +259,7 @@ def main(argv=None) -> None:
             "fcpw contains",
             "embreex rays (trimesh)",
         ]:
-            r = _run({"kind": "inside", "lib": lib, "queries": nq}, args.timeout)
+            r = _run({"kind": "inside", "lib": lib, "queries": nq}, timeout)
             rows.append(
                 {
                     "library": lib,
@@ -295,8 +273,41 @@ def main(argv=None) -> None:
                 }
             )
             print(rows[-1], file=sys.stderr, flush=True)
+    return rows
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--worker", help=argparse.SUPPRESS)
+    ap.add_argument("--quick", action="store_true", help="5K-triangle meshes and 5K queries only")
+    ap.add_argument("--mem-limit-gb", type=float, default=4.0, help="address-space limit of the old search")
+    ap.add_argument("--timeout", type=float, default=300.0, help="seconds per measurement")
+    ap.add_argument(
+        "--libs",
+        nargs="+",
+        default=["igl", "igl, Morton order", "fcpw", "kdtree (old)"],
+        help="closest-point libraries to measure",
+    )
+    ap.add_argument("--no-inside", action="store_true", help="skip the inside-test table")
+    args = ap.parse_args(argv)
+    if args.worker:
+        print(json.dumps(_worker(json.loads(args.worker))))
+        return
+    from tables import print_table
+
+    sizes = [5000] if args.quick else [5000, 20000, 50000]
     print_table(
-        rows, title="Inside tests on the default body (closed, queries uniform in its bounding box)", digits=3
+        _closest_rows(sizes, args),
+        title="Closest points on a triangle mesh (time [s], peak memory growth [MB], error against libigl "
+        "[um])",
+        digits=3,
+    )
+    if args.no_inside:
+        return
+    print_table(
+        _inside_rows(sizes, args.timeout),
+        title="Inside tests on the default body (closed, queries uniform in its bounding box)",
+        digits=3,
     )
 
 

@@ -28,7 +28,7 @@ import time
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 
-def main(argv=None) -> None:
+def _parse(argv):
     ap = argparse.ArgumentParser()
     ap.add_argument(
         "--samples", type=int, nargs="+", default=[50_000, 100_000], help="points sampled per mesh"
@@ -40,7 +40,11 @@ def main(argv=None) -> None:
     ap.add_argument(
         "--fit", metavar="DIR", help="also run a whole small fit per target size in DIR (minutes each)"
     )
-    args = ap.parse_args(argv)
+    return ap.parse_args(argv)
+
+
+def main(argv=None) -> None:
+    args = _parse(argv)
 
     import numpy as np
 

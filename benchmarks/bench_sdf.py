@@ -19,7 +19,62 @@ import time
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 
-def main(argv=None) -> None:
+def _time_queries(sdf, pts, rng, n_points: int) -> list[tuple]:
+    """(label, median forward ms, median forward + gradient ms) of SDF queries on n_points near
+    the surface points ``pts`` (N, 3) [m], in float64 and float32, random and sorted order."""
+    import numpy as np
+    import torch
+
+    xq = torch.tensor(pts[rng.integers(0, len(pts), n_points)] + rng.normal(0, 0.02, (n_points, 3)))
+    # garment vertices are spatially coherent; random order is the worst case for the cache
+    key = np.lexsort(np.floor(xq.numpy() / 0.02).T)
+    rows = []
+    for dtype, order in ((torch.float64, "random"), (torch.float32, "random"), (torch.float64, "sorted")):
+        xx = (xq[key] if order == "sorted" else xq).to(dtype).requires_grad_(True)
+        sdf.query(xx)  # warm: grid tensors on this device/dtype
+        ts_f, ts_fb = [], []
+        for _ in range(20):
+            t = time.perf_counter()
+            with torch.no_grad():
+                sdf.query(xx)
+            ts_f.append(time.perf_counter() - t)
+            t = time.perf_counter()
+            dd, nn = sdf.query(xx)
+            (g,) = torch.autograd.grad(dd.sum(), xx)
+            ts_fb.append(time.perf_counter() - t)
+        rows.append(
+            (
+                f"{str(dtype).replace('torch.', '')}, {order} order",
+                np.median(ts_f) * 1e3,
+                np.median(ts_fb) * 1e3,
+            )
+        )
+    return rows
+
+
+def _compare_igl(body, sdf, t_build: float) -> None:
+    """Time libigl's exact unsigned distance at every grid node against the grid's."""
+    import numpy as np
+
+    nz, ny, nx = sdf.shape
+    from unsew.geometry.distance import MeshQuery
+
+    Z, rem = np.divmod(np.arange(nx * ny * nz), ny * nx)
+    Y, X = np.divmod(rem, nx)
+    nodes = sdf.origin + sdf.voxel * np.stack([X, Y, Z], axis=1).astype(np.float64)
+    del X, Y, Z, rem
+    t = time.perf_counter()
+    exact = MeshQuery(body.verts, body.faces).distance(nodes).reshape(sdf.shape)
+    t_igl = time.perf_counter() - t
+    diff = np.abs(np.abs(sdf.values) - exact)
+    print()
+    print("| unsigned distance at every node | time [s] | max abs difference from the grid, < 5 cm [mm] |")
+    print("|---|---|---|")
+    print(f"| unsew grid build (band + propagation + sign) | {t_build:.1f} | |")
+    print(f"| libigl AABB, exact, unsigned only | {t_igl:.1f} | {diff[exact < 0.05].max() * 1e3:.2f} |")
+
+
+def _parse(argv):
     ap = argparse.ArgumentParser()
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--voxel", type=float, default=0.005)
@@ -33,7 +88,11 @@ def main(argv=None) -> None:
         action="store_true",
         help="also time libigl's exact unsigned distance (AABB tree) at every grid node",
     )
-    args = ap.parse_args(argv)
+    return ap.parse_args(argv)
+
+
+def main(argv=None) -> None:
+    args = _parse(argv)
 
     import numpy as np
     import torch
@@ -65,30 +124,7 @@ def main(argv=None) -> None:
     err = np.abs(d.numpy()) - d_ex  # magnitude error; the sign is tested in tests/body
     near = d_ex < 0.05
 
-    xq = torch.tensor(pts[rng.integers(0, len(pts), args.points)] + rng.normal(0, 0.02, (args.points, 3)))
-    # garment vertices are spatially coherent; random order is the worst case for the cache
-    key = np.lexsort(np.floor(xq.numpy() / 0.02).T)
-    rows = []
-    for dtype, order in ((torch.float64, "random"), (torch.float32, "random"), (torch.float64, "sorted")):
-        xx = (xq[key] if order == "sorted" else xq).to(dtype).requires_grad_(True)
-        sdf.query(xx)  # warm: grid tensors on this device/dtype
-        ts_f, ts_fb = [], []
-        for _ in range(20):
-            t = time.perf_counter()
-            with torch.no_grad():
-                sdf.query(xx)
-            ts_f.append(time.perf_counter() - t)
-            t = time.perf_counter()
-            dd, nn = sdf.query(xx)
-            (g,) = torch.autograd.grad(dd.sum(), xx)
-            ts_fb.append(time.perf_counter() - t)
-        rows.append(
-            (
-                f"{str(dtype).replace('torch.', '')}, {order} order",
-                np.median(ts_f) * 1e3,
-                np.median(ts_fb) * 1e3,
-            )
-        )
+    rows = _time_queries(sdf, pts, rng, args.points)
 
     print(f"{name}: {len(body.verts)} verts, {len(body.faces)} faces; torch threads {args.threads}")
     print(
@@ -106,23 +142,7 @@ def main(argv=None) -> None:
     for name, f, fb in rows:
         print(f"| {name} | {f:.2f} | {fb:.2f} |")
     if args.compare_igl:
-        from unsew.geometry.distance import MeshQuery
-
-        Z, rem = np.divmod(np.arange(nx * ny * nz), ny * nx)
-        Y, X = np.divmod(rem, nx)
-        nodes = sdf.origin + sdf.voxel * np.stack([X, Y, Z], axis=1).astype(np.float64)
-        del X, Y, Z, rem
-        t = time.perf_counter()
-        exact = MeshQuery(body.verts, body.faces).distance(nodes).reshape(sdf.shape)
-        t_igl = time.perf_counter() - t
-        diff = np.abs(np.abs(sdf.values) - exact)
-        print()
-        print(
-            "| unsigned distance at every node | time [s] | max abs difference from the grid, < 5 cm [mm] |"
-        )
-        print("|---|---|---|")
-        print(f"| unsew grid build (band + propagation + sign) | {t_build:.1f} | |")
-        print(f"| libigl AABB, exact, unsigned only | {t_igl:.1f} | {diff[exact < 0.05].max() * 1e3:.2f} |")
+        _compare_igl(body, sdf, t_build)
 
 
 if __name__ == "__main__":
