@@ -55,6 +55,34 @@ def _commit(code: str | None) -> str:
     return (code or "").split(" ")[0]
 
 
+def _by_garment(rows: list[dict]) -> list[dict]:
+    """Per garment type: the fitted cases, their Chamfer's median and worst [mm], how many are
+    within their bar, and the total area error's median and worst [%]."""
+    by = defaultdict(list)
+    for r in rows:
+        by[r.get("garment", "?")].append(r)
+    summary = []
+    for g in sorted(by):
+        rs = [r for r in by[g] if r.get("cf_final_mm") is not None]
+        cf = [r["cf_final_mm"] for r in rs]
+        tot = [r["total_final_pct"] for r in rs if r.get("total_final_pct") is not None]
+        within = sum(
+            r.get("floor_mm") is not None and r["cf_final_mm"] <= max(5.0, 1.5 * r["floor_mm"]) for r in rs
+        )
+        summary.append(
+            {
+                "garment": g,
+                "cases": len(rs),
+                "fit mm median": _median(cf),
+                "fit mm worst": max(cf),
+                "within bar": f"{within} of {len(rs)}",
+                "total area % median": _median(tot) if tot else None,
+                "total area % worst": max(tot) if tot else None,
+            }
+        )
+    return summary
+
+
 def foreign_section(record: Path) -> list[str]:
     """The foreign benchmark's section: the bars, a table per garment type and one row per case."""
     from bench_foreign_fit import _read_record, bars, case_dirs
@@ -90,30 +118,8 @@ def foreign_section(record: Path) -> list[str]:
         "### Per garment type",
         "",
     ]
-    by = defaultdict(list)
-    for r in rows:
-        by[r.get("garment", "?")].append(r)
-    summary = []
-    for g in sorted(by):
-        rs = [r for r in by[g] if r.get("cf_final_mm") is not None]
-        cf = [r["cf_final_mm"] for r in rs]
-        tot = [r["total_final_pct"] for r in rs if r.get("total_final_pct") is not None]
-        within = sum(
-            r.get("floor_mm") is not None and r["cf_final_mm"] <= max(5.0, 1.5 * r["floor_mm"]) for r in rs
-        )
-        summary.append(
-            {
-                "garment": g,
-                "cases": len(rs),
-                "fit mm median": _median(cf),
-                "fit mm worst": max(cf),
-                "within bar": f"{within} of {len(rs)}",
-                "total area % median": _median(tot) if tot else None,
-                "total area % worst": max(tot) if tot else None,
-            }
-        )
     lines += [
-        markdown_table(summary, digits=1),
+        markdown_table(_by_garment(rows), digits=1),
         "",
         "### Each case's latest recorded fit",
         "",

@@ -116,30 +116,9 @@ def fit_case(case_dir: Path, out: Path, cfg, *, log=print, retry_failed: bool | 
                 case, cfg, out, resume=resume, overwrite=True, progress=False, log=lambda s: None
             )
         except Exception as exc:  # a failed fit is a row of the table, not the end of the run
-            err = f"{type(exc).__name__}: {exc}".splitlines()[0]
-            side.parent.mkdir(parents=True, exist_ok=True)
-            side.write_text(
-                json.dumps(
-                    {
-                        "error": err,
-                        "wall_s": time.perf_counter() - t,
-                        "load_start": load0,
-                        "unsew_commit": git_version(),
-                    },
-                    indent=2,
-                )
-            )
-            log(f"  {case_dir.name}: FAILED ({err})")
-            return {"out": out, "metrics": None, "material": {}, "bench": {"error": err}}
+            return _failed(case_dir, out, exc, (time.perf_counter() - t, load0), log)
         wall = time.perf_counter() - t
-        graded = None
-        if case.pattern_gt is not None and result.graded_pattern is not None:
-            from unsew.metrics.panels import pattern_metrics
-
-            try:
-                graded = pattern_metrics(result.graded_pattern, case.pattern_gt)
-            except Exception as exc:  # unmatched panels: report, keep the table going
-                graded = {"error": str(exc)}
+        graded = _graded_metrics(case, result)
         side.write_text(
             json.dumps(
                 {
@@ -161,6 +140,41 @@ def fit_case(case_dir: Path, out: Path, cfg, *, log=print, retry_failed: bool | 
         else {},
         "bench": json.loads(side.read_text()) if side.is_file() else {},
     }
+    _log_record(case_dir, rec, log)
+    return rec
+
+
+def _failed(case_dir: Path, out: Path, exc: Exception, timing, log) -> dict:
+    """Record a fit that raised in its sidecar (timing = (wall s, load at the start)) and return
+    its record (metrics None)."""
+    side = out.with_name(out.name + ".bench.json")
+    err = f"{type(exc).__name__}: {exc}".splitlines()[0]
+    side.parent.mkdir(parents=True, exist_ok=True)
+    side.write_text(
+        json.dumps(
+            {"error": err, "wall_s": timing[0], "load_start": timing[1], "unsew_commit": git_version()},
+            indent=2,
+        )
+    )
+    log(f"  {case_dir.name}: FAILED ({err})")
+    return {"out": out, "metrics": None, "material": {}, "bench": {"error": err}}
+
+
+def _graded_metrics(case, result) -> dict | None:
+    """The graded pattern's 2D metrics against the case's true pattern (None without either;
+    {"error": reason} when they cannot be compared)."""
+    if case.pattern_gt is None or result.graded_pattern is None:
+        return None
+    from unsew.metrics.panels import pattern_metrics
+
+    try:
+        return pattern_metrics(result.graded_pattern, case.pattern_gt)
+    except Exception as exc:  # unmatched panels: report, keep the table going
+        return {"error": str(exc)}
+
+
+def _log_record(case_dir: Path, rec: dict, log) -> None:
+    """One line: the fit's Chamfer [mm], normal error [deg] and area error [%]."""
     s = rec["metrics"]["surface"]
     p = rec["metrics"].get("pattern") or {}
     p = p if "error" not in p else {}
@@ -168,7 +182,6 @@ def fit_case(case_dir: Path, out: Path, cfg, *, log=print, retry_failed: bool | 
         f"  {case_dir.name}: Chamfer {s['chamfer_mm']:.2f} mm, normal {s['normal_error_deg']:.1f} deg, "
         f"area error {100 * p.get('area_error_rel_mean', float('nan')):.2f} %"
     )
-    return rec
 
 
 def yaml_value(text: str):
@@ -331,31 +344,10 @@ def _stage_values(rec) -> dict:
     }
 
 
-def table_accuracy(args, cases: dict[str, list[Path]]) -> list[dict]:
-    cfg = base_config(args)
-    recs = []
-    for g, cs in cases.items():
-        for c in cs:
-            r = fit_case(c, Path(args.out) / "results" / "full" / c.name, cfg)
-            r.update(
-                garment=g,
-                case=c.name,
-                verts=n_verts(c),
-                body=json.loads((c / "meta.json").read_text()).get("benchmark", {}).get("body_name", "?"),
-            )
-            recs.append(r)
-    heads = ["garment", "fits done", "stage", "Chamfer mm", "normal deg", "turning rad", "area err %"]
-    fmts = ["s", "s", "s", ".2f", ".1f", ".3f", ".2f"]
-    rows = []
-    for g in cases:
-        rs = [r for r in recs if r["garment"] == g]
-        for stage in ("base", "graded", "fit"):
-            vals = [_stage_values(r)[stage] for r in rs]
-            rows.append(
-                [g, f"{sum(r['metrics'] is not None for r in rs)}/{len(rs)}", stage]
-                + [_mean([v[i] for v in vals]) for i in range(4)]
-            )
-    per_case = md_table(
+def _per_case_table(recs: list[dict]) -> str:
+    """The accuracy table's per-case rows: Chamfer, normal and area errors per stage, turning,
+    iterations, fit time and any failure."""
+    return md_table(
         [
             "case",
             "body",
@@ -391,6 +383,33 @@ def table_accuracy(args, cases: dict[str, list[Path]]) -> list[dict]:
         ],
         ["s", "s", "d", ".2f", ".2f", ".2f", ".1f", ".1f", ".2f", ".2f", ".2f", ".3f", "d", ".0f", "s"],
     )
+
+
+def table_accuracy(args, cases: dict[str, list[Path]]) -> list[dict]:
+    cfg = base_config(args)
+    recs = []
+    for g, cs in cases.items():
+        for c in cs:
+            r = fit_case(c, Path(args.out) / "results" / "full" / c.name, cfg)
+            r.update(
+                garment=g,
+                case=c.name,
+                verts=n_verts(c),
+                body=json.loads((c / "meta.json").read_text()).get("benchmark", {}).get("body_name", "?"),
+            )
+            recs.append(r)
+    heads = ["garment", "fits done", "stage", "Chamfer mm", "normal deg", "turning rad", "area err %"]
+    fmts = ["s", "s", "s", ".2f", ".1f", ".3f", ".2f"]
+    rows = []
+    for g in cases:
+        rs = [r for r in recs if r["garment"] == g]
+        for stage in ("base", "graded", "fit"):
+            vals = [_stage_values(r)[stage] for r in rs]
+            rows.append(
+                [g, f"{sum(r['metrics'] is not None for r in rs)}/{len(rs)}", stage]
+                + [_mean([v[i] for v in vals]) for i in range(4)]
+            )
+    per_case = _per_case_table(recs)
     text = (
         f"## Accuracy (Table 2)\n\n{header(args, 'measured')}\n\n"
         f"Per garment type (mean over its cases):\n\n{md_table(heads, rows, fmts)}\n\nPer "
@@ -431,31 +450,35 @@ def table_ablation(args, cases: dict[str, list[Path]]) -> None:
     emit(args, "ablation", text)
 
 
-def table_speed(args) -> None:
-    parts = [f"## Speed (Table 1)\n\n{header(args, 'measured')}\n"]
-    if not args.skip_sim:
-        cmd = [
-            sys.executable,
-            str(HERE / "bench_sim.py"),
-            "--sizes",
-            args.sim_sizes,
-            "--repeat",
-            "1",
-            "--variants",
-            "ring:cholespy",
-        ]
-        print("running", " ".join(cmd), flush=True)
-        r = subprocess.run(cmd, capture_output=True, text=True)
-        parts.append(
-            "Drape timings (`"
-            + " ".join(["benchmarks/bench_sim.py"] + cmd[2:])
-            + "`):\n\n```\n"
-            + r.stdout.strip()
-            + ("\n" + r.stderr.strip()[-2000:] if r.returncode else "")
-            + "\n```\n"
-        )
+def _sim_timings(args) -> str:
+    """bench_sim.py's drape timings at --sim-sizes, run in a subprocess, as a markdown block."""
+    cmd = [
+        sys.executable,
+        str(HERE / "bench_sim.py"),
+        "--sizes",
+        args.sim_sizes,
+        "--repeat",
+        "1",
+        "--variants",
+        "ring:cholespy",
+    ]
+    print("running", " ".join(cmd), flush=True)
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    return (
+        "Drape timings (`"
+        + " ".join(["benchmarks/bench_sim.py"] + cmd[2:])
+        + "`):\n\n```\n"
+        + r.stdout.strip()
+        + ("\n" + r.stderr.strip()[-2000:] if r.returncode else "")
+        + "\n```\n"
+    )
+
+
+def _fit_timing_rows(results: Path) -> list[list]:
+    """One row per fit under ``results`` (variant/case): vertices, iterations and the timings [s]
+    of its stages, with the sidecar's wall time and load."""
     rows = []
-    for mfile in sorted((Path(args.out) / "results").glob("*/*/metrics.json")):
+    for mfile in sorted(results.glob("*/*/metrics.json")):
         m = json.loads(mfile.read_text())
         t = m.get("timings_s", {})
         side = mfile.parent.with_name(mfile.parent.name + ".bench.json")
@@ -479,6 +502,14 @@ def table_speed(args) -> None:
                 b.get("load_start"),
             ]
         )
+    return rows
+
+
+def table_speed(args) -> None:
+    parts = [f"## Speed (Table 1)\n\n{header(args, 'measured')}\n"]
+    if not args.skip_sim:
+        parts.append(_sim_timings(args))
+    rows = _fit_timing_rows(Path(args.out) / "results")
     parts.append(
         "End-to-end fits found under the results folder (seconds; `fit` = run_fit's total, `wall` "
         "includes writing the result folder and report):\n\n"

@@ -112,36 +112,31 @@ def _set_active(model, held: np.ndarray, active: bool):
     model.particle_flags = wp.array(flags, dtype=model.particle_flags.dtype, device="cpu")
 
 
-def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, log=print):
-    """Sew and drape ``mesh`` (unsew GarmentMesh) from its unsewn start ``x_unsewn`` (Nu, 3) [m]
-    on the body (body_v (V, 3) [m], body_f (F, 3)). ``lower``: hold the waist (skirts,
-    trousers). Returns (x (n_x, 3) float64 [m] sewn vertices in the world frame, info dict with
-    per-phase timings [s], the largest seam gap after sewing [m] and frames run)."""
-    import newton
-    import warp as wp
+class _Runner:
+    """Runs a newton model for a number of frames under the settings ``s`` (SETTINGS' keys),
+    raising when a vertex leaves the body's neighbourhood (MAX_REACH from ``centre``)."""
 
-    wp.config.quiet = True
-    s = dict(SETTINGS if settings is None else settings)
-    dt = 1.0 / s["fps"] / s["substeps"]
-    solver_cfg = newton.solvers.SolverStyle3D.Config(
-        iterations=s["iterations"], linear_iterations=s["linear_iterations"]
-    )
-    bz = _to_z(body_v)
-    centre = 0.5 * (bz.min(axis=0) + bz.max(axis=0))
-    info = {}
+    def __init__(self, s: dict, centre):
+        import newton
 
-    # held: the waist line of a lower garment (vertices within hold_band of its top)
-    x_u = np.asarray(x_unsewn, np.float64)
-    held_u = (
-        np.flatnonzero(x_u[:, 1] > x_u[:, 1].max() - s["hold_band_m"]) if lower else np.zeros(0, np.int64)
-    )
+        self.s, self.centre = s, centre
+        self.dt = 1.0 / s["fps"] / s["substeps"]
+        self.solver_cfg = newton.solvers.SolverStyle3D.Config(
+            iterations=s["iterations"], linear_iterations=s["linear_iterations"]
+        )
 
-    def run(model, x0, frames, gravity_of_frame, held, hook=None):
+    def run(self, model, x0, frames, gravity_of_frame, held, hook=None):
+        """Positions (n, 3) [m, Y up] after ``frames`` frames from x0 at rest; gravity_of_frame(f)
+        -> (gravity factor, release the held vertices now); hook(state) before each substep."""
+        import newton
+        import warp as wp
+
+        s = self.s
         state0, state1 = model.state(), model.state()
         state0.particle_q.assign(wp.array(_to_z(x0).astype(np.float32), dtype=wp.vec3, device="cpu"))
         state0.particle_qd.zero_()
         control = model.control()
-        solver = newton.solvers.SolverStyle3D(model, config=solver_cfg)
+        solver = newton.solvers.SolverStyle3D(model, config=self.solver_cfg)
         pipeline = newton.CollisionPipeline(model, soft_contact_margin=0.01)
         contacts = pipeline.contacts()
         if len(held):
@@ -157,20 +152,21 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
                 state0.clear_forces()
                 if hook is not None:
                     hook(state0)
-                solver.step(state0, state1, control, contacts, dt)
+                solver.step(state0, state1, control, contacts, self.dt)
                 state0, state1 = state1, state0
             q = state0.particle_q.numpy()
-            far = np.abs(q - centre).max() if np.isfinite(q).all() else np.inf
+            far = np.abs(q - self.centre).max() if np.isfinite(q).all() else np.inf
             if far > MAX_REACH:
                 raise RuntimeError(
                     f"newton diverged at frame {f} (a vertex {far:.1f} m from the body's centre)"
                 )
         return _to_y(state0.particle_q.numpy())
 
-    # phase 1: sewing on the unsewn panels
-    t0 = time.time()
-    sp = np.asarray(mesh.seam_pairs)
-    m1 = _model(_to_z(x_u), mesh.faces_uv, mesh.uv, mesh.faces_uv, bz, body_f, s)
+
+def _seam_pull(sp, s: dict):
+    """The sewing phase's hook: spring forces pulling each seam pair together (capped), and
+    damped, capped velocities."""
+    import warp as wp
 
     def pull(state):
         q = state.particle_q.numpy()
@@ -186,7 +182,19 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
         v *= np.minimum(1.0, s["sew_speed_max_m_s"] / np.maximum(vn, 1e-12))
         state.particle_qd.assign(wp.array(v.astype(np.float32), dtype=wp.vec3, device="cpu"))
 
-    x1 = run(m1, x_u, s["sew_frames"], lambda f: (0.0, False), np.zeros(0, np.int64), hook=pull)
+    return pull
+
+
+def _sew(mesh, x_u, body, runner: _Runner, info: dict, log):
+    """Phase 1: sew the unsewn panels x_u (Nu, 3) [m] on body = (bz, body_f); returns the
+    unsewn positions after sewing, and records the seam gaps and time in ``info``."""
+    s = runner.s
+    t0 = time.time()
+    sp = np.asarray(mesh.seam_pairs)
+    m1 = _model(_to_z(x_u), mesh.faces_uv, mesh.uv, mesh.faces_uv, *body, s)
+    x1 = runner.run(
+        m1, x_u, s["sew_frames"], lambda f: (0.0, False), np.zeros(0, np.int64), hook=_seam_pull(sp, s)
+    )
     gaps = np.linalg.norm(x1[sp[:, 0]] - x1[sp[:, 1]], axis=1) if len(sp) else np.zeros(1)
     info["gap_after_sewing_m"] = float(gaps.max())
     info["gap_after_sewing_p95_m"] = float(np.percentile(gaps, 95))
@@ -199,6 +207,28 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
         f"  sewing: {s['sew_frames']} frames {info['sew_s']:.0f} s, largest seam gap "
         f"{info['gap_after_sewing_m'] * 1000:.1f} mm"
     )
+    return x1
+
+
+def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, log=print):
+    """Sew and drape ``mesh`` (unsew GarmentMesh) from its unsewn start ``x_unsewn`` (Nu, 3) [m]
+    on the body (body_v (V, 3) [m], body_f (F, 3)). ``lower``: hold the waist (skirts,
+    trousers). Returns (x (n_x, 3) float64 [m] sewn vertices in the world frame, info dict with
+    per-phase timings [s], the largest seam gap after sewing [m] and frames run)."""
+    import warp as wp
+
+    wp.config.quiet = True
+    s = dict(SETTINGS if settings is None else settings)
+    bz = _to_z(body_v)
+    runner = _Runner(s, 0.5 * (bz.min(axis=0) + bz.max(axis=0)))
+    info = {}
+
+    # held: the waist line of a lower garment (vertices within hold_band of its top)
+    x_u = np.asarray(x_unsewn, np.float64)
+    held_u = (
+        np.flatnonzero(x_u[:, 1] > x_u[:, 1].max() - s["hold_band_m"]) if lower else np.zeros(0, np.int64)
+    )
+    x1 = _sew(mesh, x_u, (bz, body_f), runner, info, log)
 
     # phase 2: the sewn garment
     t0 = time.time()
@@ -212,7 +242,7 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
     m2 = _model(_to_z(xs), mesh.faces, mesh.uv, mesh.faces_uv, bz, body_f, s)
     ramp, hold = s["ramp_frames"], s["hold_frames"] - s["sew_frames"]
     frames = max(ramp, hold) + s["settle_frames"]
-    x2 = run(m2, xs, frames, lambda f: (min(1.0, (f + 1) / ramp), f == hold), held_x)
+    x2 = runner.run(m2, xs, frames, lambda f: (min(1.0, (f + 1) / ramp), f == hold), held_x)
     info["drape_s"] = time.time() - t0
     info["frames"] = s["sew_frames"] + frames
     log(f"  drape: {frames} frames {info['drape_s']:.0f} s")

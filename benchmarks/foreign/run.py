@@ -373,31 +373,18 @@ def _on_body(typ, x, body):
     return ok, f"top {ytop:.3f} m, chest {J['chest'][1]:.3f} m"
 
 
-def build_case(cid, out_root: Path):
-    import checks
-    import newton
+def _drape_with_fallbacks(mesh, x0, body, *, lower: bool):
+    """newton's drape of the placed panels x0, with each of newton_drape.FALLBACKS' settings in
+    turn until one does not diverge: (x (n_x, 3) [m], info, the settings used)."""
     import newton_drape
-    from unsew.body.placement import place_garment
-    from unsew.io.garmentcode import pattern_from_dict
-    from unsew.meshing.sew import mesh_pattern
 
-    design, bkey = CASES[cid]
-    t0 = time.time()
-    body = _body(bkey)
-    spec, typ = _pattern(design, body)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        pattern = pattern_from_dict(json.loads(json.dumps(spec)), name=cid)
-    mesh = mesh_pattern(pattern, edge_length=EDGE_LENGTH)
-    x0 = place_garment(pattern, mesh, body)
-    _log(f"{cid}: {mesh.n_x} vertices, {len(mesh.faces)} triangles")
     for k, extra in enumerate(newton_drape.FALLBACKS):
         settings = {**newton_drape.SETTINGS, **extra}
         try:
             x, info = newton_drape.drape_newton(
-                mesh, x0, body.verts, body.faces, lower=typ in LOWER, settings=settings, log=_log
+                mesh, x0, body.verts, body.faces, lower=lower, settings=settings, log=_log
             )
-            break
+            return x, info, settings
         except RuntimeError as exc:
             _log(
                 f"  {exc}"
@@ -409,6 +396,14 @@ def build_case(cid, out_root: Path):
             )
             if k + 1 == len(newton_drape.FALLBACKS):
                 raise
+
+
+def _check_case(x, mesh, body, typ, info) -> tuple[dict, list[str], float]:
+    """The drape's checks (inside share, stretch, edges through the body, the seam gap after
+    sewing, on the body), the reasons it fails them (none: it passes) and the share of its
+    vertices inside the body."""
+    import checks
+
     faces = np.asarray(mesh.faces)
     ins_v = checks.inside_mask(x, body.verts, body.faces)
     inside = float(ins_v.mean())
@@ -443,6 +438,15 @@ def build_case(cid, out_root: Path):
         fails.append(f"not on the body ({on_why})")
     res["passed"] = not fails
     res["failures"] = fails
+    return res, fails, inside
+
+
+def _case_meta(typ, source, settings, info, res, t0) -> dict:
+    """meta.json of a case: garment type, frame, body, source = (design, body key), the
+    simulator's settings and run, and the checks ``res``."""
+    import newton
+
+    design, bkey = source
     meta = {
         "garment": typ,
         "units": "m",
@@ -473,6 +477,30 @@ def build_case(cid, out_root: Path):
         },
         "checks": res,
     }
+    return meta
+
+
+def build_case(cid, out_root: Path):
+    import checks
+    import newton
+    from unsew.body.placement import place_garment
+    from unsew.io.garmentcode import pattern_from_dict
+    from unsew.meshing.sew import mesh_pattern
+
+    design, bkey = CASES[cid]
+    t0 = time.time()
+    body = _body(bkey)
+    spec, typ = _pattern(design, body)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        pattern = pattern_from_dict(json.loads(json.dumps(spec)), name=cid)
+    mesh = mesh_pattern(pattern, edge_length=EDGE_LENGTH)
+    x0 = place_garment(pattern, mesh, body)
+    _log(f"{cid}: {mesh.n_x} vertices, {len(mesh.faces)} triangles")
+    x, info, settings = _drape_with_fallbacks(mesh, x0, body, lower=typ in LOWER)
+    faces = np.asarray(mesh.faces)
+    res, fails, inside = _check_case(x, mesh, body, typ, info)
+    meta = _case_meta(typ, (design, bkey), settings, info, res, t0)
     verdict = "PASS" if not fails else "FAIL: " + "; ".join(fails)
     title = f"{cid}  inside {inside:.2%}  stretch p95 {res['stretch_p95']:.3f}  {verdict}"
     d = out_root / cid
