@@ -44,7 +44,8 @@ def test_gradcheck_step_solve(stencil):
         3 * m.n, generator=torch.Generator().manual_seed(1), dtype=torch.float64
     ).requires_grad_()
 
-    def fn(G, H, P, area, g, s, vb, extra, b):
+    def fn(*args):  # (G, H, P, area, g, s, vblk, extra, rhs), each an input gradcheck varies
+        G, H, P, area, g, s, vb, extra, b = args
         return step_solve(
             m,
             pat,
