@@ -210,7 +210,7 @@ def simulate_strip(fab: Fabric, overhang: float, *, edge: float, kind: str):
     Returns uv (V, 2), x (V, 3) [m] and the tip chord angle [rad] (mean of the tip row)."""
     import torch
 
-    from unsew.sim import PlaneSDF, SimModel, drape_static
+    from unsew.sim import Cloth, PlaneSDF, SimModel, StaticSettings, drape_static
 
     uv, f = strip_mesh(overhang, edge=edge, kind=kind)
     pinned = uv[:, 0] <= 1e-12
@@ -225,7 +225,11 @@ def simulate_strip(fab: Fabric, overhang: float, *, edge: float, kind: str):
     x0 = torch.as_tensor(np.c_[xs, -np.interp(u, s, ey) * c, uv[:, 1]])
     far = PlaneSDF(point=(0.0, -10.0, 0.0))  # nothing to touch
     x = drape_static(
-        model, x0, far, uv=torch.as_tensor(uv), gamma=fab.gamma(), density=fab.density, max_iter=200
+        model,
+        x0,
+        far,
+        Cloth(torch.as_tensor(uv), fab.gamma(), fab.density),
+        settings=StaticSettings(max_iter=200),
     ).numpy()
     tip = uv[:, 0] >= overhang - 1e-12
     return uv, x, chord_angle(float(x[tip, 0].mean()), float(-x[tip, 1].mean()))
@@ -293,7 +297,7 @@ def linear_strip_rows(fab: Fabric, cells=((6, 1), (6, 5), (6, 10), (12, 5), (12,
     the hinges across the strip bending, lumped masses), which has the clamp's O(h) error alone."""
     import torch
 
-    from unsew.sim import PlaneSDF, SimModel, drape_static
+    from unsew.sim import Cloth, PlaneSDF, SimModel, drape_static
     from unsew.sim.energies.bending import dihedral_angle
     from unsew.sim.meshes import grid_sheet
 
@@ -311,9 +315,7 @@ def linear_strip_rows(fab: Fabric, cells=((6, 1), (6, 5), (6, 10), (12, 5), (12,
             model,
             x0,
             PlaneSDF(point=(0.0, -10.0, 0.0)),
-            uv=torch.as_tensor(uv),
-            gamma=stiff.gamma(),
-            density=stiff.density,
+            Cloth(torch.as_tensor(uv), stiff.gamma(), stiff.density),
         )
         tip = uv[:, 0] >= L - 1e-12
         drop = -float(x[torch.as_tensor(tip), 1].mean())
@@ -447,7 +449,7 @@ def simulate_drape(
     height in [0, lift] [m] times their distance from the support over the overhang."""
     import torch
 
-    from unsew.sim import PlaneSDF, SimModel, StaticInfo, drape_static
+    from unsew.sim import Cloth, PlaneSDF, SimModel, StaticInfo, StaticSettings, drape_static
 
     t = time.perf_counter()
     uv, f = specimen_mesh(radius, disc, edge)
@@ -465,10 +467,8 @@ def simulate_drape(
         model,
         x0,
         far,
-        uv=torch.as_tensor(uv),
-        gamma=fab.gamma(),
-        density=fab.density,
-        max_iter=400,
+        Cloth(torch.as_tensor(uv), fab.gamma(), fab.density),
+        settings=StaticSettings(max_iter=400),
         info=info,
     ).numpy()
     a_disc, a_spec = math.pi * disc**2, math.pi * radius**2
@@ -617,7 +617,22 @@ def _print_table(title: str, rows: list[dict]) -> None:
     print(markdown_table(rows, digits=2))
 
 
-def main(argv=None) -> int:
+def _record(tables: dict, args) -> None:
+    """Write each table into benchmarks/results/fabric_<name>.json with its command and commit."""
+    flags = " --small" if args.small else " --linear" if args.linear else ""
+    cmd = "python -m benchmarks fabric_tests" + flags + " --record"
+    titles = {
+        "strip_linear": "Small-deflection strip on unsew's hinges: tip drop against the beam formula",
+        "cantilever": "Cantilever test (Peirce, 41.5 deg) on unsew's strip: overhang, rigidity read",
+        "drape": "Cusick drape test (30 cm specimen, 18 cm support) simulated: DC and nodes",
+    }
+    RESULTS.mkdir(exist_ok=True)
+    for key, rows in tables.items():
+        rec = {"title": titles[key], "command": cmd, "commit": _commit(), "rows": rows}
+        (RESULTS / f"fabric_{key}.json").write_text(json.dumps(rec, indent=1) + "\n")
+
+
+def _parse(argv):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--small", action="store_true", help="one fabric, coarse meshes, one seed (seconds)")
     ap.add_argument("--seeds", type=int, default=2, help="drape starts per fabric (default 2)")
@@ -630,7 +645,11 @@ def main(argv=None) -> int:
     ap.add_argument(
         "--linear", action="store_true", help="only the small-deflection strip on grids of several cells"
     )
-    args = ap.parse_args(argv)
+    return ap.parse_args(argv)
+
+
+def main(argv=None) -> int:
+    args = _parse(argv)
 
     import torch
 
@@ -685,17 +704,7 @@ def main(argv=None) -> int:
             shown = {k: v for k, v in results.items() if "shear" not in k}
             drape_figure(shown, args.figures / "fabric_drape.png")
     if args.record:
-        flags = " --small" if args.small else " --linear" if args.linear else ""
-        cmd = "python -m benchmarks fabric_tests" + flags + " --record"
-        titles = {
-            "strip_linear": "Small-deflection strip on unsew's hinges: tip drop against the beam formula",
-            "cantilever": "Cantilever test (Peirce, 41.5 deg) on unsew's strip: overhang, rigidity read",
-            "drape": "Cusick drape test (30 cm specimen, 18 cm support) simulated: DC and nodes",
-        }
-        RESULTS.mkdir(exist_ok=True)
-        for key, rows in tables.items():
-            rec = {"title": titles[key], "command": cmd, "commit": _commit(), "rows": rows}
-            (RESULTS / f"fabric_{key}.json").write_text(json.dumps(rec, indent=1) + "\n")
+        _record(tables, args)
     return 0
 
 
