@@ -75,7 +75,13 @@ print(json.dumps({"area_graded": g["area_error_rel_mean"], "area_best": b["area_
 
 #: ``--small``: the proof's case on a coarse mesh with two short iterations (the table's shape, not
 #: its figures: a test runs it)
-SMALL = {"edge_length": 0.06, "iterations": 2, "steps": 4, "sew_steps": 30, "settle_steps": 5}
+SMALL = {
+    "drape.edge_length": 0.06,
+    "optimizer.iterations": 2,
+    "drape.steps": 4,
+    "drape.sew_steps": 30,
+    "drape.settle_steps": 5,
+}
 
 
 def main(argv: list[str] | None = None) -> None:

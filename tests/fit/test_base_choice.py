@@ -19,8 +19,15 @@ from unsew.losses.contours import open_contours
 from unsew.pattern.base import bases_for, make_base_pattern
 from unsew.sim.material import get_material
 
-#: small mode: candidates on 6 cm meshes, the target on a 3.5 cm one (never the same drape)
-CFG = FitConfig(base_choice_edge=0.06)
+CFG = FitConfig()
+
+
+@pytest.fixture(autouse=True)
+def _small_mode(monkeypatch):
+    """Small mode: candidates on 6 cm meshes, the target on a 3.5 cm one (never the same drape)."""
+    import unsew.fit.start
+
+    monkeypatch.setattr(unsew.fit.start, "BASE_CHOICE_EDGE", 0.06)
 
 
 @pytest.fixture(scope="module")

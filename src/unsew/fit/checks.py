@@ -5,7 +5,7 @@ steering the cloth along its path rather than from a better pattern. Phase two's
 its material, is dressed from scratch on the same mesh; unless it lies closer to the target than
 the graded pattern's drape, the graded pattern, its drape and the start material are the result.
 
-With ``checks.redress_meshes: 3`` the check judges on three meshes instead of one (docs/decisions/005: one
+With :data:`REDRESS_MESHES` 3 the check judges on three meshes instead of one (docs/decisions/005: one
 drape of a wide garment moves by more than phase two changes it, and the graded drape it is
 compared with was chosen among the material candidates' drapes for being close): both patterns are
 dressed from scratch on the fit's mesh and on the mesh spread's two, and phase two is kept if its
@@ -52,8 +52,13 @@ __all__ = [
     "unmoved",
     "kept_on_meshes",
     "REDRESS_MARGIN_MM",
+    "REDRESS_MESHES",
     "UNMOVED_TOL",
 ]
+
+#: meshes the re-dress check judges on: 3, both patterns dressed from scratch on the fit's mesh and
+#: the mesh spread's two, means compared; 1, the fit's mesh alone (docs/decisions/005) [-]
+REDRESS_MESHES = 3
 
 #: Phase two's pattern is kept only if, dressed from scratch, it lies at least this much closer
 #: to the target than the graded pattern's drape [mm]. An unmoved pattern re-dresses to its

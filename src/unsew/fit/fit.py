@@ -26,6 +26,7 @@ from unsew.errors import InputError
 from unsew.fit.budget import TimeBudget
 from unsew.fit.checkpoint import load_checkpoint, save_checkpoint
 from unsew.fit.checks import (
+    REDRESS_MESHES,
     MeshSpread,
     RedressCheck,
     graded_afresh,
@@ -141,7 +142,7 @@ def fit(
     material0 = resolve_material(AUTO_START_MATERIAL if cfg.material.start == "auto" else cfg.material.start)
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
     cfg, contact = contact_for_target(cfg, target.verts, case.body, sdf)
-    if cfg.contact == "target":
+    if contact["mode"] == "target":
         log(
             f"contact: the target's cloth rests {contact['gap_mm']:.1f} mm from the body; every drape rests "
             f"it {contact['threshold_mm']:.1f} mm off (contact stiffness {contact['stiffness']:.0e} N/m^4)"
@@ -237,11 +238,7 @@ def _checked_result(
         # the re-dress is a drape of the result from scratch, timed now: a closer estimate of the
         # mesh spread's two drapes than the base's
         drape_s = max(drape_s, time.perf_counter() - t0)
-        if (
-            cfg.checks.redress_meshes == 3
-            and cfg.checks.mesh_spread > 0
-            and redress.fit_redressed_mm is not None
-        ):
+        if REDRESS_MESHES == 3 and cfg.checks.mesh_spread > 0 and redress.fit_redressed_mm is not None:
             if budget.fits(5 * drape_s):  # the graded pattern on three meshes, phase two's on two more
                 redress, spread = redress_on_three(
                     redress, pattern, material, s, case.body, target, sdf, cfg, progress=bar, log=log

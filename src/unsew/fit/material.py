@@ -3,9 +3,9 @@ user): grade in cotton, drape the graded pattern in every library fabric (:func:
 grade again in the closest others, then search the winner's stretch and bending scale by draping
 (:func:`refine_material`). Phase two starts from the closest of these drapes by mean surface
 distance, unless the winner, dressed from scratch, lies clearly farther than the pattern graded
-in cotton (``material.check``, :func:`_checked`). Its hand-off is a :class:`MaterialChoice`.
+in cotton (:data:`CHECK_CHOICE`, :func:`_checked`). Its hand-off is a :class:`MaterialChoice`.
 
-Each candidate is let settle (``material.warm_steps`` steps, :func:`unsew.dress.settle`) from the
+Each candidate is let settle (:data:`~unsew.fit.start.WARM_STEPS` steps, :func:`unsew.dress.settle`) from the
 drape it competes with, the pattern already sewn, instead of being dressed from scratch (placement,
 sewing and settling), on one SimModel of the start's mesh (docs/decisions/002)."""
 
@@ -23,7 +23,7 @@ from unsew.errors import InputError
 from unsew.fit.budget import TimeBudget
 from unsew.fit.config import FitConfig, material_candidates
 from unsew.fit.progress import Progress
-from unsew.fit.start import Start, start
+from unsew.fit.start import WARM_STEPS, Start, start
 from unsew.fit.target import Target
 from unsew.sim.checks import check_dressed
 from unsew.sim.material import get_material
@@ -46,6 +46,16 @@ CHECK_MARGIN_MM = 0.5
 CHECK_MARGIN_REL = 0.1
 #: The groups of Gamma that :func:`refine_material` scales together: name -> Material fields.
 REFINE_GROUPS = {"stretch": ("h00", "h01", "h11", "h22"), "bending": ("bend",)}
+#: ``material.start: auto``: how many of the best candidates other than cotton are graded again in
+#: their own fabric [-]
+REGRADE = 2
+#: ``material.start: auto``: rounds of the stiffness search after the choice (stretch and bending
+#: scaled by 1/s and s, s = 2, sqrt 2, ...); 0: off [-]
+REFINE_ROUNDS = 2
+#: ``material.start: auto``: the chosen pattern and fabric dressed from scratch; clearly farther
+#: (CHECK_MARGIN_MM and CHECK_MARGIN_REL) than the cotton-graded pattern: start from that one
+#: (:func:`_checked`)
+CHECK_CHOICE = True
 
 
 @dataclass
@@ -136,10 +146,10 @@ def refine_material(
 
 def _dresser(s: Start, body, sdf, cfg: FitConfig):
     """dress_in(material, bar, x_from=None) -> drape (Nx, 3) [m] of the start's pattern in
-    ``material``: settled ``cfg.material.warm_steps`` steps from ``x_from`` (default ``s.x``), or,
+    ``material``: settled WARM_STEPS steps from ``x_from`` (default ``s.x``), or,
     when warm_steps is 0, dressed from scratch (x_from unused)."""
 
-    model = SimModel.build(s.mesh.faces, s.mesh.faces_uv) if cfg.material.warm_steps > 0 else None
+    model = SimModel.build(s.mesh.faces, s.mesh.faces_uv) if WARM_STEPS > 0 else None
 
     def dress_in(material, bar=None, x_from=None):
         if model is not None:
@@ -149,7 +159,7 @@ def _dresser(s: Start, body, sdf, cfg: FitConfig):
                 sdf,
                 material,
                 settings=cfg.drape,
-                steps=cfg.material.warm_steps,
+                steps=WARM_STEPS,
                 model=model,
                 progress=bar,
             )
@@ -203,7 +213,7 @@ def choose_start(
     # their own fabric, and compete too.
     best_cf = table[0]["chamfer_mm"]
     others = [r["material"] for r in table if r["material"] != AUTO_START_MATERIAL]
-    for name in others[: cfg.material.regrade] if cfg.grading else []:
+    for name in others[:REGRADE] if cfg.grading else []:
         if not budget.within(half):
             budget.cut(f"material choice: not graded again in {name} (half the limit spent)")
             continue
@@ -234,7 +244,7 @@ def choose_start(
             )
     table.sort(key=lambda r: r["chamfer_mm"])
     r0 = table[0]
-    if cfg.material.refine > 0:
+    if REFINE_ROUNDS > 0:
 
         def keep_going() -> bool:
             if budget.within(half):
@@ -249,7 +259,7 @@ def choose_start(
             best_cf,
             _dresser(cur, body, sdf, cfg),
             objective,
-            rounds=cfg.material.refine,
+            rounds=REFINE_ROUNDS,
             progress=progress,
             keep_going=keep_going,
         )
@@ -259,7 +269,7 @@ def choose_start(
         )
         r0 = table[0]
     log(f"material: {r0['material']} (pattern {r0['pattern']}; {r0['chamfer_mm']:.2f} mm)")
-    if cfg.material.check and cur is not first:
+    if CHECK_CHOICE and cur is not first:
         cur, table = _checked(first, cur, table, body, target, sdf, cfg, progress=progress, log=log)
     return MaterialChoice(cur, table, time.perf_counter() - t0)
 
@@ -276,7 +286,7 @@ def _checked(
     progress: Progress,
     log=print,
 ) -> tuple[Start, list]:
-    """The choice checked by a drape from scratch, as a result is judged (``material.check``).
+    """The choice checked by a drape from scratch, as a result is judged (:data:`CHECK_CHOICE`).
 
     The candidates were let settle from another fabric's drape, and a settled drape can lie
     closer than the same pattern and fabric dressed from scratch (docs/decisions/002). So the chosen pattern

@@ -54,7 +54,15 @@ __all__ = [
     "TORSO_BAND_BELOW_ARMPIT",
     "BASE_TIE",
     "start_chosen",
+    "BASE_CHOICE_EDGE",
+    "WARM_STEPS",
 ]
+
+#: mesh edge length of the candidate drapes of the automatic base choice [m]
+BASE_CHOICE_EDGE = 0.04
+#: steps (at drape.dt) a drape in another fabric settles from one already dressed (the base's for
+#: grading in it, the graded pattern's for the material choice); 0: dressed from scratch [-]
+WARM_STEPS = 40
 
 #: garment types a base pattern may stand in for (same panel topology)
 _COMPATIBLE = {
@@ -211,7 +219,7 @@ def choose_base(
     """The base pattern of the fit: the user's (cfg.base) or, when cfg.base is empty and the
     library has several bases of meta.json's garment type, the one whose drape lies closest to
     the target (over the torso for :data:`TORSO_CHOICE`). Each candidate, sized to the wearer, is
-    dressed from scratch on a mesh of edge ``cfg.base_choice_edge`` [m] (the rest of ``cfg.drape``
+    dressed from scratch on a mesh of edge :data:`BASE_CHOICE_EDGE` [m] (the rest of ``cfg.drape``
     as the fit's drapes) in ``material`` (the start material); its distance is
     :meth:`Target.distance_mm` (:meth:`Target.band_distance_mm` over the torso). A candidate whose drape
     fails or is judged bad (:func:`unsew.sim.checks.check_dressed`) is listed, not chosen."""
@@ -239,7 +247,7 @@ def choose_base(
     if len(names) == 1:
         return BaseChoice(make(names[0]), names[0])
     t0 = time.perf_counter()
-    settings = cfg.drape.replace(edge_length=cfg.base_choice_edge)
+    settings = cfg.drape.replace(edge_length=BASE_CHOICE_EDGE)
     frame = body_frame(m)
     band = (frame.hip_y, frame.armpit_y - TORSO_BAND_BELOW_ARMPIT) if garment in TORSO_CHOICE else None
     rows, patterns = [], {}
@@ -413,11 +421,11 @@ def start(
     the base's openings do not match the target's (``garment`` names the base in the message).
 
     base_from: (mesh, x) the base already dressed in another material: then, when
-    ``cfg.material.warm_steps`` > 0, the base drape is settled from it (:func:`unsew.dress.settle`)
+    WARM_STEPS > 0, the base drape is settled from it (:func:`unsew.dress.settle`)
     instead of dressed from scratch. log: where grading's one-line warnings go."""
     t0, dress_s = time.perf_counter(), 0.0
     with progress.phase(label) as bar:
-        if base_from is not None and cfg.material.warm_steps > 0:
+        if base_from is not None and WARM_STEPS > 0:
             mesh_b = base_from[0]
             x_b = settle(
                 mesh_b,
@@ -425,7 +433,7 @@ def start(
                 sdf,
                 material,
                 settings=cfg.drape,
-                steps=cfg.material.warm_steps,
+                steps=WARM_STEPS,
                 progress=bar,
             )
         else:
