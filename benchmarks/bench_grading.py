@@ -69,7 +69,9 @@ def main(argv=None) -> None:
     ap.add_argument("--material", default="cotton")
     ap.add_argument("--garments", nargs="*", default=list(CHANGES))
     ap.add_argument("--samples", type=int, default=20000, help="Chamfer samples per mesh")
-    ap.add_argument("--passes", type=int, default=None, help="grading passes (default: grade()'s)")
+    ap.add_argument(
+        "--passes", type=int, default=None, help="grading passes (default: GradingSettings.passes)"
+    )
     ap.add_argument(
         "--floor-scale", type=float, default=0.97, help="edge length factor of the noise-floor mesh (0: skip)"
     )
@@ -81,19 +83,19 @@ def main(argv=None) -> None:
     ap.add_argument(
         "--no-hold-top",
         action="store_true",
-        help="let a waist edit move the panel's placement (grade(hold_top=False))",
+        help="let a waist edit move the panel's placement (GradingSettings.hold_top False)",
     )
     ap.add_argument(
         "--remesh",
         choices=["always", "stretched"],
         default="always",
-        help="grade(remesh=...): mesh every graded pattern afresh, or only when an edge stretched 1.5x",
+        help="GradingSettings.remesh: mesh every graded pattern afresh, or only when an edge stretched 1.5x",
     )
     ap.add_argument(
         "--length",
         choices=["cloth", "axial"],
         default="cloth",
-        help="grade(length=...): move open curves by the cloth length to the top opening, "
+        help="GradingSettings.length: move open curves by the cloth length to the top opening, "
         "or by the axial distance",
     )
     ap.add_argument(
@@ -115,7 +117,7 @@ def main(argv=None) -> None:
     from unsew.grading.cloth import cloth_lengths, rest_cloth_lengths, top_contour
     from unsew.grading.contours import place_contours
     from unsew.grading.curves import curves_of_contour
-    from unsew.grading.grade import GRADE_SETTINGS, dress_drape, flat_drape, grade
+    from unsew.grading.grade import GRADE_SETTINGS, GradingSettings, dress_drape, flat_drape, grade
     from unsew.meshing.sew import mesh_pattern
     from unsew.metrics.surface import chamfer_mm
     from unsew.pattern.base import make_base_pattern
@@ -165,17 +167,8 @@ def main(argv=None) -> None:
             kw = {"hold_top": not args.no_hold_top, "remesh": args.remesh, "length": args.length}
             if args.passes is not None:
                 kw["passes"] = args.passes
-            res = grade(
-                base,
-                body,
-                tx,
-                tm.faces,
-                settings=GRADE_SETTINGS.replace(edge_length=args.edge_length),
-                drape_fn=drape_fn,
-                mesh=bm,
-                x_init=bx,
-                **kw,
-            )
+            settings = GradingSettings(drape=GRADE_SETTINGS.replace(edge_length=args.edge_length), **kw)
+            res = grade(base, body, tx, tm.faces, settings, drape_fn=drape_fn, mesh=bm, x_init=bx)
             sk = body.skeleton
             after = place_contours(res.x_draped, res.mesh.faces, sk)
             tgt = place_contours(tx, tm.faces, sk)

@@ -93,7 +93,7 @@ def run(args: argparse.Namespace) -> int:
     from unsew.fit.config import FitConfig
     from unsew.fit.start import base_pattern_for, with_garment_read
     from unsew.geometry.repair import triangle_areas
-    from unsew.grading.grade import GRADE_SETTINGS, flat_drape, format_table, grade
+    from unsew.grading.grade import GRADE_SETTINGS, GradingSettings, flat_drape, format_table, grade
     from unsew.io.garmentcode import save_pattern
     from unsew.io.mesh import write_obj
     from unsew.meshing.sew import EDGE_LENGTH_RANGE
@@ -107,12 +107,8 @@ def run(args: argparse.Namespace) -> int:
     pattern = base_pattern_for(case, cfg)  # a bad name fails before --out is made
     with atomic_dir(args.out, overwrite=args.overwrite) as tmp:
         kw = {"drape_fn": flat_drape} if args.flat else {}
-        res = grade(
-            pattern,
-            case.body,
-            case.target_verts,
-            case.target_faces,
-            settings=GRADE_SETTINGS.replace(edge_length=args.edge_length),
+        settings = GradingSettings(
+            drape=GRADE_SETTINGS.replace(edge_length=args.edge_length),
             material=args.material,
             length=args.length,
             area=float(triangle_areas(case.target_verts, case.target_faces).sum())
@@ -120,9 +116,10 @@ def run(args: argparse.Namespace) -> int:
             else None,
             side_seams=args.side_seams,
             band_gap=args.band_gap,
-            log=print,
-            **kw,
         )
+        res = grade(pattern, case.body, case.target_verts, case.target_faces, settings, **kw)
+        if res.note:
+            print(res.note)
         save_pattern(res.pattern, tmp / "pattern.json")
         m = res.mesh
         write_obj(

@@ -33,7 +33,7 @@ from unsew.fit.progress import Progress
 from unsew.fit.target import Target
 from unsew.grading.contours import place_contours
 from unsew.grading.garment_type import V_ANGLE_DEG, read_garment_type, read_necklines
-from unsew.grading.grade import grade
+from unsew.grading.grade import GradingSettings, grade
 from unsew.io.garmentcode import load_pattern
 from unsew.losses.contours import open_contours
 from unsew.pattern.base import BASES, bases_for, garment_of, make_base_pattern
@@ -447,22 +447,16 @@ def start(
     def drape_fn(p, m, b):
         return dress(p, b, sdf=sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
 
-    g = grade(
-        base,
-        body,
-        target.verts,
-        target.faces,
-        settings=cfg.drape,
+    settings = GradingSettings(
+        drape=cfg.drape,
         material=material,
-        sdf=sdf,
-        mesh=mesh_b,
-        x_init=x_b,
-        drape_fn=drape_fn,
         area=target.area if cfg.area == "target" else None,
-        log=log,
         side_seams=cfg.side_seams,
         band_gap=cfg.band_gap,
     )
+    g = grade(base, body, target.verts, target.faces, settings, mesh=mesh_b, x_init=x_b, drape_fn=drape_fn)
+    if g.note and log is not None:
+        log(g.note)
     return Start(
         base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, mesh_b, material, dress_s=dress_s
     )
