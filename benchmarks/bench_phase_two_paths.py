@@ -49,6 +49,7 @@ from unsew.fit.config import load_config
 from unsew.fit.material import MaterialChoice
 from unsew.fit.optimize import PhaseTwo
 from unsew.fit.progress import Progress
+from unsew.fit.scene import Scene
 from unsew.fit.start import base_pattern_for, start
 from unsew.fit.synthetic import Alteration, make_truth_case
 from unsew.fit.target import Target
@@ -58,8 +59,7 @@ cfg = load_config(**{**SMALL16, **json.loads(sys.argv[4])}, area="free")
 case = load_case(make_truth_case(Path(sys.argv[1]) / "dress", garment="dress",
                  alteration=Alteration({"waist": (-0.03, 0.0)}, "cotton"), settings=cfg.drape))
 sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
-s = start(base_pattern_for(case, cfg), case.body, target, sdf, cfg, get_material("cotton"),
-          progress=Progress(False))
+s = start(base_pattern_for(case, cfg), Scene(case.body, target, sdf, cfg), get_material("cotton"))
 torch.manual_seed(cfg.seed)
 two = PhaseTwo(MaterialChoice(s), target, sdf, cfg)
 two.run()

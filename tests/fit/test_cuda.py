@@ -17,6 +17,7 @@ import torch
 from helpers import assert_close, no_default_device
 
 from unsew.fit.config import load_config
+from unsew.fit.scene import Scene
 
 SMALL = {
     "drape.edge_length": 0.04,
@@ -45,7 +46,6 @@ def phase_one(case_dir):
     from unsew.body.case import load_case
     from unsew.body.sdf import BodySDF
     from unsew.fit.material import MaterialChoice
-    from unsew.fit.progress import Progress
     from unsew.fit.start import base_pattern_for, start
     from unsew.fit.target import Target
     from unsew.sim.material import get_material
@@ -53,15 +53,7 @@ def phase_one(case_dir):
     case = load_case(case_dir)
     cfg = load_config(**SMALL)
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
-    s = start(
-        base_pattern_for(case, cfg),
-        case.body,
-        target,
-        sdf,
-        cfg,
-        get_material("cotton"),
-        progress=Progress(False),
-    )
+    s = start(base_pattern_for(case, cfg), Scene(case.body, target, sdf, cfg), get_material("cotton"))
     return MaterialChoice(s), target, sdf, cfg
 
 

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from unsew.fit.config import CheckSettings, LossWeights, OptimizerSettings, load_config
+from unsew.fit.scene import Scene
 
 #: The solver is pinned (:func:`_cholespy`): the figures below were measured with cholespy, and where
 #: CHOLMOD is installed ("auto") round-off grown through the drapes moves them by more than their margins.
@@ -623,7 +624,6 @@ def test_phase_two_stage_loss_step_and_state_dict(small_case, monkeypatch):
     from unsew.body.sdf import BodySDF
     from unsew.fit.material import MaterialChoice
     from unsew.fit.optimize import LOSS_TERMS, PhaseTwo
-    from unsew.fit.progress import Progress
     from unsew.fit.start import base_pattern_for, start
     from unsew.fit.target import Target
     from unsew.body.case import load_case
@@ -633,15 +633,7 @@ def test_phase_two_stage_loss_step_and_state_dict(small_case, monkeypatch):
     cfg = load_config(**{**SMALL, "grading": False})
     monkeypatch.setattr(LossWeights, "prior", 0.5)
     sdf, target = BodySDF.build(case.body), Target.of_case(case)
-    s = start(
-        base_pattern_for(case, cfg),
-        case.body,
-        target,
-        sdf,
-        cfg,
-        get_material("cotton"),
-        progress=Progress(False),
-    )
+    s = start(base_pattern_for(case, cfg), Scene(case.body, target, sdf, cfg), get_material("cotton"))
     two = PhaseTwo(MaterialChoice(s), target, sdf, cfg)
     terms, _, x = two.loss()
     w = cfg.loss
@@ -698,7 +690,11 @@ def test_redress_refuses_a_pattern_that_cannot_be_meshed_afresh():
     target = SimpleNamespace(distance_mm=lambda x, f: 7.5)
     lines = []
     rd = redress_check(
-        pat, None, None, start, None, target, None, FitConfig(), progress=Progress(False), log=lines.append
+        pat,
+        None,
+        None,
+        start,
+        Scene(None, target, None, FitConfig(), progress=Progress(False), log=lines.append),
     )
     assert not rd.phase_two_kept and rd.fit_redressed_mm is None and rd.graded_mm == 7.5
     assert "waistband_front" in rd.refused and "sliver" in rd.refused
@@ -734,12 +730,7 @@ def test_redress_refuses_a_pattern_its_reader_would_refuse(monkeypatch):
         None,
         None,
         start,
-        None,
-        target,
-        None,
-        FitConfig(),
-        progress=Progress(False),
-        log=lines.append,
+        Scene(None, target, None, FitConfig(), progress=Progress(False), log=lines.append),
     )
     assert not rd.phase_two_kept and rd.fit_redressed_mm is None and "crosses edge 4" in rd.refused
     assert meshed == [] and "graded pattern is returned" in lines[0]
@@ -775,35 +766,23 @@ def test_a_drape_from_scratch_that_fails_its_check_decides_nothing(monkeypatch):
         None,
         None,
         start,
-        None,
-        target,
-        None,
-        FitConfig(),
-        progress=Progress(False),
-        log=lines.append,
+        Scene(None, target, None, FitConfig(), progress=Progress(False), log=lines.append),
     )
     assert not rd.phase_two_kept and rd.fit_redressed_mm is None and rd.failed == torn and rd.refused == ""
     assert rd.graded_mm == 7.5 and "failed (exploded" in lines[0] and "graded pattern is returned" in lines[0]
-    assert checks.graded_afresh(start, None, target, None, FitConfig(), progress=Progress(False)) == (
+    assert checks.graded_afresh(start, Scene(None, target, None, FitConfig())) == (
         None,
         None,
     )
-    assert (
-        checks._dressed_mm(None, None, None, target, None, FitConfig(), 0.02, Progress(False), "it") is None
-    )
+    assert checks._dressed_mm(None, None, Scene(None, target, None, FitConfig()), 0.02, "it") is None
     monkeypatch.setattr(checks, "check_dressed", lambda d, body: SimpleNamespace(ok=True, reason=""))
-    assert checks._dressed_mm(None, None, None, target, None, FitConfig(), 0.02, Progress(False), "it") == 1.0
+    assert checks._dressed_mm(None, None, Scene(None, target, None, FitConfig()), 0.02, "it") == 1.0
     assert checks.redress_check(
         make_base_pattern("tshirt"),
         None,
         None,
         start,
-        None,
-        target,
-        None,
-        FitConfig(),
-        progress=Progress(False),
-        log=lines.append,
+        Scene(None, target, None, FitConfig(), progress=Progress(False), log=lines.append),
     ).phase_two_kept
 
 
@@ -992,12 +971,7 @@ def test_redress_on_three_keeps_phase_two_by_the_mean(monkeypatch, fit_mm, grade
         fit_pattern,
         None,
         start,
-        None,
-        target,
-        None,
-        load_config(),
-        progress=Progress(False),
-        log=lambda s: None,
+        Scene(None, target, None, load_config(), progress=Progress(False), log=lambda s: None),
     )
     assert check.phase_two_kept is kept and check.fit_mm == fit_mm and check.graded_fresh_mm == graded_mm
     assert check.fit_mean_mm == (pytest.approx(fit_mean) if fit_mean is not None else None)

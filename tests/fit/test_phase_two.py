@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from unsew.fit.config import load_config
+from unsew.fit.scene import Scene
 
 SMALL = {
     "drape.edge_length": 0.04,
@@ -110,7 +111,6 @@ def hip_phase_two(tmp_path_factory):
     from unsew.body.sdf import BodySDF
     from unsew.fit.material import MaterialChoice
     from unsew.fit.optimize import PhaseTwo
-    from unsew.fit.progress import Progress
     from unsew.fit.start import base_pattern_for, start
     from unsew.fit.synthetic import Alteration, make_truth_case
     from unsew.fit.target import Target
@@ -126,15 +126,7 @@ def hip_phase_two(tmp_path_factory):
         )
     )
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
-    s = start(
-        base_pattern_for(case, cfg),
-        case.body,
-        target,
-        sdf,
-        cfg,
-        get_material("cotton"),
-        progress=Progress(False),
-    )
+    s = start(base_pattern_for(case, cfg), Scene(case.body, target, sdf, cfg), get_material("cotton"))
     torch.manual_seed(cfg.seed)
     two = PhaseTwo(MaterialChoice(s), target, sdf, cfg)
     two.run()
@@ -267,7 +259,6 @@ def _shorts_phase_two(tmp_path, base: str):
     from unsew.body.sdf import BodySDF
     from unsew.fit.material import MaterialChoice
     from unsew.fit.optimize import PhaseTwo
-    from unsew.fit.progress import Progress
     from unsew.fit.start import base_pattern_for, start
     from unsew.fit.synthetic import DEFAULT_ALTERATIONS, make_truth_case
     from unsew.fit.target import Target
@@ -287,15 +278,7 @@ def _shorts_phase_two(tmp_path, base: str):
         )
     )
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
-    s = start(
-        base_pattern_for(case, cfg),
-        case.body,
-        target,
-        sdf,
-        cfg,
-        get_material("cotton"),
-        progress=Progress(False),
-    )
+    s = start(base_pattern_for(case, cfg), Scene(case.body, target, sdf, cfg), get_material("cotton"))
 
     def build(area: str = cfg.area, **groups):
         """A PhaseTwo from this start, ``groups``: config group -> changes of its settings or of its

@@ -30,6 +30,7 @@ from unsew.dress import dress, settle
 from unsew.errors import InputError
 from unsew.fit.config import FitConfig
 from unsew.fit.progress import Progress
+from unsew.fit.scene import Scene
 from unsew.fit.target import Target
 from unsew.grading.contours import place_contours
 from unsew.grading.garment_type import V_ANGLE_DEG, read_garment_type, read_necklines
@@ -325,18 +326,7 @@ def choose_base(
     return BaseChoice(patterns[best], best, rows, time.perf_counter() - t0, tie)
 
 
-def start_chosen(
-    choice: BaseChoice,
-    body,
-    target: Target,
-    sdf,
-    cfg: FitConfig,
-    material,
-    *,
-    progress: Progress,
-    log=print,
-    budget=None,
-) -> Start:
+def start_chosen(choice: BaseChoice, scene: Scene, material, *, budget=None) -> Start:
     """Phase one from the base choice: :func:`start` from ``choice.pattern`` and, when the choice
     was a tie (``choice.tie``) and ``budget`` (a :class:`unsew.fit.budget.TimeBudget`) has more
     than half its limit left, from the runner-up too. The runner-up's Start is kept when its graded
@@ -355,22 +345,18 @@ def start_chosen(
         try:
             s = start(
                 pattern,
-                body,
-                target,
-                sdf,
-                cfg,
+                scene,
                 material,
-                progress=progress,
                 garment=name,
-                log=log,
+                log=scene.log,
                 label="drape base" if not starts else f"drape base {name}",
             )
         except (InputError, ValueError, RuntimeError) as exc:  # the runner-up's failure is no fit's
             if not starts:
                 raise
-            log(f"base {name}: grading failed ({str(exc).splitlines()[0]}); left out")
+            scene.log(f"base {name}: grading failed ({str(exc).splitlines()[0]}); left out")
             continue
-        starts.append((target.distance_mm(s.x, s.mesh.faces) if len(names) > 1 else math.nan, name, s))
+        starts.append((scene.target.distance_mm(s.x, s.mesh.faces) if len(names) > 1 else math.nan, name, s))
     table = [dict(r) for r in choice.table]
     for cf, name, _ in starts:
         for r in table:
@@ -385,7 +371,9 @@ def start_chosen(
             not math.isfinite(cf0) or cf1 < cf0 - max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * cf0)
         ):
             best = starts[1]
-        log("base tie: graded " + ", ".join(f"{n} {cf:.2f} mm" for cf, n, _ in starts) + f"; {best[1]} kept")
+        scene.log(
+            "base tie: graded " + ", ".join(f"{n} {cf:.2f} mm" for cf, n, _ in starts) + f"; {best[1]} kept"
+        )
         table.sort(key=lambda r: r["base"] != best[1])
     return best[2].replace(base_name=best[1], base_choice=tuple(table))
 
@@ -404,48 +392,30 @@ def _check_contours_compatible(n_src: int, n_tgt: int, garment: str) -> None:
 
 def start(
     base,
-    body,
-    target: Target,
-    sdf,
-    cfg: FitConfig,
+    scene: Scene,
     material,
     *,
-    progress: Progress,
     label: str = "drape base",
     garment: str = "",
     base_from: tuple | None = None,
     log: Callable[[str], None] | None = None,
 ) -> Start:
-    """Dress ``base`` on ``body`` in ``material`` and, unless ``cfg.grading`` is off, grade it to
-    ``target`` in the same material (:func:`unsew.grading.grade.grade`). Raises InputError when
-    the base's openings do not match the target's (``garment`` names the base in the message).
+    """Dress ``base`` on ``scene.body`` in ``material`` and, unless ``scene.cfg.grading`` is off,
+    grade it to ``scene.target`` in the same material (:func:`unsew.grading.grade.grade`). Raises
+    InputError when the base's openings do not match the target's (``garment`` names the base in
+    the message).
 
     base_from: (mesh, x) the base already dressed in another material: then, when
     WARM_STEPS > 0, the base drape is settled from it (:func:`unsew.dress.settle`)
-    instead of dressed from scratch. log: where grading's one-line warnings go."""
-    t0, dress_s = time.perf_counter(), 0.0
-    with progress.phase(label) as bar:
-        if base_from is not None and WARM_STEPS > 0:
-            mesh_b = base_from[0]
-            x_b = settle(
-                mesh_b,
-                base_from[1],
-                sdf,
-                material,
-                settings=cfg.drape,
-                steps=WARM_STEPS,
-                progress=bar,
-            )
-        else:
-            dressed = dress(base, body, sdf=sdf, material=material, settings=cfg.drape, progress=bar)
-            mesh_b, x_b = dressed.mesh, dressed.x.numpy().copy()
-            dress_s = time.perf_counter() - t0
+    instead of dressed from scratch. log: where grading's one-line warnings go (None: nowhere)."""
+    cfg, target = scene.cfg, scene.target
+    mesh_b, x_b, dress_s = _base_drape(base, scene, material, label, base_from)
     _check_contours_compatible(len(open_contours(x_b, mesh_b.faces)), len(target.contours), garment)
     if not cfg.grading:
         return Start(base, base, mesh_b, x_b, [], x_b, mesh_b, material, dress_s=dress_s)
 
     def drape_fn(p, m, b):
-        return dress(p, b, sdf=sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
+        return dress(p, b, sdf=scene.sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
 
     settings = GradingSettings(
         drape=cfg.drape,
@@ -454,9 +424,36 @@ def start(
         side_seams=cfg.side_seams,
         band_gap=cfg.band_gap,
     )
-    g = grade(base, body, target.verts, target.faces, settings, mesh=mesh_b, x_init=x_b, drape_fn=drape_fn)
+    g = grade(
+        base, scene.body, target.verts, target.faces, settings, mesh=mesh_b, x_init=x_b, drape_fn=drape_fn
+    )
     if g.note and log is not None:
         log(g.note)
     return Start(
         base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, mesh_b, material, dress_s=dress_s
     )
+
+
+def _base_drape(base, scene: Scene, material, label: str, base_from: tuple | None):
+    """(mesh, drape (n_x, 3) [m], seconds a drape from scratch took, 0 when settled): ``base``
+    dressed from scratch in ``material``, or settled WARM_STEPS steps from ``base_from``."""
+    t0, dress_s = time.perf_counter(), 0.0
+    with scene.progress.phase(label) as bar:
+        if base_from is not None and WARM_STEPS > 0:
+            mesh_b = base_from[0]
+            x_b = settle(
+                mesh_b,
+                base_from[1],
+                scene.sdf,
+                material,
+                settings=scene.cfg.drape,
+                steps=WARM_STEPS,
+                progress=bar,
+            )
+        else:
+            dressed = dress(
+                base, scene.body, sdf=scene.sdf, material=material, settings=scene.cfg.drape, progress=bar
+            )
+            mesh_b, x_b = dressed.mesh, dressed.x.numpy().copy()
+            dress_s = time.perf_counter() - t0
+    return mesh_b, x_b, dress_s
