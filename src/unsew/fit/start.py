@@ -229,18 +229,7 @@ def choose_base(
     garment = garment_of(case.garment)
     names = bases_for(garment)
     m = measure_body(case.body)
-    necklines = None
-    # the neckline's cut is read off the target, not drawn from the library
-    if garment in ("tshirt", "dress"):
-        necklines, angles = read_necklines(
-            target.verts, target.faces, case.body.skeleton, contours=target.contours
-        )
-        if angles:
-            log(
-                f"neckline read off the target: front {necklines[0]}, back {necklines[1]} (the angle at its "
-                f"lowest point: front {angles.get('front_deg', 180):.0f} deg, back "
-                f"{angles.get('back_deg', 180):.0f} deg; a V under {V_ANGLE_DEG:.0f})"
-            )
+    necklines = _necklines(garment, target, case.body, log)
 
     def make(name):
         return make_base_pattern(name, m, waist_point=cfg.side_seams == "girth", necklines=necklines)
@@ -248,34 +237,16 @@ def choose_base(
     if len(names) == 1:
         return BaseChoice(make(names[0]), names[0])
     t0 = time.perf_counter()
-    settings = cfg.drape.replace(edge_length=BASE_CHOICE_EDGE)
     frame = body_frame(m)
     band = (frame.hip_y, frame.armpit_y - TORSO_BAND_BELOW_ARMPIT) if garment in TORSO_CHOICE else None
-    rows, patterns = [], {}
+    scene = Scene(case.body, target, sdf, cfg, progress, log)
     want = arm_openings(target.verts, target.faces, case.body.skeleton, contours=target.contours)
+    rows, patterns = [], {}
     for name in names:
         pat = make(name)
-        try:
-            with progress.phase(f"base {name}") as bar:
-                d = dress(pat, case.body, sdf=sdf, material=material, settings=settings, progress=bar)
-            verdict = check_dressed(d, body=case.body)
-            if not verdict.ok:  # fallen, exploded, off or inside the body: no candidate
-                raise ValueError(verdict.reason)
-            cf = target.distance_mm(d.x.numpy(), d.mesh.faces)
-            arms = arm_openings(d.x.numpy(), d.mesh.faces, case.body.skeleton) == want
-            torso = (
-                target.band_distance_mm(d.x.numpy(), d.mesh.faces, case.body.skeleton, *band)
-                if band
-                else None
-            )
-        except (InputError, ValueError, RuntimeError) as exc:  # a candidate that cannot be dressed here
-            rows.append({"base": name, "chamfer_mm": None, "error": str(exc).splitlines()[0]})
-            continue
-        row = {"base": name, "chamfer_mm": cf if math.isfinite(cf) else None, "arms": arms}
-        if band:
-            row["torso_mm"] = torso if math.isfinite(torso) else None
+        row = _candidate(name, pat, scene, material, want, band)
         rows.append(row)
-        if math.isfinite(cf):
+        if row.get("chamfer_mm") is not None:
             patterns[name] = pat
     if not patterns:
         why = "; ".join(
@@ -291,18 +262,6 @@ def choose_base(
     any_arms = any(r.get("arms") and r["base"] in patterns for r in rows)
     key = "torso_mm" if on_torso else "chamfer_mm"
     rows.sort(key=lambda r: (r["base"] not in patterns, any_arms and not r.get("arms"), r.get(key) or 0.0))
-    best = rows[0]["base"]
-
-    def said(r):
-        if r["base"] not in patterns:
-            return f"{r['base']} failed"
-        torso = r.get("torso_mm")
-        return (
-            f"{r['base']} {r['chamfer_mm']:.2f} mm"
-            + (f" (torso {torso:.2f} mm)" if torso is not None else "")
-            + ("" if r["arms"] else " (arms differ)")
-        )
-
     how = ""
     if band:
         how = (
@@ -310,20 +269,79 @@ def choose_base(
             if on_torso
             else "; no cloth over the torso to compare, chosen on the whole garment"
         )
-    tie = None
-    if len(rows) > 1 and rows[1]["base"] in patterns and (rows[1].get("arms") or not any_arms):
-        d0, d1 = rows[0].get(key), rows[1].get(key)
-        if d0 and d1 and d1 <= BASE_TIE * d0:
-            tie = (rows[1]["base"], patterns[rows[1]["base"]])
-            how += f"; {tie[0]} within {100 * (BASE_TIE - 1):.0f} %: both graded"
+    tie = _tie(rows, patterns, key, any_arms)
+    if tie is not None:
+        how += f"; {tie[0]} within {100 * (BASE_TIE - 1):.0f} %: both graded"
+    best = rows[0]["base"]
     log(
         "base: "
-        + ", ".join(said(r) for r in rows)
+        + ", ".join(_said(r, patterns) for r in rows)
         + f"; {best} chosen (target: {want[0]} + {want[1]} openings on the arms"
         + how
         + ")"
     )
     return BaseChoice(patterns[best], best, rows, time.perf_counter() - t0, tie)
+
+
+def _necklines(garment: str, target: Target, body, log):
+    """The neckline cuts of a top read off the target (logged when one was read), or None: the
+    neckline's cut is read off the target, not drawn from the library."""
+    if garment not in ("tshirt", "dress"):
+        return None
+    necklines, angles = read_necklines(target.verts, target.faces, body.skeleton, contours=target.contours)
+    if angles:
+        log(
+            f"neckline read off the target: front {necklines[0]}, back {necklines[1]} (the angle at its "
+            f"lowest point: front {angles.get('front_deg', 180):.0f} deg, back "
+            f"{angles.get('back_deg', 180):.0f} deg; a V under {V_ANGLE_DEG:.0f})"
+        )
+    return necklines
+
+
+def _candidate(name: str, pat, scene: Scene, material, want: tuple, band: tuple | None) -> dict:
+    """A base choice row: candidate ``pat`` dressed from scratch on a BASE_CHOICE_EDGE mesh, its
+    distance [mm] (None: not finite), whether its arm openings are the target's ``want``, its
+    distance over the torso ``band`` [m] (heights); {"base", "chamfer_mm": None, "error"} when it
+    cannot be dressed here or its drape fails its check."""
+    body, target = scene.body, scene.target
+    settings = scene.cfg.drape.replace(edge_length=BASE_CHOICE_EDGE)
+    try:
+        with scene.progress.phase(f"base {name}") as bar:
+            d = dress(pat, body, sdf=scene.sdf, material=material, settings=settings, progress=bar)
+        verdict = check_dressed(d, body=body)
+        if not verdict.ok:  # fallen, exploded, off or inside the body: no candidate
+            raise ValueError(verdict.reason)
+        cf = target.distance_mm(d.x.numpy(), d.mesh.faces)
+        arms = arm_openings(d.x.numpy(), d.mesh.faces, body.skeleton) == want
+        torso = target.band_distance_mm(d.x.numpy(), d.mesh.faces, body.skeleton, *band) if band else None
+    except (InputError, ValueError, RuntimeError) as exc:  # a candidate that cannot be dressed here
+        return {"base": name, "chamfer_mm": None, "error": str(exc).splitlines()[0]}
+    row = {"base": name, "chamfer_mm": cf if math.isfinite(cf) else None, "arms": arms}
+    if band:
+        row["torso_mm"] = torso if math.isfinite(torso) else None
+    return row
+
+
+def _tie(rows: list, patterns: dict, key: str, any_arms: bool) -> tuple | None:
+    """(name, pattern) of the runner-up when it lies within BASE_TIE of the best (rows sorted,
+    best first, on ``key``) and its arms agree as well as the best's may, else None."""
+    if len(rows) > 1 and rows[1]["base"] in patterns and (rows[1].get("arms") or not any_arms):
+        d0, d1 = rows[0].get(key), rows[1].get(key)
+        if d0 and d1 and d1 <= BASE_TIE * d0:
+            return rows[1]["base"], patterns[rows[1]["base"]]
+    return None
+
+
+def _said(r: dict, patterns: dict) -> str:
+    """A base choice row in the log's words."""
+    if r["base"] not in patterns:
+        return f"{r['base']} failed"
+    torso = r.get("torso_mm")
+    return (
+        f"{r['base']} {r['chamfer_mm']:.2f} mm"
+        + (f" (torso {torso:.2f} mm)" if torso is not None else "")
+        + ("" if r["arms"] else " (arms differ)")
+    )
 
 
 def start_chosen(choice: BaseChoice, scene: Scene, material, *, budget=None) -> Start:
