@@ -526,6 +526,12 @@ def _worth_a_pass(matches, cloth: dict | None = None) -> bool:
 TOP_BAND = 0.01
 
 
+# Why the tops are held: the panel's 2D position also sets where it is placed around the body
+# before sewing. A waist found 3.5 cm higher on the target than on the base drape (bench_grading's
+# skirt, whose narrower, longer target hangs higher on the hips) is the drape's answer to the
+# pattern, not a waist placed higher; moving the waist curve up both lengthened the panel and
+# placed it 2 cm higher, and that placement alone put the drape 4 to 7 mm (Chamfer) from where the
+# same shape placed at the base's height lands.
 def _hold_tops(
     pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dict, band_whole: bool = False
 ) -> tuple[np.ndarray, dict]:
@@ -540,17 +546,7 @@ def _hold_tops(
     A waistband (:func:`_is_band`: open only along its top) keeps its height: its edit loses its
     upright component, and its waist's upward move lengthens the panels sewn to its bottom instead
     (:func:`_carry_down`); held like the others, the band took the whole change and grew taller.
-    Not when the band's girth explains the move
-    (:func:`_girth_explains`): a band tighter than the target's and lower, or looser and
-    higher, sits where its girth meets the body, and the girth edit moves it; carried down, a
-    too-loose band's low seat lengthens the panels under it and puts their hips too low.
-
-    Why the tops are held: the panel's 2D position also sets where it is placed around the body
-    before sewing. A waist found 3.5 cm higher on the target than on the base drape
-    (bench_grading's skirt, whose narrower, longer target hangs higher on the hips) is the drape's
-    answer to the pattern, not a waist placed higher; moving the waist curve up both lengthened the
-    panel and placed it 2 cm higher, and that placement alone put the drape 4 to 7 mm (Chamfer)
-    from where the same shape placed at the base's height lands.
+    Not when the band's girth explains the move (:func:`_band_read_as_fit`).
 
     ``band_whole``: a band's top widened or narrowed takes its bottom and the panels sewn below
     with it (:func:`_band_girth_down`), so the band stays a strip and the waist seam under it
@@ -572,30 +568,38 @@ def _hold_tops(
         height = panel.to_world(C0[cidx])[:, 1]
         top = {int(g) for g, h in zip(cidx, height) if h >= height.max() - TOP_BAND}
         tops = [(t, dg) for c, t, dg in curves if top <= c]
-        if not tops:
-            continue
-        up = upright(panel)
-        if up is None:  # a panel placed lying down has no top to hold
+        up = upright(panel) if tops else None
+        if up is None:  # no edited top, or a panel placed lying down: no top to hold
             continue
         rise = float(np.mean([out[g] @ up for g in top]))
-        if _is_band(panel, height, open_edges):
-            out[cidx] -= np.outer(out[cidx] @ up, up)
-            if band_whole:
-                _band_girth_down(pattern, controls, C0, out, panel)
-            t, dg = tops[0]
-            if _girth_explains(rise, dg):
-                held[t] = (
-                    f"band top {rise * 100:+.1f} cm on the target with its girth {dg * 100:+.1f} cm: read as "
-                    "the band's fit, not carried down to the panels below"
-                )
-                continue
+        if not _is_band(panel, height, open_edges):
+            out[cidx] -= rise * up
+            continue
+        out[cidx] -= np.outer(out[cidx] @ up, up)
+        if band_whole:
+            _band_girth_down(pattern, controls, C0, out, panel)
+        warning = _band_read_as_fit(rise, tops[0][1])
+        if warning:
+            held[tops[0][0]] = warning
+        else:
             for below in _sewn_below(pattern, panel):
                 carried.setdefault(below, []).append(rise)
-            continue
-        out[cidx] -= rise * up
     for name, rises in carried.items():
         _carry_down(pattern, controls, C0, out, name, float(np.mean(rises)))
     return out, held
+
+
+def _band_read_as_fit(rise: float, dg: float) -> str | None:
+    """The warning when a band top's upward move ``rise`` [m] is its girth's (change ``dg`` [m]) doing
+    (:func:`_girth_explains`: a band tighter than the target's and lower, or looser and higher,
+    sits where its girth meets the body, and the girth edit moves it; carried down, a too-loose
+    band's low seat lengthens the panels under it and puts their hips too low), else None."""
+    if not _girth_explains(rise, dg):
+        return None
+    return (
+        f"band top {rise * 100:+.1f} cm on the target with its girth {dg * 100:+.1f} cm: read as "
+        "the band's fit, not carried down to the panels below"
+    )
 
 
 #: An arm hangs when its bone points down at least this much (the y of its unit direction below
