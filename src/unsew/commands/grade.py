@@ -46,6 +46,16 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="rest edge length of the panel meshes [m] (default: 0.03)",
     )
     p.add_argument("--material", default="cotton", help="material name from the library (default: cotton)")
+    _add_grading_rules(p)
+    p.add_argument(
+        "--flat", action="store_true", help="no simulation: use the flat-placed panels as drapes (quick look)"
+    )
+    p.add_argument("--overwrite", action="store_true", help="replace --out if it exists")
+    p.set_defaults(func=run)
+
+
+def _add_grading_rules(p: argparse.ArgumentParser) -> None:
+    """The options that choose grading's rules (each a field of GradingSettings)."""
     p.add_argument(
         "--length",
         choices=["cloth", "axial"],
@@ -77,25 +87,16 @@ def register(sub: argparse._SubParsersAction) -> None:
         "seam below with it (trousers and shorts as with none); none: to the loop as measured, its "
         "top alone",
     )
-    p.add_argument(
-        "--flat", action="store_true", help="no simulation: use the flat-placed panels as drapes (quick look)"
-    )
-    p.add_argument("--overwrite", action="store_true", help="replace --out if it exists")
-    p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    import json
     import sys
 
     from unsew.body.case import load_case
     from unsew.commands._output import check_out
     from unsew.fit.config import FitConfig
     from unsew.fit.start import base_pattern_for, with_garment_read
-    from unsew.geometry.repair import triangle_areas
-    from unsew.grading.grade import GRADE_SETTINGS, GradingSettings, flat_drape, format_table, grade
-    from unsew.io.garmentcode import save_pattern
-    from unsew.io.mesh import write_obj
+    from unsew.grading.grade import flat_drape, format_table, grade
     from unsew.meshing.sew import EDGE_LENGTH_RANGE
 
     lo, hi = EDGE_LENGTH_RANGE
@@ -107,50 +108,68 @@ def run(args: argparse.Namespace) -> int:
     pattern = base_pattern_for(case, cfg)  # a bad name fails before --out is made
     with atomic_dir(args.out, overwrite=args.overwrite) as tmp:
         kw = {"drape_fn": flat_drape} if args.flat else {}
-        settings = GradingSettings(
-            drape=GRADE_SETTINGS.replace(edge_length=args.edge_length),
-            material=args.material,
-            length=args.length,
-            area=float(triangle_areas(case.target_verts, case.target_faces).sum())
-            if args.area == "target"
-            else None,
-            side_seams=args.side_seams,
-            band_gap=args.band_gap,
-        )
-        res = grade(pattern, case.body, case.target_verts, case.target_faces, settings, **kw)
+        res = grade(pattern, case.body, case.target_verts, case.target_faces, _settings(args, case), **kw)
         if res.note:
             print(res.note)
-        save_pattern(res.pattern, tmp / "pattern.json")
-        m = res.mesh
-        write_obj(
-            tmp / "garment.obj",
-            res.x_draped,
-            m.faces,
-            uv=m.uv,
-            faces_uv=m.faces_uv,
-            header="unsew grade: X_LG",
-        )
-        write_obj(tmp / "garment_init.obj", res.x_init, res.mesh_init.faces, header="unsew grade: X_init")
-        doc = {
-            "format_version": 1,
-            "units": "m",
-            "case": str(case.path),
-            "base": args.base or case.garment,
-            "edge_length_m": args.edge_length,
-            "material": args.material,
-            "flat": bool(args.flat),
-            "length": args.length,
-            "area": args.area,
-            "side_seams": args.side_seams,
-            "band_gap": args.band_gap,
-            "area_scales": res.area_scales,
-            "placement": res.placement,
-            "edit_fraction": res.fraction,
-            "remeshed": res.remeshed,
-            "contours": res.table,
-        }
-        (tmp / "contours.json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
+        _write(tmp, res, case, args)
     print(format_table(res.table))
     note = "" if res.fraction == 1.0 else f" (edit scaled back to {res.fraction:.0%})"
     print(f"wrote {args.out}: pattern.json, garment.obj, garment_init.obj, contours.json{note}")
     return 0
+
+
+def _settings(args: argparse.Namespace, case):
+    """The GradingSettings the options ask for (the target's surface area from ``case``)."""
+    from unsew.geometry.repair import triangle_areas
+    from unsew.grading.grade import GRADE_SETTINGS, GradingSettings
+
+    return GradingSettings(
+        drape=GRADE_SETTINGS.replace(edge_length=args.edge_length),
+        material=args.material,
+        length=args.length,
+        area=float(triangle_areas(case.target_verts, case.target_faces).sum())
+        if args.area == "target"
+        else None,
+        side_seams=args.side_seams,
+        band_gap=args.band_gap,
+    )
+
+
+def _write(tmp, res, case, args: argparse.Namespace) -> None:
+    """The result folder's files: pattern.json, garment.obj (X_LG, the pattern as UVs),
+    garment_init.obj (X_init) and contours.json (the options, what grading did, its table)."""
+    import json
+
+    from unsew.io.garmentcode import save_pattern
+    from unsew.io.mesh import write_obj
+
+    save_pattern(res.pattern, tmp / "pattern.json")
+    m = res.mesh
+    write_obj(
+        tmp / "garment.obj",
+        res.x_draped,
+        m.faces,
+        uv=m.uv,
+        faces_uv=m.faces_uv,
+        header="unsew grade: X_LG",
+    )
+    write_obj(tmp / "garment_init.obj", res.x_init, res.mesh_init.faces, header="unsew grade: X_init")
+    doc = {
+        "format_version": 1,
+        "units": "m",
+        "case": str(case.path),
+        "base": args.base or case.garment,
+        "edge_length_m": args.edge_length,
+        "material": args.material,
+        "flat": bool(args.flat),
+        "length": args.length,
+        "area": args.area,
+        "side_seams": args.side_seams,
+        "band_gap": args.band_gap,
+        "area_scales": res.area_scales,
+        "placement": res.placement,
+        "edit_fraction": res.fraction,
+        "remeshed": res.remeshed,
+        "contours": res.table,
+    }
+    (tmp / "contours.json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
