@@ -574,14 +574,14 @@ def test_refine_material_walks_towards_the_closest_stiffness():
         return abs(math.log(x[0, 0] / (0.5 * c.h00))) + abs(math.log(x[0, 1] / (math.sqrt(2) * c.bend)))
 
     start = dress_in(c, None)
-    mat, x, rows = refine_material(c, "cotton", start, objective(start), dress_in, objective, rounds=2)
+    mat, x, rows = refine_material(c, "cotton", start, objective(start), dress_in, objective)
     assert mat.h00 == pytest.approx(0.5 * c.h00) and mat.bend == pytest.approx(math.sqrt(2) * c.bend)
     assert mat.h01 / mat.h00 == pytest.approx(c.h01 / c.h00) and mat.density == c.density
     assert float(x[0, 0]) == mat.h00 and objective(x) == pytest.approx(0.0, abs=1e-12)
     assert rows and all(r["material"].startswith("cotton (stretch x") for r in rows)
     assert froms[0] is None and froms[1] is start  # each scaling is draped from the best drape so far
     # a start already at the minimum is kept: every scaling is worse
-    mat2, x2, rows2 = refine_material(mat, "m", x, objective(x), dress_in, objective, rounds=2)
+    mat2, x2, rows2 = refine_material(mat, "m", x, objective(x), dress_in, objective)
     assert mat2 == mat and len(rows2) == 8
 
 

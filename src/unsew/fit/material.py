@@ -106,13 +106,12 @@ def refine_material(
     dress_in,
     objective,
     *,
-    rounds: int = 2,
     progress: Progress | None = None,
     keep_going: Callable[[], bool] | None = None,
 ):
     """Coordinate search on the chosen fabric's stiffness, by draping: scale the stretch entries
     (H00, H01, H11, H22 together, so the Poisson ratio stays) and then the bending stiffness by
-    1/s and s, s = 2, then sqrt(2), ... (``rounds`` steps), and keep a scaling when the pattern,
+    1/s and s, s = 2, then sqrt(2), ... (:data:`REFINE_ROUNDS` steps), and keep a scaling when the pattern,
     dressed from scratch in it, lies closer to the target.
 
     material: the start (unsew.sim.material.Material) named ``label`` in the table; x0, cf0: its
@@ -124,7 +123,7 @@ def refine_material(
     progress = progress or Progress(False)
     best, x_best, cf_best, scale = material, x0, cf0, {g: 1.0 for g in REFINE_GROUPS}
     rows = []
-    for r in range(rounds):
+    for r in range(REFINE_ROUNDS):
         s = 2.0 ** (0.5**r)
         for group, names in REFINE_GROUPS.items():
             for f in (1.0 / s, s):
@@ -272,7 +271,6 @@ def _refined(cur: Start, table: list, best_cf: float, scene: Scene, budget: Time
         best_cf,
         _dresser(cur, scene),
         objective,
-        rounds=REFINE_ROUNDS,
         progress=scene.progress,
         keep_going=keep_going,
     )

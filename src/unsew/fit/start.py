@@ -248,30 +248,15 @@ def choose_base(
         rows.append(row)
         if row.get("chamfer_mm") is not None:
             patterns[name] = pat
-    if not patterns:
-        why = "; ".join(
-            f"{r['base']}: {r.get('error') or 'its distance to the target is not finite'}" for r in rows
-        )
-        raise InputError(
-            f"no base pattern of type {case.garment} could be dressed on this body ({why}); pass --base "
-            "P.json"
-        )
+    _require_one_dressed(rows, patterns, case.garment)
     on_torso = bool(band) and all(r.get("torso_mm") is not None for r in rows if r["base"] in patterns)
     # the arms agreeing first, when any candidate's do; then the closest (over the torso when
     # every candidate and the target have cloth there: a skeleton without torso bones has none)
     any_arms = any(r.get("arms") and r["base"] in patterns for r in rows)
     key = "torso_mm" if on_torso else "chamfer_mm"
     rows.sort(key=lambda r: (r["base"] not in patterns, any_arms and not r.get("arms"), r.get(key) or 0.0))
-    how = ""
-    if band:
-        how = (
-            f"; chosen on the torso, {band[0]:.2f}-{band[1]:.2f} m up"
-            if on_torso
-            else "; no cloth over the torso to compare, chosen on the whole garment"
-        )
     tie = _tie(rows, patterns, key, any_arms)
-    if tie is not None:
-        how += f"; {tie[0]} within {100 * (BASE_TIE - 1):.0f} %: both graded"
+    how = _how(band, on_torso, tie)
     best = rows[0]["base"]
     log(
         "base: "
@@ -281,6 +266,33 @@ def choose_base(
         + ")"
     )
     return BaseChoice(patterns[best], best, rows, time.perf_counter() - t0, tie)
+
+
+def _require_one_dressed(rows: list, patterns: dict, garment: str) -> None:
+    """InputError listing each candidate's reason when none of them could be dressed."""
+    if patterns:
+        return
+    why = "; ".join(
+        f"{r['base']}: {r.get('error') or 'its distance to the target is not finite'}" for r in rows
+    )
+    raise InputError(
+        f"no base pattern of type {garment} could be dressed on this body ({why}); pass --base P.json"
+    )
+
+
+def _how(band: tuple | None, on_torso: bool, tie: tuple | None) -> str:
+    """How the base was chosen, for the log: on the torso ``band`` (heights [m]) or the whole
+    garment, and the runner-up graded too when ``tie``."""
+    how = ""
+    if band:
+        how = (
+            f"; chosen on the torso, {band[0]:.2f}-{band[1]:.2f} m up"
+            if on_torso
+            else "; no cloth over the torso to compare, chosen on the whole garment"
+        )
+    if tie is not None:
+        how += f"; {tie[0]} within {100 * (BASE_TIE - 1):.0f} %: both graded"
+    return how
 
 
 def _necklines(garment: str, target: Target, body, log):
