@@ -90,7 +90,8 @@ def test_drape_help_states_the_dressing_defaults():
 
 def test_fit_help_and_the_config_page_list_every_setting():
     """``unsew fit --help`` lists every setting of the fit's config with its default (read back
-    as YAML: the config's own dict), and docs/config.md names each of them and nothing else."""
+    as YAML: the config's own dict), and docs/config.md names each of them, with its default, and
+    nothing else."""
     import re
     from pathlib import Path
 
@@ -115,4 +116,7 @@ def test_fit_help_and_the_config_page_list_every_setting():
         len(v) for v in shown.values() if isinstance(v, dict)
     )
     page = (Path(__file__).parents[2] / "docs" / "config.md").read_text()
-    assert set(re.findall(r"^\| `([a-z_.]+)` \|", page, flags=re.M)) == set(user_settings())
+    listed = dict(re.findall(r"^\| `([a-z_.]+)` \| `([^`]*)` \|", page, flags=re.M))
+    assert set(listed) == set(user_settings())
+    for key, value in user_settings().items():  # the page's defaults are the config's
+        assert yaml.safe_load(listed[key]) == (list(value) if isinstance(value, tuple) else value), key
