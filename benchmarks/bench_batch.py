@@ -86,13 +86,10 @@ def main(argv=None) -> None:
     cases = make_cases(root, args.cases, edge_length=args.edge_length)
     print(f"{args.cases} cases in {cases} ({time.perf_counter() - t0:.0f} s to make)")
     cfg = load_config(
-        edge_length=args.edge_length,
-        iterations=args.iterations,
-        sew_steps=20,
-        settle_steps=10,
-        steps=5,
-        target_points=2000,
-        report=False,
+        drape={"edge_length": args.edge_length, "sew_steps": 20, "settle_steps": 10, "steps": 5},
+        optimizer={"iterations": args.iterations},
+        loss={"target_points": 2000},
+        output={"report": False},
     )
     d = cfg.drape
     print(

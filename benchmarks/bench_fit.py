@@ -243,7 +243,7 @@ def main(argv=None):
     from unsew.sim.drape import DrapeSettings
 
     out = Path(args.out)
-    cfg = load_config(edge_length=args.edge_length, iterations=args.iterations)
+    cfg = load_config(drape={"edge_length": args.edge_length}, optimizer={"iterations": args.iterations})
     # the targets' dressing (FitConfig's, not --set's)
     target_drape = DrapeSettings(edge_length=args.edge_length)
     if args.set:

@@ -69,7 +69,9 @@ def _parse(argv):
     ap.add_argument("--material", default="cotton")
     ap.add_argument("--garments", nargs="*", default=list(CHANGES))
     ap.add_argument("--samples", type=int, default=20000, help="Chamfer samples per mesh")
-    ap.add_argument("--passes", type=int, default=None, help="grading passes (default: grade()'s)")
+    ap.add_argument(
+        "--passes", type=int, default=None, help="grading passes (default: GradingSettings.passes)"
+    )
     ap.add_argument(
         "--floor-scale", type=float, default=0.97, help="edge length factor of the noise-floor mesh (0: skip)"
     )
@@ -81,19 +83,19 @@ def _parse(argv):
     ap.add_argument(
         "--no-hold-top",
         action="store_true",
-        help="let a waist edit move the panel's placement (grade(hold_top=False))",
+        help="let a waist edit move the panel's placement (GradingSettings.hold_top False)",
     )
     ap.add_argument(
         "--remesh",
         choices=["always", "stretched"],
         default="always",
-        help="grade(remesh=...): mesh every graded pattern afresh, or only when an edge stretched 1.5x",
+        help="GradingSettings.remesh: mesh every graded pattern afresh, or only when an edge stretched 1.5x",
     )
     ap.add_argument(
         "--length",
         choices=["cloth", "axial"],
         default="cloth",
-        help="grade(length=...): move open curves by the cloth length to the top opening, "
+        help="GradingSettings.length: move open curves by the cloth length to the top opening, "
         "or by the axial distance",
     )
     ap.add_argument(
@@ -216,7 +218,7 @@ def _contour_rows(case: _Case, flip: bool) -> list[tuple]:
 def _grade_target(g, target, start, scale, args, body, drape_fn) -> _Case:
     """Drape garment g's target pattern on a mesh of ``scale`` times the edge length and grade
     the base to it; start = (base pattern, its mesh, its drape (n, 3) [m])."""
-    from unsew.grading.grade import GRADE_SETTINGS, grade
+    from unsew.grading.grade import GRADE_SETTINGS, GradingSettings, grade
     from unsew.meshing.sew import mesh_pattern
 
     base, bm, bx = start
@@ -225,17 +227,8 @@ def _grade_target(g, target, start, scale, args, body, drape_fn) -> _Case:
     kw = {"hold_top": not args.no_hold_top, "remesh": args.remesh, "length": args.length}
     if args.passes is not None:
         kw["passes"] = args.passes
-    res = grade(
-        base,
-        body,
-        tx,
-        tm.faces,
-        settings=GRADE_SETTINGS.replace(edge_length=args.edge_length),
-        drape_fn=drape_fn,
-        mesh=bm,
-        x_init=bx,
-        **kw,
-    )
+    settings = GradingSettings(drape=GRADE_SETTINGS.replace(edge_length=args.edge_length), **kw)
+    res = grade(base, body, tx, tm.faces, settings, drape_fn=drape_fn, mesh=bm, x_init=bx)
     return _Case(g, target, tm, tx, res, body)
 
 

@@ -102,16 +102,16 @@ def main(argv=None) -> None:
 
 
 #: tests/fit/test_fit_small.py's small mode
-SMALL = dict(
-    edge_length=0.04,
-    iterations=3,
-    steps=8,
-    sew_steps=60,
-    settle_steps=20,
-    target_points=1500,
-    material_start=1,
-    material="cotton",
-)
+SMALL = {
+    "drape.edge_length": 0.04,
+    "optimizer.iterations": 3,
+    "drape.steps": 8,
+    "drape.sew_steps": 60,
+    "drape.settle_steps": 20,
+    "loss.target_points": 1500,
+    "material.start_iteration": 1,
+    "material.start": "cotton",
+}
 
 _FIT = """
 import sys

@@ -49,6 +49,7 @@ from unsew.fit.config import load_config
 from unsew.fit.material import MaterialChoice
 from unsew.fit.optimize import PhaseTwo
 from unsew.fit.progress import Progress
+from unsew.fit.scene import Scene
 from unsew.fit.start import base_pattern_for, start
 from unsew.fit.synthetic import Alteration, make_truth_case
 from unsew.fit.target import Target
@@ -58,8 +59,7 @@ cfg = load_config(**{**SMALL16, **json.loads(sys.argv[4])}, area="free")
 case = load_case(make_truth_case(Path(sys.argv[1]) / "dress", garment="dress",
                  alteration=Alteration({"waist": (-0.03, 0.0)}, "cotton"), settings=cfg.drape))
 sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
-s = start(base_pattern_for(case, cfg), case.body, target, sdf, cfg, get_material("cotton"),
-          progress=Progress(False))
+s = start(base_pattern_for(case, cfg), Scene(case.body, target, sdf, cfg), get_material("cotton"))
 torch.manual_seed(cfg.seed)
 two = PhaseTwo(MaterialChoice(s), target, sdf, cfg)
 two.run()
@@ -75,7 +75,13 @@ print(json.dumps({"area_graded": g["area_error_rel_mean"], "area_best": b["area_
 
 #: ``--small``: the proof's case on a coarse mesh with two short iterations (the table's shape, not
 #: its figures: a test runs it)
-SMALL = {"edge_length": 0.06, "iterations": 2, "steps": 4, "sew_steps": 30, "settle_steps": 5}
+SMALL = {
+    "drape.edge_length": 0.06,
+    "optimizer.iterations": 2,
+    "drape.steps": 4,
+    "drape.sew_steps": 30,
+    "drape.settle_steps": 5,
+}
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -79,16 +79,20 @@ PYTEST_RC=${PIPESTATUS[0]}
 echo "pytest exit code: $PYTEST_RC"
 
 say "make the small case (cpu, once)"
-# tests/fit/test_fit_small.py's SMALL settings, as a fit config for the CLI (flat names)
+# tests/fit/test_fit_small.py's SMALL settings, as a fit config for the CLI
 cat >"$WORK/small.yaml" <<'EOF'
-edge_length: 0.04
-iterations: 3
-steps: 8
-sew_steps: 60
-settle_steps: 20
-target_points: 1500
-material_start: 1
-material: cotton
+drape:
+  edge_length: 0.04
+  steps: 8
+  sew_steps: 60
+  settle_steps: 20
+optimizer:
+  iterations: 3
+loss:
+  target_points: 1500
+material:
+  start: cotton
+  start_iteration: 1
 EOF
 timeout 90 $PY - "$WORK" <<'EOF' 2>&1 | tail -5
 import sys, time

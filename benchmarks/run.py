@@ -217,7 +217,11 @@ def apply_sets(cfg, items):
 def base_config(args, **changes):
     from unsew.fit.config import config_to_dict, load_config
 
-    cfg = load_config(edge_length=args.edge_length, iterations=args.iterations, report=not args.no_report)
+    cfg = load_config(
+        drape={"edge_length": args.edge_length},
+        optimizer={"iterations": args.iterations},
+        output={"report": not args.no_report},
+    )
     cfg = apply_sets(cfg, getattr(args, "set", None))
     return load_config(defaults=config_to_dict(cfg), **changes) if changes else cfg
 

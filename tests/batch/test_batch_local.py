@@ -20,7 +20,7 @@ from unsew.batch.summary import format_table
 from unsew.errors import InputError
 from unsew.fit.config import load_config
 
-CFG = load_config(iterations=3, report=False)
+CFG = load_config(optimizer={"iterations": 3}, output={"report": False})
 
 
 def _cases(root: Path, n_good: int = 3, **bad) -> Path:
@@ -134,8 +134,8 @@ sys.path.insert(0, {tests!r})
 from batch.fakes import fake_fit
 from unsew.batch import run_batch
 from unsew.fit.config import load_config
-res = run_batch({cases!r}, {out!r}, cfg=load_config(iterations=40, report=False), workers=2, fit_fn=fake_fit,
-                progress=False)
+cfg = load_config(optimizer={{"iterations": 40}}, output={{"report": False}})
+res = run_batch({cases!r}, {out!r}, cfg=cfg, workers=2, fit_fn=fake_fit, progress=False)
 print("INTERRUPTED" if res.interrupted else "FINISHED", flush=True)
 """
 
@@ -178,7 +178,12 @@ def test_ctrl_c_stops_cleanly_and_rerun_continues(tmp_path):
     assert snap == {p: p.read_text() for p in out.glob("*.partial/checkpoint.pt")}
 
     res = run_batch(
-        cases, out, cfg=load_config(iterations=40, report=False), workers=2, fit_fn=fake_fit, progress=False
+        cases,
+        out,
+        cfg=load_config(optimizer={"iterations": 40}, output={"report": False}),
+        workers=2,
+        fit_fn=fake_fit,
+        progress=False,
     )
     st = {r.name: r for r in res.records}
     assert all(r.status in ("done", "skipped") for r in res.records)

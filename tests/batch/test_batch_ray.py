@@ -17,7 +17,7 @@ from unsew.batch import run_batch  # noqa: E402
 from unsew.errors import InputError  # noqa: E402
 from unsew.fit.config import load_config  # noqa: E402
 
-CFG = load_config(iterations=3, report=False)
+CFG = load_config(optimizer={"iterations": 3}, output={"report": False})
 
 
 def test_unreachable_cluster_is_one_line_and_writes_nothing(tmp_path, monkeypatch):

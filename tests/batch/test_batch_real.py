@@ -23,15 +23,15 @@ from unsew.fit.config import load_config
 from unsew.fit.demo import DemoTruth, make_truth_case
 
 #: tiny fits: coarse panels, few sewing/settling/drape steps, a small Chamfer subset
-TINY = dict(
-    edge_length=0.05,
-    sew_steps=10,
-    settle_steps=5,
-    steps=3,
-    target_points=1000,
-    report=False,
-    material="cotton",
-)
+TINY = {
+    "drape.edge_length": 0.05,
+    "drape.sew_steps": 10,
+    "drape.settle_steps": 5,
+    "drape.steps": 3,
+    "loss.target_points": 1000,
+    "output.report": False,
+    "material.start": "cotton",
+}
 TRUTHS = [
     DemoTruth(),
     DemoTruth(hem_length=0.03, hem_girth=0.02, sleeve_length=0.01),
@@ -85,7 +85,7 @@ def _metrics(out: Path) -> dict:
 
 
 def test_small_batch_equals_single_fit_and_reports_broken_case(tmp_path):
-    cfg = load_config(iterations=1, **TINY)
+    cfg = load_config(**TINY, **{"optimizer.iterations": 1})
     cases = tmp_path / "cases"
     make_truth_case(cases / "tshirt", settings=cfg.drape)
     _broken_copy(cases / "tshirt", cases / "broken")
@@ -137,7 +137,7 @@ def test_small_batch_equals_single_fit_and_reports_broken_case(tmp_path):
 @pytest.fixture(scope="module")
 def three_cases(tmp_path_factory):
     root = tmp_path_factory.mktemp("real3")
-    cfg = load_config(iterations=2, **{**TINY, "report": True})
+    cfg = load_config(**{**TINY, "optimizer.iterations": 2, "output.report": True})
     for i, truth in enumerate(TRUTHS):
         make_truth_case(root / "cases" / f"tshirt{i}", truth=truth, settings=cfg.drape)
     _broken_copy(root / "cases" / "tshirt0", root / "cases" / "broken")

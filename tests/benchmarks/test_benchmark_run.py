@@ -11,17 +11,17 @@ import pytest
 
 BENCH = Path(__file__).resolve().parents[2] / "benchmarks"
 
-SMALL = dict(
-    edge_length=0.04,
-    iterations=3,
-    steps=8,
-    sew_steps=40,
-    settle_steps=10,
-    target_points=1500,
-    material_start=1,
-    report=False,
-    mesh_spread=0.0,
-)
+SMALL = {
+    "drape.edge_length": 0.04,
+    "optimizer.iterations": 3,
+    "drape.steps": 8,
+    "drape.sew_steps": 40,
+    "drape.settle_steps": 10,
+    "loss.target_points": 1500,
+    "material.start_iteration": 1,
+    "output.report": False,
+    "checks.mesh_spread": 0.0,
+}
 
 
 def _module(name):
@@ -119,11 +119,11 @@ def test_set_overrides_the_fit_config():
 
     run = _module("run")
     args = argparse.Namespace(
-        edge_length=0.03, iterations=5, no_report=True, set=["lr_decay=0.1", "steps=12"]
+        edge_length=0.03, iterations=5, no_report=True, set=["optimizer.lr=0.002", "drape.steps=12"]
     )
-    cfg = run.base_config(args, seam_loss=False)
+    cfg = run.base_config(args, loss={"seam": 0.0})
     o, d = cfg.optimizer, cfg.drape
-    assert (o.lr_decay, d.steps, d.edge_length, o.iterations, cfg.loss.seam) == (0.1, 12, 0.03, 5, 0.0)
+    assert (o.lr, d.steps, d.edge_length, o.iterations, cfg.loss.seam) == (0.002, 12, 0.03, 5, 0.0)
     args.set = ["no_such_option=1"]
     with pytest.raises(SystemExit, match="no_such_option"):
         run.base_config(args)

@@ -76,9 +76,9 @@ def test_units_hint(tmp_path, capsys):
 def test_bad_config_value(tmp_path, capsys):
     d = _case(tmp_path)
     cfg = tmp_path / "fit.yaml"
-    cfg.write_text("iterations: -3\n")
+    cfg.write_text("optimizer:\n  iterations: -3\n")
     code, err = _run(["fit", str(d), "--config", str(cfg), "--out", str(tmp_path / "r")], capsys)
-    assert code == 2 and "iterations" in err
+    assert code == 2 and "optimizer.iterations must be at least 1" in err
 
 
 def test_existing_output_is_not_overwritten(tmp_path, capsys):

@@ -351,18 +351,19 @@ def _config_case(text):
 
 
 CONFIGS = {
-    "config_not_yaml": _config_case("iterations: [1, 2\n"),
+    "config_not_yaml": _config_case("optimizer:\n  iterations: [1, 2\n"),
     "config_a_list": _config_case("- iterations\n- 10\n"),
     "config_unknown_key": _config_case("iterashuns: 10\n"),
-    "config_wrong_type_int": _config_case("iterations: many\n"),
+    "config_old_key": _config_case("iterations: 10\n"),
+    "config_wrong_type_int": _config_case("optimizer:\n  iterations: many\n"),
     "config_wrong_type_bool": _config_case("grading: 3\n"),
-    "config_fractional_iterations": _config_case("iterations: 2.5\n"),
-    "config_negative_iterations": _config_case("iterations: -5\n"),
-    "config_negative_edge_length": _config_case("edge_length: -0.02\n"),
-    "config_huge_edge_length": _config_case("edge_length: 3.0\n"),
-    "config_nan_edge_length": _config_case("edge_length: .nan\n"),
-    "config_unknown_material": _config_case("material: unobtainium\n"),
-    "config_zero_steps": _config_case("steps: 0\n"),
+    "config_fractional_iterations": _config_case("optimizer:\n  iterations: 2.5\n"),
+    "config_negative_iterations": _config_case("optimizer:\n  iterations: -5\n"),
+    "config_negative_edge_length": _config_case("drape:\n  edge_length: -0.02\n"),
+    "config_huge_edge_length": _config_case("drape:\n  edge_length: 3.0\n"),
+    "config_nan_edge_length": _config_case("drape:\n  edge_length: .nan\n"),
+    "config_unknown_material": _config_case("material:\n  start: unobtainium\n"),
+    "config_zero_steps": _config_case("drape:\n  steps: 0\n"),
 }
 
 # --- case folders

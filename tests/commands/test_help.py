@@ -86,3 +86,37 @@ def test_drape_help_states_the_dressing_defaults():
     text = " ".join(text.split())
     assert f"sewing phase (default: {DRESS_SETTINGS.sew_steps}," in text
     assert f"after sewing (default: {DRESS_SETTINGS.settle_steps}," in text
+
+
+def test_fit_help_and_the_config_page_list_every_setting():
+    """``unsew fit --help`` lists every setting of the fit's config with its default (read back
+    as YAML: the config's own dict), and docs/config.md names each of them, with its default, and
+    nothing else."""
+    import re
+    from pathlib import Path
+
+    import yaml
+
+    from unsew.fit.config import FitConfig, config_to_dict, user_settings
+
+    fit = next(p for path, p in _parsers(build_parser()) if path == ("fit",))
+    block = fit.format_help().split("settings of --config FIT.yaml", 1)[1].splitlines()[1:]
+    lines: list = []
+    for line in block:
+        if line.startswith("    ") and lines:
+            lines[-1] += " " + line.strip()
+        elif line.strip():
+            lines.append(line.strip())
+    shown = yaml.safe_load("{" + lines[0] + "}")
+    for line in lines[1:]:
+        shown.update(yaml.safe_load(line))
+    assert shown == config_to_dict(FitConfig())
+    n = len(user_settings())
+    assert f"({n})" in fit.format_help() and n == len(lines[0].split(", ")) + sum(
+        len(v) for v in shown.values() if isinstance(v, dict)
+    )
+    page = (Path(__file__).parents[2] / "docs" / "config.md").read_text()
+    listed = dict(re.findall(r"^\| `([a-z_.]+)` \| `([^`]*)` \|", page, flags=re.M))
+    assert set(listed) == set(user_settings())
+    for key, value in user_settings().items():  # the page's defaults are the config's
+        assert yaml.safe_load(listed[key]) == (list(value) if isinstance(value, tuple) else value), key

@@ -102,9 +102,8 @@ sys.path.insert(0, {tests!r})
 from batch.fakes import fake_fit
 from unsew.batch import run_batch
 from unsew.fit.config import load_config
-run_batch(
-    {cases!r}, {out!r}, cfg=load_config(iterations=2, report=False), workers=1, fit_fn=fake_fit, progress=True
-)
+cfg = load_config(optimizer={{"iterations": 2}}, output={{"report": False}})
+run_batch({cases!r}, {out!r}, cfg=cfg, workers=1, fit_fn=fake_fit, progress=True)
 """
 
 
@@ -142,14 +141,14 @@ def test_json_flags_print_json_alone(tmp_path):
 # ---------------------------------------------------------------- the fit, batch and demo, real
 
 TINY = {
-    "edge_length": 0.05,
-    "sew_steps": 10,
-    "settle_steps": 5,
-    "steps": 3,
-    "target_points": 1000,
-    "report": False,
-    "material": "cotton",
-    "iterations": 1,
+    "drape.edge_length": 0.05,
+    "drape.sew_steps": 10,
+    "drape.settle_steps": 5,
+    "drape.steps": 3,
+    "loss.target_points": 1000,
+    "output.report": False,
+    "material.start": "cotton",
+    "optimizer.iterations": 1,
 }
 
 

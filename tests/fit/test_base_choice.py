@@ -11,6 +11,7 @@ from unsew.body.sdf import BodySDF
 from unsew.dress import DRESS_SETTINGS, dress
 from unsew.errors import InputError
 from unsew.fit.config import FitConfig
+from unsew.fit.scene import Scene
 from unsew.fit.progress import Progress
 from unsew.fit.start import arm_openings, choose_base
 from unsew.fit.target import Target
@@ -19,8 +20,15 @@ from unsew.losses.contours import open_contours
 from unsew.pattern.base import bases_for, make_base_pattern
 from unsew.sim.material import get_material
 
-#: small mode: candidates on 6 cm meshes, the target on a 3.5 cm one (never the same drape)
-CFG = FitConfig(base_choice_edge=0.06)
+CFG = FitConfig()
+
+
+@pytest.fixture(autouse=True)
+def _small_mode(monkeypatch):
+    """Small mode: candidates on 6 cm meshes, the target on a 3.5 cm one (never the same drape)."""
+    import unsew.fit.start
+
+    monkeypatch.setattr(unsew.fit.start, "BASE_CHOICE_EDGE", 0.06)
 
 
 @pytest.fixture(scope="module")
@@ -246,7 +254,7 @@ def test_a_tie_keeps_the_base_whose_graded_drape_lies_clearly_closer(monkeypatch
     graded = {"straight": 14.5, "waisted": 11.7}  # GarmentCode's waisted sleeveless dress (BASE_TIE)
     calls = []
 
-    def fake_start(pattern, body, target, sdf, cfg, material, *, garment, **k):
+    def fake_start(pattern, scene, material, *, garment, **k):
         calls.append(garment)
         return Start(pattern, pattern, SimpleNamespace(faces=None), garment, [], None, None, material)
 
@@ -260,13 +268,8 @@ def test_a_tie_keeps_the_base_whose_graded_drape_lies_clearly_closer(monkeypatch
     lines = []
     s = start_mod.start_chosen(
         choice,
+        Scene(None, target, None, CFG, progress=Progress(False), log=lines.append),
         None,
-        target,
-        None,
-        CFG,
-        None,
-        progress=Progress(False),
-        log=lines.append,
         budget=TimeBudget(0),
     )
     assert calls == ["straight", "waisted"] and s.base_name == "waisted" and s.base == "P-waisted"
@@ -277,7 +280,10 @@ def test_a_tie_keeps_the_base_whose_graded_drape_lies_clearly_closer(monkeypatch
     calls.clear()
     budget = TimeBudget(100.0, log=lines.append, clock=iter([0.0, 60.0, 60.0]).__next__)
     s = start_mod.start_chosen(
-        choice, None, target, None, CFG, None, progress=Progress(False), log=lines.append, budget=budget
+        choice,
+        Scene(None, target, None, CFG, progress=Progress(False), log=lines.append),
+        None,
+        budget=budget,
     )
     assert (
         calls == ["straight"]
@@ -291,7 +297,7 @@ def test_a_tie_keeps_the_base_whose_graded_drape_lies_clearly_closer(monkeypatch
     for d in (0.4, 15.7 * CHECK_MARGIN_REL + 0.01):
         graded.update(straight=15.7, waisted=15.7 - d)
         s = start_mod.start_chosen(
-            choice, None, target, None, CFG, None, progress=Progress(False), log=lines.append
+            choice, Scene(None, target, None, CFG, progress=Progress(False), log=lines.append), None
         )
         assert s.base_name == (
             "straight" if d <= max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * 15.7) else "waisted"
@@ -303,7 +309,7 @@ def test_a_tie_whose_runner_up_fails_to_grade_keeps_the_chosen_base(monkeypatch)
     import unsew.fit.start as start_mod
     from unsew.fit.start import BaseChoice, Start
 
-    def fake_start(pattern, body, target, sdf, cfg, material, *, garment, **k):
+    def fake_start(pattern, scene, material, *, garment, **k):
         if garment == "waisted":
             raise RuntimeError("simulation diverged at step 3: vertex 7 speed nan")
         return Start(pattern, pattern, SimpleNamespace(faces=None), garment, [], None, None, material)
@@ -322,13 +328,15 @@ def test_a_tie_whose_runner_up_fails_to_grade_keeps_the_chosen_base(monkeypatch)
     lines = []
     s = start_mod.start_chosen(
         choice,
+        Scene(
+            None,
+            SimpleNamespace(distance_mm=lambda x, f, **k: 14.5),
+            None,
+            CFG,
+            progress=Progress(False),
+            log=lines.append,
+        ),
         None,
-        SimpleNamespace(distance_mm=lambda x, f, **k: 14.5),
-        None,
-        CFG,
-        None,
-        progress=Progress(False),
-        log=lines.append,
     )
     assert s.base_name == "straight" and s.base == "P-straight"
     assert lines == [

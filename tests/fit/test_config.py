@@ -1,16 +1,17 @@
-"""Fit configuration: grouped YAML round trip, old flat files, overrides, bad values."""
+"""Fit configuration: grouped YAML round trip, old keys refused, overrides, bad values, the count
+of settings."""
 
 import pytest
 import yaml
 
 from unsew.errors import InputError
 from unsew.fit.config import (
-    LEGACY_KEYS,
     FitConfig,
     LossWeights,
     OptimizerSettings,
     config_to_dict,
     load_config,
+    user_settings,
 )
 from unsew.sim.drape import DrapeSettings
 
@@ -25,7 +26,7 @@ def test_defaults_follow_the_paper():
 
 def test_yaml_round_trip_and_overrides(tmp_path):
     c = FitConfig(
-        optimizer=OptimizerSettings(iterations=7, betas=(0.8, 0.99)),
+        optimizer=OptimizerSettings(iterations=7, lr=2e-3),
         loss=LossWeights(curvature_weighted=False),
         drape=DrapeSettings(sew_steps=33),
     )
@@ -34,35 +35,45 @@ def test_yaml_round_trip_and_overrides(tmp_path):
     assert "candidates: []" in text and "- H00" in text  # lists as lists
     p.write_text(text)
     assert load_config(p) == c
-    assert load_config(p, iterations=3).optimizer.iterations == 3
-    assert load_config(p, optimizer={"iterations": 4}).optimizer == OptimizerSettings(
-        iterations=4, betas=(0.8, 0.99)
-    )
+    assert load_config(p, **{"optimizer.iterations": 3}).optimizer.iterations == 3
+    assert load_config(p, optimizer={"iterations": 4}).optimizer == OptimizerSettings(iterations=4, lr=2e-3)
 
 
-def test_old_flat_file_loads_into_the_groups(tmp_path):
-    """A config.yaml of the flat format still loads; its on/off switches become a zero weight
-    and an empty list."""
+@pytest.mark.parametrize(
+    "text, match",
+    [
+        ("iterations: 9\n", "config key 'iterations' was renamed: use 'optimizer.iterations'"),
+        ("material: silk\n", "config key 'material' was renamed: use 'material.start'"),
+        ("lambda_seam: 0.5\n", "config key 'lambda_seam' was renamed: use 'loss.seam'"),
+        ("seam_loss: false\n", "config key 'seam_loss' was renamed: use 'loss.seam \\(0: off\\)'"),
+        (
+            "betas: [0.8, 0.9]\n",
+            "'betas' is no longer a setting: it is the constant .*OptimizerSettings.betas",
+        ),
+        ("drape:\n  gravity: 9\n", "'drape.gravity' is no longer a setting: it is the constant .*gravity"),
+        ("material:\n  regrade: 1\n", "'material.regrade' is no longer a setting: .*material.REGRADE"),
+    ],
+)
+def test_an_old_key_is_refused_with_its_name_now(tmp_path, text, match):
+    """A key of the flat files of earlier versions, or a former setting, is refused in one line
+    that says what to write instead (or which constant it became)."""
     p = tmp_path / "old.yaml"
-    p.write_text(
-        "iterations: 9\nsew_steps: 70\nmaterial: silk\nmaterial_candidates: cotton,silk\n"
-        "lambda_seam: 0.5\nseam_loss: false\noptimize_material: false\nmaterial_params: H22,k\n"
-        "redress_check: false\nreport: false\nfit_friction_eps: 0.002\nbetas: [0.8, 0.9]\n"
-    )
-    c = load_config(p)
-    assert (c.optimizer.iterations, c.drape.sew_steps, c.material.start) == (9, 70, "silk")
-    assert c.material.candidates == ("cotton", "silk") and c.optimizer.betas == (0.8, 0.9)
-    assert c.loss.seam == 0.0 and c.material.fit == () and not c.fits_material
-    assert (c.checks.redress, c.output.report, c.optimizer.friction_eps) == (False, False, 0.002)
-    assert load_config(material_params="H22,k").material.fit == ("H22", "k")
-    assert load_config(seam_loss=True, lambda_seam=0.5).loss.seam == 0.5
-    for old, place in LEGACY_KEYS.items():  # every old name lands on a field that exists
-        group, name = place.split(".")
-        assert hasattr(getattr(FitConfig(), group), name), old
+    p.write_text(text)
+    with pytest.raises(InputError, match=match) as err:
+        load_config(p)
+    assert "\n" not in str(err.value)
+
+
+def test_at_most_thirty_settings_each_with_a_default():
+    """The settings a user sets, counted from the config's dataclass fields: at most 30, each
+    loadable by its dotted name with its own default."""
+    settings = user_settings()
+    assert 0 < len(settings) <= 30, list(settings)
+    assert load_config(**settings) == FitConfig()
 
 
 def test_a_result_folders_config_loads(tmp_path):
-    c = load_config(iterations=5, edge_length=0.03)
+    c = load_config(optimizer={"iterations": 5}, drape={"edge_length": 0.03})
     p = tmp_path / "config.yaml"
     p.write_text(
         yaml.safe_dump({"config": config_to_dict(c), "case": "x", "unsew_version": "0"}, sort_keys=False)
@@ -75,28 +86,24 @@ def test_a_result_folders_config_loads(tmp_path):
     [
         ("iterationz: 3\n", "unknown config option"),
         ("optimizer:\n  iterationz: 3\n", "unknown config option.*optimizer.iterationz"),
-        ("iterations: 2.5\n", "iterations"),
+        ("optimizer:\n  iterations: 2.5\n", "optimizer.iterations"),
+        ("optimizer:\n  iterations: 0\n", "optimizer.iterations must be at least 1"),
+        ("optimizer:\n  lr: 0\n", "optimizer.lr must be positive"),
         ("grading: yes please\n", "grading"),
-        ("edge_length: 2\n", "edge_length"),
-        ("drape:\n  edge_length: 2\n", "drape.edge_length"),
+        ("drape:\n  edge_length: 2\n", "drape.edge_length must be within 0.005-0.1 m"),
+        ("drape:\n  dt: 0\n", "drape.dt must be in"),
         ("- a\n- b\n", "mapping"),
         ("a: [\n", "not valid YAML"),
-        ("lr_decay: 0\n", "lr_decay"),
-        ("lr_decay: 1.5\n", "lr_decay"),
-        ("material: velvet\n", "unknown material 'velvet'"),
-        ("fit_friction_eps: 0\n", "fit_friction_eps"),
-        ("redress_check: maybe\n", "redress_check"),
-        ("seam_loss: maybe\n", "seam_loss"),
-        ("mesh_spread: 0.6\n", "mesh_spread"),
-        ("mesh_spread: -0.1\n", "mesh_spread"),
-        ("checks:\n  redress_meshes: 2\n", "checks.redress_meshes must be 1 or 3"),
-        ("optimizer:\n  bands: loose\n", "optimizer.bands must be one of free, height, held"),
-        ("optimizer:\n  seams: tight\n", "optimizer.seams must be one of held, soft, trued"),
-        ("loss:\n  area: -1\n", "loss.area must be >= 0"),
-        ("lambda_prior: -0.5\n", "must be >= 0"),
-        ("material: auto\nmaterial_candidates: silk,tweed\n", "unknown material 'tweed'"),
+        ("material:\n  start: velvet\n", "unknown material 'velvet'"),
+        ("checks:\n  redress: maybe\n", "checks.redress"),
+        ("checks:\n  mesh_spread: 0.6\n", "checks.mesh_spread must be in"),
+        ("checks:\n  mesh_spread: -0.1\n", "checks.mesh_spread"),
+        ("area: all\n", "area must be one of free, target"),
+        ("side_seams: curved\n", "side_seams must be one of none, girth"),
+        ("time_limit: -1\n", "time_limit must be >= 0"),
+        ("loss:\n  seam: -1\n", "loss.seam must be >= 0"),
+        ("material:\n  start: auto\n  candidates: silk,tweed\n", "unknown material 'tweed'"),
         ("material:\n  candidates: [silk, tweed]\n", "unknown material 'tweed'"),
-        ("drape:\n  backend: pardiso\n", "drape.backend: unknown solver backend 'pardiso'"),
     ],
 )
 def test_bad_configs(tmp_path, text, match):
@@ -114,8 +121,12 @@ def test_missing_config(tmp_path):
 
 def test_precedence_flags_over_file_over_defaults(tmp_path):
     p = tmp_path / "fit.yaml"
-    p.write_text("iterations: 9\nsteps: 11\n")
-    c = load_config(p, defaults={"iterations": 30, "steps": 12, "edge_length": 0.03}, steps=13)
+    p.write_text("optimizer:\n  iterations: 9\ndrape:\n  steps: 11\n")
+    c = load_config(
+        p,
+        defaults={"optimizer.iterations": 30, "drape.steps": 12, "drape.edge_length": 0.03},
+        **{"drape.steps": 13},
+    )
     assert (c.optimizer.iterations, c.drape.steps, c.drape.edge_length) == (9, 13, 0.03)
     c = load_config(p, defaults={"drape": {"steps": 12, "edge_length": 0.03}}, drape={"steps": 14})
     assert (c.optimizer.iterations, c.drape.steps, c.drape.edge_length) == (9, 14, 0.03)
@@ -128,8 +139,6 @@ def test_material_fit_lists_entries_of_gamma():
     assert material_mask(" k , H22") == (False, False, False, True, True)
     assert material_mask(()) == (False,) * 5  # the material stays fixed
     for bad in ("k,H33", "bend"):
-        with pytest.raises(InputError, match="material_params"):
-            load_config(material_params=bad)
         with pytest.raises(InputError, match="material.fit"):
             load_config(material={"fit": bad.split(",")})
 

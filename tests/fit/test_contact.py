@@ -1,5 +1,5 @@
-"""The fit's body contact read from the target (``contact: target``, unsew.fit.contact): the gap
-measured on a target at a known distance from the body, its clamping, and the config check."""
+"""The fit's body contact read from the target (mode "target" of unsew.fit.contact): the gap
+measured on a target at a known distance from the body, its clamping, and the mode check."""
 
 import numpy as np
 import pytest
@@ -34,7 +34,7 @@ def test_the_gap_is_where_the_targets_cloth_rests(sphere):
     pts = np.vstack([_shell(0.104, 1000, 1), _shell(0.13, 4000, 2)])
     gap = target_gap(pts, body, sdf)
     assert 0.0038 < gap < 0.0041  # the body's facets lie at most 0.1 mm inside its sphere
-    cfg, info = contact_for_target(load_config(contact="target"), pts, body, sdf)
+    cfg, info = contact_for_target(load_config(), pts, body, sdf, mode="target")
     assert cfg.drape.contact_threshold == pytest.approx(gap)
     assert cfg.drape.contact_stiffness == CONTACT_STIFF
     assert info["mode"] == "target" and info["gap_mm"] == pytest.approx(gap * 1e3)
@@ -45,10 +45,10 @@ def test_a_target_inside_the_body_gets_the_thinnest_zone(sphere):
     body, sdf = sphere
     pts = _shell(0.095, 2000)  # 5 mm inside: the signed gap is negative
     assert target_gap(pts, body, sdf) < -0.004
-    cfg, info = contact_for_target(load_config(contact="target"), pts, body, sdf)
+    cfg, info = contact_for_target(load_config(), pts, body, sdf, mode="target")
     assert cfg.drape.contact_threshold == GAP_RANGE_M[0]
     far = _shell(0.2, 2000)  # 10 cm out: loose all over
-    cfg, _ = contact_for_target(load_config(contact="target"), far, body, sdf)
+    cfg, _ = contact_for_target(load_config(), far, body, sdf, mode="target")
     assert cfg.drape.contact_threshold == GAP_RANGE_M[1]
 
 
@@ -60,6 +60,9 @@ def test_the_default_contact_is_left_as_configured(sphere):
     assert info == {"mode": "default", "threshold_mm": pytest.approx(5.0), "stiffness": 1e7}
 
 
-def test_an_unknown_contact_mode_is_refused():
-    with pytest.raises(InputError, match="contact must be one of default, target"):
-        load_config(contact="tight")
+def test_an_unknown_contact_mode_is_refused(sphere):
+    body, sdf = sphere
+    with pytest.raises(ValueError, match="contact mode must be one of default, target"):
+        contact_for_target(load_config(), _shell(0.104), body, sdf, mode="tight")
+    with pytest.raises(InputError, match="'contact' is no longer a setting: it is the constant"):
+        load_config(contact="target")

@@ -17,17 +17,18 @@ import torch
 from helpers import assert_close, no_default_device
 
 from unsew.fit.config import load_config
+from unsew.fit.scene import Scene
 
-SMALL = dict(
-    edge_length=0.04,
-    iterations=2,
-    steps=8,
-    sew_steps=60,
-    settle_steps=20,
-    target_points=1500,
-    material_start=1,
-    material="cotton",
-)
+SMALL = {
+    "drape.edge_length": 0.04,
+    "optimizer.iterations": 2,
+    "drape.steps": 8,
+    "drape.sew_steps": 60,
+    "drape.settle_steps": 20,
+    "loss.target_points": 1500,
+    "material.start_iteration": 1,
+    "material.start": "cotton",
+}
 CUDA = pytest.mark.skipif(not torch.cuda.is_available(), reason="no CUDA device")
 
 
@@ -45,7 +46,6 @@ def phase_one(case_dir):
     from unsew.body.case import load_case
     from unsew.body.sdf import BodySDF
     from unsew.fit.material import MaterialChoice
-    from unsew.fit.progress import Progress
     from unsew.fit.start import base_pattern_for, start
     from unsew.fit.target import Target
     from unsew.sim.material import get_material
@@ -53,15 +53,7 @@ def phase_one(case_dir):
     case = load_case(case_dir)
     cfg = load_config(**SMALL)
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
-    s = start(
-        base_pattern_for(case, cfg),
-        case.body,
-        target,
-        sdf,
-        cfg,
-        get_material("cotton"),
-        progress=Progress(False),
-    )
+    s = start(base_pattern_for(case, cfg), Scene(case.body, target, sdf, cfg), get_material("cotton"))
     return MaterialChoice(s), target, sdf, cfg
 
 
@@ -137,7 +129,7 @@ def test_fit_cli_on_cuda(case_dir, tmp_path, capsys):  # pragma: no cover - no G
     from unsew.cli import main
 
     cfg = tmp_path / "small.yaml"
-    cfg.write_text(yaml.safe_dump({**SMALL, "mesh_spread": 0.0}))
+    cfg.write_text(yaml.safe_dump({**SMALL, "checks.mesh_spread": 0.0}))
     out = tmp_path / "result"
     code = main(
         ["fit", str(case_dir), "--out", str(out), "--config", str(cfg), "--device", "cuda", "--no-progress"]

@@ -7,22 +7,22 @@ import json
 import numpy as np
 import pytest
 
-from unsew.fit.config import CheckSettings, load_config
+from unsew.fit.config import CheckSettings, LossWeights, OptimizerSettings, load_config
+from unsew.fit.scene import Scene
 
-#: The solver is pinned: the figures below were measured with cholespy, and where CHOLMOD is
-#: installed ("auto") round-off grown through the drapes moves them by more than their margins.
+#: The solver is pinned (:func:`_cholespy`): the figures below were measured with cholespy, and where
+#: CHOLMOD is installed ("auto") round-off grown through the drapes moves them by more than their margins.
 #: On CHOLMOD at 71a0347 the proof of phase two read 5.83 / 6.03 / 6.63 -> 6.07 / 5.71 / 5.90 mm
 #: (means x0.956, fit's mesh x1.04; cholespy x0.87).
 SMALL = {
-    "edge_length": 0.04,
-    "iterations": 3,
-    "steps": 8,
-    "sew_steps": 60,
-    "settle_steps": 20,
-    "target_points": 1500,
-    "material_start": 1,
-    "material": "cotton",
-    "drape.backend": "cholespy",
+    "drape.edge_length": 0.04,
+    "optimizer.iterations": 3,
+    "drape.steps": 8,
+    "drape.sew_steps": 60,
+    "drape.settle_steps": 20,
+    "loss.target_points": 1500,
+    "material.start_iteration": 1,
+    "material.start": "cotton",
 }
 FILES = [
     "pattern.json",
@@ -38,6 +38,24 @@ FILES = [
     "pattern_base.json",
     "pattern_graded.json",
 ]
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _cholespy():
+    """Every drape of these tests on cholespy: the "auto" backend sees no CHOLMOD."""
+    import unsew.sim.solve
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(unsew.sim.solve, "_HAS_CHOLMOD", False)
+        yield
+
+
+def _fewer_material_steps(monkeypatch):
+    """The material choice grades again in one other fabric and searches the stiffness one round."""
+    import unsew.fit.material
+
+    monkeypatch.setattr(unsew.fit.material, "REGRADE", 1)
+    monkeypatch.setattr(unsew.fit.material, "REFINE_ROUNDS", 1)
 
 
 @pytest.fixture(scope="module")
@@ -61,7 +79,7 @@ def small_fit(small_case, tmp_path_factory):
     out = tmp_path_factory.mktemp("fit") / "result"
     result, metrics = run_fit(
         load_case(small_case),
-        load_config(**{**SMALL, "iterations": PROOF_ITERATIONS}),
+        load_config(**{**SMALL, "optimizer.iterations": PROOF_ITERATIONS}),
         out,
         progress=False,
         log=lambda s: None,
@@ -181,7 +199,7 @@ def test_a_result_off_the_body_is_no_result(small_case, tmp_path, monkeypatch):
     with pytest.raises(SimulationError, match="fit failed: fallen"):
         run_fit(
             load_case(small_case),
-            load_config(**{**SMALL, "iterations": 1}),
+            load_config(**{**SMALL, "optimizer.iterations": 1}),
             out,
             progress=False,
             log=lambda s: None,
@@ -196,7 +214,9 @@ def test_resume_continues_from_checkpoint(small_case, tmp_path):
 
     out = tmp_path / "r"
     case = load_case(small_case)
-    cfg = load_config(**{**SMALL, "iterations": 2, "report": False, "mesh_spread": 0.0})
+    cfg = load_config(
+        **{**SMALL, "optimizer.iterations": 2, "output.report": False, "checks.mesh_spread": 0.0}
+    )
 
     def interrupt(info):
         # stopped after the first iteration's checkpoint, as by Ctrl-C
@@ -224,7 +244,9 @@ def test_result_is_the_best_iterate_and_says_so(small_fit):
     h = result.history["total"]
     assert metrics["best_iteration"] == min(range(len(h)), key=h.__getitem__)
     kept = metrics["redress"]["phase_two_kept"]
-    assert metrics["material_fitted"] == (metrics["best_iteration"] >= SMALL["material_start"] and kept)
+    assert metrics["material_fitted"] == (
+        metrics["best_iteration"] >= SMALL["material.start_iteration"] and kept
+    )
 
 
 def test_redress_check_decides_and_returns_what_it_decided(small_fit):
@@ -287,7 +309,7 @@ def test_mesh_spread_dresses_the_returned_pattern_on_two_other_meshes(small_fit)
 
     out, result, metrics = small_fit
     ms = json.loads((out / "metrics.json").read_text())["mesh_spread"]
-    h = SMALL["edge_length"]
+    h = SMALL["drape.edge_length"]
     assert ms["edge_lengths_m"] == pytest.approx([0.96 * h, 1.04 * h])
     rd = metrics["redress"]
     graded = rd["graded_fresh_mm"][0] if rd["meshes"] == 3 else rd["graded_mm"]
@@ -309,7 +331,13 @@ def test_redress_check_returns_the_graded_pattern_when_phase_two_found_nothing(s
 
     case = load_case(small_case)
     cfg = load_config(
-        **{**SMALL, "iterations": 2, "pattern_start": 5, "optimize_material": False, "report": False}
+        **{
+            **SMALL,
+            "optimizer.iterations": 2,
+            "optimizer.pattern_start": 5,
+            "material.fit": [],
+            "output.report": False,
+        }
     )
     r = fit(case, cfg, progress=False, log=lambda s: None)
     assert r.redress.phase_two_kept is False
@@ -330,7 +358,7 @@ def test_redress_check_returns_the_graded_pattern_when_phase_two_found_nothing(s
     assert off.redress is None and off.mesh_spread is None
     one = fit(
         case,
-        cfg.replace(checks=CheckSettings(redress_meshes=3, mesh_spread=0.0)),
+        cfg.replace(checks=CheckSettings(mesh_spread=0.0)),
         progress=False,
         log=lambda s: None,
     )  # three meshes asked for, but no spread meshes: judged on one
@@ -364,11 +392,11 @@ def test_pattern_start_holds_the_control_points(small_case):
     cfg = load_config(
         **{
             **SMALL,
-            "iterations": 2,
-            "pattern_start": 5,
-            "optimize_material": False,
-            "report": False,
-            "mesh_spread": 0.0,
+            "optimizer.iterations": 2,
+            "optimizer.pattern_start": 5,
+            "material.fit": [],
+            "output.report": False,
+            "checks.mesh_spread": 0.0,
         }
     )
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
@@ -376,22 +404,23 @@ def test_pattern_start_holds_the_control_points(small_case):
         np.testing.assert_allclose(r.pattern.panels[name].vertices, panel.vertices, atol=1e-12)
 
 
-def test_prior_term_is_wired_in(small_case):
-    """With lambda_prior the loss carries the pull towards the graded pattern: zero at the first
-    iterate (the graded pattern itself), positive once the control points moved."""
+def test_prior_term_is_wired_in(small_case, monkeypatch):
+    """With a prior weight (LossWeights.prior) the loss carries the pull towards the graded
+    pattern: zero at the first iterate (the graded pattern itself), positive once the control
+    points moved."""
     from unsew.fit.fit import fit
     from unsew.body.case import load_case
 
     cfg = load_config(
         **{
             **SMALL,
-            "iterations": 2,
-            "optimize_material": False,
-            "report": False,
-            "mesh_spread": 0.0,
-            "lambda_prior": 1.0,
+            "optimizer.iterations": 2,
+            "material.fit": [],
+            "output.report": False,
+            "checks.mesh_spread": 0.0,
         }
     )
+    monkeypatch.setattr(LossWeights, "prior", 1.0)
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
     assert r.history["prior"][0] == 0.0
     assert r.history["prior"][1] > 0.0
@@ -406,11 +435,11 @@ def test_material_params_frees_only_the_listed_entries(small_case):
     cfg = load_config(
         **{
             **SMALL,
-            "iterations": 3,
-            "material_start": 0,
-            "report": False,
-            "mesh_spread": 0.0,
-            "material_params": "k",
+            "optimizer.iterations": 3,
+            "material.start_iteration": 0,
+            "output.report": False,
+            "checks.mesh_spread": 0.0,
+            "material.fit": "k",
         }
     )
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
@@ -420,10 +449,10 @@ def test_material_params_frees_only_the_listed_entries(small_case):
     assert abs(g[4] / g0[4] - 1) > 1e-3
 
 
-def test_cold_start_makes_the_drape_a_function_of_the_parameters(small_case):
-    """warm_start=False: every iteration drapes from the graded pattern's settled drape, so with
-    the pattern and material held, every iteration's loss is the same; warm-started, the cloth
-    keeps moving and the loss changes."""
+def test_cold_start_makes_the_drape_a_function_of_the_parameters(small_case, monkeypatch):
+    """OptimizerSettings.warm_start False: every iteration drapes from the graded pattern's
+    settled drape, so with the pattern and material held, every iteration's loss is the same;
+    warm-started, the cloth keeps moving and the loss changes."""
     from unsew.fit.fit import fit
     from unsew.body.case import load_case
 
@@ -433,20 +462,20 @@ def test_cold_start_makes_the_drape_a_function_of_the_parameters(small_case):
         cfg = load_config(
             **{
                 **SMALL,
-                "iterations": 3,
-                "pattern_start": 10,
-                "optimize_material": False,
-                "report": False,
-                "mesh_spread": 0.0,
-                "warm_start": warm,
+                "optimizer.iterations": 3,
+                "optimizer.pattern_start": 10,
+                "material.fit": [],
+                "output.report": False,
+                "checks.mesh_spread": 0.0,
             }
         )
+        monkeypatch.setattr(OptimizerSettings, "warm_start", warm)
         losses[warm] = fit(case, cfg, progress=False, log=lambda s: None).history["total"]
     assert max(losses[False]) - min(losses[False]) <= 1e-12 * max(losses[False])
     assert max(losses[True]) - min(losses[True]) > 1e-6 * max(losses[True])
 
 
-def test_auto_material_picks_the_true_fabric(small_case):
+def test_auto_material_picks_the_true_fabric(small_case, monkeypatch):
     """material=auto dresses the cotton-graded pattern in each candidate, grades again in the best
     one other than cotton, refines the winner's stiffness by draping, checks the winner by a drape
     from scratch, and starts phase two from the closest: the target is the demo t-shirt in jersey, so jersey
@@ -461,16 +490,15 @@ def test_auto_material_picks_the_true_fabric(small_case):
     cfg = load_config(
         **{
             **SMALL,
-            "iterations": 1,
-            "optimize_material": False,
-            "report": False,
-            "mesh_spread": 0.0,
-            "material": "auto",
-            "material_candidates": "cotton,denim,jersey",
-            "material_regrade": 1,
-            "material_refine": 1,
+            "optimizer.iterations": 1,
+            "material.fit": [],
+            "output.report": False,
+            "checks.mesh_spread": 0.0,
+            "material.start": "auto",
+            "material.candidates": "cotton,denim,jersey",
         }
     )
+    _fewer_material_steps(monkeypatch)
     r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
     # the material check's two drapes from scratch come first, the kept start on top: the choice
     # in jersey dresses no farther than the cotton-graded pattern, so it stands
@@ -546,19 +574,19 @@ def test_refine_material_walks_towards_the_closest_stiffness():
         return abs(math.log(x[0, 0] / (0.5 * c.h00))) + abs(math.log(x[0, 1] / (math.sqrt(2) * c.bend)))
 
     start = dress_in(c, None)
-    mat, x, rows = refine_material(c, "cotton", start, objective(start), dress_in, objective, rounds=2)
+    mat, x, rows = refine_material(c, "cotton", start, objective(start), dress_in, objective)
     assert mat.h00 == pytest.approx(0.5 * c.h00) and mat.bend == pytest.approx(math.sqrt(2) * c.bend)
     assert mat.h01 / mat.h00 == pytest.approx(c.h01 / c.h00) and mat.density == c.density
     assert float(x[0, 0]) == mat.h00 and objective(x) == pytest.approx(0.0, abs=1e-12)
     assert rows and all(r["material"].startswith("cotton (stretch x") for r in rows)
     assert froms[0] is None and froms[1] is start  # each scaling is draped from the best drape so far
     # a start already at the minimum is kept: every scaling is worse
-    mat2, x2, rows2 = refine_material(mat, "m", x, objective(x), dress_in, objective, rounds=2)
+    mat2, x2, rows2 = refine_material(mat, "m", x, objective(x), dress_in, objective)
     assert mat2 == mat and len(rows2) == 8
 
 
 def test_fit_friction_eps_reaches_phase_two_drapes(small_case, monkeypatch):
-    """fit_friction_eps is the slip speed of phase two's drapes (and of those only)."""
+    """OptimizerSettings.friction_eps is the slip speed of phase two's drapes (and of those only)."""
     import importlib
 
     from unsew.fit.fit import fit
@@ -577,19 +605,19 @@ def test_fit_friction_eps_reaches_phase_two_drapes(small_case, monkeypatch):
     cfg = load_config(
         **{
             **SMALL,
-            "iterations": 2,
-            "optimize_material": False,
-            "report": False,
-            "mesh_spread": 0.0,
-            "fit_friction_eps": 2e-3,
-            "redress_check": False,
+            "optimizer.iterations": 2,
+            "material.fit": [],
+            "output.report": False,
+            "checks.mesh_spread": 0.0,
+            "checks.redress": False,
         }
     )
+    monkeypatch.setattr(OptimizerSettings, "friction_eps", 2e-3)
     fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
     assert seen == [2e-3, 2e-3]
 
 
-def test_phase_two_stage_loss_step_and_state_dict(small_case):
+def test_phase_two_stage_loss_step_and_state_dict(small_case, monkeypatch):
     """The optimize stage on its own: loss() returns named terms whose weighted sum is the total;
     step() records them; a PhaseTwo loaded from another's state_dict steps exactly like it."""
     import torch
@@ -597,24 +625,16 @@ def test_phase_two_stage_loss_step_and_state_dict(small_case):
     from unsew.body.sdf import BodySDF
     from unsew.fit.material import MaterialChoice
     from unsew.fit.optimize import LOSS_TERMS, PhaseTwo
-    from unsew.fit.progress import Progress
     from unsew.fit.start import base_pattern_for, start
     from unsew.fit.target import Target
     from unsew.body.case import load_case
     from unsew.sim.material import get_material
 
     case = load_case(small_case)
-    cfg = load_config(**{**SMALL, "grading": False, "lambda_prior": 0.5})
+    cfg = load_config(**{**SMALL, "grading": False})
+    monkeypatch.setattr(LossWeights, "prior", 0.5)
     sdf, target = BodySDF.build(case.body), Target.of_case(case)
-    s = start(
-        base_pattern_for(case, cfg),
-        case.body,
-        target,
-        sdf,
-        cfg,
-        get_material("cotton"),
-        progress=Progress(False),
-    )
+    s = start(base_pattern_for(case, cfg), Scene(case.body, target, sdf, cfg), get_material("cotton"))
     two = PhaseTwo(MaterialChoice(s), target, sdf, cfg)
     terms, _, x = two.loss()
     w = cfg.loss
@@ -671,7 +691,11 @@ def test_redress_refuses_a_pattern_that_cannot_be_meshed_afresh():
     target = SimpleNamespace(distance_mm=lambda x, f: 7.5)
     lines = []
     rd = redress_check(
-        pat, None, None, start, None, target, None, FitConfig(), progress=Progress(False), log=lines.append
+        pat,
+        None,
+        None,
+        start,
+        Scene(None, target, None, FitConfig(), progress=Progress(False), log=lines.append),
     )
     assert not rd.phase_two_kept and rd.fit_redressed_mm is None and rd.graded_mm == 7.5
     assert "waistband_front" in rd.refused and "sliver" in rd.refused
@@ -707,12 +731,7 @@ def test_redress_refuses_a_pattern_its_reader_would_refuse(monkeypatch):
         None,
         None,
         start,
-        None,
-        target,
-        None,
-        FitConfig(),
-        progress=Progress(False),
-        log=lines.append,
+        Scene(None, target, None, FitConfig(), progress=Progress(False), log=lines.append),
     )
     assert not rd.phase_two_kept and rd.fit_redressed_mm is None and "crosses edge 4" in rd.refused
     assert meshed == [] and "graded pattern is returned" in lines[0]
@@ -748,35 +767,23 @@ def test_a_drape_from_scratch_that_fails_its_check_decides_nothing(monkeypatch):
         None,
         None,
         start,
-        None,
-        target,
-        None,
-        FitConfig(),
-        progress=Progress(False),
-        log=lines.append,
+        Scene(None, target, None, FitConfig(), progress=Progress(False), log=lines.append),
     )
     assert not rd.phase_two_kept and rd.fit_redressed_mm is None and rd.failed == torn and rd.refused == ""
     assert rd.graded_mm == 7.5 and "failed (exploded" in lines[0] and "graded pattern is returned" in lines[0]
-    assert checks.graded_afresh(start, None, target, None, FitConfig(), progress=Progress(False)) == (
+    assert checks.graded_afresh(start, Scene(None, target, None, FitConfig())) == (
         None,
         None,
     )
-    assert (
-        checks._dressed_mm(None, None, None, target, None, FitConfig(), 0.02, Progress(False), "it") is None
-    )
+    assert checks._dressed_mm(None, None, Scene(None, target, None, FitConfig()), 0.02, "it") is None
     monkeypatch.setattr(checks, "check_dressed", lambda d, body: SimpleNamespace(ok=True, reason=""))
-    assert checks._dressed_mm(None, None, None, target, None, FitConfig(), 0.02, Progress(False), "it") == 1.0
+    assert checks._dressed_mm(None, None, Scene(None, target, None, FitConfig()), 0.02, "it") == 1.0
     assert checks.redress_check(
         make_base_pattern("tshirt"),
         None,
         None,
         start,
-        None,
-        target,
-        None,
-        FitConfig(),
-        progress=Progress(False),
-        log=lines.append,
+        Scene(None, target, None, FitConfig(), progress=Progress(False), log=lines.append),
     ).phase_two_kept
 
 
@@ -831,7 +838,7 @@ def test_the_time_limit_counts_the_time_before_the_fit(small_case):
     from unsew.body.case import load_case
     from unsew.fit.fit import fit
 
-    cfg = load_config(**{**SMALL, "iterations": 2, "report": False}, time_limit=600)
+    cfg = load_config(**{**SMALL, "optimizer.iterations": 2, "output.report": False}, time_limit=600)
     r = fit(
         load_case(small_case), cfg, progress=False, log=lambda s: None, started=time.perf_counter() - 1000
     )
@@ -840,7 +847,7 @@ def test_the_time_limit_counts_the_time_before_the_fit(small_case):
     assert r.iterations == 0
 
 
-def test_a_spent_time_limit_leaves_out_the_optional_work_and_says_so(small_case, tmp_path):
+def test_a_spent_time_limit_leaves_out_the_optional_work_and_says_so(small_case, tmp_path, monkeypatch):
     """With the time limit spent before phase two (1 ms), the material choice grades in no other
     fabric and searches no stiffness, phase two makes no iteration, the mesh spread is skipped,
     and the fit still ends with a complete result (the graded pattern) whose metrics.json lists
@@ -852,16 +859,15 @@ def test_a_spent_time_limit_leaves_out_the_optional_work_and_says_so(small_case,
 
     auto = {
         **SMALL,
-        "material": "auto",
-        "material_candidates": "cotton,silk",
-        "material_regrade": 1,
-        "material_refine": 1,
-        "report": False,
+        "material.start": "auto",
+        "material.candidates": "cotton,silk",
+        "output.report": False,
     }
+    _fewer_material_steps(monkeypatch)
     out = tmp_path / "limited"
     result, metrics = run_fit(
         load_case(small_case),
-        load_config(**{**auto, "report": True}, time_limit=0.001),
+        load_config(**{**auto, "output.report": True}, time_limit=0.001),
         out,
         progress=False,
         log=lambda s: None,
@@ -908,16 +914,15 @@ def test_redress_on_three_meshes_compares_fresh_drapes_of_both_patterns(small_ca
     cfg = load_config(
         **{
             **SMALL,
-            "iterations": 2,
-            "pattern_start": 5,
-            "optimize_material": False,
-            "report": False,
-            "redress_meshes": 3,
+            "optimizer.iterations": 2,
+            "optimizer.pattern_start": 5,
+            "material.fit": [],
+            "output.report": False,
         }
     )
     r = fit(case, cfg, progress=False, log=lambda s: None)
     rd = r.redress
-    h = SMALL["edge_length"]
+    h = SMALL["drape.edge_length"]
     assert rd.meshes == 3 and rd.edge_lengths_m == pytest.approx([h, 0.96 * h, 1.04 * h])
     assert rd.fit_mm[0] == pytest.approx(rd.graded_fresh_mm[0], abs=1e-6)
     assert rd.graded_fresh_mm[0] == pytest.approx(rd.graded_mm, abs=1e-6)
@@ -967,12 +972,7 @@ def test_redress_on_three_keeps_phase_two_by_the_mean(monkeypatch, fit_mm, grade
         fit_pattern,
         None,
         start,
-        None,
-        target,
-        None,
-        load_config(),
-        progress=Progress(False),
-        log=lambda s: None,
+        Scene(None, target, None, load_config(), progress=Progress(False), log=lambda s: None),
     )
     assert check.phase_two_kept is kept and check.fit_mm == fit_mm and check.graded_fresh_mm == graded_mm
     assert check.fit_mean_mm == (pytest.approx(fit_mean) if fit_mean is not None else None)

@@ -11,16 +11,16 @@ import pytest
 from unsew.fit.config import load_config
 from unsew.io.mesh import read_mesh, write_obj
 
-SMALL = dict(
-    edge_length=0.03,
-    iterations=2,
-    steps=8,
-    sew_steps=60,
-    settle_steps=20,
-    target_points=1500,
-    material_start=1,
-    material="cotton",
-)
+SMALL = {
+    "drape.edge_length": 0.03,
+    "optimizer.iterations": 2,
+    "drape.steps": 8,
+    "drape.sew_steps": 60,
+    "drape.settle_steps": 20,
+    "loss.target_points": 1500,
+    "material.start_iteration": 1,
+    "material.start": "cotton",
+}
 
 
 def _settings(edge_length):
@@ -41,7 +41,7 @@ def _fit(case_dir, out, **kw):
     from unsew.fit.run import run_fit
     from unsew.body.case import load_case
 
-    cfg = load_config(**{**SMALL, "report": False, "mesh_spread": 0.0})
+    cfg = load_config(**{**SMALL, "output.report": False, "checks.mesh_spread": 0.0})
     return run_fit(load_case(case_dir, **kw), cfg, out, progress=False, log=lambda s: None)
 
 

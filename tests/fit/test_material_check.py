@@ -9,6 +9,7 @@ import torch
 
 from unsew.fit import material as mat_mod
 from unsew.fit.config import load_config
+from unsew.fit.scene import Scene
 from unsew.fit.progress import Progress
 from unsew.fit.start import Start
 from unsew.sim.material import get_material
@@ -54,7 +55,7 @@ def _run(monkeypatch, fresh_value, failed=""):
     cfg = load_config(None)
     lines = []
     s, rows = mat_mod._checked(
-        first, chosen, table, None, target, None, cfg, progress=Progress(False), log=lines.append
+        first, chosen, table, Scene(None, target, None, cfg, progress=Progress(False), log=lines.append)
     )
     assert dressed == [("pattern graded in polyester", chosen.material)]
     return first, chosen, s, rows, lines

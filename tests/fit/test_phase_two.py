@@ -8,25 +8,28 @@ slow; the default suite's proof runs phase two alone from the graded pattern wit
 (``test_phase_two_lowers_the_area_error``); the proof per floating-point path: ``python -m
 benchmarks phase_two_paths``."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
 from unsew.fit.config import load_config
+from unsew.fit.scene import Scene
 
-SMALL = dict(
-    edge_length=0.04,
-    iterations=6,
-    steps=8,
-    sew_steps=60,
-    settle_steps=20,
-    target_points=1500,
-    material="cotton",
-    optimize_material=False,
-    lr=0.004,
-    report=False,
-    mesh_spread=0.0,
-    side_seams="none",
-)  # the paper's grading, which leaves the side seams (and so the hip) alone
+SMALL = {
+    "drape.edge_length": 0.04,
+    "optimizer.iterations": 6,
+    "drape.steps": 8,
+    "drape.sew_steps": 60,
+    "drape.settle_steps": 20,
+    "loss.target_points": 1500,
+    "material.start": "cotton",
+    "material.fit": [],
+    "optimizer.lr": 0.004,
+    "output.report": False,
+    "checks.mesh_spread": 0.0,
+    "side_seams": "none",
+}  # the paper's grading, which leaves the side seams (and so the hip) alone
 HIP_CORNERS = [2, 9]  # the base dress's side-seam corners on the front and back panels
 
 
@@ -94,7 +97,7 @@ def test_phase_two_lowers_the_whole_pattern_error_on_the_hip(hip_fit):
 
 
 #: the default suite's setting: 16-step drapes, 8 iterations
-SMALL16 = {**SMALL, "steps": 16, "iterations": 8}
+SMALL16 = {**SMALL, "drape.steps": 16, "optimizer.iterations": 8}
 
 
 @pytest.fixture(scope="module")
@@ -108,7 +111,6 @@ def hip_phase_two(tmp_path_factory):
     from unsew.body.sdf import BodySDF
     from unsew.fit.material import MaterialChoice
     from unsew.fit.optimize import PhaseTwo
-    from unsew.fit.progress import Progress
     from unsew.fit.start import base_pattern_for, start
     from unsew.fit.synthetic import Alteration, make_truth_case
     from unsew.fit.target import Target
@@ -124,15 +126,7 @@ def hip_phase_two(tmp_path_factory):
         )
     )
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
-    s = start(
-        base_pattern_for(case, cfg),
-        case.body,
-        target,
-        sdf,
-        cfg,
-        get_material("cotton"),
-        progress=Progress(False),
-    )
+    s = start(base_pattern_for(case, cfg), Scene(case.body, target, sdf, cfg), get_material("cotton"))
     torch.manual_seed(cfg.seed)
     two = PhaseTwo(MaterialChoice(s), target, sdf, cfg)
     two.run()
@@ -246,25 +240,34 @@ def test_band_projectors_keep_a_waistbands_height_and_nothing_else():
     assert band_projectors(P, waistbands(make_base_pattern("pants")), "height") is None
 
 
+def _changed(group, changes: dict):
+    """``group`` (a config group) with ``changes`` applied: its settings replaced, its class
+    constants (OptimizerSettings.seams, LossWeights.stretch_bound, ...) overridden in a subclass."""
+    names = {f.name for f in dataclasses.fields(group)}
+    consts = {k: v for k, v in changes.items() if k not in names}
+    cls = type(type(group).__name__, (type(group),), consts) if consts else type(group)
+    return cls(**{n: changes.get(n, getattr(group, n)) for n in names})
+
+
 def _shorts_phase_two(tmp_path, base: str):
     """A phase two's start in small mode (5 cm mesh, 8-step drapes, three iterations, no grading)
     from the library base ``base`` on a shorts target drawn from altered shorts on the embedded
     default body; returns ``build(**groups)``, which makes a PhaseTwo from that start with the
     config's groups changed (``build(loss={"area": 1.0})``) and ``area`` the top-level option."""
-    import dataclasses
 
     from unsew.body.case import load_case
     from unsew.body.sdf import BodySDF
     from unsew.fit.material import MaterialChoice
     from unsew.fit.optimize import PhaseTwo
-    from unsew.fit.progress import Progress
     from unsew.fit.start import base_pattern_for, start
     from unsew.fit.synthetic import DEFAULT_ALTERATIONS, make_truth_case
     from unsew.fit.target import Target
     from unsew.sim.material import get_material
 
     cfg = load_config(
-        **dict(SMALL, edge_length=0.05, iterations=3, target_points=1000), grading=False, base=base
+        **{**SMALL, "drape.edge_length": 0.05, "optimizer.iterations": 3, "loss.target_points": 1000},
+        grading=False,
+        base=base,
     )
     case = load_case(
         make_truth_case(
@@ -275,20 +278,13 @@ def _shorts_phase_two(tmp_path, base: str):
         )
     )
     sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
-    s = start(
-        base_pattern_for(case, cfg),
-        case.body,
-        target,
-        sdf,
-        cfg,
-        get_material("cotton"),
-        progress=Progress(False),
-    )
+    s = start(base_pattern_for(case, cfg), Scene(case.body, target, sdf, cfg), get_material("cotton"))
 
     def build(area: str = cfg.area, **groups):
-        """A PhaseTwo from this start, ``groups``: config group -> field changes."""
+        """A PhaseTwo from this start, ``groups``: config group -> changes of its settings or of its
+        class constants (``{"optimizer": {"seams": "held"}}``)."""
         c = dataclasses.replace(
-            cfg, area=area, **{g: dataclasses.replace(getattr(cfg, g), **kw) for g, kw in groups.items()}
+            cfg, area=area, **{g: _changed(getattr(cfg, g), kw) for g, kw in groups.items()}
         )
         return PhaseTwo(MaterialChoice(s), target, sdf, c)
 

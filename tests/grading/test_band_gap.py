@@ -171,11 +171,15 @@ def test_the_band_edit_keeps_the_waist_seam_matched_and_meshable():
 
 
 def test_grade_refuses_an_unknown_band_gap():
-    from unsew.grading.grade import grade
+    from unsew.grading.grade import GradingSettings, grade
 
     with pytest.raises(InputError, match="band_gap"):
         grade(
-            make_base_pattern("skirt_darts"), None, np.zeros((3, 3)), np.array([[0, 1, 2]]), band_gap="loose"
+            make_base_pattern("skirt_darts"),
+            None,
+            np.zeros((3, 3)),
+            np.array([[0, 1, 2]]),
+            GradingSettings(band_gap="loose"),
         )
 
 

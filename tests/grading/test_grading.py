@@ -9,7 +9,15 @@ from unsew.body.body import default_body
 from unsew.grading.alter import alter_pattern, open_edges
 from unsew.grading.contours import hull_perimeter, match_contours, part_group, place_contours
 from unsew.grading.curves import curves_of_contour, rest_length
-from unsew.grading.grade import GRADE_SETTINGS, TABLE_COLUMNS, flat_drape, format_table, grade, source_girth
+from unsew.grading.grade import (
+    GRADE_SETTINGS,
+    TABLE_COLUMNS,
+    GradingSettings,
+    flat_drape,
+    format_table,
+    grade,
+    source_girth,
+)
 from unsew.meshing.sew import mesh_pattern
 from unsew.pattern.base import make_base_pattern
 from unsew.pattern.params import PatternParams, check_inverted
@@ -252,7 +260,7 @@ def test_grade_flat_recovers_known_hem_and_sleeve_changes(body, tshirt):
     tx = flat_drape(t, tm)
     # one pass: laid flat, the right sleeve sits shifted in its frame (below), which a second
     # pass from the flat "drape" would chase
-    res = grade(p, body, tx, tm.faces, mesh=m, drape_fn=flat_drape, passes=1)
+    res = grade(p, body, tx, tm.faces, GradingSettings(passes=1), mesh=m, drape_fn=flat_drape)
     assert res.fraction == 1.0
     assert len(check_inverted(res.mesh.uv, res.mesh.faces_uv)) == 0
     sk = body.skeleton
@@ -276,8 +284,10 @@ def test_graded_pattern_is_meshed_afresh_unless_told_otherwise(body, tshirt):
     t = alter_pattern(p, open_edges(p, "hem", panels=["front", "back"]), length=0.02)
     tm = mesh_pattern(t, edge_length=EDGE)
     tx = flat_drape(t, tm)
-    fresh = grade(p, body, tx, tm.faces, mesh=m, drape_fn=flat_drape, passes=1)
-    moved = grade(p, body, tx, tm.faces, mesh=m, drape_fn=flat_drape, passes=1, remesh="stretched")
+    fresh = grade(p, body, tx, tm.faces, GradingSettings(passes=1), mesh=m, drape_fn=flat_drape)
+    moved = grade(
+        p, body, tx, tm.faces, GradingSettings(passes=1, remesh="stretched"), mesh=m, drape_fn=flat_drape
+    )
     assert fresh.remeshed and not moved.remeshed
     # a 2 cm longer hem stretches no edge 1.5x: the base's triangles, moved with the pattern
     np.testing.assert_array_equal(moved.mesh.faces_uv, m.faces_uv)
@@ -314,8 +324,12 @@ def test_extra_hole_in_target_is_reported_and_left_alone(body, tshirt):
     keep = ~np.isin(tm.faces_uv, [centre]).any(axis=1)
     holed = tm.faces[keep]
     for length in ("axial", "cloth"):
-        clean = grade(p, body, tx, tm.faces, mesh=m, drape_fn=flat_drape, redrape=False, length=length)
-        res = grade(p, body, tx, holed, mesh=m, drape_fn=flat_drape, redrape=False, length=length)
+        clean = grade(
+            p, body, tx, tm.faces, GradingSettings(redrape=False, length=length), mesh=m, drape_fn=flat_drape
+        )
+        res = grade(
+            p, body, tx, holed, GradingSettings(redrape=False, length=length), mesh=m, drape_fn=flat_drape
+        )
         extra = [r for r in res.table if r["source_contour"] is None]
         assert len(extra) == 1 and "left alone" in extra[0]["warnings"][0]
         # the hole is never edited for; measured along the cloth, the hem's paths to the
@@ -340,7 +354,13 @@ def test_a_cuff_moved_past_the_sleeve_is_cut_not_collapsed(body, tshirt):
         idx = np.flatnonzero(tm.uv_panel == tm.panel_names.index(f"{side}_sleeve"))
         shift[tm.x_of_u[idx]] = -0.3 * sk.bone(f"{side}_elbow").direction
     res = grade(
-        p, body, tx + shift, tm.faces, mesh=m, drape_fn=flat_drape, redrape=False, max_centre_distance=1.0
+        p,
+        body,
+        tx + shift,
+        tm.faces,
+        GradingSettings(redrape=False, max_centre_distance=1.0),
+        mesh=m,
+        drape_fn=flat_drape,
     )
     assert len(check_inverted(res.mesh.uv, res.mesh.faces_uv)) == 0
     assert sum("move cut" in w for r in res.table for w in r["warnings"]) >= 2  # both sleeves
@@ -383,12 +403,12 @@ def test_bad_target_is_refused(body, tshirt):
         grade(p, body, np.zeros((0, 3)), np.zeros((0, 3), dtype=int), mesh=m, drape_fn=flat_drape)
     x = flat_drape(p, m)
     with pytest.raises(InputError, match="remesh"):
-        grade(p, body, x, m.faces, mesh=m, drape_fn=flat_drape, remesh="sometimes")
+        grade(p, body, x, m.faces, GradingSettings(remesh="sometimes"), mesh=m, drape_fn=flat_drape)
     with pytest.raises(InputError, match="length"):
-        grade(p, body, x, m.faces, mesh=m, drape_fn=flat_drape, length="bone")
+        grade(p, body, x, m.faces, GradingSettings(length="bone"), mesh=m, drape_fn=flat_drape)
 
 
-def _grade_simulated(body, garment, changes, edge, **kw):
+def _grade_simulated(body, garment, changes, edge):
     """Target draped by our simulator (``dress``) from ``garment`` altered by ``changes``
     ({group: (length [m], relative girth)}); the base pattern graded to it with the default
     drape. Returns (result, target verts, target mesh, target pattern)."""
@@ -407,15 +427,12 @@ def _grade_simulated(body, garment, changes, edge, **kw):
     # cholespy pinned, as when these figures were measured: on CHOLMOD the small skirt's second pass
     # moves its hem 1.0 cm instead of 1.3, and the pattern, 3 mm apart, drapes 9.3 mm from the
     # target instead of 5.3 (x0.70 of the base's distance instead of x0.40)
-    res = grade(
-        p,
-        body,
-        tx,
-        tm.faces,
-        settings=GRADE_SETTINGS.replace(edge_length=edge, backend="cholespy"),
-        sdf=sdf,
-        **kw,
-    )
+    settings = GRADE_SETTINGS.replace(edge_length=edge, backend="cholespy")
+
+    def drape_fn(p_, m_, b_):
+        return dress_drape(p_, m_, b_, sdf=sdf, settings=settings)
+
+    res = grade(p, body, tx, tm.faces, GradingSettings(drape=settings), drape_fn=drape_fn)
     return res, tx, tm, t
 
 
@@ -627,19 +644,18 @@ def test_carry_down_keeps_the_darts():
 
 
 def test_area_scaling_beyond_its_bound_is_said_in_one_line(body, tshirt):
-    """grade(area=...) sizes the pattern to the target's area; a target area the bounded scaling
-    cannot reach leaves the pattern short of it and logs one warning line, a reachable one none."""
+    """GradingSettings.area sizes the pattern to the target's area; a target area the bounded
+    scaling cannot reach leaves the pattern short of it with a one-line note, a reachable one none."""
     from unsew.grading.area import MAX_AREA_SCALE, pattern_area
 
     p, m = tshirt
     tx = flat_drape(p, m)
     a0 = pattern_area(p)
     for factor, warned in ((1.2, False), (4.0, True)):
-        lines = []
         res = grade(
-            p, body, tx, m.faces, mesh=m, drape_fn=flat_drape, passes=1, area=factor * a0, log=lines.append
+            p, body, tx, m.faces, GradingSettings(passes=1, area=factor * a0), mesh=m, drape_fn=flat_drape
         )
-        assert len(lines) == int(warned) and all("\n" not in s for s in lines)
+        assert (res.note is not None) == warned and "\n" not in (res.note or "")
         reached = pattern_area(res.pattern) / (factor * a0)
         assert (reached < 0.99) == warned, reached
     assert res.area_scales == [MAX_AREA_SCALE]

@@ -12,7 +12,7 @@ from unsew.errors import InputError, PatternError
 from unsew.grading.alter import alter_pattern, open_edges
 from unsew.grading.cloth import top_contour
 from unsew.grading.contours import place_contours
-from unsew.grading.grade import GradingError, flat_drape, grade
+from unsew.grading.grade import GradingError, GradingSettings, flat_drape, grade
 from unsew.grading.guards import (
     MIN_KEEP_WIDTH,
     WAIST_ABOVE_HIP,
@@ -55,11 +55,9 @@ def test_a_waist_is_not_moved_below_the_hips(body, skirt):
         body,
         flat_drape(t, tm),
         tm.faces,
+        GradingSettings(passes=1, redrape=False, length="axial"),
         mesh=m,
         drape_fn=flat_drape,
-        passes=1,
-        redrape=False,
-        length="axial",
     )
     row = _top_row(res)
     assert row["extension_m"] < -0.3  # what the target asked
@@ -119,7 +117,15 @@ def test_an_unmeshable_graded_pattern_is_scaled_back(body, skirt, monkeypatch):
         return real(pattern, **kw)
 
     monkeypatch.setattr(grade_module, "mesh_pattern", fails_twice)
-    res = grade(p, body, tx, tm.faces, mesh=m, drape_fn=flat_drape, passes=1, redrape=False, length="axial")
+    res = grade(
+        p,
+        body,
+        tx,
+        tm.faces,
+        GradingSettings(passes=1, redrape=False, length="axial"),
+        mesh=m,
+        drape_fn=flat_drape,
+    )
     assert res.fraction == pytest.approx(0.25) and len(calls) == 3
     assert any("scaled back to 25%" in w for r in res.table for w in r["warnings"])
 
@@ -128,7 +134,15 @@ def test_an_unmeshable_graded_pattern_is_scaled_back(body, skirt, monkeypatch):
 
     monkeypatch.setattr(grade_module, "mesh_pattern", always)
     with pytest.raises(GradingError, match="not of the input") as err:
-        grade(p, body, tx, tm.faces, mesh=m, drape_fn=flat_drape, passes=1, redrape=False, length="axial")
+        grade(
+            p,
+            body,
+            tx,
+            tm.faces,
+            GradingSettings(passes=1, redrape=False, length="axial"),
+            mesh=m,
+            drape_fn=flat_drape,
+        )
     assert not isinstance(err.value, InputError)
 
 

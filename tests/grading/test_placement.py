@@ -80,11 +80,11 @@ def test_choose_lift_keeps_the_placement_within_tolerance_or_when_lifts_fail(ski
 
 def test_grade_places_a_skirt_at_a_higher_target(skirt):
     from unsew.body.body import default_body
-    from unsew.grading.grade import grade
+    from unsew.grading.grade import GradingSettings, grade
 
     p, m = skirt
     tx = flat_drape(lifted(p, 0.04), lifted_mesh(m, 0.04))
-    g = grade(p, default_body(), tx, m.faces, mesh=m, drape_fn=_drape, passes=1)
+    g = grade(p, default_body(), tx, m.faces, GradingSettings(passes=1), mesh=m, drape_fn=_drape)
     rows = [r for r in g.table if any(e.startswith("placement") for e in r["edits"])]
     assert len(rows) == 1
     name = p.panel_order[0]
@@ -93,6 +93,8 @@ def test_grade_places_a_skirt_at_a_higher_target(skirt):
     # the returned mesh is placed as the returned pattern (a fresh dress of it starts there)
     fresh = mesh_pattern(g.pattern, edge_length=g.mesh.edge_length)
     assert g.mesh.uv_placed3d[:, 1].max() == pytest.approx(fresh.uv_placed3d[:, 1].max(), abs=1e-9)
-    off = grade(p, default_body(), tx, m.faces, mesh=m, drape_fn=_drape, passes=1, lift=False)
+    off = grade(
+        p, default_body(), tx, m.faces, GradingSettings(passes=1, lift=False), mesh=m, drape_fn=_drape
+    )
     assert not any(e.startswith("placement") for r in off.table for e in r["edits"])
     assert off.pattern.panels[name].translation[1] == pytest.approx(p.panels[name].translation[1])

@@ -1,4 +1,4 @@
-"""The side seams graded by girth (unsew.grading.profile; grade(side_seams="girth"))."""
+"""The side seams graded by girth (unsew.grading.profile; grade(GradingSettings(side_seams="girth")))."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import pytest
 
 from unsew.errors import InputError
 from unsew.fit.config import FitConfig, load_config
-from unsew.grading.grade import grade
+from unsew.grading.grade import GradingSettings, grade
 from unsew.grading.profile import MAX_MOVE, SideSeams, side_seam_moves, side_seam_points, torso_girth
 from unsew.meshing.sew import mesh_pattern
 from unsew.pattern.base import make_base_pattern
@@ -127,7 +127,7 @@ def test_side_seams_mode_is_checked():
     p = make_base_pattern("dress")
     v, f = cylinder(0.15, 0.6, 1.5)
     with pytest.raises(InputError, match="side_seams"):
-        grade(p, None, v, f, side_seams="curved")
+        grade(p, None, v, f, GradingSettings(side_seams="curved"))
     assert FitConfig().side_seams == "girth"
 
 

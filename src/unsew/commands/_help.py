@@ -1,12 +1,17 @@
 """What every command's ``--help`` shares: a formatter that keeps the examples' line breaks and
-states each option's default, and the deprecated ``--quiet`` spelling of ``--no-progress``."""
+states each option's default, the fit's config settings, and the deprecated ``--quiet`` spelling of
+``--no-progress``."""
 
 from __future__ import annotations
 
 import argparse
 import sys
 
-__all__ = ["HelpFormatter", "examples", "add_progress_switch"]
+__all__ = ["HelpFormatter", "examples", "add_progress_switch", "FIT_SETTINGS", "fit_settings"]
+
+#: Stands in an epilog for :func:`fit_settings`, filled in when the help is printed (reading the
+#: fit's config imports the simulator, which building the parser must not).
+FIT_SETTINGS = "<fit settings>"
 
 
 class HelpFormatter(argparse.HelpFormatter):
@@ -16,6 +21,7 @@ class HelpFormatter(argparse.HelpFormatter):
 
     def _fill_text(self, text: str, width: int, indent: str) -> str:
         if text.startswith("examples:"):
+            text = text.replace(FIT_SETTINGS, fit_settings()) if FIT_SETTINGS in text else text
             return "".join(indent + line for line in text.splitlines(keepends=True))
         return super()._fill_text(text, width, indent)
 
@@ -26,6 +32,40 @@ class HelpFormatter(argparse.HelpFormatter):
         if action.option_strings or action.nargs in (argparse.OPTIONAL, argparse.ZERO_OR_MORE):
             text += " (default: %(default)s)"
         return text
+
+
+def fit_settings(width: int = 100) -> str:
+    """The fit's config settings (:func:`unsew.fit.config.user_settings`) with their defaults in
+    YAML: the top-level ones, then a line per group (wrapped at ``width`` characters)."""
+    import yaml
+
+    from unsew.fit.config import FitConfig, config_to_dict, user_settings
+
+    def flow(v) -> str:
+        text = yaml.safe_dump(v, default_flow_style=True, sort_keys=False, width=10**6)
+        return text.removesuffix("\n").removesuffix("\n...").strip()
+
+    lines = [f"settings of --config FIT.yaml ({len(user_settings())}), their defaults:"]
+    top: list = []
+    for key, value in config_to_dict(FitConfig()).items():
+        if isinstance(value, dict):
+            items = [f"{k}: {flow(v)}" for k, v in value.items()]
+            lines += _wrapped(f"{key}: {{", items, "}", width)
+        else:
+            top.append(f"{key}: {flow(value)}")
+    return "\n".join([lines[0], *_wrapped("", top, "", width), *lines[1:]])
+
+
+def _wrapped(head: str, items: list, tail: str, width: int) -> list:
+    """``head`` + ``items`` joined by ", " + ``tail``, indented two spaces, broken between items."""
+    lines, cur = [], "  " + head
+    for k, item in enumerate(items):
+        piece = item + (", " if k < len(items) - 1 else tail)
+        if len(cur) + len(piece.rstrip()) > width and cur.strip():
+            lines.append(cur.rstrip())
+            cur = "    "
+        cur += piece
+    return lines + [cur.rstrip()]
 
 
 def examples(*lines: str) -> str:

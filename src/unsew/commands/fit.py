@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from unsew.commands._output import check_out
-from unsew.commands._help import HelpFormatter, add_progress_switch, examples
+from unsew.commands._help import FIT_SETTINGS, HelpFormatter, add_progress_switch, examples
 from unsew.errors import InputError
 
 __all__ = ["register", "run", "add_fit_options", "config_from_args"]
@@ -18,7 +18,8 @@ def add_fit_options(p: argparse.ArgumentParser, *, demo: bool = False) -> None:
     p.add_argument(
         "--config",
         metavar="FIT.yaml",
-        help="fit configuration (YAML); flags below override it (default: none, the built-in configuration)",
+        help="fit configuration (YAML; `unsew fit --help` lists its settings); flags below override it "
+        "(default: none, the built-in configuration)",
     )
     p.add_argument(
         "--iterations",
@@ -111,7 +112,10 @@ def register(sub: argparse._SubParsersAction) -> None:
         epilog=examples(
             "unsew fit case/ --out result/",
             "unsew fit case/ --out result/ --material denim --iterations 40 --edge-length 0.03 --no-progress",
-        ),
+            "unsew fit case/ --out result/ --config fit.yaml",
+        )
+        + "\n\n"
+        + FIT_SETTINGS,
     )
     p.add_argument(
         "case",

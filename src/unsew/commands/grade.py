@@ -19,8 +19,43 @@ from unsew.pattern.base import BASES
 __all__ = ["register", "run"]
 
 
-def _grading_options(p: argparse.ArgumentParser) -> None:
-    """How the grading moves the pattern: --length, --area, --side-seams, --band-gap."""
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "grade",
+        help="grade a base pattern to a target's hems, cuffs, necklines (phase one)",
+        formatter_class=HelpFormatter,
+        epilog=examples(
+            "unsew grade case/ --out graded/", "unsew grade case/ --base skirt_band --flat --out graded/"
+        ),
+    )
+    p.add_argument(
+        "case", metavar="CASE_DIR", help="case folder (target.obj, body, meta.json; see FORMATS.md)"
+    )
+    p.add_argument(
+        "--base",
+        default=None,
+        metavar="NAME|P.json",
+        help=f"base pattern, sized to the wearer as the fit sizes it: {', '.join(BASES)}, or a GarmentCode "
+        "JSON file (default: the case's garment type)",
+    )
+    p.add_argument("--out", required=True, metavar="DIR", help="result folder to create")
+    p.add_argument(
+        "--edge-length",
+        type=float,
+        default=0.03,
+        help="rest edge length of the panel meshes [m] (default: 0.03)",
+    )
+    p.add_argument("--material", default="cotton", help="material name from the library (default: cotton)")
+    _add_grading_rules(p)
+    p.add_argument(
+        "--flat", action="store_true", help="no simulation: use the flat-placed panels as drapes (quick look)"
+    )
+    p.add_argument("--overwrite", action="store_true", help="replace --out if it exists")
+    p.set_defaults(func=run)
+
+
+def _add_grading_rules(p: argparse.ArgumentParser) -> None:
+    """The options that choose grading's rules (each a field of GradingSettings)."""
     p.add_argument(
         "--length",
         choices=["cloth", "axial"],
@@ -54,41 +89,6 @@ def _grading_options(p: argparse.ArgumentParser) -> None:
     )
 
 
-def register(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser(
-        "grade",
-        help="grade a base pattern to a target's hems, cuffs, necklines (phase one)",
-        formatter_class=HelpFormatter,
-        epilog=examples(
-            "unsew grade case/ --out graded/", "unsew grade case/ --base skirt_band --flat --out graded/"
-        ),
-    )
-    p.add_argument(
-        "case", metavar="CASE_DIR", help="case folder (target.obj, body, meta.json; see FORMATS.md)"
-    )
-    p.add_argument(
-        "--base",
-        default=None,
-        metavar="NAME|P.json",
-        help=f"base pattern, sized to the wearer as the fit sizes it: {', '.join(BASES)}, or a GarmentCode "
-        "JSON file (default: the case's garment type)",
-    )
-    p.add_argument("--out", required=True, metavar="DIR", help="result folder to create")
-    p.add_argument(
-        "--edge-length",
-        type=float,
-        default=0.03,
-        help="rest edge length of the panel meshes [m] (default: 0.03)",
-    )
-    p.add_argument("--material", default="cotton", help="material name from the library (default: cotton)")
-    _grading_options(p)
-    p.add_argument(
-        "--flat", action="store_true", help="no simulation: use the flat-placed panels as drapes (quick look)"
-    )
-    p.add_argument("--overwrite", action="store_true", help="replace --out if it exists")
-    p.set_defaults(func=run)
-
-
 def run(args: argparse.Namespace) -> int:
     import sys
 
@@ -96,8 +96,7 @@ def run(args: argparse.Namespace) -> int:
     from unsew.commands._output import check_out
     from unsew.fit.config import FitConfig
     from unsew.fit.start import base_pattern_for, with_garment_read
-    from unsew.geometry.repair import triangle_areas
-    from unsew.grading.grade import GRADE_SETTINGS, flat_drape, format_table, grade
+    from unsew.grading.grade import flat_drape, format_table, grade
     from unsew.meshing.sew import EDGE_LENGTH_RANGE
 
     lo, hi = EDGE_LENGTH_RANGE
@@ -109,32 +108,36 @@ def run(args: argparse.Namespace) -> int:
     pattern = base_pattern_for(case, cfg)  # a bad name fails before --out is made
     with atomic_dir(args.out, overwrite=args.overwrite) as tmp:
         kw = {"drape_fn": flat_drape} if args.flat else {}
-        res = grade(
-            pattern,
-            case.body,
-            case.target_verts,
-            case.target_faces,
-            settings=GRADE_SETTINGS.replace(edge_length=args.edge_length),
-            material=args.material,
-            length=args.length,
-            area=float(triangle_areas(case.target_verts, case.target_faces).sum())
-            if args.area == "target"
-            else None,
-            side_seams=args.side_seams,
-            band_gap=args.band_gap,
-            log=print,
-            **kw,
-        )
-        _write_results(tmp, res, case, args)
+        res = grade(pattern, case.body, case.target_verts, case.target_faces, _settings(args, case), **kw)
+        if res.note:
+            print(res.note)
+        _write(tmp, res, case, args)
     print(format_table(res.table))
     note = "" if res.fraction == 1.0 else f" (edit scaled back to {res.fraction:.0%})"
     print(f"wrote {args.out}: pattern.json, garment.obj, garment_init.obj, contours.json{note}")
     return 0
 
 
-def _write_results(tmp, res, case, args: argparse.Namespace) -> None:
-    """Write pattern.json, garment.obj, garment_init.obj and contours.json of the grading
-    result ``res`` into the folder ``tmp``."""
+def _settings(args: argparse.Namespace, case):
+    """The GradingSettings the options ask for (the target's surface area from ``case``)."""
+    from unsew.geometry.repair import triangle_areas
+    from unsew.grading.grade import GRADE_SETTINGS, GradingSettings
+
+    return GradingSettings(
+        drape=GRADE_SETTINGS.replace(edge_length=args.edge_length),
+        material=args.material,
+        length=args.length,
+        area=float(triangle_areas(case.target_verts, case.target_faces).sum())
+        if args.area == "target"
+        else None,
+        side_seams=args.side_seams,
+        band_gap=args.band_gap,
+    )
+
+
+def _write(tmp, res, case, args: argparse.Namespace) -> None:
+    """The result folder's files: pattern.json, garment.obj (X_LG, the pattern as UVs),
+    garment_init.obj (X_init) and contours.json (the options, what grading did, its table)."""
     import json
 
     from unsew.io.garmentcode import save_pattern

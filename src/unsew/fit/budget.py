@@ -11,7 +11,7 @@ What gives way, in the order a fit reaches it:
 - phase two stops before an iteration that would leave too little time for one more iteration
   and the re-dress check on the fit's mesh (one drape from scratch);
 - the re-dress check's four drapes on the other two meshes and the graded pattern's on the
-  fit's mesh (``checks.redress_meshes: 3``) run only when five more drapes fit (the re-dress
+  fit's mesh (``unsew.fit.checks.REDRESS_MESHES`` 3) run only when five more drapes fit (the re-dress
   on the fit's mesh, timed, is the estimate); otherwise phase two is judged on one mesh;
 - the mesh spread (two drapes from scratch, a diagnostic; the three-mesh check's own when that
   ran) is skipped when it would not fit.

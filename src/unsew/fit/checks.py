@@ -5,7 +5,7 @@ steering the cloth along its path rather than from a better pattern. Phase two's
 its material, is dressed from scratch on the same mesh; unless it lies closer to the target than
 the graded pattern's drape, the graded pattern, its drape and the start material are the result.
 
-With ``checks.redress_meshes: 3`` the check judges on three meshes instead of one (docs/decisions/005: one
+With :data:`REDRESS_MESHES` 3 the check judges on three meshes instead of one (docs/decisions/005: one
 drape of a wide garment moves by more than phase two changes it, and the graded drape it is
 compared with was chosen among the material candidates' drapes for being close): both patterns are
 dressed from scratch on the fit's mesh and on the mesh spread's two, and phase two is kept if its
@@ -31,9 +31,8 @@ import numpy as np
 from unsew.dress import dress
 from unsew.errors import PatternError, SimulationError
 from unsew.fit.config import FitConfig
-from unsew.fit.progress import Progress
+from unsew.fit.scene import Scene
 from unsew.fit.start import Start
-from unsew.fit.target import Target
 from unsew.grading.grade import moved_mesh
 from unsew.meshing import mesh_pattern
 from unsew.pattern.curves import panel_outline
@@ -52,8 +51,13 @@ __all__ = [
     "unmoved",
     "kept_on_meshes",
     "REDRESS_MARGIN_MM",
+    "REDRESS_MESHES",
     "UNMOVED_TOL",
 ]
+
+#: meshes the re-dress check judges on: 3, both patterns dressed from scratch on the fit's mesh and
+#: the mesh spread's two, means compared; 1, the fit's mesh alone (docs/decisions/005) [-]
+REDRESS_MESHES = 3
 
 #: Phase two's pattern is kept only if, dressed from scratch, it lies at least this much closer
 #: to the target than the graded pattern's drape [mm]. An unmoved pattern re-dresses to its
@@ -118,26 +122,15 @@ class MeshSpread:
         return asdict(self)
 
 
-def redress_check(
-    pattern,
-    uv,
-    material,
-    start: Start,
-    body,
-    target: Target,
-    sdf,
-    cfg: FitConfig,
-    *,
-    progress: Progress,
-    log=print,
-) -> RedressCheck:
+def redress_check(pattern, uv, material, start: Start, scene: Scene) -> RedressCheck:
     """Dress ``pattern`` (rest positions ``uv`` (Nu, 2) [m] on ``start.mesh``'s topology) in
-    ``material`` from scratch and compare it with the graded drape ``start.x``. A pattern that
-    cannot be meshed afresh (phase two moved the rest mesh's vertices, which can squeeze a panel
-    flat while the moved mesh still drapes) or that its own reader would refuse
+    ``material`` from scratch on ``scene.body`` and compare it with the graded drape ``start.x``.
+    A pattern that cannot be meshed afresh (phase two moved the rest mesh's vertices, which can
+    squeeze a panel flat while the moved mesh still drapes) or that its own reader would refuse
     (:func:`unsew.pattern.validate.validate_pattern`: an outline crossing itself at a corner,
     which meshing can survive) is refused and the graded pattern returned: written, it could not
     be loaded back."""
+    body, target, cfg, log = scene.body, scene.target, scene.cfg, scene.log
     cf_graded = target.distance_mm(start.x, start.mesh.faces)
     try:
         # an outline crossing itself, which a mesh can survive, is refused too
@@ -149,12 +142,12 @@ def redress_check(
             "the graded pattern is returned"
         )
         return RedressCheck(None, cf_graded, False, refused=str(exc))
-    with progress.phase("re-dress the fit") as bar:
+    with scene.progress.phase("re-dress the fit") as bar:
         x, failed = _judged(
             dress(
                 pattern,
                 body,
-                sdf=sdf,
+                sdf=scene.sdf,
                 mesh=moved_mesh(start.mesh, pattern, uv),
                 material=material,
                 settings=cfg.drape,
@@ -206,17 +199,7 @@ def kept_on_meshes(fit_mm: list, graded: list) -> tuple[bool, float | None, floa
 
 
 def redress_on_three(
-    first: RedressCheck,
-    pattern,
-    material,
-    start: Start,
-    body,
-    target: Target,
-    sdf,
-    cfg: FitConfig,
-    *,
-    progress: Progress,
-    log=print,
+    first: RedressCheck, pattern, material, start: Start, scene: Scene
 ) -> tuple[RedressCheck, MeshSpread]:
     """The re-dress check judged on three meshes. ``first`` is :func:`redress_check`'s verdict on
     the fit's mesh (phase two's ``pattern`` in ``material`` dressed from scratch; not refused).
@@ -227,22 +210,20 @@ def redress_on_three(
     mean, and it failed on none of them, or if its drapes failed on fewer meshes than the graded
     one's (:func:`kept_on_meshes`). Also returns the mesh spread of the returned pattern,
     from these drapes (no further drape is needed)."""
-    lengths = spread_lengths(cfg)
-    x_graded, g0 = graded_afresh(start, body, target, sdf, cfg, progress=progress)
+    lengths = spread_lengths(scene.cfg)
+    x_graded, g0 = graded_afresh(start, scene)
     graded = [g0] + [
-        _dressed_mm(start.graded, start.material, body, target, sdf, cfg, h, progress, "the graded pattern")
-        for h in lengths
+        _dressed_mm(start.graded, start.material, scene, h, "the graded pattern") for h in lengths
     ]
     if unmoved(pattern, material, start):  # the same pattern: its drapes are the graded ones
-        log("re-dress check: phase two moved neither the pattern nor the material")
+        scene.log("re-dress check: phase two moved neither the pattern nor the material")
         fit_mm = [first.fit_redressed_mm] + graded[1:]
     else:
         fit_mm = [first.fit_redressed_mm] + [
-            _dressed_mm(pattern, material, body, target, sdf, cfg, h, progress, "phase two's pattern")
-            for h in lengths
+            _dressed_mm(pattern, material, scene, h, "phase two's pattern") for h in lengths
         ]
     kept, fit_mean, graded_mean, why = kept_on_meshes(fit_mm, graded)
-    log(
+    scene.log(
         f"re-dress check on three meshes: the fitted pattern dressed from scratch lies {mm_list(fit_mm)} mm "
         f"from the target, the graded one {mm_list(graded)} mm: "
         + ("fit kept" if kept else "the graded pattern is returned")
@@ -253,7 +234,7 @@ def redress_on_three(
         first.graded_mm,
         kept,
         meshes=3,
-        edge_lengths_m=[cfg.drape.edge_length, *lengths],
+        edge_lengths_m=[scene.cfg.drape.edge_length, *lengths],
         fit_mm=fit_mm,
         graded_fresh_mm=graded,
         fit_mean_mm=fit_mean,
@@ -289,29 +270,27 @@ def unmoved(pattern, material, start: Start) -> bool:
     )
 
 
-def graded_afresh(
-    start: Start, body, target: Target, sdf, cfg: FitConfig, *, progress: Progress
-) -> tuple[np.ndarray | None, float | None]:
+def graded_afresh(start: Start, scene: Scene) -> tuple[np.ndarray | None, float | None]:
     """The graded pattern in its material dressed from scratch on the fit's mesh (``start.x`` was
     let settle from another material's drape): the drape (Nx, 3) [m] and its distance to the
     target [mm], or (None, None) when the drape fails (raises, or fails its check)."""
-    with progress.phase("dress the graded pattern afresh") as bar:
+    with scene.progress.phase("dress the graded pattern afresh") as bar:
         try:
             x, failed = _judged(
                 dress(
                     start.graded,
-                    body,
-                    sdf=sdf,
+                    scene.body,
+                    sdf=scene.sdf,
                     mesh=start.mesh,
                     material=start.material,
-                    settings=cfg.drape,
+                    settings=scene.cfg.drape,
                     progress=bar,
                 ),
-                body,
+                scene.body,
             )
         except SimulationError:
             return None, None
-    return (None, None) if failed else (x, target.distance_mm(x, start.mesh.faces))
+    return (None, None) if failed else (x, scene.target.distance_mm(x, start.mesh.faces))
 
 
 def _judged(d, body) -> tuple[np.ndarray, str]:
@@ -333,48 +312,36 @@ def spread_lengths(cfg: FitConfig) -> list[float]:
     return [h0 * (1 - s), h0 * (1 + s)]
 
 
-def _dressed_mm(
-    pattern, material, body, target: Target, sdf, cfg: FitConfig, h: float, progress: Progress, what: str
-) -> float | None:
+def _dressed_mm(pattern, material, scene: Scene, h: float, what: str) -> float | None:
     """``pattern`` in ``material`` meshed at edge length ``h`` [m] and dressed from scratch (the
     fit's settings): its distance to the target [mm], or None when the drape fails
     (SimulationError, its check, or PatternError: the pattern cannot be meshed at that length)."""
-    with progress.phase(f"dress {what} on a {100 * h:.2f} cm mesh") as bar:
+    with scene.progress.phase(f"dress {what} on a {100 * h:.2f} cm mesh") as bar:
         try:
             d = dress(
                 pattern,
-                body,
-                sdf=sdf,
+                scene.body,
+                sdf=scene.sdf,
                 material=material,
-                settings=cfg.drape.replace(edge_length=h),
+                settings=scene.cfg.drape.replace(edge_length=h),
                 progress=bar,
             )
         except (SimulationError, PatternError):
             return None
-    x, failed = _judged(d, body)
-    return None if failed else target.distance_mm(x, d.mesh.faces)
+    x, failed = _judged(d, scene.body)
+    return None if failed else scene.target.distance_mm(x, d.mesh.faces)
 
 
-def mesh_spread(
-    pattern,
-    material,
-    body,
-    target: Target,
-    sdf,
-    cfg: FitConfig,
-    result_mm: float,
-    *,
-    progress: Progress,
-    log=print,
-) -> MeshSpread:
+def mesh_spread(pattern, material, scene: Scene, result_mm: float) -> MeshSpread:
     """``pattern`` in ``material`` dressed from scratch (the fit's settings) on the meshes of
     :func:`spread_lengths`. A drape that fails is None: the figure is a diagnostic, not the
     result."""
-    lengths = spread_lengths(cfg)
-    out = [_dressed_mm(pattern, material, body, target, sdf, cfg, h, progress, "the result") for h in lengths]
+    lengths = spread_lengths(scene.cfg)
+    out = [_dressed_mm(pattern, material, scene, h, "the result") for h in lengths]
     spread = MeshSpread(lengths, out, result_mm)
-    log(
-        f"mesh spread: the returned pattern dressed on meshes {100 * cfg.checks.mesh_spread:.0f} % finer / "
+    scene.log(
+        f"mesh spread: the returned pattern dressed on meshes {100 * scene.cfg.checks.mesh_spread:.0f} % "
+        "finer / "
         f"coarser lies {mm_list(out)} mm from the target "
         f"(the result {result_mm:.2f} mm)"
     )

@@ -5,7 +5,7 @@ Every simulator rests cloth at its own distance from the body: one with particle
 radius, unsew where the repulsion of :mod:`unsew.sim.energies.contact` balances what the cloth
 presses with, as near as the collision thickness where it is pulled tight. A band pulled round a
 waist s nearer the body is a loop 2 pi s shorter, which phase two then makes up by lengthening the
-pattern. With ``contact: target`` the fit reads the gap from the target and body it is given and
+pattern. With :data:`CONTACT` "target" the fit reads the gap from the target and body it is given and
 drapes with a contact that rests the cloth there: the threshold at the gap, the stiffness
 CONTACT_STIFF, under which a cloth pressing with p sinks s = sqrt(p / kc) into the zone (1 kPa, a
 band's pressure: 1 mm). Not the default: docs/decisions/012.
@@ -19,6 +19,7 @@ import torch
 from unsew.geometry.distance import point_mesh_distance
 
 __all__ = [
+    "CONTACT",
     "CONTACT_MODES",
     "CONTACT_STIFF",
     "GAP_PERCENTILE",
@@ -28,8 +29,11 @@ __all__ = [
     "contact_for_target",
 ]
 
-#: What the fit does with the body contact (``contact``).
+#: What the fit can do with the body contact: drape.contact_stiffness below drape.contact_threshold
+#: ("default"), or the threshold at the target's gap to the body, a stiffer contact ("target").
 CONTACT_MODES = ("default", "target")
+#: What the fit does with the body contact (docs/decisions/012: "target" measured, not adopted).
+CONTACT = "default"
 
 #: Contact stiffness kc [N/m^4] under ``contact: target`` (the default's 1e7 x 100).
 CONTACT_STIFF = 1e9
@@ -61,14 +65,17 @@ def target_gap(target_verts, body, sdf) -> float:
     return float(np.percentile(signed_body_distance(target_verts, body, sdf), GAP_PERCENTILE))
 
 
-def contact_for_target(cfg, target_verts, body, sdf):
-    """(cfg, info): ``cfg`` with its drape contact set from the target when ``cfg.contact`` is
-    "target" (threshold = the target's gap clamped to GAP_RANGE_M, stiffness CONTACT_STIFF), else
-    unchanged; info, for metrics.json: {"mode", "gap_mm" (the measured gap, "target" only),
-    "threshold_mm", "stiffness"} of the contact every drape of the fit uses."""
+def contact_for_target(cfg, target_verts, body, sdf, *, mode: str = CONTACT):
+    """(cfg, info): ``cfg`` with its drape contact set from the target when ``mode`` (one of
+    CONTACT_MODES, default :data:`CONTACT`) is "target" (threshold = the target's gap clamped to
+    GAP_RANGE_M, stiffness CONTACT_STIFF), else unchanged; info, for metrics.json: {"mode",
+    "gap_mm" (the measured gap, "target" only), "threshold_mm", "stiffness"} of the contact every
+    drape of the fit uses."""
+    if mode not in CONTACT_MODES:
+        raise ValueError(f"contact mode must be one of {', '.join(CONTACT_MODES)}, got {mode!r}")
     d = cfg.drape
-    info = {"mode": cfg.contact}
-    if cfg.contact == "target":
+    info = {"mode": mode}
+    if mode == "target":
         gap = target_gap(target_verts, body, sdf)
         thr = float(np.clip(gap, *GAP_RANGE_M))
         d = d.replace(contact_threshold=thr, contact_stiffness=CONTACT_STIFF)

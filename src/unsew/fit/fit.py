@@ -26,6 +26,7 @@ from unsew.errors import InputError
 from unsew.fit.budget import TimeBudget
 from unsew.fit.checkpoint import load_checkpoint, save_checkpoint
 from unsew.fit.checks import (
+    REDRESS_MESHES,
     MeshSpread,
     RedressCheck,
     graded_afresh,
@@ -38,7 +39,8 @@ from unsew.fit.contact import contact_for_target
 from unsew.fit.material import AUTO_START_MATERIAL, MaterialChoice, choose_start
 from unsew.fit.optimize import Iteration, PhaseTwo
 from unsew.fit.progress import BAR_SAMPLES, Progress
-from unsew.fit.start import choose_base, start_chosen, with_garment_read
+from unsew.fit.scene import Scene
+from unsew.fit.start import Start, choose_base, start_chosen, with_garment_read
 from unsew.fit.target import Target
 from unsew.sim.checks import DrapeVerdict, check_drape
 
@@ -138,32 +140,15 @@ def fit(
     torch.manual_seed(cfg.seed)
     _check_device(cfg.device)
     case = with_garment_read(case, cfg, log=log)
-    material0 = resolve_material(AUTO_START_MATERIAL if cfg.material.start == "auto" else cfg.material.start)
-    sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
-    cfg, contact = contact_for_target(cfg, target.verts, case.body, sdf)
-    if cfg.contact == "target":
-        log(
-            f"contact: the target's cloth rests {contact['gap_mm']:.1f} mm from the body; every drape rests "
-            f"it {contact['threshold_mm']:.1f} mm off (contact stiffness {contact['stiffness']:.0e} N/m^4)"
-        )
+    scene, contact = _scene(case, cfg, bar, log)
     clock.lap("body_sdf_s")
     saved = load_checkpoint(checkpoint) if resume and checkpoint and Path(checkpoint).is_file() else None
     if saved is not None:  # phase one and the material choice are in the checkpoint
         choice, state = saved
         log(f"resuming from iteration {state['iteration']} ({checkpoint})")
     else:
-        base = choose_base(case, target, sdf, cfg, material0, progress=bar, log=log)
-        clock.lap("base_choice_s", keep=bool(base.table))
-        first = start_chosen(
-            base, case.body, target, sdf, cfg, material0, progress=bar, log=log, budget=budget
-        )
-        garment = first.base_name
-        clock.lap("grading_s")
-        choice = choose_start(
-            first, case.body, target, sdf, cfg, progress=bar, log=log, garment=garment, budget=budget
-        )
-        clock.lap("material_choice_s", keep=cfg.material.start == "auto")
-    two = PhaseTwo(choice, target, sdf, cfg)
+        choice = _phase_one(case, scene, clock, budget)
+    two = PhaseTwo(choice, scene.target, scene.sdf, scene.cfg)
     if two.rest["steps"]:
         log(
             f"phase two starts from the graded drape let settle {two.rest['steps']} more steps: it was still "
@@ -172,12 +157,51 @@ def fit(
         )
     if saved is not None:
         two.load_state_dict(state)
-    shown = bar.iterations(
+    _run_phase_two(two, choice, scene, budget, checkpoint=checkpoint, callback=callback)
+    clock.lap("optimization_s")
+    result = _checked_result(case, choice, two, scene, clock, budget)
+    result.contact = contact
+    return result
+
+
+def _scene(case, cfg: FitConfig, bar: Progress, log) -> tuple[Scene, dict]:
+    """(the fit's Scene, its body contact for metrics.json): the body's SDF and the target read,
+    the contact set from the target where :data:`unsew.fit.contact.CONTACT` says so (logged)."""
+    sdf, target = BodySDF.build(case.body), Target.of_case(case, seed=cfg.seed)
+    cfg, contact = contact_for_target(cfg, target.verts, case.body, sdf)
+    if contact["mode"] == "target":
+        log(
+            f"contact: the target's cloth rests {contact['gap_mm']:.1f} mm from the body; every drape rests "
+            f"it {contact['threshold_mm']:.1f} mm off (contact stiffness {contact['stiffness']:.0e} N/m^4)"
+        )
+    return Scene(case.body, target, sdf, cfg, bar, log), contact
+
+
+def _phase_one(case, scene: Scene, clock, budget: TimeBudget) -> MaterialChoice:
+    """Phase two's start: the base chosen, graded (:func:`start_chosen`) and its fabric chosen
+    (:func:`choose_start`), each stage timed on ``clock``."""
+    cfg = scene.cfg
+    material0 = resolve_material(AUTO_START_MATERIAL if cfg.material.start == "auto" else cfg.material.start)
+    base = choose_base(case, scene.target, scene.sdf, cfg, material0, progress=scene.progress, log=scene.log)
+    clock.lap("base_choice_s", keep=bool(base.table))
+    first = start_chosen(base, scene, material0, budget=budget)
+    clock.lap("grading_s")
+    choice = choose_start(first, scene, garment=first.base_name, budget=budget)
+    clock.lap("material_choice_s", keep=cfg.material.start == "auto")
+    return choice
+
+
+def _run_phase_two(
+    two: PhaseTwo, choice: MaterialChoice, scene: Scene, budget: TimeBudget, *, checkpoint, callback
+):
+    """Run phase two, a bar or line per iteration, a checkpoint written after each; it stops
+    while one more iteration and the re-dress check (a drape from scratch) fit ``budget``."""
+    cfg, target = scene.cfg, scene.target
+    shown = scene.progress.iterations(
         cfg.optimizer.iterations,
         two.iteration,
         lambda info: target.distance_mm(info.x.cpu().numpy(), info.faces, n_samples=BAR_SAMPLES),
     )
-
     ticks = [time.perf_counter()]  # when each iteration ended (the first: when phase two began)
 
     def on_iteration(info: Iteration) -> None:
@@ -189,7 +213,6 @@ def fit(
         if callback is not None:
             callback(info)
 
-    # phase two stops while one more iteration and the re-dress check (a drape from scratch) fit
     redress_s = choice.start.dress_s if cfg.checks.redress else 0.0
 
     def out_of_time() -> bool:
@@ -204,96 +227,118 @@ def fit(
         two.run(on_iteration, stop=out_of_time)
     finally:
         shown.close()
-    clock.lap("optimization_s")
-    result = _checked_result(case, cfg, choice, two, target, sdf, clock, bar, log, budget)
-    result.contact = contact
-    return result
+
+
+@dataclass
+class _Returned:
+    """What the checks decide is returned: pattern, rest positions uv (Nu, 2) [m], drape x (Nx, 3)
+    [m], material; the graded drape, phase two's warm drape of a kept pattern, where the drapes
+    come from (FitResult.drapes), the checks' figures, and a drape from scratch's duration [s]."""
+
+    pattern: object
+    uv: np.ndarray
+    x: np.ndarray
+    material: object
+    x_graded: np.ndarray
+    drapes: dict
+    drape_s: float
+    x_warm: np.ndarray | None = None
+    redress: RedressCheck | None = None
+    spread: MeshSpread | None = None
 
 
 def _checked_result(
-    case,
-    cfg: FitConfig,
-    choice: MaterialChoice,
-    two: PhaseTwo,
-    target: Target,
-    sdf,
-    clock,
-    bar: Progress,
-    log,
-    budget: TimeBudget,
+    case, choice: MaterialChoice, two: PhaseTwo, scene: Scene, clock, budget: TimeBudget
 ) -> FitResult:
     """Phase two's best iterate, put through the re-dress check (which may return the graded
     pattern instead) and the mesh spread (skipped when its two drapes would overrun ``budget``),
     as a FitResult."""
-    s = choice.start
+    s, cfg = choice.start, scene.cfg
     pattern, uv, x, material = two.best_fit()
-    # drape_s: a drape from scratch [s], the base's in phase one
-    redress, drape_s, spread = None, s.dress_s, None
-    x_graded, x_warm = np.asarray(s.x), None
-    drapes = {"result": "phase two" if two.best.iteration >= 0 else "graded start", "graded": "graded start"}
+    r = _Returned(
+        pattern,
+        uv,
+        x,
+        material,
+        np.asarray(s.x),
+        {"result": "phase two" if two.best.iteration >= 0 else "graded start", "graded": "graded start"},
+        s.dress_s,  # a drape from scratch [s], the base's in phase one
+    )
     if cfg.checks.redress and two.best.iteration >= 0:
-        t0 = time.perf_counter()
-        redress = redress_check(pattern, uv, material, s, case.body, target, sdf, cfg, progress=bar, log=log)
-        # the re-dress is a drape of the result from scratch, timed now: a closer estimate of the
-        # mesh spread's two drapes than the base's
-        drape_s = max(drape_s, time.perf_counter() - t0)
-        if (
-            cfg.checks.redress_meshes == 3
-            and cfg.checks.mesh_spread > 0
-            and redress.fit_redressed_mm is not None
-        ):
-            if budget.fits(5 * drape_s):  # the graded pattern on three meshes, phase two's on two more
-                redress, spread = redress_on_three(
-                    redress, pattern, material, s, case.body, target, sdf, cfg, progress=bar, log=log
-                )
-            else:
-                budget.cut("re-dress check judged on one mesh (three would overrun)")
-        if not redress.phase_two_kept and redress.x_graded is None:  # judged on one mesh, refused or failed
-            if budget.fits(drape_s):
-                redress.x_graded, _ = graded_afresh(s, case.body, target, sdf, cfg, progress=bar)
-            else:
-                budget.cut(
-                    "the graded pattern's drape is the one the material choice let settle (no time to dress "
-                    "it afresh)"
-                )
-        # the returned drape is the returned pattern dressed from scratch where the check dressed
-        # it: a kept phase two's warm drape can lie nearer the target than its pattern dresses
-        if redress.x_graded is not None:
-            x_graded = redress.x_graded
-        if redress.phase_two_kept:
-            x_warm, x = x, redress.x_fit
-        else:  # the graded pattern's rest mesh (= uv(K0)), drape and material
-            pattern, uv, x, material = s.graded, np.asarray(s.mesh.uv, dtype=np.float64), x_graded, s.material
-        drapes = _fresh_drapes(redress)
+        _redress(r, s, scene, budget)
         clock.lap("redress_s")
     # the three-mesh check has dressed the returned pattern on the spread's meshes already
-    if spread is None and cfg.checks.mesh_spread > 0 and not budget.fits(2 * drape_s):
+    if r.spread is None and cfg.checks.mesh_spread > 0 and not budget.fits(2 * r.drape_s):
         budget.cut("mesh spread skipped")
-    elif spread is None and cfg.checks.mesh_spread > 0:
-        result_mm = (
-            redress.fit_redressed_mm
-            if redress and redress.phase_two_kept
-            else target.distance_mm(x, s.mesh.faces)
-        )
-        spread = mesh_spread(pattern, material, case.body, target, sdf, cfg, result_mm, progress=bar, log=log)
+    elif r.spread is None and cfg.checks.mesh_spread > 0:
+        kept = r.redress and r.redress.phase_two_kept
+        result_mm = r.redress.fit_redressed_mm if kept else scene.target.distance_mm(r.x, s.mesh.faces)
+        r.spread = mesh_spread(r.pattern, r.material, scene, result_mm)
         clock.lap("mesh_spread_s")
+    return _fit_result(r, choice, two, scene, clock, budget)
+
+
+def _redress(r: _Returned, s: Start, scene: Scene, budget: TimeBudget) -> None:
+    """The re-dress check on ``r`` (phase two's best iterate): on the fit's mesh, then on three
+    when five more drapes fit ``budget``; ``r`` becomes what it decides is returned, its drapes
+    the patterns dressed from scratch where the check dressed them."""
+    t0 = time.perf_counter()
+    r.redress = redress_check(r.pattern, r.uv, r.material, s, scene)
+    # the re-dress is a drape of the result from scratch, timed now: a closer estimate of the
+    # mesh spread's two drapes than the base's
+    r.drape_s = max(r.drape_s, time.perf_counter() - t0)
+    if REDRESS_MESHES == 3 and scene.cfg.checks.mesh_spread > 0 and r.redress.fit_redressed_mm is not None:
+        if budget.fits(5 * r.drape_s):  # the graded pattern on three meshes, phase two's on two more
+            r.redress, r.spread = redress_on_three(r.redress, r.pattern, r.material, s, scene)
+        else:
+            budget.cut("re-dress check judged on one mesh (three would overrun)")
+    redress = r.redress
+    if not redress.phase_two_kept and redress.x_graded is None:  # judged on one mesh, refused or failed
+        if budget.fits(r.drape_s):
+            redress.x_graded, _ = graded_afresh(s, scene)
+        else:
+            budget.cut(
+                "the graded pattern's drape is the one the material choice let settle (no time to dress "
+                "it afresh)"
+            )
+    # the returned drape is the returned pattern dressed from scratch where the check dressed
+    # it: a kept phase two's warm drape can lie nearer the target than its pattern dresses
+    if redress.x_graded is not None:
+        r.x_graded = redress.x_graded
+    if redress.phase_two_kept:
+        r.x_warm, r.x = r.x, redress.x_fit
+    else:  # the graded pattern's rest mesh (= uv(K0)), drape and material
+        r.pattern, r.uv, r.x, r.material = (
+            s.graded,
+            np.asarray(s.mesh.uv, dtype=np.float64),
+            r.x_graded,
+            s.material,
+        )
+    r.drapes = _fresh_drapes(redress)
+
+
+def _fit_result(
+    r: _Returned, choice: MaterialChoice, two: PhaseTwo, scene: Scene, clock, budget
+) -> FitResult:
+    """The FitResult of what the checks returned, ``r``, from phase two ``two`` started at ``choice``."""
+    s, cfg = choice.start, scene.cfg
     return FitResult(
-        pattern=pattern,
+        pattern=r.pattern,
         base_pattern=s.base,
         graded_pattern=s.graded,
         mesh=s.mesh,
-        x=x,
-        uv=uv,
-        material=material,
+        x=r.x,
+        uv=r.uv,
+        material=r.material,
         history=two.history,
         grade_table=s.grade_table,
         timings=clock.total(),
         iterations=len(two.history["total"]),
         converged=two.converged,
-        x_graded=x_graded,
+        x_graded=r.x_graded,
         x_base=s.x_base,
-        x_warm=x_warm,
-        drapes=drapes,
+        x_warm=r.x_warm,
+        drapes=r.drapes,
         params=two.params.to("cpu"),
         base_mesh=s.mesh_base,
         start_material=s.material,
@@ -301,13 +346,13 @@ def _checked_result(
         base_name=s.base_name,
         base_choice=list(s.base_choice) or None,
         best_iteration=two.best.iteration,
-        material_fitted=two.best.material_on and (redress is None or redress.phase_two_kept),
+        material_fitted=two.best.material_on and (r.redress is None or r.redress.phase_two_kept),
         material_start_iteration=cfg.material.start_iteration if cfg.fits_material else None,
         gamma_last=two.gamma_last(),
-        redress=redress,
-        mesh_spread=spread,
+        redress=r.redress,
+        mesh_spread=r.spread,
         drape_check=check_drape(
-            x, faces=s.mesh.faces, uv=uv, faces_uv=s.mesh.faces_uv, body=case.body, sdf=sdf
+            r.x, faces=s.mesh.faces, uv=r.uv, faces_uv=s.mesh.faces_uv, body=scene.body, sdf=scene.sdf
         ),
         memory_mb=clock.peaks,
         time_limit=budget.as_dict(),

@@ -3,9 +3,9 @@ user): grade in cotton, drape the graded pattern in every library fabric (:func:
 grade again in the closest others, then search the winner's stretch and bending scale by draping
 (:func:`refine_material`). Phase two starts from the closest of these drapes by mean surface
 distance, unless the winner, dressed from scratch, lies clearly farther than the pattern graded
-in cotton (``material.check``, :func:`_checked`). Its hand-off is a :class:`MaterialChoice`.
+in cotton (:data:`CHECK_CHOICE`, :func:`_checked`). Its hand-off is a :class:`MaterialChoice`.
 
-Each candidate is let settle (``material.warm_steps`` steps, :func:`unsew.dress.settle`) from the
+Each candidate is let settle (:data:`~unsew.fit.start.WARM_STEPS` steps, :func:`unsew.dress.settle`) from the
 drape it competes with, the pattern already sewn, instead of being dressed from scratch (placement,
 sewing and settling), on one SimModel of the start's mesh (docs/decisions/002)."""
 
@@ -21,10 +21,10 @@ from unsew._memory import release_free_memory
 from unsew.dress import dress, settle
 from unsew.errors import InputError
 from unsew.fit.budget import TimeBudget
-from unsew.fit.config import FitConfig, material_candidates
+from unsew.fit.config import material_candidates
 from unsew.fit.progress import Progress
-from unsew.fit.start import Start, start
-from unsew.fit.target import Target
+from unsew.fit.scene import Scene
+from unsew.fit.start import WARM_STEPS, Start, start
 from unsew.sim.checks import check_dressed
 from unsew.sim.material import get_material
 from unsew.sim.model import SimModel
@@ -46,6 +46,16 @@ CHECK_MARGIN_MM = 0.5
 CHECK_MARGIN_REL = 0.1
 #: The groups of Gamma that :func:`refine_material` scales together: name -> Material fields.
 REFINE_GROUPS = {"stretch": ("h00", "h01", "h11", "h22"), "bending": ("bend",)}
+#: ``material.start: auto``: how many of the best candidates other than cotton are graded again in
+#: their own fabric [-]
+REGRADE = 2
+#: ``material.start: auto``: rounds of the stiffness search after the choice (stretch and bending
+#: scaled by 1/s and s, s = 2, sqrt 2, ...); 0: off [-]
+REFINE_ROUNDS = 2
+#: ``material.start: auto``: the chosen pattern and fabric dressed from scratch; clearly farther
+#: (CHECK_MARGIN_MM and CHECK_MARGIN_REL) than the cotton-graded pattern: start from that one
+#: (:func:`_checked`)
+CHECK_CHOICE = True
 
 
 @dataclass
@@ -96,13 +106,12 @@ def refine_material(
     dress_in,
     objective,
     *,
-    rounds: int = 2,
     progress: Progress | None = None,
     keep_going: Callable[[], bool] | None = None,
 ):
     """Coordinate search on the chosen fabric's stiffness, by draping: scale the stretch entries
     (H00, H01, H11, H22 together, so the Poisson ratio stays) and then the bending stiffness by
-    1/s and s, s = 2, then sqrt(2), ... (``rounds`` steps), and keep a scaling when the pattern,
+    1/s and s, s = 2, then sqrt(2), ... (:data:`REFINE_ROUNDS` steps), and keep a scaling when the pattern,
     dressed from scratch in it, lies closer to the target.
 
     material: the start (unsew.sim.material.Material) named ``label`` in the table; x0, cf0: its
@@ -114,7 +123,7 @@ def refine_material(
     progress = progress or Progress(False)
     best, x_best, cf_best, scale = material, x0, cf0, {g: 1.0 for g in REFINE_GROUPS}
     rows = []
-    for r in range(rounds):
+    for r in range(REFINE_ROUNDS):
         s = 2.0 ** (0.5**r)
         for group, names in REFINE_GROUPS.items():
             for f in (1.0 / s, s):
@@ -134,28 +143,34 @@ def refine_material(
     return best, x_best, rows
 
 
-def _dresser(s: Start, body, sdf, cfg: FitConfig):
+def _dresser(s: Start, scene: Scene):
     """dress_in(material, bar, x_from=None) -> drape (Nx, 3) [m] of the start's pattern in
-    ``material``: settled ``cfg.material.warm_steps`` steps from ``x_from`` (default ``s.x``), or,
+    ``material``: settled WARM_STEPS steps from ``x_from`` (default ``s.x``), or,
     when warm_steps is 0, dressed from scratch (x_from unused)."""
 
-    model = SimModel.build(s.mesh.faces, s.mesh.faces_uv) if cfg.material.warm_steps > 0 else None
+    model = SimModel.build(s.mesh.faces, s.mesh.faces_uv) if WARM_STEPS > 0 else None
 
     def dress_in(material, bar=None, x_from=None):
         if model is not None:
             x = settle(
                 s.mesh,
                 s.x if x_from is None else x_from,
-                sdf,
+                scene.sdf,
                 material,
-                settings=cfg.drape,
-                steps=cfg.material.warm_steps,
+                settings=scene.cfg.drape,
+                steps=WARM_STEPS,
                 model=model,
                 progress=bar,
             )
         else:
             x = dress(
-                s.graded, body, sdf=sdf, mesh=s.mesh, material=material, settings=cfg.drape, progress=bar
+                s.graded,
+                scene.body,
+                sdf=scene.sdf,
+                mesh=s.mesh,
+                material=material,
+                settings=scene.cfg.drape,
+                progress=bar,
             ).x.numpy()
         release_free_memory()  # the drape's scratch memory (unsew._memory)
         return x
@@ -164,66 +179,68 @@ def _dresser(s: Start, body, sdf, cfg: FitConfig):
 
 
 def choose_start(
-    first: Start,
-    body,
-    target: Target,
-    sdf,
-    cfg: FitConfig,
-    *,
-    progress: Progress,
-    log=print,
-    garment: str = "",
-    budget: TimeBudget | None = None,
+    first: Start, scene: Scene, *, garment: str = "", budget: TimeBudget | None = None
 ) -> MaterialChoice:
-    """The material stage: ``first`` unchanged when ``cfg.material.start`` names a material, else
-    the auto choice (module docstring) starting from ``first`` (graded in cotton). With a
+    """The material stage: ``first`` unchanged when ``scene.cfg.material.start`` names a material,
+    else the auto choice (module docstring) starting from ``first`` (graded in cotton). With a
     ``budget``, the grading in other fabrics and the stiffness search stop once half its limit is
     spent (:mod:`unsew.fit.budget`)."""
     budget = budget or TimeBudget(0)
-    half = 0.5  # share of the fit's time limit the optional steps may start within
-    if cfg.material.start != "auto":
+    if scene.cfg.material.start != "auto":
         return MaterialChoice(first)
     t0 = time.perf_counter()
-    cur = first
 
-    def objective(x):
-        return target.distance_mm(x, cur.mesh.faces)
+    def objective(x, mesh=None):
+        return scene.target.distance_mm(x, (mesh or first.mesh).faces)
 
     mat, x, table = choose_material(
-        material_candidates(cfg.material.candidates),
-        _dresser(cur, body, sdf, cfg),
+        material_candidates(scene.cfg.material.candidates),
+        _dresser(first, scene),
         objective,
-        progress=progress,
+        progress=scene.progress,
     )
     for row in table:
         row["pattern"] = f"graded in {AUTO_START_MATERIAL}"
-    cur = cur.replace(x=x, material=mat)
-    # Grading in cotton favours cotton (on bench_fit's dress in silk the cotton-graded pattern lay
-    # 4.12 mm from the target in cotton and 4.89 in silk): the best others are graded again in
-    # their own fabric, and compete too.
+    cur, best_cf = _regraded(first, first.replace(x=x, material=mat), table, scene, garment, budget)
+    table.sort(key=lambda r: r["chamfer_mm"])
+    if REFINE_ROUNDS > 0:
+        cur, table = _refined(cur, table, best_cf, scene, budget, lambda x: objective(x, cur.mesh))
+    r0 = table[0]
+    scene.log(f"material: {r0['material']} (pattern {r0['pattern']}; {r0['chamfer_mm']:.2f} mm)")
+    if CHECK_CHOICE and cur is not first:
+        cur, table = _checked(first, cur, table, scene)
+    return MaterialChoice(cur, table, time.perf_counter() - t0)
+
+
+#: Share of the fit's time limit the material choice's optional steps may start within [-].
+OPTIONAL_SHARE = 0.5
+
+
+def _regraded(first: Start, cur: Start, table: list, scene: Scene, garment: str, budget: TimeBudget):
+    """(the closest start, its distance [mm]): ``cur`` (the cotton-graded pattern settled in the
+    closest fabric, ``table[0]``) against the best REGRADE others graded again in their own fabric;
+    each such grading adds its row to ``table``. Grading in cotton favours cotton (on bench_fit's
+    dress in silk the cotton-graded pattern lay 4.12 mm from the target in cotton and 4.89 in
+    silk): the best others are graded again in their own fabric, and compete too."""
     best_cf = table[0]["chamfer_mm"]
     others = [r["material"] for r in table if r["material"] != AUTO_START_MATERIAL]
-    for name in others[: cfg.material.regrade] if cfg.grading else []:
-        if not budget.within(half):
+    for name in others[:REGRADE] if scene.cfg.grading else []:
+        if not budget.within(OPTIONAL_SHARE):
             budget.cut(f"material choice: not graded again in {name} (half the limit spent)")
             continue
         try:
             s = start(
                 first.base,
-                body,
-                target,
-                sdf,
-                cfg,
+                scene,
                 get_material(name),
-                progress=progress,
                 label=f"grade in {name}",
                 garment=garment,
                 base_from=(first.mesh_base, first.x_base),
             )
         except InputError as exc:
-            log(f"material {name}: grading in it failed ({exc}); left out")
+            scene.log(f"material {name}: grading in it failed ({exc}); left out")
             continue
-        cf = target.distance_mm(s.x, s.mesh.faces)
+        cf = scene.target.distance_mm(s.x, s.mesh.faces)
         if not math.isfinite(cf):
             continue
         table.append({"material": name, "chamfer_mm": cf, "pattern": f"graded in {name}"})
@@ -232,51 +249,37 @@ def choose_start(
             cur = cur.replace(
                 graded=s.graded, mesh=s.mesh, x=s.x, grade_table=s.grade_table, material=s.material
             )
-    table.sort(key=lambda r: r["chamfer_mm"])
+    return cur, best_cf
+
+
+def _refined(cur: Start, table: list, best_cf: float, scene: Scene, budget: TimeBudget, objective):
+    """(start, table): the stiffness search (:func:`refine_material`, REFINE_ROUNDS rounds) from
+    ``cur`` in the best row's fabric, its rows added to ``table`` (sorted, best first); it stops
+    once half the time limit is spent."""
     r0 = table[0]
-    if cfg.material.refine > 0:
 
-        def keep_going() -> bool:
-            if budget.within(half):
-                return True
-            budget.cut("material choice: stiffness search stopped (half the limit spent)")
-            return False
+    def keep_going() -> bool:
+        if budget.within(OPTIONAL_SHARE):
+            return True
+        budget.cut("material choice: stiffness search stopped (half the limit spent)")
+        return False
 
-        mat, x, rows = refine_material(
-            cur.material,
-            r0["material"],
-            cur.x,
-            best_cf,
-            _dresser(cur, body, sdf, cfg),
-            objective,
-            rounds=cfg.material.refine,
-            progress=progress,
-            keep_going=keep_going,
-        )
-        cur = cur.replace(x=x, material=mat)
-        table = sorted(
-            table + [{**row, "pattern": r0["pattern"]} for row in rows], key=lambda r: r["chamfer_mm"]
-        )
-        r0 = table[0]
-    log(f"material: {r0['material']} (pattern {r0['pattern']}; {r0['chamfer_mm']:.2f} mm)")
-    if cfg.material.check and cur is not first:
-        cur, table = _checked(first, cur, table, body, target, sdf, cfg, progress=progress, log=log)
-    return MaterialChoice(cur, table, time.perf_counter() - t0)
+    mat, x, rows = refine_material(
+        cur.material,
+        r0["material"],
+        cur.x,
+        best_cf,
+        _dresser(cur, scene),
+        objective,
+        progress=scene.progress,
+        keep_going=keep_going,
+    )
+    table = sorted(table + [{**row, "pattern": r0["pattern"]} for row in rows], key=lambda r: r["chamfer_mm"])
+    return cur.replace(x=x, material=mat), table
 
 
-def _checked(
-    first: Start,
-    chosen: Start,
-    table: list,
-    body,
-    target: Target,
-    sdf,
-    cfg: FitConfig,
-    *,
-    progress: Progress,
-    log=print,
-) -> tuple[Start, list]:
-    """The choice checked by a drape from scratch, as a result is judged (``material.check``).
+def _checked(first: Start, chosen: Start, table: list, scene: Scene) -> tuple[Start, list]:
+    """The choice checked by a drape from scratch, as a result is judged (:data:`CHECK_CHOICE`).
 
     The candidates were let settle from another fabric's drape, and a settled drape can lie
     closer than the same pattern and fabric dressed from scratch (docs/decisions/002). So the chosen pattern
@@ -288,17 +291,20 @@ def _checked(
     way to ``first`` whatever its distance. Returns (the start, the table with the two dressed rows first,
     the kept one on top).
     """
-    with progress.phase("dress the chosen material") as bar:
+    target = scene.target
+    with scene.progress.phase("dress the chosen material") as bar:
         d = dress(
             chosen.graded,
-            body,
-            sdf=sdf,
+            scene.body,
+            sdf=scene.sdf,
             mesh=chosen.mesh,
             material=chosen.material,
-            settings=cfg.drape,
+            settings=scene.cfg.drape,
             progress=bar,
         )
-    failed = check_dressed(d, body=body).reason  # exploded, fallen, ...: no start, whatever its distance
+    failed = check_dressed(
+        d, body=scene.body
+    ).reason  # exploded, fallen, ...: no start, whatever its distance
     x = d.x.numpy()
     release_free_memory()
     cf = target.distance_mm(x, chosen.mesh.faces)
@@ -324,7 +330,7 @@ def _checked(
     if not keep:
         rows.reverse()
     said = f"failed ({failed})" if failed else f"lies {cf:.2f} mm from the target"
-    log(
+    scene.log(
         f"material check: {label} dressed from scratch {said}, the pattern graded in "
         f"{AUTO_START_MATERIAL} {cf_first:.2f} mm: phase two starts from "
         + (f"{label}" if keep else f"{AUTO_START_MATERIAL}")

@@ -109,26 +109,7 @@ def fit_verdict(surface: dict) -> dict:
 def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     """3D metrics of the final drape against the target and, if the case has a true pattern,
     the pattern metrics; plus the final loss terms and timings."""
-    faces = np.asarray(result.mesh.faces)
-    m = {
-        "surface": surface_metrics(result.x, faces, case.target_verts, case.target_faces, n_samples=n_samples)
-    }
-    if result.x_base is not None:
-        m["surface_base"] = surface_metrics(
-            result.x_base,
-            _faces_of(result, "base"),
-            case.target_verts,
-            case.target_faces,
-            n_samples=n_samples,
-        )
-    if result.x_graded is not None:
-        m["surface_graded"] = surface_metrics(
-            result.x_graded, faces, case.target_verts, case.target_faces, n_samples=n_samples
-        )
-    if getattr(result, "x_warm", None) is not None:  # a kept phase two's own, warm-started drape
-        m["surface_warm"] = surface_metrics(
-            result.x_warm, faces, case.target_verts, case.target_faces, n_samples=n_samples
-        )
+    m = _surfaces(result, case, n_samples)
     if getattr(result, "drapes", None):
         m["drapes"] = result.drapes  # where the result's and the graded drapes come from: fresh or settled
     if case.pattern_gt is not None:
@@ -136,28 +117,57 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
     m.update(fit_verdict(m["surface"]))
     # total panel areas [m^2] against the target's surface area (a drape barely stretches, so a
     # pattern that fits has about the target's area; config "area", unsew.grading.area)
+    patterns = {"base": result.base_pattern, "graded": result.graded_pattern, "result": result.pattern}
     m["area_m2"] = {
         "target": float(triangle_areas(case.target_verts, case.target_faces).sum()),
-        **{
-            k: pattern_area(p)
-            for k, p in (
-                ("base", result.base_pattern),
-                ("graded", result.graded_pattern),
-                ("result", result.pattern),
-            )
-            if p is not None
-        },
+        **{k: pattern_area(p) for k, p in patterns.items() if p is not None},
     }
     # how far apart stitched edges are in length (ease the base has left out): a pattern that sews
-    m["seams"] = seam_changes_mm(
-        {"base": result.base_pattern, "graded": result.graded_pattern, "result": result.pattern}
-    )
+    m["seams"] = seam_changes_mm(patterns)
     h = result.history
     m["loss_final"] = {k: (v[-1] if v else None) for k, v in h.items()}
     m["loss_history"] = {k: [float(f"{x:.6g}") for x in v] for k, v in h.items()}  # per iteration
     m["iterations"] = result.iterations
     m["best_iteration"] = result.best_iteration
     m["material_fitted"] = result.material_fitted
+    m.update(_stages(result))
+    m["timings_s"] = result.timings
+    if getattr(result, "time_limit", None):
+        m["time_limit"] = result.time_limit  # the fit's time limit [s] and what gave way to it
+    m["peak_memory_mb"] = peak_rss_mb()  # the process's peak resident memory so far [MB]
+    if getattr(result, "memory_mb", None):
+        m["peak_memory_stages_mb"] = result.memory_mb  # the peak so far at the end of each stage [MB]
+    if result.drape_check is not None:
+        m["drape_check"] = result.drape_check.as_dict()  # the result on its body: inside %, stretch, ...
+    if getattr(case, "notes", None):
+        m["input_notes"] = list(case.notes)  # what loading did to the inputs (e.g. the wearer rigged)
+    if getattr(case, "target_repair", None):
+        m["target_repair"] = case.target_repair  # what loading cleaned in the target (counts)
+    return m
+
+
+def _surfaces(result, case, n_samples: int) -> dict:
+    """Surface metrics against the target of the result's drape ("surface") and, where the result
+    has them, of the base's, the graded pattern's and phase two's own warm-started drape."""
+    faces = np.asarray(result.mesh.faces)
+    drapes = {
+        "surface": (result.x, faces),
+        "surface_base": (result.x_base, _faces_of(result, "base") if result.x_base is not None else None),
+        "surface_graded": (result.x_graded, faces),
+        "surface_warm": (getattr(result, "x_warm", None), faces),  # a kept phase two's own drape
+    }
+    return {
+        key: surface_metrics(x, f, case.target_verts, case.target_faces, n_samples=n_samples)
+        for key, (x, f) in drapes.items()
+        if x is not None
+    }
+
+
+def _stages(result) -> dict:
+    """What each stage decided, as metrics.json keys: the base and its choice, the material choice,
+    convergence, the contact, phase two's start, the re-dress check and the mesh spread (each only
+    when the result has it)."""
+    m = {}
     if getattr(result, "base_name", ""):
         m["base"] = result.base_name  # the base pattern phase one started from
     if getattr(result, "base_choice", None):
@@ -173,18 +183,6 @@ def result_metrics(result, case, *, n_samples: int = 50_000) -> dict:
         m["redress"] = result.redress.as_dict()  # the re-dress check: phase two kept or not
     if result.mesh_spread is not None:
         m["mesh_spread"] = result.mesh_spread.as_dict()  # the returned pattern on two other meshes
-    m["timings_s"] = result.timings
-    if getattr(result, "time_limit", None):
-        m["time_limit"] = result.time_limit  # the fit's time limit [s] and what gave way to it
-    m["peak_memory_mb"] = peak_rss_mb()  # the process's peak resident memory so far [MB]
-    if getattr(result, "memory_mb", None):
-        m["peak_memory_stages_mb"] = result.memory_mb  # the peak so far at the end of each stage [MB]
-    if result.drape_check is not None:
-        m["drape_check"] = result.drape_check.as_dict()  # the result on its body: inside %, stretch, ...
-    if getattr(case, "notes", None):
-        m["input_notes"] = list(case.notes)  # what loading did to the inputs (e.g. the wearer rigged)
-    if getattr(case, "target_repair", None):
-        m["target_repair"] = case.target_repair  # what loading cleaned in the target (counts)
     return m
 
 

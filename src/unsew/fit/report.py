@@ -31,14 +31,51 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     _, dist, _ = closest_points(
         np.asarray(result.x), np.asarray(case.target_verts), np.asarray(case.target_faces)
     )
-    patterns = [("base", result.base_pattern)]
     graded = result.graded_pattern
     same = graded is not None and patterns_coincide(graded, result.pattern)
+    summary = _summary(result, case, metrics)
+    top = max((max(v) for v in result.history.values() if v), default=0.0)
+    # terms that stay at round-off level (e.g. the seam loss of a symmetric skirt) would stretch
+    # the log axis over 30 decades: leave them out of the plot (they are in the metrics table)
+    hist = {k: v for k, v in result.history.items() if v and max(v) > 1e-12 * top}
+    phases = loss_phases(result, metrics)
+    notes = _notes(result, metrics, summary, same)  # before the tables: the summary's order
+    tables = _tables(result, metrics, summary)
+    return _write(
+        work,
+        title=f"unsew fit: {Path(case.path).name}",
+        summary=summary,
+        metrics=tables,
+        target=(np.asarray(case.target_verts), np.asarray(case.target_faces)),
+        result=(np.asarray(result.x), faces),
+        body=(np.asarray(case.body.verts), np.asarray(case.body.faces)),
+        distance_mm=1e3 * np.asarray(dist),
+        history=hist or None,
+        phases=phases if hist else None,
+        patterns=_patterns_shown(result, case, metrics, same),
+        config=config,
+        notes=notes or None,
+        material=material_for_reading(material_to_dict(result.material)),
+        choices=choices_made(result, metrics),
+    )
+
+
+def _patterns_shown(result, case, metrics: dict, same: bool) -> list:
+    """(label, pattern) pairs the pattern figure overlays: base, graded (unless it is the base or
+    the final one), the true pattern placed over the final one, final."""
+    patterns = [("base", result.base_pattern)]
+    graded = result.graded_pattern
     if graded is not None and graded is not result.base_pattern and not same:
         patterns.append(("graded", graded))
     if case.pattern_gt is not None:
         patterns.append(("true", truth_over(case.pattern_gt, result.pattern, metrics.get("pattern"))))
     patterns.append(("final = graded" if same else "final", result.pattern))
+    return patterns
+
+
+def _summary(result, case, metrics: dict) -> dict:
+    """The report's summary: case, garment, distances, iterations, time, and the area errors of
+    the final pattern when a true pattern was given."""
     s = metrics.get("surface", {})
     summary = {
         "case": Path(case.path).name,
@@ -49,32 +86,21 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
         "time_s": result.timings.get("total_s"),
     }
     pat = metrics.get("pattern")
-    notes = []
     if isinstance(pat, dict) and pat.get("area_error_rel_mean") is not None:
         summary["area_error_mean_pct"] = 100.0 * float(pat["area_error_rel_mean"])
     if isinstance(pat, dict) and pat.get("area_error_weighted_rel") is not None:
         summary["area_error_weighted_pct"] = 100.0 * float(pat["area_error_weighted_rel"])
         summary["area_error_total_pct"] = 100.0 * float(pat["area_error_total_rel"])
-    for key, what in (("pattern_base", "base"), ("pattern_graded", "graded"), ("pattern", "final")):
-        un = (metrics.get(key) or {}).get("unmatched") or {}
-        if un.get("estimated") or un.get("true"):
-            notes.append(
-                f"{what} pattern: panels without a counterpart, estimated {un.get('estimated') or []}, "
-                f"true {un.get('true') or []} (left out of the per-panel means; the area-weighted "
-                "area error counts each at its full area)"
-            )
-    if graded is not None and not same and set(graded.panels) == set(result.pattern.panels):
-        moved = [
-            np.abs(np.asarray(result.pattern.panels[n].vertices) - np.asarray(p.vertices)).max(initial=0.0)
-            for n, p in graded.panels.items()
-            if np.shape(p.vertices) == np.shape(result.pattern.panels[n].vertices)
-        ]
-        if moved:
-            notes.append(
-                f"final pattern: its corners lie at most {1e3 * max(moved):.1f} mm from the graded "
-                "pattern's (in the pattern figure the graded outline shows only where they differ by more "
-                "than the line width)"
-            )
+    return summary
+
+
+def _notes(result, metrics: dict, summary: dict, same: bool) -> list[str]:
+    """The report's notes, in order: unmatched panels, how far the final pattern moved, grading's
+    warnings, the re-dress check (its verdict also into ``summary``), where the drapes come from,
+    the mesh spread, the time limit's cuts."""
+    notes = _unmatched_notes(metrics)
+    moved = _moved_note(result.graded_pattern, result.pattern) if not same else None
+    notes += [moved] if moved else []
     for row in result.grade_table or []:
         for w in (row.get("warnings") or []) if isinstance(row, dict) else []:
             notes.append(f"grading: {w}")
@@ -96,29 +122,52 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
     tl = metrics.get("time_limit") or {}
     if tl.get("cuts"):
         notes.append(f"time limit {tl['limit_s']:.0f} s (--time-limit): " + "; ".join(tl["cuts"]))
-    top = max((max(v) for v in result.history.values() if v), default=0.0)
-    # terms that stay at round-off level (e.g. the seam loss of a symmetric skirt) would stretch
-    # the log axis over 30 decades: leave them out of the plot (they are in the metrics table)
-    hist = {k: v for k, v in result.history.items() if v and max(v) > 1e-12 * top}
-    phases = loss_phases(result, metrics)
+    return notes
+
+
+def _unmatched_notes(metrics: dict) -> list[str]:
+    """A note per compared pattern with panels that have no counterpart in the other."""
+    notes = []
+    for key, what in (("pattern_base", "base"), ("pattern_graded", "graded"), ("pattern", "final")):
+        un = (metrics.get(key) or {}).get("unmatched") or {}
+        if un.get("estimated") or un.get("true"):
+            notes.append(
+                f"{what} pattern: panels without a counterpart, estimated {un.get('estimated') or []}, "
+                f"true {un.get('true') or []} (left out of the per-panel means; the area-weighted "
+                "area error counts each at its full area)"
+            )
+    return notes
+
+
+def _moved_note(graded, final) -> str | None:
+    """How far the final pattern's corners lie from the graded one's (same panels), or None."""
+    if graded is None or set(graded.panels) != set(final.panels):
+        return None
+    moved = [
+        np.abs(np.asarray(final.panels[n].vertices) - np.asarray(p.vertices)).max(initial=0.0)
+        for n, p in graded.panels.items()
+        if np.shape(p.vertices) == np.shape(final.panels[n].vertices)
+    ]
+    if not moved:
+        return None
+    return (
+        f"final pattern: its corners lie at most {1e3 * max(moved):.1f} mm from the graded "
+        "pattern's (in the pattern figure the graded outline shows only where they differ by more "
+        "than the line width)"
+    )
+
+
+def _tables(result, metrics: dict, summary: dict) -> dict:
+    """The report's tables: the returned pattern's seams first, then the metrics with the base
+    and material choices in words (the base and the start material also into ``summary``), the
+    contact's stiffness with its unit, and grading's rows."""
     tables = dict(metrics)
     if "base" in tables:
         summary["base"] = tables.pop("base")
     bases = tables.pop("base_choice", None)
     if bases:
-
-        def said(r):
-            if r["chamfer_mm"] is None:
-                return "failed"
-            s = f"{float(r['chamfer_mm']):.2f}"
-            if r.get("torso_mm") is not None:
-                s += f", over the torso {float(r['torso_mm']):.2f}"
-            if r.get("graded_mm") is not None:
-                s += f", graded {float(r['graded_mm']):.2f}"
-            return s
-
         tables["base choice (each base dressed on a coarse mesh, Chamfer mm)"] = {
-            r["base"]: said(r) for r in bases
+            r["base"]: _base_said(r) for r in bases
         }
     choice = tables.pop("material_choice", None)
     if choice:
@@ -132,29 +181,24 @@ def write_fit_report(work: Path, result, case, metrics: dict, *, config: dict | 
         tables["contact"] = c
     if result.grade_table:
         tables["grading"] = {str(i): _flat(r) for i, r in enumerate(result.grade_table)}
-    tables = {
+    return {
         "seams of the returned pattern (sew-line lengths; codes as printed on the pieces)": seam_table(
             result.pattern
         ),
         **tables,
     }
-    return _write(
-        work,
-        title=f"unsew fit: {Path(case.path).name}",
-        summary=summary,
-        metrics=tables,
-        target=(np.asarray(case.target_verts), np.asarray(case.target_faces)),
-        result=(np.asarray(result.x), faces),
-        body=(np.asarray(case.body.verts), np.asarray(case.body.faces)),
-        distance_mm=1e3 * np.asarray(dist),
-        history=hist or None,
-        phases=phases if hist else None,
-        patterns=patterns,
-        config=config,
-        notes=notes or None,
-        material=material_for_reading(material_to_dict(result.material)),
-        choices=choices_made(result, metrics),
-    )
+
+
+def _base_said(r: dict) -> str:
+    """A base choice row in words: its distance [mm], over the torso and graded where measured."""
+    if r["chamfer_mm"] is None:
+        return "failed"
+    s = f"{float(r['chamfer_mm']):.2f}"
+    if r.get("torso_mm") is not None:
+        s += f", over the torso {float(r['torso_mm']):.2f}"
+    if r.get("graded_mm") is not None:
+        s += f", graded {float(r['graded_mm']):.2f}"
+    return s
 
 
 def patterns_coincide(a, b, *, tol: float = 1e-9) -> bool:

@@ -22,56 +22,23 @@ def partial_dir(out: Path) -> Path:
     return out.with_name(out.name + ".partial")
 
 
-def run_fit(
-    case,
-    cfg,
-    out: Path,
-    *,
-    resume: bool = False,
-    overwrite: bool = False,
-    progress=True,
-    log=None,
-    callback=None,
-    started: float | None = None,
-):
+def run_fit(case, cfg, out: Path, *, resume: bool = False, overwrite: bool = False, log=None, **fit_options):
     """Fit ``case`` with ``cfg`` and write the result folder ``out``. Returns (FitResult, metrics).
 
-    progress: True/False or a :class:`~unsew.fit.progress.Progress`; callback: called with each
-    phase-two iteration; started: when the command began, the time limit counts from it
-    (:func:`unsew.fit.fit.fit`).
+    fit_options: ``progress`` (True/False or a :class:`~unsew.fit.progress.Progress`; default
+    True), ``callback`` (called with each phase-two iteration), ``started`` (when the command
+    began: the time limit counts from it), as :func:`unsew.fit.fit.fit` takes them.
 
     Ctrl-C or a crash leaves ``out.partial`` with ``checkpoint.pt``; ``resume=True`` continues.
     """
     log = log or (lambda s: print(s, file=sys.stderr))
     out = Path(out)
     work = partial_dir(out)
-    if out.exists() and not overwrite:
-        raise InputError(f"result folder {out} exists; pass --overwrite or choose another --out")
-    if work.exists() and not resume:
-        shutil.rmtree(work)
-    if resume and not (work / "checkpoint.pt").is_file():
-        log(f"no checkpoint in {work}; starting afresh")
+    _prepare(out, work, resume=resume, overwrite=overwrite, log=log)
     # before the work folder: a type we cannot fit leaves nothing
     case = with_garment_read(case, cfg, log=log)
     work.mkdir(parents=True, exist_ok=True)
-    try:
-        result = fit(
-            case,
-            cfg,
-            progress=progress,
-            checkpoint=work / "checkpoint.pt",
-            resume=resume,
-            log=log,
-            callback=callback,
-            started=started,
-        )
-    except BaseException:
-        # Keep the work folder only if it holds a checkpoint to resume from.
-        if not (work / "checkpoint.pt").is_file():
-            shutil.rmtree(work, ignore_errors=True)
-        else:
-            log(f"interrupted: rerun with --resume to continue from {work / 'checkpoint.pt'}")
-        raise
+    result = _fit_in(work, case, cfg, resume=resume, log=log, **fit_options)
     (work / "checkpoint.pt").unlink(missing_ok=True)
     if result.drape_check is not None and not result.drape_check.ok:
         # a garment fallen, off the body, exploded or inside it is no result: nothing is written
@@ -89,3 +56,35 @@ def run_fit(
     if not metrics.get("ok", True):
         log(f'warning: {metrics["miss"]} (metrics.json: "ok": false)')
     return result, metrics
+
+
+def _prepare(out: Path, work: Path, *, resume: bool, overwrite: bool, log) -> None:
+    """Refuse an existing ``out`` unless ``overwrite``; clear the work folder unless ``resume``."""
+    if out.exists() and not overwrite:
+        raise InputError(f"result folder {out} exists; pass --overwrite or choose another --out")
+    if work.exists() and not resume:
+        shutil.rmtree(work)
+    if resume and not (work / "checkpoint.pt").is_file():
+        log(f"no checkpoint in {work}; starting afresh")
+
+
+def _fit_in(work: Path, case, cfg, *, resume: bool, log, progress=True, callback=None, started=None):
+    """:func:`unsew.fit.fit.fit` with its checkpoint in ``work``; on Ctrl-C or a crash the work
+    folder is kept only if it holds a checkpoint to resume from."""
+    try:
+        return fit(
+            case,
+            cfg,
+            progress=progress,
+            checkpoint=work / "checkpoint.pt",
+            resume=resume,
+            log=log,
+            callback=callback,
+            started=started,
+        )
+    except BaseException:
+        if not (work / "checkpoint.pt").is_file():
+            shutil.rmtree(work, ignore_errors=True)
+        else:
+            log(f"interrupted: rerun with --resume to continue from {work / 'checkpoint.pt'}")
+        raise

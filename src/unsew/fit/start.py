@@ -30,10 +30,11 @@ from unsew.dress import dress, settle
 from unsew.errors import InputError
 from unsew.fit.config import FitConfig
 from unsew.fit.progress import Progress
+from unsew.fit.scene import Scene
 from unsew.fit.target import Target
 from unsew.grading.contours import place_contours
 from unsew.grading.garment_type import V_ANGLE_DEG, read_garment_type, read_necklines
-from unsew.grading.grade import grade
+from unsew.grading.grade import GradingSettings, grade
 from unsew.io.garmentcode import load_pattern
 from unsew.losses.contours import open_contours
 from unsew.pattern.base import BASES, bases_for, garment_of, make_base_pattern
@@ -54,7 +55,15 @@ __all__ = [
     "TORSO_BAND_BELOW_ARMPIT",
     "BASE_TIE",
     "start_chosen",
+    "BASE_CHOICE_EDGE",
+    "WARM_STEPS",
 ]
+
+#: mesh edge length of the candidate drapes of the automatic base choice [m]
+BASE_CHOICE_EDGE = 0.04
+#: steps (at drape.dt) a drape in another fabric settles from one already dressed (the base's for
+#: grading in it, the graded pattern's for the material choice); 0: dressed from scratch [-]
+WARM_STEPS = 40
 
 #: garment types a base pattern may stand in for (same panel topology)
 _COMPATIBLE = {
@@ -211,7 +220,7 @@ def choose_base(
     """The base pattern of the fit: the user's (cfg.base) or, when cfg.base is empty and the
     library has several bases of meta.json's garment type, the one whose drape lies closest to
     the target (over the torso for :data:`TORSO_CHOICE`). Each candidate, sized to the wearer, is
-    dressed from scratch on a mesh of edge ``cfg.base_choice_edge`` [m] (the rest of ``cfg.drape``
+    dressed from scratch on a mesh of edge :data:`BASE_CHOICE_EDGE` [m] (the rest of ``cfg.drape``
     as the fit's drapes) in ``material`` (the start material); its distance is
     :meth:`Target.distance_mm` (:meth:`Target.band_distance_mm` over the torso). A candidate whose drape
     fails or is judged bad (:func:`unsew.sim.checks.check_dressed`) is listed, not chosen."""
@@ -220,18 +229,7 @@ def choose_base(
     garment = garment_of(case.garment)
     names = bases_for(garment)
     m = measure_body(case.body)
-    necklines = None
-    # the neckline's cut is read off the target, not drawn from the library
-    if garment in ("tshirt", "dress"):
-        necklines, angles = read_necklines(
-            target.verts, target.faces, case.body.skeleton, contours=target.contours
-        )
-        if angles:
-            log(
-                f"neckline read off the target: front {necklines[0]}, back {necklines[1]} (the angle at its "
-                f"lowest point: front {angles.get('front_deg', 180):.0f} deg, back "
-                f"{angles.get('back_deg', 180):.0f} deg; a V under {V_ANGLE_DEG:.0f})"
-            )
+    necklines = _necklines(garment, target, case.body, log)
 
     def make(name):
         return make_base_pattern(name, m, waist_point=cfg.side_seams == "girth", necklines=necklines)
@@ -239,77 +237,30 @@ def choose_base(
     if len(names) == 1:
         return BaseChoice(make(names[0]), names[0])
     t0 = time.perf_counter()
-    settings = cfg.drape.replace(edge_length=cfg.base_choice_edge)
     frame = body_frame(m)
     band = (frame.hip_y, frame.armpit_y - TORSO_BAND_BELOW_ARMPIT) if garment in TORSO_CHOICE else None
-    rows, patterns = [], {}
+    scene = Scene(case.body, target, sdf, cfg, progress, log)
     want = arm_openings(target.verts, target.faces, case.body.skeleton, contours=target.contours)
+    rows, patterns = [], {}
     for name in names:
         pat = make(name)
-        try:
-            with progress.phase(f"base {name}") as bar:
-                d = dress(pat, case.body, sdf=sdf, material=material, settings=settings, progress=bar)
-            verdict = check_dressed(d, body=case.body)
-            if not verdict.ok:  # fallen, exploded, off or inside the body: no candidate
-                raise ValueError(verdict.reason)
-            cf = target.distance_mm(d.x.numpy(), d.mesh.faces)
-            arms = arm_openings(d.x.numpy(), d.mesh.faces, case.body.skeleton) == want
-            torso = (
-                target.band_distance_mm(d.x.numpy(), d.mesh.faces, case.body.skeleton, *band)
-                if band
-                else None
-            )
-        except (InputError, ValueError, RuntimeError) as exc:  # a candidate that cannot be dressed here
-            rows.append({"base": name, "chamfer_mm": None, "error": str(exc).splitlines()[0]})
-            continue
-        row = {"base": name, "chamfer_mm": cf if math.isfinite(cf) else None, "arms": arms}
-        if band:
-            row["torso_mm"] = torso if math.isfinite(torso) else None
+        row = _candidate(name, pat, scene, material, want, band)
         rows.append(row)
-        if math.isfinite(cf):
+        if row.get("chamfer_mm") is not None:
             patterns[name] = pat
-    if not patterns:
-        why = "; ".join(
-            f"{r['base']}: {r.get('error') or 'its distance to the target is not finite'}" for r in rows
-        )
-        raise InputError(
-            f"no base pattern of type {case.garment} could be dressed on this body ({why}); pass --base "
-            "P.json"
-        )
+    _require_one_dressed(rows, patterns, case.garment)
     on_torso = bool(band) and all(r.get("torso_mm") is not None for r in rows if r["base"] in patterns)
     # the arms agreeing first, when any candidate's do; then the closest (over the torso when
     # every candidate and the target have cloth there: a skeleton without torso bones has none)
     any_arms = any(r.get("arms") and r["base"] in patterns for r in rows)
     key = "torso_mm" if on_torso else "chamfer_mm"
     rows.sort(key=lambda r: (r["base"] not in patterns, any_arms and not r.get("arms"), r.get(key) or 0.0))
+    tie = _tie(rows, patterns, key, any_arms)
+    how = _how(band, on_torso, tie)
     best = rows[0]["base"]
-
-    def said(r):
-        if r["base"] not in patterns:
-            return f"{r['base']} failed"
-        torso = r.get("torso_mm")
-        return (
-            f"{r['base']} {r['chamfer_mm']:.2f} mm"
-            + (f" (torso {torso:.2f} mm)" if torso is not None else "")
-            + ("" if r["arms"] else " (arms differ)")
-        )
-
-    how = ""
-    if band:
-        how = (
-            f"; chosen on the torso, {band[0]:.2f}-{band[1]:.2f} m up"
-            if on_torso
-            else "; no cloth over the torso to compare, chosen on the whole garment"
-        )
-    tie = None
-    if len(rows) > 1 and rows[1]["base"] in patterns and (rows[1].get("arms") or not any_arms):
-        d0, d1 = rows[0].get(key), rows[1].get(key)
-        if d0 and d1 and d1 <= BASE_TIE * d0:
-            tie = (rows[1]["base"], patterns[rows[1]["base"]])
-            how += f"; {tie[0]} within {100 * (BASE_TIE - 1):.0f} %: both graded"
     log(
         "base: "
-        + ", ".join(said(r) for r in rows)
+        + ", ".join(_said(r, patterns) for r in rows)
         + f"; {best} chosen (target: {want[0]} + {want[1]} openings on the arms"
         + how
         + ")"
@@ -317,18 +268,95 @@ def choose_base(
     return BaseChoice(patterns[best], best, rows, time.perf_counter() - t0, tie)
 
 
-def start_chosen(
-    choice: BaseChoice,
-    body,
-    target: Target,
-    sdf,
-    cfg: FitConfig,
-    material,
-    *,
-    progress: Progress,
-    log=print,
-    budget=None,
-) -> Start:
+def _require_one_dressed(rows: list, patterns: dict, garment: str) -> None:
+    """InputError listing each candidate's reason when none of them could be dressed."""
+    if patterns:
+        return
+    why = "; ".join(
+        f"{r['base']}: {r.get('error') or 'its distance to the target is not finite'}" for r in rows
+    )
+    raise InputError(
+        f"no base pattern of type {garment} could be dressed on this body ({why}); pass --base P.json"
+    )
+
+
+def _how(band: tuple | None, on_torso: bool, tie: tuple | None) -> str:
+    """How the base was chosen, for the log: on the torso ``band`` (heights [m]) or the whole
+    garment, and the runner-up graded too when ``tie``."""
+    how = ""
+    if band:
+        how = (
+            f"; chosen on the torso, {band[0]:.2f}-{band[1]:.2f} m up"
+            if on_torso
+            else "; no cloth over the torso to compare, chosen on the whole garment"
+        )
+    if tie is not None:
+        how += f"; {tie[0]} within {100 * (BASE_TIE - 1):.0f} %: both graded"
+    return how
+
+
+def _necklines(garment: str, target: Target, body, log):
+    """The neckline cuts of a top read off the target (logged when one was read), or None: the
+    neckline's cut is read off the target, not drawn from the library."""
+    if garment not in ("tshirt", "dress"):
+        return None
+    necklines, angles = read_necklines(target.verts, target.faces, body.skeleton, contours=target.contours)
+    if angles:
+        log(
+            f"neckline read off the target: front {necklines[0]}, back {necklines[1]} (the angle at its "
+            f"lowest point: front {angles.get('front_deg', 180):.0f} deg, back "
+            f"{angles.get('back_deg', 180):.0f} deg; a V under {V_ANGLE_DEG:.0f})"
+        )
+    return necklines
+
+
+def _candidate(name: str, pat, scene: Scene, material, want: tuple, band: tuple | None) -> dict:
+    """A base choice row: candidate ``pat`` dressed from scratch on a BASE_CHOICE_EDGE mesh, its
+    distance [mm] (None: not finite), whether its arm openings are the target's ``want``, its
+    distance over the torso ``band`` [m] (heights); {"base", "chamfer_mm": None, "error"} when it
+    cannot be dressed here or its drape fails its check."""
+    body, target = scene.body, scene.target
+    settings = scene.cfg.drape.replace(edge_length=BASE_CHOICE_EDGE)
+    try:
+        with scene.progress.phase(f"base {name}") as bar:
+            d = dress(pat, body, sdf=scene.sdf, material=material, settings=settings, progress=bar)
+        verdict = check_dressed(d, body=body)
+        if not verdict.ok:  # fallen, exploded, off or inside the body: no candidate
+            raise ValueError(verdict.reason)
+        cf = target.distance_mm(d.x.numpy(), d.mesh.faces)
+        arms = arm_openings(d.x.numpy(), d.mesh.faces, body.skeleton) == want
+        torso = target.band_distance_mm(d.x.numpy(), d.mesh.faces, body.skeleton, *band) if band else None
+    except (InputError, ValueError, RuntimeError) as exc:  # a candidate that cannot be dressed here
+        return {"base": name, "chamfer_mm": None, "error": str(exc).splitlines()[0]}
+    row = {"base": name, "chamfer_mm": cf if math.isfinite(cf) else None, "arms": arms}
+    if band:
+        row["torso_mm"] = torso if math.isfinite(torso) else None
+    return row
+
+
+def _tie(rows: list, patterns: dict, key: str, any_arms: bool) -> tuple | None:
+    """(name, pattern) of the runner-up when it lies within BASE_TIE of the best (rows sorted,
+    best first, on ``key``) and its arms agree as well as the best's may, else None."""
+    if len(rows) > 1 and rows[1]["base"] in patterns and (rows[1].get("arms") or not any_arms):
+        d0, d1 = rows[0].get(key), rows[1].get(key)
+        if d0 and d1 and d1 <= BASE_TIE * d0:
+            return rows[1]["base"], patterns[rows[1]["base"]]
+    return None
+
+
+def _said(r: dict, patterns: dict) -> str:
+    """A base choice row in the log's words."""
+    if r["base"] not in patterns:
+        return f"{r['base']} failed"
+    torso = r.get("torso_mm")
+    return (
+        f"{r['base']} {r['chamfer_mm']:.2f} mm"
+        + (f" (torso {torso:.2f} mm)" if torso is not None else "")
+        + ("" if r["arms"] else " (arms differ)")
+    )
+
+
+def start_chosen(choice: BaseChoice, scene: Scene, material, *, budget=None) -> Start:
     """Phase one from the base choice: :func:`start` from ``choice.pattern`` and, when the choice
     was a tie (``choice.tie``) and ``budget`` (a :class:`unsew.fit.budget.TimeBudget`) has more
     than half its limit left, from the runner-up too. The runner-up's Start is kept when its graded
@@ -347,22 +375,18 @@ def start_chosen(
         try:
             s = start(
                 pattern,
-                body,
-                target,
-                sdf,
-                cfg,
+                scene,
                 material,
-                progress=progress,
                 garment=name,
-                log=log,
+                log=scene.log,
                 label="drape base" if not starts else f"drape base {name}",
             )
         except (InputError, ValueError, RuntimeError) as exc:  # the runner-up's failure is no fit's
             if not starts:
                 raise
-            log(f"base {name}: grading failed ({str(exc).splitlines()[0]}); left out")
+            scene.log(f"base {name}: grading failed ({str(exc).splitlines()[0]}); left out")
             continue
-        starts.append((target.distance_mm(s.x, s.mesh.faces) if len(names) > 1 else math.nan, name, s))
+        starts.append((scene.target.distance_mm(s.x, s.mesh.faces) if len(names) > 1 else math.nan, name, s))
     table = [dict(r) for r in choice.table]
     for cf, name, _ in starts:
         for r in table:
@@ -377,7 +401,9 @@ def start_chosen(
             not math.isfinite(cf0) or cf1 < cf0 - max(CHECK_MARGIN_MM, CHECK_MARGIN_REL * cf0)
         ):
             best = starts[1]
-        log("base tie: graded " + ", ".join(f"{n} {cf:.2f} mm" for cf, n, _ in starts) + f"; {best[1]} kept")
+        scene.log(
+            "base tie: graded " + ", ".join(f"{n} {cf:.2f} mm" for cf, n, _ in starts) + f"; {best[1]} kept"
+        )
         table.sort(key=lambda r: r["base"] != best[1])
     return best[2].replace(base_name=best[1], base_choice=tuple(table))
 
@@ -396,65 +422,68 @@ def _check_contours_compatible(n_src: int, n_tgt: int, garment: str) -> None:
 
 def start(
     base,
-    body,
-    target: Target,
-    sdf,
-    cfg: FitConfig,
+    scene: Scene,
     material,
     *,
-    progress: Progress,
     label: str = "drape base",
     garment: str = "",
     base_from: tuple | None = None,
     log: Callable[[str], None] | None = None,
 ) -> Start:
-    """Dress ``base`` on ``body`` in ``material`` and, unless ``cfg.grading`` is off, grade it to
-    ``target`` in the same material (:func:`unsew.grading.grade.grade`). Raises InputError when
-    the base's openings do not match the target's (``garment`` names the base in the message).
+    """Dress ``base`` on ``scene.body`` in ``material`` and, unless ``scene.cfg.grading`` is off,
+    grade it to ``scene.target`` in the same material (:func:`unsew.grading.grade.grade`). Raises
+    InputError when the base's openings do not match the target's (``garment`` names the base in
+    the message).
 
     base_from: (mesh, x) the base already dressed in another material: then, when
-    ``cfg.material.warm_steps`` > 0, the base drape is settled from it (:func:`unsew.dress.settle`)
-    instead of dressed from scratch. log: where grading's one-line warnings go."""
-    t0, dress_s = time.perf_counter(), 0.0
-    with progress.phase(label) as bar:
-        if base_from is not None and cfg.material.warm_steps > 0:
-            mesh_b = base_from[0]
-            x_b = settle(
-                mesh_b,
-                base_from[1],
-                sdf,
-                material,
-                settings=cfg.drape,
-                steps=cfg.material.warm_steps,
-                progress=bar,
-            )
-        else:
-            dressed = dress(base, body, sdf=sdf, material=material, settings=cfg.drape, progress=bar)
-            mesh_b, x_b = dressed.mesh, dressed.x.numpy().copy()
-            dress_s = time.perf_counter() - t0
+    WARM_STEPS > 0, the base drape is settled from it (:func:`unsew.dress.settle`)
+    instead of dressed from scratch. log: where grading's one-line warnings go (None: nowhere)."""
+    cfg, target = scene.cfg, scene.target
+    mesh_b, x_b, dress_s = _base_drape(base, scene, material, label, base_from)
     _check_contours_compatible(len(open_contours(x_b, mesh_b.faces)), len(target.contours), garment)
     if not cfg.grading:
         return Start(base, base, mesh_b, x_b, [], x_b, mesh_b, material, dress_s=dress_s)
 
     def drape_fn(p, m, b):
-        return dress(p, b, sdf=sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
+        return dress(p, b, sdf=scene.sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
 
-    g = grade(
-        base,
-        body,
-        target.verts,
-        target.faces,
-        settings=cfg.drape,
+    settings = GradingSettings(
+        drape=cfg.drape,
         material=material,
-        sdf=sdf,
-        mesh=mesh_b,
-        x_init=x_b,
-        drape_fn=drape_fn,
         area=target.area if cfg.area == "target" else None,
-        log=log,
         side_seams=cfg.side_seams,
         band_gap=cfg.band_gap,
     )
+    g = grade(
+        base, scene.body, target.verts, target.faces, settings, mesh=mesh_b, x_init=x_b, drape_fn=drape_fn
+    )
+    if g.note and log is not None:
+        log(g.note)
     return Start(
         base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, mesh_b, material, dress_s=dress_s
     )
+
+
+def _base_drape(base, scene: Scene, material, label: str, base_from: tuple | None):
+    """(mesh, drape (n_x, 3) [m], seconds a drape from scratch took, 0 when settled): ``base``
+    dressed from scratch in ``material``, or settled WARM_STEPS steps from ``base_from``."""
+    t0, dress_s = time.perf_counter(), 0.0
+    with scene.progress.phase(label) as bar:
+        if base_from is not None and WARM_STEPS > 0:
+            mesh_b = base_from[0]
+            x_b = settle(
+                mesh_b,
+                base_from[1],
+                scene.sdf,
+                material,
+                settings=scene.cfg.drape,
+                steps=WARM_STEPS,
+                progress=bar,
+            )
+        else:
+            dressed = dress(
+                base, scene.body, sdf=scene.sdf, material=material, settings=scene.cfg.drape, progress=bar
+            )
+            mesh_b, x_b = dressed.mesh, dressed.x.numpy().copy()
+            dress_s = time.perf_counter() - t0
+    return mesh_b, x_b, dress_s

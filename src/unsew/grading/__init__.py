@@ -4,7 +4,8 @@
 - :mod:`unsew.grading.curves`: 3D contours -> 2D open curves of the pattern;
 - :mod:`unsew.grading.cloth`: cloth lengths from a contour to the top opening, on a drape and at rest;
 - :mod:`unsew.grading.edit`: the control-point edit (move and widen, symmetric, no inversions);
-- :mod:`unsew.grading.grade`: ``grade(...) -> GradeResult``, the whole phase;
+- :mod:`unsew.grading.grade`: ``grade(pattern, body, verts, faces, GradingSettings) -> GradeResult``,
+  the whole phase;
 - :mod:`unsew.grading.alter`: known alterations of a pattern (targets for tests and benchmarks).
 
 One import path per name: ``from unsew.grading.grade import grade, GradeResult``. This package

@@ -32,7 +32,7 @@ __all__ = [
     "hangs_from_band",
 ]
 
-#: The choices of ``grade(band_gap=...)``: the target's band loops as measured, or less the
+#: The choices of ``GradingSettings.band_gap``: the target's band loops as measured, or less the
 #: excess the target's contact gap adds.
 BAND_GAP_MODES = ("none", "target")
 

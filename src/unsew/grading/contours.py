@@ -247,76 +247,76 @@ def place_contours(
     root_bone = _torso_root_bone(skeleton)
     adj = vertex_adjacency(faces, len(v))
     ends = _chain_end_bones(skeleton)
-    out = []
-    for i, c in enumerate(contours):
-        pts = v[c.indices]
-        radius = float(np.linalg.norm(pts - c.centre, axis=1).mean())
-        sv = np.linalg.svd(pts - pts.mean(axis=0), compute_uv=False)
-        roundness = float(sv[1] / sv[0]) if len(sv) > 1 and sv[0] > 0 else 0.0
-        cands = [(e.bone, e.u, e.h) for e in encircled_bones(pts, bones)]
-        if root_bone is not None:
-            u = float(axial_coordinate(c.centre, root_bone))
-            if u <= 0.0:
-                P = root_bone.a + u * (root_bone.b - root_bone.a)
-                cands.append((root_bone, u, float(np.linalg.norm(c.centre - P))))
-        for b in ends:
-            u = float(axial_coordinate(c.centre, b))
-            if u >= 1.0:
-                P = b.a + u * (b.b - b.a)
-                cands.append((b, u, float(np.linalg.norm(c.centre - P))))
-        # bones through the loop first, then bones across the loop's plane (a contour encircles a
-        # bone roughly along its normal; a sideways hip or collar bone is not it), then the nearest
-        across = lambda b: roundness < MIN_ROUNDNESS or abs(float(c.normal @ b.direction)) >= 0.5  # noqa: E731
-        cands.sort(key=lambda t: (t[2] >= radius, not across(t[0]), t[2]))
-        inward = _inward(adj, v, c)
-        if cands:
-            bone, u, h = cands[0]
-            kept, cut = slits(pts, _into_cloth(bone.direction, inward))
-            hull = hull_perimeter(pts if kept is None else pts[kept])
-            pc = PlacedContour(
-                i,
-                c,
-                radius,
-                bone,
-                float(u),
-                float(h),
-                bone.part,
-                0.0,
-                cands,
-                roundness,
-                inward,
-                hull,
-                slit_cut=cut,
-                kept=kept,
-            )
-            if kept is not None:  # the loop's place and plane without its slits
-                rim = pts[kept]
-                pc.rim_centre = rim.mean(axis=0)
-                _, sv, vt = np.linalg.svd(rim - pc.rim_centre, full_matrices=False)
-                pc.rim_normal = vt[2] if float(vt[2] @ c.normal) >= 0 else -vt[2]
-                pc.roundness = float(sv[1] / sv[0]) if sv[0] > 0 else 0.0
-                u = float(axial_coordinate(pc.rim_centre, bone))
-                pc.u = u
-            pc.position = float(skeleton.distance_to_root(bone, u))
-            out.append(pc)
-        else:
-            out.append(
-                PlacedContour(
-                    i,
-                    c,
-                    radius,
-                    None,
-                    float("nan"),
-                    float("nan"),
-                    "",
-                    float("nan"),
-                    [],
-                    roundness,
-                    inward,
-                    hull_perimeter(pts),
-                )
-            )
-    return out
+    return [_placed(i, c, v, adj, skeleton, bones, root_bone, ends) for i, c in enumerate(contours)]
+
+
+def _bone_candidates(c: Contour, pts: np.ndarray, bones, root_bone, ends) -> list:
+    """(bone, u, h) candidates for contour ``c`` (its points ``pts`` (k, 3) [m]): the bones it
+    encircles, the torso's root bone when it lies below its start, the chain-end bones when it lies
+    beyond their ends (u: axial coordinate [-], h: distance from the bone's line [m])."""
+    cands = [(e.bone, e.u, e.h) for e in encircled_bones(pts, bones)]
+    if root_bone is not None:
+        u = float(axial_coordinate(c.centre, root_bone))
+        if u <= 0.0:
+            P = root_bone.a + u * (root_bone.b - root_bone.a)
+            cands.append((root_bone, u, float(np.linalg.norm(c.centre - P))))
+    for b in ends:
+        u = float(axial_coordinate(c.centre, b))
+        if u >= 1.0:
+            P = b.a + u * (b.b - b.a)
+            cands.append((b, u, float(np.linalg.norm(c.centre - P))))
+    return cands
+
+
+def _placed(
+    i: int, c: Contour, v: np.ndarray, adj, skeleton: Skeleton, bones, root_bone, ends
+) -> PlacedContour:
+    """Contour ``c`` (index ``i``) of the mesh with vertices ``v`` (V, 3) [m] placed on its bone:
+    the best candidate of :func:`_bone_candidates`, the loop read without its slits."""
+    pts = v[c.indices]
+    radius = float(np.linalg.norm(pts - c.centre, axis=1).mean())
+    sv = np.linalg.svd(pts - pts.mean(axis=0), compute_uv=False)
+    roundness = float(sv[1] / sv[0]) if len(sv) > 1 and sv[0] > 0 else 0.0
+    cands = _bone_candidates(c, pts, bones, root_bone, ends)
+    # bones through the loop first, then bones across the loop's plane (a contour encircles a
+    # bone roughly along its normal; a sideways hip or collar bone is not it), then the nearest
+    across = lambda b: roundness < MIN_ROUNDNESS or abs(float(c.normal @ b.direction)) >= 0.5  # noqa: E731
+    cands.sort(key=lambda t: (t[2] >= radius, not across(t[0]), t[2]))
+    inward = _inward(adj, v, c)
+    if not cands:
+        nan = float("nan")
+        return PlacedContour(
+            i, c, radius, None, nan, nan, "", nan, [], roundness, inward, hull_perimeter(pts)
+        )
+    bone, u, h = cands[0]
+    kept, cut = slits(pts, _into_cloth(bone.direction, inward))
+    hull = hull_perimeter(pts if kept is None else pts[kept])
+    pc = PlacedContour(
+        i,
+        c,
+        radius,
+        bone,
+        float(u),
+        float(h),
+        bone.part,
+        0.0,
+        cands,
+        roundness,
+        inward,
+        hull,
+        slit_cut=cut,
+        kept=kept,
+    )
+    if kept is not None:  # the loop's place and plane without its slits
+        rim = pts[kept]
+        pc.rim_centre = rim.mean(axis=0)
+        _, sv, vt = np.linalg.svd(rim - pc.rim_centre, full_matrices=False)
+        pc.rim_normal = vt[2] if float(vt[2] @ c.normal) >= 0 else -vt[2]
+        pc.roundness = float(sv[1] / sv[0]) if sv[0] > 0 else 0.0
+        u = float(axial_coordinate(pc.rim_centre, bone))
+        pc.u = u
+    pc.position = float(skeleton.distance_to_root(bone, u))
+    return pc
 
 
 def hull_perimeter(points) -> float:
@@ -443,27 +443,11 @@ def match_contours(
     cost = np.full((max(ns, 1), max(nt, 1)), big)
     far = {}  # (i, j) -> the cost of a pair that failed the centre-distance gate alone
     for i, s in enumerate(source):
-        if s.bone is None:
-            continue
         for j, t in enumerate(target):
-            if t.bone is None:
+            c = _pair_cost(s, t, max_centre_distance, max_perimeter_ratio)
+            if c is None:
                 continue
-            s_parts = {part_group(b.part) for b, _, _ in s.candidates}
-            t_parts = {part_group(b.part) for b, _, _ in t.candidates}
-            if part_group(s.part) not in t_parts and part_group(t.part) not in s_parts:
-                continue
-            dc = float(np.linalg.norm(s.centre - t.centre))
-            ratio = max(s.length, t.length) / max(min(s.length, t.length), 1e-9)
-            if ratio > max_perimeter_ratio or dc > FAR_CENTRE_FACTOR * max_centre_distance:
-                continue
-            cosn = abs(float(s.normal @ t.normal))
-            if min(s.roundness, t.roundness) < MIN_ROUNDNESS:
-                cosn = 1.0  # a loop collapsed onto a line has no meaningful plane
-            elif cosn < 0.5:  # planes more than 60 degrees apart
-                continue
-            ref = max(s.radius, 0.05)
-            c = dc / ref + (ratio - 1.0) + (1.0 - cosn)
-            if dc > max_centre_distance:
+            if float(np.linalg.norm(s.centre - t.centre)) > max_centre_distance:
                 far[i, j] = c
                 continue
             cost[i, j] = c
@@ -476,31 +460,58 @@ def match_contours(
     if ns == 0 or nt == 0:
         return []
     rows, cols = linear_sum_assignment(cost)
-    out = []
-    for i, j in zip(rows, cols):
-        if cost[i, j] >= big:
-            continue
-        s, t = source[i], target[j]
-        axial = _target_position(skeleton, s, t) - s.position
-        # Outward: away from the cloth next to the contour (a cuff's sleeve, a hem's body); the
-        # garment's centre only when the mesh gave no neighbours. (The vertex mean of a long
-        # dress lies so low that it read a sleeve's outward direction backwards.)
-        if s.inward is not None:
-            outward = -float(s.inward @ s.bone.direction)
-        else:
-            outward = float((s.centre - np.asarray(garment_centre, dtype=np.float64)) @ s.bone.direction)
-        sign = 1.0 if outward >= 0 else -1.0
-        out.append(
-            ContourMatch(
-                source=int(i),
-                target=int(j),
-                part=s.part,
-                bone=s.bone.name,
-                axial_distance=float(axial),
-                extension=float(sign * axial),
-                girth_difference=float(t.length - s.length),
-                cost=float(cost[i, j]),
-            )
-        )
+    out = [
+        _measured(int(i), int(j), source[i], target[j], skeleton, garment_centre, float(cost[i, j]))
+        for i, j in zip(rows, cols)
+        if cost[i, j] < big
+    ]
     out.sort(key=lambda m: m.source)
     return out
+
+
+def _pair_cost(s: PlacedContour, t: PlacedContour, max_centre_distance: float, max_perimeter_ratio: float):
+    """The cost of pairing source contour ``s`` with target contour ``t`` (centre distance over the
+    source's radius + perimeter ratio - 1 + 1 - |cos| of the planes' angle), or None when they
+    cannot pair: unplaced, on other body parts, perimeters too different, centres farther apart
+    than FAR_CENTRE_FACTOR x ``max_centre_distance`` [m], planes more than 60 degrees apart."""
+    if s.bone is None or t.bone is None:
+        return None
+    s_parts = {part_group(b.part) for b, _, _ in s.candidates}
+    t_parts = {part_group(b.part) for b, _, _ in t.candidates}
+    if part_group(s.part) not in t_parts and part_group(t.part) not in s_parts:
+        return None
+    dc = float(np.linalg.norm(s.centre - t.centre))
+    ratio = max(s.length, t.length) / max(min(s.length, t.length), 1e-9)
+    if ratio > max_perimeter_ratio or dc > FAR_CENTRE_FACTOR * max_centre_distance:
+        return None
+    cosn = abs(float(s.normal @ t.normal))
+    if min(s.roundness, t.roundness) < MIN_ROUNDNESS:
+        cosn = 1.0  # a loop collapsed onto a line has no meaningful plane
+    elif cosn < 0.5:  # planes more than 60 degrees apart
+        return None
+    ref = max(s.radius, 0.05)
+    return dc / ref + (ratio - 1.0) + (1.0 - cosn)
+
+
+def _measured(i: int, j: int, s: PlacedContour, t: PlacedContour, skeleton, garment_centre, cost: float):
+    """The :class:`ContourMatch` of source contour ``s`` (index ``i``) and target ``t`` (``j``):
+    the axial distance along the source's bone, signed outward, and the girth difference [m]."""
+    axial = _target_position(skeleton, s, t) - s.position
+    # Outward: away from the cloth next to the contour (a cuff's sleeve, a hem's body); the
+    # garment's centre only when the mesh gave no neighbours. (The vertex mean of a long
+    # dress lies so low that it read a sleeve's outward direction backwards.)
+    if s.inward is not None:
+        outward = -float(s.inward @ s.bone.direction)
+    else:
+        outward = float((s.centre - np.asarray(garment_centre, dtype=np.float64)) @ s.bone.direction)
+    sign = 1.0 if outward >= 0 else -1.0
+    return ContourMatch(
+        source=i,
+        target=j,
+        part=s.part,
+        bone=s.bone.name,
+        axial_distance=float(axial),
+        extension=float(sign * axial),
+        girth_difference=float(t.length - s.length),
+        cost=cost,
+    )

@@ -125,18 +125,8 @@ def read_garment_type(verts, faces, skeleton, *, contours=None) -> GarmentReadin
         raise InputError(
             "the target has no opening (no hem, waist or neckline): the garment type cannot be read"
         )
-    chains = _limb_chains(skeleton)
     centres = np.stack([np.asarray(c.centre, dtype=np.float64) for c in loops])  # (C, 3) [m]
-    radii = np.array([_radius(v, c) for c in loops])
-    dist = {k: _chain_distance(centres, j) for k, j in chains.items()}  # limb -> (C,) [m]
-    near = np.maximum(radii, LIMB_NEAR)
-    on = {}
-    for side, other in (("left", "right"), ("right", "left")):
-        for limb in ("arm", "leg"):
-            # round this limb, with the other side's limb outside the loop
-            on[f"{side}_{limb}"] = (dist[f"{side}_{limb}"] < near) & (dist[f"{other}_{limb}"] > radii)
-    leg = on["left_leg"] | on["right_leg"]
-    arm = (on["left_arm"] | on["right_arm"]) & ~leg
+    leg, arm, on = _openings_by_part(v, loops, centres, skeleton)
     torso = ~(leg | arm)
     legs = (int(on["left_leg"].sum()), int(on["right_leg"].sum()))
     arms = (int((on["left_arm"] & arm).sum()), int((on["right_arm"] & arm).sum()))
@@ -145,29 +135,12 @@ def read_garment_type(verts, faces, skeleton, *, contours=None) -> GarmentReadin
     hem_y = float(centres[torso, 1].min()) if torso.any() else float("nan")
     chest = _chest_y(skeleton)
     upper = bool(any(arms)) or top_y > chest
-    split = min(legs) >= 1
     said = (
         f"{sum(legs)} leg, {sum(arms)} arm and {int(torso.sum())} torso opening(s), "
         f"top {100 * (top_y - chest):+.0f} cm from the chest line"
     )
-    if split and upper:
-        garment = "jumpsuit"
-        why = f"openings round both legs and a bodice ({said})"
-    elif split:
-        leg_y = float(centres[leg, 1].mean())
-        garment = "pants" if leg_y < knee_y - TROUSER_BELOW_KNEE else "shorts"
-        why = f"openings round both legs {100 * (leg_y - knee_y):+.0f} cm from the knees ({said})"
-    elif upper:
-        dress_line = hip_y - DRESS_HEM * (hip_y - knee_y)
-        garment = "dress" if np.isfinite(hem_y) and hem_y < dress_line else "tshirt"
-        why = (
-            f"a bodice with its hem {100 * (hem_y - dress_line):+.0f} cm from mid-thigh ({said})"
-            if np.isfinite(hem_y)
-            else f"a bodice ({said})"
-        )
-    else:
-        garment = "skirt"
-        why = f"one tube round the hips and legs ({said})"
+    leg_y = float(centres[leg, 1].mean()) if leg.any() else float("nan")
+    garment, why = _type_of(min(legs) >= 1, upper, leg_y, hem_y, hip_y, knee_y, said)
     return GarmentReading(
         garment,
         why,
@@ -178,6 +151,44 @@ def read_garment_type(verts, faces, skeleton, *, contours=None) -> GarmentReadin
         hem_y,
         {"hip_y": hip_y, "knee_y": knee_y, "chest_y": chest},
     )
+
+
+def _openings_by_part(v: np.ndarray, loops, centres: np.ndarray, skeleton):
+    """(leg, arm, on): which loops (C,) bool go round a leg, round an arm (and no leg), and
+    ``on``: "left_arm", ... -> (C,) bool, a loop round that limb with the other side's outside it."""
+    chains = _limb_chains(skeleton)
+    radii = np.array([_radius(v, c) for c in loops])
+    dist = {k: _chain_distance(centres, j) for k, j in chains.items()}  # limb -> (C,) [m]
+    near = np.maximum(radii, LIMB_NEAR)
+    on = {}
+    for side, other in (("left", "right"), ("right", "left")):
+        for limb in ("arm", "leg"):
+            # round this limb, with the other side's limb outside the loop
+            on[f"{side}_{limb}"] = (dist[f"{side}_{limb}"] < near) & (dist[f"{other}_{limb}"] > radii)
+    leg = on["left_leg"] | on["right_leg"]
+    arm = (on["left_arm"] | on["right_arm"]) & ~leg
+    return leg, arm, on
+
+
+def _type_of(split: bool, upper: bool, leg_y: float, hem_y: float, hip_y: float, knee_y: float, said: str):
+    """(garment type, why in words) from the openings: round both legs (``split``), a bodice
+    (``upper``), the legs' openings' mean height ``leg_y``, the lowest torso opening ``hem_y``
+    and the hip and knee heights [m]; ``said``: the openings counted, for the reason."""
+    if split and upper:
+        return "jumpsuit", f"openings round both legs and a bodice ({said})"
+    if split:
+        garment = "pants" if leg_y < knee_y - TROUSER_BELOW_KNEE else "shorts"
+        return garment, f"openings round both legs {100 * (leg_y - knee_y):+.0f} cm from the knees ({said})"
+    if upper:
+        dress_line = hip_y - DRESS_HEM * (hip_y - knee_y)
+        garment = "dress" if np.isfinite(hem_y) and hem_y < dress_line else "tshirt"
+        why = (
+            f"a bodice with its hem {100 * (hem_y - dress_line):+.0f} cm from mid-thigh ({said})"
+            if np.isfinite(hem_y)
+            else f"a bodice ({said})"
+        )
+        return garment, why
+    return "skirt", f"one tube round the hips and legs ({said})"
 
 
 def _neck_opening(v: np.ndarray, loops, skeleton):

@@ -6,7 +6,7 @@ of the target on the skeleton and pairs them (:mod:`unsew.grading.contours`), ma
 source contour to its 2D open curves (:mod:`unsew.grading.curves`), moves and widens those curves'
 control points by the measured length and girth differences (:mod:`unsew.grading.edit`; the
 length is the change of cloth length to the garment's top opening, :mod:`unsew.grading.cloth`,
-or Algorithm 2's axial distance along the bone with ``length="axial"``),
+or Algorithm 2's axial distance along the bone with ``GradingSettings.length`` "axial"),
 projects the edit onto the symmetric parameters K, moves every other pattern vertex with
 ``params.uv(K)``, scales the edit back if it would invert triangles, re-meshes when panel edges
 got stretched beyond 1.5x the target edge length (or always: ``remesh``), and re-drapes: U_LG
@@ -48,6 +48,7 @@ from unsew.sim.drape import DrapeSettings
 
 __all__ = [
     "GradeResult",
+    "GradingSettings",
     "grade",
     "moved_mesh",
     "dress_drape",
@@ -86,13 +87,14 @@ MESH_RETRIES = 4
 GRADE_SETTINGS = DRESS_SETTINGS.replace(edge_length=0.03)
 
 #: Re-mesh after grading when a rest edge grew beyond this factor times the target edge length
-#: (``remesh="stretched"``; the default ``"always"`` meshes every graded pattern afresh).
+#: (``GradingSettings.remesh`` "stretched"; the default "always" meshes every graded pattern afresh).
 REMESH_STRETCH = 1.5
-#: The choices of ``grade(remesh=...)``.
+#: The choices of ``GradingSettings.remesh``.
 REMESH_MODES = ("always", "stretched")
-#: The choices of ``grade(length=...)``: cloth length to the top opening, or Algorithm 2's axial distance.
+#: The choices of ``GradingSettings.length``: cloth length to the top opening, or Algorithm 2's axial
+#: distance.
 LENGTH_MODES = ("cloth", "axial")
-#: The choices of ``grade(side_seams=...)``: left alone, or graded by the torso's girth.
+#: The choices of ``GradingSettings.side_seams``: left alone, or graded by the torso's girth.
 SIDE_SEAM_MODES = ("none", "girth")
 #: A further grading pass is made only when some contour's cloth length (or, without one, its
 #: position along the bone) is still further than this from the target's [m], or its girth
@@ -116,10 +118,11 @@ class GradeResult:
     x_init: the drape of the base pattern, (n_x0, 3) float64 [m], on ``mesh_init``.
     mesh_init: the base pattern's GarmentMesh.
     matches: the contour pairs (:class:`~unsew.grading.contours.ContourMatch`).
-    area_scales: the length factor of each pass's area scaling (``grade(area=...)``, in pass
+    area_scales: the length factor of each pass's area scaling (``GradingSettings.area``, in pass
         order; empty without it). ``K`` is then the last contour edit's, before its scaling.
     placement: what the placement choice tried (:func:`unsew.grading.placement.choose_lift`'s row:
         ``lift_m``, ``wanted_m``, ``tried_m``, ``chamfer_mm``); None when it did not run.
+    note: a one-line warning when the last pass's area scaling was clipped (None: none).
     """
 
     pattern: object
@@ -134,6 +137,7 @@ class GradeResult:
     matches: list = field(default_factory=list)
     area_scales: list = field(default_factory=list)
     placement: dict | None = None
+    note: str | None = None
 
 
 #: Keys of every row of ``GradeResult.table``.
@@ -194,133 +198,99 @@ def moved_mesh(mesh, pattern, uv: np.ndarray):
     return replace(mesh, uv=uv.copy(), uv_placed3d=placed)
 
 
+@dataclass(frozen=True)
+class GradingSettings:
+    """How :func:`grade` grades: its drapes and the rules of each pass. Units in brackets."""
+
+    #: the drapes; ``drape.edge_length`` is the rest edge length [m] the patterns are meshed at
+    drape: DrapeSettings = GRADE_SETTINGS
+    #: the drapes' fabric: a :class:`~unsew.sim.material.Material` or a name from ``MATERIALS``
+    material: object = "cotton"
+    redrape: bool = True  #: drape the graded pattern (X_LG); False leaves ``x_draped`` None
+    #: contour pairing gate [m] (None: :data:`~unsew.grading.contours.MAX_CENTRE_DISTANCE`)
+    max_centre_distance: float | None = None
+    #: grading passes; a further pass grades the graded pattern again from its own drape while a
+    #: contour is off by more than PASS_LENGTH_TOL or PASS_GIRTH_TOL (one edit cannot know how the
+    #: drape answers; the next measures it). One drape each [-]
+    passes: int = 2
+    #: keep each panel's top where it was placed when its top is an edited open curve (a waist):
+    #: the change of length goes to the other end (:func:`_hold_tops`)
+    hold_top: bool = True
+    #: "always": every graded pattern is meshed afresh before it is draped, so X_LG is reproducible
+    #: from U_LG alone; "stretched": only when a rest edge grew beyond REMESH_STRETCH times the edge
+    #: length, else the base mesh is moved with the pattern (:func:`moved_mesh`)
+    remesh: str = "always"
+    #: how far a contour's open curve moves: "cloth", by the change of cloth length to the garment's
+    #: top opening, target minus drape, read on the pattern's rest mesh (:mod:`unsew.grading.cloth`;
+    #: contours without such a path move axially); "axial", by the axial extension along the bone
+    #: (Algorithm 2)
+    length: str = "cloth"
+    #: "none": the side seams stay where the base has them (Algorithm 2); "girth": for a garment
+    #: hanging from the shoulders, each pass also moves the side-seam points between the hips and
+    #: the armpits by the target's torso girth at their height minus the drape's
+    #: (:mod:`unsew.grading.profile`)
+    side_seams: str = "none"
+    #: "none": a waistband is graded to the target's top loop as measured; "target": for a garment
+    #: that hangs from its band (:func:`~unsew.grading.band_gap.hangs_from_band`), to that loop less
+    #: the length the target's own contact gap adds, its bottom and the waist seam below with it
+    #: (:mod:`unsew.grading.band_gap`)
+    band_gap: str = "none"
+    #: the target's surface area [m^2]: each pass's pattern is scaled to it (every panel but the
+    #: waistbands by one factor about its centroid: :func:`unsew.grading.area.scale_to_area`) and
+    #: meshed afresh before it is draped (None: no scaling, Algorithm 2)
+    area: float | None = None
+    #: for a garment that hangs from the waist, dress the last pass's pattern again lifted towards
+    #: the target's top opening and keep the placement whose drape lies closest
+    #: (:mod:`unsew.grading.placement`; two more drapes; needs ``redrape``)
+    lift: bool = True
+
+    def replace(self, **changes) -> "GradingSettings":
+        """A copy with ``changes`` applied."""
+        return replace(self, **changes)
+
+
 def grade(
     pattern,
     body,
     target_verts,
     target_faces,
+    settings: GradingSettings = GradingSettings(),
     *,
-    settings: DrapeSettings = GRADE_SETTINGS,
-    material="cotton",
     mesh=None,
     x_init=None,
     drape_fn: Callable | None = None,
-    sdf=None,
-    redrape: bool = True,
-    max_centre_distance: float | None = None,
-    passes: int = 2,
-    hold_top: bool = True,
-    remesh: str = "always",
-    length: str = "cloth",
-    side_seams: str = "none",
-    band_gap: str = "none",
-    area: float | None = None,
-    lift: bool = True,
-    log: Callable[[str], None] | None = None,
 ) -> GradeResult:
     """Grade ``pattern`` so that its draped open contours land where the target's are (phase one).
 
     pattern: the base pattern (:class:`~unsew.pattern.model.Pattern`, panels placed around the body).
     body: the wearer (:class:`~unsew.body.body.Body`; its skeleton is used).
     target_verts: (V, 3) float64 [m]; target_faces: (F, 3) int: the target garment T.
-    settings: :class:`~unsew.sim.drape.DrapeSettings` of the drapes; ``settings.edge_length`` is
-        the target rest edge length [m] for meshing (default :data:`GRADE_SETTINGS`).
-    material: material name or :class:`Material` for the drapes.
-    mesh: the base pattern's GarmentMesh (default: meshed at ``settings.edge_length``).
+    settings: :class:`GradingSettings`.
+    mesh: the base pattern's GarmentMesh (default: meshed at ``settings.drape.edge_length``).
     x_init: the base pattern already draped, (n_x, 3) [m] on ``mesh`` (default: draped here).
-    drape_fn: ``drape_fn(pattern, mesh, body) -> (n_x, 3) [m]`` used for both drapes (default:
-        :func:`dress_drape` with ``material``, ``sdf`` and ``settings``; :func:`flat_drape` for a quick look).
-    redrape: drape the graded pattern (X_LG); False leaves ``x_draped`` None.
-    max_centre_distance: contour pairing gate [m] (default
-        :data:`~unsew.grading.contours.MAX_CENTRE_DISTANCE`).
-    passes: grading passes; a further pass grades the graded pattern again from its own drape
-        while a contour is off by more than :data:`PASS_LENGTH_TOL` or :data:`PASS_GIRTH_TOL`
-        (one edit cannot know how the drape answers; the next measures it). One drape each.
-    hold_top: keep each panel's top where it was placed when its top is an edited open curve
-        (a waist): the change of length goes to the other end (:func:`_hold_tops`).
-    remesh: ``"always"``: every graded pattern is meshed afresh before it is draped, so X_LG is
-        reproducible from U_LG alone; ``"stretched"``: only when a rest edge grew beyond
-        :data:`REMESH_STRETCH` times the edge length, else the base mesh is moved with the
-        pattern (:func:`moved_mesh`).
-    length: how far a contour's open curve moves: ``"cloth"``, by the change of cloth length to
-        the garment's top opening, target minus drape, read on the pattern's rest mesh
-        (:mod:`unsew.grading.cloth`; contours without such a path move axially); ``"axial"``, by
-        the axial extension along the bone (Algorithm 2).
-    side_seams: ``"none"``: the side seams stay where the base has them (Algorithm 2);
-        ``"girth"``: for a garment hanging from the shoulders, each pass also moves the side-seam
-        points between the hips and the armpits across their panels by the target's torso girth
-        at their height minus the drape's (:mod:`unsew.grading.profile`).
-    band_gap: ``"none"``: a waistband is graded to the target's top loop as measured;
-        ``"target"``: for a garment that hangs from its band (no target contour on a leg:
-        :func:`~unsew.grading.band_gap.hangs_from_band`), to that loop less the length the
-        target's own contact gap adds where it presses on the body, its bottom and the waist seam
-        below with it (:mod:`unsew.grading.band_gap`: newton's 4 mm against unsew's 1 mm).
-    area: the target's surface area [m^2]: each pass's pattern is scaled to it (every panel but
-        the waistbands by one factor about its centroid, the seams to a band keeping their
-        girth: :func:`unsew.grading.area.scale_to_area`) and meshed
-        afresh before it is draped, so the next pass measures its contours on the scaled drape
-        and the graded pattern's total area is ``area`` (None: no scaling, Algorithm 2).
-    lift: for a garment that hangs from the waist (no contour on an arm), dress the last pass's
-        pattern again lifted towards the target's top opening and keep the placement whose drape
-        lies closest (:mod:`unsew.grading.placement`; two more drapes; needs ``redrape``).
-    log: where a one-line warning goes when the last pass's area scaling was clipped (None: nowhere).
+    drape_fn: ``drape_fn(pattern, mesh, body) -> (n_x, 3) [m]`` used for every drape (default:
+        :func:`dress_drape` in ``settings.material`` with ``settings.drape``, the body's SDF built
+        or read from its cache; :func:`flat_drape` for a quick look).
 
-    Returns a :class:`GradeResult`.
+    Returns a :class:`GradeResult`; its ``note`` says when the last pass's area scaling was clipped.
     """
-    tv, tf = _check_grade_args(target_verts, target_faces, remesh, length, side_seams, band_gap)
+    tv, tf = _check_grade_args(target_verts, target_faces, settings)
     if drape_fn is None:
 
         def drape_fn(p, m, b):  # noqa: E306
-            return dress_drape(p, m, b, material=material, sdf=sdf, settings=settings)
+            return dress_drape(p, m, b, material=settings.material, settings=settings.drape)
 
-    mesh = mesh if mesh is not None else mesh_pattern(pattern, edge_length=settings.edge_length)
+    mesh = mesh if mesh is not None else mesh_pattern(pattern, edge_length=settings.drape.edge_length)
     x_init = _base_drape(pattern, mesh, body, x_init, drape_fn)
-    skel = body.skeleton
-    tgt = place_contours(tv, tf, skel)
-    ctx = _PassContext(
-        tgt,
-        skel,
-        {} if max_centre_distance is None else {"max_centre_distance": max_centre_distance},
-        cloth_lengths(tv, tf, tgt) if length == "cloth" else (None, {}),
-        hold_top,
-        remesh,
-        waist_bound(body),
-    )
-    if side_seams == "girth":
-        ctx.side_seams = side_seams_for(body, tv, tf, tgt)
-    if band_gap == "target" and hangs_from_band(tgt):
-        ctx.band_excess = pressed_loop_excess(tv, tgt, body)
-        ctx.band_whole = True
+    ctx = _pass_context(tv, tf, body, settings)
     first = _grade_pass(pattern, mesh, x_init, ctx)
-    cur, rows = first, list(first.rows)
-    x_lg, scales = None, []
-    for k in range(max(int(passes), 1)):
-        if k > 0:
-            nxt = _further_pass(cur, x_lg, ctx)
-            if nxt is None:
-                break
-            rows += [
-                {**r, "edits": [f"pass {k + 1}: {e}" for e in r["edits"]]} for r in nxt.rows if r["edits"]
-            ]
-            cur = nxt
-        if area is not None:
-            scaled, s = scale_to_area(cur.pattern, area, bands=waistbands(cur.pattern))
-            cur = replace(
-                cur, pattern=scaled, mesh=mesh_pattern(scaled, edge_length=mesh.edge_length), remeshed=True
-            )
-            scales.append(s)
-        if not redrape:
-            break
-        x_lg = np.asarray(drape_fn(cur.pattern, cur.mesh, body), dtype=np.float64)
+    cur, rows, x_lg, scales = _graded_passes(first, body, ctx, settings, drape_fn)
     tried = None
-    if lift and x_lg is not None and is_lower(ctx.tgt):
+    if settings.lift and x_lg is not None and is_lower(ctx.tgt):
         pattern_l, mesh_l, x_lg, tried = choose_lift(cur.pattern, cur.mesh, x_lg, body, drape_fn, tv, tf)
         if tried is not None:
             cur = replace(cur, pattern=pattern_l, mesh=mesh_l)
             rows.append(_lift_row(tried))
-    note = clip_note(scales[-1], area, cur.pattern) if scales else None
-    if note and log is not None:  # the last pass decides the graded pattern's area
-        log(note)
     return GradeResult(
         pattern=cur.pattern,
         mesh=cur.mesh,
@@ -334,7 +304,61 @@ def grade(
         matches=first.matches,
         area_scales=scales,
         placement=tried,
+        # the last pass decides the graded pattern's area
+        note=clip_note(scales[-1], settings.area, cur.pattern) if scales else None,
     )
+
+
+def _pass_context(tv: np.ndarray, tf: np.ndarray, body, settings: GradingSettings) -> "_PassContext":
+    """What every pass shares: the target's contours placed on ``body``'s skeleton, its cloth
+    lengths, and the side seams' and band's readings of the target when ``settings`` ask for them."""
+    skel = body.skeleton
+    tgt = place_contours(tv, tf, skel)
+    ctx = _PassContext(
+        tgt,
+        skel,
+        {} if settings.max_centre_distance is None else {"max_centre_distance": settings.max_centre_distance},
+        cloth_lengths(tv, tf, tgt) if settings.length == "cloth" else (None, {}),
+        settings.hold_top,
+        settings.remesh,
+        waist_bound(body),
+    )
+    if settings.side_seams == "girth":
+        ctx.side_seams = side_seams_for(body, tv, tf, tgt)
+    if settings.band_gap == "target" and hangs_from_band(tgt):
+        ctx.band_excess = pressed_loop_excess(tv, tgt, body)
+        ctx.band_whole = True
+    return ctx
+
+
+def _graded_passes(first: "GradePass", body, ctx: "_PassContext", settings: GradingSettings, drape_fn):
+    """(last pass, table rows, its drape X_LG (None without ``redrape``), area scale per pass):
+    the first pass, then further ones from each pass's drape while they are worth it
+    (:func:`_further_pass`), each scaled to ``settings.area`` and draped."""
+    cur, rows = first, list(first.rows)
+    x_lg, scales = None, []
+    for k in range(max(int(settings.passes), 1)):
+        if k > 0:
+            nxt = _further_pass(cur, x_lg, ctx)
+            if nxt is None:
+                break
+            rows += [
+                {**r, "edits": [f"pass {k + 1}: {e}" for e in r["edits"]]} for r in nxt.rows if r["edits"]
+            ]
+            cur = nxt
+        if settings.area is not None:
+            scaled, s = scale_to_area(cur.pattern, settings.area, bands=waistbands(cur.pattern))
+            cur = replace(
+                cur,
+                pattern=scaled,
+                mesh=mesh_pattern(scaled, edge_length=cur.mesh.edge_length),
+                remeshed=True,
+            )
+            scales.append(s)
+        if not settings.redrape:
+            break
+        x_lg = np.asarray(drape_fn(cur.pattern, cur.mesh, body), dtype=np.float64)
+    return cur, rows, x_lg, scales
 
 
 def _lift_row(tried: dict) -> dict:
@@ -367,18 +391,16 @@ def _base_drape(pattern, mesh, body, x_init, drape_fn) -> np.ndarray:
     return x_init
 
 
-def _check_grade_args(
-    target_verts, target_faces, remesh: str, length: str, side_seams: str = "none", band_gap: str = "none"
-):
+def _check_grade_args(target_verts, target_faces, settings: GradingSettings):
     """The target as (V, 3) float64 and (F, 3) int64 arrays; InputError on a bad mode or mesh."""
-    if side_seams not in SIDE_SEAM_MODES:
-        raise InputError(f"side_seams must be one of {', '.join(SIDE_SEAM_MODES)}, got {side_seams!r}")
-    if band_gap not in BAND_GAP_MODES:
-        raise InputError(f"band_gap must be one of {', '.join(BAND_GAP_MODES)}, got {band_gap!r}")
-    if remesh not in REMESH_MODES:
-        raise InputError(f"remesh must be one of {', '.join(REMESH_MODES)}, got {remesh!r}")
-    if length not in LENGTH_MODES:
-        raise InputError(f"length must be one of {', '.join(LENGTH_MODES)}, got {length!r}")
+    for name, modes in (
+        ("side_seams", SIDE_SEAM_MODES),
+        ("band_gap", BAND_GAP_MODES),
+        ("remesh", REMESH_MODES),
+        ("length", LENGTH_MODES),
+    ):
+        if getattr(settings, name) not in modes:
+            raise InputError(f"{name} must be one of {', '.join(modes)}, got {getattr(settings, name)!r}")
     tv = np.asarray(target_verts, dtype=np.float64)
     tf = np.asarray(target_faces, dtype=np.int64)
     if tv.ndim != 2 or tv.shape[1] != 3 or len(tv) == 0 or tf.ndim != 2 or tf.shape[1] != 3 or len(tf) == 0:
@@ -504,6 +526,12 @@ def _worth_a_pass(matches, cloth: dict | None = None) -> bool:
 TOP_BAND = 0.01
 
 
+# Why the tops are held: the panel's 2D position also sets where it is placed around the body
+# before sewing. A waist found 3.5 cm higher on the target than on the base drape (bench_grading's
+# skirt, whose narrower, longer target hangs higher on the hips) is the drape's answer to the
+# pattern, not a waist placed higher; moving the waist curve up both lengthened the panel and
+# placed it 2 cm higher, and that placement alone put the drape 4 to 7 mm (Chamfer) from where the
+# same shape placed at the base's height lands.
 def _hold_tops(
     pattern, controls, C0: np.ndarray, delta: np.ndarray, edited: dict, band_whole: bool = False
 ) -> tuple[np.ndarray, dict]:
@@ -518,17 +546,7 @@ def _hold_tops(
     A waistband (:func:`_is_band`: open only along its top) keeps its height: its edit loses its
     upright component, and its waist's upward move lengthens the panels sewn to its bottom instead
     (:func:`_carry_down`); held like the others, the band took the whole change and grew taller.
-    Not when the band's girth explains the move
-    (:func:`_girth_explains`): a band tighter than the target's and lower, or looser and
-    higher, sits where its girth meets the body, and the girth edit moves it; carried down, a
-    too-loose band's low seat lengthens the panels under it and puts their hips too low.
-
-    Why the tops are held: the panel's 2D position also sets where it is placed around the body
-    before sewing. A waist found 3.5 cm higher on the target than on the base drape
-    (bench_grading's skirt, whose narrower, longer target hangs higher on the hips) is the drape's
-    answer to the pattern, not a waist placed higher; moving the waist curve up both lengthened the
-    panel and placed it 2 cm higher, and that placement alone put the drape 4 to 7 mm (Chamfer)
-    from where the same shape placed at the base's height lands.
+    Not when the band's girth explains the move (:func:`_band_read_as_fit`).
 
     ``band_whole``: a band's top widened or narrowed takes its bottom and the panels sewn below
     with it (:func:`_band_girth_down`), so the band stays a strip and the waist seam under it
@@ -550,30 +568,38 @@ def _hold_tops(
         height = panel.to_world(C0[cidx])[:, 1]
         top = {int(g) for g, h in zip(cidx, height) if h >= height.max() - TOP_BAND}
         tops = [(t, dg) for c, t, dg in curves if top <= c]
-        if not tops:
-            continue
-        up = upright(panel)
-        if up is None:  # a panel placed lying down has no top to hold
+        up = upright(panel) if tops else None
+        if up is None:  # no edited top, or a panel placed lying down: no top to hold
             continue
         rise = float(np.mean([out[g] @ up for g in top]))
-        if _is_band(panel, height, open_edges):
-            out[cidx] -= np.outer(out[cidx] @ up, up)
-            if band_whole:
-                _band_girth_down(pattern, controls, C0, out, panel)
-            t, dg = tops[0]
-            if _girth_explains(rise, dg):
-                held[t] = (
-                    f"band top {rise * 100:+.1f} cm on the target with its girth {dg * 100:+.1f} cm: read as "
-                    "the band's fit, not carried down to the panels below"
-                )
-                continue
+        if not _is_band(panel, height, open_edges):
+            out[cidx] -= rise * up
+            continue
+        out[cidx] -= np.outer(out[cidx] @ up, up)
+        if band_whole:
+            _band_girth_down(pattern, controls, C0, out, panel)
+        warning = _band_read_as_fit(rise, tops[0][1])
+        if warning:
+            held[tops[0][0]] = warning
+        else:
             for below in _sewn_below(pattern, panel):
                 carried.setdefault(below, []).append(rise)
-            continue
-        out[cidx] -= rise * up
     for name, rises in carried.items():
         _carry_down(pattern, controls, C0, out, name, float(np.mean(rises)))
     return out, held
+
+
+def _band_read_as_fit(rise: float, dg: float) -> str | None:
+    """The warning when a band top's upward move ``rise`` [m] is its girth's (change ``dg`` [m]) doing
+    (:func:`_girth_explains`: a band tighter than the target's and lower, or looser and higher,
+    sits where its girth meets the body, and the girth edit moves it; carried down, a too-loose
+    band's low seat lengthens the panels under it and puts their hips too low), else None."""
+    if not _girth_explains(rise, dg):
+        return None
+    return (
+        f"band top {rise * 100:+.1f} cm on the target with its girth {dg * 100:+.1f} cm: read as "
+        "the band's fit, not carried down to the panels below"
+    )
 
 
 #: An arm hangs when its bone points down at least this much (the y of its unit direction below
