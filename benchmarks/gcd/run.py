@@ -63,6 +63,9 @@ def cmd_build(args) -> int:
                     flush=True,
                 )
             continue
+        if args.no_drape and (out / cid / "target.obj").is_file():
+            print(f"{cid}: draped already, left as it is", flush=True)
+            continue
         t0 = time.time()
         try:
             rec = build.build_case(cid, seed, index, out, drape=not args.no_drape, count=args.count)

@@ -182,6 +182,12 @@ def test_one_sampled_design_is_placed_around_its_body(tmp_path):
     rec = json.loads((tmp_path / "build.json").read_text())["gc_s1_000"]
     assert rec["status"] == "placed", rec
     assert rec["spec_inside_fraction"] < 0.02
+    # the case folder holds what needs no drape: the true pattern on its body, no target
+    case = tmp_path / "gc_s1_000"
+    for name in ("pattern_gt.json", "body.obj", "truth.json", "meta.json", "design_params.yaml"):
+        assert (case / name).is_file(), name
+    assert not (case / "target.obj").exists()
+    assert "garment" not in json.loads((case / "meta.json").read_text())
     spec = next((tmp_path / "_designs" / "s1" / "gc_s1_000").glob("*_specification.json"))
     build = _load("build")
     s = json.loads(spec.read_text())
