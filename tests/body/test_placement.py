@@ -239,3 +239,24 @@ def test_wide_hips_do_not_fold_flat(garment):
     a, b = (mesh.uv[mesh.faces_uv[:, k]] - mesh.uv[mesh.faces_uv[:, 0]] for k in (1, 2))
     area2 = 0.5 * np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0])
     assert (area3 / area2).min() > 0.1
+
+
+def test_a_wide_skirts_side_panels_on_a_t_pose_body_are_not_sleeves():
+    """GarmentCode's eight-panel skirt sized to its T-pose body (design gc_s3_003 of the
+    GarmentCode benchmark, sampled by GarmentCode's design sampler, MIT) lays its side panels out
+    as far from the centre as a sleeve would lie under the raised arm: every panel is wrapped on
+    the torso, none on an arm."""
+    import os
+    from pathlib import Path
+
+    from unsew.body.body import load_body
+    from unsew.io.garmentcode import load_pattern
+
+    root = Path(__file__).resolve().parents[2]
+    shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
+    mesh = shared / "foreign" / "bodies" / "mean_all_tpose.obj"
+    if not mesh.is_file():
+        pytest.skip(f"GarmentCode bodies not at {mesh.parent}")
+    pattern = load_pattern(root / "tests" / "data" / "gc_skirt_many_panels_tpose_specification.json")
+    roles = panel_roles(pattern, load_body(mesh, None))
+    assert len(roles) == 8 and set(roles.values()) == {"torso"}, roles

@@ -58,6 +58,10 @@ LEG_GAP = 0.03
 #: A panel whose every point lies beyond this share of the shoulder's offset from the centre
 #: plane (in its hint placement) is a sleeve, whichever way it faces.
 SLEEVE_INNER = 0.6
+#: ... and a sleeve's centre lies within this distance of its arm's bones (shoulder, elbow,
+#: wrist) in its hint [m]: a wide skirt's side panels reach as far out as a sleeve under a
+#: raised (T-pose) arm.
+SLEEVE_REACH = 0.45
 #: A stitched edge whose hint direction rises less than this share of its length is horizontal
 #: (a shoulder seam between a front and a back, a waist seam between a bodice and a skirt).
 HORIZONTAL_SLOPE = 0.6
@@ -234,6 +238,7 @@ def panel_roles(pattern, body) -> dict:
         elif (
             c[1] > crotch_y + 0.1
             and abs(c[0] - cx) > 0.8 * off_sh
+            and _arm_distance(c, J, side) < SLEEVE_REACH
             and (
                 (abs(n[0]) > 0.7 and c[1] > J[f"{side}_wrist"][1] - 0.1)
                 or np.min(np.abs(w[:, 0] - cx)) > SLEEVE_INNER * off_sh
@@ -251,6 +256,16 @@ def panel_roles(pattern, body) -> dict:
         else:
             roles[name] = "free"
     return roles
+
+
+def _arm_distance(p, J, side) -> float:
+    """Distance [m] of a point p (3,) [m] from one arm's bones (shoulder-elbow, elbow-wrist)."""
+    out = np.inf
+    for a, b in ((f"{side}_shoulder", f"{side}_elbow"), (f"{side}_elbow", f"{side}_wrist")):
+        a, b = np.asarray(J[a], np.float64), np.asarray(J[b], np.float64)
+        t = np.clip(np.dot(p - a, b - a) / max(float(np.dot(b - a, b - a)), 1e-12), 0.0, 1.0)
+        out = min(out, float(np.linalg.norm(p - (a + t * (b - a)))))
+    return out
 
 
 # -- placement -------------------------------------------------------------------------------
