@@ -509,14 +509,22 @@ def _put_sleeves(x, pattern, mesh, info, uv, J) -> None:
         if not names:
             continue
         axes = {n: _sleeve_axis(uv[info[n]["sl"]], info[n], caps.get(n), J, side) for n in names}
-        width = sum(float(np.ptp(ax[1][info[n]["bl"] - info[n]["sl"].start])) for n, ax in axes.items())
-        radius = max(width / (2 * np.pi), 0.03)
         shifts = {}
         for n in names:
             d, cap = info[n], caps.get(n)
             if cap is not None and len(cap[1]):
                 top = _armhole_top(x[cap[1]], J, side)
                 shifts[n] = top - SLEEVE_CAP_IN - float(np.min(axes[n][0][cap[0] - d["sl"].start]))
+        capped = list(shifts)
+        _follow_sewn_sleeves(shifts, axes, names, info, mesh)
+        # the tube goes round the arm once: the panels with a cap side by side (a cuff below
+        # them is as wide again)
+        width = sum(
+            float(np.ptp(ax[1][info[n]["bl"] - info[n]["sl"].start]))
+            for n, ax in axes.items()
+            if n in capped or not capped
+        )
+        radius = max(width / (2 * np.pi), 0.03)
 
         def wrapped(turn):
             return {
@@ -527,6 +535,36 @@ def _put_sleeves(x, pattern, mesh, info, uv, J) -> None:
         turn = _sleeve_turn(wrapped, x, caps, info, names)
         for n, xs in wrapped(turn).items():
             x[info[n]["sl"]] = xs
+
+
+def _follow_sewn_sleeves(shifts, axes, names, info, mesh) -> None:
+    """Shifts down the arm [m] (in place) of an arm's sleeve panels without a cap (a cuff): each
+    goes where its edge sewn to an already shifted panel of the same arm meets that panel's
+    edge (the mean positions along the arm equal), panel after panel down a chain of them.
+    ``axes``: name -> (along, across) of :func:`_sleeve_axis`."""
+    sp = np.asarray(mesh.seam_pairs, np.int64).reshape(-1, 2)
+    part = np.asarray(mesh.uv_panel)
+    pid = {n: mesh.panel_names.index(n) for n in names}
+    todo = [n for n in names if n not in shifts]
+    while todo:
+        for n in todo:
+            for m in [m for m in names if m in shifts]:
+                pairs = [
+                    (a, b)
+                    for i, j in sp
+                    for a, b in ((i, j), (j, i))
+                    if part[a] == pid[n] and part[b] == pid[m]
+                ]
+                if pairs:
+                    a, b = np.asarray(pairs).T
+                    t_m = axes[m][0][b - info[m]["sl"].start] + shifts[m]
+                    shifts[n] = float(np.mean(t_m) - np.mean(axes[n][0][a - info[n]["sl"].start]))
+                    break
+            if n in shifts:
+                todo.remove(n)
+                break
+        else:
+            return  # the rest are sewn to no shifted panel: they keep their default start
 
 
 def _sleeve_turn(wrapped, x, caps, info, names) -> float:
