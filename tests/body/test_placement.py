@@ -289,3 +289,31 @@ def test_cuffs_start_at_the_end_of_their_sleeves():
     assert len(rows) == 4
     for r in rows:
         assert r["pair"] < 0.1 and r["pair"] < r["other"], r
+
+
+def test_a_circle_skirt_is_not_hung_from_its_side_seams():
+    """GarmentCode's circle skirt with a waistband sized to its T-pose body (design gc_s3_007 of
+    the GarmentCode benchmark, GarmentCode's design sampler, MIT) is laid out flat with its side
+    seams horizontal at the waist, as a top's shoulder seams lie: it starts at its waist, below
+    the chest, not lifted as a top to the shoulders."""
+    import os
+    import warnings
+    from pathlib import Path
+
+    from unsew.body.body import load_body
+    from unsew.io.garmentcode import load_pattern
+
+    root = Path(__file__).resolve().parents[2]
+    shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
+    body_mesh = shared / "foreign" / "bodies" / "mean_all_tpose.obj"
+    if not body_mesh.is_file():
+        pytest.skip(f"GarmentCode bodies not at {body_mesh.parent}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        pattern = load_pattern(root / "tests" / "data" / "gc_circle_skirt_tpose_specification.json")
+    body = load_body(body_mesh, None)
+    mesh = mesh_pattern(pattern, edge_length=0.04)
+    x = place_garment(pattern, mesh, body)
+    hint_top = float(np.asarray(mesh.uv_placed3d)[:, 1].max())
+    assert x[:, 1].max() < body.skeleton.position("chest")[1]
+    assert abs(x[:, 1].max() - hint_top) < 0.05

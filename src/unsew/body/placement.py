@@ -452,7 +452,7 @@ def _wrap_lifted(pattern, mesh, info, uv, stacks, ys, crotch_y, J, xb, ytop, cle
 
     Returns (name -> (k, 3) wrapped positions [m], name -> lift [m])."""
     lifts = {name: 0.0 for name in info}
-    shoulder_edges = _shoulder_edges(pattern, mesh, info)
+    shoulder_edges = _shoulder_edges(pattern, mesh, info, above=float(J["chest"][1]))
     links = _horizontal_links(pattern, mesh, info)
     if not shoulder_edges:
         _lower_garment_lifts(lifts, info, links, J, crotch_y)
@@ -705,12 +705,14 @@ def _keep_apart(stack, cx0, sgn, clearance):
     return [cx, cz, a, b]
 
 
-def _shoulder_edges(pattern, mesh, info) -> dict:
+def _shoulder_edges(pattern, mesh, info, *, above: float = -np.inf) -> dict:
     """Torso panels with stitched shoulder edges -> uv indices of those edges' vertices.
 
     A shoulder edge is labelled so (unsew's base patterns) or, unlabelled (GarmentCode's
     files), a horizontal seam (:func:`_is_horizontal` in the hint placement) between a torso
-    panel facing front and one facing back, in the upper half of both."""
+    panel facing front and one facing back, in the upper half of both and higher than
+    ``above`` [m] (the body's chest: a circle skirt laid out flat has horizontal side seams at
+    its waist)."""
     out = {}
     for st in pattern.stitches:
         sides = (st.a, st.b)
@@ -725,7 +727,7 @@ def _shoulder_edges(pattern, mesh, info) -> dict:
             for s in sides:
                 h = info[s.panel]["hint"]
                 e = h[np.asarray(mesh.edge_verts[(s.panel, s.edge)]) - info[s.panel]["sl"].start]
-                ok &= _is_horizontal(e) and e[:, 1].mean() > h[:, 1].min() + 0.5 * np.ptp(h[:, 1])
+                ok &= _is_horizontal(e) and e[:, 1].mean() > max(h[:, 1].min() + 0.5 * np.ptp(h[:, 1]), above)
             if not ok:
                 continue
         for side in sides:
