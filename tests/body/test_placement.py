@@ -317,3 +317,16 @@ def test_a_circle_skirt_is_not_hung_from_its_side_seams():
     hint_top = float(np.asarray(mesh.uv_placed3d)[:, 1].max())
     assert x[:, 1].max() < body.skeleton.position("chest")[1]
     assert abs(x[:, 1].max() - hint_top) < 0.05
+
+
+def test_a_leg_panel_laid_out_below_the_feet_is_placed(bodies):
+    """A trouser panel whose layout lies wholly below the body's feet (as GarmentCode lays out a
+    hem cuff of trousers longer than the legs) is placed, not refused with an internal error."""
+    body, sdf = bodies["default"]
+    pat = make_base_pattern("pants")
+    p = pat.panels["left_front"]
+    p.translation = np.asarray(p.translation, np.float64) - np.array([0.0, 3.0, 0.0])
+    mesh = mesh_pattern(pat, edge_length=0.04)
+    assert panel_roles(pat, body)["left_front"] == "left_leg"
+    x = place_garment(pat, mesh, body, sdf=sdf)
+    assert x.shape == (mesh.n_uv, 3) and np.isfinite(x).all()

@@ -802,6 +802,9 @@ def _wrap_all(info, uv, lifts, stacks, ys, crotch_y, xb, ytop, clearance):
         b2 = np.array([a2[1], -a2[0]])
         inward = -np.sign((R[:, :2] @ b2)[0]) * sgn  # +1: the across coordinate grows inwards
         ok = np.flatnonzero(~np.isnan(ext[:, 0]))
+        if not len(ok):  # wholly below the body's heights (a hem laid out under the feet)
+            out[name] = p_torso
+            continue
         edge = np.interp(along, ys[ok], ext[ok, 1] if inward > 0 else ext[ok, 0])
         phi_in = -0.5 * np.pi * sgn
         p_leg = _wrap_stack(stacks[role], along, across - edge, phi_in, ys, clearance, perim=need[role])
