@@ -348,11 +348,17 @@ def run_gcd(
     return rows
 
 
+#: the start of unsew's one-line reason of a failed drape, left out of the table
+FAILED = "unsew: error: drape of pattern_gt failed: "
+
+
 def _cell(key: str, value):
     if isinstance(value, float):
-        return round(value, 0 if key == "time_s" else 3 if key == "stretch_max" else 2)
+        return int(round(value)) if key == "time_s" else round(value, 3 if key == "stretch_max" else 2)
     if key == "ok":
         return "yes" if value else "no"
+    if key == "message" and value:
+        return value.removeprefix(FAILED).removeprefix("unsew: ")
     return value
 
 
@@ -395,7 +401,14 @@ def record_gcd(rows: list[dict], *, results: Path = GCD_RESULTS, doc: Path = DOC
             "",
             f"Command: `{command}` (drapes made at {', '.join(commits) or '?'}).",
             "",
-            markdown_table(gcd_table_rows(rows), list(GCD_COLUMNS.values()), digits=2),
+            markdown_table(
+                [
+                    {**r, "stretch max": f"{r['stretch max']:.3f}" if r["stretch max"] is not None else None}
+                    for r in gcd_table_rows(rows)
+                ],
+                list(GCD_COLUMNS.values()),
+                digits=2,
+            ),
             "",
             gcd_count_line(rows),
             "",
