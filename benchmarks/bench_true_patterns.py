@@ -27,6 +27,7 @@ benchmarks/results/true_patterns_gcd.json and the table between the ``gcd table`
 docs/true_patterns.md from all the rows in OUT.
 
     python -m benchmarks true_patterns --gcd [--cases DIR] [--only gc_s1_000 ...] [--out DIR] [--redo]
+    python -m benchmarks true_patterns --gcd --seams       # and each garment's most stretched edges
     python -m benchmarks true_patterns --gcd --record      # the table from the rows in OUT
 """
 
@@ -130,7 +131,8 @@ def seam_rows(
     pattern = pattern or foreign / "patterns" / f"{name}_specification.json"
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # clockwise panels mirrored, seam length warnings
-        mesh = mesh_pattern(load_pattern(pattern), edge_length=edge_length)
+        pat = load_pattern(pattern)
+        mesh = mesh_pattern(pat, edge_length=edge_length)
     x = read_obj_uv(obj)[0]
     if len(x) != mesh.n_x:
         return []
@@ -144,6 +146,7 @@ def seam_rows(
                 "pattern": name,
                 "panel": panel,
                 "edge": edge,
+                "label": pat.panels[panel].edges[edge].label or "",
                 "rest_cm": float(100.0 * l2.sum()),
                 "stretch_max": float((l3 / l2).max()),
                 "stretch_whole": float(l3.sum() / l2.sum()),
@@ -489,7 +492,7 @@ def main() -> None:
     if seams:
         print_table(
             seams,
-            ["pattern", "panel", "edge", "rest_cm", "stretch_max", "stretch_whole", "y_m"],
+            ["pattern", "panel", "edge", "label", "rest_cm", "stretch_max", "stretch_whole", "y_m"],
             title="most stretched pattern edges",
         )
     n_ok = sum(r["ok"] for r in rows)
@@ -523,6 +526,20 @@ def main_gcd(args) -> int:
     rows = run_gcd(Path(args.cases), ids, out=out, redo=args.redo, **kw)
     print()
     print(markdown_table(gcd_table_rows(rows), list(GCD_COLUMNS.values())))
+    if args.seams:
+        seams = []
+        for r in rows:
+            obj = out / f"{r['case']}.obj"
+            obj = obj if obj.is_file() else obj.with_name(obj.stem + ".failed.obj")
+            if obj.is_file():
+                pattern = Path(args.cases) / r["case"] / "pattern_gt.json"
+                seams += seam_rows(r["case"], obj, pattern=pattern, edge_length=kw.get("edge_length", 0.025))
+        print("\nmost stretched pattern edges\n")
+        print(
+            markdown_table(
+                seams, ["pattern", "panel", "edge", "label", "rest_cm", "stretch_max", "stretch_whole", "y_m"]
+            )
+        )
     print("\n" + gcd_count_line(rows))
     if args.record:
         if args.small or kw:
