@@ -17,11 +17,25 @@ each garment's most stretched pattern edges (:func:`seam_rows`). A good drape ex
 
     python -m benchmarks true_patterns [--patterns shirt_mean ...] [--out DIR] [--edge-length 0.025] [--seams]
     python -m benchmarks true_patterns --small     # one pattern, coarse mesh, short sewing (tests)
+
+With ``--gcd`` the same for the GarmentCode design benchmark's 40 cases (benchmarks/gcd, built
+with ``python -m benchmarks gcd build``, ``--no-drape`` is enough): each case's ``pattern_gt.json``
+dressed on its own ``body.obj`` (+ ``skeleton.json``). One drape at a time; each case's row is
+written to ``OUT/<case>.json`` as soon as it is measured and a case with a row is not dressed again
+(``--redo`` dresses it again), so a stopped run resumes. ``--record`` then writes
+benchmarks/results/true_patterns_gcd.json and the table between the ``gcd table`` markers of
+docs/true_patterns.md from all the rows in OUT.
+
+    python -m benchmarks true_patterns --gcd [--cases DIR] [--only gc_s1_000 ...] [--out DIR] [--redo]
+    python -m benchmarks true_patterns --gcd --seams       # and each garment's most stretched edges
+    python -m benchmarks true_patterns --gcd --record      # the table from the rows in OUT
 """
 
 from __future__ import annotations
 
 import argparse
+import hashlib
+import json
 import os
 import subprocess
 import sys
@@ -95,21 +109,30 @@ def measure(obj: Path, sdf) -> dict:
     }
 
 
-def seam_rows(name: str, obj: Path, *, foreign: Path, edge_length: float = 0.025, top: int = 3) -> list[dict]:
+def seam_rows(
+    name: str,
+    obj: Path,
+    *,
+    foreign: Path | None = None,
+    pattern: Path | None = None,
+    edge_length=0.025,
+    top=3,
+) -> list[dict]:
     """The ``top`` pattern edges of a draped OBJ with the longest mesh edge over its rest length:
     per (panel, edge) its largest and its overall stretch (3D length along the edge over its
-    pattern length) and its mean height [m]. The pattern is meshed again at ``edge_length``, as
-    ``unsew drape`` meshed it (the same mesh: checked by its vertex count)."""
+    pattern length) and its mean height [m]. The pattern (``pattern``, else GarmentCode's sample
+    ``name`` under ``foreign``) is meshed again at ``edge_length``, as ``unsew drape`` meshed it
+    (the same mesh: checked by its vertex count)."""
     import warnings
 
     from unsew.io.garmentcode import load_pattern
     from unsew.meshing import mesh_pattern
 
+    pattern = pattern or foreign / "patterns" / f"{name}_specification.json"
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # clockwise panels mirrored, seam length warnings
-        mesh = mesh_pattern(
-            load_pattern(foreign / "patterns" / f"{name}_specification.json"), edge_length=edge_length
-        )
+        pat = load_pattern(pattern)
+        mesh = mesh_pattern(pat, edge_length=edge_length)
     x = read_obj_uv(obj)[0]
     if len(x) != mesh.n_x:
         return []
@@ -123,6 +146,7 @@ def seam_rows(name: str, obj: Path, *, foreign: Path, edge_length: float = 0.025
                 "pattern": name,
                 "panel": panel,
                 "edge": edge,
+                "label": pat.panels[panel].edges[edge].label or "",
                 "rest_cm": float(100.0 * l2.sum()),
                 "stretch_max": float((l3 / l2).max()),
                 "stretch_whole": float(l3.sum() / l2.sum()),
@@ -143,16 +167,45 @@ def drape_one(
     sew_steps=None,
     settle_steps=None,
 ) -> dict:
-    """Run ``unsew drape`` on one true pattern and measure what it wrote (module docstring)."""
+    """Run ``unsew drape`` on one of GarmentCode's sample patterns and measure what it wrote
+    (module docstring)."""
+    row = drape_file(
+        name,
+        foreign / "patterns" / f"{name}_specification.json",
+        ["--body", str(foreign / "bodies" / f"{body}.obj")],
+        out,
+        sdf=sdf,
+        edge_length=edge_length,
+        sew_steps=sew_steps,
+        settle_steps=settle_steps,
+    )
+    return {"pattern": name, "body": f"{body}.obj", **row}
+
+
+def drape_file(
+    name: str,
+    pattern: Path,
+    body_args: list[str],
+    out: Path,
+    *,
+    sdf,
+    edge_length=None,
+    sew_steps=None,
+    settle_steps=None,
+) -> dict:
+    """``unsew drape PATTERN BODY_ARGS --out OUT/NAME.obj --keep-failed`` in a subprocess and the
+    measures of the OBJ it wrote: exit, time_s [s], message (the last line when it failed),
+    inside_pct, stretch_max, stretch_p99, vertices (when an OBJ was written) and ok."""
     obj = out / f"{name}.obj"
+    for old in (obj, obj.with_name(obj.stem + ".failed.obj")):
+        old.unlink(missing_ok=True)
     cmd = [
         sys.executable,
         "-m",
         "unsew",
         "drape",
-        str(foreign / "patterns" / f"{name}_specification.json"),
-        "--body",
-        str(foreign / "bodies" / f"{body}.obj"),
+        str(pattern),
+        *body_args,
         "--out",
         str(obj),
         "--keep-failed",
@@ -168,7 +221,7 @@ def drape_one(
     env = {**os.environ, "OMP_WAIT_POLICY": "PASSIVE"}
     t0 = time.perf_counter()
     r = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=ROOT, check=False)
-    row = {"pattern": name, "body": f"{body}.obj", "exit": r.returncode, "time_s": time.perf_counter() - t0}
+    row = {"exit": r.returncode, "time_s": time.perf_counter() - t0}
     written = obj if obj.is_file() else obj.with_name(obj.stem + ".failed.obj")
     if written.is_file():
         row.update(measure(written, sdf))
@@ -208,6 +261,172 @@ def run(names, *, out: Path, edge_length=None, sew_steps=None, settle_steps=None
     return rows
 
 
+# ---------------------------------------------------------------- the GarmentCode design benchmark
+
+GCD = HERE / "gcd"
+#: where `gcd build` writes the cases, and where the drapes and their rows go by default
+GCD_CASES = GCD / "cases"
+GCD_OUT = GCD_CASES / "_true_patterns"
+GCD_RESULTS = HERE / "results" / "true_patterns_gcd.json"
+DOC = ROOT / "docs" / "true_patterns.md"
+DOC_BEGIN = "<!-- gcd table: written by python -m benchmarks true_patterns --gcd --record -->"
+DOC_END = "<!-- gcd table end -->"
+#: columns of the gcd table: row key -> heading
+GCD_COLUMNS = {
+    "case": "case",
+    "type": "type",
+    "body": "body",
+    "exit": "exit",
+    "inside_pct": "inside %",
+    "stretch_max": "stretch max",
+    "stretch_p99": "stretch p99",
+    "vertices": "vertices",
+    "time_s": "time s",
+    "ok": "good",
+    "message": "message",
+}
+
+
+def gcd_case_ids() -> list[str]:
+    """The benchmark's case ids in order (benchmarks/gcd/manifest.json: gc_s<seed>_<index>)."""
+    m = json.loads((GCD / "manifest.json").read_text())
+    return [f"gc_s{s['seed']}_{i:03d}" for s in m["seeds"] for i in range(m["count"])]
+
+
+def _commit() -> str:
+    r = subprocess.run(
+        ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=ROOT, check=False
+    )
+    return r.stdout.strip() or "?"
+
+
+def run_gcd(
+    cases: Path, ids, *, out: Path, redo: bool = False, edge_length=None, sew_steps=None, settle_steps=None
+) -> list[dict]:
+    """Dress each case's pattern_gt.json on its body (:func:`drape_file`), one at a time, writing
+    each row to ``out/<case>.json`` as soon as it is measured; a case that has a row there is not
+    dressed again unless ``redo``. A case without pattern_gt.json or body.obj gets a row with no
+    exit (not written, so a later run dresses it). Returns the rows of ``ids`` in order."""
+    from unsew.body.body import load_body
+    from unsew.body.sdf import BodySDF
+
+    out.mkdir(parents=True, exist_ok=True)
+    sdfs, rows = {}, []
+    for cid in ids:
+        d, done = cases / cid, out / f"{cid}.json"
+        if done.is_file() and not redo:
+            rows.append(json.loads(done.read_text()))
+            continue
+        truth = json.loads((d / "truth.json").read_text()) if (d / "truth.json").is_file() else {}
+        meta = json.loads((d / "meta.json").read_text()) if (d / "meta.json").is_file() else {}
+        row = {
+            "case": cid,
+            "type": truth.get("type", ""),
+            "body": (meta.get("source", {}).get("body") or {}).get("name", ""),
+        }
+        if not (d / "pattern_gt.json").is_file() or not (d / "body.obj").is_file():
+            rows.append({**row, "exit": None, "ok": False, "message": "no case (pattern_gt.json, body.obj)"})
+            continue
+        skel = d / "skeleton.json"
+        body_args = ["--body", str(d / "body.obj")] + (["--skeleton", str(skel)] if skel.is_file() else [])
+        key = hashlib.sha1((d / "body.obj").read_bytes()).hexdigest()
+        if key not in sdfs:
+            sdfs[key] = BodySDF.build(load_body(d / "body.obj", skel if skel.is_file() else None))
+        row.update(
+            drape_file(
+                cid,
+                d / "pattern_gt.json",
+                body_args,
+                out,
+                sdf=sdfs[key],
+                edge_length=edge_length,
+                sew_steps=sew_steps,
+                settle_steps=settle_steps,
+            )
+        )
+        row["commit"] = _commit()
+        done.write_text(json.dumps(row, indent=1))
+        rows.append(row)
+        print({k: (round(v, 3) if isinstance(v, float) else v) for k, v in row.items()}, flush=True)
+    return rows
+
+
+#: the start of unsew's one-line reason of a failed drape, left out of the table
+FAILED = "unsew: error: drape of pattern_gt failed: "
+
+
+def _cell(key: str, value):
+    if isinstance(value, float):
+        return int(round(value)) if key == "time_s" else round(value, 3 if key == "stretch_max" else 2)
+    if key == "ok":
+        return "yes" if value else "no"
+    if key == "message" and value:
+        return value.removeprefix(FAILED).removeprefix("unsew: ")
+    return value
+
+
+def gcd_table_rows(rows: list[dict]) -> list[dict]:
+    """Rows as recorded and shown: headed by :data:`GCD_COLUMNS`, floats rounded."""
+    return [{h: _cell(k, r.get(k)) for k, h in GCD_COLUMNS.items()} for r in rows]
+
+
+def gcd_count_line(rows: list[dict]) -> str:
+    n_ok = sum(bool(r.get("ok")) for r in rows)
+    n_exit0 = sum(r.get("exit") == 0 for r in rows)
+    return (
+        f"{n_ok} of {len(rows)} dressed (exit 0, <= {INSIDE_MAX_PCT} % inside, no edge over "
+        f"{STRETCH_MAX}x); {n_exit0} of {len(rows)} exit 0."
+    )
+
+
+def record_gcd(rows: list[dict], *, results: Path = GCD_RESULTS, doc: Path = DOC) -> None:
+    """Write the rows to ``results`` (benchmarks/report.py's record format) and their table between
+    :data:`DOC_BEGIN` and :data:`DOC_END` in ``doc`` (appended at its end the first time)."""
+    from tables import markdown_table
+
+    commits = sorted({r.get("commit", "") for r in rows} - {""})
+    command = "python -m benchmarks true_patterns --gcd --record"
+    results.write_text(
+        json.dumps(
+            {
+                "title": "The GarmentCode design benchmark's true patterns dressed by unsew drape",
+                "command": command,
+                "commit": ", ".join(commits),
+                "rows": gcd_table_rows(rows),
+            },
+            indent=1,
+        )
+        + "\n"
+    )
+    block = "\n".join(
+        [
+            DOC_BEGIN,
+            "",
+            f"Command: `{command}` (drapes made at {', '.join(commits) or '?'}).",
+            "",
+            markdown_table(
+                [
+                    {**r, "stretch max": f"{r['stretch max']:.3f}" if r["stretch max"] is not None else None}
+                    for r in gcd_table_rows(rows)
+                ],
+                list(GCD_COLUMNS.values()),
+                digits=2,
+            ),
+            "",
+            gcd_count_line(rows),
+            "",
+            DOC_END,
+        ]
+    )
+    text = doc.read_text() if doc.is_file() else ""
+    if DOC_BEGIN in text and DOC_END in text:
+        head, rest = text.split(DOC_BEGIN, 1)
+        text = head + block + rest.split(DOC_END, 1)[1]
+    else:
+        text = text.rstrip("\n") + "\n\n" + block + "\n"
+    doc.write_text(text)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--patterns", nargs="*", default=list(PATTERNS), choices=list(PATTERNS))
@@ -219,8 +438,20 @@ def main() -> None:
     ap.add_argument(
         "--seams", action="store_true", help="also list each garment's most stretched pattern edges"
     )
+    ap.add_argument("--gcd", action="store_true", help="the GarmentCode design benchmark's cases instead")
+    ap.add_argument("--cases", default=str(GCD_CASES), help="--gcd: the built cases' folder")
+    ap.add_argument("--only", nargs="*", default=None, help="--gcd: these case ids only")
+    ap.add_argument("--redo", action="store_true", help="--gcd: dress cases that have a row in --out again")
+    ap.add_argument(
+        "--record",
+        action="store_true",
+        help="--gcd: write benchmarks/results/true_patterns_gcd.json and the table in docs/true_patterns.md",
+    )
     args = ap.parse_args()
     from tables import print_table
+
+    if args.gcd:
+        raise SystemExit(main_gcd(args))
 
     kw = {}
     names = args.patterns
@@ -261,13 +492,62 @@ def main() -> None:
     if seams:
         print_table(
             seams,
-            ["pattern", "panel", "edge", "rest_cm", "stretch_max", "stretch_whole", "y_m"],
+            ["pattern", "panel", "edge", "label", "rest_cm", "stretch_max", "stretch_whole", "y_m"],
             title="most stretched pattern edges",
         )
     n_ok = sum(r["ok"] for r in rows)
     print(
         f"\n{n_ok} of {len(rows)} dressed (exit 0, <= {INSIDE_MAX_PCT} % inside, no edge over {STRETCH_MAX}x)"
     )
+
+
+def main_gcd(args) -> int:
+    """``--gcd``: dress the cases, print their table, record it when asked."""
+    from tables import markdown_table
+
+    ids = gcd_case_ids()
+    if args.only:
+        unknown = sorted(set(args.only) - set(ids))
+        if unknown:
+            print(
+                f"true_patterns --gcd: unknown case(s) {unknown} (ids are gc_s<seed>_<index>)",
+                file=sys.stderr,
+            )
+            return 2
+        ids = [c for c in ids if c in args.only]
+    kw = {}
+    out = Path(args.out) if args.out else GCD_OUT
+    if args.small:
+        ids = ids[:1]
+        kw = {k: SMALL[k] for k in ("edge_length", "sew_steps", "settle_steps")}
+        out = Path(args.out) if args.out else Path(tempfile.mkdtemp(prefix="true_patterns_gcd_"))
+    elif args.edge_length is not None:
+        kw = {"edge_length": args.edge_length}
+    rows = run_gcd(Path(args.cases), ids, out=out, redo=args.redo, **kw)
+    print()
+    print(markdown_table(gcd_table_rows(rows), list(GCD_COLUMNS.values())))
+    if args.seams:
+        seams = []
+        for r in rows:
+            obj = out / f"{r['case']}.obj"
+            obj = obj if obj.is_file() else obj.with_name(obj.stem + ".failed.obj")
+            if obj.is_file():
+                pattern = Path(args.cases) / r["case"] / "pattern_gt.json"
+                seams += seam_rows(r["case"], obj, pattern=pattern, edge_length=kw.get("edge_length", 0.025))
+        print("\nmost stretched pattern edges\n")
+        print(
+            markdown_table(
+                seams, ["pattern", "panel", "edge", "label", "rest_cm", "stretch_max", "stretch_whole", "y_m"]
+            )
+        )
+    print("\n" + gcd_count_line(rows))
+    if args.record:
+        if args.small or kw:
+            print("true_patterns --gcd: --record records the full run only", file=sys.stderr)
+            return 2
+        record_gcd(rows)
+        print(f"wrote {GCD_RESULTS} and the table in {DOC}")
+    return 0
 
 
 if __name__ == "__main__":

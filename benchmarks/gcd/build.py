@@ -334,10 +334,13 @@ def build_case(
     truth["choices"] = built_choices(truth["choices"], spec)
     rec["type"] = truth["type"]
     body_v, body_f = read_body(body_dir)
+    d = out / cid
     try:
         mesh = mesh_spec(spec, cid, m["edge_length_m"])
     except Exception as exc:  # noqa: BLE001 - unsew cannot mesh this design: recorded, counted
         rec.update(status="failed", reason=f"meshing: {type(exc).__name__}: {str(exc).splitlines()[0][:160]}")
+        if not (d / "target.obj").is_file():
+            write_design_files(d, body_dir, spec, design_text, truth, entry, cid, seed)
         return rec
     x_spec = spec_placement(spec, mesh)
     x0 = bend_around_body(x_spec, mesh, spec, body_v)
@@ -350,6 +353,8 @@ def build_case(
         f"{rec['start_inside_fraction']:.1%} of the bent start inside the body"
     )
     if not drape:
+        if not (d / "target.obj").is_file():
+            write_design_files(d, body_dir, spec, design_text, truth, entry, cid, seed)
         rec.update(status="placed", seconds=round(time.time() - t0, 1))
         return rec
     try:
@@ -381,9 +386,9 @@ def build_case(
     import newton
     import warp
 
-    d, tmp = out / cid, out / f".{cid}.tmp"
+    tmp = out / f".{cid}.tmp"
     shutil.rmtree(tmp, ignore_errors=True)
-    tmp.mkdir(parents=True)
+    write_design_files(tmp, body_dir, spec, design_text, truth, entry, cid, seed)
     title = (
         f"{cid} {truth['type']}  inside {inside:.2%}  {'ok' if not fails else 'FAIL: ' + '; '.join(fails)}"
     )
@@ -394,22 +399,8 @@ def build_case(
         faces,
         f"GarmentCode design {cid} draped by newton {newton.__version__} SolverStyle3D",
     )
-    shutil.copyfile(body_dir / "body.obj", tmp / "body.obj")
-    if (body_dir / "skeleton.json").is_file():
-        shutil.copyfile(body_dir / "skeleton.json", tmp / "skeleton.json")
-    (tmp / "pattern_gt.json").write_text(json.dumps(spec, indent=1))
-    (tmp / "design_params.yaml").write_text(design_text)
-    (tmp / "truth.json").write_text(json.dumps(truth, indent=1))
-    meta = {
-        "units": "m",
-        "up": "y",
-        "front": "z",
-        "source": {
-            "design": cid,
-            "seed": seed,
-            "sampler": "shared/garmentcode/sample_designs.py (GarmentCode, MIT)",
-            "body": entry["body"],
-        },
+    meta = json.loads((tmp / "meta.json").read_text())
+    meta |= {
         "simulator": {
             "name": "newton SolverStyle3D (CPU)",
             "newton": newton.__version__,
@@ -439,6 +430,32 @@ def build_case(
         rec["reason"] = "; ".join(fails)
     _log(f"{cid}: {rec['status']} in {rec['seconds']:.0f} s" + (f" ({rec['reason']})" if fails else ""))
     return rec
+
+
+def write_design_files(
+    d: Path, body_dir: Path, spec: dict, design_text: str, truth: dict, entry: dict, cid: str, seed: int
+) -> None:
+    """Write a case folder's files that need no drape: body.obj (+ skeleton.json), pattern_gt.json,
+    design_params.yaml, truth.json and meta.json (frame and source only)."""
+    d.mkdir(parents=True, exist_ok=True)
+    shutil.copyfile(body_dir / "body.obj", d / "body.obj")
+    if (body_dir / "skeleton.json").is_file():
+        shutil.copyfile(body_dir / "skeleton.json", d / "skeleton.json")
+    (d / "pattern_gt.json").write_text(json.dumps(spec, indent=1))
+    (d / "design_params.yaml").write_text(design_text)
+    (d / "truth.json").write_text(json.dumps(truth, indent=1))
+    meta = {
+        "units": "m",
+        "up": "y",
+        "front": "z",
+        "source": {
+            "design": cid,
+            "seed": seed,
+            "sampler": "shared/garmentcode/sample_designs.py (GarmentCode, MIT)",
+            "body": entry["body"],
+        },
+    }
+    (d / "meta.json").write_text(json.dumps(meta, indent=1))
 
 
 def recheck(out: Path, cid: str) -> dict | None:

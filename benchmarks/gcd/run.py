@@ -4,6 +4,7 @@
     python -m benchmarks gcd --summary             one JSON line of the recorded results
     python -m benchmarks gcd build [--out DIR] [--seeds 1-5] [--count 8] [--only gc_s1_000 ...] [--no-drape]
     python -m benchmarks gcd score --results RESULTS_DIR [--cases DIR] [--record]
+    python -m benchmarks gcd floor-fitted --results DIR [--record]   the material-fitted floor
     python -m benchmarks gcd status [--out DIR]    every case's build status
     python -m benchmarks gcd judge-check           the judge on synthetic inputs (seconds)
 
@@ -62,6 +63,9 @@ def cmd_build(args) -> int:
                     f"{cid}: {rec['status']}" + (f" ({rec['reason']})" if rec.get("reason") else ""),
                     flush=True,
                 )
+            continue
+        if args.no_drape and (out / cid / "target.obj").is_file():
+            print(f"{cid}: draped already, left as it is", flush=True)
             continue
         t0 = time.time()
         try:
@@ -199,6 +203,14 @@ def main(argv=None) -> int:
     s.add_argument(
         "--only-fitted", action="store_true", help="score only the built cases that have a result folder"
     )
+    ff = sub.add_parser(
+        "floor-fitted", help="record the material-fitted floor of the built cases (the true pattern's fit)"
+    )
+    ff.add_argument(
+        "--results", required=True, help="folder of `unsew fit --material-only` results, one per case id"
+    )
+    ff.add_argument("--cases", default=str(DEFAULT_CASES))
+    ff.add_argument("--record", action="store_true", help="write them into results.json")
     sub.add_parser("judge-check", help="the judge on synthetic inputs")
     st = sub.add_parser("status", help="table of every case's build status")
     st.add_argument("--out", default=str(DEFAULT_CASES))
@@ -213,6 +225,8 @@ def main(argv=None) -> int:
         return cmd_build(args)
     if args.cmd == "score":
         return score.cmd_score(args, Path(args.record_file))
+    if args.cmd == "floor-fitted":
+        return score.cmd_floor_fitted(args, Path(args.record_file))
     if args.cmd == "status":
         return cmd_status(args)
     if args.cmd == "judge-check":

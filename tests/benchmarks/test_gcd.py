@@ -182,6 +182,12 @@ def test_one_sampled_design_is_placed_around_its_body(tmp_path):
     rec = json.loads((tmp_path / "build.json").read_text())["gc_s1_000"]
     assert rec["status"] == "placed", rec
     assert rec["spec_inside_fraction"] < 0.02
+    # the case folder holds what needs no drape: the true pattern on its body, no target
+    case = tmp_path / "gc_s1_000"
+    for name in ("pattern_gt.json", "body.obj", "truth.json", "meta.json", "design_params.yaml"):
+        assert (case / name).is_file(), name
+    assert not (case / "target.obj").exists()
+    assert "garment" not in json.loads((case / "meta.json").read_text())
     spec = next((tmp_path / "_designs" / "s1" / "gc_s1_000").glob("*_specification.json"))
     build = _load("build")
     s = json.loads(spec.read_text())
@@ -208,6 +214,7 @@ def test_summary_counts_every_case_and_takes_medians_over_the_fitted():
                 "redrape_ratio": 2.0,
                 "fit_s": 100.0,
                 "floor_mm": 4.0,
+                "floor_fitted_mm": 3.0,
             },
             "gc_s1_001": {
                 "built": True,
@@ -216,6 +223,7 @@ def test_summary_counts_every_case_and_takes_medians_over_the_fitted():
                 "choices_right": False,
                 "chamfer_bar_mm": 20.0,
                 "floor_mm": 6.0,
+                "floor_fitted_mm": 5.0,
             },
             "gc_s1_002": {"built": False, "fitted": False, "type_right": False, "choices_right": False},
         }
@@ -223,7 +231,10 @@ def test_summary_counts_every_case_and_takes_medians_over_the_fitted():
     s = score.summary(rec)
     assert s["cases"] == 40 and s["built"] == 2 and s["fitted"] == 1 and s["type_right"] == 1
     assert s["choices_right"] == 0 and s["panel_err_median"] == 0.2 and s["chamfer_bar_median"] == 14.0
-    assert s["floor_fitted_median"] is None
+    # the floors are medians over the built cases, fitted or not
+    assert s["floor_median"] == 5.0 and s["floor_fitted_median"] == 4.0
+    rec["cases"]["gc_s1_001"].pop("floor_fitted_mm")
+    assert score.summary(rec)["floor_fitted_median"] == 3.0
 
 
 def test_the_neckline_truth_is_the_designs_front_and_back(tmp_path):

@@ -41,3 +41,61 @@ def test_obj_reader_measures_stretch(tmp_path):
     m = bench.measure(tmp_path / "t.obj", PlaneSDF((0, -1, 0), (0, 1, 0)))
     assert m["stretch_max"] == pytest.approx(2.0)
     assert m["inside_pct"] == 0.0 and m["vertices"] == 3
+
+
+def _fake_gcd_cases(root, foreign, ids):
+    """Case folders as `gcd build --no-drape` writes them, holding GarmentCode's hoodie on its
+    mean body (no built GarmentCode design is needed for the test)."""
+    import json
+    import shutil
+
+    for cid in ids:
+        d = root / cid
+        d.mkdir(parents=True)
+        shutil.copyfile(foreign / "patterns" / "hoody_mean_specification.json", d / "pattern_gt.json")
+        shutil.copyfile(foreign / "bodies" / "mean_all.obj", d / "body.obj")
+        (d / "truth.json").write_text(json.dumps({"type": "tshirt"}))
+        (d / "meta.json").write_text(json.dumps({"source": {"body": {"name": "gc_mean_all"}}}))
+
+
+def test_gcd_small_mode_dresses_a_case_resumes_and_records(tmp_path, monkeypatch):
+    """The --gcd path: a case's pattern_gt.json dressed on its body.obj, the row written as it is
+    measured and not dressed again, a case without files listed as not dressed, and the record
+    (results JSON and the docs table between its markers, replaced on a second record)."""
+    import json
+
+    try:
+        foreign = bench.foreign_dir()
+    except SystemExit:
+        pytest.skip("no shared/foreign beside the repository")
+    cases, out = tmp_path / "cases", tmp_path / "out"
+    _fake_gcd_cases(cases, foreign, ["gc_s1_000"])
+    s = bench.SMALL
+    kw = {k: s[k] for k in ("edge_length", "sew_steps", "settle_steps")}
+    row, missing = bench.run_gcd(cases, ["gc_s1_000", "gc_s1_001"], out=out, **kw)
+    assert row["exit"] == 0, row["message"]
+    assert row["type"] == "tshirt" and row["body"] == "gc_mean_all"
+    assert row["inside_pct"] <= 2 * bench.INSIDE_MAX_PCT and row["stretch_max"] <= bench.STRETCH_MAX
+    assert row["ok"]
+    assert missing["exit"] is None and not missing["ok"]
+    assert json.loads((out / "gc_s1_000.json").read_text()) == row
+    assert not (out / "gc_s1_001.json").exists()  # a later run dresses it
+
+    def no_drape(*a, **k):
+        raise AssertionError("a case with a row was dressed again")
+
+    monkeypatch.setattr(bench, "drape_file", no_drape)
+    (again,) = bench.run_gcd(cases, ["gc_s1_000"], out=out, **kw)
+    assert again == row
+
+    results, doc = tmp_path / "true_patterns_gcd.json", tmp_path / "doc.md"
+    doc.write_text("# Title\n\ntext before\n")
+    for _ in range(2):
+        bench.record_gcd([row, missing], results=results, doc=doc)
+    text = doc.read_text()
+    assert text.startswith("# Title\n\ntext before\n")
+    assert text.count(bench.DOC_BEGIN) == 1 and text.count("| gc_s1_000 |") == 1
+    assert "1 of 2 dressed" in text
+    rec = json.loads(results.read_text())
+    assert [r["case"] for r in rec["rows"]] == ["gc_s1_000", "gc_s1_001"]
+    assert rec["rows"][0]["good"] == "yes" and rec["rows"][1]["good"] == "no"

@@ -239,3 +239,94 @@ def test_wide_hips_do_not_fold_flat(garment):
     a, b = (mesh.uv[mesh.faces_uv[:, k]] - mesh.uv[mesh.faces_uv[:, 0]] for k in (1, 2))
     area2 = 0.5 * np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0])
     assert (area3 / area2).min() > 0.1
+
+
+def test_a_wide_skirts_side_panels_on_a_t_pose_body_are_not_sleeves():
+    """GarmentCode's eight-panel skirt sized to its T-pose body (design gc_s3_003 of the
+    GarmentCode benchmark, sampled by GarmentCode's design sampler, MIT) lays its side panels out
+    as far from the centre as a sleeve would lie under the raised arm: every panel is wrapped on
+    the torso, none on an arm."""
+    import os
+    from pathlib import Path
+
+    from unsew.body.body import load_body
+    from unsew.io.garmentcode import load_pattern
+
+    root = Path(__file__).resolve().parents[2]
+    shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
+    mesh = shared / "foreign" / "bodies" / "mean_all_tpose.obj"
+    if not mesh.is_file():
+        pytest.skip(f"GarmentCode bodies not at {mesh.parent}")
+    pattern = load_pattern(root / "tests" / "data" / "gc_skirt_many_panels_tpose_specification.json")
+    roles = panel_roles(pattern, load_body(mesh, None))
+    assert len(roles) == 8 and set(roles.values()) == {"torso"}, roles
+
+
+def test_cuffs_start_at_the_end_of_their_sleeves():
+    """GarmentCode's hooded dress with cuffed sleeves sized to its mean male body (design
+    gc_s2_001 of the GarmentCode benchmark, GarmentCode's design sampler, MIT): a cuff has no
+    cap sewn to the torso, so it goes down the arm to the end of the sleeve it is sewn to; each
+    cuff-to-sleeve stitch starts closer than any other panel and within 10 cm (at the shoulder,
+    where a cuff without a cap started, it lay 44 cm from its sleeve's end)."""
+    import os
+    import warnings
+    from pathlib import Path
+
+    from unsew.body.body import load_body
+    from unsew.io.garmentcode import load_pattern
+
+    root = Path(__file__).resolve().parents[2]
+    shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
+    body_mesh = shared / "foreign" / "bodies" / "mean_male.obj"
+    if not body_mesh.is_file():
+        pytest.skip(f"GarmentCode bodies not at {body_mesh.parent}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # GarmentCode's gathered seams: lengths apart
+        pattern = load_pattern(root / "tests" / "data" / "gc_dress_cuffs_specification.json")
+    mesh = mesh_pattern(pattern, edge_length=0.04)
+    x = place_garment(pattern, mesh, load_body(body_mesh, None))
+    rows = [r for r in stitch_distances(mesh, x) if ("cuff" in r["a"][0]) != ("cuff" in r["b"][0])]
+    assert len(rows) == 4
+    for r in rows:
+        assert r["pair"] < 0.1 and r["pair"] < r["other"], r
+
+
+def test_a_circle_skirt_is_not_hung_from_its_side_seams():
+    """GarmentCode's circle skirt with a waistband sized to its T-pose body (design gc_s3_007 of
+    the GarmentCode benchmark, GarmentCode's design sampler, MIT) is laid out flat with its side
+    seams horizontal at the waist, as a top's shoulder seams lie: it starts at its waist, below
+    the chest, not lifted as a top to the shoulders."""
+    import os
+    import warnings
+    from pathlib import Path
+
+    from unsew.body.body import load_body
+    from unsew.io.garmentcode import load_pattern
+
+    root = Path(__file__).resolve().parents[2]
+    shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
+    body_mesh = shared / "foreign" / "bodies" / "mean_all_tpose.obj"
+    if not body_mesh.is_file():
+        pytest.skip(f"GarmentCode bodies not at {body_mesh.parent}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        pattern = load_pattern(root / "tests" / "data" / "gc_circle_skirt_tpose_specification.json")
+    body = load_body(body_mesh, None)
+    mesh = mesh_pattern(pattern, edge_length=0.04)
+    x = place_garment(pattern, mesh, body)
+    hint_top = float(np.asarray(mesh.uv_placed3d)[:, 1].max())
+    assert x[:, 1].max() < body.skeleton.position("chest")[1]
+    assert abs(x[:, 1].max() - hint_top) < 0.05
+
+
+def test_a_leg_panel_laid_out_below_the_feet_is_placed(bodies):
+    """A trouser panel whose layout lies wholly below the body's feet (as GarmentCode lays out a
+    hem cuff of trousers longer than the legs) is placed, not refused with an internal error."""
+    body, sdf = bodies["default"]
+    pat = make_base_pattern("pants")
+    p = pat.panels["left_front"]
+    p.translation = np.asarray(p.translation, np.float64) - np.array([0.0, 3.0, 0.0])
+    mesh = mesh_pattern(pat, edge_length=0.04)
+    assert panel_roles(pat, body)["left_front"] == "left_leg"
+    x = place_garment(pat, mesh, body, sdf=sdf)
+    assert x.shape == (mesh.n_uv, 3) and np.isfinite(x).all()

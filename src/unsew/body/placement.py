@@ -60,6 +60,10 @@ LEG_GAP = 0.03
 #: A panel whose every point lies beyond this share of the shoulder's offset from the centre
 #: plane (in its hint placement) is a sleeve, whichever way it faces.
 SLEEVE_INNER = 0.6
+#: ... and a sleeve's centre lies within this distance of its arm's bones (shoulder, elbow,
+#: wrist) in its hint [m]: a wide skirt's side panels reach as far out as a sleeve under a
+#: raised (T-pose) arm.
+SLEEVE_REACH = 0.45
 #: A stitched edge whose hint direction rises less than this share of its length is horizontal
 #: (a shoulder seam between a front and a back, a waist seam between a bodice and a skirt).
 HORIZONTAL_SLOPE = 0.6
@@ -236,6 +240,7 @@ def panel_roles(pattern, body) -> dict:
         elif (
             c[1] > crotch_y + 0.1
             and abs(c[0] - cx) > 0.8 * off_sh
+            and _arm_distance(c, J, side) < SLEEVE_REACH
             and (
                 (abs(n[0]) > 0.7 and c[1] > J[f"{side}_wrist"][1] - 0.1)
                 or np.min(np.abs(w[:, 0] - cx)) > SLEEVE_INNER * off_sh
@@ -253,6 +258,16 @@ def panel_roles(pattern, body) -> dict:
         else:
             roles[name] = "free"
     return roles
+
+
+def _arm_distance(p, J, side) -> float:
+    """Distance [m] of a point p (3,) [m] from one arm's bones (shoulder-elbow, elbow-wrist)."""
+    out = np.inf
+    for a, b in ((f"{side}_shoulder", f"{side}_elbow"), (f"{side}_elbow", f"{side}_wrist")):
+        a, b = np.asarray(J[a], np.float64), np.asarray(J[b], np.float64)
+        t = np.clip(np.dot(p - a, b - a) / max(float(np.dot(b - a, b - a)), 1e-12), 0.0, 1.0)
+        out = min(out, float(np.linalg.norm(p - (a + t * (b - a)))))
+    return out
 
 
 # -- placement -------------------------------------------------------------------------------
@@ -455,7 +470,7 @@ def _wrap_lifted(pattern, mesh, info, uv, frame: _WrapFrame, J):
 
     Returns (name -> (k, 3) wrapped positions [m], name -> lift [m])."""
     lifts = {name: 0.0 for name in info}
-    shoulder_edges = _shoulder_edges(pattern, mesh, info)
+    shoulder_edges = _shoulder_edges(pattern, mesh, info, above=float(J["chest"][1]))
     links = _horizontal_links(pattern, mesh, info)
     if not shoulder_edges:
         _lower_garment_lifts(lifts, info, links, J, frame.crotch_y)
@@ -518,14 +533,22 @@ def _put_sleeves(x, pattern, mesh, info, uv, J) -> None:
         if not names:
             continue
         axes = {n: _sleeve_axis(uv[info[n]["sl"]], info[n], caps.get(n), J, side) for n in names}
-        width = sum(float(np.ptp(ax[1][info[n]["bl"] - info[n]["sl"].start])) for n, ax in axes.items())
-        radius = max(width / (2 * np.pi), 0.03)
         shifts = {}
         for n in names:
             d, cap = info[n], caps.get(n)
             if cap is not None and len(cap[1]):
                 top = _armhole_top(x[cap[1]], J, side)
                 shifts[n] = top - SLEEVE_CAP_IN - float(np.min(axes[n][0][cap[0] - d["sl"].start]))
+        capped = list(shifts)
+        _follow_sewn_sleeves(shifts, axes, names, info, mesh)
+        # the tube goes round the arm once: the panels with a cap side by side (a cuff below
+        # them is as wide again)
+        width = sum(
+            float(np.ptp(ax[1][info[n]["bl"] - info[n]["sl"].start]))
+            for n, ax in axes.items()
+            if n in capped or not capped
+        )
+        radius = max(width / (2 * np.pi), 0.03)
 
         def wrapped(turn):
             return {
@@ -536,6 +559,36 @@ def _put_sleeves(x, pattern, mesh, info, uv, J) -> None:
         turn = _sleeve_turn(wrapped, x, caps, info, names)
         for n, xs in wrapped(turn).items():
             x[info[n]["sl"]] = xs
+
+
+def _follow_sewn_sleeves(shifts, axes, names, info, mesh) -> None:
+    """Shifts down the arm [m] (in place) of an arm's sleeve panels without a cap (a cuff): each
+    goes where its edge sewn to an already shifted panel of the same arm meets that panel's
+    edge (the mean positions along the arm equal), panel after panel down a chain of them.
+    ``axes``: name -> (along, across) of :func:`_sleeve_axis`."""
+    sp = np.asarray(mesh.seam_pairs, np.int64).reshape(-1, 2)
+    part = np.asarray(mesh.uv_panel)
+    pid = {n: mesh.panel_names.index(n) for n in names}
+    todo = [n for n in names if n not in shifts]
+    while todo:
+        for n in todo:
+            for m in [m for m in names if m in shifts]:
+                pairs = [
+                    (a, b)
+                    for i, j in sp
+                    for a, b in ((i, j), (j, i))
+                    if part[a] == pid[n] and part[b] == pid[m]
+                ]
+                if pairs:
+                    a, b = np.asarray(pairs).T
+                    t_m = axes[m][0][b - info[m]["sl"].start] + shifts[m]
+                    shifts[n] = float(np.mean(t_m) - np.mean(axes[n][0][a - info[n]["sl"].start]))
+                    break
+            if n in shifts:
+                todo.remove(n)
+                break
+        else:
+            return  # the rest are sewn to no shifted panel: they keep their default start
 
 
 def _sleeve_turn(wrapped, x, caps, info, names) -> float:
@@ -676,12 +729,14 @@ def _keep_apart(stack, cx0, sgn, clearance):
     return [cx, cz, a, b]
 
 
-def _shoulder_edges(pattern, mesh, info) -> dict:
+def _shoulder_edges(pattern, mesh, info, *, above: float = -np.inf) -> dict:
     """Torso panels with stitched shoulder edges -> uv indices of those edges' vertices.
 
     A shoulder edge is labelled so (unsew's base patterns) or, unlabelled (GarmentCode's
     files), a horizontal seam (:func:`_is_horizontal` in the hint placement) between a torso
-    panel facing front and one facing back, in the upper half of both."""
+    panel facing front and one facing back, in the upper half of both and higher than
+    ``above`` [m] (the body's chest: a circle skirt laid out flat has horizontal side seams at
+    its waist)."""
     out = {}
     for st in pattern.stitches:
         sides = (st.a, st.b)
@@ -696,7 +751,7 @@ def _shoulder_edges(pattern, mesh, info) -> dict:
             for s in sides:
                 h = info[s.panel]["hint"]
                 e = h[np.asarray(mesh.edge_verts[(s.panel, s.edge)]) - info[s.panel]["sl"].start]
-                ok &= _is_horizontal(e) and e[:, 1].mean() > h[:, 1].min() + 0.5 * np.ptp(h[:, 1])
+                ok &= _is_horizontal(e) and e[:, 1].mean() > max(h[:, 1].min() + 0.5 * np.ptp(h[:, 1]), above)
             if not ok:
                 continue
         for side in sides:
@@ -763,6 +818,8 @@ def _wrap_leg(d, coords, p_torso, need, frame: _WrapFrame) -> np.ndarray:
     b2 = np.array([a2[1], -a2[0]])
     inward = -np.sign((R[:, :2] @ b2)[0]) * sgn  # +1: the across coordinate grows inwards
     ok = np.flatnonzero(~np.isnan(ext[:, 0]))
+    if not len(ok):  # wholly below the body's heights (a hem laid out under the feet)
+        return p_torso
     edge = np.interp(along, ys[ok], ext[ok, 1] if inward > 0 else ext[ok, 0])
     phi_in = -0.5 * np.pi * sgn
     p_leg = _wrap_stack(
