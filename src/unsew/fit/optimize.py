@@ -81,6 +81,9 @@ REST_CHUNK = 10
 
 #: Weight of the earlier gradients in the running sum line-searched steps follow (PhaseTwo._step_k) [-].
 MOMENTUM = 0.5
+#: Factor on the next step's length after a step kept whole, and the most that length grows to, in
+#: learning rates (PhaseTwo._line_search) [-].
+GROW, GROW_CAP = 1.5, 3.0
 
 
 @dataclass
@@ -320,6 +323,7 @@ class PhaseTwo:
         self.iteration, self.converged = 0, False
         self._pending: tuple | None = None  # the kept trial's (terms, gamma, x): the next iteration's loss
         self._momentum: torch.Tensor | None = None  # (Nk, 2): the running sum of dL/dK (_step_k)
+        self._length = 1.0  # the next step's length, in learning rates (_line_search)
         self.trials: list[int] = []  # per iteration, the trial drapes its step took (0: no line search)
 
     def _start_at_rest(self) -> dict:
@@ -499,9 +503,10 @@ class PhaseTwo:
         """The control points' step, shortened for narrow panels (step_scales) and projected for
         held bands (band_projectors). With ``optimizer.retries`` > 0 it follows the gradient's
         running sum m = MOMENTUM m + dL/dK, scaled so that the point moving most moves the
-        learning rate [m]: each point's step is in proportion to its gradient, where Adam's first
-        step moves every coordinate by the learning rate whatever its gradient's size (sign-like,
-        and on a noisy gradient a rise of the loss); with 0, Adam's step (the paper)."""
+        learning rate [m] times the line search's step length: each point's step is in proportion
+        to its gradient, where Adam's first step moves every coordinate by the learning rate
+        whatever its gradient's size (sign-like, and on a noisy gradient a rise of the loss);
+        with 0, Adam's step (the paper)."""
         if self.cfg.optimizer.retries <= 0:
             self.opt_k.step()
         else:
@@ -511,7 +516,7 @@ class PhaseTwo:
             n = float(m.norm(dim=1).max())
             if n > 0:
                 with torch.no_grad():
-                    self.K.sub_(self.opt_k.param_groups[0]["lr"] / n * m)
+                    self.K.sub_(self._length * self.opt_k.param_groups[0]["lr"] / n * m)
         if self._scaled:
             with torch.no_grad():  # narrow panels' points take shorter steps (step_scales)
                 short = K_before + self.k_scale * (self.K - K_before)
@@ -524,9 +529,10 @@ class PhaseTwo:
         """Keep the step just taken (K, theta) only where its drape, from the drape at K_before, has
         a loss no higher than ``loss0`` (K_before's); else retry it at half its length, up to
         ``optimizer.retries`` times (the holds applied again), and when none is lower go back to
-        K_before and theta_before. The kept trial's drape, tape and all, is the next iteration's
-        loss (``_pending``): a kept step costs no drape more than Adam's. Returns the number of
-        trial drapes."""
+        K_before and theta_before. A step kept whole makes the next one GROW times longer (at most
+        GROW_CAP learning rates); one kept shorter makes the next as short. The kept trial's
+        drape, tape and all, is the next iteration's loss (``_pending``): a kept step costs no
+        drape more than Adam's. Returns the number of trial drapes."""
         K_full, theta_full = self.K.detach().clone(), self.theta.detach().clone()
         t = 1.0
         for r in range(self.cfg.optimizer.retries + 1):
@@ -539,6 +545,7 @@ class PhaseTwo:
             trial = self.loss()
             total = float(trial[0].total.detach())
             if math.isfinite(total) and total <= loss0:
+                self._length = min(GROW_CAP, self._length * (GROW if r == 0 else 0.5**r))
                 self._pending = trial
                 return r + 1
         with torch.no_grad():
@@ -646,6 +653,7 @@ class PhaseTwo:
             "best": dataclasses.asdict(self.best),
             "trials": list(self.trials),
             "momentum": None if self._momentum is None else self._momentum.clone(),
+            "length": self._length,
         }
 
     def load_state_dict(self, state: dict) -> None:
@@ -666,6 +674,7 @@ class PhaseTwo:
         self._pending = None  # the next iteration drapes K afresh from x_prev, as the kept trial did
         m = state.get("momentum")
         self._momentum = None if m is None else m.to(dev)
+        self._length = float(state.get("length", 1.0))
 
     def best_fit(self):
         """The best iterate as (pattern, uv (Nu, 2) [m] numpy, drape x (Nx, 3) [m] numpy, Material),
