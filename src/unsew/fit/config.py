@@ -100,6 +100,10 @@ class OptimizerSettings:
     seams: ClassVar[str] = "soft"
     tol: ClassVar[float] = 1e-3  #: stop when the loss changed by less than this fraction over `patience` [-]
     patience: ClassVar[int] = 15  #: iterations over which convergence is judged [-]
+    #: > 0: phase two's control-point steps are line searched (a step raising the loss is retried at half
+    #: length, at most this many times, else not taken; lr: the move of the point moving most;
+    #: docs/decisions/018); 0: Adam's steps, every one kept (the paper) [-]
+    retries: ClassVar[int] = 3
     #: > 0: phase two starts from a drape at rest, the graded drape draped on until its 99th-percentile vertex
     #: speed falls below this; 0: off (docs/decisions/013) [m/s]
     rest_speed: ClassVar[float] = 0.0

@@ -15,6 +15,13 @@ material, Gamma_i = Gamma0_i * exp(theta_i), so one learning rate suits values t
 seven orders of magnitude and they stay positive; H01 = 0.995 tanh(phi0 + theta_1) sqrt(H00 H11),
 so H stays positive definite. The material range penalty of the paper is kept on Gamma itself.
 
+Steps of the control points are line searched (a deviation from the paper, whose Adam keeps
+every step; ``optimizer.retries`` > 0): the start drape is draped once more before the first
+gradient, each step follows the gradient's running sum scaled to the learning rate on the point
+moving most (not Adam's sign-like first steps), and a step whose drape has a higher loss than the
+iterate it left is retried at half its length, up to ``retries`` times, else not taken
+(:meth:`PhaseTwo._line_search`; docs/decisions/018). The material keeps Adam.
+
 The result is the iterate of lowest loss, pattern-only or with the material; when a pattern-only
 iterate wins, the reported material is the start material.
 """
@@ -71,6 +78,12 @@ LOSS_TERMS = ("total", "chamfer", "open", "seam", "material", "prior", "area", "
 
 #: Steps of each drape that probes and settles phase two's start (:meth:`PhaseTwo._start_at_rest`) [-].
 REST_CHUNK = 10
+
+#: Weight of the earlier gradients in the running sum line-searched steps follow (PhaseTwo._step_k) [-].
+MOMENTUM = 0.5
+#: Factor on the next step's length after a step kept whole, and the most that length grows to, in
+#: learning rates (PhaseTwo._line_search) [-].
+GROW, GROW_CAP = 1.5, 3.0
 
 
 @dataclass
@@ -297,6 +310,7 @@ class PhaseTwo:
         self.opt_m = torch.optim.Adam([self.theta], lr=cfg.material.lr, betas=o.betas)
         self.x_prev = torch.as_tensor(np.asarray(s.x), dtype=torch.float64, device=dev)
         self.rest = self._start_at_rest()
+        self._settle_start()
         with torch.no_grad():
             self.uv_start = self.params.uv(self.K).detach()
             self.panel_areas0 = panel_areas(
@@ -307,6 +321,10 @@ class PhaseTwo:
             math.inf, self.K.detach().clone(), self.gamma0.detach().clone(), self.x_prev.clone()
         )
         self.iteration, self.converged = 0, False
+        self._pending: tuple | None = None  # the kept trial's (terms, gamma, x): the next iteration's loss
+        self._momentum: torch.Tensor | None = None  # (Nk, 2): the running sum of dL/dK (_step_k)
+        self._length = 1.0  # the next step's length, in learning rates (_line_search)
+        self.trials: list[int] = []  # per iteration, the trial drapes its step took (0: no line search)
 
     def _start_at_rest(self) -> dict:
         """Settle the graded drape ``x_prev`` until it is at rest, when it is not.
@@ -431,12 +449,15 @@ class PhaseTwo:
                 group["lr"] = lr * decay
 
     def step(self) -> Iteration:
-        """One iteration of Adam on the loss; returns what it draped and measured."""
+        """One iteration: the loss at K (the drape the last step's line search accepted, or a fresh
+        one), its gradient, a step, and the line search that accepts the step only where it lowers
+        the loss (:meth:`_line_search`); returns what it draped and measured."""
         it, mat_on = self.iteration, self.material_on()
         self._set_learning_rates()
         self.opt_k.zero_grad()
         self.opt_m.zero_grad()
-        terms, gamma, x = self.loss()
+        terms, gamma, x = self._pending if self._pending is not None else self.loss()
+        self._pending = None
         if not torch.isfinite(terms.total):
             raise InputError(
                 f"the loss became non-finite at iteration {it}; try a smaller --lr or a coarser mesh"
@@ -454,16 +475,12 @@ class PhaseTwo:
                 it,
                 mat_on,
             )
-        K_before = self.K.detach().clone()
-        if it >= self.cfg.optimizer.pattern_start:
-            self.opt_k.step()
-            if self._scaled:
-                with torch.no_grad():  # narrow panels' points take shorter steps (step_scales)
-                    short = K_before + self.k_scale * (self.K - K_before)
-                    self.K.copy_(torch.where(self.k_scale < 1, short, self.K))
-            if self.k_project is not None:
-                with torch.no_grad():  # waistbands keep their height (band_projectors)
-                    self.K.copy_(K_before + torch.einsum("kij,kj->ki", self.k_project, self.K - K_before))
+        K_before, theta_before = self.K.detach().clone(), self.theta.detach().clone()
+        opt_before = (copy.deepcopy(self.opt_k.state_dict()), copy.deepcopy(self.opt_m.state_dict()))
+        momentum_before = self._momentum
+        moved = it >= self.cfg.optimizer.pattern_start
+        if moved:
+            self._step_k(K_before)
         if mat_on:
             if self.theta.grad is not None:
                 self.theta.grad.mul_(self.free_mat)  # entries left out of material.fit stay put
@@ -472,9 +489,95 @@ class PhaseTwo:
         if self.cfg.optimizer.warm_start:
             self.x_prev = x.detach()
         self.iteration += 1
+        trials = 0
+        o = self.cfg.optimizer
+        if o.retries > 0 and (moved or mat_on) and self.iteration < o.iterations:
+            trials = self._line_search(values["total"], K_before, theta_before)
+            if self._pending is None:  # no trial lowered the loss: back to K, the optimizers as they were
+                self.opt_k.load_state_dict(opt_before[0])
+                self.opt_m.load_state_dict(opt_before[1])
+                self._momentum = momentum_before
+        self.trials.append(trials)
         self.converged = self._has_converged()
         last = self.converged or self.iteration >= self.cfg.optimizer.iterations
         return Iteration(it, values, K_before, gamma.detach(), x.detach(), self.mesh.faces, last)
+
+    def _step_k(self, K_before: torch.Tensor) -> None:
+        """The control points' step, shortened for narrow panels (step_scales) and projected for
+        held bands (band_projectors). With ``optimizer.retries`` > 0 it follows the gradient's
+        running sum m = MOMENTUM m + dL/dK, scaled so that the point moving most moves the
+        learning rate [m] times the line search's step length: each point's step is in proportion
+        to its gradient, where Adam's first step moves every coordinate by the learning rate
+        whatever its gradient's size (sign-like, and on a noisy gradient a rise of the loss);
+        with 0, Adam's step (the paper)."""
+        if self.cfg.optimizer.retries <= 0:
+            self.opt_k.step()
+        else:
+            g = self.K.grad.detach()  # (Nk, 2) [1/m]
+            m = g if self._momentum is None else MOMENTUM * self._momentum + g
+            self._momentum = m
+            n = float(m.norm(dim=1).max())
+            if n > 0:
+                with torch.no_grad():
+                    self.K.sub_(self._length * self.opt_k.param_groups[0]["lr"] / n * m)
+        if self._scaled:
+            with torch.no_grad():  # narrow panels' points take shorter steps (step_scales)
+                short = K_before + self.k_scale * (self.K - K_before)
+                self.K.copy_(torch.where(self.k_scale < 1, short, self.K))
+        if self.k_project is not None:
+            with torch.no_grad():  # waistbands keep their height (band_projectors)
+                self.K.copy_(K_before + torch.einsum("kij,kj->ki", self.k_project, self.K - K_before))
+
+    def _line_search(self, loss0: float, K_before: torch.Tensor, theta_before: torch.Tensor) -> int:
+        """Keep the step just taken (K, theta) only where its drape, from the drape at K_before, has
+        a loss no higher than ``loss0`` (K_before's); else retry it at half its length, up to
+        ``optimizer.retries`` times (the holds applied again), and when none is lower go back to
+        K_before and theta_before. A step kept whole makes the next one GROW times longer (at most
+        GROW_CAP learning rates); one kept shorter makes the next as short. The kept trial's
+        drape, tape and all, is the next iteration's loss (``_pending``): a kept step costs no
+        drape more than Adam's. Returns the number of trial drapes."""
+        K_full, theta_full = self.K.detach().clone(), self.theta.detach().clone()
+        t = 1.0
+        for r in range(self.cfg.optimizer.retries + 1):
+            if r > 0:
+                t *= 0.5
+                with torch.no_grad():
+                    self.K.copy_(K_before + t * (K_full - K_before))
+                    self.theta.copy_(theta_before + t * (theta_full - theta_before))
+                self._hold(K_before)
+            trial = self.loss()
+            total = float(trial[0].total.detach())
+            if math.isfinite(total) and total <= loss0:
+                self._length = min(GROW_CAP, self._length * (GROW if r == 0 else 0.5**r))
+                self._pending = trial
+                return r + 1
+        with torch.no_grad():
+            self.K.copy_(K_before)
+            self.theta.copy_(theta_before)
+        return self.cfg.optimizer.retries + 1
+
+    def _settle_start(self) -> None:
+        """Drape the start once (one iteration's steps, no tape) before phase two's first gradient,
+        when steps are line searched (``optimizer.retries`` > 0): the start drape, settled in phase
+        one's settings, still moves in phase two's, and a gradient taken on a drape still moving
+        points anywhere (docs/decisions/018)."""
+        if self.cfg.optimizer.retries <= 0:
+            return
+        with torch.no_grad():
+            self.x_prev = (
+                drape(
+                    self.model,
+                    SimState.at_rest(self.x_prev),
+                    self.sdf,
+                    uv=self.params.uv(self.K.detach()),
+                    gamma=self.gamma0,
+                    density=self.material0.density,
+                    settings=self.settings,
+                    friction=self.material0.friction,
+                )
+                .x.detach()
+                .clone()
+            )
 
     def _hold(self, K_before: torch.Tensor) -> None:
         """End the step on a pattern that sews (``optimizer.seams: held``: every stitch's length
@@ -551,6 +654,9 @@ class PhaseTwo:
             "x_prev": self.x_prev.clone(),
             "history": {k: list(v) for k, v in self.history.items()},
             "best": dataclasses.asdict(self.best),
+            "trials": list(self.trials),
+            "momentum": None if self._momentum is None else self._momentum.clone(),
+            "length": self._length,
         }
 
     def load_state_dict(self, state: dict) -> None:
@@ -567,6 +673,11 @@ class PhaseTwo:
         best = dict(state["best"])  # a checkpoint is read onto the CPU (checkpoint.py): tensors back to dev
         self.best = Iterate(**{k: v.to(dev) if torch.is_tensor(v) else v for k, v in best.items()})
         self.iteration = int(state["iteration"])
+        self.trials = list(state.get("trials", []))  # absent from checkpoints written before line search
+        self._pending = None  # the next iteration drapes K afresh from x_prev, as the kept trial did
+        m = state.get("momentum")
+        self._momentum = None if m is None else m.to(dev)
+        self._length = float(state.get("length", 1.0))
 
     def best_fit(self):
         """The best iterate as (pattern, uv (Nu, 2) [m] numpy, drape x (Nx, 3) [m] numpy, Material),
