@@ -22,9 +22,11 @@ test: setup
 test-slow: setup
 	@$(VENV)/bin/python -m pytest -q -m slow $(ARGS)
 
-# pycodestyle and pyflakes through ruff (settings in pyproject.toml); `ruff format` lays the code out.
+# pycodestyle, pyflakes, complexity and argument counts through ruff (settings in pyproject.toml),
+# then no function over 60 lines; `ruff format` lays the code out.
 lint: setup
 	@$(VENV)/bin/ruff check src tests benchmarks
+	@$(VENV)/bin/python scripts/check_function_length.py
 
 # `make bench NAME=fit ARGS="--edge-length 0.025"`; `make bench` lists the benchmarks.
 bench: setup
