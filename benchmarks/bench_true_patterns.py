@@ -427,7 +427,7 @@ def record_gcd(rows: list[dict], *, results: Path = GCD_RESULTS, doc: Path = DOC
     doc.write_text(text)
 
 
-def main() -> None:
+def _parse(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--patterns", nargs="*", default=list(PATTERNS), choices=list(PATTERNS))
     ap.add_argument("--out", default=None, help="folder for the draped OBJs (default: a temporary one)")
@@ -447,12 +447,11 @@ def main() -> None:
         action="store_true",
         help="--gcd: write benchmarks/results/true_patterns_gcd.json and the table in docs/true_patterns.md",
     )
-    args = ap.parse_args()
-    from tables import print_table
+    return ap.parse_args(argv)
 
-    if args.gcd:
-        raise SystemExit(main_gcd(args))
 
+def _dress_foreign(args) -> tuple[list[dict], list[dict]]:
+    """Dress GarmentCode's sample patterns; (their rows, the most stretched edges' rows with --seams)."""
     kw = {}
     names = args.patterns
     if args.small:
@@ -473,22 +472,19 @@ def main() -> None:
                     seams += seam_rows(
                         r["pattern"], obj, foreign=foreign_dir(), edge_length=kw.get("edge_length", 0.025)
                     )
+    return rows, seams
+
+
+def main() -> None:
+    args = _parse()
+    from tables import print_table
+
+    if args.gcd:
+        raise SystemExit(main_gcd(args))
+    rows, seams = _dress_foreign(args)
     print()
-    print_table(
-        rows,
-        [
-            "pattern",
-            "body",
-            "exit",
-            "inside_pct",
-            "stretch_max",
-            "stretch_p99",
-            "vertices",
-            "time_s",
-            "ok",
-            "message",
-        ],
-    )
+    cols = ["pattern", "body", "exit", "inside_pct", "stretch_max", "stretch_p99", "vertices", "time_s", "ok"]
+    print_table(rows, cols + ["message"])
     if seams:
         print_table(
             seams,

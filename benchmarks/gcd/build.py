@@ -318,12 +318,69 @@ def build_case(
     but the newton drape (no target.obj), for a quick check of sampling, sizing and placement."""
     sys.path.insert(0, str(HERE.parent / "foreign"))
     import checks
+
+    m = manifest()
+    t0 = time.time()
+    src = _sampled_design(cid, seed, out, count)
+    rec = {"case": cid, "seed": seed, "body": src.entry["body"]["name"], "type": src.truth["type"]}
+    body_v, body_f = read_body(src.body_dir)
+    d = out / cid
+    try:
+        mesh = mesh_spec(src.spec, cid, m["edge_length_m"])
+    except Exception as exc:  # noqa: BLE001 - unsew cannot mesh this design: recorded, counted
+        rec.update(status="failed", reason=f"meshing: {type(exc).__name__}: {str(exc).splitlines()[0][:160]}")
+        if not (d / "target.obj").is_file():
+            src.write(d)
+        return rec
+    x_spec = spec_placement(src.spec, mesh)
+    x0 = bend_around_body(x_spec, mesh, src.spec, body_v)
+    rec["spec_inside_fraction"] = round(float(checks.inside_mask(x_spec, body_v, body_f).mean()), 4)
+    rec["start_inside_fraction"] = round(float(checks.inside_mask(x0, body_v, body_f).mean()), 4)
+    rec["vertices"] = int(mesh.n_x)
+    _log(
+        f"{cid}: {src.truth['type']}, {src.truth['panels']} panels, {mesh.n_x} vertices, "
+        f"{rec['spec_inside_fraction']:.1%} of the spec's placement and "
+        f"{rec['start_inside_fraction']:.1%} of the bent start inside the body"
+    )
+    if not drape:
+        if not (d / "target.obj").is_file():
+            src.write(d)
+        rec.update(status="placed", seconds=round(time.time() - t0, 1))
+        return rec
+    try:
+        x, info, settings = _newton_drape(mesh, x0, body_v, body_f, src.truth["type"] in LOWER_TYPES)
+    except RuntimeError as exc:
+        rec.update(status="failed", reason=f"newton: {exc}", seconds=round(time.time() - t0, 1))
+        return rec
+    fails = _accept(rec, x, x0, mesh, (body_v, body_f), info)
+    _write_built(out, src, x, mesh, (body_v, body_f), rec, fails, (info, settings))
+    rec.update(status="built" if not fails else "failed", seconds=round(time.time() - t0, 1))
+    if fails:
+        rec["reason"] = "; ".join(fails)
+    _log(f"{cid}: {rec['status']} in {rec['seconds']:.0f} s" + (f" ({rec['reason']})" if fails else ""))
+    return rec
+
+
+class _Design:
+    """One sampled design: its id and seed, the seed's manifest entry, its body folder, its
+    specification, design_params.yaml's text and the truth read from it."""
+
+    def __init__(self, cid, seed, entry, body_dir, spec, design_text, truth):
+        self.cid, self.seed, self.entry, self.body_dir = cid, seed, entry, body_dir
+        self.spec, self.design_text, self.truth = spec, design_text, truth
+
+    def write(self, d: Path) -> None:
+        write_design_files(
+            d, self.body_dir, self.spec, self.design_text, self.truth, self.entry, self.cid, self.seed
+        )
+
+
+def _sampled_design(cid: str, seed: int, out: Path, count: int | None) -> _Design:
+    """Seed ``seed``'s body made and its designs sampled (each once); design ``cid`` and its truth."""
     from truth import built_choices, truth_of_design
 
     m = manifest()
     entry = seed_entry(seed)
-    t0 = time.time()
-    rec = {"case": cid, "seed": seed, "body": entry["body"]["name"]}
     body_dir = make_body(entry, out)
     ddir = sample_seed(seed, m["count"] if count is None else count, body_dir, out) / cid
     spec = json.loads((ddir / f"{cid}_specification.json").read_text())
@@ -332,39 +389,17 @@ def build_case(
     truth["panels"] = len(spec["pattern"]["panels"])
     truth["design_choices"] = truth["choices"]
     truth["choices"] = built_choices(truth["choices"], spec)
-    rec["type"] = truth["type"]
-    body_v, body_f = read_body(body_dir)
-    d = out / cid
-    try:
-        mesh = mesh_spec(spec, cid, m["edge_length_m"])
-    except Exception as exc:  # noqa: BLE001 - unsew cannot mesh this design: recorded, counted
-        rec.update(status="failed", reason=f"meshing: {type(exc).__name__}: {str(exc).splitlines()[0][:160]}")
-        if not (d / "target.obj").is_file():
-            write_design_files(d, body_dir, spec, design_text, truth, entry, cid, seed)
-        return rec
-    x_spec = spec_placement(spec, mesh)
-    x0 = bend_around_body(x_spec, mesh, spec, body_v)
-    rec["spec_inside_fraction"] = round(float(checks.inside_mask(x_spec, body_v, body_f).mean()), 4)
-    rec["start_inside_fraction"] = round(float(checks.inside_mask(x0, body_v, body_f).mean()), 4)
-    rec["vertices"] = int(mesh.n_x)
-    _log(
-        f"{cid}: {truth['type']}, {truth['panels']} panels, {mesh.n_x} vertices, "
-        f"{rec['spec_inside_fraction']:.1%} of the spec's placement and "
-        f"{rec['start_inside_fraction']:.1%} of the bent start inside the body"
-    )
-    if not drape:
-        if not (d / "target.obj").is_file():
-            write_design_files(d, body_dir, spec, design_text, truth, entry, cid, seed)
-        rec.update(status="placed", seconds=round(time.time() - t0, 1))
-        return rec
-    try:
-        x, info, settings = _newton_drape(mesh, x0, body_v, body_f, truth["type"] in LOWER_TYPES)
-    except RuntimeError as exc:
-        rec.update(status="failed", reason=f"newton: {exc}", seconds=round(time.time() - t0, 1))
-        return rec
-    faces = np.asarray(mesh.faces)
+    return _Design(cid, seed, entry, body_dir, spec, design_text, truth)
+
+
+def _accept(rec: dict, x: np.ndarray, x0: np.ndarray, mesh, body, info: dict) -> list[str]:
+    """The drape's acceptance checks (inside, stretch, floor, slide) recorded into ``rec``;
+    returns the failed ones' lines (empty: accepted). x, x0: (n, 3) [m] drape and start."""
+    import checks
+
+    body_v, body_f = body
     inside = float(checks.inside_mask(x, body_v, body_f).mean())
-    st = checks.stretch(x, faces, np.asarray(mesh.uv), np.asarray(mesh.faces_uv))
+    st = checks.stretch(x, np.asarray(mesh.faces), np.asarray(mesh.uv), np.asarray(mesh.faces_uv))
     fails = []
     if inside >= MAX_INSIDE:
         fails.append(f"{inside:.2%} of vertices inside the body")
@@ -383,23 +418,28 @@ def build_case(
         seam_gap_after_sewing_mm=round(info["gap_after_sewing_m"] * 1000, 1),
         drape_s=round(info["sew_s"] + info["drape_s"], 1),
     )
+    return fails
+
+
+def _write_built(out: Path, src: _Design, x, mesh, body, rec: dict, fails: list[str], run) -> None:
+    """Write the draped case folder ``out/cid`` (through a temporary folder): the design's files,
+    target.obj, preview.png and meta.json with the simulator's settings and the checks."""
+    import checks
     import newton
     import warp
 
+    info, settings = run
+    cid, faces = src.cid, np.asarray(mesh.faces)
     tmp = out / f".{cid}.tmp"
     shutil.rmtree(tmp, ignore_errors=True)
-    write_design_files(tmp, body_dir, spec, design_text, truth, entry, cid, seed)
-    title = (
-        f"{cid} {truth['type']}  inside {inside:.2%}  {'ok' if not fails else 'FAIL: ' + '; '.join(fails)}"
-    )
-    checks.preview(tmp / "preview.png", x, faces, body_v, body_f, title=title)
-    write_obj(
-        tmp / "target.obj",
-        x,
-        faces,
-        f"GarmentCode design {cid} draped by newton {newton.__version__} SolverStyle3D",
-    )
+    src.write(tmp)
+    verdict = "ok" if not fails else "FAIL: " + "; ".join(fails)
+    title = f"{cid} {src.truth['type']}  inside {rec['inside_fraction']:.2%}  {verdict}"
+    checks.preview(tmp / "preview.png", x, faces, *body, title=title)
+    header = f"GarmentCode design {cid} draped by newton {newton.__version__} SolverStyle3D"
+    write_obj(tmp / "target.obj", x, faces, header)
     meta = json.loads((tmp / "meta.json").read_text())
+    check_keys = ("inside_fraction", "stretch_p95", "stretch_max", "seam_gap_after_sewing_mm", "top_drop_m")
     meta |= {
         "simulator": {
             "name": "newton SolverStyle3D (CPU)",
@@ -408,28 +448,14 @@ def build_case(
             "start": "the specification's panel translation and rotation, front and back panels bent "
             "around the body's axis (build.bend_around_body)",
             "settings": {k: (None if v == float("inf") else v) for k, v in settings.items()},
-            "mesh_edge_length_m": m["edge_length_m"],
+            "mesh_edge_length_m": manifest()["edge_length_m"],
             "frames": info["frames"],
         },
-        "checks": {
-            k: rec[k]
-            for k in (
-                "inside_fraction",
-                "stretch_p95",
-                "stretch_max",
-                "seam_gap_after_sewing_mm",
-                "top_drop_m",
-            )
-        },
+        "checks": {k: rec[k] for k in check_keys},
     }
     (tmp / "meta.json").write_text(json.dumps(meta, indent=1))
-    shutil.rmtree(d, ignore_errors=True)
-    tmp.rename(d)
-    rec.update(status="built" if not fails else "failed", seconds=round(time.time() - t0, 1))
-    if fails:
-        rec["reason"] = "; ".join(fails)
-    _log(f"{cid}: {rec['status']} in {rec['seconds']:.0f} s" + (f" ({rec['reason']})" if fails else ""))
-    return rec
+    shutil.rmtree(out / cid, ignore_errors=True)
+    tmp.rename(out / cid)
 
 
 def write_design_files(

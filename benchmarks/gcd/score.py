@@ -93,10 +93,22 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
     spec_gt = json.loads((case / "pattern_gt.json").read_text())
     truth["choices"] = built_choices(truth.get("design_choices", truth["choices"]), spec_gt)
     tv, tf = read_obj(case / "target.obj")
-    edge = build.manifest()["edge_length_m"]
-    lower = truth["type"] in build.LOWER_TYPES
     rec = {"case": case.name, "type_true": truth["type"], "choices_true": truth["choices"]}
-    cache = case / "floors.json"  # the floors depend on the case alone: computed once
+    rec.update(_floors(case, spec_gt, truth, (tv, tf), floor=floor, redrape=redrape))
+    if result is None or not (result / "pattern.json").is_file():
+        rec.update(fitted=False, type_right=False, choices_right=False)
+        return rec
+    _score_pattern(rec, case, result, truth, spec_gt)
+    _score_drapes(rec, case, result, truth, (tv, tf), redrape=redrape)
+    return rec
+
+
+def _floors(case: Path, spec_gt: dict, truth: dict, target, *, floor: bool, redrape: bool) -> dict:
+    """The case's floors (they depend on the case alone: computed once, kept in floors.json):
+    unsew's drape of the true pattern against the target (chamfer_bar_mm) and newton's on a
+    finer mesh (floor_mm) [mm]."""
+    tv, tf = target
+    cache = case / "floors.json"
     known = json.loads(cache.read_text()) if cache.is_file() else {}
     if floor and "chamfer_bar_mm" not in known:
         d = unsew_drape(case)
@@ -107,16 +119,18 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
             known["chamfer_bar_error"] = d
         cache.write_text(json.dumps(known, indent=1))
     if redrape and "floor_mm" not in known:
+        edge = build.manifest()["edge_length_m"]
         try:
-            x, f = newton_redrape(spec_gt, case, edge * FINER, lower)
+            x, f = newton_redrape(spec_gt, case, edge * FINER, truth["type"] in build.LOWER_TYPES)
             known["floor_mm"] = round(judge.chamfer_mm(x, f, tv, tf)["chamfer_mm"], 2)
         except Exception as exc:  # noqa: BLE001 - recorded per case, the rest go on
             known["floor_mm"], known["floor_error"] = None, f"{type(exc).__name__}: {str(exc)[:160]}"
         cache.write_text(json.dumps(known, indent=1))
-    rec.update(known)
-    if result is None or not (result / "pattern.json").is_file():
-        rec.update(fitted=False, type_right=False, choices_right=False)
-        return rec
+    return known
+
+
+def _score_pattern(rec: dict, case: Path, result: Path, truth: dict, spec_gt: dict) -> None:
+    """The recovered pattern's type, structural choices and panels against the truth, into ``rec``."""
     metrics = json.loads((result / "metrics.json").read_text()) if (result / "metrics.json").is_file() else {}
     spec_rec = json.loads((result / "pattern.json").read_text())
     base = str(metrics.get("base", ""))
@@ -130,34 +144,31 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
     rec["choices_ok"] = {k: ch[k] == truth["choices"][k] for k in CHOICES}
     rec["choices_right"] = all(rec["choices_ok"].values())
     cmp = judge.compare_patterns(spec_gt, spec_rec)
-    rec.update(
-        {
-            k: cmp[k]
-            for k in (
-                "panel_err",
-                "turning",
-                "panels_true",
-                "panels_rec",
-                "panels_true_raw",
-                "panels_rec_raw",
-            )
-        }
-    )
-    gv, gf = read_obj(result / "garment.obj")
-    rec["chamfer_mm"] = round(judge.chamfer_mm(gv, gf, tv, tf)["chamfer_mm"], 2)
-    if redrape:
-        try:
-            x, f = newton_redrape(spec_rec, case, edge, lower)
-            rec["redrape_mm"] = round(judge.chamfer_mm(x, f, tv, tf)["chamfer_mm"], 2)
-        except Exception as exc:  # noqa: BLE001 - recorded per case, the rest go on
-            rec["redrape_mm"], rec["redrape_error"] = None, f"{type(exc).__name__}: {str(exc)[:160]}"
-        if rec.get("redrape_mm") and rec.get("floor_mm"):
-            rec["redrape_ratio"] = round(rec["redrape_mm"] / rec["floor_mm"], 3)
+    keys = ("panel_err", "turning", "panels_true", "panels_rec", "panels_true_raw", "panels_rec_raw")
+    rec.update({k: cmp[k] for k in keys})
     t = metrics.get("timings_s") or {}
     total = t.get("total_s", t.get("total"))
     rec["fit_s"] = round(float(total), 1) if total is not None else None
     rec["fitted"] = True
-    return rec
+
+
+def _score_drapes(rec: dict, case: Path, result: Path, truth: dict, target, *, redrape: bool) -> None:
+    """The fit's drape against the target and, with ``redrape``, newton's drape of the recovered
+    pattern (and its ratio to the floor), into ``rec`` [mm]."""
+    tv, tf = target
+    gv, gf = read_obj(result / "garment.obj")
+    rec["chamfer_mm"] = round(judge.chamfer_mm(gv, gf, tv, tf)["chamfer_mm"], 2)
+    if not redrape:
+        return
+    spec_rec = json.loads((result / "pattern.json").read_text())
+    edge = build.manifest()["edge_length_m"]
+    try:
+        x, f = newton_redrape(spec_rec, case, edge, truth["type"] in build.LOWER_TYPES)
+        rec["redrape_mm"] = round(judge.chamfer_mm(x, f, tv, tf)["chamfer_mm"], 2)
+    except Exception as exc:  # noqa: BLE001 - recorded per case, the rest go on
+        rec["redrape_mm"], rec["redrape_error"] = None, f"{type(exc).__name__}: {str(exc)[:160]}"
+    if rec.get("redrape_mm") and rec.get("floor_mm"):
+        rec["redrape_ratio"] = round(rec["redrape_mm"] / rec["floor_mm"], 3)
 
 
 def type_given(meta: dict, config_yaml: str) -> bool:
