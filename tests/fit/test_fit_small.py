@@ -154,12 +154,28 @@ def test_phase_two_is_kept_and_lowers_the_redressed_distance(small_fit):
     assert moved > 1e-3  # [m]: the returned pattern is not the graded one
 
 
-@pytest.mark.xfail(
+#: Known limit (README, "Known limits": phase two can move area between panels): it lowers the
+#: drape's distance, not the pattern error, where grading already fits the panels' areas; measured
+#: over cases by `python -m benchmarks fit` (area error of the graded and the fitted pattern per
+#: garment type) and `python -m benchmarks foreign_fit` (per-panel area errors, graded and final).
+#: Strict: an XPASS says the limit is lifted here.
+AREA_LIMIT = pytest.mark.xfail(
     strict=True,
-    reason="mean panel area error 0.98 % "
-    "graded -> 1.09 % final; phase two lowers the drape's distance, "
-    "not yet the pattern error, on this case",
+    reason="known limit: phase two lowers the drape's distance, not the pattern error, where grading "
+    "already fits the areas (mean panel area error 0.98 % graded -> 1.09 % final here); measured by "
+    "`python -m benchmarks fit` and `foreign_fit`",
 )
+
+#: Known limit: phase two moves corners the truth did not move; measured by
+#: `python -m benchmarks phase_two_paths` (corner L2 of the graded and the best iterate).
+CORNER_LIMIT = pytest.mark.xfail(
+    strict=True,
+    reason="known limit: phase two moves corners the truth did not move (rigid corner L2 0.14 -> 0.29 cm "
+    "here); measured by `python -m benchmarks phase_two_paths` (corner L2 graded / best)",
+)
+
+
+@AREA_LIMIT
 def test_phase_two_lowers_the_pattern_error_below_grading(small_fit):
     """The pattern error itself: the mean panel area error of phase two's pattern at most 0.7x the
     graded pattern's. Not on this t-shirt, whose graded area error is already under 1 %; the
@@ -169,54 +185,108 @@ def test_phase_two_lowers_the_pattern_error_below_grading(small_fit):
     assert metrics["pattern"]["area_error_rel_mean"] < 0.7 * metrics["pattern_graded"]["area_error_rel_mean"]
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="phase two lowers the panel areas' error but moves corners the truth did not "
-    "move: rigid corner L2 0.14 -> 0.29 cm",
-)
+@CORNER_LIMIT
 def test_phase_two_lowers_the_corner_distance_below_grading(small_fit):
     """The other pattern error: the panels' corners (rigidly aligned) closer to the truth's after
-    phase two than after grading."""
+    phase two than after grading. Not on this t-shirt; where it holds, on the hip that grading
+    left: tests/fit/test_phase_two.py::test_phase_two_lowers_the_corner_distance_on_the_hip."""
     _, _, metrics = small_fit
     assert metrics["pattern"]["vertex_l2_cm_mean"] < metrics["pattern_graded"]["vertex_l2_cm_mean"]
 
 
-def test_a_result_off_the_body_is_no_result(small_case, tmp_path, monkeypatch):
-    """The fit's drape judged fallen (here: the real check shown the result 1.2 m lower, through the floor)
-    ends in one SimulationError line and leaves neither the result folder nor its .partial."""
+def test_a_result_off_the_body_is_no_result(small_case, small_fit, tmp_path, monkeypatch):
+    """A fit whose drape is judged fallen (here: the small fit's own drape shown to the real check
+    1.2 m lower, through the floor) ends in one SimulationError line and leaves neither the result
+    folder nor its .partial."""
+    import dataclasses
+
     import numpy as np
 
-    import unsew.fit.fit as fit_module
+    import unsew.fit.run as run_module
     from unsew.body.case import load_case
+    from unsew.body.sdf import BodySDF
     from unsew.errors import SimulationError
-    from unsew.fit.run import partial_dir, run_fit
+    from unsew.sim.checks import check_drape
 
-    real = fit_module.check_drape
-    monkeypatch.setattr(
-        fit_module, "check_drape", lambda x, **kw: real(np.asarray(x) - np.array([0.0, 1.2, 0.0]), **kw)
+    _, result, _ = small_fit
+    case = load_case(small_case)
+    x = np.asarray(result.x) - np.array([0.0, 1.2, 0.0])
+    verdict = check_drape(
+        x,
+        faces=result.mesh.faces,
+        uv=result.uv,
+        faces_uv=result.mesh.faces_uv,
+        body=case.body,
+        sdf=BodySDF.build(case.body),
     )
+    fallen = dataclasses.replace(result, x=x, drape_check=verdict)
+    monkeypatch.setattr(run_module, "fit", lambda *a, **k: fallen)
     out = tmp_path / "result"
     with pytest.raises(SimulationError, match="fit failed: fallen"):
-        run_fit(
-            load_case(small_case),
-            load_config(**{**SMALL, "optimizer.iterations": 1}),
-            out,
-            progress=False,
-            log=lambda s: None,
+        run_module.run_fit(case, load_config(**SMALL), out, progress=False, log=lambda s: None)
+    assert not out.exists() and not run_module.partial_dir(out).exists()
+
+
+#: one phase-two fit asked for several things at once, each checked by its own test: the prior
+#: term, the slip speed of phase two's drapes (both set by :func:`_free_constants`), only the
+#: bending entry of the material freed from the first iteration; the interrupted and resumed fit
+#: is compared with it. No re-dress check: these are phase two's own results
+FREE = {
+    **SMALL,
+    "optimizer.iterations": 2,
+    "output.report": False,
+    "checks.mesh_spread": 0.0,
+    "material.start_iteration": 0,
+    "material.fit": "k",
+    "checks.redress": False,
+}
+#: the prior weight (LossWeights.prior) and phase two's slip speed (OptimizerSettings.friction_eps)
+#: of the FREE fit
+FREE_PRIOR, FREE_FRICTION_EPS = 1.0, 2e-3
+
+
+def _free_constants(mp):
+    """The FREE fit's prior weight and phase two's slip speed, set on ``mp`` (a MonkeyPatch)."""
+    mp.setattr(LossWeights, "prior", FREE_PRIOR)
+    mp.setattr(OptimizerSettings, "friction_eps", FREE_FRICTION_EPS)
+
+
+@pytest.fixture(scope="module")
+def free_fit(small_case, tmp_path_factory):
+    """run_fit with FREE: (FitResult, the friction_eps of each phase-two drape, in order)."""
+    import importlib
+
+    from unsew.body.case import load_case
+    from unsew.fit.run import run_fit
+
+    optimize = importlib.import_module("unsew.fit.optimize")
+    orig, seen = optimize.drape, []
+
+    def spy(*a, **k):  # phase two's drapes are the ones whose rest mesh is a variable
+        cloth = a[3] if len(a) > 3 else k.get("cloth")
+        if cloth is not None and cloth.uv.requires_grad:
+            seen.append(k["settings"].friction_eps)
+        return orig(*a, **k)
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(optimize, "drape", spy)
+        _free_constants(mp)
+        out = tmp_path_factory.mktemp("free") / "result"
+        result, _ = run_fit(
+            load_case(small_case), load_config(**FREE), out, progress=False, log=lambda s: None
         )
-    assert not out.exists() and not partial_dir(out).exists()
+    return result, seen
 
 
-def test_resume_continues_from_checkpoint(small_case, tmp_path):
+def test_resume_continues_from_checkpoint(small_case, free_fit, tmp_path, monkeypatch):
     """An interrupted fit leaves RESULT.partial with a checkpoint; --resume finishes it."""
     from unsew.fit.run import partial_dir, run_fit
     from unsew.body.case import load_case
 
     out = tmp_path / "r"
     case = load_case(small_case)
-    cfg = load_config(
-        **{**SMALL, "optimizer.iterations": 2, "output.report": False, "checks.mesh_spread": 0.0}
-    )
+    cfg = load_config(**FREE)
+    _free_constants(monkeypatch)
 
     def interrupt(info):
         # stopped after the first iteration's checkpoint, as by Ctrl-C
@@ -233,48 +303,39 @@ def test_resume_continues_from_checkpoint(small_case, tmp_path):
     assert out.is_dir() and not partial_dir(out).exists()
     assert len(result.history["total"]) == 2
     # the resumed fit is the fit that was not interrupted
-    whole, _ = run_fit(case, cfg, tmp_path / "whole", progress=False, log=lambda s: None)
+    whole, _ = free_fit
     assert result.history == whole.history and result.best_iteration == whole.best_iteration
 
 
 def test_result_is_the_best_iterate_and_says_so(small_fit):
     """The returned drape is the lowest-loss iterate; metrics.json says which and whether its
-    material was fitted (else the start material is reported)."""
+    material was fitted: here the loss fell from the graded start, so the best iterate comes
+    after the material was freed, phase two was kept, and its fabric is not the start's."""
     _, result, metrics = small_fit
     h = result.history["total"]
     assert metrics["best_iteration"] == min(range(len(h)), key=h.__getitem__)
-    kept = metrics["redress"]["phase_two_kept"]
-    assert metrics["material_fitted"] == (
-        metrics["best_iteration"] >= SMALL["material.start_iteration"] and kept
+    assert (
+        metrics["best_iteration"] >= SMALL["material.start_iteration"]
+        and metrics["redress"]["phase_two_kept"]
     )
+    assert metrics["material_fitted"] and result.material != result.start_material
 
 
 def test_redress_check_decides_and_returns_what_it_decided(small_fit):
-    """The fitted pattern, dressed from scratch, is kept only if it lies closer to the target than
-    the graded drape; otherwise the result is the graded pattern with its drape."""
-    import numpy as np
-
+    """Phase two's pattern, kept by the re-dress check on three meshes, is returned dressed from
+    scratch, its warm-started drape reported beside it; the graded pattern dressed from scratch is
+    the graded drape reported. (The graded pattern returned when phase two found nothing:
+    test_redress_check_returns_the_graded_pattern_when_phase_two_found_nothing.)"""
     out, result, metrics = small_fit
     rd = metrics["redress"]
-    assert "re-dress check" in (out / "report.html").read_text()
-    if rd["meshes"] == 3:  # the default: both patterns dressed from scratch on three meshes, means compared
-        assert rd["phase_two_kept"] == (rd["fit_mean_mm"] < rd["graded_mean_mm"] - 0.01)
-    else:
-        assert rd["phase_two_kept"] == (rd["fit_redressed_mm"] < rd["graded_mm"] - 0.01)
-    if rd["meshes"] == 3:  # the graded pattern was dressed from scratch: that is its reported drape
-        assert metrics["drapes"]["graded"] == "fresh"
-        assert rd["graded_fresh_mm"][0] == pytest.approx(metrics["surface_graded"]["chamfer_mm"], rel=0.1)
-    elif metrics["drapes"]["graded"] == "graded start":
-        assert rd["graded_mm"] == pytest.approx(metrics["surface_graded"]["chamfer_mm"], rel=0.1)
-    if not rd["phase_two_kept"]:
-        np.testing.assert_array_equal(result.x, result.x_graded)
-    else:  # the result is phase two's pattern dressed from scratch, its warm drape reported beside it
-        assert metrics["drapes"]["result"] == "fresh" and result.x_warm is not None
-        assert rd["fit_redressed_mm"] == pytest.approx(metrics["surface"]["chamfer_mm"], rel=0.1)
-        assert (
-            metrics["surface_warm"]["chamfer_mm"] > 0
-            and "warm-started drape lay" in (out / "report.html").read_text()
-        )
+    report = (out / "report.html").read_text()
+    assert "re-dress check" in report
+    assert rd["meshes"] == 3 and rd["phase_two_kept"]
+    assert metrics["drapes"] == {"result": "fresh", "graded": "fresh"}
+    assert rd["graded_fresh_mm"][0] == pytest.approx(metrics["surface_graded"]["chamfer_mm"], rel=0.1)
+    assert rd["fit_redressed_mm"] == pytest.approx(metrics["surface"]["chamfer_mm"], rel=0.1)
+    assert result.x_warm is not None and metrics["surface_warm"]["chamfer_mm"] > 0
+    assert "warm-started drape lay" in report
 
 
 def test_the_result_drape_is_its_pattern_dressed_from_scratch(small_case, small_fit):
@@ -320,26 +381,42 @@ def test_mesh_spread_dresses_the_returned_pattern_on_two_other_meshes(small_fit)
     assert "mesh spread" in (out / "report.html").read_text()
 
 
-def test_redress_check_returns_the_graded_pattern_when_phase_two_found_nothing(small_case):
+#: phase two with the pattern and material held: the control points start past the budget
+HELD = {
+    **SMALL,
+    "optimizer.iterations": 2,
+    "optimizer.pattern_start": 5,
+    "material.fit": [],
+    "output.report": False,
+}
+
+
+@pytest.fixture(scope="module")
+def held_fit(small_case):
+    """fit() with HELD and the default checks (re-dress on three meshes, mesh spread)."""
+    from unsew.body.case import load_case
+    from unsew.fit.fit import fit
+
+    return fit(load_case(small_case), load_config(**HELD), progress=False, log=lambda s: None)
+
+
+@pytest.fixture(scope="module")
+def held_unchecked(small_case):
+    """fit() with HELD, no re-dress check and no mesh spread: what phase two itself returns."""
+    from unsew.body.case import load_case
+    from unsew.fit.fit import fit
+
+    cfg = load_config(**HELD).replace(checks=CheckSettings(redress=False, mesh_spread=0.0))
+    return fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
+
+
+def test_redress_check_returns_the_graded_pattern_when_phase_two_found_nothing(held_fit, held_unchecked):
     """With the pattern and material held, the re-dress reproduces the graded drape, so the check
     returns the graded pattern, its drape and the start material; without the check the result
     is the warm-started drape the optimizer ended on."""
     import numpy as np
 
-    from unsew.fit.fit import fit
-    from unsew.body.case import load_case
-
-    case = load_case(small_case)
-    cfg = load_config(
-        **{
-            **SMALL,
-            "optimizer.iterations": 2,
-            "optimizer.pattern_start": 5,
-            "material.fit": [],
-            "output.report": False,
-        }
-    )
-    r = fit(case, cfg, progress=False, log=lambda s: None)
+    r = held_fit
     assert r.redress.phase_two_kept is False
     assert r.redress.fit_redressed_mm == pytest.approx(r.redress.graded_mm, abs=1e-6)
     # an unmoved pattern is not judged by drapes of it on other meshes, which round-off can move
@@ -349,22 +426,32 @@ def test_redress_check_returns_the_graded_pattern_when_phase_two_found_nothing(s
     np.testing.assert_array_equal(r.uv, r.mesh.uv)  # the rest mesh the graded drape was made on
     assert r.material == r.start_material
     assert r.mesh_spread is not None
-    off = fit(
-        case,
-        cfg.replace(checks=CheckSettings(redress=False, mesh_spread=0.0)),
-        progress=False,
-        log=lambda s: None,
-    )
+    off = held_unchecked
     assert off.redress is None and off.mesh_spread is None
-    one = fit(
-        case,
-        cfg.replace(checks=CheckSettings(mesh_spread=0.0)),
-        progress=False,
-        log=lambda s: None,
-    )  # three meshes asked for, but no spread meshes: judged on one
-    assert one.redress.meshes == 1 and one.mesh_spread is None
-    assert one.drapes == {"result": "fresh", "graded": "fresh"}  # judged on one mesh, then dressed afresh
     assert np.abs(off.x - off.x_graded).max() > 1e-6
+
+
+@pytest.fixture(scope="module")
+def held_cold(small_case):
+    """fit() with HELD, three iterations, each drape started from the graded drape
+    (OptimizerSettings.warm_start False), and no mesh spread: the re-dress check has three
+    meshes asked for (the default) but no spread meshes."""
+    from unsew.body.case import load_case
+    from unsew.fit.fit import fit
+
+    cfg = load_config(**{**HELD, "optimizer.iterations": 3, "checks.mesh_spread": 0.0})
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(OptimizerSettings, "warm_start", False)
+        return fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
+
+
+def test_three_meshes_asked_without_spread_meshes_are_judged_on_one(held_cold):
+    """Three re-dress meshes (unsew.fit.checks.REDRESS_MESHES) with mesh_spread 0: no meshes to
+    judge on but the fit's, so the re-dress check judges on one, then dresses the returned (graded)
+    pattern afresh."""
+    one = held_cold
+    assert one.redress.meshes == 1 and one.mesh_spread is None
+    assert one.drapes == {"result": "fresh", "graded": "fresh"}
 
 
 def test_material_parameterisation_stays_valid():
@@ -381,101 +468,74 @@ def test_material_parameterisation_stays_valid():
         check_gamma(g)  # positive definite membrane stiffness, non-negative bending
 
 
-def test_pattern_start_holds_the_control_points(small_case):
-    """Before cfg.pattern_start the control points do not move: with it past the budget the fit
-    returns the graded pattern unchanged."""
+def test_pattern_start_holds_the_control_points(held_unchecked):
+    """Before cfg.pattern_start the control points do not move: with it past the budget phase two
+    returns the graded pattern unchanged (no re-dress check to return it instead)."""
     import numpy as np
 
-    from unsew.fit.fit import fit
-    from unsew.body.case import load_case
-
-    cfg = load_config(
-        **{
-            **SMALL,
-            "optimizer.iterations": 2,
-            "optimizer.pattern_start": 5,
-            "material.fit": [],
-            "output.report": False,
-            "checks.mesh_spread": 0.0,
-        }
-    )
-    r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
+    r = held_unchecked
+    assert r.best_iteration >= 0  # phase two's own iterate, not the graded start
     for name, panel in r.graded_pattern.panels.items():
         np.testing.assert_allclose(r.pattern.panels[name].vertices, panel.vertices, atol=1e-12)
 
 
-def test_prior_term_is_wired_in(small_case, monkeypatch):
+def test_prior_term_is_wired_in(free_fit):
     """With a prior weight (LossWeights.prior) the loss carries the pull towards the graded
     pattern: zero at the first iterate (the graded pattern itself), positive once the control
     points moved."""
-    from unsew.fit.fit import fit
-    from unsew.body.case import load_case
-
-    cfg = load_config(
-        **{
-            **SMALL,
-            "optimizer.iterations": 2,
-            "material.fit": [],
-            "output.report": False,
-            "checks.mesh_spread": 0.0,
-        }
-    )
-    monkeypatch.setattr(LossWeights, "prior", 1.0)
-    r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
+    r, _ = free_fit
     assert r.history["prior"][0] == 0.0
     assert r.history["prior"][1] > 0.0
 
 
-def test_material_params_frees_only_the_listed_entries(small_case):
-    """material_params="k": the last iterate's bending has moved, its stretch and shear have not."""
-    from unsew.fit.fit import fit
-    from unsew.body.case import load_case
+def test_material_params_frees_only_the_listed_entries(free_fit):
+    """Only "k" in material.fit: the last iterate's bending has moved, its stretch and shear have not."""
     from unsew.sim.material import MATERIALS
 
-    cfg = load_config(
-        **{
-            **SMALL,
-            "optimizer.iterations": 3,
-            "material.start_iteration": 0,
-            "output.report": False,
-            "checks.mesh_spread": 0.0,
-            "material.fit": "k",
-        }
-    )
-    r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
-    g0 = [float(v) for v in MATERIALS[cfg.material.start].gamma()]
+    r, _ = free_fit
+    g0 = [float(v) for v in MATERIALS[FREE["material.start"]].gamma()]
     g = r.gamma_last
     assert g[:4] == pytest.approx(g0[:4], rel=1e-12)
     assert abs(g[4] / g0[4] - 1) > 1e-3
 
 
-def test_cold_start_makes_the_drape_a_function_of_the_parameters(small_case, monkeypatch):
+def test_cold_start_makes_the_drape_a_function_of_the_parameters(held_cold, held_unchecked):
     """OptimizerSettings.warm_start False: every iteration drapes from the graded pattern's
     settled drape, so with the pattern and material held, every iteration's loss is the same;
-    warm-started, the cloth keeps moving and the loss changes."""
-    from unsew.fit.fit import fit
+    warm-started (the default), the cloth keeps moving and the loss changes."""
+    cold = held_cold.history["total"]
+    warm = held_unchecked.history["total"]
+    assert len(cold) == 3 and max(cold) - min(cold) <= 1e-12 * max(cold)
+    assert len(warm) == 2 and max(warm) - min(warm) > 1e-6 * max(warm)
+
+
+#: the material chosen by draping (material.start auto) among three library fabrics, with a
+#: stiffness search (shortened by :func:`_fewer_material_steps`)
+AUTO = {
+    **SMALL,
+    "optimizer.iterations": 1,
+    "material.fit": [],
+    "output.report": False,
+    "checks.mesh_spread": 0.0,
+    "material.start": "auto",
+    "material.candidates": "cotton,denim,jersey",
+}
+
+
+@pytest.fixture(scope="module")
+def auto_fit(small_case, tmp_path_factory):
+    """run_fit with AUTO and no time limit: (FitResult, metrics)."""
     from unsew.body.case import load_case
+    from unsew.fit.run import run_fit
 
-    case = load_case(small_case)
-    losses = {}
-    for warm in (False, True):
-        cfg = load_config(
-            **{
-                **SMALL,
-                "optimizer.iterations": 3,
-                "optimizer.pattern_start": 10,
-                "material.fit": [],
-                "output.report": False,
-                "checks.mesh_spread": 0.0,
-            }
-        )
-        monkeypatch.setattr(OptimizerSettings, "warm_start", warm)
-        losses[warm] = fit(case, cfg, progress=False, log=lambda s: None).history["total"]
-    assert max(losses[False]) - min(losses[False]) <= 1e-12 * max(losses[False])
-    assert max(losses[True]) - min(losses[True]) > 1e-6 * max(losses[True])
+    out = tmp_path_factory.mktemp("auto") / "result"
+    cfg = load_config(**AUTO, time_limit=0)
+    with pytest.MonkeyPatch.context() as mp:
+        _fewer_material_steps(mp)
+        return run_fit(load_case(small_case), cfg, out, progress=False, log=lambda s: None)
 
 
-def test_auto_material_picks_the_true_fabric(small_case, monkeypatch):
+def test_auto_material_picks_the_true_fabric(auto_fit):
     """material=auto dresses the cotton-graded pattern in each candidate, grades again in the best
     one other than cotton, refines the winner's stiffness by draping, checks the winner by a drape
     from scratch, and starts phase two from the closest: the target is the demo t-shirt in jersey, so jersey
@@ -483,23 +543,9 @@ def test_auto_material_picks_the_true_fabric(small_case, monkeypatch):
     refinement scales only the stiffness)."""
     import math
 
-    from unsew.fit.fit import fit
-    from unsew.body.case import load_case
     from unsew.sim.material import MATERIALS
 
-    cfg = load_config(
-        **{
-            **SMALL,
-            "optimizer.iterations": 1,
-            "material.fit": [],
-            "output.report": False,
-            "checks.mesh_spread": 0.0,
-            "material.start": "auto",
-            "material.candidates": "cotton,denim,jersey",
-        }
-    )
-    _fewer_material_steps(monkeypatch)
-    r = fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
+    r, _ = auto_fit
     # the material check's two drapes from scratch come first, the kept start on top: the choice
     # in jersey dresses no farther than the cotton-graded pattern, so it stands
     checked, table = r.material_choice[:2], r.material_choice[2:]
@@ -585,36 +631,10 @@ def test_refine_material_walks_towards_the_closest_stiffness():
     assert mat2 == mat and len(rows2) == 8
 
 
-def test_fit_friction_eps_reaches_phase_two_drapes(small_case, monkeypatch):
-    """OptimizerSettings.friction_eps is the slip speed of phase two's drapes (and of those only)."""
-    import importlib
-
-    from unsew.fit.fit import fit
-    from unsew.body.case import load_case
-
-    optimize = importlib.import_module("unsew.fit.optimize")
-    orig, seen = optimize.drape, []
-
-    def spy(*a, **k):
-        cloth = a[3] if len(a) > 3 else k.get("cloth")
-        if cloth is not None and cloth.uv.requires_grad:
-            seen.append(k["settings"].friction_eps)
-        return orig(*a, **k)
-
-    monkeypatch.setattr(optimize, "drape", spy)
-    cfg = load_config(
-        **{
-            **SMALL,
-            "optimizer.iterations": 2,
-            "material.fit": [],
-            "output.report": False,
-            "checks.mesh_spread": 0.0,
-            "checks.redress": False,
-        }
-    )
-    monkeypatch.setattr(OptimizerSettings, "friction_eps", 2e-3)
-    fit(load_case(small_case), cfg, progress=False, log=lambda s: None)
-    assert seen == [2e-3, 2e-3]
+def test_fit_friction_eps_reaches_phase_two_drapes(free_fit):
+    """OptimizerSettings.friction_eps is the slip speed of phase two's drapes."""
+    _, seen = free_fit
+    assert seen == [FREE_FRICTION_EPS] * FREE["optimizer.iterations"]
 
 
 def test_phase_two_stage_loss_step_and_state_dict(small_case, monkeypatch):
@@ -829,112 +849,86 @@ def test_report_says_when_phase_two_was_refused():
     assert "no mean" in three and "graded pattern and its drape are returned" in three
 
 
-def test_the_time_limit_counts_the_time_before_the_fit(small_case):
-    """A command that began 1000 s ago (a case whose body took that long to load) has spent a
-    600 s limit before the fit starts: phase two makes no iteration and the mesh spread is
-    skipped, and timings_s says how long the load took."""
+@pytest.fixture(scope="module")
+def auto_spent(small_case, tmp_path_factory):
+    """run_fit with AUTO, the report, a mesh spread asked for (4 %), and a 600 s time limit on a
+    command that began 1000 s ago (a case whose body took that long to load): (folder, FitResult,
+    metrics)."""
     import time
-
-    from unsew.body.case import load_case
-    from unsew.fit.fit import fit
-
-    cfg = load_config(**{**SMALL, "optimizer.iterations": 2, "output.report": False}, time_limit=600)
-    r = fit(
-        load_case(small_case), cfg, progress=False, log=lambda s: None, started=time.perf_counter() - 1000
-    )
-    assert r.timings["load_s"] >= 1000
-    assert r.time_limit["cuts"] == ["phase two stopped after 0 of 2 iterations", "mesh spread skipped"]
-    assert r.iterations == 0
-
-
-def test_a_spent_time_limit_leaves_out_the_optional_work_and_says_so(small_case, tmp_path, monkeypatch):
-    """With the time limit spent before phase two (1 ms), the material choice grades in no other
-    fabric and searches no stiffness, phase two makes no iteration, the mesh spread is skipped,
-    and the fit still ends with a complete result (the graded pattern) whose metrics.json lists
-    each cut; without the limit the same settings do all of it."""
-    import numpy as np
 
     from unsew.body.case import load_case
     from unsew.fit.run import run_fit
 
-    auto = {
-        **SMALL,
-        "material.start": "auto",
-        "material.candidates": "cotton,silk",
-        "output.report": False,
-    }
-    _fewer_material_steps(monkeypatch)
-    out = tmp_path / "limited"
-    result, metrics = run_fit(
-        load_case(small_case),
-        load_config(**{**auto, "output.report": True}, time_limit=0.001),
-        out,
-        progress=False,
-        log=lambda s: None,
-    )
-    cuts = json.loads((out / "metrics.json").read_text())["time_limit"]["cuts"]
-    assert cuts == [
-        "material choice: not graded again in silk (half the limit spent)",
-        "material choice: stiffness search stopped (half the limit spent)",
-        "phase two stopped after 0 of 3 iterations",
-        "mesh spread skipped",
-    ]
-    assert metrics["iterations"] == 0 and "mesh_spread" not in metrics and "redress" not in metrics
-    np.testing.assert_array_equal(result.x, result.x_graded)
-    assert (out / "pattern.json").is_file() and metrics["drape_check"]["ok"]
-    assert "time limit 0 s (--time-limit): material choice" in (out / "report.html").read_text()
-    table = {r["material"] for r in result.material_choice}
-    assert table == {"cotton", "silk"}  # the two candidates, nothing graded again or scaled
-
-    whole, m2 = run_fit(
-        load_case(small_case),
-        load_config(**auto, time_limit=0),
-        tmp_path / "whole",
-        progress=False,
-        log=lambda s: None,
-    )
-    assert m2["time_limit"] == {"limit_s": None, "cuts": []}
-    assert m2["iterations"] == 3 and "mesh_spread" in m2
-    assert len(whole.material_choice) > 2  # graded again in silk, stiffness scaled
+    out = tmp_path_factory.mktemp("spent") / "result"
+    cfg = load_config(**{**AUTO, "output.report": True, "checks.mesh_spread": 0.04}, time_limit=600)
+    started = time.perf_counter() - 1000
+    with pytest.MonkeyPatch.context() as mp:
+        _fewer_material_steps(mp)
+        result, metrics = run_fit(
+            load_case(small_case), cfg, out, progress=False, log=lambda s: None, started=started
+        )
+    return out, result, metrics
 
 
-def test_redress_on_three_meshes_compares_fresh_drapes_of_both_patterns(small_case):
-    """checks.redress_meshes 3: with the pattern and material held, phase two's pattern is the
-    graded one up to round-off (1e-16 m). On the fit's mesh both dress from scratch to the same
-    distance, which is the start drape's (its material was named, not settled into); meshed
-    afresh at the spread's edge lengths, round-off alone moves a drape by a few tenths of a mm
-    (0.31 here), so the means are close and the verdict either way. The mesh spread is the
-    judge's own drapes of whichever pattern it returned."""
+def test_the_time_limit_counts_the_time_before_the_fit(auto_spent):
+    """A command that began 1000 s ago has spent a 600 s limit before the fit starts: phase two
+    makes no iteration and the mesh spread is skipped, and timings_s says how long the load took."""
+    _, r, metrics = auto_spent
+    assert r.timings["load_s"] >= 1000
+    assert r.time_limit["cuts"][-2:] == ["phase two stopped after 0 of 1 iterations", "mesh spread skipped"]
+    assert r.iterations == 0 and metrics["iterations"] == 0 and "mesh_spread" not in metrics
+
+
+def test_a_spent_time_limit_leaves_out_the_optional_work_and_says_so(auto_spent, auto_fit):
+    """With the time limit spent before the fit, the material choice grades in no other fabric and
+    searches no stiffness, phase two makes no iteration, the mesh spread is skipped, and the fit
+    still ends with a complete result (the graded pattern) whose metrics.json lists each cut;
+    without the limit (auto_fit: the same settings, no mesh spread asked) the material choice
+    grades again and searches the stiffness, and phase two iterates."""
     import numpy as np
 
-    from unsew.body.case import load_case
-    from unsew.fit.fit import fit
+    out, result, metrics = auto_spent
+    cuts = json.loads((out / "metrics.json").read_text())["time_limit"]["cuts"]
+    assert cuts == [
+        "material choice: not graded again in jersey (half the limit spent)",
+        "material choice: stiffness search stopped (half the limit spent)",
+        "phase two stopped after 0 of 1 iterations",
+        "mesh spread skipped",
+    ]
+    assert metrics["iterations"] == 0 and "redress" not in metrics
+    np.testing.assert_array_equal(result.x, result.x_graded)
+    assert (out / "pattern.json").is_file() and metrics["drape_check"]["ok"]
+    assert "time limit 600 s (--time-limit): material choice" in (out / "report.html").read_text()
+    table = {r["material"] for r in result.material_choice}
+    assert table == {"cotton", "denim", "jersey"}  # the candidates, nothing graded again or scaled
 
-    case = load_case(small_case)
-    cfg = load_config(
-        **{
-            **SMALL,
-            "optimizer.iterations": 2,
-            "optimizer.pattern_start": 5,
-            "material.fit": [],
-            "output.report": False,
-        }
-    )
-    r = fit(case, cfg, progress=False, log=lambda s: None)
+    whole, m2 = auto_fit
+    assert m2["time_limit"] == {"limit_s": None, "cuts": []}
+    assert m2["iterations"] == AUTO["optimizer.iterations"] and "redress" in m2
+    assert any(row["pattern"] == "graded in jersey" for row in whole.material_choice)  # graded again
+    assert any("(stretch x" in row["material"] for row in whole.material_choice)  # stiffness scaled
+
+
+def test_redress_on_three_meshes_compares_fresh_drapes_of_both_patterns(held_fit):
+    """Three re-dress meshes (unsew.fit.checks.REDRESS_MESHES, the default): with the pattern and
+    material held, phase two's pattern is the graded one up to round-off (1e-16 m). On the fit's
+    mesh both dress from scratch to the same distance, which is the start drape's (its material
+    was named, not settled into); on the spread's two other meshes an unmoved pattern's drapes are
+    the graded pattern's (unsew.fit.checks.unmoved), so the means are equal, the graded pattern is
+    returned, and the mesh spread is its drapes on those meshes."""
+    import numpy as np
+
+    r = held_fit
     rd = r.redress
     h = SMALL["drape.edge_length"]
     assert rd.meshes == 3 and rd.edge_lengths_m == pytest.approx([h, 0.96 * h, 1.04 * h])
     assert rd.fit_mm[0] == pytest.approx(rd.graded_fresh_mm[0], abs=1e-6)
     assert rd.graded_fresh_mm[0] == pytest.approx(rd.graded_mm, abs=1e-6)
-    assert rd.fit_mm[1:] == pytest.approx(rd.graded_fresh_mm[1:], abs=1.0)
-    assert len(set(np.round(rd.fit_mm, 6))) == 3  # three triangulations, three drapes
-    assert rd.fit_mean_mm == pytest.approx(np.mean(rd.fit_mm))
-    assert rd.graded_mean_mm == pytest.approx(np.mean(rd.graded_fresh_mm))
-    assert rd.phase_two_kept == (rd.fit_mean_mm < rd.graded_mean_mm - 0.01)
-    returned = rd.fit_mm if rd.phase_two_kept else rd.graded_fresh_mm
-    assert r.mesh_spread.chamfer_mm == returned[1:]
-    if not rd.phase_two_kept:
-        np.testing.assert_array_equal(r.x, r.x_graded)
+    assert len(set(np.round(rd.graded_fresh_mm, 6))) == 3  # three triangulations, three drapes
+    assert rd.fit_mean_mm == pytest.approx(rd.graded_mean_mm, abs=1e-6)
+    assert not rd.phase_two_kept and not r.material_fitted
+    assert r.mesh_spread.chamfer_mm == rd.graded_fresh_mm[1:]
+    np.testing.assert_array_equal(r.x, r.x_graded)
 
 
 @pytest.mark.parametrize(
