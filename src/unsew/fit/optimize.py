@@ -569,11 +569,13 @@ class PhaseTwo:
                     self.model,
                     SimState.at_rest(self.x_prev),
                     self.sdf,
-                    uv=self.params.uv(self.K.detach()),
-                    gamma=self.gamma0,
-                    density=self.material0.density,
+                    Cloth(
+                        self.params.uv(self.K.detach()),
+                        self.gamma0,
+                        self.material0.density,
+                        friction=self.material0.friction,
+                    ),
                     settings=self.settings,
-                    friction=self.material0.friction,
                 )
                 .x.detach()
                 .clone()
