@@ -450,9 +450,10 @@ class PhaseTwo:
                 group["lr"] = lr * decay
 
     def step(self) -> Iteration:
-        """One iteration: the loss at K (the drape the last step's line search accepted, or a fresh
-        one), its gradient, a step, and the line search that accepts the step only where it lowers
-        the loss (:meth:`_line_search`); returns what it draped and measured."""
+        """One iteration: the loss at K (the drape the last step's line search kept, or a fresh
+        one), its gradient, a step, and, with ``optimizer.retries`` > 0, the line search that
+        shortens a step raising the loss (:meth:`_line_search`); returns what it draped and
+        measured."""
         it, mat_on = self.iteration, self.material_on()
         self._set_learning_rates()
         self.opt_k.zero_grad()
