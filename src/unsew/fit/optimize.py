@@ -310,7 +310,6 @@ class PhaseTwo:
         self.opt_m = torch.optim.Adam([self.theta], lr=cfg.material.lr, betas=o.betas)
         self.x_prev = torch.as_tensor(np.asarray(s.x), dtype=torch.float64, device=dev)
         self.rest = self._start_at_rest()
-        self._settle_start()
         with torch.no_grad():
             self.uv_start = self.params.uv(self.K).detach()
             self.panel_areas0 = panel_areas(
@@ -320,6 +319,7 @@ class PhaseTwo:
         self.best = Iterate(
             math.inf, self.K.detach().clone(), self.gamma0.detach().clone(), self.x_prev.clone()
         )
+        self._settle_start()  # after the start iterate: with no iteration made, its drape is the start's
         self.iteration, self.converged = 0, False
         self._pending: tuple | None = None  # the kept trial's (terms, gamma, x): the next iteration's loss
         self._momentum: torch.Tensor | None = None  # (Nk, 2): the running sum of dL/dK (_step_k)
