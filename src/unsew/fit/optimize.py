@@ -310,7 +310,6 @@ class PhaseTwo:
         self.opt_m = torch.optim.Adam([self.theta], lr=cfg.material.lr, betas=o.betas)
         self.x_prev = torch.as_tensor(np.asarray(s.x), dtype=torch.float64, device=dev)
         self.rest = self._start_at_rest()
-        self._settle_start()
         with torch.no_grad():
             self.uv_start = self.params.uv(self.K).detach()
             self.panel_areas0 = panel_areas(
@@ -320,6 +319,7 @@ class PhaseTwo:
         self.best = Iterate(
             math.inf, self.K.detach().clone(), self.gamma0.detach().clone(), self.x_prev.clone()
         )
+        self._settle_start()  # after the start iterate: with no iteration made, its drape is the start's
         self.iteration, self.converged = 0, False
         self._pending: tuple | None = None  # the kept trial's (terms, gamma, x): the next iteration's loss
         self._momentum: torch.Tensor | None = None  # (Nk, 2): the running sum of dL/dK (_step_k)
@@ -399,12 +399,16 @@ class PhaseTwo:
         it = self.iteration if it is None else it
         return self.cfg.fits_material and it >= self.cfg.material.start_iteration
 
-    def loss(self) -> tuple[LossTerms, torch.Tensor, torch.Tensor]:
-        """Drape the current K (and Gamma, when it is a variable) from the previous drape.
-        Returns (terms, gamma (5,), drape x (Nx, 3) [m]), differentiable in K and theta."""
+    def loss(
+        self, *, K: torch.Tensor | None = None, theta: torch.Tensor | None = None
+    ) -> tuple[LossTerms, torch.Tensor, torch.Tensor]:
+        """Drape the current K (and Gamma, when it is a variable) from the previous drape, or the
+        ``K`` (Nk, 2) [m] and ``theta`` (5,) given. Returns (terms, gamma (5,), drape x (Nx, 3)
+        [m]), differentiable in K and theta."""
         w = self.cfg.loss
-        uv = self.params.uv(self.K)
-        gamma = self.gamma_of(self.theta) if self.material_on() else self.gamma0
+        uv = self.params.uv(self.K if K is None else K)
+        theta = self.theta if theta is None else theta
+        gamma = self.gamma_of(theta) if self.material_on() else self.gamma0
         x = drape(
             self.model,
             SimState.at_rest(self.x_prev),
@@ -449,9 +453,10 @@ class PhaseTwo:
                 group["lr"] = lr * decay
 
     def step(self) -> Iteration:
-        """One iteration: the loss at K (the drape the last step's line search accepted, or a fresh
-        one), its gradient, a step, and the line search that accepts the step only where it lowers
-        the loss (:meth:`_line_search`); returns what it draped and measured."""
+        """One iteration: the loss at K (the drape the last step's line search kept, or a fresh
+        one), its gradient, a step, and, with ``optimizer.retries`` > 0, the line search that
+        shortens a step raising the loss (:meth:`_line_search`); returns what it draped and
+        measured."""
         it, mat_on = self.iteration, self.material_on()
         self._set_learning_rates()
         self.opt_k.zero_grad()
@@ -476,8 +481,6 @@ class PhaseTwo:
                 mat_on,
             )
         K_before, theta_before = self.K.detach().clone(), self.theta.detach().clone()
-        opt_before = (copy.deepcopy(self.opt_k.state_dict()), copy.deepcopy(self.opt_m.state_dict()))
-        momentum_before = self._momentum
         moved = it >= self.cfg.optimizer.pattern_start
         if moved:
             self._step_k(K_before)
@@ -493,10 +496,6 @@ class PhaseTwo:
         o = self.cfg.optimizer
         if o.retries > 0 and (moved or mat_on) and self.iteration < o.iterations:
             trials = self._line_search(values["total"], K_before, theta_before)
-            if self._pending is None:  # no trial lowered the loss: back to K, the optimizers as they were
-                self.opt_k.load_state_dict(opt_before[0])
-                self.opt_m.load_state_dict(opt_before[1])
-                self._momentum = momentum_before
         self.trials.append(trials)
         self.converged = self._has_converged()
         last = self.converged or self.iteration >= self.cfg.optimizer.iterations
@@ -530,14 +529,16 @@ class PhaseTwo:
 
     def _line_search(self, loss0: float, K_before: torch.Tensor, theta_before: torch.Tensor) -> int:
         """Keep the step just taken (K, theta) only where its drape, from the drape at K_before, has
-        a loss no higher than ``loss0`` (K_before's); else retry it at half its length, up to
-        ``optimizer.retries`` times (the holds applied again), and when none is lower go back to
-        K_before and theta_before. A step kept whole makes the next one GROW times longer (at most
-        GROW_CAP learning rates); one kept shorter makes the next as short. The kept trial's
-        drape, tape and all, is the next iteration's loss (``_pending``): a kept step costs no
-        drape more than Adam's. Returns the number of trial drapes."""
+        a loss no higher than ``loss0`` (K_before's), or, when it has not, than K_before draped
+        from that same drape (a drape still settling lowers or raises both alike; one drape more,
+        without tape); else retry it at half its length, up to ``optimizer.retries`` times (the
+        holds applied again), and when none is lower keep the shortest. A step kept whole makes
+        the next one GROW times longer (at most GROW_CAP learning rates); one kept shorter makes
+        the next as short. The kept trial's drape, tape and all, is the next iteration's loss
+        (``_pending``): a step kept whole costs no drape more than Adam's. Returns the number of
+        drapes it made."""
         K_full, theta_full = self.K.detach().clone(), self.theta.detach().clone()
-        t = 1.0
+        t, ref = 1.0, 0
         for r in range(self.cfg.optimizer.retries + 1):
             if r > 0:
                 t *= 0.5
@@ -547,14 +548,16 @@ class PhaseTwo:
                 self._hold(K_before)
             trial = self.loss()
             total = float(trial[0].total.detach())
+            if r == 0 and not total <= loss0:  # the step, or the drape still moving? K_before from here
+                with torch.no_grad():
+                    loss0, ref = float(self.loss(K=K_before, theta=theta_before)[0].total), 1
             if math.isfinite(total) and total <= loss0:
                 self._length = min(GROW_CAP, self._length * (GROW if r == 0 else 0.5**r))
                 self._pending = trial
-                return r + 1
-        with torch.no_grad():
-            self.K.copy_(K_before)
-            self.theta.copy_(theta_before)
-        return self.cfg.optimizer.retries + 1
+                return r + 1 + ref
+        self._length *= 0.5**self.cfg.optimizer.retries
+        self._pending = trial  # none lower: the shortest is kept (undone, K would draw the same step)
+        return self.cfg.optimizer.retries + 1 + ref
 
     def _settle_start(self) -> None:
         """Drape the start once (one iteration's steps, no tape) before phase two's first gradient,
