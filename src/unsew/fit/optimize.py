@@ -16,7 +16,7 @@ seven orders of magnitude and they stay positive; H01 = 0.995 tanh(phi0 + theta_
 so H stays positive definite. The material range penalty of the paper is kept on Gamma itself.
 
 Steps of the control points are line searched (a deviation from the paper, whose Adam keeps
-every step; ``optimizer.retries`` > 0): the start drape is draped once more before the first
+every step; ``OptimizerSettings.retries`` > 0): the start drape is draped once more before the first
 gradient, each step follows the gradient's running sum scaled to the learning rate on the point
 moving most (not Adam's sign-like first steps), and a step whose drape has a higher loss than the
 iterate it left is retried at half its length, up to ``retries`` times, else not taken
@@ -454,7 +454,7 @@ class PhaseTwo:
 
     def step(self) -> Iteration:
         """One iteration: the loss at K (the drape the last step's line search kept, or a fresh
-        one), its gradient, a step, and, with ``optimizer.retries`` > 0, the line search that
+        one), its gradient, a step, and, with ``OptimizerSettings.retries`` > 0, the line search that
         shortens a step raising the loss (:meth:`_line_search`); returns what it draped and
         measured."""
         it, mat_on = self.iteration, self.material_on()
@@ -503,7 +503,7 @@ class PhaseTwo:
 
     def _step_k(self, K_before: torch.Tensor) -> None:
         """The control points' step, shortened for narrow panels (step_scales) and projected for
-        held bands (band_projectors). With ``optimizer.retries`` > 0 it follows the gradient's
+        held bands (band_projectors). With ``OptimizerSettings.retries`` > 0 it follows the gradient's
         running sum m = MOMENTUM m + dL/dK, scaled so that the point moving most moves the
         learning rate [m] times the line search's step length: each point's step is in proportion
         to its gradient, where Adam's first step moves every coordinate by the learning rate
@@ -531,7 +531,7 @@ class PhaseTwo:
         """Keep the step just taken (K, theta) only where its drape, from the drape at K_before, has
         a loss no higher than ``loss0`` (K_before's), or, when it has not, than K_before draped
         from that same drape (a drape still settling lowers or raises both alike; one drape more,
-        without tape); else retry it at half its length, up to ``optimizer.retries`` times (the
+        without tape); else retry it at half its length, up to ``OptimizerSettings.retries`` times (the
         holds applied again), and when none is lower keep the shortest. A step kept whole makes
         the next one GROW times longer (at most GROW_CAP learning rates); one kept shorter makes
         the next as short. The kept trial's drape, tape and all, is the next iteration's loss
@@ -561,7 +561,7 @@ class PhaseTwo:
 
     def _settle_start(self) -> None:
         """Drape the start once (one iteration's steps, no tape) before phase two's first gradient,
-        when steps are line searched (``optimizer.retries`` > 0): the start drape, settled in phase
+        when steps are line searched (``OptimizerSettings.retries`` > 0): the start drape, settled in phase
         one's settings, still moves in phase two's, and a gradient taken on a drape still moving
         points anywhere (docs/decisions/018)."""
         if self.cfg.optimizer.retries <= 0:
