@@ -12,7 +12,7 @@
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable
 
@@ -47,7 +47,7 @@ from unsew.sim.checks import DrapeVerdict, check_drape
 __all__ = ["FitResult", "fit"]
 
 
-@dataclass
+@dataclass(frozen=True)
 class FitResult:
     """What a fit produces (:func:`unsew.fit.outputs.write_result` writes it as the result folder).
 
@@ -159,9 +159,7 @@ def fit(
         two.load_state_dict(state)
     _run_phase_two(two, choice, scene, budget, checkpoint=checkpoint, callback=callback)
     clock.lap("optimization_s")
-    result = _checked_result(case, choice, two, scene, clock, budget)
-    result.contact = contact
-    return result
+    return replace(_checked_result(case, choice, two, scene, clock, budget), contact=contact)
 
 
 def _scene(case, cfg: FitConfig, bar: Progress, log) -> tuple[Scene, dict]:
