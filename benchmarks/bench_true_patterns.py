@@ -502,6 +502,12 @@ def main_gcd(args) -> int:
     from tables import markdown_table
 
     ids = gcd_case_ids()
+    if not Path(args.cases).is_dir():
+        print(
+            f"true_patterns --gcd: --cases {args.cases} is not a folder (python -m benchmarks gcd build)",
+            file=sys.stderr,
+        )
+        return 2
     if args.only:
         unknown = sorted(set(args.only) - set(ids))
         if unknown:

@@ -234,6 +234,10 @@ def cmd_floor_fitted(args, record_file: Path) -> int:
     RESULTS/<case>``: the true pattern, its material fitted) to the target, and that fit's time
     [s], into the recorded results' case records (nothing else in them changes)."""
     cases, results = Path(args.cases), Path(args.results)
+    for what, d in (("--results", results), ("--cases", cases)):
+        if not d.is_dir():
+            print(f"gcd floor-fitted: {what} {d} is not a folder", file=sys.stderr)
+            return 2
     rec = load_record(record_file)
     rows = []
     for cid, _, _ in build.case_ids():
