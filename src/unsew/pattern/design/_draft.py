@@ -1,0 +1,250 @@
+"""Drafting a :class:`~unsew.pattern.design.Design` for a body: tops, dresses (one piece, or a
+bodice and a skirt sewn at the waist), skirts of N panels, trousers, jumpsuits (a bodice and
+trousers sewn at the waist), all placed around the body as the library's bases
+(:mod:`unsew.pattern.base._frame`)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from unsew.errors import InputError
+from unsew.pattern.base import dress as _dress
+from unsew.pattern.base import pants as _pants
+from unsew.pattern.base import skirt as _skirt
+from unsew.pattern.base._band import BAND_HEIGHT
+from unsew.pattern.base._build import quad, stitch
+from unsew.pattern.base._frame import CLEARANCE, DEPTH_PER_GIRTH, BodyFrame, body_frame
+from unsew.pattern.base.tshirt import BUST_EASE, TopSpec, sleeveless_frame
+from unsew.pattern.base.tshirt import HIP_EASE as TEE_HIP_EASE
+from unsew.pattern.design._choices import LEGGED, Design, design_name
+from unsew.pattern.design._skirt import SkirtCut, skirt_panels
+from unsew.pattern.design._top import hem_cuts, sleeve_set, top_panels, top_stitches
+from unsew.pattern.measurements import Measurements
+from unsew.pattern.model import Pattern
+
+__all__ = ["draft", "length_to", "LENGTHS"]
+
+#: A torso's width over its depth at the hips [-] (the ellipse of :data:`DEPTH_PER_GIRTH`).
+TORSO_ASPECT = 0.7
+#: A t-shirt's hem below the hips [m] (the library's).
+TEE_HEM_DROP = 0.02
+#: Named hem positions :func:`length_to` knows.
+LENGTHS = ("hip", "mini", "knee", "midi", "ankle")
+#: A trouser hem at least this far below the crotch point [m].
+MIN_INSEAM = 0.03
+
+
+def length_to(m: Measurements, where: str) -> float:
+    """How far below the natural waist [m] a hem at ``where`` sits on a body of measurements ``m``:
+    ``hip`` (the fullest hips), ``mini`` (half-way from the crotch to the knee), ``knee`` (the
+    library skirts' knee, 0.75 of the leg length), ``midi`` (half-way from the knee to the ankle),
+    ``ankle`` (the library trousers' hem)."""
+    if where not in LENGTHS:
+        raise InputError(f"unknown hem position {where!r}; choose one of {', '.join(LENGTHS)}")
+    f = body_frame(m)
+    knee = _skirt.LENGTH_PER_LEG * m.leg_length
+    ankle = f.waist_y - _pants.PANTS_HEM_HEIGHT * m.height / 1.70
+    return {
+        "hip": f.waist_y - f.hip_y,
+        "mini": 0.5 * (f.waist_y - f.crotch_y + knee),
+        "knee": knee,
+        "midi": 0.5 * (knee + ankle),
+        "ankle": ankle,
+    }[where]
+
+
+def _pattern(panels: dict, stitches: list) -> Pattern:
+    return Pattern("", panels, stitches, properties={"units_in_meter": 100, "curvature_coords": "relative"})
+
+
+def _top(d: Design, m: Measurements, f: BodyFrame, spec: TopSpec, cuts=None) -> tuple[dict, list]:
+    """Front, back (cut to :func:`sleeveless_frame` without sleeves; their hem cut at ``cuts``
+    [m] and labelled ``waist`` when given) and sleeves of a top, and their stitches."""
+    necklines = (d.neckline_front, d.neckline_back)
+    front, back, k = top_panels(m, sleeveless_frame(f) if d.sleeves == "none" else f, spec, necklines)
+    pieces = 1
+    if cuts is not None:
+        front, back = hem_cuts(front, cuts, "waist"), hem_cuts(back, cuts, "waist")
+        pieces = len(cuts) + 1
+    arms, arm_st = sleeve_set(m, f, front, back, k, hem_pieces=pieces, design=d)
+    panels = {p.name: p for p in (front, back, *arms)}
+    return panels, top_stitches(front, back, k, pieces) + arm_st
+
+
+def _tshirt(d: Design, m: Measurements) -> Pattern:
+    f = body_frame(m)
+    hem_y = f.hip_y - TEE_HEM_DROP if d.length is None else f.waist_y - d.length
+    w_hem = max((m.hip + TEE_HIP_EASE) / 4, (m.bust + BUST_EASE) / 4)
+    spec = TopSpec(lower=((w_hem, 0.0),), lower_curves=(None,), hem_y=hem_y)
+    return _pattern(*_top(d, m, f, spec))
+
+
+def _one_piece_dress(d: Design, m: Measurements) -> Pattern:
+    """A dress cut in one piece from neck to hem, waisted (``fitted``) or straight: the library's
+    dresses at their own length and flare."""
+    f0 = body_frame(m)
+    f = sleeveless_frame(f0) if d.sleeves == "none" else f0
+    own = _dress.HEM_HEIGHT if d.fitted else _dress.STRAIGHT_HEM_HEIGHT
+    hem_y = own * m.height / 1.70 if d.length is None else f.waist_y - d.length
+    flare = (
+        d.hem_flare if d.hem_flare is not None else (_dress.HEM_FLARE if d.fitted else _dress.STRAIGHT_FLARE)
+    )
+    hip_w = (m.hip + _dress.HIP_EASE) / 4
+    hip = np.array([hip_w, f.hip_y - hem_y])
+    hem = np.array([hip_w + flare, 0.0])
+    if not d.fitted:
+        spec = TopSpec(lower=(tuple(hem), tuple(hip)), lower_curves=(None, None), hem_y=hem_y)
+        return _pattern(*_top(d, m, f0, spec))
+    under = np.array([(m.bust + BUST_EASE) / 4, f.armpit_y - hem_y])
+    mid = np.array([(m.waist + _dress.WAIST_EASE) / 4, f.waist_y - hem_y])
+    # quadratic through the waist: its middle (a + 2c + b)/4 at the waist width
+    curve = quad(hip, under, 2 * mid - (hip + under) / 2)
+    spec = TopSpec(lower=(tuple(hem), tuple(hip)), lower_curves=(None, curve), hem_y=hem_y)
+    return _pattern(*_top(d, m, f0, spec))
+
+
+def _theta(d: Design, top: float, hip: float, hip_depth: float) -> float:
+    """A cone skirt's unrolled angle [rad]: the circle's fraction of a turn, or what the hips
+    need over ``hip_depth`` [m] plus the A-line's flare."""
+    if d.skirt == "circle":
+        return 2 * np.pi * d.circle_fraction
+    return (hip - top) / hip_depth + d.aline_flare
+
+
+def _skirt_cut(d: Design, m: Measurements, f: BodyFrame, top: float, hip: float, top_drop: float):
+    """The :class:`SkirtCut` of ``d`` whose top (girth ``top`` [m]) sits ``top_drop`` [m] below
+    the waist, over hips of girth ``hip`` [m] (ease included)."""
+    length = (d.length if d.length is not None else length_to(m, "knee")) - top_drop
+    hip_depth = f.waist_y - f.hip_y - top_drop
+    if length <= hip_depth + 0.02 and d.skirt == "pencil":
+        raise InputError(f"a pencil skirt reaches below the hips; length {d.length} m is too short")
+    ax = m.hip * DEPTH_PER_GIRTH / 2 / TORSO_ASPECT + CLEARANCE
+    return SkirtCut(
+        style=d.skirt,
+        panels=d.panels,
+        top=top,
+        hip=hip,
+        top_y=f.waist_y - top_drop,
+        hip_depth=hip_depth,
+        length=length,
+        theta=_theta(d, top, hip, hip_depth),
+        axes=(ax, f.hip_z),
+        band=d.waistband,
+    )
+
+
+def _skirt_garment(d: Design, m: Measurements) -> Pattern:
+    if d.skirt == "darted":
+        if d.panels != 2 or not d.waistband:
+            raise InputError("a darted skirt has 2 panels under a waistband; set panels=2, waistband=True")
+        if d.length is not None:
+            raise InputError("a darted skirt is knee length; leave its length unset")
+        return _skirt.make_skirt_darts(m)
+    top_drop = BAND_HEIGHT if d.waistband else 0.0
+    f, _, top, hip, _ = _skirt._girths(m, top_drop)
+    panels, st, _ = skirt_panels(_skirt_cut(d, m, f, top, hip, top_drop), depth_z=f.hip_z)
+    return _pattern(panels, st)
+
+
+def _seamed_dress(d: Design, m: Measurements) -> Pattern:
+    """A bodice from the natural waist to the neck and a skirt of ``d.panels`` gores, the bodice's
+    waist cut in one piece per gore and sewn to the gores' tops."""
+    if d.skirt == "darted":
+        raise InputError("a dress's skirt is aline, pencil or circle; darted skirts stand alone")
+    f = body_frame(m)
+    waist_w = (m.waist + _dress.WAIST_EASE) / 4
+    spec = TopSpec(lower=((waist_w, 0.0),), lower_curves=(None,), hem_y=f.waist_y)
+    half = d.panels // 2
+    cuts = [-waist_w + 2 * waist_w * j / half for j in range(1, half)]
+    panels, st = _top(d, m, f, spec, cuts)
+    length = d.length if d.length is not None else f.waist_y - _dress.HEM_HEIGHT * m.height / 1.70
+    cut = _skirt_cut(
+        replace(d, length=length, waistband=False), m, f, 4 * waist_w, m.hip + _dress.HIP_EASE, 0.0
+    )
+    gores, gore_st, tops = skirt_panels(cut, prefix="skirt_", depth_z=f.hip_z)
+    panels.update(gores)
+    st += gore_st
+    for side, gs in (("front", tops[:half]), ("back", tops[half:])):
+        for j, (g, e) in enumerate(gs):
+            st.append(stitch(side, j, g, e, f"{side}_waist" + (f"_{j}" if half > 1 else "")))
+    return _pattern(panels, st)
+
+
+def _dress_garment(d: Design, m: Measurements) -> Pattern:
+    return _seamed_dress(d, m) if d.waist_seam else _one_piece_dress(d, m)
+
+
+def _legs_cut(d: Design, m: Measurements) -> tuple[float, float]:
+    """Hem height [m] and a front leg panel's hem half width [m] of ``d``'s trousers: the
+    library's pants or shorts, a knee length half-way between them, or ``d.length``."""
+    f = body_frame(m)
+    y_full = _pants.PANTS_HEM_HEIGHT * m.height / 1.70
+    half_full = _pants.PANTS_HEM_GIRTH / 4 - 0.01
+    y_short = f.crotch_y - _pants.CROTCH_DROP - _pants.SHORTS_INSEAM
+    half_short = (m.thigh + _pants.SHORTS_HEM_EASE) / 4 - 0.01
+    leg = d.leg or LEGGED[d.garment]
+    if d.length is not None:
+        hem_y = f.waist_y - d.length
+    else:
+        hem_y = {"full": y_full, "shorts": y_short, "knee": f.waist_y - length_to(m, "knee")}[leg]
+    if hem_y > f.crotch_y - _pants.CROTCH_DROP - MIN_INSEAM:
+        raise InputError(f"trousers' hem {f.waist_y - hem_y:.3f} m below the waist is above the crotch")
+    t = (hem_y - y_short) / (y_full - y_short)  # 0 at the shorts' hem, 1 at the ankle
+    half = half_short if t == 0.0 else (half_full if t == 1.0 else half_short + t * (half_full - half_short))
+    return hem_y, half + (d.hem_flare or 0.0)
+
+
+def _trousers(d: Design, m: Measurements) -> Pattern:
+    hem_y, half = _legs_cut(d, m)
+    return _pants._legs(m, hem_y, half, "", band=d.waistband)
+
+
+def _jumpsuit(d: Design, m: Measurements) -> Pattern:
+    """A bodice and trousers sewn at the natural waist: the bodice's waist cut at the centre,
+    each half sewn to a leg panel's waist (as the library's trouser waistbands are)."""
+    f = body_frame(m)
+    hem_y, half = _legs_cut(d, m)
+    legs = _pants._legs(m, hem_y, half, "", band=False)
+    waist_w = (m.waist + _pants.WAIST_EASE) / 4  # a leg panel's waist edge
+    spec = TopSpec(lower=((waist_w, 0.0),), lower_curves=(None,), hem_y=f.waist_y)
+    panels, st = _top(d, m, f, spec, [0.0])
+    panels.update(legs.panels)
+    st += legs.stitches + [
+        stitch("front", 0, "right_front", 2, "right_front_waist"),
+        stitch("front", 1, "left_front", 3, "left_front_waist"),
+        stitch("back", 0, "left_back", 2, "left_back_waist"),
+        stitch("back", 1, "right_back", 3, "right_back_waist"),
+    ]
+    return _pattern(panels, st)
+
+
+_DRAFTERS = {
+    "tshirt": _tshirt,
+    "dress": _dress_garment,
+    "skirt": _skirt_garment,
+    "pants": _trousers,
+    "shorts": _trousers,
+    "jumpsuit": _jumpsuit,
+}
+
+
+def draft(design: Design, measurements: Measurements | None = None) -> Pattern:
+    """The :class:`~unsew.pattern.model.Pattern` of ``design`` sized to ``measurements`` (default:
+    the default body) and placed around that body (world frame, metres): closed
+    counter-clockwise panels, stitches of equal-length edges, named by
+    :func:`~unsew.pattern.design.design_name`, the design recorded under ``pattern.unsew["design"]``.
+
+    Raises :class:`~unsew.errors.InputError` for a combination that cannot be cut (a darted
+    skirt of more than two panels, trousers whose hem is above the crotch)."""
+    if not isinstance(design, Design):
+        raise InputError(f"draft needs a Design, not {type(design).__name__}")
+    m = measurements or Measurements()
+    if design.ease:
+        e = design.ease
+        m = replace(m, bust=m.bust + e, waist=m.waist + e, hip=m.hip + e)
+    p = _DRAFTERS[design.garment](design, m)
+    p.name = design_name(design)
+    p.unsew["design"] = design.as_dict()
+    return p

@@ -1,0 +1,363 @@
+"""The design space: every sampled design drafts, validates, meshes and round-trips through
+GarmentCode JSON; each choice shows in the geometry; the library's bases are points of the space."""
+
+import numpy as np
+import pytest
+
+from helpers import assert_close
+from unsew.errors import InputError
+from unsew.io.garmentcode import load_pattern, save_pattern
+from unsew.meshing import mesh_pattern
+from unsew.pattern.base import BASES, make_base_pattern
+from unsew.pattern.base._frame import body_frame
+from unsew.pattern.curves import edge_length, panel_outline, sample_edge
+from unsew.pattern.design import (
+    CHOICES,
+    GARMENTS,
+    Design,
+    design_name,
+    design_of_base,
+    design_space,
+    draft,
+    length_to,
+)
+from unsew.pattern.measurements import Measurements
+from unsew.pattern.model import pattern_diff
+from unsew.pattern.validate import signed_area, validate_pattern
+
+#: A body unlike the default one (curvier, taller), so that sizes follow measurements.
+OTHER = Measurements(
+    height=1.78,
+    bust=0.98,
+    waist=0.74,
+    hip=1.04,
+    upper_arm=0.31,
+    neck_height=1.52,
+    waist_height=1.11,
+    crotch_height=0.83,
+    leg_length=0.87,
+    arm_length=0.53,
+)
+
+
+def _sample():
+    """Every garment's space, thinned to about 60 designs in all, spread over its choices."""
+    out = []
+    for g in GARMENTS:
+        space = design_space(g)
+        step = max(1, len(space) // 12)
+        out += space[::step]
+    return out
+
+
+SAMPLE = _sample()
+
+
+@pytest.mark.parametrize("name", BASES)
+def test_bases_are_points_of_the_space(name):
+    for m in (None, OTHER):
+        p = draft(design_of_base(name), m)
+        assert p.unsew.pop("design") == design_of_base(name).as_dict()
+        assert pattern_diff(p, make_base_pattern(name, m), atol=1e-9) == []
+    assert design_name(design_of_base(name)) == name
+    assert design_of_base(name) in design_space(design_of_base(name).garment)
+
+
+@pytest.mark.parametrize("design", SAMPLE, ids=design_name)
+def test_sampled_designs_draft_validate_mesh_and_round_trip(design, tmp_path):
+    p = draft(design)
+    assert validate_pattern(p) == []  # closed, no self-intersection, stitches in range, lengths match
+    for pan in p.panels.values():
+        assert signed_area(pan) > 0, pan.name
+    sides = [s.a for s in p.stitches] + [s.b for s in p.stitches]
+    assert len(sides) == len(set(sides))
+    labels = [s.label for s in p.stitches]
+    assert all(labels) and len(set(labels)) == len(labels)
+    for s in p.stitches:
+        la, lb = edge_length(p.panels[s.a.panel], s.a.edge), edge_length(p.panels[s.b.panel], s.b.edge)
+        assert abs(la - lb) < 1e-3, f"{s.label}: {la:.4f} vs {lb:.4f} m"
+    mesh = mesh_pattern(p, edge_length=0.05)
+    q = mesh.quality()
+    assert q["bad_triangles"] == 0 and q["sewn_vertices"] < q["uv_vertices"]
+    save_pattern(p, tmp_path / "p.json")
+    back = load_pattern(tmp_path / "p.json")
+    assert pattern_diff(back, p, atol=1e-9) == []
+    assert Design.from_dict(back.unsew["design"]) == design
+
+
+def test_design_space_enumerates_distinct_candidates():
+    for g in GARMENTS:
+        space = design_space(g)
+        assert len(space) == len(set(space)) == len({design_name(d) for d in space}), g
+        assert all(d.garment == g for d in space)
+    tees = design_space("tshirt")
+    # sleeves none: 16 necklines; short and long: 2 pieces x 2 cuffs x 16 necklines
+    assert len(tees) == 16 + 2 * 2 * 2 * 16
+    assert {d.neckline_front for d in tees} == set(CHOICES["neckline_front"])
+    skirts = design_space("skirt")
+    assert {d.panels for d in skirts} == set(CHOICES["panels"])
+    assert {d.skirt for d in skirts} == set(CHOICES["skirt"])
+
+
+def _neck(p, panel):
+    """Sampled neckline points (k, 2) [m] of ``panel`` and the neckline's vertices (j, 2)."""
+    pan = p.panels[panel]
+    idx = [i for i, e in enumerate(pan.edges) if "neckline" in e.label]
+    pts = np.concatenate([sample_edge(pan, i, 64) for i in idx])
+    verts = pan.vertices[sorted({pan.edges[i].start for i in idx} | {pan.edges[i].end for i in idx})]
+    return pts, verts
+
+
+@pytest.mark.parametrize("garment", ["tshirt", "dress", "jumpsuit"])
+def test_necklines_have_their_shapes(garment):
+    kw = dict(garment=garment, waist_seam=True) if garment == "dress" else dict(garment=garment)
+    shapes = {s: draft(Design(neckline_front=s, **kw)) for s in CHOICES["neckline_front"]}
+    for panel in ("front",):
+        pts = {s: _neck(p, panel) for s, p in shapes.items()}
+        top = {s: v[:, 1].max() for s, (_, v) in pts.items()}  # the neck points
+        depth = {s: top[s] - pts[s][0][:, 1].min() for s in pts}
+        width = {s: np.ptp(pts[s][1][:, 0]) for s in pts}
+        # V: its lowest point a vertex on the centre line, deeper than the round neck's bottom
+        lo_v = pts["v"][0][np.argmin(pts["v"][0][:, 1])]
+        assert any(np.allclose(lo_v, v, atol=1e-12) for v in pts["v"][1]) and abs(lo_v[0]) < 1e-12
+        assert depth["v"] > depth["round"] + 0.03
+        # boat: wider and shallower than round
+        assert width["boat"] > width["round"] + 0.08 and depth["boat"] < depth["round"] - 0.03
+        # square: its two lowest points are corners at one height either side of the centre line,
+        # where the neckline turns a right angle
+        v = pts["square"][1]
+        low = v[np.argsort(v[:, 1])[:2]]
+        assert low[0, 1] == pytest.approx(low[1, 1], abs=1e-12) and low[0, 0] == pytest.approx(-low[1, 0])
+        assert pts["square"][0][:, 1].min() == pytest.approx(low[0, 1], abs=1e-12)
+        up = v[np.argsort(v[:, 1])[2:]]
+        assert_close(np.sort(up[:, 0]), np.sort(low[:, 0]), atol=1e-12)  # straight down from the neck points
+    # the shoulder seams meet with any pair of necklines (boat widens both sides)
+    p = draft(Design(neckline_front="boat", neckline_back="square", **kw))
+    assert validate_pattern(p) == []
+
+
+def _skirt_panels(p):
+    return [q for n, q in p.panels.items() if not n.startswith("waistband") and "hem" in q.edges[0].label]
+
+
+@pytest.mark.parametrize("panels", [2, 4, 6, 8])
+@pytest.mark.parametrize("fraction", [0.25, 0.6, 1.0])
+def test_circle_skirt_hems_sum_to_the_circle_fraction(panels, fraction):
+    for band in (False, True):
+        p = draft(
+            Design(garment="skirt", skirt="circle", circle_fraction=fraction, panels=panels, waistband=band)
+        )
+        gores = _skirt_panels(p)
+        assert len(gores) == panels
+        r_hem = {g.edges[0].curvature.params[0] for g in gores}
+        r_top = {g.edges[2].curvature.params[0] for g in gores}
+        assert len(r_hem) == len(r_top) == 1
+        (r_hem,), (r_top,) = r_hem, r_top
+        hem = sum(edge_length(g, 0) for g in gores)
+        assert hem == pytest.approx(2 * np.pi * r_hem * fraction, rel=1e-6)  # arcs measured sampled
+        top = sum(edge_length(g, 2) for g in gores)
+        assert top == pytest.approx(2 * np.pi * r_top * fraction, rel=1e-6)
+        # a cone: the side seams run from the top arc to the hem arc
+        assert edge_length(gores[0], 1) == pytest.approx(r_hem - r_top, rel=1e-9)
+
+
+def test_skirt_panels_share_the_waist_and_the_aline_flare_opens_the_cone():
+    def hem_angle(d):
+        gores = _skirt_panels(draft(d))
+        return sum(edge_length(g, 0) for g in gores) / gores[0].edges[0].curvature.params[0]
+
+    waists = []
+    for n in (2, 4, 6, 8):
+        d = Design(garment="skirt", panels=n)
+        gores = _skirt_panels(draft(d))
+        waists.append(sum(edge_length(g, 2) for g in gores))
+        assert hem_angle(d.replace(aline_flare=0.7)) - hem_angle(d) == pytest.approx(0.35, rel=1e-6)
+    assert np.ptp(waists) < 1e-6
+    # a pencil is as wide at the hem as at the hips, whatever its number of panels
+    for n in (2, 6):
+        gores = _skirt_panels(draft(Design(garment="skirt", skirt="pencil", panels=n)))
+        assert len(gores) == n
+        hem = sum(edge_length(g, 0) for g in gores)
+        hips = sum(np.ptp(g.vertices[[2, 5], 0]) for g in gores)
+        assert hem == pytest.approx(hips, abs=1e-9) and hem > Measurements().hip
+
+
+def test_skirt_length_reaches_its_landmark():
+    m = Measurements()
+    f = body_frame(m)
+    for where in ("mini", "knee", "midi"):
+        p = draft(Design(garment="skirt", panels=4, length=length_to(m, where)), m)
+        low = min(g.to_world(panel_outline(g))[:, 1].min() for g in p.panels.values())
+        assert low == pytest.approx(f.waist_y - length_to(m, where), abs=1e-9)
+    assert length_to(m, "mini") < length_to(m, "knee") < length_to(m, "midi") < length_to(m, "ankle")
+
+
+def _sleeve_panels(p):
+    return [q for n, q in p.panels.items() if "sleeve" in n]
+
+
+@pytest.mark.parametrize("garment", ["tshirt", "dress", "jumpsuit"])
+def test_two_piece_sleeves_are_the_one_piece_cut_in_half(garment):
+    for sleeves in ("short", "long"):
+        one = draft(Design(garment=garment, sleeves=sleeves))
+        two = draft(Design(garment=garment, sleeves=sleeves, sleeve_pieces=2))
+        s1, s2 = _sleeve_panels(one), _sleeve_panels(two)
+        assert len(s2) == 2 * len(s1) == 4
+        assert sum(map(signed_area, s2)) == pytest.approx(sum(map(signed_area, s1)), rel=1e-6)
+        # the halves of each arm lie in its sleeve's plane, where the one-piece sleeve lies
+        for side in ("left", "right"):
+            whole = one.panels[f"{side}_sleeve"]
+            pts = np.concatenate([q.to_world(panel_outline(q)) for q in s2 if q.name.startswith(side)])
+            w = whole.to_world(panel_outline(whole))
+            assert_close(pts.min(axis=0), w.min(axis=0), atol=1e-9)
+            assert_close(pts.max(axis=0), w.max(axis=0), atol=1e-9)
+
+
+def reach(p, side):
+    """Furthest point [m] of one arm's sleeve pieces and cuff from the top of its sleeve cap."""
+    pieces = [q for n, q in p.panels.items() if n.startswith(side) and ("sleeve" in n or "cuff" in n)]
+    cap = pieces[0].to_world([(0.0, pieces[0].vertices[:, 1].max())])[0]
+    return max(np.linalg.norm(q.to_world(panel_outline(q)) - cap, axis=1).max() for q in pieces)
+
+
+def test_cuffs_close_the_sleeves_at_the_same_length():
+    for pieces in (1, 2):
+        plain = draft(Design(sleeves="long", sleeve_pieces=pieces))
+        cuffed = draft(Design(sleeves="long", sleeve_pieces=pieces, cuffs=True))
+        for side in ("left", "right"):
+            cuff = cuffed.panels[f"{side}_cuff"]
+            assert reach(cuffed, side) == pytest.approx(reach(plain, side), abs=1e-9)
+            sewn = [
+                s for s in cuffed.stitches if cuff.name in (s.a.panel, s.b.panel) and s.a.panel != s.b.panel
+            ]
+            top = sum(edge_length(cuff, s.b.edge) for s in sewn)
+            assert len(sewn) == pieces and top == pytest.approx(edge_length(cuff, 0), rel=1e-9)
+    assert "left_cuff" not in draft(Design(sleeves="none", cuffs=True)).panels
+
+
+def _seam_length(p, label_start, panels):
+    """Total length of the sides on ``panels`` of the stitches whose label starts with ``label_start``."""
+    total = 0.0
+    for s in p.stitches:
+        if s.label.startswith(label_start):
+            for side in (s.a, s.b):
+                if side.panel in panels:
+                    total += edge_length(p.panels[side.panel], side.edge)
+    return total
+
+
+@pytest.mark.parametrize("skirt, n", [("aline", 2), ("aline", 6), ("pencil", 4), ("circle", 8)])
+def test_dress_waist_seam_sides_have_equal_length(skirt, n):
+    for m in (None, OTHER):
+        p = draft(Design(garment="dress", waist_seam=True, skirt=skirt, panels=n), m)
+        gores = [k for k in p.panels if k.startswith("skirt_")]
+        assert len(gores) == n
+        bodice = _seam_length(p, "front_waist", {"front"}) + _seam_length(p, "back_waist", {"back"})
+        skirt_top = _seam_length(p, "front_waist", set(gores)) + _seam_length(p, "back_waist", set(gores))
+        assert bodice == pytest.approx(skirt_top, abs=1e-6)  # arcs measured sampled
+        assert bodice == pytest.approx((m or Measurements()).waist + 0.10, abs=1e-9)  # the dress's waist ease
+        # the whole waist of both is sewn: the bodice's lower edges, the gores' tops
+        assert bodice == pytest.approx(
+            sum(
+                edge_length(p.panels[k], e)
+                for k in ("front", "back")
+                for e, ed in enumerate(p.panels[k].edges)
+                if "waist" in ed.label
+            )
+        )
+
+
+def test_jumpsuit_bodice_and_trouser_waists_match():
+    for leg in ("full", "knee", "shorts"):
+        for m in (None, OTHER):
+            p = draft(Design(garment="jumpsuit", leg=leg, sleeves="none"), m)
+            legs = {"left_front", "right_front", "left_back", "right_back"}
+            bodice = sum(
+                _seam_length(p, f"{s}_{fb}_waist", {"front", "back"})
+                for s in ("left", "right")
+                for fb in ("front", "back")
+            )
+            trousers = sum(
+                _seam_length(p, f"{s}_{fb}_waist", legs)
+                for s in ("left", "right")
+                for fb in ("front", "back")
+            )
+            assert bodice == pytest.approx(trousers, abs=1e-9) and bodice > (m or Measurements()).waist
+            # the waist seam joins the bodice's centre front to the trousers' centre front seam
+            fw = p.panels["front"].to_world(p.panels["front"].vertices[[1]])[0]
+            lf = p.panels["left_front"].to_world(p.panels["left_front"].vertices[[4]])[0]
+            assert_close(fw[:2], lf[:2], atol=1e-9)
+
+
+def test_trouser_lengths_and_flare():
+    m = Measurements()
+    hem = lambda p: min(q.to_world(panel_outline(q))[:, 1].min() for q in p.panels.values())  # noqa: E731
+    full, knee, short = (draft(Design(garment="pants", leg=g)) for g in ("full", "knee", "shorts"))
+    assert hem(full) < hem(knee) < hem(short) < body_frame(m).crotch_y
+    wide = draft(Design(garment="pants", leg="knee", hem_flare=0.04))
+    # the flare widens a leg panel's hem half width: its hem by twice that
+    assert edge_length(wide.panels["left_front"], 0) == pytest.approx(
+        edge_length(knee.panels["left_front"], 0) + 0.08
+    )
+
+
+def test_ease_loosens_the_girths():
+    tight, loose = draft(Design()), draft(Design(ease=0.08))
+    width = lambda p: sum(np.ptp(panel_outline(p.panels[k])[:, 0]) for k in ("front", "back"))  # noqa: E731
+    assert width(loose) == pytest.approx(width(tight) + 0.08, abs=1e-9)  # front and back span the girth
+
+
+@pytest.mark.parametrize(
+    "kw, match",
+    [
+        (dict(garment="hat"), "garment must be one of"),
+        (dict(panels=3), "even number of panels"),
+        (dict(circle_fraction=1.5), "circle_fraction"),
+        (dict(garment="shorts", leg="full"), "shorts have leg"),
+        (dict(neckline_front="sweetheart"), "neckline_front must be one of"),
+        (dict(sleeve_pieces=True), "sleeve_pieces must be one of"),
+        (dict(length=-0.2), "length must be a number"),
+    ],
+)
+def test_bad_designs_are_refused_in_one_line(kw, match):
+    with pytest.raises(InputError, match=match) as e:
+        Design(**kw)
+    assert "\n" not in str(e.value)
+
+
+def test_designs_that_cannot_be_cut_are_refused():
+    with pytest.raises(InputError, match="darted skirt has 2 panels"):
+        draft(Design(garment="skirt", skirt="darted", panels=4, waistband=True))
+    with pytest.raises(InputError, match="above the crotch"):
+        draft(Design(garment="pants", length=0.15))
+    with pytest.raises(InputError, match="unknown design field"):
+        Design.from_dict({"garment": "skirt", "colour": "red"})
+
+
+@pytest.mark.slow
+def test_three_designs_dress_the_default_body():
+    """A tee with two-piece long sleeves and cuffs, a waist-seamed dress of four gores with a
+    square neck, knee-length jumpsuit: each goes on the default body (the drape verdict, seams
+    closed, nothing inside), its top between the chest and the head."""
+    from unsew.body.body import default_body
+    from unsew.body.sdf import BodySDF
+    from unsew.dress import DRESS_SETTINGS, dress, dress_stats
+    from unsew.sim.checks import check_dressed
+
+    body = default_body()
+    sdf = BodySDF.build(body)
+    sk = body.skeleton
+    designs = [
+        Design(neckline_front="v", neckline_back="boat", sleeves="long", sleeve_pieces=2, cuffs=True),
+        Design(garment="dress", waist_seam=True, panels=4, neckline_front="square", sleeves="none"),
+        Design(garment="jumpsuit", leg="knee", neckline_front="v"),
+    ]
+    for d in designs:
+        r = dress(draft(d), body, sdf=sdf, settings=DRESS_SETTINGS.replace(edge_length=0.04))
+        v = check_dressed(r, body=body)
+        s = dress_stats(r)
+        name = design_name(d)
+        assert v.ok, f"{name}: {v.reason}"
+        assert s["inside_pct"] < 0.5 and s["seam_gap"] < 2e-3, (name, s["inside_pct"], s["seam_gap"])
+        lo, hi = s["bbox"]
+        assert lo[1] < sk.position("chest")[1] < hi[1] < sk.position("head")[1], name
