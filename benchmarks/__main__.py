@@ -16,7 +16,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 #: Scripts that make a benchmark's inputs or a figure rather than measure something.
-TOOLS = ("make_cases", "make_bodies", "demo_figure")
+TOOLS = ("make_cases", "make_bodies", "demo_figure", "design_figure")
 
 
 def _scripts() -> dict[str, Path]:

@@ -70,7 +70,7 @@ def render(out: Path, *, dpi: int = 110) -> Path:
 
     outline = lambda p: panel_outline(p, points_per_edge=24)  # noqa: E731
     fig, axes = plt.subplots(
-        2, len(SHOWN), figsize=(3.2 * len(SHOWN), 7.5), gridspec_kw={"height_ratios": [3, 2]}
+        2, len(SHOWN), figsize=(3.0 * len(SHOWN), 5.6), gridspec_kw={"height_ratios": [3, 1.2]}
     )
     for col, (title, kw) in enumerate(SHOWN):
         pattern = draft(Design(**kw))
@@ -89,7 +89,7 @@ def render(out: Path, *, dpi: int = 110) -> Path:
         axes[1, col].set_title(f"{len(pattern.panels)} panels, {len(pattern.stitches)} seams", fontsize=7)
     fig.tight_layout()
     out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=dpi)
+    fig.savefig(out, dpi=dpi, bbox_inches="tight")
     plt.close(fig)
     return out
 

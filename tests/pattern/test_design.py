@@ -204,13 +204,20 @@ def test_two_piece_sleeves_are_the_one_piece_cut_in_half(garment):
         s1, s2 = _sleeve_panels(one), _sleeve_panels(two)
         assert len(s2) == 2 * len(s1) == 4
         assert sum(map(signed_area, s2)) == pytest.approx(sum(map(signed_area, s1)), rel=1e-6)
-        # the halves of each arm lie in its sleeve's plane, where the one-piece sleeve lies
+        # each arm's halves are sewn along the one-piece sleeve's centre line (cap top to hem),
+        # where they meet in 3D, and face the front and the back of the arm
         for side in ("left", "right"):
             whole = one.panels[f"{side}_sleeve"]
-            pts = np.concatenate([q.to_world(panel_outline(q)) for q in s2 if q.name.startswith(side)])
-            w = whole.to_world(panel_outline(whole))
-            assert_close(pts.min(axis=0), w.min(axis=0), atol=1e-9)
-            assert_close(pts.max(axis=0), w.max(axis=0), atol=1e-9)
+            top, bottom = whole.vertices[:, 1].max(), whole.vertices[:, 1].min()
+            line = whole.to_world([(0.0, top), (0.0, bottom)])
+            (seam,) = [s for s in two.stitches if s.label == f"{side}_sleeve_top"]
+            for sd in (seam.a, seam.b):
+                q = two.panels[sd.panel]
+                e = q.edges[sd.edge]
+                ends = q.to_world(q.vertices[[e.start, e.end]])
+                assert_close(np.sort(ends, axis=0), np.sort(line, axis=0), atol=1e-9)
+            normals = {q.name: q.rotation_matrix()[:, 2] for q in s2 if q.name.startswith(side)}
+            assert normals[f"{side}_sleeve_front"][2] > 0.99 and normals[f"{side}_sleeve_back"][2] < -0.99
 
 
 def reach(p, side):

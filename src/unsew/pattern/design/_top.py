@@ -11,7 +11,8 @@ the library's tops (:mod:`unsew.pattern.base.tshirt`), which a round or V neckli
 
 A two-piece sleeve is the one-piece sleeve cut along its centre line (cap top to hem): the +x
 half (edges 0 hem, 1 underarm, 2 cap, 3 centre seam) and its mirror image, the -x half (edges 0
-centre seam, 1 cap, 2 underarm, 3 hem), both in the sleeve's place. A cuff is a rectangle below
+centre seam, 1 cap, 2 underarm, 3 hem), each folded down about the centre line to face the
+front or the back of the arm (as the placement wraps sleeve halves). A cuff is a rectangle below
 the sleeve's hem, sewn to itself at its side; its top is cut at x = 0 under a two-piece sleeve.
 """
 
@@ -37,7 +38,7 @@ from unsew.pattern.base.tshirt import (
     sleeve_panels,
 )
 from unsew.pattern.measurements import Measurements
-from unsew.pattern.model import Edge, Panel, Stitch
+from unsew.pattern.model import Edge, Panel, Stitch, matrix_to_euler_xyz
 
 __all__ = ["top_panels", "hem_cuts", "top_stitches", "sleeve_set", "CUFF_HEIGHT", "NECK_DEPTHS"]
 
@@ -154,7 +155,9 @@ def _armholes(front: Panel, back: Panel, k: int, hem_pieces: int) -> dict:
 
 
 def _sleeve_halves(sleeve: Panel, name_plus: str, name_minus: str) -> tuple[Panel, Panel]:
-    """The +x and -x halves of a one-piece sleeve, cut along x = 0, in its place."""
+    """The +x and -x halves of a one-piece sleeve, cut along x = 0, each folded a quarter turn
+    about that line, down beside the arm: the +x half faces where the sleeve's +x pointed, the
+    -x half the other way (front and back of the arm)."""
     v = sleeve.vertices  # hem -x, hem +x, underarm +x, cap top, underarm -x
     half = loop_panel(
         name_plus,
@@ -163,8 +166,11 @@ def _sleeve_halves(sleeve: Panel, name_plus: str, name_minus: str) -> tuple[Pane
         ["hem", "right_underarm", "right_cap", "centre"],
     )
     other = mirror_panel(half, name_minus)
-    for p in (half, other):
-        p.translation, p.rotation = sleeve.translation.copy(), sleeve.rotation.copy()
+    R = sleeve.rotation_matrix()
+    for p, turn in ((half, 1.0), (other, -1.0)):
+        # a quarter turn about the panel's own y axis: x -> -turn * normal, normal -> turn * x
+        fold = np.array([[0.0, 0.0, turn], [0.0, 1.0, 0.0], [-turn, 0.0, 0.0]])
+        p.translation, p.rotation = sleeve.translation.copy(), matrix_to_euler_xyz(R @ fold)
     return half, other
 
 
