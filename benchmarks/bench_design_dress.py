@@ -1,0 +1,66 @@
+"""Do drafts of the design space go on the body? Dressing a few designs with unsew.dress.
+
+Each design is drafted for the default body, dressed (4 cm edges, the dressing's default
+settings) and judged: the drape verdict (unsew.sim.checks), the widest seam left open after
+sewing [mm], the largest edge stretch [-], inverted triangles, the share of vertices inside the
+body [%], and whether the dressing placed the garment again (a sewing fault seen).
+
+    python -m benchmarks design_dress [--edge-length 0.04] [--only NAME ...]
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+
+#: The designs dressed: Design fields.
+DESIGNS = (
+    dict(sleeves="short", sleeve_pieces=2),
+    dict(sleeves="short", cuffs=True),
+    dict(sleeves="long", sleeve_pieces=2, cuffs=True, neckline_front="v", neckline_back="boat"),
+    dict(sleeves="long", sleeve_pieces=2, neckline_front="v", neckline_back="boat"),
+    dict(garment="dress", waist_seam=True, panels=4, neckline_front="square", sleeves="none"),
+    dict(garment="jumpsuit", leg="knee", neckline_front="v"),
+    dict(garment="skirt", skirt="circle", circle_fraction=0.75, panels=6, waistband=True),
+    dict(garment="skirt", skirt="pencil", panels=4),
+)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--edge-length", type=float, default=0.04, help="mesh edge length [m]")
+    ap.add_argument("--only", nargs="*", default=None, help="design names to dress (default: all)")
+    args = ap.parse_args(argv)
+
+    from unsew.body.body import default_body
+    from unsew.body.sdf import BodySDF
+    from unsew.dress import DRESS_SETTINGS, dress, dress_stats
+    from unsew.pattern.design import Design, design_name, draft
+    from unsew.sim.checks import check_dressed
+
+    body = default_body()
+    sdf = BodySDF.build(body)
+    settings = DRESS_SETTINGS.replace(edge_length=args.edge_length)
+    print("| design | verdict | seam gap [mm] | stretch | inverted | inside [%] | placed again | time [s] |")
+    print("|---|---|---|---|---|---|---|---|")
+    for kw in DESIGNS:
+        d = Design(**kw)
+        name = design_name(d)
+        if args.only and name not in args.only:
+            continue
+        t0 = time.perf_counter()
+        r = dress(draft(d), body, sdf=sdf, settings=settings)
+        v, s = check_dressed(r, body=body), dress_stats(r)
+        verdict = "ok" if v.ok else v.reason
+        print(
+            f"| {name} | {verdict} | {s['seam_gap'] * 1000:.1f} | {s['stretch']:.2f} | {s['inverted']} "
+            f"| {s['inside_pct']:.2f} | {'yes' if r.stats.get('placement_retry') else 'no'} "
+            f"| {time.perf_counter() - t0:.0f} |",
+            flush=True,
+        )
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
