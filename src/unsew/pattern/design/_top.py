@@ -11,7 +11,7 @@ the library's tops (:mod:`unsew.pattern.base.tshirt`), which a round or V neckli
 
 A two-piece sleeve is the one-piece sleeve cut along its centre line (cap top to hem): the +x
 half (edges 0 hem, 1 underarm, 2 cap, 3 centre seam) and its mirror image, the -x half (edges 0
-centre seam, 1 cap, 2 underarm, 3 hem), each folded down about the centre line to face the
+centre seam, 1 cap, 2 underarm, 3 hem), each turned down about the centre line to face the
 front or the back of the arm (as the placement wraps sleeve halves). A cuff is a rectangle below
 the sleeve's hem, sewn to itself at its side; its top is cut at x = 0 under a two-piece sleeve.
 """
@@ -37,6 +37,7 @@ from unsew.pattern.base.tshirt import (
     _neckline,
     sleeve_panels,
 )
+from unsew.pattern.curves import panel_outline
 from unsew.pattern.measurements import Measurements
 from unsew.pattern.model import Edge, Panel, Stitch, matrix_to_euler_xyz
 
@@ -154,10 +155,21 @@ def _armholes(front: Panel, back: Panel, k: int, hem_pieces: int) -> dict:
     return {"left": (fr, bl), "right": (br, fl)}
 
 
+def _fold_angle(half: Panel) -> float:
+    """The angle [rad] a sleeve half turns about its centre line (x = 0) down beside the arm: on
+    a tube whose girth is twice the half's width w, with the centre seam on top, the half's area
+    centroid (at x = c) sits pi * c / w round from the top, and the half faces out there."""
+    o = panel_outline(half)
+    q = np.roll(o, -1, axis=0)
+    cross = o[:, 0] * q[:, 1] - q[:, 0] * o[:, 1]
+    c = float(np.sum((o[:, 0] + q[:, 0]) * cross) / (3.0 * np.sum(cross)))
+    return float(np.pi * abs(c) / np.abs(o[:, 0]).max())
+
+
 def _sleeve_halves(sleeve: Panel, name_plus: str, name_minus: str) -> tuple[Panel, Panel]:
-    """The +x and -x halves of a one-piece sleeve, cut along x = 0, each folded a quarter turn
-    about that line, down beside the arm: the +x half faces where the sleeve's +x pointed, the
-    -x half the other way (front and back of the arm)."""
+    """The +x and -x halves of a one-piece sleeve, cut along x = 0, each turned about that line
+    (:func:`_fold_angle`) down beside the arm: the +x half towards where the sleeve's +x pointed,
+    the -x half the other way (the front and the back of the arm)."""
     v = sleeve.vertices  # hem -x, hem +x, underarm +x, cap top, underarm -x
     half = loop_panel(
         name_plus,
@@ -167,9 +179,10 @@ def _sleeve_halves(sleeve: Panel, name_plus: str, name_minus: str) -> tuple[Pane
     )
     other = mirror_panel(half, name_minus)
     R = sleeve.rotation_matrix()
-    for p, turn in ((half, 1.0), (other, -1.0)):
-        # a quarter turn about the panel's own y axis: x -> -turn * normal, normal -> turn * x
-        fold = np.array([[0.0, 0.0, turn], [0.0, 1.0, 0.0], [-turn, 0.0, 0.0]])
+    a = _fold_angle(half)
+    for p, turn in ((half, a), (other, -a)):
+        c, s = np.cos(turn), np.sin(turn)  # a turn about the panel's own y axis
+        fold = np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
         p.translation, p.rotation = sleeve.translation.copy(), matrix_to_euler_xyz(R @ fold)
     return half, other
 
