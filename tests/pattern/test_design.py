@@ -190,6 +190,18 @@ def test_skirt_length_reaches_its_landmark():
         low = min(g.to_world(panel_outline(g))[:, 1].min() for g in p.panels.values())
         assert low == pytest.approx(f.waist_y - length_to(m, where), abs=1e-9)
     assert length_to(m, "mini") < length_to(m, "knee") < length_to(m, "midi") < length_to(m, "ankle")
+    # a length named by a place on the body falls there on any body
+    for body in (m, OTHER):
+        for d in (
+            Design(garment="skirt", skirt="pencil", length="midi"),
+            Design(garment="pants", length="knee"),
+        ):
+            p = draft(d, body)
+            low = min(g.to_world(panel_outline(g))[:, 1].min() for g in p.panels.values())
+            assert low == pytest.approx(body_frame(body).waist_y - length_to(body, d.length), abs=1e-9)
+            metres = draft(d.replace(length=length_to(body, d.length)), body)
+            metres.name, metres.unsew = p.name, p.unsew
+            assert pattern_diff(p, metres) == []  # the same cut as that length in metres
 
 
 def _sleeve_panels(p):
@@ -329,6 +341,7 @@ def test_ease_loosens_the_girths():
         (dict(neckline_front="sweetheart"), "neckline_front must be one of"),
         (dict(sleeve_pieces=True), "sleeve_pieces must be one of"),
         (dict(length=-0.2), "length must be a number"),
+        (dict(length="shin"), "length must be metres or one of"),
     ],
 )
 def test_bad_designs_are_refused_in_one_line(kw, match):

@@ -16,12 +16,13 @@ from unsew.pattern.design._choices import (
     CHOICES,
     CIRCLE_FRACTIONS,
     GARMENTS,
+    LENGTHS,
     Design,
     design_name,
     design_of_base,
     design_space,
 )
-from unsew.pattern.design._draft import LENGTHS, draft, length_to
+from unsew.pattern.design._draft import draft, length_to
 
 __all__ = [
     "Design",

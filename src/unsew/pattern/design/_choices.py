@@ -13,6 +13,7 @@ __all__ = [
     "CHOICES",
     "GARMENTS",
     "CIRCLE_FRACTIONS",
+    "LENGTHS",
     "design_space",
     "design_of_base",
     "design_name",
@@ -35,6 +36,8 @@ CHOICES = {
     "waistband": (False, True),
     "leg": ("full", "knee", "shorts"),
 }
+#: Named hem positions a design's ``length`` may give (see :func:`unsew.pattern.design.length_to`).
+LENGTHS = ("hip", "mini", "knee", "midi", "ankle")
 #: Circle fractions :func:`design_space` samples for circle skirts (the field is continuous).
 CIRCLE_FRACTIONS = (0.25, 0.5, 0.75, 1.0)
 
@@ -87,9 +90,11 @@ class Design:
     #: trousers and jumpsuits: ``full``, ``knee`` or ``shorts`` (None: the garment's own, set at
     #: construction: ``shorts`` for shorts, else ``full``)
     leg: str | None = None
-    #: hem below the natural waist [m] (None: the garment's own: a tee at the hips, a skirt at
-    #: the knee, a dress at mid-calf or the knee, trousers by ``leg``); see :func:`length_to`
-    length: float | None = None
+    #: hem below the natural waist [m], or where on the body it falls, one of :data:`LENGTHS`
+    #: (``"knee"``: measured on the body drafted for, :func:`~unsew.pattern.design.length_to`);
+    #: None: the garment's own (a tee at the hips, a skirt at the knee, a dress at mid-calf or
+    #: the knee, trousers by ``leg``)
+    length: float | str | None = None
     #: one-piece dress: the hem's width beyond the hips per side seam [m]; trousers: the hem's
     #: half width added per leg panel [m] (None: the garment's own: 0.18 / 0.03 / 0)
     hem_flare: float | None = None
@@ -112,7 +117,12 @@ class Design:
         _check_range("circle_fraction", self.circle_fraction, 0.1, 1.0)
         _check_range("aline_flare", self.aline_flare, 0.0, 2.0)
         _check_range("ease", self.ease, -0.05, 0.4)
-        if self.length is not None:
+        if isinstance(self.length, str):
+            if self.length not in LENGTHS:
+                raise InputError(
+                    f"design length must be metres or one of {list(LENGTHS)}, not {self.length!r}"
+                )
+        elif self.length is not None:
             _check_range("length", self.length, 0.05, 1.6)
         if self.hem_flare is not None:
             _check_range("hem_flare", self.hem_flare, 0.0, 0.6)
@@ -228,6 +238,21 @@ def _top_parts(d: Design) -> list[str]:
     return parts + [d.neckline_front, d.neckline_back]
 
 
+def _measure_parts(d: Design, parts: list[str]) -> list[str]:
+    """The measures' part of a design's name: those set away from their defaults."""
+    out = []
+    if d.aline_flare != Design.aline_flare and any(q.startswith("alinex") for q in parts):
+        out.append(f"flare{d.aline_flare:g}")
+    if isinstance(d.length, str):
+        out.append(d.length)
+    for f in ("length", "hem_flare"):
+        if isinstance(getattr(d, f), (int, float)):
+            out.append(f"{f}{getattr(d, f):g}")
+    if d.ease:
+        out.append(f"ease{d.ease:g}")
+    return out
+
+
 def design_name(d: Design) -> str:
     """A short name of ``d``: the library base's name when ``d`` is a base's design, else the
     garment and its choices joined by ``-`` (e.g. ``dress-seam-circle0.75x4-long2-cuffs-square-round``)."""
@@ -246,11 +271,4 @@ def design_name(d: Design) -> str:
         parts.append("band")
     if d.garment in TOPS:
         parts += _top_parts(d)
-    if d.aline_flare != Design.aline_flare and any(q.startswith("alinex") for q in parts):
-        parts.append(f"flare{d.aline_flare:g}")
-    for f in ("length", "hem_flare"):
-        if getattr(d, f) is not None:
-            parts.append(f"{f}{getattr(d, f):g}")
-    if d.ease:
-        parts.append(f"ease{d.ease:g}")
-    return "-".join(parts)
+    return "-".join(parts + _measure_parts(d, parts))

@@ -18,20 +18,18 @@ from unsew.pattern.base._build import quad, stitch
 from unsew.pattern.base._frame import CLEARANCE, DEPTH_PER_GIRTH, BodyFrame, body_frame
 from unsew.pattern.base.tshirt import BUST_EASE, TopSpec, sleeveless_frame
 from unsew.pattern.base.tshirt import HIP_EASE as TEE_HIP_EASE
-from unsew.pattern.design._choices import LEGGED, Design, design_name
+from unsew.pattern.design._choices import LEGGED, LENGTHS, Design, design_name
 from unsew.pattern.design._skirt import SkirtCut, skirt_panels
 from unsew.pattern.design._top import hem_cuts, sleeve_set, top_panels, top_stitches
 from unsew.pattern.measurements import Measurements
 from unsew.pattern.model import Pattern
 
-__all__ = ["draft", "length_to", "LENGTHS"]
+__all__ = ["draft", "length_to"]
 
 #: A torso's width over its depth at the hips [-] (the ellipse of :data:`DEPTH_PER_GIRTH`).
 TORSO_ASPECT = 0.7
 #: A t-shirt's hem below the hips [m] (the library's).
 TEE_HEM_DROP = 0.02
-#: Named hem positions :func:`length_to` knows.
-LENGTHS = ("hip", "mini", "knee", "midi", "ankle")
 #: A trouser hem at least this far below the crotch point [m].
 MIN_INSEAM = 0.03
 
@@ -236,15 +234,17 @@ def draft(design: Design, measurements: Measurements | None = None) -> Pattern:
     counter-clockwise panels, stitches of equal-length edges, named by
     :func:`~unsew.pattern.design.design_name`, the design recorded under ``pattern.unsew["design"]``.
 
-    Raises :class:`~unsew.errors.InputError` for a combination that cannot be cut (a darted
-    skirt of more than two panels, trousers whose hem is above the crotch)."""
+    A ``length`` given as a place on the body (``"knee"``) is measured on this body
+    (:func:`length_to`). Raises :class:`~unsew.errors.InputError` for a combination that cannot
+    be cut (a darted skirt of more than two panels, trousers whose hem is above the crotch)."""
     if not isinstance(design, Design):
         raise InputError(f"draft needs a Design, not {type(design).__name__}")
     m = measurements or Measurements()
     if design.ease:
         e = design.ease
         m = replace(m, bust=m.bust + e, waist=m.waist + e, hip=m.hip + e)
-    p = _DRAFTERS[design.garment](design, m)
+    d = replace(design, length=length_to(m, design.length)) if isinstance(design.length, str) else design
+    p = _DRAFTERS[design.garment](d, m)
     p.name = design_name(design)
     p.unsew["design"] = design.as_dict()
     return p
