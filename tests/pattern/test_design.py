@@ -1,5 +1,6 @@
-"""The design space: every sampled design drafts, validates, meshes and round-trips through
-GarmentCode JSON; each choice shows in the geometry; the library's bases are points of the space."""
+"""The design space: every sampled design drafts, validates, meshes, parameterizes (symmetry, K ->
+U) and round-trips through GarmentCode JSON; each choice shows in the geometry; the library's bases
+are points of the space."""
 
 import numpy as np
 import pytest
@@ -23,6 +24,8 @@ from unsew.pattern.design import (
 )
 from unsew.pattern.measurements import Measurements
 from unsew.pattern.model import pattern_diff
+from unsew.pattern.params import PatternParams
+from unsew.pattern.symmetry import detect_symmetry
 from unsew.pattern.validate import signed_area, validate_pattern
 
 #: A body unlike the default one (curvier, taller), so that sizes follow measurements.
@@ -79,6 +82,12 @@ def test_sampled_designs_draft_validate_mesh_and_round_trip(design, tmp_path):
     mesh = mesh_pattern(p, edge_length=0.05)
     q = mesh.quality()
     assert q["bad_triangles"] == 0 and q["sewn_vertices"] < q["uv_vertices"]
+    # ready for the fit: every panel mirror-symmetric or paired, the parameters rebuild the mesh
+    sym = detect_symmetry(p)
+    kept = {m.panel for m in sym.mirrors} | {pr.source for pr in sym.pairs} | {pr.target for pr in sym.pairs}
+    assert kept == set(p.panels)
+    params = PatternParams.build(p, mesh, symmetry=sym)
+    assert_close(params.uv(params.K0).detach().numpy(), mesh.uv, atol=1e-9)
     save_pattern(p, tmp_path / "p.json")
     back = load_pattern(tmp_path / "p.json")
     assert pattern_diff(back, p, atol=1e-9) == []
