@@ -121,7 +121,7 @@ def with_garment_read(case, cfg: FitConfig, *, log=print):
         )
     log(note)
     log(design.summary())
-    return dataclasses.replace(case, garment=reading.garment, garment_note=f"{note}; {design.summary()}")
+    return dataclasses.replace(case, garment=reading.garment, garment_note=note)
 
 
 def base_pattern_for(case, cfg: FitConfig):

@@ -173,6 +173,9 @@ def _openings_by_part(v: np.ndarray, loops, centres: np.ndarray, skeleton):
         for limb in ("arm", "leg"):
             # round this limb, with the other side's limb outside the loop
             on[f"{side}_{limb}"] = (dist[f"{side}_{limb}"] < near) & (dist[f"{other}_{limb}"] > radii)
+    if not (on["left_leg"].any() and on["right_leg"].any()):
+        # a loop round one leg alone is a hem hanging to one side (legs' openings come in pairs)
+        on["left_leg"] = on["right_leg"] = np.zeros(len(loops), dtype=bool)
     leg = on["left_leg"] | on["right_leg"]
     arm = (on["left_arm"] | on["right_arm"]) & ~leg
     return leg, arm, on
