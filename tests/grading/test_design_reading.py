@@ -84,6 +84,8 @@ def test_neckline_halves_square_v_round():
     square = np.stack([x, np.where(np.abs(x) < 0.09, -0.1, -0.1 + (np.abs(x) - 0.09) * 10)], axis=1)
     arc = np.stack([x, -np.sqrt(np.maximum(0.1**2 - x**2, 0))], axis=1)
     vee = np.stack([x, -0.15 + 1.5 * np.abs(x)], axis=1)
+    shallow = np.stack([x, -0.01 * np.sqrt(np.maximum(1 - (x / 0.1) ** 2, 0))], axis=1)
     assert _is_square(square, width)[0]
     assert not _is_square(arc, width)[0] and not _half_is_v(arc, width)[0]
+    assert not _is_square(shallow, width)[0]  # flat, but without corners: a shallow round back
     assert _half_is_v(vee, width)[0] and not _is_square(vee, width)[0]

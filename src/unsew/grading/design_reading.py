@@ -28,6 +28,8 @@ from unsew.grading.garment_type import (
     _mid_y,
     _neck_opening,
     _openings_by_part,
+    _half_is_v,
+    _half_run,
     _radius,
     read_garment_type,
     read_necklines,
@@ -59,12 +61,10 @@ SHORT_SLEEVE_SHARE = 0.5
 #: end hanging off the arm line (a wide armhole's radius is about 0.07 m).
 SLEEVE_END_RADIUS = 0.05
 #: A square neckline half: its bottom stays within this share of the half's depth over at least
-#: :data:`SQUARE_FLAT` of the neckline's width (a round bottom: about half of it; a V: a point),
-#: and the half is at least :data:`SQUARE_DEPTH` of the width deep (a shallow back neckline is
-#: flat without corners).
+#: :data:`SQUARE_FLAT` of the neckline's width (a round bottom: about half of it; a V: a point)
+#: and ends in a corner (a shallow round back is as flat, without corners).
 SQUARE_BAND = 0.15
 SQUARE_FLAT = 0.6
-SQUARE_DEPTH = 0.2
 #: A hood: the garment rises this far [m] or more above the head joint.
 HOOD_ABOVE_HEAD = 0.05
 #: A standing collar: the neck opening's centre sits this far [m] or more above the neck joint.
@@ -181,15 +181,17 @@ def _sleeves(v: np.ndarray, loops, skeleton) -> tuple[str, float, str]:
 
 
 def _is_square(pts: np.ndarray, width: float) -> tuple[bool, float]:
-    """(is square, flat share) of one neckline half ``pts`` (k, 2) [m] (x across, y up): the share
-    of the neckline's ``width`` over which the half stays within :data:`SQUARE_BAND` of its depth
-    of its lowest point."""
+    """(is square, flat share) of one neckline half ``pts`` (k, 2) [m] (x across, y up): a flat
+    bottom (the share of the neckline's ``width`` over which the half stays within
+    :data:`SQUARE_BAND` of its depth of its lowest point, at least :data:`SQUARE_FLAT`) that ends
+    in a corner (:func:`unsew.grading.garment_type._half_is_v` at its lowest point); a flat
+    bottom without a corner is a shallow round one."""
     if len(pts) < 5 or width <= 0:
         return False, 0.0
     depth = float(pts[:, 1].max() - pts[:, 1].min())
     low = pts[pts[:, 1] <= pts[:, 1].min() + SQUARE_BAND * max(depth, 1e-9)]
     flat = float(np.ptp(low[:, 0])) / width
-    return flat >= SQUARE_FLAT and depth >= SQUARE_DEPTH * width, flat
+    return flat >= SQUARE_FLAT and _half_is_v(pts, width)[0], flat
 
 
 def _necklines(v: np.ndarray, faces, loops, skeleton) -> tuple[tuple, dict, str]:
@@ -202,7 +204,8 @@ def _necklines(v: np.ndarray, faces, loops, skeleton) -> tuple[tuple, dict, str]
     cz, width = float(p[:, 2].mean()), float(np.ptp(p[:, 0]))
     out, nums = [], dict(deg)
     for name, kind, side in (("front", front, p[:, 2] >= cz), ("back", back, p[:, 2] < cz)):
-        sq, flat = _is_square(p[side][:, :2], width)  # a flat bottom's end is a corner too: square first
+        # a flat bottom's end is a corner too: square first
+        sq, flat = _is_square(p[_half_run(side)][:, :2], width) if side.sum() >= 5 else (False, 0.0)
         nums[f"{name}_flat"] = round(flat, 2)
         out.append("square" if sq else kind)
     ev = (

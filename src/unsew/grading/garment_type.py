@@ -253,6 +253,14 @@ def _half_is_v(pts: np.ndarray, width: float) -> tuple[bool, float]:
     return ang < V_ANGLE_DEG, ang
 
 
+def _half_run(side: np.ndarray) -> np.ndarray:
+    """Indices of a loop's points where ``side`` (k,) bool holds, in loop order as one run (the
+    walk starts just after a point of the other side)."""
+    start = int(np.flatnonzero(~side)[0]) if (~side).any() else 0
+    order = np.roll(np.arange(len(side)), -start)
+    return order[side[order]]
+
+
 def read_necklines(verts, faces, skeleton, *, contours=None) -> tuple[tuple[str, str], dict]:
     """The front and back neckline shapes of a top or dress, each ``"round"`` or ``"v"``
     (:data:`unsew.pattern.base.tshirt.NECKLINES`), and what they were read from: ``{"front_deg",
@@ -275,11 +283,7 @@ def read_necklines(verts, faces, skeleton, *, contours=None) -> tuple[tuple[str,
         if side.sum() < 5:
             out.append("round")
             continue
-        # the half as one run of the loop: start just after a point of the other half
-        start = int(np.flatnonzero(~side)[0]) if (~side).any() else 0
-        order = np.roll(np.arange(len(p)), -start)
-        run = order[side[order]]
-        is_v, ang = _half_is_v(p[run][:, :2], width)
+        is_v, ang = _half_is_v(p[_half_run(side)][:, :2], width)
         out.append("v" if is_v else "round")
         said[f"{name}_deg"] = round(ang, 1)
     return (out[0], out[1]), said
