@@ -148,7 +148,6 @@ MEAN_BODY = {
     "shoulder_w": 36.0,
     "bust_line": 26.0,
 }
-DESIGN_KEYS = ("sleeves", "neck_front", "neck_back", "collar", "cuffs", "waistband", "skirt", "length")
 
 
 def length_class(share: float | None) -> str | None:
