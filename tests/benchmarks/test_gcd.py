@@ -271,6 +271,14 @@ def test_the_types_table_reads_newton_targets_and_stands_in_unsews_drapes(tmp_pa
     assert row["skirt"] == "flared (read -)" and row["type"] == "skirt"
     s = reading.summary([row])
     assert s["type"] == (1, 1) and s["skirt"] == (0, 1) and s["sleeves"] == (0, 0) and s["choices"] == (0, 2)
+    from argparse import Namespace
+
+    from unsew.errors import InputError
+
+    with pytest.raises(InputError, match="not a folder"):
+        reading.cmd_types(
+            Namespace(out=str(tmp_path / "none"), drapes=None, record=False), [], tmp_path / "r"
+        )
 
 
 def test_a_type_is_given_only_where_meta_or_the_config_names_one():
