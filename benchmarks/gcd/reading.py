@@ -161,8 +161,6 @@ def _commit() -> str:
 
 def cmd_types(args, case_ids: list[str], record: Path) -> int:
     """Print the table and the summaries; with ``args.record`` write them to ``record``."""
-    from tables import print_table
-
     from unsew.errors import InputError
 
     root = Path(args.out)
@@ -170,6 +168,8 @@ def cmd_types(args, case_ids: list[str], record: Path) -> int:
     for p, what in ((root, "--out"), (drapes, "--drapes")):
         if p is not None and not p.is_dir():
             raise InputError(f"{what} {p} is not a folder")
+    from tables import print_table  # benchmarks/tables.py (on the path when run as a benchmark)
+
     rows = table(root, drapes, case_ids)
     shown = [{k: v for k, v in r.items() if not k.startswith("_")} for r in rows]
     print_table(shown, title=f"Garment type and structural choices read off the targets in {root}")
