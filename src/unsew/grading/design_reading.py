@@ -112,8 +112,19 @@ class DesignReading:
         for k, v in self.choices().items():
             if v is not None:
                 ev = self.evidence.get(k)
-                parts.append(f"{k.replace('_', ' ')} {v}" + (f" ({ev})" if ev else ""))
+                parts.append(_WORDS[k](v) + (f" ({ev})" if ev else ""))
         return "read: " + ", ".join(parts)
+
+
+#: How each choice reads in :meth:`DesignReading.summary`.
+_WORDS = {
+    "sleeves": lambda v: "sleeveless" if v == "none" else f"{v} sleeves",
+    "neck_front": lambda v: "strapless" if v == "none" else f"{'V' if v == 'v' else v}-neck front",
+    "neck_back": lambda v: "no back neckline" if v == "none" else f"{'V' if v == 'v' else v}-neck back",
+    "collar": lambda v: "no collar" if v == "none" else ("a hood" if v == "hood" else "a standing collar"),
+    "skirt": lambda v: f"{v} skirt",
+    "length": lambda v: "hem at the knee" if v == "knee" else f"hem {v.replace(' ', ' the ')}",
+}
 
 
 def _arm_share(p: np.ndarray, joints: list[np.ndarray]) -> float:
