@@ -188,7 +188,7 @@ def _sleeves(v: np.ndarray, loops, skeleton) -> tuple[str, float, str]:
     else:
         cls = "short" if share <= SHORT_SLEEVE_SHARE else "long"
     how = " (a sleeve end off the arm line)" if hanging and share == max(hanging) else ""
-    return cls, share, f"arm opening {share:.2f} of the arm from the shoulder{how}"
+    return cls, round(share, 2), f"arm opening {share:.2f} of the arm from the shoulder{how}"
 
 
 def _is_square(pts: np.ndarray, width: float) -> tuple[bool, float]:
@@ -265,7 +265,7 @@ def _skirt_and_length(v: np.ndarray, faces, loops, skeleton, reading: GarmentRea
     leg = (hip_y - ankle_y) * (1.0 + ANKLE_HEIGHT)  # hip joints to the floor [m]
     out, nums, ev = {}, {}, {}
     if reading.garment in ("pants", "shorts", "jumpsuit"):
-        low_y = reading.details["leg_y"]
+        low_y = reading.details.get("leg_y", float("nan"))
         what = "leg openings"
     else:
         low_y = reading.hem_y
