@@ -219,7 +219,7 @@ def test_a_result_off_the_body_is_no_result(small_case, small_fit, tmp_path, mon
         body=case.body,
         sdf=BodySDF.build(case.body),
     )
-    fallen = dataclasses.replace(result, x=x, drape_check=verdict)
+    fallen = dataclasses.replace(result, checks=dataclasses.replace(result.checks, x=x), drape_check=verdict)
     monkeypatch.setattr(run_module, "fit", lambda *a, **k: fallen)
     out = tmp_path / "result"
     with pytest.raises(SimulationError, match="fit failed: fallen"):

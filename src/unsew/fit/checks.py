@@ -69,7 +69,7 @@ REDRESS_MARGIN_MM = 0.01
 UNMOVED_TOL = 1e-9
 
 
-@dataclass
+@dataclass(frozen=True)
 class RedressCheck:
     """fit_redressed_mm: phase two's pattern dressed from scratch, its distance to the target
     [mm] (None when it was refused or its drape failed); graded_mm: the graded drape's [mm];
@@ -108,7 +108,7 @@ class RedressCheck:
         return {f.name: getattr(self, f.name) for f in fields(self) if f.name not in ("x_fit", "x_graded")}
 
 
-@dataclass
+@dataclass(frozen=True)
 class MeshSpread:
     """edge_lengths_m: the two meshes' edge lengths [m]; chamfer_mm: the returned pattern's
     drape on each, its distance to the target [mm] (None: the drape failed); result_mm: the

@@ -58,7 +58,7 @@ REFINE_ROUNDS = 2
 CHECK_CHOICE = True
 
 
-@dataclass
+@dataclass(frozen=True)
 class MaterialChoice:
     """Phase two's start: ``start`` (pattern, mesh, drape; ``start.material`` the fabric) and the
     choice's table: rows {"material", "chamfer_mm", "pattern"}, best first, after the material

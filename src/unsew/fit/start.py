@@ -76,7 +76,7 @@ _COMPATIBLE = {
 }
 
 
-@dataclass
+@dataclass(frozen=True)
 class Start:
     """Where phase two starts from.
 
@@ -200,7 +200,7 @@ TORSO_BAND_BELOW_ARMPIT = 0.05  #: [m]
 BASE_TIE = 1.10
 
 
-@dataclass
+@dataclass(frozen=True)
 class BaseChoice:
     """The base pattern phase one starts from: ``pattern``, its ``name`` (a library base, or the
     JSON path given), and the automatic choice's table, best first: rows {"base", "chamfer_mm",
