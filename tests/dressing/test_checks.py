@@ -7,7 +7,7 @@ import pytest
 from unsew.body.body import default_body
 from unsew.body.sdf import BodySDF
 from unsew.errors import SimulationError
-from unsew.sim.checks import FAR_DIST, STRETCH_MAX, check_drape
+from unsew.sim.checks import FAR_DIST, RISE_DIST, STRETCH_MAX, check_drape
 
 
 @pytest.fixture(scope="module")
@@ -79,6 +79,23 @@ def test_fallen(body_sdf):
     # slid 0.2 m down from where it was put on: still on the hips, but fallen
     v = _check(body, sdf, x, faces, uv, start_height=float(x[:, 1].mean()) + 0.2)
     assert not v.ok and "slid 0.20 m down" in v.reason
+
+
+def test_rose(body_sdf):
+    body, sdf = body_sdf
+    faces, uv, x = _tube(body)
+    # put on hanging 0.3 m lower (its lower half): the cloth gathered up round the waist
+    y0 = x[:, 1].copy()
+    low = y0 < np.median(y0)
+    y0[low] -= 0.3
+    v = _check(body, sdf, x, faces, uv, start_y=y0)
+    assert not v.ok and v.reason.startswith("rose") and v.rise_pct > 40.0
+    # a hem lifted by less than RISE_DIST (a flared skirt spreading out) has not risen
+    y0 = x[:, 1] - 0.5 * RISE_DIST
+    v = _check(body, sdf, x, faces, uv, start_y=y0)
+    assert v.ok and v.rise_pct == 0.0
+    # without the start's heights there is no rise check
+    assert np.isnan(_check(body, sdf, x, faces, uv).rise_pct)
 
 
 def test_off_the_body(body_sdf):

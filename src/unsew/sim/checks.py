@@ -16,6 +16,9 @@ Checks, in order (the first that fails is the reason):
    garment up there); or, when the start of the drape is given, its mean height has dropped
    by more than :data:`DROP_MAX` from where it was placed (a waistband slid down the hips, a
    top slid off the shoulders; a hood falling onto the head moves too few vertices to count).
+   ``rose``: when the start's vertex heights are given, more than :data:`RISE_MAX_PCT` % of the
+   vertices ended more than :data:`RISE_DIST` above where they were placed (a top gathered up
+   round the neck, a skirt bunched on the shoulders; a flared hem lifts by less).
 4. ``off the body``: more than :data:`FAR_MAX_PCT` % of the vertices are further than
    :data:`FAR_DIST` from the body.
 5. ``inside the body``: more than :data:`INSIDE_MAX_PCT` % of the vertices are inside it.
@@ -40,6 +43,8 @@ __all__ = [
     "STRETCH_P99_MAX",
     "FLOOR_TOL",
     "DROP_MAX",
+    "RISE_DIST",
+    "RISE_MAX_PCT",
     "FAR_DIST",
     "FAR_MAX_PCT",
     "INSIDE_MAX_PCT",
@@ -53,6 +58,10 @@ STRETCH_P99_MAX = 1.6
 FLOOR_TOL = 0.02
 #: How far the garment's mean height may drop from where the drape started [m].
 DROP_MAX = 0.10
+#: A vertex that ends more than this above where it was placed has risen [m].
+RISE_DIST = 0.20
+#: Largest share of risen vertices [%].
+RISE_MAX_PCT = 5.0
 #: A vertex further than this from every body vertex is off the body [m].
 FAR_DIST = 0.15
 #: Largest share of vertices off the body [%].
@@ -84,6 +93,7 @@ class DrapeVerdict:
     y_max: float
     drop: float
     finite: bool
+    rise_pct: float = float("nan")
 
     def as_dict(self) -> dict:
         """The verdict as a JSON-able dict (a figure that was not measured, NaN, is None)."""
@@ -113,6 +123,7 @@ def check_drape(
     body,
     sdf=None,
     start_height=None,
+    start_y=None,
 ) -> DrapeVerdict:
     """Judge a draped garment (see the module docstring for the checks).
 
@@ -124,6 +135,8 @@ def check_drape(
         sdf: the body's BodySDF for the inside test (built, disk-cached, when None).
         start_height: optional mean vertex height [m] of the garment where the drape started
             (the placed panels): the drop check.
+        start_y: optional (N,) height [m] of each vertex of ``x`` where the drape started: the
+            rise check.
 
     Returns:
         :class:`DrapeVerdict`.
@@ -147,15 +160,36 @@ def check_drape(
     inside_pct, depth_mm, far_pct = _body_gaps(x, body, sdf)
     y_min, y_max = float(x[:, 1].min()), float(x[:, 1].max())
     drop = nan if start_height is None else float(start_height) - float(x[:, 1].mean())
+    rise_pct = nan if start_y is None else _rise_pct(x, start_y)
     floor = float(np.asarray(body.verts, dtype=np.float64)[:, 1].min())
     reason = (
         _stretch_failure(s_max, s_99)
         or _height_failure(y_min, y_max, drop, floor=floor, crotch=_crotch_height(body))
+        or _rise_failure(rise_pct)
         or _body_failure(far_pct, inside_pct)
     )
     return DrapeVerdict(
-        reason == "", reason, inside_pct, depth_mm, far_pct, s_max, s_99, y_min, y_max, drop, finite
+        reason == "", reason, inside_pct, depth_mm, far_pct, s_max, s_99, y_min, y_max, drop, finite, rise_pct
     )
+
+
+def _rise_pct(x, start_y) -> float:
+    """Share [%] of the vertices x (N, 3) [m] more than RISE_DIST above their start heights
+    start_y (N,) [m]."""
+    y0 = _float64(start_y).reshape(-1)
+    if y0.shape != (len(x),):
+        raise ValueError(f"start_y must hold one height per vertex ({len(x)}), got shape {y0.shape}")
+    return float(((x[:, 1] - y0) > RISE_DIST).mean() * 100.0)
+
+
+def _rise_failure(rise_pct) -> str:
+    """The reason of a failed rise check ("" when it passes or was not made); share [%]."""
+    if np.isfinite(rise_pct) and rise_pct > RISE_MAX_PCT:
+        return (
+            f"rose: {rise_pct:.0f} % of the vertices ended more than {RISE_DIST:g} m above where they "
+            f"were put on (bound {RISE_MAX_PCT:g} %)"
+        )
+    return ""
 
 
 def _float64(a) -> np.ndarray:
@@ -246,18 +280,30 @@ def _crotch_height(body) -> float:
     return float(v[m, 1].min()) if m.any() else float(0.5 * (pel[1] + knee))
 
 
-def check_dressed(d, *, body=None, start_height=None) -> DrapeVerdict:
+def check_dressed(d, *, body=None, start_height=None, start_y=None) -> DrapeVerdict:
     """:func:`check_drape` of a :class:`unsew.dress.Dressed` (its sewn mesh, rest shape and SDF).
 
     body: the body it was dressed on (needed: a Dressed does not keep it). start_height: see
     :func:`check_drape`; when None, the mean height of the placed panels that
-    :func:`unsew.dress.dress` records as ``d.stats["start_height"]`` [m] is used.
+    :func:`unsew.dress.dress` records as ``d.stats["start_height"]`` [m] is used. start_y: see
+    :func:`check_drape`; when None, the heights of the placed vertices ``d.x_start`` (n_x, 3) [m]
+    (None when the Dressed has none).
     """
     if body is None:
         raise ValueError("check_dressed needs the body the garment was dressed on")
     if start_height is None:
         start_height = d.stats.get("start_height")
+    x_start = getattr(d, "x_start", None)
+    if start_y is None and x_start is not None:
+        start_y = _float64(x_start)[:, 1]
     m = d.mesh
     return check_drape(
-        d.x, faces=m.faces, uv=m.uv, faces_uv=m.faces_uv, body=body, sdf=d.sdf, start_height=start_height
+        d.x,
+        faces=m.faces,
+        uv=m.uv,
+        faces_uv=m.faces_uv,
+        body=body,
+        sdf=d.sdf,
+        start_height=start_height,
+        start_y=start_y,
     )
