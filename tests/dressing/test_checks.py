@@ -7,7 +7,7 @@ import pytest
 from unsew.body.body import default_body
 from unsew.body.sdf import BodySDF
 from unsew.errors import SimulationError
-from unsew.sim.checks import FAR_DIST, RISE_DIST, STRETCH_MAX, check_drape
+from unsew.sim.checks import DROP_MAX, FAR_DIST, RISE_DIST, STRETCH_MAX, check_drape
 
 
 @pytest.fixture(scope="module")
@@ -79,6 +79,16 @@ def test_fallen(body_sdf):
     # slid 0.2 m down from where it was put on: still on the hips, but fallen
     v = _check(body, sdf, x, faces, uv, start_height=float(x[:, 1].mean()) + 0.2)
     assert not v.ok and "slid 0.20 m down" in v.reason
+    # the same, judged vertex by vertex
+    v = _check(body, sdf, x, faces, uv, start_y=x[:, 1] + 0.2)
+    assert not v.ok and "slid 0.20 m down" in v.reason
+    # a third of the vertices (a hood put on above the head) fell 0.5 m, the rest stayed: the
+    # mean height dropped 0.17 m, but the garment did not slide
+    y0 = x[:, 1].copy()
+    y0[: len(y0) // 3] += 0.5
+    assert float((y0 - x[:, 1]).mean()) > DROP_MAX
+    v = _check(body, sdf, x, faces, uv, start_y=y0)
+    assert v.ok and v.drop == pytest.approx(0.0), v.reason
 
 
 def test_rose(body_sdf):

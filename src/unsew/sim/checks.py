@@ -13,9 +13,11 @@ Checks, in order (the first that fails is the reason):
    the 99th percentile beyond :data:`STRETCH_P99_MAX`.
 3. ``fallen``: the garment's lowest point is below the body's lowest point (the floor) by more
    than :data:`FLOOR_TOL`; or its highest point is below the body's crotch (nothing holds a
-   garment up there); or, when the start of the drape is given, its mean height has dropped
-   by more than :data:`DROP_MAX` from where it was placed (a waistband slid down the hips, a
-   top slid off the shoulders; a hood falling onto the head moves too few vertices to count).
+   garment up there); or, when the start of the drape is given, it has dropped by more than
+   :data:`DROP_MAX` from where it was placed (a waistband slid down the hips, a top slid off
+   the shoulders): the median of its vertices' drops when their start heights are given (a
+   hood placed above the head and falling onto it is a minority of them), else the drop of
+   its mean height.
    ``rose``: when the start's vertex heights are given, more than :data:`RISE_MAX_PCT` % of the
    vertices ended more than :data:`RISE_DIST` above where they were placed (a top gathered up
    round the neck, a skirt bunched on the shoulders; a flared hem lifts by less).
@@ -78,8 +80,9 @@ class DrapeVerdict:
     inside_pct: vertices inside the body [%]. depth_mm: deepest vertex inside [mm] (0 if none).
     far_pct: vertices further than FAR_DIST from the body [%].
     stretch_max, stretch_p99: largest and 99th-percentile edge length over pattern length [-].
-    y_min, y_max: the garment's height range [m]. drop: how far its mean height fell from the
-    start [m] (NaN when no start was given). finite: no NaN or inf.
+    y_min, y_max: the garment's height range [m]. drop: how far it fell from the start [m]: the
+    median of its vertices' drops (start_y given), else of its mean height (start_height given),
+    else NaN. finite: no NaN or inf.
     """
 
     ok: bool
@@ -136,7 +139,7 @@ def check_drape(
         start_height: optional mean vertex height [m] of the garment where the drape started
             (the placed panels): the drop check.
         start_y: optional (N,) height [m] of each vertex of ``x`` where the drape started: the
-            rise check.
+            rise check, and the drop check in place of ``start_height``.
 
     Returns:
         :class:`DrapeVerdict`.
@@ -160,7 +163,11 @@ def check_drape(
     inside_pct, depth_mm, far_pct = _body_gaps(x, body, sdf)
     y_min, y_max = float(x[:, 1].min()), float(x[:, 1].max())
     drop = nan if start_height is None else float(start_height) - float(x[:, 1].mean())
-    rise_pct = nan if start_y is None else _rise_pct(x, start_y)
+    rise_pct = nan
+    if start_y is not None:
+        y0 = _start_heights(x, start_y)
+        drop = float(np.median(y0 - x[:, 1]))
+        rise_pct = float(((x[:, 1] - y0) > RISE_DIST).mean() * 100.0)
     floor = float(np.asarray(body.verts, dtype=np.float64)[:, 1].min())
     reason = (
         _stretch_failure(s_max, s_99)
@@ -173,13 +180,12 @@ def check_drape(
     )
 
 
-def _rise_pct(x, start_y) -> float:
-    """Share [%] of the vertices x (N, 3) [m] more than RISE_DIST above their start heights
-    start_y (N,) [m]."""
+def _start_heights(x, start_y) -> np.ndarray:
+    """start_y as (N,) float64 [m], one height per vertex of x (N, 3)."""
     y0 = _float64(start_y).reshape(-1)
     if y0.shape != (len(x),):
         raise ValueError(f"start_y must hold one height per vertex ({len(x)}), got shape {y0.shape}")
-    return float(((x[:, 1] - y0) > RISE_DIST).mean() * 100.0)
+    return y0
 
 
 def _rise_failure(rise_pct) -> str:
