@@ -36,7 +36,9 @@ class Dressed:
 
     pattern: the Pattern; mesh: its GarmentMesh (uv (Nu,2) [m], faces (F,3) into X, ...);
     model: SimModel on the sewn topology; x: draped sewn vertices (Nx, 3) float64 torch [m];
-    uv: rest positions (Nu, 2) float64 torch [m]; material: the Material used; sdf: the body SDF.
+    uv: rest positions (Nu, 2) float64 torch [m]; material: the Material used; sdf: the body SDF;
+    x_start: the placed panels' positions merged on the sewn vertices (n_x, 3) float64 numpy [m]
+    (the rise check of :func:`unsew.sim.checks.check_dressed`), or None.
     """
 
     pattern: object
@@ -47,6 +49,7 @@ class Dressed:
     material: object
     sdf: object
     stats: dict = field(default_factory=dict)  #: timings [s] and seam gap [m] (see :func:`dress`)
+    x_start: object = None
 
 
 def resolve_material(material):
@@ -334,14 +337,15 @@ def _dress_once(job: _Job, *, force_meet: bool) -> Dressed:
     if job.settings.settle_steps > 0:
         x, speed, more = _settle_sewn(job, model, x)
     t3 = time.perf_counter()
+    x_start = np.asarray(merge_sewn(x_unsewn, mesh.x_of_u, mesh.n_x), dtype=np.float64)
     stats = dict(
         place_s=t1 - t0,
         sew_s=t2 - t1,
         settle_s=t3 - t2,
         seam_gap=gap,
         max_speed=speed,
-        start_height=float(merge_sewn(x_unsewn, mesh.x_of_u, mesh.n_x)[:, 1].mean()),
+        start_height=float(x_start[:, 1].mean()),
         met_seams=force_meet or meets_seams(body),
         settle_more=more,
     )
-    return Dressed(pattern, mesh, model, x.detach(), job.cloth.uv, job.material, job.sdf, stats)
+    return Dressed(pattern, mesh, model, x.detach(), job.cloth.uv, job.material, job.sdf, stats, x_start)

@@ -7,7 +7,7 @@ import pytest
 from unsew.body.body import default_body
 from unsew.body.sdf import BodySDF
 from unsew.errors import SimulationError
-from unsew.sim.checks import FAR_DIST, STRETCH_MAX, check_drape
+from unsew.sim.checks import DROP_MAX, FAR_DIST, RISE_DIST, STRETCH_MAX, check_drape
 
 
 @pytest.fixture(scope="module")
@@ -79,6 +79,37 @@ def test_fallen(body_sdf):
     # slid 0.2 m down from where it was put on: still on the hips, but fallen
     v = _check(body, sdf, x, faces, uv, start_height=float(x[:, 1].mean()) + 0.2)
     assert not v.ok and "slid 0.20 m down" in v.reason
+    # the same, judged vertex by vertex
+    v = _check(body, sdf, x, faces, uv, start_y=x[:, 1] + 0.2)
+    assert not v.ok and "slid 0.20 m down" in v.reason
+    # a third of the vertices (a hood put on above the head) fell 0.5 m, the rest stayed: the
+    # mean height dropped 0.17 m, but the garment did not slide
+    y0 = x[:, 1].copy()
+    y0[: len(y0) // 3] += 0.5
+    assert float((y0 - x[:, 1]).mean()) > DROP_MAX
+    v = _check(body, sdf, x, faces, uv, start_y=y0)
+    assert v.ok and v.drop == pytest.approx(0.0), v.reason
+
+
+def test_rose(body_sdf):
+    body, sdf = body_sdf
+    chest = float(body.skeleton.position("chest")[1])
+    faces, uv, x = _tube(body)  # round the waist, below the chest
+    # put on hanging 0.3 m lower (its lower half): risen, but below the chest (a circle skirt's
+    # hem flaring out rises as much)
+    y0 = x[:, 1].copy()
+    y0[y0 < np.median(y0)] -= 0.3
+    v = _check(body, sdf, x, faces, uv, start_y=y0)
+    assert v.ok and v.rise_pct == 0.0, v.reason
+    # the same cloth ending round the shoulders, above the chest: gathered up round the neck
+    up = [0.0, chest + 0.05 - float(x[:, 1].min()), 0.0]
+    v = _check(body, sdf, x + up, faces, uv, start_y=y0 + up[1])
+    assert not v.ok and v.reason.startswith("rose") and v.rise_pct > 40.0
+    # lifted by less than RISE_DIST there: not risen
+    v = _check(body, sdf, x + up, faces, uv, start_y=x[:, 1] + up[1] - 0.5 * RISE_DIST)
+    assert v.rise_pct == 0.0 and not v.reason.startswith("rose")
+    # without the start's heights there is no rise check
+    assert np.isnan(_check(body, sdf, x, faces, uv).rise_pct)
 
 
 def test_off_the_body(body_sdf):
@@ -87,6 +118,33 @@ def test_off_the_body(body_sdf):
     v = _check(body, sdf, x + [1.0, 0.0, 0.0], faces, uv)
     assert not v.ok and v.reason.startswith("off the body") and v.far_pct == 100.0
     assert FAR_DIST < 1.0
+
+
+def test_hem_free_of_the_legs(body_sdf):
+    """A skirt flaring out below the crotch (its hem 0.36 m further out than its waist) is on the
+    body."""
+    body, sdf = body_sdf
+    from unsew.sim.checks import _crotch_height
+
+    crotch = _crotch_height(body)
+    ys = np.linspace(crotch - 0.6, 1.1, 24)
+    out = 0.6 * np.maximum(crotch - ys, 0.0)  # (24,) flare [m]
+    th = np.linspace(0.0, 2 * np.pi, 48, endpoint=False)
+    rings = [np.stack([(0.19 + o) * np.sin(th), (0.14 + o) * np.cos(th) + 0.02], 1) for o in out]
+    arc = [np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(r, axis=0), axis=1))]) for r in rings]
+    x = np.concatenate([np.stack([r[:, 0], np.full(48, y), r[:, 1]], 1) for r, y in zip(rings, ys)])
+    # the pattern: as wide as the hem all the way up (slack above it), as long as the slant
+    slant = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(ys), np.diff(out)))])
+    uv = np.concatenate([np.stack([arc[0], np.full(48, t)], 1) for t in slant])
+    idx = np.arange(24 * 48).reshape(24, 48)
+    i, j, k, m = idx[:-1, :-1], idx[:-1, 1:], idx[1:, 1:], idx[1:, :-1]
+    faces = np.concatenate([np.stack([i, j, k], -1).reshape(-1, 3), np.stack([i, k, m], -1).reshape(-1, 3)])
+    v = _check(body, sdf, x, faces, uv)
+    assert v.ok, v.reason
+    assert v.far_pct == 0.0
+    # the same skirt lifted 0.6 m, its flare now above the crotch: that flare counts
+    v = _check(body, sdf, x + [0.0, 0.6, 0.0], faces, uv)
+    assert v.far_pct > 20.0
 
 
 def test_inside_the_body(body_sdf):

@@ -9,6 +9,7 @@ from unsew.body.body import default_body
 from unsew.body.sdf import BodySDF
 from unsew.dress import DRESS_SETTINGS, dress, dress_stats, hold_vertices
 from unsew.pattern.base import make_base_pattern
+from unsew.sim.checks import check_dressed
 
 GARMENTS = ["tshirt", "dress", "pants", "shorts", "skirt"]
 WIDE = [1.08, 1.0, 1.08]
@@ -48,6 +49,10 @@ def test_dress_small(body_sdf, garment):
     for k in ("place_s", "sew_s", "settle_s", "seam_gap", "max_speed"):
         assert k in d.stats
     _check(garment, body, dress_stats(d), stretch_max=1.12)
+    # where it was placed, vertex by vertex: the base garments neither rose nor slid
+    assert d.x_start.shape == (d.mesh.n_x, 3)
+    v = check_dressed(d, body=body)
+    assert v.rise_pct == 0.0 and abs(v.drop) < 0.1, v
 
 
 def test_hold_waist_only_for_lower_garments(body_sdf):

@@ -13,11 +13,18 @@ Checks, in order (the first that fails is the reason):
    the 99th percentile beyond :data:`STRETCH_P99_MAX`.
 3. ``fallen``: the garment's lowest point is below the body's lowest point (the floor) by more
    than :data:`FLOOR_TOL`; or its highest point is below the body's crotch (nothing holds a
-   garment up there); or, when the start of the drape is given, its mean height has dropped
-   by more than :data:`DROP_MAX` from where it was placed (a waistband slid down the hips, a
-   top slid off the shoulders; a hood falling onto the head moves too few vertices to count).
-4. ``off the body``: more than :data:`FAR_MAX_PCT` % of the vertices are further than
-   :data:`FAR_DIST` from the body.
+   garment up there); or, when the start of the drape is given, it has dropped by more than
+   :data:`DROP_MAX` from where it was placed (a waistband slid down the hips, a top slid off
+   the shoulders): the median of its vertices' drops when their start heights are given (a
+   hood placed above the head and falling onto it is a minority of them), else the drop of
+   its mean height.
+   ``rose``: when the start's vertex heights are given, more than :data:`RISE_MAX_PCT` % of the
+   vertices ended above the body's chest joint and more than :data:`RISE_DIST` above where
+   they were placed (a top gathered up round the neck, a skirt bunched on the shoulders; a
+   circle skirt's hem flaring out rises as much, but below the chest).
+4. ``off the body``: more than :data:`FAR_MAX_PCT` % of the vertices lie above the body's
+   crotch and further than :data:`FAR_DIST` from the body (below the crotch a wide skirt hangs
+   free of the legs; a garment fallen there fails the height checks).
 5. ``inside the body``: more than :data:`INSIDE_MAX_PCT` % of the vertices are inside it.
 
 The thresholds are failure bounds, far from a good drape's figures (a good drape has < 0.5 %
@@ -40,6 +47,8 @@ __all__ = [
     "STRETCH_P99_MAX",
     "FLOOR_TOL",
     "DROP_MAX",
+    "RISE_DIST",
+    "RISE_MAX_PCT",
     "FAR_DIST",
     "FAR_MAX_PCT",
     "INSIDE_MAX_PCT",
@@ -53,6 +62,11 @@ STRETCH_P99_MAX = 1.6
 FLOOR_TOL = 0.02
 #: How far the garment's mean height may drop from where the drape started [m].
 DROP_MAX = 0.10
+#: A vertex that ends above the body's chest joint and more than this above where it was
+#: placed has risen [m].
+RISE_DIST = 0.20
+#: Largest share of risen vertices [%].
+RISE_MAX_PCT = 5.0
 #: A vertex further than this from every body vertex is off the body [m].
 FAR_DIST = 0.15
 #: Largest share of vertices off the body [%].
@@ -67,10 +81,13 @@ class DrapeVerdict:
 
     ok: every check passed. reason: one line naming the failed check ("" when ok).
     inside_pct: vertices inside the body [%]. depth_mm: deepest vertex inside [mm] (0 if none).
-    far_pct: vertices further than FAR_DIST from the body [%].
+    far_pct: vertices above the body's crotch and further than FAR_DIST from the body [%] (of
+    all the vertices).
     stretch_max, stretch_p99: largest and 99th-percentile edge length over pattern length [-].
-    y_min, y_max: the garment's height range [m]. drop: how far its mean height fell from the
-    start [m] (NaN when no start was given). finite: no NaN or inf.
+    y_min, y_max: the garment's height range [m]. drop: how far it fell from the start [m]: the
+    median of its vertices' drops (start_y given), else of its mean height (start_height given),
+    else NaN. finite: no NaN or inf. rise_pct: vertices above the body's chest joint and more
+    than RISE_DIST above where they were placed [%] (NaN when start_y was not given).
     """
 
     ok: bool
@@ -84,6 +101,7 @@ class DrapeVerdict:
     y_max: float
     drop: float
     finite: bool
+    rise_pct: float = float("nan")
 
     def as_dict(self) -> dict:
         """The verdict as a JSON-able dict (a figure that was not measured, NaN, is None)."""
@@ -113,6 +131,7 @@ def check_drape(
     body,
     sdf=None,
     start_height=None,
+    start_y=None,
 ) -> DrapeVerdict:
     """Judge a draped garment (see the module docstring for the checks).
 
@@ -124,6 +143,8 @@ def check_drape(
         sdf: the body's BodySDF for the inside test (built, disk-cached, when None).
         start_height: optional mean vertex height [m] of the garment where the drape started
             (the placed panels): the drop check.
+        start_y: optional (N,) height [m] of each vertex of ``x`` where the drape started: the
+            rise check, and the drop check in place of ``start_height``.
 
     Returns:
         :class:`DrapeVerdict`.
@@ -144,18 +165,45 @@ def check_drape(
         reason = f"exploded: {n_bad} vertices are NaN or infinite (first: vertex {bad})"
         return DrapeVerdict(False, reason, *([nan] * 8), False)
     s_max, s_99 = _stretch(x, faces, uv, faces_uv)
-    inside_pct, depth_mm, far_pct = _body_gaps(x, body, sdf)
+    crotch = _crotch_height(body)
+    inside_pct, depth_mm, far_pct = _body_gaps(x, body, sdf, crotch=crotch)
     y_min, y_max = float(x[:, 1].min()), float(x[:, 1].max())
-    drop = nan if start_height is None else float(start_height) - float(x[:, 1].mean())
+    drop, rise_pct = _moved(x, start_height, start_y, chest=float(body.skeleton.position("chest")[1]))
     floor = float(np.asarray(body.verts, dtype=np.float64)[:, 1].min())
     reason = (
         _stretch_failure(s_max, s_99)
-        or _height_failure(y_min, y_max, drop, floor=floor, crotch=_crotch_height(body))
+        or _height_failure(y_min, y_max, drop, floor=floor, crotch=crotch)
+        or _rise_failure(rise_pct)
         or _body_failure(far_pct, inside_pct)
     )
     return DrapeVerdict(
-        reason == "", reason, inside_pct, depth_mm, far_pct, s_max, s_99, y_min, y_max, drop, finite
+        reason == "", reason, inside_pct, depth_mm, far_pct, s_max, s_99, y_min, y_max, drop, finite, rise_pct
     )
+
+
+def _moved(x, start_height, start_y, *, chest) -> tuple[float, float]:
+    """(drop [m], rise_pct [%]) of the vertices x (N, 3) [m] from the start (see
+    :class:`DrapeVerdict`; chest: the body's chest joint height [m]): from the heights start_y
+    (N,) [m] when given, else the drop of the mean height from start_height [m] (NaN when
+    neither is given) and no rise (NaN)."""
+    nan = float("nan")
+    if start_y is None:
+        return (nan if start_height is None else float(start_height) - float(x[:, 1].mean())), nan
+    y0 = _float64(start_y).reshape(-1)
+    if y0.shape != (len(x),):
+        raise ValueError(f"start_y must hold one height per vertex ({len(x)}), got shape {y0.shape}")
+    rose = (x[:, 1] - y0 > RISE_DIST) & (x[:, 1] > chest)
+    return float(np.median(y0 - x[:, 1])), float(rose.mean() * 100.0)
+
+
+def _rise_failure(rise_pct) -> str:
+    """The reason of a failed rise check ("" when it passes or was not made); share [%]."""
+    if np.isfinite(rise_pct) and rise_pct > RISE_MAX_PCT:
+        return (
+            f"rose: {rise_pct:.0f} % of the vertices ended above the chest, more than {RISE_DIST:g} m "
+            f"above where they were put on (bound {RISE_MAX_PCT:g} %)"
+        )
+    return ""
 
 
 def _float64(a) -> np.ndarray:
@@ -175,10 +223,10 @@ def _stretch(x, faces, uv, faces_uv) -> tuple[float, float]:
     return float(ratio.max()), float(np.percentile(ratio, 99))
 
 
-def _body_gaps(x, body, sdf) -> tuple[float, float, float]:
+def _body_gaps(x, body, sdf, *, crotch=-np.inf) -> tuple[float, float, float]:
     """(inside_pct, depth_mm, far_pct) of the vertices ``x`` (N, 3) [m]: share inside the body
-    [%] by its SDF (built when None), deepest of them [mm] (0 if none), share further than
-    FAR_DIST from every body vertex [%]."""
+    [%] by its SDF (built when None), deepest of them [mm] (0 if none), share above ``crotch``
+    [m] and further than FAR_DIST from every body vertex [%]."""
     import torch
     from scipy.spatial import cKDTree
 
@@ -193,7 +241,7 @@ def _body_gaps(x, body, sdf) -> tuple[float, float, float]:
     depth_mm = float(max(0.0, -float(d.min())) * 1000.0)
     bv = np.asarray(body.verts, dtype=np.float64)
     far = cKDTree(bv).query(x, distance_upper_bound=FAR_DIST)[0]
-    far_pct = float(np.isinf(far).mean() * 100.0)
+    far_pct = float((np.isinf(far) & (x[:, 1] > crotch)).mean() * 100.0)
     return inside_pct, depth_mm, far_pct
 
 
@@ -227,7 +275,8 @@ def _body_failure(far_pct, inside_pct) -> str:
     """The reason of the first failed check against the body ("" when both pass); shares [%]."""
     if far_pct > FAR_MAX_PCT:
         return (
-            f"off the body: {far_pct:.0f} % of the vertices are more than {FAR_DIST:g} m from it "
+            f"off the body: {far_pct:.0f} % of the vertices are above the crotch and more than "
+            f"{FAR_DIST:g} m from the body "
             f"(bound {FAR_MAX_PCT:g} %)"
         )
     if inside_pct > INSIDE_MAX_PCT:
@@ -246,18 +295,30 @@ def _crotch_height(body) -> float:
     return float(v[m, 1].min()) if m.any() else float(0.5 * (pel[1] + knee))
 
 
-def check_dressed(d, *, body=None, start_height=None) -> DrapeVerdict:
+def check_dressed(d, *, body=None, start_height=None, start_y=None) -> DrapeVerdict:
     """:func:`check_drape` of a :class:`unsew.dress.Dressed` (its sewn mesh, rest shape and SDF).
 
     body: the body it was dressed on (needed: a Dressed does not keep it). start_height: see
     :func:`check_drape`; when None, the mean height of the placed panels that
-    :func:`unsew.dress.dress` records as ``d.stats["start_height"]`` [m] is used.
+    :func:`unsew.dress.dress` records as ``d.stats["start_height"]`` [m] is used. start_y: see
+    :func:`check_drape`; when None, the heights of the placed vertices ``d.x_start`` (n_x, 3) [m]
+    (None when the Dressed has none).
     """
     if body is None:
         raise ValueError("check_dressed needs the body the garment was dressed on")
     if start_height is None:
         start_height = d.stats.get("start_height")
+    x_start = getattr(d, "x_start", None)
+    if start_y is None and x_start is not None:
+        start_y = _float64(x_start)[:, 1]
     m = d.mesh
     return check_drape(
-        d.x, faces=m.faces, uv=m.uv, faces_uv=m.faces_uv, body=body, sdf=d.sdf, start_height=start_height
+        d.x,
+        faces=m.faces,
+        uv=m.uv,
+        faces_uv=m.faces_uv,
+        body=body,
+        sdf=d.sdf,
+        start_height=start_height,
+        start_y=start_y,
     )
