@@ -29,6 +29,12 @@ docs/true_patterns.md from all the rows in OUT.
     python -m benchmarks true_patterns --gcd [--cases DIR] [--only gc_s1_000 ...] [--out DIR] [--redo]
     python -m benchmarks true_patterns --gcd --seams       # and each garment's most stretched edges
     python -m benchmarks true_patterns --gcd --record      # the table from the rows in OUT
+
+With ``--designs`` drafts of unsew's own design space (``unsew.pattern.design``) instead, dressed
+on the default body (``_design_dress.py``: the start's widest seam, the verdict, the seam left open,
+stretch, inside):
+
+    python -m benchmarks true_patterns --designs [--edge-length 0.04] [--only NAME ...]
 """
 
 from __future__ import annotations
@@ -476,6 +482,10 @@ def _dress_foreign(args) -> tuple[list[dict], list[dict]]:
 
 
 def main() -> None:
+    if "--designs" in sys.argv[1:]:
+        from _design_dress import main as designs
+
+        raise SystemExit(designs([a for a in sys.argv[1:] if a != "--designs"]))
     args = _parse()
     from tables import print_table
 

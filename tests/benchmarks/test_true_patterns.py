@@ -99,3 +99,17 @@ def test_gcd_small_mode_dresses_a_case_resumes_and_records(tmp_path, monkeypatch
     rec = json.loads(results.read_text())
     assert [r["case"] for r in rec["rows"]] == ["gc_s1_000", "gc_s1_001"]
     assert rec["rows"][0]["good"] == "yes" and rec["rows"][1]["good"] == "no"
+
+
+def test_designs_mode_dresses_a_drafted_skirt(capsys):
+    """``true_patterns --designs``: a four-gore pencil skirt of the design space, drafted for the
+    default body on a coarse mesh, is dressed with an ok verdict and nothing inside the body."""
+    designs = load_benchmark("_design_dress")
+    assert designs.main(["--only", "skirt-pencilx4", "--edge-length", "0.06"]) == 0
+    from benchmarks_loader import markdown_rows
+
+    (row,) = markdown_rows(capsys.readouterr().out)
+    assert row["design"] == "skirt-pencilx4"
+    assert row["verdict"] == "ok"
+    assert float(row["inside [%]"]) <= 0.5
+    assert float(row["seam gap [mm]"]) < 10.0

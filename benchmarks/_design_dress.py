@@ -1,4 +1,4 @@
-"""Do drafts of the design space go on the body? Dressing a few designs with unsew.dress.
+"""Drafts of the design space dressed with unsew.dress (``true_patterns --designs``).
 
 Each design is drafted for the default body and placed around it (unsew.body.placement: the
 start's widest seam [mm], the distance between a seam vertex's two copies, and that seam's
@@ -7,13 +7,12 @@ label), dressed (4 cm edges, the dressing's default settings) and judged: the dr
 inverted triangles, the share of vertices inside the body [%], and whether the dressing placed
 the garment again (a sewing fault seen).
 
-    python -m benchmarks design_dress [--edge-length 0.04] [--only NAME ...]
+    python -m benchmarks true_patterns --designs [--edge-length 0.04] [--only NAME ...]
 """
 
 from __future__ import annotations
 
 import argparse
-import sys
 import time
 
 #: The designs dressed: Design fields.
@@ -50,7 +49,11 @@ def _start_gap(pattern, body, sdf, edge_length: float) -> tuple[float, str]:
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        prog="true_patterns --designs",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     ap.add_argument("--edge-length", type=float, default=0.04, help="mesh edge length [m]")
     ap.add_argument("--only", nargs="*", default=None, help="design names to dress (default: all)")
     args = ap.parse_args(argv)
@@ -88,7 +91,3 @@ def main(argv=None) -> int:
             flush=True,
         )
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
