@@ -702,7 +702,45 @@ def cmd_types(args) -> int:
     print_table(rows, title=f"Garment type read off the targets in {root}")
     right = sum(r["right"] == "yes" for r in rows)
     print(f"\n{right} of {len(rows)} read right")
+    by = _types_by_garment(rows)
+    print_table(by, title="Per garment type")
+    if args.record:
+        import subprocess
+
+        commit = subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+        ).stdout
+        rec = {
+            "title": "Garment type read off the foreign targets (meta.json's type not given to the reading)",
+            "command": "python -m benchmarks foreign types --record",
+            "commit": commit.strip() or "?",
+            "rows": by,
+        }
+        out = HERE.parent / "results" / "garment_types.json"
+        out.write_text(json.dumps(rec, indent=1) + "\n")
+        print(f"wrote {out}")
     return 0
+
+
+def _types_by_garment(rows: list[dict]) -> list[dict]:
+    """Per true garment type: cases, read right, and what the misread ones read as; then all."""
+    from collections import Counter
+
+    out = []
+    for g in sorted({r["true"] for r in rows}):
+        rs = [r for r in rows if r["true"] == g]
+        wrong = Counter(r["read"] for r in rs if r["right"] != "yes")
+        out.append(
+            {
+                "garment": g,
+                "cases": len(rs),
+                "read right": sum(r["right"] == "yes" for r in rs),
+                "misread as": ", ".join(f"{k} ({n})" for k, n in sorted(wrong.items())) or "-",
+            }
+        )
+    right = sum(r["right"] == "yes" for r in rows)
+    out.append({"garment": "all", "cases": len(rows), "read right": right, "misread as": "-"})
+    return out
 
 
 def main(argv=None):
@@ -735,6 +773,9 @@ def main(argv=None):
     ty = sub.add_parser("types", help="the garment type read off each target against meta.json's")
     ty.add_argument("--cases", nargs="*")
     ty.add_argument("--dir", default=str(HERE / "cases"))
+    ty.add_argument(
+        "--record", action="store_true", help="write the per-type table to results/garment_types.json"
+    )
     ty.set_defaults(func=cmd_types)
     args = ap.parse_args(argv)
     return args.func(args)

@@ -6,6 +6,7 @@
     python -m benchmarks gcd score --results RESULTS_DIR [--cases DIR] [--record]
     python -m benchmarks gcd floor-fitted --results DIR [--record]   the material-fitted floor
     python -m benchmarks gcd status [--out DIR]    every case's build status
+    python -m benchmarks gcd types [--out DIR] [--drapes DIR] [--record]   the design read off the targets
     python -m benchmarks gcd judge-check           the judge on synthetic inputs (seconds)
 
 ``build`` samples GarmentCode's designs (seed k sized to and draped on body k of manifest.json),
@@ -33,6 +34,7 @@ import build  # noqa: E402  (this folder on the path first)
 import score  # noqa: E402
 
 RESULTS = HERE / "results.json"
+TYPES_RECORD = HERE.parent / "results" / "gcd_types.json"
 DEFAULT_CASES = HERE / "cases"
 
 
@@ -112,70 +114,27 @@ def cmd_status(args) -> int:
     return 0
 
 
-def _neckline_truth(case: Path) -> tuple[str, str] | None:
-    """The design's front and back neckline, "v" for GarmentCode's VNeckHalf and "round" for any
-    other shape; None when the design has no bodice."""
-    import yaml
-
-    design = yaml.safe_load((case / "design_params.yaml").read_text()) or {}
-    collar = (design.get("design") or design).get("collar") or {}
-    shapes = [
-        (collar.get(k) or {}).get("v") if isinstance(collar.get(k), dict) else collar.get(k)
-        for k in ("f_collar", "b_collar")
-    ]
-    if not all(shapes):
-        return None
-    return tuple("v" if sh == "VNeckHalf" else "round" for sh in shapes)
-
-
 def cmd_types(args) -> int:
-    """The garment type and a top's neckline read off each written case's target by unsew (what
-    ``unsew fit`` does when meta.json names no type) against the design's truth."""
-    from tables import print_table
+    """The garment type and structural choices read off each case's target by unsew (what
+    ``unsew fit`` does when meta.json names no type) against the design's truth (reading.py)."""
+    import reading
 
-    from unsew.body.case import load_case
-    from unsew.errors import InputError
-    from unsew.grading.garment_type import read_garment_type, read_necklines
+    ids = [cid for cid, _, _ in build.case_ids()]
+    return reading.cmd_types(args, ids, TYPES_RECORD)
 
-    root = Path(args.out)
-    recs = json.loads((root / "build.json").read_text()) if (root / "build.json").is_file() else {}
-    rows = []
-    for cid, _, _ in build.case_ids():
-        d = root / cid
-        if not (d / "target.obj").is_file() or not (d / "truth.json").is_file():
-            continue
-        truth = json.loads((d / "truth.json").read_text())
-        row = {
-            "case": cid,
-            "build": recs.get(cid, {}).get("status", "?"),
-            "true type": truth["type"],
-            "read type": "",
-            "type right": "",
-            "true neckline": "",
-            "read neckline": "",
-        }
-        try:
-            case = load_case(d)
-            r = read_garment_type(case.target_verts, case.target_faces, case.body.skeleton)
-        except InputError as exc:
-            rows.append({**row, "read type": "refused", "type right": "no", "why": str(exc)[:80]})
-            continue
-        row.update({"read type": r.garment, "type right": "yes" if r.garment == truth["type"] else "no"})
-        want = _neckline_truth(d) if truth["type"] in ("tshirt", "dress") else None
-        if want is not None and r.garment in ("tshirt", "dress"):
-            got = read_necklines(case.target_verts, case.target_faces, case.body.skeleton)[0]
-            row.update({"true neckline": "/".join(want), "read neckline": "/".join(got)})
-        rows.append({**row, "why": r.reason[:80]})
-    print_table(rows, title=f"Garment type read off the targets in {root}")
-    for which in ("built", None):
-        rs = [r for r in rows if which is None or r["build"] == which]
-        necks = [r for r in rs if r["read neckline"]]
-        print(
-            f"{'built cases' if which else 'all written cases'}: type right on "
-            f"{sum(r['type right'] == 'yes' for r in rs)} of {len(rs)}; necklines right on "
-            f"{sum(r['read neckline'] == r['true neckline'] for r in necks)} of {len(necks)}"
-        )
-    return 0
+
+def _add_types_parser(sub) -> None:
+    """The ``types`` subcommand's options."""
+    ty = sub.add_parser(
+        "types", help="the garment type and structural choices read off each case's target against its truth"
+    )
+    ty.add_argument("--out", default=str(DEFAULT_CASES))
+    ty.add_argument(
+        "--drapes", help="folder of `unsew drape` results of the true patterns (<case>.obj): stand-in targets"
+    )
+    ty.add_argument(
+        "--record", action="store_true", help="write the table to benchmarks/results/gcd_types.json"
+    )
 
 
 def main(argv=None) -> int:
@@ -214,10 +173,7 @@ def main(argv=None) -> int:
     sub.add_parser("judge-check", help="the judge on synthetic inputs")
     st = sub.add_parser("status", help="table of every case's build status")
     st.add_argument("--out", default=str(DEFAULT_CASES))
-    ty = sub.add_parser(
-        "types", help="the garment type and neckline read off each case's target against its truth"
-    )
-    ty.add_argument("--out", default=str(DEFAULT_CASES))
+    _add_types_parser(sub)
     args = ap.parse_args(argv)
     if args.cmd == "types":
         return cmd_types(args)

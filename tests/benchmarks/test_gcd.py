@@ -109,8 +109,11 @@ def test_pattern_errors_zero_on_itself_and_grow_with_a_panel_made_larger(judge):
 def _design(meta, **params):
     d = {"meta": {k: {"v": v} for k, v in meta.items()}}
     for key, v in params.items():
-        group, _, name = key.partition("__")
-        d.setdefault(group, {})[name] = {"v": v}
+        *groups, name = key.split("__")
+        node = d
+        for g in groups:
+            node = node.setdefault(g, {})
+        node[name] = {"v": v}
     import yaml
 
     return yaml.safe_dump({"design": d})
@@ -237,16 +240,37 @@ def test_summary_counts_every_case_and_takes_medians_over_the_fitted():
     assert score.summary(rec)["floor_fitted_median"] == 3.0
 
 
-def test_the_neckline_truth_is_the_designs_front_and_back(tmp_path):
-    """``gcd types`` judges a read neckline against the design: GarmentCode's VNeckHalf is a V,
-    every other shape round; a design without a bodice has none."""
-    run = _load("run")
-    (tmp_path / "design_params.yaml").write_text(
-        "design:\n  collar:\n    f_collar: {v: VNeckHalf}\n    b_collar: {v: CircleNeckHalf}\n"
-    )
-    assert run._neckline_truth(tmp_path) == ("v", "round")
-    (tmp_path / "design_params.yaml").write_text("design:\n  waistband: {waist: {v: 1.0}}\n")
-    assert run._neckline_truth(tmp_path) is None
+def test_the_types_table_reads_newton_targets_and_stands_in_unsews_drapes(tmp_path):
+    """``gcd types``: a built case is read off its newton target; one that failed its checks off
+    unsew's drape of its true pattern when there is one, else off the failed target; a case
+    with neither has no row. The summary counts only choices the design has."""
+    reading = _load("reading")
+    root, drapes = tmp_path / "cases", tmp_path / "drapes"
+    for cid in ("gc_a", "gc_b", "gc_c"):
+        (root / cid).mkdir(parents=True)
+    (root / "gc_a" / "target.obj").write_text("")
+    (root / "gc_b" / "target.obj").write_text("")
+    drapes.mkdir()
+    (drapes / "gc_b.obj").write_text("")
+    (root / "build.json").write_text(json.dumps({"gc_a": {"status": "built"}, "gc_b": {"status": "failed"}}))
+    assert reading.target_of(root, "gc_a", drapes)[0] == "newton"
+    assert reading.target_of(root, "gc_b", drapes)[0] == "unsew"
+    assert reading.target_of(root, "gc_b", None)[0] == "newton-failed"
+    assert reading.target_of(root, "gc_c", drapes) is None
+    t = {"type": "skirt", "sleeves": None, "neck_front": None, "neck_back": None, "collar": None}
+    t.update(skirt="flared", length="knee", cuffs=False, waistband=True)
+
+    class Read:
+        garment = "skirt"
+        evidence = {}
+
+        def choices(self):
+            return {"sleeves": None, "neck_front": None, "neck_back": None, "collar": None}
+
+    row = reading.row_of("gc_a", "newton", t, Read())
+    assert row["skirt"] == "flared (read -)" and row["type"] == "skirt"
+    s = reading.summary([row])
+    assert s["type"] == (1, 1) and s["skirt"] == (0, 1) and s["sleeves"] == (0, 0) and s["choices"] == (0, 2)
 
 
 def test_a_type_is_given_only_where_meta_or_the_config_names_one():
@@ -255,3 +279,36 @@ def test_a_type_is_given_only_where_meta_or_the_config_names_one():
     assert score.type_given({}, "unsew_version: 0.1.0\nconfig:\n  base: shorts\n")
     assert score.type_given({"garment": "skirt"}, "")
     assert not score.type_given({}, "")
+
+
+def test_truth_reads_the_structural_choices(truth):
+    """The design's choices as classes: sleeve length, neckline halves by their drawn corner,
+    skirt kind by the hem's flare, and no neckline scored under a collar piece."""
+    base = {"upper": "FittedShirt", "bottom": "SkirtCircle", "wb": None}
+    t = truth.design_of(
+        _design(
+            base,
+            sleeve__sleeveless=False,
+            sleeve__length=0.3,
+            collar__f_collar="VNeckHalf",
+            collar__b_collar="CircleNeckHalf",
+            collar__fc_depth=0.6,
+            collar__width=0.2,
+            **{"flare-skirt__suns": 1.0, "flare-skirt__length": 0.5},
+        )
+    )
+    assert (t["sleeves"], t["neck_front"], t["neck_back"]) == ("short", "v", "round")
+    assert (t["skirt"], t["length"], t["collar"]) == ("flared", "knee", "none")
+    t = truth.design_of(
+        _design(
+            {"upper": "Shirt", "bottom": "PencilSkirt", "wb": None},
+            sleeve__sleeveless=True,
+            collar__f_collar="SquareNeckHalf",
+            collar__b_collar="CircleNeckHalf",
+            collar__component__style="Hood2Panels",
+            **{"pencil-skirt__flare": 1.0, "pencil-skirt__length": 0.2},
+        )
+    )
+    assert (t["sleeves"], t["skirt"], t["collar"]) == ("none", "pencil", "hood")
+    assert t["neck_front"] is None and t["length"] is None  # under a hood; under a loose shirt
+    assert truth.neck_corner_deg(np.array([[0.0, 0.0], [10.0, -10.0]])) == pytest.approx(90.0, abs=1.0)

@@ -32,6 +32,7 @@ def test_the_type_is_read_and_noted():
     case = with_garment_read(_case("skirt_aline_knee__default"), FitConfig(), log=said.append)
     assert case.garment == "skirt"
     assert said and said[0] in case.notes and "skirt" in said[0]
+    assert said[1].startswith("read: skirt") and "length" in said[1]  # the design read, with its evidence
 
 
 def test_a_named_base_or_type_is_left_alone():

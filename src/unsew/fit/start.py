@@ -33,6 +33,7 @@ from unsew.fit.progress import Progress
 from unsew.fit.scene import Scene
 from unsew.fit.target import Target
 from unsew.grading.contours import place_contours
+from unsew.grading.design_reading import read_design
 from unsew.grading.garment_type import V_ANGLE_DEG, read_garment_type, read_necklines
 from unsew.grading.grade import GradingSettings, grade
 from unsew.io.garmentcode import load_pattern
@@ -111,6 +112,7 @@ def with_garment_read(case, cfg: FitConfig, *, log=print):
     if case.garment or cfg.base:
         return case
     reading = read_garment_type(case.target_verts, case.target_faces, case.body.skeleton)
+    design = read_design(case.target_verts, case.target_faces, case.body.skeleton, reading=reading)
     note = f"garment type read off the target: {reading.garment}: {reading.reason}"
     if reading.garment not in BASES:
         raise InputError(
@@ -118,6 +120,7 @@ def with_garment_read(case, cfg: FitConfig, *, log=print):
             f"{reading.garment} base: pass --base P.json"
         )
     log(note)
+    log(design.summary())
     return dataclasses.replace(case, garment=reading.garment, garment_note=note)
 
 

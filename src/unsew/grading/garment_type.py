@@ -29,11 +29,15 @@ LIMB_END = 0.08
 #: Fraction of the way from the hip joints up to the shoulder joints above which a garment covers
 #: the chest: a skirt's or trousers' waistband stays below it, a bodice reaches above it.
 CHEST_LEVEL = 0.7
-#: Fraction of the way from the hip joints down to the knees below which an upper garment's hem
-#: makes it a dress rather than a top.
-DRESS_HEM = 0.5
-#: Leg openings higher than this [m] under the knee joints are shorts', lower ones trousers'.
-TROUSER_BELOW_KNEE = 0.08
+#: An upper garment whose hem hangs further below the shoulder joints than this many times the
+#: shoulders' height above the hip joints is a dress rather than a top (docs/decisions/019).
+DRESS_DROP = 1.25
+#: The hem's height: this percentile of its vertices' heights (a flared hem folds up and down).
+HEM_PERCENTILE = 10.0
+#: Leg openings further below the waist opening than this many times the hip joints' height above
+#: the knees are trousers', nearer ones shorts' (measured from the garment's own waist, so a waist
+#: that slid down leaves the reading as it was; docs/decisions/019).
+TROUSER_DROP = 1.8
 #: A neckline half (front or back) is a V when, seen from the front, its lowest point turns by
 #: less than this angle [deg] between the loop's points a third of the neckline's width along it
 #: either way (a round neckline's bottom: about 140 degrees; a V's point: 2 atan(half width / depth)).
@@ -49,8 +53,8 @@ class GarmentReading:
     garment: one of :data:`READ_TYPES`; reason: one line saying why.
     legs, arms: openings found round the left and right leg / arm, (left, right).
     torso: number of openings round the torso (waist, hem, neckline).
-    top_y, hem_y: the garment's highest point and its lowest torso opening's centre height [m]
-    (hem_y NaN without a torso opening).
+    top_y, hem_y: the garment's highest point and its lowest torso opening's height [m]
+    (:data:`HEM_PERCENTILE` of its vertices; NaN without a torso opening).
     """
 
     garment: str
@@ -132,7 +136,12 @@ def read_garment_type(verts, faces, skeleton, *, contours=None) -> GarmentReadin
     arms = (int((on["left_arm"] & arm).sum()), int((on["right_arm"] & arm).sum()))
     hip_y, knee_y = _mid_y(skeleton, "hip"), _mid_y(skeleton, "knee")
     top_y = float(v[:, 1].max())
-    hem_y = float(centres[torso, 1].min()) if torso.any() else float("nan")
+    hem_y, waist_y = float("nan"), float("nan")
+    if torso.any():
+        t = np.flatnonzero(torso)
+        low = int(t[np.argmin(centres[t, 1])])
+        hem_y = float(np.percentile(v[np.asarray(loops[low].indices), 1], HEM_PERCENTILE))
+        waist_y = float(centres[t, 1].max())
     chest = _chest_y(skeleton)
     upper = bool(any(arms)) or top_y > chest
     said = (
@@ -140,17 +149,16 @@ def read_garment_type(verts, faces, skeleton, *, contours=None) -> GarmentReadin
         f"top {100 * (top_y - chest):+.0f} cm from the chest line"
     )
     leg_y = float(centres[leg, 1].mean()) if leg.any() else float("nan")
-    garment, why = _type_of(min(legs) >= 1, upper, leg_y, hem_y, hip_y, knee_y, said)
-    return GarmentReading(
-        garment,
-        why,
-        legs,
-        arms,
-        int(torso.sum()),
-        top_y,
-        hem_y,
-        {"hip_y": hip_y, "knee_y": knee_y, "chest_y": chest},
-    )
+    heights = {
+        "hip_y": hip_y,
+        "knee_y": knee_y,
+        "chest_y": chest,
+        "shoulder_y": _mid_y(skeleton, "shoulder"),
+        "waist_y": waist_y,
+        "leg_y": leg_y,
+    }
+    garment, why = _type_of(min(legs) >= 1, upper, hem_y, heights, said)
+    return GarmentReading(garment, why, legs, arms, int(torso.sum()), top_y, hem_y, heights)
 
 
 def _openings_by_part(v: np.ndarray, loops, centres: np.ndarray, skeleton):
@@ -165,29 +173,44 @@ def _openings_by_part(v: np.ndarray, loops, centres: np.ndarray, skeleton):
         for limb in ("arm", "leg"):
             # round this limb, with the other side's limb outside the loop
             on[f"{side}_{limb}"] = (dist[f"{side}_{limb}"] < near) & (dist[f"{other}_{limb}"] > radii)
+    if not (on["left_leg"].any() and on["right_leg"].any()):
+        # a loop round one leg alone is a hem hanging to one side (legs' openings come in pairs)
+        on["left_leg"] = on["right_leg"] = np.zeros(len(loops), dtype=bool)
     leg = on["left_leg"] | on["right_leg"]
     arm = (on["left_arm"] | on["right_arm"]) & ~leg
     return leg, arm, on
 
 
-def _type_of(split: bool, upper: bool, leg_y: float, hem_y: float, hip_y: float, knee_y: float, said: str):
+def _type_of(split: bool, upper: bool, hem_y: float, h: dict, said: str):
     """(garment type, why in words) from the openings: round both legs (``split``), a bodice
-    (``upper``), the legs' openings' mean height ``leg_y``, the lowest torso opening ``hem_y``
-    and the hip and knee heights [m]; ``said``: the openings counted, for the reason."""
+    (``upper``), the lowest torso opening's height ``hem_y`` and the heights ``h`` [m] (joints:
+    "hip_y", "knee_y", "shoulder_y"; openings: "waist_y" the highest torso one, "leg_y" the legs'
+    mean); ``said``: the openings counted, for the reason."""
     if split and upper:
         return "jumpsuit", f"openings round both legs and a bodice ({said})"
+    thigh = h["hip_y"] - h["knee_y"]  # [m]
     if split:
-        garment = "pants" if leg_y < knee_y - TROUSER_BELOW_KNEE else "shorts"
-        return garment, f"openings round both legs {100 * (leg_y - knee_y):+.0f} cm from the knees ({said})"
-    if upper:
-        dress_line = hip_y - DRESS_HEM * (hip_y - knee_y)
-        garment = "dress" if np.isfinite(hem_y) and hem_y < dress_line else "tshirt"
-        why = (
-            f"a bodice with its hem {100 * (hem_y - dress_line):+.0f} cm from mid-thigh ({said})"
-            if np.isfinite(hem_y)
-            else f"a bodice ({said})"
+        if np.isfinite(h["waist_y"]):
+            drop = (h["waist_y"] - h["leg_y"]) / thigh
+            garment = "pants" if drop > TROUSER_DROP else "shorts"
+            return garment, (
+                f"openings round both legs {drop:.2f} x hip-to-knee below the waist opening "
+                f"(trousers past {TROUSER_DROP}; {said})"
+            )
+        garment = "pants" if h["leg_y"] < h["knee_y"] else "shorts"
+        return (
+            garment,
+            f"openings round both legs {100 * (h['leg_y'] - h['knee_y']):+.0f} cm from the knees ({said})",
         )
-        return garment, why
+    if upper:
+        if not np.isfinite(hem_y):
+            return "tshirt", f"a bodice ({said})"
+        drop = (h["shoulder_y"] - hem_y) / (h["shoulder_y"] - h["hip_y"])
+        garment = "dress" if drop >= DRESS_DROP else "tshirt"
+        return garment, (
+            f"a bodice with its hem {drop:.2f} x shoulder-to-hip below the shoulders "
+            f"(a dress from {DRESS_DROP}; {said})"
+        )
     return "skirt", f"one tube round the hips and legs ({said})"
 
 
@@ -230,6 +253,14 @@ def _half_is_v(pts: np.ndarray, width: float) -> tuple[bool, float]:
     return ang < V_ANGLE_DEG, ang
 
 
+def _half_run(side: np.ndarray) -> np.ndarray:
+    """Indices of a loop's points where ``side`` (k,) bool holds, in loop order as one run (the
+    walk starts just after a point of the other side)."""
+    start = int(np.flatnonzero(~side)[0]) if (~side).any() else 0
+    order = np.roll(np.arange(len(side)), -start)
+    return order[side[order]]
+
+
 def read_necklines(verts, faces, skeleton, *, contours=None) -> tuple[tuple[str, str], dict]:
     """The front and back neckline shapes of a top or dress, each ``"round"`` or ``"v"``
     (:data:`unsew.pattern.base.tshirt.NECKLINES`), and what they were read from: ``{"front_deg",
@@ -252,11 +283,7 @@ def read_necklines(verts, faces, skeleton, *, contours=None) -> tuple[tuple[str,
         if side.sum() < 5:
             out.append("round")
             continue
-        # the half as one run of the loop: start just after a point of the other half
-        start = int(np.flatnonzero(~side)[0]) if (~side).any() else 0
-        order = np.roll(np.arange(len(p)), -start)
-        run = order[side[order]]
-        is_v, ang = _half_is_v(p[run][:, :2], width)
+        is_v, ang = _half_is_v(p[_half_run(side)][:, :2], width)
         out.append("v" if is_v else "round")
         said[f"{name}_deg"] = round(ang, 1)
     return (out[0], out[1]), said

@@ -1,0 +1,186 @@
+"""The garment type and structural choices read off each GarmentCode case's target against the
+design's truth (truth.py, from design_params.yaml).
+
+A case's target is its newton drape where the build accepted it (``built`` in build.json);
+otherwise the true pattern dressed by ``unsew drape`` (DRAPES/<case>.obj) stands in for it, and
+where neither exists the newton drape that failed its checks. Each row names its target's source:
+a stand-in is unsew's own drape, so a reading right on it says less than one on newton's.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import warnings
+from pathlib import Path
+
+import truth as gt_truth
+
+#: Choices read off the shape and scored (truth.design_of's keys).
+SCORED = ("sleeves", "neck_front", "neck_back", "collar", "skirt", "length")
+#: Choices in the truth that the reading does not read (listed, not scored).
+NOT_READ = ("cuffs", "waistband")
+SOURCES = {
+    "newton": "newton",
+    "unsew": "unsew drape of the true pattern",
+    "unsew-failed": "unsew drape of the true pattern (failed its check)",
+    "newton-failed": "newton (failed its checks)",
+}
+
+
+def build_status(root: Path, cid: str) -> str:
+    """The case's build status from build.json beside the case folders (following a symlinked
+    case folder to its own root); "?" when none says."""
+    for p in (root / "build.json", (root / cid).resolve().parent / "build.json"):
+        if p.is_file():
+            rec = json.loads(p.read_text()).get(cid)
+            if rec:
+                return rec.get("status", "?")
+    return "?"
+
+
+def target_of(root: Path, cid: str, drapes: Path | None) -> tuple[str, Path] | None:
+    """(source key of :data:`SOURCES`, target mesh path) of a case, or None without any target."""
+    d = root / cid
+    newton = d / "target.obj"
+    if newton.is_file() and build_status(root, cid) == "built":
+        return "newton", newton
+    if drapes is not None:
+        for key, name in (("unsew", f"{cid}.obj"), ("unsew-failed", f"{cid}.failed.obj")):
+            if (drapes / name).is_file():
+                return key, drapes / name
+    if newton.is_file():
+        return "newton-failed", newton
+    return None
+
+
+def read_case(d: Path, target: Path):
+    """The DesignReading of the target mesh ``target`` on case folder ``d``'s body."""
+    from unsew.body.body import load_body
+    from unsew.grading.design_reading import read_design
+    from unsew.io.mesh import read_garment
+
+    skel = d / "skeleton.json"
+    body = load_body(d / "body.obj", skel if skel.is_file() else None)
+    with warnings.catch_warnings():  # a repaired mesh is announced by a warning: not this table's news
+        warnings.simplefilter("ignore")
+        v, f, _ = read_garment(target)
+    return read_design(v, f, body.skeleton)
+
+
+def truth_of(d: Path) -> dict:
+    """{"type", and truth.design_of's choices} of case folder ``d``."""
+    spec = json.loads((d / "pattern_gt.json").read_text())
+    out = gt_truth.design_of((d / "design_params.yaml").read_text(), spec=spec)
+    out["type"] = json.loads((d / "truth.json").read_text())["type"]
+    return out
+
+
+def _cell(true, read) -> str:
+    """A table cell: the true value, and what was read where it differs ("-": no such part)."""
+    t = "-" if true is None else ("yes" if true is True else "no" if true is False else str(true))
+    if read == true:
+        return t
+    return f"{t} (read {'-' if read is None else read})"
+
+
+def row_of(cid: str, source: str, t: dict, r) -> dict:
+    """One table row: case, target source, and true (read) per choice."""
+    row = {"case": cid, "target": source, "type": _cell(t["type"], r.garment if r else "refused")}
+    ch = r.choices() if r is not None else {}
+    for k in SCORED:
+        row[k.replace("_", " ")] = _cell(t[k], ch.get(k))
+    for k in NOT_READ:
+        row[k] = _cell(t[k], t[k])
+    row["evidence"] = "" if r is None else "; ".join(f"{k}: {v}" for k, v in r.evidence.items())[:160]
+    row["_right"] = {"type": r is not None and r.garment == t["type"]}
+    row["_right"].update({k: t[k] == ch.get(k) for k in SCORED if t[k] is not None})
+    return row
+
+
+def summary(rows: list[dict]) -> dict:
+    """{"cases", "type": (right, n), choice: (right, n), "choices": (right, n)} over ``rows``."""
+    out = {"cases": len(rows)}
+    for k in ("type", *SCORED):
+        got = [r["_right"][k] for r in rows if k in r["_right"]]
+        out[k] = (sum(got), len(got))
+    out["choices"] = tuple(sum(out[k][i] for k in SCORED) for i in (0, 1))
+    return out
+
+
+def summary_line(s: dict, what: str) -> str:
+    each = ", ".join(f"{k.replace('_', ' ')} {s[k][0]}/{s[k][1]}" for k in SCORED)
+    return (
+        f"{what}: type right {s['type'][0]}/{s['type'][1]}; {each}; "
+        f"choices right overall {s['choices'][0]}/{s['choices'][1]}"
+    )
+
+
+def summary_row(s: dict, what: str) -> dict:
+    """The summary as a table row (x/N per column)."""
+    row = {
+        "case": what,
+        "target": f"{s['cases']} cases; choices right {s['choices'][0]}/{s['choices'][1]}",
+        "type": f"{s['type'][0]}/{s['type'][1]}",
+    }
+    row.update({k.replace("_", " "): f"{s[k][0]}/{s[k][1]}" for k in SCORED})
+    row.update({k: "not read" for k in NOT_READ})
+    return row
+
+
+def table(root: Path, drapes: Path | None, case_ids: list[str]) -> list[dict]:
+    """One row per case of ``case_ids`` that has a target (see :func:`target_of`)."""
+    from unsew.errors import InputError
+
+    rows = []
+    for cid in case_ids:
+        d = root / cid
+        if not (d / "truth.json").is_file():
+            continue
+        tgt = target_of(root, cid, drapes)
+        if tgt is None:
+            continue
+        try:
+            r = read_case(d, tgt[1])
+        except InputError as exc:
+            r = None
+            print(f"{cid}: the reading refused: {str(exc).splitlines()[0]}", flush=True)
+        rows.append(row_of(cid, SOURCES[tgt[0]], truth_of(d), r))
+    return rows
+
+
+def _commit() -> str:
+    try:
+        out = subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, check=True
+        )
+        return out.stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "?"
+
+
+def cmd_types(args, case_ids: list[str], record: Path) -> int:
+    """Print the table and the summaries; with ``args.record`` write them to ``record``."""
+    from tables import print_table
+
+    root = Path(args.out)
+    drapes = Path(args.drapes) if args.drapes else None
+    rows = table(root, drapes, case_ids)
+    shown = [{k: v for k, v in r.items() if not k.startswith("_")} for r in rows]
+    print_table(shown, title=f"Garment type and structural choices read off the targets in {root}")
+    newton = [r for r in rows if r["target"] == SOURCES["newton"]]
+    lines = [summary_line(summary(rows), f"all {len(rows)} cases")]
+    lines.append(summary_line(summary(newton), f"{len(newton)} newton targets"))
+    print("\n".join(lines))
+    if args.record:
+        all_row, newton_row = summary_row(summary(rows), "all"), summary_row(summary(newton), "newton only")
+        rec = {
+            "title": "GarmentCode design benchmark: the type and structural choices read off each target "
+            "(true, and what was read where it differs)",
+            "command": "python -m benchmarks gcd types --out CASES --drapes DRAPES --record",
+            "commit": _commit(),
+            "rows": [*({k: v for k, v in r.items() if k != "evidence"} for r in shown), all_row, newton_row],
+        }
+        record.write_text(json.dumps(rec, indent=1) + "\n")
+        print(f"wrote {record}")
+    return 0
