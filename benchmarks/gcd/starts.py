@@ -1,0 +1,118 @@
+"""The fit's start on each GarmentCode case when meta.json names no type (none of them does): the
+design read off the target, the designs drafted from it and the one chosen
+(:func:`unsew.fit.start.choose_base` with ``case.design``), against the library's bases of the
+read type chosen as when meta.json names it. Only the base choice runs (each candidate dressed
+from scratch on its coarse mesh), not grading nor phase two.
+
+The target is chosen as in reading.py: newton's drape where the build accepted it, else the true
+pattern dressed by ``unsew drape`` (DRAPES/<case>.obj) stands in.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import time
+import warnings
+from pathlib import Path
+
+import reading as gt_reading
+
+#: The truth's choices shown beside the reading.
+SHOWN = ("sleeves", "neck_front", "neck_back", "collar", "skirt", "length", "waistband", "cuffs")
+
+
+def _case(d: Path, target: Path):
+    """The Case of folder ``d`` with the mesh ``target`` as its target and no garment type."""
+    from unsew.body.body import load_body
+    from unsew.io.case import Case
+    from unsew.io.mesh import read_garment
+
+    skel = d / "skeleton.json"
+    body = load_body(d / "body.obj", skel if skel.is_file() else None)
+    with warnings.catch_warnings():  # a repaired mesh is announced by a warning: not this table's news
+        warnings.simplefilter("ignore")
+        v, f, _ = read_garment(target)
+    return Case(d, "", v, f, body)
+
+
+def _best(choice) -> tuple[str, float | None, float | None]:
+    """(name, distance [mm], torso distance [mm]) of a BaseChoice's chosen candidate."""
+    row = choice.table[0] if choice.table else {}
+    return choice.name, row.get("chamfer_mm"), row.get("torso_mm")
+
+
+def start_row(d: Path, source: str, target: Path, *, log) -> dict:
+    """One case's row: the truth, the design read, the chosen design and the library's choice."""
+    from unsew.errors import InputError
+    from unsew.fit.config import FitConfig
+    from unsew.fit.fit import _scene
+    from unsew.fit.material import AUTO_START_MATERIAL
+    from unsew.fit.progress import Progress
+    from unsew.fit.start import choose_base, with_garment_read
+    from unsew.pattern.base import BASES
+    from unsew.sim.material import get_material
+
+    t = gt_reading.truth_of(d)
+    row = {"case": d.name, "target": source, "true type": t["type"]}
+    row["truth"] = ", ".join(f"{k} {t[k]}" for k in SHOWN if t.get(k) is not None)
+    cfg, mat = FitConfig(), get_material(AUTO_START_MATERIAL)
+    t0 = time.perf_counter()
+    try:
+        case = with_garment_read(_case(d, target), cfg, log=log)
+    except InputError as exc:
+        return {**row, "read": f"refused: {str(exc).splitlines()[0]}"}
+    row["read"] = case.design.summary()
+    scene, _ = _scene(case, cfg, Progress(False), log)
+    design = choose_base(case, scene.target, scene.sdf, cfg, mat, progress=Progress(False), log=log)
+    row["design"], row["design_mm"], row["design_torso_mm"] = _best(design)
+    row["designs"] = [
+        {k: r.get(k) for k in ("base", "chamfer_mm", "torso_mm", "arms", "error")} for r in design.table
+    ]
+    if case.garment in BASES:
+        lib = choose_base(
+            dataclasses.replace(case, design=None),
+            scene.target,
+            scene.sdf,
+            cfg,
+            mat,
+            progress=Progress(False),
+            log=log,
+        )
+        row["library"], row["library_mm"], row["library_torso_mm"] = _best(lib)
+    else:
+        row["library"] = f"no {case.garment} base"
+    row["seconds"] = round(time.perf_counter() - t0, 1)
+    return row
+
+
+def cmd_starts(args, case_ids: list[str], record: Path) -> int:
+    """Print one row per case (``args.only`` or all with a target); with ``args.record`` write
+    the rows to ``record`` after each case."""
+    from tables import print_table
+
+    root = Path(args.out)
+    drapes = Path(args.drapes) if args.drapes else None
+    rows = []
+    for cid in args.only or case_ids:
+        tgt = gt_reading.target_of(root, cid, drapes)
+        if tgt is None or not (root / cid / "truth.json").is_file():
+            continue
+        row = start_row(root / cid, gt_reading.SOURCES[tgt[0]], tgt[1], log=lambda s: print(s, flush=True))
+        rows.append(row)
+        shown = {k: v for k, v in row.items() if k not in ("designs", "truth", "read")}
+        print(json.dumps(shown), flush=True)
+        if args.record:
+            rec = {
+                "title": "GarmentCode cases: the fit's start from designs drafted from the reading "
+                "against the library's bases of the read type (distances on the base choice's coarse mesh)",
+                "command": "python -m benchmarks gcd starts --out CASES --drapes DRAPES --record --only ...",
+                "commit": gt_reading._commit(),
+                "rows": rows,
+            }
+            record.write_text(json.dumps(rec, indent=1) + "\n")
+    cols = ["case", "target", "true type", "design", "design_mm", "design_torso_mm", "library", "library_mm"]
+    print_table(
+        [{k: r.get(k) for k in cols} for r in rows], title=f"The fit's start, type read ({root})", digits=2
+    )
+    return 0
