@@ -1,0 +1,163 @@
+"""The fit's start when meta.json names no garment type: designs drafted from the design read off
+the target (unsew.fit.designs), dressed and compared as the library's bases are."""
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from unsew.body.body import default_body
+from unsew.errors import InputError
+from unsew.fit.config import FitConfig
+from unsew.fit.designs import MAX_CANDIDATES, design_candidates, drafted_candidates
+from unsew.fit.progress import Progress
+from unsew.grading.design_reading import DesignReading
+from unsew.pattern.design import draft
+
+READINGS = {
+    "skirt": DesignReading("skirt", skirt="flared", length="knee", numbers={"flare": 1.9, "hem_share": 0.45}),
+    "skirt_near_edge": DesignReading(
+        "skirt", skirt="pencil", length="knee", numbers={"flare": 1.10, "hem_share": 0.45}
+    ),
+    "dress": DesignReading(
+        "dress",
+        sleeves="short",
+        neck_front="v",
+        neck_back="square",
+        skirt="a-line",
+        length="knee",
+        numbers={"flare": 1.45, "hem_share": 0.5, "sleeve_share": 0.3},
+    ),
+    "tshirt": DesignReading(
+        "tshirt", sleeves="long", neck_front="round", neck_back="v", numbers={"sleeve_share": 0.9}
+    ),
+    "pants": DesignReading("pants", length="below knee", numbers={"hem_share": 0.95}),
+    "shorts": DesignReading("shorts", length="above knee", numbers={"hem_share": 0.2}),
+    "jumpsuit": DesignReading(
+        "jumpsuit",
+        sleeves="none",
+        neck_front="round",
+        neck_back="round",
+        length="below knee",
+        numbers={"hem_share": 0.95, "sleeve_share": 0.0},
+    ),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(READINGS))
+def test_candidates_keep_what_was_read_and_draft(kind):
+    r = READINGS[kind]
+    cands = design_candidates(r)
+    assert 2 <= len(cands) <= MAX_CANDIDATES
+    assert len({d for _, d in cands}) == len(cands) and len({n for n, _ in cands}) == len(cands)
+    for name, d in cands:
+        assert d.garment == r.garment
+        if r.sleeves is not None and kind != "dress":  # no sleeve share near a class edge here
+            assert d.sleeves == r.sleeves, name
+        if r.neck_front is not None:
+            assert (d.neckline_front, d.neckline_back) == (r.neck_front, r.neck_back), name
+        p = draft(d)
+        assert p.name == name and p.panels
+
+
+def test_a_flared_skirt_gets_circle_skirts_of_more_flare_than_an_aline():
+    wide = design_candidates(READINGS["skirt"])
+    assert all(d.skirt == "circle" for _, d in wide)
+    fractions = {d.circle_fraction for _, d in wide}
+    flatter = design_candidates(
+        DesignReading("skirt", skirt="flared", numbers={"flare": 1.55, "hem_share": 0.45})
+    )
+    assert max(d.circle_fraction for _, d in flatter if d.skirt == "circle") < min(fractions)
+    # what the reading cannot see is tried: a waistband and more gores
+    assert {d.waistband for _, d in wide} == {False, True} and len({d.panels for _, d in wide}) > 1
+
+
+def test_a_flare_near_a_class_edge_tries_the_neighbouring_style():
+    styles = {d.skirt for _, d in design_candidates(READINGS["skirt_near_edge"])}
+    assert styles == {"pencil", "aline"}
+    far = DesignReading("skirt", skirt="pencil", numbers={"flare": 1.0, "hem_share": 0.45})
+    assert {d.skirt for _, d in design_candidates(far)} == {"pencil"}
+
+
+def test_the_read_hem_depth_sets_the_length():
+    short, long = (
+        design_candidates(DesignReading("pants", length=c, numbers={"hem_share": s}))[0][1]
+        for c, s in (("knee", 0.5), ("below knee", 0.95))
+    )
+    assert short.leg == "knee" and long.leg == "full" and long.length > short.length + 0.2
+
+
+def test_a_dress_is_tried_in_one_piece_and_as_bodice_and_skirt():
+    cands = design_candidates(READINGS["dress"])
+    assert {d.waist_seam for _, d in cands} == {False, True}
+    assert cands[0][1].sleeves == "short"
+
+
+def test_a_type_outside_the_design_space_is_refused_in_one_line():
+    with pytest.raises(InputError) as e:
+        design_candidates(DesignReading("kimono"))
+    assert "\n" not in str(e.value)
+
+
+def _fake_drapes(monkeypatch, closest: str):
+    """choose_base's drapes replaced by markers: the drape of a candidate lies 10 mm from the
+    target when its name contains ``closest``, else 20 mm; nothing is simulated."""
+    import unsew.fit.start as start_mod
+
+    monkeypatch.setattr(
+        start_mod,
+        "dress",
+        lambda pat, body, **k: SimpleNamespace(
+            x=SimpleNamespace(numpy=lambda: pat.name), mesh=SimpleNamespace(faces=None)
+        ),
+    )
+    monkeypatch.setattr(start_mod, "check_dressed", lambda d, body: SimpleNamespace(ok=True, reason=""))
+    monkeypatch.setattr(start_mod, "arm_openings", lambda x, f, sk, contours=None: (0, 0))
+    return SimpleNamespace(
+        verts=None,
+        faces=None,
+        contours=[],
+        distance_mm=lambda x, f, **k: 10.0 if closest in x else 20.0,
+        band_distance_mm=lambda x, f, sk, lo, hi: 10.0 if closest in x else 20.0,
+    )
+
+
+@pytest.mark.parametrize("kind", ["jumpsuit", "skirt"])
+def test_a_case_without_a_type_chooses_among_the_drafted_designs(monkeypatch, kind):
+    from unsew.fit.start import choose_base
+
+    body = default_body()
+    target = _fake_drapes(monkeypatch, "band" if kind == "skirt" else "hem_flare")
+    case = SimpleNamespace(garment=kind, body=body, design=READINGS[kind])
+    lines = []
+    ch = choose_base(case, target, None, FitConfig(), None, progress=Progress(False), log=lines.append)
+    names = [n for n, _ in design_candidates(READINGS[kind], _measure(body))]
+    assert sorted(r["base"] for r in ch.table) == sorted(names)
+    assert ch.name in names and ("band" if kind == "skirt" else "hem_flare") in ch.name
+    assert ch.pattern.name == ch.name and ch.pattern.unsew["design"]["garment"] == kind
+    assert any(line.startswith("designs drafted from the reading: ") for line in lines)
+    assert f"{ch.name} chosen" in lines[-1]
+    if kind == "skirt":  # a named base wins over the reading
+        ch = choose_base(case, target, None, FitConfig(base="skirt_band"), None, progress=Progress(False))
+        assert ch.name == "skirt_band" and ch.table == []
+
+
+def _measure(body):
+    from unsew.body.measure import measure_body
+
+    return measure_body(body)
+
+
+def test_drafted_candidates_are_sized_to_the_wearer():
+    from unsew.pattern.measurements import Measurements
+
+    small, big = (
+        drafted_candidates(READINGS["pants"], Measurements(hip=h, waist=h - 0.2)) for h in (0.85, 1.15)
+    )
+    assert list(small) == list(big)
+    # the cloth's width, all panels side by side [m]
+    width = [
+        sum(np.ptp(q.vertices[:, 0]) for q in p.panels.values())
+        for p in (next(iter(small.values())), next(iter(big.values())))
+    ]
+    assert width[1] > width[0] + 0.2  # girths 0.3 m apart
