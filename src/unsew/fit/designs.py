@@ -6,8 +6,8 @@ The reading's choices are fixed: the type, the sleeves, the necklines, the hem's
 from the hem's depth as a share of the leg) and the skirt's flare, turned into the cone's angle
 whose drape has that flare (an A-line's ``aline_flare``, a circle's ``circle_fraction``). The
 alternatives are the choices the reading cannot see (a waistband, the number of gores, a dress in
-one piece or a bodice and a skirt, sleeves in two pieces, cuffs) and the neighbouring class where
-the reading lies near a class's edge (:data:`SLEEVE_MARGIN`, :data:`FLARE_MARGIN`). At most
+one piece or a bodice and a skirt, sleeves in two pieces, cuffs), the neighbouring sleeve classes
+and the neighbouring skirt style where the flare lies near a class's edge (:data:`FLARE_MARGIN`). At most
 :data:`MAX_CANDIDATES`, the design as read first; each is dressed and compared as the library's
 bases are (:func:`unsew.fit.start.choose_base`).
 """
@@ -23,12 +23,10 @@ from unsew.pattern.base._band import BAND_HEIGHT
 from unsew.pattern.design import GARMENTS, Design, design_name, draft
 from unsew.pattern.measurements import Measurements
 
-__all__ = ["design_candidates", "drafted_candidates", "MAX_CANDIDATES", "SLEEVE_MARGIN", "FLARE_MARGIN"]
+__all__ = ["design_candidates", "drafted_candidates", "MAX_CANDIDATES", "FLARE_MARGIN"]
 
 #: The most candidates one reading gives (each is one drape on the base choice's coarse mesh).
 MAX_CANDIDATES = 6
-#: A sleeve share within this of a class edge (shares of the arm) adds the neighbouring class.
-SLEEVE_MARGIN = 0.05
 #: A flare within this ratio of a class edge adds the neighbouring skirt style.
 FLARE_MARGIN = 1.06
 #: The reading's necklines as a design's (no neck opening, or none read: round).
@@ -111,16 +109,14 @@ def _top_fields(reading) -> dict:
 
 
 def _top_alternatives(first: Design, reading) -> list[Design]:
-    """The neighbouring sleeve class when the read share lies near a class edge, then two-piece
-    sleeves and cuffs (which the reading cannot see) on a sleeved design."""
-    out = []
-    share = reading.numbers.get("sleeve_share")
-    if share is not None:
-        for edge, (lo, hi) in zip(
-            (ARMHOLE_SHARE, SHORT_SLEEVE_SHARE), (("none", "short"), ("short", "long"))
-        ):
-            if abs(share - edge) <= SLEEVE_MARGIN and first.sleeves in (lo, hi):
-                out.append(first.replace(sleeves=hi if first.sleeves == lo else lo))
+    """The neighbouring sleeve classes, the one whose edge the read share lies nearer first
+    (grading cannot grow or remove a sleeve, and the share of a sleeve hanging off the arm is
+    uncertain), then two-piece sleeves and cuffs (which the reading cannot see) on a sleeved
+    design."""
+    share = reading.numbers.get("sleeve_share", 0.0)
+    edges = {("none", "short"): ARMHOLE_SHARE, ("short", "long"): SHORT_SLEEVE_SHARE}
+    near = sorted((abs(share - e), pair) for pair, e in edges.items() if first.sleeves in pair)
+    out = [first.replace(sleeves=b if first.sleeves == a else a) for _, (a, b) in near]
     if first.sleeves != "none":
         out += [first.replace(sleeve_pieces=2), first.replace(cuffs=True)]
     return out
