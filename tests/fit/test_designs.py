@@ -146,6 +146,10 @@ def test_a_case_without_a_type_chooses_among_the_drafted_designs(monkeypatch, ki
         assert ch.name == "skirt_band" and ch.table == []
 
 
+def torch_finite(x) -> bool:
+    return bool(np.isfinite(x.detach().cpu().numpy()).all())
+
+
 def _measure(body):
     from unsew.body.measure import measure_body
 
@@ -204,9 +208,8 @@ def test_drafted_patterns_are_graded(kind):
     from unsew.pattern.design import Design
     from unsew.sim.material import get_material
 
-    cfg = load_config(
-        **{"drape.edge_length": 0.05, "drape.steps": 8, "drape.sew_steps": 60, "drape.settle_steps": 20}
-    )
+    small = {"drape.edge_length": 0.05, "drape.steps": 8, "drape.sew_steps": 60, "drape.settle_steps": 20}
+    cfg = load_config(**small, **{"loss.target_points": 1500})
     body = default_body()
     sdf, m = BodySDF.build(body), _measure(body)
     base_kw, target_kw = GRADED[kind]
@@ -217,3 +220,52 @@ def test_drafted_patterns_are_graded(kind):
     s = start(draft(Design(**base_kw), m), scene, get_material("cotton"))
     assert s.grade_table and np.isfinite(s.x).all()
     assert target.distance_mm(s.x, s.mesh.faces) < target.distance_mm(s.x_base, s.mesh_base.faces)
+    # and phase two takes the graded pattern: one iteration drapes it and measures a finite loss
+    from unsew.fit.material import MaterialChoice
+    from unsew.fit.optimize import PhaseTwo
+
+    it = PhaseTwo(MaterialChoice(s), target, sdf, cfg).step()
+    assert np.isfinite(it.terms["total"]) and torch_finite(it.x)
+
+
+@pytest.mark.slow
+def test_a_case_folder_without_a_type_starts_from_drafted_designs(tmp_path, monkeypatch):
+    """End to end on the small known-truth t-shirt case with meta.json's garment removed: the type
+    and design are read, designs drafted from the reading are dressed (coarse), one is chosen and
+    the log names them."""
+    import json
+
+    import unsew.fit.start as start_mod
+    from unsew.body.case import load_case
+    from unsew.body.sdf import BodySDF
+    from unsew.fit.config import load_config
+    from unsew.fit.demo import make_truth_case
+    from unsew.fit.target import Target
+    from unsew.sim.material import get_material
+
+    monkeypatch.setattr(start_mod, "BASE_CHOICE_EDGE", 0.06)
+    small = {"drape.edge_length": 0.04, "drape.steps": 8, "drape.sew_steps": 60, "drape.settle_steps": 20}
+    d = make_truth_case(tmp_path / "tshirt", settings=load_config(**small).drape)
+    meta = json.loads((d / "meta.json").read_text())
+    meta.pop("garment")
+    (d / "meta.json").write_text(json.dumps(meta))
+    lines = []
+    case = start_mod.with_garment_read(load_case(d), FitConfig(), log=lines.append)
+    assert case.garment == "tshirt" and case.design is not None
+    ch = start_mod.choose_base(
+        case,
+        Target.of_case(case),
+        BodySDF.build(case.body),
+        FitConfig(),
+        get_material("cotton"),
+        progress=Progress(False),
+        log=lines.append,
+    )
+    names = [n for n, _ in design_candidates(case.design, _measure(case.body))]
+    assert ch.name in names and [r["base"] for r in ch.table if r["base"] in names] == [
+        r["base"] for r in ch.table
+    ]
+    said = "\n".join(lines)
+    assert case.design.summary() in said and "designs drafted from the reading: " + ", ".join(names) in said
+    assert f"{ch.name} chosen" in lines[-1]
+    assert ch.table[0]["chamfer_mm"] is not None and ch.table[0]["arms"]  # the truth has short sleeves
