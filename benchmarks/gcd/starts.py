@@ -88,17 +88,21 @@ def start_row(d: Path, source: str, target: Path, *, log) -> dict:
 
 def cmd_starts(args, case_ids: list[str], record: Path) -> int:
     """Print one row per case (``args.only`` or all with a target); with ``args.record`` write
-    the rows to ``record`` after each case."""
+    the rows into ``record`` after each case (a case's row replaces its earlier one; each row
+    names the commit it was measured at)."""
     from tables import print_table
 
     root = Path(args.out)
     drapes = Path(args.drapes) if args.drapes else None
+    commit = gt_reading._commit()
+    kept = json.loads(record.read_text())["rows"] if args.record and record.is_file() else []
     rows = []
     for cid in args.only or case_ids:
         tgt = gt_reading.target_of(root, cid, drapes)
         if tgt is None or not (root / cid / "truth.json").is_file():
             continue
         row = start_row(root / cid, gt_reading.SOURCES[tgt[0]], tgt[1], log=lambda s: print(s, flush=True))
+        row["commit"] = commit
         rows.append(row)
         shown = {k: v for k, v in row.items() if k not in ("designs", "truth", "read")}
         print(json.dumps(shown), flush=True)
@@ -107,8 +111,7 @@ def cmd_starts(args, case_ids: list[str], record: Path) -> int:
                 "title": "GarmentCode cases: the fit's start from designs drafted from the reading "
                 "against the library's bases of the read type (distances on the base choice's coarse mesh)",
                 "command": "python -m benchmarks gcd starts --out CASES --drapes DRAPES --record --only ...",
-                "commit": gt_reading._commit(),
-                "rows": rows,
+                "rows": [r for r in kept if r["case"] not in {q["case"] for q in rows}] + rows,
             }
             record.write_text(json.dumps(rec, indent=1) + "\n")
     cols = ["case", "target", "true type", "design", "design_mm", "design_torso_mm", "library", "library_mm"]
