@@ -86,6 +86,32 @@ def start_row(d: Path, source: str, target: Path, *, log) -> dict:
     return row
 
 
+def _said(r: dict) -> str:
+    """A candidate's row in words: name, distance [mm], over the torso, arms."""
+    if r.get("chamfer_mm") is None:
+        return f"{r['base']} failed ({r.get('error') or 'no finite distance'})"
+    torso = f" (torso {r['torso_mm']:.2f})" if r.get("torso_mm") is not None else ""
+    return f"{r['base']} {r['chamfer_mm']:.2f}{torso}" + ("" if r.get("arms") else " (arms differ)")
+
+
+def write_record(record: Path, rows: list[dict]) -> None:
+    """Write ``rows`` as a recorded table (benchmarks/report.py's format): each row flat, its
+    candidates in words, the commits the rows were measured at."""
+    flat = [
+        {**r, "designs": "; ".join(map(_said, r["designs"]))} if isinstance(r.get("designs"), list) else r
+        for r in rows
+    ]
+    rec = {
+        "title": "GarmentCode cases, the fit's start when meta.json names no type: designs drafted from the "
+        "design read off the target against the library's bases of the read type (the base choice only; "
+        "distances [mm] on its coarse mesh)",
+        "command": "python -m benchmarks gcd starts --out CASES --drapes DRAPES --record --only ...",
+        "commit": ", ".join(sorted({r.get("commit", "?") for r in flat})) + " (each row names its own)",
+        "rows": flat,
+    }
+    record.write_text(json.dumps(rec, indent=1) + "\n")
+
+
 def cmd_starts(args, case_ids: list[str], record: Path) -> int:
     """Print one row per case (``args.only`` or all with a target); with ``args.record`` write
     the rows into ``record`` after each case (a case's row replaces its earlier one; each row
@@ -107,13 +133,7 @@ def cmd_starts(args, case_ids: list[str], record: Path) -> int:
         shown = {k: v for k, v in row.items() if k not in ("designs", "truth", "read")}
         print(json.dumps(shown), flush=True)
         if args.record:
-            rec = {
-                "title": "GarmentCode cases: the fit's start from designs drafted from the reading "
-                "against the library's bases of the read type (distances on the base choice's coarse mesh)",
-                "command": "python -m benchmarks gcd starts --out CASES --drapes DRAPES --record --only ...",
-                "rows": [r for r in kept if r["case"] not in {q["case"] for q in rows}] + rows,
-            }
-            record.write_text(json.dumps(rec, indent=1) + "\n")
+            write_record(record, [r for r in kept if r["case"] not in {q["case"] for q in rows}] + rows)
     cols = ["case", "target", "true type", "design", "design_mm", "design_torso_mm", "library", "library_mm"]
     print_table(
         [{k: r.get(k) for k in cols} for r in rows], title=f"The fit's start, type read ({root})", digits=2
