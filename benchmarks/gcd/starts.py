@@ -16,6 +16,7 @@ import time
 import warnings
 from pathlib import Path
 
+import numpy as np
 import reading as gt_reading
 
 #: The truth's choices shown beside the reading.
@@ -94,6 +95,28 @@ def _said(r: dict) -> str:
     return f"{r['base']} {r['chamfer_mm']:.2f}{torso}" + ("" if r.get("arms") else " (arms differ)")
 
 
+def summary_row(rows: list[dict]) -> dict:
+    """The cases with both a design and a library choice: on how many the chosen design lies closer
+    on the distance the choice is made on (over the torso for dresses), and the means [mm]."""
+    both = [r for r in rows if r.get("design_mm") is not None and r.get("library_mm") is not None]
+    key = [
+        ("design_torso_mm", "library_torso_mm")
+        if r.get("design_torso_mm") is not None
+        else ("design_mm", "library_mm")
+        for r in both
+    ]
+    closer = sum(r[a] < r[b] for r, (a, b) in zip(both, key))
+    same = sum(r[a] == r[b] for r, (a, b) in zip(both, key))
+    drafted_only = sum(1 for r in rows if r.get("design_mm") is not None and r.get("library_mm") is None)
+    return {
+        "case": "all",
+        "target": f"{len(rows)} cases",
+        "design": f"closer on {closer} of {len(both)} (as close on {same}); {drafted_only} without a base",
+        "design_mm": float(np.mean([r["design_mm"] for r in both])) if both else None,
+        "library_mm": float(np.mean([r["library_mm"] for r in both])) if both else None,
+    }
+
+
 def write_record(record: Path, rows: list[dict]) -> None:
     """Write ``rows`` as a recorded table (benchmarks/report.py's format): each row flat, its
     candidates in words, the commits the rows were measured at."""
@@ -107,7 +130,8 @@ def write_record(record: Path, rows: list[dict]) -> None:
         "distances [mm] on its coarse mesh)",
         "command": "python -m benchmarks gcd starts --out CASES --drapes DRAPES --record --only ...",
         "commit": ", ".join(sorted({r.get("commit", "?") for r in flat})) + " (each row names its own)",
-        "rows": flat,
+        "rows": [r for r in flat if r["case"] != "all"]
+        + [summary_row([r for r in flat if r["case"] != "all"])],
     }
     record.write_text(json.dumps(rec, indent=1) + "\n")
 
