@@ -65,7 +65,10 @@ def start_row(d: Path, source: str, target: Path, *, log) -> dict:
         return {**row, "read": f"refused: {str(exc).splitlines()[0]}"}
     row["read"] = case.design.summary()
     scene, _ = _scene(case, cfg, Progress(False), log)
-    design = choose_base(case, scene.target, scene.sdf, cfg, mat, progress=Progress(False), log=log)
+    try:
+        design = choose_base(case, scene.target, scene.sdf, cfg, mat, progress=Progress(False), log=log)
+    except InputError as exc:
+        return {**row, "design": f"refused: {str(exc).splitlines()[0][:200]}"}
     row["design"], row["design_mm"], row["design_torso_mm"] = _best(design)
     row["designs"] = [
         {k: r.get(k) for k in ("base", "chamfer_mm", "torso_mm", "arms", "error")} for r in design.table

@@ -252,6 +252,11 @@ def choose_base(
         rows.append(row)
         if row.get("chamfer_mm") is not None:
             patterns[name] = pat
+    if not patterns and reading is not None and case.garment in BASES:  # no drafted design dresses here
+        log(
+            f"no design drafted from the reading could be dressed; the library's {case.garment} bases instead"
+        )
+        return choose_base(_without_design(case), target, sdf, cfg, material, progress=progress, log=log)
     _require_one_dressed(rows, patterns, case.garment)
     on_torso = bool(band) and all(r.get("torso_mm") is not None for r in rows if r["base"] in patterns)
     # the arms agreeing first, when any candidate's do; then the closest (over the torso when
@@ -292,6 +297,13 @@ def _candidates(case, target: Target, cfg: FitConfig, m, log) -> tuple[str, list
         return make_base_pattern(name, m, waist_point=cfg.side_seams == "girth", necklines=necklines)
 
     return garment, bases_for(garment), make
+
+
+def _without_design(case):
+    """``case`` without its design reading: the library's bases of its garment type are its candidates."""
+    if dataclasses.is_dataclass(case):
+        return dataclasses.replace(case, design=None)
+    return type(case)(**{**vars(case), "design": None})
 
 
 def _require_one_dressed(rows: list, patterns: dict, garment: str) -> None:
