@@ -269,3 +269,24 @@ def test_a_case_folder_without_a_type_starts_from_drafted_designs(tmp_path, monk
     assert case.design.summary() in said and "designs drafted from the reading: " + ", ".join(names) in said
     assert f"{ch.name} chosen" in lines[-1]
     assert ch.table[0]["chamfer_mm"] is not None and ch.table[0]["arms"]  # the truth has short sleeves
+
+
+def test_when_no_drafted_design_dresses_the_library_bases_are_chosen_among(monkeypatch):
+    import unsew.fit.start as start_mod
+    from unsew.pattern.base import bases_for
+
+    target = _fake_drapes(monkeypatch, "band")
+    # every drafted design (named garment-choices...) falls off the body; the library's bases dress
+    monkeypatch.setattr(
+        start_mod,
+        "check_dressed",
+        lambda d, body: SimpleNamespace(ok="-" not in d.x.numpy(), reason="fallen off the body"),
+    )
+    case = SimpleNamespace(garment="skirt", body=default_body(), design=READINGS["skirt"])
+    lines = []
+    ch = start_mod.choose_base(
+        case, target, None, FitConfig(), None, progress=Progress(False), log=lines.append
+    )
+    assert ch.name in bases_for("skirt") and "band" in ch.name
+    assert sorted(r["base"] for r in ch.table) == sorted(bases_for("skirt"))
+    assert any("the library's skirt bases instead" in line for line in lines)
