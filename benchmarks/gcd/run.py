@@ -8,6 +8,7 @@
     python -m benchmarks gcd status [--out DIR]    every case's build status
     python -m benchmarks gcd types [--out DIR] [--drapes DIR] [--record]   the design read off the targets
     python -m benchmarks gcd judge-check           the judge on synthetic inputs (seconds)
+    python -m benchmarks gcd starts [--out DIR] [--drapes DIR] [--only ...] [--record]   the start, type read
 
 ``build`` samples GarmentCode's designs (seed k sized to and draped on body k of manifest.json),
 drapes each with newton from the specification's own 3D placement and writes the case folders
@@ -32,9 +33,11 @@ sys.path.insert(0, str(HERE.parent))
 
 import build  # noqa: E402  (this folder on the path first)
 import score  # noqa: E402
+import starts  # noqa: E402
 
 RESULTS = HERE / "results.json"
 TYPES_RECORD = HERE.parent / "results" / "gcd_types.json"
+STARTS_RECORD = HERE.parent / "results" / "gcd_starts.json"
 DEFAULT_CASES = HERE / "cases"
 
 
@@ -137,6 +140,19 @@ def _add_types_parser(sub) -> None:
     )
 
 
+def _add_starts_parser(sub) -> None:
+    """The ``starts`` subcommand's options."""
+    st = sub.add_parser(
+        "starts", help="the design read, the drafted candidates chosen, against the library's"
+    )
+    st.add_argument("--out", default=str(DEFAULT_CASES))
+    st.add_argument("--drapes", help="folder of `unsew drape` results of the true patterns: stand-in targets")
+    st.add_argument("--only", nargs="*", help="case ids (default: every case with a target)")
+    st.add_argument(
+        "--record", action="store_true", help="write the rows to benchmarks/results/gcd_starts.json"
+    )
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m benchmarks gcd", description=__doc__.splitlines()[0])
     ap.add_argument("--summary", action="store_true", help="one JSON line of the recorded results")
@@ -174,9 +190,12 @@ def main(argv=None) -> int:
     st = sub.add_parser("status", help="table of every case's build status")
     st.add_argument("--out", default=str(DEFAULT_CASES))
     _add_types_parser(sub)
+    _add_starts_parser(sub)
     args = ap.parse_args(argv)
     if args.cmd == "types":
         return cmd_types(args)
+    if args.cmd == "starts":
+        return starts.cmd_starts(args, [cid for cid, _, _ in build.case_ids()], STARTS_RECORD)
     if args.cmd == "build":
         return cmd_build(args)
     if args.cmd == "score":

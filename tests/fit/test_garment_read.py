@@ -33,6 +33,7 @@ def test_the_type_is_read_and_noted():
     assert case.garment == "skirt"
     assert said and said[0] in case.notes and "skirt" in said[0]
     assert said[1].startswith("read: skirt") and "hem " in said[1]  # the design read, with its evidence
+    assert case.design.garment == "skirt"  # the start drafts its candidates from it
 
 
 def test_a_named_base_or_type_is_left_alone():
@@ -40,8 +41,17 @@ def test_a_named_base_or_type_is_left_alone():
     assert with_garment_read(case, FitConfig(base="pants"), log=lambda s: None) is case
 
 
-def test_a_type_without_a_base_is_refused_in_one_line():
+def test_a_jumpsuit_gets_its_design_read():
+    """The library has no jumpsuit base: the start drafts jumpsuit designs from the reading."""
     case = _case("trousers_slim__default", "tee_fitted_short__default")
-    with pytest.raises(InputError, match="jumpsuit") as e:
-        with_garment_read(case, FitConfig(), log=lambda s: None)
+    read = with_garment_read(case, FitConfig(), log=lambda s: None)
+    assert read.garment == "jumpsuit" and read.design.garment == "jumpsuit"
+
+
+def test_a_type_outside_the_design_space_is_refused_in_one_line(monkeypatch):
+    import unsew.fit.start as start_mod
+
+    monkeypatch.setattr(start_mod, "GARMENTS", ("tshirt",))
+    with pytest.raises(InputError, match="skirt") as e:
+        with_garment_read(_case("skirt_aline_knee__default"), FitConfig(), log=lambda s: None)
     assert "\n" not in str(e.value)

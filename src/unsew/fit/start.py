@@ -40,6 +40,7 @@ from unsew.io.garmentcode import load_pattern
 from unsew.losses.contours import open_contours
 from unsew.pattern.base import BASES, bases_for, garment_of, make_base_pattern
 from unsew.pattern.base._frame import body_frame
+from unsew.pattern.design import GARMENTS
 from unsew.sim.checks import check_dressed
 
 __all__ = [
@@ -107,21 +108,23 @@ class Start:
 def with_garment_read(case, cfg: FitConfig, *, log=print):
     """``case`` itself when meta.json names its garment type or ``cfg.base`` names a base; else
     a copy whose garment type is read off the target
-    (:func:`unsew.grading.garment_type.read_garment_type`), with the reading in its notes. Raises
-    InputError for a type the library has no base for (a jumpsuit)."""
+    (:func:`unsew.grading.garment_type.read_garment_type`), with the reading in its notes and the
+    design read (:func:`unsew.grading.design_reading.read_design`) as ``design``: the base is then
+    chosen among designs drafted from it (:func:`choose_base`). Raises InputError for a type the
+    design space has no designs of."""
     if case.garment or cfg.base:
         return case
     reading = read_garment_type(case.target_verts, case.target_faces, case.body.skeleton)
     design = read_design(case.target_verts, case.target_faces, case.body.skeleton, reading=reading)
     note = f"garment type read off the target: {reading.garment}: {reading.reason}"
-    if reading.garment not in BASES:
+    if reading.garment not in GARMENTS:
         raise InputError(
-            f"the target reads as a {reading.garment} ({reading.reason}); the library has no "
-            f"{reading.garment} base: pass --base P.json"
+            f"the target reads as a {reading.garment} ({reading.reason}); there are no "
+            f"{reading.garment} designs: pass --base P.json"
         )
     log(note)
     log(design.summary())
-    return dataclasses.replace(case, garment=reading.garment, garment_note=note)
+    return dataclasses.replace(case, garment=reading.garment, garment_note=note, design=design)
 
 
 def base_pattern_for(case, cfg: FitConfig):
@@ -226,17 +229,15 @@ def choose_base(
     dressed from scratch on a mesh of edge :data:`BASE_CHOICE_EDGE` [m] (the rest of ``cfg.drape``
     as the fit's drapes) in ``material`` (the start material); its distance is
     :meth:`Target.distance_mm` (:meth:`Target.band_distance_mm` over the torso). A candidate whose drape
-    fails or is judged bad (:func:`unsew.sim.checks.check_dressed`) is listed, not chosen."""
-    if cfg.base or not case.garment or case.garment not in BASES:
+    fails or is judged bad (:func:`unsew.sim.checks.check_dressed`) is listed, not chosen.
+    When the garment type was read off the target (``case.design``, :func:`with_garment_read`)
+    the candidates are designs drafted from that reading
+    (:func:`unsew.fit.designs.drafted_candidates`), not the library's bases."""
+    reading = getattr(case, "design", None)
+    if cfg.base or (reading is None and (not case.garment or case.garment not in BASES)):
         return BaseChoice(base_pattern_for(case, cfg), cfg.base or case.garment)
-    garment = garment_of(case.garment)
-    names = bases_for(garment)
     m = measure_body(case.body)
-    necklines = _necklines(garment, target, case.body, log)
-
-    def make(name):
-        return make_base_pattern(name, m, waist_point=cfg.side_seams == "girth", necklines=necklines)
-
+    garment, names, make = _candidates(case, target, cfg, m, log)
     if len(names) == 1:
         return BaseChoice(make(names[0]), names[0])
     t0 = time.perf_counter()
@@ -251,6 +252,11 @@ def choose_base(
         rows.append(row)
         if row.get("chamfer_mm") is not None:
             patterns[name] = pat
+    if not patterns and reading is not None and case.garment in BASES:  # no drafted design dresses here
+        log(
+            f"no design drafted from the reading could be dressed; the library's {case.garment} bases instead"
+        )
+        return choose_base(_without_design(case), target, sdf, cfg, material, progress=progress, log=log)
     _require_one_dressed(rows, patterns, case.garment)
     on_torso = bool(band) and all(r.get("torso_mm") is not None for r in rows if r["base"] in patterns)
     # the arms agreeing first, when any candidate's do; then the closest (over the torso when
@@ -269,6 +275,35 @@ def choose_base(
         + ")"
     )
     return BaseChoice(patterns[best], best, rows, time.perf_counter() - t0, tie)
+
+
+def _candidates(case, target: Target, cfg: FitConfig, m, log) -> tuple[str, list, Callable]:
+    """(garment type, candidate names, name -> its Pattern sized to measurements ``m``): the
+    designs drafted from ``case.design`` when the type was read off the target, else the
+    library's bases of ``case.garment``, their necklines read off the target."""
+    reading = getattr(case, "design", None)
+    if reading is not None:
+        from unsew.fit.designs import drafted_candidates
+
+        patterns = drafted_candidates(reading, m)
+        if not patterns:
+            raise InputError(f"no {reading.garment} design drafts for this body; pass --base P.json")
+        log(f"designs drafted from the reading: {', '.join(patterns)}")
+        return reading.garment, list(patterns), patterns.__getitem__
+    garment = garment_of(case.garment)
+    necklines = _necklines(garment, target, case.body, log)
+
+    def make(name):
+        return make_base_pattern(name, m, waist_point=cfg.side_seams == "girth", necklines=necklines)
+
+    return garment, bases_for(garment), make
+
+
+def _without_design(case):
+    """``case`` without its design reading: the library's bases of its garment type are its candidates."""
+    if dataclasses.is_dataclass(case):
+        return dataclasses.replace(case, design=None)
+    return type(case)(**{**vars(case), "design": None})
 
 
 def _require_one_dressed(rows: list, patterns: dict, garment: str) -> None:

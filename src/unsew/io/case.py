@@ -49,6 +49,7 @@ class Case:
     files: dict = field(default_factory=dict)  #: the files read, for hashing into config.yaml
     target_repair: dict = field(default_factory=dict)  #: what loading cleaned (MeshRepair.as_dict)
     garment_note: str = ""  #: how the garment type was read off the target when meta.json names none
+    design: object = None  #: the DesignReading read off the target when meta.json names no type
 
     @property
     def notes(self) -> list[str]:

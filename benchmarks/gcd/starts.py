@@ -1,0 +1,168 @@
+"""The fit's start on each GarmentCode case when meta.json names no type (none of them does): the
+design read off the target, the designs drafted from it and the one chosen
+(:func:`unsew.fit.start.choose_base` with ``case.design``), against the library's bases of the
+read type chosen as when meta.json names it. Only the base choice runs (each candidate dressed
+from scratch on its coarse mesh), not grading nor phase two.
+
+The target is chosen as in reading.py: newton's drape where the build accepted it, else the true
+pattern dressed by ``unsew drape`` (DRAPES/<case>.obj) stands in.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+import reading as gt_reading
+
+#: The truth's choices shown beside the reading.
+SHOWN = ("sleeves", "neck_front", "neck_back", "collar", "skirt", "length", "waistband", "cuffs")
+
+
+def _case(d: Path, target: Path):
+    """The Case of folder ``d`` with the mesh ``target`` as its target and no garment type."""
+    from unsew.body.body import load_body
+    from unsew.io.case import Case
+    from unsew.io.mesh import read_garment
+
+    skel = d / "skeleton.json"
+    body = load_body(d / "body.obj", skel if skel.is_file() else None)
+    with warnings.catch_warnings():  # a repaired mesh is announced by a warning: not this table's news
+        warnings.simplefilter("ignore")
+        v, f, _ = read_garment(target)
+    return Case(d, "", v, f, body)
+
+
+def _best(choice) -> tuple[str, float | None, float | None]:
+    """(name, distance [mm], torso distance [mm]) of a BaseChoice's chosen candidate."""
+    row = choice.table[0] if choice.table else {}
+    return choice.name, row.get("chamfer_mm"), row.get("torso_mm")
+
+
+def start_row(d: Path, source: str, target: Path, *, log) -> dict:
+    """One case's row: the truth, the design read, the chosen design and the library's choice."""
+    from unsew.errors import InputError
+    from unsew.fit.config import FitConfig
+    from unsew.fit.fit import _scene
+    from unsew.fit.material import AUTO_START_MATERIAL
+    from unsew.fit.progress import Progress
+    from unsew.fit.start import choose_base, with_garment_read
+    from unsew.pattern.base import BASES
+    from unsew.sim.material import get_material
+
+    t = gt_reading.truth_of(d)
+    row = {"case": d.name, "target": source, "true type": t["type"]}
+    row["truth"] = ", ".join(f"{k} {t[k]}" for k in SHOWN if t.get(k) is not None)
+    cfg, mat = FitConfig(), get_material(AUTO_START_MATERIAL)
+    t0 = time.perf_counter()
+    try:
+        case = with_garment_read(_case(d, target), cfg, log=log)
+    except InputError as exc:
+        return {**row, "read": f"refused: {str(exc).splitlines()[0]}"}
+    row["read"] = case.design.summary()
+    scene, _ = _scene(case, cfg, Progress(False), log)
+    try:
+        design = choose_base(case, scene.target, scene.sdf, cfg, mat, progress=Progress(False), log=log)
+    except InputError as exc:
+        return {**row, "design": f"refused: {str(exc).splitlines()[0][:200]}"}
+    row["design"], row["design_mm"], row["design_torso_mm"] = _best(design)
+    row["designs"] = [
+        {k: r.get(k) for k in ("base", "chamfer_mm", "torso_mm", "arms", "error")} for r in design.table
+    ]
+    if case.garment in BASES:
+        lib = choose_base(
+            dataclasses.replace(case, design=None),
+            scene.target,
+            scene.sdf,
+            cfg,
+            mat,
+            progress=Progress(False),
+            log=log,
+        )
+        row["library"], row["library_mm"], row["library_torso_mm"] = _best(lib)
+    else:
+        row["library"] = f"no {case.garment} base"
+    row["seconds"] = round(time.perf_counter() - t0, 1)
+    return row
+
+
+def _said(r: dict) -> str:
+    """A candidate's row in words: name, distance [mm], over the torso, arms."""
+    if r.get("chamfer_mm") is None:
+        return f"{r['base']} failed ({r.get('error') or 'no finite distance'})"
+    torso = f" (torso {r['torso_mm']:.2f})" if r.get("torso_mm") is not None else ""
+    return f"{r['base']} {r['chamfer_mm']:.2f}{torso}" + ("" if r.get("arms") else " (arms differ)")
+
+
+def summary_row(rows: list[dict]) -> dict:
+    """The cases with both a design and a library choice: on how many the chosen design lies closer
+    on the distance the choice is made on (over the torso for dresses), and the means [mm]."""
+    both = [r for r in rows if r.get("design_mm") is not None and r.get("library_mm") is not None]
+    key = [
+        ("design_torso_mm", "library_torso_mm")
+        if r.get("design_torso_mm") is not None
+        else ("design_mm", "library_mm")
+        for r in both
+    ]
+    closer = sum(r[a] < r[b] for r, (a, b) in zip(both, key))
+    same = sum(r[a] == r[b] for r, (a, b) in zip(both, key))
+    drafted_only = sum(1 for r in rows if r.get("design_mm") is not None and r.get("library_mm") is None)
+    return {
+        "case": "all",
+        "target": f"{len(rows)} cases",
+        "design": f"closer on {closer} of {len(both)} (as close on {same}); {drafted_only} without a base",
+        "design_mm": float(np.mean([r["design_mm"] for r in both])) if both else None,
+        "library_mm": float(np.mean([r["library_mm"] for r in both])) if both else None,
+    }
+
+
+def write_record(record: Path, rows: list[dict]) -> None:
+    """Write ``rows`` as a recorded table (benchmarks/report.py's format): each row flat, its
+    candidates in words, the commits the rows were measured at."""
+    flat = [
+        {**r, "designs": "; ".join(map(_said, r["designs"]))} if isinstance(r.get("designs"), list) else r
+        for r in rows
+    ]
+    rec = {
+        "title": "GarmentCode cases, the fit's start when meta.json names no type: designs drafted from the "
+        "design read off the target against the library's bases of the read type (the base choice only; "
+        "distances [mm] on its coarse mesh)",
+        "command": "python -m benchmarks gcd starts --out CASES --drapes DRAPES --record --only ...",
+        "commit": ", ".join(sorted({r.get("commit", "?") for r in flat})) + " (each row names its own)",
+        "rows": [r for r in flat if r["case"] != "all"]
+        + [summary_row([r for r in flat if r["case"] != "all"])],
+    }
+    record.write_text(json.dumps(rec, indent=1) + "\n")
+
+
+def cmd_starts(args, case_ids: list[str], record: Path) -> int:
+    """Print one row per case (``args.only`` or all with a target); with ``args.record`` write
+    the rows into ``record`` after each case (a case's row replaces its earlier one; each row
+    names the commit it was measured at)."""
+    from tables import print_table
+
+    root = Path(args.out)
+    drapes = Path(args.drapes) if args.drapes else None
+    commit = gt_reading._commit()
+    kept = json.loads(record.read_text())["rows"] if args.record and record.is_file() else []
+    rows = []
+    for cid in args.only or case_ids:
+        tgt = gt_reading.target_of(root, cid, drapes)
+        if tgt is None or not (root / cid / "truth.json").is_file():
+            continue
+        row = start_row(root / cid, gt_reading.SOURCES[tgt[0]], tgt[1], log=lambda s: print(s, flush=True))
+        row["commit"] = commit
+        rows.append(row)
+        shown = {k: v for k, v in row.items() if k not in ("designs", "truth", "read")}
+        print(json.dumps(shown), flush=True)
+        if args.record:
+            write_record(record, [r for r in kept if r["case"] not in {q["case"] for q in rows}] + rows)
+    cols = ["case", "target", "true type", "design", "design_mm", "design_torso_mm", "library", "library_mm"]
+    print_table(
+        [{k: r.get(k) for k in cols} for r in rows], title=f"The fit's start, type read ({root})", digits=2
+    )
+    return 0

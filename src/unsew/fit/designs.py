@@ -1,0 +1,230 @@
+"""The fit's candidate designs when meta.json names no garment type: a handful of points of the
+design space (:mod:`unsew.pattern.design`) consistent with the design read off the target
+(:func:`unsew.grading.design_reading.read_design`).
+
+The reading's choices are fixed: the type, the sleeves, the necklines, the hem's length (metres,
+from the hem's depth as a share of the leg) and the skirt's flare, turned into the cone's angle
+whose drape has that flare (an A-line's ``aline_flare``, a circle's ``circle_fraction``). The
+alternatives are the choices the reading cannot see (a waistband, the number of gores, a dress in
+one piece or a bodice and a skirt, sleeves in two pieces, cuffs), the neighbouring sleeve classes
+and the neighbouring skirt style where the flare lies near a class's edge (:data:`FLARE_MARGIN`). At most
+:data:`MAX_CANDIDATES`, the design as read first; each is dressed and compared as the library's
+bases are (:func:`unsew.fit.start.choose_base`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from unsew.errors import InputError
+from unsew.grading.design_reading import ANKLE_HEIGHT, ARMHOLE_SHARE, FLARE_EDGES, SHORT_SLEEVE_SHARE
+from unsew.pattern.base import skirt as _skirt
+from unsew.pattern.base._band import BAND_HEIGHT
+from unsew.pattern.design import GARMENTS, Design, design_name, draft
+from unsew.pattern.measurements import Measurements
+
+__all__ = ["design_candidates", "drafted_candidates", "MAX_CANDIDATES", "FLARE_MARGIN"]
+
+#: The most candidates one reading gives (each is one drape on the base choice's coarse mesh).
+MAX_CANDIDATES = 6
+#: A flare within this ratio of a class edge adds the neighbouring skirt style.
+FLARE_MARGIN = 1.06
+#: The reading's necklines as a design's (no neck opening, or none read: round).
+_NECK = {"round": "round", "v": "v", "square": "square"}
+#: Trouser legs by the reading's length class.
+_LEG = {"above knee": "shorts", "knee": "knee", "below knee": "full"}
+
+
+def _hem_length(reading, m: Measurements) -> float | None:
+    """The hem's (or the leg openings') depth below the natural waist [m], to 1 cm, on a body of
+    measurements ``m``, from the reading's ``hem_share`` (its depth below the hip joints as a share
+    of the hip joints' height over the floor, as :mod:`unsew.grading.design_reading` measures it);
+    None when no hem was read."""
+    share = reading.numbers.get("hem_share")
+    if share is None:
+        return None
+    hip_joint = (1.0 + ANKLE_HEIGHT) * m.leg_length  # over the floor [m]
+    return round(float(np.clip(m.waist_height - hip_joint * (1.0 - share), 0.1, 1.5)), 2)
+
+
+def _cone_flare(theta: float, top: float, hip: float, girth_depth: float, length: float) -> float:
+    """A cone skirt's flare as the reading measures it: its hem's length over the cloth's girth
+    where the reading takes it, level with the hip joints (the cone's girth there, the hips' at
+    least). theta: the unrolled angle [rad]; top, hip: girths [m] at its top and the hips;
+    girth_depth, length: that level's and the hem's depth below its top [m]."""
+    return (top + theta * length) / max(hip, top + theta * girth_depth)
+
+
+def _fitted_flare(reading, m: Measurements, length: float | None, style: str, *, band: bool = False):
+    """The ``aline_flare`` [rad] (style "aline") or ``circle_fraction`` (style "circle") whose cone
+    has the read flare, to 0.05; None when no flare was read."""
+    flare = reading.numbers.get("flare")
+    if flare is None:
+        return None
+    drop = BAND_HEIGHT if band else 0.0
+    f, _, top, hip, _ = _skirt._girths(m, drop)
+    h = f.waist_y - f.hip_y - drop  # the hips' depth, as the A-line is drafted
+    hip_joints = (1.0 + ANKLE_HEIGHT) * m.leg_length  # over the floor [m], as the reading has them
+    level = max(m.waist_height - hip_joints - drop, 0.05)
+    L = (length if length is not None else 0.75 * m.leg_length) - drop
+    if style == "aline":
+        grid = np.arange(0.0, 2.0001, 0.05)
+        thetas = (hip - top) / h + grid
+    else:
+        grid = np.arange(0.1, 1.0001, 0.05)
+        thetas = 2 * np.pi * grid
+    err = [abs(_cone_flare(t, top, hip, level, L) - flare) for t in thetas]
+    return round(float(grid[int(np.argmin(err))]), 2)
+
+
+def _skirt_style(reading) -> tuple[str, list[str]]:
+    """(the design's skirt style for the reading's, the neighbouring styles when the flare lies
+    within :data:`FLARE_MARGIN` of a class edge)."""
+    style = {"pencil": "pencil", "a-line": "aline", "flared": "circle"}.get(reading.skirt, "aline")
+    flare = reading.numbers.get("flare")
+    near = []
+    if flare is not None:
+        for edge, (lo, hi) in zip(FLARE_EDGES, (("pencil", "aline"), ("aline", "circle"))):
+            if edge / FLARE_MARGIN <= flare <= edge * FLARE_MARGIN:
+                near.append(hi if style == lo else lo)
+    return style, [s for s in near if s != style]
+
+
+def _skirt_design(base: Design, style: str, reading, m: Measurements, length) -> Design:
+    """``base`` with skirt ``style``, its cone fitted to the read flare."""
+    d = base.replace(skirt=style)
+    if style in ("aline", "circle"):
+        band = d.waistband and d.garment == "skirt"
+        v = _fitted_flare(reading, m, length, style, band=band)
+        if v is not None:
+            d = d.replace(**({"aline_flare": v} if style == "aline" else {"circle_fraction": max(v, 0.1)}))
+    return d
+
+
+def _top_fields(reading) -> dict:
+    """Sleeves and necklines of a top as read (none read: short sleeves, round necklines)."""
+    return dict(
+        sleeves=reading.sleeves or "short",
+        neckline_front=_NECK.get(reading.neck_front, "round"),
+        neckline_back=_NECK.get(reading.neck_back, "round"),
+    )
+
+
+def _top_alternatives(first: Design, reading) -> list[Design]:
+    """The neighbouring sleeve classes, the one whose edge the read share lies nearer first
+    (grading cannot grow or remove a sleeve, and the share of a sleeve hanging off the arm is
+    uncertain), then two-piece sleeves and cuffs (which the reading cannot see) on a sleeved
+    design."""
+    share = reading.numbers.get("sleeve_share", 0.0)
+    edges = {("none", "short"): ARMHOLE_SHARE, ("short", "long"): SHORT_SLEEVE_SHARE}
+    near = sorted((abs(share - e), pair) for pair, e in edges.items() if first.sleeves in pair)
+    out = [first.replace(sleeves=b if first.sleeves == a else a) for _, (a, b) in near]
+    if first.sleeves != "none":
+        out += [first.replace(sleeve_pieces=2), first.replace(cuffs=True)]
+    return out
+
+
+def _tshirt(reading, m: Measurements) -> tuple[Design, list[Design]]:
+    first = Design(garment="tshirt", **_top_fields(reading))
+    return first, _top_alternatives(first, reading)
+
+
+def _dress(reading, m: Measurements) -> tuple[Design, list[Design]]:
+    """One piece (fitted for an A-line, straight for a pencil skirt) or, for a flared skirt, a
+    bodice and a circle skirt; the other ways of cutting it next."""
+    length = _hem_length(reading, m)
+    top = Design(garment="dress", length=length, **_top_fields(reading))
+    style, near = _skirt_style(reading)
+    seamed = [
+        _skirt_design(top.replace(waist_seam=True, panels=n), style, reading, m, length) for n in (2, 4)
+    ]
+    fitted, straight = top.replace(fitted=True), top.replace(fitted=False)
+    ways = {
+        "pencil": [straight, fitted, seamed[0]],
+        "aline": [fitted, seamed[0], straight, seamed[1]],
+        "circle": [seamed[0], seamed[1], fitted],
+    }[style]
+    ways += [_skirt_design(top.replace(waist_seam=True), s, reading, m, length) for s in near]
+    return ways[0], ways[1:3] + _top_alternatives(ways[0], reading)[:1] + ways[3:]
+
+
+def _skirt_garment(reading, m: Measurements) -> tuple[Design, list[Design]]:
+    """The read style and flare in two gores, then under a waistband, in more gores, and the
+    neighbouring style."""
+    length = _hem_length(reading, m)
+    style, near = _skirt_style(reading)
+    base = Design(garment="skirt", length=length)
+    first = _skirt_design(base, style, reading, m, length)
+    more = 6 if style == "circle" else 4
+    alts = [
+        _skirt_design(base.replace(waistband=True), style, reading, m, length),
+        _skirt_design(base.replace(panels=more), style, reading, m, length),
+    ]
+    alts += [_skirt_design(base, s, reading, m, length) for s in near]
+    alts.append(_skirt_design(base.replace(waistband=True, panels=more), style, reading, m, length))
+    return first, alts
+
+
+def _trousers(reading, m: Measurements) -> tuple[Design, list[Design]]:
+    """Trousers of the read length, then under a waistband, then with flared legs."""
+    length = _hem_length(reading, m)
+    g = reading.garment
+    leg = "shorts" if g == "shorts" else _LEG.get(reading.length, "full")
+    first = Design(garment=g, leg=leg, length=length)
+    return first, [first.replace(waistband=True), first.replace(hem_flare=0.05)]
+
+
+def _jumpsuit(reading, m: Measurements) -> tuple[Design, list[Design]]:
+    """A bodice as read on trousers of the read length; the sleeves' alternatives, then the
+    neighbouring leg."""
+    length = _hem_length(reading, m)
+    leg = _LEG.get(reading.length, "full")
+    first = Design(garment="jumpsuit", leg=leg, length=length, **_top_fields(reading))
+    return first, _top_alternatives(first, reading) + [first.replace(hem_flare=0.05)]
+
+
+_BUILDERS = {
+    "tshirt": _tshirt,
+    "dress": _dress,
+    "skirt": _skirt_garment,
+    "pants": _trousers,
+    "shorts": _trousers,
+    "jumpsuit": _jumpsuit,
+}
+
+
+def _cuttable(d: Design, m: Measurements) -> Design | None:
+    """``d`` when it drafts for ``m``; else ``d`` at its garment's own length when that drafts
+    (a read length too short for its style); else None."""
+    for cand in (d, d.replace(length=None)):
+        try:
+            draft(cand, m)
+            return cand
+        except InputError:
+            continue
+    return None
+
+
+def design_candidates(reading, measurements: Measurements | None = None) -> list[tuple[str, Design]]:
+    """Up to :data:`MAX_CANDIDATES` (name, :class:`~unsew.pattern.design.Design`) consistent with
+    ``reading`` (a :class:`~unsew.grading.design_reading.DesignReading`), the design as read first,
+    each one that drafts for ``measurements`` (default: the default body), distinct, named by
+    :func:`~unsew.pattern.design.design_name`. Raises InputError for a garment type the design
+    space has no designs of."""
+    if reading.garment not in GARMENTS:
+        raise InputError(f"no designs of a {reading.garment}; the design space drafts {', '.join(GARMENTS)}")
+    m = measurements or Measurements()
+    first, alts = _BUILDERS[reading.garment](reading, m)
+    out: list[tuple[str, Design]] = []
+    for d in [first, *alts]:
+        d = _cuttable(d, m)
+        if d is not None and all(d != o for _, o in out):
+            out.append((design_name(d), d))
+        if len(out) == MAX_CANDIDATES:
+            break
+    return out
+
+
+def drafted_candidates(reading, measurements: Measurements | None = None) -> dict:
+    """{name: Pattern}: :func:`design_candidates` drafted for ``measurements``, in order."""
+    return {name: draft(d, measurements) for name, d in design_candidates(reading, measurements)}
