@@ -185,16 +185,42 @@ def _seam_pull(sp, s: dict):
     return pull
 
 
-def _sew(mesh, x_u, body, runner: _Runner, info: dict, log):
-    """Phase 1: sew the unsewn panels x_u (Nu, 3) [m] on body = (bz, body_f); returns the
-    unsewn positions after sewing, and records the seam gaps and time in ``info``."""
+def _attach(idx, height, then=None):
+    """A hook holding the particles ``idx`` (k,) at the heights ``height`` (k,) [m] (their
+    vertical position set and vertical velocity zeroed before each substep; free across), after
+    running the hook ``then`` (or nothing)."""
+    import warp as wp
+
+    idx = np.asarray(idx, np.int64)
+    height = np.asarray(height, np.float64)
+
+    def hold(state):
+        if then is not None:
+            then(state)
+        if not len(idx):
+            return
+        q = state.particle_q.numpy()
+        q[idx, 2] = height
+        state.particle_q.assign(wp.array(q, dtype=wp.vec3, device="cpu"))
+        v = state.particle_qd.numpy()
+        v[idx, 2] = 0.0
+        state.particle_qd.assign(wp.array(v, dtype=wp.vec3, device="cpu"))
+
+    return hold
+
+
+def _sew(mesh, x_u, body, runner: _Runner, info: dict, log, attach=None):
+    """Phase 1: sew the unsewn panels x_u (Nu, 3) [m] on body = (bz, body_f), the uv vertices
+    ``attach[0]`` held at the heights ``attach[1]`` [m] (or none); returns the unsewn positions
+    after sewing, and records the seam gaps and time in ``info``."""
     s = runner.s
     t0 = time.time()
     sp = np.asarray(mesh.seam_pairs)
     m1 = _model(_to_z(x_u), mesh.faces_uv, mesh.uv, mesh.faces_uv, *body, s)
-    x1 = runner.run(
-        m1, x_u, s["sew_frames"], lambda f: (0.0, False), np.zeros(0, np.int64), hook=_seam_pull(sp, s)
-    )
+    hook = _seam_pull(sp, s)
+    if attach is not None:
+        hook = _attach(attach[0], attach[1], then=hook)
+    x1 = runner.run(m1, x_u, s["sew_frames"], lambda f: (0.0, False), np.zeros(0, np.int64), hook=hook)
     gaps = np.linalg.norm(x1[sp[:, 0]] - x1[sp[:, 1]], axis=1) if len(sp) else np.zeros(1)
     info["gap_after_sewing_m"] = float(gaps.max())
     info["gap_after_sewing_p95_m"] = float(np.percentile(gaps, 95))
@@ -210,10 +236,11 @@ def _sew(mesh, x_u, body, runner: _Runner, info: dict, log):
     return x1
 
 
-def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, log=print):
+def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, log=print, attach=None):
     """Sew and drape ``mesh`` (unsew GarmentMesh) from its unsewn start ``x_unsewn`` (Nu, 3) [m]
     on the body (body_v (V, 3) [m], body_f (F, 3)). ``lower``: hold the waist (skirts,
-    trousers). Returns (x (n_x, 3) float64 [m] sewn vertices in the world frame, info dict with
+    trousers). ``attach``: (uv indices (k,) int64, heights (k,) [m]) held at those heights in
+    both phases (free across; uv vertices sewn together must share a height), or None. Returns (x (n_x, 3) float64 [m] sewn vertices in the world frame, info dict with
     per-phase timings [s], the largest seam gap after sewing [m] and frames run)."""
     import warp as wp
 
@@ -228,7 +255,7 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
     held_u = (
         np.flatnonzero(x_u[:, 1] > x_u[:, 1].max() - s["hold_band_m"]) if lower else np.zeros(0, np.int64)
     )
-    x1 = _sew(mesh, x_u, (bz, body_f), runner, info, log)
+    x1 = _sew(mesh, x_u, (bz, body_f), runner, info, log, attach)
 
     # phase 2: the sewn garment
     t0 = time.time()
@@ -242,7 +269,11 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
     m2 = _model(_to_z(xs), mesh.faces, mesh.uv, mesh.faces_uv, bz, body_f, s)
     ramp, hold = s["ramp_frames"], s["hold_frames"] - s["sew_frames"]
     frames = max(ramp, hold) + s["settle_frames"]
-    x2 = runner.run(m2, xs, frames, lambda f: (min(1.0, (f + 1) / ramp), f == hold), held_x)
+    hook = None
+    if attach is not None:
+        ax, first = np.unique(np.asarray(mesh.x_of_u)[np.asarray(attach[0], np.int64)], return_index=True)
+        hook = _attach(ax, np.asarray(attach[1], np.float64)[first])
+    x2 = runner.run(m2, xs, frames, lambda f: (min(1.0, (f + 1) / ramp), f == hold), held_x, hook=hook)
     info["drape_s"] = time.time() - t0
     info["frames"] = s["sew_frames"] + frames
     log(f"  drape: {frames} frames {info['drape_s']:.0f} s")

@@ -270,9 +270,39 @@ def bend_around_body(x: np.ndarray, mesh, spec: dict, body_v: np.ndarray) -> np.
     return out
 
 
+#: Edge labels that GarmentCode's programs put on the edges a garment hangs from (GarmentCodeData
+#: holds them by attachment constraints): a lower garment's or waistband's top edge
+#: (``lower_interface``, meta_garment.py) and a strapless bodice's top edge (``strapless_top``,
+#: bodice.py). Their vertices are held at the height the specification puts them.
+ATTACH_LABELS = ("lower_interface", "strapless_top")
+
+
+def attachment(spec: dict, mesh, x0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The uv vertices on the specification's edges labelled ATTACH_LABELS, (k,) int64, and their
+    heights [m], (k,) float64: the mean start height (x0 (Nu, 3) [m], Y up) of the uv vertices
+    sewn into the same vertex, so a seam's two sides are held at one height."""
+    idx = [
+        np.asarray(v, np.int64)
+        for (name, e), v in mesh.edge_verts.items()
+        if spec["pattern"]["panels"][name]["edges"][e].get("label") in ATTACH_LABELS
+    ]
+    idx = np.unique(np.concatenate(idx)) if idx else np.zeros(0, np.int64)
+    xu = np.asarray(mesh.x_of_u)
+    ysum, cnt = np.zeros(int(mesh.n_x)), np.zeros(int(mesh.n_x))
+    np.add.at(ysum, xu, x0[:, 1])
+    np.add.at(cnt, xu, 1.0)
+    return idx, (ysum / np.maximum(cnt, 1.0))[xu[idx]]
+
+
 #: newton's settings for starts from the specification (flat panels up to half a metre apart):
 #: the foreign benchmark's, with the sewing force and speed capped and four times the sewing frames.
-SEW_FROM_SPEC = {"seam_force_max_n": 1.0, "sew_speed_max_m_s": 0.5, "sew_frames": 120, "hold_frames": 135}
+SEW_FROM_SPEC = {
+    "seam_force_max_n": 1.0,
+    "sew_speed_max_m_s": 0.5,
+    "sew_frames": 120,
+    "hold_frames": 135,
+    "soft_contact_ke": 1.0e4,
+}
 
 
 def mesh_spec(spec: dict, name: str, edge_length: float):
@@ -293,8 +323,9 @@ def write_obj(path: Path, v: np.ndarray, f: np.ndarray, header: str) -> None:
         fh.write("".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in f))
 
 
-def _newton_drape(mesh, x0, body_v, body_f, lower):
-    """newton's drape (benchmarks/foreign/newton_drape.py) with its retry settings."""
+def _newton_drape(mesh, x0, body_v, body_f, lower, attach=None):
+    """newton's drape (benchmarks/foreign/newton_drape.py) with its retry settings; ``attach``:
+    (uv indices, heights [m]) held at those heights (see :func:`attachment`)."""
     sys.path.insert(0, str(HERE.parent / "foreign"))
     import newton_drape
 
@@ -302,7 +333,7 @@ def _newton_drape(mesh, x0, body_v, body_f, lower):
         settings = {**newton_drape.SETTINGS, **SEW_FROM_SPEC, **extra}
         try:
             x, info = newton_drape.drape_newton(
-                mesh, x0, body_v, body_f, lower=lower, settings=settings, log=_log
+                mesh, x0, body_v, body_f, lower=lower, settings=settings, log=_log, attach=attach
             )
             return x, info, settings
         except RuntimeError as exc:
@@ -348,7 +379,10 @@ def build_case(
         rec.update(status="placed", seconds=round(time.time() - t0, 1))
         return rec
     try:
-        x, info, settings = _newton_drape(mesh, x0, body_v, body_f, src.truth["type"] in LOWER_TYPES)
+        att = attachment(src.spec, mesh, x0)
+        lower = src.truth["type"] in LOWER_TYPES and not len(att[0])
+        rec["attached_vertices"] = len(att[0])
+        x, info, settings = _newton_drape(mesh, x0, body_v, body_f, lower, att)
     except RuntimeError as exc:
         rec.update(status="failed", reason=f"newton: {exc}", seconds=round(time.time() - t0, 1))
         return rec

@@ -255,3 +255,24 @@ def test_a_type_is_given_only_where_meta_or_the_config_names_one():
     assert score.type_given({}, "unsew_version: 0.1.0\nconfig:\n  base: shorts\n")
     assert score.type_given({"garment": "skirt"}, "")
     assert not score.type_given({}, "")
+
+
+def test_attachment_holds_the_labelled_edge_at_the_height_its_seam_closes():
+    """A bodice (30 x 40 cm) over a waistband (30 x 5 cm) placed 5 cm below it, the waistband's
+    top edge labelled ``lower_interface`` and sewn to the bodice's bottom: held are the vertices of
+    that edge only, at the height halfway between the two sides of the seam."""
+    build = _load("build")
+    bodice = _panel([[0, 0], [30, 0], [30, 40], [0, 40]], t=(-15, 110, 15))
+    band = _panel([[0, 0], [30, 0], [30, 5], [0, 5]], t=(-15, 100, 15))
+    band["edges"][2]["label"] = "lower_interface"  # (30, 5) -> (0, 5): the band's top
+    spec = _spec(
+        {"bodice": bodice, "band": band}, [[{"panel": "bodice", "edge": 0}, {"panel": "band", "edge": 2}]]
+    )
+    mesh = build.mesh_spec(spec, "attach", 0.05)
+    x0 = build.spec_placement(spec, mesh)
+    idx, height = build.attachment(spec, mesh, x0)
+    on_edge = np.asarray(mesh.edge_verts[("band", 2)])
+    assert sorted(idx.tolist()) == sorted(set(on_edge.tolist()))
+    assert np.allclose(x0[idx, 1], 1.05) and np.allclose(height, 1.075)
+    spec["pattern"]["panels"]["band"]["edges"][2].pop("label")
+    assert len(build.attachment(spec, mesh, x0)[0]) == 0
