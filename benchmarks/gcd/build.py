@@ -270,6 +270,39 @@ def bend_around_body(x: np.ndarray, mesh, spec: dict, body_v: np.ndarray) -> np.
     return out
 
 
+def clear_of_body(x: np.ndarray, mesh, body_v: np.ndarray, body_f: np.ndarray, step=0.01, reach=0.06):
+    """The start x (Nu, 3) [m] with the vertices inside the body moved out horizontally, away
+    from the body's vertical axis (its bounding-box centre), heights kept: each inside vertex by
+    the multiple of ``step`` [m] that takes it out, plus one step; the vertices of its panel
+    within ``reach`` [m] of it (rest 2D distance) by that push times (1 - distance / reach), so
+    the panel bends out smoothly. Each vertex takes the largest push it is given; a vertex still
+    inside after 30 steps is left there."""
+    sys.path.insert(0, str(HERE.parent / "foreign"))
+    import checks
+
+    cx, cz = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max()), 0.5 * (body_v[:, 2].min() + body_v[:, 2].max())
+    d = x[:, [0, 2]] - [cx, cz]
+    dirn = np.zeros_like(x)
+    dirn[:, [0, 2]] = d / np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-9)
+    push = np.zeros(len(x))
+    inside = checks.inside_mask(x, body_v, body_f)
+    moved = inside.copy()
+    for _ in range(30):
+        if not inside.any():
+            break
+        push[inside] += step
+        k = np.flatnonzero(inside)
+        inside[k] = checks.inside_mask(x[k] + push[k, None] * dirn[k], body_v, body_f)
+    push[moved] += step
+    out = np.zeros(len(x))
+    uv, pan = np.asarray(mesh.uv), np.asarray(mesh.uv_panel)
+    for k in np.flatnonzero(moved):
+        same = np.flatnonzero(pan == pan[k])
+        w = np.clip(1.0 - np.linalg.norm(uv[same] - uv[k], axis=1) / reach, 0.0, 1.0)
+        out[same] = np.maximum(out[same], push[k] * w)
+    return x + out[:, None] * dirn
+
+
 #: Edge labels that GarmentCode's programs put on the edges a garment hangs from (GarmentCodeData
 #: holds them by attachment constraints): a lower garment's or waistband's top edge
 #: (``lower_interface``, meta_garment.py) and a strapless bodice's top edge (``strapless_top``,
@@ -364,7 +397,7 @@ def build_case(
             src.write(d)
         return rec
     x_spec = spec_placement(src.spec, mesh)
-    x0 = bend_around_body(x_spec, mesh, src.spec, body_v)
+    x0 = clear_of_body(bend_around_body(x_spec, mesh, src.spec, body_v), mesh, body_v, body_f)
     rec["spec_inside_fraction"] = round(float(checks.inside_mask(x_spec, body_v, body_f).mean()), 4)
     rec["start_inside_fraction"] = round(float(checks.inside_mask(x0, body_v, body_f).mean()), 4)
     rec["vertices"] = int(mesh.n_x)
