@@ -9,7 +9,9 @@ each design becomes a case folder (FORMATS.md):
   newton_drape.py) from the specification's own 3D placement: every panel vertex starts at
   ``R @ (u, v, 0) + t`` with the panel's ``rotation`` (XYZ Euler angles [deg], applied as
   ``Rz @ Ry @ Rx``, GarmentCode's ``euler_xyz_to_R``) and ``translation`` [cm -> m]; the
-  specification's frame is the body's (Y up, facing +Z, feet at y = 0, cm);
+  specification's frame is the body's (Y up, facing +Z, feet at y = 0, cm); front and back
+  panels bent around the body, start vertices inside the body moved out; the edges the design
+  labels as what the garment hangs from (ATTACH_LABELS) held at the specification's height;
 - ``meta.json`` without the garment type; ``pattern_gt.json`` (the specification);
 - ``truth.json`` (type and structural choices from ``design_params.yaml``; the fit never reads it);
 - ``design_params.yaml`` and ``preview.png``.
@@ -513,7 +515,10 @@ def _write_built(out: Path, src: _Design, x, mesh, body, rec: dict, fails: list[
             "newton": newton.__version__,
             "warp": warp.__version__,
             "start": "the specification's panel translation and rotation, front and back panels bent "
-            "around the body's axis (build.bend_around_body)",
+            "around the body's axis (build.bend_around_body), vertices inside the body moved out "
+            "(build.clear_of_body)",
+            "attached": f"{rec.get('attached_vertices', 0)} vertices on edges labelled {' or '.join(ATTACH_LABELS)} "
+            "held at the specification's height (build.attachment)",
             "settings": {k: (None if v == float("inf") else v) for k, v in settings.items()},
             "mesh_edge_length_m": manifest()["edge_length_m"],
             "frames": info["frames"],
