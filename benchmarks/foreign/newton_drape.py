@@ -240,8 +240,9 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
     """Sew and drape ``mesh`` (unsew GarmentMesh) from its unsewn start ``x_unsewn`` (Nu, 3) [m]
     on the body (body_v (V, 3) [m], body_f (F, 3)). ``lower``: hold the waist (skirts,
     trousers). ``attach``: (uv indices (k,) int64, heights (k,) [m]) held at those heights in
-    both phases (free across; uv vertices sewn together must share a height), or None. Returns (x (n_x, 3) float64 [m] sewn vertices in the world frame, info dict with
-    per-phase timings [s], the largest seam gap after sewing [m] and frames run)."""
+    both phases (free across; uv vertices sewn together must share a height), or None.
+    Returns (x (n_x, 3) float64 [m] sewn vertices in the world frame, info dict with per-phase
+    timings [s], the largest seam gap after sewing [m] and frames run)."""
     import warp as wp
 
     wp.config.quiet = True

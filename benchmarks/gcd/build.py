@@ -517,8 +517,8 @@ def _write_built(out: Path, src: _Design, x, mesh, body, rec: dict, fails: list[
             "start": "the specification's panel translation and rotation, front and back panels bent "
             "around the body's axis (build.bend_around_body), vertices inside the body moved out "
             "(build.clear_of_body)",
-            "attached": f"{rec.get('attached_vertices', 0)} vertices on edges labelled {' or '.join(ATTACH_LABELS)} "
-            "held at the specification's height (build.attachment)",
+            "attached": f"{rec.get('attached_vertices', 0)} vertices on edges labelled "
+            f"{' or '.join(ATTACH_LABELS)} held at the specification's height (build.attachment)",
             "settings": {k: (None if v == float("inf") else v) for k, v in settings.items()},
             "mesh_edge_length_m": manifest()["edge_length_m"],
             "frames": info["frames"],
