@@ -239,8 +239,9 @@ def _sew(mesh, x_u, body, runner: _Runner, info: dict, log, attach=None):
 def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, log=print, attach=None):
     """Sew and drape ``mesh`` (unsew GarmentMesh) from its unsewn start ``x_unsewn`` (Nu, 3) [m]
     on the body (body_v (V, 3) [m], body_f (F, 3)). ``lower``: hold the waist (skirts,
-    trousers). ``attach``: (uv indices (k,) int64, heights (k,) [m]) held at those heights in
-    both phases (free across; uv vertices sewn together must share a height), or None.
+    trousers). ``attach``: (uv indices (k,) int64, heights (k,) [m]) held at those heights
+    while sewing (free across) and fixed where the sewing left them, at those heights, through
+    the drape (uv vertices sewn together must share a height), or None.
     Returns (x (n_x, 3) float64 [m] sewn vertices in the world frame, info dict with per-phase
     timings [s], the largest seam gap after sewing [m] and frames run)."""
     import warp as wp
@@ -270,11 +271,12 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
     m2 = _model(_to_z(xs), mesh.faces, mesh.uv, mesh.faces_uv, bz, body_f, s)
     ramp, hold = s["ramp_frames"], s["hold_frames"] - s["sew_frames"]
     frames = max(ramp, hold) + s["settle_frames"]
-    hook = None
-    if attach is not None:
+    release = hold
+    if attach is not None and len(attach[0]):  # fixed at their heights to the end
         ax, first = np.unique(np.asarray(mesh.x_of_u)[np.asarray(attach[0], np.int64)], return_index=True)
-        hook = _attach(ax, np.asarray(attach[1], np.float64)[first])
-    x2 = runner.run(m2, xs, frames, lambda f: (min(1.0, (f + 1) / ramp), f == hold), held_x, hook=hook)
+        xs[ax, 1] = np.asarray(attach[1], np.float64)[first]
+        held_x, release = np.union1d(held_x, ax), -1
+    x2 = runner.run(m2, xs, frames, lambda f: (min(1.0, (f + 1) / ramp), f == release), held_x)
     info["drape_s"] = time.time() - t0
     info["frames"] = s["sew_frames"] + frames
     log(f"  drape: {frames} frames {info['drape_s']:.0f} s")

@@ -272,6 +272,73 @@ def bend_around_body(x: np.ndarray, mesh, spec: dict, body_v: np.ndarray) -> np.
     return out
 
 
+def torso_sections(body_v: np.ndarray, band=0.015, gap=0.02, step=0.02):
+    """The body's torso cross-sections: heights (R,) [m] and for each its half width and front and
+    back z (R,) [m] each. At each height the body's vertices within ``band`` [m] are taken out
+    from the axis (bounding-box centre x) to the first gap wider than ``gap`` across x (what lies
+    beyond is an arm); below the crotch the section holds both legs."""
+    cx = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max())
+    rows = []
+    for y in np.arange(body_v[:, 1].min() + 0.05, body_v[:, 1].max(), step):
+        sl = body_v[np.abs(body_v[:, 1] - y) < band]
+        if len(sl) < 10:
+            continue
+        d = np.sort(np.abs(sl[:, 0] - cx))
+        jumps = np.flatnonzero(np.diff(d) > gap)
+        hw = d[jumps[0]] if len(jumps) else d[-1]
+        t = sl[np.abs(sl[:, 0] - cx) <= hw + 1e-9]
+        rows.append((y, hw, t[:, 2].max(), t[:, 2].min()))
+    return tuple(np.array(c) for c in zip(*rows))
+
+
+def _crotch_height(body_v: np.ndarray, half=0.01) -> float:
+    """The highest height [m] below the body's middle where no body vertex lies within ``half``
+    [m] of its axis (between the legs)."""
+    cx = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max())
+    mid = body_v[np.abs(body_v[:, 0] - cx) < half, 1]
+    ys = np.arange(body_v[:, 1].min() + 0.1, 0.5 * (body_v[:, 1].min() + body_v[:, 1].max()), 0.01)
+    empty = [y for y in ys if not np.any(np.abs(mid - y) < 0.01)]
+    return float(max(empty)) if empty else float(ys[0])
+
+
+def _ellipse_at(a: float, b: float, s: float, n=721) -> tuple[float, float]:
+    """The point (x, z) at signed arc length ``s`` [m] from (0, b) on the ellipse x = a sin t,
+    z = b cos t (a, b [m])."""
+    t = np.linspace(-np.pi, np.pi, n)
+    x, z = a * np.sin(t), b * np.cos(t)
+    arc = np.r_[0.0, np.cumsum(np.hypot(np.diff(x), np.diff(z)))]
+    arc -= np.interp(0.0, t, arc)
+    return float(np.interp(s, arc, x)), float(np.interp(s, arc, z))
+
+
+def wrap_on_torso(x: np.ndarray, mesh, spec: dict, body_v: np.ndarray, clearance=0.03, blend=0.1):
+    """The start x (Nu, 3) [m] with each front or back panel (as :func:`bend_around_body` picks
+    them) wrapped on the torso: a vertex at ``s = x - cx`` across its panel goes to arc length s
+    from the front (back) centre of the ellipse of the torso's section at its height (half width
+    and half depth plus ``clearance`` [m]); heights kept. Below the crotch the start is kept, and
+    over ``blend`` [m] above it the two are mixed linearly, so legs stay as they are."""
+    Y, HW, ZF, ZB = torso_sections(body_v)
+    y0 = _crotch_height(body_v)
+    cx = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max())
+    out = x.copy()
+    for i, name in enumerate(mesh.panel_names):
+        n = spec_rotation(spec["pattern"]["panels"][name].get("rotation", [0, 0, 0]))[:, 2]
+        if abs(n[2]) < np.cos(np.radians(30.0)):
+            continue
+        a_, b_ = int(mesh.panel_offsets[i]), int(mesh.panel_offsets[i + 1])
+        side = 1.0 if np.mean(x[a_:b_, 2]) > np.median(body_v[:, 2]) else -1.0
+        for k in range(a_, b_):
+            y = x[k, 1]
+            w = float(np.clip((y - y0) / blend, 0.0, 1.0))
+            if w == 0.0:
+                continue
+            zf, zb = np.interp(y, Y, ZF), np.interp(y, Y, ZB)
+            px, pz = _ellipse_at(np.interp(y, Y, HW) + clearance, 0.5 * (zf - zb) + clearance, x[k, 0] - cx)
+            wrapped = np.array([cx + px, y, 0.5 * (zf + zb) + side * pz])
+            out[k] = w * wrapped + (1.0 - w) * x[k]
+    return out
+
+
 def clear_of_body(x: np.ndarray, mesh, body_v: np.ndarray, body_f: np.ndarray, step=0.01, reach=0.06):
     """The start x (Nu, 3) [m] with the vertices inside the body moved out horizontally, away
     from the body's vertical axis (its bounding-box centre), heights kept: each inside vertex by
@@ -399,7 +466,8 @@ def build_case(
             src.write(d)
         return rec
     x_spec = spec_placement(src.spec, mesh)
-    x0 = clear_of_body(bend_around_body(x_spec, mesh, src.spec, body_v), mesh, body_v, body_f)
+    x0 = bend_around_body(x_spec, mesh, src.spec, body_v)
+    x0 = clear_of_body(wrap_on_torso(x0, mesh, src.spec, body_v), mesh, body_v, body_f)
     rec["spec_inside_fraction"] = round(float(checks.inside_mask(x_spec, body_v, body_f).mean()), 4)
     rec["start_inside_fraction"] = round(float(checks.inside_mask(x0, body_v, body_f).mean()), 4)
     rec["vertices"] = int(mesh.n_x)
