@@ -345,23 +345,23 @@ def clear_of_body(x: np.ndarray, mesh, body_v: np.ndarray, body_f: np.ndarray, s
     the multiple of ``step`` [m] that takes it out, plus one step; the vertices of its panel
     within ``reach`` [m] of it (rest 2D distance) by that push times (1 - distance / reach), so
     the panel bends out smoothly. Each vertex takes the largest push it is given; a vertex still
-    inside after 30 steps is left there."""
-    sys.path.insert(0, str(HERE.parent / "foreign"))
-    import checks
+    inside after 30 steps is left there (inside: as checks.inside_mask tells it)."""
+    import trimesh
 
+    contains = trimesh.Trimesh(body_v, body_f, process=False).contains
     cx, cz = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max()), 0.5 * (body_v[:, 2].min() + body_v[:, 2].max())
     d = x[:, [0, 2]] - [cx, cz]
     dirn = np.zeros_like(x)
     dirn[:, [0, 2]] = d / np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-9)
     push = np.zeros(len(x))
-    inside = checks.inside_mask(x, body_v, body_f)
+    inside = np.asarray(contains(x), bool)
     moved = inside.copy()
     for _ in range(30):
         if not inside.any():
             break
         push[inside] += step
         k = np.flatnonzero(inside)
-        inside[k] = checks.inside_mask(x[k] + push[k, None] * dirn[k], body_v, body_f)
+        inside[k] = contains(x[k] + push[k, None] * dirn[k])
     push[moved] += step
     out = np.zeros(len(x))
     uv, pan = np.asarray(mesh.uv), np.asarray(mesh.uv_panel)

@@ -308,3 +308,47 @@ def test_newton_drape_keeps_attached_vertices_at_their_height_while_the_rest_fal
     held = np.unique(np.asarray(mesh.x_of_u)[top])
     assert np.abs(x[held, 1] - 1.2).max() < 0.005
     assert 1.2 - 0.25 < x[:, 1].min() < 1.2 - 0.19
+
+
+def test_wrap_on_torso_lays_a_front_panel_on_the_section_keeping_its_width_and_heights():
+    """A 30 x 40 cm front panel placed flat 30 cm in front of a round torso (radius 15 cm): wrapped,
+    every vertex lies 3 cm off the torso, heights kept, its rows as long as the panel is wide."""
+    import trimesh
+
+    build = _load("build")
+    torso = trimesh.creation.cylinder(radius=0.15, height=1.6, sections=32).subdivide_to_size(0.04)
+    body_v = np.asarray(torso.vertices) @ np.array([[1, 0, 0], [0, 0, 1], [0, 1, 0]]) + [0, 0.8, 0]
+    spec = _spec({"front": _panel([[0, 0], [30, 0], [30, 40], [0, 40]], t=(-15, 100, 30))}, [])
+    mesh = build.mesh_spec(spec, "front", 0.05)
+    x0 = build.spec_placement(spec, mesh)
+    x = build.wrap_on_torso(x0, mesh, spec, body_v, clearance=0.03)
+    assert np.allclose(x[:, 1], x0[:, 1])
+    assert np.allclose(np.hypot(x[:, 0], x[:, 2]), 0.18, atol=2e-3)
+    left, right = np.argmin(x0[:, 0]), np.argmax(x0[:, 0])
+    angle = np.arctan2(x[right, 0], x[right, 2]) - np.arctan2(x[left, 0], x[left, 2])
+    assert angle * 0.18 == pytest.approx(0.30, abs=3e-3)
+    assert np.all(x[:, 2] > 0)
+
+
+def test_clear_of_body_moves_a_panel_through_the_torso_out_of_it_keeping_heights():
+    """A 30 x 40 cm panel placed through a round torso (radius 15 cm, its plane 5 cm in front of
+    the axis): afterwards no vertex is inside, none moved up or down, the ones outside far from
+    the torso stay where they were."""
+    import trimesh
+
+    build = _load("build")
+    sys.path.insert(0, str(ROOT / "benchmarks" / "foreign"))
+    import checks
+
+    torso = trimesh.creation.cylinder(radius=0.15, height=1.6, sections=32).subdivide_to_size(0.04)
+    body_v = np.asarray(torso.vertices) @ np.array([[1, 0, 0], [0, 0, 1], [0, 1, 0]]) + [0, 0.8, 0]
+    body_f = np.asarray(torso.faces)[:, ::-1]  # the axis swap mirrors: keep the normals outward
+    spec = _spec({"p": _panel([[0, 0], [60, 0], [60, 40], [0, 40]], t=(-30, 100, 5))}, [])
+    mesh = build.mesh_spec(spec, "p", 0.05)
+    x0 = build.spec_placement(spec, mesh)
+    assert checks.inside_mask(x0, body_v, body_f).mean() > 0.3
+    x = build.clear_of_body(x0, mesh, body_v, body_f)
+    assert not checks.inside_mask(x, body_v, body_f).any()
+    assert np.allclose(x[:, 1], x0[:, 1])
+    far = np.abs(x0[:, 0]) > 0.28
+    assert far.any() and np.allclose(x[far], x0[far])
