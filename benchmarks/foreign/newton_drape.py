@@ -44,6 +44,7 @@ SETTINGS = dict(
     hold_frames=55,
     settle_frames=90,
     hold_band_m=0.02,
+    attach_clearance_m=0.01,
 )
 
 
@@ -209,6 +210,28 @@ def _attach(idx, height, then=None):
     return hold
 
 
+def on_body(p: np.ndarray, body_v: np.ndarray, body_f: np.ndarray, clearance: float) -> np.ndarray:
+    """Points p (k, 3) [m, Y up] moved horizontally onto the body: along the ray from the body's
+    vertical axis (its bounding-box centre in x and z) at each point's height towards the point,
+    to the ray's first exit through the body's surface plus ``clearance`` [m]; a point whose
+    axis point lies outside the body (between the legs) is kept."""
+    import trimesh
+
+    v = np.asarray(body_v, np.float64)
+    c = 0.5 * (v.min(axis=0) + v.max(axis=0))
+    origin = np.c_[np.full(len(p), c[0]), p[:, 1], np.full(len(p), c[2])]
+    d = p - origin
+    d[:, 1] = 0.0
+    d /= np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-9)
+    tm = trimesh.Trimesh(v, body_f, process=False)
+    out = np.array(p, np.float64)
+    k = np.flatnonzero(tm.contains(origin))
+    if len(k):
+        hit, ray, _ = tm.ray.intersects_location(origin[k], d[k], multiple_hits=False)
+        out[k[ray]] = hit + clearance * d[k[ray]]
+    return out
+
+
 def _sew(mesh, x_u, body, runner: _Runner, info: dict, log, attach=None):
     """Phase 1: sew the unsewn panels x_u (Nu, 3) [m] on body = (bz, body_f), the uv vertices
     ``attach[0]`` held at the heights ``attach[1]`` [m] (or none); returns the unsewn positions
@@ -240,8 +263,8 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
     """Sew and drape ``mesh`` (unsew GarmentMesh) from its unsewn start ``x_unsewn`` (Nu, 3) [m]
     on the body (body_v (V, 3) [m], body_f (F, 3)). ``lower``: hold the waist (skirts,
     trousers). ``attach``: (uv indices (k,) int64, heights (k,) [m]) held at those heights
-    while sewing (free across) and fixed where the sewing left them, at those heights, through
-    the drape (uv vertices sewn together must share a height), or None.
+    while sewing (free across), then put on the body at those heights (:func:`on_body`) and
+    fixed there through the drape (uv vertices sewn together must share a height), or None.
     Returns (x (n_x, 3) float64 [m] sewn vertices in the world frame, info dict with per-phase
     timings [s], the largest seam gap after sewing [m] and frames run)."""
     import warp as wp
@@ -272,9 +295,10 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
     ramp, hold = s["ramp_frames"], s["hold_frames"] - s["sew_frames"]
     frames = max(ramp, hold) + s["settle_frames"]
     release = hold
-    if attach is not None and len(attach[0]):  # fixed at their heights to the end
+    if attach is not None and len(attach[0]):  # on the body at their heights, fixed to the end
         ax, first = np.unique(np.asarray(mesh.x_of_u)[np.asarray(attach[0], np.int64)], return_index=True)
         xs[ax, 1] = np.asarray(attach[1], np.float64)[first]
+        xs[ax] = on_body(xs[ax], body_v, body_f, s["attach_clearance_m"])
         held_x, release = np.union1d(held_x, ax), -1
     x2 = runner.run(m2, xs, frames, lambda f: (min(1.0, (f + 1) / ramp), f == release), held_x)
     info["drape_s"] = time.time() - t0
