@@ -45,6 +45,7 @@ SETTINGS = dict(
     settle_frames=90,
     hold_band_m=0.02,
     attach_clearance_m=0.01,
+    attach_mass_factor=1.0e4,
 )
 
 
@@ -186,10 +187,10 @@ def _seam_pull(sp, s: dict):
     return pull
 
 
-def _attach(idx, height, then=None):
+def _attach(idx, height, then=None, damp=0.0):
     """A hook holding the particles ``idx`` (k,) at the heights ``height`` (k,) [m] (their
-    vertical position set and vertical velocity zeroed before each substep; free across), after
-    running the hook ``then`` (or nothing)."""
+    vertical position set and vertical velocity zeroed before each substep, their velocity
+    across damped by ``damp`` per substep), after running the hook ``then`` (or nothing)."""
     import warp as wp
 
     idx = np.asarray(idx, np.int64)
@@ -204,6 +205,7 @@ def _attach(idx, height, then=None):
         q[idx, 2] = height
         state.particle_q.assign(wp.array(q, dtype=wp.vec3, device="cpu"))
         v = state.particle_qd.numpy()
+        v[idx] *= 1.0 - damp
         v[idx, 2] = 0.0
         state.particle_qd.assign(wp.array(v, dtype=wp.vec3, device="cpu"))
 
@@ -230,6 +232,19 @@ def on_body(p: np.ndarray, body_v: np.ndarray, body_f: np.ndarray, clearance: fl
         hit, ray, _ = tm.ray.intersects_location(origin[k], d[k], multiple_hits=False)
         out[k[ray]] = hit + clearance * d[k[ray]]
     return out
+
+
+def _weigh(model, idx, factor: float) -> None:
+    """Multiply the masses of the model's particles ``idx`` by ``factor``: within a step a heavy
+    particle barely moves under the cloth's pull, across many it still follows it."""
+    import warp as wp
+
+    m = model.particle_mass.numpy().copy()
+    m[idx] *= factor
+    model.particle_mass = wp.array(m, dtype=model.particle_mass.dtype, device="cpu")
+    inv = model.particle_inv_mass.numpy().copy()
+    inv[idx] /= factor
+    model.particle_inv_mass = wp.array(inv, dtype=model.particle_inv_mass.dtype, device="cpu")
 
 
 def _sew(mesh, x_u, body, runner: _Runner, info: dict, log, attach=None):
@@ -263,8 +278,10 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
     """Sew and drape ``mesh`` (unsew GarmentMesh) from its unsewn start ``x_unsewn`` (Nu, 3) [m]
     on the body (body_v (V, 3) [m], body_f (F, 3)). ``lower``: hold the waist (skirts,
     trousers). ``attach``: (uv indices (k,) int64, heights (k,) [m]) held at those heights
-    while sewing (free across), then put on the body at those heights (:func:`on_body`) and
-    fixed there through the drape (uv vertices sewn together must share a height), or None.
+    while sewing and draping (free across), put on the body at those heights (:func:`on_body`)
+    when the drape starts and made ``attach_mass_factor`` times heavier there, so that the
+    cloth's pull cannot move them far within a step (uv vertices sewn together must share a
+    height), or None.
     Returns (x (n_x, 3) float64 [m] sewn vertices in the world frame, info dict with per-phase
     timings [s], the largest seam gap after sewing [m] and frames run)."""
     import warp as wp
@@ -294,13 +311,15 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
     m2 = _model(_to_z(xs), mesh.faces, mesh.uv, mesh.faces_uv, bz, body_f, s)
     ramp, hold = s["ramp_frames"], s["hold_frames"] - s["sew_frames"]
     frames = max(ramp, hold) + s["settle_frames"]
-    release = hold
-    if attach is not None and len(attach[0]):  # on the body at their heights, fixed to the end
+    hook = None
+    if attach is not None and len(attach[0]):  # on the body at their heights, weighted, held up
         ax, first = np.unique(np.asarray(mesh.x_of_u)[np.asarray(attach[0], np.int64)], return_index=True)
-        xs[ax, 1] = np.asarray(attach[1], np.float64)[first]
+        h = np.asarray(attach[1], np.float64)[first]
+        xs[ax, 1] = h
         xs[ax] = on_body(xs[ax], body_v, body_f, s["attach_clearance_m"])
-        held_x, release = np.union1d(held_x, ax), -1
-    x2 = runner.run(m2, xs, frames, lambda f: (min(1.0, (f + 1) / ramp), f == release), held_x)
+        _weigh(m2, ax, s["attach_mass_factor"])
+        hook = _attach(ax, h, damp=s["sew_damping"])
+    x2 = runner.run(m2, xs, frames, lambda f: (min(1.0, (f + 1) / ramp), f == hold), held_x, hook=hook)
     info["drape_s"] = time.time() - t0
     info["frames"] = s["sew_frames"] + frames
     log(f"  drape: {frames} frames {info['drape_s']:.0f} s")
