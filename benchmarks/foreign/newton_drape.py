@@ -13,6 +13,9 @@ Two phases:
    ramped in over ``ramp_frames`` frames with the waist line of a lower garment held still
    until ``hold_frames`` (counted from the start), then released and settled.
 
+Optionally (``attach``) some vertices are kept at given heights in both phases: their height
+reset before each substep, and in the drape put on the body and made heavier (drape_newton).
+
 World frame: metres, Y up (FORMATS.md); newton runs Z up: (x, y, z) -> (x, -z, y) and back.
 """
 
