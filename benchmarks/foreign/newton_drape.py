@@ -13,6 +13,9 @@ Two phases:
    ramped in over ``ramp_frames`` frames with the waist line of a lower garment held still
    until ``hold_frames`` (counted from the start), then released and settled.
 
+Optionally (``attach``) some vertices are kept at given heights in both phases: their height
+reset before each substep, and in the drape put on the body and made heavier (drape_newton).
+
 World frame: metres, Y up (FORMATS.md); newton runs Z up: (x, y, z) -> (x, -z, y) and back.
 """
 
@@ -44,6 +47,8 @@ SETTINGS = dict(
     hold_frames=55,
     settle_frames=90,
     hold_band_m=0.02,
+    attach_clearance_m=0.01,
+    attach_mass_factor=1.0e4,
 )
 
 
@@ -185,16 +190,78 @@ def _seam_pull(sp, s: dict):
     return pull
 
 
-def _sew(mesh, x_u, body, runner: _Runner, info: dict, log):
-    """Phase 1: sew the unsewn panels x_u (Nu, 3) [m] on body = (bz, body_f); returns the
-    unsewn positions after sewing, and records the seam gaps and time in ``info``."""
+def _attach(idx, height, then=None, damp=0.0):
+    """A hook holding the particles ``idx`` (k,) at the heights ``height`` (k,) [m] (their
+    vertical position set and vertical velocity zeroed before each substep, their velocity
+    across damped by ``damp`` per substep), after running the hook ``then`` (or nothing)."""
+    import warp as wp
+
+    idx = np.asarray(idx, np.int64)
+    height = np.asarray(height, np.float64)
+
+    def hold(state):
+        if then is not None:
+            then(state)
+        if not len(idx):
+            return
+        q = state.particle_q.numpy()
+        q[idx, 2] = height
+        state.particle_q.assign(wp.array(q, dtype=wp.vec3, device="cpu"))
+        v = state.particle_qd.numpy()
+        v[idx] *= 1.0 - damp
+        v[idx, 2] = 0.0
+        state.particle_qd.assign(wp.array(v, dtype=wp.vec3, device="cpu"))
+
+    return hold
+
+
+def on_body(p: np.ndarray, body_v: np.ndarray, body_f: np.ndarray, clearance: float) -> np.ndarray:
+    """Points p (k, 3) [m, Y up] moved horizontally onto the body: along the ray from the body's
+    vertical axis (its bounding-box centre in x and z) at each point's height towards the point,
+    to the ray's first exit through the body's surface plus ``clearance`` [m]; a point whose
+    axis point lies outside the body (between the legs) is kept."""
+    import trimesh
+
+    v = np.asarray(body_v, np.float64)
+    c = 0.5 * (v.min(axis=0) + v.max(axis=0))
+    origin = np.c_[np.full(len(p), c[0]), p[:, 1], np.full(len(p), c[2])]
+    d = p - origin
+    d[:, 1] = 0.0
+    d /= np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-9)
+    tm = trimesh.Trimesh(v, body_f, process=False)
+    out = np.array(p, np.float64)
+    k = np.flatnonzero(tm.contains(origin))
+    if len(k):
+        hit, ray, _ = tm.ray.intersects_location(origin[k], d[k], multiple_hits=False)
+        out[k[ray]] = hit + clearance * d[k[ray]]
+    return out
+
+
+def _weigh(model, idx, factor: float) -> None:
+    """Multiply the masses of the model's particles ``idx`` by ``factor``: within a step a heavy
+    particle barely moves under the cloth's pull, across many it still follows it."""
+    import warp as wp
+
+    m = model.particle_mass.numpy().copy()
+    m[idx] *= factor
+    model.particle_mass = wp.array(m, dtype=model.particle_mass.dtype, device="cpu")
+    inv = model.particle_inv_mass.numpy().copy()
+    inv[idx] /= factor
+    model.particle_inv_mass = wp.array(inv, dtype=model.particle_inv_mass.dtype, device="cpu")
+
+
+def _sew(mesh, x_u, body, runner: _Runner, info: dict, log, attach=None):
+    """Phase 1: sew the unsewn panels x_u (Nu, 3) [m] on body = (bz, body_f), the uv vertices
+    ``attach[0]`` held at the heights ``attach[1]`` [m] (or none); returns the unsewn positions
+    after sewing, and records the seam gaps and time in ``info``."""
     s = runner.s
     t0 = time.time()
     sp = np.asarray(mesh.seam_pairs)
     m1 = _model(_to_z(x_u), mesh.faces_uv, mesh.uv, mesh.faces_uv, *body, s)
-    x1 = runner.run(
-        m1, x_u, s["sew_frames"], lambda f: (0.0, False), np.zeros(0, np.int64), hook=_seam_pull(sp, s)
-    )
+    hook = _seam_pull(sp, s)
+    if attach is not None:
+        hook = _attach(attach[0], attach[1], then=hook)
+    x1 = runner.run(m1, x_u, s["sew_frames"], lambda f: (0.0, False), np.zeros(0, np.int64), hook=hook)
     gaps = np.linalg.norm(x1[sp[:, 0]] - x1[sp[:, 1]], axis=1) if len(sp) else np.zeros(1)
     info["gap_after_sewing_m"] = float(gaps.max())
     info["gap_after_sewing_p95_m"] = float(np.percentile(gaps, 95))
@@ -210,11 +277,16 @@ def _sew(mesh, x_u, body, runner: _Runner, info: dict, log):
     return x1
 
 
-def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, log=print):
+def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, log=print, attach=None):
     """Sew and drape ``mesh`` (unsew GarmentMesh) from its unsewn start ``x_unsewn`` (Nu, 3) [m]
     on the body (body_v (V, 3) [m], body_f (F, 3)). ``lower``: hold the waist (skirts,
-    trousers). Returns (x (n_x, 3) float64 [m] sewn vertices in the world frame, info dict with
-    per-phase timings [s], the largest seam gap after sewing [m] and frames run)."""
+    trousers). ``attach``: (uv indices (k,) int64, heights (k,) [m]) held at those heights
+    while sewing and draping (free across), put on the body at those heights (:func:`on_body`)
+    when the drape starts and made ``attach_mass_factor`` times heavier there, so that the
+    cloth's pull cannot move them far within a step (uv vertices sewn together must share a
+    height), or None.
+    Returns (x (n_x, 3) float64 [m] sewn vertices in the world frame, info dict with per-phase
+    timings [s], the largest seam gap after sewing [m] and frames run)."""
     import warp as wp
 
     wp.config.quiet = True
@@ -228,7 +300,7 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
     held_u = (
         np.flatnonzero(x_u[:, 1] > x_u[:, 1].max() - s["hold_band_m"]) if lower else np.zeros(0, np.int64)
     )
-    x1 = _sew(mesh, x_u, (bz, body_f), runner, info, log)
+    x1 = _sew(mesh, x_u, (bz, body_f), runner, info, log, attach)
 
     # phase 2: the sewn garment
     t0 = time.time()
@@ -242,7 +314,15 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
     m2 = _model(_to_z(xs), mesh.faces, mesh.uv, mesh.faces_uv, bz, body_f, s)
     ramp, hold = s["ramp_frames"], s["hold_frames"] - s["sew_frames"]
     frames = max(ramp, hold) + s["settle_frames"]
-    x2 = runner.run(m2, xs, frames, lambda f: (min(1.0, (f + 1) / ramp), f == hold), held_x)
+    hook = None
+    if attach is not None and len(attach[0]):  # on the body at their heights, weighted, held up
+        ax, first = np.unique(np.asarray(mesh.x_of_u)[np.asarray(attach[0], np.int64)], return_index=True)
+        h = np.asarray(attach[1], np.float64)[first]
+        xs[ax, 1] = h
+        xs[ax] = on_body(xs[ax], body_v, body_f, s["attach_clearance_m"])
+        _weigh(m2, ax, s["attach_mass_factor"])
+        hook = _attach(ax, h, damp=s["sew_damping"])
+    x2 = runner.run(m2, xs, frames, lambda f: (min(1.0, (f + 1) / ramp), f == hold), held_x, hook=hook)
     info["drape_s"] = time.time() - t0
     info["frames"] = s["sew_frames"] + frames
     log(f"  drape: {frames} frames {info['drape_s']:.0f} s")

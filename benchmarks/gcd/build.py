@@ -9,7 +9,9 @@ each design becomes a case folder (FORMATS.md):
   newton_drape.py) from the specification's own 3D placement: every panel vertex starts at
   ``R @ (u, v, 0) + t`` with the panel's ``rotation`` (XYZ Euler angles [deg], applied as
   ``Rz @ Ry @ Rx``, GarmentCode's ``euler_xyz_to_R``) and ``translation`` [cm -> m]; the
-  specification's frame is the body's (Y up, facing +Z, feet at y = 0, cm);
+  specification's frame is the body's (Y up, facing +Z, feet at y = 0, cm); front and back
+  panels bent around the body, start vertices inside the body moved out; the edges the design
+  labels as what the garment hangs from (ATTACH_LABELS) held at the specification's height;
 - ``meta.json`` without the garment type; ``pattern_gt.json`` (the specification);
 - ``truth.json`` (type and structural choices from ``design_params.yaml``; the fit never reads it);
 - ``design_params.yaml`` and ``preview.png``.
@@ -270,9 +272,139 @@ def bend_around_body(x: np.ndarray, mesh, spec: dict, body_v: np.ndarray) -> np.
     return out
 
 
+def torso_sections(body_v: np.ndarray, band=0.015, gap=0.02, step=0.02):
+    """The body's torso cross-sections: heights (R,) [m] and for each its half width and front and
+    back z (R,) [m] each. At each height the body's vertices within ``band`` [m] are taken out
+    from the axis (bounding-box centre x) to the first gap wider than ``gap`` across x (what lies
+    beyond is an arm); below the crotch the section holds both legs."""
+    cx = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max())
+    rows = []
+    for y in np.arange(body_v[:, 1].min() + 0.05, body_v[:, 1].max(), step):
+        sl = body_v[np.abs(body_v[:, 1] - y) < band]
+        if len(sl) < 10:
+            continue
+        d = np.sort(np.abs(sl[:, 0] - cx))
+        jumps = np.flatnonzero(np.diff(d) > gap)
+        hw = d[jumps[0]] if len(jumps) else d[-1]
+        t = sl[np.abs(sl[:, 0] - cx) <= hw + 1e-9]
+        rows.append((y, hw, t[:, 2].max(), t[:, 2].min()))
+    return tuple(np.array(c) for c in zip(*rows))
+
+
+def _crotch_height(body_v: np.ndarray, half=0.01) -> float:
+    """The highest height [m] below the body's middle where no body vertex lies within ``half``
+    [m] of its axis (between the legs)."""
+    cx = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max())
+    mid = body_v[np.abs(body_v[:, 0] - cx) < half, 1]
+    ys = np.arange(body_v[:, 1].min() + 0.1, 0.5 * (body_v[:, 1].min() + body_v[:, 1].max()), 0.01)
+    empty = [y for y in ys if not np.any(np.abs(mid - y) < 0.01)]
+    return float(max(empty)) if empty else float(ys[0])
+
+
+def _ellipse_at(a: float, b: float, s: float, n=721) -> tuple[float, float]:
+    """The point (x, z) at signed arc length ``s`` [m] from (0, b) on the ellipse x = a sin t,
+    z = b cos t (a, b [m])."""
+    t = np.linspace(-np.pi, np.pi, n)
+    x, z = a * np.sin(t), b * np.cos(t)
+    arc = np.r_[0.0, np.cumsum(np.hypot(np.diff(x), np.diff(z)))]
+    arc -= np.interp(0.0, t, arc)
+    return float(np.interp(s, arc, x)), float(np.interp(s, arc, z))
+
+
+def wrap_on_torso(x: np.ndarray, mesh, spec: dict, body_v: np.ndarray, clearance=0.03, blend=0.1):
+    """The start x (Nu, 3) [m] with each front or back panel (as :func:`bend_around_body` picks
+    them) wrapped on the torso: a vertex at ``s = x - cx`` across its panel goes to arc length s
+    from the front (back) centre of the ellipse of the torso's section at its height (half width
+    and half depth plus ``clearance`` [m]); heights kept. Below the crotch the start is kept, and
+    over ``blend`` [m] above it the two are mixed linearly, so legs stay as they are."""
+    Y, HW, ZF, ZB = torso_sections(body_v)
+    y0 = _crotch_height(body_v)
+    cx = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max())
+    out = x.copy()
+    for i, name in enumerate(mesh.panel_names):
+        n = spec_rotation(spec["pattern"]["panels"][name].get("rotation", [0, 0, 0]))[:, 2]
+        if abs(n[2]) < np.cos(np.radians(30.0)):
+            continue
+        a_, b_ = int(mesh.panel_offsets[i]), int(mesh.panel_offsets[i + 1])
+        side = 1.0 if np.mean(x[a_:b_, 2]) > np.median(body_v[:, 2]) else -1.0
+        for k in range(a_, b_):
+            y = x[k, 1]
+            w = float(np.clip((y - y0) / blend, 0.0, 1.0))
+            if w == 0.0:
+                continue
+            zf, zb = np.interp(y, Y, ZF), np.interp(y, Y, ZB)
+            px, pz = _ellipse_at(np.interp(y, Y, HW) + clearance, 0.5 * (zf - zb) + clearance, x[k, 0] - cx)
+            wrapped = np.array([cx + px, y, 0.5 * (zf + zb) + side * pz])
+            out[k] = w * wrapped + (1.0 - w) * x[k]
+    return out
+
+
+def clear_of_body(x: np.ndarray, mesh, body_v: np.ndarray, body_f: np.ndarray, step=0.01, reach=0.06):
+    """The start x (Nu, 3) [m] with the vertices inside the body moved out horizontally, away
+    from the body's vertical axis (its bounding-box centre), heights kept: each inside vertex by
+    the multiple of ``step`` [m] that takes it out, plus one step; the vertices of its panel
+    within ``reach`` [m] of it (rest 2D distance) by that push times (1 - distance / reach), so
+    the panel bends out smoothly. Each vertex takes the largest push it is given; a vertex still
+    inside after 30 steps is left there (inside: as checks.inside_mask tells it)."""
+    import trimesh
+
+    contains = trimesh.Trimesh(body_v, body_f, process=False).contains
+    cx, cz = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max()), 0.5 * (body_v[:, 2].min() + body_v[:, 2].max())
+    d = x[:, [0, 2]] - [cx, cz]
+    dirn = np.zeros_like(x)
+    dirn[:, [0, 2]] = d / np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-9)
+    push = np.zeros(len(x))
+    inside = np.asarray(contains(x), bool)
+    moved = inside.copy()
+    for _ in range(30):
+        if not inside.any():
+            break
+        push[inside] += step
+        k = np.flatnonzero(inside)
+        inside[k] = contains(x[k] + push[k, None] * dirn[k])
+    push[moved] += step
+    out = np.zeros(len(x))
+    uv, pan = np.asarray(mesh.uv), np.asarray(mesh.uv_panel)
+    for k in np.flatnonzero(moved):
+        same = np.flatnonzero(pan == pan[k])
+        w = np.clip(1.0 - np.linalg.norm(uv[same] - uv[k], axis=1) / reach, 0.0, 1.0)
+        out[same] = np.maximum(out[same], push[k] * w)
+    return x + out[:, None] * dirn
+
+
+#: Edge labels that GarmentCode's programs put on the edges a garment hangs from (GarmentCodeData
+#: holds them by attachment constraints): a lower garment's or waistband's top edge
+#: (``lower_interface``, meta_garment.py) and a strapless bodice's top edge (``strapless_top``,
+#: bodice.py). Their vertices are held at the height the specification puts them.
+ATTACH_LABELS = ("lower_interface", "strapless_top")
+
+
+def attachment(spec: dict, mesh, x0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The uv vertices on the specification's edges labelled ATTACH_LABELS, (k,) int64, and their
+    heights [m], (k,) float64: the mean start height (x0 (Nu, 3) [m], Y up) of the uv vertices
+    sewn into the same vertex, so a seam's two sides are held at one height."""
+    idx = [
+        np.asarray(v, np.int64)
+        for (name, e), v in mesh.edge_verts.items()
+        if spec["pattern"]["panels"][name]["edges"][e].get("label") in ATTACH_LABELS
+    ]
+    idx = np.unique(np.concatenate(idx)) if idx else np.zeros(0, np.int64)
+    xu = np.asarray(mesh.x_of_u)
+    ysum, cnt = np.zeros(int(mesh.n_x)), np.zeros(int(mesh.n_x))
+    np.add.at(ysum, xu, x0[:, 1])
+    np.add.at(cnt, xu, 1.0)
+    return idx, (ysum / np.maximum(cnt, 1.0))[xu[idx]]
+
+
 #: newton's settings for starts from the specification (flat panels up to half a metre apart):
 #: the foreign benchmark's, with the sewing force and speed capped and four times the sewing frames.
-SEW_FROM_SPEC = {"seam_force_max_n": 1.0, "sew_speed_max_m_s": 0.5, "sew_frames": 120, "hold_frames": 135}
+SEW_FROM_SPEC = {
+    "seam_force_max_n": 1.0,
+    "sew_speed_max_m_s": 0.5,
+    "sew_frames": 120,
+    "hold_frames": 135,
+    "soft_contact_ke": 1.0e4,
+}
 
 
 def mesh_spec(spec: dict, name: str, edge_length: float):
@@ -293,8 +425,9 @@ def write_obj(path: Path, v: np.ndarray, f: np.ndarray, header: str) -> None:
         fh.write("".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in f))
 
 
-def _newton_drape(mesh, x0, body_v, body_f, lower):
-    """newton's drape (benchmarks/foreign/newton_drape.py) with its retry settings."""
+def _newton_drape(mesh, x0, body_v, body_f, lower, attach=None):
+    """newton's drape (benchmarks/foreign/newton_drape.py) with its retry settings; ``attach``:
+    (uv indices, heights [m]) held at those heights (see :func:`attachment`)."""
     sys.path.insert(0, str(HERE.parent / "foreign"))
     import newton_drape
 
@@ -302,7 +435,7 @@ def _newton_drape(mesh, x0, body_v, body_f, lower):
         settings = {**newton_drape.SETTINGS, **SEW_FROM_SPEC, **extra}
         try:
             x, info = newton_drape.drape_newton(
-                mesh, x0, body_v, body_f, lower=lower, settings=settings, log=_log
+                mesh, x0, body_v, body_f, lower=lower, settings=settings, log=_log, attach=attach
             )
             return x, info, settings
         except RuntimeError as exc:
@@ -334,6 +467,7 @@ def build_case(
         return rec
     x_spec = spec_placement(src.spec, mesh)
     x0 = bend_around_body(x_spec, mesh, src.spec, body_v)
+    x0 = clear_of_body(wrap_on_torso(x0, mesh, src.spec, body_v), mesh, body_v, body_f)
     rec["spec_inside_fraction"] = round(float(checks.inside_mask(x_spec, body_v, body_f).mean()), 4)
     rec["start_inside_fraction"] = round(float(checks.inside_mask(x0, body_v, body_f).mean()), 4)
     rec["vertices"] = int(mesh.n_x)
@@ -348,7 +482,10 @@ def build_case(
         rec.update(status="placed", seconds=round(time.time() - t0, 1))
         return rec
     try:
-        x, info, settings = _newton_drape(mesh, x0, body_v, body_f, src.truth["type"] in LOWER_TYPES)
+        att = attachment(src.spec, mesh, x0)
+        lower = src.truth["type"] in LOWER_TYPES and not len(att[0])
+        rec["attached_vertices"] = len(att[0])
+        x, info, settings = _newton_drape(mesh, x0, body_v, body_f, lower, att)
     except RuntimeError as exc:
         rec.update(status="failed", reason=f"newton: {exc}", seconds=round(time.time() - t0, 1))
         return rec
@@ -446,7 +583,10 @@ def _write_built(out: Path, src: _Design, x, mesh, body, rec: dict, fails: list[
             "newton": newton.__version__,
             "warp": warp.__version__,
             "start": "the specification's panel translation and rotation, front and back panels bent "
-            "around the body's axis (build.bend_around_body)",
+            "around the body's axis (build.bend_around_body), vertices inside the body moved out "
+            "(build.clear_of_body)",
+            "attached": f"{rec.get('attached_vertices', 0)} vertices on edges labelled "
+            f"{' or '.join(ATTACH_LABELS)} held at the specification's height (build.attachment)",
             "settings": {k: (None if v == float("inf") else v) for k, v in settings.items()},
             "mesh_edge_length_m": manifest()["edge_length_m"],
             "frames": info["frames"],

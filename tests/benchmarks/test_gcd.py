@@ -320,3 +320,100 @@ def test_truth_reads_the_structural_choices(truth):
     assert (t["sleeves"], t["skirt"], t["collar"]) == ("none", "pencil", "hood")
     assert t["neck_front"] is None and t["length"] is None  # under a hood; under a loose shirt
     assert truth.neck_corner_deg(np.array([[0.0, 0.0], [10.0, -10.0]])) == pytest.approx(90.0, abs=1.0)
+
+
+def test_attachment_holds_the_labelled_edge_at_the_height_its_seam_closes():
+    """A bodice (30 x 40 cm) over a waistband (30 x 5 cm) placed 5 cm below it, the waistband's
+    top edge labelled ``lower_interface`` and sewn to the bodice's bottom: held are the vertices of
+    that edge only, at the height halfway between the two sides of the seam."""
+    build = _load("build")
+    bodice = _panel([[0, 0], [30, 0], [30, 40], [0, 40]], t=(-15, 110, 15))
+    band = _panel([[0, 0], [30, 0], [30, 5], [0, 5]], t=(-15, 100, 15))
+    band["edges"][2]["label"] = "lower_interface"  # (30, 5) -> (0, 5): the band's top
+    spec = _spec(
+        {"bodice": bodice, "band": band}, [[{"panel": "bodice", "edge": 0}, {"panel": "band", "edge": 2}]]
+    )
+    mesh = build.mesh_spec(spec, "attach", 0.05)
+    x0 = build.spec_placement(spec, mesh)
+    idx, height = build.attachment(spec, mesh, x0)
+    on_edge = np.asarray(mesh.edge_verts[("band", 2)])
+    assert sorted(idx.tolist()) == sorted(set(on_edge.tolist()))
+    assert np.allclose(x0[idx, 1], 1.05) and np.allclose(height, 1.075)
+    spec["pattern"]["panels"]["band"]["edges"][2].pop("label")
+    assert len(build.attachment(spec, mesh, x0)[0]) == 0
+
+
+def test_newton_drape_keeps_attached_vertices_at_their_height_while_the_rest_falls():
+    """A 20 x 20 cm panel hanging from its top edge beside a box: after gravity is ramped in and
+    20 frames more, the held edge is where it was put (within a few mm) and the panel hangs from
+    it (unheld, it falls some 70 cm in that time)."""
+    pytest.importorskip("newton")
+    import trimesh
+
+    build = _load("build")
+    sys.path.insert(0, str(ROOT / "benchmarks" / "foreign"))
+    import newton_drape
+
+    spec = _spec({"p": _panel([[0, 0], [20, 0], [20, 20], [0, 20]], t=(-10, 100, 30))}, [])
+    mesh = build.mesh_spec(spec, "hang", 0.05)
+    x0 = build.spec_placement(spec, mesh)
+    top = np.flatnonzero(x0[:, 1] > 1.199)
+    box = trimesh.creation.box(extents=(0.2, 0.2, 0.2))
+    s = {**newton_drape.SETTINGS, "sew_frames": 2, "hold_frames": 2, "ramp_frames": 5, "settle_frames": 20}
+    x, _ = newton_drape.drape_newton(
+        mesh,
+        x0,
+        box.vertices + [0, 1.0, 0],
+        box.faces,
+        lower=False,
+        settings=s,
+        log=lambda *a: None,
+        attach=(top, x0[top, 1]),
+    )
+    held = np.unique(np.asarray(mesh.x_of_u)[top])
+    assert np.abs(x[held, 1] - 1.2).max() < 0.005
+    assert 1.2 - 0.25 < x[:, 1].min() < 1.2 - 0.19
+
+
+def test_wrap_on_torso_lays_a_front_panel_on_the_section_keeping_its_width_and_heights():
+    """A 30 x 40 cm front panel placed flat 30 cm in front of a round torso (radius 15 cm): wrapped,
+    every vertex lies 3 cm off the torso, heights kept, its rows as long as the panel is wide."""
+    import trimesh
+
+    build = _load("build")
+    torso = trimesh.creation.cylinder(radius=0.15, height=1.6, sections=32).subdivide_to_size(0.04)
+    body_v = np.asarray(torso.vertices) @ np.array([[1, 0, 0], [0, 0, 1], [0, 1, 0]]) + [0, 0.8, 0]
+    spec = _spec({"front": _panel([[0, 0], [30, 0], [30, 40], [0, 40]], t=(-15, 100, 30))}, [])
+    mesh = build.mesh_spec(spec, "front", 0.05)
+    x0 = build.spec_placement(spec, mesh)
+    x = build.wrap_on_torso(x0, mesh, spec, body_v, clearance=0.03)
+    assert np.allclose(x[:, 1], x0[:, 1])
+    assert np.allclose(np.hypot(x[:, 0], x[:, 2]), 0.18, atol=2e-3)
+    left, right = np.argmin(x0[:, 0]), np.argmax(x0[:, 0])
+    angle = np.arctan2(x[right, 0], x[right, 2]) - np.arctan2(x[left, 0], x[left, 2])
+    assert angle * 0.18 == pytest.approx(0.30, abs=3e-3)
+    assert np.all(x[:, 2] > 0)
+
+
+def test_clear_of_body_moves_a_panel_through_the_torso_out_of_it_keeping_heights():
+    """A 30 x 40 cm panel placed through a round torso (radius 15 cm, its plane 5 cm in front of
+    the axis): afterwards no vertex is inside, none moved up or down, the ones outside far from
+    the torso stay where they were."""
+    import trimesh
+
+    build = _load("build")
+    sys.path.insert(0, str(ROOT / "benchmarks" / "foreign"))
+    import checks
+
+    torso = trimesh.creation.cylinder(radius=0.15, height=1.6, sections=32).subdivide_to_size(0.04)
+    body_v = np.asarray(torso.vertices) @ np.array([[1, 0, 0], [0, 0, 1], [0, 1, 0]]) + [0, 0.8, 0]
+    body_f = np.asarray(torso.faces)[:, ::-1]  # the axis swap mirrors: keep the normals outward
+    spec = _spec({"p": _panel([[0, 0], [60, 0], [60, 40], [0, 40]], t=(-30, 100, 5))}, [])
+    mesh = build.mesh_spec(spec, "p", 0.05)
+    x0 = build.spec_placement(spec, mesh)
+    assert checks.inside_mask(x0, body_v, body_f).mean() > 0.3
+    x = build.clear_of_body(x0, mesh, body_v, body_f)
+    assert not checks.inside_mask(x, body_v, body_f).any()
+    assert np.allclose(x[:, 1], x0[:, 1])
+    far = np.abs(x0[:, 0]) > 0.28
+    assert far.any() and np.allclose(x[far], x0[far])
