@@ -22,6 +22,7 @@ wrong); a case whose build failed counts too. Medians are over the fitted cases.
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 import tempfile
@@ -134,7 +135,7 @@ def _score_pattern(rec: dict, case: Path, result: Path, truth: dict, spec_gt: di
     metrics = json.loads((result / "metrics.json").read_text()) if (result / "metrics.json").is_file() else {}
     spec_rec = json.loads((result / "pattern.json").read_text())
     base = str(metrics.get("base", ""))
-    rec["type_rec"] = base.split("_")[0] if base else None
+    rec["type_rec"] = type_of_base(base)
     cfg = (result / "config.yaml").read_text() if (result / "config.yaml").is_file() else ""
     meta = json.loads((case / "meta.json").read_text())
     rec["type_given"] = type_given(meta, cfg)
@@ -169,6 +170,12 @@ def _score_drapes(rec: dict, case: Path, result: Path, truth: dict, target, *, r
         rec["redrape_mm"], rec["redrape_error"] = None, f"{type(exc).__name__}: {str(exc)[:160]}"
     if rec.get("redrape_mm") and rec.get("floor_mm"):
         rec["redrape_ratio"] = round(rec["redrape_mm"] / rec["floor_mm"], 3)
+
+
+def type_of_base(base: str) -> str | None:
+    """The garment type a fit's base names: a library base (``dress_straight``) or a design drafted
+    from the reading (``shorts-shorts-band-length0.63``) names it first; None for no base."""
+    return re.split(r"[_-]", base)[0] if base else None
 
 
 def type_given(meta: dict, config_yaml: str) -> bool:

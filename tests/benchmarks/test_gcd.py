@@ -289,6 +289,14 @@ def test_a_type_is_given_only_where_meta_or_the_config_names_one():
     assert not score.type_given({}, "")
 
 
+def test_the_recovered_type_is_read_from_a_base_or_a_drafted_design_name():
+    score = _load("score")
+    assert score.type_of_base("dress_straight_sleeveless") == "dress"
+    assert score.type_of_base("shorts-shorts-band-length0.63") == "shorts"
+    assert score.type_of_base("jumpsuit-full-none-round-round-length0.76") == "jumpsuit"
+    assert score.type_of_base("") is None
+
+
 def test_truth_reads_the_structural_choices(truth):
     """The design's choices as classes: sleeve length, neckline halves by their drawn corner,
     skirt kind by the hem's flare, and no neckline scored under a collar piece."""
