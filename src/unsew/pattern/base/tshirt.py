@@ -208,6 +208,23 @@ def sleeve_panels(
     return left, right
 
 
+def side_and_shoulder_stitches(n: dict, k: int, first: int = 1) -> list[Stitch]:
+    """The side seams (``k`` segments a side) and shoulder seams of a top's front and back, whose
+    outlines have ``n["front"]`` and ``n["back"]`` edges and whose right half starts at edge
+    ``first`` (after the hem's ``first`` pieces), each left half the mirror of its right half.
+    Front +x is the body's left, back +x the body's right (the back is seen from behind)."""
+    right = lambda i: i + first  # noqa: E731  right-half segment i
+    left = lambda p, i: n[p] - 1 - i  # noqa: E731  its mirror image on panel p
+    st = []
+    for i in range(k):
+        side = "" if k == 1 else f"_{i}"
+        st.append(stitch("front", right(i), "back", left("back", i), f"left_side{side}"))
+        st.append(stitch("back", right(i), "front", left("front", i), f"right_side{side}"))
+    st.append(stitch("front", right(k + 1), "back", left("back", k + 1), "left_shoulder"))
+    st.append(stitch("back", right(k + 1), "front", left("front", k + 1), "right_shoulder"))
+    return st
+
+
 def top_stitches(
     k: int, *, sleeves: bool = True, necklines: tuple[str, str] = ("round", "round")
 ) -> list[Stitch]:
@@ -220,17 +237,8 @@ def top_stitches(
     n = {"front": 2 * k + 6 + (necklines[0] == "v"), "back": 2 * k + 6 + (necklines[1] == "v")}
     right = lambda i: i + 1  # noqa: E731  right-half segment i
     left = lambda p, i: n[p] - 1 - i  # noqa: E731  its mirror image on panel p
-    arm, sho = k, k + 1  # segment indices of armhole and shoulder
-    st = []
-    for i in range(k):
-        st.append(
-            stitch("front", right(i), "back", left("back", i), "left_side" if k == 1 else f"left_side_{i}")
-        )
-        st.append(
-            stitch("back", right(i), "front", left("front", i), "right_side" if k == 1 else f"right_side_{i}")
-        )
-    st.append(stitch("front", right(sho), "back", left("back", sho), "left_shoulder"))
-    st.append(stitch("back", right(sho), "front", left("front", sho), "right_shoulder"))
+    arm = k  # segment index of the armhole
+    st = side_and_shoulder_stitches(n, k)
     if sleeves:
         # Sleeve edges: 1 +x underarm, 2 +x cap, 3 -x cap, 4 -x underarm. The left sleeve's +x
         # side faces the back, the right sleeve's +x side faces the front.

@@ -35,6 +35,7 @@ from unsew.pattern.base.tshirt import (
     TopSpec,
     _armhole,
     _neckline,
+    side_and_shoulder_stitches,
     sleeve_panels,
 )
 from unsew.pattern.curves import panel_outline
@@ -131,19 +132,7 @@ def top_stitches(front: Panel, back: Panel, k: int, hem_pieces: int = 1) -> list
     """Side and shoulder seams of :func:`top_panels`' front and back (hem in ``hem_pieces``).
     Front +x is the body's left, back +x (seen from behind) the body's right."""
     n = {"front": len(front.vertices), "back": len(back.vertices)}
-    right = lambda i: i + hem_pieces  # noqa: E731  right-half segment i
-    left = lambda p, i: n[p] - 1 - i  # noqa: E731  its mirror image on panel p
-    st = []
-    for i in range(k):
-        st.append(
-            stitch("front", right(i), "back", left("back", i), "left_side" if k == 1 else f"left_side_{i}")
-        )
-        st.append(
-            stitch("back", right(i), "front", left("front", i), "right_side" if k == 1 else f"right_side_{i}")
-        )
-    st.append(stitch("front", right(k + 1), "back", left("back", k + 1), "left_shoulder"))
-    st.append(stitch("back", right(k + 1), "front", left("front", k + 1), "right_shoulder"))
-    return st
+    return side_and_shoulder_stitches(n, k, hem_pieces)
 
 
 def _armholes(front: Panel, back: Panel, k: int, hem_pieces: int) -> dict:
