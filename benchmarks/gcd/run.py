@@ -3,7 +3,8 @@
     python -m benchmarks gcd                       the table of the recorded results (results.json)
     python -m benchmarks gcd --summary             one JSON line of the recorded results
     python -m benchmarks gcd build [--out DIR] [--seeds 1-5] [--count 8] [--only gc_s1_000 ...] [--no-drape]
-    python -m benchmarks gcd score --results RESULTS_DIR [--cases DIR] [--record]
+    python -m benchmarks gcd fit --results RESULTS_DIR [--only ...] [--redo] fit each built case
+    python -m benchmarks gcd score --results RESULTS_DIR [--cases DIR] [--only-tried] [--record]
     python -m benchmarks gcd floor-fitted --results DIR [--record]   the material-fitted floor
     python -m benchmarks gcd status [--out DIR]    every case's build status
     python -m benchmarks gcd types [--out DIR] [--drapes DIR] [--record]   the design read off the targets
@@ -32,6 +33,7 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent))
 
 import build  # noqa: E402  (this folder on the path first)
+import fits  # noqa: E402
 import score  # noqa: E402
 import starts  # noqa: E402
 
@@ -153,6 +155,30 @@ def _add_starts_parser(sub) -> None:
     )
 
 
+def _add_fit_score_parsers(sub) -> None:
+    """The ``fit`` and ``score`` subcommands' options."""
+    s = sub.add_parser("score", help="judge fit results against the cases' truth")
+    s.add_argument("--results", required=True, help="folder of fit results, one folder per case id")
+    s.add_argument("--cases", default=str(DEFAULT_CASES))
+    s.add_argument("--record", action="store_true", help="write the scores to results.json")
+    s.add_argument(
+        "--no-redrape", action="store_true", help="skip the newton drapes of the recovered and true patterns"
+    )
+    s.add_argument("--no-floor", action="store_true", help="skip unsew's drape of the true pattern")
+    s.add_argument(
+        "--only-tried",
+        action="store_true",
+        help="score only the built cases fitted or tried (a result folder or an outcome in fits.json)",
+    )
+    fi = sub.add_parser(
+        "fit", help="run unsew fit on every built case, each outcome kept in RESULTS/fits.json"
+    )
+    fi.add_argument("--cases", default=str(DEFAULT_CASES))
+    fi.add_argument("--results", required=True, help="folder for one fit result folder per case id")
+    fi.add_argument("--only", nargs="*", help="case ids (default: every built case)")
+    fi.add_argument("--redo", action="store_true", help="fit again a case with an outcome already")
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m benchmarks gcd", description=__doc__.splitlines()[0])
     ap.add_argument("--summary", action="store_true", help="one JSON line of the recorded results")
@@ -167,17 +193,7 @@ def main(argv=None) -> int:
     b.add_argument(
         "--recheck", action="store_true", help="re-run the acceptance checks on the written cases (no drape)"
     )
-    s = sub.add_parser("score", help="judge fit results against the cases' truth")
-    s.add_argument("--results", required=True, help="folder of fit results, one folder per case id")
-    s.add_argument("--cases", default=str(DEFAULT_CASES))
-    s.add_argument("--record", action="store_true", help="write the scores to results.json")
-    s.add_argument(
-        "--no-redrape", action="store_true", help="skip the newton drapes of the recovered and true patterns"
-    )
-    s.add_argument("--no-floor", action="store_true", help="skip unsew's drape of the true pattern")
-    s.add_argument(
-        "--only-fitted", action="store_true", help="score only the built cases that have a result folder"
-    )
+    _add_fit_score_parsers(sub)
     ff = sub.add_parser(
         "floor-fitted", help="record the material-fitted floor of the built cases (the true pattern's fit)"
     )
@@ -198,6 +214,8 @@ def main(argv=None) -> int:
         return starts.cmd_starts(args, [cid for cid, _, _ in build.case_ids()], STARTS_RECORD)
     if args.cmd == "build":
         return cmd_build(args)
+    if args.cmd == "fit":
+        return fits.cmd_fit(args, [cid for cid, _, _ in build.case_ids()])
     if args.cmd == "score":
         return score.cmd_score(args, Path(args.record_file))
     if args.cmd == "floor-fitted":

@@ -15,8 +15,11 @@ Per case (a fit result folder ``RESULTS/<case>`` from ``unsew fit CASE --out RES
   target; ``floor_mm``: the true pattern draped by newton on a 10 % finer mesh against the target
   (that figure's floor); ``redrape_ratio`` = redrape_mm / floor_mm;
 - ``fit_s``: the fit's wall time (metrics.json timings_s).
-A built case without a fit result, or whose fit failed, counts as a miss (type and choices
-wrong); a case whose build failed counts too. Medians are over the fitted cases.
+A built case without a fit result, or whose fit failed (a non-zero exit in RESULTS/fits.json,
+written by ``gcd fit``: ``fit_exit`` and ``fit_message`` say how), counts as a miss (type and
+choices wrong); a case whose build failed counts too. Medians are over the fitted cases;
+``fit_ok`` is the fit's own verdict (metrics.json ``"ok"``), ``fitted_ok`` and ``fit_over_10min``
+count them.
 """
 
 from __future__ import annotations
@@ -34,6 +37,7 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 
 import build  # noqa: E402  (this folder on the path first)
+import fits  # noqa: E402
 import judge  # noqa: E402
 from truth import CHOICES, built_choices, choices_of_spec  # noqa: E402
 
@@ -150,6 +154,7 @@ def _score_pattern(rec: dict, case: Path, result: Path, truth: dict, spec_gt: di
     t = metrics.get("timings_s") or {}
     total = t.get("total_s", t.get("total"))
     rec["fit_s"] = round(float(total), 1) if total is not None else None
+    rec["fit_ok"] = bool(metrics.get("ok", True))
     rec["fitted"] = True
 
 
@@ -192,6 +197,7 @@ def cmd_score(args, record_file: Path) -> int:
     cases = Path(args.cases)
     results = Path(args.results)
     built = json.loads((cases / "build.json").read_text()) if (cases / "build.json").is_file() else {}
+    fit_log = fits.read_log(results)
     recs = {}
     for cid, _, _ in build.case_ids():
         b = built.get(cid)
@@ -208,13 +214,21 @@ def cmd_score(args, record_file: Path) -> int:
             }
             continue
         res = results / cid
-        if not res.is_dir() and args.only_fitted:
+        outcome = fit_log.get(cid)
+        if not res.is_dir() and outcome is None and args.only_tried:
             continue
+        failed = outcome is not None and outcome["exit"] != 0
         t0 = time.time()
         rec = score_case(
-            cases / cid, res if res.is_dir() else None, floor=not args.no_floor, redrape=not args.no_redrape
+            cases / cid,
+            res if res.is_dir() and not failed else None,
+            floor=not args.no_floor,
+            redrape=not args.no_redrape,
         )
         rec["built"] = True
+        if outcome is not None:
+            rec.update(fit_exit=outcome["exit"], fit_message=outcome["message"])
+            rec.setdefault("fit_s", outcome["seconds"])
         rec["score_s"] = round(time.time() - t0, 1)
         recs[cid] = rec
         print(json.dumps(rec), flush=True)
@@ -300,6 +314,9 @@ def summary(rec: dict) -> dict:
         "cases": n_cases,
         "built": sum(1 for r in rs if r.get("built")),
         "fitted": len(fit),
+        "fitted_ok": sum(1 for r in fit if r.get("fit_ok", True)),
+        "fit_failed": sum(1 for r in rs if r.get("fit_exit") not in (None, 0)),
+        "fit_over_10min": sum(1 for r in rs if (r.get("fit_s") or 0) > 600),
         "type_right": sum(1 for r in rs if r.get("type_right")),
         "choices_right": sum(1 for r in rs if r.get("choices_right")),
         "panel_err_median": _median([r.get("panel_err") for r in fit]),
@@ -314,6 +331,13 @@ def summary(rec: dict) -> dict:
     }
 
 
+def _fitted_cell(r: dict) -> str:
+    """'yes', 'yes, ok false', 'exit N' (a failed fit) or 'no' (never fitted)."""
+    if r.get("fitted"):
+        return "yes" if r.get("fit_ok", True) else "yes, ok false"
+    return f"exit {r['fit_exit']}" if r.get("fit_exit") not in (None, 0) else "no"
+
+
 def print_record(rec: dict) -> None:
     sys.path.insert(0, str(HERE.parent))
     from tables import print_table
@@ -326,7 +350,7 @@ def print_record(rec: dict) -> None:
                 "case": cid,
                 "type": r.get("type_true") or "",
                 "built": "yes" if r.get("built") else (r.get("build") or "no"),
-                "fitted": "yes" if r.get("fitted") else "no",
+                "fitted": _fitted_cell(r),
                 "type ok": ("yes" if r.get("type_right") else "no")
                 + (" (given)" if r.get("type_given") else ""),
                 "choices ok": "yes" if r.get("choices_right") else "no",

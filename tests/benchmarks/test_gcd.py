@@ -425,3 +425,25 @@ def test_clear_of_body_moves_a_panel_through_the_torso_out_of_it_keeping_heights
     assert np.allclose(x[:, 1], x0[:, 1])
     far = np.abs(x0[:, 0]) > 0.28
     assert far.any() and np.allclose(x[far], x0[far])
+
+
+def test_a_fit_that_stops_is_kept_as_a_tried_miss(tmp_path):
+    """``gcd fit`` keeps each fit's outcome: a built case whose fit stops with an error (here its
+    folder lacks a target) is in fits.json with its exit and one-line reason, and the summary
+    counts it as a failed fit, not as a case never run."""
+    fits, score = _load("fits"), _load("score")
+    cases, results = tmp_path / "cases", tmp_path / "results"
+    (cases / "gc_s1_000").mkdir(parents=True)
+    (cases / "build.json").write_text(json.dumps({"gc_s1_000": {"status": "built"}}))
+
+    class Args:
+        only, redo = None, False
+
+    Args.cases, Args.results = str(cases), str(results)
+    assert fits.cmd_fit(Args, ["gc_s1_000", "gc_s1_001"]) == 0
+    out = fits.read_log(results)["gc_s1_000"]
+    assert out["exit"] != 0 and out["message"] and "Traceback" not in out["message"]
+    assert "gc_s1_001" not in fits.read_log(results)  # not built: not fitted
+    rec = {"cases": {"gc_s1_000": {"built": True, "fitted": False, "fit_exit": out["exit"]}}}
+    s = score.summary(rec)
+    assert s["fit_failed"] == 1 and s["fitted"] == 0
