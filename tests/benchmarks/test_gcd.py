@@ -447,3 +447,33 @@ def test_a_fit_that_stops_is_kept_as_a_tried_miss(tmp_path):
     rec = {"cases": {"gc_s1_000": {"built": True, "fitted": False, "fit_exit": out["exit"]}}}
     s = score.summary(rec)
     assert s["fit_failed"] == 1 and s["fitted"] == 0
+
+
+def test_the_newton_redrape_is_kept_per_pattern_and_target(tmp_path, monkeypatch):
+    """Scoring again reads newton's drape of the same recovered pattern on the same target from
+    the result folder; a changed pattern is draped again."""
+    score = _load("score")
+    v, f = _grid(6, 0.2)
+    case, result = tmp_path / "gc_s1_000", tmp_path / "res"
+    case.mkdir()
+    result.mkdir()
+    lines = [f"v {a} {b} {c}" for a, b, c in v] + [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in f]
+    (case / "target.obj").write_text("\n".join(lines) + "\n")
+    (result / "garment.obj").write_text("\n".join(lines) + "\n")
+    (result / "pattern.json").write_text('{"pattern": {"panels": {}}}')
+    calls = []
+
+    def fake_redrape(spec, c, edge, lower):
+        calls.append(1)
+        return v + [0.0, 0.0, 0.01], f
+
+    monkeypatch.setattr(score, "newton_redrape", fake_redrape)
+    rec = {}
+    score._score_drapes(rec, case, result, {"type": "skirt"}, (v, f), redrape=True)
+    assert calls == [1] and rec["redrape_mm"] == pytest.approx(10.0, abs=0.1)
+    again = {}
+    score._score_drapes(again, case, result, {"type": "skirt"}, (v, f), redrape=True)
+    assert calls == [1] and again["redrape_mm"] == rec["redrape_mm"]
+    (result / "pattern.json").write_text('{"pattern": {"panels": {"a": {}}}}')
+    score._score_drapes({}, case, result, {"type": "skirt"}, (v, f), redrape=True)
+    assert calls == [1, 1]
