@@ -22,6 +22,17 @@ import truth as gt_truth
 
 #: Choices read off the shape and scored (truth.design_of's keys).
 SCORED = ("sleeves", "neck_front", "neck_back", "collar", "skirt", "length")
+#: The reading's measures printed beside each row (DesignReading.numbers' keys).
+MEASURES = (
+    "sleeve_share",
+    "over_shoulders",
+    "front_deg",
+    "back_deg",
+    "front_flat",
+    "back_flat",
+    "flare",
+    "hem_share",
+)
 #: Choices in the truth that the reading does not read (listed, not scored).
 NOT_READ = ("cuffs", "waistband")
 SOURCES = {
@@ -120,6 +131,8 @@ def row_of(cid: str, source: str, t: dict, r) -> dict:
     for k in NOT_READ:
         row[k] = _cell(t[k], t[k])
     row["evidence"] = "" if r is None else "; ".join(f"{k}: {v}" for k, v in r.evidence.items())[:160]
+    # the measures each choice was read from (its thresholds' margins), printed, not recorded
+    row["measures"] = "" if r is None else " ".join(f"{k}={v}" for k, v in r.numbers.items() if k in MEASURES)
     row["_right"] = {"type": r is not None and r.garment == t["type"]}
     row["_right"].update({k: t[k] == ch.get(k) for k in SCORED if t[k] is not None})
     return row
@@ -222,7 +235,7 @@ def cmd_types(args, case_ids: list[str], record: Path) -> int:
             "command": "python -m benchmarks gcd types --out CASES --drapes DRAPES --record",
             "commit": _commit(),
             "rows": [
-                *({k: v for k, v in r.items() if k != "evidence"} for r in shown),
+                *({k: v for k, v in r.items() if k not in ("evidence", "measures")} for r in shown),
                 all_row,
                 sound_row,
                 newton_row,
