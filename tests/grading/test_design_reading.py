@@ -173,3 +173,41 @@ def test_a_slit_leaves_the_skirts_flare_as_it_was(skeleton):
     scale = 1.0 + np.clip((hip - y) / (hip - knee), 0.0, 1.0) * 1.2  # the hem 2.2 x the hips' radius
     r = read_design(v * np.c_[scale, np.ones_like(y), scale], f, skeleton, body=body)
     assert r.skirt == "flared", r.evidence
+
+
+#: Drafted designs and the choices they are read back as (the design's own choices in the
+#: reading's words: a circle skirt is flared, full trouser legs end below the knee).
+ROUND_TRIP = [
+    (dict(garment="tshirt", sleeves="none"), dict(sleeves="none", neck_front="round", collar="none")),
+    (dict(garment="tshirt", sleeves="short", neckline_front="v"), dict(sleeves="short", neck_front="v")),
+    (
+        dict(garment="tshirt", sleeves="long", neckline_front="square"),
+        dict(sleeves="long", neck_front="square"),
+    ),
+    (
+        dict(garment="dress", sleeves="short", skirt="circle", length="midi", waist_seam=True),
+        dict(sleeves="short", skirt="flared"),
+    ),
+    (dict(garment="pants", leg="full"), dict(length="below knee")),
+    (dict(garment="shorts"), dict(length="above knee")),
+]
+
+
+@pytest.mark.parametrize("design, expected", ROUND_TRIP)
+def test_a_drafted_design_placed_on_the_body_is_read_as_its_own_choices(design, expected):
+    """A design drafted (unsew.pattern.design), meshed and placed round the body (no drape; each
+    sewn vertex at its copies' mean) is read back as its type and its choices."""
+    from unsew.body.placement import place_garment
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.design import Design, draft
+
+    body = default_body()
+    pattern = draft(Design(**design))
+    mesh = mesh_pattern(pattern, edge_length=0.04)
+    x = place_garment(pattern, mesh, body)  # (Nu, 3) [m], seam copies apart
+    xs = np.zeros((mesh.n_x, 3))
+    np.add.at(xs, mesh.x_of_u, x)
+    xs /= np.bincount(mesh.x_of_u, minlength=mesh.n_x)[:, None]
+    r = read_design(xs, mesh.faces, body.skeleton, body=body)
+    assert r.garment == design["garment"], r.evidence
+    assert {k: r.choices()[k] for k in expected} == expected, r.evidence

@@ -204,7 +204,7 @@ def _sleeves(v: np.ndarray, loops, skeleton) -> tuple[str, float, str]:
     neck = _neck_opening(v, loops, skeleton)
     chains = _limb_chains(skeleton)
     mid = 0.5 * (skeleton.position("left_shoulder") + skeleton.position("right_shoulder"))
-    shares = []
+    shares, hows = [], []
     for s in ("left", "right"):
         arm = chains[f"{s}_arm"]
         for i in np.flatnonzero(on[f"{s}_arm"] & ~leg):
@@ -212,18 +212,20 @@ def _sleeves(v: np.ndarray, loops, skeleton) -> tuple[str, float, str]:
                 continue
             p = _arm_crossing(v[np.asarray(loops[i].indices)], arm, mid)
             shares.append(_arm_share(centres[i] if p is None else p, arm))
+            hows.append(" (the arm line through it)" if p is not None else " (its centre)")
     free = ~(leg | on["left_arm"] | on["right_arm"])
     hanging = _hanging_ends(v, loops, centres, skeleton, free)
     shares += hanging
+    hows += [" (a sleeve end off the arm line)"] * len(hanging)
     if not shares:
         return "none", 0.0, "no arm opening"
-    share = max(shares)
+    k = int(np.argmax(shares))
+    share = shares[k]
     if share <= ARMHOLE_SHARE:
         cls = "none"
     else:
         cls = "short" if share <= SHORT_SLEEVE_SHARE else "long"
-    how = " (a sleeve end off the arm line)" if hanging and share == max(hanging) else ""
-    return cls, round(share, 2), f"arm opening {share:.2f} of the arm from the shoulder{how}"
+    return cls, round(share, 2), f"arm opening {share:.2f} of the arm from the shoulder{hows[k]}"
 
 
 def _is_square(pts: np.ndarray, width: float) -> tuple[bool, float]:
