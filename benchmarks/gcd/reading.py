@@ -4,7 +4,10 @@ design's truth (truth.py, from design_params.yaml).
 A case's target is its newton drape where the build accepted it (``built`` in build.json);
 otherwise the true pattern dressed by ``unsew drape`` (DRAPES/<case>.obj) stands in for it, and
 where neither exists the newton drape that failed its checks. Each row names its target's source:
-a stand-in is unsew's own drape, so a reading right on it says less than one on newton's.
+a stand-in is unsew's own drape, so a reading right on it says less than one on newton's. A
+stand-in whose top hangs more than the build's ``MAX_DROP`` below where the specification puts it
+(the newton build's slide check) is marked as slid. Sound targets: newton's accepted drapes and
+the stand-ins that passed their check and did not slide; the summaries count all rows and these.
 """
 
 from __future__ import annotations
@@ -14,10 +17,22 @@ import subprocess
 import warnings
 from pathlib import Path
 
+import numpy as np
 import truth as gt_truth
 
 #: Choices read off the shape and scored (truth.design_of's keys).
 SCORED = ("sleeves", "neck_front", "neck_back", "collar", "skirt", "length")
+#: The reading's measures printed beside each row (DesignReading.numbers' keys).
+MEASURES = (
+    "sleeve_share",
+    "over_shoulders",
+    "front_deg",
+    "back_deg",
+    "front_flat",
+    "back_flat",
+    "flare",
+    "hem_share",
+)
 #: Choices in the truth that the reading does not read (listed, not scored).
 NOT_READ = ("cuffs", "waistband")
 SOURCES = {
@@ -26,6 +41,28 @@ SOURCES = {
     "unsew-failed": "unsew drape of the true pattern (failed its check)",
     "newton-failed": "newton (failed its checks)",
 }
+#: Sources whose target is sound (the unsew ones only where they did not slide, :func:`slid`).
+SOUND = ("newton", "unsew")
+
+
+def spec_top(spec: dict) -> float:
+    """The height [m] of the specification's highest panel vertex, placed by its panel's
+    ``rotation`` and ``translation`` as the build places it (build.spec_placement)."""
+    from build import spec_rotation
+
+    scale = float(spec.get("properties", {}).get("units_in_meter", 100))
+    top = -np.inf
+    for pd in spec["pattern"]["panels"].values():
+        V = np.asarray(pd["vertices"], np.float64)
+        x = np.c_[V, np.zeros(len(V))] @ spec_rotation(pd.get("rotation", [0, 0, 0])).T
+        top = max(top, float((x[:, 1] + float(pd.get("translation", [0, 0, 0])[1])).max()) / scale)
+    return top
+
+
+def slid(d: Path, verts) -> float:
+    """How far [m] the target's top ``verts`` (V, 3) [m] hangs below where case folder ``d``'s
+    specification puts it."""
+    return spec_top(json.loads((d / "pattern_gt.json").read_text())) - float(np.asarray(verts)[:, 1].max())
 
 
 def build_status(root: Path, cid: str) -> str:
@@ -55,7 +92,8 @@ def target_of(root: Path, cid: str, drapes: Path | None) -> tuple[str, Path] | N
 
 
 def read_case(d: Path, target: Path):
-    """The DesignReading of the target mesh ``target`` on case folder ``d``'s body."""
+    """(the DesignReading of the target mesh ``target`` on case folder ``d``'s body, how far [m]
+    the target's top hangs below the specification's, :func:`slid`)."""
     from unsew.body.body import load_body
     from unsew.grading.design_reading import read_design
     from unsew.io.mesh import read_garment
@@ -65,7 +103,7 @@ def read_case(d: Path, target: Path):
     with warnings.catch_warnings():  # a repaired mesh is announced by a warning: not this table's news
         warnings.simplefilter("ignore")
         v, f, _ = read_garment(target)
-    return read_design(v, f, body.skeleton)
+    return read_design(v, f, body.skeleton, body=body), slid(d, v)
 
 
 def truth_of(d: Path) -> dict:
@@ -93,6 +131,8 @@ def row_of(cid: str, source: str, t: dict, r) -> dict:
     for k in NOT_READ:
         row[k] = _cell(t[k], t[k])
     row["evidence"] = "" if r is None else "; ".join(f"{k}: {v}" for k, v in r.evidence.items())[:160]
+    # the measures each choice was read from (its thresholds' margins), printed, not recorded
+    row["measures"] = "" if r is None else " ".join(f"{k}={v}" for k, v in r.numbers.items() if k in MEASURES)
     row["_right"] = {"type": r is not None and r.garment == t["type"]}
     row["_right"].update({k: t[k] == ch.get(k) for k in SCORED if t[k] is not None})
     return row
@@ -130,6 +170,8 @@ def summary_row(s: dict, what: str) -> dict:
 
 def table(root: Path, drapes: Path | None, case_ids: list[str]) -> list[dict]:
     """One row per case of ``case_ids`` that has a target (see :func:`target_of`)."""
+    from build import MAX_DROP
+
     from unsew.errors import InputError
 
     rows = []
@@ -140,12 +182,17 @@ def table(root: Path, drapes: Path | None, case_ids: list[str]) -> list[dict]:
         tgt = target_of(root, cid, drapes)
         if tgt is None:
             continue
+        drop = 0.0
         try:
-            r = read_case(d, tgt[1])
+            r, drop = read_case(d, tgt[1])
         except InputError as exc:
             r = None
             print(f"{cid}: the reading refused: {str(exc).splitlines()[0]}", flush=True)
-        rows.append(row_of(cid, SOURCES[tgt[0]], truth_of(d), r))
+        row = row_of(cid, SOURCES[tgt[0]], truth_of(d), r)
+        row["_sound"] = tgt[0] in SOUND and not (tgt[0] == "unsew" and drop > MAX_DROP)
+        if tgt[0] == "unsew" and drop > MAX_DROP:
+            row["target"] += f" (slid {100 * drop:.0f} cm)"
+        rows.append(row)
     return rows
 
 
@@ -174,17 +221,25 @@ def cmd_types(args, case_ids: list[str], record: Path) -> int:
     shown = [{k: v for k, v in r.items() if not k.startswith("_")} for r in rows]
     print_table(shown, title=f"Garment type and structural choices read off the targets in {root}")
     newton = [r for r in rows if r["target"] == SOURCES["newton"]]
+    sound = [r for r in rows if r["_sound"]]
     lines = [summary_line(summary(rows), f"all {len(rows)} cases")]
+    lines.append(summary_line(summary(sound), f"{len(sound)} sound targets"))
     lines.append(summary_line(summary(newton), f"{len(newton)} newton targets"))
     print("\n".join(lines))
     if args.record:
         all_row, newton_row = summary_row(summary(rows), "all"), summary_row(summary(newton), "newton only")
+        sound_row = summary_row(summary(sound), "sound targets")
         rec = {
             "title": "GarmentCode design benchmark: the type and structural choices read off each target "
             "(true, and what was read where it differs)",
             "command": "python -m benchmarks gcd types --out CASES --drapes DRAPES --record",
             "commit": _commit(),
-            "rows": [*({k: v for k, v in r.items() if k != "evidence"} for r in shown), all_row, newton_row],
+            "rows": [
+                *({k: v for k, v in r.items() if k not in ("evidence", "measures")} for r in shown),
+                all_row,
+                sound_row,
+                newton_row,
+            ],
         }
         record.write_text(json.dumps(rec, indent=1) + "\n")
         print(f"wrote {record}")

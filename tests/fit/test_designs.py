@@ -11,7 +11,7 @@ from unsew.errors import InputError
 from unsew.fit.config import FitConfig
 from unsew.fit.designs import MAX_CANDIDATES, design_candidates, drafted_candidates
 from unsew.fit.progress import Progress
-from unsew.grading.design_reading import DesignReading
+from unsew.grading.design_reading import FLARE_EDGES, DesignReading
 from unsew.pattern.design import draft
 
 CLASSES = ("none", "short", "long")
@@ -19,7 +19,7 @@ CLASSES = ("none", "short", "long")
 READINGS = {
     "skirt": DesignReading("skirt", skirt="flared", length="knee", numbers={"flare": 1.9, "hem_share": 0.45}),
     "skirt_near_edge": DesignReading(
-        "skirt", skirt="pencil", length="knee", numbers={"flare": 1.10, "hem_share": 0.45}
+        "skirt", skirt="pencil", length="knee", numbers={"flare": FLARE_EDGES[0] - 0.02, "hem_share": 0.45}
     ),
     "dress": DesignReading(
         "dress",

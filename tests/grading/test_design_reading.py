@@ -89,3 +89,125 @@ def test_neckline_halves_square_v_round():
     assert not _is_square(arc, width)[0] and not _half_is_v(arc, width)[0]
     assert not _is_square(shallow, width)[0]  # flat, but without corners: a shallow round back
     assert _half_is_v(vee, width)[0] and not _is_square(vee, width)[0]
+
+
+def test_a_top_cut_under_the_armpits_reads_strapless(skeleton):
+    """A tee's shape cut off under the armpits leaves no cloth over the shoulders: a strapless
+    top, no neckline and no collar read; the tee itself reaches over them."""
+    from unsew.grading.design_reading import _over_shoulders
+
+    v, f = _target("tee_fitted_short__default")
+    sh_y = 0.5 * (skeleton.position("left_shoulder")[1] + skeleton.position("right_shoulder")[1])
+    assert _over_shoulders(v, skeleton) > 0.0
+    keep = (v[f, 1] < sh_y - 0.1).all(axis=1)
+    used, faces = np.unique(f[keep], return_inverse=True)
+    r = read_design(v[used], faces.reshape(-1, 3), skeleton)
+    assert r.garment == "tshirt", r.evidence
+    assert (r.neck_front, r.neck_back, r.collar) == ("none", "none", "none"), r.evidence
+    assert "strapless" in r.summary()
+
+
+def _ring(centre, normal, radius, n=24, squash=1.0):
+    """(n, 3) points [m] of an ellipse round ``centre`` in the plane normal to ``normal``."""
+    normal = np.asarray(normal, float) / np.linalg.norm(normal)
+    a = np.cross(normal, [0.0, 0.0, 1.0] if abs(normal[2]) < 0.9 else [1.0, 0.0, 0.0])
+    a /= np.linalg.norm(a)
+    b = np.cross(normal, a)
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False)[:, None]
+    return np.asarray(centre) + radius * (np.cos(t) * a + squash * np.sin(t) * b)
+
+
+def test_a_deep_armhole_is_crossed_at_the_shoulder_and_a_sleeve_end_where_it_ends(skeleton):
+    """The arm line passes through a deep armhole (its centre 17 cm under the shoulder,
+    well along the arm's direction) beside the shoulder, and through a sleeve's end at the elbow."""
+    from unsew.grading.design_reading import ARMHOLE_SHARE, _arm_crossing, _arm_share
+    from unsew.grading.garment_type import _limb_chains
+
+    arm = _limb_chains(skeleton)["left_arm"]
+    sh = skeleton.position("left_shoulder")
+    mid = 0.5 * (sh + skeleton.position("right_shoulder"))
+    hole = _ring(sh + [0.01, -0.17, 0.0], [1.0, 0.0, 0.0], 0.2, squash=0.5)  # tall, in a side plane
+    assert _arm_share(hole.mean(axis=0), arm) > ARMHOLE_SHARE  # its centre alone says a sleeve
+    p = _arm_crossing(hole, arm, mid)
+    assert p is not None and _arm_share(p, arm) < ARMHOLE_SHARE
+    elbow = skeleton.position("left_elbow")
+    end = _ring(elbow, elbow - sh, 0.06)
+    p = _arm_crossing(end, arm, mid)
+    reach = np.linalg.norm(elbow - sh) / (np.linalg.norm(elbow - sh) + np.linalg.norm(arm[2] - elbow))
+    assert p is not None and abs(_arm_share(p, arm) - reach) < 0.02
+
+
+def _tube(radius, top, bottom, slit=0.0, n=48, rows=12):
+    """(V, 3), (F, 3) an open cylinder round the Y axis [m] from height ``top`` down to
+    ``bottom``, with a slit ``slit`` [m] high up the front from its hem."""
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False) + np.pi / 2  # column 0 at the front (+Z)
+    ys = np.linspace(top, bottom, rows)
+    v = np.array([[radius * np.cos(a), y, radius * np.sin(a)] for y in ys for a in t])
+    f = []
+    for i in range(rows - 1):
+        for j in range(n):
+            k = (j + 1) % n
+            if k == 0 and ys[i + 1] < bottom + slit:  # the slit: front columns not joined
+                continue
+            a, b, c, d = i * n + j, i * n + k, (i + 1) * n + j, (i + 1) * n + k
+            f += [[a, c, b], [b, c, d]]
+    return v, np.array(f)
+
+
+def test_a_slit_leaves_the_skirts_flare_as_it_was(skeleton):
+    """A straight tube skirt round the hips reads pencil, with or without a slit up its front;
+    twice as wide at its hem (a cone) it reads flared."""
+    from unsew.grading.design_reading import _hip_girth
+
+    body = default_body()
+    hip = 0.5 * (skeleton.position("left_hip")[1] + skeleton.position("right_hip")[1])
+    knee = 0.5 * (skeleton.position("left_knee")[1] + skeleton.position("right_knee")[1])
+    radius = 1.05 * _hip_girth(skeleton, body) / (2 * np.pi)  # a little ease round the hips
+    for slit in (0.0, 0.25):
+        v, f = _tube(radius, hip + 0.12, knee, slit=slit)
+        r = read_design(v, f, skeleton, body=body)
+        assert r.garment == "skirt" and r.skirt == "pencil", r.evidence
+        assert "the body's girth" in r.evidence["skirt"]
+    v, f = _tube(radius, hip + 0.12, knee)
+    y = v[:, 1]
+    scale = 1.0 + np.clip((hip - y) / (hip - knee), 0.0, 1.0) * 1.2  # the hem 2.2 x the hips' radius
+    r = read_design(v * np.c_[scale, np.ones_like(y), scale], f, skeleton, body=body)
+    assert r.skirt == "flared", r.evidence
+
+
+#: Drafted designs and the choices they are read back as (the design's own choices in the
+#: reading's words: a circle skirt is flared, full trouser legs end below the knee).
+ROUND_TRIP = [
+    (dict(garment="tshirt", sleeves="none"), dict(sleeves="none", neck_front="round", collar="none")),
+    (dict(garment="tshirt", sleeves="short", neckline_front="v"), dict(sleeves="short", neck_front="v")),
+    (
+        dict(garment="tshirt", sleeves="long", neckline_front="square"),
+        dict(sleeves="long", neck_front="square"),
+    ),
+    (
+        dict(garment="dress", sleeves="short", skirt="circle", length="midi", waist_seam=True),
+        dict(sleeves="short", skirt="flared"),
+    ),
+    (dict(garment="pants", leg="full"), dict(length="below knee")),
+    (dict(garment="shorts"), dict(length="above knee")),
+]
+
+
+@pytest.mark.parametrize("design, expected", ROUND_TRIP)
+def test_a_drafted_design_placed_on_the_body_is_read_as_its_own_choices(design, expected):
+    """A design drafted (unsew.pattern.design), meshed and placed round the body (no drape; each
+    sewn vertex at its copies' mean) is read back as its type and its choices."""
+    from unsew.body.placement import place_garment
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.design import Design, draft
+
+    body = default_body()
+    pattern = draft(Design(**design))
+    mesh = mesh_pattern(pattern, edge_length=0.04)
+    x = place_garment(pattern, mesh, body)  # (Nu, 3) [m], seam copies apart
+    xs = np.zeros((mesh.n_x, 3))
+    np.add.at(xs, mesh.x_of_u, x)
+    xs /= np.bincount(mesh.x_of_u, minlength=mesh.n_x)[:, None]
+    r = read_design(xs, mesh.faces, body.skeleton, body=body)
+    assert r.garment == design["garment"], r.evidence
+    assert {k: r.choices()[k] for k in expected} == expected, r.evidence

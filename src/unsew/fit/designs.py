@@ -47,12 +47,11 @@ def _hem_length(reading, m: Measurements) -> float | None:
     return round(float(np.clip(m.waist_height - hip_joint * (1.0 - share), 0.1, 1.5)), 2)
 
 
-def _cone_flare(theta: float, top: float, hip: float, girth_depth: float, length: float) -> float:
-    """A cone skirt's flare as the reading measures it: its hem's length over the cloth's girth
-    where the reading takes it, level with the hip joints (the cone's girth there, the hips' at
-    least). theta: the unrolled angle [rad]; top, hip: girths [m] at its top and the hips;
-    girth_depth, length: that level's and the hem's depth below its top [m]."""
-    return (top + theta * length) / max(hip, top + theta * girth_depth)
+def _cone_flare(theta: float, top: float, hip: float, length: float) -> float:
+    """A cone skirt's flare as the reading measures it: its hem's length over the body's hip
+    girth. theta: the unrolled angle [rad]; top: the cone's girth at its top [m]; hip: the body's
+    hip girth [m]; length: the hem's depth below its top [m]."""
+    return (top + theta * length) / hip
 
 
 def _fitted_flare(reading, m: Measurements, length: float | None, style: str, *, band: bool = False):
@@ -64,8 +63,6 @@ def _fitted_flare(reading, m: Measurements, length: float | None, style: str, *,
     drop = BAND_HEIGHT if band else 0.0
     f, _, top, hip, _ = _skirt._girths(m, drop)
     h = f.waist_y - f.hip_y - drop  # the hips' depth, as the A-line is drafted
-    hip_joints = (1.0 + ANKLE_HEIGHT) * m.leg_length  # over the floor [m], as the reading has them
-    level = max(m.waist_height - hip_joints - drop, 0.05)
     L = (length if length is not None else 0.75 * m.leg_length) - drop
     if style == "aline":
         grid = np.arange(0.0, 2.0001, 0.05)
@@ -73,7 +70,7 @@ def _fitted_flare(reading, m: Measurements, length: float | None, style: str, *,
     else:
         grid = np.arange(0.1, 1.0001, 0.05)
         thetas = 2 * np.pi * grid
-    err = [abs(_cone_flare(t, top, hip, level, L) - flare) for t in thetas]
+    err = [abs(_cone_flare(t, top, m.hip, L) - flare) for t in thetas]
     return round(float(grid[int(np.argmin(err))]), 2)
 
 

@@ -115,7 +115,9 @@ def with_garment_read(case, cfg: FitConfig, *, log=print):
     if case.garment or cfg.base:
         return case
     reading = read_garment_type(case.target_verts, case.target_faces, case.body.skeleton)
-    design = read_design(case.target_verts, case.target_faces, case.body.skeleton, reading=reading)
+    design = read_design(
+        case.target_verts, case.target_faces, case.body.skeleton, reading=reading, body=case.body
+    )
     note = f"garment type read off the target: {reading.garment}: {reading.reason}"
     if reading.garment not in GARMENTS:
         raise InputError(

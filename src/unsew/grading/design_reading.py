@@ -24,6 +24,7 @@ import numpy as np
 
 from unsew.grading.garment_type import (
     GarmentReading,
+    _encloses,
     _limb_chains,
     _mid_y,
     _neck_opening,
@@ -52,9 +53,11 @@ COLLAR_CLASSES = ("none", "hood", "turtle")
 SKIRT_CLASSES = ("pencil", "a-line", "flared")
 LENGTH_CLASSES = ("above knee", "knee", "below knee")
 
-#: An arm opening whose centre lies within this share of the arm (shoulder to wrist) from the
-#: shoulder is an armhole (no sleeve) ...
-ARMHOLE_SHARE = 0.13
+#: An arm opening crossed by the arm line (or, when the arm line misses it, whose centre lies)
+#: within this share of the arm (shoulder to wrist) from the shoulder joint is an armhole (no
+#: sleeve): an armhole's seam runs round the shoulder's rim, about a fifth of the arm out from the
+#: joint at most ...
+ARMHOLE_SHARE = 0.2
 #: ... one past it and up to this share ends a short sleeve (above the elbow), beyond it a long one.
 SHORT_SLEEVE_SHARE = 0.5
 #: A loop round no limb, beside the torso and narrower than this [m] (mean radius) is a sleeve's
@@ -69,9 +72,16 @@ SQUARE_FLAT = 0.6
 HOOD_ABOVE_HEAD = 0.05
 #: A standing collar: the neck opening's centre sits this far [m] or more above the neck joint.
 TURTLE_ABOVE_NECK = 0.04
-#: The skirt's flare (hem length over the garment's girth at the hip joints): below the first
-#: value a pencil skirt, below the second an A-line, beyond a flared (circle, godet, tiered) one.
-FLARE_EDGES = (1.12, 1.5)
+#: The skirt's flare (the hem's length seen from above, a slit's rise left out, over the hip
+#: girth: the body's at the hip joints, arms left out, or the garment's without a body): below
+#: the first value a pencil skirt, below the second an A-line, beyond a flared (circle, godet,
+#: tiered) one; GarmentCode's designs are classed by the same ratio (benchmarks/gcd/truth.py).
+FLARE_EDGES = (1.2, 1.7)
+#: A bodice reaches over the shoulders when cloth lies higher than the shoulder joints beside the
+#: neck (between these shares of the half shoulder width out from the centre line): a strap or a
+#: shoulder seam lies on the shoulder, a few cm over the joint; a strapless top's edge stays under
+#: the armpits, well below it.
+STRAP_BAND = (0.4, 1.2)
 #: The hem's depth below the hip joints as a share of the leg: up to the first value above the
 #: knee, up to the second at the knee, beyond below it.
 LENGTH_EDGES = (0.33, 0.55)
@@ -167,28 +177,55 @@ def _hanging_ends(v: np.ndarray, loops, centres: np.ndarray, skeleton, free: np.
     return out
 
 
+def _arm_crossing(pts: np.ndarray, arm: list[np.ndarray], centre: np.ndarray) -> np.ndarray | None:
+    """Where the arm line ``arm`` (shoulder, elbow, wrist, ...), run on inwards to the torso's
+    centre ``centre`` (3,) [m], passes through the opening ``pts`` (k, 3) [m]: its crossing with
+    the opening's plane (the points' least-squares plane) when that lies inside the opening, else
+    None. An armhole is crossed at the shoulder however low it hangs; a sleeve's end where it ends."""
+    c = pts.mean(axis=0)
+    _, _, vt = np.linalg.svd(pts - c)
+    n, basis = vt[2], vt[:2]
+    line = [centre, *arm]
+    for a, b in zip(line[:-1], line[1:]):
+        da, db = float((a - c) @ n), float((b - c) @ n)
+        if da * db > 0 or da == db:
+            continue
+        p = a + da / (da - db) * (b - a)
+        if _encloses((pts - c) @ basis.T, basis @ (p - c)):
+            return p
+    return None
+
+
 def _sleeves(v: np.ndarray, loops, skeleton) -> tuple[str, float, str]:
-    """(class, share, evidence): the longer side's arm opening's share of the arm."""
+    """(class, share, evidence): the longer side's arm opening's share of the arm: where the arm
+    line passes through it, or, where it misses it, where its centre lies along the arm."""
     centres = np.stack([np.asarray(c.centre, dtype=np.float64) for c in loops])
     leg, _, on = _openings_by_part(v, loops, centres, skeleton)
+    neck = _neck_opening(v, loops, skeleton)
     chains = _limb_chains(skeleton)
-    shares = [
-        _arm_share(centres[i], chains[f"{s}_arm"])
-        for s in ("left", "right")
-        for i in np.flatnonzero(on[f"{s}_arm"] & ~leg)
-    ]
+    mid = 0.5 * (skeleton.position("left_shoulder") + skeleton.position("right_shoulder"))
+    shares, hows = [], []
+    for s in ("left", "right"):
+        arm = chains[f"{s}_arm"]
+        for i in np.flatnonzero(on[f"{s}_arm"] & ~leg):
+            if loops[i] is neck:
+                continue
+            p = _arm_crossing(v[np.asarray(loops[i].indices)], arm, mid)
+            shares.append(_arm_share(centres[i] if p is None else p, arm))
+            hows.append(" (the arm line through it)" if p is not None else " (its centre)")
     free = ~(leg | on["left_arm"] | on["right_arm"])
     hanging = _hanging_ends(v, loops, centres, skeleton, free)
     shares += hanging
+    hows += [" (a sleeve end off the arm line)"] * len(hanging)
     if not shares:
         return "none", 0.0, "no arm opening"
-    share = max(shares)
+    k = int(np.argmax(shares))
+    share = shares[k]
     if share <= ARMHOLE_SHARE:
         cls = "none"
     else:
         cls = "short" if share <= SHORT_SLEEVE_SHARE else "long"
-    how = " (a sleeve end off the arm line)" if hanging and share == max(hanging) else ""
-    return cls, round(share, 2), f"arm opening {share:.2f} of the arm from the shoulder{how}"
+    return cls, round(share, 2), f"arm opening {share:.2f} of the arm from the shoulder{hows[k]}"
 
 
 def _is_square(pts: np.ndarray, width: float) -> tuple[bool, float]:
@@ -226,6 +263,17 @@ def _necklines(v: np.ndarray, faces, loops, skeleton) -> tuple[tuple, dict, str]
     return (out[0], out[1]), nums, ev
 
 
+def _over_shoulders(v: np.ndarray, skeleton) -> float:
+    """How far [m] the cloth beside the neck (:data:`STRAP_BAND` of the half shoulder width out
+    from the centre line, either side) reaches above the shoulder joints; -inf where none lies
+    there. Negative: no cloth over the shoulders (a strapless top)."""
+    ls, rs = skeleton.position("left_shoulder"), skeleton.position("right_shoulder")
+    mid_x, half = 0.5 * (ls[0] + rs[0]), 0.5 * abs(ls[0] - rs[0])
+    out = np.abs(v[:, 0] - mid_x) / max(half, 1e-9)
+    band = (out >= STRAP_BAND[0]) & (out <= STRAP_BAND[1])
+    return float(v[band, 1].max() - 0.5 * (ls[1] + rs[1])) if band.any() else -np.inf
+
+
 def _collar(v: np.ndarray, loops, skeleton) -> tuple[str, str]:
     """(class, evidence): a hood over the head joint, a standing collar above the neck joint."""
     above_head = float(v[:, 1].max() - skeleton.position("head")[1])
@@ -258,7 +306,21 @@ def _hem_loop(v: np.ndarray, loops, skeleton):
     return min(torso, key=lambda c: float(np.percentile(v[np.asarray(c.indices), 1], 10.0)), default=None)
 
 
-def _skirt_and_length(v: np.ndarray, faces, loops, skeleton, reading: GarmentReading):
+def _hip_girth(skeleton, body) -> float:
+    """The body's girth [m] at the hip joints' height, the arms (and hands) left out: the
+    cross-section's pieces within 2.5 times the hip joints' half spacing of the centre line."""
+    import trimesh
+
+    lh, rh = skeleton.position("left_hip"), skeleton.position("right_hip")
+    m = trimesh.Trimesh(np.asarray(body.verts), np.asarray(body.faces), process=False)
+    seg = trimesh.intersections.mesh_plane(m, plane_normal=[0.0, 1.0, 0.0], plane_origin=[0.0, lh[1], 0.0])
+    if not len(seg):
+        return 0.0
+    keep = np.abs(seg.mean(axis=1)[:, 0] - 0.5 * (lh[0] + rh[0])) < 1.25 * abs(lh[0] - rh[0])
+    return float(np.linalg.norm(seg[keep, 1] - seg[keep, 0], axis=1).sum())
+
+
+def _skirt_and_length(v: np.ndarray, faces, loops, skeleton, reading: GarmentReading, *, body=None):
     """({"skirt", "length"}, numbers, evidence) of a skirt, dress, trousers or shorts."""
     hip_y = _mid_y(skeleton, "hip")
     ankle_y = _mid_y(skeleton, "ankle")
@@ -272,13 +334,16 @@ def _skirt_and_length(v: np.ndarray, faces, loops, skeleton, reading: GarmentRea
         what = "hem"
         hem = _hem_loop(v, loops, skeleton)
         idx = np.r_[hem.indices, hem.indices[0]] if hem is not None else np.zeros(0, dtype=np.int64)
-        hem_len = float(np.linalg.norm(np.diff(v[idx], axis=0), axis=1).sum())
-        girth = _girth_at(v, faces, hip_y)
+        # seen from above: a slit's rise adds nothing to the hem's girth
+        hem_len = float(np.linalg.norm(np.diff(v[idx][:, [0, 2]], axis=0), axis=1).sum())
+        girth = _hip_girth(skeleton, body) if body is not None else 0.0
+        whose = "the body's" if girth > 0 else "the garment's"
+        girth = girth if girth > 0 else _girth_at(v, faces, hip_y)
         if girth > 0 and hem_len > 0:
             flare = hem_len / girth
             out["skirt"] = SKIRT_CLASSES[int(flare >= FLARE_EDGES[0]) + int(flare >= FLARE_EDGES[1])]
             nums["flare"] = round(flare, 2)
-            ev["skirt"] = f"hem {hem_len:.2f} m round, {flare:.2f} x the girth at the hips"
+            ev["skirt"] = f"hem {hem_len:.2f} m round, {flare:.2f} x {whose} girth at the hips"
     if np.isfinite(low_y):
         share = (hip_y - low_y) / leg
         out["length"] = LENGTH_CLASSES[int(share > LENGTH_EDGES[0]) + int(share > LENGTH_EDGES[1])]
@@ -291,14 +356,16 @@ def _skirt_and_length(v: np.ndarray, faces, loops, skeleton, reading: GarmentRea
 
 
 def read_design(
-    verts, faces, skeleton, *, contours=None, reading: GarmentReading | None = None
+    verts, faces, skeleton, *, contours=None, reading: GarmentReading | None = None, body=None
 ) -> DesignReading:
     """Read the garment type (:func:`unsew.grading.garment_type.read_garment_type`) and its
     structural choices (:class:`DesignReading`) off a draped garment.
 
     verts: (V, 3) float64 [m], world frame (Y up, the body facing +Z); faces: (F, 3) int;
     skeleton: the wearer's :class:`~unsew.body.skeleton.Skeleton`; contours: the mesh's open
-    contours when already found; reading: the type's reading when already made.
+    contours when already found; reading: the type's reading when already made; body: the
+    wearer (:class:`~unsew.body.body.Body`, its ``verts`` and ``faces``), whose hip girth the
+    skirt's flare is measured against (without it, the garment's own girth at the hips).
     Raises InputError as :func:`read_garment_type` does (no opening, missing joints).
     """
     v = np.asarray(verts, dtype=np.float64)
@@ -308,12 +375,21 @@ def read_design(
     got, nums, ev = {}, {}, {}
     if r.garment in ("tshirt", "dress", "jumpsuit"):
         got["sleeves"], nums["sleeve_share"], ev["sleeves"] = _sleeves(v, loops, skeleton)
-        got["collar"], ev["collar"] = _collar(v, loops, skeleton)
-        if got["collar"] == "none":  # under a hood or a standing collar no opening shows the neckline
+        nums["over_shoulders"] = round(_over_shoulders(v, skeleton), 3)
+        if nums["over_shoulders"] < 0.0:
+            got["collar"], got["neck_front"], got["neck_back"] = "none", "none", "none"
+            ev["neck_front"] = ev["collar"] = (
+                f"no cloth over the shoulders (a strapless top: its edge beside the neck "
+                f"{-100 * nums['over_shoulders']:.0f} cm under the shoulder joints)"
+            )
+        else:
+            got["collar"], ev["collar"] = _collar(v, loops, skeleton)
+        if got["collar"] == "none" and "neck_front" not in got:
+            # under a hood or a standing collar no opening shows the neckline
             (got["neck_front"], got["neck_back"]), n, ev["neck_front"] = _necklines(v, f, loops, skeleton)
             nums.update(n)
     if r.garment != "tshirt":
-        o, n, e = _skirt_and_length(v, f, loops, skeleton, r)
+        o, n, e = _skirt_and_length(v, f, loops, skeleton, r, body=body)
         got.update(o)
         nums.update(n)
         ev.update(e)

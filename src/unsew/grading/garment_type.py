@@ -214,11 +214,23 @@ def _type_of(split: bool, upper: bool, hem_y: float, h: dict, said: str):
     return "skirt", f"one tube round the hips and legs ({said})"
 
 
+def _encloses(poly: np.ndarray, p: np.ndarray) -> bool:
+    """Whether point p (2,) lies inside the closed polygon ``poly`` (k, 2) (even-odd rule)."""
+    x, y = poly[:, 0], poly[:, 1]
+    x2, y2 = np.roll(x, -1), np.roll(y, -1)
+    dy = np.where(y2 == y, 1e-12, y2 - y)
+    cross = ((y > p[1]) != (y2 > p[1])) & (p[0] < (x2 - x) * (p[1] - y) / dy + x)
+    return bool(cross.sum() % 2)
+
+
 def _neck_opening(v: np.ndarray, loops, skeleton):
-    """The neck opening: the highest loop whose centre lies above the chest line and near the
-    torso's centre line (not round an arm), or None."""
+    """The neck opening: the highest loop whose centre lies above the chest line and that goes
+    round the neck (seen from above, the neck joint lies inside it: a neckline run into an
+    armhole still does), or, failing that, lies near the torso's centre line and round no arm;
+    None without one."""
     chains = _limb_chains(skeleton)
     chest = _chest_y(skeleton)
+    neck_xz = skeleton.position("neck")[[0, 2]]
     mid_x = 0.5 * (skeleton.position("left_shoulder")[0] + skeleton.position("right_shoulder")[0])
     half_shoulders = 0.5 * abs(skeleton.position("left_shoulder")[0] - skeleton.position("right_shoulder")[0])
     best = None
@@ -229,7 +241,8 @@ def _neck_opening(v: np.ndarray, loops, skeleton):
             float(_chain_distance(cen[None], chains[f"{s}_arm"])[0]) < max(r, LIMB_NEAR)
             for s in ("left", "right")
         )
-        if cen[1] > chest and abs(cen[0] - mid_x) < 0.5 * half_shoulders and not on_arm:
+        central = abs(cen[0] - mid_x) < 0.5 * half_shoulders and not on_arm
+        if cen[1] > chest and (central or _encloses(v[np.asarray(c.indices)][:, [0, 2]], neck_xz)):
             if best is None or cen[1] > best[0]:
                 best = (cen[1], c)
     return None if best is None else best[1]
