@@ -263,11 +263,13 @@ def test_the_types_table_reads_newton_targets_and_stands_in_unsews_drapes(tmp_pa
     class Read:
         garment = "skirt"
         evidence = {}
+        numbers = {"flare": 1.3}
 
         def choices(self):
             return {"sleeves": None, "neck_front": None, "neck_back": None, "collar": None}
 
     row = reading.row_of("gc_a", "newton", t, Read())
+    assert "flare=1.3" in row["measures"]
     assert row["skirt"] == "flared (read -)" and row["type"] == "skirt"
     s = reading.summary([row])
     assert s["type"] == (1, 1) and s["skirt"] == (0, 1) and s["sleeves"] == (0, 0) and s["choices"] == (0, 2)
