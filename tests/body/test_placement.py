@@ -330,3 +330,22 @@ def test_a_leg_panel_laid_out_below_the_feet_is_placed(bodies):
     assert panel_roles(pat, body)["left_front"] == "left_leg"
     x = place_garment(pat, mesh, body, sdf=sdf)
     assert x.shape == (mesh.n_uv, 3) and np.isfinite(x).all()
+
+
+def test_a_trouser_hem_below_the_ankle_starts_closed_round_it(bodies):
+    """Trousers longer than the legs (their layout moved 0.1 m down, the hems below the feet):
+    below the ankle a leg is wrapped as a tube round it, not round the foot's long section, so
+    the seams of the hem start together (the foot held them 0.33 m open, and sewing pulled the
+    hem through the foot)."""
+    body, sdf = bodies["default"]
+    pat = make_base_pattern("pants")
+    for p in pat.panels.values():
+        p.translation = np.asarray(p.translation, np.float64) - np.array([0.0, 0.1, 0.0])
+    mesh = mesh_pattern(pat, edge_length=0.04)
+    x = place_garment(pat, mesh, body, sdf=sdf)
+    sp = np.asarray(mesh.seam_pairs)
+    ankle_y = float(body.skeleton.position("left_ankle")[1])
+    low = (x[sp[:, 0], 1] < ankle_y) & (x[sp[:, 1], 1] < ankle_y)
+    assert low.sum() >= 4
+    gap = np.linalg.norm(x[sp[low, 0]] - x[sp[low, 1]], axis=1)
+    assert gap.max() < 0.1, gap.max()

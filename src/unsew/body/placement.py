@@ -55,6 +55,9 @@ SHOULDER_MEET = 0.012
 #: Secant iterations solving a top's lift, and the largest change of the lift per step [m].
 LIFT_ITERS = 6
 LIFT_MAX_STEP = 0.1
+#: Below this height over its ankle joint a leg's stack keeps the section there (the foot's
+#: section is left out: it reaches forward, and the smoothing of the sections spreads it up) [m].
+ANKLE_ABOVE = 0.04
 #: Smallest gap between the two legs' wrapped cloth where the thighs touch [m].
 LEG_GAP = 0.03
 #: A panel whose every point lies beyond this share of the shoulder's offset from the centre
@@ -360,7 +363,16 @@ def _body_stacks(v, parts, J, cx0, crotch_y, ys, clearance) -> dict:
             & ((v[:, 0] - cx0) * sgn > 0)
             & (v[:, 1] < crotch_y + 0.05)
         ]
-        stacks[f"{side}_leg"] = _keep_apart(_section_table(lp, ys), cx0, sgn, clearance)
+        st = _section_table(lp, ys)
+        # a trouser leg hangs on past the ankle as a tube: below it the stack keeps the
+        # section above the ankle, not the foot's (a hem wrapped round the foot's long section
+        # leaves its inseam open by the foot's length, and sewing pulls it through the foot)
+        below = ys < float(J[f"{side}_ankle"][1]) + ANKLE_ABOVE
+        if below.any() and not below.all():
+            h = int(np.flatnonzero(~below)[0])
+            for k in range(4):
+                st[k][below] = st[k][h]
+        stacks[f"{side}_leg"] = _keep_apart(st, cx0, sgn, clearance)
     return stacks
 
 
