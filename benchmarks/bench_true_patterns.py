@@ -35,6 +35,12 @@ on the default body (``_design_dress.py``: the start's widest seam, the verdict,
 stretch, inside):
 
     python -m benchmarks true_patterns --designs [--edge-length 0.04] [--only NAME ...]
+
+With ``--trace`` one GarmentCode case's true pattern is dressed step by step, printing the largest
+stretch and the edges passing through the body per step (``_dress_trace.py``: where a drape goes
+wrong):
+
+    python -m benchmarks true_patterns --trace --cases CASES --only gc_s5_004 [--every 10]
 """
 
 from __future__ import annotations
@@ -482,6 +488,10 @@ def _dress_foreign(args) -> tuple[list[dict], list[dict]]:
 
 
 def main() -> None:
+    if "--trace" in sys.argv[1:]:
+        from _dress_trace import main as trace
+
+        raise SystemExit(trace([a for a in sys.argv[1:] if a != "--trace"]))
     if "--designs" in sys.argv[1:]:
         from _design_dress import main as designs
 

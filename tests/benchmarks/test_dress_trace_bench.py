@@ -1,4 +1,4 @@
-"""bench dress_trace's measure of cloth stretched across the body: which edges pass through a
+"""true_patterns --trace's measure of cloth stretched across the body: which edges pass through a
 limb (here a cylinder 5 cm in radius), and the stretch of edges against their pattern lengths."""
 
 import numpy as np
@@ -6,7 +6,7 @@ from benchmarks_loader import load_benchmark
 
 from unsew.body.sdf import BodySDF
 
-bench = load_benchmark("bench_dress_trace")
+bench = load_benchmark("_dress_trace")
 
 
 def _limb():

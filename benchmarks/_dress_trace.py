@@ -9,7 +9,7 @@ the largest speed [m/s], and the edges passing through the body (:func:`through_
 segment between the edge's ends goes more than THROUGH_DEPTH inside it, so the cloth is
 stretched across a limb or the torso rather than lying on it).
 
-    python -m benchmarks dress_trace --cases /work/gcd-all --only gc_s5_004 gc_s3_006
+    python -m benchmarks true_patterns --trace --cases CASES --only gc_s5_004 gc_s3_006
 """
 
 from __future__ import annotations
@@ -126,12 +126,14 @@ def trace(case_dir: Path) -> list[dict]:
     return rows
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(
+        prog="python -m benchmarks true_patterns --trace", description=__doc__.splitlines()[0]
+    )
     ap.add_argument("--cases", type=Path, required=True, help="folder of case folders")
     ap.add_argument("--only", nargs="+", required=True, help="case names")
     ap.add_argument("--every", type=int, default=5, help="print every N-th step (and the first two)")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     for cid in args.only:
         head = "| phase | step | stretch max | inside % | speed m/s | through | through, over 2x | over 2x |"
         print(f"\n{cid}\n\n{head}")
@@ -143,7 +145,4 @@ def main() -> None:
                     f"{r['speed']:.2f} | {r['through']} | {r['through_over_2']} | {r['over_2']} |",
                     flush=True,
                 )
-
-
-if __name__ == "__main__":
-    main()
+    return 0
