@@ -104,3 +104,21 @@ def test_drafted_hems_land_near_the_true_patterns(name):
     with_m, without = (hem_length(draft(d, m), legs=legs) for d in (first, plain))
     assert abs(with_m - want) < 0.08 * want, (with_m, want)
     assert abs(with_m - want) < abs(without - want)
+
+
+def test_a_top_is_drafted_to_the_read_hem_height_and_girth():
+    """A top whose hem was read 10 cm below the natural waist and 0.95 m round is drafted with its
+    hem there (to 1 cm) and that long (to 1 %); a hem read past the guards is held at them."""
+    from unsew.pattern.base._frame import body_frame
+
+    body = default_body()
+    m = measure_body(body)
+    waist_y = body_frame(m).waist_y
+    reading = DesignReading("tshirt", sleeves="none", neck_front="round", neck_back="round")
+    first = design_candidates(reading, m, measures={"hem_girth": 0.95, "hem_y": waist_y - 0.10})[0][1]
+    p = draft(first, m)
+    hem_y = min(pp.to_world(pp.vertices)[:, 1].min() for pp in p.panels.values())
+    assert abs(hem_y - (waist_y - 0.10)) < 0.01
+    assert hem_length(p, legs=False) == pytest.approx(0.95, rel=0.01)
+    wide = design_candidates(reading, m, measures={"hem_girth": 9.0, "hem_y": waist_y - 0.10})[0][1]
+    assert hem_length(draft(wide, m), legs=False) < 1.7 * m.hip
