@@ -237,14 +237,19 @@ def _skirt_garment(reading, m: Measurements, meas: dict) -> tuple[Design, list[D
 
 
 def _trousers(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
-    """Trousers of the read length and leg openings, then under a waistband, then (no leg opening
-    read) with flared legs."""
+    """Trousers of the read length, then under a waistband, then with the read leg openings (with
+    and without a band; none read: with flared legs). The legs' own hem comes first: on the
+    GarmentCode targets the read openings put the start farther from the target on 3 of 4 trousers
+    (docs/decisions/024-hems-read-off-the-target.md), so the drape decides."""
     length = _hem_length(reading, m)
     g = reading.garment
     leg = "shorts" if g == "shorts" else _LEG.get(reading.length, "full")
+    first = Design(garment=g, leg=leg, length=length)
     hem = _leg_girth(meas, m)
-    first = Design(garment=g, leg=leg, length=length, hem_girth=hem)
-    return first, [first.replace(waistband=True)] + ([first.replace(hem_flare=0.05)] if hem is None else [])
+    if hem is None:
+        return first, [first.replace(waistband=True), first.replace(hem_flare=0.05)]
+    read = first.replace(hem_girth=hem)
+    return first, [first.replace(waistband=True), read, read.replace(waistband=True)]
 
 
 def _jumpsuit(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
