@@ -33,10 +33,9 @@ FLARE_MARGIN = 1.06
 _NECK = {"round": "round", "v": "v", "square": "square"}
 #: Trouser legs by the reading's length class.
 _LEG = {"above knee": "shorts", "knee": "knee", "below knee": "full"}
-#: A read hem girth is kept within these shares of the hips' girth (tops, dresses, skirts) or of
-#: the thigh's (trouser legs): a loop that is not the hem (a torn or folded mesh) gives no design.
+#: A read hem girth is kept within these shares of the hips' girth (tops, dresses, skirts): a
+#: loop that is not the hem (a torn or folded mesh) gives no design.
 HEM_PER_HIP = (0.7, 1.6)
-LEG_PER_THIGH = (0.5, 2.0)
 
 
 def _loop_length(v: np.ndarray, loop) -> float:
@@ -51,7 +50,8 @@ def read_measures(verts, faces, skeleton, *, contours=None) -> dict:
 
     - ``hem_girth`` [m], ``hem_y`` [m]: the lowest torso opening's length and median height (a
       top's, a dress's or a skirt's hem);
-    - ``leg_girth`` [m]: the mean length of the openings round the legs (trousers' hems).
+    - ``leg_girth`` [m]: the mean length of the openings round the legs (trousers' hems; the
+      fit's trousers keep their own, docs/decisions/024).
 
     verts: (V, 3) float64 [m], world frame; faces: (F, 3) int; skeleton: the wearer's
     :class:`~unsew.body.skeleton.Skeleton`; contours: the mesh's open contours when found. A key
@@ -81,12 +81,6 @@ def _hem_girth(measures: dict, m: Measurements) -> float | None:
     """The read hem's girth [m] within :data:`HEM_PER_HIP` of the hips', to 1 mm; None if not read."""
     g = measures.get("hem_girth")
     return None if g is None else round(float(np.clip(g, *(np.array(HEM_PER_HIP) * m.hip))), 3)
-
-
-def _leg_girth(measures: dict, m: Measurements) -> float | None:
-    """The read leg openings' girth [m] within :data:`LEG_PER_THIGH` of the thigh's; None if not read."""
-    g = measures.get("leg_girth")
-    return None if g is None else round(float(np.clip(g, *(np.array(LEG_PER_THIGH) * m.thigh))), 3)
 
 
 def _top_length(measures: dict, m: Measurements) -> float | None:
@@ -237,29 +231,22 @@ def _skirt_garment(reading, m: Measurements, meas: dict) -> tuple[Design, list[D
 
 
 def _trousers(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
-    """Trousers of the read length, then under a waistband, then with the read leg openings (with
-    and without a band; none read: with flared legs). The legs' own hem comes first: on the
-    GarmentCode targets the read openings put the start farther from the target on 3 of 4 trousers
-    (docs/decisions/024-hems-read-off-the-target.md), so the drape decides."""
+    """Trousers of the read length, then under a waistband, then with flared legs. The legs keep
+    their own hem: on the GarmentCode targets the read openings put the start farther from the
+    target on 3 of 4 trousers (docs/decisions/024-hems-read-off-the-target.md)."""
     length = _hem_length(reading, m)
     g = reading.garment
     leg = "shorts" if g == "shorts" else _LEG.get(reading.length, "full")
     first = Design(garment=g, leg=leg, length=length)
-    hem = _leg_girth(meas, m)
-    if hem is None:
-        return first, [first.replace(waistband=True), first.replace(hem_flare=0.05)]
-    read = first.replace(hem_girth=hem)
-    return first, [first.replace(waistband=True), read, read.replace(waistband=True)]
+    return first, [first.replace(waistband=True), first.replace(hem_flare=0.05)]
 
 
 def _jumpsuit(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
-    """A bodice as read on trousers of the read length and leg openings; the sleeves'
-    alternatives, then the neighbouring leg."""
+    """A bodice as read on trousers of the read length (their own hem, as :func:`_trousers`'); the
+    sleeves' alternatives, then the neighbouring leg."""
     length = _hem_length(reading, m)
     leg = _LEG.get(reading.length, "full")
-    first = Design(
-        garment="jumpsuit", leg=leg, length=length, hem_girth=_leg_girth(meas, m), **_top_fields(reading)
-    )
+    first = Design(garment="jumpsuit", leg=leg, length=length, **_top_fields(reading))
     return first, _top_alternatives(first, reading) + [first.replace(hem_flare=0.05)]
 
 
