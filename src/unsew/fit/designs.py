@@ -23,7 +23,7 @@ from unsew.pattern.base._band import BAND_HEIGHT
 from unsew.pattern.design import GARMENTS, Design, design_name, draft
 from unsew.pattern.measurements import Measurements
 
-__all__ = ["design_candidates", "drafted_candidates", "MAX_CANDIDATES", "FLARE_MARGIN"]
+__all__ = ["design_candidates", "drafted_candidates", "read_measures", "MAX_CANDIDATES", "FLARE_MARGIN"]
 
 #: The most candidates one reading gives (each is one drape on the base choice's coarse mesh).
 MAX_CANDIDATES = 6
@@ -33,6 +33,64 @@ FLARE_MARGIN = 1.06
 _NECK = {"round": "round", "v": "v", "square": "square"}
 #: Trouser legs by the reading's length class.
 _LEG = {"above knee": "shorts", "knee": "knee", "below knee": "full"}
+#: A read hem girth is kept within these shares of the hips' girth (tops, dresses, skirts): a
+#: loop that is not the hem (a torn or folded mesh) gives no design.
+HEM_PER_HIP = (0.7, 1.6)
+
+
+def _loop_length(v: np.ndarray, loop) -> float:
+    """The length [m] of a closed contour (its ``indices`` into v (V, 3) [m])."""
+    idx = np.r_[loop.indices, loop.indices[0]]
+    return float(np.linalg.norm(np.diff(v[idx], axis=0), axis=1).sum())
+
+
+def read_measures(verts, faces, skeleton, *, contours=None) -> dict:
+    """Continuous measures of a draped garment its drafted designs take (the cloth barely
+    stretches, so an opening's length is the pattern's hem length):
+
+    - ``hem_girth`` [m], ``hem_y`` [m]: the lowest torso opening's length and median height (a
+      top's, a dress's or a skirt's hem);
+    - ``leg_girth`` [m]: the mean length of the openings round the legs (trousers' hems; the
+      fit's trousers keep their own, docs/decisions/024).
+
+    verts: (V, 3) float64 [m], world frame; faces: (F, 3) int; skeleton: the wearer's
+    :class:`~unsew.body.skeleton.Skeleton`; contours: the mesh's open contours when found. A key
+    is absent where the garment has no such opening."""
+    from unsew.grading.design_reading import _hem_loop
+    from unsew.grading.garment_type import _openings_by_part
+    from unsew.losses.contours import open_contours
+
+    v = np.asarray(verts, dtype=np.float64)
+    loops = open_contours(v, np.asarray(faces, dtype=np.int64)) if contours is None else contours
+    if not loops:
+        return {}
+    centres = np.stack([np.asarray(c.centre, dtype=np.float64) for c in loops])
+    leg, _, _ = _openings_by_part(v, loops, centres, skeleton)
+    out = {}
+    if leg.any():
+        out["leg_girth"] = float(np.mean([_loop_length(v, c) for c, on in zip(loops, leg) if on]))
+    else:
+        hem = _hem_loop(v, loops, skeleton)
+        if hem is not None:
+            out["hem_girth"] = _loop_length(v, hem)
+            out["hem_y"] = float(np.median(v[np.asarray(hem.indices), 1]))
+    return out
+
+
+def _hem_girth(measures: dict, m: Measurements) -> float | None:
+    """The read hem's girth [m] within :data:`HEM_PER_HIP` of the hips', to 1 mm; None if not read."""
+    g = measures.get("hem_girth")
+    return None if g is None else round(float(np.clip(g, *(np.array(HEM_PER_HIP) * m.hip))), 3)
+
+
+def _top_length(measures: dict, m: Measurements) -> float | None:
+    """A top's hem below the natural waist [m] (at least 5 cm), from the read hem height."""
+    y = measures.get("hem_y")
+    if y is None:
+        return None
+    from unsew.pattern.base._frame import body_frame
+
+    return round(float(np.clip(body_frame(m).waist_y - y, 0.05, 1.5)), 2)
 
 
 def _hem_length(reading, m: Measurements) -> float | None:
@@ -87,9 +145,10 @@ def _skirt_style(reading) -> tuple[str, list[str]]:
     return style, [s for s in near if s != style]
 
 
-def _skirt_design(base: Design, style: str, reading, m: Measurements, length) -> Design:
-    """``base`` with skirt ``style``, its cone fitted to the read flare."""
-    d = base.replace(skirt=style)
+def _skirt_design(base: Design, style: str, reading, m: Measurements, length, hem=None) -> Design:
+    """``base`` with skirt ``style``, its cone fitted to the read flare, a pencil's hem to the read
+    girth ``hem`` [m] (None: the hips')."""
+    d = base.replace(skirt=style, hem_girth=hem if style == "pencil" else None)
     if style in ("aline", "circle"):
         band = d.waistband and d.garment == "skirt"
         v = _fitted_flare(reading, m, length, style, band=band)
@@ -121,49 +180,57 @@ def _top_alternatives(first: Design, reading) -> list[Design]:
     return out
 
 
-def _tshirt(reading, m: Measurements) -> tuple[Design, list[Design]]:
-    first = Design(garment="tshirt", **_top_fields(reading))
+def _tshirt(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
+    """The read sleeves and necklines, its hem where and as wide as the target's."""
+    first = Design(
+        garment="tshirt", length=_top_length(meas, m), hem_girth=_hem_girth(meas, m), **_top_fields(reading)
+    )
     return first, _top_alternatives(first, reading)
 
 
-def _dress(reading, m: Measurements) -> tuple[Design, list[Design]]:
+def _dress(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
     """One piece (fitted for an A-line, straight for a pencil skirt) or, for a flared skirt, a
-    bodice and a circle skirt; the other ways of cutting it next."""
+    bodice and a circle skirt; the other ways of cutting it next; a one-piece dress's or a pencil
+    skirt's hem as wide as the target's."""
     length = _hem_length(reading, m)
+    hem = _hem_girth(meas, m)
     top = Design(garment="dress", length=length, **_top_fields(reading))
     style, near = _skirt_style(reading)
     seamed = [
-        _skirt_design(top.replace(waist_seam=True, panels=n), style, reading, m, length) for n in (2, 4)
+        _skirt_design(top.replace(waist_seam=True, panels=n), style, reading, m, length, hem) for n in (2, 4)
     ]
-    fitted, straight = top.replace(fitted=True), top.replace(fitted=False)
+    fitted, straight = top.replace(fitted=True, hem_girth=hem), top.replace(fitted=False, hem_girth=hem)
     ways = {
         "pencil": [straight, fitted, seamed[0]],
         "aline": [fitted, seamed[0], straight, seamed[1]],
         "circle": [seamed[0], seamed[1], fitted],
     }[style]
-    ways += [_skirt_design(top.replace(waist_seam=True), s, reading, m, length) for s in near]
+    ways += [_skirt_design(top.replace(waist_seam=True), s, reading, m, length, hem) for s in near]
     return ways[0], ways[1:3] + _top_alternatives(ways[0], reading)[:1] + ways[3:]
 
 
-def _skirt_garment(reading, m: Measurements) -> tuple[Design, list[Design]]:
-    """The read style and flare in two gores, then under a waistband, in more gores, and the
-    neighbouring style."""
+def _skirt_garment(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
+    """The read style and flare in two gores (a pencil's hem as wide as the target's), then under
+    a waistband, in more gores, and the neighbouring style."""
     length = _hem_length(reading, m)
+    hem = _hem_girth(meas, m)
     style, near = _skirt_style(reading)
     base = Design(garment="skirt", length=length)
-    first = _skirt_design(base, style, reading, m, length)
+    first = _skirt_design(base, style, reading, m, length, hem)
     more = 6 if style == "circle" else 4
     alts = [
-        _skirt_design(base.replace(waistband=True), style, reading, m, length),
-        _skirt_design(base.replace(panels=more), style, reading, m, length),
+        _skirt_design(base.replace(waistband=True), style, reading, m, length, hem),
+        _skirt_design(base.replace(panels=more), style, reading, m, length, hem),
     ]
-    alts += [_skirt_design(base, s, reading, m, length) for s in near]
-    alts.append(_skirt_design(base.replace(waistband=True, panels=more), style, reading, m, length))
+    alts += [_skirt_design(base, s, reading, m, length, hem) for s in near]
+    alts.append(_skirt_design(base.replace(waistband=True, panels=more), style, reading, m, length, hem))
     return first, alts
 
 
-def _trousers(reading, m: Measurements) -> tuple[Design, list[Design]]:
-    """Trousers of the read length, then under a waistband, then with flared legs."""
+def _trousers(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
+    """Trousers of the read length, then under a waistband, then with flared legs. The legs keep
+    their own hem: on the GarmentCode targets the read openings put the start farther from the
+    target on 3 of 4 trousers (docs/decisions/024-hems-read-off-the-target.md)."""
     length = _hem_length(reading, m)
     g = reading.garment
     leg = "shorts" if g == "shorts" else _LEG.get(reading.length, "full")
@@ -171,9 +238,9 @@ def _trousers(reading, m: Measurements) -> tuple[Design, list[Design]]:
     return first, [first.replace(waistband=True), first.replace(hem_flare=0.05)]
 
 
-def _jumpsuit(reading, m: Measurements) -> tuple[Design, list[Design]]:
-    """A bodice as read on trousers of the read length; the sleeves' alternatives, then the
-    neighbouring leg."""
+def _jumpsuit(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
+    """A bodice as read on trousers of the read length (their own hem, as :func:`_trousers`'); the
+    sleeves' alternatives, then the neighbouring leg."""
     length = _hem_length(reading, m)
     leg = _LEG.get(reading.length, "full")
     first = Design(garment="jumpsuit", leg=leg, length=length, **_top_fields(reading))
@@ -202,16 +269,19 @@ def _cuttable(d: Design, m: Measurements) -> Design | None:
     return None
 
 
-def design_candidates(reading, measurements: Measurements | None = None) -> list[tuple[str, Design]]:
+def design_candidates(
+    reading, measurements: Measurements | None = None, *, measures: dict | None = None
+) -> list[tuple[str, Design]]:
     """Up to :data:`MAX_CANDIDATES` (name, :class:`~unsew.pattern.design.Design`) consistent with
-    ``reading`` (a :class:`~unsew.grading.design_reading.DesignReading`), the design as read first,
+    ``reading`` (a :class:`~unsew.grading.design_reading.DesignReading`) and the target's
+    ``measures`` (:func:`read_measures`; none: the garments' own hems), the design as read first,
     each one that drafts for ``measurements`` (default: the default body), distinct, named by
     :func:`~unsew.pattern.design.design_name`. Raises InputError for a garment type the design
     space has no designs of."""
     if reading.garment not in GARMENTS:
         raise InputError(f"no designs of a {reading.garment}; the design space drafts {', '.join(GARMENTS)}")
     m = measurements or Measurements()
-    first, alts = _BUILDERS[reading.garment](reading, m)
+    first, alts = _BUILDERS[reading.garment](reading, m, measures or {})
     out: list[tuple[str, Design]] = []
     for d in [first, *alts]:
         d = _cuttable(d, m)
@@ -222,6 +292,9 @@ def design_candidates(reading, measurements: Measurements | None = None) -> list
     return out
 
 
-def drafted_candidates(reading, measurements: Measurements | None = None) -> dict:
+def drafted_candidates(reading, measurements: Measurements | None = None, *, measures=None) -> dict:
     """{name: Pattern}: :func:`design_candidates` drafted for ``measurements``, in order."""
-    return {name: draft(d, measurements) for name, d in design_candidates(reading, measurements)}
+    return {
+        name: draft(d, measurements)
+        for name, d in design_candidates(reading, measurements, measures=measures)
+    }

@@ -285,9 +285,10 @@ def _candidates(case, target: Target, cfg: FitConfig, m, log) -> tuple[str, list
     library's bases of ``case.garment``, their necklines read off the target."""
     reading = getattr(case, "design", None)
     if reading is not None:
-        from unsew.fit.designs import drafted_candidates
+        from unsew.fit.designs import drafted_candidates, read_measures
 
-        patterns = drafted_candidates(reading, m)
+        measures = read_measures(target.verts, target.faces, case.body.skeleton, contours=target.contours)
+        patterns = drafted_candidates(reading, m, measures=measures)
         if not patterns:
             raise InputError(f"no {reading.garment} design drafts for this body; pass --base P.json")
         log(f"designs drafted from the reading: {', '.join(patterns)}")

@@ -98,6 +98,9 @@ class Design:
     #: one-piece dress: the hem's width beyond the hips per side seam [m]; trousers: the hem's
     #: half width added per leg panel [m] (None: the garment's own: 0.18 / 0.03 / 0)
     hem_flare: float | None = None
+    #: the hem's girth [m]: each trouser leg's opening, a pencil skirt's, a one-piece dress's or a
+    #: top's hem (it replaces ``hem_flare`` there); None: the garment's own
+    hem_girth: float | None = None
     #: added to the bust, waist and hip girths the garment is cut to [m] (a looser fit)
     ease: float = 0.0
 
@@ -126,6 +129,8 @@ class Design:
             _check_range("length", self.length, 0.05, 1.6)
         if self.hem_flare is not None:
             _check_range("hem_flare", self.hem_flare, 0.0, 0.6)
+        if self.hem_girth is not None:
+            _check_range("hem_girth", self.hem_girth, 0.2, 4.0)
 
     def replace(self, **changes) -> "Design":
         """A copy with ``changes`` (field name -> value)."""
@@ -245,7 +250,7 @@ def _measure_parts(d: Design, parts: list[str]) -> list[str]:
         out.append(f"flare{d.aline_flare:g}")
     if isinstance(d.length, str):
         out.append(d.length)
-    for f in ("length", "hem_flare"):
+    for f in ("length", "hem_flare", "hem_girth"):
         if isinstance(getattr(d, f), (int, float)):
             out.append(f"{f}{getattr(d, f):g}")
     if d.ease:

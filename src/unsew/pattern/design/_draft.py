@@ -74,7 +74,9 @@ def _top(d: Design, m: Measurements, f: BodyFrame, spec: TopSpec, cuts=None) -> 
 def _tshirt(d: Design, m: Measurements) -> Pattern:
     f = body_frame(m)
     hem_y = f.hip_y - TEE_HEM_DROP if d.length is None else f.waist_y - d.length
-    w_hem = max((m.hip + TEE_HIP_EASE) / 4, (m.bust + BUST_EASE) / 4)
+    w_hem = (
+        max((m.hip + TEE_HIP_EASE) / 4, (m.bust + BUST_EASE) / 4) if d.hem_girth is None else d.hem_girth / 4
+    )
     spec = TopSpec(lower=((w_hem, 0.0),), lower_curves=(None,), hem_y=hem_y)
     return _pattern(*_top(d, m, f, spec))
 
@@ -90,6 +92,8 @@ def _one_piece_dress(d: Design, m: Measurements) -> Pattern:
         d.hem_flare if d.hem_flare is not None else (_dress.HEM_FLARE if d.fitted else _dress.STRAIGHT_FLARE)
     )
     hip_w = (m.hip + _dress.HIP_EASE) / 4
+    if d.hem_girth is not None:
+        flare = d.hem_girth / 4 - hip_w
     hip = np.array([hip_w, f.hip_y - hem_y])
     hem = np.array([hip_w + flare, 0.0])
     if not d.fitted:
@@ -130,6 +134,7 @@ def _skirt_cut(d: Design, m: Measurements, f: BodyFrame, top: float, hip: float,
         theta=_theta(d, top, hip, hip_depth),
         axes=(ax, f.hip_z),
         band=d.waistband,
+        hem=d.hem_girth if d.skirt == "pencil" else None,
     )
 
 
@@ -191,6 +196,9 @@ def _legs_cut(d: Design, m: Measurements) -> tuple[float, float]:
         raise InputError(f"trousers' hem {f.waist_y - hem_y:.3f} m below the waist is above the crotch")
     t = (hem_y - y_short) / (y_full - y_short)  # 0 at the shorts' hem, 1 at the ankle
     half = half_short if t == 0.0 else (half_full if t == 1.0 else half_short + t * (half_full - half_short))
+    if d.hem_girth is not None:  # a leg's hem: front and back, each two half widths, the back's
+        # inseam end further out by the difference of the crotch extensions (pants._leg)
+        half = (d.hem_girth - (_pants.BACK_CROTCH_EXT - _pants.FRONT_CROTCH_EXT) * m.hip) / 4
     return hem_y, half + (d.hem_flare or 0.0)
 
 

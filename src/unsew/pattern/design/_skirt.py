@@ -3,8 +3,9 @@
 A cone skirt (A-line, circle) unrolls to an annulus sector of angle ``theta`` [rad]; each of its
 N gores is a sector of ``theta / N`` (:func:`unsew.pattern.base.skirt._panel`: edges 0 hem, 1
 right side, 2 waist, 3 left side), so the N hems together are ``theta * r_hem`` long. A pencil
-gore is a hexagon, straight from the hem to hip depth and then narrowing to its top (edges 0 hem,
-1 right side, 2 right hip line, 3 top, 4 left hip line, 5 left side), as the library's pencil.
+gore is a hexagon, straight (or tapered to the cut's ``hem`` girth) from the hem to hip depth and
+then narrowing to its top (edges 0 hem, 1 right side, 2 right hip line, 3 top, 4 left hip line, 5
+left side), as the library's pencil.
 
 Gore k of N is centred at the angle ``phi_k = -90 + 360 (k + 1/2) / N`` degrees around the body
 (0 the front, 90 the body's left side): the seams fall on both sides, half of the gores are in
@@ -43,6 +44,7 @@ class SkirtCut:
     theta: float  #: cone: unrolled angle of the whole skirt [rad]
     axes: tuple  #: (x, z) half axes [m] of the ellipse the gores are laid on
     band: bool  #: under a waistband (the band's lower edge meets the gores' tops)
+    hem: float | None = None  #: pencil: the hem's girth [m] (None: the hips')
 
 
 def gore_angles(n: int) -> np.ndarray:
@@ -56,7 +58,8 @@ def _gore(cut: SkirtCut, name: str) -> tuple[Panel, tuple, list, int]:
     n = cut.panels
     if cut.style == "pencil":
         h, t, L, d = cut.hip / (2 * n), cut.top / (2 * n), cut.length, cut.hip_depth
-        v = np.array([(-h, 0.0), (h, 0.0), (h, L - d), (t, L), (-t, L), (-h, L - d)])
+        e = h if cut.hem is None else cut.hem / (2 * n)  # the hem's half width [m]
+        v = np.array([(-e, 0.0), (e, 0.0), (h, L - d), (t, L), (-t, L), (-h, L - d)])
         labels = ["hem", "right_side", "right_hip", "waist", "left_hip", "left_side"]
         return loop_panel(name, v, None, labels), (0.0, L), [(1, 5, "side"), (2, 4, "hip")], 3
     r_w = cut.top / cut.theta

@@ -1,0 +1,114 @@
+"""Which true panels carry the GarmentCode benchmark's panel error and turning distance, and the
+turning distance a pattern without darts cannot go below.
+
+Per built case with a result folder (``RESULTS/<case>``), per stage of the fit (``--files``: the
+chosen start ``pattern_base.json``, the graded ``pattern_graded.json``, the final ``pattern.json``):
+the judge's panel error and turning distance (benchmarks/gcd/judge.py, both patterns merged
+first), the pieces' counts, and per true piece its matched recovered piece, relative area error
+(1: unmatched) and turning distance. Then the darts' floor: each true piece against itself with
+every dart closed (a point of the outline where it turns by more than ``DART_TURN``, moved to
+the middle of its neighbours), the turning distance of a pattern whose outlines are the true
+ones but without darts.
+
+    python -m benchmarks gcd_panels --results R --cases CASES [--files pattern_base.json,pattern.json]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent / "gcd"))
+import judge  # noqa: E402
+
+#: An outline point turning by more than this is a dart's tip [rad].
+DART_TURN = np.radians(140.0)
+
+
+def close_darts(loop: np.ndarray) -> tuple[np.ndarray, int]:
+    """The closed outline (N, 2) with each dart tip moved to the middle of its neighbours, and the
+    number of tips moved."""
+    out, k = loop.copy(), 0
+    for i in range(len(out)):
+        a, b, c = out[i - 1], out[i], out[(i + 1) % len(out)]
+        d1, d2 = b - a, c - b
+        if abs(np.arctan2(d1[0] * d2[1] - d1[1] * d2[0], d1 @ d2)) > DART_TURN:
+            out[i], k = 0.5 * (a + c), k + 1
+    return out, k
+
+
+def dart_floor(spec: dict) -> tuple[float, int]:
+    """(mean turning distance [rad] of the true pieces against themselves without darts, darts)."""
+    pieces = judge.merge_invisible(spec)
+    dists, darts = [], 0
+    for p in pieces:
+        closed, k = close_darts(p.loop())
+        darts += k
+        dists.append(judge.turning_distance(p.loop(), closed) if k else 0.0)
+    return float(np.mean(dists)), darts
+
+
+def case_rows(case: Path, result: Path, files: list[str]) -> list[dict]:
+    """One row per stage file of ``result`` against ``case``'s true pattern, with its pieces."""
+    spec = json.loads((case / "pattern_gt.json").read_text())
+    rows = []
+    for fn in files:
+        if not (result / fn).is_file():
+            continue
+        cmp = judge.compare_patterns(spec, json.loads((result / fn).read_text()))
+        pieces = "; ".join(
+            f"{'+'.join(t)} -> {'+'.join(r)} {e:.2f}/{tu:.2f}" for t, r, e, tu in cmp["matched"]
+        )
+        rows.append(
+            {
+                "case": case.name,
+                "stage": fn.removesuffix(".json"),
+                "panel err": round(cmp["panel_err"], 3),
+                "turning": round(cmp["turning"], 3) if cmp["turning"] is not None else None,
+                "pieces t/r": f"{cmp['panels_true']}/{cmp['panels_rec']}",
+                "matched (area err/turning)": pieces,
+            }
+        )
+    return rows
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--results", required=True, help="folder of fit results, one per case")
+    ap.add_argument("--cases", required=True, help="folder of built cases (target.obj, pattern_gt.json)")
+    ap.add_argument("--files", default="pattern_base.json,pattern_graded.json,pattern.json")
+    args = ap.parse_args(argv)
+    from tables import print_table
+
+    files = args.files.split(",")
+    cases = sorted(d for d in Path(args.cases).iterdir() if (d / "target.obj").is_file())
+    build = Path(args.cases) / "build.json"
+    if build.is_file():  # the built cases only (a failed build leaves its folder)
+        built = json.loads(build.read_text())
+        cases = [d for d in cases if built.get(d.name, {}).get("status") == "built"]
+    rows, floors = [], []
+    for case in cases:
+        if (Path(args.results) / case.name).is_dir():
+            rows += case_rows(case, Path(args.results) / case.name, files)
+        f, k = dart_floor(json.loads((case / "pattern_gt.json").read_text()))
+        floors.append({"case": case.name, "darts": k, "turning without darts": round(f, 3)})
+    print_table(rows, title="panels of the recovered patterns against the true ones", digits=3)
+    for fn in files:
+        got = [r for r in rows if r["stage"] == fn.removesuffix(".json")]
+        if got:
+            e, t = [r["panel err"] for r in got], [r["turning"] for r in got if r["turning"] is not None]
+            print(
+                f"{fn}: {len(got)} cases, panel err median {np.median(e):.3f} "
+                f"p90 {np.percentile(e, 90):.3f}, turning median {np.median(t):.3f}"
+            )
+    print_table(floors, title="the true pieces against themselves with their darts closed", digits=3)
+    print(f"turning without darts: median {np.median([f['turning without darts'] for f in floors]):.3f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
