@@ -9,6 +9,7 @@
     python -m benchmarks gcd status [--out DIR]    every case's build status
     python -m benchmarks gcd types [--out DIR] [--drapes DIR] [--record]   the design read off the targets
     python -m benchmarks gcd judge-check           the judge on synthetic inputs (seconds)
+    python -m benchmarks gcd panels --results R --cases DIR   per true piece, each fit stage; darts' floor
     python -m benchmarks gcd starts [--out DIR] [--drapes DIR] [--only ...] [--record]   the start, type read
 
 ``build`` samples GarmentCode's designs (seed k sized to and draped on body k of manifest.json),
@@ -180,6 +181,11 @@ def _add_fit_score_parsers(sub) -> None:
 
 
 def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["panels"]:  # its own options: the judge's per-piece errors of each fit stage
+        import panels
+
+        return panels.main(argv[1:])
     ap = argparse.ArgumentParser(prog="python -m benchmarks gcd", description=__doc__.splitlines()[0])
     ap.add_argument("--summary", action="store_true", help="one JSON line of the recorded results")
     ap.add_argument("--record-file", default=str(RESULTS), help=argparse.SUPPRESS)
@@ -203,6 +209,9 @@ def main(argv=None) -> int:
     ff.add_argument("--cases", default=str(DEFAULT_CASES))
     ff.add_argument("--record", action="store_true", help="write them into results.json")
     sub.add_parser("judge-check", help="the judge on synthetic inputs")
+    sub.add_parser(
+        "panels", help="per true piece of each fit stage, and the darts' floor (gcd panels --help)"
+    )
     st = sub.add_parser("status", help="table of every case's build status")
     st.add_argument("--out", default=str(DEFAULT_CASES))
     _add_types_parser(sub)

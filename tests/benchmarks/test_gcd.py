@@ -479,3 +479,16 @@ def test_the_newton_redrape_is_kept_per_pattern_and_target(tmp_path, monkeypatch
     (result / "pattern.json").write_text('{"pattern": {"panels": {"a": {}}}}')
     score._score_drapes({}, case, result, {"type": "skirt"}, (v, f), redrape=True)
     assert calls == [1, 1]
+
+
+def test_a_dart_tip_is_closed_and_a_plain_outline_is_left_alone():
+    """``gcd panels``' darts' floor: a waist dart (a narrow V into the top edge) is found and
+    closed, which changes the outline's turning function; a rectangle has no dart."""
+    panels, judge = _load("panels"), _load("judge")
+    rect = np.array([[0, 0], [0.4, 0], [0.4, 0.6], [0, 0.6]], float)
+    same, k = panels.close_darts(rect)
+    assert k == 0 and np.allclose(same, rect)
+    dart = np.array([[0, 0], [0.4, 0], [0.4, 0.6], [0.21, 0.6], [0.2, 0.45], [0.19, 0.6], [0, 0.6]], float)
+    closed, k = panels.close_darts(dart)
+    assert k == 1 and closed[4, 1] == pytest.approx(0.6)
+    assert judge.turning_distance(dart, closed) > 0.1

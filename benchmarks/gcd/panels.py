@@ -10,7 +10,7 @@ every dart closed (a point of the outline where it turns by more than ``DART_TUR
 the middle of its neighbours), the turning distance of a pattern whose outlines are the true
 ones but without darts.
 
-    python -m benchmarks gcd_panels --results R --cases CASES [--files pattern_base.json,pattern.json]
+    python -m benchmarks gcd panels --results R --cases CASES [--files pattern_base.json,pattern.json]
 """
 
 from __future__ import annotations
@@ -22,7 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent / "gcd"))
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(HERE.parent))
 import judge  # noqa: E402
 
 #: An outline point turning by more than this is a dart's tip [rad].
@@ -77,7 +79,7 @@ def case_rows(case: Path, result: Path, files: list[str]) -> list[dict]:
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(prog="python -m benchmarks gcd panels", description=__doc__.splitlines()[0])
     ap.add_argument("--results", required=True, help="folder of fit results, one per case")
     ap.add_argument("--cases", required=True, help="folder of built cases (target.obj, pattern_gt.json)")
     ap.add_argument("--files", default="pattern_base.json,pattern_graded.json,pattern.json")
@@ -108,7 +110,3 @@ def main(argv=None) -> int:
     print_table(floors, title="the true pieces against themselves with their darts closed", digits=3)
     print(f"turning without darts: median {np.median([f['turning without darts'] for f in floors]):.3f}")
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
