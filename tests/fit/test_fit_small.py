@@ -667,6 +667,9 @@ def test_phase_two_stage_loss_step_and_state_dict(small_case, monkeypatch):
         + w.prior * terms.prior
         + w.area * terms.area
         + w.panel_area * terms.panel_area
+        + w.stretch * terms.stretch
+        + w.moves * terms.moves
+        + w.lengths * terms.lengths
     )
     assert float(terms.total.detach()) == pytest.approx(float(weighted.detach()), rel=1e-12)
     f = terms.floats()

@@ -343,6 +343,23 @@ def test_line_searched_steps_never_keep_a_rise_of_the_loss(tmp_path):
         assert float(torch.quantile(searched.flatten(), 0.5)) < 0.5 * largest
 
 
+def test_the_moves_term_leaves_weakly_pulled_points_where_grading_put_them(tmp_path):
+    """LossWeights.moves in a real phase two (three line-searched iterations from the ungraded base
+    shorts on a shorts target, small mode): without it every effective control point moves; with
+    it (at 30, as set in the code) the points whose gradient stays below its pull have not moved
+    at all, the others have, and the term is recorded in the loss."""
+    build = _shorts_phase_two(tmp_path, "shorts")
+    still = {}
+    for w in (0.0, 30.0):
+        two = build(area="free", loss={"moves": w})
+        two.run()
+        r = (two.K.detach() - two.K_start).norm(dim=1)
+        still[w] = (int((r == 0).sum()), int((r > 1e-4).sum()), len(r))
+        assert (max(two.history["moves"]) > 0) == (w > 0)
+    assert still[0.0][0] == 0, still
+    assert still[30.0][0] > 0 and still[30.0][1] > 0, still
+
+
 def test_phase_two_starts_from_a_drape_at_rest_only_when_asked(tmp_path):
     """optimizer.rest_speed: off (the default), or with a bar the start already meets, phase two
     starts exactly at the graded drape; with a bar it cannot meet it settles the start in 10-step
