@@ -135,7 +135,7 @@ class LossWeights:
     #: pull of the control points towards the graded pattern: near the start, a mean control-point move of 1 m
     #: costs this many times the start's Chamfer, fading beyond 5 mm (unsew.losses.prior.loss_moves; 0: the
     #: paper's loss; docs/decisions/024) [1/m]
-    moves: ClassVar[float] = 30.0
+    moves: ClassVar[float] = 0.0
     #: pull of the open edges' (hems', necklines', cuffs') rest lengths towards the graded pattern's, which
     #: grading read off the target's open contours: sum (l - l0)^2 / sum l0^2 times the start's Chamfer
     #: (unsew.losses.open_lengths; 0: the paper's loss) [-]

@@ -322,16 +322,7 @@ class PhaseTwo:
         self.opt_m = torch.optim.Adam([self.theta], lr=cfg.material.lr, betas=o.betas)
         self.x_prev = torch.as_tensor(np.asarray(s.x), dtype=torch.float64, device=dev)
         self.rest = self._start_at_rest()
-        self.K_start = self.K.detach().clone()  # (Nk, 2) [m]: where the moves term measures from
-        self.move_w = torch.as_tensor(_moves(self.params).sum(axis=0) / len(self.params.controls), device=dev)
-        self.move_ref: float | None = None  # the start's Chamfer [m^2], set by the first loss()
-        seg, edge_of, n_open = open_edge_segments(s.graded, s.mesh.edge_verts)
-        self.open_segments = torch.as_tensor(seg, device=dev)
-        self.open_edge_of = torch.as_tensor(edge_of, device=dev)
-        with torch.no_grad():
-            self.open_lengths0 = open_edge_lengths(
-                self.params.uv(self.K_start), self.open_segments, self.open_edge_of, n_open
-            )
+        self._pattern_priors(s.graded, s.mesh, dev)
         with torch.no_grad():
             self.uv_start = self.params.uv(self.K).detach()
             self.panel_areas0 = panel_areas(
@@ -347,6 +338,20 @@ class PhaseTwo:
         self._momentum: torch.Tensor | None = None  # (Nk, 2): the running sum of dL/dK (_step_k)
         self._length = 1.0  # the next step's length, in learning rates (_line_search)
         self.trials: list[int] = []  # per iteration, the trial drapes its step took (0: no line search)
+
+    def _pattern_priors(self, graded, mesh, dev) -> None:
+        """The start the moves and lengths terms measure from: K (Nk, 2) [m], each effective
+        point's share of the control points, the open edges' segments and graded lengths [m]."""
+        self.K_start = self.K.detach().clone()  # (Nk, 2) [m]: where the moves term measures from
+        self.move_w = torch.as_tensor(_moves(self.params).sum(axis=0) / len(self.params.controls), device=dev)
+        self.move_ref: float | None = None  # the start's Chamfer [m^2], set by the first loss()
+        seg, edge_of, n_open = open_edge_segments(graded, mesh.edge_verts)
+        self.open_segments = torch.as_tensor(seg, device=dev)
+        self.open_edge_of = torch.as_tensor(edge_of, device=dev)
+        with torch.no_grad():
+            self.open_lengths0 = open_edge_lengths(
+                self.params.uv(self.K_start), self.open_segments, self.open_edge_of, n_open
+            )
 
     def _start_at_rest(self) -> dict:
         """Settle the graded drape ``x_prev`` until it is at rest, when it is not.
@@ -547,7 +552,8 @@ class PhaseTwo:
         with 0, Adam's step (the paper). The moves term (``LossWeights.moves``) is then left out of
         that sum and taken by a proximal step: each point's move from the start shrinks by the
         step's length per unit gradient times the term's pull, to nothing when the pull is larger
-        (soft thresholding, as for an L1 prior)."""
+        (soft thresholding, as for an L1 prior); the step is scaled so that the point whose
+        gradient exceeds its pull most moves the learning rate times the step length, net."""
         pull = None
         if self.cfg.optimizer.retries <= 0:
             self.opt_k.step()  # the moves term's pull comes with the gradient
@@ -559,6 +565,8 @@ class PhaseTwo:
             m = g if self._momentum is None else MOMENTUM * self._momentum + g
             self._momentum = m
             n = float(m.norm(dim=1).max())
+            if pull is not None and float((m.norm(dim=1, keepdim=True) - pull[0]).max()) > 0:
+                n = float((m.norm(dim=1, keepdim=True) - pull[0]).max())  # the most moving point's net move
             eta = self._length * self.opt_k.param_groups[0]["lr"] / n if n > 0 else 0.0  # [m per gradient]
             with torch.no_grad():
                 self.K.sub_(eta * m)
