@@ -113,7 +113,7 @@ class OptimizerSettings:
 @dataclass(frozen=True)
 class LossWeights:
     """Weights of the loss terms (eqs. 5-9); a weight of 0 drops its term. The class constants
-    (not settings) are terms measured and left off (docs/decisions/013) and the barrier's bound."""
+    (not settings) are terms measured and left off (docs/decisions/013, 024) and the barrier's bound."""
 
     curvature_weighted: bool = True  #: curvature-weighted Chamfer, eq. 7 (ablation: plain Chamfer)
     open: float = 0.1  #: open-contour Chamfer, eq. 6 [-]
