@@ -10,11 +10,7 @@ iterate's mean panel area error, hip-corner distance and corner L2, the loss of 
 hip x0.9, best loss x0.95: test_phase_two_lowers_the_area_error; corner L2 below the graded
 pattern's: test_phase_two_lowers_the_corner_distance_on_the_hip).
 
-``--moves W`` and ``--lengths W`` set the weights of phase two's prior in pattern space
-(``LossWeights.moves``) and of its open edges' lengths term (``LossWeights.lengths``) in each
-child; by default the code's.
-
-Run: python -m benchmarks phase_two_paths [--paths base threads2 ...] [--small] [--moves W] [--lengths W]
+Run: python -m benchmarks phase_two_paths [--paths base threads2 ...] [--small]
 """
 
 from __future__ import annotations
@@ -51,7 +47,7 @@ sys.path.insert(0, str(Path(sys.argv[3]) / "tests" / "fit"))
 from test_phase_two import SMALL16, _hip_error_cm
 from unsew.body.case import load_case
 from unsew.body.sdf import BodySDF
-from unsew.fit.config import LossWeights, load_config
+from unsew.fit.config import load_config
 from unsew.fit.material import MaterialChoice
 from unsew.fit.optimize import PhaseTwo
 from unsew.fit.progress import Progress
@@ -61,8 +57,6 @@ from unsew.fit.synthetic import Alteration, make_truth_case
 from unsew.fit.target import Target
 from unsew.metrics.panels import pattern_metrics
 from unsew.sim.material import get_material
-for name, value in json.loads(sys.argv[5]).items():
-    setattr(LossWeights, name, value)
 cfg = load_config(**{**SMALL16, **json.loads(sys.argv[4])}, area="free")
 case = load_case(make_truth_case(Path(sys.argv[1]) / "dress", garment="dress",
                  alteration=Alteration({"waist": (-0.03, 0.0)}, "cotton"), settings=cfg.drape))
@@ -99,8 +93,6 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument(
         "--small", action="store_true", help="a coarse mesh and two short iterations (a quick check)"
     )
-    ap.add_argument("--moves", type=float, default=None, help="LossWeights.moves in every child")
-    ap.add_argument("--lengths", type=float, default=None, help="LossWeights.lengths in every child")
     args = ap.parse_args(argv)
     root = Path(__file__).resolve().parent.parent
     rows = []
@@ -117,9 +109,6 @@ def main(argv: list[str] | None = None) -> None:
                     str(threads),
                     str(root),
                     json.dumps(SMALL if args.small else {}),
-                    json.dumps(
-                        {k: v for k, v in (("moves", args.moves), ("lengths", args.lengths)) if v is not None}
-                    ),
                 ],
                 env=env,
                 capture_output=True,

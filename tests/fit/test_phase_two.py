@@ -343,36 +343,6 @@ def test_line_searched_steps_never_keep_a_rise_of_the_loss(tmp_path):
         assert float(torch.quantile(searched.flatten(), 0.5)) < 0.5 * largest
 
 
-def test_the_moves_term_leaves_weakly_pulled_points_where_grading_put_them(tmp_path):
-    """LossWeights.moves in a real phase two's step (the ungraded base shorts on a shorts target,
-    small mode), given a gradient half its pull on every other effective control point and three
-    times its pull on the rest: with the term (at 30) the weakly pulled points do not move at all,
-    the others do, the one moving most by the learning rate; without it every point moves."""
-    import torch
-
-    build = _shorts_phase_two(tmp_path, "shorts")
-    for w in (30.0, 0.0):
-        two = build(area="free", loss={"moves": w})
-        with torch.no_grad():
-            terms, _, _ = two.loss()  # the start's Chamfer: the term's scale
-        assert float(terms.moves) == 0.0 and two.move_ref == pytest.approx(float(terms.chamfer))
-        K0 = two.K.detach().clone()
-        size = 30.0 * two.move_ref * two.move_w[:, None]  # (Nk, 1): the term's pull at the start [m]
-        g = torch.Generator().manual_seed(0)
-        direction = torch.nn.functional.normalize(
-            torch.randn(K0.shape, dtype=torch.float64, generator=g), dim=1
-        )
-        weak = torch.arange(len(K0)) % 2 == 0
-        two.K.grad = torch.where(weak[:, None], 0.5, 3.0) * size * direction
-        two._step_k(K0)
-        moved = (two.K.detach() - K0).norm(dim=1)
-        if w > 0:
-            assert float(moved[weak].max()) == 0.0 and float(moved[~weak].min()) > 0.0
-            assert float(moved.max()) == pytest.approx(two.cfg.optimizer.lr, rel=1e-9)
-        else:
-            assert float(moved.min()) > 0.0
-
-
 def test_phase_two_starts_from_a_drape_at_rest_only_when_asked(tmp_path):
     """optimizer.rest_speed: off (the default), or with a bar the start already meets, phase two
     starts exactly at the graded drape; with a bar it cannot meet it settles the start in 10-step

@@ -113,7 +113,7 @@ class OptimizerSettings:
 @dataclass(frozen=True)
 class LossWeights:
     """Weights of the loss terms (eqs. 5-9); a weight of 0 drops its term. The class constants
-    (not settings) are terms measured and left off (docs/decisions/013, 024) and the barrier's bound."""
+    (not settings) are terms measured and left off (docs/decisions/013) and the barrier's bound."""
 
     curvature_weighted: bool = True  #: curvature-weighted Chamfer, eq. 7 (ablation: plain Chamfer)
     open: float = 0.1  #: open-contour Chamfer, eq. 6 [-]
@@ -132,14 +132,6 @@ class LossWeights:
     #: pull of each panel's rest area towards its graded area, mean of (A_p / A_p0 - 1)^2
     #: (unsew.losses.panel_area; 0: off, docs/decisions/013) [-]
     panel_area: ClassVar[float] = 0.0
-    #: pull of the control points towards the graded pattern: near the start, a mean control-point move of 1 m
-    #: costs this many times the start's Chamfer, fading beyond 5 mm (unsew.losses.prior.loss_moves; 0: the
-    #: paper's loss; docs/decisions/024) [1/m]
-    moves: ClassVar[float] = 0.0
-    #: pull of the open edges' (hems', necklines', cuffs') rest lengths towards the graded pattern's, which
-    #: grading read off the target's open contours: sum (l - l0)^2 / sum l0^2 times the start's Chamfer
-    #: (unsew.losses.open_lengths; 0: the paper's loss) [-]
-    lengths: ClassVar[float] = 0.0
     stretch_bound: ClassVar[float] = (
         1.5  #: edge stretch (length over rest length) the barrier lets pass free [-]
     )

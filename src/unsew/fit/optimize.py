@@ -5,11 +5,7 @@ warm-started from the previous iteration's result.
 Loss (eqs. 5-9): L = L_CF(X, T) [curvature-weighted, eq. 7] + lambda_open L_CF(X_open, T_open)
 + lambda_mat relu(1e-6 - Gamma) + lambda_seam L_seam(U(K)) (+ lambda_prior, lambda_area, the
 pattern's total area against the target's surface area, and lambda_panel, each panel's area against
-its graded area, all off by default) + lambda_moves L_CF(start) L_moves(K), a prior in pattern space:
-the control points' log-distance from the graded pattern (:func:`unsew.losses.prior.loss_moves`; not
-in the paper, docs/decisions/024). Its pull is taken by a proximal step rather than the gradient
-(:meth:`PhaseTwo._step_k`): a point whose gradient stays below the pull does not leave the graded
-pattern, so grading's fit stays where the target does not ask for a change. With ``area:
+its graded area, all off by default). With ``area:
 target`` every step ends on the start's total rest area (:class:`AreaHold`): the Chamfer then
 moves area between panels and places, never adds or drops it.
 
@@ -52,8 +48,7 @@ from unsew.losses.contours import loss_open_contours, open_contours
 from unsew.losses.curvature import curvature_weights
 from unsew.losses.material import loss_material
 from unsew.losses.panel_area import loss_panel_area, panel_areas
-from unsew.losses.open_lengths import loss_open_lengths, open_edge_lengths, open_edge_segments
-from unsew.losses.prior import loss_moves, loss_prior, moves_pull
+from unsew.losses.prior import loss_prior
 from unsew.losses.seam import loss_seam, seam_segment_pairs
 from unsew.losses.stretch import loss_stretch, triangle_edges
 from unsew.metrics.panels import panel_area
@@ -79,10 +74,7 @@ __all__ = [
 ]
 
 #: Names of the loss terms, in the order of :class:`LossTerms` (and of ``FitResult.history``).
-LOSS_TERMS = (
-    "total", "chamfer", "open", "seam", "material", "prior", "area", "panel_area", "stretch", "moves",
-    "lengths",
-)  # fmt: skip
+LOSS_TERMS = ("total", "chamfer", "open", "seam", "material", "prior", "area", "panel_area", "stretch")
 
 #: Steps of each drape that probes and settles phase two's start (:meth:`PhaseTwo._start_at_rest`) [-].
 REST_CHUNK = 10
@@ -98,9 +90,7 @@ GROW, GROW_CAP = 1.5, 3.0
 class LossTerms:
     """The loss of one drape, term by term (0-d torch tensors): ``total`` is the weighted sum
     of ``chamfer`` [m^2], ``open`` [m^2], ``seam`` [m^2], ``material``, ``prior`` [m^2], ``area`` [-],
-    ``panel_area`` [-], ``stretch`` [-], and ``moves`` and ``lengths`` [m^2] (the control points' moves
-    from the start and the open edges' length changes, each times the start's Chamfer,
-    :meth:`PhaseTwo.loss`)."""
+    ``panel_area`` [-] and ``stretch`` [-]."""
 
     total: torch.Tensor
     chamfer: torch.Tensor
@@ -111,8 +101,6 @@ class LossTerms:
     area: torch.Tensor
     panel_area: torch.Tensor
     stretch: torch.Tensor
-    moves: torch.Tensor
-    lengths: torch.Tensor
 
     def floats(self) -> dict[str, float]:
         """The terms as plain floats, keyed by :data:`LOSS_TERMS`."""
@@ -322,7 +310,6 @@ class PhaseTwo:
         self.opt_m = torch.optim.Adam([self.theta], lr=cfg.material.lr, betas=o.betas)
         self.x_prev = torch.as_tensor(np.asarray(s.x), dtype=torch.float64, device=dev)
         self.rest = self._start_at_rest()
-        self._pattern_priors(s.graded, s.mesh, dev)
         with torch.no_grad():
             self.uv_start = self.params.uv(self.K).detach()
             self.panel_areas0 = panel_areas(
@@ -338,20 +325,6 @@ class PhaseTwo:
         self._momentum: torch.Tensor | None = None  # (Nk, 2): the running sum of dL/dK (_step_k)
         self._length = 1.0  # the next step's length, in learning rates (_line_search)
         self.trials: list[int] = []  # per iteration, the trial drapes its step took (0: no line search)
-
-    def _pattern_priors(self, graded, mesh, dev) -> None:
-        """The start the moves and lengths terms measure from: K (Nk, 2) [m], each effective
-        point's share of the control points, the open edges' segments and graded lengths [m]."""
-        self.K_start = self.K.detach().clone()  # (Nk, 2) [m]: where the moves term measures from
-        self.move_w = torch.as_tensor(_moves(self.params).sum(axis=0) / len(self.params.controls), device=dev)
-        self.move_ref: float | None = None  # the start's Chamfer [m^2], set by the first loss()
-        seg, edge_of, n_open = open_edge_segments(graded, mesh.edge_verts)
-        self.open_segments = torch.as_tensor(seg, device=dev)
-        self.open_edge_of = torch.as_tensor(edge_of, device=dev)
-        with torch.no_grad():
-            self.open_lengths0 = open_edge_lengths(
-                self.params.uv(self.K_start), self.open_segments, self.open_edge_of, n_open
-            )
 
     def _start_at_rest(self) -> dict:
         """Settle the graded drape ``x_prev`` until it is at rest, when it is not.
@@ -460,15 +433,6 @@ class PhaseTwo:
         l_stretch = (
             loss_stretch(x, uv, self.edges, self.edges_uv, bound=w.stretch_bound) if w.stretch > 0 else zero_x
         )
-        if self.move_ref is None:
-            self.move_ref = float(l_cf.detach())
-        K_now = self.K if K is None else K
-        l_moves = self.move_ref * loss_moves(K_now, self.K_start, self.move_w) if w.moves > 0 else zero_uv
-        l_lengths = (
-            self.move_ref * loss_open_lengths(uv, self.open_segments, self.open_edge_of, self.open_lengths0)
-            if w.lengths > 0
-            else zero_uv
-        )
         total = (
             l_cf
             + w.open * l_open
@@ -478,13 +442,8 @@ class PhaseTwo:
             + w.area * l_area
             + w.panel_area * l_panel
             + w.stretch * l_stretch
-            + w.moves * l_moves
-            + w.lengths * l_lengths
         )
-        terms = LossTerms(
-            total, l_cf, l_open, l_seam, l_mat, l_prior, l_area, l_panel, l_stretch, l_moves, l_lengths
-        )
-        return terms, gamma, x
+        return LossTerms(total, l_cf, l_open, l_seam, l_mat, l_prior, l_area, l_panel, l_stretch), gamma, x
 
     def _set_learning_rates(self) -> None:
         o = self.cfg.optimizer
@@ -549,27 +508,17 @@ class PhaseTwo:
         learning rate [m] times the line search's step length: each point's step is in proportion
         to its gradient, where Adam's first step moves every coordinate by the learning rate
         whatever its gradient's size (sign-like, and on a noisy gradient a rise of the loss);
-        with 0, Adam's step (the paper). The moves term (``LossWeights.moves``) is then left out of
-        that sum and taken by a proximal step: each point's move from the start shrinks by the
-        step's length per unit gradient times the term's pull, to nothing when the pull is larger
-        (soft thresholding, as for an L1 prior); the step is scaled so that the point whose
-        gradient exceeds its pull most moves the learning rate times the step length, net."""
-        pull = None
+        with 0, Adam's step (the paper)."""
         if self.cfg.optimizer.retries <= 0:
-            self.opt_k.step()  # the moves term's pull comes with the gradient
+            self.opt_k.step()
         else:
-            pull = self._moves_pull(K_before)  # (Nk, 1): the moves term's gradient's size per point [m]
-            g = self.K.grad.detach()  # (Nk, 2) [m]
-            if pull is not None:  # its smoothed gradient out: the step's shrink below takes its place
-                g = g - pull[0] * pull[1]
+            g = self.K.grad.detach()  # (Nk, 2) [1/m]
             m = g if self._momentum is None else MOMENTUM * self._momentum + g
             self._momentum = m
             n = float(m.norm(dim=1).max())
-            if pull is not None and float((m.norm(dim=1, keepdim=True) - pull[0]).max()) > 0:
-                n = float((m.norm(dim=1, keepdim=True) - pull[0]).max())  # the most moving point's net move
-            eta = self._length * self.opt_k.param_groups[0]["lr"] / n if n > 0 else 0.0  # [m per gradient]
-            with torch.no_grad():
-                self.K.sub_(eta * m)
+            if n > 0:
+                with torch.no_grad():
+                    self.K.sub_(self._length * self.opt_k.param_groups[0]["lr"] / n * m)
         if self._scaled:
             with torch.no_grad():  # narrow panels' points take shorter steps (step_scales)
                 short = K_before + self.k_scale * (self.K - K_before)
@@ -577,22 +526,6 @@ class PhaseTwo:
         if self.k_project is not None:
             with torch.no_grad():  # waistbands keep their height (band_projectors)
                 self.K.copy_(K_before + torch.einsum("kij,kj->ki", self.k_project, self.K - K_before))
-        if pull is not None:
-            with torch.no_grad():  # the moves term's proximal step: each move shrunk by eta x its pull
-                d = self.K - self.K_start
-                r = d.norm(dim=1, keepdim=True)
-                shrink = torch.clamp(1 - eta * self.k_scale * pull[0] / r.clamp_min(1e-300), min=0.0)
-                self.K.copy_(self.K_start + shrink * d)
-
-    def _moves_pull(self, K: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor] | None:
-        """How hard the moves term (``LossWeights.moves``) pulls each effective control point of
-        ``K`` (Nk, 2) [m] back to its start: its gradient's size, (Nk, 1) [m], and the unit
-        directions away from the start, (Nk, 2); None when the term is off."""
-        w = self.cfg.loss.moves
-        if w <= 0 or self.move_ref is None:
-            return None
-        size, u = moves_pull(K, self.K_start, self.move_w)
-        return w * self.move_ref * size, u
 
     def _line_search(self, loss0: float, K_before: torch.Tensor, theta_before: torch.Tensor) -> int:
         """Keep the step just taken (K, theta) only where its drape, from the drape at K_before, has
@@ -729,7 +662,6 @@ class PhaseTwo:
             "trials": list(self.trials),
             "momentum": None if self._momentum is None else self._momentum.clone(),
             "length": self._length,
-            "move_ref": self.move_ref,
         }
 
     def load_state_dict(self, state: dict) -> None:
@@ -751,7 +683,6 @@ class PhaseTwo:
         m = state.get("momentum")
         self._momentum = None if m is None else m.to(dev)
         self._length = float(state.get("length", 1.0))
-        self.move_ref = state.get("move_ref", self.move_ref)
 
     def best_fit(self):
         """The best iterate as (pattern, uv (Nu, 2) [m] numpy, drape x (Nx, 3) [m] numpy, Material),
