@@ -294,7 +294,7 @@ def linear_strip_rows(fab: Fabric, cells=((6, 1), (6, 5), (6, 10), (12, 5), (12,
     """Small deflections: a strip of ``fab``'s weight a thousand times stiffer (so it barely
     bends), overhang 3 cm, width 2.5 cm, on grids of nx x ny cells (and one clamp column):
     tip drop against the beam formula w g l^4 / (8 D), and the hinge-chain's own answer (only
-    the hinges across the strip bending, lumped masses), which has the clamp's O(h) error alone."""
+    the hinges across the strip bending, lumped masses: the trapezoid rule's O(h^2) error)."""
     import torch
 
     from unsew.sim import Cloth, PlaneSDF, SimModel, drape_static
@@ -326,6 +326,7 @@ def linear_strip_rows(fab: Fabric, cells=((6, 1), (6, 5), (6, 10), (12, 5), (12,
         m[-1] = h / 2
         m[0] = 0.0
         turn = np.array([(m[i + 1 :] * (xs[i + 1 :] - xs[i])).sum() for i in range(nx)]) * h
+        turn[0] *= 0.5  # the hinge on the clamp's edge bends over half a cell (bending.py, "Clamped edges")
         chain = float((np.cumsum(turn) * h).sum()) * stiff.density * G / stiff.bend
         th, _ = dihedral_angle(x, model.hinges)
         e = (x[model.hinges[:, 1]] - x[model.hinges[:, 0]]).numpy()
@@ -341,6 +342,50 @@ def linear_strip_rows(fab: Fabric, cells=((6, 1), (6, 5), (6, 10), (12, 5), (12,
                 ),
             }
         )
+    return rows
+
+
+def cylinder_energy_rows(edges=(0.005, 0.01, 0.02), angles=(0, 15, 30, 45, 60, 90), *, size=0.2, radius=0.2):
+    """Energy of a uniform bend: a size x size [m] sheet laid exactly on a cylinder of ``radius``
+    [m] whose axis makes each angle [deg] with the mesh's x axis, the hinge energy of its interior
+    (hinges 2 cm or more from the border) over plate theory's D/2 kappa^2 per unit area (each
+    hinge standing for a third of its two triangles). Meshes: the grid (alternating diagonals)
+    and unsew's own panel mesher (``triangulate_polygon``, 20 deg quality) at each edge [m]."""
+    import torch
+
+    from unsew.meshing.triangulate import triangulate_polygon
+    from unsew.sim import SimModel
+    from unsew.sim.energies.bending import bending_rest, dihedral_angle
+    from unsew.sim.energies.membrane import membrane_rest
+    from unsew.sim.meshes import grid_sheet
+
+    corners = np.array([[0.0, 0.0], [size, 0.0], [size, size], [0.0, size], [0.0, 0.0]])
+    rows = []
+    for kind in ("grid", "unsew mesher"):
+        for edge in edges:
+            n = round(size / edge)
+            if kind == "grid":
+                uv, f = grid_sheet(n, n, size, size)
+            else:  # the outline sampled at the edge length, as unsew samples a panel's
+                t = np.linspace(0.0, 1.0, n + 1)[:-1, None]
+                outline = np.concatenate([a + t * (b - a) for a, b in zip(corners[:-1], corners[1:])])
+                uv, f = triangulate_polygon(outline, edge_length=edge)
+            m = SimModel.build(f, f)
+            uvt = torch.as_tensor(uv)
+            area = membrane_rest(uvt, m.faces_uv)[0]
+            coef = bending_rest(uvt, m.faces_uv, m.hinge_faces, m.hinge_uv_edges, area)
+            hf = m.hinge_faces.numpy()
+            mid = uv[f].mean(1)[hf].mean(1)
+            inner = torch.as_tensor(np.all((mid > 0.02) & (mid < size - 0.02), 1))
+            share = ((area[hf[:, 0]] + area[hf[:, 1]]) / 3.0)[inner].sum()
+            row = {"mesh": f"{kind} {edge * 1000:.0f} mm", "vertices": len(uv)}
+            for a in angles:
+                d = np.array([math.cos(math.radians(a)), math.sin(math.radians(a))])
+                s, t = uv @ d, uv @ np.array([-d[1], d[0]])
+                x = torch.as_tensor(np.c_[radius * np.sin(s / radius), radius * (1 - np.cos(s / radius)), t])
+                th = dihedral_angle(x, m.hinges)[0]
+                row[f"{a} deg"] = float((0.5 * coef * th**2)[inner].sum() / (0.5 / radius**2 * share))
+            rows.append(row)
     return rows
 
 
@@ -622,6 +667,7 @@ def _record(tables: dict, args) -> None:
     flags = " --small" if args.small else " --linear" if args.linear else ""
     cmd = "python -m benchmarks fabric_tests" + flags + " --record"
     titles = {
+        "bend_energy": "Uniform bend: hinge energy of a sheet on a cylinder over plate theory, by axis angle",
         "strip_linear": "Small-deflection strip on unsew's hinges: tip drop against the beam formula",
         "cantilever": "Cantilever test (Peirce, 41.5 deg) on unsew's strip: overhang, rigidity read",
         "drape": "Cusick drape test (30 cm specimen, 18 cm support) simulated: DC and nodes",
@@ -667,6 +713,9 @@ def main(argv=None) -> int:
         f"{1 / peirce_ratio():.4f}; the instrument reads c = overhang / 2)"
     )
     tables = {}
+    rows = cylinder_energy_rows(edges=(0.01,) if args.small else (0.005, 0.01, 0.02))
+    _print_table("Uniform bend: hinge energy of a sheet laid on a cylinder / D/2 kappa^2 area", rows)
+    tables["bend_energy"] = rows
     if args.linear:
         rows = linear_strip_rows(cotton)
         _print_table("Small-deflection strip (cotton's weight, 1000 x its D): tip drop / beam formula", rows)
@@ -676,7 +725,7 @@ def main(argv=None) -> int:
         cases = [(f, "grid", args.strip_edge) for f in fabrics]
         if studies:  # the mesh's share: finer and coarser grids, an unstructured mesh
             e = args.strip_edge
-            cases += [(cotton, "grid", 2 * e), (cotton, "grid", e / 2), (cotton, "tri", e)]
+            cases += [(cotton, k, s * e) for k in ("grid", "tri") for s in (2, 0.5)] + [(cotton, "tri", e)]
         rows, shapes = cantilever_rows(cases)
         _print_table(
             "Cantilever (41.5 deg): the rigidity the instrument reads from the simulated strip", rows

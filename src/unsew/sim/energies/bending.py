@@ -24,6 +24,15 @@ Gradient (Bridson 2003 / Tamstorf and Grinspun 2013), checked against autograd i
 Hessian for the system: the Gauss-Newton part 2 c (d theta/dx)(d theta/dx)^T, PSD (rank 1);
 the term 2 c (theta - theta0) d2 theta/dx2 is left out of the matrix (not of the forces).
 
+Clamped edges. A hinge stands for the curvature over its dual strip, a third of each of its two
+triangles' height from the edge (the coefficient above). Where one triangle is rigid (its three
+vertices pinned, as a clamp or a platform holds cloth) the strip on that side cannot bend: the
+turn at the hinge is that of the free side's half strip alone, so the coefficient counts the free
+triangle's area twice instead of both areas once. Without it a hinge chain clamped at one end
+integrates the curvature by the left Riemann sum (the clamp's hinge bends over a whole cell):
+a cantilever of 6 cells droops 1.36 times the beam formula, 1.03 times with it (the trapezoid
+rule). Meshes without pinned vertices are unchanged.
+
 Crushed triangles. |d theta/dx2| = 1/h1, h1 = |n1|/|e| the height of x2 over the edge, so a
 triangle squashed onto its hinge edge (a fold pressed flat, cloth compressed into a crease) gives
 forces growing as 1/h and a Gauss-Newton block as 1/h^2, until the assembled system, positive
@@ -50,18 +59,28 @@ _TINY = 1e-30
 HEIGHT_FLOOR = 1e-3
 
 
-def bending_rest(uv: torch.Tensor, faces_uv: torch.Tensor, hinge_faces, hinge_uv_edges, rest_area):
+def bending_rest(
+    uv: torch.Tensor, faces_uv: torch.Tensor, hinge_faces, hinge_uv_edges, rest_area, *, rigid_faces=None
+):
     """Per-hinge rest coefficient c = |e_r|^2 / (A1_r + A2_r) [-] (dimensionless), shape (H,).
 
     Args:
         uv: rest positions [m], (Nu, 2). faces_uv: (F, 3) int64.
         hinge_faces: (H, 2) int64; hinge_uv_edges: (H, 4) int64 (see model.build_hinges).
         rest_area: rest triangle areas [m^2], (F,).
+        rigid_faces: (F,) bool, faces that cannot bend (all three vertices pinned: a clamp), or
+            None. A hinge between a rigid face and a free one takes the free face's area twice
+            (module docstring, "Clamped edges").
     """
     ea = (uv[hinge_uv_edges[:, 1]] - uv[hinge_uv_edges[:, 0]]).pow(2).sum(-1)
     eb = (uv[hinge_uv_edges[:, 3]] - uv[hinge_uv_edges[:, 2]]).pow(2).sum(-1)
     e2 = 0.5 * (ea + eb)  # the two sides of a seam may differ slightly: take the mean
-    return e2 / (rest_area[hinge_faces[:, 0]] + rest_area[hinge_faces[:, 1]])
+    a1, a2 = rest_area[hinge_faces[:, 0]], rest_area[hinge_faces[:, 1]]
+    if rigid_faces is not None:
+        r1, r2 = rigid_faces[hinge_faces[:, 0]], rigid_faces[hinge_faces[:, 1]]
+        a1 = torch.where(r1 & ~r2, torch.zeros_like(a1), a1)
+        a2 = torch.where(r2 & ~r1, torch.zeros_like(a2), a2)
+    return e2 / (a1 + a2)
 
 
 def _cross(a, b):
