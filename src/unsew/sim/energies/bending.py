@@ -60,9 +60,18 @@ HEIGHT_FLOOR = 1e-3
 
 
 def bending_rest(
-    uv: torch.Tensor, faces_uv: torch.Tensor, hinge_faces, hinge_uv_edges, rest_area, *, rigid_faces=None
+    uv: torch.Tensor,
+    faces_uv: torch.Tensor,
+    hinge_faces,
+    hinge_uv_edges,
+    rest_area,
+    *,
+    rigid_faces=None,
+    calibrate: bool = True,
 ):
-    """Per-hinge rest coefficient c = |e_r|^2 / (A1_r + A2_r) [-] (dimensionless), shape (H,).
+    """Per-hinge rest coefficient c [-] (dimensionless), shape (H,): Bridson's
+    |e_r|^2 / (A1_r + A2_r), over the mesh's own uniform-bend factor (module docstring,
+    "Calibration") unless ``calibrate`` is False.
 
     Args:
         uv: rest positions [m], (Nu, 2). faces_uv: (F, 3) int64.
@@ -76,11 +85,67 @@ def bending_rest(
     eb = (uv[hinge_uv_edges[:, 3]] - uv[hinge_uv_edges[:, 2]]).pow(2).sum(-1)
     e2 = 0.5 * (ea + eb)  # the two sides of a seam may differ slightly: take the mean
     a1, a2 = rest_area[hinge_faces[:, 0]], rest_area[hinge_faces[:, 1]]
+    coef = e2 / (a1 + a2)
+    if calibrate and coef.shape[0]:
+        coef = coef / _uniform_bend_factor(uv, faces_uv, hinge_faces, hinge_uv_edges, coef, a1 + a2)
     if rigid_faces is not None:
         r1, r2 = rigid_faces[hinge_faces[:, 0]], rigid_faces[hinge_faces[:, 1]]
-        a1 = torch.where(r1 & ~r2, torch.zeros_like(a1), a1)
-        a2 = torch.where(r2 & ~r1, torch.zeros_like(a2), a2)
-    return e2 / (a1 + a2)
+        coef = torch.where(r1 ^ r2, coef * (a1 + a2) / torch.where(r1, a2, a1), coef)
+    return coef
+
+
+#: average of k k^T over the unit bends K = d d^T (d at every angle), k = (K_xx, K_xy, K_yy)
+_BEND_AVERAGE = ((3 / 8, 0.0, 1 / 8), (0.0, 1 / 8, 0.0), (1 / 8, 0.0, 3 / 8))
+
+
+def _pl_gradients(p: torch.Tensor) -> torch.Tensor:
+    """Gradients [1/m] of the three barycentric functions of triangles p (H, 3, 2): (H, 3, 2)."""
+    e1, e2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+    det = e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0]
+    g1 = torch.stack([e2[:, 1], -e2[:, 0]], -1) / det[:, None]
+    g2 = torch.stack([-e1[:, 1], e1[:, 0]], -1) / det[:, None]
+    return torch.stack([-g1 - g2, g1, g2], 1)
+
+
+def _uniform_bend_factor(uv, faces_uv, hinge_faces, hinge_uv_edges, coef, area2):
+    """Per-hinge factor (H,) [-] by which Bridson's hinge energy exceeds D/2 kappa^2 per unit area
+    for a uniform bend of the rest mesh, averaged over the bend's direction and over the hinges
+    around each of the hinge's four vertices (module docstring, "Calibration")."""
+    fa, fb = faces_uv[hinge_faces[:, 0]], faces_uv[hinge_faces[:, 1]]
+    i0, i1 = hinge_uv_edges[:, 0], hinge_uv_edges[:, 1]
+    i2 = fa.sum(1) - i0 - i1  # face 1's vertex off the edge
+    i3 = fb.sum(1) - hinge_uv_edges[:, 2] - hinge_uv_edges[:, 3]
+    # the hinge unfolded flat in its own frame (edge along x from the origin), from rest lengths,
+    # so that a seam's two panels meet: x2 above the edge, x3 below
+    e = uv[i1] - uv[i0]
+    el = e.norm(dim=-1)
+    ex = e / el[:, None]
+    q2 = uv[i2] - uv[i0]
+    p2 = torch.stack([(q2 * ex).sum(-1), (ex[:, 0] * q2[:, 1] - ex[:, 1] * q2[:, 0]).abs()], -1)
+    eb = uv[hinge_uv_edges[:, 3]] - uv[hinge_uv_edges[:, 2]]  # face 2's copy of the edge
+    ebl = eb.norm(dim=-1)
+    q3 = uv[i3] - uv[hinge_uv_edges[:, 3]]  # from face 2's copy of x0 (the edge runs x1 -> x0 there)
+    ebx = -eb / ebl[:, None]
+    p3 = torch.stack([(q3 * ebx).sum(-1), -(ebx[:, 0] * q3[:, 1] - ebx[:, 1] * q3[:, 0]).abs()], -1)
+    zero = torch.zeros_like(p2)
+    p1 = torch.stack([el, torch.zeros_like(el)], -1)
+    k = torch.tensor(_BEND_AVERAGE, dtype=uv.dtype, device=uv.device)
+
+    def slope(p):  # (H, 3, 2) -> (H, 3): d/dy of the interpolant of (x^2/2, x y, y^2/2)
+        vals = torch.stack([0.5 * p[..., 0] ** 2, p[..., 0] * p[..., 1], 0.5 * p[..., 1] ** 2], -1)
+        return torch.einsum("hi,hik->hk", _pl_gradients(p)[..., 1], vals)
+
+    # the angle a uniform bend K opens at the hinge is the jump of the interpolant's slope across
+    # the edge: a . (K_xx, K_xy, K_yy), a (H, 3) (exact for a shallow quadratic sheet)
+    a = slope(torch.stack([zero, p1, p2], 1)) - slope(torch.stack([zero, p1, p3], 1))
+    num = coef * torch.einsum("hk,kl,hl->h", a, k, a)  # (H,) energy / (D/2 kappa^2), direction-averaged
+    share = area2 / 3.0  # the area a hinge stands for
+    idx = torch.stack([i0, i1, i2, i3], 1).reshape(-1)
+    n = uv.shape[0]
+    sn = torch.zeros(n, dtype=uv.dtype, device=uv.device).index_add_(0, idx, num.repeat_interleave(4))
+    sd = torch.zeros(n, dtype=uv.dtype, device=uv.device).index_add_(0, idx, share.repeat_interleave(4))
+    s = sn / sd.clamp_min(torch.finfo(uv.dtype).tiny)
+    return s[idx].reshape(-1, 4).mean(1)
 
 
 def _cross(a, b):
