@@ -11,11 +11,22 @@ k |e|^2/(A1+A2) * (angle term) * u_i, u_i = d theta/d x_i),
     W = (D/2) * |e_r|^2 / (A1_r + A2_r) * (theta - theta0)^2,
 
 with rest (pattern) edge length |e_r| and rest areas A_r, D = Gamma[4] the bending rigidity
-[N*m]. Calibration: a sheet bent to a cylinder of curvature kappa stores exactly D/2 kappa^2
-per unit area on a grid mesh whose edges run along the bend (tests/verification); on an
-equilateral mesh the factor is 9/8 (mesh-dependent, as for every hinge energy; Grinspun et
-al.'s "3 |e|^2/(A1+A2)" would make it 3 and 27/8). We use theta - theta0 rather than Bridson's
-sin(theta/2) - sin(theta0/2): the same to second order, and quadratic in theta.
+[N*m]. We use theta - theta0 rather than Bridson's sin(theta/2) - sin(theta0/2): the same to
+second order, and quadratic in theta.
+
+Calibration. Plate theory stores D/2 kappa^2 per unit area in a sheet bent to a cylinder of
+curvature kappa. With Bridson's coefficient a hinge energy gives that exactly on a grid whose
+edges run along the bend, but not in general: on a grid it varies with the bend's direction,
+and on the quality meshes of unsew's panel mesher it stores too much in every direction (the
+dihedral angle of a piecewise-linear sheet over a curved one picks up the interpolant's slope
+error). The rest mesh tells how much: a uniform bend K (a shallow quadratic sheet) opens at each
+hinge the angle a . (K_xx, K_xy, K_yy), the jump across the edge of the interpolant's slope
+(computed on the hinge unfolded flat from its rest lengths, so a seam's two panels count as one
+sheet). The mesh's factor is sum_e c_e <(a_e . k)^2> / sum_e (A1 + A2)/3, averaged over unit
+bends K = d d^T in every direction d, and every coefficient is divided by it. One factor per
+mesh, not per hinge: factors per vertex neighbourhood fit a uniform bend as well but leave soft
+spots that a bending strip finds. The factor depends on uv and is differentiated with it.
+Measurements: docs/decisions/024-bending-calibration.md.
 
 Gradient (Bridson 2003 / Tamstorf and Grinspun 2013), checked against autograd in the tests:
     d theta/dx2 = -|e| n1/|n1|^2,   d theta/dx3 = -|e| n2/|n2|^2,
@@ -108,9 +119,9 @@ def _pl_gradients(p: torch.Tensor) -> torch.Tensor:
 
 
 def _uniform_bend_factor(uv, faces_uv, hinge_faces, hinge_uv_edges, coef, area2):
-    """Per-hinge factor (H,) [-] by which Bridson's hinge energy exceeds D/2 kappa^2 per unit area
-    for a uniform bend of the rest mesh, averaged over the bend's direction and over the hinges
-    around each of the hinge's four vertices (module docstring, "Calibration")."""
+    """Factor [-] (scalar tensor) by which Bridson's hinge energy (``coef`` (H,), ``area2`` = A1 + A2
+    (H,) [m^2]) exceeds D/2 kappa^2 per unit area for a uniform bend of the rest mesh, averaged
+    over the bend's direction and the mesh's hinges (module docstring, "Calibration")."""
     fa, fb = faces_uv[hinge_faces[:, 0]], faces_uv[hinge_faces[:, 1]]
     i0, i1 = hinge_uv_edges[:, 0], hinge_uv_edges[:, 1]
     i2 = fa.sum(1) - i0 - i1  # face 1's vertex off the edge
@@ -140,12 +151,7 @@ def _uniform_bend_factor(uv, faces_uv, hinge_faces, hinge_uv_edges, coef, area2)
     a = slope(torch.stack([zero, p1, p2], 1)) - slope(torch.stack([zero, p1, p3], 1))
     num = coef * torch.einsum("hk,kl,hl->h", a, k, a)  # (H,) energy / (D/2 kappa^2), direction-averaged
     share = area2 / 3.0  # the area a hinge stands for
-    idx = torch.stack([i0, i1, i2, i3], 1).reshape(-1)
-    n = uv.shape[0]
-    sn = torch.zeros(n, dtype=uv.dtype, device=uv.device).index_add_(0, idx, num.repeat_interleave(4))
-    sd = torch.zeros(n, dtype=uv.dtype, device=uv.device).index_add_(0, idx, share.repeat_interleave(4))
-    s = sn / sd.clamp_min(torch.finfo(uv.dtype).tiny)
-    return s[idx].reshape(-1, 4).mean(1)
+    return num.sum() / share.sum()
 
 
 def _cross(a, b):
