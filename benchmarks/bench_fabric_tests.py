@@ -599,7 +599,7 @@ def drape_figure(results: dict, path: Path, *, disc: float = 0.09, radius: float
     plt.close(fig)
 
 
-def cantilever_figure(shapes: dict, fabrics, path: Path) -> None:
+def cantilever_figure(shapes: dict, fabrics, path: Path, *, kind: str = "tri") -> None:
     """Each fabric's simulated strip (centre-line profile, side view) at the overhang where its
     chord meets the 41.5 deg incline, with the exact elastica of the same D and w."""
     import matplotlib
@@ -613,11 +613,14 @@ def cantilever_figure(shapes: dict, fabrics, path: Path) -> None:
     lmax = 0.0
     for i, fab in enumerate(fabrics):
         col = colors[i % len(colors)]
-        for (name, kind), (uv, x, l_sim) in shapes.items():
-            if name != fab.name or kind != "grid":
+        for (name, k), (uv, x, l_sim) in shapes.items():
+            if name != fab.name or k != kind:
                 continue
-            v0 = uv[np.argmin(np.abs(uv[:, 1] - 0.5 * uv[:, 1].max())), 1]  # the row nearest the middle
-            mid = np.abs(uv[:, 1] - v0) < 1e-9
+            # the vertices nearest the strip's middle line (a row of a grid, a band of a tri mesh)
+            mid = (
+                np.abs(uv[:, 1] - 0.5 * uv[:, 1].max())
+                <= np.abs(uv[:, 1] - 0.5 * uv[:, 1].max()).min() + 2e-3
+            )
             order = np.argsort(uv[mid, 0])
             px, py = x[mid][order, 0] * 100, x[mid][order, 1] * 100
             keep = px >= -1e-9
@@ -694,6 +697,21 @@ def _parse(argv):
     return ap.parse_args(argv)
 
 
+def _cantilever_table(fabrics, cotton, args, studies: bool) -> list[dict]:
+    """The cantilever rows: every fabric on an unstructured strip (the kind of mesh unsew's panels
+    get), and with ``studies`` cotton on both kinds at half and twice the edge; the figure."""
+    kind, e = "tri", args.strip_edge
+    cases = [(f, kind, e) for f in fabrics]
+    if studies:  # the mesh's share: coarser and finer strips of both kinds
+        cases += [(cotton, k, s * e) for k in ("grid", "tri") for s in (2, 0.5)] + [(cotton, "grid", e)]
+    rows, shapes = cantilever_rows(cases)
+    _print_table("Cantilever (41.5 deg): the rigidity the instrument reads from the simulated strip", rows)
+    if args.figures:
+        shown = [cotton] + [f for f in fabrics if f.name in ("unsew silk", "unsew denim")]
+        cantilever_figure(shapes, shown, args.figures / "fabric_cantilever.png", kind=kind)
+    return rows
+
+
 def main(argv=None) -> int:
     args = _parse(argv)
 
@@ -722,18 +740,7 @@ def main(argv=None) -> int:
         tables["strip_linear"] = rows
         args.skip_cantilever = args.skip_drape = True
     if not args.skip_cantilever:
-        cases = [(f, "grid", args.strip_edge) for f in fabrics]
-        if studies:  # the mesh's share: finer and coarser grids, an unstructured mesh
-            e = args.strip_edge
-            cases += [(cotton, k, s * e) for k in ("grid", "tri") for s in (2, 0.5)] + [(cotton, "tri", e)]
-        rows, shapes = cantilever_rows(cases)
-        _print_table(
-            "Cantilever (41.5 deg): the rigidity the instrument reads from the simulated strip", rows
-        )
-        tables["cantilever"] = rows
-        if args.figures:
-            shown = [cotton] + [f for f in fabrics if f.name in ("unsew silk", "unsew denim")]
-            cantilever_figure(shapes, shown, args.figures / "fabric_cantilever.png")
+        tables["cantilever"] = _cantilever_table(fabrics, cotton, args, studies)
     if not args.skip_drape:
         seeds = range(args.seeds)
         cases = [(f, args.drape_edge, seeds) for f in fabrics]
