@@ -236,25 +236,34 @@ def simulate_strip(fab: Fabric, overhang: float, *, edge: float, kind: str):
 
 
 def cantilever_overhang(fab: Fabric, *, edge: float, kind: str, tol: float = 1e-4):
-    """Overhang [m] at which the simulated strip's chord reaches 41.5 deg (secant on l from the
-    exact elastica's), with the last strip simulated (uv, x)."""
+    """Overhang [m] at which the simulated strip's chord reaches 41.5 deg, with the last strip
+    simulated (uv, x). Secant steps from the exact elastica's overhang, kept inside a bracket of
+    the crossing (bisection when a step leaves it): each overhang is meshed anew, so the chord
+    angle is monotone in the overhang only up to the mesh's noise."""
     lam = elastica_overhang()
     c = fab.bending_length
-    ls = [lam * c, lam * c * 1.05]
-    phis = []
-    for over in ls:
+    pts = []  # (overhang, angle - 41.5 deg)
+
+    def probe(over):
         uv, x, phi = simulate_strip(fab, over, edge=edge, kind=kind)
-        phis.append(phi)
-    for _ in range(8):
-        l0, l1 = ls[-2], ls[-1]
-        p0, p1 = phis[-2] - PEIRCE_ANGLE, phis[-1] - PEIRCE_ANGLE
-        if abs(p1) < tol:
+        pts.append((over, phi - PEIRCE_ANGLE))
+        return uv, x
+
+    uv, x = probe(lam * c)
+    step = 1.05 if pts[-1][1] < 0 else 1 / 1.05
+    while len(pts) < 12 and (pts[-1][1] < 0) == (pts[0][1] < 0):  # walk out to a bracket
+        uv, x = probe(pts[-1][0] * step)
+    for _ in range(10):
+        lo = max((p for p in pts if p[1] < 0), key=lambda p: p[0], default=None)
+        hi = min((p for p in pts if p[1] >= 0), key=lambda p: p[0], default=None)
+        if abs(pts[-1][1]) < tol or lo is None or hi is None:
             break
-        l2 = l1 - p1 * (l1 - l0) / (p1 - p0)
-        uv, x, phi = simulate_strip(fab, l2, edge=edge, kind=kind)
-        ls.append(l2)
-        phis.append(phi)
-    return ls[-1], uv, x
+        (l0, p0), (l1, p1) = pts[-2], pts[-1]
+        nxt = l1 - p1 * (l1 - l0) / (p1 - p0) if p1 != p0 else 0.0
+        if not (min(lo[0], hi[0]) < nxt < max(lo[0], hi[0])):
+            nxt = 0.5 * (lo[0] + hi[0])
+        uv, x = probe(nxt)
+    return pts[-1][0], uv, x
 
 
 def cantilever_rows(cases, *, log=print):
@@ -668,6 +677,8 @@ def _print_table(title: str, rows: list[dict]) -> None:
 def _record(tables: dict, args) -> None:
     """Write each table into benchmarks/results/fabric_<name>.json with its command and commit."""
     flags = " --small" if args.small else " --linear" if args.linear else ""
+    flags += " --skip-drape" * (args.skip_drape and not args.linear)
+    flags += " --skip-cantilever" * (args.skip_cantilever and not args.linear)
     cmd = "python -m benchmarks fabric_tests" + flags + " --record"
     titles = {
         "bend_energy": "Uniform bend: hinge energy of a sheet on a cylinder over plate theory, by axis angle",
