@@ -204,15 +204,18 @@ def strip_mesh(overhang: float, *, width: float = 0.025, edge: float, clamp: flo
     return np.asarray(t["vertices"], float), np.asarray(t["triangles"], np.int64)
 
 
-def simulate_strip(fab: Fabric, overhang: float, *, edge: float, kind: str):
-    """Static equilibrium of the strip clamped on x <= 0 (pinned), overhang [m].
+def simulate_strip(fab: Fabric, overhang: float, *, edge: float, kind: str, mesh_at: float | None = None):
+    """Static equilibrium of the strip clamped on x <= 0 (pinned), overhang [m]. With ``mesh_at``
+    [m] the strip is meshed at that overhang and its free part stretched along x to ``overhang``
+    (one mesh for every overhang tried: the chord angle then varies smoothly with the overhang).
 
     Returns uv (V, 2), x (V, 3) [m] and the tip chord angle [rad] (mean of the tip row)."""
     import torch
 
     from unsew.sim import Cloth, PlaneSDF, SimModel, StaticSettings, drape_static
 
-    uv, f = strip_mesh(overhang, edge=edge, kind=kind)
+    uv, f = strip_mesh(mesh_at or overhang, edge=edge, kind=kind)
+    uv[:, 0] = np.where(uv[:, 0] > 0, uv[:, 0] * overhang / (mesh_at or overhang), uv[:, 0])
     pinned = uv[:, 0] <= 1e-12
     model = SimModel.build(f, f, pinned=pinned)
     # start from the exact elastica of this D and w (the stable cantilever's equilibrium is
@@ -231,21 +234,20 @@ def simulate_strip(fab: Fabric, overhang: float, *, edge: float, kind: str):
         Cloth(torch.as_tensor(uv), fab.gamma(), fab.density),
         settings=StaticSettings(max_iter=200),
     ).numpy()
-    tip = uv[:, 0] >= overhang - 1e-12
+    tip = uv[:, 0] >= overhang - 1e-9
     return uv, x, chord_angle(float(x[tip, 0].mean()), float(-x[tip, 1].mean()))
 
 
 def cantilever_overhang(fab: Fabric, *, edge: float, kind: str, tol: float = 1e-4):
     """Overhang [m] at which the simulated strip's chord reaches 41.5 deg, with the last strip
-    simulated (uv, x). Secant steps from the exact elastica's overhang, kept inside a bracket of
-    the crossing (bisection when a step leaves it): each overhang is meshed anew, so the chord
-    angle is monotone in the overhang only up to the mesh's noise."""
+    simulated (uv, x). One mesh, made at the exact elastica's overhang and stretched to each one
+    tried; secant steps kept inside a bracket of the crossing (bisection when a step leaves it)."""
     lam = elastica_overhang()
     c = fab.bending_length
     pts = []  # (overhang, angle - 41.5 deg)
 
     def probe(over):
-        uv, x, phi = simulate_strip(fab, over, edge=edge, kind=kind)
+        uv, x, phi = simulate_strip(fab, over, edge=edge, kind=kind, mesh_at=lam * c)
         pts.append((over, phi - PEIRCE_ANGLE))
         return uv, x
 
