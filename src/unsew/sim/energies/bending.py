@@ -22,10 +22,14 @@ dihedral angle of a piecewise-linear sheet over a curved one picks up the interp
 error). The rest mesh tells how much: a uniform bend K (a shallow quadratic sheet) opens at each
 hinge the angle a . (K_xx, K_xy, K_yy), the jump across the edge of the interpolant's slope
 (computed on the hinge unfolded flat from its rest lengths, so a seam's two panels count as one
-sheet). The mesh's factor is sum_e c_e <(a_e . k)^2> / sum_e (A1 + A2)/3, averaged over unit
-bends K = d d^T in every direction d, and every coefficient is divided by it. One factor per
-mesh, not per hinge: factors per vertex neighbourhood fit a uniform bend as well but leave soft
-spots that a bending strip finds. The factor depends on uv and is differentiated with it.
+sheet). The mesh's factor is sum_e c_e <(a_e . k)^2> / sum_e (A1 + A2)/3 over the hinges none
+of whose vertices lies on a panel's outline, averaged over unit bends K = d d^T in every
+direction d, and every coefficient is divided by it (a mesh with no such hinge keeps Bridson's
+coefficient). One factor per mesh, not per hinge: factors per vertex neighbourhood fit a uniform
+bend as well but leave soft spots that a bending strip finds. The factor corrects the average
+over directions: it makes the isotropic quality meshes of the panel mesher right in every
+direction, not a grid, whose hinges answer differently along and across (and more so with
+oblong cells). The factor depends on uv and is differentiated with it.
 Measurements: docs/decisions/024-bending-calibration.md.
 
 Gradient (Bridson 2003 / Tamstorf and Grinspun 2013), checked against autograd in the tests:
@@ -121,7 +125,8 @@ def _pl_gradients(p: torch.Tensor) -> torch.Tensor:
 def _uniform_bend_factor(uv, faces_uv, hinge_faces, hinge_uv_edges, coef, area2):
     """Factor [-] (scalar tensor) by which Bridson's hinge energy (``coef`` (H,), ``area2`` = A1 + A2
     (H,) [m^2]) exceeds D/2 kappa^2 per unit area for a uniform bend of the rest mesh, averaged
-    over the bend's direction and the mesh's hinges (module docstring, "Calibration")."""
+    over the bend's direction and the hinges off the panels' outlines (module docstring,
+    "Calibration")."""
     fa, fb = faces_uv[hinge_faces[:, 0]], faces_uv[hinge_faces[:, 1]]
     i0, i1 = hinge_uv_edges[:, 0], hinge_uv_edges[:, 1]
     i2 = fa.sum(1) - i0 - i1  # face 1's vertex off the edge
@@ -151,7 +156,26 @@ def _uniform_bend_factor(uv, faces_uv, hinge_faces, hinge_uv_edges, coef, area2)
     a = slope(torch.stack([zero, p1, p2], 1)) - slope(torch.stack([zero, p1, p3], 1))
     num = coef * torch.einsum("hk,kl,hl->h", a, k, a)  # (H,) energy / (D/2 kappa^2), direction-averaged
     share = area2 / 3.0  # the area a hinge stands for
-    return num.sum() / share.sum()
+    # only hinges away from the panels' outlines: a border (free edge or seam) has no hinge on it,
+    # so the hinges beside it see a uniform bend through a lopsided stencil; a mesh with no
+    # interior hinge (a strip one cell wide) is left as it is
+    inner = ~_on_outline(faces_uv, uv.shape[0])[torch.stack([i0, i1, i2, i3], 1)].any(1)
+    if not bool(inner.any()):
+        return torch.ones((), dtype=uv.dtype, device=uv.device)
+    return num[inner].sum() / share[inner].sum()
+
+
+def _on_outline(faces_uv: torch.Tensor, n: int) -> torch.Tensor:
+    """(n,) bool: rest vertices on an edge used by one triangle only (a panel's outline)."""
+    e = faces_uv[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    e = torch.sort(e, dim=1).values
+    key = e[:, 0] * n + e[:, 1]
+    uniq, counts = torch.unique(key, return_counts=True)
+    once = uniq[counts == 1]
+    mask = torch.zeros(n, dtype=torch.bool, device=faces_uv.device)
+    mask[once // n] = True
+    mask[once % n] = True
+    return mask
 
 
 def _cross(a, b):
