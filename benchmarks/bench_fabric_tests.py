@@ -361,7 +361,8 @@ def cylinder_energy_rows(edges=(0.005, 0.01, 0.02), angles=(0, 15, 30, 45, 60, 9
     [m] whose axis makes each angle [deg] with the mesh's x axis, the hinge energy of its interior
     (hinges 2 cm or more from the border) over plate theory's D/2 kappa^2 per unit area (each
     hinge standing for a third of its two triangles). Meshes: the grid (alternating diagonals)
-    and unsew's own panel mesher (``triangulate_polygon``, 20 deg quality) at each edge [m]."""
+    and unsew's own panel mesher (``triangulate_polygon``, 20 deg quality) at each edge [m], with
+    Bridson's coefficient (the simulator's default) and calibrated (``bending_rest(calibrate=True)``)."""
     import torch
 
     from unsew.meshing.triangulate import triangulate_polygon
@@ -373,7 +374,7 @@ def cylinder_energy_rows(edges=(0.005, 0.01, 0.02), angles=(0, 15, 30, 45, 60, 9
     corners = np.array([[0.0, 0.0], [size, 0.0], [size, size], [0.0, size], [0.0, 0.0]])
     rows = []
     for kind in ("grid", "unsew mesher"):
-        for edge in edges:
+        for edge, cal in ((e, c) for e in edges for c in (False, True)):
             n = round(size / edge)
             if kind == "grid":
                 uv, f = grid_sheet(n, n, size, size)
@@ -384,12 +385,13 @@ def cylinder_energy_rows(edges=(0.005, 0.01, 0.02), angles=(0, 15, 30, 45, 60, 9
             m = SimModel.build(f, f)
             uvt = torch.as_tensor(uv)
             area = membrane_rest(uvt, m.faces_uv)[0]
-            coef = bending_rest(uvt, m.faces_uv, m.hinge_faces, m.hinge_uv_edges, area)
+            coef = bending_rest(uvt, m.faces_uv, m.hinge_faces, m.hinge_uv_edges, area, calibrate=cal)
             hf = m.hinge_faces.numpy()
             mid = uv[f].mean(1)[hf].mean(1)
             inner = torch.as_tensor(np.all((mid > 0.02) & (mid < size - 0.02), 1))
             share = ((area[hf[:, 0]] + area[hf[:, 1]]) / 3.0)[inner].sum()
             row = {"mesh": f"{kind} {edge * 1000:.0f} mm", "vertices": len(uv)}
+            row["coefficient"] = "calibrated" if cal else "Bridson"
             for a in angles:
                 d = np.array([math.cos(math.radians(a)), math.sin(math.radians(a))])
                 s, t = uv @ d, uv @ np.array([-d[1], d[0]])

@@ -80,7 +80,7 @@ def test_crushed_fold_is_positive_definite_and_steps_soundly(crush):
                 # it opens without throwing a vertex or tearing an edge (the full linearized
                 # steps tear edges to 15 times their length at the second step)
                 L = (st.x[e[:, 0]] - st.x[e[:, 1]]).norm(dim=1)
-                assert float((L / L0).max()) < 1.6, (backend, fused, k, float((L / L0).max()))
+                assert float((L / L0).max()) < 1.35, (backend, fused, k, float((L / L0).max()))
                 assert float(st.v.norm(dim=1).max()) < 1.5, (backend, fused, k)
             kinetic = 0.5 * float((rest.mass[:, None] * st.v**2).sum())
             assert float(total_energy(m, rest, st.x, sdf, MAT.gamma(), p)) + kinetic < 0.1 * e_start

@@ -134,7 +134,7 @@ def _cylinder_energy_ratio(uv, f, angle, *, R=0.2, margin=0.02):
     m = SimModel.build(f, f)
     uvt = torch.as_tensor(uv)
     area, _, _ = membrane_rest(uvt, m.faces_uv)
-    coef = bending_rest(uvt, m.faces_uv, m.hinge_faces, m.hinge_uv_edges, area)
+    coef = bending_rest(uvt, m.faces_uv, m.hinge_faces, m.hinge_uv_edges, area, calibrate=True)
     d = np.array([np.cos(angle), np.sin(angle)])
     s, t = uv @ d, uv @ np.array([-d[1], d[0]])
     x = torch.as_tensor(np.c_[R * np.sin(s / R), R * (1 - np.cos(s / R)), t])
@@ -177,7 +177,7 @@ def test_hinge_coefficients_do_not_depend_on_where_panels_lie_in_the_pattern():
     coefs = []
     for u in (uv, moved):
         area, _, _ = membrane_rest(u, m.faces_uv)
-        coefs.append(bending_rest(u, m.faces_uv, m.hinge_faces, m.hinge_uv_edges, area))
+        coefs.append(bending_rest(u, m.faces_uv, m.hinge_faces, m.hinge_uv_edges, area, calibrate=True))
     seam = m.hinge_faces[:, 0] // 32 != m.hinge_faces[:, 1] // 32  # faces of panel A come first
     assert int(seam.sum()) == 4
     assert_close(coefs[1], coefs[0], rtol=1e-12)
@@ -190,7 +190,7 @@ def test_hinge_coefficients_are_differentiable_in_the_pattern():
 
     def coef(u):
         area, _, _ = membrane_rest(u, m.faces_uv)
-        return bending_rest(u, m.faces_uv, m.hinge_faces, m.hinge_uv_edges, area)
+        return bending_rest(u, m.faces_uv, m.hinge_faces, m.hinge_uv_edges, area, calibrate=True)
 
     assert torch.autograd.gradcheck(coef, (torch.as_tensor(uv).requires_grad_(),))
 

@@ -14,22 +14,22 @@ with rest (pattern) edge length |e_r| and rest areas A_r, D = Gamma[4] the bendi
 [N*m]. We use theta - theta0 rather than Bridson's sin(theta/2) - sin(theta0/2): the same to
 second order, and quadratic in theta.
 
-Calibration. Plate theory stores D/2 kappa^2 per unit area in a sheet bent to a cylinder of
-curvature kappa. With Bridson's coefficient a hinge energy gives that exactly on a grid whose
-edges run along the bend, but not in general: on a grid it varies with the bend's direction,
-and on the quality meshes of unsew's panel mesher it stores too much in every direction (the
-dihedral angle of a piecewise-linear sheet over a curved one picks up the interpolant's slope
-error). The rest mesh tells how much: a uniform bend K (a shallow quadratic sheet) opens at each
-hinge the angle a . (K_xx, K_xy, K_yy), the jump across the edge of the interpolant's slope
-(computed on the hinge unfolded flat from its rest lengths, so a seam's two panels count as one
-sheet). The mesh's factor is sum_e c_e <(a_e . k)^2> / sum_e (A1 + A2)/3 over the hinges none
-of whose vertices lies on a panel's outline, averaged over unit bends K = d d^T in every
-direction d, and every coefficient is divided by it (a mesh with no such hinge keeps Bridson's
-coefficient). One factor per mesh, not per hinge: factors per vertex neighbourhood fit a uniform
-bend as well but leave soft spots that a bending strip finds. The factor corrects the average
-over directions: it makes the isotropic quality meshes of the panel mesher right in every
-direction, not a grid, whose hinges answer differently along and across (and more so with
-oblong cells). The factor depends on uv and is differentiated with it.
+Calibration (``bending_rest(calibrate=True)``, off by default). Plate theory stores D/2 kappa^2
+per unit area in a sheet bent to a cylinder of curvature kappa. With Bridson's coefficient a
+hinge energy gives that exactly on a grid whose edges run along the bend, but not in general: on
+a grid it varies with the bend's direction, and on the quality meshes of unsew's panel mesher it
+stores too much in every direction (the dihedral angle of a piecewise-linear sheet over a curved
+one picks up the interpolant's slope error). The rest mesh tells how much: a uniform bend K (a
+shallow quadratic sheet) opens at each hinge the angle a . (K_xx, K_xy, K_yy), the jump across
+the edge of the interpolant's slope (computed on the hinge unfolded flat from its rest lengths,
+so a seam's two panels count as one sheet). The mesh's factor is sum_e c_e <(a_e . k)^2> / sum_e
+(A1 + A2)/3 over the hinges none of whose vertices lies on a panel's outline, averaged over unit
+bends K = d d^T in every direction d, and every coefficient is divided by it (a mesh with no
+such hinge keeps Bridson's coefficient). One factor per mesh, not per hinge: factors per vertex
+neighbourhood fit a uniform bend as well but leave soft spots that a bending strip finds. The
+factor corrects the average over directions: it makes the isotropic quality meshes of the panel
+mesher right in every direction, not a grid, whose hinges answer differently along and across
+(and more so with oblong cells). The factor depends on uv and is differentiated with it.
 Measurements: docs/decisions/024-bending-calibration.md.
 
 Gradient (Bridson 2003 / Tamstorf and Grinspun 2013), checked against autograd in the tests:
@@ -82,11 +82,12 @@ def bending_rest(
     rest_area,
     *,
     rigid_faces=None,
-    calibrate: bool = True,
+    calibrate: bool = False,
 ):
     """Per-hinge rest coefficient c [-] (dimensionless), shape (H,): Bridson's
-    |e_r|^2 / (A1_r + A2_r), over the mesh's own uniform-bend factor (module docstring,
-    "Calibration") unless ``calibrate`` is False.
+    |e_r|^2 / (A1_r + A2_r), with ``calibrate`` over the mesh's own uniform-bend factor (module
+    docstring, "Calibration"; off by default: the fit's phase-two checks were tuned on Bridson's
+    scale, docs/decisions/024-bending-calibration.md).
 
     Args:
         uv: rest positions [m], (Nu, 2). faces_uv: (F, 3) int64.
