@@ -7,10 +7,10 @@ Units (SI, per unit of cloth width/area, shell quantities):
   and eps = (E_uu, E_vv, 2 E_uv) the Green strain with *engineering* shear (see
   ``energies/membrane.py``). u is the warp (pattern x) direction, v the weft (pattern y).
 - ``bend`` [N*m]: bending rigidity D (moment per unit width per unit curvature), as a lab
-  measures it (KES-FB2 B, the cantilever's G = w g c^3). The discrete energy of
-  ``energies/bending.py`` is calibrated on each rest mesh so that a sheet bent uniformly stores
-  D/2 * kappa^2 per unit area (its "Calibration"), so D enters as measured: no value here is
-  scaled for the mesh.
+  measures it (KES-FB2 B, the cantilever's G = w g c^3); no value here is scaled for the mesh.
+  The discrete energy of ``energies/bending.py`` stores D/2 * kappa^2 per unit area for a sheet
+  bent uniformly along a grid's edges, and 1.15-1.27 times that on the panel mesher's meshes
+  (its "Calibration", an option, removes the factor).
 - ``density`` [kg/m^2]: areal density.
 - ``friction``: Coulomb friction coefficient against the body (dimensionless).
 
