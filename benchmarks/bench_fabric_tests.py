@@ -204,15 +204,18 @@ def strip_mesh(overhang: float, *, width: float = 0.025, edge: float, clamp: flo
     return np.asarray(t["vertices"], float), np.asarray(t["triangles"], np.int64)
 
 
-def simulate_strip(fab: Fabric, overhang: float, *, edge: float, kind: str):
-    """Static equilibrium of the strip clamped on x <= 0 (pinned), overhang [m].
+def simulate_strip(fab: Fabric, overhang: float, *, edge: float, kind: str, mesh_at: float | None = None):
+    """Static equilibrium of the strip clamped on x <= 0 (pinned), overhang [m]. With ``mesh_at``
+    [m] the strip is meshed at that overhang and its free part stretched along x to ``overhang``
+    (one mesh for every overhang tried: the chord angle then varies smoothly with the overhang).
 
     Returns uv (V, 2), x (V, 3) [m] and the tip chord angle [rad] (mean of the tip row)."""
     import torch
 
     from unsew.sim import Cloth, PlaneSDF, SimModel, StaticSettings, drape_static
 
-    uv, f = strip_mesh(overhang, edge=edge, kind=kind)
+    uv, f = strip_mesh(mesh_at or overhang, edge=edge, kind=kind)
+    uv[:, 0] = np.where(uv[:, 0] > 0, uv[:, 0] * overhang / (mesh_at or overhang), uv[:, 0])
     pinned = uv[:, 0] <= 1e-12
     model = SimModel.build(f, f, pinned=pinned)
     # start from the exact elastica of this D and w (the stable cantilever's equilibrium is
@@ -231,30 +234,38 @@ def simulate_strip(fab: Fabric, overhang: float, *, edge: float, kind: str):
         Cloth(torch.as_tensor(uv), fab.gamma(), fab.density),
         settings=StaticSettings(max_iter=200),
     ).numpy()
-    tip = uv[:, 0] >= overhang - 1e-12
+    tip = uv[:, 0] >= overhang - 1e-9
     return uv, x, chord_angle(float(x[tip, 0].mean()), float(-x[tip, 1].mean()))
 
 
 def cantilever_overhang(fab: Fabric, *, edge: float, kind: str, tol: float = 1e-4):
-    """Overhang [m] at which the simulated strip's chord reaches 41.5 deg (secant on l from the
-    exact elastica's), with the last strip simulated (uv, x)."""
+    """Overhang [m] at which the simulated strip's chord reaches 41.5 deg, with the last strip
+    simulated (uv, x). One mesh, made at the exact elastica's overhang and stretched to each one
+    tried; secant steps kept inside a bracket of the crossing (bisection when a step leaves it)."""
     lam = elastica_overhang()
     c = fab.bending_length
-    ls = [lam * c, lam * c * 1.05]
-    phis = []
-    for over in ls:
-        uv, x, phi = simulate_strip(fab, over, edge=edge, kind=kind)
-        phis.append(phi)
-    for _ in range(8):
-        l0, l1 = ls[-2], ls[-1]
-        p0, p1 = phis[-2] - PEIRCE_ANGLE, phis[-1] - PEIRCE_ANGLE
-        if abs(p1) < tol:
+    pts = []  # (overhang, angle - 41.5 deg)
+
+    def probe(over):
+        uv, x, phi = simulate_strip(fab, over, edge=edge, kind=kind, mesh_at=lam * c)
+        pts.append((over, phi - PEIRCE_ANGLE))
+        return uv, x
+
+    uv, x = probe(lam * c)
+    step = 1.05 if pts[-1][1] < 0 else 1 / 1.05
+    while len(pts) < 12 and (pts[-1][1] < 0) == (pts[0][1] < 0):  # walk out to a bracket
+        uv, x = probe(pts[-1][0] * step)
+    for _ in range(10):
+        lo = max((p for p in pts if p[1] < 0), key=lambda p: p[0], default=None)
+        hi = min((p for p in pts if p[1] >= 0), key=lambda p: p[0], default=None)
+        if abs(pts[-1][1]) < tol or lo is None or hi is None:
             break
-        l2 = l1 - p1 * (l1 - l0) / (p1 - p0)
-        uv, x, phi = simulate_strip(fab, l2, edge=edge, kind=kind)
-        ls.append(l2)
-        phis.append(phi)
-    return ls[-1], uv, x
+        (l0, p0), (l1, p1) = pts[-2], pts[-1]
+        nxt = l1 - p1 * (l1 - l0) / (p1 - p0) if p1 != p0 else 0.0
+        if not (min(lo[0], hi[0]) < nxt < max(lo[0], hi[0])):
+            nxt = 0.5 * (lo[0] + hi[0])
+        uv, x = probe(nxt)
+    return pts[-1][0], uv, x
 
 
 def cantilever_rows(cases, *, log=print):
@@ -294,7 +305,7 @@ def linear_strip_rows(fab: Fabric, cells=((6, 1), (6, 5), (6, 10), (12, 5), (12,
     """Small deflections: a strip of ``fab``'s weight a thousand times stiffer (so it barely
     bends), overhang 3 cm, width 2.5 cm, on grids of nx x ny cells (and one clamp column):
     tip drop against the beam formula w g l^4 / (8 D), and the hinge-chain's own answer (only
-    the hinges across the strip bending, lumped masses), which has the clamp's O(h) error alone."""
+    the hinges across the strip bending, lumped masses: the trapezoid rule's O(h^2) error)."""
     import torch
 
     from unsew.sim import Cloth, PlaneSDF, SimModel, drape_static
@@ -326,6 +337,7 @@ def linear_strip_rows(fab: Fabric, cells=((6, 1), (6, 5), (6, 10), (12, 5), (12,
         m[-1] = h / 2
         m[0] = 0.0
         turn = np.array([(m[i + 1 :] * (xs[i + 1 :] - xs[i])).sum() for i in range(nx)]) * h
+        turn[0] *= 0.5  # the hinge on the clamp's edge bends over half a cell (bending.py, "Clamped edges")
         chain = float((np.cumsum(turn) * h).sum()) * stiff.density * G / stiff.bend
         th, _ = dihedral_angle(x, model.hinges)
         e = (x[model.hinges[:, 1]] - x[model.hinges[:, 0]]).numpy()
@@ -341,6 +353,52 @@ def linear_strip_rows(fab: Fabric, cells=((6, 1), (6, 5), (6, 10), (12, 5), (12,
                 ),
             }
         )
+    return rows
+
+
+def cylinder_energy_rows(edges=(0.005, 0.01, 0.02), angles=(0, 15, 30, 45, 60, 90), *, size=0.2, radius=0.2):
+    """Energy of a uniform bend: a size x size [m] sheet laid exactly on a cylinder of ``radius``
+    [m] whose axis makes each angle [deg] with the mesh's x axis, the hinge energy of its interior
+    (hinges 2 cm or more from the border) over plate theory's D/2 kappa^2 per unit area (each
+    hinge standing for a third of its two triangles). Meshes: the grid (alternating diagonals)
+    and unsew's own panel mesher (``triangulate_polygon``, 20 deg quality) at each edge [m], with
+    Bridson's coefficient (the simulator's default) and calibrated (``bending_rest(calibrate=True)``)."""
+    import torch
+
+    from unsew.meshing.triangulate import triangulate_polygon
+    from unsew.sim import SimModel
+    from unsew.sim.energies.bending import bending_rest, dihedral_angle
+    from unsew.sim.energies.membrane import membrane_rest
+    from unsew.sim.meshes import grid_sheet
+
+    corners = np.array([[0.0, 0.0], [size, 0.0], [size, size], [0.0, size], [0.0, 0.0]])
+    rows = []
+    for kind in ("grid", "unsew mesher"):
+        for edge, cal in ((e, c) for e in edges for c in (False, True)):
+            n = round(size / edge)
+            if kind == "grid":
+                uv, f = grid_sheet(n, n, size, size)
+            else:  # the outline sampled at the edge length, as unsew samples a panel's
+                t = np.linspace(0.0, 1.0, n + 1)[:-1, None]
+                outline = np.concatenate([a + t * (b - a) for a, b in zip(corners[:-1], corners[1:])])
+                uv, f = triangulate_polygon(outline, edge_length=edge)
+            m = SimModel.build(f, f)
+            uvt = torch.as_tensor(uv)
+            area = membrane_rest(uvt, m.faces_uv)[0]
+            coef = bending_rest(uvt, m.faces_uv, m.hinge_faces, m.hinge_uv_edges, area, calibrate=cal)
+            hf = m.hinge_faces.numpy()
+            mid = uv[f].mean(1)[hf].mean(1)
+            inner = torch.as_tensor(np.all((mid > 0.02) & (mid < size - 0.02), 1))
+            share = ((area[hf[:, 0]] + area[hf[:, 1]]) / 3.0)[inner].sum()
+            row = {"mesh": f"{kind} {edge * 1000:.0f} mm", "vertices": len(uv)}
+            row["coefficient"] = "calibrated" if cal else "Bridson"
+            for a in angles:
+                d = np.array([math.cos(math.radians(a)), math.sin(math.radians(a))])
+                s, t = uv @ d, uv @ np.array([-d[1], d[0]])
+                x = torch.as_tensor(np.c_[radius * np.sin(s / radius), radius * (1 - np.cos(s / radius)), t])
+                th = dihedral_angle(x, m.hinges)[0]
+                row[f"{a} deg"] = float((0.5 * coef * th**2)[inner].sum() / (0.5 / radius**2 * share))
+            rows.append(row)
     return rows
 
 
@@ -554,7 +612,7 @@ def drape_figure(results: dict, path: Path, *, disc: float = 0.09, radius: float
     plt.close(fig)
 
 
-def cantilever_figure(shapes: dict, fabrics, path: Path) -> None:
+def cantilever_figure(shapes: dict, fabrics, path: Path, *, kind: str = "tri") -> None:
     """Each fabric's simulated strip (centre-line profile, side view) at the overhang where its
     chord meets the 41.5 deg incline, with the exact elastica of the same D and w."""
     import matplotlib
@@ -568,11 +626,14 @@ def cantilever_figure(shapes: dict, fabrics, path: Path) -> None:
     lmax = 0.0
     for i, fab in enumerate(fabrics):
         col = colors[i % len(colors)]
-        for (name, kind), (uv, x, l_sim) in shapes.items():
-            if name != fab.name or kind != "grid":
+        for (name, k), (uv, x, l_sim) in shapes.items():
+            if name != fab.name or k != kind:
                 continue
-            v0 = uv[np.argmin(np.abs(uv[:, 1] - 0.5 * uv[:, 1].max())), 1]  # the row nearest the middle
-            mid = np.abs(uv[:, 1] - v0) < 1e-9
+            # the vertices nearest the strip's middle line (a row of a grid, a band of a tri mesh)
+            mid = (
+                np.abs(uv[:, 1] - 0.5 * uv[:, 1].max())
+                <= np.abs(uv[:, 1] - 0.5 * uv[:, 1].max()).min() + 2e-3
+            )
             order = np.argsort(uv[mid, 0])
             px, py = x[mid][order, 0] * 100, x[mid][order, 1] * 100
             keep = px >= -1e-9
@@ -620,8 +681,11 @@ def _print_table(title: str, rows: list[dict]) -> None:
 def _record(tables: dict, args) -> None:
     """Write each table into benchmarks/results/fabric_<name>.json with its command and commit."""
     flags = " --small" if args.small else " --linear" if args.linear else ""
+    flags += " --skip-drape" * (args.skip_drape and not args.linear)
+    flags += " --skip-cantilever" * (args.skip_cantilever and not args.linear)
     cmd = "python -m benchmarks fabric_tests" + flags + " --record"
     titles = {
+        "bend_energy": "Uniform bend: hinge energy of a sheet on a cylinder over plate theory, by axis angle",
         "strip_linear": "Small-deflection strip on unsew's hinges: tip drop against the beam formula",
         "cantilever": "Cantilever test (Peirce, 41.5 deg) on unsew's strip: overhang, rigidity read",
         "drape": "Cusick drape test (30 cm specimen, 18 cm support) simulated: DC and nodes",
@@ -648,6 +712,21 @@ def _parse(argv):
     return ap.parse_args(argv)
 
 
+def _cantilever_table(fabrics, cotton, args, studies: bool) -> list[dict]:
+    """The cantilever rows: every fabric on an unstructured strip (the kind of mesh unsew's panels
+    get), and with ``studies`` cotton on both kinds at half and twice the edge; the figure."""
+    kind, e = "tri", args.strip_edge
+    cases = [(f, kind, e) for f in fabrics]
+    if studies:  # the mesh's share: coarser and finer strips of both kinds
+        cases += [(cotton, k, s * e) for k in ("grid", "tri") for s in (2, 0.5)] + [(cotton, "grid", e)]
+    rows, shapes = cantilever_rows(cases)
+    _print_table("Cantilever (41.5 deg): the rigidity the instrument reads from the simulated strip", rows)
+    if args.figures:
+        shown = [cotton] + [f for f in fabrics if f.name in ("unsew silk", "unsew denim")]
+        cantilever_figure(shapes, shown, args.figures / "fabric_cantilever.png", kind=kind)
+    return rows
+
+
 def main(argv=None) -> int:
     args = _parse(argv)
 
@@ -667,24 +746,16 @@ def main(argv=None) -> int:
         f"{1 / peirce_ratio():.4f}; the instrument reads c = overhang / 2)"
     )
     tables = {}
+    rows = cylinder_energy_rows(edges=(0.01,) if args.small else (0.005, 0.01, 0.02))
+    _print_table("Uniform bend: hinge energy of a sheet laid on a cylinder / D/2 kappa^2 area", rows)
+    tables["bend_energy"] = rows
     if args.linear:
         rows = linear_strip_rows(cotton)
         _print_table("Small-deflection strip (cotton's weight, 1000 x its D): tip drop / beam formula", rows)
         tables["strip_linear"] = rows
         args.skip_cantilever = args.skip_drape = True
     if not args.skip_cantilever:
-        cases = [(f, "grid", args.strip_edge) for f in fabrics]
-        if studies:  # the mesh's share: finer and coarser grids, an unstructured mesh
-            e = args.strip_edge
-            cases += [(cotton, "grid", 2 * e), (cotton, "grid", e / 2), (cotton, "tri", e)]
-        rows, shapes = cantilever_rows(cases)
-        _print_table(
-            "Cantilever (41.5 deg): the rigidity the instrument reads from the simulated strip", rows
-        )
-        tables["cantilever"] = rows
-        if args.figures:
-            shown = [cotton] + [f for f in fabrics if f.name in ("unsew silk", "unsew denim")]
-            cantilever_figure(shapes, shown, args.figures / "fabric_cantilever.png")
+        tables["cantilever"] = _cantilever_table(fabrics, cotton, args, studies)
     if not args.skip_drape:
         seeds = range(args.seeds)
         cases = [(f, args.drape_edge, seeds) for f in fabrics]

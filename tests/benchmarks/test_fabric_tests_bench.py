@@ -85,9 +85,10 @@ def test_small_mode_prints_both_tables(capsys, tmp_path):
     cant = [r for r in rows if "G read / D" in r]
     drape = [r for r in rows if "DC %" in r]
     assert len(cant) == 1 and len(drape) == 1
-    # the strip reads a rigidity of the input's order (the discrete hinges' share is what the
-    # full run measures), the specimen drapes: its shadow between the support and the flat disc
-    assert 0.2 < float(cant[0]["G read / D"]) < 2.0
+    # the coarse unstructured strip (1 cm edges, 2.5 across) reads the input rigidity within 30 %,
+    # as the instrument would a real strip (0.72 before the clamp's half strip); the specimen
+    # drapes: its shadow between the support and the flat disc
+    assert 0.8 < float(cant[0]["G read / D"]) < 1.3
     assert 10.0 < float(drape[0]["DC %"]) < 100.0 and int(drape[0]["nodes"]) >= 3
     assert (tmp_path / "fabric_drape.png").stat().st_size > 1000
     assert (tmp_path / "fabric_cantilever.png").stat().st_size > 1000

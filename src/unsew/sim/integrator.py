@@ -145,7 +145,8 @@ def rest_data(model: SimModel, uv: torch.Tensor, density) -> RestData:
             )
     vert_area = scatter_vertex(model.n, model.faces, (area / 3.0)[:, None, None].expand(-1, 3, 3))[:, 0]
     mass = vert_area * density
-    coef = bending_rest(uv, model.faces_uv, model.hinge_faces, model.hinge_uv_edges, area)
+    rigid = model.pinned[model.faces].all(1) if bool(model.pinned.any()) else None
+    coef = bending_rest(uv, model.faces_uv, model.hinge_faces, model.hinge_uv_edges, area, rigid_faces=rigid)
     return RestData(area=area, B=B, coef=coef, mass=mass, vert_area=vert_area)
 
 

@@ -6,9 +6,11 @@ Units (SI, per unit of cloth width/area, shell quantities):
   sigma = H eps with sigma the membrane (second Piola-Kirchhoff) stress per unit width [N/m]
   and eps = (E_uu, E_vv, 2 E_uv) the Green strain with *engineering* shear (see
   ``energies/membrane.py``). u is the warp (pattern x) direction, v the weft (pattern y).
-- ``bend`` [N*m]: bending rigidity D (moment per unit width per unit curvature). The discrete
-  energy of ``energies/bending.py`` stores D/2 * kappa^2 per unit area for a sheet bent to a
-  cylinder on a grid mesh (9/8 of that on an equilateral mesh).
+- ``bend`` [N*m]: bending rigidity D (moment per unit width per unit curvature), as a lab
+  measures it (KES-FB2 B, the cantilever's G = w g c^3); no value here is scaled for the mesh.
+  The discrete energy of ``energies/bending.py`` stores D/2 * kappa^2 per unit area for a sheet
+  bent uniformly along a grid's edges, and 1.15-1.27 times that on the panel mesher's meshes
+  (its "Calibration", an option, removes the factor).
 - ``density`` [kg/m^2]: areal density.
 - ``friction``: Coulomb friction coefficient against the body (dimensionless).
 
