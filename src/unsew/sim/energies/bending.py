@@ -30,7 +30,7 @@ neighbourhood fit a uniform bend as well but leave soft spots that a bending str
 factor corrects the average over directions: it makes the isotropic quality meshes of the panel
 mesher right in every direction, not a grid, whose hinges answer differently along and across
 (and more so with oblong cells). The factor depends on uv and is differentiated with it.
-Measurements: docs/decisions/024-bending-calibration.md.
+Measurements: docs/decisions/026-bending-calibration.md.
 
 Gradient (Bridson 2003 / Tamstorf and Grinspun 2013), checked against autograd in the tests:
     d theta/dx2 = -|e| n1/|n1|^2,   d theta/dx3 = -|e| n2/|n2|^2,
@@ -87,7 +87,7 @@ def bending_rest(
     """Per-hinge rest coefficient c [-] (dimensionless), shape (H,): Bridson's
     |e_r|^2 / (A1_r + A2_r), with ``calibrate`` over the mesh's own uniform-bend factor (module
     docstring, "Calibration"; off by default: the fit's phase-two checks were tuned on Bridson's
-    scale, docs/decisions/024-bending-calibration.md).
+    scale, docs/decisions/026-bending-calibration.md).
 
     Args:
         uv: rest positions [m], (Nu, 2). faces_uv: (F, 3) int64.
