@@ -7,8 +7,8 @@ only supplies the panel mesh (unsew.meshing) and the panels' start positions aro
 Two phases:
 1. sewing, gravity off: the unsewn panels (one particle per 2D rest vertex) with a zero-length
    spring (``seam_spring_n_m``, an external force evaluated at the start of each substep)
-   between every stitched vertex pair, velocities damped by ``sew_damping`` per substep; the
-   no gravity, so nothing needs holding;
+   between every stitched vertex pair, velocities damped by ``sew_damping`` per substep, the
+   body's friction ``sew_contact_mu``; no gravity, so nothing needs holding;
 2. drape: the sewn mesh (stitched vertices merged at their mean) rebuilt as one cloth, gravity
    ramped in over ``ramp_frames`` frames with the waist line of a lower garment held still
    until ``hold_frames`` (counted from the start), then released and settled.
@@ -38,6 +38,7 @@ SETTINGS = dict(
     soft_contact_ke=1.0e3,
     soft_contact_kd=1.0e-3,
     soft_contact_mu=0.5,
+    sew_contact_mu=0.5,
     sew_frames=40,
     seam_spring_n_m=30.0,
     seam_force_max_n=float("inf"),
@@ -168,10 +169,16 @@ class _Runner:
         return _to_y(state0.particle_q.numpy())
 
 
-def _seam_pull(sp, s: dict):
+def _seam_pull(sp, s: dict, guide=None):
     """The sewing phase's hook: spring forces pulling each seam pair together (capped), and
-    damped, capped velocities."""
+    damped, capped velocities. ``guide``: (uv indices (k,) int64, points (k, 3) [m, Y up]) each
+    pulled towards its point by a spring of the same stiffness, or None."""
     import warp as wp
+
+    if guide is not None and len(guide[0]):
+        gi, gp = np.asarray(guide[0], np.int64), _to_z(guide[1])
+    else:
+        gi, gp = np.zeros(0, np.int64), np.zeros((0, 3))
 
     def pull(state):
         q = state.particle_q.numpy()
@@ -179,6 +186,7 @@ def _seam_pull(sp, s: dict):
         f = np.zeros((len(q), 3))
         np.add.at(f, sp[:, 0], s["seam_spring_n_m"] * d)
         np.add.at(f, sp[:, 1], -s["seam_spring_n_m"] * d)
+        np.add.at(f, gi, s["seam_spring_n_m"] * (gp - q[gi]))
         fn = np.linalg.norm(f, axis=1, keepdims=True)
         f *= np.minimum(1.0, s["seam_force_max_n"] / np.maximum(fn, 1e-12))
         state.particle_f.assign(wp.array(f.astype(np.float32), dtype=wp.vec3, device="cpu"))
@@ -250,15 +258,23 @@ def _weigh(model, idx, factor: float) -> None:
     model.particle_inv_mass = wp.array(inv, dtype=model.particle_inv_mass.dtype, device="cpu")
 
 
-def _sew(mesh, x_u, body, runner: _Runner, info: dict, log, attach=None):
+def _sew(mesh, x_u, body, runner: _Runner, info: dict, log, attach=None, guide=None):
     """Phase 1: sew the unsewn panels x_u (Nu, 3) [m] on body = (bz, body_f), the uv vertices
-    ``attach[0]`` held at the heights ``attach[1]`` [m] (or none); returns the unsewn positions
-    after sewing, and records the seam gaps and time in ``info``."""
+    ``attach[0]`` held at the heights ``attach[1]`` [m] (or none), the uv vertices ``guide[0]``
+    pulled towards the points ``guide[1]`` (or none, see :func:`_seam_pull`); returns the unsewn
+    positions after sewing, and records the seam gaps and time in ``info``."""
     s = runner.s
     t0 = time.time()
     sp = np.asarray(mesh.seam_pairs)
-    m1 = _model(_to_z(x_u), mesh.faces_uv, mesh.uv, mesh.faces_uv, *body, s)
-    hook = _seam_pull(sp, s)
+    m1 = _model(
+        _to_z(x_u),
+        mesh.faces_uv,
+        mesh.uv,
+        mesh.faces_uv,
+        *body,
+        {**s, "soft_contact_mu": s["sew_contact_mu"]},
+    )
+    hook = _seam_pull(sp, s, guide)
     if attach is not None:
         hook = _attach(attach[0], attach[1], then=hook)
     x1 = runner.run(m1, x_u, s["sew_frames"], lambda f: (0.0, False), np.zeros(0, np.int64), hook=hook)
@@ -277,19 +293,22 @@ def _sew(mesh, x_u, body, runner: _Runner, info: dict, log, attach=None):
     return x1
 
 
-def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, log=print, attach=None):
+def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, log=print, holds=None):
     """Sew and drape ``mesh`` (unsew GarmentMesh) from its unsewn start ``x_unsewn`` (Nu, 3) [m]
     on the body (body_v (V, 3) [m], body_f (F, 3)). ``lower``: hold the waist (skirts,
-    trousers). ``attach``: (uv indices (k,) int64, heights (k,) [m]) held at those heights
+    trousers). ``holds``: a dict with any of ``attach`` and ``guide``, or None.
+    ``attach``: (uv indices (k,) int64, heights (k,) [m]) held at those heights
     while sewing and draping (free across), put on the body at those heights (:func:`on_body`)
     when the drape starts and made ``attach_mass_factor`` times heavier there, so that the
     cloth's pull cannot move them far within a step (uv vertices sewn together must share a
-    height), or None.
+    height). ``guide``: (uv indices (k,) int64, points (k, 3) [m]) pulled towards those points
+    while sewing (:func:`_seam_pull`).
     Returns (x (n_x, 3) float64 [m] sewn vertices in the world frame, info dict with per-phase
     timings [s], the largest seam gap after sewing [m] and frames run)."""
     import warp as wp
 
     wp.config.quiet = True
+    attach, guide = (holds or {}).get("attach"), (holds or {}).get("guide")
     s = dict(SETTINGS if settings is None else settings)
     bz = _to_z(body_v)
     runner = _Runner(s, 0.5 * (bz.min(axis=0) + bz.max(axis=0)))
@@ -300,7 +319,7 @@ def drape_newton(mesh, x_unsewn, body_v, body_f, *, lower: bool, settings=None, 
     held_u = (
         np.flatnonzero(x_u[:, 1] > x_u[:, 1].max() - s["hold_band_m"]) if lower else np.zeros(0, np.int64)
     )
-    x1 = _sew(mesh, x_u, (bz, body_f), runner, info, log, attach)
+    x1 = _sew(mesh, x_u, (bz, body_f), runner, info, log, attach, guide)
 
     # phase 2: the sewn garment
     t0 = time.time()

@@ -396,6 +396,55 @@ def attachment(spec: dict, mesh, x0: np.ndarray) -> tuple[np.ndarray, np.ndarray
     return idx, (ysum / np.maximum(cnt, 1.0))[xu[idx]]
 
 
+def _front_back(mesh, spec: dict, x0: np.ndarray, body_v: np.ndarray) -> np.ndarray:
+    """Per uv vertex (Nu,) int: +1 on a front panel, -1 on a back panel (normal within 30 degrees
+    of the Z axis, the side its start x0 (Nu, 3) [m] lies on from the body's median z), 0 else."""
+    side = np.zeros(len(x0), np.int64)
+    for i, name in enumerate(mesh.panel_names):
+        n = spec_rotation(spec["pattern"]["panels"][name].get("rotation", [0, 0, 0]))[:, 2]
+        if abs(n[2]) < np.cos(np.radians(30.0)):
+            continue
+        a, b = int(mesh.panel_offsets[i]), int(mesh.panel_offsets[i + 1])
+        side[a:b] = 1 if np.mean(x0[a:b, 2]) > np.median(body_v[:, 2]) else -1
+    return side
+
+
+def over_body_guide(
+    spec: dict, mesh, x0: np.ndarray, body_v: np.ndarray, body_f: np.ndarray, clearance=0.01, reach=0.1
+):
+    """Seams that must close over the top of the body (a shoulder seam between a front and a back
+    panel): the stitched pairs joining a front to a back panel (:func:`_front_back`) whose midpoint
+    in the start x0 (Nu, 3) [m] lies inside the body above the crotch, less than ``reach`` [m]
+    below the body's top surface there (nothing of the body above that). Returns their uv vertices
+    (k,) int64 and for each that top point plus ``clearance`` [m] up, (k, 3) float64 [m]: where
+    the seam is sewn to."""
+    import trimesh
+
+    none = np.zeros(0, np.int64), np.zeros((0, 3))
+    sp = np.asarray(mesh.seam_pairs, np.int64).reshape(-1, 2)
+    side = _front_back(mesh, spec, x0, body_v)
+    sp = sp[side[sp[:, 0]] * side[sp[:, 1]] < 0]
+    mid = 0.5 * (x0[sp[:, 0]] + x0[sp[:, 1]])
+    tm = trimesh.Trimesh(body_v, body_f, process=False)
+    if len(sp):
+        keep = (mid[:, 1] > _crotch_height(body_v)) & np.asarray(tm.contains(mid), bool)
+        sp, mid = sp[keep], mid[keep]
+    if not len(sp):
+        return none
+    up = np.tile([0.0, 1.0, 0.0], (len(mid), 1))
+    hit, ray, _ = tm.ray.intersects_location(mid, up, multiple_hits=False)
+    top = np.full_like(mid, np.inf)
+    top[ray] = hit
+    near = top[:, 1] - mid[:, 1] < reach
+    above = np.zeros(len(mid), bool)
+    if near.any():
+        _, r2, _ = tm.ray.intersects_location(top[near] + [0.0, 1e-4, 0.0], up[near], multiple_hits=False)
+        above[np.flatnonzero(near)[r2]] = True
+    keep = near & ~above
+    top = top[keep] + [0.0, clearance, 0.0]
+    return sp[keep].T.ravel(), np.r_[top, top]
+
+
 #: newton's settings for starts from the specification (flat panels up to half a metre apart):
 #: the foreign benchmark's, with the sewing force and speed capped and four times the sewing frames.
 SEW_FROM_SPEC = {
@@ -425,17 +474,31 @@ def write_obj(path: Path, v: np.ndarray, f: np.ndarray, header: str) -> None:
         fh.write("".join(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in f))
 
 
-def _newton_drape(mesh, x0, body_v, body_f, lower, attach=None):
+#: ... and while seams are guided over the body (:func:`over_body_guide`): the body without
+#: friction while sewing, so that the pulled cloth slides over the shoulder instead of sticking.
+GUIDED_SEWING = {"sew_contact_mu": 0.0}
+
+
+def _newton_drape(mesh, x0, body_v, body_f, lower, attach=None, guide=None):
     """newton's drape (benchmarks/foreign/newton_drape.py) with its retry settings; ``attach``:
-    (uv indices, heights [m]) held at those heights (see :func:`attachment`)."""
+    (uv indices, heights [m]) held at those heights (see :func:`attachment`); ``guide``: (uv
+    indices, points [m]) pulled to those points while sewing (see :func:`over_body_guide`)."""
     sys.path.insert(0, str(HERE.parent / "foreign"))
     import newton_drape
 
     for k, extra in enumerate(newton_drape.FALLBACKS):
-        settings = {**newton_drape.SETTINGS, **SEW_FROM_SPEC, **extra}
+        guided = GUIDED_SEWING if guide is not None and len(guide[0]) else {}
+        settings = {**newton_drape.SETTINGS, **SEW_FROM_SPEC, **guided, **extra}
         try:
             x, info = newton_drape.drape_newton(
-                mesh, x0, body_v, body_f, lower=lower, settings=settings, log=_log, attach=attach
+                mesh,
+                x0,
+                body_v,
+                body_f,
+                lower=lower,
+                settings=settings,
+                log=_log,
+                holds={"attach": attach, "guide": guide},
             )
             return x, info, settings
         except RuntimeError as exc:
@@ -485,7 +548,9 @@ def build_case(
         att = attachment(src.spec, mesh, x0)
         lower = src.truth["type"] in LOWER_TYPES and not len(att[0])
         rec["attached_vertices"] = len(att[0])
-        x, info, settings = _newton_drape(mesh, x0, body_v, body_f, lower, att)
+        guide = over_body_guide(src.spec, mesh, x0, body_v, body_f)
+        rec["guided_vertices"] = len(guide[0])
+        x, info, settings = _newton_drape(mesh, x0, body_v, body_f, lower, att, guide)
     except RuntimeError as exc:
         rec.update(status="failed", reason=f"newton: {exc}", seconds=round(time.time() - t0, 1))
         return rec

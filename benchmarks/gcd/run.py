@@ -10,6 +10,7 @@
     python -m benchmarks gcd types [--out DIR] [--drapes DIR] [--record]   the design read off the targets
     python -m benchmarks gcd judge-check           the judge on synthetic inputs (seconds)
     python -m benchmarks gcd panels --results R --cases DIR   per true piece, each fit stage; darts' floor
+    python -m benchmarks gcd sew-probe CASE_DIR ['{"sew_contact_mu": 0.5}'] [--no-attach] [--no-guide]
     python -m benchmarks gcd starts [--out DIR] [--drapes DIR] [--only ...] [--record]   the start, type read
 
 ``build`` samples GarmentCode's designs (seed k sized to and draped on body k of manifest.json),
@@ -180,12 +181,22 @@ def _add_fit_score_parsers(sub) -> None:
     fi.add_argument("--redo", action="store_true", help="fit again a case with an outcome already")
 
 
-def main(argv=None) -> int:
-    argv = sys.argv[1:] if argv is None else list(argv)
-    if argv[:1] == ["panels"]:  # its own options: the judge's per-piece errors of each fit stage
+def _own_options(argv: list) -> int:
+    """``panels`` (the judge's per-piece errors of each fit stage) and ``sew-probe`` (newton's
+    sewing phase alone on one case), which parse their own options."""
+    if argv[0] == "panels":
         import panels
 
         return panels.main(argv[1:])
+    import sew_probe
+
+    return sew_probe.main(argv[1:])
+
+
+def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] in (["panels"], ["sew-probe"]):  # the modes with their own options
+        return _own_options(argv)
     ap = argparse.ArgumentParser(prog="python -m benchmarks gcd", description=__doc__.splitlines()[0])
     ap.add_argument("--summary", action="store_true", help="one JSON line of the recorded results")
     ap.add_argument("--record-file", default=str(RESULTS), help=argparse.SUPPRESS)

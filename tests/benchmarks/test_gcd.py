@@ -378,7 +378,7 @@ def test_newton_drape_keeps_attached_vertices_at_their_height_while_the_rest_fal
         lower=False,
         settings=s,
         log=lambda *a: None,
-        attach=(top, x0[top, 1]),
+        holds={"attach": (top, x0[top, 1])},
     )
     held = np.unique(np.asarray(mesh.x_of_u)[top])
     assert np.abs(x[held, 1] - 1.2).max() < 0.005
@@ -492,3 +492,32 @@ def test_a_dart_tip_is_closed_and_a_plain_outline_is_left_alone():
     closed, k = panels.close_darts(dart)
     assert k == 1 and closed[4, 1] == pytest.approx(0.6)
     assert judge.turning_distance(dart, closed) > 0.1
+
+
+def test_over_body_guide_takes_the_seam_across_the_body_top_not_the_side_seam():
+    """A front and a back panel (30 x 20 cm, 15 cm in front of and behind a box torso 24 cm wide,
+    20 cm deep, top at 1.40 m), their top edges 2 cm below the torso's top sewn together (the line
+    between them runs through the torso) and their right sides sewn (the line runs beside it):
+    guided are the top edges' vertices only, each to a point 1 cm above the torso's top."""
+    import trimesh
+
+    build = _load("build")
+    box = trimesh.creation.box(extents=(0.24, 1.4, 0.2))
+    body_v, body_f = np.asarray(box.vertices) + [0, 0.7, 0], np.asarray(box.faces)
+    square = [[0, 0], [30, 0], [30, 20], [0, 20]]
+    front, back = _panel(square, t=(-15, 118, 15)), _panel(square, t=(-15, 118, -15))
+    spec = _spec(
+        {"front": front, "back": back},
+        [
+            [{"panel": "front", "edge": 2}, {"panel": "back", "edge": 2}],
+            [{"panel": "front", "edge": 1}, {"panel": "back", "edge": 1}],
+        ],
+    )
+    mesh = build.mesh_spec(spec, "guide", 0.05)
+    x0 = build.spec_placement(spec, mesh)
+    idx, to = build.over_body_guide(spec, mesh, x0, body_v, body_f, clearance=0.01)
+    tops = set(mesh.edge_verts[("front", 2)].tolist()) | set(mesh.edge_verts[("back", 2)].tolist())
+    assert set(idx.tolist()) == tops
+    assert np.allclose(to[:, 1], 1.41) and np.all(np.abs(to[:, 2]) < 0.01)
+    # a torso 10 cm lower: the seam runs above it, nothing to guide
+    assert len(build.over_body_guide(spec, mesh, x0, body_v - [0, 0.1, 0], body_f)[0]) == 0
