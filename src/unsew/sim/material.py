@@ -9,8 +9,8 @@ Units (SI, per unit of cloth width/area, shell quantities):
 - ``bend`` [N*m]: bending rigidity D (moment per unit width per unit curvature), as a lab
   measures it (KES-FB2 B, the cantilever's G = w g c^3); no value here is scaled for the mesh.
   The discrete energy of ``energies/bending.py`` stores D/2 * kappa^2 per unit area for a sheet
-  bent uniformly along a grid's edges, and 1.15-1.27 times that on the panel mesher's meshes
-  (its "Calibration", an option, removes the factor).
+  bent uniformly along a grid's edges, and somewhat more on the panel mesher's meshes (its
+  "Calibration", an option, removes the factor: docs/decisions/026-bending-calibration.md).
 - ``density`` [kg/m^2]: areal density.
 - ``friction``: Coulomb friction coefficient against the body (dimensionless).
 

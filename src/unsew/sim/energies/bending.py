@@ -63,6 +63,8 @@ from __future__ import annotations
 
 import torch
 
+from unsew.geometry.topology import boundary_vertices
+
 __all__ = ["bending_rest", "energy_bending", "dihedral_angle"]
 
 #: floor of |n|^2 [m^4] of a hinge's triangle normals: far below any real triangle's
@@ -160,23 +162,11 @@ def _uniform_bend_factor(uv, faces_uv, hinge_faces, hinge_uv_edges, coef, area2)
     # only hinges away from the panels' outlines: a border (free edge or seam) has no hinge on it,
     # so the hinges beside it see a uniform bend through a lopsided stencil; a mesh with no
     # interior hinge (a strip one cell wide) is left as it is
-    inner = ~_on_outline(faces_uv, uv.shape[0])[torch.stack([i0, i1, i2, i3], 1)].any(1)
+    outline = torch.from_numpy(boundary_vertices(faces_uv.detach().cpu().numpy(), uv.shape[0]))
+    inner = ~outline.to(uv.device)[torch.stack([i0, i1, i2, i3], 1)].any(1)
     if not bool(inner.any()):
         return torch.ones((), dtype=uv.dtype, device=uv.device)
     return num[inner].sum() / share[inner].sum()
-
-
-def _on_outline(faces_uv: torch.Tensor, n: int) -> torch.Tensor:
-    """(n,) bool: rest vertices on an edge used by one triangle only (a panel's outline)."""
-    e = faces_uv[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    e = torch.sort(e, dim=1).values
-    key = e[:, 0] * n + e[:, 1]
-    uniq, counts = torch.unique(key, return_counts=True)
-    once = uniq[counts == 1]
-    mask = torch.zeros(n, dtype=torch.bool, device=faces_uv.device)
-    mask[once // n] = True
-    mask[once % n] = True
-    return mask
 
 
 def _cross(a, b):
