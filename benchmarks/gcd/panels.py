@@ -84,6 +84,10 @@ def main(argv=None) -> int:
     ap.add_argument("--cases", required=True, help="folder of built cases (target.obj, pattern_gt.json)")
     ap.add_argument("--files", default="pattern_base.json,pattern_graded.json,pattern.json")
     args = ap.parse_args(argv)
+    for what, d in (("--results", args.results), ("--cases", args.cases)):
+        if not Path(d).is_dir():
+            print(f"gcd panels: {what} {d} is not a folder", file=sys.stderr)
+            return 2
     from tables import print_table
 
     files = args.files.split(",")

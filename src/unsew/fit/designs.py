@@ -50,8 +50,8 @@ def read_measures(verts, faces, skeleton, *, contours=None) -> dict:
 
     - ``hem_girth`` [m], ``hem_y`` [m]: the lowest torso opening's length and median height (a
       top's, a dress's or a skirt's hem);
-    - ``leg_girth`` [m]: the mean length of the openings round the legs (trousers' hems; the
-      fit's trousers keep their own, docs/decisions/024).
+    - ``leg_girth`` [m]: the mean length of the openings round the legs (trousers' hems; not
+      drafted: the fit's trousers keep their own, docs/decisions/024).
 
     verts: (V, 3) float64 [m], world frame; faces: (F, 3) int; skeleton: the wearer's
     :class:`~unsew.body.skeleton.Skeleton`; contours: the mesh's open contours when found. A key
@@ -228,9 +228,8 @@ def _skirt_garment(reading, m: Measurements, meas: dict) -> tuple[Design, list[D
 
 
 def _trousers(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
-    """Trousers of the read length, then under a waistband, then with flared legs. The legs keep
-    their own hem: on the GarmentCode targets the read openings put the start farther from the
-    target on 3 of 4 trousers (docs/decisions/024-hems-read-off-the-target.md)."""
+    """Trousers of the read length, then under a waistband, then with flared legs; the legs keep
+    their own hem, not the read openings' (docs/decisions/024-hems-read-off-the-target.md)."""
     length = _hem_length(reading, m)
     g = reading.garment
     leg = "shorts" if g == "shorts" else _LEG.get(reading.length, "full")
