@@ -384,7 +384,12 @@ def _darts(v: np.ndarray, faces, skeleton, garment: str, skirt: str | None, body
         reach = 0.5 * abs(ls[0] - rs[0])  # the sleeves and arms hang beyond the shoulder joints
     else:
         lh, rh = skeleton.position("left_hip"), skeleton.position("right_hip")
-        y, axis, where, reach = 0.5 * (lh[1] + rh[1]), 0.5 * (lh + rh), "hip joints", 1.25 * abs(lh[0] - rh[0])
+        y, axis, where, reach = (
+            0.5 * (lh[1] + rh[1]),
+            0.5 * (lh + rh),
+            "hip joints",
+            1.25 * abs(lh[0] - rh[0]),
+        )
     g = _torso_girth_at(v, faces, y, axis, reach)
     b = _torso_girth_at(np.asarray(body.verts), np.asarray(body.faces), y, axis, reach)
     if not (g > 0 and b > 0):

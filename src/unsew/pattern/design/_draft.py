@@ -58,9 +58,7 @@ def _pattern(panels: dict, stitches: list) -> Pattern:
     return Pattern("", panels, stitches, properties={"units_in_meter": 100, "curvature_coords": "relative"})
 
 
-def _top(
-    d: Design, m: Measurements, f: BodyFrame, spec: TopSpec, cuts=None, darts=None
-) -> tuple[dict, list]:
+def _top(d: Design, m: Measurements, f: BodyFrame, spec: TopSpec, cuts=None, darts=None) -> tuple[dict, list]:
     """Front, back (cut to :func:`sleeveless_frame` without sleeves; their hem cut at ``cuts``
     [m] and labelled ``waist`` when given, or cut by the V notches ``darts``, :class:`Dart`s along
     the hem from its right end) and sleeves of a top, and their stitches."""
@@ -227,7 +225,9 @@ def _banded_dress(d: Design, m: Measurements, f: BodyFrame, waist_w: float, skir
     above, below = {}, {}
     for side, gs in (("front", tops[:half]), ("back", tops[half:])):
         below[side] = [(g, e, edge_length(gores[g], e)) for g, e in gs]
-        hem = [j for j, e in enumerate(panels[side].edges) if e.label.startswith("hem") and "dart" not in e.label]
+        hem = [
+            j for j, e in enumerate(panels[side].edges) if e.label.startswith("hem") and "dart" not in e.label
+        ]
         above[side] = [(side, j, edge_length(panels[side], j)) for j in hem]
         # the band is as wide as the gores' tops; the bodice's sewn hem meets it to rounding
         scale = sum(p[2] for p in below[side]) / sum(p[2] for p in above[side])
