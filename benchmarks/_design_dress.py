@@ -29,6 +29,8 @@ DESIGNS = (
     dict(sleeves="none", darts=True, length=0.05),
     dict(garment="dress", waist_seam=True, waistband=True, darts=True, sleeves="short"),
     dict(garment="skirt", skirt="pencil", darts=True, waistband=True),
+    dict(garment="shorts", darts=True, waistband=True),
+    dict(garment="pants", darts=True),
 )
 
 

@@ -208,6 +208,18 @@ GRADED = {
         dict(garment="skirt", skirt="circle", panels=6, waistband=True),
         dict(garment="skirt", skirt="circle", panels=6, waistband=True, length="midi"),
     ),
+    "skirt_darts": (
+        dict(garment="skirt", skirt="pencil", darts=True, waistband=True),
+        dict(garment="skirt", skirt="pencil", darts=True, waistband=True, length="midi"),
+    ),
+    "pants_darts": (
+        dict(garment="pants", darts=True),
+        dict(garment="pants", darts=True, leg="knee"),
+    ),
+    "dress_band_darts": (
+        dict(garment="dress", waist_seam=True, waistband=True, darts=True, sleeves="none"),
+        dict(garment="dress", waist_seam=True, waistband=True, darts=True, sleeves="none", length="mini"),
+    ),
 }
 
 

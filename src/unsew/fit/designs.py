@@ -238,12 +238,13 @@ def _skirt_garment(reading, m: Measurements, meas: dict) -> tuple[Design, list[D
 
 
 def _trousers(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
-    """Trousers of the read length, then under a waistband, then with flared legs; the legs keep
+    """Trousers of the read length (with back waist darts where the reading decided them: cut to
+    the hips), then under a waistband, then with flared legs; the legs keep
     their own hem, not the read openings' (docs/decisions/024-hems-read-off-the-target.md)."""
     length = _hem_length(reading, m)
     g = reading.garment
     leg = "shorts" if g == "shorts" else _LEG.get(reading.length, "full")
-    first = Design(garment=g, leg=leg, length=length)
+    first = Design(garment=g, leg=leg, length=length, darts=bool(reading.darts))
     return first, [first.replace(waistband=True), first.replace(hem_flare=0.05)]
 
 

@@ -20,6 +20,7 @@ from unsew.pattern.base.tshirt import BUST_EASE, TopSpec, sleeveless_frame
 from unsew.pattern.base.tshirt import HIP_EASE as TEE_HIP_EASE
 from unsew.pattern.design._choices import LEGGED, LENGTHS, Design, design_name
 from unsew.pattern.design._darts import BODICE_DART, band_between, dart_edge, symmetric_darts
+from unsew.pattern.design._trouser_darts import dart_trousers
 from unsew.pattern.design._skirt import SkirtCut, skirt_panels
 from unsew.pattern.design._top import hem_cuts, sleeve_set, top_panels, top_stitches
 from unsew.pattern.measurements import Measurements
@@ -267,10 +268,9 @@ def _legs_cut(d: Design, m: Measurements) -> tuple[float, float]:
 
 
 def _trousers(d: Design, m: Measurements) -> Pattern:
-    if d.darts:
-        raise InputError("the design space's trousers take no darts")
     hem_y, half = _legs_cut(d, m)
-    return _pants._legs(m, hem_y, half, "", band=d.waistband)
+    p = _pants._legs(m, hem_y, half, "", band=d.waistband)
+    return dart_trousers(p, m, band=d.waistband) if d.darts else p
 
 
 def _jumpsuit(d: Design, m: Measurements) -> Pattern:
