@@ -402,13 +402,13 @@ def _darts(v: np.ndarray, faces, skeleton, garment: str, skirt: str | None, body
 def _hull_perimeter(pts: np.ndarray) -> float:
     """The perimeter [m] of the convex hull of points ``pts`` (k, 3) [m] seen from above (x, z):
     a girth that folds and a jagged mesh edge do not lengthen; 0 for fewer than 3 points."""
-    from scipy.spatial import ConvexHull
+    from scipy.spatial import ConvexHull, QhullError
 
     if len(pts) < 3:
         return 0.0
     try:
         return float(ConvexHull(pts[:, [0, 2]]).area)  # a 2D hull's "area" is its perimeter
-    except Exception:  # noqa: BLE001  (flat or degenerate points)
+    except QhullError:  # points on a line
         return 0.0
 
 
