@@ -734,6 +734,9 @@ def recheck(out: Path, cid: str) -> dict | None:
     rec.pop("reason", None)
     if fails:
         rec["reason"] = "; ".join(fails)
+    verdict = "ok" if not fails else "FAIL: " + "; ".join(fails)
+    title = f"{cid} {rec.get('type', '')}  inside {inside:.2%}  {verdict}"
+    checks.preview(d / "preview.png", x, np.asarray(mesh.faces), body_v, body_f, title=title)
     return rec
 
 
