@@ -44,6 +44,9 @@ MAX_STRETCH = 1.0
 #: ... and how far the garment's top may sink below the specification's placement of it [m]
 #: (a bodice whose shoulder seams did not close slides down the torso).
 MAX_DROP = 0.08
+#: ... and the share of directions round the body's vertical axis the garment must cover at its
+#: best-covered height (every garment encircles the torso somewhere; one that fell off does not).
+MIN_WRAP = 0.9
 
 
 def _shared() -> Path:
@@ -604,8 +607,27 @@ def top_drop(x: np.ndarray, x0: np.ndarray, mesh) -> float:
     return float(x0[keep, 1].max() - x[mesh.x_of_u[keep], 1].max())
 
 
+def wrap_share(
+    x: np.ndarray, faces: np.ndarray, body_v: np.ndarray, *, bins: int = 36, slice_m: float = 0.10
+) -> float:
+    """The largest share of ``bins`` directions round the body's vertical axis (the mean x, z of
+    its vertices) that the garment's surface (20,000 area-uniform samples) covers within one
+    ``slice_m`` high slice. x (n, 3), faces (F, 3), body_v (m, 3) [m], Y up."""
+    import trimesh
+
+    x = trimesh.sample.sample_surface(trimesh.Trimesh(x, faces, process=False), 20000, seed=0)[0]
+    axis = body_v[:, [0, 2]].mean(axis=0)
+    ang = np.arctan2(x[:, 0] - axis[0], x[:, 2] - axis[1])
+    b = np.minimum(((ang + np.pi) / (2 * np.pi) * bins).astype(int), bins - 1)
+    level = np.floor(x[:, 1] / slice_m).astype(int)
+    best = 0
+    for lv in np.unique(level):
+        best = max(best, len(np.unique(b[level == lv])))
+    return best / bins
+
+
 def _accept(rec: dict, x: np.ndarray, x0: np.ndarray, mesh, body, info: dict) -> list[str]:
-    """The drape's acceptance checks (inside, stretch, floor, slide) recorded into ``rec``;
+    """The drape's acceptance checks (inside, stretch, floor, slide, wrap) recorded into ``rec``;
     returns the failed ones' lines (empty: accepted). x (n_x, 3), x0 (n_uv, 3) [m]: drape, start."""
     import checks
 
@@ -622,9 +644,13 @@ def _accept(rec: dict, x: np.ndarray, x0: np.ndarray, mesh, body, info: dict) ->
     drop = top_drop(x, x0, mesh)
     if drop > MAX_DROP:
         fails.append(f"slid down {drop * 100:.0f} cm from where the specification puts its top")
+    wrap = wrap_share(x, np.asarray(mesh.faces), body_v)
+    if wrap < MIN_WRAP:
+        fails.append(f"off the body: it covers {wrap:.0%} of the directions round the body at best")
     rec.update(
         inside_fraction=round(inside, 5),
         top_drop_m=round(drop, 3),
+        wrap_share=round(wrap, 3),
         stretch_p95=round(float(np.percentile(st, 95)), 4),
         stretch_max=round(float(st.max()), 3),
         seam_gap_after_sewing_mm=round(info["gap_after_sewing_m"] * 1000, 1),
@@ -722,14 +748,20 @@ def recheck(out: Path, cid: str) -> dict | None:
     fails = [
         f
         for f in (rec.get("reason") or "").split("; ")
-        if f and "inside the body" not in f and "slid down" not in f
+        if f and "inside the body" not in f and "slid down" not in f and "off the body" not in f
     ]
     if inside >= MAX_INSIDE:
         fails.append(f"{inside:.2%} of vertices inside the body")
     if drop > MAX_DROP:
         fails.append(f"slid down {drop * 100:.0f} cm from where the specification puts its top")
+    wrap = wrap_share(x, np.asarray(mesh.faces), body_v)
+    if wrap < MIN_WRAP:
+        fails.append(f"off the body: it covers {wrap:.0%} of the directions round the body at best")
     rec.update(
-        inside_fraction=round(inside, 5), top_drop_m=round(drop, 3), status="failed" if fails else "built"
+        inside_fraction=round(inside, 5),
+        top_drop_m=round(drop, 3),
+        wrap_share=round(wrap, 3),
+        status="failed" if fails else "built",
     )
     rec.pop("reason", None)
     if fails:

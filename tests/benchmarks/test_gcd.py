@@ -545,3 +545,19 @@ def test_top_drop_leaves_a_settled_hood_out_but_not_a_torso_that_slid():
     slid = x.copy()
     slid[:, 1] -= 0.15
     assert build.top_drop(slid, x0, mesh) == pytest.approx(0.15, abs=1e-9)
+
+
+def test_a_garment_round_the_body_wraps_it_and_one_fallen_behind_it_does_not():
+    """A tube round a 15 cm torso covers every direction at its height; the same cloth crumpled
+    into a lump behind the back covers under a third of them."""
+    import trimesh
+
+    build = _load("build")
+    body = trimesh.creation.cylinder(radius=0.15, height=1.6, sections=32)
+    body_v = np.asarray(body.vertices) @ np.array([[1, 0, 0], [0, 0, 1], [0, 1, 0]]) + [0, 0.8, 0]
+    tube = trimesh.creation.cylinder(radius=0.18, height=0.4, sections=48)
+    tube_v = np.asarray(tube.vertices) @ np.array([[1, 0, 0], [0, 0, 1], [0, 1, 0]]) + [0, 1.2, 0]
+    assert build.wrap_share(tube_v, np.asarray(tube.faces), body_v) == pytest.approx(1.0)
+    lump = trimesh.creation.icosphere(subdivisions=2, radius=0.12)
+    lump_v = np.asarray(lump.vertices) + [0, 1.2, -0.3]
+    assert build.wrap_share(lump_v, np.asarray(lump.faces), body_v) < 0.35
