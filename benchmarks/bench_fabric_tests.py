@@ -805,6 +805,14 @@ def _parse(argv):
     ap.add_argument("--figures", type=Path, default=None, help="write the two PNGs into this folder")
     ap.add_argument("--record", action="store_true", help="write benchmarks/results/fabric_*.json")
     ap.add_argument("--skip-drape", action="store_true")
+    ap.add_argument(
+        "--only",
+        nargs="+",
+        default=None,
+        metavar="NAME",
+        help="only the fabrics whose name contains one of these (no mesh or shear studies; the drape "
+        "figure goes to fabric_drape_selected.png; not with --record)",
+    )
     ap.add_argument("--skip-cantilever", action="store_true")
     ap.add_argument(
         "--linear", action="store_true", help="only the small-deflection strip on grids of several cells"
@@ -835,11 +843,15 @@ def main(argv=None) -> int:
     torch.set_num_threads(1)
     fabrics = library_fabrics() + wang_fabrics() + [newton_target_fabric()]
     cotton = next(f for f in fabrics if f.name == "unsew cotton")
+    studies = not (args.small or args.only)
     if args.small:
-        fabrics, studies = [cotton], False
+        fabrics = [cotton]
         args.seeds, args.drape_edge, args.strip_edge = 1, 0.03, 0.01
-    else:
-        studies = True
+    if args.only:
+        fabrics = [f for f in fabrics if any(k in f.name for k in args.only)]
+        if not fabrics or args.record:
+            print("fabric_tests: --only matched no fabric, or came with --record", file=sys.stderr)
+            return 2
     lam = elastica_overhang()
     print(
         f"elastica: chord at 41.5 deg when overhang / c = {lam:.4f} (Peirce's formula: "
@@ -876,7 +888,8 @@ def main(argv=None) -> int:
         tables["drape"] = rows
         if args.figures:
             shown = {k: v for k, v in results.items() if "shear" not in k}
-            drape_figure(shown, args.figures / "fabric_drape.png")
+            name = "fabric_drape_selected.png" if args.only else "fabric_drape.png"
+            drape_figure(shown, args.figures / name)
     if args.record:
         _record(tables, args)
     return 0

@@ -1,0 +1,162 @@
+"""Where does unsew's drape of a true pattern part from the newton target on flared skirts?
+
+For each foreign case (benchmarks/foreign/cases/ID), unsew dresses the case's true pattern on
+its body as ``unsew drape CASE/pattern_gt.json --body CASE`` does (the library's cotton, the
+default DRESS_SETTINGS), or with ``--fabric newton`` the newton targets' own fabric
+(``bench_fabric_tests.newton_target_fabric``: density, membrane and the plate rigidity its
+Style3D bending stands for). Printed per case: the floor (Chamfer to target.obj [mm], 50k
+samples, as ``benchmarks/foreign/run.py floor`` measures it) and the shape of both drapes: the
+garment's top and bottom heights [m], the hem's mean radius about the target's vertical axis [m]
+(vertices within 3 cm of the bottom), and the mean distance from the target's vertices to the
+drape [mm] in 10 cm height bands from the hem up.
+
+Run: python -m benchmarks flared_floor [--cases ID ...] [--fabric cotton|newton] [--out DIR]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+from pathlib import Path
+
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+import numpy as np  # noqa: E402
+
+HERE = Path(__file__).resolve().parent
+CASES = HERE / "foreign" / "cases"
+#: the flared and circle drafts, and three others that must not get worse
+DEFAULT_CASES = (
+    "skirt_circle_knee__default",
+    "skirt_circle_knee__gc_mean_all_tpose",
+    "skirt_circle_mini__default",
+    "skirt_flared_midi__default",
+    "skirt_flared_midi__gc_mean_female",
+    "skirt_flared_midi__tall_thin",
+    "skirt_flared_midi__male_heavy",
+    "skirt_flared_knee__older",
+    "tee_fitted_short__default",
+    "trousers_straight__default",
+    "dress_shift_sleeved__default",
+)
+
+
+def read_obj(path: Path):
+    """Vertices (V, 3) [m] and triangles (F, 3) of an OBJ (the first three corners of a face)."""
+    v, f = [], []
+    for ln in Path(path).read_text().splitlines():
+        if ln.startswith("v "):
+            v.append([float(t) for t in ln.split()[1:4]])
+        elif ln.startswith("f "):
+            f.append([int(t.split("/")[0]) - 1 for t in ln.split()[1:4]])
+    return np.asarray(v), np.asarray(f, dtype=np.int64)
+
+
+def shape(x: np.ndarray, axis: np.ndarray) -> dict:
+    """Top and bottom heights [m] of vertices x (V, 3) and the hem's mean radius [m] about the
+    vertical line through ``axis`` (x, z) (vertices within 3 cm of the bottom)."""
+    y = x[:, 1]
+    low = y < y.min() + 0.03
+    r = np.hypot(x[low, 0] - axis[0], x[low, 2] - axis[1])
+    return {"top": float(y.max()), "bottom": float(y.min()), "hem_r": float(r.mean())}
+
+
+def band_distances(x: np.ndarray, target: np.ndarray, *, band: float = 0.1) -> list[float]:
+    """Mean distance [mm] from the target's vertices (T, 3) to the nearest drape vertex x (V, 3),
+    per height band of ``band`` [m] from the target's bottom up."""
+    from scipy.spatial import cKDTree
+
+    d = cKDTree(x).query(target)[0]
+    y = target[:, 1]
+    edges = np.arange(y.min(), y.max() + 1e-9, band)
+    sel = [(y >= lo) & (y < lo + band) for lo in edges]
+    return [float(1000 * d[m].mean()) for m in sel if m.any()]
+
+
+def drape_case(case: Path, fabric: str):
+    """unsew's drape of the case's true pattern: (x (n, 3) [m], faces (F, 3))."""
+    from unsew.commands._checks import check_pattern_scale
+    from unsew.dress import DRESS_SETTINGS, dress
+    from unsew.io.garmentcode import load_pattern
+    from unsew.sim.material import Material, get_material
+
+    pattern = load_pattern(case / "pattern_gt.json")
+    body = _body(case)
+    check_pattern_scale(pattern, body)
+    if fabric == "newton":
+        import bench_fabric_tests as ft
+
+        fab = ft.newton_target_fabric()
+        h = fab.membrane
+        mat = Material(h[0], h[1], h[2], h[3], fab.bend, fab.density, friction=0.5)
+    else:
+        mat = get_material(fabric)
+    d = dress(pattern, body, material=mat, settings=DRESS_SETTINGS)
+    return d.x.detach().cpu().numpy(), np.asarray(d.mesh.faces)
+
+
+def _body(case: Path):
+    from unsew.commands.drape import _load_body
+
+    return _load_body(argparse.Namespace(body=str(case), skeleton=None, units="m"))
+
+
+def run_case(case: Path, fabric: str, out: Path | None) -> dict:
+    """One row: the floor [mm], both drapes' shapes and the band distances."""
+    from unsew.metrics.surface import chamfer_mm
+
+    t0 = time.time()
+    x, f = drape_case(case, fabric)
+    tv, tf = read_obj(case / "target.obj")
+    c = chamfer_mm(x, f, tv, tf, n_samples=50_000)
+    axis = tv[:, [0, 2]].mean(0)
+    ours, theirs = shape(x, axis), shape(tv, axis)
+    if out is not None:
+        out.mkdir(parents=True, exist_ok=True)
+        from unsew.io.mesh import write_obj
+
+        write_obj(out / f"{case.name}.obj", x, f)
+    return {
+        "case": case.name,
+        "fabric": fabric,
+        "floor mm": round(c.mean_mm, 2),
+        "top m (target)": f"{ours['top']:.3f} ({theirs['top']:.3f})",
+        "bottom m (target)": f"{ours['bottom']:.3f} ({theirs['bottom']:.3f})",
+        "hem radius m (target)": f"{ours['hem_r']:.3f} ({theirs['hem_r']:.3f})",
+        "target to drape by 10 cm band from the hem, mm": " ".join(f"{v:.0f}" for v in band_distances(x, tv)),
+        "s": round(time.time() - t0, 1),
+    }
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--cases", nargs="+", default=list(DEFAULT_CASES))
+    ap.add_argument("--fabric", default="cotton", help="a library material, or newton (the targets' fabric)")
+    ap.add_argument("--out", type=Path, default=None, help="write each drape as DIR/CASE.obj")
+    args = ap.parse_args(argv)
+    missing = [c for c in args.cases if not (CASES / c / "target.obj").is_file()]
+    if missing:
+        print(f"flared_floor: no case {missing[0]!r} in {CASES}", file=sys.stderr)
+        return 2
+
+    import torch
+
+    torch.set_num_threads(1)
+    from tables import markdown_table
+
+    rows = []
+    for c in args.cases:
+        rows.append(run_case(CASES / c, args.fabric, args.out))
+        print(" ".join(f"{k}: {v}" for k, v in rows[-1].items()), flush=True)
+    print()
+    print(markdown_table(rows, digits=2))
+    fl = [r["floor mm"] for r in rows if r["case"].startswith(("skirt_circle", "skirt_flared"))]
+    if fl:
+        print(f"\nflared and circle floors: median {np.median(fl):.2f} mm over {len(fl)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
