@@ -132,7 +132,7 @@ def newton_target_fabric() -> Fabric:
     mean over three bend directions of the plate rigidity its Style3D bending stands for on a
     10 mm mesh (:func:`style3d_bending_rows`)."""
     row = style3d_bending_rows(edges=(0.01,))[1]
-    d = float(np.mean([v for k, v in row.items() if k.endswith("uN m")])) * 1e-6
+    d = float(np.mean([v for k, v in row.items() if k.startswith("axis")])) * 1e-6
     return Fabric(
         name="newton targets' fabric",
         bend=d,
@@ -487,7 +487,7 @@ def style3d_bending_rows(edges=(0.01, 0.025), angles=(0, 45, 90), *, size=0.3, r
         e, o = _interior_edges(np.asarray(f))
         mid = 0.25 * (uv[e[:, 0]] + uv[e[:, 1]] + uv[o[:, 0]] + uv[o[:, 1]])
         inner = np.all((mid > 0.02) & (mid < size - 0.02), 1)
-        for name, k in (("one ke for all edges (D_eq / ke)", 1.0), ("newton targets' ke", ke)):
+        for name, k in (("one ke for all edges (D_eq / ke)", 1.0), ("newton targets' ke (D_eq, uN m)", ke)):
             row = {"mesh": f"unsew mesher {edge * 1000:.0f} mm", "ke": name}
             for a in angles:
                 d = np.array([math.cos(math.radians(a)), math.sin(math.radians(a))])
@@ -496,7 +496,7 @@ def style3d_bending_rows(edges=(0.01, 0.025), angles=(0, 45, 90), *, size=0.3, r
                 en, share = style3d_bending_energy(uv, np.asarray(f), x, k, inner=inner)
                 one = np.ndim(k) == 0
                 d_eq = 2 * en * radius**2 / share  # E = D_eq / 2 kappa^2 A
-                row[f"axis {a} deg" + ("" if one else " uN m")] = d_eq if one else 1e6 * d_eq
+                row[f"axis {a} deg"] = d_eq if one else 1e6 * d_eq
             rows.append(row)
     return rows
 

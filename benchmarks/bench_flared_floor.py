@@ -10,7 +10,12 @@ garment's top and bottom heights [m], the hem's mean radius about the target's v
 (vertices within 3 cm of the bottom), and the mean distance from the target's vertices to the
 drape [mm] in 10 cm height bands from the hem up.
 
+With ``--newton-again FRAMES`` the drape compared is newton's own, run again from today's
+placement (the targets' simulator against itself: how far its result moves with its sewing
+settings and the settle time).
+
 Run: python -m benchmarks flared_floor [--cases ID ...] [--fabric cotton|newton] [--out DIR]
+     [--newton-again FRAMES]
 """
 
 from __future__ import annotations
@@ -97,18 +102,47 @@ def drape_case(case: Path, fabric: str):
     return d.x.detach().cpu().numpy(), np.asarray(d.mesh.faces)
 
 
+def newton_again(case: Path, settle_frames: int):
+    """newton's drape of the case's true pattern run again from today's placement, with
+    newton_drape's first fallback (seam force and speed capped while sewing) and
+    ``settle_frames``: (x (n, 3) [m], faces (F, 3))."""
+    import json
+    import warnings
+
+    sys.path.insert(0, str(HERE / "foreign"))
+    import newton_drape
+
+    from unsew.body.placement import place_garment
+    from unsew.io.garmentcode import pattern_from_dict
+    from unsew.meshing.sew import mesh_pattern
+
+    body = _body(case)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        pattern = pattern_from_dict(json.loads((case / "pattern_gt.json").read_text()), name=case.name)
+    mesh = mesh_pattern(pattern, edge_length=0.025)
+    x0 = place_garment(pattern, mesh, body)
+    s = {**newton_drape.SETTINGS, **newton_drape.FALLBACKS[1], "settle_frames": settle_frames}
+    lower = case.name.startswith(("skirt", "trousers", "shorts"))
+    x, _ = newton_drape.drape_newton(
+        mesh, x0, body.verts, body.faces, lower=lower, settings=s, log=lambda m: None
+    )
+    return x, np.asarray(mesh.faces)
+
+
 def _body(case: Path):
     from unsew.commands.drape import _load_body
 
     return _load_body(argparse.Namespace(body=str(case), skeleton=None, units="m"))
 
 
-def run_case(case: Path, fabric: str, out: Path | None) -> dict:
-    """One row: the floor [mm], both drapes' shapes and the band distances."""
+def run_case(case: Path, fabric: str, out: Path | None, newton_frames: int = 0) -> dict:
+    """One row: the floor [mm], both drapes' shapes and the band distances (``newton_frames`` > 0:
+    newton's own drape run again (:func:`newton_again`) in place of unsew's)."""
     from unsew.metrics.surface import chamfer_mm
 
     t0 = time.time()
-    x, f = drape_case(case, fabric)
+    x, f = newton_again(case, newton_frames) if newton_frames else drape_case(case, fabric)
     tv, tf = read_obj(case / "target.obj")
     c = chamfer_mm(x, f, tv, tf, n_samples=50_000)
     axis = tv[:, [0, 2]].mean(0)
@@ -120,7 +154,7 @@ def run_case(case: Path, fabric: str, out: Path | None) -> dict:
         write_obj(out / f"{case.name}.obj", x, f)
     return {
         "case": case.name,
-        "fabric": fabric,
+        "drape": f"newton again, {newton_frames} settle frames" if newton_frames else f"unsew, {fabric}",
         "floor mm": round(c.mean_mm, 2),
         "top m (target)": f"{ours['top']:.3f} ({theirs['top']:.3f})",
         "bottom m (target)": f"{ours['bottom']:.3f} ({theirs['bottom']:.3f})",
@@ -135,6 +169,13 @@ def main(argv=None) -> int:
     ap.add_argument("--cases", nargs="+", default=list(DEFAULT_CASES))
     ap.add_argument("--fabric", default="cotton", help="a library material, or newton (the targets' fabric)")
     ap.add_argument("--out", type=Path, default=None, help="write each drape as DIR/CASE.obj")
+    ap.add_argument(
+        "--newton-again",
+        type=int,
+        default=0,
+        metavar="FRAMES",
+        help="instead of unsew's drape, newton's own run again with FRAMES settle frames (minutes a case)",
+    )
     args = ap.parse_args(argv)
     missing = [c for c in args.cases if not (CASES / c / "target.obj").is_file()]
     if missing:
@@ -148,7 +189,7 @@ def main(argv=None) -> int:
 
     rows = []
     for c in args.cases:
-        rows.append(run_case(CASES / c, args.fabric, args.out))
+        rows.append(run_case(CASES / c, args.fabric, args.out, args.newton_again))
         print(" ".join(f"{k}: {v}" for k, v in rows[-1].items()), flush=True)
     print()
     print(markdown_table(rows, digits=2))
