@@ -21,6 +21,7 @@ Run: python -m benchmarks flared_floor [--cases ID ...] [--fabric cotton|newton]
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import os
 import sys
 import time
@@ -80,8 +81,10 @@ def band_distances(x: np.ndarray, target: np.ndarray, *, band: float = 0.1) -> l
     return [float(1000 * d[m].mean()) for m in sel if m.any()]
 
 
-def drape_case(case: Path, fabric: str):
-    """unsew's drape of the case's true pattern: (x (n, 3) [m], faces (F, 3))."""
+def drape_case(case: Path, fabric: str, changes: dict | None = None):
+    """unsew's drape of the case's true pattern: (x (n, 3) [m], faces (F, 3)). ``changes``: the
+    material's fields (``m.NAME``, e.g. ``m.h22``) and DRESS_SETTINGS' fields to set, or None."""
+
     from unsew.commands._checks import check_pattern_scale
     from unsew.dress import DRESS_SETTINGS, dress
     from unsew.io.garmentcode import load_pattern
@@ -98,7 +101,12 @@ def drape_case(case: Path, fabric: str):
         mat = Material(h[0], h[1], h[2], h[3], fab.bend, fab.density, friction=0.5)
     else:
         mat = get_material(fabric)
-    d = dress(pattern, body, material=mat, settings=DRESS_SETTINGS)
+    changes = dict(changes or {})
+    mat = dataclasses.replace(mat, **{k[2:]: float(v) for k, v in changes.items() if k.startswith("m.")})
+    settings = DRESS_SETTINGS.replace(
+        **{k: type(getattr(DRESS_SETTINGS, k))(v) for k, v in changes.items() if not k.startswith("m.")}
+    )
+    d = dress(pattern, body, material=mat, settings=settings)
     return d.x.detach().cpu().numpy(), np.asarray(d.mesh.faces)
 
 
@@ -136,13 +144,13 @@ def _body(case: Path):
     return _load_body(argparse.Namespace(body=str(case), skeleton=None, units="m"))
 
 
-def run_case(case: Path, fabric: str, out: Path | None, newton_frames: int = 0) -> dict:
+def run_case(case: Path, fabric: str, out: Path | None, newton_frames: int = 0, changes=None) -> dict:
     """One row: the floor [mm], both drapes' shapes and the band distances (``newton_frames`` > 0:
     newton's own drape run again (:func:`newton_again`) in place of unsew's)."""
     from unsew.metrics.surface import chamfer_mm
 
     t0 = time.time()
-    x, f = newton_again(case, newton_frames) if newton_frames else drape_case(case, fabric)
+    x, f = newton_again(case, newton_frames) if newton_frames else drape_case(case, fabric, changes)
     tv, tf = read_obj(case / "target.obj")
     c = chamfer_mm(x, f, tv, tf, n_samples=50_000)
     axis = tv[:, [0, 2]].mean(0)
@@ -154,7 +162,9 @@ def run_case(case: Path, fabric: str, out: Path | None, newton_frames: int = 0) 
         write_obj(out / f"{case.name}.obj", x, f)
     return {
         "case": case.name,
-        "drape": f"newton again, {newton_frames} settle frames" if newton_frames else f"unsew, {fabric}",
+        "drape": f"newton again, {newton_frames} settle frames"
+        if newton_frames
+        else f"unsew, {fabric}" + "".join(f", {k}={v}" for k, v in (changes or {}).items()),
         "floor mm": round(c.mean_mm, 2),
         "top m (target)": f"{ours['top']:.3f} ({theirs['top']:.3f})",
         "bottom m (target)": f"{ours['bottom']:.3f} ({theirs['bottom']:.3f})",
@@ -176,7 +186,28 @@ def main(argv=None) -> int:
         metavar="FRAMES",
         help="instead of unsew's drape, newton's own run again with FRAMES settle frames (minutes a case)",
     )
+    ap.add_argument(
+        "--set",
+        nargs="+",
+        default=[],
+        metavar="KEY=VALUE",
+        help="change the material (m.h22=600, m.bend=2e-5, m.friction=0.1) or a DRESS_SETTINGS field "
+        "(settle_steps=80, spring_stiffness=100)",
+    )
     args = ap.parse_args(argv)
+    try:
+        changes = dict(kv.split("=", 1) for kv in args.set)
+    except ValueError:
+        print("flared_floor: --set takes KEY=VALUE", file=sys.stderr)
+        return 2
+    from unsew.dress import DRESS_SETTINGS
+    from unsew.sim.material import Material
+
+    fields = {f.name for f in dataclasses.fields(Material)}
+    bad = [k for k in changes if not (k[2:] in fields if k.startswith("m.") else hasattr(DRESS_SETTINGS, k))]
+    if bad:
+        print(f"flared_floor: --set {bad[0]!r} is neither m.<material field> nor a setting", file=sys.stderr)
+        return 2
     missing = [c for c in args.cases if not (CASES / c / "target.obj").is_file()]
     if missing:
         print(f"flared_floor: no case {missing[0]!r} in {CASES}", file=sys.stderr)
@@ -189,7 +220,7 @@ def main(argv=None) -> int:
 
     rows = []
     for c in args.cases:
-        rows.append(run_case(CASES / c, args.fabric, args.out, args.newton_again))
+        rows.append(run_case(CASES / c, args.fabric, args.out, args.newton_again, changes))
         print(" ".join(f"{k}: {v}" for k, v in rows[-1].items()), flush=True)
     print()
     print(markdown_table(rows, digits=2))

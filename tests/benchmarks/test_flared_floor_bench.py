@@ -34,3 +34,8 @@ def test_band_distances_find_where_two_drapes_part():
 def test_unknown_case_exits_2(capsys):
     assert bench.main(["--cases", "no_such_case"]) == 2
     assert "no case 'no_such_case'" in capsys.readouterr().err
+
+
+def test_a_change_that_names_nothing_exits_2(capsys):
+    assert bench.main(["--cases", "skirt_circle_knee__default", "--set", "m.stiffness=3"]) == 2
+    assert "neither m.<material field> nor a setting" in capsys.readouterr().err
