@@ -110,10 +110,10 @@ def drape_case(case: Path, fabric: str, changes: dict | None = None):
     return d.x.detach().cpu().numpy(), np.asarray(d.mesh.faces)
 
 
-def newton_again(case: Path, settle_frames: int):
+def newton_again(case: Path, settle_frames: int, changes: dict | None = None):
     """newton's drape of the case's true pattern run again from today's placement, with
-    newton_drape's first fallback (seam force and speed capped while sewing) and
-    ``settle_frames``: (x (n, 3) [m], faces (F, 3))."""
+    newton_drape's first fallback (seam force and speed capped while sewing), ``settle_frames``
+    and ``changes`` to newton_drape.SETTINGS (numbers): (x (n, 3) [m], faces (F, 3))."""
     import json
     import warnings
 
@@ -131,6 +131,7 @@ def newton_again(case: Path, settle_frames: int):
     mesh = mesh_pattern(pattern, edge_length=0.025)
     x0 = place_garment(pattern, mesh, body)
     s = {**newton_drape.SETTINGS, **newton_drape.FALLBACKS[1], "settle_frames": settle_frames}
+    s.update({k: type(s[k])(float(v)) for k, v in (changes or {}).items()})
     lower = case.name.startswith(("skirt", "trousers", "shorts"))
     x, _ = newton_drape.drape_newton(
         mesh, x0, body.verts, body.faces, lower=lower, settings=s, log=lambda m: None
@@ -150,7 +151,7 @@ def run_case(case: Path, fabric: str, out: Path | None, newton_frames: int = 0, 
     from unsew.metrics.surface import chamfer_mm
 
     t0 = time.time()
-    x, f = newton_again(case, newton_frames) if newton_frames else drape_case(case, fabric, changes)
+    x, f = newton_again(case, newton_frames, changes) if newton_frames else drape_case(case, fabric, changes)
     tv, tf = read_obj(case / "target.obj")
     c = chamfer_mm(x, f, tv, tf, n_samples=50_000)
     axis = tv[:, [0, 2]].mean(0)
@@ -163,6 +164,7 @@ def run_case(case: Path, fabric: str, out: Path | None, newton_frames: int = 0, 
     return {
         "case": case.name,
         "drape": f"newton again, {newton_frames} settle frames"
+        + "".join(f", {k}={v}" for k, v in (changes or {}).items())
         if newton_frames
         else f"unsew, {fabric}" + "".join(f", {k}={v}" for k, v in (changes or {}).items()),
         "floor mm": round(c.mean_mm, 2),
@@ -192,7 +194,7 @@ def main(argv=None) -> int:
         default=[],
         metavar="KEY=VALUE",
         help="change the material (m.h22=600, m.bend=2e-5, m.friction=0.1) or a DRESS_SETTINGS field "
-        "(settle_steps=80, spring_stiffness=100)",
+        "(settle_steps=80, spring_stiffness=100); with --newton-again, newton_drape.SETTINGS (iterations=30)",
     )
     args = ap.parse_args(argv)
     try:
@@ -204,7 +206,15 @@ def main(argv=None) -> int:
     from unsew.sim.material import Material
 
     fields = {f.name for f in dataclasses.fields(Material)}
-    bad = [k for k in changes if not (k[2:] in fields if k.startswith("m.") else hasattr(DRESS_SETTINGS, k))]
+    if args.newton_again:
+        sys.path.insert(0, str(HERE / "foreign"))
+        from newton_drape import SETTINGS
+
+        bad = [k for k in changes if k not in SETTINGS]
+    else:
+        bad = [
+            k for k in changes if not (k[2:] in fields if k.startswith("m.") else hasattr(DRESS_SETTINGS, k))
+        ]
     if bad:
         print(f"flared_floor: --set {bad[0]!r} is neither m.<material field> nor a setting", file=sys.stderr)
         return 2
