@@ -176,6 +176,34 @@ def run_case(case: Path, fabric: str, out: Path | None, newton_frames: int = 0, 
     }
 
 
+def _changes(args) -> dict | None:
+    """``--set``'s KEY=VALUE pairs as a dict, checked against the material's fields and
+    DRESS_SETTINGS (or newton_drape.SETTINGS with ``--newton-again``); None (and one line on
+    stderr) when one names nothing."""
+    try:
+        changes = dict(kv.split("=", 1) for kv in args.set)
+    except ValueError:
+        print("flared_floor: --set takes KEY=VALUE", file=sys.stderr)
+        return None
+    from unsew.dress import DRESS_SETTINGS
+    from unsew.sim.material import Material
+
+    fields = {f.name for f in dataclasses.fields(Material)}
+    if args.newton_again:
+        sys.path.insert(0, str(HERE / "foreign"))
+        from newton_drape import SETTINGS
+
+        bad = [k for k in changes if k not in SETTINGS]
+    else:
+        bad = [
+            k for k in changes if not (k[2:] in fields if k.startswith("m.") else hasattr(DRESS_SETTINGS, k))
+        ]
+    if bad:
+        print(f"flared_floor: --set {bad[0]!r} is neither m.<material field> nor a setting", file=sys.stderr)
+        return None
+    return changes
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cases", nargs="+", default=list(DEFAULT_CASES))
@@ -197,26 +225,8 @@ def main(argv=None) -> int:
         "(settle_steps=80, spring_stiffness=100); with --newton-again, newton_drape.SETTINGS (iterations=30)",
     )
     args = ap.parse_args(argv)
-    try:
-        changes = dict(kv.split("=", 1) for kv in args.set)
-    except ValueError:
-        print("flared_floor: --set takes KEY=VALUE", file=sys.stderr)
-        return 2
-    from unsew.dress import DRESS_SETTINGS
-    from unsew.sim.material import Material
-
-    fields = {f.name for f in dataclasses.fields(Material)}
-    if args.newton_again:
-        sys.path.insert(0, str(HERE / "foreign"))
-        from newton_drape import SETTINGS
-
-        bad = [k for k in changes if k not in SETTINGS]
-    else:
-        bad = [
-            k for k in changes if not (k[2:] in fields if k.startswith("m.") else hasattr(DRESS_SETTINGS, k))
-        ]
-    if bad:
-        print(f"flared_floor: --set {bad[0]!r} is neither m.<material field> nor a setting", file=sys.stderr)
+    changes = _changes(args)
+    if changes is None:
         return 2
     missing = [c for c in args.cases if not (CASES / c / "target.obj").is_file()]
     if missing:
