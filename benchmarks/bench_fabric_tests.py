@@ -126,6 +126,22 @@ def wang_fabrics(names=None) -> list[Fabric]:
     ]
 
 
+def newton_target_fabric() -> Fabric:
+    """The fabric of the foreign benchmark's newton targets (benchmarks/foreign/newton_drape.py
+    SETTINGS): density 0.2 kg/m^2, membrane (tri_aniso_ke) 2000, 0, 2000, 200 N/m, and D the
+    mean over three bend directions of the plate rigidity its Style3D bending stands for on a
+    10 mm mesh (:func:`style3d_bending_rows`)."""
+    row = style3d_bending_rows(edges=(0.01,))[1]
+    d = float(np.mean([v for k, v in row.items() if k.startswith("axis")])) * 1e-6
+    return Fabric(
+        name="newton targets' fabric",
+        bend=d,
+        density=0.2,
+        membrane=(2000.0, 0.0, 2000.0, 200.0),
+        source="benchmarks/foreign/newton_drape.py SETTINGS; D from style3d_bending_rows",
+    )
+
+
 # -- the heavy elastica (exact cantilever) -----------------------------------------------------
 
 
@@ -398,6 +414,89 @@ def cylinder_energy_rows(edges=(0.005, 0.01, 0.02), angles=(0, 15, 30, 45, 60, 9
                 x = torch.as_tensor(np.c_[radius * np.sin(s / radius), radius * (1 - np.cos(s / radius)), t])
                 th = dihedral_angle(x, m.hinges)[0]
                 row[f"{a} deg"] = float((0.5 * coef * th**2)[inner].sum() / (0.5 / radius**2 * share))
+            rows.append(row)
+    return rows
+
+
+#: newton's Style3D bending stiffness (edge_aniso_ke) of the foreign benchmark's targets
+#: (benchmarks/foreign/newton_drape.py SETTINGS), per edge: ke = k0 sin^12 a + k1 cos^12 a +
+#: k2 4 sin^2 a cos^2 a, a the edge's angle with the pattern's x axis
+STYLE3D_KE = (2.0e-5, 1.0e-5, 5.0e-6)
+
+
+def style3d_bending_energy(uv: np.ndarray, f: np.ndarray, x: np.ndarray, ke=STYLE3D_KE, *, inner=None):
+    """Energy [J] of newton's Style3D bending (Bergou et al. 2006, "A quadratic bending model
+    for inextensible surfaces", as newton 1.8's ``eval_bend_kernel`` writes it) of the sheet with
+    rest uv (V, 2) [m], faces f (F, 3), placed at x (V, 3) [m]: per interior edge, with rest
+    cotangents c1..c4 and A0 + A1 the two rest areas, 1/2 ke 3/(A0+A1) |w . (x_o0, x_o1, x_e0,
+    x_e1)|^2, w = (-(c1+c3), -(c2+c4), c3+c4, c1+c2); ke: (k0, k1, k2) [N*m] by the edge's
+    direction (:data:`STYLE3D_KE`) or one value for every edge. ``inner``: (E,) bool over the edges of
+    :func:`_interior_edges` to sum, or None (all). Returns (energy [J], the summed (A0+A1)/3 [m^2])."""
+    e, o = _interior_edges(f)
+    p0, p1, q0, q1 = uv[e[:, 0]], uv[e[:, 1]], uv[o[:, 0]], uv[o[:, 1]]
+
+    def cot(a, b, c):  # cotangent of the angle at a in the triangle (a, b, c)
+        u, v = b - a, c - a
+        return (u * v).sum(1) / np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0])
+
+    c1, c2, c3, c4 = cot(p0, p1, q0), cot(p0, p1, q1), cot(p1, p0, q0), cot(p1, p0, q1)
+    w = np.stack([-(c1 + c3), -(c2 + c4), c3 + c4, c1 + c2], 1)  # (E, 4)
+    cross = lambda a, b: np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0])  # noqa: E731
+    area2 = 0.5 * (cross(p1 - p0, q0 - p0) + cross(p1 - p0, q1 - p0))  # A0 + A1 [m^2]
+    d = p1 - p0
+    ang = np.arctan2(d[:, 1], d[:, 0])
+    s2, c2a = np.sin(ang) ** 2, np.cos(ang) ** 2
+    if np.ndim(ke) == 0:  # one ke for every edge
+        k = np.full(len(e), float(ke))
+    else:
+        k = ke[0] * s2**6 + ke[1] * c2a**6 + ke[2] * 4.0 * s2 * c2a
+    vec = np.einsum("ek,ekc->ec", w, np.stack([x[o[:, 0]], x[o[:, 1]], x[e[:, 0]], x[e[:, 1]]], 1))
+    en = 0.5 * k * 3.0 / area2 * (vec * vec).sum(1)
+    sel = np.ones(len(e), bool) if inner is None else inner
+    return float(en[sel].sum()), float((area2 / 3.0)[sel].sum())
+
+
+def _interior_edges(f: np.ndarray):
+    """Interior edges of faces f (F, 3): (E, 2) vertex pairs and (E, 2) the opposite vertices."""
+    ed = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    opp = np.concatenate([f[:, 2], f[:, 0], f[:, 1]])
+    key = np.sort(ed, 1)
+    order = np.lexsort((key[:, 1], key[:, 0]))
+    key, opp, ed = key[order], opp[order], ed[order]
+    same = np.all(key[1:] == key[:-1], 1)
+    i = np.nonzero(same)[0]
+    return key[i], np.stack([opp[i], opp[i + 1]], 1)
+
+
+def style3d_bending_rows(edges=(0.01, 0.025), angles=(0, 45, 90), *, size=0.3, radius=0.2, ke=STYLE3D_KE):
+    """The plate rigidity D_eq [N*m] newton's Style3D bending (``ke``, or one ke [N*m] for every
+    edge) stands for. A size x size [m] sheet meshed by unsew's panel mesher at each edge [m] is
+    laid on a cylinder of ``radius`` [m] whose axis makes each angle with the pattern's x axis
+    (0 deg: the sheet curves along y, the weft); D_eq = 2 E / (kappa^2 A) over the edges 2 cm or
+    more from the border. A ke of 1 for every edge gives the factor alone. The newton targets'
+    fabric is compared with unsew's by D_eq and the bending length (D_eq / (w g))^(1/3)."""
+    from unsew.meshing.triangulate import triangulate_polygon
+
+    corners = np.array([[0.0, 0.0], [size, 0.0], [size, size], [0.0, size], [0.0, 0.0]])
+    rows = []
+    for edge in edges:
+        n = round(size / edge)
+        t = np.linspace(0.0, 1.0, n + 1)[:-1, None]
+        outline = np.concatenate([a + t * (b - a) for a, b in zip(corners[:-1], corners[1:])])
+        uv, f = triangulate_polygon(outline, edge_length=edge)
+        e, o = _interior_edges(np.asarray(f))
+        mid = 0.25 * (uv[e[:, 0]] + uv[e[:, 1]] + uv[o[:, 0]] + uv[o[:, 1]])
+        inner = np.all((mid > 0.02) & (mid < size - 0.02), 1)
+        for name, k in (("one ke for all edges (D_eq / ke)", 1.0), ("newton targets' ke (D_eq, uN m)", ke)):
+            row = {"mesh": f"unsew mesher {edge * 1000:.0f} mm", "ke": name}
+            for a in angles:
+                d = np.array([math.cos(math.radians(a)), math.sin(math.radians(a))])
+                s, tt = uv @ np.array([-d[1], d[0]]), uv @ d  # s runs across the axis
+                x = np.c_[radius * np.sin(s / radius), radius * (1 - np.cos(s / radius)), tt]
+                en, share = style3d_bending_energy(uv, np.asarray(f), x, k, inner=inner)
+                one = np.ndim(k) == 0
+                d_eq = 2 * en * radius**2 / share  # E = D_eq / 2 kappa^2 A
+                row[f"axis {a} deg"] = d_eq if one else 1e6 * d_eq
             rows.append(row)
     return rows
 
@@ -686,6 +785,7 @@ def _record(tables: dict, args) -> None:
     cmd = "python -m benchmarks fabric_tests" + flags + " --record"
     titles = {
         "bend_energy": "Uniform bend: hinge energy of a sheet on a cylinder over plate theory, by axis angle",
+        "style3d_bend": "newton's Style3D bending (Bergou 2006) on a cylinder: plate rigidity D_eq",
         "strip_linear": "Small-deflection strip on unsew's hinges: tip drop against the beam formula",
         "cantilever": "Cantilever test (Peirce, 41.5 deg) on unsew's strip: overhang, rigidity read",
         "drape": "Cusick drape test (30 cm specimen, 18 cm support) simulated: DC and nodes",
@@ -705,6 +805,14 @@ def _parse(argv):
     ap.add_argument("--figures", type=Path, default=None, help="write the two PNGs into this folder")
     ap.add_argument("--record", action="store_true", help="write benchmarks/results/fabric_*.json")
     ap.add_argument("--skip-drape", action="store_true")
+    ap.add_argument(
+        "--only",
+        nargs="+",
+        default=None,
+        metavar="NAME",
+        help="only the fabrics whose name contains one of these (no mesh or shear studies; the drape "
+        "figure goes to fabric_drape_selected.png; not with --record)",
+    )
     ap.add_argument("--skip-cantilever", action="store_true")
     ap.add_argument(
         "--linear", action="store_true", help="only the small-deflection strip on grids of several cells"
@@ -733,13 +841,17 @@ def main(argv=None) -> int:
     import torch
 
     torch.set_num_threads(1)
-    fabrics = library_fabrics() + wang_fabrics()
+    fabrics = library_fabrics() + wang_fabrics() + [newton_target_fabric()]
     cotton = next(f for f in fabrics if f.name == "unsew cotton")
+    studies = not (args.small or args.only)
     if args.small:
-        fabrics, studies = [cotton], False
+        fabrics = [cotton]
         args.seeds, args.drape_edge, args.strip_edge = 1, 0.03, 0.01
-    else:
-        studies = True
+    if args.only:
+        fabrics = [f for f in fabrics if any(k in f.name for k in args.only)]
+        if not fabrics or args.record:
+            print("fabric_tests: --only matched no fabric, or came with --record", file=sys.stderr)
+            return 2
     lam = elastica_overhang()
     print(
         f"elastica: chord at 41.5 deg when overhang / c = {lam:.4f} (Peirce's formula: "
@@ -749,6 +861,9 @@ def main(argv=None) -> int:
     rows = cylinder_energy_rows(edges=(0.01,) if args.small else (0.005, 0.01, 0.02))
     _print_table("Uniform bend: hinge energy of a sheet laid on a cylinder / D/2 kappa^2 area", rows)
     tables["bend_energy"] = rows
+    rows = style3d_bending_rows(edges=(0.025,) if args.small else (0.01, 0.025))
+    _print_table("newton's Style3D bending on a cylinder: the plate rigidity D_eq it stands for", rows)
+    tables["style3d_bend"] = rows
     if args.linear:
         rows = linear_strip_rows(cotton)
         _print_table("Small-deflection strip (cotton's weight, 1000 x its D): tip drop / beam formula", rows)
@@ -773,7 +888,8 @@ def main(argv=None) -> int:
         tables["drape"] = rows
         if args.figures:
             shown = {k: v for k, v in results.items() if "shear" not in k}
-            drape_figure(shown, args.figures / "fabric_drape.png")
+            name = "fabric_drape_selected.png" if args.only else "fabric_drape.png"
+            drape_figure(shown, args.figures / name)
     if args.record:
         _record(tables, args)
     return 0
