@@ -896,4 +896,8 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
+    if "--flared-floor" in sys.argv[1:]:  # the flared skirts' floors: _flared_floor.py
+        from _flared_floor import main as flared_floor
+
+        sys.exit(flared_floor([a for a in sys.argv[1:] if a != "--flared-floor"]))
     sys.exit(main())

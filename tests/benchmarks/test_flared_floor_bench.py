@@ -1,11 +1,11 @@
-"""benchmarks/bench_flared_floor.py: its shape measures on known shapes and its input check."""
+"""benchmarks/_flared_floor.py: its shape measures on known shapes and its input check."""
 
 import math
 
 import numpy as np
 from benchmarks_loader import load_benchmark
 
-bench = load_benchmark("bench_flared_floor")
+bench = load_benchmark("_flared_floor")
 
 
 def _cone(top_r, hem_r, y0=0.5, y1=1.0, n=2000, seed=0):

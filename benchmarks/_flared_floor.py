@@ -14,7 +14,7 @@ With ``--newton-again FRAMES`` the drape compared is newton's own, run again fro
 placement (the targets' simulator against itself: how far its result moves with its sewing
 settings and the settle time).
 
-Run: python -m benchmarks flared_floor [--cases ID ...] [--fabric cotton|newton] [--out DIR]
+Run: python -m benchmarks fabric_tests --flared-floor [--cases ID ...] [--fabric cotton|newton] [--out DIR]
      [--newton-again FRAMES]
 """
 
@@ -205,7 +205,9 @@ def _changes(args) -> dict | None:
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(
+        prog="python -m benchmarks fabric_tests --flared-floor", description=__doc__.splitlines()[0]
+    )
     ap.add_argument("--cases", nargs="+", default=list(DEFAULT_CASES))
     ap.add_argument("--fabric", default="cotton", help="a library material, or newton (the targets' fabric)")
     ap.add_argument("--out", type=Path, default=None, help="write each drape as DIR/CASE.obj")
