@@ -267,30 +267,37 @@ def sew(
         gamma = cloth.gamma.detach()
         check_drape_inputs(model_unsewn, state, sdf, uv, gamma)
         params = settings.step_params(friction=cloth.friction, sewing=True)
-        hold = hold if settings.hold_steps > 0 else None
-        if settings.seam_guide:
-            guide = GuidedSeams(model_unsewn, state.x, sdf, hold=hold)
-            model, held = guide.model, guide.held
-        else:
-            guide, model, held = None, model_unsewn, None
-            if hold is not None:
-                held = SimModel.build(
-                    model_unsewn.faces,
-                    model_unsewn.faces_uv,
-                    springs=model_unsewn.springs,
-                    pinned=hold,
-                    n=model_unsewn.n,
-                    n_rest=model_unsewn.n_rest,
-                    bending_stencil=model_unsewn.bending_stencil,
-                ).to(model_unsewn.device)
+        guide, model, held = _sewing_models(model_unsewn, state.x, sdf, settings, hold)
         rest = rest_data(model, uv, cloth.density)
         n = model_unsewn.n
         for k in range(settings.sew_steps):
             g = settings.gravity * min(1.0, (k + 1) / max(settings.ramp_steps, 1))
             m = held if (held is not None and k < settings.hold_steps) else model
             if guide is not None:  # the waypoints found again from the copies' positions
-                state = SimState(guide.extend(state.x[:n]), torch.cat([state.v[:n], state.v.new_zeros(m.n - n, 3)]))
+                v = torch.cat([state.v[:n], state.v.new_zeros(m.n - n, 3)])
+                state = SimState(guide.extend(state.x[:n]), v)
             state = step(m, rest, state, sdf, gamma, dataclasses.replace(params, gravity=g), index=k)
             if callback is not None:
                 callback(k, SimState(state.x[:n], state.v[:n]))
     return state.x[:n]
+
+
+def _sewing_models(model_unsewn: SimModel, x0, sdf, settings: DrapeSettings, hold):
+    """The sewing phase's models: (GuidedSeams or None, the model, the model with ``hold`` pinned
+    too or None) for the placed panels x0 (Nu, 3) [m] (see :func:`sew`)."""
+    hold = hold if settings.hold_steps > 0 else None
+    if settings.seam_guide:
+        guide = GuidedSeams(model_unsewn, x0, sdf, hold=hold)
+        return guide, guide.model, guide.held
+    held = None
+    if hold is not None:
+        held = SimModel.build(
+            model_unsewn.faces,
+            model_unsewn.faces_uv,
+            springs=model_unsewn.springs,
+            pinned=hold,
+            n=model_unsewn.n,
+            n_rest=model_unsewn.n_rest,
+            bending_stencil=model_unsewn.bending_stencil,
+        ).to(model_unsewn.device)
+    return None, model_unsewn, held

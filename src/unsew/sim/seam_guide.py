@@ -80,7 +80,8 @@ class GuidedSeams:
     faces_uv, springs=seam_pairs)``); x0: (Nu, 3) float64 torch [m] placed panels; sdf: the body's
     SDF; hold: optional (Nu,) bool or (P,) int vertices to pin as well; gap: pairs whose copies
     start further apart than this [m] are guided too (None: only those through the body at the
-    start). ``pairs`` (G, 2) are the guided pairs; ``model`` / ``held`` have Nu + G vertices (the last G the waypoints).
+    start). ``pairs`` (G, 2) are the guided pairs; ``model`` / ``held`` have Nu + G vertices
+    (the last G the waypoints).
     """
 
     def __init__(self, model: SimModel, x0: torch.Tensor, sdf, *, hold=None, gap: float | None = GUIDE_GAP):
@@ -94,7 +95,7 @@ class GuidedSeams:
         g = len(self.pairs)
         ghost = torch.arange(self.n, self.n + g, dtype=torch.int64)
         # each copy linked twice: at the midpoint a copy is pulled as hard as by the seam spring
-        link = torch.cat([torch.stack([self.pairs[:, 0], ghost], 1), torch.stack([self.pairs[:, 1], ghost], 1)])
+        link = torch.cat([torch.stack([self.pairs[:, k], ghost], 1) for k in (0, 1)])
         links = torch.cat([link, link])
         self.springs = torch.cat([springs[~guided], links]).cpu().numpy()
         self.model = self._build(model, None)
