@@ -58,3 +58,24 @@ def test_seam_across_an_arm_closes_over_it():
     # the same seam pulled straight at itself stays caught on the arm, 12 cm open
     plain = _sew(p, x, guide=False)
     assert float((plain[sp[:, 0]] - plain[sp[:, 1]]).norm(dim=1).max()) > 0.05
+
+
+def test_base_tshirt_on_default_body_is_sewn_as_without_the_guide():
+    """No seam of unsew's own t-shirt starts across the body: the guide changes nothing."""
+    from unsew.body.body import default_body
+    from unsew.body.placement import place_garment
+    from unsew.body.sdf import BodySDF
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.base import make_base_pattern
+
+    body = default_body()
+    sdf = BodySDF.build(body)
+    pattern = make_base_pattern("tshirt")
+    mesh = mesh_pattern(pattern, edge_length=0.04)
+    x0 = place_garment(pattern, mesh, body, sdf=sdf)
+    mu = SimModel.build(mesh.faces_uv, mesh.faces_uv, springs=mesh.seam_pairs)
+    sp = torch.as_tensor(np.asarray(mesh.seam_pairs), dtype=torch.int64)
+    assert not bool(through_pairs(torch.as_tensor(np.asarray(x0)), sp, sdf).any())
+    cloth = Cloth(torch.as_tensor(np.asarray(mesh.uv)), GAMMA, 0.12, friction=0.3)
+    run = [sew(mu, x0, sdf, cloth, settings=DrapeSettings(sew_steps=3, seam_guide=g)) for g in (True, False)]
+    assert torch.equal(run[0], run[1])
