@@ -7,7 +7,7 @@ from unsew.sim import MATERIALS, Cloth, DrapeSettings, SimModel
 from unsew.sim.drape import sew
 from unsew.sim.meshes import two_panels
 from unsew.sim.sdf_analytic import CapsuleSDF
-from unsew.sim.seam_guide import GUIDE_CLEARANCE, GuidedSeams, through_pairs, waypoints
+from unsew.sim.seam_guide import GUIDE_CLEARANCE, through_pairs, waypoints
 
 GAMMA = MATERIALS["cotton"].gamma()
 R = 0.06  # the arm's radius [m]
@@ -45,15 +45,6 @@ def test_waypoint_lies_outside_the_arm_above_the_seam_line():
     xt2 = xt + torch.tensor([0.0, 0.5, 0.0], dtype=torch.float64)
     mid = 0.5 * (xt2[sp[:, 0]] + xt2[sp[:, 1]])
     assert float((waypoints(xt2, sp, ARM) - mid).abs().max()) == 0.0
-
-
-def test_only_seams_closing_over_a_top_are_guided():
-    for top, guided in ((0.01, True), (-0.01, False)):  # the seam line above / below the arm's axis
-        p, x = _over_arm(top=top)
-        mu = SimModel.build(p["faces_uv"], p["faces_uv"], springs=p["seam_pairs"])
-        g = GuidedSeams(mu, torch.as_tensor(x), ARM)
-        assert len(g.pairs) == (len(p["seam_pairs"]) if guided else 0)
-        assert g.model.n == mu.n + len(g.pairs)
 
 
 def test_seam_across_an_arm_closes_over_it():

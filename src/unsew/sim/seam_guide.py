@@ -2,14 +2,12 @@
 
 A zero-length seam spring pulls its two copies straight at each other. When the straight line
 between them passes through the body (a shoulder seam's front and back ends on either side of the
-shoulder, a sleeve's seam on either side of the arm), the first sewing steps drag the cloth
+shoulder, a godet laid out beside the skirt beyond a leg), the first sewing steps drag the cloth
 through the body. A guided seam pair is instead pulled, both copies, to a waypoint: a point a
 little outside the body's surface next to the deepest point of that line. Each step the waypoint
 is found again from the copies' current positions, and once the line between them no longer
 passes through the body the waypoint is their midpoint (each copy is pulled to it as hard as the
-seam spring would pull it to the other copy). Only seams that close over a top are guided (the
-body's outward normal at that deepest point points up at the start): a waypoint under an arm or
-beside a hip would pull the garment down or sideways, away from where it was placed.
+seam spring would pull it to the other copy).
 
 The waypoints are extra sim vertices held still in the step (pinned, massless, in no triangle),
 each joined to its pair's two copies by zero-length springs: the integrator is unchanged.
@@ -22,15 +20,15 @@ import torch
 
 from unsew.sim.model import SimModel
 
-__all__ = ["GUIDE_DEPTH", "GUIDE_CLEARANCE", "GUIDE_UP", "through_pairs", "waypoints", "GuidedSeams"]
+__all__ = ["GUIDE_DEPTH", "GUIDE_CLEARANCE", "through_pairs", "waypoints", "GuidedSeams"]
 
 #: A seam pair is guided while a point of the line between its copies is this far inside [m].
 GUIDE_DEPTH = 0.01
 #: A waypoint lies this far outside the body's surface [m].
 GUIDE_CLEARANCE = 0.01
-#: A pair is guided only where the body's outward normal at the deepest point of the line between
-#: its copies points up by more than this (its y component) at the start [-].
-GUIDE_UP = 0.5
+#: Pairs whose copies start further apart than this are guided too [m] (None: only those whose
+#: line passes through the body at the start).
+GUIDE_GAP = None
 #: Points sampled along the line between a pair's copies, ends excluded [-].
 _SAMPLES = 9
 #: Steps out along the SDF's normal from the deepest point to the waypoint [-].
@@ -80,20 +78,19 @@ class GuidedSeams:
 
     model: SimModel on the unsewn topology with springs = seam pairs (``SimModel.build(faces_uv,
     faces_uv, springs=seam_pairs)``); x0: (Nu, 3) float64 torch [m] placed panels; sdf: the body's
-    SDF; hold: optional (Nu,) bool or (P,) int vertices to pin as well. ``pairs`` (G, 2) are the
-    guided pairs (through the body under a top at the start); ``model`` / ``held`` have Nu + G
-    vertices (the last G the waypoints).
+    SDF; hold: optional (Nu,) bool or (P,) int vertices to pin as well; gap: pairs whose copies
+    start further apart than this [m] are guided too (None: only those through the body at the
+    start). ``pairs`` (G, 2) are the guided pairs; ``model`` / ``held`` have Nu + G vertices
+    (the last G the waypoints).
     """
 
-    def __init__(self, model: SimModel, x0: torch.Tensor, sdf, *, hold=None):
+    def __init__(self, model: SimModel, x0: torch.Tensor, sdf, *, hold=None, gap: float | None = GUIDE_GAP):
         self.n = model.n
         self.sdf = sdf
         springs = model.springs
         guided = through_pairs(x0, springs, sdf)
-        if len(springs) and guided.any():  # only seams closing over a top: a shoulder, an arm's top
-            with torch.no_grad():
-                p, _ = _deepest(x0, springs, sdf)
-                guided &= sdf.query(p)[1][:, 1].cpu() > GUIDE_UP
+        if gap is not None and len(springs):
+            guided |= (x0[springs[:, 0]] - x0[springs[:, 1]]).norm(dim=1).cpu() > gap
         self.pairs = springs[guided]  # (G, 2)
         g = len(self.pairs)
         ghost = torch.arange(self.n, self.n + g, dtype=torch.int64)
