@@ -26,9 +26,6 @@ __all__ = ["GUIDE_DEPTH", "GUIDE_CLEARANCE", "through_pairs", "waypoints", "Guid
 GUIDE_DEPTH = 0.01
 #: A waypoint lies this far outside the body's surface [m].
 GUIDE_CLEARANCE = 0.01
-#: Pairs whose copies start further apart than this are guided too [m] (None: only those whose
-#: line passes through the body at the start).
-GUIDE_GAP = None
 #: Points sampled along the line between a pair's copies, ends excluded [-].
 _SAMPLES = 9
 #: Steps out along the SDF's normal from the deepest point to the waypoint [-].
@@ -78,19 +75,16 @@ class GuidedSeams:
 
     model: SimModel on the unsewn topology with springs = seam pairs (``SimModel.build(faces_uv,
     faces_uv, springs=seam_pairs)``); x0: (Nu, 3) float64 torch [m] placed panels; sdf: the body's
-    SDF; hold: optional (Nu,) bool or (P,) int vertices to pin as well; gap: pairs whose copies
-    start further apart than this [m] are guided too (None: only those through the body at the
-    start). ``pairs`` (G, 2) are the guided pairs; ``model`` / ``held`` have Nu + G vertices
-    (the last G the waypoints).
+    SDF; hold: optional (Nu,) bool or (P,) int vertices to pin as well. ``pairs`` (G, 2) are the
+    guided pairs (their line through the body at the start); ``model`` / ``held`` have Nu + G
+    vertices (the last G the waypoints).
     """
 
-    def __init__(self, model: SimModel, x0: torch.Tensor, sdf, *, hold=None, gap: float | None = GUIDE_GAP):
+    def __init__(self, model: SimModel, x0: torch.Tensor, sdf, *, hold=None):
         self.n = model.n
         self.sdf = sdf
         springs = model.springs
         guided = through_pairs(x0, springs, sdf)
-        if gap is not None and len(springs):
-            guided |= (x0[springs[:, 0]] - x0[springs[:, 1]]).norm(dim=1).cpu() > gap
         self.pairs = springs[guided]  # (G, 2)
         g = len(self.pairs)
         ghost = torch.arange(self.n, self.n + g, dtype=torch.int64)
