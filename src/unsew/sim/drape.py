@@ -250,7 +250,9 @@ def sew(
         sdf: body SDF. cloth: :class:`Cloth` (uv (Nu, 2) [m], gamma (5,), density [kg/m^2],
             friction [-]); its tensors are used detached.
         settings: :class:`DrapeSettings`: ``sew_steps`` steps of ``sew_dt`` [s] with seam springs
-            of ``spring_stiffness`` [N/m]; gravity rises linearly from 0 over ``ramp_steps``.
+            of ``spring_stiffness`` [N/m]; gravity rises linearly from 0 over ``ramp_steps``;
+            with ``seam_guide`` the pairs whose line starts through the body are sewn round it
+            (:mod:`unsew.sim.seam_guide`).
         hold: (Nu,) bool or (P,) int vertices held still for the first ``settings.hold_steps``
             steps (e.g. a waistline).
         callback: ``callback(k, state)``.
