@@ -20,6 +20,7 @@ from unsew.errors import InputError
 from unsew.sim.integrator import RestData, StepParams, rest_data, step
 from unsew.sim.material import check_gamma
 from unsew.sim.model import SimModel
+from unsew.sim.seam_guide import GuidedSeams
 from unsew.sim.state import SimState
 from unsew.tolerances import COLLISION_THICKNESS
 
@@ -102,6 +103,8 @@ class DrapeSettings:
     backend: str = "auto"  #: linear solver (see :class:`~unsew.sim.integrator.StepParams`)
     fused: bool = True  #: one Function per step for assembly + solve (step_solve.py)
     line_search: bool = True  #: backtrack a step far off its linearization (integrator.py)
+    #: sew seams whose copies start on either side of the body around it (sim/seam_guide.py)
+    seam_guide: bool = True
 
     def replace(self, **changes) -> "DrapeSettings":
         """A copy with ``changes`` applied."""
@@ -247,7 +250,9 @@ def sew(
         sdf: body SDF. cloth: :class:`Cloth` (uv (Nu, 2) [m], gamma (5,), density [kg/m^2],
             friction [-]); its tensors are used detached.
         settings: :class:`DrapeSettings`: ``sew_steps`` steps of ``sew_dt`` [s] with seam springs
-            of ``spring_stiffness`` [N/m]; gravity rises linearly from 0 over ``ramp_steps``.
+            of ``spring_stiffness`` [N/m]; gravity rises linearly from 0 over ``ramp_steps``;
+            with ``seam_guide`` the pairs whose line starts through the body are sewn round it
+            (:mod:`unsew.sim.seam_guide`).
         hold: (Nu,) bool or (P,) int vertices held still for the first ``settings.hold_steps``
             steps (e.g. a waistline).
         callback: ``callback(k, state)``.
@@ -264,22 +269,37 @@ def sew(
         gamma = cloth.gamma.detach()
         check_drape_inputs(model_unsewn, state, sdf, uv, gamma)
         params = settings.step_params(friction=cloth.friction, sewing=True)
-        held = None
-        if hold is not None and settings.hold_steps > 0:
-            held = SimModel.build(
-                model_unsewn.faces,
-                model_unsewn.faces_uv,
-                springs=model_unsewn.springs,
-                pinned=hold,
-                n=model_unsewn.n,
-                n_rest=model_unsewn.n_rest,
-                bending_stencil=model_unsewn.bending_stencil,
-            ).to(model_unsewn.device)
-        rest = rest_data(model_unsewn, uv, cloth.density)
+        guide, model, held = _sewing_models(model_unsewn, state.x, sdf, settings, hold)
+        rest = rest_data(model, uv, cloth.density)
+        n = model_unsewn.n
         for k in range(settings.sew_steps):
             g = settings.gravity * min(1.0, (k + 1) / max(settings.ramp_steps, 1))
-            m = held if (held is not None and k < settings.hold_steps) else model_unsewn
+            m = held if (held is not None and k < settings.hold_steps) else model
+            if guide is not None:  # the waypoints found again from the copies' positions
+                v = torch.cat([state.v[:n], state.v.new_zeros(m.n - n, 3)])
+                state = SimState(guide.extend(state.x[:n]), v)
             state = step(m, rest, state, sdf, gamma, dataclasses.replace(params, gravity=g), index=k)
             if callback is not None:
-                callback(k, state)
-    return state.x
+                callback(k, SimState(state.x[:n], state.v[:n]))
+    return state.x[:n]
+
+
+def _sewing_models(model_unsewn: SimModel, x0, sdf, settings: DrapeSettings, hold):
+    """The sewing phase's models: (GuidedSeams or None, the model, the model with ``hold`` pinned
+    too or None) for the placed panels x0 (Nu, 3) [m] (see :func:`sew`)."""
+    hold = hold if settings.hold_steps > 0 else None
+    if settings.seam_guide:
+        guide = GuidedSeams(model_unsewn, x0, sdf, hold=hold)
+        return guide, guide.model, guide.held
+    held = None
+    if hold is not None:
+        held = SimModel.build(
+            model_unsewn.faces,
+            model_unsewn.faces_uv,
+            springs=model_unsewn.springs,
+            pinned=hold,
+            n=model_unsewn.n,
+            n_rest=model_unsewn.n_rest,
+            bending_stencil=model_unsewn.bending_stencil,
+        ).to(model_unsewn.device)
+    return None, model_unsewn, held
