@@ -87,7 +87,7 @@ class GuidedSeams:
         guided = through_pairs(x0, springs, sdf)
         self.pairs = springs[guided]  # (G, 2)
         g = len(self.pairs)
-        ghost = torch.arange(self.n, self.n + g, dtype=torch.int64)
+        ghost = torch.arange(self.n, self.n + g, dtype=torch.int64, device=springs.device)
         # each copy linked twice: at the midpoint a copy is pulled as hard as by the seam spring
         link = torch.cat([torch.stack([self.pairs[:, k], ghost], 1) for k in (0, 1)])
         links = torch.cat([link, link])
