@@ -180,8 +180,27 @@ def read_body(folder: Path):
 # ---------------------------------------------------------------- designs
 
 
+def canonical_order(spec_path: Path) -> None:
+    """Rewrite a GarmentCode specification with its panels sorted by name and its stitches sorted.
+
+    GarmentCode builds a design's panels and stitches by walking ``set``s of its components
+    (``BaseComponent._get_subcomponents``), hashed by object identity, so their order in the file
+    changes from run to run (memory addresses) while their content is the same. Sorted, the file
+    depends on the seed alone. ``panel_order`` (GarmentCode's own, by position) is kept.
+    """
+    spec = json.loads(spec_path.read_text())
+    pattern = spec["pattern"]
+    pattern["panels"] = dict(sorted(pattern["panels"].items()))
+    pattern["stitches"] = sorted(
+        pattern["stitches"], key=lambda st: json.dumps([json.dumps(s, sort_keys=True) for s in st])
+    )
+    spec_path.write_text(json.dumps(spec, indent=2))
+
+
 def sample_seed(seed: int, count: int, body_dir: Path, out: Path) -> Path:
-    """Run GarmentCode's sampler for one seed into ``out/_designs/s{seed}`` (skipped when done)."""
+    """Run GarmentCode's sampler for one seed into ``out/_designs/s{seed}`` (skipped when done);
+    each specification rewritten in a canonical order (``canonical_order``), with the sampler's
+    string hashing fixed (``PYTHONHASHSEED=0``), so that the seed alone decides the files."""
     d = out / "_designs" / f"s{seed}"
     done = d / "sampled.json"
     if done.is_file() and json.loads(done.read_text()).get("count") == count:
@@ -205,9 +224,12 @@ def sample_seed(seed: int, count: int, body_dir: Path, out: Path) -> Path:
         capture_output=True,
         text=True,
         check=False,
+        env=dict(os.environ, PYTHONHASHSEED="0"),
     )
     if r.returncode:
         raise RuntimeError(f"sample_designs.py failed: {(r.stderr.strip().splitlines() or [''])[-1]}")
+    for spec_path in sorted(d.glob("*/*_specification.json")):
+        canonical_order(spec_path)
     lines = [json.loads(ln) for ln in r.stdout.splitlines() if ln.startswith("{")]
     done.write_text(
         json.dumps({"count": count, "seconds": round(time.time() - t0, 1), "log": lines}, indent=1)
