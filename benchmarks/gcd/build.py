@@ -280,9 +280,10 @@ def bend_around_body(x: np.ndarray, mesh, spec: dict, body_v: np.ndarray) -> np.
     x: (Nu, 3) [m] -> (Nu, 3) [m]."""
     cx, cz = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max()), 0.5 * (body_v[:, 2].min() + body_v[:, 2].max())
     out = x.copy()
+    beside = beside_torso(x, mesh, body_v)
     for i, name in enumerate(mesh.panel_names):
         n = spec_rotation(spec["pattern"]["panels"][name].get("rotation", [0, 0, 0]))[:, 2]
-        if abs(n[2]) < np.cos(np.radians(30.0)):
+        if abs(n[2]) < np.cos(np.radians(30.0)) or beside[i]:
             continue
         a, b = int(mesh.panel_offsets[i]), int(mesh.panel_offsets[i + 1])
         p = x[a:b]
@@ -313,6 +314,24 @@ def torso_sections(body_v: np.ndarray, band=0.015, gap=0.02, step=0.02):
     return tuple(np.array(c) for c in zip(*rows))
 
 
+def beside_torso(x: np.ndarray, mesh, body_v: np.ndarray, gap=0.08) -> np.ndarray:
+    """Per panel (P,) bool: a piece of a sleeve or cuff, which the specification places around the
+    arm: its centre (the mean of its vertices x (Nu, 3) [m]) above the crotch and all of it to one
+    side of the body's axis (bounding-box centre x), its nearest vertex more than ``gap`` [m] from
+    it (a torso's, skirt's or waistband's panel reaches the centre front or back). Bent or wrapped
+    around the torso's axis, such a piece is carried past the body's side to its far side (a
+    sleeve's front half behind the arm)."""
+    y0 = _crotch_height(body_v)
+    cx = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max())
+    out = np.zeros(len(mesh.panel_names), bool)
+    for i in range(len(mesh.panel_names)):
+        p = x[int(mesh.panel_offsets[i]) : int(mesh.panel_offsets[i + 1])]
+        side = np.sign(p[:, 0] - cx)
+        near = np.abs(p[:, 0] - cx).min()
+        out[i] = p[:, 1].mean() > y0 and abs(side.sum()) == len(p) and near > gap
+    return out
+
+
 def _crotch_height(body_v: np.ndarray, half=0.01) -> float:
     """The highest height [m] below the body's middle where no body vertex lies within ``half``
     [m] of its axis (between the legs)."""
@@ -336,19 +355,22 @@ def _ellipse_at(a: float, b: float, s: float, n=721) -> tuple[float, float]:
 def wrap_on_torso(x: np.ndarray, mesh, spec: dict, body_v: np.ndarray, clearance=0.03, blend=0.1):
     """The start x (Nu, 3) [m] with each front or back panel (as :func:`bend_around_body` picks
     them) wrapped on the torso: a vertex at ``s = x - cx`` across its panel goes to arc length s
-    from the front (back) centre of the ellipse of the torso's section at its height (half width
-    and half depth plus ``clearance`` [m]); heights kept. Below the crotch the start is kept, and
+    from the front (back: the specification's side, :func:`_front_back`) centre of the ellipse of
+    the torso's section at its height (half width and half depth plus ``clearance`` [m]); heights
+    kept; the pieces :func:`beside_torso` finds are left as they are. Below the crotch the start is kept, and
     over ``blend`` [m] above it the two are mixed linearly, so legs stay as they are."""
     Y, HW, ZF, ZB = torso_sections(body_v)
     y0 = _crotch_height(body_v)
     cx = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max())
     out = x.copy()
+    beside = beside_torso(x, mesh, body_v)
+    sides = _front_back(mesh, spec, body_v)
     for i, name in enumerate(mesh.panel_names):
         n = spec_rotation(spec["pattern"]["panels"][name].get("rotation", [0, 0, 0]))[:, 2]
-        if abs(n[2]) < np.cos(np.radians(30.0)):
+        if abs(n[2]) < np.cos(np.radians(30.0)) or beside[i]:
             continue
         a_, b_ = int(mesh.panel_offsets[i]), int(mesh.panel_offsets[i + 1])
-        side = 1.0 if np.mean(x[a_:b_, 2]) > np.median(body_v[:, 2]) else -1.0
+        side = float(sides[a_])
         for k in range(a_, b_):
             y = x[k, 1]
             w = float(np.clip((y - y0) / blend, 0.0, 1.0))
@@ -418,9 +440,12 @@ def attachment(spec: dict, mesh, x0: np.ndarray) -> tuple[np.ndarray, np.ndarray
     return idx, (ysum / np.maximum(cnt, 1.0))[xu[idx]]
 
 
-def _front_back(mesh, spec: dict, x0: np.ndarray, body_v: np.ndarray) -> np.ndarray:
+def _front_back(mesh, spec: dict, body_v: np.ndarray) -> np.ndarray:
     """Per uv vertex (Nu,) int: +1 on a front panel, -1 on a back panel (normal within 30 degrees
-    of the Z axis, the side its start x0 (Nu, 3) [m] lies on from the body's median z), 0 else."""
+    of the Z axis, the side of the body's median z the specification places it on), 0 else. (The
+    side is the specification's, not the bent start's: a panel wider than half the body's girth
+    bent around it has most of its area past the body's sides.)"""
+    x0 = spec_placement(spec, mesh)
     side = np.zeros(len(x0), np.int64)
     for i, name in enumerate(mesh.panel_names):
         n = spec_rotation(spec["pattern"]["panels"][name].get("rotation", [0, 0, 0]))[:, 2]
@@ -444,7 +469,7 @@ def over_body_guide(
 
     none = np.zeros(0, np.int64), np.zeros((0, 3))
     sp = np.asarray(mesh.seam_pairs, np.int64).reshape(-1, 2)
-    side = _front_back(mesh, spec, x0, body_v)
+    side = _front_back(mesh, spec, body_v)
     sp = sp[side[sp[:, 0]] * side[sp[:, 1]] < 0]
     mid = 0.5 * (x0[sp[:, 0]] + x0[sp[:, 1]])
     tm = trimesh.Trimesh(body_v, body_f, process=False)
