@@ -581,6 +581,7 @@ def build_case(
     rec["spec_inside_fraction"] = round(float(checks.inside_mask(x_spec, body_v, body_f).mean()), 4)
     rec["start_inside_fraction"] = round(float(checks.inside_mask(x0, body_v, body_f).mean()), 4)
     rec["vertices"] = int(mesh.n_x)
+    rec["arm_pieces"], rec["panels_bent_past_side"] = _start_counts(x_spec, mesh, src.spec, body_v)
     _log(
         f"{cid}: {src.truth['type']}, {src.truth['panels']} panels, {mesh.n_x} vertices, "
         f"{rec['spec_inside_fraction']:.1%} of the spec's placement and "
@@ -608,6 +609,21 @@ def build_case(
         rec["reason"] = "; ".join(fails)
     _log(f"{cid}: {rec['status']} in {rec['seconds']:.0f} s" + (f" ({rec['reason']})" if fails else ""))
     return rec
+
+
+def _start_counts(x_spec: np.ndarray, mesh, spec: dict, body_v: np.ndarray) -> tuple[int, int]:
+    """(panels :func:`beside_torso` keeps as placed, front or back panels whose bend around the
+    body leaves most of them on the other side of it): designs with neither start as they did
+    before either rule (docs/decisions/028). x_spec: (Nu, 3) [m], the specification's placement."""
+    side = _front_back(mesh, spec, body_v)
+    bent = bend_around_body(x_spec, mesh, spec, body_v)
+    med = np.median(body_v[:, 2])
+    past = 0
+    for i in range(len(mesh.panel_names)):
+        a, b = int(mesh.panel_offsets[i]), int(mesh.panel_offsets[i + 1])
+        past += int(side[a] != 0 and side[a] * (np.mean(bent[a:b, 2]) - med) < 0)
+    fb = side[np.asarray(mesh.panel_offsets[:-1], np.int64)] != 0
+    return int((beside_torso(x_spec, mesh, body_v) & fb).sum()), past
 
 
 class _Design:
