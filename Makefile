@@ -27,6 +27,7 @@ test-slow: setup
 lint: setup
 	@$(VENV)/bin/ruff check src tests benchmarks
 	@$(VENV)/bin/python scripts/check_function_length.py
+	@! git grep -nE '^(<<<<<<<|>>>>>>>)( |$$)' -- . ':!*.patch' || { echo 'merge conflict markers left (above)'; exit 1; }
 
 # `make bench NAME=fit ARGS="--edge-length 0.025"`; `make bench` lists the benchmarks.
 bench: setup

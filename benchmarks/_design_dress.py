@@ -26,6 +26,11 @@ DESIGNS = (
     dict(garment="jumpsuit", leg="knee", neckline_front="v"),
     dict(garment="skirt", skirt="circle", circle_fraction=0.75, panels=6, waistband=True),
     dict(garment="skirt", skirt="pencil", panels=4),
+    dict(sleeves="none", darts=True, length=0.05),
+    dict(garment="dress", waist_seam=True, waistband=True, darts=True, sleeves="short"),
+    dict(garment="skirt", skirt="pencil", darts=True, waistband=True),
+    dict(garment="shorts", darts=True, waistband=True),
+    dict(garment="pants", darts=True),
 )
 
 

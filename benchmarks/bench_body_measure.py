@@ -21,8 +21,16 @@ over the acceptance's three skeletons (none, rig, limb) and over all four. A ske
 reads with its own skinning weights; the skeleton ``own`` is anny's joints, ``limb`` and ``smpl``
 are made from them; and the reading with the rig's skeleton (``none``) beside them.
 
+``--record``: the table of GarmentCode's bodies into benchmarks/results/body_measure.json (the
+skeletons that read the same grouped in one row) with its command and commit.
+
+``--cause``: per body, where the bust is read and how its section is cut: the bust level and
+girth with the rig's skeleton and with the SMPL-style one, and each skeleton's girth at the
+other's level (a different level, or the same level cut otherwise: the arms' faces).
+
 Run: PYTHONPATH=src:benchmarks .venv/bin/python -m benchmarks body_measure
      [--bodies ../shared/foreign/bodies] [--names mean_female,mean_male] [--quick] [--anny]
+     [--record] [--cause]
 """
 
 from __future__ import annotations
@@ -32,6 +40,7 @@ import copy
 import json
 import os
 import random
+import subprocess
 import tempfile
 from pathlib import Path
 
@@ -175,6 +184,11 @@ def table(rows: list[dict], variants=VARIANTS) -> tuple[str, dict]:
 
 
 def run(bodies: Path, names: list[str], variants=VARIANTS) -> tuple[str, dict]:
+    return table(run_rows(bodies, names, variants), variants)
+
+
+def run_rows(bodies: Path, names: list[str], variants=VARIANTS) -> list[dict]:
+    """Rows {body, variant, measured, reference} of GarmentCode's bodies (see :func:`run`)."""
     import yaml
 
     from unsew.errors import InputError
@@ -187,7 +201,75 @@ def run(bodies: Path, names: list[str], variants=VARIANTS) -> tuple[str, dict]:
         ref = yaml.safe_load(mesh.with_suffix(".yaml").read_text())["body"]
         for v, m in measure_variants(mesh, variants).items():
             rows.append({"body": name, "variant": v, "measured": m, "reference": ref})
-    return table(rows, variants)
+    return rows
+
+
+def record_rows(rows: list[dict]) -> list[dict]:
+    """The recorded table's rows: per body, the skeletons whose bust, waist and hips read the same
+    (to 0.1 cm) in one row ("none, rig, limb"; SMPL-style named so), measured / the .yaml [cm]
+    and the largest absolute error [cm]; a refused skeleton's row says so."""
+    names = {"smpl": "SMPL-style"}
+    out: list[dict] = []
+    for body in dict.fromkeys(r["body"] for r in rows):
+        groups: dict = {}
+        for r in (r for r in rows if r["body"] == body):
+            m, ref = r["measured"], r["reference"]
+            if isinstance(m, str):
+                cells = {"bust": f"refused: {m}", "waist": "", "hips": "", "max error": None}
+            else:
+                cells = {rk: f"{getattr(m, k) * 100:.1f} / {ref[rk]:.1f}" for k, rk in GIRTHS}
+                cells["max error"] = round(max(abs(getattr(m, k) * 100 - ref[rk]) for k, rk in GIRTHS), 1)
+            groups.setdefault(json.dumps(cells), []).append(names.get(r["variant"], r["variant"]))
+        out += [{"body": body, "skeleton": ", ".join(v), **json.loads(k)} for k, v in groups.items()]
+    return out
+
+
+def _commit() -> str:
+    try:
+        return subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"], cwd=HERE, capture_output=True, text=True, check=True
+        ).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
+def record(rows: list[dict], path: Path = HERE / "results" / "body_measure.json") -> None:
+    """Write the table of GarmentCode's bodies with its command and commit (benchmarks/report.py
+    makes docs/benchmarks.md from it)."""
+    rec = {
+        "title": "GarmentCode's bodies measured with no skeleton, the mesh rig's, a limb-labelled and an "
+        "SMPL-style one (cm; measured / the body's .yaml)",
+        "command": "python -m benchmarks body_measure --record",
+        "commit": _commit(),
+        "rows": record_rows(rows),
+    }
+    path.write_text(json.dumps(rec, indent=1) + "\n")
+
+
+def cause_rows(bodies: Path, names: list[str]) -> str:
+    """Markdown table: per body, the bust level [m] and girth [cm] with the rig's skeleton and the
+    SMPL-style one, and each one's girth at the other's level [cm]."""
+    from unsew.body.body import load_body
+    from unsew.body.measure import bust_reading
+
+    lines = [
+        "| body | rig: level m, bust cm | SMPL-style: level m, bust cm | rig at SMPL's level | "
+        "SMPL-style at the rig's level |",
+        "|---|---|---|---|---|",
+    ]
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in names:
+            mesh = bodies / f"{name}.obj"
+            rig = load_body(mesh)
+            path = Path(tmp) / "smpl.json"
+            path.write_text(json.dumps(smpl_style(rig.skeleton.to_dict())))
+            smpl = load_body(mesh, path)
+            (g_r, y_r), (g_s, y_s) = bust_reading(rig), bust_reading(smpl)
+            lines.append(
+                f"| {name} | {y_r:.3f}, {g_r * 100:.1f} | {y_s:.3f}, {g_s * 100:.1f} | "
+                f"{bust_reading(rig, at=y_s)[0] * 100:.1f} | {bust_reading(smpl, at=y_r)[0] * 100:.1f} |"
+            )
+    return "\n".join(lines)
 
 
 def main() -> None:
@@ -195,6 +277,8 @@ def main() -> None:
     ap.add_argument("--bodies", default=str(BODIES), help="folder of GarmentCode's body .obj and .yaml files")
     ap.add_argument("--names", default="", help="comma-separated body names (default: every .obj there)")
     ap.add_argument("--quick", action="store_true", help="one body (mean_female) only")
+    ap.add_argument("--record", action="store_true", help="write benchmarks/results/body_measure.json")
+    ap.add_argument("--cause", action="store_true", help="where the bust is read with each skeleton")
     ap.add_argument(
         "--anny", action="store_true", help="anny's bodies as files, against their skinning weights' reading"
     )
@@ -212,12 +296,18 @@ def main() -> None:
     names = [n for n in args.names.split(",") if n] or sorted(p.stem for p in bodies.glob("*.obj"))
     if args.quick:
         names = ["mean_female"]
-    text, worst = run(bodies, names)
+    if args.cause:
+        print(cause_rows(bodies, names))
+        return
+    rows = run_rows(bodies, names)
+    text, worst = table(rows)
     print(text)
     print(
         f"\nmax abs error, skeletons none/rig/limb: {worst['acceptance']:.1f} cm; with smpl: "
         f"{worst['all']:.1f} cm"
     )
+    if args.record:
+        record(rows)
 
 
 if __name__ == "__main__":

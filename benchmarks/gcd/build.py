@@ -657,9 +657,19 @@ def _sampled_design(cid: str, seed: int, out: Path, count: int | None) -> _Desig
     return _Design(cid, seed, entry, body_dir, spec, design_text, truth)
 
 
+def top_drop(x: np.ndarray, x0: np.ndarray, mesh) -> float:
+    """How far [m] the garment's top came down from its start: x (n_x, 3) drape, x0 (n_uv, 3)
+    start. A hood's panels are left out (where any other panel remains): a hood's peak settles
+    onto the head by itself, while a garment that slid down brings its shoulders with it."""
+    keep = np.array(["hood" not in mesh.panel_names[p] for p in mesh.uv_panel])
+    if not keep.any():
+        keep[:] = True
+    return float(x0[keep, 1].max() - x[mesh.x_of_u[keep], 1].max())
+
+
 def _accept(rec: dict, x: np.ndarray, x0: np.ndarray, mesh, body, info: dict) -> list[str]:
     """The drape's acceptance checks (inside, stretch, floor, slide) recorded into ``rec``;
-    returns the failed ones' lines (empty: accepted). x, x0: (n, 3) [m] drape and start."""
+    returns the failed ones' lines (empty: accepted). x (n_x, 3), x0 (n_uv, 3) [m]: drape, start."""
     import checks
 
     body_v, body_f = body
@@ -672,7 +682,7 @@ def _accept(rec: dict, x: np.ndarray, x0: np.ndarray, mesh, body, info: dict) ->
         fails.append(f"largest stretch {float(st.max()):.2f}")
     if x[:, 1].min() < 0.01:
         fails.append("touches the floor")
-    drop = float(x0[:, 1].max() - x[:, 1].max())
+    drop = top_drop(x, x0, mesh)
     if drop > MAX_DROP:
         fails.append(f"slid down {drop * 100:.0f} cm from where the specification puts its top")
     rec.update(
@@ -766,11 +776,12 @@ def recheck(out: Path, cid: str) -> dict | None:
     body_v, body_f = read_body(d)
     mesh = mesh_spec(spec, cid, manifest()["edge_length_m"])
     x0 = bend_around_body(spec_placement(spec, mesh), mesh, spec, body_v)
+    x0 = clear_of_body(wrap_on_torso(x0, mesh, spec, body_v), mesh, body_v, body_f)
     import trimesh
 
     x = np.asarray(trimesh.load(d / "target.obj", process=False, force="mesh").vertices)
     inside = float(checks.inside_mask(x, body_v, body_f).mean())
-    drop = float(x0[:, 1].max() - x[:, 1].max())
+    drop = top_drop(x, x0, mesh)
     fails = [
         f
         for f in (rec.get("reason") or "").split("; ")

@@ -6,12 +6,16 @@
 - ``panels_of_spec``: a GarmentCode specification's panels as outlines (edges discretized:
   straight, quadratic and cubic Bezier with relative or absolute control points, circle arcs as
   GarmentCode's SVG arcs) [m], with each panel's area and 3D centroid from its own placement.
-- ``merge_invisible``: panels joined by a seam the 3D shape cannot show are merged into one: a
-  stitch whose two edges are straight and of equal length (within ``MERGE_LENGTH_TOL``) and
-  whose outline runs on without a corner across both seam ends (the two panels' turning angles
-  at each end add up to half a turn within ``MERGE_ANGLE_TOL``), the panels glued along it by a
-  rigid 2D motion without overlap. A centre-front seam between mirror halves (a fold in the other
-  pattern) and a straight seam between sleeve halves are such seams.
+- ``merge_invisible``: panels joined by a seam the 3D shape cannot show are merged into one. A
+  seam (the stitches of one run between two panels) hides where each of its stitched edge pairs
+  is straight and of equal length (within ``MERGE_LENGTH_TOL``) and the two panels joined along
+  it lie flat: at the seam's two ends the outline runs on without a corner (the panels' turning
+  angles add up to half a turn within ``MERGE_ANGLE_TOL``), where the seam goes on from one
+  stitch into the next the turning angles cancel. The rule reads the seam's two panels alone,
+  not what else either is sewn to (a waistband, a cuff) nor the order of the stitches. Pieces
+  then grow panel by panel, glued by a rigid 2D motion without overlap, each glue the one that
+  closes the most other hidden seams with it. A centre-front seam between mirror halves (a fold
+  in the other pattern) and a straight seam between sleeve halves are such seams.
 - ``compare_patterns``: true panels matched to recovered ones (Hungarian assignment on the
   distance of their 3D centroids [m] plus their relative area difference); per true panel the
   relative surface-area error |A_rec - A_true| / A_true (1 for a true panel left unmatched) and
@@ -166,41 +170,83 @@ def _dir(p, q):
     return d / max(np.linalg.norm(d), 1e-15)
 
 
-def _glue(A: Piece, ia: int, B: Piece, ib: int):
-    """Piece of A and B glued along A's edge ia and B's edge ib, or None where the seam shows (a
-    corner at either end) or the panels would overlap."""
+def _seam_key(st) -> frozenset:
+    """The two (panel, edge index) keys of a stitch, unordered."""
+    return frozenset(((st[0]["panel"], st[0]["edge"]), (st[1]["panel"], st[1]["edge"])))
+
+
+def _stitch_flat(A: Piece, ia: int, B: Piece, ib: int, stitched: set):
+    """(flat, links) of the stitch of panel A's edge ia to panel B's edge ib, read from the two
+    panels' own outlines alone (A, B: single panels, not merged pieces). ``flat``: both edges are
+    straight and of equal length (``MERGE_LENGTH_TOL``) and the two panels joined along them lie
+    flat across both ends: at an end where the edges next to the stitch on either side are stitched
+    to each other too (``stitched``: frozensets of two (panel, edge) keys; the seam goes on) the
+    two panels' turning angles cancel, at any other end they add up to half a turn (the outline
+    runs on without a corner), each within ``MERGE_ANGLE_TOL``. ``links``: the stitches (frozensets)
+    the seam goes on into."""
     ea, eb = A.edges[ia], B.edges[ib]
-    if not (ea["straight"] and eb["straight"]):
-        return None
+    na, nb = len(A.edges), len(B.edges)
+    a_prev, a_next = A.edges[(ia - 1) % na], A.edges[(ia + 1) % na]
+    b_prev, b_next = B.edges[(ib - 1) % nb], B.edges[(ib + 1) % nb]
+    # B's edge runs against A's: A's end meets B's start, A's start meets B's end; per end the
+    # edge into it and out of it on A and on B, and the two edges the seam would go on along
+    ends = (
+        (ea, a_next, b_prev, eb, (a_next, b_prev)),
+        (a_prev, ea, eb, b_next, (a_prev, b_next)),
+    )
+    la = np.linalg.norm(ea["pts"][-1] - ea["pts"][0])
+    lb = np.linalg.norm(eb["pts"][-1] - eb["pts"][0])
+    flat = ea["straight"] and eb["straight"] and abs(la - lb) <= MERGE_LENGTH_TOL * max(la, lb)
+    links = []
+    for a_in, a_out, b_in, b_out, (a_on, b_on) in ends:
+        on = frozenset((a_on["key"], b_on["key"]))
+        inner = on in stitched
+        if inner:
+            links.append(on)
+        turns = _turn(_dir(*a_in["pts"][-2:]), _dir(*a_out["pts"][:2])) + _turn(
+            _dir(*b_in["pts"][-2:]), _dir(*b_out["pts"][:2])
+        )
+        flat = flat and abs(turns - (0.0 if inner else np.pi)) <= MERGE_ANGLE_TOL
+    return flat, links
+
+
+def _glue(A: Piece, ia: int, B: Piece, ib: int, hidden: set):
+    """Piece of A and B glued along A's edge ia and B's edge ib by the rigid 2D motion taking B's
+    edge onto A's, the seams of ``hidden`` that then meet folded back at either seam end zipped
+    too, or None where the two would overlap."""
+    ea, eb = A.edges[ia], B.edges[ib]
     p, q = ea["pts"][0], ea["pts"][-1]
     bp, bq = eb["pts"][0], eb["pts"][-1]
-    la, lb = np.linalg.norm(q - p), np.linalg.norm(bq - bp)
-    if abs(la - lb) > MERGE_LENGTH_TOL * max(la, lb):
-        return None
     # rigid motion taking B's edge (bp -> bq) onto A's reversed (q -> p)
     ang = np.arctan2(*(p - q)[::-1]) - np.arctan2(*(bq - bp)[::-1])
     R = np.array([[np.cos(ang), -np.sin(ang)], [np.sin(ang), np.cos(ang)]])
     t = q - R @ bp
     Bedges = [dict(e, pts=e["pts"] @ R.T + t) for e in B.edges]
-    na, nb = len(A.edges), len(B.edges)
-    a_prev, a_next = A.edges[(ia - 1) % na], A.edges[(ia + 1) % na]
-    b_prev, b_next = Bedges[(ib - 1) % nb], Bedges[(ib + 1) % nb]
-    # at q: A turns from its seam edge into a_next; B turns from b_prev into its seam edge (q -> p)
-    turn_q = _turn(_dir(*ea["pts"][-2:]), _dir(*a_next["pts"][:2])) + _turn(
-        _dir(*b_prev["pts"][-2:]), _dir(*Bedges[ib]["pts"][:2])
-    )
-    turn_p = _turn(_dir(*a_prev["pts"][-2:]), _dir(*ea["pts"][:2])) + _turn(
-        _dir(*Bedges[ib]["pts"][-2:]), _dir(*b_next["pts"][:2])
-    )
-    if abs(turn_q - np.pi) > MERGE_ANGLE_TOL or abs(turn_p - np.pi) > MERGE_ANGLE_TOL:
-        return None
-    edges = A.edges[ia + 1 :] + A.edges[:ia] + Bedges[ib + 1 :] + Bedges[:ib]
+    edges = _zip(A.edges[ia + 1 :] + A.edges[:ia] + Bedges[ib + 1 :] + Bedges[:ib], hidden)
     loop = np.concatenate([e["pts"][:-1] for e in edges])
     area, _ = _area_centroid(loop)
     if abs(area - (A.area + B.area)) > 0.02 * (A.area + B.area) or _self_intersects(loop):
         return None
     c3 = (A.area * A.centroid3d + B.area * B.centroid3d) / (A.area + B.area)
     return Piece(A.names + B.names, edges, area, c3)
+
+
+def _zip(edges: list, hidden: set) -> list:
+    """The outline's edges without each pair of consecutive edges that is a seam of ``hidden`` run
+    out and back (the outline turns by about half a turn between them): a seam closed by gluing
+    its neighbour."""
+    edges = list(edges)
+    k = 0
+    while len(edges) > 2 and k < len(edges):
+        e, f = edges[k], edges[(k + 1) % len(edges)]
+        back = abs(_turn(_dir(*e["pts"][-2:]), _dir(*f["pts"][:2]))) > np.pi - MERGE_ANGLE_TOL
+        if back and frozenset((e["key"], f["key"])) in hidden:
+            j = (k + 1) % len(edges)
+            edges = [x for i, x in enumerate(edges) if i not in (k, j)]
+            k = max(k - 1, 0)
+        else:
+            k += 1
+    return edges
 
 
 def _self_intersects(loop: np.ndarray) -> bool:
@@ -224,36 +270,79 @@ def _self_intersects(loop: np.ndarray) -> bool:
     return bool(((s > eps) & (s < 1 - eps) & (u > eps) & (u < 1 - eps)).any())
 
 
+def hidden_seams(spec: dict, panels: dict | None = None) -> list:
+    """The specification's stitches between two panels that the 3D shape cannot show, in the
+    file's order: list of ((panel, edge), (panel, edge)). A seam (the stitches of one run along
+    two panels, linked where the edges next to a stitch are stitched to each other) hides when
+    each of its stitches lies flat (``_stitch_flat``): a rule on the seam's two panels alone, not
+    on what else either is sewn to."""
+    panels = panels_of_spec(spec) if panels is None else panels
+    pairs = [st for st in spec["pattern"].get("stitches", []) if len(st) == 2]
+    stitched = {_seam_key(st) for st in pairs}
+    flat, parent = {}, {}
+
+    def root(k):
+        while parent[k] != k:
+            parent[k] = parent[parent[k]]
+            k = parent[k]
+        return k
+
+    order = []
+    for st in pairs:
+        (pa, ka), (pb, kb) = (st[0]["panel"], st[0]["edge"]), (st[1]["panel"], st[1]["edge"])
+        if pa == pb or pa not in panels or pb not in panels:
+            continue
+        A, B = panels[pa], panels[pb]
+        ia = next((i for i, e in enumerate(A.edges) if e["key"] == (pa, ka)), None)
+        ib = next((i for i, e in enumerate(B.edges) if e["key"] == (pb, kb)), None)
+        if ia is None or ib is None:
+            continue
+        key = _seam_key(st)
+        flat[key], links = _stitch_flat(A, ia, B, ib, stitched)
+        parent.setdefault(key, key)
+        for other in links:
+            parent.setdefault(other, other)
+            parent[root(other)] = root(key)
+        order.append((key, ((pa, ka), (pb, kb))))
+    shown = {root(k) for k, ok in flat.items() if not ok}
+    shown |= {
+        root(k) for k in parent if k not in flat
+    }  # a seam going on into a stitch not between two panels
+    return [seam for key, seam in order if root(key) not in shown]
+
+
 def merge_invisible(spec: dict, pieces: dict | None = None) -> list:
-    """The pattern's pieces after merging every seam the 3D shape cannot show: list of Piece."""
-    pieces = dict(panels_of_spec(spec) if pieces is None else pieces)
-    owner = {n: n for n in pieces}  # panel name -> key of the piece holding it
-    changed = True
-    while changed:
-        changed = False
-        for st in spec["pattern"].get("stitches", []):
-            if len(st) != 2:
-                continue
-            (pa, ka), (pb, kb) = (st[0]["panel"], st[0]["edge"]), (st[1]["panel"], st[1]["edge"])
-            if pa not in owner or pb not in owner:
-                continue
-            A, B = pieces[owner[pa]], pieces[owner[pb]]
-            if A is B:
-                continue
-            ia = next((i for i, e in enumerate(A.edges) if e["key"] == (pa, ka)), None)
-            ib = next((i for i, e in enumerate(B.edges) if e["key"] == (pb, kb)), None)
-            if ia is None or ib is None:
-                continue
-            M = _glue(A, ia, B, ib)
-            if M is None:
-                continue
-            kA, kB = owner[pa], owner[pb]
-            del pieces[kB]
-            pieces[kA] = M
-            for n in M.names:
-                owner[n] = kA
-            changed = True
-    return list(pieces.values())
+    """The pattern's pieces after merging along every seam the 3D shape cannot show
+    (``hidden_seams``: a rule on each seam's two panels alone, so the same seam merges whatever
+    else either panel is sewn to), as far as the pieces lie flat without overlap: list of Piece.
+    A piece grows from its first panel in the file by one panel at a time, each time the glue
+    along a hidden seam that closes the most other hidden seams with it (the first in the file
+    among equals); a tube stays open along one seam."""
+    left = dict(panels_of_spec(spec) if pieces is None else pieces)
+    seams = hidden_seams(spec, left)
+    hidden = {frozenset(s) for s in seams}
+    out = []
+    while left:
+        piece = left.pop(next(iter(left)))
+        while True:
+            best, best_zips = None, -1
+            for seam in seams:
+                for (p_in, k_in), (p_new, k_new) in (seam, seam[::-1]):
+                    if p_in not in piece.names or p_new not in left:
+                        continue
+                    new = left[p_new]
+                    ia = next((i for i, e in enumerate(piece.edges) if e["key"] == (p_in, k_in)), None)
+                    ib = next(i for i, e in enumerate(new.edges) if e["key"] == (p_new, k_new))
+                    M = None if ia is None else _glue(piece, ia, new, ib, hidden)
+                    zips = -1 if M is None else (len(piece.edges) + len(new.edges) - 2 - len(M.edges)) // 2
+                    if zips > best_zips:
+                        best, best_zips = (M, p_new), zips
+            if best is None:
+                break
+            piece = best[0]
+            del left[best[1]]
+        out.append(piece)
+    return out
 
 
 # ------------------------------------------------------------------ turning function

@@ -32,6 +32,7 @@ MEASURES = (
     "back_flat",
     "flare",
     "hem_share",
+    "fit_ease",
 )
 #: Choices in the truth that the reading does not read (listed, not scored).
 NOT_READ = ("cuffs", "waistband")

@@ -11,7 +11,7 @@
     python -m benchmarks gcd judge-check           the judge on synthetic inputs (seconds)
     python -m benchmarks gcd panels --results R --cases DIR   per true piece, each fit stage; darts' floor
     python -m benchmarks gcd sew-probe CASE_DIR ['{"sew_contact_mu": 0.5}'] [--no-attach] [--no-guide]
-    python -m benchmarks gcd starts [--out DIR] [--drapes DIR] [--only ...] [--record]   the start, type read
+    python -m benchmarks gcd starts [--out DIR] [--drapes DIR] [--only ...] [--record] [--drafts]   the start
 
 ``build`` samples GarmentCode's designs (seed k sized to and draped on body k of manifest.json),
 drapes each with newton from the specification's own 3D placement and writes the case folders
@@ -154,6 +154,11 @@ def _add_starts_parser(sub) -> None:
     st.add_argument("--only", nargs="*", help="case ids (default: every case with a target)")
     st.add_argument(
         "--record", action="store_true", help="write the rows to benchmarks/results/gcd_starts.json"
+    )
+    st.add_argument(
+        "--drafts",
+        action="store_true",
+        help="no drapes: the design read first, drafted, judged against the true pattern",
     )
 
 

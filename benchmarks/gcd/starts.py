@@ -4,6 +4,10 @@ design read off the target, the designs drafted from it and the one chosen
 read type chosen as when meta.json names it. Only the base choice runs (each candidate dressed
 from scratch on its coarse mesh), not grading nor phase two.
 
+With ``--drafts`` no candidate is dressed: the design read first (the first candidate) is drafted
+for the case's body and judged against the true pattern (judge.py: panel error, turning
+distance), on every case with a target; the table ends with their medians.
+
 The target is chosen as in reading.py: newton's drape where the build accepted it, else the true
 pattern dressed by ``unsew drape`` (DRAPES/<case>.obj) stands in.
 """
@@ -139,10 +143,65 @@ def write_record(record: Path, rows: list[dict]) -> None:
     record.write_text(json.dumps(rec, indent=1) + "\n")
 
 
+def draft_row(d: Path, source: str, target: Path) -> dict:
+    """One case's row of ``--drafts``: the design read first, drafted for the case's body, judged
+    against the true pattern (panel error, turning distance, pieces after merging)."""
+    import judge
+    from unsew.body.measure import measure_body
+    from unsew.errors import InputError
+    from unsew.fit.config import FitConfig
+    from unsew.fit.designs import design_candidates, read_measures
+    from unsew.fit.start import with_garment_read
+    from unsew.io.garmentcode import pattern_to_dict
+    from unsew.pattern.design import draft
+
+    t = gt_reading.truth_of(d)
+    row = {"case": d.name, "target": source, "true type": t["type"]}
+    try:
+        case = with_garment_read(_case(d, target), FitConfig(), log=lambda s: None)
+        m = measure_body(case.body)
+        meas = read_measures(case.target_verts, case.target_faces, case.body.skeleton)
+        name, design = design_candidates(case.design, m, measures=meas)[0]
+    except InputError as exc:
+        return {**row, "design": f"refused: {str(exc).splitlines()[0][:120]}"}
+    cmp = judge.compare_patterns(
+        json.loads((d / "pattern_gt.json").read_text()), pattern_to_dict(draft(design, m))
+    )
+    row.update(design=name, panel_err=round(cmp["panel_err"], 3), turning=cmp["turning"])
+    row["pieces t/r"] = f"{cmp['panels_true']}/{cmp['panels_rec']}"
+    return row
+
+
+def cmd_drafts(args, case_ids: list[str]) -> int:
+    """Print ``--drafts``' rows (:func:`draft_row`) and the medians of their panel error and turning."""
+    from tables import print_table
+
+    root = Path(args.out)
+    drapes = Path(args.drapes) if args.drapes else None
+    rows = []
+    for cid in args.only or case_ids:
+        tgt = gt_reading.target_of(root, cid, drapes)
+        if tgt is None or not (root / cid / "truth.json").is_file():
+            continue
+        rows.append(draft_row(root / cid, gt_reading.SOURCES[tgt[0]], tgt[1]))
+        print(json.dumps(rows[-1]), flush=True)
+    print_table(rows, title=f"The design read first, drafted, against the true pattern ({root})", digits=3)
+    e = [r["panel_err"] for r in rows if r.get("panel_err") is not None]
+    tu = [r["turning"] for r in rows if r.get("turning") is not None]
+    if e:
+        print(
+            f"{len(e)} of {len(rows)} drafted: panel err median {np.median(e):.3f}, "
+            f"turning median {np.median(tu):.3f}"
+        )
+    return 0
+
+
 def cmd_starts(args, case_ids: list[str], record: Path) -> int:
     """Print one row per case (``args.only`` or all with a target); with ``args.record`` write
     the rows into ``record`` after each case (a case's row replaces its earlier one; each row
-    names the commit it was measured at)."""
+    names the commit it was measured at); with ``args.drafts`` :func:`cmd_drafts` instead."""
+    if getattr(args, "drafts", False):
+        return cmd_drafts(args, case_ids)
     from tables import print_table
 
     root = Path(args.out)

@@ -521,3 +521,27 @@ def test_over_body_guide_takes_the_seam_across_the_body_top_not_the_side_seam():
     assert np.allclose(to[:, 1], 1.41) and np.all(np.abs(to[:, 2]) < 0.01)
     # a torso 10 cm lower: the seam runs above it, nothing to guide
     assert len(build.over_body_guide(spec, mesh, x0, body_v - [0, 0.1, 0], body_f)[0]) == 0
+
+
+def test_top_drop_leaves_a_settled_hood_out_but_not_a_torso_that_slid():
+    """A torso panel with a hood above it: the hood alone coming 15 cm down onto the head is no
+    slide; the torso coming 15 cm down is one (its shoulders went with it)."""
+    build = _load("build")
+    spec = _spec(
+        {
+            "front": _panel([[0, 0], [30, 0], [30, 40], [0, 40]], t=(-15, 100, 20)),
+            "left_hood": _panel([[0, 0], [20, 0], [20, 30], [0, 30]], t=(-10, 145, 20)),
+        },
+        [],
+    )
+    mesh = build.mesh_spec(spec, "hooded", 0.05)
+    x0 = build.spec_placement(spec, mesh)
+    hood = np.array(["hood" in mesh.panel_names[p] for p in mesh.uv_panel])
+    x = np.zeros((mesh.n_x, 3))
+    x[mesh.x_of_u] = x0
+    settled = x.copy()
+    settled[mesh.x_of_u[hood], 1] -= 0.15
+    assert build.top_drop(settled, x0, mesh) == pytest.approx(0.0, abs=1e-9)
+    slid = x.copy()
+    slid[:, 1] -= 0.15
+    assert build.top_drop(slid, x0, mesh) == pytest.approx(0.15, abs=1e-9)

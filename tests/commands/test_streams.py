@@ -12,6 +12,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from unsew.fit.progress import Progress, is_terminal
@@ -132,10 +133,37 @@ def test_json_flags_print_json_alone(tmp_path):
     r = _unsew("body", "measure", tmp_path / "body.obj", "--json")
     assert r.returncode == 0, r.stderr
     assert json.loads(r.stdout)["units"] == "m" and "note:" in r.stderr
+    # `unsew body measure X.obj --json > m.json`, then `unsew pattern new --measurements m.json`
+    (tmp_path / "m.json").write_text(r.stdout)
+    sized = tmp_path / "sized.json"
+    r = _unsew("pattern", "new", "skirt", "--measurements", tmp_path / "m.json", "--out", sized)
+    assert r.returncode == 0 and sized.is_file(), r.stderr
+    _clean(r.stdout + r.stderr, "pattern new's output")
     pattern = tmp_path / "p.json"
     assert _unsew("pattern", "new", "tshirt", "--out", pattern).returncode == 0
     r = _unsew("pattern", "symmetry", pattern, "--json")
     assert r.returncode == 0 and json.loads(r.stdout)["units"] == "m"
+
+
+def test_eval_json_through_a_pipe_is_the_json_it_writes(tmp_path):
+    import trimesh
+
+    from unsew.io.mesh import write_obj
+
+    res, case = tmp_path / "result", tmp_path / "case"
+    res.mkdir()
+    case.mkdir()
+    box = trimesh.creation.box(extents=(0.4, 0.6, 0.2))
+    tube = np.asarray(box.faces)[np.abs(box.face_normals[:, 1]) < 0.5]  # open at the top and the hem
+    write_obj(res / "garment.obj", np.asarray(box.vertices), tube)
+    write_obj(case / "target.obj", np.asarray(box.vertices) + [0.0, 0.0, 0.004], tube)
+    (case / "meta.json").write_text(
+        json.dumps({"garment": "skirt", "body": "default", "units": "m", "up": "y", "front": "z"})
+    )
+    r = _unsew("eval", res, case, "--samples", "500", "--json")
+    assert r.returncode == 0, r.stderr
+    _clean(r.stdout + r.stderr, "eval's output")
+    assert json.loads(r.stdout) == json.loads((res / "eval.json").read_text())
 
 
 # ---------------------------------------------------------------- the fit, batch and demo, real

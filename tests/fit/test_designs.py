@@ -46,6 +46,24 @@ READINGS = {
 }
 
 
+def test_darts_decided_by_the_reading_are_drafted_where_the_space_cuts_them():
+    """A pencil skirt read as needing darts starts darted; a dress cut to the body starts as a bodice
+    with waist darts over a waistband and a skirt; a fitted top keeps a dartless start and tries
+    the darted one too; a reading without darts drafts none."""
+    from dataclasses import replace
+
+    pencil = replace(READINGS["skirt_near_edge"], darts=True)
+    first = design_candidates(pencil)[0][1]
+    assert (first.skirt, first.panels, first.darts) == ("pencil", 2, True)
+    assert any("dart" in st.label for st in draft(first).stitches)
+    dress = design_candidates(replace(READINGS["dress"], darts=True))[0][1]
+    assert (dress.waist_seam, dress.waistband, dress.darts) == (True, True, True)
+    top = [d for _, d in design_candidates(replace(READINGS["tshirt"], darts=True))]
+    assert not top[0].darts and any(d.darts for d in top[1:])
+    for kind in ("skirt_near_edge", "dress", "tshirt"):
+        assert not any(d.darts for _, d in design_candidates(READINGS[kind]))
+
+
 @pytest.mark.parametrize("kind", sorted(READINGS))
 def test_candidates_keep_what_was_read_and_draft(kind):
     r = READINGS[kind]
@@ -189,6 +207,18 @@ GRADED = {
     "skirt6": (
         dict(garment="skirt", skirt="circle", panels=6, waistband=True),
         dict(garment="skirt", skirt="circle", panels=6, waistband=True, length="midi"),
+    ),
+    "skirt_darts": (
+        dict(garment="skirt", skirt="pencil", darts=True, waistband=True),
+        dict(garment="skirt", skirt="pencil", darts=True, waistband=True, length="midi"),
+    ),
+    "pants_darts": (
+        dict(garment="pants", darts=True),
+        dict(garment="pants", darts=True, leg="knee"),
+    ),
+    "dress_band_darts": (
+        dict(garment="dress", waist_seam=True, waistband=True, darts=True, sleeves="none"),
+        dict(garment="dress", waist_seam=True, waistband=True, darts=True, sleeves="none", length="mini"),
     ),
 }
 

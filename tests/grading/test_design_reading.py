@@ -211,3 +211,25 @@ def test_a_drafted_design_placed_on_the_body_is_read_as_its_own_choices(design, 
     r = read_design(xs, mesh.faces, body.skeleton, body=body)
     assert r.garment == design["garment"], r.evidence
     assert {k: r.choices()[k] for k in expected} == expected, r.evidence
+
+
+def test_darts_are_decided_by_how_close_a_straight_skirt_follows_the_hips(skeleton):
+    """A straight tube skirt on the hips (as wide as the body there) takes waist darts; one hanging
+    15 % wider does not; a flared one never (its cone takes the waist in); without a body to
+    measure against nothing is decided."""
+    from unsew.grading.design_reading import _hip_girth
+
+    body = default_body()
+    hip = 0.5 * (skeleton.position("left_hip")[1] + skeleton.position("right_hip")[1])
+    knee = 0.5 * (skeleton.position("left_knee")[1] + skeleton.position("right_knee")[1])
+    girth = _hip_girth(skeleton, body)
+    fitted = read_design(*_tube(girth / (2 * np.pi), hip + 0.12, knee), skeleton, body=body)
+    loose = read_design(*_tube(1.15 * girth / (2 * np.pi), hip + 0.12, knee), skeleton, body=body)
+    assert (fitted.skirt, loose.skirt) == ("pencil", "pencil"), (fitted.evidence, loose.evidence)
+    assert fitted.darts is True and loose.darts is False, (fitted.evidence["darts"], loose.evidence["darts"])
+    assert fitted.choices()["darts"] is True
+    v, f = _tube(girth / (2 * np.pi), hip + 0.12, knee)
+    y = v[:, 1]
+    scale = 1.0 + np.clip((hip - y) / (hip - knee), 0.0, 1.0) * 1.2
+    assert read_design(v * np.c_[scale, np.ones_like(y), scale], f, skeleton, body=body).darts is False
+    assert read_design(*_tube(girth / (2 * np.pi), hip + 0.12, knee), skeleton).darts is None

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from unsew.body.rig import rig_skeleton
-from unsew.body.skeleton import Skeleton, distance_to_bone, load_skeleton
+from unsew.body.skeleton import Bone, Skeleton, distance_to_bone, load_skeleton
 from unsew.errors import InputError
 from unsew.geometry.topology import boundary_loops, unique_edges
 from unsew.io.mesh import UNIT_SCALE, frame_matrix, read_mesh
@@ -38,6 +38,9 @@ __all__ = ["Body", "default_body", "load_body", "clean_body_mesh", "check_body_p
 HEIGHT_RANGE = (1.0, 2.3)
 #: Holes whose boundary loop is shorter than this are filled by load_body [m]; longer ones refuse.
 MAX_HOLE_PERIMETER = 0.25
+#: How far toward a limb's root the trunk segment of ``_limb_root_links`` reaches (share of the
+#: way from the spine; docs/decisions/028-limb-root-links.md).
+LIMB_LINK_REACH = 0.5
 
 
 @dataclass
@@ -77,14 +80,16 @@ class Body:
         """Body part of every vertex, shape (V,) of str (values from ``skeleton.PARTS``).
 
         From the skinning weights when present (the part moved by the joint with the largest
-        weight), else from the nearest bone.
+        weight), else from the nearest bone, the trunk's bones joined, where collar joints lie
+        between the spine and a limb's root, by a segment from the spine toward that root
+        (``_limb_root_links``).
         """
         sk = self.skeleton
         if self.weights is not None:
             moved = np.array(sk.moved_part())
             return moved[np.argmax(self.weights, axis=1)]
 
-        bones = sk.bones()
+        bones = sk.bones() + _limb_root_links(sk)
         d = np.stack([distance_to_bone(self.verts, b) for b in bones], axis=1)  # (V, nbones)
         return np.array([b.part for b in bones])[np.argmin(d, axis=1)]
 
@@ -111,6 +116,34 @@ class Body:
         import trimesh
 
         return trimesh.Trimesh(self.verts, self.faces, process=False)
+
+
+def _limb_root_links(sk: Skeleton) -> list[Bone]:
+    """Torso segments standing for the side of the trunk where joints (collar joints) lie between
+    the spine and a limb's root: from the joint where the root's parent chain leaves the spine
+    (the root -> head path) ``LIMB_LINK_REACH`` of the way to the root (a shoulder or hip joint).
+
+    A clavicle chain (chest -> collar -> shoulder) runs along the top of the shoulder girdle and
+    leaves the side of the trunk below it nearer the upper arm than any trunk bone, so which side
+    of the chest is cut away as arm would move with where a rig puts its collar joints. Read from
+    the parent chain, not from joint labels; none where the root hangs from the spine itself.
+    Returns Bones with ``part`` "torso" and ``index`` -1."""
+    spine, k = set(), sk.index("head")
+    while k != -1:
+        spine.add(k)
+        k = int(sk.parents[k])
+    out = []
+    for side in ("left", "right"):
+        for root in ("shoulder", "hip"):
+            j = sk.index(f"{side}_{root}")
+            k = int(sk.parents[j])
+            while k != -1 and k not in spine:
+                k = int(sk.parents[k])
+            if k != -1 and k != int(sk.parents[j]):
+                a = sk.positions[k].copy()
+                b = a + LIMB_LINK_REACH * (sk.positions[j] - a)
+                out.append(Bone(f"{sk.names[k]}->{sk.names[j]}", sk.names[k], sk.names[j], a, b, "torso"))
+    return out
 
 
 # -- the embedded default body ---------------------------------------------------------------

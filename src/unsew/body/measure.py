@@ -54,6 +54,7 @@ __all__ = [
     "hull_perimeter",
     "arms_raised",
     "bust_point_girth",
+    "bust_reading",
     "upper_arm_cut",
     "RAISED_ARM_DEG",
     "RAISED_ARM_BUST",
@@ -82,7 +83,7 @@ HUMAN_WAIST = (0.40, 2.5)
 #: the same (within 0.002) with anny's own joints and with the rig's on anny's default, T-pose,
 #: stepping, small and tall heavy bodies, and with the rig's, limb-labelled or SMPL-style joints on
 #: GarmentCode's four bodies; the bust moves with the arms' joints (which faces are cut away as
-#: arms): up to 0.031 on GarmentCode's bodies, 0.075 on the tall heavy anny body
+#: arms): up to 0.029 on GarmentCode's bodies, 0.071 on the tall heavy anny body
 #: (``python -m benchmarks body_measure``; ``python -m benchmarks body_measure --anny``).
 RIG_CROSS_TOL = {"bust": 0.10, "waist": 0.05, "hip": 0.05}
 #: The joints each girth's reading depends on (its levels and the parts cut away).
@@ -145,6 +146,26 @@ def _bust(body, torso_face, sh_y: float) -> tuple[float, float]:
     return float(g.max()), float(ys[int(np.argmax(g))])
 
 
+def _cut_faces(F: np.ndarray, parts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(no_arm_face, torso_face): (F,) bool masks of the faces with no arm vertex, and with no
+    arm, leg or head vertex. F: (F, 3) int faces; parts: (V,) str (``Body.vertex_parts``)."""
+    no_arm_face = ~np.isin(parts, ["left_arm", "right_arm"])[F].any(axis=1)
+    torso_face = no_arm_face & ~np.isin(parts, ["left_leg", "right_leg", "head"])[F].any(axis=1)
+    return no_arm_face, torso_face
+
+
+def bust_reading(body, *, at: float | None = None) -> tuple[float, float]:
+    """(bust girth [m], its height [m, world y]) as ``measure_body`` reads them; with ``at``
+    [m], the girth of the torso's section at that height instead (arms cut away by the same
+    parts; also with raised arms, whose bust ``measure_body`` reads otherwise), to tell a bust
+    read at another level from one whose section is cut otherwise."""
+    _, torso_face = _cut_faces(body.faces, body.vertex_parts())
+    if at is not None:
+        return _horizontal_girth(body.verts, body.faces, torso_face, float(at)), float(at)
+    sk = body.skeleton
+    return _bust(body, torso_face, 0.5 * (sk.position("left_shoulder")[1] + sk.position("right_shoulder")[1]))
+
+
 def _crotch_y(V, sk) -> float:
     """Crotch height [m]: the lowest midline surface point of V (n, 3) [m] above the knees
     (halfway between knees and pelvis when there is none)."""
@@ -188,12 +209,7 @@ def measure_body(body) -> Measurements:
     floor = float(V[:, 1].min())
     height = float(V[:, 1].max() - floor)
     parts = body.vertex_parts()
-    is_arm = np.isin(parts, ["left_arm", "right_arm"])
-    is_head = parts == "head"
-    no_arm_face = ~is_arm[F].any(axis=1)
-    torso_face = (
-        no_arm_face & ~np.isin(parts, ["left_leg", "right_leg"])[F].any(axis=1) & ~is_head[F].any(axis=1)
-    )
+    no_arm_face, torso_face = _cut_faces(F, parts)
 
     pelvis, spine, chest, neck, head = (P(n) for n in ("pelvis", "spine", "chest", "neck", "head"))
     l_sh, r_sh = P("left_shoulder"), P("right_shoulder")

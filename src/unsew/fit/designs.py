@@ -4,7 +4,9 @@ design space (:mod:`unsew.pattern.design`) consistent with the design read off t
 
 The reading's choices are fixed: the type, the sleeves, the necklines, the hem's length (metres,
 from the hem's depth as a share of the leg) and the skirt's flare, turned into the cone's angle
-whose drape has that flare (an A-line's ``aline_flare``, a circle's ``circle_fraction``). The
+whose drape has that flare (an A-line's ``aline_flare``, a circle's ``circle_fraction``), and
+the waist darts the reading decided (a two-panel pencil skirt's; a dress cut to the body at the
+chest is drafted first as a bodice with waist darts over a waistband and a skirt). The
 alternatives are the choices the reading cannot see (a waistband, the number of gores, a dress in
 one piece or a bodice and a skirt, sleeves in two pieces, cuffs), the neighbouring sleeve classes
 and the neighbouring skirt style where the flare lies near a class's edge (:data:`FLARE_MARGIN`). At most
@@ -181,11 +183,14 @@ def _top_alternatives(first: Design, reading) -> list[Design]:
 
 
 def _tshirt(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
-    """The read sleeves and necklines, its hem where and as wide as the target's."""
+    """The read sleeves and necklines, its hem where and as wide as the target's; the same with
+    waist darts at the hem last, where the reading decided them (a top cut to the body: waist
+    darts alone did not bring a drafted top nearer a fitted true bodice, docs/decisions/030)."""
     first = Design(
         garment="tshirt", length=_top_length(meas, m), hem_girth=_hem_girth(meas, m), **_top_fields(reading)
     )
-    return first, _top_alternatives(first, reading)
+    darted = [first.replace(darts=True)] if reading.darts else []
+    return first, _top_alternatives(first, reading) + darted
 
 
 def _dress(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
@@ -200,40 +205,46 @@ def _dress(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
         _skirt_design(top.replace(waist_seam=True, panels=n), style, reading, m, length, hem) for n in (2, 4)
     ]
     fitted, straight = top.replace(fitted=True, hem_girth=hem), top.replace(fitted=False, hem_girth=hem)
+    banded = seamed[0].replace(waistband=True, darts=bool(reading.darts))
     ways = {
         "pencil": [straight, fitted, seamed[0]],
         "aline": [fitted, seamed[0], straight, seamed[1]],
         "circle": [seamed[0], seamed[1], fitted],
     }[style]
+    # a bodice that needs waist darts is cut at the waist, the darts ending in a band
+    ways = [banded, *ways] if reading.darts else [*ways[:2], banded, *ways[2:]]
     ways += [_skirt_design(top.replace(waist_seam=True), s, reading, m, length, hem) for s in near]
     return ways[0], ways[1:3] + _top_alternatives(ways[0], reading)[:1] + ways[3:]
 
 
 def _skirt_garment(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
-    """The read style and flare in two gores (a pencil's hem as wide as the target's), then under
-    a waistband, in more gores, and the neighbouring style."""
+    """The read style and flare in two gores (a pencil's hem as wide as the target's; a pencil
+    with waist darts where the reading decided them), then under a waistband, in more gores, and
+    the neighbouring style."""
     length = _hem_length(reading, m)
     hem = _hem_girth(meas, m)
     style, near = _skirt_style(reading)
-    base = Design(garment="skirt", length=length)
+    base = Design(garment="skirt", length=length, darts=bool(reading.darts) and style == "pencil")
     first = _skirt_design(base, style, reading, m, length, hem)
     more = 6 if style == "circle" else 4
+    plain = base.replace(darts=False)  # darts are cut in two panels only
     alts = [
         _skirt_design(base.replace(waistband=True), style, reading, m, length, hem),
-        _skirt_design(base.replace(panels=more), style, reading, m, length, hem),
+        _skirt_design(plain.replace(panels=more), style, reading, m, length, hem),
     ]
-    alts += [_skirt_design(base, s, reading, m, length, hem) for s in near]
-    alts.append(_skirt_design(base.replace(waistband=True, panels=more), style, reading, m, length, hem))
+    alts += [_skirt_design(plain, s, reading, m, length, hem) for s in near]
+    alts.append(_skirt_design(plain.replace(waistband=True, panels=more), style, reading, m, length, hem))
     return first, alts
 
 
 def _trousers(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
-    """Trousers of the read length, then under a waistband, then with flared legs; the legs keep
+    """Trousers of the read length (with back waist darts where the reading decided them: cut to
+    the hips), then under a waistband, then with flared legs; the legs keep
     their own hem, not the read openings' (docs/decisions/024-hems-read-off-the-target.md)."""
     length = _hem_length(reading, m)
     g = reading.garment
     leg = "shorts" if g == "shorts" else _LEG.get(reading.length, "full")
-    first = Design(garment=g, leg=leg, length=length)
+    first = Design(garment=g, leg=leg, length=length, darts=bool(reading.darts))
     return first, [first.replace(waistband=True), first.replace(hem_flare=0.05)]
 
 

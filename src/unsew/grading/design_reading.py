@@ -13,7 +13,13 @@ Only the target's openings, its cross-sections and the skeleton's joint position
 - the skirt's flare: the hem's length over the garment's girth at the hip joints (a cross-section
   of the mesh, :func:`trimesh.intersections.mesh_plane`);
 - the length: the hem's (or the leg openings') depth below the hip joints as a share of the leg
-  (hip joints to the floor under the ankles).
+  (hip joints to the floor under the ankles);
+- waist darts, which no mesh shows: decided from how close the cut follows the body
+  (:func:`_darts`): a bodice's girth at the chest line, a straight skirt's or trousers' at the
+  hip joints, over the body's there.
+
+Waistbands and cuffs are not read: no girth profile or rim measure tells them apart on the
+GarmentCode targets (docs/decisions/030-separate-pieces-and-darts.md).
 """
 
 from __future__ import annotations
@@ -24,6 +30,7 @@ import numpy as np
 
 from unsew.grading.garment_type import (
     GarmentReading,
+    _chest_y,
     _encloses,
     _limb_chains,
     _mid_y,
@@ -87,6 +94,9 @@ STRAP_BAND = (0.4, 1.2)
 LENGTH_EDGES = (0.33, 0.55)
 #: The floor lies under the ankle joints by this share of the hip-to-ankle height.
 ANKLE_HEIGHT = 0.09
+#: Waist darts: a bodice whose girth at the chest line, or a straight skirt's or trousers' at the
+#: hip joints, is at most this times the body's there is cut to the body and takes darts.
+FITTED_EASE = 1.06
 
 
 @dataclass(frozen=True)
@@ -97,6 +107,7 @@ class DesignReading:
     garment: the type (:data:`unsew.grading.garment_type.READ_TYPES`); sleeves: one of
     :data:`SLEEVE_CLASSES`; neck_front, neck_back: :data:`NECK_CLASSES`; collar:
     :data:`COLLAR_CLASSES`; skirt: :data:`SKIRT_CLASSES`; length: :data:`LENGTH_CLASSES`;
+    darts: whether the cut needs waist darts (decided, not seen: :func:`_darts`);
     evidence: {choice: the measure it was read from, in words}; numbers: {"sleeve_share",
     "hem_share", "flare", "front_deg", ...} the measures themselves (shares [-], angles [deg]).
     """
@@ -108,12 +119,13 @@ class DesignReading:
     collar: str | None = None
     skirt: str | None = None
     length: str | None = None
+    darts: bool | None = None
     evidence: dict = field(default_factory=dict)
     numbers: dict = field(default_factory=dict)
 
     def choices(self) -> dict:
-        """{choice: class or None} for sleeves, neck_front, neck_back, collar, skirt, length."""
-        keys = ("sleeves", "neck_front", "neck_back", "collar", "skirt", "length")
+        """{choice: class or None} for sleeves, neck_front, neck_back, collar, skirt, length, darts."""
+        keys = ("sleeves", "neck_front", "neck_back", "collar", "skirt", "length", "darts")
         return {k: getattr(self, k) for k in keys}
 
     def summary(self) -> str:
@@ -134,6 +146,7 @@ _WORDS = {
     "collar": lambda v: "no collar" if v == "none" else ("a hood" if v == "hood" else "a standing collar"),
     "skirt": lambda v: f"{v} skirt",
     "length": lambda v: "hem at the knee" if v == "knee" else f"hem {v.replace(' ', ' the ')}",
+    "darts": lambda v: "waist darts" if v else "no darts",
 }
 
 
@@ -355,6 +368,65 @@ def _skirt_and_length(v: np.ndarray, faces, loops, skeleton, reading: GarmentRea
     return out, nums, ev
 
 
+def _darts(v: np.ndarray, faces, skeleton, garment: str, skirt: str | None, body):
+    """(darts, the garment's girth over the body's, evidence) of a garment's cut: a bodice whose
+    girth at the chest line, or a straight (pencil) skirt's or trousers' at the hip joints, lies
+    within :data:`FITTED_EASE` of the body's there is cut to follow the body, and a flat panel
+    follows the body's narrowing to the waist only with darts; a looser cut hangs past it, and a
+    cone skirt takes the waist in by its flare. (None, nan, reason) without a body or a girth."""
+    if body is None:
+        return None, np.nan, "no body to measure the fit against"
+    if garment == "skirt" and skirt != "pencil":
+        return False, np.nan, f"a {skirt} skirt's cone takes in the waist"
+    if garment in ("tshirt", "dress", "jumpsuit"):
+        y, axis, where = _chest_y(skeleton), skeleton.position("spine"), "chest line"
+        ls, rs = skeleton.position("left_shoulder"), skeleton.position("right_shoulder")
+        reach = 0.5 * abs(ls[0] - rs[0])  # the sleeves and arms hang beyond the shoulder joints
+    else:
+        lh, rh = skeleton.position("left_hip"), skeleton.position("right_hip")
+        y, axis, where, reach = (
+            0.5 * (lh[1] + rh[1]),
+            0.5 * (lh + rh),
+            "hip joints",
+            1.25 * abs(lh[0] - rh[0]),
+        )
+    g = _torso_girth_at(v, faces, y, axis, reach)
+    b = _torso_girth_at(np.asarray(body.verts), np.asarray(body.faces), y, axis, reach)
+    if not (g > 0 and b > 0):
+        return None, np.nan, f"no girth at the {where}"
+    ease = g / b
+    ev = f"girth {g:.2f} m at the {where}, {ease:.2f} x the body's"
+    return bool(ease <= FITTED_EASE), ease, ev
+
+
+def _hull_perimeter(pts: np.ndarray) -> float:
+    """The perimeter [m] of the convex hull of points ``pts`` (k, 3) [m] seen from above (x, z):
+    a girth that folds and a jagged mesh edge do not lengthen; 0 for fewer than 3 points."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    if len(pts) < 3:
+        return 0.0
+    try:
+        return float(ConvexHull(pts[:, [0, 2]]).area)  # a 2D hull's "area" is its perimeter
+    except QhullError:  # points on a line
+        return 0.0
+
+
+def _torso_girth_at(v: np.ndarray, faces, y: float, axis: np.ndarray, reach: float) -> float:
+    """The garment's girth [m] round the torso at height y: the hull perimeter
+    (:func:`_hull_perimeter`) of its cross-section with the plane Y = y, the points within
+    ``reach`` [m] across (x) of the body's axis point ``axis`` (3,) [m] (sleeves and legs
+    beyond it left out); 0 where it does not reach that height."""
+    import trimesh
+
+    m = trimesh.Trimesh(v, faces, process=False)
+    seg = trimesh.intersections.mesh_plane(m, plane_normal=[0.0, 1.0, 0.0], plane_origin=[0.0, y, 0.0])
+    if not len(seg):
+        return 0.0
+    p = seg.reshape(-1, 3)
+    return _hull_perimeter(p[np.abs(p[:, 0] - axis[0]) < reach])
+
+
 def read_design(
     verts, faces, skeleton, *, contours=None, reading: GarmentReading | None = None, body=None
 ) -> DesignReading:
@@ -393,4 +465,7 @@ def read_design(
         got.update(o)
         nums.update(n)
         ev.update(e)
+    got["darts"], ease, ev["darts"] = _darts(v, f, skeleton, r.garment, got.get("skirt"), body)
+    if np.isfinite(ease):
+        nums["fit_ease"] = round(float(ease), 3)
     return DesignReading(r.garment, **got, evidence=ev, numbers=nums)

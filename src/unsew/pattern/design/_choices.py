@@ -34,6 +34,7 @@ CHOICES = {
     "skirt": ("aline", "pencil", "circle", "darted"),
     "panels": (2, 4, 6, 8),
     "waistband": (False, True),
+    "darts": (False, True),
     "leg": ("full", "knee", "shorts"),
 }
 #: Named hem positions a design's ``length`` may give (see :func:`unsew.pattern.design.length_to`).
@@ -85,8 +86,12 @@ class Design:
     aline_flare: float = 0.35
     #: skirts: number of panels (gores), even, 2-16; seams at the sides, half of them in front
     panels: int = 2
-    #: skirts and trousers: under a front and a back waistband
+    #: skirts and trousers: under a front and a back waistband; a dress cut at the waist
+    #: (``waist_seam``): a band between the bodice and the skirt
     waistband: bool = False
+    #: waist darts (V notches sewn shut): a top's front and back at the hem (for a hem at the
+    #: waist), a waist-seamed dress's bodice under a waistband, a two-panel pencil skirt's top
+    darts: bool = False
     #: trousers and jumpsuits: ``full``, ``knee`` or ``shorts`` (None: the garment's own, set at
     #: construction: ``shorts`` for shorts, else ``full``)
     leg: str | None = None
@@ -272,8 +277,10 @@ def design_name(d: Design) -> str:
         parts.append(f"{d.skirt}{frac}x{d.panels}")
     if d.garment in LEGGED:
         parts.append(d.leg)
-    if d.garment in ("skirt", "pants", "shorts") and d.waistband:
+    if (d.garment in ("skirt", "pants", "shorts") or (d.garment == "dress" and d.waist_seam)) and d.waistband:
         parts.append("band")
+    if d.darts:
+        parts.append("darts")
     if d.garment in TOPS:
         parts += _top_parts(d)
     return "-".join(parts + _measure_parts(d, parts))

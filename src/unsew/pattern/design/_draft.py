@@ -19,6 +19,8 @@ from unsew.pattern.base._frame import CLEARANCE, DEPTH_PER_GIRTH, BodyFrame, bod
 from unsew.pattern.base.tshirt import BUST_EASE, TopSpec, sleeveless_frame
 from unsew.pattern.base.tshirt import HIP_EASE as TEE_HIP_EASE
 from unsew.pattern.design._choices import LEGGED, LENGTHS, Design, design_name
+from unsew.pattern.design._darts import BODICE_DART, band_between, dart_edge, symmetric_darts
+from unsew.pattern.design._trouser_darts import dart_trousers
 from unsew.pattern.design._skirt import SkirtCut, skirt_panels
 from unsew.pattern.design._top import hem_cuts, sleeve_set, top_panels, top_stitches
 from unsew.pattern.measurements import Measurements
@@ -57,18 +59,33 @@ def _pattern(panels: dict, stitches: list) -> Pattern:
     return Pattern("", panels, stitches, properties={"units_in_meter": 100, "curvature_coords": "relative"})
 
 
-def _top(d: Design, m: Measurements, f: BodyFrame, spec: TopSpec, cuts=None) -> tuple[dict, list]:
+def _top(d: Design, m: Measurements, f: BodyFrame, spec: TopSpec, cuts=None, darts=None) -> tuple[dict, list]:
     """Front, back (cut to :func:`sleeveless_frame` without sleeves; their hem cut at ``cuts``
-    [m] and labelled ``waist`` when given) and sleeves of a top, and their stitches."""
+    [m] and labelled ``waist`` when given, or cut by the V notches ``darts``, :class:`Dart`s along
+    the hem from its right end) and sleeves of a top, and their stitches."""
     necklines = (d.neckline_front, d.neckline_back)
     front, back, k = top_panels(m, sleeveless_frame(f) if d.sleeves == "none" else f, spec, necklines)
-    pieces = 1
+    pieces, dart_st = 1, []
     if cuts is not None:
         front, back = hem_cuts(front, cuts, "waist"), hem_cuts(back, cuts, "waist")
         pieces = len(cuts) + 1
+    elif darts:
+        front, st_f, _ = dart_edge(front, 0, darts, "hem")
+        back, st_b, _ = dart_edge(back, 0, darts, "hem")
+        pieces, dart_st = 1 + 3 * len(darts), st_f + st_b
     arms, arm_st = sleeve_set(m, f, front, back, k, hem_pieces=pieces, design=d)
     panels = {p.name: p for p in (front, back, *arms)}
-    return panels, top_stitches(front, back, k, pieces) + arm_st
+    return panels, top_stitches(front, back, k, pieces) + arm_st + dart_st
+
+
+def _bodice_darts(m: Measurements, f: BodyFrame, w_hem: float, hem_y: float) -> tuple[float, list]:
+    """(the hem's cut half width [m], the hem's darts) of a front or back whose sewn hem is
+    ``2 w_hem`` [m] wide at height ``hem_y`` [m]: two darts take :data:`BODICE_DART`'s share of
+    the bust's half width beyond the hem's, the rest left to the side seams."""
+    share, at, depth = BODICE_DART
+    dw = share * max((m.bust + BUST_EASE) / 4 - w_hem, 0.0)
+    darts = symmetric_darts(w_hem + dw, dw, depth * max(f.armpit_y - hem_y, 0.0), at)
+    return (w_hem + dw if darts else w_hem), darts
 
 
 def _tshirt(d: Design, m: Measurements) -> Pattern:
@@ -77,8 +94,11 @@ def _tshirt(d: Design, m: Measurements) -> Pattern:
     w_hem = (
         max((m.hip + TEE_HIP_EASE) / 4, (m.bust + BUST_EASE) / 4) if d.hem_girth is None else d.hem_girth / 4
     )
+    darts = None
+    if d.darts:
+        w_hem, darts = _bodice_darts(m, f, w_hem, hem_y)
     spec = TopSpec(lower=((w_hem, 0.0),), lower_curves=(None,), hem_y=hem_y)
-    return _pattern(*_top(d, m, f, spec))
+    return _pattern(*_top(d, m, f, spec, darts=darts))
 
 
 def _one_piece_dress(d: Design, m: Measurements) -> Pattern:
@@ -135,11 +155,14 @@ def _skirt_cut(d: Design, m: Measurements, f: BodyFrame, top: float, hip: float,
         axes=(ax, f.hip_z),
         band=d.waistband,
         hem=d.hem_girth if d.skirt == "pencil" else None,
+        darts=d.darts,
     )
 
 
 def _skirt_garment(d: Design, m: Measurements) -> Pattern:
     if d.skirt == "darted":
+        if d.darts:
+            raise InputError("the darted skirt has its own darts; leave darts unset")
         if d.panels != 2 or not d.waistband:
             raise InputError("a darted skirt has 2 panels under a waistband; set panels=2, waistband=True")
         if d.length is not None:
@@ -153,20 +176,31 @@ def _skirt_garment(d: Design, m: Measurements) -> Pattern:
 
 def _seamed_dress(d: Design, m: Measurements) -> Pattern:
     """A bodice from the natural waist to the neck and a skirt of ``d.panels`` gores, the bodice's
-    waist cut in one piece per gore and sewn to the gores' tops."""
+    waist cut in one piece per gore and sewn to the gores' tops; under a waistband
+    (``d.waistband``) the bodice ends BAND_HEIGHT above the waist, the band between them, and the
+    bodice may take waist darts (``d.darts``)."""
     if d.skirt == "darted":
         raise InputError("a dress's skirt is aline, pencil or circle; darted skirts stand alone")
+    if d.darts and not d.waistband:
+        raise InputError("a waist-seamed dress takes bodice darts under a waistband; set waistband=True")
     f = body_frame(m)
     waist_w = (m.waist + _dress.WAIST_EASE) / 4
-    spec = TopSpec(lower=((waist_w, 0.0),), lower_curves=(None,), hem_y=f.waist_y)
     half = d.panels // 2
-    cuts = [-waist_w + 2 * waist_w * j / half for j in range(1, half)]
-    panels, st = _top(d, m, f, spec, cuts)
     length = d.length if d.length is not None else f.waist_y - _dress.HEM_HEIGHT * m.height / 1.70
     cut = _skirt_cut(
-        replace(d, length=length, waistband=False), m, f, 4 * waist_w, m.hip + _dress.HIP_EASE, 0.0
+        replace(d, length=length, waistband=False, darts=False),
+        m,
+        f,
+        4 * waist_w,
+        m.hip + _dress.HIP_EASE,
+        0.0,
     )
     gores, gore_st, tops = skirt_panels(cut, prefix="skirt_", depth_z=f.hip_z)
+    if d.waistband:
+        return _banded_dress(d, m, f, waist_w, (gores, gore_st, tops))
+    spec = TopSpec(lower=((waist_w, 0.0),), lower_curves=(None,), hem_y=f.waist_y)
+    cuts = [-waist_w + 2 * waist_w * j / half for j in range(1, half)]
+    panels, st = _top(d, m, f, spec, cuts)
     panels.update(gores)
     st += gore_st
     for side, gs in (("front", tops[:half]), ("back", tops[half:])):
@@ -175,7 +209,38 @@ def _seamed_dress(d: Design, m: Measurements) -> Pattern:
     return _pattern(panels, st)
 
 
+def _banded_dress(d: Design, m: Measurements, f: BodyFrame, waist_w: float, skirt) -> Pattern:
+    """A waist-seamed dress's bodice ending BAND_HEIGHT above the waist, over a front and a back
+    band sewn to it and to the gores' tops (``skirt``: :func:`skirt_panels`' gores, stitches
+    and tops), the bodice's hem darted when ``d.darts``."""
+    from unsew.pattern.curves import edge_length
+
+    gores, gore_st, tops = skirt
+    half = d.panels // 2
+    hem_y = f.waist_y + BAND_HEIGHT
+    w_hem, darts = _bodice_darts(m, f, waist_w, hem_y) if d.darts else (waist_w, [])
+    spec = TopSpec(lower=((w_hem, 0.0),), lower_curves=(None,), hem_y=hem_y)
+    panels, st = _top(d, m, f, spec, darts=darts)
+    panels.update(gores)
+    st += gore_st
+    above, below = {}, {}
+    for side, gs in (("front", tops[:half]), ("back", tops[half:])):
+        below[side] = [(g, e, edge_length(gores[g], e)) for g, e in gs]
+        hem = [
+            j for j, e in enumerate(panels[side].edges) if e.label.startswith("hem") and "dart" not in e.label
+        ]
+        above[side] = [(side, j, edge_length(panels[side], j)) for j in hem]
+        # the band is as wide as the gores' tops; the bodice's sewn hem meets it to rounding
+        scale = sum(p[2] for p in below[side]) / sum(p[2] for p in above[side])
+        above[side] = [(pn, e, ln * scale) for pn, e, ln in above[side]]
+    bands, band_st = band_between(below, above, bottom_y=f.waist_y, height=BAND_HEIGHT, depth_z=f.hip_z)
+    panels.update(bands)
+    return _pattern(panels, st + band_st)
+
+
 def _dress_garment(d: Design, m: Measurements) -> Pattern:
+    if d.darts and not d.waist_seam:
+        raise InputError("a one-piece dress takes no waist darts; darts need waist_seam=True")
     return _seamed_dress(d, m) if d.waist_seam else _one_piece_dress(d, m)
 
 
@@ -204,12 +269,15 @@ def _legs_cut(d: Design, m: Measurements) -> tuple[float, float]:
 
 def _trousers(d: Design, m: Measurements) -> Pattern:
     hem_y, half = _legs_cut(d, m)
-    return _pants._legs(m, hem_y, half, "", band=d.waistband)
+    p = _pants._legs(m, hem_y, half, "", band=d.waistband)
+    return dart_trousers(p, m, band=d.waistband) if d.darts else p
 
 
 def _jumpsuit(d: Design, m: Measurements) -> Pattern:
     """A bodice and trousers sewn at the natural waist: the bodice's waist cut at the centre,
     each half sewn to a leg panel's waist (as the library's trouser waistbands are)."""
+    if d.darts:
+        raise InputError("the design space's jumpsuits take no darts")
     f = body_frame(m)
     hem_y, half = _legs_cut(d, m)
     legs = _pants._legs(m, hem_y, half, "", band=False)

@@ -24,6 +24,8 @@ import numpy as np
 from unsew.pattern.base._band import BAND_HEIGHT, band_panels, band_stitches
 from unsew.pattern.base._build import loop_panel, place, stitch
 from unsew.pattern.base.skirt import _panel
+from unsew.pattern.design._darts import SKIRT_DART, dart_edge, symmetric_darts
+from unsew.errors import InputError
 from unsew.pattern.curves import edge_length, sample_edge
 from unsew.pattern.model import Panel, Stitch
 
@@ -45,6 +47,7 @@ class SkirtCut:
     axes: tuple  #: (x, z) half axes [m] of the ellipse the gores are laid on
     band: bool  #: under a waistband (the band's lower edge meets the gores' tops)
     hem: float | None = None  #: pencil: the hem's girth [m] (None: the hips')
+    darts: bool = False  #: two-panel pencil: two waist darts per panel (:data:`SKIRT_DART`)
 
 
 def gore_angles(n: int) -> np.ndarray:
@@ -52,22 +55,32 @@ def gore_angles(n: int) -> np.ndarray:
     return np.radians(-90.0 + 360.0 * (np.arange(n) + 0.5) / n)
 
 
-def _gore(cut: SkirtCut, name: str) -> tuple[Panel, tuple, list, int]:
+def _gore(cut: SkirtCut, name: str) -> tuple[Panel, tuple, list, int, list]:
     """One gore in its own frame, the panel point (2,) [m] that sits at the skirt's top on the
-    body, its side seams ``[(right edge, left edge, kind)]`` and its top edge."""
+    body, its side seams ``[(right edge, left edge, kind)]``, its top edge (the first of its
+    top's pieces when darted) and its darts' stitches."""
     n = cut.panels
     if cut.style == "pencil":
         h, t, L, d = cut.hip / (2 * n), cut.top / (2 * n), cut.length, cut.hip_depth
         e = h if cut.hem is None else cut.hem / (2 * n)  # the hem's half width [m]
-        v = np.array([(-e, 0.0), (e, 0.0), (h, L - d), (t, L), (-t, L), (-h, L - d)])
+        share, at, depth = SKIRT_DART
+        dw = share * (h - t) if cut.darts else 0.0  # a dart's width [m], one per half panel
+        darts = symmetric_darts(t + dw, dw, depth * d, at) if cut.darts else []
+        tc = t + dw if darts else t  # the top's corner, the darts' cloth included [m]
+        v = np.array([(-e, 0.0), (e, 0.0), (h, L - d), (tc, L), (-tc, L), (-h, L - d)])
         labels = ["hem", "right_side", "right_hip", "waist", "left_hip", "left_side"]
-        return loop_panel(name, v, None, labels), (0.0, L), [(1, 5, "side"), (2, 4, "hip")], 3
+        p = loop_panel(name, v, None, labels)
+        if not darts:
+            return p, (0.0, L), [(1, 5, "side"), (2, 4, "hip")], 3, []
+        p, st, _ = dart_edge(p, 3, darts, "waist")
+        k = 3 * len(darts)
+        return p, (0.0, L), [(1, 5 + k, "side"), (2, 4 + k, "hip")], 3, st
     r_w = cut.top / cut.theta
     r_h = r_w + cut.length
     p = _panel(name, r_w, r_h, cut.theta / (2 * n))
     # the waist arc's lowest point at the waist; under a band its mean height at the band's edge
     local = (0.0, float(sample_edge(p, 2, 64)[:, 1].mean())) if cut.band else (0.0, r_h - r_w)
-    return p, local, [(1, 3, "side")], 2
+    return p, local, [(1, 3, "side")], 2, []
 
 
 def _cos_sin(phi: float) -> tuple[float, float]:
@@ -100,8 +113,11 @@ def skirt_panels(cut: SkirtCut, *, prefix: str = "", depth_z: float) -> tuple[di
     ax, az = cut.axes
     panels, tops, st = {}, [], []
     seams: list = []
+    if cut.darts and (cut.style != "pencil" or n != 2):
+        raise InputError("waist darts are cut in a two-panel pencil skirt; set skirt='pencil', panels=2")
     for name, phi in zip(_names(n, prefix), gore_angles(n)):
-        p, local, seams, top = _gore(cut, name)
+        p, local, seams, top, dart_st = _gore(cut, name)
+        st += dart_st
         c, s = _cos_sin(phi)
         r = 1.0 / np.hypot(s / ax, c / az)  # the ellipse's radius at phi [m]
         R = np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])  # +Z turned to (s, 0, c)
@@ -112,7 +128,11 @@ def skirt_panels(cut: SkirtCut, *, prefix: str = "", depth_z: float) -> tuple[di
     for k in range(n):
         for right, left, kind in seams:
             st.append(stitch(names[k], right, names[(k + 1) % n], left, _seam_label(k, n, kind, prefix)))
-    if cut.band:
+    if cut.band and cut.darts:
+        bands, band_st = _darted_band(cut, panels, depth_z)
+        panels.update(bands)
+        st += band_st
+    elif cut.band:
         bands, band_st = _band(cut, panels, tops, depth_z)
         panels.update(bands)
         st += band_st
@@ -132,3 +152,19 @@ def _band(cut: SkirtCut, panels: dict, tops: list, depth_z: float):
         for j, (g, e) in enumerate(gores):
             st.append(stitch(band.name, j, g, e, f"{side}_waist" + (f"_{j}" if half > 1 else "")))
     return {bf.name: bf, bb.name: bb}, st + band_stitches(pieces=half)
+
+
+def _darted_band(cut: SkirtCut, panels: dict, depth_z: float):
+    """Front and back waistbands over a darted two-panel pencil skirt, their lower edges cut in
+    three to meet the three pieces of each panel's top (right of the darts, between them, left)."""
+    names = list(panels)
+    p = panels[names[0]]
+    pieces = [3, 6, 9]  # the top's pieces, from the panel's right (+x) to its left
+    lengths = [edge_length(p, e) for e in pieces]
+    t = 0.5 * sum(lengths)
+    bf, bb = band_panels(t, cut.top_y + BAND_HEIGHT, depth_z, cuts=[-t + lengths[2], t - lengths[0]])
+    st = []
+    for band, pn in ((bf, names[0]), (bb, names[1])):
+        # the band's lower pieces left to right (+x) against the panel's top pieces (-x)
+        st += [stitch(band.name, k, pn, e, f"{pn}_waist_{k}") for k, e in enumerate(pieces[::-1])]
+    return {bf.name: bf, bb.name: bb}, st + band_stitches(pieces=3)
