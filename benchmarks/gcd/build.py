@@ -183,8 +183,27 @@ def read_body(folder: Path):
 # ---------------------------------------------------------------- designs
 
 
+def canonical_order(spec_path: Path) -> None:
+    """Rewrite a GarmentCode specification with its panels sorted by name and its stitches sorted.
+
+    GarmentCode builds a design's panels and stitches by walking ``set``s of its components
+    (``BaseComponent._get_subcomponents``), hashed by object identity, so their order in the file
+    changes from run to run (memory addresses) while their content is the same. Sorted, the file
+    depends on the seed alone. ``panel_order`` (GarmentCode's own, by position) is kept.
+    """
+    spec = json.loads(spec_path.read_text())
+    pattern = spec["pattern"]
+    pattern["panels"] = dict(sorted(pattern["panels"].items()))
+    pattern["stitches"] = sorted(
+        pattern["stitches"], key=lambda st: json.dumps([json.dumps(s, sort_keys=True) for s in st])
+    )
+    spec_path.write_text(json.dumps(spec, indent=2))
+
+
 def sample_seed(seed: int, count: int, body_dir: Path, out: Path) -> Path:
-    """Run GarmentCode's sampler for one seed into ``out/_designs/s{seed}`` (skipped when done)."""
+    """Run GarmentCode's sampler for one seed into ``out/_designs/s{seed}`` (skipped when done);
+    each specification rewritten in a canonical order (``canonical_order``), with the sampler's
+    string hashing fixed (``PYTHONHASHSEED=0``), so that the seed alone decides the files."""
     d = out / "_designs" / f"s{seed}"
     done = d / "sampled.json"
     if done.is_file() and json.loads(done.read_text()).get("count") == count:
@@ -208,9 +227,12 @@ def sample_seed(seed: int, count: int, body_dir: Path, out: Path) -> Path:
         capture_output=True,
         text=True,
         check=False,
+        env=dict(os.environ, PYTHONHASHSEED="0"),
     )
     if r.returncode:
         raise RuntimeError(f"sample_designs.py failed: {(r.stderr.strip().splitlines() or [''])[-1]}")
+    for spec_path in sorted(d.glob("*/*_specification.json")):
+        canonical_order(spec_path)
     lines = [json.loads(ln) for ln in r.stdout.splitlines() if ln.startswith("{")]
     done.write_text(
         json.dumps({"count": count, "seconds": round(time.time() - t0, 1), "log": lines}, indent=1)
@@ -261,9 +283,10 @@ def bend_around_body(x: np.ndarray, mesh, spec: dict, body_v: np.ndarray) -> np.
     x: (Nu, 3) [m] -> (Nu, 3) [m]."""
     cx, cz = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max()), 0.5 * (body_v[:, 2].min() + body_v[:, 2].max())
     out = x.copy()
+    beside = beside_torso(x, mesh, body_v)
     for i, name in enumerate(mesh.panel_names):
         n = spec_rotation(spec["pattern"]["panels"][name].get("rotation", [0, 0, 0]))[:, 2]
-        if abs(n[2]) < np.cos(np.radians(30.0)):
+        if abs(n[2]) < np.cos(np.radians(30.0)) or beside[i]:
             continue
         a, b = int(mesh.panel_offsets[i]), int(mesh.panel_offsets[i + 1])
         p = x[a:b]
@@ -294,6 +317,24 @@ def torso_sections(body_v: np.ndarray, band=0.015, gap=0.02, step=0.02):
     return tuple(np.array(c) for c in zip(*rows))
 
 
+def beside_torso(x: np.ndarray, mesh, body_v: np.ndarray, gap=0.08) -> np.ndarray:
+    """Per panel (P,) bool: a piece of a sleeve or cuff, which the specification places around the
+    arm: its centre (the mean of its vertices x (Nu, 3) [m]) above the crotch and all of it to one
+    side of the body's axis (bounding-box centre x), its nearest vertex more than ``gap`` [m] from
+    it (a torso's, skirt's or waistband's panel reaches the centre front or back). Bent or wrapped
+    around the torso's axis, such a piece is carried past the body's side to its far side (a
+    sleeve's front half behind the arm)."""
+    y0 = _crotch_height(body_v)
+    cx = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max())
+    out = np.zeros(len(mesh.panel_names), bool)
+    for i in range(len(mesh.panel_names)):
+        p = x[int(mesh.panel_offsets[i]) : int(mesh.panel_offsets[i + 1])]
+        side = np.sign(p[:, 0] - cx)
+        near = np.abs(p[:, 0] - cx).min()
+        out[i] = p[:, 1].mean() > y0 and abs(side.sum()) == len(p) and near > gap
+    return out
+
+
 def _crotch_height(body_v: np.ndarray, half=0.01) -> float:
     """The highest height [m] below the body's middle where no body vertex lies within ``half``
     [m] of its axis (between the legs)."""
@@ -317,19 +358,22 @@ def _ellipse_at(a: float, b: float, s: float, n=721) -> tuple[float, float]:
 def wrap_on_torso(x: np.ndarray, mesh, spec: dict, body_v: np.ndarray, clearance=0.03, blend=0.1):
     """The start x (Nu, 3) [m] with each front or back panel (as :func:`bend_around_body` picks
     them) wrapped on the torso: a vertex at ``s = x - cx`` across its panel goes to arc length s
-    from the front (back) centre of the ellipse of the torso's section at its height (half width
-    and half depth plus ``clearance`` [m]); heights kept. Below the crotch the start is kept, and
+    from the front (back: the specification's side, :func:`_front_back`) centre of the ellipse of
+    the torso's section at its height (half width and half depth plus ``clearance`` [m]); heights
+    kept; the pieces :func:`beside_torso` finds are left as they are. Below the crotch the start is kept, and
     over ``blend`` [m] above it the two are mixed linearly, so legs stay as they are."""
     Y, HW, ZF, ZB = torso_sections(body_v)
     y0 = _crotch_height(body_v)
     cx = 0.5 * (body_v[:, 0].min() + body_v[:, 0].max())
     out = x.copy()
+    beside = beside_torso(x, mesh, body_v)
+    sides = _front_back(mesh, spec, body_v)
     for i, name in enumerate(mesh.panel_names):
         n = spec_rotation(spec["pattern"]["panels"][name].get("rotation", [0, 0, 0]))[:, 2]
-        if abs(n[2]) < np.cos(np.radians(30.0)):
+        if abs(n[2]) < np.cos(np.radians(30.0)) or beside[i]:
             continue
         a_, b_ = int(mesh.panel_offsets[i]), int(mesh.panel_offsets[i + 1])
-        side = 1.0 if np.mean(x[a_:b_, 2]) > np.median(body_v[:, 2]) else -1.0
+        side = float(sides[a_])
         for k in range(a_, b_):
             y = x[k, 1]
             w = float(np.clip((y - y0) / blend, 0.0, 1.0))
@@ -399,9 +443,12 @@ def attachment(spec: dict, mesh, x0: np.ndarray) -> tuple[np.ndarray, np.ndarray
     return idx, (ysum / np.maximum(cnt, 1.0))[xu[idx]]
 
 
-def _front_back(mesh, spec: dict, x0: np.ndarray, body_v: np.ndarray) -> np.ndarray:
+def _front_back(mesh, spec: dict, body_v: np.ndarray) -> np.ndarray:
     """Per uv vertex (Nu,) int: +1 on a front panel, -1 on a back panel (normal within 30 degrees
-    of the Z axis, the side its start x0 (Nu, 3) [m] lies on from the body's median z), 0 else."""
+    of the Z axis, the side of the body's median z the specification places it on), 0 else. (The
+    side is the specification's, not the bent start's: a panel wider than half the body's girth
+    bent around it has most of its area past the body's sides.)"""
+    x0 = spec_placement(spec, mesh)
     side = np.zeros(len(x0), np.int64)
     for i, name in enumerate(mesh.panel_names):
         n = spec_rotation(spec["pattern"]["panels"][name].get("rotation", [0, 0, 0]))[:, 2]
@@ -425,7 +472,7 @@ def over_body_guide(
 
     none = np.zeros(0, np.int64), np.zeros((0, 3))
     sp = np.asarray(mesh.seam_pairs, np.int64).reshape(-1, 2)
-    side = _front_back(mesh, spec, x0, body_v)
+    side = _front_back(mesh, spec, body_v)
     sp = sp[side[sp[:, 0]] * side[sp[:, 1]] < 0]
     mid = 0.5 * (x0[sp[:, 0]] + x0[sp[:, 1]])
     tm = trimesh.Trimesh(body_v, body_f, process=False)
@@ -537,6 +584,7 @@ def build_case(
     rec["spec_inside_fraction"] = round(float(checks.inside_mask(x_spec, body_v, body_f).mean()), 4)
     rec["start_inside_fraction"] = round(float(checks.inside_mask(x0, body_v, body_f).mean()), 4)
     rec["vertices"] = int(mesh.n_x)
+    rec["arm_pieces"], rec["panels_bent_past_side"] = _start_counts(x_spec, mesh, src.spec, body_v)
     _log(
         f"{cid}: {src.truth['type']}, {src.truth['panels']} panels, {mesh.n_x} vertices, "
         f"{rec['spec_inside_fraction']:.1%} of the spec's placement and "
@@ -564,6 +612,21 @@ def build_case(
         rec["reason"] = "; ".join(fails)
     _log(f"{cid}: {rec['status']} in {rec['seconds']:.0f} s" + (f" ({rec['reason']})" if fails else ""))
     return rec
+
+
+def _start_counts(x_spec: np.ndarray, mesh, spec: dict, body_v: np.ndarray) -> tuple[int, int]:
+    """(panels :func:`beside_torso` keeps as placed, front or back panels whose bend around the
+    body leaves most of them on the other side of it): designs with neither start as they did
+    before either rule (docs/decisions/031). x_spec: (Nu, 3) [m], the specification's placement."""
+    side = _front_back(mesh, spec, body_v)
+    bent = bend_around_body(x_spec, mesh, spec, body_v)
+    med = np.median(body_v[:, 2])
+    past = 0
+    for i in range(len(mesh.panel_names)):
+        a, b = int(mesh.panel_offsets[i]), int(mesh.panel_offsets[i + 1])
+        past += int(side[a] != 0 and side[a] * (np.mean(bent[a:b, 2]) - med) < 0)
+    fb = side[np.asarray(mesh.panel_offsets[:-1], np.int64)] != 0
+    return int((beside_torso(x_spec, mesh, body_v) & fb).sum()), past
 
 
 class _Design:
