@@ -617,7 +617,7 @@ def build_case(
 def _start_counts(x_spec: np.ndarray, mesh, spec: dict, body_v: np.ndarray) -> tuple[int, int]:
     """(panels :func:`beside_torso` keeps as placed, front or back panels whose bend around the
     body leaves most of them on the other side of it): designs with neither start as they did
-    before either rule (docs/decisions/031). x_spec: (Nu, 3) [m], the specification's placement."""
+    before either rule (docs/decisions/032). x_spec: (Nu, 3) [m], the specification's placement."""
     side = _front_back(mesh, spec, body_v)
     bent = bend_around_body(x_spec, mesh, spec, body_v)
     med = np.median(body_v[:, 2])
