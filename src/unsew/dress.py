@@ -8,6 +8,7 @@ the fit and the benchmarks all call :func:`dress`.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from dataclasses import dataclass, field
 from typing import Callable
@@ -22,6 +23,7 @@ from unsew.sim.checks import check_dressed
 from unsew.sim.drape import Cloth, DrapeSettings, drape, merge_sewn, sew
 from unsew.sim.material import Material, get_material
 from unsew.sim.model import SimModel
+from unsew.sim.seam_guide import through_pairs
 from unsew.sim.state import SimState
 
 __all__ = ["Dressed", "dress", "settle", "DRESS_SETTINGS", "resolve_material", "hold_vertices", "dress_stats"]
@@ -153,7 +155,9 @@ def dress(
         ``seam_gap`` [m] (largest distance between two unsewn copies of a seam vertex after
         sewing, before they are merged), ``max_speed`` [m/s] at the end of settling and
         ``start_height`` [m] the mean height of the placed garment's vertices (the drop check
-        of :func:`unsew.sim.checks.check_dressed`).
+        of :func:`unsew.sim.checks.check_dressed`), ``guided_seams`` (seam pairs sewn round the
+        body, :mod:`unsew.sim.seam_guide`) and, where that drape was unsound and sewing them
+        straight gave a sounder one, ``guide_dropped`` (that count; the straight drape returned).
     """
     mat = resolve_material(material)
     if mesh is None:
@@ -165,6 +169,23 @@ def dress(
 
     cloth = Cloth(uv, g, mat.density, friction=mat.friction)
     job = _Job(pattern, body, sdf, mesh, mat, cloth, settings, progress)
+    d = _dress_retried(job)
+    if d.stats["guided_seams"] and _unsound(d, body):
+        # a seam sewn round the body can also pull cloth where it should not (a short sleeve's
+        # seam round the arm): dress again sewing straight, and keep the sounder of the two
+        plain = _dress_retried(
+            dataclasses.replace(job, settings=dataclasses.replace(settings, seam_guide=False))
+        )
+        if _sounder(plain, d, body):
+            plain.stats["guide_dropped"] = d.stats["guided_seams"]
+            return plain
+    return d
+
+
+def _dress_retried(job: _Job) -> Dressed:
+    """:func:`_dress_once`, and once more with the seam copies started at their midpoint when the
+    first drape is unsound and the placement had left them apart."""
+    body = job.body
     d = _dress_once(job, force_meet=False)
     if not d.stats["met_seams"]:
         fault = _sewing_fault(d, body)
@@ -179,6 +200,20 @@ def dress(
                 retry.stats["placement_retry"] = fault
                 return retry
     return d
+
+
+def _unsound(d: Dressed, body) -> bool:
+    """A drape that fails its checks or keeps an edge over SETTLED_STRETCH."""
+    return not check_dressed(d, body=body).ok or _stretch_max(d.x, d.mesh) > SETTLED_STRETCH
+
+
+def _sounder(a: Dressed, b: Dressed, body) -> bool:
+    """Whether drape ``a`` is sounder than ``b``: it passes its checks where ``b`` fails, or both
+    alike and its largest edge stretch is lower."""
+    ok_a, ok_b = check_dressed(a, body=body).ok, check_dressed(b, body=body).ok
+    if ok_a != ok_b:
+        return ok_a
+    return _stretch_max(a.x, a.mesh) < _stretch_max(b.x, b.mesh)
 
 
 def settle(
@@ -271,6 +306,16 @@ class _Job:
     progress: Callable[[str, int, int], None] | None
 
 
+def _guided_seams(job: _Job, x_unsewn) -> int:
+    """How many seam pairs the sewing leads round the body (0 without ``settings.seam_guide``)."""
+    if not job.settings.seam_guide or not len(job.mesh.seam_pairs):
+        return 0
+    x = x_unsewn if torch.is_tensor(x_unsewn) else torch.as_tensor(np.asarray(x_unsewn))
+    x = x.to(torch.float64)
+    pairs = torch.as_tensor(np.asarray(job.mesh.seam_pairs), dtype=torch.int64, device=x.device)
+    return int(through_pairs(x, pairs, job.sdf).sum())
+
+
 def _sew_placed(job: _Job, x_unsewn, hold) -> tuple[torch.Tensor, float]:
     """Sew the placed panels x_unsewn (Nu, 3) [m] shut: (sewn positions (n_x, 3) [m], the widest
     seam gap left [m])."""
@@ -329,6 +374,7 @@ def _dress_once(job: _Job, *, force_meet: bool) -> Dressed:
     t1 = time.perf_counter()
     if job.progress:
         job.progress("place", 1, 1)
+    guided = _guided_seams(job, x_unsewn)
     x, gap = _sew_placed(job, x_unsewn, hold)
     model = SimModel.build(mesh.faces, mesh.faces_uv)
     t2 = time.perf_counter()
@@ -347,5 +393,6 @@ def _dress_once(job: _Job, *, force_meet: bool) -> Dressed:
         start_height=float(x_start[:, 1].mean()),
         met_seams=force_meet or meets_seams(body),
         settle_more=more,
+        guided_seams=guided,
     )
     return Dressed(pattern, mesh, model, x.detach(), job.cloth.uv, job.material, job.sdf, stats, x_start)
