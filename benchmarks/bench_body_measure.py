@@ -40,7 +40,6 @@ import copy
 import json
 import os
 import random
-import subprocess
 import tempfile
 from pathlib import Path
 
@@ -224,23 +223,16 @@ def record_rows(rows: list[dict]) -> list[dict]:
     return out
 
 
-def _commit() -> str:
-    try:
-        return subprocess.run(
-            ["git", "rev-parse", "--short", "HEAD"], cwd=HERE, capture_output=True, text=True, check=True
-        ).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
-
-
 def record(rows: list[dict], path: Path = HERE / "results" / "body_measure.json") -> None:
     """Write the table of GarmentCode's bodies with its command and commit (benchmarks/report.py
     makes docs/benchmarks.md from it)."""
+    from tables import git_commit
+
     rec = {
         "title": "GarmentCode's bodies measured with no skeleton, the mesh rig's, a limb-labelled and an "
         "SMPL-style one (cm; measured / the body's .yaml)",
         "command": "python -m benchmarks body_measure --record",
-        "commit": _commit(),
+        "commit": git_commit(),
         "rows": record_rows(rows),
     }
     path.write_text(json.dumps(rec, indent=1) + "\n")

@@ -34,7 +34,6 @@ import dataclasses
 import json
 import math
 import os
-import subprocess
 import sys
 import time
 from dataclasses import dataclass
@@ -761,15 +760,6 @@ def cantilever_figure(shapes: dict, fabrics, path: Path, *, kind: str = "tri") -
 # -- entry -----------------------------------------------------------------------------------
 
 
-def _commit() -> str:
-    try:
-        return subprocess.run(
-            ["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True, check=True
-        ).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
-
-
 def _print_table(title: str, rows: list[dict]) -> None:
     from tables import markdown_table
 
@@ -791,8 +781,10 @@ def _record(tables: dict, args) -> None:
         "drape": "Cusick drape test (30 cm specimen, 18 cm support) simulated: DC and nodes",
     }
     RESULTS.mkdir(exist_ok=True)
+    from tables import git_commit
+
     for key, rows in tables.items():
-        rec = {"title": titles[key], "command": cmd, "commit": _commit(), "rows": rows}
+        rec = {"title": titles[key], "command": cmd, "commit": git_commit(), "rows": rows}
         (RESULTS / f"fabric_{key}.json").write_text(json.dumps(rec, indent=1) + "\n")
 
 

@@ -6,6 +6,8 @@ writes docs/benchmarks.md with the same tables from the recorded results.
 
 from __future__ import annotations
 
+import subprocess
+from pathlib import Path
 from typing import Iterable, Sequence
 
 
@@ -37,3 +39,17 @@ def print_table(
     if title:
         print(f"\n{title}\n")
     print(markdown_table(rows, columns, digits=digits), flush=True)
+
+
+def git_commit() -> str:
+    """The checkout's short commit id, for a record's ``commit`` field ("unknown" outside git)."""
+    try:
+        return subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"],
+            cwd=Path(__file__).resolve().parent,
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
