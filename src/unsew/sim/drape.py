@@ -20,7 +20,7 @@ from unsew.errors import InputError
 from unsew.sim.integrator import RestData, StepParams, rest_data, step
 from unsew.sim.material import check_gamma
 from unsew.sim.model import SimModel
-from unsew.sim.seam_guide import GuidedSeams
+from unsew.sim.seam_guide import GuidedSeams, through_pairs
 from unsew.sim.state import SimState
 from unsew.tolerances import COLLISION_THICKNESS
 
@@ -288,8 +288,9 @@ def _sewing_models(model_unsewn: SimModel, x0, sdf, settings: DrapeSettings, hol
     """The sewing phase's models: (GuidedSeams or None, the model, the model with ``hold`` pinned
     too or None) for the placed panels x0 (Nu, 3) [m] (see :func:`sew`)."""
     hold = hold if settings.hold_steps > 0 else None
-    if settings.seam_guide:
-        guide = GuidedSeams(model_unsewn, x0, sdf, hold=hold)
+    guided = through_pairs(x0, model_unsewn.springs, sdf) if settings.seam_guide else None
+    if guided is not None and bool(guided.any()):  # no pair across the body: the plain models
+        guide = GuidedSeams(model_unsewn, x0, sdf, hold=hold, guided=guided)
         return guide, guide.model, guide.held
     held = None
     if hold is not None:

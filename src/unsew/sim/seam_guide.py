@@ -75,16 +75,17 @@ class GuidedSeams:
 
     model: SimModel on the unsewn topology with springs = seam pairs (``SimModel.build(faces_uv,
     faces_uv, springs=seam_pairs)``); x0: (Nu, 3) float64 torch [m] placed panels; sdf: the body's
-    SDF; hold: optional (Nu,) bool or (P,) int vertices to pin as well. ``pairs`` (G, 2) are the
-    guided pairs (their line through the body at the start); ``model`` / ``held`` have Nu + G
-    vertices (the last G the waypoints).
+    SDF; hold: optional (Nu,) bool or (P,) int vertices to pin as well; guided: optional (S,) bool
+    torch, :func:`through_pairs` of x0 when already known. ``pairs`` (G, 2) are the guided pairs
+    (their line through the body at the start); ``model`` / ``held`` have Nu + G vertices (the
+    last G the waypoints).
     """
 
-    def __init__(self, model: SimModel, x0: torch.Tensor, sdf, *, hold=None):
+    def __init__(self, model: SimModel, x0: torch.Tensor, sdf, *, hold=None, guided=None):
         self.n = model.n
         self.sdf = sdf
         springs = model.springs
-        guided = through_pairs(x0, springs, sdf)
+        guided = through_pairs(x0, springs, sdf) if guided is None else guided
         self.pairs = springs[guided]  # (G, 2)
         g = len(self.pairs)
         ghost = torch.arange(self.n, self.n + g, dtype=torch.int64, device=springs.device)
