@@ -171,8 +171,8 @@ def dress(
     job = _Job(pattern, body, sdf, mesh, mat, cloth, settings, progress)
     d = _dress_retried(job)
     if d.stats["guided_seams"] and _unsound(d, body):
-        # a seam sewn round the body can also pull cloth where it should not (a short sleeve's
-        # seam round the arm): dress again sewing straight, and keep the sounder of the two
+        # a seam led round the body can also drag cloth where it should not go: dress again
+        # sewing straight and keep the sounder of the two (docs/decisions/033)
         plain = _dress_retried(
             dataclasses.replace(job, settings=dataclasses.replace(settings, seam_guide=False))
         )
