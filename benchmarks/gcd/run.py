@@ -198,6 +198,17 @@ def _own_options(argv: list) -> int:
     return sew_probe.main(argv[1:])
 
 
+def _folders_given(args) -> bool:
+    """Whether the folders ``types`` and ``starts`` read exist (else one line on stderr: a
+    missing folder is an error, not an empty table)."""
+    for opt in ("out", "drapes"):
+        d = getattr(args, opt, None)
+        if d is not None and not Path(d).is_dir():
+            print(f"gcd {args.cmd}: --{opt} {d} is not a folder", file=sys.stderr)
+            return False
+    return True
+
+
 def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv[:1] in (["panels"], ["sew-probe"]):  # the modes with their own options
@@ -233,6 +244,8 @@ def main(argv=None) -> int:
     _add_types_parser(sub)
     _add_starts_parser(sub)
     args = ap.parse_args(argv)
+    if args.cmd in ("types", "starts") and not _folders_given(args):
+        return 2
     if args.cmd == "types":
         return cmd_types(args)
     if args.cmd == "starts":

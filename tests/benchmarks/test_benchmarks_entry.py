@@ -49,3 +49,13 @@ def test_markdown_table():
 
     t = markdown_table([{"a": 1.234, "b": None}, {"a": "x", "b": 2}], digits=1)
     assert t.splitlines() == ["| a | b |", "|---|---|", "| 1.2 |  |", "| x | 2 |"]
+
+
+def test_gcd_reading_modes_refuse_a_missing_folder_in_one_line(tmp_path):
+    for args in (
+        ["types", "--out", str(tmp_path / "none")],
+        ["starts", "--drafts", "--out", str(tmp_path / "none")],
+    ):
+        r = _run("gcd", *args)
+        assert r.returncode == 2
+        assert r.stderr.strip().splitlines() == [f"gcd {args[0]}: --out {tmp_path / 'none'} is not a folder"]
