@@ -63,6 +63,10 @@ class Fabric:
     density: float
     membrane: tuple[float, float, float, float]
     source: str
+    #: the source's own Cusick figures for this fabric, when it gives them: the measured DC [%]
+    #: and the DC its authors' simulator (CLO3D) made of the same inputs [%]
+    dc_measured: float | None = None
+    dc_other_sim: float | None = None
 
     def gamma(self):
         import torch
@@ -123,6 +127,47 @@ def wang_fabrics(names=None) -> list[Fabric]:
         for n, (rho, ke) in WANG_2011.items()
         if names is None or n in names
     ]
+
+
+#: Petrak et al. 2025 (Sustainability 17(4):1388, doi:10.3390/su17041388, CC-BY 4.0): six woven
+#: dress fabrics, their mass, KES-FB measurements converted to CLO3D's inputs, and the Cusick drape
+#: coefficient measured (30 cm specimen on an 18 cm support) and simulated in CLO3D, as transcribed
+#: from the paper's Tables 1, 2, 4 and 5 in KAFKA2306/image2outfit
+#: config/materials/kes-woven-fabrics-2025.v1.json (commit 1e4a63f). Per fabric: mass [g/m^2],
+#: bending warp, weft [CLO: g mm^2/s^2 = 1e-9 N m], stretch warp, weft and shear [CLO: g/s^2 =
+#: 1e-3 N/m], DC measured and DC in CLO3D [-].
+PETRAK_2025 = {
+    "m1 polyester twill": (135.17, (1950, 610), (477226, 458614, 41000), 0.223, 0.349),
+    "m2 polyester plain": (83.66, (850, 330), (471944, 373515, 46000), 0.228, 0.313),
+    "m3 wool-polyester-elastane twill": (178.70, (2140, 2000), (449656, 439815, 50000), 0.349, 0.404),
+    "m4 polyester-viscose-elastane twill": (286.13, (2970, 2400), (403447, 401762, 61000), 0.286, 0.323),
+    "m5 polyester-elastane plain": (242.00, (3220, 3880), (407166, 415023, 57000), 0.443, 0.438),
+    "m6 cotton-polyester-elastane twill": (253.36, (7430, 3700), (473860, 404746, 126000), 0.549, 0.613),
+}
+
+
+def petrak_fabrics(*, membrane: str = "source") -> list[Fabric]:
+    """The fabrics of Petrak et al. 2025 (:data:`PETRAK_2025`): D the mean of the warp and weft
+    bending [N*m] (unsew's bending is isotropic), their mass, and with ``membrane`` "source" their
+    stretch and shear read as H00, H11, H22 [N/m] (H01 = 0), or "cotton" unsew's cotton membrane."""
+    from unsew.sim import MATERIALS
+
+    m = MATERIALS["cotton"]
+    out = []
+    for n, (gsm, bends, (sw, sf, sh), dc, dc_clo) in PETRAK_2025.items():
+        mem = (sw * 1e-3, 0.0, sf * 1e-3, sh * 1e-3) if membrane == "source" else (m.h00, m.h01, m.h11, m.h22)
+        out.append(
+            Fabric(
+                name=f"Petrak25 {n}" + ("" if membrane == "source" else ", cotton membrane"),
+                bend=1e-9 * float(np.mean(bends)),
+                density=gsm * 1e-3,
+                membrane=mem,
+                source="Petrak et al. 2025, Tables 1, 2, 4, 5 (via image2outfit's transcription)",
+                dc_measured=100 * dc,
+                dc_other_sim=100 * dc_clo,
+            )
+        )
+    return out
 
 
 def newton_target_fabric() -> Fabric:
@@ -599,10 +644,12 @@ def simulate_drape(
     radius: float = 0.15,
     disc: float = 0.09,
     lift: float = 2e-3,
+    max_iter: int = 2000,
 ) -> DrapeResult:
     """The Cusick test of ``fab``: specimen of ``radius`` [m] clamped on a support of radius
     ``disc`` [m], meshed at ``edge`` [m]; the free vertices start lifted by a seeded random
-    height in [0, lift] [m] times their distance from the support over the overhang."""
+    height in [0, lift] [m] times their distance from the support over the overhang; at most
+    ``max_iter`` Newton iterations (the light fabrics on fine meshes take several hundred)."""
     import torch
 
     from unsew.sim import Cloth, PlaneSDF, SimModel, StaticInfo, StaticSettings, drape_static
@@ -624,7 +671,7 @@ def simulate_drape(
         x0,
         far,
         Cloth(torch.as_tensor(uv), fab.gamma(), fab.density),
-        settings=StaticSettings(max_iter=400),
+        settings=StaticSettings(max_iter=max_iter),
         info=info,
     ).numpy()
     a_disc, a_spec = math.pi * disc**2, math.pi * radius**2
@@ -660,6 +707,8 @@ def drape_rows(cases, *, log=print):
                 "DC %": float(np.mean(dcs)),
                 "DC range %": f"{min(dcs):.1f}-{max(dcs):.1f}",
                 "nodes": "/".join(str(r.nodes) for r in runs),
+                "DC % measured": fab.dc_measured,
+                "DC % CLO3D": fab.dc_other_sim,
             }
         )
     return rows, results
@@ -668,9 +717,12 @@ def drape_rows(cases, *, log=print):
 # -- figures ---------------------------------------------------------------------------------
 
 
-def drape_figure(results: dict, path: Path, *, disc: float = 0.09, radius: float = 0.15) -> None:
+def drape_figure(
+    results: dict, path: Path, *, disc: float = 0.09, radius: float = 0.15, measured: dict | None = None
+) -> None:
     """The first seed's draped specimen of each fabric seen from above: the shadow (projected
-    triangles), the support disc and the flat specimen's outline; DC and nodes in the title."""
+    triangles), the support disc and the flat specimen's outline; DC and nodes in the title, and
+    the measured DC [%] where ``measured`` (name -> DC) gives one."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -700,10 +752,12 @@ def drape_figure(results: dict, path: Path, *, disc: float = 0.09, radius: float
         ax.set_ylim(-16, 16)
         ax.set_xticks([])
         ax.set_yticks([])
-        ax.set_title(f"{name}\nDC {100 * r.dc:.0f} %, {r.nodes} nodes", fontsize=7)
+        real = (measured or {}).get(name)
+        label = f"DC {100 * r.dc:.0f} %, {r.nodes} nodes" + (f"\nmeasured DC {real:.0f} %" if real else "")
+        ax.set_title(f"{name}\n{label}", fontsize=7)
     for ax in list(axes.flat)[n:]:
         ax.axis("off")
-    fig.suptitle("Cusick drape, 30 cm on 18 cm, from above", fontsize=8)
+    fig.suptitle(f"Cusick drape, {200 * radius:.0f} cm on {200 * disc:.0f} cm, from above", fontsize=8)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=72)
@@ -793,6 +847,13 @@ def _parse(argv):
     ap.add_argument("--small", action="store_true", help="one fabric, coarse meshes, one seed (seconds)")
     ap.add_argument("--seeds", type=int, default=2, help="drape starts per fabric (default 2)")
     ap.add_argument("--drape-edge", type=float, default=0.015, help="specimen mesh edge [m] (default 0.015)")
+    ap.add_argument(
+        "--published-edge",
+        type=float,
+        default=0.005,
+        help="specimen mesh edge [m] for the fabrics with a published DC (default 0.005; their bending "
+        "lengths are about 1 cm)",
+    )
     ap.add_argument("--strip-edge", type=float, default=0.005, help="strip mesh edge [m] (default 0.005)")
     ap.add_argument("--figures", type=Path, default=None, help="write the two PNGs into this folder")
     ap.add_argument("--record", action="store_true", help="write benchmarks/results/fabric_*.json")
@@ -827,13 +888,43 @@ def _cantilever_table(fabrics, cotton, args, studies: bool) -> list[dict]:
     return rows
 
 
+def _drape_studies(cotton: Fabric, e: float, seeds) -> list:
+    """The drape's studies: cotton's mesh (twice and two thirds the edge ``e`` [m]) and shear
+    (H22 x0.1, x10); the published fabrics of Petrak et al. 2025 on coarser meshes (``e``, 10 and
+    7.5 mm) and, on the 7.5 mm mesh, with unsew's cotton membrane in place of their own."""
+    cases = [(cotton, 2 * e, seeds), (cotton, 2 * e / 3, range(1))]
+    for k in (0.1, 10.0):
+        h = cotton.membrane
+        soft = dataclasses.replace(
+            cotton, name=f"unsew cotton, shear x{k:g}", membrane=(h[0], h[1], h[2], k * h[3])
+        )
+        cases.append((soft, e, seeds))
+    cases += [(f, edge, seeds) for edge in (e, 0.01, 0.0075) for f in petrak_fabrics()]
+    return cases + [(f, 0.0075, seeds) for f in petrak_fabrics(membrane="cotton")]
+
+
+def _drape_figures(results: dict, fabrics, args) -> None:
+    """fabric_drape.png: the library's, Wang's and the newton targets' fabrics;
+    fabric_drape_published.png: the fabrics with a published DC, measured DC in the titles
+    (with --only: every fabric run, in fabric_drape_selected.png)."""
+    measured = {f.name: f.dc_measured for f in fabrics if f.dc_measured is not None}
+    if args.only:
+        drape_figure(results, args.figures / "fabric_drape_selected.png", measured=measured)
+        return
+    plain = {k: v for k, v in results.items() if "shear" not in k and "membrane" not in k}
+    drape_figure({k: v for k, v in plain.items() if k not in measured}, args.figures / "fabric_drape.png")
+    published = {k: v for k, v in plain.items() if k in measured}
+    if published:
+        drape_figure(published, args.figures / "fabric_drape_published.png", measured=measured)
+
+
 def main(argv=None) -> int:
     args = _parse(argv)
 
     import torch
 
     torch.set_num_threads(1)
-    fabrics = library_fabrics() + wang_fabrics() + [newton_target_fabric()]
+    fabrics = library_fabrics() + wang_fabrics() + [newton_target_fabric()] + petrak_fabrics()
     cotton = next(f for f in fabrics if f.name == "unsew cotton")
     studies = not (args.small or args.only)
     if args.small:
@@ -865,23 +956,14 @@ def main(argv=None) -> int:
         tables["cantilever"] = _cantilever_table(fabrics, cotton, args, studies)
     if not args.skip_drape:
         seeds = range(args.seeds)
-        cases = [(f, args.drape_edge, seeds) for f in fabrics]
-        if studies:  # the mesh's and the membrane's share, on cotton
-            e = args.drape_edge
-            cases += [(cotton, 2 * e, seeds), (cotton, 2 * e / 3, range(1))]
-            for k in (0.1, 10.0):
-                h = cotton.membrane
-                soft = dataclasses.replace(
-                    cotton, name=f"unsew cotton, shear x{k:g}", membrane=(h[0], h[1], h[2], k * h[3])
-                )
-                cases.append((soft, e, seeds))
+        cases = [(f, args.published_edge if f.dc_measured else args.drape_edge, seeds) for f in fabrics]
+        if studies:
+            cases += _drape_studies(cotton, args.drape_edge, seeds)
         rows, results = drape_rows(cases)
         _print_table("Cusick drape (30 cm on 18 cm): drape coefficient and nodes", rows)
         tables["drape"] = rows
         if args.figures:
-            shown = {k: v for k, v in results.items() if "shear" not in k}
-            name = "fabric_drape_selected.png" if args.only else "fabric_drape.png"
-            drape_figure(shown, args.figures / name)
+            _drape_figures(results, fabrics, args)
     if args.record:
         _record(tables, args)
     return 0
