@@ -224,6 +224,7 @@ GRADED = {
         dict(garment="tshirt", sleeve_pieces=2, cuffs=True),
         dict(garment="tshirt", sleeves="long", sleeve_pieces=2, cuffs=True),
     ),
+    "tshirt_hood": (dict(collar="hood"), dict(collar="hood", sleeves="long")),
     "skirt6": (
         dict(garment="skirt", skirt="circle", panels=6, waistband=True),
         dict(garment="skirt", skirt="circle", panels=6, waistband=True, length="midi"),

@@ -6,8 +6,10 @@ the hem (P pieces, left to right), the right side (k segments below the underarm
 armhole, the right shoulder, the neckline, then the mirror images down the left side. The
 neckline is one curve (``round``, ``boat``), two straight edges meeting at a point on the centre
 line (``v``), or a straight edge down from each neck point and one across (``square``, whose two
-corners are its lowest points). Built with :func:`unsew.pattern.base._build.symmetric_panel`, as
-the library's tops (:mod:`unsew.pattern.base.tshirt`), which a round or V neckline reproduces.
+corners are its lowest points); under a collar a round neckline is the same curve cut at the
+centre line (``right_neckline``, ``left_neckline``), each half sewn to the collar. Built with
+:func:`unsew.pattern.base._build.symmetric_panel`, as the library's tops
+(:mod:`unsew.pattern.base.tshirt`), which a round or V neckline reproduces.
 
 A two-piece sleeve is the one-piece sleeve cut along its centre line (cap top to hem): the +x
 half (edges 0 hem, 1 underarm, 2 cap, 3 centre seam) and its mirror image, the -x half (edges 0
