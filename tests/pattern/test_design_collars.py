@@ -172,3 +172,31 @@ def test_a_collared_tee_dresses_the_default_body(bodies, collar):
     else:
         assert neck[1] < xc[:, 1].max() < head[1]
         assert xc[:, 0].min() < neck[0] < xc[:, 0].max() and xc[:, 2].min() < neck[2] < xc[:, 2].max()
+
+
+@pytest.mark.parametrize("collar", ["hood", "turtle"])
+def test_collared_drafts_mesh_parameterize_and_round_trip(collar, tmp_path):
+    """Ready for the fit: the mesh is sound, each collar panel mirror-symmetric or paired (the
+    hood's two sides), the parameters rebuild the mesh, and GarmentCode JSON keeps the design."""
+    from helpers import assert_close
+    from unsew.io.garmentcode import load_pattern, save_pattern
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.model import pattern_diff
+    from unsew.pattern.params import PatternParams
+    from unsew.pattern.symmetry import detect_symmetry
+
+    d = Design(collar=collar, sleeves="long", sleeve_pieces=2)
+    p = draft(d)
+    mesh = mesh_pattern(p, edge_length=0.05)
+    assert mesh.quality()["bad_triangles"] == 0
+    sym = detect_symmetry(p)
+    pairs = {(pr.source, pr.target) for pr in sym.pairs}
+    if collar == "hood":
+        assert ("left_hood", "right_hood") in pairs or ("right_hood", "left_hood") in pairs
+    else:
+        assert {"turtle_front", "turtle_back"} <= {m.panel for m in sym.mirrors}
+    params = PatternParams.build(p, mesh, symmetry=sym)
+    assert_close(params.uv(params.K0).detach().numpy(), mesh.uv, atol=1e-9)
+    save_pattern(p, tmp_path / "p.json")
+    back = load_pattern(tmp_path / "p.json")
+    assert pattern_diff(back, p, atol=1e-9) == [] and Design.from_dict(back.unsew["design"]) == d
