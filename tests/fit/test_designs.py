@@ -115,6 +115,26 @@ def test_a_dress_is_tried_in_one_piece_and_as_bodice_and_skirt():
     assert cands[0][1].sleeves == "short"
 
 
+@pytest.mark.parametrize("collar", ["hood", "turtle"])
+@pytest.mark.parametrize("garment", ["tshirt", "dress", "jumpsuit"])
+def test_a_hood_or_a_standing_collar_read_is_on_every_candidate(garment, collar):
+    """A top read with a hood (or a turtle collar) over an unread neckline: every candidate has
+    it, sewn to round necklines, its panels drafted and its name saying so; the same reading
+    without the collar drafts none."""
+    from dataclasses import replace
+
+    base = READINGS[garment]
+    r = replace(base, collar=collar, neck_front=None, neck_back=None)
+    cands = design_candidates(r)
+    assert len(cands) >= 2
+    for name, d in cands:
+        assert d.collar == collar and (d.neckline_front, d.neckline_back) == ("round", "round"), name
+        assert collar in name.split("-")
+        assert sum(collar in n for n in draft(d).panels) == 2, name
+    plain = design_candidates(replace(base, collar="none"))
+    assert all(d.collar == "none" and "hood" not in n and "turtle" not in n for n, d in plain)
+
+
 def test_a_type_outside_the_design_space_is_refused_in_one_line():
     with pytest.raises(InputError) as e:
         design_candidates(DesignReading("kimono"))
@@ -204,6 +224,7 @@ GRADED = {
         dict(garment="tshirt", sleeve_pieces=2, cuffs=True),
         dict(garment="tshirt", sleeves="long", sleeve_pieces=2, cuffs=True),
     ),
+    "tshirt_hood": (dict(collar="hood"), dict(collar="hood", sleeves="long")),
     "skirt6": (
         dict(garment="skirt", skirt="circle", panels=6, waistband=True),
         dict(garment="skirt", skirt="circle", panels=6, waistband=True, length="midi"),

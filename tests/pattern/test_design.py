@@ -100,9 +100,12 @@ def test_design_space_enumerates_distinct_candidates():
         assert len(space) == len(set(space)) == len({design_name(d) for d in space}), g
         assert all(d.garment == g for d in space)
     tees = design_space("tshirt")
-    # sleeves none: 16 necklines; short and long: 2 pieces x 2 cuffs x 16 necklines
-    assert len(tees) == 16 + 2 * 2 * 2 * 16
+    # sleeves none: 16 necklines; short and long: 2 pieces x 2 cuffs x 16 necklines; a hood and
+    # a turtle collar on round necklines with each sleeve choice (1 + 2 x 2 x 2)
+    assert len(tees) == 16 + 2 * 2 * 2 * 16 + 2 * (1 + 2 * 2 * 2)
     assert {d.neckline_front for d in tees} == set(CHOICES["neckline_front"])
+    assert {d.collar for d in tees} == set(CHOICES["collar"])
+    assert all(d.collar == "none" for g in ("skirt", "pants", "shorts") for d in design_space(g))
     skirts = design_space("skirt")
     assert {d.panels for d in skirts} == set(CHOICES["panels"])
     assert {d.skirt for d in skirts} == set(CHOICES["skirt"])

@@ -2,7 +2,8 @@
 design space (:mod:`unsew.pattern.design`) consistent with the design read off the target
 (:func:`unsew.grading.design_reading.read_design`).
 
-The reading's choices are fixed: the type, the sleeves, the necklines, the hem's length (metres,
+The reading's choices are fixed: the type, the sleeves, the necklines, a hood or a standing
+(turtle) collar on a top (every candidate carries it), the hem's length (metres,
 from the hem's depth as a share of the leg) and the skirt's flare, turned into the cone's angle
 whose drape has that flare (an A-line's ``aline_flare``, a circle's ``circle_fraction``), and
 the waist darts the reading decided (a two-panel pencil skirt's; a dress cut to the body at the
@@ -33,6 +34,8 @@ MAX_CANDIDATES = 6
 FLARE_MARGIN = 1.06
 #: The reading's necklines as a design's (no neck opening, or none read: round).
 _NECK = {"round": "round", "v": "v", "square": "square"}
+#: The reading's collars the design space drafts (a hood, a standing collar).
+_COLLARS = ("hood", "turtle")
 #: Trouser legs by the reading's length class.
 _LEG = {"above knee": "shorts", "knee": "knee", "below knee": "full"}
 #: A read hem girth is kept within these shares of the hips' girth (tops, dresses, skirts): a
@@ -160,11 +163,15 @@ def _skirt_design(base: Design, style: str, reading, m: Measurements, length, he
 
 
 def _top_fields(reading) -> dict:
-    """Sleeves and necklines of a top as read (none read: short sleeves, round necklines)."""
+    """Sleeves, necklines and collar of a top as read (none read: short sleeves, round necklines,
+    no collar); a hood or a turtle collar is sewn to round necklines (none are read under it)."""
+    collar = reading.collar if reading.collar in _COLLARS else "none"
+    round_neck = collar != "none"
     return dict(
         sleeves=reading.sleeves or "short",
-        neckline_front=_NECK.get(reading.neck_front, "round"),
-        neckline_back=_NECK.get(reading.neck_back, "round"),
+        neckline_front="round" if round_neck else _NECK.get(reading.neck_front, "round"),
+        neckline_back="round" if round_neck else _NECK.get(reading.neck_back, "round"),
+        collar=collar,
     )
 
 

@@ -36,6 +36,7 @@ CHOICES = {
     "waistband": (False, True),
     "darts": (False, True),
     "leg": ("full", "knee", "shorts"),
+    "collar": ("none", "hood", "turtle"),
 }
 #: Named hem positions a design's ``length`` may give (see :func:`unsew.pattern.design.length_to`).
 LENGTHS = ("hip", "mini", "knee", "midi", "ankle")
@@ -108,10 +109,21 @@ class Design:
     hem_girth: float | None = None
     #: added to the bust, waist and hip girths the garment is cut to [m] (a looser fit)
     ease: float = 0.0
+    #: tops: ``none``, ``hood`` (two side panels sewn together over the head, sized to the head)
+    #: or ``turtle`` (a standing band, front and back); sewn to round necklines
+    collar: str = "none"
+    #: a turtle collar's height above the neckline [m]
+    collar_height: float = 0.08
 
     def __post_init__(self) -> None:
-        for name in ("garment", "sleeves", "sleeve_pieces", "neckline_front", "neckline_back", "skirt"):
+        names = ("garment", "sleeves", "sleeve_pieces", "neckline_front", "neckline_back", "skirt", "collar")
+        for name in names:
             _check_choice(name, getattr(self, name))
+        if self.collar != "none" and (self.neckline_front, self.neckline_back) != ("round", "round"):
+            raise InputError(
+                f"a {self.collar} is sewn to round necklines; set neckline_front and neckline_back to 'round'"
+            )
+        _check_range("collar_height", self.collar_height, 0.02, 0.25)
         if self.leg is not None:
             _check_choice("leg", self.leg)
         if self.leg is None and self.garment in LEGGED:  # the garment's own leg, named
@@ -195,7 +207,8 @@ def design_of_base(name: str) -> Design:
 
 
 def _top_choices() -> list[dict]:
-    """Every sleeve, cuff and neckline combination of a top (no cuffs or pieces without sleeves)."""
+    """Every sleeve, cuff and neckline combination of a top (no cuffs or pieces without sleeves),
+    and each collar on round necklines."""
     out = []
     for sleeves in CHOICES["sleeves"]:
         pieces = (1,) if sleeves == "none" else CHOICES["sleeve_pieces"]
@@ -204,6 +217,8 @@ def _top_choices() -> list[dict]:
             pieces, cuffs, CHOICES["neckline_front"], CHOICES["neckline_back"]
         ):
             out.append(dict(sleeves=sleeves, sleeve_pieces=p, cuffs=c, neckline_front=nf, neckline_back=nb))
+        for p, c, collar in itertools.product(pieces, cuffs, CHOICES["collar"][1:]):  # on round necklines
+            out.append(dict(sleeves=sleeves, sleeve_pieces=p, cuffs=c, collar=collar))
     return out
 
 
@@ -240,12 +255,12 @@ def design_space(garment: str) -> list[Design]:
 
 
 def _top_parts(d: Design) -> list[str]:
-    """A top's part of its design's name: sleeves (2: in two pieces), cuffs, necklines."""
+    """A top's part of its design's name: sleeves (2: in two pieces), cuffs, necklines, a collar."""
     sleeved = d.sleeves != "none"
     parts = [d.sleeves + ("2" if sleeved and d.sleeve_pieces == 2 else "")]
     if d.cuffs and sleeved:
         parts.append("cuffs")
-    return parts + [d.neckline_front, d.neckline_back]
+    return parts + [d.neckline_front, d.neckline_back] + ([d.collar] if d.collar != "none" else [])
 
 
 def _measure_parts(d: Design, parts: list[str]) -> list[str]:
@@ -260,12 +275,15 @@ def _measure_parts(d: Design, parts: list[str]) -> list[str]:
             out.append(f"{f}{getattr(d, f):g}")
     if d.ease:
         out.append(f"ease{d.ease:g}")
+    if d.collar == "turtle" and d.collar_height != Design.collar_height:
+        out.append(f"collar{d.collar_height:g}")
     return out
 
 
 def design_name(d: Design) -> str:
     """A short name of ``d``: the library base's name when ``d`` is a base's design, else the
-    garment and its choices joined by ``-`` (e.g. ``dress-seam-circle0.75x4-long2-cuffs-square-round``)."""
+    garment and its choices joined by ``-`` (e.g. ``dress-seam-circle0.75x4-long2-cuffs-square-round``,
+    ``tshirt-long-round-round-hood``)."""
     for base, kw in _BASES.items():
         if Design(**kw) == d:
             return base

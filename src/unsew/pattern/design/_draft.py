@@ -22,7 +22,8 @@ from unsew.pattern.design._choices import LEGGED, LENGTHS, Design, design_name
 from unsew.pattern.design._darts import BODICE_DART, band_between, dart_edge, symmetric_darts
 from unsew.pattern.design._trouser_darts import dart_trousers
 from unsew.pattern.design._skirt import SkirtCut, skirt_panels
-from unsew.pattern.design._top import hem_cuts, sleeve_set, top_panels, top_stitches
+from unsew.pattern.design._collar import collar_set
+from unsew.pattern.design._top import NECK_DEPTHS, hem_cuts, sleeve_set, top_panels, top_stitches
 from unsew.pattern.measurements import Measurements
 from unsew.pattern.model import Pattern
 
@@ -62,9 +63,10 @@ def _pattern(panels: dict, stitches: list) -> Pattern:
 def _top(d: Design, m: Measurements, f: BodyFrame, spec: TopSpec, cuts=None, darts=None) -> tuple[dict, list]:
     """Front, back (cut to :func:`sleeveless_frame` without sleeves; their hem cut at ``cuts``
     [m] and labelled ``waist`` when given, or cut by the V notches ``darts``, :class:`Dart`s along
-    the hem from its right end) and sleeves of a top, and their stitches."""
+    the hem from its right end), sleeves and collar of a top, and their stitches."""
     necklines = (d.neckline_front, d.neckline_back)
-    front, back, k = top_panels(m, sleeveless_frame(f) if d.sleeves == "none" else f, spec, necklines)
+    frame = sleeveless_frame(f) if d.sleeves == "none" else f
+    front, back, k = top_panels(m, frame, spec, necklines, split_neck=d.collar != "none")
     pieces, dart_st = 1, []
     if cuts is not None:
         front, back = hem_cuts(front, cuts, "waist"), hem_cuts(back, cuts, "waist")
@@ -74,8 +76,10 @@ def _top(d: Design, m: Measurements, f: BodyFrame, spec: TopSpec, cuts=None, dar
         back, st_b, _ = dart_edge(back, 0, darts, "hem")
         pieces, dart_st = 1 + 3 * len(darts), st_f + st_b
     arms, arm_st = sleeve_set(m, f, front, back, k, hem_pieces=pieces, design=d)
-    panels = {p.name: p for p in (front, back, *arms)}
-    return panels, top_stitches(front, back, k, pieces) + arm_st + dart_st
+    depths = (NECK_DEPTHS[d.neckline_back][1], NECK_DEPTHS[d.neckline_front][0])
+    collar, collar_st = collar_set(d, m, f, front, back, depths)
+    panels = {p.name: p for p in (front, back, *arms, *collar)}
+    return panels, top_stitches(front, back, k, pieces) + arm_st + dart_st + collar_st
 
 
 def _bodice_darts(m: Measurements, f: BodyFrame, w_hem: float, hem_y: float) -> tuple[float, list]:

@@ -6,8 +6,10 @@ the hem (P pieces, left to right), the right side (k segments below the underarm
 armhole, the right shoulder, the neckline, then the mirror images down the left side. The
 neckline is one curve (``round``, ``boat``), two straight edges meeting at a point on the centre
 line (``v``), or a straight edge down from each neck point and one across (``square``, whose two
-corners are its lowest points). Built with :func:`unsew.pattern.base._build.symmetric_panel`, as
-the library's tops (:mod:`unsew.pattern.base.tshirt`), which a round or V neckline reproduces.
+corners are its lowest points); under a collar a round neckline is the same curve cut at the
+centre line (``right_neckline``, ``left_neckline``), each half sewn to the collar. Built with
+:func:`unsew.pattern.base._build.symmetric_panel`, as the library's tops
+(:mod:`unsew.pattern.base.tshirt`), which a round or V neckline reproduces.
 
 A two-piece sleeve is the one-piece sleeve cut along its centre line (cap top to hem): the +x
 half (edges 0 hem, 1 underarm, 2 cap, 3 centre seam) and its mirror image, the -x half (edges 0
@@ -20,7 +22,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from unsew.pattern.base._build import loop_panel, mirror_panel, place, rot_y180, stitch, symmetric_panel
+from unsew.pattern.base._build import (
+    cubic,
+    loop_panel,
+    mirror_panel,
+    place,
+    rot_y180,
+    stitch,
+    symmetric_panel,
+)
 from unsew.pattern.base._frame import BodyFrame
 from unsew.pattern.base.tshirt import (
     BACK_NECK_DEPTH,
@@ -38,7 +48,7 @@ from unsew.pattern.base.tshirt import (
     side_and_shoulder_stitches,
     sleeve_panels,
 )
-from unsew.pattern.curves import panel_outline
+from unsew.pattern.curves import panel_outline, relative_to_absolute
 from unsew.pattern.measurements import Measurements
 from unsew.pattern.model import Edge, Panel, Stitch, matrix_to_euler_xyz
 
@@ -66,9 +76,12 @@ def _neck_half_width(m: Measurements, necklines: tuple[str, str]) -> float:
     return w + (BOAT_WIDEN if "boat" in necklines else 0.0)
 
 
-def _torso_panel(name: str, half: list, curves: list, labels: list, shape: str, depth: float) -> Panel:
+def _torso_panel(
+    name: str, half: list, curves: list, labels: list, shape: str, depth: float, split: bool = False
+) -> Panel:
     """One front or back: ``half`` runs up the right side to the neck point (its last point);
-    the neckline of ``shape`` dips ``depth`` [m] below the neck points."""
+    the neckline of ``shape`` dips ``depth`` [m] below the neck points; a round one cut at the
+    centre line into ``right_neckline`` and ``left_neckline`` when ``split`` (under a collar)."""
     neck = half[-1]
     if shape == "v":
         return symmetric_panel(
@@ -88,6 +101,18 @@ def _torso_panel(name: str, half: list, curves: list, labels: list, shape: str, 
             top_label="neckline",
         )[0]
     top = _neckline(neck, neck * np.array([-1.0, 1.0]), depth)
+    if split:  # the same curve cut at the centre line: a collar's seam meets each half
+        c1, c2 = relative_to_absolute(neck, neck * np.array([-1.0, 1.0]), np.asarray(top.params))
+        p01, p12 = (neck + c1) / 2, (c1 + c2) / 2
+        p012 = (p01 + p12) / 2
+        mid = np.array([0.0, neck[1] - depth])  # the cubic's midpoint (de Casteljau at t = 1/2)
+        return symmetric_panel(
+            name,
+            half + [mid],
+            curves + [cubic(neck, mid, p01, p012)],
+            half_labels=labels + ["right_neckline"],
+            bottom_label="hem",
+        )[0]
     return symmetric_panel(
         name, half, curves, top=top, half_labels=labels, bottom_label="hem", top_label="neckline"
     )[0]
@@ -107,9 +132,12 @@ def hem_cuts(panel: Panel, cuts, label: str) -> Panel:
     return Panel(panel.name, verts, pieces + rest, panel.translation, panel.rotation, panel.label)
 
 
-def top_panels(m: Measurements, f: BodyFrame, spec: TopSpec, necklines: tuple[str, str]):
+def top_panels(
+    m: Measurements, f: BodyFrame, spec: TopSpec, necklines: tuple[str, str], *, split_neck: bool = False
+):
     """Front and back of a top [m] (placed around the body of frame ``f``) and the number k of
-    side segments below the underarm; ``necklines``: front's and back's shapes."""
+    side segments below the underarm; ``necklines``: front's and back's shapes; ``split_neck``:
+    round necklines cut in halves at the centre line (a collar is sewn to each half)."""
     w = (m.bust + BUST_EASE) / 4
     neck_w = _neck_half_width(m, necklines)
     under = np.array([w, f.armpit_y - spec.hem_y])
@@ -121,7 +149,8 @@ def top_panels(m: Measurements, f: BodyFrame, spec: TopSpec, necklines: tuple[st
     for side, (name, shape) in enumerate(zip(("front", "back"), necklines)):
         half = [np.asarray(p) for p in spec.lower] + [under, tip, neck]
         curves = list(spec.lower_curves) + [_armhole(under, tip), None]
-        panels.append(_torso_panel(name, half, curves, list(labels), shape, NECK_DEPTHS[shape][side]))
+        depth = NECK_DEPTHS[shape][side]
+        panels.append(_torso_panel(name, half, curves, list(labels), shape, depth, split_neck))
     front, back = panels
     place(front, np.eye(3), (0.0, spec.hem_y, f.chest_z))
     place(back, rot_y180(), (0.0, spec.hem_y, -f.chest_z))
