@@ -7,7 +7,7 @@ import pytest
 from unsew.body.body import default_body
 from unsew.body.sdf import BodySDF
 from unsew.errors import SimulationError
-from unsew.sim.checks import DROP_MAX, FAR_DIST, RISE_DIST, STRETCH_MAX, check_drape
+from unsew.sim.checks import DROP_MAX, FAR_DIST, RISE_DIST, STRETCH_MAX, TOP_DROP_MAX, check_drape
 
 
 @pytest.fixture(scope="module")
@@ -82,13 +82,27 @@ def test_fallen(body_sdf):
     # the same, judged vertex by vertex
     v = _check(body, sdf, x, faces, uv, start_y=x[:, 1] + 0.2)
     assert not v.ok and "slid 0.20 m down" in v.reason
-    # a third of the vertices (a hood put on above the head) fell 0.5 m, the rest stayed: the
-    # mean height dropped 0.17 m, but the garment did not slide
+    # cloth reaching over the shoulders whose top third (a hood put on above the head) fell
+    # 0.5 m onto the head, the rest staying: the mean height dropped 0.17 m, the top 0.5 m, but
+    # the garment did not slide
+    shoulder = min(body.skeleton.position(j)[1] for j in ("left_shoulder", "right_shoulder"))
+    faces_up, uv_up, x_up = _tube(body, a=0.26, b=0.18, y0=shoulder - 0.25, y1=shoulder + 0.05)
+    y0 = x_up[:, 1].copy()
+    y0[y0 > np.quantile(y0, 2 / 3)] += 0.5
+    assert float((y0 - x_up[:, 1]).mean()) > DROP_MAX
+    v = _check(body, sdf, x_up, faces_up, uv_up, start_y=y0)
+    assert v.ok and v.drop == pytest.approx(0.0) and v.top_drop == pytest.approx(0.5), v.reason
+    # the same fall ending round the waist: the top slid off the shoulders into a heap at the
+    # hips, though most of the cloth (sleeves wrapped round the body) kept its height
     y0 = x[:, 1].copy()
-    y0[: len(y0) // 3] += 0.5
-    assert float((y0 - x[:, 1]).mean()) > DROP_MAX
+    y0[y0 > np.quantile(y0, 2 / 3)] += 0.5
     v = _check(body, sdf, x, faces, uv, start_y=y0)
-    assert v.ok and v.drop == pytest.approx(0.0), v.reason
+    assert v.drop == pytest.approx(0.0)
+    assert not v.ok and "top slid 0.50 m down" in v.reason, v.reason
+    # a top drop under TOP_DROP_MAX is settling, not sliding
+    y0 = x[:, 1].copy()
+    y0[y0 > np.quantile(y0, 2 / 3)] += 0.5 * TOP_DROP_MAX
+    assert _check(body, sdf, x, faces, uv, start_y=y0).ok
 
 
 def test_rose(body_sdf):

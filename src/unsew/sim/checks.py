@@ -17,7 +17,10 @@ Checks, in order (the first that fails is the reason):
    :data:`DROP_MAX` from where it was placed (a waistband slid down the hips, a top slid off
    the shoulders): the median of its vertices' drops when their start heights are given (a
    hood placed above the head and falling onto it is a minority of them), else the drop of
-   its mean height.
+   its mean height; or its top (the :data:`TOP_QUANTILE` quantile of its vertex heights) has
+   dropped by more than :data:`TOP_DROP_MAX` from the start's and ends below the shoulder
+   joints (a top whose sleeves and bodice slid off the shoulders into a heap at the hips drops
+   its median less than its top; a hood falling onto the head ends above the shoulders).
    ``rose``: when the start's vertex heights are given, more than :data:`RISE_MAX_PCT` % of the
    vertices ended above the body's chest joint and more than :data:`RISE_DIST` above where
    they were placed (a top gathered up round the neck, a skirt bunched on the shoulders; a
@@ -47,6 +50,7 @@ __all__ = [
     "STRETCH_P99_MAX",
     "FLOOR_TOL",
     "DROP_MAX",
+    "TOP_DROP_MAX",
     "RISE_DIST",
     "RISE_MAX_PCT",
     "FAR_DIST",
@@ -62,6 +66,10 @@ STRETCH_P99_MAX = 1.6
 FLOOR_TOL = 0.02
 #: How far the garment's mean height may drop from where the drape started [m].
 DROP_MAX = 0.10
+#: How far the garment's top may drop from where the drape started [m] (docs/decisions/034).
+TOP_DROP_MAX = 0.20
+#: The quantile of the vertex heights that stands for the garment's top [-].
+TOP_QUANTILE = 0.98
 #: A vertex that ends above the body's chest joint and more than this above where it was
 #: placed has risen [m].
 RISE_DIST = 0.20
@@ -88,6 +96,8 @@ class DrapeVerdict:
     median of its vertices' drops (start_y given), else of its mean height (start_height given),
     else NaN. finite: no NaN or inf. rise_pct: vertices above the body's chest joint and more
     than RISE_DIST above where they were placed [%] (NaN when start_y was not given).
+    top_drop: how far the garment's top (TOP_QUANTILE of the heights) fell from the start's [m]
+    (NaN when start_y was not given).
     """
 
     ok: bool
@@ -102,6 +112,7 @@ class DrapeVerdict:
     drop: float
     finite: bool
     rise_pct: float = float("nan")
+    top_drop: float = float("nan")
 
     def as_dict(self) -> dict:
         """The verdict as a JSON-able dict (a figure that was not measured, NaN, is None)."""
@@ -168,32 +179,54 @@ def check_drape(
     crotch = _crotch_height(body)
     inside_pct, depth_mm, far_pct = _body_gaps(x, body, sdf, crotch=crotch)
     y_min, y_max = float(x[:, 1].min()), float(x[:, 1].max())
-    drop, rise_pct = _moved(x, start_height, start_y, chest=float(body.skeleton.position("chest")[1]))
+    drop, rise_pct, top_drop = _moved(
+        x, start_height, start_y, chest=float(body.skeleton.position("chest")[1])
+    )
     floor = float(np.asarray(body.verts, dtype=np.float64)[:, 1].min())
     reason = (
         _stretch_failure(s_max, s_99)
-        or _height_failure(y_min, y_max, drop, floor=floor, crotch=crotch)
+        or _height_failure(
+            y_min,
+            y_max,
+            (drop, top_drop, float(np.quantile(x[:, 1], TOP_QUANTILE))),
+            floor=floor,
+            crotch=crotch,
+            shoulder=_shoulder(body),
+        )
         or _rise_failure(rise_pct)
         or _body_failure(far_pct, inside_pct)
     )
     return DrapeVerdict(
-        reason == "", reason, inside_pct, depth_mm, far_pct, s_max, s_99, y_min, y_max, drop, finite, rise_pct
+        reason == "",
+        reason,
+        inside_pct,
+        depth_mm,
+        far_pct,
+        s_max,
+        s_99,
+        y_min,
+        y_max,
+        drop,
+        finite,
+        rise_pct,
+        top_drop,
     )
 
 
-def _moved(x, start_height, start_y, *, chest) -> tuple[float, float]:
-    """(drop [m], rise_pct [%]) of the vertices x (N, 3) [m] from the start (see
+def _moved(x, start_height, start_y, *, chest) -> tuple[float, float, float]:
+    """(drop [m], rise_pct [%], top_drop [m]) of the vertices x (N, 3) [m] from the start (see
     :class:`DrapeVerdict`; chest: the body's chest joint height [m]): from the heights start_y
     (N,) [m] when given, else the drop of the mean height from start_height [m] (NaN when
-    neither is given) and no rise (NaN)."""
+    neither is given), no rise and no top drop (NaN)."""
     nan = float("nan")
     if start_y is None:
-        return (nan if start_height is None else float(start_height) - float(x[:, 1].mean())), nan
+        return (nan if start_height is None else float(start_height) - float(x[:, 1].mean())), nan, nan
     y0 = _float64(start_y).reshape(-1)
     if y0.shape != (len(x),):
         raise ValueError(f"start_y must hold one height per vertex ({len(x)}), got shape {y0.shape}")
     rose = (x[:, 1] - y0 > RISE_DIST) & (x[:, 1] > chest)
-    return float(np.median(y0 - x[:, 1])), float(rose.mean() * 100.0)
+    top_drop = float(np.quantile(y0, TOP_QUANTILE) - np.quantile(x[:, 1], TOP_QUANTILE))
+    return float(np.median(y0 - x[:, 1])), float(rose.mean() * 100.0), top_drop
 
 
 def _rise_failure(rise_pct) -> str:
@@ -259,15 +292,28 @@ def _stretch_failure(s_max, s_99) -> str:
     return ""
 
 
-def _height_failure(y_min, y_max, drop, *, floor, crotch) -> str:
+def _shoulder(body) -> float:
+    """Height of the lower shoulder joint [m]."""
+    sk = body.skeleton
+    return float(min(sk.position("left_shoulder")[1], sk.position("right_shoulder")[1]))
+
+
+def _height_failure(y_min, y_max, drops, *, floor, crotch, shoulder) -> str:
     """The reason of the first failed height check, in the module docstring's order ("" when
-    all pass). Heights, drop, floor (the body's lowest point) and crotch [m]."""
+    all pass). Heights, drops (drop, top_drop, the top's height y_top), floor (the body's lowest
+    point), crotch and shoulder (the lower shoulder joint) [m]."""
+    drop, top_drop, y_top = drops
     if y_min < floor - FLOOR_TOL:
         return f"fallen: the garment reaches {floor - y_min:.2f} m below the body's feet"
     if y_max < crotch:
         return f"fallen: the garment's top is at y = {y_max:.2f} m, below the body's crotch ({crotch:.2f} m)"
     if np.isfinite(drop) and drop > DROP_MAX:
         return f"fallen: the garment slid {drop:.2f} m down from where it was put on (bound {DROP_MAX:g} m)"
+    if np.isfinite(top_drop) and top_drop > TOP_DROP_MAX and y_top < shoulder:
+        return (
+            f"fallen: the garment's top slid {top_drop:.2f} m down from where it was put on "
+            f"(off the shoulders or the hips; bound {TOP_DROP_MAX:g} m)"
+        )
     return ""
 
 
