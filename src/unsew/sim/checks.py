@@ -160,21 +160,11 @@ def check_drape(
     Returns:
         :class:`DrapeVerdict`.
     """
-    x = _float64(x)
-    faces = np.asarray(faces, dtype=np.int64)
-    faces_uv = np.asarray(faces_uv, dtype=np.int64)
-    uv = _float64(uv)
-    nan = float("nan")
-    if len(x) == 0:
-        return DrapeVerdict(
-            False, "the garment has no vertices", nan, nan, nan, nan, nan, nan, nan, nan, True
-        )
-    finite = bool(np.isfinite(x).all())
-    if not finite:
-        bad = int(np.flatnonzero(~np.isfinite(x).all(axis=1))[0])
-        n_bad = int((~np.isfinite(x).all(axis=1)).sum())
-        reason = f"exploded: {n_bad} vertices are NaN or infinite (first: vertex {bad})"
-        return DrapeVerdict(False, reason, *([nan] * 8), False)
+    x, uv = _float64(x), _float64(uv)
+    faces, faces_uv = np.asarray(faces, dtype=np.int64), np.asarray(faces_uv, dtype=np.int64)
+    broken = _broken(x)
+    if broken is not None:
+        return broken
     s_max, s_99 = _stretch(x, faces, uv, faces_uv)
     crotch = _crotch_height(body)
     inside_pct, depth_mm, far_pct = _body_gaps(x, body, sdf, crotch=crotch)
@@ -183,34 +173,27 @@ def check_drape(
         x, start_height, start_y, chest=float(body.skeleton.position("chest")[1])
     )
     floor = float(np.asarray(body.verts, dtype=np.float64)[:, 1].min())
-    reason = (
-        _stretch_failure(s_max, s_99)
-        or _height_failure(
-            y_min,
-            y_max,
-            (drop, top_drop, float(np.quantile(x[:, 1], TOP_QUANTILE))),
-            floor=floor,
-            crotch=crotch,
-            shoulder=_shoulder(body),
+    drops = (drop, top_drop, float(np.quantile(x[:, 1], TOP_QUANTILE)))
+    heights = _height_failure(y_min, y_max, drops, floor=floor, crotch=crotch, shoulder=_shoulder(body))
+    reason = _stretch_failure(s_max, s_99) or heights or _rise_failure(rise_pct)
+    reason = reason or _body_failure(far_pct, inside_pct)
+    figures = (inside_pct, depth_mm, far_pct, s_max, s_99, y_min, y_max, drop, True, rise_pct, top_drop)
+    return DrapeVerdict(reason == "", reason, *figures)
+
+
+def _broken(x: np.ndarray) -> DrapeVerdict | None:
+    """The verdict on positions x (N, 3) [m] with no vertex or with a NaN or infinite one, else None."""
+    nan = float("nan")
+    if len(x) == 0:
+        return DrapeVerdict(
+            False, "the garment has no vertices", nan, nan, nan, nan, nan, nan, nan, nan, True
         )
-        or _rise_failure(rise_pct)
-        or _body_failure(far_pct, inside_pct)
-    )
-    return DrapeVerdict(
-        reason == "",
-        reason,
-        inside_pct,
-        depth_mm,
-        far_pct,
-        s_max,
-        s_99,
-        y_min,
-        y_max,
-        drop,
-        finite,
-        rise_pct,
-        top_drop,
-    )
+    bad_rows = ~np.isfinite(x).all(axis=1)
+    if bad_rows.any():
+        bad, n_bad = int(np.flatnonzero(bad_rows)[0]), int(bad_rows.sum())
+        reason = f"exploded: {n_bad} vertices are NaN or infinite (first: vertex {bad})"
+        return DrapeVerdict(False, reason, *([nan] * 8), False)
+    return None
 
 
 def _moved(x, start_height, start_y, *, chest) -> tuple[float, float, float]:
