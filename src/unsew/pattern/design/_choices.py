@@ -7,6 +7,7 @@ import itertools
 from dataclasses import asdict, dataclass, fields, replace
 
 from unsew.errors import InputError
+from unsew.pattern.design._collar import TURTLE_HEIGHT
 
 __all__ = [
     "Design",
@@ -113,7 +114,7 @@ class Design:
     #: or ``turtle`` (a standing band, front and back); sewn to round necklines
     collar: str = "none"
     #: a turtle collar's height above the neckline [m]
-    collar_height: float = 0.08
+    collar_height: float = TURTLE_HEIGHT
 
     def __post_init__(self) -> None:
         names = ("garment", "sleeves", "sleeve_pieces", "neckline_front", "neckline_back", "skirt", "collar")

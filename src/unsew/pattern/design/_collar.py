@@ -45,8 +45,7 @@ __all__ = [
 ]
 
 #: The head's girth (its fullest horizontal section above the head joint) over its height from
-#: the base of the neck to the crown [-]: 2.25, 2.22 and 2.21 on the default anny body and
-#: GarmentCode's mean female and mean T-pose bodies (docs/decisions/036-collars.md).
+#: the base of the neck to the crown [-] (docs/decisions/036-collars.md).
 HEAD_GIRTH_PER_HEIGHT = 2.2
 #: A hood's side panel rises this much [m] above the head's height (the neck's base to the
 #: crown): the way over the side of the head to the top seam, and room above the crown.
