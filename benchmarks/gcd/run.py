@@ -7,6 +7,7 @@
     python -m benchmarks gcd score --results RESULTS_DIR [--cases DIR] [--only-tried] [--record]
     python -m benchmarks gcd floor-fitted --results DIR [--record]   the material-fitted floor
     python -m benchmarks gcd status [--out DIR]    every case's build status
+    python -m benchmarks gcd keep [--out DIR]      store the built targets in targets/ (kept.py)
     python -m benchmarks gcd types [--out DIR] [--drapes DIR] [--record]   the design read off the targets
     python -m benchmarks gcd judge-check           the judge on synthetic inputs (seconds)
     python -m benchmarks gcd panels --results R --cases DIR   per true piece, each fit stage; darts' floor
@@ -36,6 +37,7 @@ sys.path.insert(0, str(HERE.parent))
 
 import build  # noqa: E402  (this folder on the path first)
 import fits  # noqa: E402
+import kept  # noqa: E402
 import score  # noqa: E402
 import starts  # noqa: E402
 
@@ -88,7 +90,22 @@ def cmd_build(args) -> int:
                 "seconds": round(time.time() - t0, 1),
             }
             print(f"{cid}: FAILED: {rec['reason']}", flush=True)
+        if rec.get("status") == "placed":
+            rec = kept.restore(out, cid) or rec
+            if rec.get("restored_from"):
+                print(f"{cid}: kept newton target restored", flush=True)
         build.record(out, rec)
+    return 0
+
+
+def cmd_keep(args) -> int:
+    out = Path(args.out)
+    if not (out / "_status").is_dir():
+        print(f"gcd keep: {out} holds no build (no _status folder)", file=sys.stderr)
+        return 2
+    ids = [cid for cid, _, _ in build.case_ids()]
+    stored = [cid for cid in ids if kept.keep(out, cid)]
+    print(f"kept {len(stored)} of {len(ids)} targets in {kept.KEPT}: {' '.join(stored)}")
     return 0
 
 
@@ -209,24 +226,20 @@ def _folders_given(args) -> bool:
     return True
 
 
-def main(argv=None) -> int:
-    argv = sys.argv[1:] if argv is None else list(argv)
-    if argv[:1] in (["panels"], ["sew-probe"]):  # the modes with their own options
-        return _own_options(argv)
-    ap = argparse.ArgumentParser(prog="python -m benchmarks gcd", description=__doc__.splitlines()[0])
-    ap.add_argument("--summary", action="store_true", help="one JSON line of the recorded results")
-    ap.add_argument("--record-file", default=str(RESULTS), help=argparse.SUPPRESS)
-    sub = ap.add_subparsers(dest="cmd")
+def _add_build_parsers(sub) -> None:
     b = sub.add_parser("build", help="sample, drape with newton and write the case folders")
     b.add_argument("--out", default=str(DEFAULT_CASES))
     b.add_argument("--seeds", default="1-5", help="seeds, e.g. 1-5 or 1,3")
     b.add_argument("--count", type=int, default=None, help="designs per seed (default: the manifest's)")
     b.add_argument("--only", nargs="*", help="case ids to build (gc_s1_000 ...)")
-    b.add_argument("--no-drape", action="store_true", help="sample, size, mesh and place only (no newton)")
+    b.add_argument(
+        "--no-drape",
+        action="store_true",
+        help="sample, size, mesh and place only (no newton); kept targets are restored (kept.py)",
+    )
     b.add_argument(
         "--recheck", action="store_true", help="re-run the acceptance checks on the written cases (no drape)"
     )
-    _add_fit_score_parsers(sub)
     ff = sub.add_parser(
         "floor-fitted", help="record the material-fitted floor of the built cases (the true pattern's fit)"
     )
@@ -235,33 +248,44 @@ def main(argv=None) -> int:
     )
     ff.add_argument("--cases", default=str(DEFAULT_CASES))
     ff.add_argument("--record", action="store_true", help="write them into results.json")
+
+
+def main(argv=None) -> int:
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] in (["panels"], ["sew-probe"]):  # the modes with their own options
+        return _own_options(argv)
+    ap = argparse.ArgumentParser(prog="python -m benchmarks gcd", description=__doc__.splitlines()[0])
+    ap.add_argument("--summary", action="store_true", help="one JSON line of the recorded results")
+    ap.add_argument("--record-file", default=str(RESULTS), help=argparse.SUPPRESS)
+    sub = ap.add_subparsers(dest="cmd")
+    _add_build_parsers(sub)
+    _add_fit_score_parsers(sub)
     sub.add_parser("judge-check", help="the judge on synthetic inputs")
     sub.add_parser(
         "panels", help="per true piece of each fit stage, and the darts' floor (gcd panels --help)"
     )
     st = sub.add_parser("status", help="table of every case's build status")
     st.add_argument("--out", default=str(DEFAULT_CASES))
+    kp = sub.add_parser("keep", help="store the built cases' newton targets in benchmarks/gcd/targets")
+    kp.add_argument("--out", default=str(DEFAULT_CASES))
     _add_types_parser(sub)
     _add_starts_parser(sub)
     args = ap.parse_args(argv)
     if args.cmd in ("types", "starts") and not _folders_given(args):
         return 2
-    if args.cmd == "types":
-        return cmd_types(args)
-    if args.cmd == "starts":
-        return starts.cmd_starts(args, [cid for cid, _, _ in build.case_ids()], STARTS_RECORD)
-    if args.cmd == "build":
-        return cmd_build(args)
-    if args.cmd == "fit":
-        return fits.cmd_fit(args, [cid for cid, _, _ in build.case_ids()])
-    if args.cmd == "score":
-        return score.cmd_score(args, Path(args.record_file))
-    if args.cmd == "floor-fitted":
-        return score.cmd_floor_fitted(args, Path(args.record_file))
-    if args.cmd == "status":
-        return cmd_status(args)
-    if args.cmd == "judge-check":
-        return score.judge_check()
+    modes = {
+        "types": cmd_types,
+        "starts": lambda a: starts.cmd_starts(a, [cid for cid, _, _ in build.case_ids()], STARTS_RECORD),
+        "build": cmd_build,
+        "fit": lambda a: fits.cmd_fit(a, [cid for cid, _, _ in build.case_ids()]),
+        "score": lambda a: score.cmd_score(a, Path(a.record_file)),
+        "floor-fitted": lambda a: score.cmd_floor_fitted(a, Path(a.record_file)),
+        "status": cmd_status,
+        "keep": cmd_keep,
+        "judge-check": lambda a: score.judge_check(),
+    }
+    if args.cmd in modes:
+        return modes[args.cmd](args)
     rec = score.load_record(Path(args.record_file))
     if args.summary:
         print(json.dumps(score.summary(rec)))
