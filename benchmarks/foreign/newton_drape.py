@@ -50,6 +50,7 @@ SETTINGS = dict(
     hold_band_m=0.02,
     attach_clearance_m=0.01,
     attach_mass_factor=1.0e4,
+    ground=True,
 )
 
 
@@ -99,6 +100,8 @@ def _model(x_z, tris3d, uv, tris_uv, body_v_z, body_f, s):
     builder.add_shape_mesh(
         body=-1, mesh=newton.Mesh(body_v_z.astype(np.float32), np.asarray(body_f).ravel().astype(np.int32))
     )
+    if s["ground"]:  # the body stands on the ground (its lowest point): cloth reaching it rests on it
+        builder.add_ground_plane(height=float(body_v_z[:, 2].min()))
     model = builder.finalize(device="cpu")
     model.soft_contact_ke = s["soft_contact_ke"]
     model.soft_contact_kd = s["soft_contact_kd"]

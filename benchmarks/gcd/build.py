@@ -41,6 +41,9 @@ LOWER_TYPES = ("skirt", "pants", "shorts")
 MAX_INSIDE = 0.005
 #: ... and the largest per-triangle stretch (a seam left open shows here).
 MAX_STRETCH = 1.0
+#: ... and how far below the ground (the plane under the body's lowest point, newton_drape's
+#: ``ground``) cloth may reach [m]: a garment long enough lies on it, none goes through it.
+GROUND_TOL = 0.01
 #: ... and how far the garment's top may sink below the specification's placement of it [m]
 #: (a bodice whose shoulder seams did not close slides down the torso).
 MAX_DROP = 0.08
@@ -702,8 +705,8 @@ def _accept(rec: dict, x: np.ndarray, x0: np.ndarray, mesh, body, info: dict) ->
         fails.append(f"{inside:.2%} of vertices inside the body")
     if float(st.max()) > MAX_STRETCH:
         fails.append(f"largest stretch {float(st.max()):.2f}")
-    if x[:, 1].min() < 0.01:
-        fails.append("touches the floor")
+    if x[:, 1].min() < body_v[:, 1].min() - GROUND_TOL:
+        fails.append("through the ground")
     drop = top_drop(x, x0, mesh)
     if drop > MAX_DROP:
         fails.append(f"slid down {drop * 100:.0f} cm from where the specification puts its top")

@@ -65,7 +65,7 @@ def test_mesh_distance_matches_trimesh():
 @pytest.fixture(scope="module")
 def sphere_sdf():
     body = _sphere_body()
-    return body, BodySDF.build(body, voxel=0.005, margin=0.03, use_cache=False)
+    return body, BodySDF.build(body, voxel=0.005, margin=0.03, use_cache=False, floor=False)
 
 
 def test_sphere_accuracy_and_sign(sphere_sdf):
@@ -86,6 +86,21 @@ def test_sphere_accuracy_and_sign(sphere_sdf):
     # normals point away from the centre
     cos = (n.numpy() * dirs).sum(axis=1)
     assert cos.min() > 0.98
+
+
+def test_the_ground_under_the_body_is_solid():
+    """With the floor (the default), cloth beside the body at height h above its lowest point is
+    h from the solid, and below that plane inside it; near the body the body stays nearer."""
+    body = _sphere_body()
+    sdf = BodySDF.build(body, voxel=0.005, margin=0.03, use_cache=False)
+    bottom = float(body.verts[:, 1].min())
+    x = torch.tensor(
+        [[0.12, bottom + 0.02, 0.0], [0.12, bottom - 0.01, 0.0], [0.0, 0.105, 0.0]], dtype=torch.float64
+    )
+    d, n = sdf.query(x)
+    assert_close(d[:2], torch.tensor([0.02, -0.01], dtype=torch.float64), atol=1e-3, what="ground: ")
+    assert_close(n[0], torch.tensor([0.0, 1.0, 0.0], dtype=torch.float64), atol=1e-6, what="ground normal: ")
+    assert abs(float(d[2]) - 0.005) < 1e-3  # the sphere's top: the body's own distance
 
 
 def test_query_outside_grid_adds_distance_to_box(sphere_sdf):
@@ -169,7 +184,9 @@ def test_default_body_accuracy_and_sign(default_sdf):
     rng = np.random.default_rng(3)
     x = pts + m.face_normals[fi] * rng.uniform(-0.05, 0.05, size=(len(pts), 1))
     d_ex, _ = mesh_distance(x, body.verts, body.faces)
-    keep = d_ex < 0.05
+    # the ground under the feet is part of the solid: points nearer to it than to the body are
+    # its test's (test_the_ground_under_the_body_is_solid)
+    keep = (d_ex < 0.05) & (x[:, 1] - body.verts[:, 1].min() > d_ex + default_sdf.voxel)
     x, d_ex = x[keep], d_ex[keep]
     d, _ = default_sdf.query(torch.tensor(x))
     d = d.numpy()

@@ -19,7 +19,8 @@ def sphere():
     m = trimesh.creation.icosphere(subdivisions=4, radius=0.1)
     sk = Skeleton(["pelvis"], [-1], [[0.0, 0.0, 0.0]], ["torso"])
     body = Body(np.asarray(m.vertices, float), np.asarray(m.faces, np.int64), sk)
-    return body, BodySDF.build(body, voxel=0.005, margin=0.03, use_cache=False)
+    # a ball, not a person standing: no ground under it
+    return body, BodySDF.build(body, voxel=0.005, margin=0.03, use_cache=False, floor=False)
 
 
 def _shell(r, n=4000, seed=0):

@@ -16,6 +16,9 @@ Build (numpy/scipy, once per body, cached on disk):
    blocks every grid edge that crosses the surface); shell nodes take the sign of the
    angle-weighted pseudonormal at their closest point (Baerentzen & Aanaes 2005), reliable that
    close to a closed surface.
+4. Floor: the body stands on the ground, the plane y = its lowest point (Y up): each node takes
+   the smaller of its distance to the body and its height above that plane, so cloth long
+   enough to reach the ground rests on it (``floor=False``: the body alone).
 
 Query: ``sdf.query(x)`` trilinearly interpolates the distance grid and its gradient grid (central
 differences, precomputed) by one gather of the 8 corners of each point's cell from a
@@ -44,7 +47,7 @@ from unsew.io.atomic import atomic_write
 __all__ = ["BodySDF", "closest_point_on_triangles", "mesh_distance", "default_cache_dir"]
 
 #: Bump when the build changes, so cached grids are rebuilt.
-_SDF_VERSION = 3
+_SDF_VERSION = 4
 #: Node-triangle pairs the band step takes at once (its temporaries are ~20 (pairs, 3) float64
 #: arrays: 1e6 pairs hold ~0.5 GB; ``python -m benchmarks sdf`` measures the peak).
 _BAND_PAIRS = 1_000_000
@@ -239,13 +242,15 @@ class BodySDF:
         margin: float = 0.1,
         cache_dir: str | os.PathLike | None = None,
         use_cache: bool = True,
+        floor: bool = True,
     ) -> "BodySDF":
         """Signed distance grid of a closed body surface over its bounding box plus ``margin``.
 
         body: a ``Body`` (or any object with ``verts`` (V,3) float64 [m] and ``faces`` (F,3)).
         voxel: node spacing [m] (<= 0.005 for accurate contact); margin [m].
         cache_dir: folder of cached grids (default ``default_cache_dir()``), keyed by a hash of
-        verts, faces, voxel and margin; ``use_cache=False`` neither reads nor writes it.
+        verts, faces, voxel, margin and floor; ``use_cache=False`` neither reads nor writes it.
+        floor: the ground under the body's lowest point is part of the solid (module docstring).
         """
         verts = np.ascontiguousarray(body.verts, dtype=np.float64)
         faces = np.ascontiguousarray(body.faces, dtype=np.int64)
@@ -262,7 +267,7 @@ class BodySDF:
             hsh = hashlib.sha256()
             hsh.update(verts.tobytes())
             hsh.update(faces.tobytes())
-            hsh.update(np.array([voxel, margin, _SDF_VERSION], dtype=np.float64).tobytes())
+            hsh.update(np.array([voxel, margin, _SDF_VERSION, float(floor)], dtype=np.float64).tobytes())
             folder = os.fspath(cache_dir) if cache_dir is not None else default_cache_dir()
             path = os.path.join(folder, f"sdf_{hsh.hexdigest()[:24]}.npz")
             if os.path.isfile(path):
@@ -273,6 +278,9 @@ class BodySDF:
                     pass
         t0 = time.perf_counter()
         values, origin = _build_grid(verts, faces, voxel, margin)
+        if floor:  # node heights above the ground, (1, ny, 1) broadcast over the grid
+            above = origin[1] + voxel * np.arange(values.shape[1]) - verts[:, 1].min()
+            values = np.minimum(values, above[None, :, None])
         # the cache stores float32: round a fresh grid the same way, so a run is reproducible
         # whether its grid was built or read (the drape of loose cloth amplifies the difference)
         values = values.astype(np.float32).astype(np.float64)
