@@ -110,7 +110,7 @@ def main(argv=None) -> None:
         body, name = default_body(), "default body"
     rss0 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # [MB] (Linux: KiB)
     t = time.perf_counter()
-    sdf = BodySDF.build(body, voxel=args.voxel, use_cache=False)
+    sdf = BodySDF.build(body, voxel=args.voxel, use_cache=False, floor=False)  # the mesh part alone
     t_build = time.perf_counter() - t
     rss1 = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     nz, ny, nx = sdf.shape
