@@ -1,23 +1,16 @@
 """The GarmentCode benchmark's kept newton targets: a built case's drape survives a fresh clone, and is
 restored only beside the very specification it was draped from."""
 
-import importlib.util
 import json
-import sys
 from pathlib import Path
 
 import pytest
-
-GCD = Path(__file__).resolve().parents[2] / "benchmarks" / "gcd"
+from benchmarks_loader import load_benchmark
 
 
 @pytest.fixture(scope="module")
 def kept():
-    sys.path.insert(0, str(GCD))
-    spec = importlib.util.spec_from_file_location("_gcd_kept", GCD / "kept.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_benchmark("gcd/kept")
 
 
 def _case(root: Path, cid: str, status: str, spec: dict) -> Path:
