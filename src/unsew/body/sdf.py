@@ -278,9 +278,7 @@ class BodySDF:
                     pass
         t0 = time.perf_counter()
         values, origin = _build_grid(verts, faces, voxel, margin)
-        if floor:  # node heights above the ground, (1, ny, 1) broadcast over the grid
-            above = origin[1] + voxel * np.arange(values.shape[1]) - verts[:, 1].min()
-            values = np.minimum(values, above[None, :, None])
+        values = _on_ground(values, origin, voxel, float(verts[:, 1].min())) if floor else values
         # the cache stores float32: round a fresh grid the same way, so a run is reproducible
         # whether its grid was built or read (the drape of loose cloth amplifies the difference)
         values = values.astype(np.float32).astype(np.float64)
@@ -374,6 +372,13 @@ class BodySDF:
         Z, Y, X = np.meshgrid(zs, ys, xs, indexing="ij")
         v = fn(np.stack([X.ravel(), Y.ravel(), Z.ravel()], axis=1)).reshape(Z.shape)
         return cls(np.asarray(v, np.float64), lo, float(voxel))
+
+
+def _on_ground(values: np.ndarray, origin: np.ndarray, voxel: float, y0: float) -> np.ndarray:
+    """The grid values (nz, ny, nx) [m] of the body standing on the plane y = y0 [m]: each node's
+    smaller of its distance to the body and its height above that plane."""
+    above = origin[1] + voxel * np.arange(values.shape[1]) - y0  # (ny,)
+    return np.minimum(values, above[None, :, None])
 
 
 def _build_grid(
