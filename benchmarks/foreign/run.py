@@ -558,59 +558,99 @@ def _read_obj(path):
 
 def cmd_floor(args):
     """Cross-simulator floor: ``unsew drape pattern_gt.json --body CASE`` against the newton
-    target, Chamfer [mm]; a failed drape is recorded as such in meta.json."""
-    import subprocess
-    import tempfile
-
-    from unsew.metrics.surface import chamfer_mm
-
+    target, Chamfer [mm], into meta.json's ``floor``; with ``--material-only`` the material-fitted
+    floor instead, into ``floor_fitted`` (:func:`_floor_fitted`). A failed run is recorded as such."""
     root = Path(args.dir)
     dirs = (
         [root / c for c in args.cases]
         if args.cases
         else sorted(p for p in root.iterdir() if (p / "meta.json").is_file())
     )
+    if args.material_only and not args.results:
+        _log("floor --material-only: pass --results DIR (a folder for the fits' result folders)")
+        return 2
     for d in dirs:
         if not (d / "meta.json").is_file():  # not built, or rejected by the checks (build's log says which)
             _log(f"{d.name}: no committed case here ({d}), skipped")
             continue
         meta = json.loads((d / "meta.json").read_text())
-        with tempfile.TemporaryDirectory() as tmp:
-            out = Path(tmp) / "garment.obj"
-            t0 = time.time()
-            cmd = [
-                sys.executable,
-                "-m",
-                "unsew",
-                "drape",
-                str(d / "pattern_gt.json"),
-                "--body",
-                str(d),
-                "--out",
-                str(out),
-                "--no-progress",
-            ]
-            try:
-                r = subprocess.run(cmd, capture_output=True, text=True, timeout=args.timeout)
-                rc, err = r.returncode, (r.stderr.strip().splitlines() or [""])[-1]
-            except subprocess.TimeoutExpired:
-                rc, err = -1, f"timed out after {args.timeout} s"
-            floor = {
-                "command": "unsew drape pattern_gt.json --body CASE_DIR",
-                "seconds": round(time.time() - t0, 1),
-            }
-            if rc == 0 and out.is_file():
-                v, f = _read_obj(out)
-                tv, tf = _read_obj(d / "target.obj")
-                c = chamfer_mm(v, f, tv, tf, n_samples=50_000)
-                floor["chamfer_mm"] = round(c.mean_mm, 2)
-                floor["p95_mm"] = round(c.p95_mm, 2)
-            else:
-                floor["error"] = f"exit {rc}: {err[:200]}"
-        meta["floor"] = floor
+        if args.material_only:
+            key, floor = "floor_fitted", _floor_fitted(d, Path(args.results), args.timeout)
+        else:
+            key, floor = "floor", _floor_plain(d, args.timeout)
+        meta[key] = floor
         (d / "meta.json").write_text(json.dumps(meta, indent=1))
-        _log(f"{d.name}: {floor}")
+        _log(f"{d.name}: {key} {floor}")
     return 0
+
+
+def _run_unsew(cmd: list[str], timeout: int) -> tuple[int, str]:
+    """(exit code, last stderr line) of ``python -m unsew`` with ``cmd``; -1 when it timed out."""
+    import subprocess
+
+    try:
+        r = subprocess.run(
+            [sys.executable, "-m", "unsew", *cmd], capture_output=True, text=True, timeout=timeout
+        )
+        return r.returncode, (r.stderr.strip().splitlines() or [""])[-1]
+    except subprocess.TimeoutExpired:
+        return -1, f"timed out after {timeout} s"
+
+
+def _chamfer_to_target(garment: Path, case: Path) -> dict:
+    """Chamfer of an OBJ to the case's target.obj: mean and 95th percentile [mm], 50k samples."""
+    from unsew.metrics.surface import chamfer_mm
+
+    v, f = _read_obj(garment)
+    tv, tf = _read_obj(case / "target.obj")
+    c = chamfer_mm(v, f, tv, tf, n_samples=50_000)
+    return {"chamfer_mm": round(c.mean_mm, 2), "p95_mm": round(c.p95_mm, 2)}
+
+
+def _floor_plain(d: Path, timeout: int) -> dict:
+    """unsew's drape of the case's true pattern (the library's cotton) against its target."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        out = Path(tmp) / "garment.obj"
+        t0 = time.time()
+        rc, err = _run_unsew(
+            ["drape", str(d / "pattern_gt.json"), "--body", str(d), "--out", str(out), "--no-progress"],
+            timeout,
+        )
+        floor = {
+            "command": "unsew drape pattern_gt.json --body CASE_DIR",
+            "seconds": round(time.time() - t0, 1),
+        }
+        if rc == 0 and out.is_file():
+            floor.update(_chamfer_to_target(out, d))
+        else:
+            floor["error"] = f"exit {rc}: {err[:200]}"
+    return floor
+
+
+def _floor_fitted(d: Path, results: Path, timeout: int) -> dict:
+    """The material-fitted floor: the case's true pattern held and only its fabric fitted
+    (``unsew fit CASE --material-only --base CASE/pattern_gt.json --out RESULTS/<case>``), the
+    fit's garment.obj against the target; with the fit's material (metrics.json says whether the
+    fitted one was kept or the re-dress check returned the start's)."""
+    out = results / d.name
+    cmd = ["fit", str(d), "--material-only", "--base", str(d / "pattern_gt.json"), "--out", str(out)]
+    cmd += ["--no-progress"] + (["--overwrite"] if out.exists() else [])
+    t0 = time.time()
+    rc, err = _run_unsew(cmd, timeout)
+    floor = {
+        "command": "unsew fit CASE_DIR --material-only --base CASE_DIR/pattern_gt.json",
+        "seconds": round(time.time() - t0, 1),
+    }
+    if rc == 0 and (out / "garment.obj").is_file():
+        floor.update(_chamfer_to_target(out / "garment.obj", d))
+        m = json.loads((out / "metrics.json").read_text())
+        floor["material_fitted"] = bool(m.get("material_fitted"))
+        floor["material"] = json.loads((out / "material.json").read_text())
+    else:
+        floor["error"] = f"exit {rc}: {err[:200]}"
+    return floor
 
 
 def _value(text: str):
@@ -755,7 +795,13 @@ def main(argv=None):
     )
     fl.add_argument("--cases", nargs="*")
     fl.add_argument("--dir", default=str(HERE / "cases"))
-    fl.add_argument("--timeout", type=int, default=900, help="seconds per unsew drape")
+    fl.add_argument("--timeout", type=int, default=900, help="seconds per unsew drape or fit")
+    fl.add_argument(
+        "--material-only",
+        action="store_true",
+        help="the material-fitted floor: the true pattern held, its fabric fitted (meta.json's floor_fitted)",
+    )
+    fl.add_argument("--results", help="with --material-only: a folder for the fits' result folders")
     fl.set_defaults(func=cmd_floor)
     dg = sub.add_parser(
         "design", help="a case's design drafted for its body, keywords changed (--set darts=0)"

@@ -34,10 +34,14 @@ def _write_log(results: Path, log: dict) -> None:
     tmp.replace(results / LOG_NAME)
 
 
-def run_fit(case: Path, out: Path, timeout: int = FIT_TIMEOUT_S) -> dict:
+def run_fit(case: Path, out: Path, timeout: int = FIT_TIMEOUT_S, *, material_only: bool = False) -> dict:
     """One ``unsew fit`` of ``case`` into ``out``: ``{"exit", "seconds", "message"}`` (message:
-    the last stderr line, the one-line reason of a failed fit or a warning of a missed one)."""
+    the last stderr line, the one-line reason of a failed fit or a warning of a missed one). With
+    ``material_only`` the case's true pattern is held and only its fabric fitted (the
+    material-fitted floor: ``--material-only --base CASE/pattern_gt.json``)."""
     cmd = [sys.executable, "-m", "unsew", "fit", str(case), "--out", str(out), "--no-progress"]
+    if material_only:
+        cmd += ["--material-only", "--base", str(case / "pattern_gt.json")]
     if out.exists():
         cmd.append("--overwrite")
     env = dict(os.environ, OMP_WAIT_POLICY=os.environ.get("OMP_WAIT_POLICY", "PASSIVE"))
@@ -56,7 +60,8 @@ def run_fit(case: Path, out: Path, timeout: int = FIT_TIMEOUT_S) -> dict:
 
 def cmd_fit(args, case_ids: list[str]) -> int:
     """Fit every built case of ``args.cases`` (or ``args.only``) into ``args.results``; a case with
-    an outcome in fits.json is skipped unless ``args.redo``."""
+    an outcome in fits.json is skipped unless ``args.redo``; ``args.material_only``: the true
+    pattern's material only (``gcd floor-fitted`` records those)."""
     cases, results = Path(args.cases), Path(args.results)
     built_p = cases / "build.json"
     if not built_p.is_file():
@@ -78,7 +83,7 @@ def cmd_fit(args, case_ids: list[str]) -> int:
         if cid in log and not args.redo:
             continue
         print(f"{cid}: fitting", flush=True)
-        log[cid] = run_fit(cases / cid, results / cid)
+        log[cid] = run_fit(cases / cid, results / cid, material_only=getattr(args, "material_only", False))
         _write_log(results, log)
         o = log[cid]
         print(f"{cid}: exit {o['exit']} in {o['seconds']} s {o['message']}", flush=True)

@@ -201,6 +201,11 @@ def _add_fit_score_parsers(sub) -> None:
     fi.add_argument("--results", required=True, help="folder for one fit result folder per case id")
     fi.add_argument("--only", nargs="*", help="case ids (default: every built case)")
     fi.add_argument("--redo", action="store_true", help="fit again a case with an outcome already")
+    fi.add_argument(
+        "--material-only",
+        action="store_true",
+        help="hold each case's true pattern and fit its material only (the material-fitted floor)",
+    )
 
 
 def _own_options(argv: list) -> int:
@@ -244,7 +249,7 @@ def _add_build_parsers(sub) -> None:
         "floor-fitted", help="record the material-fitted floor of the built cases (the true pattern's fit)"
     )
     ff.add_argument(
-        "--results", required=True, help="folder of `unsew fit --material-only` results, one per case id"
+        "--results", required=True, help="folder of `gcd fit --material-only` results, one per case id"
     )
     ff.add_argument("--cases", default=str(DEFAULT_CASES))
     ff.add_argument("--record", action="store_true", help="write them into results.json")

@@ -45,6 +45,9 @@ from truth import CHOICES, built_choices, choices_of_spec  # noqa: E402
 #: Newton's drape of a recovered pattern, kept in its result folder (keyed on the pattern and the target).
 REDRAPE_CACHE = "redrape_newton.json"
 
+#: GarmentCode's skirt components that flare out from the hips: circle, asymmetric circle, the
+#: many-panel (flared gores) and godet skirts (the circle and flared cases of the summary).
+FLARED_BOTTOMS = ("SkirtCircle", "AsymmSkirtCircle", "SkirtManyPanels", "GodetSkirt")
 #: The floor of the redrape figure: the true pattern meshed this much finer [share of the edge length].
 FINER = 0.9
 
@@ -282,6 +285,8 @@ def cmd_floor_fitted(args, record_file: Path) -> int:
         tv, tf = read_obj(cases / cid / "target.obj")
         gv, gf = read_obj(garment)
         r["floor_fitted_mm"] = round(judge.chamfer_mm(gv, gf, tv, tf)["chamfer_mm"], 2)
+        truth = json.loads((cases / cid / "truth.json").read_text())
+        r["flared"] = truth.get("bottom") in FLARED_BOTTOMS
         mp = results / cid / "metrics.json"
         t = (json.loads(mp.read_text()).get("timings_s") or {}) if mp.is_file() else {}
         total = t.get("total_s", t.get("total"))
@@ -341,6 +346,7 @@ def summary(rec: dict) -> dict:
         "fit_s_median": _median([r.get("fit_s") for r in fit]),
         "floor_median": _median([r.get("floor_mm") for r in rs]),
         "floor_fitted_median": _median([r.get("floor_fitted_mm") for r in rs]),
+        "floor_fitted_flared_median": _median([r.get("floor_fitted_mm") for r in rs if r.get("flared")]),
     }
 
 

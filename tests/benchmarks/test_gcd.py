@@ -230,6 +230,7 @@ def test_summary_counts_every_case_and_takes_medians_over_the_fitted():
                 "chamfer_bar_mm": 20.0,
                 "floor_mm": 6.0,
                 "floor_fitted_mm": 5.0,
+                "flared": True,
             },
             "gc_s1_002": {"built": False, "fitted": False, "type_right": False, "choices_right": False},
         }
@@ -239,8 +240,10 @@ def test_summary_counts_every_case_and_takes_medians_over_the_fitted():
     assert s["choices_right"] == 0 and s["panel_err_median"] == 0.2 and s["chamfer_bar_median"] == 14.0
     # the floors are medians over the built cases, fitted or not
     assert s["floor_median"] == 5.0 and s["floor_fitted_median"] == 4.0
+    assert s["floor_fitted_flared_median"] == 5.0  # the circle and flared skirts' alone
     rec["cases"]["gc_s1_001"].pop("floor_fitted_mm")
     assert score.summary(rec)["floor_fitted_median"] == 3.0
+    assert score.summary(rec)["floor_fitted_flared_median"] is None
 
 
 def test_the_types_table_reads_newton_targets_and_stands_in_unsews_drapes(tmp_path):
@@ -452,6 +455,32 @@ def test_a_fit_that_stops_is_kept_as_a_tried_miss(tmp_path):
     rec = {"cases": {"gc_s1_000": {"built": True, "fitted": False, "fit_exit": out["exit"]}}}
     s = score.summary(rec)
     assert s["fit_failed"] == 1 and s["fitted"] == 0
+
+
+def test_the_material_only_fits_hold_the_true_pattern(tmp_path, monkeypatch):
+    """``gcd fit --material-only`` hands each case's own true pattern to ``unsew fit
+    --material-only`` (the material-fitted floor), and records the outcome like any fit."""
+    fits = _load("fits")
+    cases, results = tmp_path / "cases", tmp_path / "results"
+    (cases / "gc_s1_000").mkdir(parents=True)
+    (cases / "build.json").write_text(json.dumps({"gc_s1_000": {"status": "built"}}))
+    seen = []
+
+    class Done:
+        returncode, stderr = 0, "fit done in 1 s\n"
+
+    monkeypatch.setattr(fits.subprocess, "run", lambda cmd, **kw: seen.append(cmd) or Done)
+
+    class Args:
+        only, redo, material_only = None, False, True
+
+    Args.cases, Args.results = str(cases), str(results)
+    assert fits.cmd_fit(Args, ["gc_s1_000"]) == 0
+    cmd = seen[0]
+    assert "--material-only" in cmd and cmd[cmd.index("--base") + 1] == str(
+        cases / "gc_s1_000" / "pattern_gt.json"
+    )
+    assert fits.read_log(results)["gc_s1_000"]["exit"] == 0
 
 
 def test_the_newton_redrape_is_kept_per_pattern_and_target(tmp_path, monkeypatch):
