@@ -78,6 +78,50 @@ def case_rows(case: Path, result: Path, files: list[str]) -> list[dict]:
     return rows
 
 
+def phase_two_rows(rows: list[dict], results: Path, record: dict) -> list[dict]:
+    """Per case fitted in both stages: phase two's move (graded -> final) in the fit's own
+    Chamfer [mm] (metrics.json) and in the judge's panel error and turning distance, beside the
+    case's material-fitted floor [mm] (``gcd floor-fitted``, from the recorded results)."""
+    by = {(r["case"], r["stage"]): r for r in rows}
+    out = []
+    for cid in sorted({c for c, _ in by}):
+        g, f = by.get((cid, "pattern_graded")), by.get((cid, "pattern"))
+        mp = results / cid / "metrics.json"
+        if g is None or f is None or not mp.is_file():
+            continue
+        m = json.loads(mp.read_text())
+        cg, cf = (m.get("surface_graded") or {}).get("chamfer_mm"), (m.get("surface") or {}).get("chamfer_mm")
+        floor = (record.get("cases", {}).get(cid) or {}).get("floor_fitted_mm")
+        moved = abs(f["panel err"] - g["panel err"]) > 1e-3 or f["turning"] != g["turning"]
+        out.append(
+            {
+                "case": cid,
+                "Chamfer graded -> final mm": f"{cg:.2f} -> {cf:.2f}" if cg and cf else "-",
+                "floor fitted mm": floor,
+                "below floor": None if floor is None or cf is None else cf < floor,
+                "panel err": f"{g['panel err']:.3f} -> {f['panel err']:.3f}",
+                "turning": f"{g['turning']:.3f} -> {f['turning']:.3f}"
+                if g["turning"] and f["turning"]
+                else "-",
+                "pattern moved": moved,
+                "panel err worse": f["panel err"] > g["panel err"] + 1e-3,
+            }
+        )
+    return out
+
+
+def _phase_two_line(rows: list[dict]) -> str:
+    """One line: of the cases phase two moved, how many it made worse, and of those ending below
+    their material-fitted floor, how many it made worse."""
+    moved = [r for r in rows if r["pattern moved"]]
+    below = [r for r in moved if r["below floor"]]
+    return (
+        f"phase two moved the pattern of {len(moved)} of {len(rows)} cases, its panel error worse on "
+        f"{sum(r['panel err worse'] for r in moved)}; {len(below)} of them end below their "
+        f"material-fitted floor, worse on {sum(r['panel err worse'] for r in below)}"
+    )
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m benchmarks gcd panels", description=__doc__.splitlines()[0])
     ap.add_argument("--results", required=True, help="folder of fit results, one per case")
@@ -111,6 +155,13 @@ def main(argv=None) -> int:
                 f"{fn}: {len(got)} cases, panel err median {np.median(e):.3f} "
                 f"p90 {np.percentile(e, 90):.3f}, turning median {np.median(t):.3f}"
             )
+    if "pattern_graded.json" in files and "pattern.json" in files:
+        rec_p = HERE / "results.json"
+        two = phase_two_rows(
+            rows, Path(args.results), json.loads(rec_p.read_text()) if rec_p.is_file() else {}
+        )
+        print_table(two, title="phase two: graded -> final, beside the material-fitted floor", digits=2)
+        print(_phase_two_line(two))
     print_table(floors, title="the true pieces against themselves with their darts closed", digits=3)
     print(f"turning without darts: median {np.median([f['turning without darts'] for f in floors]):.3f}")
     return 0

@@ -593,3 +593,24 @@ def test_a_garment_round_the_body_wraps_it_and_one_fallen_behind_it_does_not():
     lump = trimesh.creation.icosphere(subdivisions=2, radius=0.12)
     lump_v = np.asarray(lump.vertices) + [0, 1.2, -0.3]
     assert build.wrap_share(lump_v, np.asarray(lump.faces), body_v) < 0.35
+
+
+def test_phase_twos_trade_is_read_against_the_material_fitted_floor(tmp_path):
+    """``gcd panels``' phase-two table: a case whose final drape lies below its material-fitted
+    floor while its panel error rose is counted as such; an unmoved pattern is not counted."""
+    panels = _load("panels")
+    rows = []
+    for cid, graded, final in (("gc_s1_000", 0.2, 0.4), ("gc_s1_001", 0.5, 0.5)):
+        rows += [
+            {"case": cid, "stage": "pattern_graded", "panel err": graded, "turning": 0.5},
+            {"case": cid, "stage": "pattern", "panel err": final, "turning": 0.5},
+        ]
+        (tmp_path / cid).mkdir()
+        m = {"surface_graded": {"chamfer_mm": 9.0}, "surface": {"chamfer_mm": 4.0}}
+        (tmp_path / cid / "metrics.json").write_text(json.dumps(m))
+    record = {"cases": {"gc_s1_000": {"floor_fitted_mm": 6.0}, "gc_s1_001": {"floor_fitted_mm": 3.0}}}
+    two = {r["case"]: r for r in panels.phase_two_rows(rows, tmp_path, record)}
+    assert two["gc_s1_000"]["below floor"] and two["gc_s1_000"]["panel err worse"]
+    assert not two["gc_s1_001"]["pattern moved"] and not two["gc_s1_001"]["below floor"]
+    line = panels._phase_two_line(list(two.values()))
+    assert "of 1 of 2 cases" in line and "1 of them end below" in line and "worse on 1" in line
