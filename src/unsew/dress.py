@@ -16,7 +16,7 @@ from typing import Callable
 import numpy as np
 import torch
 
-from unsew.body.placement import meets_seams, place_garment
+from unsew.body.placement import meets_seams, place_as_given, place_garment
 from unsew.body.sdf import BodySDF
 from unsew.meshing import mesh_pattern
 from unsew.sim.checks import check_dressed
@@ -157,7 +157,9 @@ def dress(
         ``start_height`` [m] the mean height of the placed garment's vertices (the drop check
         of :func:`unsew.sim.checks.check_dressed`), ``guided_seams`` (seam pairs sewn round the
         body, :mod:`unsew.sim.seam_guide`) and, where that drape was unsound and sewing them
-        straight gave a sounder one, ``guide_dropped`` (that count; the straight drape returned).
+        straight gave a sounder one, ``guide_dropped`` (that count; the straight drape returned);
+        ``start_given`` (True) where the drape from the wrapped start stayed unsound and one from
+        the pattern's own placement (:func:`unsew.body.placement.place_as_given`) was sounder.
     """
     mat = resolve_material(material)
     if mesh is None:
@@ -169,16 +171,30 @@ def dress(
 
     cloth = Cloth(uv, g, mat.density, friction=mat.friction)
     job = _Job(pattern, body, sdf, mesh, mat, cloth, settings, progress)
-    d = _dress_retried(job)
+    return _fall_back(job, _dress_retried(job))
+
+
+def _fall_back(job: _Job, d: Dressed) -> Dressed:
+    """The sounder drape when ``d`` is unsound: sewn straight instead of round the body, then from
+    the pattern's own placement."""
+    body = job.body
     if d.stats["guided_seams"] and _unsound(d, body):
         # a seam led round the body can also drag cloth where it should not go: dress again
         # sewing straight and keep the sounder of the two (docs/decisions/033)
         plain = _dress_retried(
-            dataclasses.replace(job, settings=dataclasses.replace(settings, seam_guide=False))
+            dataclasses.replace(job, settings=dataclasses.replace(job.settings, seam_guide=False))
         )
         if _sounder(plain, d, body):
             plain.stats["guide_dropped"] = d.stats["guided_seams"]
-            return plain
+            d = plain
+    if _unsound(d, body):
+        # the wrapped start's reading of the panels can be wrong for a design (a long sleeve
+        # taken for a leg, a collar wrapped on the torso): dress again from the pattern's own
+        # placement and keep the sounder of the two
+        given = _dress_once(job, force_meet=False, given=True)
+        if _sounder(given, d, body):
+            given.stats["start_given"] = True
+            return given
     return d
 
 
@@ -365,11 +381,15 @@ def _settle_sewn(job: _Job, model, x) -> tuple[torch.Tensor, float, int]:
     return st.x, float(st.v.norm(dim=1).max()), more
 
 
-def _dress_once(job: _Job, *, force_meet: bool) -> Dressed:
-    """One placement, sewing and settling of :func:`dress` (its arguments resolved)."""
+def _dress_once(job: _Job, *, force_meet: bool, given: bool = False) -> Dressed:
+    """One placement, sewing and settling of :func:`dress` (its arguments resolved); ``given``:
+    from the pattern's own placement (:func:`unsew.body.placement.place_as_given`)."""
     pattern, body, mesh = job.pattern, job.body, job.mesh
     t0 = time.perf_counter()
-    x_unsewn = place_garment(pattern, mesh, body, sdf=job.sdf, force_meet=force_meet)
+    if given:
+        x_unsewn = place_as_given(pattern, mesh, body, sdf=job.sdf)
+    else:
+        x_unsewn = place_garment(pattern, mesh, body, sdf=job.sdf, force_meet=force_meet)
     hold = hold_vertices(pattern, mesh, body, x_unsewn)
     t1 = time.perf_counter()
     if job.progress:
@@ -391,7 +411,7 @@ def _dress_once(job: _Job, *, force_meet: bool) -> Dressed:
         seam_gap=gap,
         max_speed=speed,
         start_height=float(x_start[:, 1].mean()),
-        met_seams=force_meet or meets_seams(body),
+        met_seams=not given and (force_meet or meets_seams(body)),
         settle_more=more,
         guided_seams=guided,
     )

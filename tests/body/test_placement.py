@@ -349,3 +349,42 @@ def test_a_trouser_hem_below_the_ankle_starts_closed_round_it(bodies):
     assert low.sum() >= 4
     gap = np.linalg.norm(x[sp[low, 0]] - x[sp[low, 1]], axis=1)
     assert gap.max() < 0.1, gap.max()
+
+
+def test_the_patterns_own_placement_is_kept_bent_round_the_body_and_clear_of_it():
+    """GarmentCode's hooded dress with cuffed sleeves on its mean male body (design gc_s2_001 of
+    the GarmentCode benchmark, GarmentCode's design sampler, MIT) started where its file puts
+    it: every panel at its own height, the front and back panels bent round the body without
+    stretching, nothing inside the body."""
+    import os
+    import warnings
+    from pathlib import Path
+
+    from unsew.body.body import load_body
+    from unsew.body.placement import place_as_given
+    from unsew.io.garmentcode import load_pattern
+
+    root = Path(__file__).resolve().parents[2]
+    shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
+    body_mesh = shared / "foreign" / "bodies" / "mean_male.obj"
+    if not body_mesh.is_file():
+        pytest.skip(f"GarmentCode bodies not at {body_mesh.parent}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # GarmentCode's gathered seams: lengths apart
+        pattern = load_pattern(root / "tests" / "data" / "gc_dress_cuffs_specification.json")
+    mesh = mesh_pattern(pattern, edge_length=0.04)
+    body = load_body(body_mesh, None)
+    sdf = BodySDF.build(body)
+    x = place_as_given(pattern, mesh, body, sdf=sdf)
+    hint = np.asarray(mesh.uv_placed3d)
+    for i, name in enumerate(mesh.panel_names):
+        a, b = int(mesh.panel_offsets[i]), int(mesh.panel_offsets[i + 1])
+        assert abs(x[a:b, 1].mean() - hint[a:b, 1].mean()) < 0.03, name
+    e = np.concatenate([mesh.faces_uv[:, [0, 1]], mesh.faces_uv[:, [1, 2]], mesh.faces_uv[:, [2, 0]]])
+    ratio = np.linalg.norm(x[e[:, 0]] - x[e[:, 1]], axis=1) / np.linalg.norm(
+        mesh.uv[e[:, 0]] - mesh.uv[e[:, 1]], axis=1
+    )
+    assert np.percentile(ratio, 99) < 1.1 and ratio.min() > 0.8, (ratio.min(), np.percentile(ratio, 99))
+    with torch.no_grad():
+        d = sdf.query(torch.as_tensor(x))[0].numpy()
+    assert (d < 0).mean() < 0.005

@@ -1,4 +1,5 @@
-"""dress() keeps the sounder of the guided and the straight sewing when the guided one is unsound."""
+"""dress() keeps the sounder of the guided and the straight sewing when the guided one is unsound,
+and of that and a drape from the pattern's own placement when it is still unsound."""
 
 import dataclasses
 from types import SimpleNamespace
@@ -19,14 +20,26 @@ def _fake(ok: bool, stretch: float, guided: int):
     return SimpleNamespace(x=x, mesh=mesh, ok=ok, stats={"guided_seams": guided})
 
 
-def _run(monkeypatch, guided_result):
+def _run(monkeypatch, guided_result, given_result=None, retried=None):
+    """dress() with its drapes stood in for: the guided sewing gives ``guided_result``, the
+    straight one a sound drape (or ``retried(job)`` gives both), the pattern's own placement
+    ``given_result`` (an explosion when None). Returns (drape, the calls in order)."""
     calls = []
+    given = given_result or _fake(False, 9.0, 0)
 
     def fake_dress(job):
         calls.append(job.settings.seam_guide)
+        if retried is not None:
+            return retried(job)
         return guided_result if job.settings.seam_guide else _fake(True, 1.1, 0)
 
+    def fake_once(job, force_meet, given=False):
+        calls.append("given")
+        return given_drape
+
+    given_drape = given
     monkeypatch.setattr(dress_mod, "_dress_retried", fake_dress)
+    monkeypatch.setattr(dress_mod, "_dress_once", fake_once)
     monkeypatch.setattr(dress_mod, "check_dressed", lambda d, body=None: SimpleNamespace(ok=d.ok))
     monkeypatch.setattr(dress_mod, "mesh_pattern", lambda *a, **k: SimpleNamespace(uv=np.zeros((2, 2))))
     settings = dataclasses.replace(dress_mod.DRESS_SETTINGS, seam_guide=True)
@@ -36,7 +49,7 @@ def _run(monkeypatch, guided_result):
 
 def test_an_exploded_guided_drape_gives_way_to_a_sound_straight_one(monkeypatch):
     out, calls = _run(monkeypatch, _fake(False, 4.0, 3))
-    assert calls == [True, False]
+    assert calls == [True, False]  # the straight drape is sound: the pattern's own start is not tried
     assert out.ok and out.stats["guide_dropped"] == 3
 
 
@@ -52,8 +65,24 @@ def test_a_worse_straight_drape_does_not_replace_the_guided_one(monkeypatch):
     def worse(job):
         return guided if job.settings.seam_guide else _fake(False, 1.2, 0)
 
-    monkeypatch.setattr(dress_mod, "_dress_retried", worse)
-    monkeypatch.setattr(dress_mod, "check_dressed", lambda d, body=None: SimpleNamespace(ok=d.ok))
-    monkeypatch.setattr(dress_mod, "mesh_pattern", lambda *a, **k: SimpleNamespace(uv=np.zeros((2, 2))))
-    out = dress_mod.dress(object(), default_body(), sdf=object())
+    out, calls = _run(monkeypatch, guided, retried=worse)
     assert out is guided and "guide_dropped" not in out.stats
+    assert calls == [True, False, "given"]  # still over 1.5: the pattern's own start tried, not kept
+
+
+def test_an_unsound_drape_gives_way_to_a_sounder_one_from_the_patterns_own_placement(monkeypatch):
+    """Both sewings unsound (an explosion, then a fall): the drape from the pattern's own
+    placement is tried and kept when it passes its checks."""
+    mine = _fake(True, 1.3, 0)
+
+    def both_bad(job):
+        return _fake(False, 4.0, 3) if job.settings.seam_guide else _fake(False, 1.2, 0)
+
+    out, calls = _run(monkeypatch, None, given_result=mine, retried=both_bad)
+    assert out is mine and out.stats["start_given"] and calls == [True, False, "given"]
+
+
+def test_a_worse_drape_from_the_patterns_own_placement_is_not_kept(monkeypatch):
+    guided = _fake(True, 1.6, 3)
+    out, _ = _run(monkeypatch, guided, given_result=_fake(True, 1.9, 0), retried=lambda job: guided)
+    assert out is guided and "start_given" not in out.stats

@@ -21,6 +21,11 @@ On a body with an arm raised (T-pose and the like), seam vertices whose copies l
 SEAM_MEET apart start at their midpoint; outline stubs (1-5 mm) start about their own length long
 (see :func:`_meet_seams`, :func:`_close_stubs`).
 
+:func:`place_as_given` is the other start: the pattern's own placement, front and back panels
+bent round the body, what lies inside carried out (a GarmentCode file places its panels for the
+body it is sized to); :func:`unsew.dress.dress` drapes from it when the wrapped start drapes
+unsound.
+
 Cross-sections come from the body's vertices (grouped by part through the skeleton), plus a
 clearance; where the garment is wider than the section, the ellipse grows (in depth for the
 torso, in both axes for legs and arms) so that front and back meet. Points that still end up
@@ -37,7 +42,7 @@ import numpy as np
 
 from unsew.errors import InputError
 
-__all__ = ["place_garment", "panel_roles", "meets_seams", "CLEARANCE", "MAX_PUSH"]
+__all__ = ["place_garment", "place_as_given", "panel_roles", "meets_seams", "CLEARANCE", "MAX_PUSH"]
 
 #: Gap between the body's cross-section and the wrapped cloth [m].
 CLEARANCE = 0.02
@@ -92,6 +97,17 @@ ARM_RAISED = 30.0
 ARM_ROOT = 0.05
 #: Outline segments shorter than this many target edge lengths start about their length long.
 TINY_EDGE = 0.3
+#: A panel whose normal lies within this angle of the body's front axis faces front or back:
+#: :func:`place_as_given` bends it round the body's vertical axis [deg].
+FACING_DEG = 30.0
+#: How far :func:`place_as_given` carries a point inside the body out along the horizontal from
+#: the body's axis at most, in steps of CLEAR_STEP, and how far across its panel (rest distance)
+#: the push fades out: at least CLEAR_FADE [m], and CLEAR_SLOPE times the push, so the panel
+#: bends out stretched by under 3 % (sqrt(1 + 1/16)).
+CLEAR_REACH = 0.3
+CLEAR_STEP = 0.01
+CLEAR_FADE = 0.06
+CLEAR_SLOPE = 4.0
 #: Height step of the cross-section tables [m].
 _DY = 0.01
 
@@ -323,6 +339,90 @@ def place_garment(
     if meet_seams:
         x = _close_stubs(x, mesh)
     return _push_out(x, body, sdf)
+
+
+def place_as_given(pattern, mesh, body, *, sdf=None) -> np.ndarray:
+    """The pattern's own 3D placement (each panel's translation and rotation, as a GarmentCode
+    file sizes and places it for its body), with each panel facing front or back bent round the
+    body's vertical axis (isometric across the panel: arc length = distance across it) at its own
+    distance, or farther where that is needed to clear the body, and the points of the other
+    panels inside the body carried out (:func:`_clear_of_body`). The start
+    :func:`unsew.dress.dress` tries when the wrapped start (:func:`place_garment`) drapes unsound.
+
+    pattern: Pattern whose panels carry their placement; mesh: its GarmentMesh; body: Body with
+    a skeleton; sdf: its BodySDF (built when None). Returns x_unsewn (Nu, 3) float64 [m]."""
+    if sdf is None:
+        from unsew.body.sdf import BodySDF
+
+        sdf = BodySDF.build(body)
+    x = np.asarray(mesh.uv_placed3d, np.float64).copy()
+    J, parts, v, cx, _ = _landmarks(body)
+    torso = v[parts == "torso"] if (parts == "torso").any() else v
+    axis = (cx, 0.5 * float(torso[:, 2].min() + torso[:, 2].max()))
+    roles = panel_roles(pattern, body)
+    bent = np.zeros(len(x), bool)
+    for i, name in enumerate(mesh.panel_names):
+        n = pattern.panels[name].rotation_matrix()[:, 2]
+        if abs(n[2]) < np.cos(np.radians(FACING_DEG)) or roles[name].endswith("sleeve"):
+            continue  # a sleeve (halves facing front and back too), a side piece: as placed
+        a, b = int(mesh.panel_offsets[i]), int(mesh.panel_offsets[i + 1])
+        for extra in np.arange(0.0, CLEAR_REACH + 1e-9, CLEAR_STEP):
+            q = _bend_round(x[a:b], axis, extra)
+            if not _near_body(sdf, q).any():
+                break
+        x[a:b], bent[a:b] = q, True
+    x = _clear_of_body(x, mesh, sdf, axis, skip=bent)
+    return _push_out(x, body, sdf)
+
+
+def _bend_round(p, axis, extra: float) -> np.ndarray:
+    """Points p (k, 3) [m] of a panel facing front or back bent round the vertical line through
+    ``axis`` (x, z) [m] at their distance from it in z plus ``extra`` [m]: a point at ``s = x - cx``
+    across goes to angle ``s / r`` on the circle of radius r (lengths across kept)."""
+    cx, cz = axis
+    dz = p[:, 2] - cz
+    r = np.maximum(np.abs(dz), 0.05) + extra
+    phi = (p[:, 0] - cx) / r
+    out = p.copy()
+    out[:, 0] = cx + r * np.sin(phi)
+    out[:, 2] = cz + np.where(dz < 0, -1.0, 1.0) * r * np.cos(phi)
+    return out
+
+
+def _near_body(sdf, p) -> np.ndarray:
+    """(k,) bool: the points p (k, 3) [m] closer than MIN_GAP to the body (or inside it)."""
+    import torch
+
+    with torch.no_grad():
+        return sdf.query(torch.as_tensor(p, dtype=torch.float64))[0].numpy() < MIN_GAP
+
+
+def _clear_of_body(x, mesh, sdf, axis, *, skip=None) -> np.ndarray:
+    """x (Nu, 3) [m] with each point closer than MIN_GAP to the body carried out horizontally,
+    away from the vertical line through ``axis`` (x, z) [m], by the first multiple of CLEAR_STEP
+    (up to CLEAR_REACH) that clears it, and its panel's points within the fade (CLEAR_FADE, or
+    CLEAR_SLOPE times the push; rest distance) by that push fading to 0, so the panel bends out
+    smoothly; a point still inside stays. ``skip`` (Nu,) bool: points left as they are."""
+    d = x[:, [0, 2]] - np.asarray(axis)
+    dirn = np.zeros_like(x)
+    dirn[:, [0, 2]] = d / np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-9)
+    push = np.zeros(len(x))
+    todo = np.flatnonzero(_near_body(sdf, x) & (True if skip is None else ~skip))
+    moved = todo.copy()
+    for _ in range(int(round(CLEAR_REACH / CLEAR_STEP))):
+        if len(todo) == 0:
+            break
+        push[todo] += CLEAR_STEP
+        todo = todo[_near_body(sdf, x[todo] + push[todo, None] * dirn[todo])]
+    push[todo] = 0.0  # never cleared: left to the push-out and the sewing's contact
+    out = np.zeros(len(x))
+    uv, pan = np.asarray(mesh.uv, np.float64), np.asarray(mesh.uv_panel)
+    for k in moved[push[moved] > 0]:
+        same = np.flatnonzero(pan == pan[k])
+        fade = max(CLEAR_FADE, CLEAR_SLOPE * push[k])
+        w = np.clip(1.0 - np.linalg.norm(uv[same] - uv[k], axis=1) / fade, 0.0, 1.0)
+        out[same] = np.maximum(out[same], push[k] * w)
+    return x + out[:, None] * dirn
 
 
 def _panel_info(pattern, mesh, roles, x) -> dict:

@@ -217,6 +217,8 @@ def run(args: argparse.Namespace) -> int:
         "pattern coordinates [m]",
     )
     s = d.stats
+    if s.get("start_given"):
+        print("the drape started from the pattern's own placement (the wrapped start drapes unsound)")
     if contact is not None:
         print(
             f"the pattern's fitted contact: threshold {contact['contact_threshold'] * 1e3:.1f} mm, "
