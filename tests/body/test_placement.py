@@ -262,12 +262,9 @@ def test_a_wide_skirts_side_panels_on_a_t_pose_body_are_not_sleeves():
     assert len(roles) == 8 and set(roles.values()) == {"torso"}, roles
 
 
-def test_cuffs_start_at_the_end_of_their_sleeves():
-    """GarmentCode's hooded dress with cuffed sleeves sized to its mean male body (design
-    gc_s2_001 of the GarmentCode benchmark, GarmentCode's design sampler, MIT): a cuff has no
-    cap sewn to the torso, so it goes down the arm to the end of the sleeve it is sewn to; each
-    cuff-to-sleeve stitch starts closer than any other panel and within 10 cm (at the shoulder,
-    where a cuff without a cap started, it lay 44 cm from its sleeve's end)."""
+def _gc_cuffed_dress_on_its_body():
+    """GarmentCode's hooded dress with cuffed sleeves (tests/data) and its mean male body (skips
+    where GarmentCode's bodies are not beside the checkout)."""
     import os
     import warnings
     from pathlib import Path
@@ -283,8 +280,18 @@ def test_cuffs_start_at_the_end_of_their_sleeves():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # GarmentCode's gathered seams: lengths apart
         pattern = load_pattern(root / "tests" / "data" / "gc_dress_cuffs_specification.json")
+    return pattern, load_body(body_mesh, None)
+
+
+def test_cuffs_start_at_the_end_of_their_sleeves():
+    """GarmentCode's hooded dress with cuffed sleeves sized to its mean male body (design
+    gc_s2_001 of the GarmentCode benchmark, GarmentCode's design sampler, MIT): a cuff has no
+    cap sewn to the torso, so it goes down the arm to the end of the sleeve it is sewn to; each
+    cuff-to-sleeve stitch starts closer than any other panel and within 10 cm (at the shoulder,
+    where a cuff without a cap started, it lay 44 cm from its sleeve's end)."""
+    pattern, body = _gc_cuffed_dress_on_its_body()
     mesh = mesh_pattern(pattern, edge_length=0.04)
-    x = place_garment(pattern, mesh, load_body(body_mesh, None))
+    x = place_garment(pattern, mesh, body)
     rows = [r for r in stitch_distances(mesh, x) if ("cuff" in r["a"][0]) != ("cuff" in r["b"][0])]
     assert len(rows) == 4
     for r in rows:
@@ -356,24 +363,10 @@ def test_the_patterns_own_placement_is_kept_bent_round_the_body_and_clear_of_it(
     the GarmentCode benchmark, GarmentCode's design sampler, MIT) started where its file puts
     it: every panel at its own height, the front and back panels bent round the body without
     stretching, nothing inside the body."""
-    import os
-    import warnings
-    from pathlib import Path
-
-    from unsew.body.body import load_body
     from unsew.body.placement import place_as_given
-    from unsew.io.garmentcode import load_pattern
 
-    root = Path(__file__).resolve().parents[2]
-    shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
-    body_mesh = shared / "foreign" / "bodies" / "mean_male.obj"
-    if not body_mesh.is_file():
-        pytest.skip(f"GarmentCode bodies not at {body_mesh.parent}")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # GarmentCode's gathered seams: lengths apart
-        pattern = load_pattern(root / "tests" / "data" / "gc_dress_cuffs_specification.json")
+    pattern, body = _gc_cuffed_dress_on_its_body()
     mesh = mesh_pattern(pattern, edge_length=0.04)
-    body = load_body(body_mesh, None)
     sdf = BodySDF.build(body)
     x = place_as_given(pattern, mesh, body, sdf=sdf)
     hint = np.asarray(mesh.uv_placed3d)
