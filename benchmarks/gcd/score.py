@@ -115,14 +115,30 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
     return rec
 
 
+def unsew_code() -> str:
+    """The first 12 hex digits of the SHA-256 of unsew's source files (their paths and bytes):
+    what unsew's drape of a true pattern depends on besides the case."""
+    import unsew
+
+    root = Path(unsew.__file__).resolve().parent
+    h = hashlib.sha256()
+    for p in sorted(root.rglob("*.py")):
+        h.update(p.relative_to(root).as_posix().encode())
+        h.update(p.read_bytes())
+    return h.hexdigest()[:12]
+
+
 def _floors(case: Path, spec_gt: dict, truth: dict, target, *, floor: bool, redrape: bool) -> dict:
-    """The case's floors (they depend on the case alone: computed once, kept in floors.json):
-    unsew's drape of the true pattern against the target (chamfer_bar_mm) and newton's on a
-    finer mesh (floor_mm) [mm]."""
+    """The case's floors, kept in floors.json: unsew's drape of the true pattern against the
+    target (chamfer_bar_mm; made again when unsew's source has changed since, ``bar_code``) and
+    newton's on a finer mesh (floor_mm, made once) [mm]."""
     tv, tf = target
     cache = case / "floors.json"
     known = json.loads(cache.read_text()) if cache.is_file() else {}
-    if floor and "chamfer_bar_mm" not in known:
+    code = unsew_code()
+    if floor and ("chamfer_bar_mm" not in known or known.get("bar_code") != code):
+        known.pop("chamfer_bar_error", None)
+        known["bar_code"] = code
         d = unsew_drape(case)
         known["chamfer_bar_mm"] = (
             round(judge.chamfer_mm(*d, tv, tf)["chamfer_mm"], 2) if isinstance(d, tuple) else None

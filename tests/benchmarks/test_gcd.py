@@ -614,3 +614,22 @@ def test_phase_twos_trade_is_read_against_the_material_fitted_floor(tmp_path):
     assert not two["gc_s1_001"]["pattern moved"] and not two["gc_s1_001"]["below floor"]
     line = panels._phase_two_line(list(two.values()))
     assert "of 1 of 2 cases" in line and "1 of them end below" in line and "worse on 1" in line
+
+
+def test_unsews_bar_is_made_again_when_unsews_code_changed(tmp_path, monkeypatch):
+    """A case's bar (unsew's drape of the true pattern) kept in floors.json is reused while
+    unsew's source is the same and made again once it has changed."""
+    score = _load("score")
+    v, f = _grid(6, 0.2)
+    calls = []
+
+    def fake_drape(case):
+        calls.append(1)
+        return v + [0.0, 0.0, 0.001 * len(calls)], f
+
+    monkeypatch.setattr(score, "unsew_drape", fake_drape)
+    for code, n_calls in (("aaa", 1), ("aaa", 1), ("bbb", 2)):
+        monkeypatch.setattr(score, "unsew_code", lambda c=code: c)
+        known = score._floors(tmp_path, {}, {"type": "skirt"}, (v, f), floor=True, redrape=False)
+        assert len(calls) == n_calls and known["bar_code"] == code
+    assert known["chamfer_bar_mm"] > 1.5  # the second drape's (2 mm off), not the first's
