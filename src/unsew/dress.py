@@ -18,6 +18,7 @@ import torch
 
 from unsew.body.placement import meets_seams, place_as_given, place_garment
 from unsew.body.sdf import BodySDF
+from unsew.errors import SimulationError
 from unsew.meshing import mesh_pattern
 from unsew.sim.checks import check_dressed
 from unsew.sim.drape import Cloth, DrapeSettings, drape, merge_sewn, sew
@@ -191,7 +192,10 @@ def _fall_back(job: _Job, d: Dressed) -> Dressed:
         # the wrapped start's reading of the panels can be wrong for a design (a long sleeve
         # taken for a leg, a collar wrapped on the torso): dress again from the pattern's own
         # placement and keep the sounder of the two
-        given = _dress_once(job, force_meet=False, given=True)
+        try:
+            given = _dress_once(job, force_meet=False, given=True)
+        except SimulationError:
+            return d  # that drape diverged: the first one's verdict stands
         if _sounder(given, d, body):
             given.stats["start_given"] = True
             return given

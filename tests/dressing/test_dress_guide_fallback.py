@@ -86,3 +86,19 @@ def test_a_worse_drape_from_the_patterns_own_placement_is_not_kept(monkeypatch):
     guided = _fake(True, 1.6, 3)
     out, _ = _run(monkeypatch, guided, given_result=_fake(True, 1.9, 0), retried=lambda job: guided)
     assert out is guided and "start_given" not in out.stats
+
+
+def test_a_diverging_drape_from_the_patterns_own_placement_leaves_the_first_verdict(monkeypatch):
+    """The fallback's drape diverging (SimulationError) does not replace the unsound drape's
+    verdict with a crash: dress() returns the drape it had."""
+    from unsew.errors import SimulationError
+
+    guided = _fake(False, 4.0, 3)
+    _run(monkeypatch, guided, retried=lambda job: guided)  # installs the stand-ins
+
+    def diverge(job, force_meet, given=False):
+        raise SimulationError("simulation diverged at step 3")
+
+    monkeypatch.setattr(dress_mod, "_dress_once", diverge)
+    out = dress_mod.dress(object(), default_body(), sdf=object())
+    assert out is guided and "start_given" not in out.stats
