@@ -77,6 +77,39 @@ def hold_vertices(pattern, mesh, body, x_unsewn) -> np.ndarray:
     return bnd[x[bnd, 1] > top - HOLD_BAND].astype(np.int64)
 
 
+#: Edge labels of the edges a garment hangs from, as GarmentCode's programs write them: a lower
+#: garment's or a waistband's top (``lower_interface``) and a strapless bodice's top
+#: (``strapless_top``). GarmentCodeData's simulation holds them at the body by attachment
+#: constraints; :func:`dress` holds such an edge at the height the pattern's own placement gives
+#: when it is an opening (not sewn to another panel: a dress's waist seam hangs from its bodice).
+ATTACH_LABELS = ("lower_interface", "strapless_top")
+
+
+def attached_vertices(pattern, mesh, body, sdf):
+    """The rest vertices on unsewn edges labelled ATTACH_LABELS and their heights, as
+    ``Cloth.anchors`` (uv indices (A,) int64 torch, heights (A,) float64 torch [m]), or None when
+    there is none. A height is the mean over a sewn vertex's copies of the pattern's own placement
+    (:func:`unsew.body.placement.place_as_given`: each panel's translation and rotation)."""
+    panels = getattr(pattern, "panels", {})
+    sewn = {(side.panel, side.edge) for st in getattr(pattern, "stitches", ()) for side in (st.a, st.b)}
+    hung = {
+        (name, e)
+        for name, pa in panels.items()
+        for e, edge in enumerate(pa.edges)
+        if edge.label in ATTACH_LABELS and (name, e) not in sewn
+    }
+    if not hung:
+        return None
+    idx = [np.asarray(v, np.int64) for key, v in mesh.edge_verts.items() if key in hung]
+    idx = np.unique(np.concatenate(idx))
+    y = np.asarray(place_as_given(pattern, mesh, body, sdf=sdf))[:, 1]
+    xu = np.asarray(mesh.x_of_u)
+    ysum = np.bincount(xu, weights=y, minlength=mesh.n_x)
+    cnt = np.bincount(xu, minlength=mesh.n_x)
+    height = (ysum / np.maximum(cnt, 1))[xu[idx]]
+    return torch.as_tensor(idx), torch.as_tensor(height, dtype=torch.float64)
+
+
 def dress_stats(d, *, x_unsewn_sewn=None) -> dict:
     """Figures of a dressed garment (for tests and benchmarks).
 
@@ -160,7 +193,9 @@ def dress(
         body, :mod:`unsew.sim.seam_guide`) and, where that drape was unsound and sewing them
         straight gave a sounder one, ``guide_dropped`` (that count; the straight drape returned);
         ``start_given`` (True) where the drape from the wrapped start stayed unsound and one from
-        the pattern's own placement (:func:`unsew.body.placement.place_as_given`) was sounder.
+        the pattern's own placement (:func:`unsew.body.placement.place_as_given`) was sounder;
+        ``held`` the number of rest vertices held at their height (:func:`attached_vertices`),
+        0 where none is labelled or where the drape so held was unsound and the free one sounder.
     """
     mat = resolve_material(material)
     if mesh is None:
@@ -170,13 +205,37 @@ def dress(
     g = mat.gamma() if gamma is None else torch.as_tensor(gamma, dtype=torch.float64).detach()
     uv = torch.as_tensor(np.asarray(mesh.uv), dtype=torch.float64)
 
-    cloth = Cloth(uv, g, mat.density, friction=mat.friction)
+    anchors = attached_vertices(pattern, mesh, body, sdf)
+    cloth = Cloth(uv, g, mat.density, friction=mat.friction, anchors=anchors)
     job = _Job(pattern, body, sdf, mesh, mat, cloth, settings, progress)
-    return _fall_back(job, _dress_retried(job))
+    return _fall_back(job)
 
 
-def _fall_back(job: _Job, d: Dressed) -> Dressed:
-    """The sounder drape when ``d`` is unsound: sewn straight instead of round the body, then from
+def _fall_back(job: _Job) -> Dressed:
+    """The drape, and a sounder one where it is unsound: free instead of held at its labelled
+    edges, sewn straight instead of round the body, then from the pattern's own placement."""
+    body = job.body
+    if job.cloth.anchors is None:
+        return _fall_back_unheld(job, _dress_retried(job))
+    free_job = dataclasses.replace(job, cloth=dataclasses.replace(job.cloth, anchors=None))
+    try:
+        d = _dress_retried(job)
+    except SimulationError:
+        job, d = free_job, _dress_retried(free_job)
+    if job is not free_job and _unsound(d, body):
+        # held where the pattern puts its hanging edges, the cloth can be pulled too far for a
+        # sound drape (a strap off the shoulder): dress it free and keep the sounder of the two
+        free = _dress_retried(free_job)
+        if _sounder(free, d, body):
+            job, d = free_job, free
+    held = 0 if job.cloth.anchors is None else len(job.cloth.anchors[0])
+    d = _fall_back_unheld(job, d)
+    d.stats["held"] = held
+    return d
+
+
+def _fall_back_unheld(job: _Job, d: Dressed) -> Dressed:
+    """:func:`_fall_back` after the choice of holding the labelled edges: sewn straight, then from
     the pattern's own placement."""
     body = job.body
     if d.stats["guided_seams"] and _unsound(d, body):

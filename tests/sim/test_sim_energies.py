@@ -327,3 +327,26 @@ def test_spring_energy():
         lambda xx: energy_spring(xx, s, 50.0, hessian=False)[0], x.detach()
     )
     assert_close(_dense_hess(s, 4, H), Href.reshape(12, 12), atol=1e-12)
+
+
+def test_anchor_energy():
+    from unsew.sim.energies.anchor import energy_anchor
+
+    x = torch.randn(5, 3, dtype=torch.float64, generator=torch.Generator().manual_seed(2)).requires_grad_()
+    idx = torch.tensor([1, 3])
+    h = torch.tensor([0.2, -0.1], dtype=torch.float64)
+    e, g, H = energy_anchor(x, idx, h, 40.0)
+    grad = torch.zeros(5, 3, dtype=torch.float64).index_add(0, idx, g)
+    assert_close(grad, torch.autograd.grad(e, x)[0], atol=1e-12)
+    Href = torch.autograd.functional.hessian(
+        lambda xx: energy_anchor(xx, idx, h, 40.0, hessian=False)[0], x.detach()
+    )
+    dense = torch.zeros(5, 3, 5, 3, dtype=torch.float64)
+    for k, i in enumerate(idx.tolist()):
+        dense[i, :, i, :] = H[k]
+    assert_close(dense, Href, atol=1e-12)
+    # only the height is held: moving an anchored vertex sideways costs nothing
+    x2 = x.detach().clone()
+    x2[idx, 0] += 0.3
+    x2[idx, 2] -= 0.2
+    assert_close(energy_anchor(x2, idx, h, 40.0)[0], e.detach(), atol=1e-12)

@@ -54,6 +54,7 @@ from unsew.sim.energies.bending import bending_rest, energy_bending
 from unsew.sim.energies.contact import energy_contact, friction_damping, project_out
 from unsew.sim.energies.gravity import energy_gravity
 from unsew.sim.energies.membrane import energy_membrane, membrane_rest
+from unsew.sim.energies.anchor import energy_anchor
 from unsew.sim.energies.spring import energy_spring
 from unsew.sim.model import SimModel
 from unsew.sim.solve import SparsePattern, resolve_backend, sparse_solve
@@ -85,6 +86,8 @@ class StepParams:
             than its linear model promised to lower it (module docstring); False: always the full
             linearized step.
         max_halvings: most halvings of the step the line search tries [-].
+        anchor: vertices held at a height (:mod:`unsew.sim.energies.anchor`): (idx (A,) int64,
+            heights (A,) [m], stiffness [N/m]) in the model's vertex numbering, or None.
     """
 
     dt: float = 0.05
@@ -100,6 +103,7 @@ class StepParams:
     fused: bool = True
     line_search: bool = True
     max_halvings: int = 8
+    anchor: tuple | None = None
 
 
 @dataclass
@@ -200,9 +204,10 @@ def _ring_weight(like: torch.Tensor) -> torch.Tensor:
 @dataclass
 class _Terms:
     """The energies' terms at one x: f (N, 3) [N] (internal + gravity + contact + springs,
-    without friction); energies (membrane, bending, contact, springs) [J]; the Hessian factors
-    Hm (G, H, Pgeo), Hb (g, s), spring blocks Hs or None, contact blocks Hc (N, 3, 3) (None
-    without Hessians); the contact normal force fn (N,) and the SDF values d (N,), n (N, 3)."""
+    without friction); energies (membrane, bending, contact, springs and anchors) [J]; the Hessian
+    factors Hm (G, H, Pgeo), Hb (g, s), spring blocks Hs or None, contact (and anchor) blocks Hc
+    (N, 3, 3) (None without Hessians); the contact normal force fn (N,) and the SDF values d (N,),
+    n (N, 3)."""
 
     f: torch.Tensor
     energies: tuple
@@ -235,6 +240,13 @@ def _terms(model, rest, x, sdf, gamma, params: StepParams, *, hessian: bool) -> 
     if model.springs.shape[0]:
         es, gs, Hs = energy_spring(x, model.springs, params.spring_stiffness, hessian=hessian)
         grad = grad + scatter_vertex(model.n, model.springs, gs)
+    if params.anchor is not None:
+        idx, height, ka = params.anchor
+        ea, ga, Ha = energy_anchor(x, idx, height, ka, hessian=hessian)
+        es = es + ea
+        grad = grad.index_add(0, idx, ga)
+        if Hc is not None:
+            Hc = Hc.index_add(0, idx, Ha)
     f = -grad
     f = torch.cat([f[:, :1], f[:, 1:2] - g * rest.mass[:, None], f[:, 2:]], 1)
     return _Terms(f=f, energies=(em, eb, ec, es), Hm=Hm, Hb=Hb, Hs=Hs, Hc=Hc, fn=fn, d=d, n=n)
@@ -301,6 +313,8 @@ def total_energy(model, rest, x, sdf, gamma, params: StepParams):
     e = e + energy_gravity(x, rest.mass, g)[0]
     if model.springs.shape[0]:
         e = e + energy_spring(x, model.springs, params.spring_stiffness, hessian=False)[0]
+    if params.anchor is not None:
+        e = e + energy_anchor(x, *params.anchor, hessian=False)[0]
     return e
 
 
