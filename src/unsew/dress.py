@@ -110,6 +110,23 @@ def attached_vertices(pattern, mesh, body, sdf):
     return torch.as_tensor(idx), torch.as_tensor(height, dtype=torch.float64)
 
 
+#: A drape holds its labelled hanging edges when their vertices lie this close to their heights,
+#: at the median [m] (a held drape's lie within 1 mm, a free one's slide centimetres).
+HELD_WITHIN = 5e-3
+
+
+def held_anchors(pattern, mesh, body, sdf, x):
+    """:func:`attached_vertices` when the drape x (n_x, 3) [m] on ``mesh`` holds them (their
+    median height error under HELD_WITHIN: :func:`dress` kept the held drape), else None: what
+    later drapes from x (the fit's) hold so as not to let go what the dressing held."""
+    anchors = attached_vertices(pattern, mesh, body, sdf)
+    if anchors is None:
+        return None
+    idx, height = anchors
+    y = np.asarray(x)[np.asarray(mesh.x_of_u)[idx.numpy()], 1]
+    return anchors if float(np.median(np.abs(y - height.numpy()))) < HELD_WITHIN else None
+
+
 def dress_stats(d, *, x_unsewn_sewn=None) -> dict:
     """Figures of a dressed garment (for tests and benchmarks).
 
@@ -302,22 +319,24 @@ def settle(
     material="cotton",
     *,
     settings: DrapeSettings = DRESS_SETTINGS,
-    steps: int | None = None,
     model: SimModel | None = None,
     progress: Callable[[str, int, int], None] | None = None,
+    anchors=None,
 ) -> np.ndarray:
-    """A sewn garment let settle from another drape: ``steps`` (default ``settings.settle_steps``)
-    of plain draping at ``settings.dt`` in ``material``, starting at rest from ``x_from``.
+    """A sewn garment let settle from another drape: ``settings.settle_steps`` steps of plain
+    draping at ``settings.dt`` in ``material``, starting at rest from ``x_from``.
 
     What :func:`dress` does after sewing, without the placement and the sewing: the cheap way to
     drape a pattern already dressed once in another fabric or stiffness (the fit's material
     choice, :mod:`unsew.fit.material`). mesh: the GarmentMesh ``x_from`` lies on; x_from: (n_x, 3)
     [m]; sdf: the body's SDF; model: the sewn mesh's SimModel (``SimModel.build(mesh.faces,
     mesh.faces_uv)``), to reuse across calls on one mesh (built here when None; its sparse
-    pattern is cached on it); progress: ``progress("settle", k, n)``. Returns (n_x, 3) float64 [m].
+    pattern is cached on it); progress: ``progress("settle", k, n)``; anchors: the vertices held at
+    their height (``Cloth.anchors``, :func:`held_anchors` of the drape x_from), or None. Returns
+    (n_x, 3) float64 [m].
     """
     mat = resolve_material(material)
-    steps = settings.settle_steps if steps is None else int(steps)
+    steps = settings.settle_steps
     x0 = torch.as_tensor(np.asarray(x_from), dtype=torch.float64)
     if x0.shape != (mesh.n_x, 3):
         raise ValueError(f"x_from must be ({mesh.n_x}, 3) positions on the mesh, got {tuple(x0.shape)}")
@@ -329,7 +348,7 @@ def settle(
             model,
             SimState.at_rest(x0.clone()),
             sdf,
-            Cloth(uv, mat.gamma(), mat.density, friction=mat.friction),
+            Cloth(uv, mat.gamma(), mat.density, friction=mat.friction, anchors=anchors),
             settings=settings,
             steps=steps,
             callback=cb,

@@ -108,4 +108,4 @@ def test_settle_drapes_a_sewn_garment_in_another_fabric(body_sdf):
         sd, _ = sdf.query(torch.as_tensor(silk))
     assert float((sd < 0).double().mean()) < 0.005
     with pytest.raises(ValueError, match="x_from must be"):
-        settle(d.mesh, x0[:-1], sdf, "silk", settings=settings, steps=1)
+        settle(d.mesh, x0[:-1], sdf, "silk", settings=settings.replace(settle_steps=1))

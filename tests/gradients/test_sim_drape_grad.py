@@ -40,13 +40,13 @@ def _loss(state):
     return (w * state.x).sum() + 10.0 * (state.x**2).sum() + 0.1 * (w * state.v).sum()
 
 
-def _run(m, uv, gamma, st, checkpoint=False, fused=True):
+def _run(m, uv, gamma, st, checkpoint=False, fused=True, anchors=None):
     return _loss(
         drape(
             m,
             st,
             SDF,
-            Cloth(uv, gamma, DENSITY),
+            Cloth(uv, gamma, DENSITY, anchors=anchors),
             steps=20,
             checkpoint=checkpoint,
             settings=DrapeSettings(dt=0.05, fused=fused),
@@ -122,3 +122,32 @@ def test_adjoint_matches_dense_unrolled_and_checkpoint(case, monkeypatch):
     assert_close(L3, L, rtol=1e-12)
     for a, b in zip(dense, ref_grads):
         assert_close(b, a, rtol=1e-8, atol=1e-10, what="adjoint vs dense autograd ")
+
+
+def test_gradient_with_held_vertices_vs_central_differences(case):
+    """The same check with two rest vertices held 1 cm below where they hang (unsew.sim.energies.anchor)."""
+    m, uv, st = case
+    idx = torch.tensor([0, 1])
+    x_of_u = torch.full((m.n_rest,), -1, dtype=torch.int64)
+    x_of_u[m.faces_uv.reshape(-1)] = m.faces.reshape(-1)
+    anchors = (idx, st.x[x_of_u[idx], 1] - 0.01)
+    uvp = uv.clone().requires_grad_()
+    x0 = st.x.clone().requires_grad_()
+    L = _run(m, uvp, GAMMA, SimState(x0, st.v), anchors=anchors)
+    g_uv, g_x0 = torch.autograd.grad(L, (uvp, x0))
+    gen = torch.Generator().manual_seed(5)
+    with torch.no_grad():
+        assert abs(float(L - _run(m, uv, GAMMA, st))) > 1e-3  # the hold changes the drape
+        dirn = torch.randn(uv.shape, generator=gen, dtype=torch.float64)
+        h = 1e-8
+        fd = (
+            _run(m, uv + h * dirn, GAMMA, st, anchors=anchors)
+            - _run(m, uv - h * dirn, GAMMA, st, anchors=anchors)
+        ) / (2 * h)
+        assert_close((g_uv * dirn).sum(), fd, rtol=1e-5, what="uv, held ")
+        dirn = torch.randn(st.x.shape, generator=gen, dtype=torch.float64)
+        fd = (
+            _run(m, uv, GAMMA, SimState(st.x + h * dirn, st.v), anchors=anchors)
+            - _run(m, uv, GAMMA, SimState(st.x - h * dirn, st.v), anchors=anchors)
+        ) / (2 * h)
+        assert_close((g_x0 * dirn).sum(), fd, rtol=1e-5, what="initial state, held ")

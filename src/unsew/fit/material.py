@@ -157,10 +157,10 @@ def _dresser(s: Start, scene: Scene):
                 s.x if x_from is None else x_from,
                 scene.sdf,
                 material,
-                settings=scene.cfg.drape,
-                steps=WARM_STEPS,
+                settings=scene.cfg.drape.replace(settle_steps=WARM_STEPS),
                 model=model,
                 progress=bar,
+                anchors=s.anchors,
             )
         else:
             x = dress(

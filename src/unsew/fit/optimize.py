@@ -276,6 +276,7 @@ class PhaseTwo:
     def __init__(self, choice: MaterialChoice, target: Target, sdf, cfg: FitConfig):
         s = choice.start
         self.cfg, self.sdf, self.mesh, self.material0 = cfg, sdf, s.mesh, s.material
+        self.anchors = s.anchors  # held as the start's drape holds them (unsew.dress.held_anchors)
         dev = torch.device(cfg.device)
         self.params = PatternParams.build(s.graded, s.mesh).to(dev)
         self.model = SimModel.build(s.mesh.faces, s.mesh.faces_uv).to(dev)
@@ -351,6 +352,7 @@ class PhaseTwo:
             self.gamma0,
             self.material0.density,
             friction=self.material0.friction,
+            anchors=self.anchors,
         )
 
         def p99(st):
@@ -413,7 +415,7 @@ class PhaseTwo:
             self.model,
             SimState.at_rest(self.x_prev),
             self.sdf,
-            Cloth(uv, gamma, self.material0.density, friction=self.material0.friction),
+            Cloth(uv, gamma, self.material0.density, friction=self.material0.friction, anchors=self.anchors),
             settings=self.settings,
         ).x
         zero_x, zero_uv = x.sum() * 0, uv.sum() * 0
@@ -577,6 +579,7 @@ class PhaseTwo:
                         self.gamma0,
                         self.material0.density,
                         friction=self.material0.friction,
+                        anchors=self.anchors,
                     ),
                     settings=self.settings,
                 )
@@ -716,7 +719,13 @@ class PhaseTwo:
                 self.model,
                 SimState.at_rest(b.x),
                 self.sdf,
-                Cloth(uv, b.gamma, self.material0.density, friction=self.material0.friction),
+                Cloth(
+                    uv,
+                    b.gamma,
+                    self.material0.density,
+                    friction=self.material0.friction,
+                    anchors=self.anchors,
+                ),
                 settings=self.settings,
             ).x
         return K, x

@@ -26,7 +26,7 @@ from typing import Callable
 import numpy as np
 
 from unsew.body.measure import measure_body
-from unsew.dress import dress, settle
+from unsew.dress import dress, held_anchors, settle
 from unsew.errors import InputError
 from unsew.fit.config import FitConfig
 from unsew.fit.progress import Progress
@@ -100,6 +100,8 @@ class Start:
     base_name: str = ""  #: the base's library name or JSON path
     base_choice: tuple = ()  #: the automatic base choice's rows, best first (BaseChoice.table)
     dress_s: float = 0.0  #: seconds the base's drape from scratch took [s] (0: not dressed from scratch)
+    #: the vertices ``x`` holds at their height (``Cloth.anchors``, :func:`unsew.dress.held_anchors`)
+    anchors: tuple | None = None
 
     def replace(self, **changes) -> "Start":
         return dataclasses.replace(self, **changes)
@@ -483,7 +485,8 @@ def start(
     mesh_b, x_b, dress_s = _base_drape(base, scene, material, label, base_from)
     _check_contours_compatible(len(open_contours(x_b, mesh_b.faces)), len(target.contours), garment)
     if not cfg.grading:
-        return Start(base, base, mesh_b, x_b, [], x_b, mesh_b, material, dress_s=dress_s)
+        anchors = held_anchors(base, mesh_b, scene.body, scene.sdf, x_b)
+        return Start(base, base, mesh_b, x_b, [], x_b, mesh_b, material, dress_s=dress_s, anchors=anchors)
 
     def drape_fn(p, m, b):
         return dress(p, b, sdf=scene.sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
@@ -500,9 +503,9 @@ def start(
     )
     if g.note and log is not None:
         log(g.note)
-    return Start(
-        base, g.pattern, g.mesh, np.asarray(g.x_draped), g.table, x_b, mesh_b, material, dress_s=dress_s
-    )
+    x = np.asarray(g.x_draped)
+    anchors = held_anchors(g.pattern, g.mesh, scene.body, scene.sdf, x)
+    return Start(base, g.pattern, g.mesh, x, g.table, x_b, mesh_b, material, dress_s=dress_s, anchors=anchors)
 
 
 def _base_drape(base, scene: Scene, material, label: str, base_from: tuple | None):
@@ -517,9 +520,9 @@ def _base_drape(base, scene: Scene, material, label: str, base_from: tuple | Non
                 base_from[1],
                 scene.sdf,
                 material,
-                settings=scene.cfg.drape,
-                steps=WARM_STEPS,
+                settings=scene.cfg.drape.replace(settle_steps=WARM_STEPS),
                 progress=bar,
+                anchors=held_anchors(base, mesh_b, scene.body, scene.sdf, base_from[1]),
             )
         else:
             dressed = dress(
