@@ -90,11 +90,10 @@ def attached_vertices(pattern, mesh, body, sdf):
     ``Cloth.anchors`` (uv indices (A,) int64 torch, heights (A,) float64 torch [m]), or None when
     there is none. A height is the mean over a sewn vertex's copies of the pattern's own placement
     (:func:`unsew.body.placement.place_as_given`: each panel's translation and rotation)."""
-    panels = getattr(pattern, "panels", {})
-    sewn = {(side.panel, side.edge) for st in getattr(pattern, "stitches", ()) for side in (st.a, st.b)}
+    sewn = {(side.panel, side.edge) for st in pattern.stitches for side in (st.a, st.b)}
     hung = {
         (name, e)
-        for name, pa in panels.items()
+        for name, pa in pattern.panels.items()
         for e, edge in enumerate(pa.edges)
         if edge.label in ATTACH_LABELS and (name, e) not in sewn
     }

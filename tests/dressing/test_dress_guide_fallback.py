@@ -9,6 +9,9 @@ import numpy as np
 import unsew.dress as dress_mod
 from unsew.body.body import default_body
 
+#: a pattern with no labelled hanging edge (dress() holds nothing)
+_UNLABELLED = SimpleNamespace(panels={}, stitches=[])
+
 
 def _fake(ok: bool, stretch: float, guided: int):
     """A stand-in drape: one right triangle, its 1 m leg along x drawn out to ``stretch`` m."""
@@ -43,7 +46,7 @@ def _run(monkeypatch, guided_result, given_result=None, retried=None):
     monkeypatch.setattr(dress_mod, "check_dressed", lambda d, body=None: SimpleNamespace(ok=d.ok))
     monkeypatch.setattr(dress_mod, "mesh_pattern", lambda *a, **k: SimpleNamespace(uv=np.zeros((2, 2))))
     settings = dataclasses.replace(dress_mod.DRESS_SETTINGS, seam_guide=True)
-    out = dress_mod.dress(object(), default_body(), sdf=object(), settings=settings)
+    out = dress_mod.dress(_UNLABELLED, default_body(), sdf=object(), settings=settings)
     return out, calls
 
 
@@ -100,5 +103,41 @@ def test_a_diverging_drape_from_the_patterns_own_placement_leaves_the_first_verd
         raise SimulationError("simulation diverged at step 3")
 
     monkeypatch.setattr(dress_mod, "_dress_once", diverge)
-    out = dress_mod.dress(object(), default_body(), sdf=object())
+    out = dress_mod.dress(_UNLABELLED, default_body(), sdf=object())
     assert out is guided and "start_given" not in out.stats
+
+
+def _run_held(monkeypatch, held_result):
+    """dress() of a pattern with a held edge, its drapes stood in for: held gives ``held_result``
+    (raised when an exception), free a sound drape. Returns (drape, the calls: "held" / "free")."""
+    import torch
+
+    calls = []
+
+    def fake_dress(job):
+        held = job.cloth.anchors is not None
+        calls.append("held" if held else "free")
+        if held and isinstance(held_result, Exception):
+            raise held_result
+        return held_result if held else _fake(True, 1.1, 0)
+
+    anchors = (torch.tensor([0, 1]), torch.tensor([1.0, 1.0], dtype=torch.float64))
+    monkeypatch.setattr(dress_mod, "attached_vertices", lambda *a: anchors)
+    monkeypatch.setattr(dress_mod, "_dress_retried", fake_dress)
+    monkeypatch.setattr(dress_mod, "check_dressed", lambda d, body=None: SimpleNamespace(ok=d.ok))
+    monkeypatch.setattr(dress_mod, "mesh_pattern", lambda *a, **k: SimpleNamespace(uv=np.zeros((2, 2))))
+    return dress_mod.dress(_UNLABELLED, default_body(), sdf=object()), calls
+
+
+def test_a_sound_held_drape_is_kept(monkeypatch):
+    out, calls = _run_held(monkeypatch, _fake(True, 1.2, 0))
+    assert calls == ["held"] and out.stats["held"] == 2
+
+
+def test_an_unsound_or_diverged_held_drape_gives_way_to_a_sound_free_one(monkeypatch):
+    from unsew.errors import SimulationError
+
+    out, calls = _run_held(monkeypatch, _fake(False, 4.0, 0))
+    assert calls == ["held", "free"] and out.ok and out.stats["held"] == 0
+    out, calls = _run_held(monkeypatch, SimulationError("exploded"))
+    assert calls == ["held", "free"] and out.ok and out.stats["held"] == 0
