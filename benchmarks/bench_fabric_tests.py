@@ -25,6 +25,7 @@ draped specimen from above with the disc, the strip's profile with the 41.5 deg 
 ``--record``, the tables as benchmarks/results/fabric_{cantilever,drape}.json.
 
 Run: python -m benchmarks fabric_tests [--small] [--figures docs/figures] [--record] [--seeds 3]
+     python -m benchmarks fabric_tests --newton-cantilever (newton's settling, _newton_cantilever.py)
 """
 
 from __future__ import annotations
@@ -974,4 +975,8 @@ if __name__ == "__main__":
         from _flared_floor import main as flared_floor
 
         sys.exit(flared_floor([a for a in sys.argv[1:] if a != "--flared-floor"]))
+    if "--newton-cantilever" in sys.argv[1:]:  # newton's settling: _newton_cantilever.py
+        from _newton_cantilever import main as newton_cantilever
+
+        sys.exit(newton_cantilever([a for a in sys.argv[1:] if a != "--newton-cantilever"]))
     sys.exit(main())

@@ -51,6 +51,7 @@ SETTINGS = dict(
     attach_clearance_m=0.01,
     attach_mass_factor=1.0e4,
     ground=True,
+    self_contact=1.0,  # 0: the cloth's contact with itself off (Style3D vertex-face, edge-edge)
 )
 
 
@@ -146,6 +147,8 @@ class _Runner:
         state0.particle_qd.zero_()
         control = model.control()
         solver = newton.solvers.SolverStyle3D(model, config=self.solver_cfg)
+        if not s.get("self_contact", 1.0):  # the body's contact stays (the same Collision object's)
+            solver.collision.stiff_vf = solver.collision.stiff_ee = solver.collision.stiff_ef = 0.0
         pipeline = newton.CollisionPipeline(model, soft_contact_margin=0.01)
         contacts = pipeline.contacts()
         if len(held):

@@ -118,3 +118,28 @@ def test_style3d_bending_is_zero_flat_and_rigid_motion_free():
     e0 = bench.style3d_bending_energy(uv, f, x)[0]
     e1 = bench.style3d_bending_energy(uv, f, x @ q.T + np.array([0.3, -1.0, 2.0]))[0]
     assert e0 > 0 and abs(e1 / e0 - 1) < 1e-9
+
+
+def test_elastica_bending_length_inverts_the_tip_drop():
+    # the bending length read back from an elastica's own tip drop is the one that made it
+    sys.path.insert(0, str(BENCH))
+    from _newton_cantilever import bending_length
+
+    c, overhang = 0.03, 0.12
+    drop = bench.elastica(overhang / c)[1][-1] * c
+    assert abs(bending_length(overhang, drop) / c - 1) < 1e-6
+
+
+def test_newton_cantilever_small_mode_reads_a_sagging_strip():
+    """newton's strip, a few frames in: it has started to sag, and it reads stiffer than the
+    rigidity its bending stands for (it has not settled)."""
+    import pytest
+
+    pytest.importorskip("newton")
+    sys.path.insert(0, str(BENCH))
+    from _newton_cantilever import run
+
+    rows = run([5, 10], overhang=0.06, edge=0.02)
+    assert [r["frames"] for r in rows] == [5, 10]
+    assert 0 < rows[0]["tip drop cm"] < rows[1]["tip drop cm"]
+    assert rows[1]["read / D_eq"] > 1

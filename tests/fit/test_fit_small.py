@@ -631,6 +631,35 @@ def test_refine_material_walks_towards_the_closest_stiffness():
     assert mat2 == mat and len(rows2) == 8
 
 
+def test_refine_material_walks_on_to_a_fabric_far_from_the_library():
+    """A target eight times stiffer in bending than the start is reached in the first round: a
+    scaling that helps is applied again while it keeps helping (REFINE_REPEAT), and stops at the
+    first that does not."""
+    import math
+
+    import numpy as np
+
+    from unsew.fit.material import REFINE_REPEAT, refine_material
+    from unsew.sim.material import MATERIALS
+
+    assert REFINE_REPEAT >= 2
+    c = MATERIALS["cotton"]
+
+    def dress_in(m, bar, x_from=None):
+        return np.array([[m.h00, m.bend]])
+
+    def objective(x):
+        return abs(math.log(x[0, 0] / c.h00)) + abs(math.log(x[0, 1] / (8.0 * c.bend)))
+
+    start = dress_in(c, None)
+    mat, x, rows = refine_material(c, "cotton", start, objective(start), dress_in, objective)
+    assert mat.bend == pytest.approx(8.0 * c.bend) and mat.h00 == c.h00
+    # round one: stretch /2, x2 (both worse), bending /2 (worse), x2, x4, x8, x16 (worse);
+    # round two: stretch and bending by 1/sqrt 2 and sqrt 2, all worse
+    assert len(rows) == 7 + 4
+    assert "bending x16" in rows[6]["material"] and rows[6]["chamfer_mm"] > objective(x)
+
+
 def test_fit_friction_eps_reaches_phase_two_drapes(free_fit):
     """OptimizerSettings.friction_eps is the slip speed of phase two's drapes."""
     _, seen = free_fit

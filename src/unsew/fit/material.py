@@ -52,6 +52,10 @@ REGRADE = 2
 #: ``material.start: auto``: rounds of the stiffness search after the choice (stretch and bending
 #: scaled by 1/s and s, s = 2, sqrt 2, ...); 0: off [-]
 REFINE_ROUNDS = 2
+#: ``material.start: auto``: a scaling that lowers the distance is applied again, up to this many
+#: more times in a row, while it keeps lowering it (a target far stiffer or softer than every
+#: library fabric is reached in one round; docs/decisions/040) [-]
+REFINE_REPEAT = 3
 #: ``material.start: auto``: the chosen pattern and fabric dressed from scratch; clearly farther
 #: (CHECK_MARGIN_MM and CHECK_MARGIN_REL) than the cotton-graded pattern: start from that one
 #: (:func:`_checked`)
@@ -111,8 +115,9 @@ def refine_material(
 ):
     """Coordinate search on the chosen fabric's stiffness, by draping: scale the stretch entries
     (H00, H01, H11, H22 together, so the Poisson ratio stays) and then the bending stiffness by
-    1/s and s, s = 2, then sqrt(2), ... (:data:`REFINE_ROUNDS` steps), and keep a scaling when the pattern,
-    dressed from scratch in it, lies closer to the target.
+    1/s and s, s = 2, then sqrt(2), ... (:data:`REFINE_ROUNDS` steps), and keep a scaling when the
+    pattern, draped in it, lies closer to the target; a kept scaling is tried again, up to
+    :data:`REFINE_REPEAT` more times, while it keeps getting closer.
 
     material: the start (unsew.sim.material.Material) named ``label`` in the table; x0, cf0: its
     drape (Nx, 3) [m] and distance [mm]; dress_in, objective as for :func:`choose_material` (each
@@ -120,27 +125,56 @@ def refine_material(
     the next scaling (the fit's time limit).
     Returns (Material, drape, rows): rows list every scaling tried, {"material", "chamfer_mm"}.
     """
-    progress = progress or Progress(False)
-    best, x_best, cf_best, scale = material, x0, cf0, {g: 1.0 for g in REFINE_GROUPS}
-    rows = []
+    walk = _Walk(material, label, x0, cf0, dress_in, objective, progress or Progress(False), keep_going)
     for r in range(REFINE_ROUNDS):
         s = 2.0 ** (0.5**r)
-        for group, names in REFINE_GROUPS.items():
+        for group in REFINE_GROUPS:
             for f in (1.0 / s, s):
-                if keep_going is not None and not keep_going():
-                    return best, x_best, rows
-                cand = dataclasses.replace(best, **{k: getattr(best, k) * f for k in names})
-                with progress.phase(f"{group} x{scale[group] * f:.2g}") as bar:
-                    x = dress_in(cand, bar, x_best)
-                cf = objective(x)
-                tag = ", ".join(f"{g} x{scale[g] * (f if g == group else 1.0):.2g}" for g in REFINE_GROUPS)
-                if math.isfinite(cf):
-                    rows.append({"material": f"{label} ({tag})", "chamfer_mm": cf})
-                if cf < cf_best:
-                    best, x_best, cf_best = cand, x, cf
-                    scale[group] *= f
-                    break  # the other direction cannot be better too on a unimodal distance
-    return best, x_best, rows
+                if not walk.step(group, f):
+                    continue
+                for _ in range(REFINE_REPEAT):
+                    if not walk.step(group, f):
+                        break
+                break  # the other direction cannot be better too on a unimodal distance
+            if walk.stopped:
+                return walk.best, walk.x_best, walk.rows
+    return walk.best, walk.x_best, walk.rows
+
+
+@dataclass
+class _Walk:
+    """The state of :func:`refine_material`'s search: the best fabric, its drape and distance,
+    the scale of each group against the start, the rows tried, and whether the time ran out."""
+
+    best: object
+    label: str
+    x_best: object
+    cf_best: float
+    dress_in: Callable
+    objective: Callable
+    progress: Progress
+    keep_going: Callable[[], bool] | None
+    rows: list = field(default_factory=list)
+    scale: dict = field(default_factory=lambda: {g: 1.0 for g in REFINE_GROUPS})
+    stopped: bool = False
+
+    def step(self, group: str, f: float) -> bool:
+        """Drape the best fabric with ``group`` scaled by f; True (and kept) when it lies closer."""
+        if self.stopped or (self.keep_going is not None and not self.keep_going()):
+            self.stopped = True
+            return False
+        cand = dataclasses.replace(self.best, **{k: getattr(self.best, k) * f for k in REFINE_GROUPS[group]})
+        with self.progress.phase(f"{group} x{self.scale[group] * f:.2g}") as bar:
+            x = self.dress_in(cand, bar, self.x_best)
+        cf = self.objective(x)
+        tag = ", ".join(f"{g} x{self.scale[g] * (f if g == group else 1.0):.2g}" for g in REFINE_GROUPS)
+        if math.isfinite(cf):
+            self.rows.append({"material": f"{self.label} ({tag})", "chamfer_mm": cf})
+        if not cf < self.cf_best:
+            return False
+        self.best, self.x_best, self.cf_best = cand, x, cf
+        self.scale[group] *= f
+        return True
 
 
 def _dresser(s: Start, scene: Scene):
