@@ -14,8 +14,11 @@ With ``--newton-again FRAMES`` the drape compared is newton's own, run again fro
 placement (the targets' simulator against itself: how far its result moves with its sewing
 settings and the settle time).
 
+With ``--against DIR`` the drape is compared with DIR/CASE.obj (another drape that ``--out``
+wrote, e.g. newton's settled longer) instead of the case's target.
+
 Run: python -m benchmarks fabric_tests --flared-floor [--cases ID ...] [--fabric cotton|newton] [--out DIR]
-     [--newton-again FRAMES]
+     [--newton-again FRAMES] [--against DIR]
 """
 
 from __future__ import annotations
@@ -145,14 +148,15 @@ def _body(case: Path):
     return _load_body(argparse.Namespace(body=str(case), skeleton=None, units="m"))
 
 
-def run_case(case: Path, fabric: str, out: Path | None, newton_frames: int = 0, changes=None) -> dict:
+def run_case(case: Path, fabric: str, out: Path | None, newton_frames=0, changes=None, against=None) -> dict:
     """One row: the floor [mm], both drapes' shapes and the band distances (``newton_frames`` > 0:
-    newton's own drape run again (:func:`newton_again`) in place of unsew's)."""
+    newton's own drape run again (:func:`newton_again`) in place of unsew's; ``against``: a folder
+    whose CASE.obj stands in for the target)."""
     from unsew.metrics.surface import chamfer_mm
 
     t0 = time.time()
     x, f = newton_again(case, newton_frames, changes) if newton_frames else drape_case(case, fabric, changes)
-    tv, tf = read_obj(case / "target.obj")
+    tv, tf = read_obj(against / f"{case.name}.obj" if against is not None else case / "target.obj")
     c = chamfer_mm(x, f, tv, tf, n_samples=50_000)
     axis = tv[:, [0, 2]].mean(0)
     ours, theirs = shape(x, axis), shape(tv, axis)
@@ -212,6 +216,12 @@ def main(argv=None) -> int:
     ap.add_argument("--fabric", default="cotton", help="a library material, or newton (the targets' fabric)")
     ap.add_argument("--out", type=Path, default=None, help="write each drape as DIR/CASE.obj")
     ap.add_argument(
+        "--against",
+        type=Path,
+        default=None,
+        help="compare with DIR/CASE.obj (another drape written by --out) instead of the case's target",
+    )
+    ap.add_argument(
         "--newton-again",
         type=int,
         default=0,
@@ -234,6 +244,10 @@ def main(argv=None) -> int:
     if missing:
         print(f"flared_floor: no case {missing[0]!r} in {CASES}", file=sys.stderr)
         return 2
+    absent = [c for c in args.cases if args.against and not (args.against / f"{c}.obj").is_file()]
+    if absent:
+        print(f"flared_floor: --against {args.against} has no {absent[0]}.obj", file=sys.stderr)
+        return 2
 
     import torch
 
@@ -242,7 +256,7 @@ def main(argv=None) -> int:
 
     rows = []
     for c in args.cases:
-        rows.append(run_case(CASES / c, args.fabric, args.out, args.newton_again, changes))
+        rows.append(run_case(CASES / c, args.fabric, args.out, args.newton_again, changes, args.against))
         print(" ".join(f"{k}: {v}" for k, v in rows[-1].items()), flush=True)
     print()
     print(markdown_table(rows, digits=2))

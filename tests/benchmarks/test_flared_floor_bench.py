@@ -39,3 +39,8 @@ def test_unknown_case_exits_2(capsys):
 def test_a_change_that_names_nothing_exits_2(capsys):
     assert bench.main(["--cases", "skirt_circle_knee__default", "--set", "m.stiffness=3"]) == 2
     assert "neither m.<material field> nor a setting" in capsys.readouterr().err
+
+
+def test_against_a_folder_without_the_drape_exits_2(tmp_path, capsys):
+    assert bench.main(["--cases", "skirt_circle_knee__default", "--against", str(tmp_path)]) == 2
+    assert "has no skirt_circle_knee__default.obj" in capsys.readouterr().err
