@@ -57,7 +57,9 @@ def bending_length(overhang: float, drop: float) -> float:
 
 
 def run(frames_list, overhang: float, edge: float) -> list[dict]:
-    """One row per frame count: newton's strip after that many frames, read as a rigidity."""
+    """One row per frame count (ints, each run from rest): newton's strip of ``overhang`` [m] on
+    a mesh of ``edge`` [m] after that many frames, its tip drop [cm] read as a bending length [cm]
+    and a rigidity [uN m] beside D_eq [uN m]."""
     import warp as wp
 
     sys.path.insert(0, str(HERE / "foreign"))
@@ -109,6 +111,9 @@ def main(argv=None) -> int:
         args.frames, args.overhang, args.edge = [5, 10], 0.06, 0.02
     if min(args.frames) < 1:
         print("newton_cantilever: --frames must be positive", file=sys.stderr)
+        return 2
+    if not 0 < args.edge < args.overhang:
+        print("newton_cantilever: --edge must be positive and shorter than --overhang", file=sys.stderr)
         return 2
     from tables import markdown_table
 

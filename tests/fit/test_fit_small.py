@@ -1000,3 +1000,31 @@ def test_redress_on_three_keeps_phase_two_by_the_mean(monkeypatch, fit_mm, grade
     assert check.phase_two_kept is kept and check.fit_mm == fit_mm and check.graded_fresh_mm == graded_mm
     assert check.fit_mean_mm == (pytest.approx(fit_mean) if fit_mean is not None else None)
     assert spread.chamfer_mm == (fit_mm[1:] if kept else graded_mm[1:])
+
+
+def test_a_start_graded_again_carries_its_own_meshs_held_vertices(monkeypatch):
+    """When the material choice keeps a pattern graded again in another fabric, the start takes
+    that grading's mesh, drape and held vertices together (indices into the other mesh would hold
+    the wrong vertices)."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    import unsew.fit.material as fm
+    from unsew.fit.budget import TimeBudget
+    from unsew.fit.start import Start
+    from unsew.sim.material import MATERIALS
+
+    mesh_a, mesh_b = SimpleNamespace(faces="a"), SimpleNamespace(faces="b")
+    cotton, wool = MATERIALS["cotton"], MATERIALS["wool"]
+    first = Start("base", "pa", mesh_a, np.zeros((3, 3)), [], None, None, cotton, anchors="held_a")
+    again = Start("base", "pb", mesh_b, np.ones((4, 3)), [], None, None, wool, anchors="held_b")
+    monkeypatch.setattr(fm, "start", lambda *a, **k: again)
+    scene = SimpleNamespace(
+        cfg=SimpleNamespace(grading=True),
+        target=SimpleNamespace(distance_mm=lambda x, faces: 1.0 if faces == "b" else 5.0),
+        log=lambda m: None,
+    )
+    table = [{"material": "wool", "chamfer_mm": 3.0}]
+    cur, cf = fm._regraded(first, first, table, scene, "tshirt", TimeBudget(0))
+    assert cf == 1.0 and cur.mesh is mesh_b and cur.x is again.x and cur.anchors == "held_b"

@@ -280,8 +280,13 @@ def _regraded(first: Start, cur: Start, table: list, scene: Scene, garment: str,
         table.append({"material": name, "chamfer_mm": cf, "pattern": f"graded in {name}"})
         if cf < best_cf:
             best_cf = cf
-            cur = cur.replace(
-                graded=s.graded, mesh=s.mesh, x=s.x, grade_table=s.grade_table, material=s.material
+            cur = cur.replace(  # the anchors index this start's own mesh
+                graded=s.graded,
+                mesh=s.mesh,
+                x=s.x,
+                grade_table=s.grade_table,
+                material=s.material,
+                anchors=s.anchors,
             )
     return cur, best_cf
 
