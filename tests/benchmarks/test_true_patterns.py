@@ -113,3 +113,39 @@ def test_designs_mode_dresses_a_drafted_skirt(capsys):
     assert row["verdict"] == "ok"
     assert float(row["inside [%]"]) <= 0.5
     assert float(row["seam gap [mm]"]) < 10.0
+
+
+def test_newton_stretch_reads_the_targets_edges_as_unsews_drapes_are_read(tmp_path):
+    """A case's newton target read for its largest edge stretch: none without a target or with
+    one on another mesh; a target scaled 1.3 times about its centre reads 1.3 times more."""
+    import json
+
+    import numpy as np
+    import trimesh
+
+    from unsew.io.garmentcode import load_pattern
+    from unsew.meshing import mesh_pattern
+
+    try:
+        foreign = bench.foreign_dir()
+    except SystemExit:
+        pytest.skip("no shared/foreign beside the repository")
+    _fake_gcd_cases(tmp_path, foreign, ["gc_s1_000"])
+    d = tmp_path / "gc_s1_000"
+    assert bench.newton_stretch(d) is None
+    edge = json.loads((bench.HERE / "gcd" / "manifest.json").read_text())["edge_length_m"]
+    mesh = mesh_pattern(load_pattern(d / "pattern_gt.json"), edge_length=edge)
+    x = np.zeros((mesh.n_x, 3))
+    np.add.at(x, np.asarray(mesh.x_of_u), np.asarray(mesh.uv_placed3d))
+    x /= np.bincount(np.asarray(mesh.x_of_u), minlength=mesh.n_x)[:, None]
+    reads = []
+    for scale in (1.0, 1.3):
+        trimesh.Trimesh(scale * (x - x.mean(axis=0)), np.asarray(mesh.faces), process=False).export(
+            d / "target.obj"
+        )
+        reads.append(bench.newton_stretch(d))
+    assert reads[1] == pytest.approx(1.3 * reads[0], rel=1e-6)  # OBJ digits
+    trimesh.Trimesh(x[:-1], np.asarray(mesh.faces)[np.asarray(mesh.faces).max(axis=1) < mesh.n_x - 1]).export(
+        d / "target.obj"
+    )
+    assert bench.newton_stretch(d) is None
