@@ -11,7 +11,7 @@ reads D_eq; a strip still sagging reads a stiffer fabric. The benchmark's newton
 150-220 frames.
 
 Run: python -m benchmarks fabric_tests --newton-cantilever [--frames 150 300 900 2400]
-     [--overhang 0.15] [--edge 0.01] [--small]
+     [--overhang 0.15] [--edge 0.01] [--iterations 40] [--small]
 """
 
 from __future__ import annotations
@@ -56,10 +56,11 @@ def bending_length(overhang: float, drop: float) -> float:
     return math.sqrt(lo * hi)
 
 
-def run(frames_list, overhang: float, edge: float) -> list[dict]:
+def run(frames_list, overhang: float, edge: float, iterations: int | None = None) -> list[dict]:
     """One row per frame count (ints, each run from rest): newton's strip of ``overhang`` [m] on
     a mesh of ``edge`` [m] after that many frames, its tip drop [cm] read as a bending length [cm]
-    and a rigidity [uN m] beside D_eq [uN m]."""
+    and a rigidity [uN m] beside D_eq [uN m]; ``iterations``: the solver's iterations per substep
+    (default newton_drape.SETTINGS', 10)."""
     import warp as wp
 
     sys.path.insert(0, str(HERE / "foreign"))
@@ -70,6 +71,8 @@ def run(frames_list, overhang: float, edge: float) -> list[dict]:
     uv, f = strip_mesh(PLATFORM + overhang, WIDTH, edge)
     x = np.c_[uv[:, 0], np.ones(len(uv)), uv[:, 1]]  # Y up, the strip flat at 1 m
     s = {**nd.SETTINGS, "ground": False}
+    if iterations is not None:
+        s["iterations"] = iterations
     far = np.array([[5.0, -5, 5], [5.1, -5, 5], [5, -4.9, 5], [5, -5, 5.1]])  # a body out of reach
     tet = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
     d_eq = float(np.mean([v for k, v in style3d_bending_rows(edges=(edge,))[1].items() if "axis" in k]))
@@ -87,6 +90,7 @@ def run(frames_list, overhang: float, edge: float) -> list[dict]:
         rows.append(
             {
                 "frames": frames,
+                "iterations": s["iterations"],
                 "simulated s": round(frames / s["fps"], 2),
                 "tip drop cm": round(100 * drop, 2),
                 "bending length read cm": round(100 * c, 2),
@@ -105,6 +109,12 @@ def main(argv=None) -> int:
     ap.add_argument("--frames", nargs="+", type=int, default=[150, 300, 900, 2400])
     ap.add_argument("--overhang", type=float, default=0.15, help="overhang [m] (default 0.15)")
     ap.add_argument("--edge", type=float, default=0.01, help="mesh edge [m] (default 0.01)")
+    ap.add_argument(
+        "--iterations",
+        type=int,
+        default=None,
+        help="solver iterations per substep (default: the targets', 10)",
+    )
     ap.add_argument("--small", action="store_true", help="a coarse strip, two short runs (seconds)")
     args = ap.parse_args(argv)
     if args.small:
@@ -112,12 +122,15 @@ def main(argv=None) -> int:
     if min(args.frames) < 1:
         print("newton_cantilever: --frames must be positive", file=sys.stderr)
         return 2
+    if args.iterations is not None and args.iterations < 1:
+        print("newton_cantilever: --iterations must be positive", file=sys.stderr)
+        return 2
     if not 0 < args.edge < args.overhang:
         print("newton_cantilever: --edge must be positive and shorter than --overhang", file=sys.stderr)
         return 2
     from tables import markdown_table
 
-    rows = run(args.frames, args.overhang, args.edge)
+    rows = run(args.frames, args.overhang, args.edge, args.iterations)
     print(f"\nnewton Style3D cantilever, the targets' fabric, {args.overhang * 100:.0f} cm overhang\n")
     print(markdown_table(rows, digits=2))
     return 0

@@ -143,3 +143,5 @@ def test_newton_cantilever_small_mode_reads_a_sagging_strip():
     assert [r["frames"] for r in rows] == [5, 10]
     assert 0 < rows[0]["tip drop cm"] < rows[1]["tip drop cm"]
     assert rows[1]["read / D_eq"] > 1
+    (more,) = run([10], overhang=0.06, edge=0.02, iterations=40)  # more iterations: further down
+    assert more["iterations"] == 40 and more["tip drop cm"] > rows[1]["tip drop cm"]
