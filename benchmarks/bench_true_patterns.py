@@ -108,10 +108,10 @@ def measure(obj: Path, sdf) -> dict:
     """inside_pct [%], stretch_max and stretch_p99 [-] and the vertex count of a draped OBJ."""
     import torch
 
+    from _dress_trace import edge_stretch
+
     x, f, uv, fu = read_obj_uv(obj)
-    cols = [0, 1, 1, 2, 2, 0]
-    e, eu = f[:, cols].reshape(-1, 2), fu[:, cols].reshape(-1, 2)
-    r = np.linalg.norm(x[e[:, 0]] - x[e[:, 1]], axis=1) / np.linalg.norm(uv[eu[:, 0]] - uv[eu[:, 1]], axis=1)
+    r = edge_stretch(x, f, fu, uv)
     with torch.no_grad():
         d, _ = sdf.query(torch.as_tensor(x))
     return {
@@ -307,6 +307,7 @@ def newton_stretch(case_dir: Path):
     as ``gcd build`` meshed it), measured as :func:`measure` measures unsew's drapes; None
     without a target, or where the mesh no longer matches it."""
     import trimesh
+    from _dress_trace import edge_stretch
 
     from unsew.io.garmentcode import load_pattern
     from unsew.meshing import mesh_pattern
@@ -321,12 +322,9 @@ def newton_stretch(case_dir: Path):
     x = np.asarray(trimesh.load(target, process=False, force="mesh").vertices, np.float64)
     if len(x) != mesh.n_x:
         return None
-    cols = [0, 1, 1, 2, 2, 0]
-    e = np.asarray(mesh.faces)[:, cols].reshape(-1, 2)
-    eu = np.asarray(mesh.faces_uv)[:, cols].reshape(-1, 2)
-    uv = np.asarray(mesh.uv)
-    r = np.linalg.norm(x[e[:, 0]] - x[e[:, 1]], axis=1) / np.linalg.norm(uv[eu[:, 0]] - uv[eu[:, 1]], axis=1)
-    return float(r.max())
+    return float(
+        edge_stretch(x, np.asarray(mesh.faces), np.asarray(mesh.faces_uv), np.asarray(mesh.uv)).max()
+    )
 
 
 def gcd_case_ids() -> list[str]:

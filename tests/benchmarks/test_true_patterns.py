@@ -149,3 +149,12 @@ def test_newton_stretch_reads_the_targets_edges_as_unsews_drapes_are_read(tmp_pa
         d / "target.obj"
     )
     assert bench.newton_stretch(d) is None
+    rows = [
+        {"ok": True, "exit": 0, "newton_stretch_max": 1.6},
+        {"ok": False, "exit": 0, "newton_stretch_max": 1.7},
+        {"ok": True, "exit": 0, "newton_stretch_max": 1.2},
+        {"ok": False, "exit": 2, "newton_stretch_max": None},
+    ]
+    assert "edge over 1.5x in 2 of the 3 with a newton target (1 of those 2 dressed" in bench.gcd_count_line(
+        rows
+    )
