@@ -8,6 +8,7 @@
     python -m benchmarks gcd floor-fitted --results DIR [--record]   the material-fitted floor
     python -m benchmarks gcd status [--out DIR]    every case's build status
     python -m benchmarks gcd keep [--out DIR]      store the built targets in targets/ (kept.py)
+    python -m benchmarks gcd settle --out DIR --to DIR2 [--only ...]   each built target run on to rest
     python -m benchmarks gcd types [--out DIR] [--drapes DIR] [--record]   the design read off the targets
     python -m benchmarks gcd judge-check           the judge on synthetic inputs (seconds)
     python -m benchmarks gcd panels --results R --cases DIR   per true piece, each fit stage; darts' floor
@@ -39,6 +40,7 @@ import build  # noqa: E402  (this folder on the path first)
 import fits  # noqa: E402
 import kept  # noqa: E402
 import score  # noqa: E402
+import settle  # noqa: E402
 import starts  # noqa: E402
 
 RESULTS = HERE / "results.json"
@@ -106,6 +108,29 @@ def cmd_keep(args) -> int:
     ids = [cid for cid, _, _ in build.case_ids()]
     stored = [cid for cid in ids if kept.keep(out, cid)]
     print(f"kept {len(stored)} of {len(ids)} targets in {kept.KEPT}: {' '.join(stored)}")
+    return 0
+
+
+def cmd_settle(args) -> int:
+    """Every built case of ``--out`` (or ``--only``) copied to ``--to`` with its target settled."""
+    src, dst = Path(args.out), Path(args.to)
+    if not src.is_dir() or src.resolve() == dst.resolve():
+        print(f"gcd settle: --out {src} is not a folder, or it is --to", file=sys.stderr)
+        return 2
+    dst.mkdir(parents=True, exist_ok=True)
+    ids = args.only or [c for c, _, _ in build.case_ids() if (src / c / "target.obj").is_file()]
+    for cid in ids:
+        if not (src / cid / "target.obj").is_file():
+            print(f"gcd settle: {cid} has no target in {src}", file=sys.stderr)
+            return 2
+        rec = settle.settle_case(src / cid, dst / cid, log=lambda *a: None)
+        state = "at rest" if rec["at_rest"] else "still moving"
+        speed = rec["speed_p99_m_s"] * 1000
+        print(
+            f"{cid}: {rec['frames']} frames, {state} (speed p99 {speed:.1f} mm/s), "
+            f"moved {rec['moved_mm']:.2f} mm, {rec['seconds']:.0f} s",
+            flush=True,
+        )
     return 0
 
 
@@ -273,6 +298,10 @@ def main(argv=None) -> int:
     st.add_argument("--out", default=str(DEFAULT_CASES))
     kp = sub.add_parser("keep", help="store the built cases' newton targets in benchmarks/gcd/targets")
     kp.add_argument("--out", default=str(DEFAULT_CASES))
+    se = sub.add_parser("settle", help="copy the built cases with each newton target run on until at rest")
+    se.add_argument("--out", default=str(DEFAULT_CASES), help="the built cases")
+    se.add_argument("--to", required=True, help="folder for the settled copies")
+    se.add_argument("--only", nargs="*", help="case ids (default: every case with a target)")
     _add_types_parser(sub)
     _add_starts_parser(sub)
     args = ap.parse_args(argv)
@@ -287,6 +316,7 @@ def main(argv=None) -> int:
         "floor-fitted": lambda a: score.cmd_floor_fitted(a, Path(a.record_file)),
         "status": cmd_status,
         "keep": cmd_keep,
+        "settle": cmd_settle,
         "judge-check": lambda a: score.judge_check(),
     }
     if args.cmd in modes:

@@ -59,3 +59,18 @@ def test_gcd_reading_modes_refuse_a_missing_folder_in_one_line(tmp_path):
         r = _run("gcd", *args)
         assert r.returncode == 2
         assert r.stderr.strip().splitlines() == [f"gcd {args[0]}: --out {tmp_path / 'none'} is not a folder"]
+
+
+def test_gcd_settle_refuses_a_missing_folder_and_a_case_without_a_target_in_one_line(tmp_path):
+    r = _run("gcd", "settle", "--out", str(tmp_path / "none"), "--to", str(tmp_path / "to"))
+    assert r.returncode == 2
+    assert r.stderr.strip().splitlines() == [
+        f"gcd settle: --out {tmp_path / 'none'} is not a folder, or it is --to"
+    ]
+    (tmp_path / "cases" / "gc_s1_000").mkdir(parents=True)
+    r = _run(
+        "gcd", "settle", "--out", str(tmp_path / "cases"), "--to", str(tmp_path / "to"), "--only", "gc_s1_000"
+    )
+    assert r.returncode == 2
+    assert r.stderr.strip().splitlines() == [f"gcd settle: gc_s1_000 has no target in {tmp_path / 'cases'}"]
+    assert not list((tmp_path / "to").iterdir())

@@ -391,6 +391,51 @@ def test_newton_drape_keeps_attached_vertices_at_their_height_while_the_rest_fal
     assert 1.2 - 0.25 < x[:, 1].min() < 1.2 - 0.19
 
 
+def _hung_panel(rotation):
+    """A 20 x 20 cm panel with an edge along z = 0.3 m, y = 1.2 m (its top when it hangs, its edge
+    nearest the body when it is level), a box well below it: (mesh, sewn positions (n, 3) [m],
+    that edge's vertices, box)."""
+    import trimesh
+
+    build = _load("build")
+    panel = _panel([[0, 0], [20, 0], [20, 20], [0, 20]], t=(-10, 120 if rotation[0] else 100, 30))
+    panel["rotation"] = rotation
+    mesh = build.mesh_spec(_spec({"p": panel}, []), "panel", 0.05)
+    x = np.zeros((mesh.n_x, 3))
+    x[np.asarray(mesh.x_of_u)] = build.spec_placement(_spec({"p": panel}, []), mesh)
+    edge = np.flatnonzero((x[:, 2] < 0.3 + 1e-6) & (x[:, 1] > 1.2 - 1e-6))
+    return mesh, x, edge, trimesh.creation.box(extents=(0.2, 0.2, 0.2))
+
+
+@pytest.mark.parametrize("hanging", [True, False])
+def test_settle_newton_stops_at_rest_and_runs_a_moving_drape_on(hanging):
+    """A panel held along one edge: hanging straight down it is at rest, and the first speed
+    check ends the run; started level it swings down, is still moving at the frame cap and says
+    so. Either way the held edge stays where it was."""
+    pytest.importorskip("newton")
+    sys.path.insert(0, str(ROOT / "benchmarks" / "foreign"))
+    import newton_drape
+
+    mesh, x, edge, box = _hung_panel([0, 0, 0] if hanging else [90, 0, 0])
+    settle = {"iterations": 10, "linear_iterations": 10, "frames_max": 40, "check_every": 20}
+    x2, info = newton_drape.settle_newton(
+        mesh,
+        x,
+        box.vertices + [0, 0.8, 0],
+        box.faces,
+        settings=newton_drape.SETTINGS,
+        attach=edge,
+        settle=settle,
+        log=lambda *a: None,
+    )
+    assert np.abs(x2[edge, 1] - 1.2).max() < 0.005
+    if hanging:
+        assert info["at_rest"] and info["frames"] == 20 and np.abs(x2 - x).max() < 0.005
+    else:
+        assert not info["at_rest"] and info["frames"] == 40 and info["speed_p99_m_s"] > 0.05
+        assert x2[:, 1].min() < 1.2 - 0.03  # on its way down
+
+
 def test_wrap_on_torso_lays_a_front_panel_on_the_section_keeping_its_width_and_heights():
     """A 30 x 40 cm front panel placed flat 30 cm in front of a round torso (radius 15 cm): wrapped,
     every vertex lies 3 cm off the torso, heights kept, its rows as long as the panel is wide."""
