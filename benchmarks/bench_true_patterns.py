@@ -294,6 +294,9 @@ GCD_COLUMNS = {
     "stretch_max": "stretch max",
     "stretch_p99": "stretch p99",
     "newton_stretch_max": "newton's stretch max",
+    "to_newton_mm": "to newton's, per vertex mm",
+    "above_newton_mm": "above newton's mm",
+    "newton_area_pct": "newton's area +%",
     "vertices": "vertices",
     "time_s": "time s",
     "ok": "good",
@@ -301,13 +304,11 @@ GCD_COLUMNS = {
 }
 
 
-def newton_stretch(case_dir: Path):
-    """The largest edge length over its pattern length [-] in the case's newton target
+def _target_on_mesh(case_dir: Path):
+    """(target vertices (n_x, 3) [m], the specification's mesh) of a case's newton target
     (``target.obj``: the other simulator's drape of the same pattern, on the specification meshed
-    as ``gcd build`` meshed it), measured as :func:`measure` measures unsew's drapes; None
-    without a target, or where the mesh no longer matches it."""
+    as ``gcd build`` meshed it); None without a target, or where the mesh no longer matches it."""
     import trimesh
-    from _dress_trace import edge_stretch
 
     from unsew.io.garmentcode import load_pattern
     from unsew.meshing import mesh_pattern
@@ -319,12 +320,51 @@ def newton_stretch(case_dir: Path):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # GarmentCode's gathered seams: lengths apart
         mesh = mesh_pattern(load_pattern(case_dir / "pattern_gt.json"), edge_length=edge)
-    x = np.asarray(trimesh.load(target, process=False, force="mesh").vertices, np.float64)
-    if len(x) != mesh.n_x:
+    tm = trimesh.load(target, process=False, force="mesh")
+    if len(tm.vertices) != mesh.n_x or not np.array_equal(np.asarray(tm.faces), np.asarray(mesh.faces)):
         return None
+    return np.asarray(tm.vertices, np.float64), mesh
+
+
+def newton_stretch(case_dir: Path):
+    """The largest edge length over its pattern length [-] in the case's newton target, measured
+    as :func:`measure` measures unsew's drapes; None without a target that matches the mesh."""
+    from _dress_trace import edge_stretch
+
+    got = _target_on_mesh(case_dir)
+    if got is None:
+        return None
+    x, mesh = got
     return float(
         edge_stretch(x, np.asarray(mesh.faces), np.asarray(mesh.faces_uv), np.asarray(mesh.uv)).max()
     )
+
+
+def to_newton(case_dir: Path, obj: Path) -> dict:
+    """Where unsew's drape ``obj`` (written by ``unsew drape``, the same mesh) puts each point of
+    the cloth against where the case's newton target puts it: {"to_newton_mm": the median of the
+    vertices' distances, "above_newton_mm": the mean of their height differences (unsew's minus
+    newton's)} [mm]; empty without a matching target or drape. A surface distance (Chamfer) misses
+    cloth that lies on the same surface from another place: a bodice bunched up over its skirt."""
+    got = _target_on_mesh(case_dir)
+    if got is None or not obj.is_file():
+        return {}
+    x, mesh = got
+    v, f, _, _ = read_obj_uv(obj)
+    if len(v) != len(x) or not np.array_equal(f, np.asarray(mesh.faces)):
+        return {}
+    faces, faces_uv, uv = np.asarray(mesh.faces), np.asarray(mesh.faces_uv), np.asarray(mesh.uv)
+    rest = 0.5 * np.abs(
+        np.cross(uv[faces_uv[:, 1]] - uv[faces_uv[:, 0]], uv[faces_uv[:, 2]] - uv[faces_uv[:, 0]])
+    )
+    area = 0.5 * np.linalg.norm(
+        np.cross(x[faces[:, 1]] - x[faces[:, 0]], x[faces[:, 2]] - x[faces[:, 0]]), axis=1
+    )
+    return {
+        "to_newton_mm": float(1000 * np.median(np.linalg.norm(v - x, axis=1))),
+        "above_newton_mm": float(1000 * np.mean(v[:, 1] - x[:, 1])),
+        "newton_area_pct": float(100 * (area.sum() / rest.sum() - 1)),
+    }
 
 
 def gcd_case_ids() -> list[str]:
@@ -592,6 +632,7 @@ def main_gcd(args) -> int:
     rows = run_gcd(Path(args.cases), ids, out=out, redo=args.redo, **kw)
     for r in rows:  # measured again each time: the targets are the cases', the rows are unsew's
         r["newton_stretch_max"] = newton_stretch(Path(args.cases) / r["case"])
+        r.update(to_newton(Path(args.cases) / r["case"], out / f"{r['case']}.obj"))
     print()
     print(markdown_table(gcd_table_rows(rows), list(GCD_COLUMNS.values())))
     if args.seams:

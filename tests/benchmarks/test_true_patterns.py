@@ -115,6 +115,58 @@ def test_designs_mode_dresses_a_drafted_skirt(capsys):
     assert float(row["seam gap [mm]"]) < 10.0
 
 
+def _placed(d):
+    """(the specification's mesh, its flat panels placed in 3D, seams at their mean (n_x, 3) [m])."""
+    import json
+
+    import numpy as np
+
+    from unsew.io.garmentcode import load_pattern
+    from unsew.meshing import mesh_pattern
+
+    edge = json.loads((bench.HERE / "gcd" / "manifest.json").read_text())["edge_length_m"]
+    mesh = mesh_pattern(load_pattern(d / "pattern_gt.json"), edge_length=edge)
+    x = np.zeros((mesh.n_x, 3))
+    np.add.at(x, np.asarray(mesh.x_of_u), np.asarray(mesh.uv_placed3d))
+    return mesh, x / np.bincount(np.asarray(mesh.x_of_u), minlength=mesh.n_x)[:, None]
+
+
+def test_to_newton_reads_where_unsews_drape_puts_each_vertex_against_the_target(tmp_path):
+    """unsew's drape 5 cm above the target, vertex for vertex: 50 mm apart, 50 mm above; the
+    target scaled 1.1 times has 1.21 times the cloth; nothing without a target or with a drape
+    of another mesh."""
+    import numpy as np
+    import trimesh
+
+    try:
+        foreign = bench.foreign_dir()
+    except SystemExit:
+        pytest.skip("no shared/foreign beside the repository")
+    _fake_gcd_cases(tmp_path, foreign, ["gc_s1_000"])
+    d, obj = tmp_path / "gc_s1_000", tmp_path / "gc_s1_000.obj"
+    mesh, x = _placed(d)
+    f, fu, uv = np.asarray(mesh.faces), np.asarray(mesh.faces_uv), np.asarray(mesh.uv)
+
+    def drape(v, faces=f):
+        lines = [f"v {a} {b} {c}" for a, b, c in v] + [f"vt {a} {b}" for a, b in uv]
+        lines += [
+            f"f {a + 1}/{p + 1} {b + 1}/{q + 1} {c + 1}/{r + 1}" for (a, b, c), (p, q, r) in zip(faces, fu)
+        ]
+        obj.write_text("\n".join(lines) + "\n")
+
+    drape(x + [0.0, 0.05, 0.0])
+    assert bench.to_newton(d, obj) == {}  # no target
+    trimesh.Trimesh(x, f, process=False).export(d / "target.obj")
+    got = bench.to_newton(d, obj)
+    assert got["to_newton_mm"] == pytest.approx(50.0, abs=1e-3)
+    assert got["above_newton_mm"] == pytest.approx(50.0, abs=1e-3)
+    trimesh.Trimesh(1.1 * x, f, process=False).export(d / "target.obj")
+    scaled = bench.to_newton(d, obj)["newton_area_pct"]
+    assert 100 + scaled == pytest.approx(1.21 * (100 + got["newton_area_pct"]), rel=1e-5)
+    drape(x, f[:, [0, 2, 1]])
+    assert bench.to_newton(d, obj) == {}
+
+
 def test_newton_stretch_reads_the_targets_edges_as_unsews_drapes_are_read(tmp_path):
     """A case's newton target read for its largest edge stretch: none without a target or with
     one on another mesh; a target scaled 1.3 times about its centre reads 1.3 times more."""
