@@ -326,12 +326,13 @@ def _target_on_mesh(case_dir: Path):
     return np.asarray(tm.vertices, np.float64), mesh
 
 
-def newton_stretch(case_dir: Path):
+def newton_stretch(case_dir: Path, target=None):
     """The largest edge length over its pattern length [-] in the case's newton target, measured
-    as :func:`measure` measures unsew's drapes; None without a target that matches the mesh."""
+    as :func:`measure` measures unsew's drapes; None without a target that matches the mesh.
+    ``target``: :func:`_target_on_mesh`'s answer when already read."""
     from _dress_trace import edge_stretch
 
-    got = _target_on_mesh(case_dir)
+    got = _target_on_mesh(case_dir) if target is None else target
     if got is None:
         return None
     x, mesh = got
@@ -340,30 +341,31 @@ def newton_stretch(case_dir: Path):
     )
 
 
-def to_newton(case_dir: Path, obj: Path) -> dict:
+def to_newton(case_dir: Path, obj: Path, target=None) -> dict:
     """Where unsew's drape ``obj`` (written by ``unsew drape``, the same mesh) puts each point of
     the cloth against where the case's newton target puts it: {"to_newton_mm": the median of the
     vertices' distances, "above_newton_mm": the mean of their height differences (unsew's minus
-    newton's)} [mm]; empty without a matching target or drape. A surface distance (Chamfer) misses
-    cloth that lies on the same surface from another place: a bodice bunched up over its skirt."""
-    got = _target_on_mesh(case_dir)
+    newton's) [mm], "newton_area_pct": how much larger the target's cloth is than its pattern
+    [%]}; empty without a matching target or drape. ``target``: :func:`_target_on_mesh`'s answer
+    when already read. A surface distance (Chamfer) misses cloth that lies on the same surface
+    from another place: a bodice bunched up over its skirt."""
+    import trimesh
+
+    from unsew.meshing.triangulate import signed_areas
+
+    got = _target_on_mesh(case_dir) if target is None else target
     if got is None or not obj.is_file():
         return {}
     x, mesh = got
     v, f, _, _ = read_obj_uv(obj)
     if len(v) != len(x) or not np.array_equal(f, np.asarray(mesh.faces)):
         return {}
-    faces, faces_uv, uv = np.asarray(mesh.faces), np.asarray(mesh.faces_uv), np.asarray(mesh.uv)
-    rest = 0.5 * np.abs(
-        np.cross(uv[faces_uv[:, 1]] - uv[faces_uv[:, 0]], uv[faces_uv[:, 2]] - uv[faces_uv[:, 0]])
-    )
-    area = 0.5 * np.linalg.norm(
-        np.cross(x[faces[:, 1]] - x[faces[:, 0]], x[faces[:, 2]] - x[faces[:, 0]]), axis=1
-    )
+    rest = np.abs(signed_areas(np.asarray(mesh.uv), np.asarray(mesh.faces_uv))).sum()
+    area = trimesh.Trimesh(x, np.asarray(mesh.faces), process=False).area
     return {
         "to_newton_mm": float(1000 * np.median(np.linalg.norm(v - x, axis=1))),
         "above_newton_mm": float(1000 * np.mean(v[:, 1] - x[:, 1])),
-        "newton_area_pct": float(100 * (area.sum() / rest.sum() - 1)),
+        "newton_area_pct": float(100 * (area / rest - 1)),
     }
 
 
@@ -631,8 +633,10 @@ def main_gcd(args) -> int:
         kw = {"edge_length": args.edge_length}
     rows = run_gcd(Path(args.cases), ids, out=out, redo=args.redo, **kw)
     for r in rows:  # measured again each time: the targets are the cases', the rows are unsew's
-        r["newton_stretch_max"] = newton_stretch(Path(args.cases) / r["case"])
-        r.update(to_newton(Path(args.cases) / r["case"], out / f"{r['case']}.obj"))
+        d = Path(args.cases) / r["case"]
+        target = _target_on_mesh(d)  # meshed once for both measures
+        r["newton_stretch_max"] = newton_stretch(d, target) if target is not None else None
+        r.update(to_newton(d, out / f"{r['case']}.obj", target) if target is not None else {})
     print()
     print(markdown_table(gcd_table_rows(rows), list(GCD_COLUMNS.values())))
     if args.seams:

@@ -429,16 +429,21 @@ def clear_of_body(x: np.ndarray, mesh, body_v: np.ndarray, body_f: np.ndarray, s
 ATTACH_LABELS = ("lower_interface", "strapless_top")
 
 
-def attachment(spec: dict, mesh, x0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The uv vertices on the specification's edges labelled ATTACH_LABELS, (k,) int64, and their
-    heights [m], (k,) float64: the mean start height (x0 (Nu, 3) [m], Y up) of the uv vertices
-    sewn into the same vertex, so a seam's two sides are held at one height."""
+def attached_uv(spec: dict, mesh) -> np.ndarray:
+    """The uv vertices (k,) int64 of ``mesh`` on the specification's edges labelled ATTACH_LABELS."""
     idx = [
         np.asarray(v, np.int64)
         for (name, e), v in mesh.edge_verts.items()
         if spec["pattern"]["panels"][name]["edges"][e].get("label") in ATTACH_LABELS
     ]
-    idx = np.unique(np.concatenate(idx)) if idx else np.zeros(0, np.int64)
+    return np.unique(np.concatenate(idx)) if idx else np.zeros(0, np.int64)
+
+
+def attachment(spec: dict, mesh, x0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The uv vertices on the specification's edges labelled ATTACH_LABELS, (k,) int64, and their
+    heights [m], (k,) float64: the mean start height (x0 (Nu, 3) [m], Y up) of the uv vertices
+    sewn into the same vertex, so a seam's two sides are held at one height."""
+    idx = attached_uv(spec, mesh)
     xu = np.asarray(mesh.x_of_u)
     ysum, cnt = np.zeros(int(mesh.n_x)), np.zeros(int(mesh.n_x))
     np.add.at(ysum, xu, x0[:, 1])

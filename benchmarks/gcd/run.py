@@ -123,7 +123,11 @@ def cmd_settle(args) -> int:
         if not (src / cid / "target.obj").is_file():
             print(f"gcd settle: {cid} has no target in {src}", file=sys.stderr)
             return 2
-        rec = settle.settle_case(src / cid, dst / cid, log=lambda *a: None)
+        try:
+            rec = settle.settle_case(src / cid, dst / cid, log=lambda *a: None)
+        except (ValueError, RuntimeError) as exc:  # another mesh, or newton diverged
+            print(f"gcd settle: {exc}", file=sys.stderr)
+            return 2
         state = "at rest" if rec["at_rest"] else "still moving"
         speed = rec["speed_p99_m_s"] * 1000
         print(

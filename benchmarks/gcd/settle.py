@@ -21,20 +21,6 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 
 
-def _held(spec: dict, mesh) -> np.ndarray:
-    """Sewn vertices (k,) int64 on the specification's edges that the drape held (build.ATTACH_LABELS)."""
-    import build
-
-    idx = [
-        np.asarray(v, np.int64)
-        for (name, e), v in mesh.edge_verts.items()
-        if spec["pattern"]["panels"][name]["edges"][e].get("label") in build.ATTACH_LABELS
-    ]
-    if not idx:
-        return np.zeros(0, np.int64)
-    return np.unique(np.asarray(mesh.x_of_u)[np.unique(np.concatenate(idx))])
-
-
 def settle_case(case: Path, out: Path, *, settle: dict | None = None, log=print) -> dict:
     """Copy the built case folder ``case`` to ``out`` (replaced if there) with its target.obj
     settled; returns the record written to ``out/settle.json``."""
@@ -51,11 +37,12 @@ def settle_case(case: Path, out: Path, *, settle: dict | None = None, log=print)
     if len(x) != mesh.n_x:
         n = mesh.n_x
         raise ValueError(f"{case.name}: target.obj has {len(x)} vertices, the specification's mesh {n}")
+    held = np.unique(np.asarray(mesh.x_of_u)[build.attached_uv(spec, mesh)])
     body_v, body_f = build.read_body(case)
     settings = {k: (float("inf") if v is None else v) for k, v in meta["simulator"]["settings"].items()}
     settings = {**newton_drape.SETTINGS, **settings}
     x2, info = newton_drape.settle_newton(
-        mesh, x, body_v, body_f, settings=settings, attach=_held(spec, mesh), settle=settle, log=log
+        mesh, x, body_v, body_f, settings=settings, attach=held, settle=settle, log=log
     )
     faces = np.asarray(mesh.faces)
     moved = round(judge.chamfer_mm(x, faces, x2, faces)["chamfer_mm"], 3)

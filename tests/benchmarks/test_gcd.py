@@ -391,6 +391,46 @@ def test_newton_drape_keeps_attached_vertices_at_their_height_while_the_rest_fal
     assert 1.2 - 0.25 < x[:, 1].min() < 1.2 - 0.19
 
 
+def test_gcd_settle_refuses_a_target_of_another_mesh_in_one_line(tmp_path):
+    """A case whose target.obj does not have the specification's mesh (3 vertices for a 20 cm
+    panel): one line naming the case and both counts, exit 2, no copy written."""
+    import json
+
+    import trimesh
+
+    case = tmp_path / "cases" / "gc_s1_000"
+    case.mkdir(parents=True)
+    (case / "pattern_gt.json").write_text(
+        json.dumps(_spec({"p": _panel([[0, 0], [20, 0], [20, 20], [0, 20]])}, []))
+    )
+    (case / "meta.json").write_text(json.dumps({"simulator": {"mesh_edge_length_m": 0.05, "settings": {}}}))
+    trimesh.creation.box().export(case / "body.obj")
+    (case / "target.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "src"), str(ROOT)]))
+    args = [
+        "gcd",
+        "settle",
+        "--out",
+        str(tmp_path / "cases"),
+        "--to",
+        str(tmp_path / "to"),
+        "--only",
+        case.name,
+    ]
+    r = subprocess.run(
+        [sys.executable, "-m", "benchmarks", *args],
+        cwd=ROOT,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert r.returncode == 2
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("gcd settle: gc_s1_000: target.obj has 3 vertices")
+    assert not (tmp_path / "to" / case.name).exists()
+
+
 def _hung_panel(rotation):
     """A 20 x 20 cm panel with an edge along z = 0.3 m, y = 1.2 m (its top when it hangs, its edge
     nearest the body when it is level), a box well below it: (mesh, sewn positions (n, 3) [m],
