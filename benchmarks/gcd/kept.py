@@ -5,8 +5,11 @@
 
 A kept target is ``targets/<case>.obj.gz`` (the drape as build wrote it) and ``targets/<case>.json``:
 its build record, meta.json's simulator and checks, and the SHA-256 of the specification it was
-draped from. It is restored only where the freshly sampled ``pattern_gt.json`` has that hash, so a
-changed sampler, sizing or body never pairs a design with another design's drape.
+draped from, its numbers rounded to SPEC_DECIMALS. It is restored only where the freshly sampled
+``pattern_gt.json`` has that digest, so a changed sampler, sizing or body never pairs a design with
+another design's drape, while the last bits that another processor's arithmetic gives the sampler's
+numbers do not count (GarmentCode's programs size with numpy's trigonometry, whose last bit
+differs between CPUs).
 """
 
 from __future__ import annotations
@@ -21,9 +24,24 @@ HERE = Path(__file__).resolve().parent
 KEPT = HERE / "targets"
 
 
-def spec_hash(spec_path: Path) -> str:
-    """SHA-256 of a specification's content (JSON re-serialised: key order and spacing don't count)."""
-    spec = json.loads(Path(spec_path).read_text())
+#: Decimals a specification's numbers (cm) keep in its digest: 10 nm, far above a last bit's noise.
+SPEC_DECIMALS = 6
+
+
+def _rounded(value):
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return round(float(value), SPEC_DECIMALS) + 0.0  # 1 and 1.0, -0.0 and 0.0 alike
+    if isinstance(value, list):
+        return [_rounded(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _rounded(v) for k, v in value.items()}
+    return value
+
+
+def spec_digest(spec_path: Path) -> str:
+    """SHA-256 of a specification's content, its numbers rounded to SPEC_DECIMALS (JSON
+    re-serialised: key order and spacing don't count)."""
+    spec = _rounded(json.loads(Path(spec_path).read_text()))
     return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()
 
 
@@ -41,7 +59,7 @@ def keep(out: Path, cid: str, store: Path = KEPT) -> bool:
         shutil.copyfileobj(src, dst)
     kept = {
         "case": cid,
-        "spec_sha256": spec_hash(d / "pattern_gt.json"),
+        "spec_digest": spec_digest(d / "pattern_gt.json"),
         "record": rec,
         "simulator": meta.get("simulator"),
         "checks": meta.get("checks"),
@@ -58,7 +76,7 @@ def restore(out: Path, cid: str, store: Path = KEPT) -> dict | None:
     if not info.is_file() or not (d / "pattern_gt.json").is_file():
         return None
     kept = json.loads(info.read_text())
-    if kept["spec_sha256"] != spec_hash(d / "pattern_gt.json"):
+    if kept.get("spec_digest") != spec_digest(d / "pattern_gt.json"):
         return None
     with gzip.open(store / f"{cid}.obj.gz", "rb") as src, open(d / ".target.obj.tmp", "wb") as dst:
         shutil.copyfileobj(src, dst)
