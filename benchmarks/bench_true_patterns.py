@@ -307,7 +307,8 @@ GCD_COLUMNS = {
 def _target_on_mesh(case_dir: Path):
     """(target vertices (n_x, 3) [m], the specification's mesh) of a case's newton target
     (``target.obj``: the other simulator's drape of the same pattern, on the specification meshed
-    as ``gcd build`` meshed it); None without a target, or where the mesh no longer matches it."""
+    as ``gcd build`` meshed it, or moved onto this machine's mesh of it through the rest mesh it
+    was draped on, ``gcd/kept.py``); None without a target, or where neither mesh matches it."""
     import trimesh
 
     from unsew.io.garmentcode import load_pattern
@@ -320,10 +321,12 @@ def _target_on_mesh(case_dir: Path):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # GarmentCode's gathered seams: lengths apart
         mesh = mesh_pattern(load_pattern(case_dir / "pattern_gt.json"), edge_length=edge)
-    tm = trimesh.load(target, process=False, force="mesh")
-    if len(tm.vertices) != mesh.n_x or not np.array_equal(np.asarray(tm.faces), np.asarray(mesh.faces)):
-        return None
-    return np.asarray(tm.vertices, np.float64), mesh
+    sys.path.insert(0, str(HERE / "gcd"))
+    import kept
+
+    x = np.asarray(trimesh.load(target, process=False, force="mesh").vertices, np.float64)
+    x = kept.target_on_mesh(case_dir, mesh, x)
+    return None if x is None else (x, mesh)
 
 
 def newton_stretch(case_dir: Path, target=None):

@@ -3,7 +3,8 @@
     python -m benchmarks gcd keep --out CASES      store every built case's target in targets/
     python -m benchmarks gcd build --no-drape      restores a kept target beside each placed case
 
-A kept target is ``targets/<case>.obj.gz`` (the drape as build wrote it) and ``targets/<case>.json``:
+A kept target is ``targets/<case>.obj.gz`` (the drape as build wrote it), ``targets/<case>.rest.npz``
+(the rest mesh it was draped on: where each vertex lies in its panel) and ``targets/<case>.json``:
 its build record, meta.json's simulator and checks, and the SHA-256 of the specification it was
 draped from, its numbers rounded to SPEC_DECIMALS. It is restored only where the freshly sampled
 ``pattern_gt.json`` has that digest, so a changed sampler, sizing or body never pairs a design with
@@ -19,6 +20,8 @@ import hashlib
 import json
 import shutil
 from pathlib import Path
+
+import numpy as np
 
 HERE = Path(__file__).resolve().parent
 KEPT = HERE / "targets"
@@ -65,7 +68,99 @@ def keep(out: Path, cid: str, store: Path = KEPT) -> bool:
         "checks": meta.get("checks"),
     }
     (store / f"{cid}.json").write_text(json.dumps(kept, indent=1) + "\n")
+    mesh = _spec_mesh(d, meta)
+    n = sum(1 for line in open(d / "target.obj") if line.startswith("v "))
+    if mesh is not None and mesh.n_x == n:
+        save_rest(store / f"{cid}.rest.npz", mesh)
     return True
+
+
+def _spec_mesh(d: Path, meta: dict):
+    """The case's specification meshed as the build meshed it (None where meta.json lacks it)."""
+    import warnings
+
+    from unsew.io.garmentcode import load_pattern
+    from unsew.meshing import mesh_pattern
+
+    edge = (meta.get("simulator") or {}).get("mesh_edge_length_m")
+    if edge is None:
+        return None
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # GarmentCode's gathered seams: lengths apart
+        return mesh_pattern(load_pattern(d / "pattern_gt.json"), edge_length=edge)
+
+
+def save_rest(path: Path, mesh) -> None:
+    """Store where each vertex of ``mesh`` (a GarmentMesh) lies in its panel: uv (Nu, 2) [m],
+    uv_panel (Nu,), faces_uv (F, 3), x_of_u (Nu,)."""
+    np.savez_compressed(
+        path,
+        uv=np.asarray(mesh.uv, np.float64),
+        uv_panel=np.asarray(mesh.uv_panel, np.int32),
+        faces_uv=np.asarray(mesh.faces_uv, np.int32),
+        x_of_u=np.asarray(mesh.x_of_u, np.int32),
+    )
+
+
+def _locate(points: np.ndarray, corners: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For 2D points (n, 2) and triangles' corners (t, 3, 2): the triangle holding each point (the
+    most nearly holding, among the 16 with the nearest centroids) and its barycentric weights
+    (n, 3), clipped to the triangle."""
+    from scipy.spatial import cKDTree
+
+    k = min(16, len(corners))
+    _, near = cKDTree(corners.mean(axis=1)).query(points, k=k)
+    near = near.reshape(len(points), k)
+    a, b, c = (corners[near, i] for i in range(3))  # (n, k, 2)
+    v0, v1, v2 = b - a, c - a, points[:, None, :] - a
+    det = v0[..., 0] * v1[..., 1] - v0[..., 1] * v1[..., 0]
+    w1 = (v2[..., 0] * v1[..., 1] - v2[..., 1] * v1[..., 0]) / det
+    w2 = (v0[..., 0] * v2[..., 1] - v0[..., 1] * v2[..., 0]) / det
+    w = np.stack([1.0 - w1 - w2, w1, w2], axis=-1)  # (n, k, 3)
+    best = w.min(axis=-1).argmax(axis=1)
+    rows = np.arange(len(points))
+    wb = w[rows, best].clip(0.0, None)
+    return near[rows, best], wb / wb.sum(axis=1, keepdims=True)
+
+
+def moved_to_mesh(x: np.ndarray, rest: dict, mesh) -> np.ndarray:
+    """Positions (n_x, 3) [m] on ``mesh`` (a GarmentMesh of the same specification, meshed
+    elsewhere) of a drape ``x`` (m, 3) [m] of the rest mesh ``rest`` (:func:`save_rest`'s arrays):
+    each of ``mesh``'s vertices is found in its panel's rest triangles and takes the drape's
+    position there, interpolated. A vertex of a seam takes its first panel's."""
+    out = np.zeros((mesh.n_x, 3))
+    uv, panel_of = np.asarray(mesh.uv), np.asarray(mesh.uv_panel)
+    rest_panel = rest["uv_panel"][rest["faces_uv"][:, 0]]
+    for p in range(len(mesh.panel_names)):
+        mine = np.flatnonzero(panel_of == p)
+        faces = rest["faces_uv"][rest_panel == p]
+        tri, w = _locate(uv[mine], rest["uv"][faces])
+        corners = x[rest["x_of_u"][faces[tri]]]  # (n, 3 corners, 3)
+        out[np.asarray(mesh.x_of_u)[mine]] = np.einsum("nc,ncd->nd", w, corners)
+    return out
+
+
+def target_on_mesh(case_dir: Path, mesh, x: np.ndarray, store: Path = KEPT) -> np.ndarray | None:
+    """The case's newton target ``x`` (m, 3) [m] as positions (n_x, 3) of ``mesh`` (its
+    specification meshed here): itself where it was draped on this very mesh, else moved to it
+    through the kept rest mesh it was draped on (Triangle's refinement of a panel differs from
+    one CPU to another); None where neither holds."""
+    if len(x) == mesh.n_x and _same_faces(case_dir, mesh):
+        return x
+    path = Path(store) / f"{Path(case_dir).name}.rest.npz"
+    if not path.is_file():
+        return None
+    with np.load(path) as z:
+        rest = {k: z[k] for k in z.files}
+    if int(rest["x_of_u"].max()) + 1 != len(x):  # not the mesh this target was draped on
+        return None
+    return moved_to_mesh(x, rest, mesh)
+
+
+def _same_faces(case_dir: Path, mesh) -> bool:
+    faces = [line.split()[1:4] for line in open(Path(case_dir) / "target.obj") if line.startswith("f ")]
+    f = np.array([[int(t.split("/")[0]) - 1 for t in row] for row in faces], dtype=np.int64)
+    return f.shape == np.asarray(mesh.faces).shape and np.array_equal(f, np.asarray(mesh.faces))
 
 
 def restore(out: Path, cid: str, store: Path = KEPT) -> dict | None:
