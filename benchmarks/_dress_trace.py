@@ -101,7 +101,7 @@ def trace(case_dir: Path) -> list[dict]:
         )
 
     hold = hold_vertices(pattern, mesh, body, x0)
-    unsewn = SimModel.build(mesh.faces_uv, mesh.faces_uv, springs=mesh.seam_pairs, rest_map=mesh.gather)
+    unsewn = SimModel.build(mesh.faces_uv, mesh.faces_uv, springs=mesh.seam_pairs)
     xs = sew(
         unsewn,
         x0,
@@ -112,7 +112,7 @@ def trace(case_dir: Path) -> list[dict]:
         callback=on("sew", mesh.faces_uv),
     )
     x = merge_sewn(xs, mesh.x_of_u, mesh.n_x)
-    model = SimModel.build(mesh.faces, mesh.faces_uv, rest_map=mesh.gather)
+    model = SimModel.build(mesh.faces, mesh.faces_uv)
     with torch.no_grad():
         drape(
             model,

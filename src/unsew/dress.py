@@ -340,7 +340,7 @@ def settle(
     if x0.shape != (mesh.n_x, 3):
         raise ValueError(f"x_from must be ({mesh.n_x}, 3) positions on the mesh, got {tuple(x0.shape)}")
     uv = torch.as_tensor(np.asarray(mesh.uv), dtype=torch.float64)
-    model = SimModel.build(mesh.faces, mesh.faces_uv, rest_map=mesh.gather) if model is None else model
+    model = SimModel.build(mesh.faces, mesh.faces_uv) if model is None else model
     cb = (lambda k, s: progress("settle", k + 1, steps)) if progress else None
     with torch.no_grad():
         st = drape(
@@ -417,7 +417,7 @@ def _sew_placed(job: _Job, x_unsewn, hold) -> tuple[torch.Tensor, float]:
     """Sew the placed panels x_unsewn (Nu, 3) [m] shut: (sewn positions (n_x, 3) [m], the widest
     seam gap left [m])."""
     mesh, settings, progress = job.mesh, job.settings, job.progress
-    model_unsewn = SimModel.build(mesh.faces_uv, mesh.faces_uv, springs=mesh.seam_pairs, rest_map=mesh.gather)
+    model_unsewn = SimModel.build(mesh.faces_uv, mesh.faces_uv, springs=mesh.seam_pairs)
     cb = (lambda k, s: progress("sew", k + 1, settings.sew_steps)) if progress else None
     xs = sew(
         model_unsewn,
@@ -477,7 +477,7 @@ def _dress_once(job: _Job, *, force_meet: bool, given: bool = False) -> Dressed:
         job.progress("place", 1, 1)
     guided = _guided_seams(job, x_unsewn)
     x, gap = _sew_placed(job, x_unsewn, hold)
-    model = SimModel.build(mesh.faces, mesh.faces_uv, rest_map=mesh.gather)
+    model = SimModel.build(mesh.faces, mesh.faces_uv)
     t2 = time.perf_counter()
     speed = 0.0
     more = 0

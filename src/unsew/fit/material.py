@@ -182,7 +182,7 @@ def _dresser(s: Start, scene: Scene):
     ``material``: settled WARM_STEPS steps from ``x_from`` (default ``s.x``), or,
     when warm_steps is 0, dressed from scratch (x_from unused)."""
 
-    model = SimModel.build(s.mesh.faces, s.mesh.faces_uv, rest_map=s.mesh.gather) if WARM_STEPS > 0 else None
+    model = SimModel.build(s.mesh.faces, s.mesh.faces_uv) if WARM_STEPS > 0 else None
 
     def dress_in(material, bar=None, x_from=None):
         if model is not None:

@@ -279,7 +279,7 @@ class PhaseTwo:
         self.anchors = s.anchors  # held as the start's drape holds them (unsew.dress.held_anchors)
         dev = torch.device(cfg.device)
         self.params = PatternParams.build(s.graded, s.mesh).to(dev)
-        self.model = SimModel.build(s.mesh.faces, s.mesh.faces_uv, rest_map=s.mesh.gather).to(dev)
+        self.model = SimModel.build(s.mesh.faces, s.mesh.faces_uv).to(dev)
         self.settings = cfg.drape.replace(friction_eps=cfg.optimizer.friction_eps)
         self._targets(target, dev)
         self.contours_x = open_contours(np.asarray(s.x), s.mesh.faces)

@@ -18,7 +18,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from unsew.errors import InputError, PatternError
-from unsew.meshing.gather import gather_maps
 from unsew.meshing.triangulate import signed_areas, triangle_min_angles, triangulate_polygon
 from unsew.pattern.curves import edge_length as _edge_length
 from unsew.pattern.curves import sample_edge
@@ -69,9 +68,6 @@ class GarmentMesh:
     #: panel name -> "mirror" (half triangulated and mirrored), "pair:<source>" (the source's
     #: triangulation moved onto it) or "own" (triangulated on its own); see mesh_pattern.
     panel_symmetry: dict = field(default_factory=dict)
-    #: (F, 2, 2) float64 maps of each triangle's rest corners that gather the longer side of
-    #: stitches of unequal lengths (:mod:`unsew.meshing.gather`), or None when none is gathered.
-    gather: np.ndarray | None = None
 
     @property
     def n_uv(self) -> int:
@@ -200,14 +196,6 @@ def mesh_pattern(
     rest = _join_panels(pattern, meshed, outlines, starts_of, nseg)
     seam_pairs = _seam_pairs(pattern, rest["edge_verts"])
     x_of_u = _sewn_index(seam_pairs, len(rest["uv"]))
-    gather = gather_maps(
-        rest["uv"],
-        rest["faces_uv"],
-        rest["uv_panel"],
-        pattern.panel_order,
-        rest["edge_verts"],
-        pattern.stitches,
-    )
     return GarmentMesh(
         uv=rest["uv"],
         uv_panel=rest["uv_panel"],
@@ -223,7 +211,6 @@ def mesh_pattern(
         n_boundary=rest["n_boundary"],
         edge_length=float(edge_length),
         panel_symmetry=how,
-        gather=gather,
     )
 
 

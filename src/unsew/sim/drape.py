@@ -341,6 +341,5 @@ def _sewing_models(model_unsewn: SimModel, x0, sdf, settings: DrapeSettings, hol
             n=model_unsewn.n,
             n_rest=model_unsewn.n_rest,
             bending_stencil=model_unsewn.bending_stencil,
-            rest_map=model_unsewn.rest_map,
         ).to(model_unsewn.device)
     return None, model_unsewn, held

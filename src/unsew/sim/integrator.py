@@ -134,7 +134,7 @@ def rest_data(model: SimModel, uv: torch.Tensor, density) -> RestData:
     """Rest quantities from the pattern uv (Nu, 2) [m] and density [kg/m^2].
 
     Raises PatternError on a degenerate or clockwise (inverted) rest triangle."""
-    area, B, signed = membrane_rest(uv, model.faces_uv, model.rest_map)
+    area, B, signed = membrane_rest(uv, model.faces_uv)
     with torch.no_grad():
         u = uv[model.faces_uv]
         e2 = torch.stack([(u[:, 1] - u[:, 0]), (u[:, 2] - u[:, 1]), (u[:, 0] - u[:, 2])], 1).pow(2).sum(-1)

@@ -148,18 +148,6 @@ def _pin_mask(pinned, n: int) -> np.ndarray:
     return pin
 
 
-def _check_rest_map(rest_map, n_faces: int):
-    """(F, 2, 2) float64 tensor of positive-determinant maps, or None."""
-    if rest_map is None:
-        return None
-    g = _as_numpy(rest_map).astype(np.float64)
-    if g.shape != (n_faces, 2, 2):
-        raise InputError(f"rest_map must have shape ({n_faces}, 2, 2), got {g.shape}")
-    if not np.all(np.linalg.det(g) > 0.0):
-        raise InputError("rest_map must keep every rest triangle's orientation (positive determinants)")
-    return torch.from_numpy(g)
-
-
 def _sparsity(groups: dict, n: int, bending_stencil: str):
     """Lower-triangle COO pattern of the (3N x 3N) system and the index maps into it.
 
@@ -212,8 +200,6 @@ class SimModel:
         n_nonmanifold: interior edges skipped for bending (more than two faces).
         bending_stencil: "ring" (hinge blocks without the opposite-vertex coupling, see the
             module docstring) or "full".
-        rest_map: (F, 2, 2) float64 maps of each triangle's rest corners for the membrane's
-            strain (gathered seams, :mod:`unsew.meshing.gather`), or None (the pattern's own).
     """
 
     n: int
@@ -240,7 +226,6 @@ class SimModel:
     keep: torch.Tensor
     n_nonmanifold: int = 0
     bending_stencil: str = "full"
-    rest_map: torch.Tensor | None = None
 
     @property
     def nnz(self) -> int:
@@ -277,7 +262,6 @@ class SimModel:
         n: int | None = None,
         n_rest: int | None = None,
         bending_stencil: str = "ring",
-        rest_map=None,
     ):
         """Build the static model.
 
@@ -290,8 +274,6 @@ class SimModel:
             n_rest: number of rest vertices (default faces_uv.max() + 1).
             bending_stencil: "ring" (default: hinge blocks kept within the mesh's 1-ring,
                 several times cheaper factorizations) or "full" (see the module docstring).
-            rest_map: (F, 2, 2) maps of the triangles' rest corners for the membrane
-                (``GarmentMesh.gather``), or None.
 
         Raises:
             InputError: empty or inconsistent faces, indices out of range.
@@ -327,5 +309,4 @@ class SimModel:
             keep=t(keep),
             n_nonmanifold=n_nm,
             bending_stencil=bending_stencil,
-            rest_map=_check_rest_map(rest_map, faces.shape[0]),
         )

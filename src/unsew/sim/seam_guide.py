@@ -111,7 +111,6 @@ class GuidedSeams:
             n=n_all,
             n_rest=model.n_rest,
             bending_stencil=model.bending_stencil,
-            rest_map=model.rest_map,
         ).to(model.device)
 
     def extend(self, x: torch.Tensor) -> torch.Tensor:

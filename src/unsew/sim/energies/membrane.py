@@ -42,15 +42,12 @@ def stiffness_matrix(gamma: torch.Tensor) -> torch.Tensor:
     )
 
 
-def membrane_rest(uv: torch.Tensor, faces_uv: torch.Tensor, rest_map: torch.Tensor | None = None):
+def membrane_rest(uv: torch.Tensor, faces_uv: torch.Tensor):
     """Rest quantities of each triangle.
 
     Args:
         uv: rest vertex positions [m], shape (Nu, 2), float64.
         faces_uv: (F, 3) int64 triangles into uv.
-        rest_map: (F, 2, 2) maps G of each triangle's rest corners (u -> G u) that B is taken
-            from (gathered seams, unsew.meshing.gather), or None; ``area`` and ``signed`` are
-            always the pattern's own.
 
     Returns:
         area: signed-free rest areas [m^2], shape (F,).
@@ -60,10 +57,6 @@ def membrane_rest(uv: torch.Tensor, faces_uv: torch.Tensor, rest_map: torch.Tens
     u = uv[faces_uv]  # (F, 3, 2)
     dm = torch.stack([u[:, 1] - u[:, 0], u[:, 2] - u[:, 0]], dim=-1)  # (F, 2, 2) columns
     det = dm[:, 0, 0] * dm[:, 1, 1] - dm[:, 0, 1] * dm[:, 1, 0]
-    signed = 0.5 * det
-    if rest_map is not None:
-        dm = rest_map.to(dm) @ dm
-        det = dm[:, 0, 0] * dm[:, 1, 1] - dm[:, 0, 1] * dm[:, 1, 0]
     inv = (
         torch.stack(
             [torch.stack([dm[:, 1, 1], -dm[:, 0, 1]], -1), torch.stack([-dm[:, 1, 0], dm[:, 0, 0]], -1)], -2
@@ -72,7 +65,7 @@ def membrane_rest(uv: torch.Tensor, faces_uv: torch.Tensor, rest_map: torch.Tens
     )
     b0 = torch.tensor(_B0, dtype=uv.dtype, device=uv.device)
     B = torch.einsum("ia,fab->fib", b0, inv)
-    return signed.abs(), B, signed
+    return 0.5 * det.abs(), B, 0.5 * det
 
 
 def _psd2(S: torch.Tensor) -> torch.Tensor:
