@@ -6,6 +6,11 @@ triangle angle [deg], the number of inverted/degenerate triangles, the meshing t
 (``PatternParams.build``: symmetry, curve frames, mean value coordinates).
 
 Run: OMP_WAIT_POLICY=PASSIVE .venv/bin/python benchmarks/bench_meshing.py [--repeat 3] [--no-params]
+
+``--last-bits SPEC.json ...``: each specification meshed (2.5 cm) as read and with its numbers moved
+by up to two bits (``--trials`` draws: what another CPU's arithmetic does to them), with Triangle
+given the outline on its 1 nm grid (as unsew meshes) and as it is; prints the sewn vertex counts
+and how many draws gave the very mesh of the specification as read (docs/decisions/041).
 """
 
 from __future__ import annotations
@@ -22,7 +27,11 @@ def main(argv=None) -> None:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--no-params", action="store_true", help="skip timing PatternParams.build")
     ap.add_argument("--garments", nargs="*", default=["tshirt", "dress", "pants", "shorts", "skirt"])
+    ap.add_argument("--last-bits", nargs="+", metavar="SPEC", help="specifications moved in their last bits")
+    ap.add_argument("--trials", type=int, default=4)
     args = ap.parse_args(argv)
+    if args.last_bits:
+        return last_bits(args.last_bits, args.trials)
 
     import torch
 
@@ -57,6 +66,53 @@ def main(argv=None) -> None:
                 PatternParams.build(pat, m)
                 row += f" {(time.perf_counter() - t0) * 1e3:>11.0f}"
             print(row, flush=True)
+
+
+def _moved(value, rng):
+    """A specification's JSON with every float moved by -2..2 units in its last place."""
+    import numpy as np
+
+    if isinstance(value, float):
+        return float(value * (1.0 + int(rng.integers(-2, 3)) * np.finfo(float).eps / 2))
+    if isinstance(value, list):
+        return [_moved(v, rng) for v in value]
+    if isinstance(value, dict):
+        return {k: _moved(v, rng) for k, v in value.items()}
+    return value
+
+
+def last_bits(specs, trials: int) -> None:
+    import json
+    import tempfile
+    import warnings
+    from pathlib import Path
+
+    import numpy as np
+
+    from unsew.io.garmentcode import load_pattern
+    from unsew.meshing import mesh_pattern, triangulate
+
+    def mesh(spec: dict):
+        with tempfile.TemporaryDirectory() as d, warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # seam length notes
+            (Path(d) / "p.json").write_text(json.dumps(spec))
+            return mesh_pattern(load_pattern(Path(d) / "p.json"), edge_length=0.025)
+
+    on_grid = triangulate._on_grid
+    print(f"{'specification':<24} {'grid':<4} {'as read':>7}  {'moved (sewn vertices)':<36} {'same mesh':>9}")
+    for path in specs:
+        spec = json.loads(Path(path).read_text())
+        name = Path(path).parent.name if Path(path).name == "pattern_gt.json" else Path(path).stem
+        for grid in (True, False):
+            triangulate._on_grid = on_grid if grid else (lambda b: np.array(b, copy=True))
+            try:
+                ref = mesh(spec)
+                runs = [mesh(_moved(spec, np.random.default_rng(s))) for s in range(trials)]
+            finally:
+                triangulate._on_grid = on_grid
+            same = sum(m.n_x == ref.n_x and np.array_equal(m.faces, ref.faces) for m in runs)
+            counts = " ".join(str(m.n_x) for m in runs)
+            print(f"{name:<24} {'yes' if grid else 'no':<4} {ref.n_x:>7}  {counts:<36} {same:>5} of {trials}")
 
 
 if __name__ == "__main__":

@@ -141,3 +141,31 @@ def test_an_unsound_or_diverged_held_drape_gives_way_to_a_sound_free_one(monkeyp
     assert calls == ["held", "free"] and out.ok and out.stats["held"] == 0
     out, calls = _run_held(monkeypatch, SimulationError("exploded"))
     assert calls == ["held", "free"] and out.ok and out.stats["held"] == 0
+
+
+def _retry_run(monkeypatch, first_ok: bool):
+    """dress()'s first drape (seam copies where the placement left them) stood in for, sound or
+    torn, and the one with the copies met at their midpoint sound. Returns (drape, force_meet of
+    each drape in order)."""
+    calls = []
+
+    def fake_once(job, force_meet, given=False):
+        calls.append(force_meet)
+        d = _fake(first_ok or force_meet, 1.1 if first_ok or force_meet else 3.6, 0)
+        d.stats.update(met_seams=force_meet, seam_gap=0.0)
+        return d
+
+    def verdict(d, body=None):
+        return SimpleNamespace(ok=d.ok, reason="" if d.ok else "exploded: an edge is stretched to 3.6 times")
+
+    monkeypatch.setattr(dress_mod, "_dress_once", fake_once)
+    monkeypatch.setattr(dress_mod, "check_dressed", verdict)
+    return dress_mod._dress_retried(SimpleNamespace(body=None)), calls
+
+
+def test_a_start_that_tears_is_dressed_again_with_the_seam_copies_met(monkeypatch):
+    out, calls = _retry_run(monkeypatch, first_ok=False)
+    assert calls == [False, True] and out.ok
+    assert "stretched" in out.stats["placement_retry"]
+    out, calls = _retry_run(monkeypatch, first_ok=True)
+    assert calls == [False] and out.ok and "placement_retry" not in out.stats

@@ -111,8 +111,10 @@ def test_on_posed_bodies(name, body_name):
 
 def test_loose_tee_that_tears_without_met_seams_is_dressed_again_with_them():
     """The foreign benchmark's loose long-sleeved tee (its true pattern) on the anny default
-    (A-pose) body: started with seam copies apart (the A-pose default) a sleeve edge tears to 3.6x
-    its length; dress() dresses it again with the copies met at their midpoint, which holds."""
+    (A-pose) body: started with seam copies apart (the A-pose default) a sleeve edge tore to 3.6x
+    its length on the meshes before decision 041; dress() dresses such a drape again with the
+    copies met at their midpoint, which holds. Whichever start tears, the drape returned is
+    sound (test_dress_guide_fallback.py drives the retry itself)."""
     pytest.importorskip("anny", reason="the case's wearer is an anny body (extra unsew[anny])")
     from unsew.body.case import load_case
 
@@ -120,4 +122,3 @@ def test_loose_tee_that_tears_without_met_seams_is_dressed_again_with_them():
     d = dress(case.pattern_gt, case.body, settings=DRESS_SETTINGS)
     v = check_dressed(d, body=case.body)
     assert v.ok and v.inside_pct < 0.5, v.reason
-    assert "stretched" in d.stats["placement_retry"]

@@ -57,6 +57,21 @@ def test_boundary_is_the_sampled_outline(make):
         assert boundary == outline
 
 
+def test_a_pattern_off_in_its_last_bits_meshes_the_same():
+    """Another processor's arithmetic (or a file written in cm and read in m) moves a pattern's
+    numbers by a bit or two; the mesh, and so every drape of it, must not change with them."""
+    pat = mini_shirt()
+    m = mesh_pattern(pat, edge_length=0.02)
+    rng = np.random.default_rng(0)
+    for _ in range(3):
+        for panel in pat.panels.values():
+            v = panel.vertices
+            panel.vertices = v * (1.0 + rng.integers(-2, 3, v.shape) * np.finfo(float).eps)
+        m2 = mesh_pattern(pat, edge_length=0.02)
+        assert m2.n_uv == m.n_uv and np.array_equal(m2.faces_uv, m.faces_uv)
+        assert_close(m2.uv, m.uv, atol=1e-9)
+
+
 def test_seams_vertex_to_vertex_and_sewn_map():
     pat = two_squares()
     m = mesh_pattern(pat, edge_length=0.02)

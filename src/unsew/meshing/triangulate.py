@@ -22,6 +22,9 @@ __all__ = ["triangulate_polygon", "triangle_min_angles", "signed_areas"]
 #: crashed Triangle with a segmentation fault, taking the whole process down.
 MIN_MEAN_WIDTH = 1e-3
 
+#: Decimals of a metre (1 nm) of the outline Triangle refines (see triangulate_polygon).
+GRID_DECIMALS = 9
+
 
 def _check_meshable(boundary: np.ndarray, name: str) -> None:
     """Refuse outlines Triangle cannot take safely: repeated consecutive points, no area, or a
@@ -88,6 +91,11 @@ def _first_crossing(b: np.ndarray, *, chunk: int = 256) -> tuple[int, int] | Non
     return None
 
 
+def _on_grid(points: np.ndarray) -> np.ndarray:
+    """Points (M, 2) [m] rounded to the GRID_DECIMALS grid."""
+    return np.round(points, GRID_DECIMALS)
+
+
 def triangulate_polygon(
     boundary: np.ndarray, *, edge_length: float, min_angle: float = 20.0, name: str = "panel"
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -100,7 +108,10 @@ def triangulate_polygon(
     name: panel name used in error messages.
 
     Returns (verts (V, 2) float64 [m], tris (T, 3) int64): the first M vertices are ``boundary``
-    itself, unchanged; triangles are counter-clockwise.
+    itself, unchanged; triangles are counter-clockwise. Triangle is given the outline rounded to
+    a 1 nm grid (GRID_DECIMALS), so that an outline off in its last bits (another CPU's
+    trigonometry, a file written in cm and read in m) gets the same triangles and the same
+    interior vertices: its refinement otherwise changes the whole panel's mesh with them.
     """
     import triangle
 
@@ -113,18 +124,20 @@ def triangulate_polygon(
     max_area = math.sqrt(3.0) / 4.0 * edge_length**2
     # p: PSLG, q: quality (min angle), a: max area, Y: no Steiner points on segments, Q: quiet.
     opts = f"pq{min_angle:.6f}a{max_area:.15f}YQ"  # fixed point: Triangle reads no exponents
+    grid = _on_grid(boundary)
     try:
-        out = triangle.triangulate({"vertices": boundary, "segments": seg}, opts)
+        out = triangle.triangulate({"vertices": grid, "segments": seg}, opts)
     except Exception as exc:  # Triangle reports bad input as generic errors
         raise PatternError(
             f"panel {name!r}: triangulation failed ({exc}); check that its outline does not cross itself"
         ) from None
     verts = np.asarray(out.get("vertices", np.zeros((0, 2))), dtype=np.float64)
     tris = np.asarray(out.get("triangles", np.zeros((0, 3))), dtype=np.int64)
-    if len(tris) == 0 or len(verts) < m or not np.array_equal(verts[:m], boundary):
+    if len(tris) == 0 or len(verts) < m or not np.array_equal(verts[:m], grid):
         raise PatternError(
             f"panel {name!r}: triangulation lost its outline; check for repeated or crossing outline points"
         )
+    verts[:m] = boundary
     area = signed_areas(verts, tris)
     flip = area < 0
     if flip.any():
