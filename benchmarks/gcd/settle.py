@@ -33,10 +33,13 @@ def settle_case(case: Path, out: Path, *, settle: dict | None = None, log=print)
     meta = json.loads((case / "meta.json").read_text())
     spec = json.loads((case / "pattern_gt.json").read_text())
     mesh = build.mesh_spec(spec, case.name, meta["simulator"]["mesh_edge_length_m"])
-    x = np.asarray(trimesh.load(case / "target.obj", process=False, force="mesh").vertices, np.float64)
-    if len(x) != mesh.n_x:
+    import kept
+
+    x0 = np.asarray(trimesh.load(case / "target.obj", process=False, force="mesh").vertices, np.float64)
+    x = kept.target_on_mesh(case, mesh, x0)  # moved onto this machine's mesh of the specification
+    if x is None:
         n = mesh.n_x
-        raise ValueError(f"{case.name}: target.obj has {len(x)} vertices, the specification's mesh {n}")
+        raise ValueError(f"{case.name}: target.obj has {len(x0)} vertices, the specification's mesh {n}")
     held = np.unique(np.asarray(mesh.x_of_u)[build.attached_uv(spec, mesh)])
     body_v, body_f = build.read_body(case)
     settings = {k: (float("inf") if v is None else v) for k, v in meta["simulator"]["settings"].items()}
