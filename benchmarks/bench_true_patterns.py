@@ -305,10 +305,11 @@ GCD_COLUMNS = {
 
 
 def _target_on_mesh(case_dir: Path):
-    """(target vertices (n_x, 3) [m], the specification's mesh) of a case's newton target
-    (``target.obj``: the other simulator's drape of the same pattern, on the specification meshed
-    as ``gcd build`` meshed it, or moved onto this machine's mesh of it through the rest mesh it
-    was draped on, ``gcd/kept.py``); None without a target, or where neither mesh matches it."""
+    """(target vertices (n_x, 3) [m] on the specification's mesh, that mesh, the target as draped
+    (m, 3) [m], the rest mesh it was draped on) of a case's newton target (``target.obj``: the
+    other simulator's drape of the same pattern, on the specification meshed as ``gcd build``
+    meshed it, or moved onto this machine's mesh of it through the rest mesh it was draped on,
+    ``gcd/kept.py``); None without a target, or where neither mesh matches it."""
     import trimesh
 
     from unsew.io.garmentcode import load_pattern
@@ -324,9 +325,12 @@ def _target_on_mesh(case_dir: Path):
     sys.path.insert(0, str(HERE / "gcd"))
     import kept
 
-    x = np.asarray(trimesh.load(target, process=False, force="mesh").vertices, np.float64)
-    x = kept.target_on_mesh(case_dir, mesh, x)
-    return None if x is None else (x, mesh)
+    x0 = np.asarray(trimesh.load(target, process=False, force="mesh").vertices, np.float64)
+    own = kept.own_mesh(case_dir, mesh, x0)
+    if own is None:
+        return None
+    x = x0 if own is mesh else kept.moved_to_mesh(x0, vars(own), mesh)
+    return x, mesh, x0, own
 
 
 def newton_stretch(case_dir: Path, target=None):
@@ -338,10 +342,8 @@ def newton_stretch(case_dir: Path, target=None):
     got = _target_on_mesh(case_dir) if target is None else target
     if got is None:
         return None
-    x, mesh = got
-    return float(
-        edge_stretch(x, np.asarray(mesh.faces), np.asarray(mesh.faces_uv), np.asarray(mesh.uv)).max()
-    )
+    _, _, x0, own = got  # on the mesh it was draped on
+    return float(edge_stretch(x0, np.asarray(own.faces), np.asarray(own.faces_uv), np.asarray(own.uv)).max())
 
 
 def to_newton(case_dir: Path, obj: Path, target=None) -> dict:
@@ -359,12 +361,12 @@ def to_newton(case_dir: Path, obj: Path, target=None) -> dict:
     got = _target_on_mesh(case_dir) if target is None else target
     if got is None or not obj.is_file():
         return {}
-    x, mesh = got
+    x, mesh, x0, own = got
     v, f, _, _ = read_obj_uv(obj)
     if len(v) != len(x) or not np.array_equal(f, np.asarray(mesh.faces)):
         return {}
-    rest = np.abs(signed_areas(np.asarray(mesh.uv), np.asarray(mesh.faces_uv))).sum()
-    area = trimesh.Trimesh(x, np.asarray(mesh.faces), process=False).area
+    rest = np.abs(signed_areas(np.asarray(own.uv), np.asarray(own.faces_uv))).sum()
+    area = trimesh.Trimesh(x0, np.asarray(own.faces), process=False).area  # on its own mesh
     return {
         "to_newton_mm": float(1000 * np.median(np.linalg.norm(v - x, axis=1))),
         "above_newton_mm": float(1000 * np.mean(v[:, 1] - x[:, 1])),

@@ -140,13 +140,15 @@ def moved_to_mesh(x: np.ndarray, rest: dict, mesh) -> np.ndarray:
     return out
 
 
-def target_on_mesh(case_dir: Path, mesh, x: np.ndarray, store: Path = KEPT) -> np.ndarray | None:
-    """The case's newton target ``x`` (m, 3) [m] as positions (n_x, 3) of ``mesh`` (its
-    specification meshed here): itself where it was draped on this very mesh, else moved to it
-    through the kept rest mesh it was draped on (Triangle's refinement of a panel differs from
-    one CPU to another); None where neither holds."""
+def own_mesh(case_dir: Path, mesh, x: np.ndarray, store: Path = KEPT):
+    """The rest mesh the case's newton target ``x`` (m, 3) [m] was draped on, as an object with
+    ``uv`` (Nu, 2) [m], ``faces_uv`` (F, 3), ``faces`` (F, 3) into x and ``x_of_u`` (Nu,):
+    ``mesh`` (its specification meshed here) where that is it, else the kept one; None where
+    neither is."""
+    from types import SimpleNamespace
+
     if len(x) == mesh.n_x and _same_faces(case_dir, mesh):
-        return x
+        return mesh
     path = Path(store) / f"{Path(case_dir).name}.rest.npz"
     if not path.is_file():
         return None
@@ -154,7 +156,22 @@ def target_on_mesh(case_dir: Path, mesh, x: np.ndarray, store: Path = KEPT) -> n
         rest = {k: z[k] for k in z.files}
     if int(rest["x_of_u"].max()) + 1 != len(x):  # not the mesh this target was draped on
         return None
-    return moved_to_mesh(x, rest, mesh)
+    faces_uv = rest["faces_uv"].astype(np.int64)
+    x_of_u = rest["x_of_u"].astype(np.int64)
+    return SimpleNamespace(
+        uv=rest["uv"], uv_panel=rest["uv_panel"], faces_uv=faces_uv, x_of_u=x_of_u, faces=x_of_u[faces_uv]
+    )
+
+
+def target_on_mesh(case_dir: Path, mesh, x: np.ndarray, store: Path = KEPT) -> np.ndarray | None:
+    """The case's newton target ``x`` (m, 3) [m] as positions (n_x, 3) of ``mesh`` (its
+    specification meshed here): itself where it was draped on this very mesh, else moved to it
+    through the kept rest mesh it was draped on (Triangle's refinement of a panel differs from
+    one CPU to another); None where neither holds."""
+    own = own_mesh(case_dir, mesh, x, store)
+    if own is None:
+        return None
+    return x if own is mesh else moved_to_mesh(x, vars(own), mesh)
 
 
 def _same_faces(case_dir: Path, mesh) -> bool:
