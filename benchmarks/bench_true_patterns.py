@@ -325,8 +325,9 @@ def _target_on_mesh(case_dir: Path):
     sys.path.insert(0, str(HERE / "gcd"))
     import kept
 
-    x0 = np.asarray(trimesh.load(target, process=False, force="mesh").vertices, np.float64)
-    own = kept.own_mesh(case_dir, mesh, x0)
+    tm = trimesh.load(target, process=False, force="mesh")
+    x0 = np.asarray(tm.vertices, np.float64)
+    own = kept.own_mesh(case_dir, mesh, x0, tm.faces)
     if own is None:
         return None
     x = x0 if own is mesh else kept.moved_to_mesh(x0, vars(own), mesh)

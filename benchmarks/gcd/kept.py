@@ -139,14 +139,15 @@ def moved_to_mesh(x: np.ndarray, rest: dict, mesh) -> np.ndarray:
     return out
 
 
-def own_mesh(case_dir: Path, mesh, x: np.ndarray, store: Path = KEPT):
-    """The rest mesh the case's newton target ``x`` (m, 3) [m] was draped on, as an object with
-    ``uv`` (Nu, 2) [m], ``faces_uv`` (F, 3), ``faces`` (F, 3) into x and ``x_of_u`` (Nu,):
-    ``mesh`` (its specification meshed here) where that is it, else the kept one; None where
-    neither is."""
+def own_mesh(case_dir: Path, mesh, x: np.ndarray, faces: np.ndarray, store: Path = KEPT):
+    """The rest mesh the case's newton target (vertices ``x`` (m, 3) [m], triangles ``faces``
+    (F, 3) int) was draped on, as an object with ``uv`` (Nu, 2) [m], ``faces_uv`` (F, 3),
+    ``faces`` (F, 3) into x and ``x_of_u`` (Nu,): ``mesh`` (its specification meshed here) where
+    that is it, else the kept one; None where neither is."""
     from types import SimpleNamespace
 
-    if len(x) == mesh.n_x and _same_faces(case_dir, mesh):
+    f = np.asarray(faces)
+    if len(x) == mesh.n_x and f.shape == np.asarray(mesh.faces).shape and np.array_equal(f, mesh.faces):
         return mesh
     path = Path(store) / f"{Path(case_dir).name}.rest.npz"
     if not path.is_file():
@@ -162,21 +163,15 @@ def own_mesh(case_dir: Path, mesh, x: np.ndarray, store: Path = KEPT):
     )
 
 
-def target_on_mesh(case_dir: Path, mesh, x: np.ndarray, store: Path = KEPT) -> np.ndarray | None:
-    """The case's newton target ``x`` (m, 3) [m] as positions (n_x, 3) of ``mesh`` (its
-    specification meshed here): itself where it was draped on this very mesh, else moved to it
-    through the kept rest mesh it was draped on (Triangle's refinement of a panel differs from
-    one CPU to another); None where neither holds."""
-    own = own_mesh(case_dir, mesh, x, store)
+def target_on_mesh(case_dir: Path, mesh, x: np.ndarray, faces: np.ndarray, store: Path = KEPT):
+    """The case's newton target (``x`` (m, 3) [m], ``faces`` (F, 3) int) as positions (n_x, 3)
+    [m] of ``mesh`` (its specification meshed here): itself where it was draped on this very
+    mesh, else moved to it through the kept rest mesh it was draped on (Triangle refined the
+    panels otherwise before decision 041); None where neither holds."""
+    own = own_mesh(case_dir, mesh, x, faces, store)
     if own is None:
         return None
     return x if own is mesh else moved_to_mesh(x, vars(own), mesh)
-
-
-def _same_faces(case_dir: Path, mesh) -> bool:
-    faces = [line.split()[1:4] for line in open(Path(case_dir) / "target.obj") if line.startswith("f ")]
-    f = np.array([[int(t.split("/")[0]) - 1 for t in row] for row in faces], dtype=np.int64)
-    return f.shape == np.asarray(mesh.faces).shape and np.array_equal(f, np.asarray(mesh.faces))
 
 
 def restore(out: Path, cid: str, store: Path = KEPT) -> dict | None:

@@ -35,8 +35,9 @@ def settle_case(case: Path, out: Path, *, settle: dict | None = None, log=print)
     mesh = build.mesh_spec(spec, case.name, meta["simulator"]["mesh_edge_length_m"])
     import kept
 
-    x0 = np.asarray(trimesh.load(case / "target.obj", process=False, force="mesh").vertices, np.float64)
-    x = kept.target_on_mesh(case, mesh, x0)  # moved onto this machine's mesh of the specification
+    tm = trimesh.load(case / "target.obj", process=False, force="mesh")
+    x0 = np.asarray(tm.vertices, np.float64)
+    x = kept.target_on_mesh(case, mesh, x0, tm.faces)  # moved onto this machine's mesh of the spec
     if x is None:
         n = mesh.n_x
         raise ValueError(f"{case.name}: target.obj has {len(x0)} vertices, the specification's mesh {n}")
