@@ -8,7 +8,7 @@ import traceback
 
 import numpy as np
 
-__all__ = ["assert_close", "no_default_device"]
+__all__ = ["assert_close", "contact_points", "no_default_device"]
 
 
 def assert_close(actual, expected, *, atol: float = 0.0, rtol: float = 1e-7, what: str = "") -> None:
@@ -94,3 +94,13 @@ def no_default_device():
 
     with _Check():
         yield
+
+
+def contact_points(model, x):
+    """The points the body repels (N + E, 3) [m]: x's vertices and its mesh edges' midpoints."""
+    import torch
+
+    from unsew.sim.integrator import _mesh_edges
+
+    e = _mesh_edges(model)
+    return torch.cat([x, 0.5 * (x[e[:, 0]] + x[e[:, 1]])])

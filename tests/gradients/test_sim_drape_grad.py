@@ -5,7 +5,7 @@ w.r.t. the rest shape uv, Gamma and the initial state, against central finite di
 import numpy as np
 import pytest
 import torch
-from helpers import assert_close
+from helpers import assert_close, contact_points
 
 from unsew.sim import CapsuleSDF, Cloth, DrapeSettings, SimModel, SimState, drape
 from unsew.sim.meshes import two_panels
@@ -18,7 +18,7 @@ WARM = 12  # steps of warm start: the cloth hangs over the rail and still moves
 SDF = CapsuleSDF((0.0, -0.05, -0.3), (0.0, -0.05, 0.3), 0.05)
 
 
-def _case(n=4, size=0.1):
+def _case(edge_contact: bool, n=4, size=0.1):
     p = two_panels(n, size)
     m = SimModel.build(p["faces"], p["faces_uv"], n=p["n_x"])
     uv = torch.as_tensor(p["uv"])
@@ -30,8 +30,15 @@ def _case(n=4, size=0.1):
     # warm start, as the fitting loop does (paper 3.4.1): a slack flat sheet is ill-conditioned
     # (its out-of-plane stiffness is its tension, zero at rest), a hanging one is not
     with torch.no_grad():
-        warm = drape(m, SimState.at_rest(x0), SDF, Cloth(uv, GAMMA, DENSITY), steps=WARM)
-    return m, uv, warm
+        warm = drape(
+            m,
+            SimState.at_rest(x0),
+            SDF,
+            Cloth(uv, GAMMA, DENSITY),
+            steps=WARM,
+            settings=DrapeSettings(edge_contact=edge_contact),
+        )
+    return m, uv, warm, edge_contact
 
 
 def _loss(state):
@@ -40,7 +47,7 @@ def _loss(state):
     return (w * state.x).sum() + 10.0 * (state.x**2).sum() + 0.1 * (w * state.v).sum()
 
 
-def _run(m, uv, gamma, st, checkpoint=False, fused=True, anchors=None):
+def _run(ec, m, uv, gamma, st, checkpoint=False, fused=True, anchors=None):
     return _loss(
         drape(
             m,
@@ -49,67 +56,70 @@ def _run(m, uv, gamma, st, checkpoint=False, fused=True, anchors=None):
             Cloth(uv, gamma, DENSITY, anchors=anchors),
             steps=20,
             checkpoint=checkpoint,
-            settings=DrapeSettings(dt=0.05, fused=fused),
+            settings=DrapeSettings(dt=0.05, fused=fused, edge_contact=ec),
         )
     )
 
 
-@pytest.fixture(scope="module")
-def case():
-    return _case()
+@pytest.fixture(scope="module", params=[True, False], ids=["edge contact", "vertex contact"])
+def case(request):
+    """The warm case with the body repelling edges' midpoints too (the default) or vertices only
+    (which then rest in the contact band, so friction acts)."""
+    return _case(request.param)
 
 
 def test_drape_touches_the_sphere(case):
-    m, uv, st = case
-    out = drape(m, st, SDF, Cloth(uv, GAMMA, DENSITY), steps=20)
-    d, _ = SDF.query(out.x)
-    assert float(d.min()) < 5e-3  # in the contact band: the test exercises contact and friction
+    m, uv, st, ec = case
+    out = drape(m, st, SDF, Cloth(uv, GAMMA, DENSITY), steps=20, settings=DrapeSettings(edge_contact=ec))
+    d, _ = SDF.query(contact_points(m, out.x) if ec else out.x)
+    assert float(d.min()) < 5e-3  # in the contact band: the test exercises contact (vertices': friction)
     assert float(d.min()) > 0.0
 
 
 def test_gradient_vs_central_differences(case):
-    m, uv, st = case
+    m, uv, st, ec = case
     uvp = uv.clone().requires_grad_()
     gp = GAMMA.clone().requires_grad_()
     x0 = st.x.clone().requires_grad_()
-    L = _run(m, uvp, gp, SimState(x0, st.v))
+    L = _run(ec, m, uvp, gp, SimState(x0, st.v))
     g_uv, g_gamma, g_x0 = torch.autograd.grad(L, (uvp, gp, x0))
     gen = torch.Generator().manual_seed(3)
     with torch.no_grad():
         for k in range(2):  # directional derivatives along random rest-shape perturbations
             dirn = torch.randn(uv.shape, generator=gen, dtype=torch.float64)
-            h = 1e-8  # [m]; truncation error at 1e-6 is ~5e-5 relative here, round-off at 1e-8 ~1e-8
-            fd = (_run(m, uv + h * dirn, GAMMA, st) - _run(m, uv - h * dirn, GAMMA, st)) / (2 * h)
+            # [m]; the edges' midpoints rest in the stiff contact band: the FD error of direction 1
+            # falls 2.5e-4, 2.0e-4, 2e-7 relative at h = 1e-7, 1e-8, 1e-9 (truncation, not round-off)
+            h = 1e-9
+            fd = (_run(ec, m, uv + h * dirn, GAMMA, st) - _run(ec, m, uv - h * dirn, GAMMA, st)) / (2 * h)
             assert_close((g_uv * dirn).sum(), fd, rtol=1e-5, what=f"uv direction {k} ")
         for i in range(5):  # each material parameter, relative step
             h = 1e-4 * float(GAMMA[i])  # smooth in Gamma: truncation ~1e-8 relative, round-off small
             e = torch.zeros(5, dtype=torch.float64)
             e[i] = h
-            fd = (_run(m, uv, GAMMA + e, st) - _run(m, uv, GAMMA - e, st)) / (2 * h)
+            fd = (_run(ec, m, uv, GAMMA + e, st) - _run(ec, m, uv, GAMMA - e, st)) / (2 * h)
             assert_close(g_gamma[i], fd, rtol=1e-5, what=f"gamma[{i}] ")
         dirn = torch.randn(st.x.shape, generator=gen, dtype=torch.float64)
-        # [m]; the FD error falls 1.2e-5 -> 2.8e-7 relative from h = 1e-7 to 1e-8 (truncation: the
-        # contact band bends the response), so 1e-8 tests the gradient, not the FD
-        h = 1e-8
+        # [m]; as for uv, truncation in the contact band: 1e-9 tests the gradient, not the FD
+        h = 1e-9
         fd = (
-            _run(m, uv, GAMMA, SimState(st.x + h * dirn, st.v))
-            - _run(m, uv, GAMMA, SimState(st.x - h * dirn, st.v))
+            _run(ec, m, uv, GAMMA, SimState(st.x + h * dirn, st.v))
+            - _run(ec, m, uv, GAMMA, SimState(st.x - h * dirn, st.v))
         ) / (2 * h)
         assert_close((g_x0 * dirn).sum(), fd, rtol=1e-5, what="initial state ")
 
 
 def test_adjoint_matches_dense_unrolled_and_checkpoint(case, monkeypatch):
-    m, uv, st = case
+    m, uv, st, ec = case
     uvp = uv.clone().requires_grad_()
     gp = GAMMA.clone().requires_grad_()
-    L = _run(m, uvp, gp, st)
+    L = _run(ec, m, uvp, gp, st)
     ref_grads = torch.autograd.grad(L, (uvp, gp))
-    L2 = _run(m, uvp, gp, st, checkpoint=True)
+    L2 = _run(ec, m, uvp, gp, st, checkpoint=True)
     ck = torch.autograd.grad(L2, (uvp, gp))
     for a, b in zip(ck, ref_grads):
         assert_close(a, b, rtol=1e-10, atol=1e-12, what="checkpointed ")
     # the unfused path (assembly Functions + sparse_solve), then the same with a dense solve
-    L4 = _run(m, uvp, gp, st, fused=False)
+    L4 = _run(ec, m, uvp, gp, st, fused=False)
     unfused = torch.autograd.grad(L4, (uvp, gp))
     assert_close(L4, L, rtol=1e-12)
     for a, b in zip(unfused, ref_grads):
@@ -117,7 +127,7 @@ def test_adjoint_matches_dense_unrolled_and_checkpoint(case, monkeypatch):
     import unsew.sim.integrator as integ
 
     monkeypatch.setattr(integ, "sparse_solve", lambda A, b, pat, backend: torch.linalg.solve(pat.dense(A), b))
-    L3 = _run(m, uvp, gp, st, fused=False)
+    L3 = _run(ec, m, uvp, gp, st, fused=False)
     dense = torch.autograd.grad(L3, (uvp, gp))
     assert_close(L3, L, rtol=1e-12)
     for a, b in zip(dense, ref_grads):
@@ -126,28 +136,28 @@ def test_adjoint_matches_dense_unrolled_and_checkpoint(case, monkeypatch):
 
 def test_gradient_with_held_vertices_vs_central_differences(case):
     """The same check with two rest vertices held 1 cm below where they hang (unsew.sim.energies.anchor)."""
-    m, uv, st = case
+    m, uv, st, ec = case
     idx = torch.tensor([0, 1])
     x_of_u = torch.full((m.n_rest,), -1, dtype=torch.int64)
     x_of_u[m.faces_uv.reshape(-1)] = m.faces.reshape(-1)
     anchors = (idx, st.x[x_of_u[idx], 1] - 0.01)
     uvp = uv.clone().requires_grad_()
     x0 = st.x.clone().requires_grad_()
-    L = _run(m, uvp, GAMMA, SimState(x0, st.v), anchors=anchors)
+    L = _run(ec, m, uvp, GAMMA, SimState(x0, st.v), anchors=anchors)
     g_uv, g_x0 = torch.autograd.grad(L, (uvp, x0))
     gen = torch.Generator().manual_seed(5)
     with torch.no_grad():
-        assert abs(float(L - _run(m, uv, GAMMA, st))) > 1e-3  # the hold changes the drape
+        assert abs(float(L - _run(ec, m, uv, GAMMA, st))) > 1e-3  # the hold changes the drape
         dirn = torch.randn(uv.shape, generator=gen, dtype=torch.float64)
         h = 1e-8
         fd = (
-            _run(m, uv + h * dirn, GAMMA, st, anchors=anchors)
-            - _run(m, uv - h * dirn, GAMMA, st, anchors=anchors)
+            _run(ec, m, uv + h * dirn, GAMMA, st, anchors=anchors)
+            - _run(ec, m, uv - h * dirn, GAMMA, st, anchors=anchors)
         ) / (2 * h)
         assert_close((g_uv * dirn).sum(), fd, rtol=1e-5, what="uv, held ")
         dirn = torch.randn(st.x.shape, generator=gen, dtype=torch.float64)
         fd = (
-            _run(m, uv, GAMMA, SimState(st.x + h * dirn, st.v), anchors=anchors)
-            - _run(m, uv, GAMMA, SimState(st.x - h * dirn, st.v), anchors=anchors)
+            _run(ec, m, uv, GAMMA, SimState(st.x + h * dirn, st.v), anchors=anchors)
+            - _run(ec, m, uv, GAMMA, SimState(st.x - h * dirn, st.v), anchors=anchors)
         ) / (2 * h)
         assert_close((g_x0 * dirn).sum(), fd, rtol=1e-5, what="initial state, held ")

@@ -26,10 +26,11 @@ def _over_arm(n=4, size=0.1, top=0.01):
     return p, x
 
 
-def _sew(p, x, guide: bool):
+def _sew(p, x, guide: bool, edge_contact: bool = True):
     mu = SimModel.build(p["faces_uv"], p["faces_uv"], springs=p["seam_pairs"])
     cloth = Cloth(torch.as_tensor(p["uv"]), GAMMA, 0.12, friction=0.3)
-    return sew(mu, x, ARM, cloth, settings=DrapeSettings(sew_steps=30, seam_guide=guide))
+    settings = DrapeSettings(sew_steps=30, seam_guide=guide, edge_contact=edge_contact)
+    return sew(mu, x, ARM, cloth, settings=settings)
 
 
 def test_waypoint_lies_outside_the_arm_above_the_seam_line():
@@ -55,9 +56,13 @@ def test_seam_across_an_arm_closes_over_it():
     assert float(gap.max()) < 2e-3  # closed
     assert float(xs[sp[:, 0], 1].min()) > R  # on top of the arm
     assert float(ARM.query(xs)[0].min()) > 0.0
-    # the same seam pulled straight at itself stays caught on the arm, 12 cm open
-    plain = _sew(p, x, guide=False)
+    # pulled straight at itself, with the body repelling vertices only, it stays caught on the
+    # arm, 12 cm open; with the edges' midpoints repelled too (the default) it slides over it
+    plain = _sew(p, x, guide=False, edge_contact=False)
     assert float((plain[sp[:, 0]] - plain[sp[:, 1]]).norm(dim=1).max()) > 0.05
+    edges = _sew(p, x, guide=False)
+    assert float((edges[sp[:, 0]] - edges[sp[:, 1]]).norm(dim=1).max()) < 2e-3
+    assert float(edges[sp[:, 0], 1].min()) > R and float(ARM.query(edges)[0].min()) > 0.0
 
 
 def test_base_tshirt_on_default_body_is_sewn_as_without_the_guide():

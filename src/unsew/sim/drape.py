@@ -130,6 +130,10 @@ class DrapeSettings:
     line_search: bool = True  #: backtrack a step far off its linearization (integrator.py)
     #: sew seams whose copies start on either side of the body around it (sim/seam_guide.py)
     seam_guide: bool = True
+    #: the body repels the mesh edges' midpoints too (StepParams.edge_contact; docs/decisions/042)
+    edge_contact: bool = True
+    #: the body's friction acts while sewing too (False: a slippery body until the seams close)
+    sew_friction: bool = True
 
     def replace(self, **changes) -> "DrapeSettings":
         """A copy with ``changes`` applied."""
@@ -141,7 +145,7 @@ class DrapeSettings:
         return StepParams(
             dt=self.sew_dt if sewing else self.dt,
             gravity=self.gravity,
-            friction=friction,
+            friction=friction if self.sew_friction or not sewing else 0.0,
             contact_stiffness=self.contact_stiffness,
             contact_threshold=self.contact_threshold,
             thickness=self.thickness,
@@ -151,6 +155,7 @@ class DrapeSettings:
             backend=self.backend,
             fused=self.fused,
             line_search=self.line_search,
+            edge_contact=self.edge_contact,
         )
 
 

@@ -88,6 +88,8 @@ class StepParams:
         max_halvings: most halvings of the step the line search tries [-].
         anchor: vertices held at a height (:mod:`unsew.sim.energies.anchor`): (idx (A,) int64,
             heights (A,) [m], stiffness [N/m]) in the model's vertex numbering, or None.
+        edge_contact: the body also repels each mesh edge's midpoint (an edge whose ends lie
+            on the body either side of a fold, across a limb, is pushed out with them).
     """
 
     dt: float = 0.05
@@ -104,6 +106,7 @@ class StepParams:
     line_search: bool = True
     max_halvings: int = 8
     anchor: tuple | None = None
+    edge_contact: bool = False
 
 
 @dataclass
@@ -201,6 +204,38 @@ def _ring_weight(like: torch.Tensor) -> torch.Tensor:
     return w
 
 
+def _mesh_edges(model: SimModel):
+    """Cached unique edges (E, 2) int64 of the model's triangles (per topology)."""
+    e = getattr(model, "_edges_cache", None)
+    if e is None:
+        f = model.faces
+        pairs = torch.cat([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]], 0)
+        e = torch.unique(torch.sort(pairs, dim=1).values, dim=0)
+        model._edges_cache = e
+    return e
+
+
+def _edge_contact(model, rest, x, sdf, params: StepParams, *, hessian: bool):
+    """Repulsion of the edges' midpoints (StepParams.edge_contact), each weighted by the mean
+    of its ends' rest areas [m^2]: energy [J], gradient (N, 3) [N], lumped vertex blocks
+    (N, 3, 3) [N/m] or None, and each vertex's share of the midpoints' normal forces (N,) [N]
+    (half of each of its edges', for friction). A midpoint's block h enters each end's diagonal
+    as h / 2 (above the exact [[h, h], [h, h]] / 4: PSD, and no entries the system lacks)."""
+    e = _mesh_edges(model)
+    ends = e.reshape(-1)
+    a = 0.5 * (rest.vert_area[e[:, 0]] + rest.vert_area[e[:, 1]])
+    d, n = sdf.query(0.5 * (x[e[:, 0]] + x[e[:, 1]]))
+    ec, ge, He, fe = energy_contact(
+        d, n, a, stiffness=params.contact_stiffness, threshold=params.contact_threshold, hessian=hessian
+    )
+    g = x.new_zeros(model.n, 3).index_add(0, ends, (0.5 * ge).repeat_interleave(2, dim=0))
+    fn = x.new_zeros(model.n).index_add(0, ends, (0.5 * fe).repeat_interleave(2))
+    if He is None:
+        return ec, g, None, fn
+    Hv = x.new_zeros(model.n, 3, 3).index_add(0, ends, (0.5 * He).repeat_interleave(2, dim=0))
+    return ec, g, Hv, fn
+
+
 @dataclass
 class _Terms:
     """The energies' terms at one x: f (N, 3) [N] (internal + gravity + contact + springs,
@@ -235,6 +270,10 @@ def _terms(model, rest, x, sdf, gamma, params: StepParams, *, hessian: bool) -> 
         hessian=hessian,
     )
     grad = scatter_vertex(model.n, model.faces, gm) + scatter_vertex(model.n, model.hinges, gb) + gc
+    if params.edge_contact:
+        ee, ge, He, fe = _edge_contact(model, rest, x, sdf, params, hessian=hessian)
+        ec, grad, fn = ec + ee, grad + ge, fn + fe
+        Hc = Hc + He if He is not None else Hc
     Hs = None
     es = 0.0
     if model.springs.shape[0]:
@@ -310,6 +349,8 @@ def total_energy(model, rest, x, sdf, gamma, params: StepParams):
             hessian=False,
         )[0]
     )
+    if params.edge_contact:
+        e = e + _edge_contact(model, rest, x, sdf, params, hessian=False)[0]
     e = e + energy_gravity(x, rest.mass, g)[0]
     if model.springs.shape[0]:
         e = e + energy_spring(x, model.springs, params.spring_stiffness, hessian=False)[0]
