@@ -211,7 +211,9 @@ def dress(
         ``start_given`` (True) where the drape from the wrapped start stayed unsound and one from
         the pattern's own placement (:func:`unsew.body.placement.place_as_given`) was sounder;
         ``held`` the number of rest vertices held at their height (:func:`attached_vertices`),
-        0 where none is labelled or where the drape so held was unsound and the free one sounder.
+        0 where none is labelled or where the drape so held was unsound and the free one sounder;
+        ``edge_contact`` (True) where the drape was still unsound and one with the body repelling
+        the mesh edges' midpoints too (``DrapeSettings.edge_contact``) was sounder.
     """
     mat = resolve_material(material)
     if mesh is None:
@@ -229,10 +231,31 @@ def dress(
 
 def _fall_back(job: _Job) -> Dressed:
     """The drape, and a sounder one where it is unsound: free instead of held at its labelled
-    edges, sewn straight instead of round the body, then from the pattern's own placement."""
+    edges, sewn straight instead of round the body, from the pattern's own placement, then with
+    the body repelling the mesh edges too."""
+    d, job = _fall_back_held(job)
+    if _unsound(d, job.body) and not job.settings.edge_contact:
+        # cloth caught across a limb or the armpit, its vertices either side of the body: dress
+        # again with the edges' midpoints repelled too and keep the sounder (docs/decisions/042)
+        edged = dataclasses.replace(job, settings=job.settings.replace(edge_contact=True))
+        try:
+            e = _fall_back_unheld(edged, _dress_retried(edged))
+        except SimulationError:
+            return d
+        if _sounder(e, d, job.body):
+            e.stats["edge_contact"] = True
+            e.stats["held"] = d.stats["held"]
+            return e
+    return d
+
+
+def _fall_back_held(job: _Job) -> tuple[Dressed, _Job]:
+    """:func:`_fall_back` but the last step, with the job whose drape it returns (held or free)."""
     body = job.body
     if job.cloth.anchors is None:
-        return _fall_back_unheld(job, _dress_retried(job))
+        d = _fall_back_unheld(job, _dress_retried(job))
+        d.stats["held"] = 0
+        return d, job
     free_job = dataclasses.replace(job, cloth=dataclasses.replace(job.cloth, anchors=None))
     try:
         d = _dress_retried(job)
@@ -247,7 +270,7 @@ def _fall_back(job: _Job) -> Dressed:
     held = 0 if job.cloth.anchors is None else len(job.cloth.anchors[0])
     d = _fall_back_unheld(job, d)
     d.stats["held"] = held
-    return d
+    return d, job
 
 
 def _fall_back_unheld(job: _Job, d: Dressed) -> Dressed:

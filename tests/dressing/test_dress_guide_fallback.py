@@ -1,5 +1,6 @@
 """dress() keeps the sounder of the guided and the straight sewing when the guided one is unsound,
-and of that and a drape from the pattern's own placement when it is still unsound."""
+of that and a drape from the pattern's own placement when it is still unsound, and of that and
+the same fallbacks with the body repelling the mesh edges too when it is unsound still."""
 
 import dataclasses
 from types import SimpleNamespace
@@ -26,18 +27,22 @@ def _fake(ok: bool, stretch: float, guided: int):
 def _run(monkeypatch, guided_result, given_result=None, retried=None):
     """dress() with its drapes stood in for: the guided sewing gives ``guided_result``, the
     straight one a sound drape (or ``retried(job)`` gives both), the pattern's own placement
-    ``given_result`` (an explosion when None). Returns (drape, the calls in order)."""
+    ``given_result`` (an explosion when None). Returns (drape, the calls in order: seam_guide or
+    "given", as ("edges", call) with the edges repelled)."""
     calls = []
     given = given_result or _fake(False, 9.0, 0)
 
+    def note(job, call):
+        calls.append(("edges", call) if job.settings.edge_contact else call)
+
     def fake_dress(job):
-        calls.append(job.settings.seam_guide)
+        note(job, job.settings.seam_guide)
         if retried is not None:
             return retried(job)
         return guided_result if job.settings.seam_guide else _fake(True, 1.1, 0)
 
     def fake_once(job, force_meet, given=False):
-        calls.append("given")
+        note(job, "given")
         return given_drape
 
     given_drape = given
@@ -69,8 +74,22 @@ def test_a_worse_straight_drape_does_not_replace_the_guided_one(monkeypatch):
         return guided if job.settings.seam_guide else _fake(False, 1.2, 0)
 
     out, calls = _run(monkeypatch, guided, retried=worse)
-    assert out is guided and "guide_dropped" not in out.stats
-    assert calls == [True, False, "given"]  # still over 1.5: the pattern's own start tried, not kept
+    assert out is guided and "guide_dropped" not in out.stats and "edge_contact" not in out.stats
+    # still over 1.5: the pattern's own start tried, then all three with the edges repelled, none kept
+    assert calls == [True, False, "given", ("edges", True), ("edges", False), ("edges", "given")]
+
+
+def test_a_drape_unsound_after_every_fallback_gives_way_to_one_with_the_edges_repelled(monkeypatch):
+    """Guided, straight and the pattern's own start all unsound (cloth caught across a limb):
+    dressed again with the body repelling the edges' midpoints, sound, and that is kept."""
+    edged = _fake(True, 1.3, 3)
+
+    def caught(job):
+        return edged if job.settings.edge_contact else _fake(True, 1.8, 3)
+
+    out, calls = _run(monkeypatch, None, given_result=_fake(False, 5.0, 0), retried=caught)
+    assert out is edged and out.stats["edge_contact"] and out.stats["held"] == 0
+    assert calls == [True, False, "given", ("edges", True)]  # sound at once: no more fallbacks
 
 
 def test_an_unsound_drape_gives_way_to_a_sounder_one_from_the_patterns_own_placement(monkeypatch):

@@ -130,10 +130,9 @@ class DrapeSettings:
     line_search: bool = True  #: backtrack a step far off its linearization (integrator.py)
     #: sew seams whose copies start on either side of the body around it (sim/seam_guide.py)
     seam_guide: bool = True
-    #: the body repels the mesh edges' midpoints too (StepParams.edge_contact; docs/decisions/042)
-    edge_contact: bool = True
-    #: the body's friction acts while sewing too (False: a slippery body until the seams close)
-    sew_friction: bool = True
+    #: the body repels the mesh edges' midpoints too (StepParams.edge_contact; :func:`unsew.dress.dress`
+    #: dresses an unsound drape again so, docs/decisions/042)
+    edge_contact: bool = False
 
     def replace(self, **changes) -> "DrapeSettings":
         """A copy with ``changes`` applied."""
@@ -145,7 +144,7 @@ class DrapeSettings:
         return StepParams(
             dt=self.sew_dt if sewing else self.dt,
             gravity=self.gravity,
-            friction=friction if self.sew_friction or not sewing else 0.0,
+            friction=friction,
             contact_stiffness=self.contact_stiffness,
             contact_threshold=self.contact_threshold,
             thickness=self.thickness,

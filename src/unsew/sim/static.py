@@ -69,7 +69,6 @@ class StaticSettings:
         contact_stiffness: body repulsion kc [N/m^4] (as :func:`~unsew.sim.drape.drape`).
         contact_threshold: distance below which repulsion acts [m].
         spring_stiffness: zero-length seam springs [N/m].
-        edge_contact: the body repels the edges' midpoints too (as :func:`~unsew.sim.drape.drape`).
         mu0: initial Levenberg-Marquardt weight [1/s^2] on the masses.
         adjoint: "exact" (PCG on exact Hessian products) or "projected" (module docstring).
         adjoint_rtol: relative residual at which the "exact" adjoint's PCG stops [-].
@@ -83,7 +82,6 @@ class StaticSettings:
     contact_stiffness: float = 1e7
     contact_threshold: float = 5e-3
     spring_stiffness: float = 100.0
-    edge_contact: bool = True
     mu0: float = 100.0
     adjoint: str = "exact"
     adjoint_rtol: float = 1e-10
@@ -366,7 +364,6 @@ def drape_static(
         spring_stiffness=settings.spring_stiffness,
         friction=0.0,
         backend=settings.backend,
-        edge_contact=settings.edge_contact,
     )
     info = StaticInfo() if info is None else info
     prob = _Problem(model, sdf, params, settings, resolve_backend(settings.backend), info, callback)
