@@ -63,8 +63,8 @@ def _run(ec, m, uv, gamma, st, checkpoint=False, fused=True, anchors=None):
 
 @pytest.fixture(scope="module", params=[True, False], ids=["edge contact", "vertex contact"])
 def case(request):
-    """The warm case with the body repelling edges' midpoints too (the default) or vertices only
-    (which then rest in the contact band, so friction acts)."""
+    """The warm case with the body repelling edges' midpoints too (dress()'s last fallback) or
+    vertices only (the default; they then rest in the contact band, so friction acts)."""
     return _case(request.param)
 
 
