@@ -234,7 +234,7 @@ def _fall_back(job: _Job) -> Dressed:
     edges, sewn straight instead of round the body, from the pattern's own placement, then with
     the body repelling the mesh edges too."""
     d, job = _fall_back_held(job)
-    if _unsound(d, job.body) and not job.settings.edge_contact:
+    if _unsound(d, job.body) and job.settings.edge_fallback and not job.settings.edge_contact:
         # cloth caught across a limb or the armpit, its vertices either side of the body: dress
         # again with the edges' midpoints repelled too and keep the sounder (docs/decisions/042)
         edged = dataclasses.replace(job, settings=job.settings.replace(edge_contact=True))

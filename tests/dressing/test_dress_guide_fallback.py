@@ -24,7 +24,7 @@ def _fake(ok: bool, stretch: float, guided: int):
     return SimpleNamespace(x=x, mesh=mesh, ok=ok, stats={"guided_seams": guided})
 
 
-def _run(monkeypatch, guided_result, given_result=None, retried=None):
+def _run(monkeypatch, guided_result, given_result=None, retried=None, **changes):
     """dress() with its drapes stood in for: the guided sewing gives ``guided_result``, the
     straight one a sound drape (or ``retried(job)`` gives both), the pattern's own placement
     ``given_result`` (an explosion when None). Returns (drape, the calls in order: seam_guide or
@@ -50,7 +50,7 @@ def _run(monkeypatch, guided_result, given_result=None, retried=None):
     monkeypatch.setattr(dress_mod, "_dress_once", fake_once)
     monkeypatch.setattr(dress_mod, "check_dressed", lambda d, body=None: SimpleNamespace(ok=d.ok))
     monkeypatch.setattr(dress_mod, "mesh_pattern", lambda *a, **k: SimpleNamespace(uv=np.zeros((2, 2))))
-    settings = dataclasses.replace(dress_mod.DRESS_SETTINGS, seam_guide=True)
+    settings = dataclasses.replace(dress_mod.DRESS_SETTINGS, seam_guide=True, **changes)
     out = dress_mod.dress(_UNLABELLED, default_body(), sdf=object(), settings=settings)
     return out, calls
 
@@ -90,6 +90,19 @@ def test_a_drape_unsound_after_every_fallback_gives_way_to_one_with_the_edges_re
     out, calls = _run(monkeypatch, None, given_result=_fake(False, 5.0, 0), retried=caught)
     assert out is edged and out.stats["edge_contact"] and out.stats["held"] == 0
     assert calls == [True, False, "given", ("edges", True)]  # sound at once: no more fallbacks
+
+
+def test_without_the_edge_fallback_an_unsound_drape_is_not_dressed_again(monkeypatch):
+    """The fit's grading drapes turn the edges' fallback off: the same unsound drapes end at the
+    pattern's own placement's verdict, no drape with the edges repelled."""
+    edged = _fake(True, 1.3, 3)
+
+    def caught(job):
+        return edged if job.settings.edge_contact else _fake(True, 1.8, 3)
+
+    out, calls = _run(monkeypatch, None, _fake(False, 5.0, 0), caught, edge_fallback=False)
+    assert out is not edged and "edge_contact" not in out.stats
+    assert calls == [True, False, "given"]
 
 
 def test_an_unsound_drape_gives_way_to_a_sounder_one_from_the_patterns_own_placement(monkeypatch):

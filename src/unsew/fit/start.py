@@ -488,8 +488,12 @@ def start(
         anchors = held_anchors(base, mesh_b, scene.body, scene.sdf, x_b)
         return Start(base, base, mesh_b, x_b, [], x_b, mesh_b, material, dress_s=dress_s, anchors=anchors)
 
+    # grading reads lengths and girths off its drapes: an unsound one is not dressed again with
+    # the edges repelled (docs/decisions/042: that doubled grading's time on an A-pose dress)
+    grade_drape = cfg.drape.replace(edge_fallback=False)
+
     def drape_fn(p, m, b):
-        return dress(p, b, sdf=scene.sdf, mesh=m, material=material, settings=cfg.drape).x.numpy()
+        return dress(p, b, sdf=scene.sdf, mesh=m, material=material, settings=grade_drape).x.numpy()
 
     settings = GradingSettings(
         drape=cfg.drape,

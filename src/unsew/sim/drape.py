@@ -133,6 +133,9 @@ class DrapeSettings:
     #: the body repels the mesh edges' midpoints too (StepParams.edge_contact; :func:`unsew.dress.dress`
     #: dresses an unsound drape again so, docs/decisions/042)
     edge_contact: bool = False
+    #: :func:`unsew.dress.dress` dresses a drape still unsound after its other fallbacks again with
+    #: ``edge_contact`` (off for the fit's grading drapes, which only measure lengths, 042)
+    edge_fallback: bool = True
 
     def replace(self, **changes) -> "DrapeSettings":
         """A copy with ``changes`` applied."""
