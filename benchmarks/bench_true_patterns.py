@@ -122,6 +122,10 @@ def measure(obj: Path, sdf) -> dict:
     }
 
 
+#: the columns of a most-stretched-edge row
+SEAM_COLUMNS = ["pattern", "panel", "edge", "label", "rest_cm", "stretch_max", "stretch_whole", "y_m"]
+
+
 def seam_rows(
     name: str,
     obj: Path,
@@ -135,7 +139,7 @@ def seam_rows(
     per (panel, edge) its largest and its overall stretch (3D length along the edge over its
     pattern length) and its mean height [m]. The pattern (``pattern``, else GarmentCode's sample
     ``name`` under ``foreign``) is meshed again at ``edge_length``, as ``unsew drape`` meshed it
-    (the same mesh: checked by its vertex count)."""
+    (the same mesh: checked by its vertex count), and ``sewn_ratio`` (:func:`_sewn_ratio`)."""
     import warnings
 
     from unsew.io.garmentcode import load_pattern
@@ -166,7 +170,23 @@ def seam_rows(
                 "y_m": float(xv[:, 1].mean()),
             }
         )
-    return sorted(rows, key=lambda r: -r["stretch_max"])[:top]
+    rows = sorted(rows, key=lambda r: -r["stretch_max"])[:top]
+    for r in rows:
+        r["sewn_ratio"] = _sewn_ratio(pat, r["panel"], r["edge"])
+    return rows
+
+
+def _sewn_ratio(pattern, panel: str, edge: int) -> float | None:
+    """Length of the edge stitched to ``panel``'s ``edge`` over its own [-] (over 1: the edge is
+    gathered onto a longer one, as GarmentCode sews a tier, a waistband or a sleeve cap), or None."""
+    from unsew.pattern.curves import edge_length
+
+    own = edge_length(pattern.panels[panel], edge)
+    for st in pattern.stitches:
+        for a, b in ((st.a, st.b), (st.b, st.a)):
+            if a.panel == panel and a.edge == edge:
+                return float(edge_length(pattern.panels[b.panel], b.edge) / own)
+    return None
 
 
 def drape_one(
@@ -600,7 +620,7 @@ def main() -> None:
     if seams:
         print_table(
             seams,
-            ["pattern", "panel", "edge", "label", "rest_cm", "stretch_max", "stretch_whole", "y_m"],
+            [*SEAM_COLUMNS, "sewn_ratio"],
             title="most stretched pattern edges",
         )
     n_ok = sum(r["ok"] for r in rows)
@@ -654,11 +674,7 @@ def main_gcd(args) -> int:
                 pattern = Path(args.cases) / r["case"] / "pattern_gt.json"
                 seams += seam_rows(r["case"], obj, pattern=pattern, edge_length=kw.get("edge_length", 0.025))
         print("\nmost stretched pattern edges\n")
-        print(
-            markdown_table(
-                seams, ["pattern", "panel", "edge", "label", "rest_cm", "stretch_max", "stretch_whole", "y_m"]
-            )
-        )
+        print(markdown_table(seams, [*SEAM_COLUMNS, "sewn_ratio"]))
     print("\n" + gcd_count_line(rows))
     if args.record:
         if args.small or kw:

@@ -210,3 +210,33 @@ def test_newton_stretch_reads_the_targets_edges_as_unsews_drapes_are_read(tmp_pa
     assert "edge over 1.5x in 2 of the 3 with a newton target (1 of those 2 dressed" in bench.gcd_count_line(
         rows
     )
+
+
+def test_sewn_ratio_says_which_edge_is_gathered_onto_a_longer_one():
+    """A 20 cm edge sewn to a 30 cm one reads 1.5 (gathered onto it), the 30 cm one 2/3, an
+    edge without a stitch None."""
+    import warnings
+
+    from unsew.io.garmentcode import pattern_from_dict
+
+    def rect(w, x):
+        return {
+            "vertices": [[0, 0], [w, 0], [w, 10], [0, 10]],
+            "edges": [{"endpoints": [i, (i + 1) % 4]} for i in range(4)],
+            "translation": [x, 0, 0],
+            "rotation": [0, 0, 0],
+        }
+
+    spec = {
+        "pattern": {
+            "panels": {"top": rect(20, 0), "tier": rect(30, 40)},
+            "stitches": [[{"panel": "top", "edge": 0}, {"panel": "tier", "edge": 2}]],
+        },
+        "properties": {"units_in_meter": 100},
+    }
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the stitch's two lengths differ: GarmentCode gathers
+        p = pattern_from_dict(spec)
+    assert bench._sewn_ratio(p, "top", 0) == pytest.approx(1.5)
+    assert bench._sewn_ratio(p, "tier", 2) == pytest.approx(2 / 3)
+    assert bench._sewn_ratio(p, "top", 1) is None
