@@ -264,12 +264,8 @@ def cmd_score(args, record_file: Path) -> int:
         rec["score_s"] = round(time.time() - t0, 1)
         recs[cid] = rec
         print(json.dumps(rec), flush=True)
-    if record_file.is_file():  # the material-fitted floors are recorded apart (cmd_floor_fitted)
-        old = json.loads(record_file.read_text()).get("cases", {})
-        for cid, r in recs.items():
-            for k in ("floor_fitted_mm", "floor_fitted_s"):
-                if k in old.get(cid, {}) and r.get("built"):
-                    r.setdefault(k, old[cid][k])
+    if record_file.is_file():
+        carry_over(recs, json.loads(record_file.read_text()).get("cases", {}))
     print_record({"cases": recs})
     if args.record:
         record_file.write_text(
@@ -279,6 +275,16 @@ def cmd_score(args, record_file: Path) -> int:
             + "\n"
         )
     return 0
+
+
+def carry_over(recs: dict, old: dict) -> None:
+    """Fill each built case's record from the recorded ``old`` ones where it lacks them: the
+    material-fitted floor (recorded apart, :func:`cmd_floor_fitted`) and newton's floor (made
+    once into floors.json, which a case folder built again from the kept targets has lost)."""
+    for cid, r in recs.items():
+        for k in ("floor_fitted_mm", "floor_fitted_s", "floor_mm"):
+            if k in old.get(cid, {}) and r.get("built"):
+                r.setdefault(k, old[cid][k])
 
 
 def cmd_floor_fitted(args, record_file: Path) -> int:

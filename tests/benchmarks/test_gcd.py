@@ -718,3 +718,28 @@ def test_unsews_bar_is_made_again_when_unsews_code_changed(tmp_path, monkeypatch
         known = score._floors(tmp_path, {}, {"type": "skirt"}, (v, f), floor=True, redrape=False)
         assert len(calls) == n_calls and known["bar_code"] == code
     assert known["chamfer_bar_mm"] > 1.5  # the second drape's (2 mm off), not the first's
+
+
+def test_a_score_keeps_the_recorded_floors_it_did_not_make():
+    """`gcd score` without newton keeps each built case's recorded newton floor and
+    material-fitted floor; a floor it made itself (even a failed one) stands; unbuilt cases get none."""
+    score = _load("score")
+    old = {
+        "gc_s1_000": {"floor_mm": 5.0, "floor_fitted_mm": 4.0, "floor_fitted_s": 300.0},
+        "gc_s1_001": {"floor_mm": 7.0},
+        "gc_s1_002": {"floor_mm": 9.0},
+    }
+    recs = {
+        "gc_s1_000": {"built": True},
+        "gc_s1_001": {"built": True, "floor_mm": None, "floor_error": "diverged"},
+        "gc_s1_002": {"built": False},
+    }
+    score.carry_over(recs, old)
+    assert recs["gc_s1_000"] == {
+        "built": True,
+        "floor_mm": 5.0,
+        "floor_fitted_mm": 4.0,
+        "floor_fitted_s": 300.0,
+    }
+    assert recs["gc_s1_001"]["floor_mm"] is None
+    assert "floor_mm" not in recs["gc_s1_002"]
