@@ -279,10 +279,11 @@ def cmd_score(args, record_file: Path) -> int:
 
 def carry_over(recs: dict, old: dict) -> None:
     """Fill each built case's record from the recorded ``old`` ones where it lacks them: the
-    material-fitted floor (recorded apart, :func:`cmd_floor_fitted`) and newton's floor (made
-    once into floors.json, which a case folder built again from the kept targets has lost)."""
+    material-fitted floor and whether the case is a circle or flared skirt (recorded apart,
+    :func:`cmd_floor_fitted`) and newton's floor (made once into floors.json, which a case folder
+    built again from the kept targets has lost)."""
     for cid, r in recs.items():
-        for k in ("floor_fitted_mm", "floor_fitted_s", "floor_mm"):
+        for k in ("floor_fitted_mm", "floor_fitted_s", "flared", "floor_mm"):
             if k in old.get(cid, {}) and r.get("built"):
                 r.setdefault(k, old[cid][k])
 

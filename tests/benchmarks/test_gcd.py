@@ -725,7 +725,7 @@ def test_a_score_keeps_the_recorded_floors_it_did_not_make():
     material-fitted floor; a floor it made itself (even a failed one) stands; unbuilt cases get none."""
     score = _load("score")
     old = {
-        "gc_s1_000": {"floor_mm": 5.0, "floor_fitted_mm": 4.0, "floor_fitted_s": 300.0},
+        "gc_s1_000": {"floor_mm": 5.0, "floor_fitted_mm": 4.0, "floor_fitted_s": 300.0, "flared": True},
         "gc_s1_001": {"floor_mm": 7.0},
         "gc_s1_002": {"floor_mm": 9.0},
     }
@@ -740,6 +740,7 @@ def test_a_score_keeps_the_recorded_floors_it_did_not_make():
         "floor_mm": 5.0,
         "floor_fitted_mm": 4.0,
         "floor_fitted_s": 300.0,
+        "flared": True,
     }
     assert recs["gc_s1_001"]["floor_mm"] is None
     assert "floor_mm" not in recs["gc_s1_002"]
