@@ -179,13 +179,13 @@ def seam_rows(
 def _sewn_ratio(pattern, panel: str, edge: int) -> float | None:
     """Length of the edge stitched to ``panel``'s ``edge`` over its own [-] (over 1: the edge is
     gathered onto a longer one, as GarmentCode sews a tier, a waistband or a sleeve cap), or None."""
-    from unsew.pattern.curves import edge_length
+    from unsew.pattern.seams import stitch_length_ratios
 
-    own = edge_length(pattern.panels[panel], edge)
-    for st in pattern.stitches:
-        for a, b in ((st.a, st.b), (st.b, st.a)):
-            if a.panel == panel and a.edge == edge:
-                return float(edge_length(pattern.panels[b.panel], b.edge) / own)
+    for st, a_over_b in zip(pattern.stitches, stitch_length_ratios(pattern)):
+        if (st.a.panel, st.a.edge) == (panel, edge):
+            return float(1.0 / a_over_b)
+        if (st.b.panel, st.b.edge) == (panel, edge):
+            return float(a_over_b)
     return None
 
 

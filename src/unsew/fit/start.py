@@ -489,7 +489,7 @@ def start(
         return Start(base, base, mesh_b, x_b, [], x_b, mesh_b, material, dress_s=dress_s, anchors=anchors)
 
     # grading reads lengths and girths off its drapes: an unsound one is not dressed again with
-    # the edges repelled (docs/decisions/042: that doubled grading's time on an A-pose dress)
+    # the edges repelled (docs/decisions/042)
     grade_drape = cfg.drape.replace(edge_fallback=False)
 
     def drape_fn(p, m, b):
