@@ -34,7 +34,10 @@ def test_the_fits_grading_drapes_turn_the_edge_fallback_off(monkeypatch):
     monkeypatch.setattr(start_mod, "held_anchors", lambda *a: None)
     cfg = SimpleNamespace(grading=True, drape=DrapeSettings(), area=None, side_seams="none", band_gap=None)
     scene = SimpleNamespace(
-        cfg=cfg, target=SimpleNamespace(contours=[], verts=None, faces=None), body=None, sdf=None
+        cfg=cfg,
+        target=SimpleNamespace(contours=[], verts=None, faces=None, distance_mm=lambda x, f: 10.0),
+        body=None,
+        sdf=None,
     )
     start_mod.start(SimpleNamespace(panels={}, stitches=[]), scene, "cotton")
     assert len(seen) == 1 and seen[0].edge_fallback is False

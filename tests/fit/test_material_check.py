@@ -16,7 +16,7 @@ from unsew.sim.material import get_material
 
 
 def _start(name, x0):
-    mesh = SimpleNamespace(faces=np.zeros((1, 3), dtype=np.int64))
+    mesh = SimpleNamespace(faces=np.zeros((1, 3), dtype=np.int64), uv=None, faces_uv=None)
     return Start(
         base=None,
         graded=f"pattern graded in {name}",
@@ -29,14 +29,21 @@ def _start(name, x0):
     )
 
 
-def _run(monkeypatch, fresh_value, failed=""):
+def _run(monkeypatch, fresh_value, failed="", settled_failed=""):
     """The check with the chosen fabric's drape from scratch at ``fresh_value`` (a target whose
     distance is the drape's first coordinate; its check failing with ``failed`` when given)
-    against the cotton start at 7.0."""
+    against the cotton start at 7.0; the chosen start's settled drape failing the result's check
+    with ``settled_failed`` when given."""
     dressed = []
     monkeypatch.setattr(
         mat_mod, "check_dressed", lambda d, body: SimpleNamespace(ok=not failed, reason=failed)
     )
+    monkeypatch.setattr(
+        mat_mod,
+        "check_drape",
+        lambda x, **kw: SimpleNamespace(ok=not settled_failed, reason=settled_failed),
+    )
+    monkeypatch.setattr(mat_mod, "held_anchors", lambda *a: "anchors of the drape from scratch")
 
     def fake_dress(pattern, body, **kw):
         dressed.append((pattern, kw["material"]))
@@ -93,3 +100,14 @@ def test_a_choice_whose_drape_from_scratch_fails_its_check_gives_way_to_cotton(m
         f"dressed from scratch (failed: {torn})"
     )
     assert "failed (exploded" in lines[0] and lines[0].endswith("phase two starts from cotton")
+
+
+def test_a_settled_drape_that_fails_the_results_check_gives_way_to_its_drape_from_scratch(monkeypatch):
+    """The fabric stands, but phase two (and a fit stopped before its first step) starts from a
+    drape that passes the check the result must pass, not from a settled one with a torn edge."""
+    torn = "exploded: an edge is stretched to 4.2 times its pattern length (bound 3)"
+    _, chosen, s, rows, lines = _run(monkeypatch, 5.0, settled_failed=torn)
+    assert s.material is chosen.material and s.graded == chosen.graded
+    assert np.all(s.x == 5.0) and s.anchors == "anchors of the drape from scratch"
+    assert rows[0]["material"].startswith("polyester")
+    assert any(torn in line and line.endswith("its drape from scratch kept") for line in lines)

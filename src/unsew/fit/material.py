@@ -18,14 +18,14 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from unsew._memory import release_free_memory
-from unsew.dress import dress, settle
+from unsew.dress import dress, held_anchors, settle
 from unsew.errors import InputError
 from unsew.fit.budget import TimeBudget
 from unsew.fit.config import material_candidates
 from unsew.fit.progress import Progress
 from unsew.fit.scene import Scene
 from unsew.fit.start import WARM_STEPS, Start, start
-from unsew.sim.checks import check_dressed
+from unsew.sim.checks import check_drape, check_dressed
 from unsew.sim.material import get_material
 from unsew.sim.model import SimModel
 
@@ -374,4 +374,22 @@ def _checked(first: Start, chosen: Start, table: list, scene: Scene) -> tuple[St
         f"{AUTO_START_MATERIAL} {cf_first:.2f} mm: phase two starts from "
         + (f"{label}" if keep else f"{AUTO_START_MATERIAL}")
     )
-    return (chosen if keep else first), rows + table
+    return (_sound_settled(chosen, x, scene) if keep else first), rows + table
+
+
+def _sound_settled(chosen: Start, x_fresh, scene: Scene) -> Start:
+    """``chosen`` as it is when its settled drape passes the checks a result passes
+    (:func:`unsew.sim.checks.check_drape`); else with its drape from scratch ``x_fresh`` (n_x, 3)
+    [m], which passed them: a drape settled from another fabric's can keep an edge stretched
+    beyond what a drape from scratch leaves, and the fit would end on it."""
+    m = chosen.mesh
+    verdict = check_drape(
+        chosen.x, faces=m.faces, uv=m.uv, faces_uv=m.faces_uv, body=scene.body, sdf=scene.sdf
+    )
+    if verdict.ok:
+        return chosen
+    scene.log(
+        f"material check: the settled drape fails its check ({verdict.reason}); its drape from scratch kept"
+    )
+    anchors = held_anchors(chosen.graded, m, scene.body, scene.sdf, x_fresh)
+    return chosen.replace(x=x_fresh, anchors=anchors)

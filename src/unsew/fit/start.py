@@ -59,10 +59,18 @@ __all__ = [
     "start_chosen",
     "BASE_CHOICE_EDGE",
     "WARM_STEPS",
+    "GRADING_ASTRAY",
+    "GRADING_ASTRAY_MM",
+    "graded_astray",
 ]
 
 #: mesh edge length of the candidate drapes of the automatic base choice [m]
 BASE_CHOICE_EDGE = 0.04
+#: A graded drape farther from the target than GRADING_ASTRAY times the base's drape and
+#: GRADING_ASTRAY_MM [mm] more is refused, and phase two starts from the base: grading moved the
+#: garment off its place (a circle skirt's graded drape on the shoulders, docs/decisions/043)
+GRADING_ASTRAY = 2.0
+GRADING_ASTRAY_MM = 20.0
 #: steps (at drape.dt) a drape in another fabric settles from one already dressed (the base's for
 #: grading in it, the graded pattern's for the material choice); 0: dressed from scratch [-]
 WARM_STEPS = 40
@@ -508,8 +516,29 @@ def start(
     if g.note and log is not None:
         log(g.note)
     x = np.asarray(g.x_draped)
+    astray = graded_astray(target.distance_mm(x_b, mesh_b.faces), target.distance_mm(x, g.mesh.faces))
+    if astray:
+        if log is not None:
+            log(f"grading refused: {astray}; phase two starts from the base")
+        anchors = held_anchors(base, mesh_b, scene.body, scene.sdf, x_b)
+        return Start(
+            base, base, mesh_b, x_b, g.table, x_b, mesh_b, material, dress_s=dress_s, anchors=anchors
+        )
     anchors = held_anchors(g.pattern, g.mesh, scene.body, scene.sdf, x)
     return Start(base, g.pattern, g.mesh, x, g.table, x_b, mesh_b, material, dress_s=dress_s, anchors=anchors)
+
+
+def graded_astray(base_mm: float, graded_mm: float) -> str:
+    """Why a graded drape ``graded_mm`` [mm] from the target is refused against its base's
+    ``base_mm`` [mm] (:data:`GRADING_ASTRAY`, :data:`GRADING_ASTRAY_MM`); "" when it is kept. A
+    graded drape whose distance is not finite is refused when the base's is."""
+    if not math.isfinite(base_mm):
+        return ""
+    if not math.isfinite(graded_mm):
+        return f"its drape's distance to the target is not finite (the base's: {base_mm:.1f} mm)"
+    if graded_mm > GRADING_ASTRAY * base_mm and graded_mm > base_mm + GRADING_ASTRAY_MM:
+        return f"its drape lies {graded_mm:.1f} mm from the target, the base's {base_mm:.1f} mm"
+    return ""
 
 
 def _base_drape(base, scene: Scene, material, label: str, base_from: tuple | None):
