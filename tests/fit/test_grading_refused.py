@@ -6,6 +6,9 @@ import numpy as np
 import pytest
 
 
+ROWS = [{"part": "torso", "edits": ["hem +5.0 cm"], "warnings": []}]
+
+
 def _sheet(n: int = 12, size: float = 0.5):
     """A flat square sheet (n*n, 3) [m] in the x-y plane and its faces."""
     u = np.linspace(0.0, size, n)
@@ -29,7 +32,7 @@ def _start_with_graded_drape(monkeypatch, lift_m: float):
     base, graded = SimpleNamespace(name="base"), SimpleNamespace(name="graded")
 
     def fake_grade(b, body, verts, faces, settings, *, mesh, x_init, drape_fn):
-        return SimpleNamespace(note=None, x_draped=tv + [0, 0, lift_m], pattern=graded, mesh=mesh, table=[])
+        return SimpleNamespace(note=None, x_draped=tv + [0, 0, lift_m], pattern=graded, mesh=mesh, table=ROWS)
 
     monkeypatch.setattr(start_mod, "grade", fake_grade)
     monkeypatch.setattr(start_mod, "_base_drape", lambda *a: (mesh, tv + [0, 0, 0.01], 0.0))
@@ -48,6 +51,10 @@ def test_a_graded_drape_far_off_the_target_is_refused(monkeypatch):
     assert s.graded is base
     assert np.allclose(s.x[:, 2], 0.01)
     assert any(line.startswith("grading refused") for line in lines)
+    # the report's grading notes say the edits were not kept
+    assert s.grade_table[0]["edits"] == ["hem +5.0 cm"]
+    assert s.grade_table[0]["warnings"][0].startswith("refused, none of these edits kept")
+    assert ROWS[0]["warnings"] == []  # grading's own rows are not changed
 
 
 @pytest.mark.parametrize("lift_m", [0.002, 0.02])
@@ -56,7 +63,7 @@ def test_a_graded_drape_near_the_base_is_kept(monkeypatch, lift_m):
     s, lines, _, graded = _start_with_graded_drape(monkeypatch, lift_m)
     assert s.graded is graded
     assert np.allclose(s.x[:, 2], lift_m)
-    assert not lines
+    assert not lines and s.grade_table == ROWS
 
 
 def test_the_bound_is_both_a_ratio_and_a_margin():

@@ -521,11 +521,19 @@ def start(
         if log is not None:
             log(f"grading refused: {astray}; phase two starts from the base")
         anchors = held_anchors(base, mesh_b, scene.body, scene.sdf, x_b)
-        return Start(
-            base, base, mesh_b, x_b, g.table, x_b, mesh_b, material, dress_s=dress_s, anchors=anchors
-        )
+        table = _refused_table(g.table, f"refused, none of these edits kept ({astray})")
+        return Start(base, base, mesh_b, x_b, table, x_b, mesh_b, material, dress_s=dress_s, anchors=anchors)
     anchors = held_anchors(g.pattern, g.mesh, scene.body, scene.sdf, x)
     return Start(base, g.pattern, g.mesh, x, g.table, x_b, mesh_b, material, dress_s=dress_s, anchors=anchors)
+
+
+def _refused_table(table: list, why: str) -> list:
+    """Grading's contour rows with ``why`` added to the first row's warnings (the report's
+    "grading:" notes): the rows say what grading tried, not what the start holds."""
+    rows = [dict(r) for r in table]
+    if rows:
+        rows[0]["warnings"] = list(rows[0].get("warnings") or []) + [why]
+    return rows
 
 
 def graded_astray(base_mm: float, graded_mm: float) -> str:
