@@ -72,6 +72,21 @@ def test_a_tapered_skirt_drafts_as_a_pencil_with_the_targets_hem():
     assert hem_length(draft(plain, m), legs=False) > 1.15 * true_hem
 
 
+def test_a_tube_open_at_the_chest_reads_its_top_height():
+    """A tube from under the arms to the knee (a strapless dress's two openings): the top's
+    height is read to 5 mm; a tube with one opening reads none."""
+    body = default_body()
+    m = measure_body(body)
+    r = m.bust / (2 * np.pi * 0.9)
+    v, f = _cone(r, 1.2 * r, 1.25, 0.5)
+    got = read_measures(v, f, body.skeleton)
+    assert abs(got["top_y"] - 1.25) < 0.005 and abs(got["hem_y"] - 0.5) < 0.005
+    closed = np.vstack([v, [[0.0, 1.25, 0.0]]])  # the top ring capped by a fan
+    n = 96
+    fan = [[len(v), (j + 1) % n, j] for j in range(n)]
+    assert "top_y" not in read_measures(closed, np.vstack([f, fan]), body.skeleton)
+
+
 def _true_and_target(name):
     from unsew.io.garmentcode import load_pattern
     from unsew.io.mesh import read_garment

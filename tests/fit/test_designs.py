@@ -135,6 +135,30 @@ def test_a_hood_or_a_standing_collar_read_is_on_every_candidate(garment, collar)
     assert all(d.collar == "none" and "hood" not in n and "turtle" not in n for n, d in plain)
 
 
+@pytest.mark.parametrize("garment", ["tshirt", "dress", "jumpsuit"])
+def test_a_top_read_without_cloth_over_the_shoulders_starts_strapless_at_the_read_height(garment):
+    """No neckline read (no cloth over the shoulders): the first candidate is strapless, its edge
+    at the read top height, and the sleeveless round neck is tried too (straps the reading
+    missed); a top with a neckline read drafts no strapless candidate."""
+    from dataclasses import replace
+
+    from unsew.pattern.base._frame import body_frame
+    from unsew.pattern.measurements import Measurements
+
+    r = replace(READINGS[garment], sleeves="none", neck_front="none", neck_back="none", collar="none")
+    m = Measurements()
+    y = body_frame(m).armpit_y + 0.05
+    cands = design_candidates(r, m, measures={"top_y": y})
+    first = cands[0][1]
+    assert first.strapless and first.sleeves == "none" and first.top_drop == pytest.approx(-0.05)
+    assert "strapless" in cands[0][0]
+    assert any(not d.strapless and d.sleeves == "none" for _, d in cands[1:])
+    top = draft(first, m).panels["front"]
+    (e,) = [e for e in top.edges if e.label == "strapless_top"]
+    assert top.to_world(top.vertices[[e.start]])[0, 1] == pytest.approx(y, abs=0.006)  # to 1 cm
+    assert not any(d.strapless for _, d in design_candidates(READINGS[garment], m, measures={"top_y": y}))
+
+
 def test_a_type_outside_the_design_space_is_refused_in_one_line():
     with pytest.raises(InputError) as e:
         design_candidates(DesignReading("kimono"))

@@ -101,8 +101,9 @@ def test_design_space_enumerates_distinct_candidates():
         assert all(d.garment == g for d in space)
     tees = design_space("tshirt")
     # sleeves none: 16 necklines; short and long: 2 pieces x 2 cuffs x 16 necklines; a hood and
-    # a turtle collar on round necklines with each sleeve choice (1 + 2 x 2 x 2)
-    assert len(tees) == 16 + 2 * 2 * 2 * 16 + 2 * (1 + 2 * 2 * 2)
+    # a turtle collar on round necklines with each sleeve choice (1 + 2 x 2 x 2); strapless
+    assert len(tees) == 16 + 2 * 2 * 2 * 16 + 2 * (1 + 2 * 2 * 2) + 1
+    assert sum(d.strapless for d in tees) == 1
     assert {d.neckline_front for d in tees} == set(CHOICES["neckline_front"])
     assert {d.collar for d in tees} == set(CHOICES["collar"])
     assert all(d.collar == "none" for g in ("skirt", "pants", "shorts") for d in design_space(g))
@@ -400,3 +401,52 @@ def test_three_designs_dress_the_default_body():
         assert s["stretch"] < 2.0, (name, s["stretch"])
         lo, hi = s["bbox"]
         assert lo[1] < sk.position("chest")[1] < hi[1] < sk.position("head")[1], name
+
+
+@pytest.mark.parametrize(
+    "kw",
+    [
+        dict(garment="tshirt"),
+        dict(garment="dress"),
+        dict(garment="dress", waist_seam=True, panels=4),
+        dict(garment="dress", waist_seam=True, waistband=True, darts=True),
+        dict(garment="jumpsuit"),
+    ],
+    ids=lambda kw: "-".join(str(v) for v in kw.values()),
+)
+def test_a_strapless_top_has_no_shoulders_and_ends_straight_under_the_arms(kw):
+    m = OTHER
+    for drop in (0.03, -0.06):
+        d = Design(sleeves="none", strapless=True, top_drop=drop, **kw)
+        p = draft(d, m)
+        assert validate_pattern(p) == [] and design_name(d).endswith("strapless") == (drop == 0.03)
+        assert not any("shoulder" in s.label or "armhole" in s.label for s in p.stitches)
+        assert not any(e.label == "neckline" or "armhole" in e.label for e in p.panels["front"].edges)
+        want = body_frame(m).armpit_y - drop  # world height of the top edge [m]
+        for side in ("front", "back"):
+            pan = p.panels[side]
+            (top,) = [i for i, e in enumerate(pan.edges) if e.label == "strapless_top"]
+            ends = pan.to_world(pan.vertices[[pan.edges[top].start, pan.edges[top].end]])
+            assert_close(ends[:, 1], [want, want], atol=1e-9)
+            assert abs(ends[0, 0] - ends[1, 0]) > m.bust / 2 - 0.01  # across the whole front or back
+            sewn = {s.a.edge for s in p.stitches if s.a.panel == side} | {
+                s.b.edge for s in p.stitches if s.b.panel == side
+            }
+            assert top not in sewn  # an opening, held where it is placed when dressed
+    tee = draft(Design(sleeves="none", **kw), m)
+    assert any("shoulder" in s.label for s in tee.stitches)  # the same top with straps has them
+
+
+@pytest.mark.parametrize(
+    "kw",
+    [
+        dict(garment="skirt"),
+        dict(garment="tshirt", sleeves="short"),
+        dict(garment="dress", sleeves="none", collar="hood"),
+        dict(garment="tshirt", sleeves="none", neckline_front="v"),
+        dict(garment="tshirt", sleeves="none", top_drop=0.5),
+    ],
+)
+def test_a_strapless_design_that_cannot_be_cut_is_refused(kw):
+    with pytest.raises(InputError):
+        Design(strapless=True, **kw)

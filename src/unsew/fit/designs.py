@@ -23,7 +23,7 @@ from unsew.errors import InputError
 from unsew.grading.design_reading import ANKLE_HEIGHT, ARMHOLE_SHARE, FLARE_EDGES, SHORT_SLEEVE_SHARE
 from unsew.pattern.base import skirt as _skirt
 from unsew.pattern.base._band import BAND_HEIGHT
-from unsew.pattern.design import GARMENTS, Design, design_name, draft
+from unsew.pattern.design import GARMENTS, STRAPLESS_DROP, Design, design_name, draft
 from unsew.pattern.measurements import Measurements
 
 __all__ = ["design_candidates", "drafted_candidates", "read_measures", "MAX_CANDIDATES", "FLARE_MARGIN"]
@@ -56,7 +56,9 @@ def read_measures(verts, faces, skeleton, *, contours=None) -> dict:
     - ``hem_girth`` [m], ``hem_y`` [m]: the lowest torso opening's length and median height (a
       top's, a dress's or a skirt's hem);
     - ``leg_girth`` [m]: the mean length of the openings round the legs (trousers' hems; not
-      drafted: the fit's trousers keep their own, docs/decisions/024).
+      drafted: the fit's trousers keep their own, docs/decisions/024);
+    - ``top_y`` [m]: the highest torso opening's median height, where the garment has two or more
+      (a strapless top's edge; else the neck opening).
 
     verts: (V, 3) float64 [m], world frame; faces: (F, 3) int; skeleton: the wearer's
     :class:`~unsew.body.skeleton.Skeleton`; contours: the mesh's open contours when found. A key
@@ -70,8 +72,11 @@ def read_measures(verts, faces, skeleton, *, contours=None) -> dict:
     if not loops:
         return {}
     centres = np.stack([np.asarray(c.centre, dtype=np.float64) for c in loops])
-    leg, _, _ = _openings_by_part(v, loops, centres, skeleton)
+    leg, arm, _ = _openings_by_part(v, loops, centres, skeleton)
     out = {}
+    torso = [c for c, off in zip(loops, leg | arm) if not off]
+    if len(torso) > 1:  # a hem and a top: the highest's height (a strapless top's edge)
+        out["top_y"] = max(float(np.median(v[np.asarray(c.indices), 1])) for c in torso)
     if leg.any():
         out["leg_girth"] = float(np.mean([_loop_length(v, c) for c, on in zip(loops, leg) if on]))
     else:
@@ -162,9 +167,22 @@ def _skirt_design(base: Design, style: str, reading, m: Measurements, length, he
     return d
 
 
-def _top_fields(reading) -> dict:
+def _strapless_drop(measures: dict, m: Measurements) -> float:
+    """A strapless top's edge below the armpits [m], to 1 cm, from the read top height."""
+    y = measures.get("top_y")
+    if y is None:
+        return STRAPLESS_DROP
+    from unsew.pattern.base._frame import body_frame
+
+    return round(float(np.clip(body_frame(m).armpit_y - y, -0.15, 0.3)), 2)
+
+
+def _top_fields(reading, m: Measurements, measures: dict) -> dict:
     """Sleeves, necklines and collar of a top as read (none read: short sleeves, round necklines,
-    no collar); a hood or a turtle collar is sewn to round necklines (none are read under it)."""
+    no collar); a hood or a turtle collar is sewn to round necklines (none are read under it); no
+    cloth over the shoulders (no neckline read): a strapless top, its edge at the read height."""
+    if reading.neck_front == reading.neck_back == "none" and reading.collar in (None, "none"):
+        return dict(sleeves="none", strapless=True, top_drop=_strapless_drop(measures, m))
     collar = reading.collar if reading.collar in _COLLARS else "none"
     round_neck = collar != "none"
     return dict(
@@ -179,7 +197,9 @@ def _top_alternatives(first: Design, reading) -> list[Design]:
     """The neighbouring sleeve classes, the one whose edge the read share lies nearer first
     (grading cannot grow or remove a sleeve, and the share of a sleeve hanging off the arm is
     uncertain), then two-piece sleeves and cuffs (which the reading cannot see) on a sleeved
-    design."""
+    design; for a strapless top, the sleeveless one with a round neck."""
+    if first.strapless:  # the reading may have missed straps: the sleeveless round neck
+        return [first.replace(strapless=False, top_drop=STRAPLESS_DROP)]
     share = reading.numbers.get("sleeve_share", 0.0)
     edges = {("none", "short"): ARMHOLE_SHARE, ("short", "long"): SHORT_SLEEVE_SHARE}
     near = sorted((abs(share - e), pair) for pair, e in edges.items() if first.sleeves in pair)
@@ -194,7 +214,10 @@ def _tshirt(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]
     waist darts at the hem last, where the reading decided them (a top cut to the body: waist
     darts alone did not bring a drafted top nearer a fitted true bodice, docs/decisions/030)."""
     first = Design(
-        garment="tshirt", length=_top_length(meas, m), hem_girth=_hem_girth(meas, m), **_top_fields(reading)
+        garment="tshirt",
+        length=_top_length(meas, m),
+        hem_girth=_hem_girth(meas, m),
+        **_top_fields(reading, m, meas),
     )
     darted = [first.replace(darts=True)] if reading.darts else []
     return first, _top_alternatives(first, reading) + darted
@@ -206,7 +229,7 @@ def _dress(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
     skirt's hem as wide as the target's."""
     length = _hem_length(reading, m)
     hem = _hem_girth(meas, m)
-    top = Design(garment="dress", length=length, **_top_fields(reading))
+    top = Design(garment="dress", length=length, **_top_fields(reading, m, meas))
     style, near = _skirt_style(reading)
     seamed = [
         _skirt_design(top.replace(waist_seam=True, panels=n), style, reading, m, length, hem) for n in (2, 4)
@@ -260,7 +283,7 @@ def _jumpsuit(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design
     sleeves' alternatives, then the neighbouring leg."""
     length = _hem_length(reading, m)
     leg = _LEG.get(reading.length, "full")
-    first = Design(garment="jumpsuit", leg=leg, length=length, **_top_fields(reading))
+    first = Design(garment="jumpsuit", leg=leg, length=length, **_top_fields(reading, m, meas))
     return first, _top_alternatives(first, reading) + [first.replace(hem_flare=0.05)]
 
 

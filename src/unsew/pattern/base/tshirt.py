@@ -208,8 +208,9 @@ def sleeve_panels(
     return left, right
 
 
-def side_and_shoulder_stitches(n: dict, k: int, first: int = 1) -> list[Stitch]:
-    """The side seams (``k`` segments a side) and shoulder seams of a top's front and back, whose
+def side_and_shoulder_stitches(n: dict, k: int, first: int = 1, *, shoulders: bool = True) -> list[Stitch]:
+    """The side seams (``k`` segments a side) and shoulder seams (none unless ``shoulders``: a
+    strapless top) of a top's front and back, whose
     outlines have ``n["front"]`` and ``n["back"]`` edges and whose right half starts at edge
     ``first`` (after the hem's ``first`` pieces), each left half the mirror of its right half.
     Front +x is the body's left, back +x the body's right (the back is seen from behind)."""
@@ -220,6 +221,8 @@ def side_and_shoulder_stitches(n: dict, k: int, first: int = 1) -> list[Stitch]:
         side = "" if k == 1 else f"_{i}"
         st.append(stitch("front", right(i), "back", left("back", i), f"left_side{side}"))
         st.append(stitch("back", right(i), "front", left("front", i), f"right_side{side}"))
+    if not shoulders:
+        return st
     st.append(stitch("front", right(k + 1), "back", left("back", k + 1), "left_shoulder"))
     st.append(stitch("back", right(k + 1), "front", left("front", k + 1), "right_shoulder"))
     return st

@@ -15,6 +15,7 @@ __all__ = [
     "GARMENTS",
     "CIRCLE_FRACTIONS",
     "LENGTHS",
+    "STRAPLESS_DROP",
     "design_space",
     "design_of_base",
     "design_name",
@@ -46,6 +47,8 @@ CIRCLE_FRACTIONS = (0.25, 0.5, 0.75, 1.0)
 
 #: Garments with a top (front and back from the neck down, sleeves, necklines).
 TOPS = ("tshirt", "dress", "jumpsuit")
+#: A strapless top's edge below the armpits [m], where none is read.
+STRAPLESS_DROP = 0.03
 #: Garments with trouser legs, and each one's default leg length.
 LEGGED = {"pants": "full", "shorts": "shorts", "jumpsuit": "full"}
 
@@ -115,6 +118,11 @@ class Design:
     collar: str = "none"
     #: a turtle collar's height above the neckline [m]
     collar_height: float = TURTLE_HEIGHT
+    #: tops: no shoulders, armholes nor neckline; front and back end in one straight edge round
+    #: the chest (``strapless_top``, held at its height when dressed), ``top_drop`` below the armpits
+    strapless: bool = False
+    #: a strapless top's edge below the armpits (the underarm point a sleeved top is cut to) [m]
+    top_drop: float = STRAPLESS_DROP
 
     def __post_init__(self) -> None:
         names = ("garment", "sleeves", "sleeve_pieces", "neckline_front", "neckline_back", "skirt", "collar")
@@ -125,6 +133,7 @@ class Design:
                 f"a {self.collar} is sewn to round necklines; set neckline_front and neckline_back to 'round'"
             )
         _check_range("collar_height", self.collar_height, 0.02, 0.25)
+        _check_strapless(self)
         if self.leg is not None:
             _check_choice("leg", self.leg)
         if self.leg is None and self.garment in LEGGED:  # the garment's own leg, named
@@ -168,6 +177,19 @@ class Design:
         return cls(**d)
 
 
+def _check_strapless(d: Design) -> None:
+    """A strapless design is a top without sleeves, collar or neckline shapes."""
+    _check_range("top_drop", d.top_drop, -0.15, 0.3)
+    if not d.strapless:
+        return
+    if d.garment not in TOPS:
+        raise InputError(f"a {d.garment} has no top to be strapless; strapless is for {', '.join(TOPS)}")
+    if d.sleeves != "none" or d.collar != "none":
+        raise InputError("a strapless top has no sleeves nor collar; set sleeves='none', collar='none'")
+    if (d.neckline_front, d.neckline_back) != ("round", "round"):
+        raise InputError("a strapless top has no neckline; leave neckline_front and neckline_back 'round'")
+
+
 def _check_choice(name: str, value) -> None:
     if value not in CHOICES[name] or type(value) is not type(CHOICES[name][0]):
         raise InputError(f"design {name} must be one of {list(CHOICES[name])}, not {value!r}")
@@ -209,7 +231,7 @@ def design_of_base(name: str) -> Design:
 
 def _top_choices() -> list[dict]:
     """Every sleeve, cuff and neckline combination of a top (no cuffs or pieces without sleeves),
-    and each collar on round necklines."""
+    each collar on round necklines, and the strapless top."""
     out = []
     for sleeves in CHOICES["sleeves"]:
         pieces = (1,) if sleeves == "none" else CHOICES["sleeve_pieces"]
@@ -220,7 +242,7 @@ def _top_choices() -> list[dict]:
             out.append(dict(sleeves=sleeves, sleeve_pieces=p, cuffs=c, neckline_front=nf, neckline_back=nb))
         for p, c, collar in itertools.product(pieces, cuffs, CHOICES["collar"][1:]):  # on round necklines
             out.append(dict(sleeves=sleeves, sleeve_pieces=p, cuffs=c, collar=collar))
-    return out
+    return out + [dict(sleeves="none", strapless=True)]
 
 
 def _skirt_choices(*, band: bool) -> list[dict]:
@@ -256,7 +278,10 @@ def design_space(garment: str) -> list[Design]:
 
 
 def _top_parts(d: Design) -> list[str]:
-    """A top's part of its design's name: sleeves (2: in two pieces), cuffs, necklines, a collar."""
+    """A top's part of its design's name: sleeves (2: in two pieces), cuffs, necklines, a collar;
+    ``strapless`` alone for a strapless top."""
+    if d.strapless:
+        return ["strapless"]
     sleeved = d.sleeves != "none"
     parts = [d.sleeves + ("2" if sleeved and d.sleeve_pieces == 2 else "")]
     if d.cuffs and sleeved:
@@ -278,6 +303,8 @@ def _measure_parts(d: Design, parts: list[str]) -> list[str]:
         out.append(f"ease{d.ease:g}")
     if d.collar == "turtle" and d.collar_height != Design.collar_height:
         out.append(f"collar{d.collar_height:g}")
+    if d.strapless and d.top_drop != Design.top_drop:
+        out.append(f"drop{d.top_drop:g}")
     return out
 
 

@@ -23,7 +23,14 @@ from unsew.pattern.design._darts import BODICE_DART, band_between, dart_edge, sy
 from unsew.pattern.design._trouser_darts import dart_trousers
 from unsew.pattern.design._skirt import SkirtCut, skirt_panels
 from unsew.pattern.design._collar import collar_set
-from unsew.pattern.design._top import NECK_DEPTHS, hem_cuts, sleeve_set, top_panels, top_stitches
+from unsew.pattern.design._top import (
+    NECK_DEPTHS,
+    hem_cuts,
+    sleeve_set,
+    strapless_panels,
+    top_panels,
+    top_stitches,
+)
 from unsew.pattern.measurements import Measurements
 from unsew.pattern.model import Pattern
 
@@ -65,8 +72,11 @@ def _top(d: Design, m: Measurements, f: BodyFrame, spec: TopSpec, cuts=None, dar
     [m] and labelled ``waist`` when given, or cut by the V notches ``darts``, :class:`Dart`s along
     the hem from its right end), sleeves and collar of a top, and their stitches."""
     necklines = (d.neckline_front, d.neckline_back)
-    frame = sleeveless_frame(f) if d.sleeves == "none" else f
-    front, back, k = top_panels(m, frame, spec, necklines, split_neck=d.collar != "none")
+    if d.strapless:
+        front, back, k = strapless_panels(m, f, spec, d.top_drop)
+    else:
+        frame = sleeveless_frame(f) if d.sleeves == "none" else f
+        front, back, k = top_panels(m, frame, spec, necklines, split_neck=d.collar != "none")
     pieces, dart_st = 1, []
     if cuts is not None:
         front, back = hem_cuts(front, cuts, "waist"), hem_cuts(back, cuts, "waist")
@@ -79,7 +89,8 @@ def _top(d: Design, m: Measurements, f: BodyFrame, spec: TopSpec, cuts=None, dar
     depths = (NECK_DEPTHS[d.neckline_back][1], NECK_DEPTHS[d.neckline_front][0])
     collar, collar_st = collar_set(d, m, f, front, back, depths)
     panels = {p.name: p for p in (front, back, *arms, *collar)}
-    return panels, top_stitches(front, back, k, pieces) + arm_st + dart_st + collar_st
+    sides = top_stitches(front, back, k, pieces, shoulders=not d.strapless)
+    return panels, sides + arm_st + dart_st + collar_st
 
 
 def _bodice_darts(m: Measurements, f: BodyFrame, w_hem: float, hem_y: float) -> tuple[float, list]:
@@ -123,7 +134,8 @@ def _one_piece_dress(d: Design, m: Measurements) -> Pattern:
     if not d.fitted:
         spec = TopSpec(lower=(tuple(hem), tuple(hip)), lower_curves=(None, None), hem_y=hem_y)
         return _pattern(*_top(d, m, f0, spec))
-    under = np.array([(m.bust + BUST_EASE) / 4, f.armpit_y - hem_y])
+    top_y = f0.armpit_y - d.top_drop if d.strapless else f.armpit_y  # the side seam's top
+    under = np.array([(m.bust + BUST_EASE) / 4, top_y - hem_y])
     mid = np.array([(m.waist + _dress.WAIST_EASE) / 4, f.waist_y - hem_y])
     # quadratic through the waist: its middle (a + 2c + b)/4 at the waist width
     curve = quad(hip, under, 2 * mid - (hip + under) / 2)

@@ -52,7 +52,15 @@ from unsew.pattern.curves import panel_outline, relative_to_absolute
 from unsew.pattern.measurements import Measurements
 from unsew.pattern.model import Edge, Panel, Stitch, matrix_to_euler_xyz
 
-__all__ = ["top_panels", "hem_cuts", "top_stitches", "sleeve_set", "CUFF_HEIGHT", "NECK_DEPTHS"]
+__all__ = [
+    "top_panels",
+    "strapless_panels",
+    "hem_cuts",
+    "top_stitches",
+    "sleeve_set",
+    "CUFF_HEIGHT",
+    "NECK_DEPTHS",
+]
 
 #: Neckline depth below the neck points [m], front and back, per shape (a V's to its point, a
 #: square's to its corners). round and v are the library tops' (:mod:`unsew.pattern.base.tshirt`).
@@ -132,6 +140,29 @@ def hem_cuts(panel: Panel, cuts, label: str) -> Panel:
     return Panel(panel.name, verts, pieces + rest, panel.translation, panel.rotation, panel.label)
 
 
+def strapless_panels(m: Measurements, f: BodyFrame, spec: TopSpec, drop: float):
+    """Front and back of a strapless top [m] (placed around the body of frame ``f``): up the
+    sides to ``drop`` [m] below the armpits, as wide there as a top at its underarm, and straight
+    across (``strapless_top``); and k, the number of side segments."""
+    corner = np.array([(m.bust + BUST_EASE) / 4, f.armpit_y - drop - spec.hem_y])
+    k = len(spec.lower)
+    half = [np.asarray(p) for p in spec.lower] + [corner]
+    panels = [
+        symmetric_panel(
+            name,
+            half,
+            list(spec.lower_curves),
+            half_labels=["right_side"] * k,
+            bottom_label="hem",
+            top_label="strapless_top",
+        )[0]
+        for name in ("front", "back")
+    ]
+    place(panels[0], np.eye(3), (0.0, spec.hem_y, f.chest_z))
+    place(panels[1], rot_y180(), (0.0, spec.hem_y, -f.chest_z))
+    return panels[0], panels[1], k
+
+
 def top_panels(
     m: Measurements, f: BodyFrame, spec: TopSpec, necklines: tuple[str, str], *, split_neck: bool = False
 ):
@@ -157,11 +188,14 @@ def top_panels(
     return front, back, k
 
 
-def top_stitches(front: Panel, back: Panel, k: int, hem_pieces: int = 1) -> list[Stitch]:
-    """Side and shoulder seams of :func:`top_panels`' front and back (hem in ``hem_pieces``).
+def top_stitches(
+    front: Panel, back: Panel, k: int, hem_pieces: int = 1, *, shoulders: bool = True
+) -> list[Stitch]:
+    """Side and shoulder seams of :func:`top_panels`' front and back (hem in ``hem_pieces``), the
+    side seams alone for :func:`strapless_panels`' (``shoulders=False``).
     Front +x is the body's left, back +x (seen from behind) the body's right."""
     n = {"front": len(front.vertices), "back": len(back.vertices)}
-    return side_and_shoulder_stitches(n, k, hem_pieces)
+    return side_and_shoulder_stitches(n, k, hem_pieces, shoulders=shoulders)
 
 
 def _armholes(front: Panel, back: Panel, k: int, hem_pieces: int) -> dict:
