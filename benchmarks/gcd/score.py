@@ -5,7 +5,8 @@ Per case (a fit result folder ``RESULTS/<case>`` from ``unsew fit CASE --out RES
   truth's (truth.json, from design_params.yaml); ``type_given`` records whether the type was
   handed to the fit (``--base`` or meta.json), which makes that figure moot for the case;
 - ``choices``: each structural choice (truth.CHOICES) of the recovered pattern.json against the
-  truth; ``choices_right``: all of them right;
+  truth; ``choices_right``: all of them right (the summary's ``choice_right``: per choice, the
+  fitted cases that have it right);
 - ``panel_err`` and ``turning``: judge.compare_patterns (both patterns merged first);
   ``panels_true``/``panels_rec``: panel counts after merging;
 - ``chamfer_mm``: the fit's garment.obj against target.obj (judge.chamfer_mm);
@@ -40,7 +41,7 @@ HERE = Path(__file__).resolve().parent
 import build  # noqa: E402  (this folder on the path first)
 import fits  # noqa: E402
 import judge  # noqa: E402
-from truth import CHOICES, built_choices, choices_of_spec  # noqa: E402
+from truth import CHOICES, built_choices, choices_of_spec, truth_of_design  # noqa: E402
 
 #: Newton's drape of a recovered pattern, kept in its result folder (keyed on the pattern and the target).
 REDRAPE_CACHE = "redrape_newton.json"
@@ -103,7 +104,9 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
     """The score record of one built case (``result``: its fit folder, or None: not fitted)."""
     truth = json.loads((case / "truth.json").read_text())
     spec_gt = json.loads((case / "pattern_gt.json").read_text())
-    truth["choices"] = built_choices(truth.get("design_choices", truth["choices"]), spec_gt)
+    # the choices from the design itself (truth.json's may predate a choice scored now)
+    design = truth_of_design((case / "design_params.yaml").read_text())["choices"]
+    truth["choices"] = built_choices(design, spec_gt)
     tv, tf = read_obj(case / "target.obj")
     rec = {"case": case.name, "type_true": truth["type"], "choices_true": truth["choices"]}
     rec.update(_floors(case, spec_gt, truth, (tv, tf), floor=floor, redrape=redrape))
@@ -360,6 +363,7 @@ def summary(rec: dict) -> dict:
         "fit_over_10min": sum(1 for r in rs if (r.get("fit_s") or 0) > 600),
         "type_right": sum(1 for r in rs if r.get("type_right")),
         "choices_right": sum(1 for r in rs if r.get("choices_right")),
+        "choice_right": {k: sum(1 for r in fit if (r.get("choices_ok") or {}).get(k)) for k in CHOICES},
         "panel_err_median": _median([r.get("panel_err") for r in fit]),
         "panel_err_p90": round(float(np.percentile([r["panel_err"] for r in fit], 90)), 4) if fit else None,
         "turning_median": _median([r.get("turning") for r in fit]),

@@ -12,7 +12,9 @@ Structural choices (each True/False, compared one by one):
 - ``sleeves``: the upper has sleeves (``sleeve.sleeveless`` false; either side when asymmetric);
 - ``waistband``: a waistband piece (``meta.wb`` set);
 - ``collar``: a collar piece (``collar.component.style`` set: Turtle, SimpleLapel, Hood2Panels);
-- ``cuffs``: a cuff piece on the sleeves or the trouser legs.
+- ``cuffs``: a cuff piece on the sleeves or the trouser legs;
+- ``strapless``: no cloth over either shoulder (a ``FittedShirt`` with ``shirt.strapless``, on
+  both sides when asymmetric); in a specification, an edge labelled ``strapless_top``.
 A choice counts as present only where the design's pattern has the piece (``built_choices``):
 GarmentCode leaves a lapel out on some necklines although the design names one.
 """
@@ -24,7 +26,7 @@ import yaml
 
 #: pants at most this share of the leg long are shorts (the knee sits near half the leg).
 SHORTS_MAX_LENGTH = 0.5
-CHOICES = ("sleeves", "waistband", "collar", "cuffs")
+CHOICES = ("sleeves", "waistband", "collar", "cuffs", "strapless")
 SKIRTS = (
     "SkirtCircle",
     "AsymmSkirtCircle",
@@ -70,6 +72,11 @@ def truth_of_design(design_yaml_text: str) -> dict:
     )
     cuff_sleeve = sleeves and d.get("sleeve.cuff.type") is not None
     cuff_pants = bottom == "Pants" and d.get("pants.cuff.type") is not None
+    strapless = (
+        upper == "FittedShirt"
+        and bool(d.get("shirt.strapless"))
+        and (not asym or d.get("left.shirt.strapless"))
+    )
     collar = bool(upper) and d.get("collar.component.style") is not None
     extra = (
         {"Hood2Panels": "hood", "SimpleLapel": "lapel", "Turtle": "turtle"}.get(
@@ -85,6 +92,7 @@ def truth_of_design(design_yaml_text: str) -> dict:
             "waistband": wb is not None,
             "collar": bool(collar),
             "cuffs": bool(cuff_sleeve or cuff_pants),
+            "strapless": bool(strapless),
         },
         "collar_piece": extra,
         "upper": upper,
@@ -96,7 +104,8 @@ def truth_of_design(design_yaml_text: str) -> dict:
 def choices_of_spec(spec: dict) -> dict:
     """The structural choices of a GarmentCode specification dict, read from its panel names
     (GarmentCode's and unsew's programs name the pieces: ``*sleeve*``, ``wb_*`` / ``*band*``,
-    ``*collar*`` / ``*hood*`` / ``*lapel*``, ``*cuff*``). {name: bool} for ``CHOICES``."""
+    ``*collar*`` / ``*hood*`` / ``*lapel*``, ``*cuff*``) and edge labels (both label a strapless
+    bodice's top ``strapless_top``). {name: bool} for ``CHOICES``."""
     names = [n.lower() for n in spec["pattern"]["panels"]]
 
     def has(*keys):
@@ -109,6 +118,11 @@ def choices_of_spec(spec: dict) -> dict:
         ),
         "collar": has("collar", "hood", "lapel", "turtle"),
         "cuffs": has("cuff"),
+        "strapless": any(
+            e.get("label") == "strapless_top"
+            for p in spec["pattern"]["panels"].values()
+            for e in p.get("edges", ())
+        ),
     }
 
 

@@ -131,8 +131,25 @@ def test_truth_types_and_choices(truth):
         _design({"upper": "FittedShirt", "bottom": "PencilSkirt", "wb": None}, sleeve__sleeveless=False)
     )
     assert t["type"] == "dress" and t["choices"]["sleeves"] and not t["choices"]["waistband"]
-    spec = {"pattern": {"panels": {"left_sleeve_f": {}, "wb_front": {}, "left_hood": {}}}}
-    assert truth.choices_of_spec(spec) == {"sleeves": True, "waistband": True, "collar": True, "cuffs": False}
+    spec = {
+        "pattern": {
+            "panels": {"left_sleeve_f": {"edges": []}, "wb_front": {"edges": []}, "left_hood": {"edges": []}}
+        }
+    }
+    want = {"sleeves": True, "waistband": True, "collar": True, "cuffs": False, "strapless": False}
+    assert truth.choices_of_spec(spec) == want
+    spec["pattern"]["panels"]["front"] = {"edges": [{"label": "hem"}, {"label": "strapless_top"}]}
+    assert truth.choices_of_spec(spec)["strapless"]
+
+
+def test_a_strapless_top_is_strapless_only_with_no_cloth_over_either_shoulder(truth):
+    fitted = {"upper": "FittedShirt", "bottom": "PencilSkirt", "wb": None}
+    both = truth.truth_of_design(_design(fitted, shirt__strapless=True))
+    assert both["choices"]["strapless"]
+    one = truth.truth_of_design(_design(fitted, shirt__strapless=True, left__enable_asym=True))
+    assert not one["choices"]["strapless"]  # the left side keeps its shoulder: a one-shoulder top
+    loose = truth.truth_of_design(_design({**fitted, "upper": "Shirt"}, shirt__strapless=True))
+    assert not loose["choices"]["strapless"]  # GarmentCode's loose shirt has no strapless cut
 
 
 SHARED = next((p / "shared" for p in ROOT.parents if (p / "shared" / "garmentcode").is_dir()), None)
