@@ -218,6 +218,35 @@ def _measure(body):
     return measure_body(body)
 
 
+def test_a_jumpsuit_named_in_meta_keeps_its_name_and_its_cut_is_read(monkeypatch):
+    """meta.json names a jumpsuit (no library base): the design is read off the target and drafted
+    as jumpsuits whatever type the target reads as, the disagreement logged; a named type with
+    library bases keeps them (no reading)."""
+    import unsew.fit.start as start_mod
+    from unsew.fit.start import with_garment_read
+    from unsew.grading.garment_type import GarmentReading
+
+    read = READINGS["pants"]
+    monkeypatch.setattr(
+        start_mod, "read_garment_type", lambda v, f, sk, **k: GarmentReading("pants", "two leg openings")
+    )
+    monkeypatch.setattr(start_mod, "read_design", lambda v, f, sk, **k: read)
+    from pathlib import Path
+
+    from unsew.io.case import Case
+
+    case = Case(Path("case"), "jumpsuit", None, None, default_body())
+    lines = []
+    named = with_garment_read(case, FitConfig(), log=lines.append)
+    assert named.garment == "jumpsuit" and named.design.garment == "jumpsuit"
+    assert "names a jumpsuit" in lines[0] and "reads as a pants" in lines[0]
+    cands = design_candidates(named.design, _measure(case.body))
+    assert cands and all(d.garment == "jumpsuit" for _, d in cands)
+    assert all(d.leg == "full" for _, d in cands[:1])  # the legs as read (below the knee)
+    dressy = Case(Path("case"), "dress", None, None, case.body)
+    assert with_garment_read(dressy, FitConfig(), log=lines.append) is dressy
+
+
 def test_drafted_candidates_are_sized_to_the_wearer():
     from unsew.pattern.measurements import Measurements
 

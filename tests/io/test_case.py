@@ -68,6 +68,10 @@ def test_bad_garment_and_body_spec(tmp_path):
         load_case(_case(tmp_path, meta={"garment": "hat", "body": "default"}))
 
 
+def test_a_jumpsuit_may_be_named(tmp_path):
+    assert load_case(_case(tmp_path, meta={"garment": "jumpsuit", "body": "default"})).garment == "jumpsuit"
+
+
 def test_no_body(tmp_path):
     with pytest.raises(InputError, match="no body"):
         load_case(_case(tmp_path, meta={"garment": "tshirt"}))

@@ -116,18 +116,27 @@ class Start:
 
 
 def with_garment_read(case, cfg: FitConfig, *, log=print):
-    """``case`` itself when meta.json names its garment type or ``cfg.base`` names a base; else
-    a copy whose garment type is read off the target
+    """``case`` itself when meta.json names a garment type the library has bases of or
+    ``cfg.base`` names a base; else a copy whose garment type is read off the target
     (:func:`unsew.grading.garment_type.read_garment_type`), with the reading in its notes and the
     design read (:func:`unsew.grading.design_reading.read_design`) as ``design``: the base is then
-    chosen among designs drafted from it (:func:`choose_base`). Raises InputError for a type the
+    chosen among designs drafted from it (:func:`choose_base`). A type named without library bases
+    (a jumpsuit) keeps its name, its design read off the target. Raises InputError for a type the
     design space has no designs of."""
-    if case.garment or cfg.base:
+    if cfg.base or case.garment in BASES:
         return case
     reading = read_garment_type(case.target_verts, case.target_faces, case.body.skeleton)
     design = read_design(
         case.target_verts, case.target_faces, case.body.skeleton, reading=reading, body=case.body
     )
+    if case.garment:  # named in meta.json: the name stands, the cut is read
+        log(
+            f"meta.json names a {case.garment} (no library base): its design is read off the target, "
+            f"which reads as a {reading.garment} ({reading.reason})"
+        )
+        design = dataclasses.replace(design, garment=case.garment)
+        log(design.summary())
+        return dataclasses.replace(case, design=design)
     note = f"garment type read off the target: {reading.garment}: {reading.reason}"
     if reading.garment not in GARMENTS:
         raise InputError(

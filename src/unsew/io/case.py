@@ -27,7 +27,7 @@ from unsew.io.mesh import read_garment
 
 __all__ = ["Case", "CaseFiles", "read_case", "read_meta", "GARMENT_TYPES"]
 
-GARMENT_TYPES = ("tshirt", "dress", "pants", "shorts", "skirt")
+GARMENT_TYPES = ("tshirt", "dress", "pants", "shorts", "skirt", "jumpsuit")
 
 
 @dataclass
