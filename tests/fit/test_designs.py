@@ -239,6 +239,7 @@ def test_a_jumpsuit_named_in_meta_keeps_its_name_and_its_cut_is_read(monkeypatch
     lines = []
     named = with_garment_read(case, FitConfig(), log=lines.append)
     assert named.garment == "jumpsuit" and named.design.garment == "jumpsuit"
+    assert with_garment_read(named, FitConfig(), log=lines.append) is named  # read once
     assert "names a jumpsuit" in lines[0] and "reads as a pants" in lines[0]
     cands = design_candidates(named.design, _measure(case.body))
     assert cands and all(d.garment == "jumpsuit" for _, d in cands)

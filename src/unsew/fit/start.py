@@ -123,8 +123,8 @@ def with_garment_read(case, cfg: FitConfig, *, log=print):
     chosen among designs drafted from it (:func:`choose_base`). A type named without library bases
     (a jumpsuit) keeps its name, its design read off the target. Raises InputError for a type the
     design space has no designs of."""
-    if cfg.base or case.garment in BASES:
-        return case
+    if cfg.base or case.garment in BASES or getattr(case, "design", None) is not None:
+        return case  # a base named, a type with library bases, or the design read already
     reading = read_garment_type(case.target_verts, case.target_faces, case.body.skeleton)
     design = read_design(
         case.target_verts, case.target_faces, case.body.skeleton, reading=reading, body=case.body
