@@ -99,7 +99,8 @@ def test_collar_names_read_as_the_benchmark_reads_them():
     for collar in ("hood", "turtle"):
         spec = pattern_to_dict(draft(Design(collar=collar, sleeves="none")))
         got = truth.choices_of_spec(spec)
-        assert got == {"sleeves": False, "waistband": False, "collar": True, "cuffs": False}, collar
+        want = {"sleeves": False, "waistband": False, "collar": True, "cuffs": False, "strapless": False}
+        assert got == want, collar
         pieces = [n for n in spec["pattern"]["panels"] if collar in n]
         assert len(pieces) == 2
         if collar == "hood":
