@@ -83,3 +83,47 @@ def test_only_open_edges_are_held(body_sdf):
         pa.edges[hem].label = "strapless_top"
     idx, _ = attached_vertices(p, mesh, body, sdf)
     assert set(idx.tolist()) == set(np.concatenate([mesh.edge_verts[(n, hem)] for n in p.panels]).tolist())
+
+
+@pytest.mark.parametrize(
+    "kw",
+    [
+        dict(garment="skirt", skirt="circle"),
+        dict(garment="skirt", waistband=True, panels=4),
+        dict(garment="skirt", skirt="pencil", darts=True),
+        dict(garment="pants", darts=True),
+        dict(garment="shorts", waistband=True),
+        dict(garment="dress", waist_seam=True),
+        dict(garment="jumpsuit"),
+        dict(garment="tshirt"),
+    ],
+    ids=lambda kw: "-".join(str(v) for v in kw.values()),
+)
+def test_a_drafted_lower_garment_hangs_from_its_open_top(body_sdf, kw):
+    """A drafted skirt's or trousers' open top (its waist, or its band's top) is held where the
+    draft places it, as GarmentCode's simulation holds a lower garment's; a garment hanging from
+    its shoulders (a dress's skirt or a jumpsuit's legs sewn to a bodice, a top) holds nothing."""
+    from unsew.pattern.design import Design, draft
+
+    body, sdf = body_sdf
+    p = draft(Design(**kw))
+    mesh = mesh_pattern(p, edge_length=SETTINGS.edge_length)
+    got = attached_vertices(p, mesh, body, sdf)
+    if kw["garment"] not in ("skirt", "pants", "shorts"):
+        assert got is None
+        return
+    idx, height = got
+    top = max(float(pa.to_world(pa.vertices)[:, 1].max()) for pa in p.panels.values())
+    sewn = {(s.a.panel, s.a.edge) for s in p.stitches} | {(s.b.panel, s.b.edge) for s in p.stitches}
+    tops = [(n, i) for n, pa in p.panels.items() for i in range(len(pa.edges)) if (n, i) not in sewn]
+    tops = [k for k in tops if mesh.edge_verts[k].size and _edge_top(p, *k) > top - 0.03]
+    assert tops and set(idx.tolist()) == set(np.concatenate([mesh.edge_verts[k] for k in tops]).tolist())
+    h = height.numpy()  # where the draft places the top (a circle skirt's waist curve dips)
+    assert h.max() <= top + 1e-9 and h.min() > top - 0.1
+
+
+def _edge_top(p, name, i) -> float:
+    """The lowest world height [m] of panel ``name``'s edge ``i`` as placed (its endpoints)."""
+    pa = p.panels[name]
+    e = pa.edges[i]
+    return float(pa.to_world(pa.vertices[[e.start, e.end]])[:, 1].min())

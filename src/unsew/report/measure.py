@@ -21,7 +21,7 @@ MEASUREMENTS = {
     "side seam": "one side seam: right_side edges (outseam for trousers) of the first body panel",
     "sleeve": "sleeve underarm seam: the right_underarm edge of the first sleeve",
     "inseam": "inseam: the inseam edge of the first trouser panel",
-    "waist": "waist girth: every waist edge",
+    "waist": "waist girth: every waist edge (or, open, the lower_interface edges a lower garment hangs from)",
     "chest girth": "chest girth: the body panels' widths at the foot of the armhole, summed",
     "sleeve girth": "sleeve girth at the underarm: the first sleeve's width where underarm seam and cap meet",
 }
@@ -93,7 +93,7 @@ def panel_measurements(pattern) -> dict[str, float]:
     body = [p for p in panels if "sleeve" not in p.name]
     legs = [p for p in body if p.name.startswith("left_")]
     hem = _total(legs if legs and any(_edges(p, ("inseam",)) for p in legs) else body, ("hem",))
-    waist, chest = _total(body, ("waist",)), _chest_girth(body)
+    waist, chest = _total(body, ("waist",)) or _total(body, ("lower_interface",)), _chest_girth(body)
     found = {  # None: the pattern does not have it
         "hem": hem if hem > 0 else None,
         "side seam": _side_seam(body),

@@ -310,6 +310,23 @@ def _jumpsuit(d: Design, m: Measurements) -> Pattern:
     return _pattern(panels, st)
 
 
+#: Garments that hang from their open top (a skirt's or trousers' waist, or their band's top).
+HANGING = ("skirt", "pants", "shorts")
+#: The label GarmentCode's programs give the edge a lower garment hangs from.
+HANGING_LABEL = "lower_interface"
+
+
+def _label_hanging_top(p: Pattern) -> None:
+    """Label ``p``'s open top edges (``waist*``, a band's ``top``) :data:`HANGING_LABEL`: dressed,
+    they are held where the pattern places them, as GarmentCode's simulation holds a lower
+    garment's top (:data:`unsew.dress.ATTACH_LABELS`, docs/decisions/045)."""
+    sewn = {(s.a.panel, s.a.edge) for s in p.stitches} | {(s.b.panel, s.b.edge) for s in p.stitches}
+    for name, pan in p.panels.items():
+        for i, e in enumerate(pan.edges):
+            if (name, i) not in sewn and (e.label.startswith("waist") or e.label == "top"):
+                e.label = HANGING_LABEL
+
+
 _DRAFTERS = {
     "tshirt": _tshirt,
     "dress": _dress_garment,
@@ -337,6 +354,8 @@ def draft(design: Design, measurements: Measurements | None = None) -> Pattern:
         m = replace(m, bust=m.bust + e, waist=m.waist + e, hip=m.hip + e)
     d = replace(design, length=length_to(m, design.length)) if isinstance(design.length, str) else design
     p = _DRAFTERS[design.garment](d, m)
+    if design.garment in HANGING:
+        _label_hanging_top(p)
     p.name = design_name(design)
     p.unsew["design"] = design.as_dict()
     return p
