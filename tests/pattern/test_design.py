@@ -53,7 +53,9 @@ def _sample():
     return out
 
 
-SAMPLE = _sample()
+SAMPLE = _sample() + [
+    Design(garment=g, sleeves="none", strapless=True) for g in ("tshirt", "dress", "jumpsuit")
+]
 
 
 @pytest.mark.parametrize("name", BASES)
