@@ -23,7 +23,7 @@ from unsew.errors import InputError
 from unsew.grading.design_reading import ANKLE_HEIGHT, ARMHOLE_SHARE, FLARE_EDGES, SHORT_SLEEVE_SHARE
 from unsew.pattern.base import skirt as _skirt
 from unsew.pattern.base._band import BAND_HEIGHT
-from unsew.pattern.design import GARMENTS, STRAPLESS_DROP, Design, design_name, draft
+from unsew.pattern.design import GARMENTS, STRAPLESS_DROP, TOP_DROP_RANGE, Design, design_name, draft
 from unsew.pattern.measurements import Measurements
 
 __all__ = ["design_candidates", "drafted_candidates", "read_measures", "MAX_CANDIDATES", "FLARE_MARGIN"]
@@ -174,7 +174,7 @@ def _strapless_drop(measures: dict, m: Measurements) -> float:
         return STRAPLESS_DROP
     from unsew.pattern.base._frame import body_frame
 
-    return round(float(np.clip(body_frame(m).armpit_y - y, -0.15, 0.3)), 2)
+    return round(float(np.clip(body_frame(m).armpit_y - y, *TOP_DROP_RANGE)), 2)
 
 
 def _top_fields(reading, m: Measurements, measures: dict) -> dict:

@@ -16,6 +16,7 @@ __all__ = [
     "CIRCLE_FRACTIONS",
     "LENGTHS",
     "STRAPLESS_DROP",
+    "TOP_DROP_RANGE",
     "design_space",
     "design_of_base",
     "design_name",
@@ -47,8 +48,9 @@ CIRCLE_FRACTIONS = (0.25, 0.5, 0.75, 1.0)
 
 #: Garments with a top (front and back from the neck down, sleeves, necklines).
 TOPS = ("tshirt", "dress", "jumpsuit")
-#: A strapless top's edge below the armpits [m], where none is read.
+#: A strapless top's edge below the armpits [m], where none is read, and the range it may take [m].
 STRAPLESS_DROP = 0.03
+TOP_DROP_RANGE = (-0.15, 0.3)
 #: Garments with trouser legs, and each one's default leg length.
 LEGGED = {"pants": "full", "shorts": "shorts", "jumpsuit": "full"}
 
@@ -179,7 +181,7 @@ class Design:
 
 def _check_strapless(d: Design) -> None:
     """A strapless design is a top without sleeves, collar or neckline shapes."""
-    _check_range("top_drop", d.top_drop, -0.15, 0.3)
+    _check_range("top_drop", d.top_drop, *TOP_DROP_RANGE)
     if not d.strapless:
         return
     if d.garment not in TOPS:

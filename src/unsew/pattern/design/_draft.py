@@ -320,7 +320,9 @@ def _label_hanging_top(p: Pattern) -> None:
     """Label ``p``'s open top edges (``waist*``, a band's ``top``) :data:`HANGING_LABEL`: dressed,
     they are held where the pattern places them, as GarmentCode's simulation holds a lower
     garment's top (:data:`unsew.dress.ATTACH_LABELS`, docs/decisions/045)."""
-    sewn = {(s.a.panel, s.a.edge) for s in p.stitches} | {(s.b.panel, s.b.edge) for s in p.stitches}
+    from unsew.grading.curves import stitched_edges
+
+    sewn = stitched_edges(p)
     for name, pan in p.panels.items():
         for i, e in enumerate(pan.edges):
             if (name, i) not in sewn and (e.label.startswith("waist") or e.label == "top"):
