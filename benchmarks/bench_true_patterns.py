@@ -105,20 +105,25 @@ def read_obj_uv(path: Path):
 
 
 def measure(obj: Path, sdf) -> dict:
-    """inside_pct [%], stretch_max and stretch_p99 [-] and the vertex count of a draped OBJ."""
+    """inside_pct [%], stretch_max and stretch_p99 [-], area_pct (how much larger the draped
+    cloth is than its pattern [%]: a crumpled drape loses area) and the vertex count of a draped OBJ."""
     import torch
+    import trimesh
 
     from _dress_trace import edge_stretch
+    from unsew.meshing.triangulate import signed_areas
 
     x, f, uv, fu = read_obj_uv(obj)
     r = edge_stretch(x, f, fu, uv)
     with torch.no_grad():
         d, _ = sdf.query(torch.as_tensor(x))
+    rest = np.abs(signed_areas(uv, fu)).sum()
     return {
         "vertices": len(x),
         "inside_pct": float((d < 0).double().mean()) * 100.0,
         "stretch_max": float(r.max()),
         "stretch_p99": float(np.percentile(r, 99)),
+        "area_pct": float(100 * (trimesh.Trimesh(x, f, process=False).area / rest - 1)),
     }
 
 
@@ -313,6 +318,7 @@ GCD_COLUMNS = {
     "inside_pct": "inside %",
     "stretch_max": "stretch max",
     "stretch_p99": "stretch p99",
+    "area_pct": "area +%",
     "newton_stretch_max": "newton's stretch max",
     "to_newton_mm": "to newton's, per vertex mm",
     "above_newton_mm": "above newton's mm",

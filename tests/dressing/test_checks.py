@@ -1,5 +1,5 @@
-"""check_drape: a good drape passes; exploded, fallen, off-the-body and inside-the-body drapes
-fail with one line naming why; unsew drape stops on a bad verdict and writes no --out."""
+"""check_drape: a good drape passes; exploded, fallen, off-the-body, inside-the-body and crumpled
+drapes fail with one line naming why; unsew drape stops on a bad verdict and writes no --out."""
 
 import numpy as np
 import pytest
@@ -47,7 +47,7 @@ def test_good_drape_passes(body_sdf):
     assert v.inside_pct == 0.0 and v.far_pct == 0.0
     assert v.stretch_max == pytest.approx(1.0, abs=0.01)
     assert v.y_min == pytest.approx(0.92) and v.y_max == pytest.approx(1.1)
-    assert v.drop == pytest.approx(0.03)
+    assert v.drop == pytest.approx(0.03) and v.area_ratio == pytest.approx(1.0, abs=0.01)
     v.raise_if_bad()  # no error
 
 
@@ -147,15 +147,15 @@ def test_hem_free_of_the_legs(body_sdf):
     rings = [np.stack([(0.19 + o) * np.sin(th), (0.14 + o) * np.cos(th) + 0.02], 1) for o in out]
     arc = [np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(r, axis=0), axis=1))]) for r in rings]
     x = np.concatenate([np.stack([r[:, 0], np.full(48, y), r[:, 1]], 1) for r, y in zip(rings, ys)])
-    # the pattern: as wide as the hem all the way up (slack above it), as long as the slant
+    # the pattern: a flared panel, each row as wide as its ring round, as long as the slant
     slant = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(ys), np.diff(out)))])
-    uv = np.concatenate([np.stack([arc[0], np.full(48, t)], 1) for t in slant])
+    uv = np.concatenate([np.stack([a, np.full(48, t)], 1) for a, t in zip(arc, slant)])
     idx = np.arange(24 * 48).reshape(24, 48)
     i, j, k, m = idx[:-1, :-1], idx[:-1, 1:], idx[1:, 1:], idx[1:, :-1]
     faces = np.concatenate([np.stack([i, j, k], -1).reshape(-1, 3), np.stack([i, k, m], -1).reshape(-1, 3)])
     v = _check(body, sdf, x, faces, uv)
     assert v.ok, v.reason
-    assert v.far_pct == 0.0
+    assert v.far_pct == 0.0 and v.area_ratio > 0.95
     # the same skirt lifted 0.6 m, its flare now above the crotch: that flare counts
     v = _check(body, sdf, x + [0.0, 0.6, 0.0], faces, uv)
     assert v.far_pct > 20.0
@@ -168,6 +168,29 @@ def test_inside_the_body(body_sdf):
     shrunk = c + (x - c) * [0.3, 1.0, 0.3]  # a 6 x 4 cm tube in the belly
     v = _check(body, sdf, shrunk, faces, uv)
     assert not v.ok and v.reason.startswith("inside the body") and v.inside_pct > 90.0
+
+
+def test_crumpled(body_sdf):
+    """A tube pushed together to 60 % of its height (its cloth gathered into a band, no fold
+    to take it up) is crumpled; the same tube folded into pleats round the waist, every edge
+    kept, is not."""
+    body, sdf = body_sdf
+    faces, uv, x = _tube(body)
+    squashed = x.copy()
+    squashed[:, 1] = 1.01 + 0.6 * (x[:, 1] - 1.01)
+    v = _check(body, sdf, squashed, faces, uv)
+    assert not v.ok and v.reason.startswith("crumpled"), v.reason
+    assert v.area_ratio == pytest.approx(0.6, abs=0.02)
+    # pleats: each ring's points pushed in and out by turns, the pattern cut from that pleated ring
+    faces, uv, x = _tube(body, a=0.21, b=0.16)
+    pleat = 1.0 + 0.08 * (np.arange(len(x)) % 2)
+    px = np.stack([x[:, 0] * pleat, x[:, 1], 0.02 + (x[:, 2] - 0.02) * pleat], 1)
+    ring = px[:48][:, [0, 2]]
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(ring, axis=0), axis=1))])
+    puv = np.stack([np.tile(s, 8), uv[:, 1]], 1)
+    v = _check(body, sdf, px, faces, puv)
+    assert v.area_ratio == pytest.approx(1.0, abs=0.02), v
+    assert not v.reason.startswith("crumpled"), v.reason
 
 
 def test_drape_cli_refuses_a_bad_drape(tmp_path, capsys, monkeypatch):

@@ -29,6 +29,8 @@ Checks, in order (the first that fails is the reason):
    crotch and further than :data:`FAR_DIST` from the body (below the crotch a wide skirt hangs
    free of the legs; a garment fallen there fails the height checks).
 5. ``inside the body``: more than :data:`INSIDE_MAX_PCT` % of the vertices are inside it.
+6. ``crumpled``: the draped surface's area is below :data:`AREA_MIN` times the pattern's (cloth
+   does not shrink: a garment gathered into a strip or a ball loses area, a folded one does not).
 
 The thresholds are failure bounds, far from a good drape's figures (a good drape has < 0.5 %
 inside, stretch below 1.5).
@@ -48,6 +50,7 @@ __all__ = [
     "check_dressed",
     "STRETCH_MAX",
     "STRETCH_P99_MAX",
+    "AREA_MIN",
     "FLOOR_TOL",
     "DROP_MAX",
     "TOP_DROP_MAX",
@@ -62,6 +65,8 @@ __all__ = [
 STRETCH_MAX = 3.0
 #: Largest 99th percentile of edge stretch [-] (a garment torn all over, not one bad seam vertex).
 STRETCH_P99_MAX = 1.6
+#: Smallest draped area over pattern area [-] (docs/decisions/046).
+AREA_MIN = 0.85
 #: How far below the body's lowest point the garment may reach [m] (cloth lying on the floor).
 FLOOR_TOL = 0.02
 #: How far the garment's mean height may drop from where the drape started [m].
@@ -97,7 +102,7 @@ class DrapeVerdict:
     else NaN. finite: no NaN or inf. rise_pct: vertices above the body's chest joint and more
     than RISE_DIST above where they were placed [%] (NaN when start_y was not given).
     top_drop: how far the garment's top (TOP_QUANTILE of the heights) fell from the start's [m]
-    (NaN when start_y was not given).
+    (NaN when start_y was not given). area_ratio: the draped surface's area over the pattern's [-].
     """
 
     ok: bool
@@ -113,6 +118,7 @@ class DrapeVerdict:
     finite: bool
     rise_pct: float = float("nan")
     top_drop: float = float("nan")
+    area_ratio: float = float("nan")
 
     def as_dict(self) -> dict:
         """The verdict as a JSON-able dict (a figure that was not measured, NaN, is None)."""
@@ -166,6 +172,7 @@ def check_drape(
     if broken is not None:
         return broken
     s_max, s_99 = _stretch(x, faces, uv, faces_uv)
+    area_ratio = _area_ratio(x, faces, uv, faces_uv)
     crotch = _crotch_height(body)
     inside_pct, depth_mm, far_pct = _body_gaps(x, body, sdf, crotch=crotch)
     y_min, y_max = float(x[:, 1].min()), float(x[:, 1].max())
@@ -176,9 +183,9 @@ def check_drape(
     drops = (drop, top_drop, float(np.quantile(x[:, 1], TOP_QUANTILE)))
     heights = _height_failure(y_min, y_max, drops, floor=floor, crotch=crotch, shoulder=_shoulder(body))
     reason = _stretch_failure(s_max, s_99) or heights or _rise_failure(rise_pct)
-    reason = reason or _body_failure(far_pct, inside_pct)
+    reason = reason or _body_failure(far_pct, inside_pct) or _area_failure(area_ratio)
     figures = (inside_pct, depth_mm, far_pct, s_max, s_99, y_min, y_max, drop, True, rise_pct, top_drop)
-    return DrapeVerdict(reason == "", reason, *figures)
+    return DrapeVerdict(reason == "", reason, *figures, area_ratio=area_ratio)
 
 
 def _broken(x: np.ndarray) -> DrapeVerdict | None:
@@ -237,6 +244,25 @@ def _stretch(x, faces, uv, faces_uv) -> tuple[float, float]:
     L0 = np.maximum(np.linalg.norm(uv[eu[:, 0]] - uv[eu[:, 1]], axis=1), 1e-12)
     ratio = L / L0
     return float(ratio.max()), float(np.percentile(ratio, 99))
+
+
+def _area_ratio(x, faces, uv, faces_uv) -> float:
+    """The triangles' total area in ``x`` (N, 3) [m] over their total in ``uv`` (Nu, 2) [m] [-]."""
+    from unsew.meshing.triangulate import signed_areas
+
+    p = x[faces]
+    a3 = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum()
+    return float(a3 / max(np.abs(signed_areas(uv, faces_uv)).sum(), 1e-15))
+
+
+def _area_failure(area_ratio) -> str:
+    """The reason of a failed area check ("" when it passes); ratio [-]."""
+    if area_ratio < AREA_MIN:
+        return (
+            f"crumpled: the draped surface is {area_ratio * 100:.0f} % of the pattern's area "
+            f"(bound {AREA_MIN * 100:.0f} %)"
+        )
+    return ""
 
 
 def _body_gaps(x, body, sdf, *, crotch=-np.inf) -> tuple[float, float, float]:
