@@ -565,6 +565,25 @@ def _newton_drape(mesh, x0, body_v, body_f, lower, attach=None, guide=None):
                 raise
 
 
+def newton_start(spec: dict, mesh, x_spec: np.ndarray, body_v: np.ndarray, body_f: np.ndarray) -> np.ndarray:
+    """The start newton dresses a specification from, (Nu, 3) [m]: its own placement ``x_spec``
+    bent around the body, front and back wrapped on the torso, cleared of the body."""
+    x0 = bend_around_body(x_spec, mesh, spec, body_v)
+    return clear_of_body(wrap_on_torso(x0, mesh, spec, body_v), mesh, body_v, body_f)
+
+
+def newton_dress(spec: dict, mesh, x0: np.ndarray, body, lower_type: bool):
+    """newton's drape of a specification from the start ``x0`` (Nu, 3) [m] on ``body`` (verts,
+    faces), the targets' recipe: labelled edges held (:func:`attachment`; a lower garment
+    without any held by its waist instead), seams over the body's top guided. Returns (x, info,
+    settings, (held vertices, guided vertices))."""
+    body_v, body_f = body
+    att = attachment(spec, mesh, x0)
+    guide = over_body_guide(spec, mesh, x0, body_v, body_f)
+    x, info, settings = _newton_drape(mesh, x0, body_v, body_f, lower_type and not len(att[0]), att, guide)
+    return x, info, settings, (len(att[0]), len(guide[0]))
+
+
 def build_case(
     cid: str, seed: int, index: int, out: Path, *, drape: bool = True, count: int | None = None
 ) -> dict:
@@ -587,8 +606,7 @@ def build_case(
             src.write(d)
         return rec
     x_spec = spec_placement(src.spec, mesh)
-    x0 = bend_around_body(x_spec, mesh, src.spec, body_v)
-    x0 = clear_of_body(wrap_on_torso(x0, mesh, src.spec, body_v), mesh, body_v, body_f)
+    x0 = newton_start(src.spec, mesh, x_spec, body_v, body_f)
     rec["spec_inside_fraction"] = round(float(checks.inside_mask(x_spec, body_v, body_f).mean()), 4)
     rec["start_inside_fraction"] = round(float(checks.inside_mask(x0, body_v, body_f).mean()), 4)
     rec["vertices"] = int(mesh.n_x)
@@ -604,12 +622,10 @@ def build_case(
         rec.update(status="placed", seconds=round(time.time() - t0, 1))
         return rec
     try:
-        att = attachment(src.spec, mesh, x0)
-        lower = src.truth["type"] in LOWER_TYPES and not len(att[0])
-        rec["attached_vertices"] = len(att[0])
-        guide = over_body_guide(src.spec, mesh, x0, body_v, body_f)
-        rec["guided_vertices"] = len(guide[0])
-        x, info, settings = _newton_drape(mesh, x0, body_v, body_f, lower, att, guide)
+        x, info, settings, held = newton_dress(
+            src.spec, mesh, x0, (body_v, body_f), src.truth["type"] in LOWER_TYPES
+        )
+        rec["attached_vertices"], rec["guided_vertices"] = held
     except RuntimeError as exc:
         rec.update(status="failed", reason=f"newton: {exc}", seconds=round(time.time() - t0, 1))
         return rec

@@ -12,9 +12,10 @@ Per case (a fit result folder ``RESULTS/<case>`` from ``unsew fit CASE --out RES
 - ``chamfer_mm``: the fit's garment.obj against target.obj (judge.chamfer_mm);
   ``chamfer_bar_mm``: the cross-simulator floor, ``unsew drape pattern_gt.json --body CASE``
   against the target;
-- ``redrape_mm``: the recovered pattern draped by newton from its own placement against the
-  target; ``floor_mm``: the true pattern draped by newton on a 10 % finer mesh against the target
-  (that figure's floor); ``redrape_ratio`` = redrape_mm / floor_mm;
+- ``redrape_mm``: the recovered pattern draped by newton from its own placement, dressed as the
+  targets are (their start and holds), against the target; ``floor_mm``: the true pattern
+  draped so on a 10 % finer mesh against the target (that figure's floor); ``redrape_ratio`` =
+  redrape_mm / floor_mm;
 - ``fit_s``: the fit's wall time (metrics.json timings_s).
 A built case without a fit result, or whose fit failed (a non-zero exit in RESULTS/fits.json,
 written by ``gcd fit``: ``fit_exit`` and ``fit_message`` say how), counts as a miss (type and
@@ -51,6 +52,10 @@ REDRAPE_CACHE = "redrape_newton.json"
 FLARED_BOTTOMS = ("SkirtCircle", "AsymmSkirtCircle", "SkirtManyPanels", "GodetSkirt")
 #: The floor of the redrape figure: the true pattern meshed this much finer [share of the edge length].
 FINER = 0.9
+#: How newton dresses a floor and a re-drape: 2, as the targets (build.newton_start and
+#: build.newton_dress); 1, from the bent placement alone, nothing held. A floor or re-drape
+#: made by another recipe is made again.
+NEWTON_RECIPE = 2
 
 
 def read_obj(path: Path):
@@ -67,11 +72,12 @@ def read_obj(path: Path):
 
 
 def newton_redrape(spec: dict, case: Path, edge_length: float, lower: bool):
-    """(verts (N, 3) [m], faces) of a specification draped by newton from its own placement."""
+    """(verts (N, 3) [m], faces) of a specification draped by newton from its own placement, as
+    the case's target was (:func:`build.newton_start`, :func:`build.newton_dress`)."""
     body_v, body_f = build.read_body(case)
     mesh = build.mesh_spec(spec, case.name, edge_length)
-    x0 = build.bend_around_body(build.spec_placement(spec, mesh), mesh, spec, body_v)
-    x, _, _ = build._newton_drape(mesh, x0, body_v, body_f, lower)
+    x0 = build.newton_start(spec, mesh, build.spec_placement(spec, mesh), body_v, body_f)
+    x, _, _, _ = build.newton_dress(spec, mesh, x0, (body_v, body_f), lower)
     return x, np.asarray(mesh.faces)
 
 
@@ -149,13 +155,18 @@ def _floors(case: Path, spec_gt: dict, truth: dict, target, *, floor: bool, redr
         if not isinstance(d, tuple):
             known["chamfer_bar_error"] = d
         cache.write_text(json.dumps(known, indent=1))
+    if known.get("floor_recipe") != NEWTON_RECIPE:
+        for k in ("floor_mm", "floor_error", "floor_recipe"):
+            known.pop(k, None)
     if redrape and "floor_mm" not in known:
         edge = build.manifest()["edge_length_m"]
+        known.pop("floor_error", None)
         try:
             x, f = newton_redrape(spec_gt, case, edge * FINER, truth["type"] in build.LOWER_TYPES)
             known["floor_mm"] = round(judge.chamfer_mm(x, f, tv, tf)["chamfer_mm"], 2)
         except Exception as exc:  # noqa: BLE001 - recorded per case, the rest go on
             known["floor_mm"], known["floor_error"] = None, f"{type(exc).__name__}: {str(exc)[:160]}"
+        known["floor_recipe"] = NEWTON_RECIPE
         cache.write_text(json.dumps(known, indent=1))
     return known
 
@@ -194,7 +205,11 @@ def _score_drapes(rec: dict, case: Path, result: Path, truth: dict, target, *, r
         return
     text = (result / "pattern.json").read_text()
     cache = result / REDRAPE_CACHE
-    key = {"pattern_sha256": hashlib.sha256(text.encode()).hexdigest(), "target": str(case / "target.obj")}
+    key = {
+        "pattern_sha256": hashlib.sha256(text.encode()).hexdigest(),
+        "target": str(case / "target.obj"),
+        "recipe": NEWTON_RECIPE,
+    }
     known = json.loads(cache.read_text()) if cache.is_file() else {}
     if all(known.get(k) == v for k, v in key.items()) and "redrape_mm" in known:
         rec["redrape_mm"] = known["redrape_mm"]
@@ -284,11 +299,15 @@ def carry_over(recs: dict, old: dict) -> None:
     """Fill each built case's record from the recorded ``old`` ones where it lacks them: the
     material-fitted floor and whether the case is a circle or flared skirt (recorded apart,
     :func:`cmd_floor_fitted`) and newton's floor (made once into floors.json, which a case folder
-    built again from the kept targets has lost)."""
+    built again from the kept targets has lost) where it was made by :data:`NEWTON_RECIPE`."""
     for cid, r in recs.items():
-        for k in ("floor_fitted_mm", "floor_fitted_s", "flared", "floor_mm"):
-            if k in old.get(cid, {}) and r.get("built"):
-                r.setdefault(k, old[cid][k])
+        o = old.get(cid, {})
+        keys = ("floor_fitted_mm", "floor_fitted_s", "flared")
+        if o.get("floor_recipe") == NEWTON_RECIPE:  # newton's floor, when made as it is made now
+            keys += ("floor_mm", "floor_recipe")
+        for k in keys:
+            if k in o and r.get("built"):
+                r.setdefault(k, o[k])
 
 
 def cmd_floor_fitted(args, record_file: Path) -> int:

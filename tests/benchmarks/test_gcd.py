@@ -738,26 +738,32 @@ def test_unsews_bar_is_made_again_when_unsews_code_changed(tmp_path, monkeypatch
 
 
 def test_a_score_keeps_the_recorded_floors_it_did_not_make():
-    """`gcd score` without newton keeps each built case's recorded newton floor and
-    material-fitted floor; a floor it made itself (even a failed one) stands; unbuilt cases get none."""
+    """`gcd score` without newton keeps each built case's recorded newton floor (where newton
+    dressed it as it dresses one now) and material-fitted floor; a floor it made itself (even a
+    failed one) stands; unbuilt cases get none."""
     score = _load("score")
+    now = score.NEWTON_RECIPE
     old = {
-        "gc_s1_000": {"floor_mm": 5.0, "floor_fitted_mm": 4.0, "floor_fitted_s": 300.0, "flared": True},
-        "gc_s1_001": {"floor_mm": 7.0},
-        "gc_s1_002": {"floor_mm": 9.0},
+        "gc_s1_000": {"floor_mm": 5.0, "floor_recipe": now, "floor_fitted_mm": 4.0, "floor_fitted_s": 300.0},
+        "gc_s1_001": {"floor_mm": 7.0, "floor_recipe": now},
+        "gc_s1_002": {"floor_mm": 9.0, "floor_recipe": now},
+        "gc_s1_003": {"floor_mm": 8.0, "floor_fitted_mm": 6.0, "flared": True},
     }
     recs = {
         "gc_s1_000": {"built": True},
         "gc_s1_001": {"built": True, "floor_mm": None, "floor_error": "diverged"},
         "gc_s1_002": {"built": False},
+        "gc_s1_003": {"built": True},
     }
     score.carry_over(recs, old)
     assert recs["gc_s1_000"] == {
         "built": True,
         "floor_mm": 5.0,
+        "floor_recipe": now,
         "floor_fitted_mm": 4.0,
         "floor_fitted_s": 300.0,
-        "flared": True,
     }
     assert recs["gc_s1_001"]["floor_mm"] is None
     assert "floor_mm" not in recs["gc_s1_002"]
+    # a floor newton made the earlier way is not carried; the material-fitted one is
+    assert recs["gc_s1_003"] == {"built": True, "floor_fitted_mm": 6.0, "flared": True}
