@@ -11,7 +11,10 @@
   is straight and of equal length (within ``MERGE_LENGTH_TOL``) and the two panels joined along
   it lie flat: at the seam's two ends the outline runs on without a corner (the panels' turning
   angles add up to half a turn within ``MERGE_ANGLE_TOL``), where the seam goes on from one
-  stitch into the next the turning angles cancel. The rule reads the seam's two panels alone,
+  stitch into the next the turning angles cancel; a seam between mirror halves that keep their
+  grain when joined (a centre-front or centre-back seam, what cutting on a fold makes) hides
+  whatever corner the outline makes at its ends (a V-neck's point), the outline their union's
+  where their curves run a few mm past the seam's line. The rule reads the seam's two panels alone,
   not what else either is sewn to (a waistband, a cuff) nor the order of the stitches. Pieces
   then grow panel by panel, glued by a rigid 2D motion without overlap, each glue the one that
   closes the most other hidden seams with it. A centre-front seam between mirror halves (a fold
@@ -30,6 +33,8 @@ import numpy as np
 
 MERGE_LENGTH_TOL = 0.02  #: relative length difference of two straight stitched edges
 MERGE_ANGLE_TOL = np.radians(15.0)  #: how far from half a turn the two corners at a seam end may add up
+FOLD_TOL = 0.005  #: [m] how far a mirror half may lie from the other half mirrored across their seam
+OVERLAP_TOL = 0.01  #: [m] how far two glued panels may reach past their seam's line into each other
 CURVE_POINTS = 24  #: points per curved edge
 TURNING_SAMPLES = 200  #: arc-length samples of an outline for the turning function
 
@@ -131,7 +136,8 @@ class Piece:
         self.centroid3d = centroid3d  # (3,) [m], area-weighted over the merged panels
 
     def loop(self) -> np.ndarray:
-        return np.concatenate([e["pts"][:-1] for e in self.edges])
+        """The outline (N, 2) [m]; where glued panels overlap across their seam, their union's."""
+        return _without_lenses(np.concatenate([e["pts"][:-1] for e in self.edges]))
 
 
 def panels_of_spec(spec: dict) -> dict:
@@ -197,6 +203,7 @@ def _stitch_flat(A: Piece, ia: int, B: Piece, ib: int, stitched: set):
     la = np.linalg.norm(ea["pts"][-1] - ea["pts"][0])
     lb = np.linalg.norm(eb["pts"][-1] - eb["pts"][0])
     flat = ea["straight"] and eb["straight"] and abs(la - lb) <= MERGE_LENGTH_TOL * max(la, lb)
+    fold = flat and _fold(A, ia, B, ib)
     links = []
     for a_in, a_out, b_in, b_out, (a_on, b_on) in ends:
         on = frozenset((a_on["key"], b_on["key"]))
@@ -206,29 +213,71 @@ def _stitch_flat(A: Piece, ia: int, B: Piece, ib: int, stitched: set):
         turns = _turn(_dir(*a_in["pts"][-2:]), _dir(*a_out["pts"][:2])) + _turn(
             _dir(*b_in["pts"][-2:]), _dir(*b_out["pts"][:2])
         )
-        flat = flat and abs(turns - (0.0 if inner else np.pi)) <= MERGE_ANGLE_TOL
+        # the outline may turn at the seam's ends of a fold (a V-neck's point), not within it
+        flat = flat and (fold and not inner or abs(turns - (0.0 if inner else np.pi)) <= MERGE_ANGLE_TOL)
     return flat, links
+
+
+def _glue_motion(ea: dict, eb: dict):
+    """(R (2, 2), t (2,)) of the rigid 2D motion taking edge eb onto edge ea run backwards."""
+    p, q = ea["pts"][0], ea["pts"][-1]
+    bp, bq = eb["pts"][0], eb["pts"][-1]
+    ang = np.arctan2(*(p - q)[::-1]) - np.arctan2(*(bq - bp)[::-1])
+    R = np.array([[np.cos(ang), -np.sin(ang)], [np.sin(ang), np.cos(ang)]])
+    return R, q - R @ bp
+
+
+def _fold(A: Piece, ia: int, B: Piece, ib: int) -> bool:
+    """Whether panels A and B joined along A's edge ia and B's edge ib are what one piece cut on a
+    fold makes: glued, B keeps its own frame's directions (its grain, as A's, within
+    ``MERGE_ANGLE_TOL``) and is A mirrored across the seam (every point of either outline within
+    ``FOLD_TOL`` of the other's): a centre-front or centre-back seam between mirror halves."""
+    R, t = _glue_motion(A.edges[ia], B.edges[ib])
+    if abs(np.arctan2(R[1, 0], R[0, 0])) > MERGE_ANGLE_TOL:
+        return False
+    p, q = A.edges[ia]["pts"][0], A.edges[ia]["pts"][-1]
+    u = _dir(p, q)
+    b = B.loop() @ R.T + t - p
+    mirrored = p + 2.0 * np.outer(b @ u, u) - b  # reflected across the seam's line
+    a = A.loop()
+    return max(_to_outline(a, mirrored).max(), _to_outline(mirrored, a).max()) <= FOLD_TOL
+
+
+def _to_outline(pts: np.ndarray, loop: np.ndarray) -> np.ndarray:
+    """Each point's (N, 2) distance [m] to the closed polyline ``loop`` (M, 2)."""
+    P, D = loop, np.roll(loop, -1, axis=0) - loop
+    w = pts[:, None, :] - P[None]
+    s = np.clip((w * D[None]).sum(-1) / np.maximum((D * D).sum(-1), 1e-30)[None], 0.0, 1.0)
+    return np.linalg.norm(w - s[..., None] * D[None], axis=-1).min(axis=1)
 
 
 def _glue(A: Piece, ia: int, B: Piece, ib: int, hidden: set):
     """Piece of A and B glued along A's edge ia and B's edge ib by the rigid 2D motion taking B's
     edge onto A's, the seams of ``hidden`` that then meet folded back at either seam end zipped
     too, or None where the two would overlap."""
-    ea, eb = A.edges[ia], B.edges[ib]
-    p, q = ea["pts"][0], ea["pts"][-1]
-    bp, bq = eb["pts"][0], eb["pts"][-1]
-    # rigid motion taking B's edge (bp -> bq) onto A's reversed (q -> p)
-    ang = np.arctan2(*(p - q)[::-1]) - np.arctan2(*(bq - bp)[::-1])
-    R = np.array([[np.cos(ang), -np.sin(ang)], [np.sin(ang), np.cos(ang)]])
-    t = q - R @ bp
+    R, t = _glue_motion(A.edges[ia], B.edges[ib])
     Bedges = [dict(e, pts=e["pts"] @ R.T + t) for e in B.edges]
     edges = _zip(A.edges[ia + 1 :] + A.edges[:ia] + Bedges[ib + 1 :] + Bedges[:ib], hidden)
     loop = np.concatenate([e["pts"][:-1] for e in edges])
     area, _ = _area_centroid(loop)
-    if abs(area - (A.area + B.area)) > 0.02 * (A.area + B.area) or _self_intersects(loop):
+    if abs(area - (A.area + B.area)) > 0.02 * (A.area + B.area) or not _overlap_on_seam(A, ia, Bedges, loop):
         return None
     c3 = (A.area * A.centroid3d + B.area * B.centroid3d) / (A.area + B.area)
     return Piece(A.names + B.names, edges, area, c3)
+
+
+def _overlap_on_seam(A: Piece, ia: int, Bedges: list, loop: np.ndarray) -> bool:
+    """Whether the glued outline ``loop`` is one piece: it does not cross itself but where the two
+    panels (A, and B's glued edges) overlap across the seam's own line by at most ``OVERLAP_TOL``
+    (the neck curves of mirror halves running a few mm past the centre line)."""
+    c = _crossings(loop)
+    if not len(c):
+        return True
+    p, q = A.edges[ia]["pts"][0], A.edges[ia]["pts"][-1]
+    n = _dir(p, q) @ np.array([[0.0, 1.0], [-1.0, 0.0]])  # the seam's left normal: A's side
+    b = np.concatenate([e["pts"] for e in Bedges])
+    past = max(-((A.loop() - p) @ n).min(), ((b - p) @ n).max())
+    return bool(np.abs((c - p) @ n).max() <= FOLD_TOL and past <= OVERLAP_TOL)
 
 
 def _zip(edges: list, hidden: set) -> list:
@@ -249,8 +298,28 @@ def _zip(edges: list, hidden: set) -> list:
     return edges
 
 
-def _self_intersects(loop: np.ndarray) -> bool:
-    """Whether a closed polyline (N, 2) crosses itself (segments other than neighbours)."""
+def _crossings(loop: np.ndarray) -> np.ndarray:
+    """The points (K, 2) where a closed polyline (N, 2) crosses itself (segments other than neighbours)."""
+    return _crossing_segments(loop)[2]
+
+
+def _without_lenses(loop: np.ndarray) -> np.ndarray:
+    """A closed polyline (N, 2) with each small loop it makes where it crosses itself cut off at
+    the crossing (of the two loops a crossing splits it into, the one of smaller area): the
+    outline of two overlapping glued panels' union."""
+    while True:
+        i, j, c = _crossing_segments(loop)
+        if not len(c):
+            return loop
+        i, j, c = i[0], j[0], c[0]
+        inner = np.vstack([c, loop[i + 1 : j + 1]])
+        outer = np.vstack([loop[: i + 1], c, loop[j + 1 :]])
+        loop = outer if abs(_area_centroid(inner)[0]) < abs(_area_centroid(outer)[0]) else inner
+
+
+def _crossing_segments(loop: np.ndarray):
+    """(i, j, points): segment i of a closed polyline (N, 2) (from point i to i + 1) crosses its
+    segment j > i + 1 at the point; (K,), (K,), (K, 2)."""
     P, Q = loop, np.roll(loop, -1, axis=0)
     n = len(P)
     d = Q - P
@@ -267,7 +336,8 @@ def _self_intersects(loop: np.ndarray) -> bool:
     w = P[j] - P[i]
     s, u = cross(w, d[j]) / den, cross(w, d[i]) / den
     eps = 1e-9
-    return bool(((s > eps) & (s < 1 - eps) & (u > eps) & (u < 1 - eps)).any())
+    hit = (s > eps) & (s < 1 - eps) & (u > eps) & (u < 1 - eps)
+    return i[hit], j[hit], P[i[hit]] + s[hit, None] * d[i[hit]]
 
 
 def hidden_seams(spec: dict, panels: dict | None = None) -> list:

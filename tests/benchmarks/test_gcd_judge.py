@@ -147,3 +147,41 @@ def test_a_seam_in_two_edges_merges_when_straight_through_and_not_when_kinked_or
         {"type": "cubic", "params": [[1 / 3, 0], [5 / 6, -1 / 3]]},
     )
     assert len(_pieces(judge, *_halves(right_lower=crotch))) == 2
+
+
+def _v_neck_halves(overshoot=0.0):
+    """A front in two mirror halves (25 x 40 cm) sewn at the centre from the hem up to a V-neck's
+    point (20 cm up); each half's neck edge curves from the point up to the shoulder, running
+    past the centre line on its way when ``overshoot`` [cm, the control point's side] is > 0 (as
+    GarmentCode's deep necks do, a few mm). Control points in the panels' own coordinates."""
+    right = _panel([[0, 0], [25, 0], [25, 40], [8, 40], [0, 20]], (-12.5, 100, 15))
+    right["edges"][3]["curvature"] = {"type": "quadratic", "params": [[-overshoot, 30]]}
+    left = _panel([[0, 20], [-8, 40], [-25, 40], [-25, 0], [0, 0]], (12.5, 100, 15))
+    left["edges"][0]["curvature"] = {"type": "quadratic", "params": [[overshoot, 30]]}
+    return {"right": right, "left": left}, [("right", 4, "left", 4)]
+
+
+@pytest.mark.parametrize("overshoot", [-4.0, 3.0])
+def test_a_v_necks_centre_seam_merges_its_mirror_halves_as_a_fold_would(judge, overshoot):
+    panels, stitches = _v_neck_halves(overshoot)
+    spec = _spec(panels, stitches)
+    spec["properties"]["curvature_coords"] = "absolute"
+    pieces = judge.merge_invisible(spec)
+    assert len(pieces) == 1
+    loop = pieces[0].loop()
+    assert not len(judge._crossings(loop))  # the union's outline, no loop where the necks cross
+    assert np.ptp(loop, axis=0) == pytest.approx([0.5, 0.4], abs=1e-6)
+    # the same halves turned apart (the right one's grain 20 degrees off the left's) stay two
+    right = panels["right"]
+    turned = dict(right, vertices=_turned(right["vertices"], 20))
+    turned["edges"] = [dict(e) for e in right["edges"]]
+    turned["edges"][3]["curvature"] = {"type": "quadratic", "params": _turned([[-overshoot, 30]], 20)}
+    spec = _spec(dict(panels, right=turned), stitches)
+    spec["properties"]["curvature_coords"] = "absolute"
+    assert len(judge.merge_invisible(spec)) == 2
+
+
+def _turned(verts, deg):
+    a = np.radians(deg)
+    R = np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
+    return (np.asarray(verts, float) @ R.T).tolist()
