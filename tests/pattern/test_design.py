@@ -7,7 +7,7 @@ import pytest
 
 from helpers import assert_close
 from unsew.errors import InputError
-from unsew.io.garmentcode import load_pattern, save_pattern
+from unsew.io.garmentcode import load_pattern, pattern_to_dict, save_pattern
 from unsew.meshing import mesh_pattern
 from unsew.pattern.base import BASES, make_base_pattern
 from unsew.pattern.base._frame import body_frame
@@ -79,6 +79,40 @@ def test_bases_are_points_of_the_space(name):
         assert pattern_diff(p, base, atol=1e-9) == []
     assert design_name(design_of_base(name)) == name
     assert design_of_base(name) in design_space(design_of_base(name).garment)
+
+
+@pytest.mark.parametrize(
+    "design, lower",
+    [
+        (Design(garment="dress", waist_seam=True), {"skirt_front", "skirt_back"}),
+        (
+            Design(garment="dress", waist_seam=True, waistband=True, darts=True),
+            {"waistband_front", "waistband_back"},
+        ),
+        (Design(garment="jumpsuit"), {"left_front", "right_front", "left_back", "right_back"}),
+        (Design(garment="dress"), set()),
+    ],
+    ids=["seamed-dress", "banded-dress", "jumpsuit", "one-piece-dress"],
+)
+def test_a_joined_garments_waist_seam_is_labelled_where_its_lower_part_hangs(design, lower):
+    """A dress's or jumpsuit's lower part (skirt, band, legs) is labelled as GarmentCode labels it
+    where it is sewn to the bodice, and only there; the GarmentCode JSON keeps the label."""
+    p = draft(design)
+    held = {
+        (n, i) for n, pa in p.panels.items() for i, e in enumerate(pa.edges) if e.label == "lower_interface"
+    }
+    assert {n for n, _ in held} == lower
+    to_bodice = {
+        (me.panel, me.edge)
+        for st in p.stitches
+        for me, other in ((st.a, st.b), (st.b, st.a))
+        if other.panel in ("front", "back") and me.panel in lower
+    }
+    assert held == to_bodice
+    spec = pattern_to_dict(p)
+    assert sum(
+        e.get("label") == "lower_interface" for pd in spec["pattern"]["panels"].values() for e in pd["edges"]
+    ) == len(held)
 
 
 @pytest.mark.parametrize("design", SAMPLE, ids=design_name)

@@ -329,6 +329,25 @@ def _label_hanging_top(p: Pattern) -> None:
                 e.label = HANGING_LABEL
 
 
+#: Garments whose bodice is joined at the waist to a lower part (a skirt, a band, trouser legs).
+JOINED = ("dress", "jumpsuit")
+#: The panels of a bodice.
+BODICE = ("front", "back")
+
+
+def _label_joined_top(p: Pattern) -> None:
+    """Label the lower part's top edges sewn to the bodice (a skirt's or legs' ``waist``, a band's
+    ``top*``) :data:`HANGING_LABEL`, as GarmentCode's programs label a dress's or jumpsuit's
+    waist seam: its simulation holds them, so the exported pattern drapes there as the designs it
+    reads do. :func:`unsew.dress.dress` holds open labelled edges only: unsew's drapes are
+    unchanged."""
+    for s in p.stitches:
+        for me, other in ((s.a, s.b), (s.b, s.a)):
+            e = p.panels[me.panel].edges[me.edge]
+            if other.panel in BODICE and me.panel not in BODICE and e.label.startswith(("waist", "top")):
+                e.label = HANGING_LABEL
+
+
 _DRAFTERS = {
     "tshirt": _tshirt,
     "dress": _dress_garment,
@@ -358,6 +377,8 @@ def draft(design: Design, measurements: Measurements | None = None) -> Pattern:
     p = _DRAFTERS[design.garment](d, m)
     if design.garment in HANGING:
         _label_hanging_top(p)
+    elif design.garment in JOINED:
+        _label_joined_top(p)
     p.name = design_name(design)
     p.unsew["design"] = design.as_dict()
     return p
