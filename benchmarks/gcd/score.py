@@ -220,11 +220,24 @@ def _score_drapes(rec: dict, case: Path, result: Path, truth: dict, target, *, r
         try:
             x, f = newton_redrape(json.loads(text), case, edge, truth["type"] in build.LOWER_TYPES)
             rec["redrape_mm"] = round(judge.chamfer_mm(x, f, tv, tf)["chamfer_mm"], 2)
+            keep_redrape(result, case, x, f, rec["redrape_mm"])
         except Exception as exc:  # noqa: BLE001 - recorded per case, the rest go on
             rec["redrape_mm"], rec["redrape_error"] = None, f"{type(exc).__name__}: {str(exc)[:160]}"
         cache.write_text(json.dumps({**key, **{k: rec.get(k) for k in ("redrape_mm", "redrape_error")}}))
     if rec.get("redrape_mm") and rec.get("floor_mm"):
         rec["redrape_ratio"] = round(rec["redrape_mm"] / rec["floor_mm"], 3)
+
+
+def keep_redrape(result: Path, case: Path, x: np.ndarray, f: np.ndarray, mm: float) -> None:
+    """newton's drape of the recovered pattern, x (N, 3) [m] and faces f, beside it: an OBJ and
+    a picture of it on the body (``redrape_newton.obj``, ``redrape_newton.png``)."""
+    sys.path.insert(0, str(build.HERE.parent / "foreign"))
+    import checks
+
+    what = f"{case.name}: the recovered pattern draped by newton"
+    build.write_obj(result / "redrape_newton.obj", x, f, what)
+    title = f"{what}, {mm:.1f} mm from the target"
+    checks.preview(result / "redrape_newton.png", x, f, *build.read_body(case), title=title)
 
 
 def type_of_base(base: str) -> str | None:

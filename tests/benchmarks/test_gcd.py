@@ -587,7 +587,7 @@ def test_the_material_only_fits_hold_the_true_pattern(tmp_path, monkeypatch):
 
 def test_the_newton_redrape_is_kept_per_pattern_and_target(tmp_path, monkeypatch):
     """Scoring again reads newton's drape of the same recovered pattern on the same target from
-    the result folder; a changed pattern is draped again."""
+    the result folder; a changed pattern is draped again; the drape is kept there with a picture."""
     score = _load("score")
     v, f = _grid(6, 0.2)
     case, result = tmp_path / "gc_s1_000", tmp_path / "res"
@@ -595,6 +595,7 @@ def test_the_newton_redrape_is_kept_per_pattern_and_target(tmp_path, monkeypatch
     result.mkdir()
     lines = [f"v {a} {b} {c}" for a, b, c in v] + [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in f]
     (case / "target.obj").write_text("\n".join(lines) + "\n")
+    (case / "body.obj").write_text("\n".join(lines) + "\n")
     (result / "garment.obj").write_text("\n".join(lines) + "\n")
     (result / "pattern.json").write_text('{"pattern": {"panels": {}}}')
     calls = []
@@ -607,6 +608,9 @@ def test_the_newton_redrape_is_kept_per_pattern_and_target(tmp_path, monkeypatch
     rec = {}
     score._score_drapes(rec, case, result, {"type": "skirt"}, (v, f), redrape=True)
     assert calls == [1] and rec["redrape_mm"] == pytest.approx(10.0, abs=0.1)
+    # the drape kept beside the pattern, to look at
+    assert len(score.read_obj(result / "redrape_newton.obj")[0]) == len(v)
+    assert (result / "redrape_newton.png").stat().st_size > 1000
     again = {}
     score._score_drapes(again, case, result, {"type": "skirt"}, (v, f), redrape=True)
     assert calls == [1] and again["redrape_mm"] == rec["redrape_mm"]
