@@ -88,3 +88,50 @@ def cmd_fit(args, case_ids: list[str]) -> int:
         o = log[cid]
         print(f"{cid}: exit {o['exit']} in {o['seconds']} s {o['message']}", flush=True)
     return 0
+
+
+def reexport(src: Path, dst: Path) -> None:
+    """The fit result folder ``src`` copied to ``dst`` with its pattern.json placed as ``unsew
+    fit`` exports it now (:func:`unsew.fit.outputs.placed_where_draped`: each panel moved within
+    its plane over where garment.obj drapes it), for fits made before that export; newton's
+    re-drape of the earlier pattern is not copied."""
+    import shutil
+    from types import SimpleNamespace
+
+    import numpy as np
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+    from bench_true_patterns import read_obj_uv
+
+    from unsew.fit.outputs import placed_where_draped
+    from unsew.io.garmentcode import load_pattern, save_pattern
+
+    shutil.copytree(src, dst, ignore=shutil.ignore_patterns("redrape_newton*"), dirs_exist_ok=True)
+    pattern = load_pattern(src / "pattern.json")
+    x, f, uv, fu = read_obj_uv(src / "garment.obj")
+    x_of_u = np.zeros(len(uv), np.int64)
+    x_of_u[fu.ravel()] = f.ravel()
+    # each panel's rest mesh is one piece in pattern coordinates, written in the pattern's panel order
+    ij = np.concatenate([fu[:, [0, 1]], fu[:, [1, 2]]])
+    n, comp = connected_components(coo_matrix((np.ones(len(ij)), (ij[:, 0], ij[:, 1])), (len(uv), len(uv))))
+    if n != len(pattern.panel_order):
+        raise ValueError(f"{src}: garment.obj has {n} pieces for {len(pattern.panel_order)} panels")
+    first = [np.flatnonzero(comp == k).min() for k in range(n)]
+    uv_panel = np.argsort(np.argsort(first))[comp]
+    mesh = SimpleNamespace(uv_panel=uv_panel, x_of_u=x_of_u, panel_names=list(pattern.panel_order))
+    save_pattern(placed_where_draped(pattern, mesh, uv, x), dst / "pattern.json")
+
+
+def cmd_reexport(args, cases: list[str]) -> int:
+    """``gcd reexport --results IN --to OUT``: every fitted case of IN re-exported into OUT
+    (:func:`reexport`), with IN's fits.json."""
+    src, dst = Path(args.results), Path(args.to)
+    for cid in cases:
+        if (src / cid / "pattern.json").is_file():
+            reexport(src / cid, dst / cid)
+            print(f"{cid}: re-exported", flush=True)
+    if read_log(src):
+        _write_log(dst, read_log(src))
+    return 0

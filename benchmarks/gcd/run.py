@@ -6,6 +6,7 @@
     python -m benchmarks gcd fit --results RESULTS_DIR [--only ...] [--redo] fit each built case
     python -m benchmarks gcd score --results RESULTS_DIR [--cases DIR] [--only-tried] [--record]
     python -m benchmarks gcd floor-fitted --results DIR [--record]   the material-fitted floor
+    python -m benchmarks gcd reexport --results DIR --to DIR2   fits placed as unsew fit exports them now
     python -m benchmarks gcd status [--out DIR]    every case's build status
     python -m benchmarks gcd keep [--out DIR]      store the built targets in targets/ (kept.py)
     python -m benchmarks gcd settle --out DIR --to DIR2 [--only ...]   each built target run on to rest
@@ -230,6 +231,11 @@ def _add_fit_score_parsers(sub) -> None:
     fi.add_argument("--results", required=True, help="folder for one fit result folder per case id")
     fi.add_argument("--only", nargs="*", help="case ids (default: every built case)")
     fi.add_argument("--redo", action="store_true", help="fit again a case with an outcome already")
+    rx = sub.add_parser(
+        "reexport", help="copy fit results with each pattern.json placed where its garment.obj drapes it"
+    )
+    rx.add_argument("--results", required=True, help="folder of fit results, one folder per case id")
+    rx.add_argument("--to", required=True, help="folder for the re-exported copies")
     fi.add_argument(
         "--material-only",
         action="store_true",
@@ -317,6 +323,7 @@ def main(argv=None) -> int:
         "build": cmd_build,
         "fit": lambda a: fits.cmd_fit(a, [cid for cid, _, _ in build.case_ids()]),
         "score": lambda a: score.cmd_score(a, Path(a.record_file)),
+        "reexport": lambda a: fits.cmd_reexport(a, [cid for cid, _, _ in build.case_ids()]),
         "floor-fitted": lambda a: score.cmd_floor_fitted(a, Path(a.record_file)),
         "status": cmd_status,
         "keep": cmd_keep,

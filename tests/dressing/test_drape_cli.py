@@ -4,6 +4,7 @@ import numpy as np
 
 from unsew.cli import main
 from unsew.io.garmentcode import save_pattern
+from unsew.meshing import mesh_pattern
 from unsew.pattern.base import make_base_pattern
 
 
@@ -106,8 +107,18 @@ def test_drape_cli_uses_the_contact_a_fit_wrote(tmp_path, capsys):
     from unsew.sim.material import MATERIALS
 
     def written(contact):
+        pattern = make_base_pattern("skirt")
+        mesh = mesh_pattern(pattern, edge_length=0.05)
+        x = np.zeros((mesh.n_x, 3))
+        x[np.asarray(mesh.x_of_u)] = mesh.uv_placed3d  # draped where placed
         result = SimpleNamespace(
-            pattern=make_base_pattern("skirt"), params=None, material=MATERIALS["cotton"], contact=contact
+            pattern=pattern,
+            params=None,
+            material=MATERIALS["cotton"],
+            contact=contact,
+            mesh=mesh,
+            uv=mesh.uv,
+            x=x,
         )
         pj = tmp_path / f"{contact['mode']}.json"
         save_pattern(pattern_with_extras(result), pj)

@@ -46,3 +46,50 @@ def test_pattern_errors_keeps_the_others_when_one_cannot_be_compared():
     m = pattern_errors(result, gt)
     assert "error" in m["pattern_base"] and "pattern_graded" not in m
     assert m["pattern"]["area_error_weighted_rel"] == 0.0
+
+
+def test_the_exported_pattern_is_placed_where_it_draped():
+    """Each panel of the exported pattern moves within its own plane to where the fit's drape has
+    it: a tee draped 8 cm higher, 2 cm to the side and 5 cm forward than its placement is exported
+    8 cm higher and 2 cm to the side, its front and back no nearer the body; a sleeve turned
+    out of the front plane moves within its own plane."""
+    from unsew.fit.outputs import placed_where_draped
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.base import make_base_pattern
+
+    p = make_base_pattern("tshirt")
+    p.stitches = []  # every rest vertex its own: the drape is the placement shifted, exactly
+    mesh = mesh_pattern(p, edge_length=0.05)
+    shift = np.array([0.02, 0.08, 0.05])
+    x = np.zeros((mesh.n_x, 3))
+    x[np.asarray(mesh.x_of_u)] = np.asarray(mesh.uv_placed3d) + shift
+    out = placed_where_draped(p, mesh, mesh.uv, x)
+    for name, pan in out.panels.items():
+        moved = pan.translation - p.panels[name].translation
+        n = pan.rotation_matrix()[:, 2]
+        assert np.allclose(moved, shift - (shift @ n) * n, atol=1e-9), name
+        assert np.allclose(pan.rotation, p.panels[name].rotation) and np.allclose(
+            pan.vertices, p.panels[name].vertices
+        )
+    assert np.allclose(out.panels["front"].translation - p.panels["front"].translation, [0.02, 0.08, 0.0])
+    assert any(abs(pan.rotation_matrix()[2, 2]) < 0.99 for pan in out.panels.values())  # a turned panel
+    assert np.allclose(p.panels["front"].translation, make_base_pattern("tshirt").panels["front"].translation)
+
+
+def test_a_panel_held_by_its_open_top_keeps_its_placement():
+    """A drafted skirt hangs from its open top, held where it is placed: its gores keep their
+    placement however the drape below hangs; its band, sewn to them, hangs from them too."""
+    from unsew.fit.outputs import placed_where_draped
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.design import Design, draft
+
+    p = draft(Design(garment="skirt", waistband=True))
+    held = {n for n, pa in p.panels.items() for e in pa.edges if e.label == "lower_interface"}
+    assert held and held < set(p.panels)
+    mesh = mesh_pattern(p, edge_length=0.05)
+    x = np.zeros((mesh.n_x, 3))
+    x[np.asarray(mesh.x_of_u)] = np.asarray(mesh.uv_placed3d) + [0.0, -0.05, 0.0]
+    out = placed_where_draped(p, mesh, mesh.uv, x)
+    for name, pan in out.panels.items():
+        moved = pan.translation - p.panels[name].translation
+        assert np.allclose(moved, 0.0) == (name in held), (name, moved)

@@ -44,6 +44,7 @@ __all__ = [
     "pattern_errors",
     "file_sha256",
     "pattern_with_extras",
+    "placed_where_draped",
     "BASE_PATTERN_FILE",
     "GRADED_PATTERN_FILE",
 ]
@@ -62,12 +63,48 @@ def file_sha256(path: str | os.PathLike) -> str:
     return h.hexdigest()
 
 
+def placed_where_draped(pattern, mesh, uv, x):
+    """A copy of ``pattern`` with each panel moved within its own plane (its rotation and its
+    distance along its normal kept) so that its placed mesh vertices' centroid lies over its
+    draped ones' (the panel's translation [m]): the exported placement starts another simulator
+    where the fit's drape hangs, not where the base was drafted before grading changed the panels.
+    A panel held by an open labelled edge (:data:`unsew.dress.ATTACH_LABELS`) keeps its placement:
+    it was held there.
+
+    mesh: the pattern's GarmentMesh; uv: (Nu, 2) panel-frame positions of its rest vertices [m];
+    x: (n_x, 3) draped sewn positions [m] (numpy or torch)."""
+    from unsew.dress import ATTACH_LABELS
+
+    p = pattern.copy()
+    sewn = {(side.panel, side.edge) for st in p.stitches for side in (st.a, st.b)}
+    held = {
+        n
+        for n, pa in p.panels.items()
+        for i, e in enumerate(pa.edges)
+        if e.label in ATTACH_LABELS and (n, i) not in sewn
+    }
+    uv = np.asarray(uv.detach().cpu() if hasattr(uv, "detach") else uv, np.float64)
+    x = np.asarray(x.detach().cpu() if hasattr(x, "detach") else x, np.float64)
+    on = np.asarray(mesh.uv_panel)
+    draped = x[np.asarray(mesh.x_of_u)]
+    for i, name in enumerate(mesh.panel_names):
+        if name in held:  # held by an open edge where it is placed: it hangs from there
+            continue
+        pan = p.panels[name]
+        placed = pan.to_world(uv[on == i])
+        d = draped[on == i].mean(axis=0) - placed.mean(axis=0)
+        n = pan.rotation_matrix()[:, 2]
+        pan.translation = pan.translation + d - (d @ n) * n
+    return p
+
+
 def pattern_with_extras(result) -> object:
-    """The final pattern with unsew's additions under its ``unsew`` key: control points per panel,
+    """The final pattern, placed where it drapes (:func:`placed_where_draped`), with unsew's
+    additions under its ``unsew`` key: control points per panel,
     symmetry (pairs, mirror axes, effective K), the material and, when the fit's drapes did not use
     the default body contact (``contact: target``), that contact (``{"threshold_m",
     "stiffness_n_m4"}``, :func:`unsew.commands.drape.pattern_contact` reads it back)."""
-    p = result.pattern.copy()
+    p = placed_where_draped(result.pattern, result.mesh, result.uv, result.x)
     params = result.params
     extras = dict(p.unsew)
     try:
