@@ -771,3 +771,31 @@ def test_a_score_keeps_the_recorded_floors_it_did_not_make():
     assert "floor_mm" not in recs["gc_s1_002"]
     # a floor newton made the earlier way is not carried; the material-fitted one is
     assert recs["gc_s1_003"] == {"built": True, "floor_fitted_mm": 6.0, "flared": True}
+
+
+def test_reexport_places_an_earlier_fit_as_the_fit_exports_it_now(tmp_path):
+    """``gcd reexport`` reads each panel's drape off garment.obj (its pieces in the pattern's
+    panel order) and writes the pattern placed as ``unsew fit`` now writes it; the rest of the
+    folder is copied, an earlier re-drape is not."""
+    from unsew.fit.outputs import placed_where_draped
+    from unsew.io.garmentcode import load_pattern, save_pattern
+    from unsew.io.mesh import write_obj
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.design import Design, draft
+
+    fits = _load("fits")
+    p = draft(Design(garment="tshirt", sleeves="short"))
+    mesh = mesh_pattern(p, edge_length=0.05)
+    x = np.zeros((mesh.n_x, 3))
+    x[np.asarray(mesh.x_of_u)] = np.asarray(mesh.uv_placed3d) + [0.01, 0.12, 0.0]
+    src, dst = tmp_path / "fits" / "c", tmp_path / "again" / "c"
+    src.mkdir(parents=True)
+    save_pattern(p, src / "pattern.json")
+    write_obj(src / "garment.obj", x, mesh.faces, uv=mesh.uv, faces_uv=mesh.faces_uv)
+    (src / "redrape_newton.json").write_text("{}")
+    fits.reexport(src, dst)
+    out, want = load_pattern(dst / "pattern.json"), placed_where_draped(p, mesh, mesh.uv, x)
+    for name in p.panel_order:
+        assert np.allclose(out.panels[name].translation, want.panels[name].translation, atol=1e-6), name
+    assert out.panels["front"].translation[1] - p.panels["front"].translation[1] > 0.05
+    assert (dst / "garment.obj").is_file() and not (dst / "redrape_newton.json").exists()
