@@ -207,7 +207,7 @@ def _score_drapes(rec: dict, case: Path, result: Path, truth: dict, target, *, r
     cache = result / REDRAPE_CACHE
     key = {
         "pattern_sha256": hashlib.sha256(text.encode()).hexdigest(),
-        "target": str(case / "target.obj"),
+        "target": str((case / "target.obj").resolve()),
         "recipe": NEWTON_RECIPE,
     }
     known = json.loads(cache.read_text()) if cache.is_file() else {}
