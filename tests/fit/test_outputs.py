@@ -49,10 +49,10 @@ def test_pattern_errors_keeps_the_others_when_one_cannot_be_compared():
 
 
 def test_the_exported_pattern_is_placed_where_it_draped():
-    """Each panel of the exported pattern moves within its own plane to where the fit's drape has
-    it: a tee draped 8 cm higher, 2 cm to the side and 5 cm forward than its placement is exported
-    8 cm higher and 2 cm to the side, its front and back no nearer the body; a sleeve turned
-    out of the front plane moves within its own plane."""
+    """Each panel of the exported pattern facing front or back moves within its own plane to
+    where the fit's drape has it: a tee draped 8 cm higher, 2 cm to the side and 5 cm forward
+    than its placement is exported 8 cm higher and 2 cm to the side, its front and back no nearer
+    the body; a sleeve turned out of the front plane keeps its placement."""
     from unsew.fit.outputs import placed_where_draped
     from unsew.meshing import mesh_pattern
     from unsew.pattern.base import make_base_pattern
@@ -67,7 +67,8 @@ def test_the_exported_pattern_is_placed_where_it_draped():
     for name, pan in out.panels.items():
         moved = pan.translation - p.panels[name].translation
         n = pan.rotation_matrix()[:, 2]
-        assert np.allclose(moved, shift - (shift @ n) * n, atol=1e-9), name
+        facing = abs(n[2]) > np.cos(np.radians(30.0))
+        assert np.allclose(moved, shift - (shift @ n) * n if facing else 0.0, atol=1e-9), name
         assert np.allclose(pan.rotation, p.panels[name].rotation) and np.allclose(
             pan.vertices, p.panels[name].vertices
         )

@@ -68,11 +68,15 @@ def placed_where_draped(pattern, mesh, uv, x):
     distance along its normal kept) so that its placed mesh vertices' centroid lies over its
     draped ones' (the panel's translation [m]): the exported placement starts another simulator
     where the fit's drape hangs, not where the base was drafted before grading changed the panels.
-    A panel held by an open labelled edge (:data:`unsew.dress.ATTACH_LABELS`) keeps its placement:
-    it was held there.
+    Only panels facing front or back move (normal within
+    :data:`unsew.body.placement.FACING_DEG` of the body's front axis: a bodice's, a skirt's, a
+    trouser leg's): a sleeve, cuff or hood drapes round a limb or the head, its centroid inside
+    it, and keeps the placement it was drafted with; so does a panel held by an open labelled edge
+    (:data:`unsew.dress.ATTACH_LABELS`): it was held there.
 
     mesh: the pattern's GarmentMesh; uv: (Nu, 2) panel-frame positions of its rest vertices [m];
     x: (n_x, 3) draped sewn positions [m] (numpy or torch)."""
+    from unsew.body.placement import FACING_DEG
     from unsew.dress import ATTACH_LABELS
 
     p = pattern.copy()
@@ -91,9 +95,11 @@ def placed_where_draped(pattern, mesh, uv, x):
         if name in held:  # held by an open edge where it is placed: it hangs from there
             continue
         pan = p.panels[name]
+        n = pan.rotation_matrix()[:, 2]
+        if abs(n[2]) < np.cos(np.radians(FACING_DEG)):
+            continue
         placed = pan.to_world(uv[on == i])
         d = draped[on == i].mean(axis=0) - placed.mean(axis=0)
-        n = pan.rotation_matrix()[:, 2]
         pan.translation = pan.translation + d - (d @ n) * n
     return p
 
