@@ -128,10 +128,20 @@ def cmd_reexport(args, cases: list[str]) -> int:
     """``gcd reexport --results IN --to OUT``: every fitted case of IN re-exported into OUT
     (:func:`reexport`), with IN's fits.json."""
     src, dst = Path(args.results), Path(args.to)
-    for cid in cases:
-        if (src / cid / "pattern.json").is_file():
-            reexport(src / cid, dst / cid)
-            print(f"{cid}: re-exported", flush=True)
-    if read_log(src):
-        _write_log(dst, read_log(src))
+    if not src.is_dir():
+        print(f"gcd reexport: --results {src} is not a folder", file=sys.stderr)
+        return 2
+    if dst.resolve() == src.resolve():
+        print("gcd reexport: --to must be another folder than --results", file=sys.stderr)
+        return 2
+    done = [cid for cid in cases if (src / cid / "pattern.json").is_file()]
+    if not done:
+        print(f"gcd reexport: no fit result folder in {src}", file=sys.stderr)
+        return 2
+    for cid in done:
+        reexport(src / cid, dst / cid)
+        print(f"{cid}: re-exported", flush=True)
+    log = read_log(src)
+    if log:
+        _write_log(dst, log)
     return 0

@@ -27,7 +27,16 @@ from unsew.sim.model import SimModel
 from unsew.sim.seam_guide import through_pairs
 from unsew.sim.state import SimState
 
-__all__ = ["Dressed", "dress", "settle", "DRESS_SETTINGS", "resolve_material", "hold_vertices", "dress_stats"]
+__all__ = [
+    "Dressed",
+    "dress",
+    "settle",
+    "DRESS_SETTINGS",
+    "resolve_material",
+    "hold_vertices",
+    "dress_stats",
+    "hanging_edges",
+]
 
 #: A lower garment's waistline: its vertices within this height of its top [m].
 HOLD_BAND = 0.02
@@ -85,18 +94,24 @@ def hold_vertices(pattern, mesh, body, x_unsewn) -> np.ndarray:
 ATTACH_LABELS = ("lower_interface", "strapless_top")
 
 
-def attached_vertices(pattern, mesh, body, sdf):
-    """The rest vertices on unsewn edges labelled ATTACH_LABELS and their heights, as
-    ``Cloth.anchors`` (uv indices (A,) int64 torch, heights (A,) float64 torch [m]), or None when
-    there is none. A height is the mean over a sewn vertex's copies of the pattern's own placement
-    (:func:`unsew.body.placement.place_as_given`: each panel's translation and rotation)."""
+def hanging_edges(pattern) -> set:
+    """The (panel name, edge index) pairs of ``pattern``'s open edges (sewn to nothing) labelled
+    one of :data:`ATTACH_LABELS`: the edges the garment hangs from."""
     sewn = {(side.panel, side.edge) for st in pattern.stitches for side in (st.a, st.b)}
-    hung = {
+    return {
         (name, e)
         for name, pa in pattern.panels.items()
         for e, edge in enumerate(pa.edges)
         if edge.label in ATTACH_LABELS and (name, e) not in sewn
     }
+
+
+def attached_vertices(pattern, mesh, body, sdf):
+    """The rest vertices on unsewn edges labelled ATTACH_LABELS and their heights, as
+    ``Cloth.anchors`` (uv indices (A,) int64 torch, heights (A,) float64 torch [m]), or None when
+    there is none. A height is the mean over a sewn vertex's copies of the pattern's own placement
+    (:func:`unsew.body.placement.place_as_given`: each panel's translation and rotation)."""
+    hung = hanging_edges(pattern)
     if not hung:
         return None
     idx = [np.asarray(v, np.int64) for key, v in mesh.edge_verts.items() if key in hung]

@@ -799,3 +799,13 @@ def test_reexport_places_an_earlier_fit_as_the_fit_exports_it_now(tmp_path):
         assert np.allclose(out.panels[name].translation, want.panels[name].translation, atol=1e-6), name
     assert out.panels["front"].translation[1] - p.panels["front"].translation[1] > 0.05
     assert (dst / "garment.obj").is_file() and not (dst / "redrape_newton.json").exists()
+
+
+def test_reexport_refuses_a_missing_or_same_folder_in_one_line(tmp_path, capsys):
+    run = _load("run")
+    assert run.main(["reexport", "--results", str(tmp_path / "none"), "--to", str(tmp_path / "x")]) == 2
+    assert "is not a folder" in capsys.readouterr().err
+    assert run.main(["reexport", "--results", str(tmp_path), "--to", str(tmp_path)]) == 2
+    assert "another folder" in capsys.readouterr().err
+    assert run.main(["reexport", "--results", str(tmp_path), "--to", str(tmp_path / "x")]) == 2
+    assert "no fit result folder" in capsys.readouterr().err

@@ -72,21 +72,16 @@ def placed_where_draped(pattern, mesh, uv, x):
     :data:`unsew.body.placement.FACING_DEG` of the body's front axis: a bodice's, a skirt's, a
     trouser leg's): a sleeve, cuff or hood drapes round a limb or the head, its centroid inside
     it, and keeps the placement it was drafted with; so does a panel held by an open labelled edge
-    (:data:`unsew.dress.ATTACH_LABELS`): it was held there.
+    (:func:`unsew.dress.hanging_edges`): it was held there.
 
-    mesh: the pattern's GarmentMesh; uv: (Nu, 2) panel-frame positions of its rest vertices [m];
-    x: (n_x, 3) draped sewn positions [m] (numpy or torch)."""
+    mesh: the pattern's GarmentMesh (its ``uv_panel``, ``x_of_u`` and ``panel_names``); uv:
+    (Nu, 2) float panel-frame positions of its rest vertices [m]; x: (n_x, 3) float draped sewn
+    positions [m] (numpy or torch). Returns the moved copy (a Pattern; translations [m])."""
     from unsew.body.placement import FACING_DEG
-    from unsew.dress import ATTACH_LABELS
+    from unsew.dress import hanging_edges
 
     p = pattern.copy()
-    sewn = {(side.panel, side.edge) for st in p.stitches for side in (st.a, st.b)}
-    held = {
-        n
-        for n, pa in p.panels.items()
-        for i, e in enumerate(pa.edges)
-        if e.label in ATTACH_LABELS and (n, i) not in sewn
-    }
+    held = {name for name, _ in hanging_edges(p)}
     uv = np.asarray(uv.detach().cpu() if hasattr(uv, "detach") else uv, np.float64)
     x = np.asarray(x.detach().cpu() if hasattr(x, "detach") else x, np.float64)
     on = np.asarray(mesh.uv_panel)

@@ -248,10 +248,10 @@ def _stretch(x, faces, uv, faces_uv) -> tuple[float, float]:
 
 def _area_ratio(x, faces, uv, faces_uv) -> float:
     """The triangles' total area in ``x`` (N, 3) [m] over their total in ``uv`` (Nu, 2) [m] [-]."""
+    from unsew.geometry.repair import triangle_areas
     from unsew.meshing.triangulate import signed_areas
 
-    p = x[faces]
-    a3 = 0.5 * np.linalg.norm(np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), axis=1).sum()
+    a3 = triangle_areas(x, faces).sum()
     return float(a3 / max(np.abs(signed_areas(uv, faces_uv)).sum(), 1e-15))
 
 
