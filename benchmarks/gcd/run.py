@@ -14,7 +14,7 @@
     python -m benchmarks gcd judge-check           the judge on synthetic inputs (seconds)
     python -m benchmarks gcd panels --results R --cases DIR   per true piece, each fit stage; darts' floor
     python -m benchmarks gcd sew-probe CASE_DIR ['{"sew_contact_mu": 0.5}'] [--no-attach] [--no-guide]
-    python -m benchmarks gcd starts [--out DIR] [--drapes DIR] [--only ...] [--record] [--drafts]   the start
+    python -m benchmarks gcd starts [--out DIR] [--drapes DIR] [--only ...] [--record] [--drafts [--darts]]
 
 ``build`` samples GarmentCode's designs (seed k sized to and draped on body k of manifest.json),
 drapes each with newton from the specification's own 3D placement and writes the case folders
@@ -206,6 +206,11 @@ def _add_starts_parser(sub) -> None:
         "--drafts",
         action="store_true",
         help="no drapes: the design read first, drafted, judged against the true pattern",
+    )
+    st.add_argument(
+        "--darts",
+        action="store_true",
+        help="with --drafts: each draft judged with its waist darts off and on too",
     )
 
 

@@ -143,9 +143,10 @@ def write_record(record: Path, rows: list[dict]) -> None:
     record.write_text(json.dumps(rec, indent=1) + "\n")
 
 
-def draft_row(d: Path, source: str, target: Path) -> dict:
+def draft_row(d: Path, source: str, target: Path, *, darts: bool = False) -> dict:
     """One case's row of ``--drafts``: the design read first, drafted for the case's body, judged
-    against the true pattern (panel error, turning distance, pieces after merging)."""
+    against the true pattern (panel error, turning distance, pieces after merging); with
+    ``darts``, also with its waist darts off and on (:func:`darts_both_ways`)."""
     import judge
     from unsew.body.measure import measure_body
     from unsew.errors import InputError
@@ -164,12 +165,33 @@ def draft_row(d: Path, source: str, target: Path) -> dict:
         name, design = design_candidates(case.design, m, measures=meas)[0]
     except InputError as exc:
         return {**row, "design": f"refused: {str(exc).splitlines()[0][:120]}"}
-    cmp = judge.compare_patterns(
-        json.loads((d / "pattern_gt.json").read_text()), pattern_to_dict(draft(design, m))
-    )
+    truth = json.loads((d / "pattern_gt.json").read_text())
+    cmp = judge.compare_patterns(truth, pattern_to_dict(draft(design, m)))
     row.update(design=name, panel_err=round(cmp["panel_err"], 3), turning=cmp["turning"])
     row["pieces t/r"] = f"{cmp['panels_true']}/{cmp['panels_rec']}"
+    if darts:
+        row.update(darts_both_ways(truth, design, m))
     return row
+
+
+def darts_both_ways(truth: dict, design, m) -> dict:
+    """The drafted ``design`` (measurements ``m``) judged against the true specification
+    ``truth`` with its waist darts off and on: {"turning no darts", "turning darts", "panel err
+    no darts", "panel err darts"}, None where the design space cuts no darts in that design."""
+    import judge
+    from unsew.errors import InputError
+    from unsew.io.garmentcode import pattern_to_dict
+    from unsew.pattern.design import draft
+
+    out = {}
+    for flag, said in ((False, "no darts"), (True, "darts")):
+        try:
+            cmp = judge.compare_patterns(truth, pattern_to_dict(draft(design.replace(darts=flag), m)))
+        except InputError:  # the design space's own refusal: no darts in this design
+            cmp = {"turning": None, "panel_err": None}
+        out[f"turning {said}"] = cmp["turning"]
+        out[f"panel err {said}"] = cmp["panel_err"]
+    return out
 
 
 def cmd_drafts(args, case_ids: list[str]) -> int:
@@ -183,7 +205,7 @@ def cmd_drafts(args, case_ids: list[str]) -> int:
         tgt = gt_reading.target_of(root, cid, drapes)
         if tgt is None or not (root / cid / "truth.json").is_file():
             continue
-        rows.append(draft_row(root / cid, gt_reading.SOURCES[tgt[0]], tgt[1]))
+        rows.append(draft_row(root / cid, gt_reading.SOURCES[tgt[0]], tgt[1], darts=args.darts))
         print(json.dumps(rows[-1]), flush=True)
     print_table(rows, title=f"The design read first, drafted, against the true pattern ({root})", digits=3)
     e = [r["panel_err"] for r in rows if r.get("panel_err") is not None]
@@ -192,6 +214,14 @@ def cmd_drafts(args, case_ids: list[str]) -> int:
         print(
             f"{len(e)} of {len(rows)} drafted: panel err median {np.median(e):.3f}, "
             f"turning median {np.median(tu):.3f}"
+        )
+    both = [r for r in rows if r.get("turning darts") is not None and r.get("turning no darts") is not None]
+    if args.darts and both:
+        off = [r["turning no darts"] for r in both]
+        on = [r["turning darts"] for r in both]
+        print(
+            f"{len(both)} drafted with and without waist darts: turning median {np.median(off):.3f} -> "
+            f"{np.median(on):.3f}, lower with darts on {sum(b < a for a, b in zip(off, on))}"
         )
     return 0
 
