@@ -813,8 +813,8 @@ def test_reexport_refuses_a_missing_or_same_folder_in_one_line(tmp_path, capsys)
 
 def test_drafts_judged_with_and_without_darts_against_a_darted_truth():
     """`gcd starts --drafts --darts`: a two-panel pencil skirt whose true pattern has waist darts
-    is judged nearer its darted draft (turning 0, the truth itself) than its plain one; a circle
-    skirt, which the design space cuts no darts in, has no darted row."""
+    is judged nearer its darted draft (turning 0, the truth itself) than its plain one; a
+    four-gore skirt, which the design space cuts no darts in, has no darted row."""
     from unsew.body.body import default_body
     from unsew.body.measure import measure_body
     from unsew.io.garmentcode import pattern_to_dict
@@ -826,6 +826,6 @@ def test_drafts_judged_with_and_without_darts_against_a_darted_truth():
     got = starts.darts_both_ways(pattern_to_dict(draft(pencil.replace(darts=True), m)), pencil, m)
     assert got["turning darts"] < 1e-9 and got["panel err darts"] < 1e-9
     assert got["turning no darts"] > 0.1
-    circle = Design(garment="skirt", skirt="circle", panels=2)
-    got = starts.darts_both_ways(pattern_to_dict(draft(circle, m)), circle, m)
+    gores = Design(garment="skirt", skirt="pencil", panels=4)
+    got = starts.darts_both_ways(pattern_to_dict(draft(gores, m)), gores, m)
     assert got["turning darts"] is None and got["turning no darts"] < 1e-9
