@@ -108,7 +108,6 @@ def reexport(src: Path, dst: Path) -> None:
     from unsew.fit.outputs import placed_where_draped
     from unsew.io.garmentcode import load_pattern, save_pattern
 
-    shutil.copytree(src, dst, ignore=shutil.ignore_patterns("redrape_newton*"), dirs_exist_ok=True)
     pattern = load_pattern(src / "pattern.json")
     x, f, uv, fu = read_obj_uv(src / "garment.obj")
     x_of_u = np.zeros(len(uv), np.int64)
@@ -121,12 +120,16 @@ def reexport(src: Path, dst: Path) -> None:
     first = [np.flatnonzero(comp == k).min() for k in range(n)]
     uv_panel = np.argsort(np.argsort(first))[comp]
     mesh = SimpleNamespace(uv_panel=uv_panel, x_of_u=x_of_u, panel_names=list(pattern.panel_order))
-    save_pattern(placed_where_draped(pattern, mesh, uv, x), dst / "pattern.json")
+    placed = placed_where_draped(pattern, mesh, uv, x)  # made before anything is written
+    shutil.copytree(src, dst, ignore=shutil.ignore_patterns("redrape_newton*"), dirs_exist_ok=True)
+    save_pattern(placed, dst / "pattern.json")
 
 
 def cmd_reexport(args, cases: list[str]) -> int:
     """``gcd reexport --results IN --to OUT``: every fitted case of IN re-exported into OUT
     (:func:`reexport`), with IN's fits.json."""
+    from unsew.errors import UnsewError
+
     src, dst = Path(args.results), Path(args.to)
     if not src.is_dir():
         print(f"gcd reexport: --results {src} is not a folder", file=sys.stderr)
@@ -139,7 +142,11 @@ def cmd_reexport(args, cases: list[str]) -> int:
         print(f"gcd reexport: no fit result folder in {src}", file=sys.stderr)
         return 2
     for cid in done:
-        reexport(src / cid, dst / cid)
+        try:
+            reexport(src / cid, dst / cid)
+        except (UnsewError, OSError, ValueError) as exc:  # an unreadable fit, or a drape of another pattern
+            print(f"gcd reexport: {cid}: {str(exc).splitlines()[0]}", file=sys.stderr)
+            return 2
         print(f"{cid}: re-exported", flush=True)
     log = read_log(src)
     if log:

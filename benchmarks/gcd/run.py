@@ -322,6 +322,9 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     if args.cmd in ("types", "starts") and not _folders_given(args):
         return 2
+    if args.cmd == "starts" and args.darts and not args.drafts:
+        print("gcd starts: --darts judges the drafts; give it with --drafts", file=sys.stderr)
+        return 2
     modes = {
         "types": cmd_types,
         "starts": lambda a: starts.cmd_starts(a, [cid for cid, _, _ in build.case_ids()], STARTS_RECORD),

@@ -61,6 +61,13 @@ def test_gcd_reading_modes_refuse_a_missing_folder_in_one_line(tmp_path):
         assert r.stderr.strip().splitlines() == [f"gcd {args[0]}: --out {tmp_path / 'none'} is not a folder"]
 
 
+def test_gcd_starts_refuses_darts_without_drafts_in_one_line(tmp_path):
+    tmp_path.mkdir(exist_ok=True)
+    r = _run("gcd", "starts", "--darts", "--out", str(tmp_path))
+    assert r.returncode == 2
+    assert r.stderr.strip().splitlines() == ["gcd starts: --darts judges the drafts; give it with --drafts"]
+
+
 def test_gcd_settle_refuses_a_missing_folder_and_a_case_without_a_target_in_one_line(tmp_path):
     r = _run("gcd", "settle", "--out", str(tmp_path / "none"), "--to", str(tmp_path / "to"))
     assert r.returncode == 2

@@ -809,6 +809,12 @@ def test_reexport_refuses_a_missing_or_same_folder_in_one_line(tmp_path, capsys)
     assert "another folder" in capsys.readouterr().err
     assert run.main(["reexport", "--results", str(tmp_path), "--to", str(tmp_path / "x")]) == 2
     assert "no fit result folder" in capsys.readouterr().err
+    (tmp_path / "gc_s1_000").mkdir()
+    (tmp_path / "gc_s1_000" / "pattern.json").write_text("{}")
+    assert run.main(["reexport", "--results", str(tmp_path), "--to", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("gcd reexport: gc_s1_000: ")
+    assert not (tmp_path / "x" / "gc_s1_000").exists()  # nothing half written
 
 
 def test_drafts_judged_with_and_without_darts_against_a_darted_truth():
