@@ -266,6 +266,29 @@ def test_skirt_length_reaches_its_landmark():
             assert pattern_diff(p, metres) == []  # the same cut as that length in metres
 
 
+def test_a_top_may_end_at_or_above_the_waist():
+    """A fitted bodice ends at the natural waist and a crop top above it: a top's hem lies where
+    its length puts it, above the waist too; no other garment's may, and a top's hem must leave
+    a side seam under the armpit (one line, not a broken pattern)."""
+    for body in (Measurements(), OTHER):
+        f = body_frame(body)
+        for length in (0.0, -0.03):
+            p = draft(Design(garment="tshirt", length=length, darts=True, hem_girth=0.8 * body.bust), body)
+            assert validate_pattern(p) == []
+            low = min(
+                g.to_world(panel_outline(g))[:, 1].min() for g in p.panels.values() if "sleeve" not in g.name
+            )
+            assert low == pytest.approx(f.waist_y - length, abs=1e-9)
+    with pytest.raises(InputError, match="length"):
+        Design(garment="skirt", length=-0.03)
+    with pytest.raises(InputError, match="length"):
+        Design(garment="tshirt", length=-0.2)
+    f = body_frame(Measurements())
+    too_high = round(f.waist_y - f.armpit_y + 0.02, 2)  # 3 cm under the armpit
+    with pytest.raises(InputError, match="under the armpit"):
+        draft(Design(garment="tshirt", length=too_high), Measurements())
+
+
 def _sleeve_panels(p):
     return [q for n, q in p.panels.items() if "sleeve" in n]
 

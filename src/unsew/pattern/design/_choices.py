@@ -51,6 +51,10 @@ TOPS = ("tshirt", "dress", "jumpsuit")
 #: A strapless top's edge below the armpits [m], where none is read, and the range it may take [m].
 STRAPLESS_DROP = 0.03
 TOP_DROP_RANGE = (-0.15, 0.3)
+#: How far above the natural waist a top's hem may lie [m] (a crop top; a fitted bodice ends at
+#: the waist); every other garment's hem lies at least :data:`MIN_LENGTH` below it [m].
+TOP_LENGTH_MIN = -0.15
+MIN_LENGTH = 0.05
 #: Garments with trouser legs, and each one's default leg length.
 LEGGED = {"pants": "full", "shorts": "shorts", "jumpsuit": "full"}
 
@@ -102,10 +106,10 @@ class Design:
     #: trousers and jumpsuits: ``full``, ``knee`` or ``shorts`` (None: the garment's own, set at
     #: construction: ``shorts`` for shorts, else ``full``)
     leg: str | None = None
-    #: hem below the natural waist [m], or where on the body it falls, one of :data:`LENGTHS`
-    #: (``"knee"``: measured on the body drafted for, :func:`~unsew.pattern.design.length_to`);
-    #: None: the garment's own (a tee at the hips, a skirt at the knee, a dress at mid-calf or
-    #: the knee, trousers by ``leg``)
+    #: hem below the natural waist [m] (a top's may lie above it, down to :data:`TOP_LENGTH_MIN`),
+    #: or where on the body it falls, one of :data:`LENGTHS` (``"knee"``: measured on the body
+    #: drafted for, :func:`~unsew.pattern.design.length_to`); None: the garment's own (a tee at
+    #: the hips, a skirt at the knee, a dress at mid-calf or the knee, trousers by ``leg``)
     length: float | str | None = None
     #: one-piece dress: the hem's width beyond the hips per side seam [m]; trousers: the hem's
     #: half width added per leg panel [m] (None: the garment's own: 0.18 / 0.03 / 0)
@@ -155,7 +159,8 @@ class Design:
                     f"design length must be metres or one of {list(LENGTHS)}, not {self.length!r}"
                 )
         elif self.length is not None:
-            _check_range("length", self.length, 0.05, 1.6)
+            lo = TOP_LENGTH_MIN if self.garment == "tshirt" else MIN_LENGTH
+            _check_range("length", self.length, lo, 1.6)
         if self.hem_flare is not None:
             _check_range("hem_flare", self.hem_flare, 0.0, 0.6)
         if self.hem_girth is not None:

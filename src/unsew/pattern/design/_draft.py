@@ -40,6 +40,8 @@ __all__ = ["draft", "length_to"]
 TORSO_ASPECT = 0.7
 #: A t-shirt's hem below the hips [m] (the library's).
 TEE_HEM_DROP = 0.02
+#: A top's side seam under the armpit at least this long [m] (a crop top's hem).
+MIN_TOP_SIDE = 0.05
 #: A trouser hem at least this far below the crotch point [m].
 MIN_INSEAM = 0.03
 
@@ -106,6 +108,13 @@ def _bodice_darts(m: Measurements, f: BodyFrame, w_hem: float, hem_y: float) -> 
 def _tshirt(d: Design, m: Measurements) -> Pattern:
     f = body_frame(m)
     hem_y = f.hip_y - TEE_HEM_DROP if d.length is None else f.waist_y - d.length
+    if f.armpit_y - hem_y < MIN_TOP_SIDE:
+        where = "above" if d.length < 0 else "below"
+        raise InputError(
+            f"a top's hem {abs(100 * d.length):.0f} cm {where} the waist leaves "
+            f"{100 * (f.armpit_y - hem_y):.0f} cm under the armpit on this body; at least "
+            f"{100 * MIN_TOP_SIDE:.0f} cm are needed"
+        )
     w_hem = (
         max((m.hip + TEE_HIP_EASE) / 4, (m.bust + BUST_EASE) / 4) if d.hem_girth is None else d.hem_girth / 4
     )
