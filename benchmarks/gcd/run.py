@@ -210,7 +210,7 @@ def _add_starts_parser(sub) -> None:
     st.add_argument(
         "--darts",
         action="store_true",
-        help="with --drafts: each draft judged with its waist darts off and on too",
+        help="with --drafts: each draft judged with its waist darts off and on, and with bust darts",
     )
 
 

@@ -6,7 +6,9 @@ from scratch on its coarse mesh), not grading nor phase two.
 
 With ``--drafts`` no candidate is dressed: the design read first (the first candidate) is drafted
 for the case's body and judged against the true pattern (judge.py: panel error, turning
-distance), on every case with a target; the table ends with their medians.
+distance), on every case with a target; the table ends with their medians. ``--darts`` judges
+each also with its waist darts off and on, and with a bust dart in each front side seam
+(:func:`side_darts`).
 
 The target is chosen as in reading.py: newton's drape where the build accepted it, else the true
 pattern dressed by ``unsew drape`` (DRAPES/<case>.obj) stands in.
@@ -146,7 +148,8 @@ def write_record(record: Path, rows: list[dict]) -> None:
 def draft_row(d: Path, source: str, target: Path, *, darts: bool = False) -> dict:
     """One case's row of ``--drafts``: the design read first, drafted for the case's body, judged
     against the true pattern (panel error, turning distance, pieces after merging); with
-    ``darts``, also with its waist darts off and on (:func:`darts_both_ways`)."""
+    ``darts``, also with its waist darts off and on (:func:`darts_both_ways`) and with bust darts
+    (:func:`side_darts`)."""
     import judge
     from unsew.body.measure import measure_body
     from unsew.errors import InputError
@@ -171,7 +174,93 @@ def draft_row(d: Path, source: str, target: Path, *, darts: bool = False) -> dic
     row["pieces t/r"] = f"{cmp['panels_true']}/{cmp['panels_rec']}"
     if darts:
         row.update(darts_both_ways(truth, design, m))
+        row["turning side darts"] = _with_side_darts(truth, design, m, d)
     return row
+
+
+#: Where a trial bust dart's centre sits on the front's side seam: this share of the way from the
+#: natural waist up to the armpit.
+BUST_DART_AT = 0.5
+
+
+def side_darts(pattern, m, width: float, bust_points: float):
+    """A copy of a drafted top or bodice (``pattern``, :class:`unsew.pattern.model.Pattern`, its
+    bodice's front named ``front``) with a bust dart cut in each side seam of its front, as GarmentCode's
+    fitted bodice has: ``width`` [m] at the mouth, the tip ``0.75 (half width - bust_points / 2)``
+    [m] in, its centre :data:`BUST_DART_AT` of the way from the waist to the armpit. The front
+    below the dart is lengthened by ``width`` so the side seam's sewn length stays. A trial of the
+    judge's measure, not a design the fit drafts. None without a bodice front or a dart over 5 mm."""
+    import copy
+
+    from unsew.pattern.base._frame import body_frame
+    from unsew.pattern.design._darts import Dart, dart_edge
+    from unsew.pattern.model import StitchSide
+
+    front = pattern.panels.get("front")
+    if (
+        front is None
+        or width < 0.005
+        or not any(e.label == "right_armhole" or e.label.startswith("top") for e in front.edges)
+    ):
+        return None  # no bodice front (a skirt's front has no armhole nor top edge)
+    p = copy.deepcopy(pattern)
+    f = body_frame(m)
+    front = p.panels["front"]
+    side = next(i for i, e in enumerate(front.edges) if e.label == "right_side")
+    a, b = front.vertices[front.edges[side].start], front.vertices[front.edges[side].end]
+    length = float(np.linalg.norm(b - a))
+    at = float(
+        np.clip(
+            f.waist_y + BUST_DART_AT * (f.armpit_y - f.waist_y) - front.translation[1],
+            0.3 * length,
+            0.8 * length,
+        )
+    )
+    depth = 0.75 * (abs(float(a[0])) - bust_points / 2)
+    dx, dy = abs(float(b[0] - a[0])), abs(float(b[1] - a[1]))
+    verts = front.vertices.copy()  # the side, less the dart's mouth, keeps its length
+    verts[verts[:, 1] < a[1] + at, 1] -= float(np.sqrt((length + width) ** 2 - dx**2)) - dy
+    front.vertices = verts
+    for label in ("right_side", "left_side"):
+        front = p.panels["front"]
+        e = next(i for i, x in enumerate(front.edges) if x.label == label)
+        run = float(np.linalg.norm(front.vertices[front.edges[e].end] - front.vertices[front.edges[e].start]))
+        centre = at + width if label == "right_side" else run - at - width
+        new, st, pieces = dart_edge(front, e, [Dart(centre, width, depth)], label)
+        sewn = pieces[0] if label == "right_side" else pieces[-1]  # the piece nearer the hem
+
+        def moved(s, e=e, sewn=sewn):
+            if s.panel != "front" or s.edge < e:
+                return s
+            return StitchSide("front", s.edge + 3 if s.edge > e else sewn)
+
+        for s in p.stitches:
+            s.a, s.b = moved(s.a), moved(s.b)
+        p.panels["front"] = new
+        p.stitches += st
+    return p
+
+
+def _with_side_darts(truth: dict, design, m, d: Path):
+    """The turning distance of ``design`` drafted with its waist darts and :func:`side_darts`
+    (the bust dart's width and the bust points' distance from the case's body file, as
+    GarmentCode sizes them: ``waist_over_bust_line - waist_line``), or None where it has no
+    waist darts or no front."""
+    import judge
+    import yaml
+    from unsew.errors import InputError
+    from unsew.io.garmentcode import pattern_to_dict
+    from unsew.pattern.design import draft
+
+    body = json.loads((d / "meta.json").read_text())["source"]["body"]["name"]
+    sizes = yaml.safe_load((d.parent / "_bodies" / body / "body.yaml").read_text())["body"]
+    try:
+        darted = draft(design.replace(darts=True), m)
+    except InputError:
+        return None
+    width = (sizes["waist_over_bust_line"] - sizes["waist_line"]) / 100
+    p = side_darts(darted, m, width, sizes["bust_points"] / 100)
+    return None if p is None else judge.compare_patterns(truth, pattern_to_dict(p))["turning"]
 
 
 def darts_both_ways(truth: dict, design, m) -> dict:
@@ -222,6 +311,15 @@ def cmd_drafts(args, case_ids: list[str]) -> int:
         print(
             f"{len(both)} drafted with and without waist darts: turning median {np.median(off):.3f} -> "
             f"{np.median(on):.3f}, lower with darts on {sum(b < a for a, b in zip(off, on))}"
+        )
+    side = [r for r in both if r.get("turning side darts") is not None]
+    if args.darts and side:
+        on = [r["turning darts"] for r in side]
+        sd = [r["turning side darts"] for r in side]
+        print(
+            f"{len(side)} with a bust dart in each front side seam too: turning median "
+            f"{np.median(on):.3f} -> "
+            f"{np.median(sd):.3f}, lower on {sum(b < a for a, b in zip(on, sd))}"
         )
     return 0
 

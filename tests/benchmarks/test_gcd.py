@@ -835,3 +835,35 @@ def test_drafts_judged_with_and_without_darts_against_a_darted_truth():
     gores = Design(garment="skirt", skirt="pencil", panels=4)
     got = starts.darts_both_ways(pattern_to_dict(draft(gores, m)), gores, m)
     assert got["turning darts"] is None and got["turning no darts"] < 1e-9
+
+
+def test_side_darts_keep_the_side_seam_sewn_length():
+    """The trial bust darts: a darted top's front gets one V notch in each side seam, sewn shut,
+    and the front's side, less its dart, is as long as the back's side it is sewn to."""
+    from unsew.body.body import default_body
+    from unsew.body.measure import measure_body
+    from unsew.pattern.design import Design, draft
+
+    starts = _load("starts")
+    m = measure_body(default_body())
+    top = draft(Design(garment="tshirt", darts=True, hem_girth=0.8 * m.bust), m)
+    got = starts.side_darts(top, m, 0.04, 0.16)
+    assert starts.side_darts(top, m, 0.002, 0.16) is None  # too narrow to cut
+
+    def run(panel, prefix):
+        v = panel.vertices
+        return sum(
+            float(np.linalg.norm(v[e.end] - v[e.start]))
+            for e in panel.edges
+            if e.label.startswith(prefix) and "dart" not in e.label
+        )
+
+    front, back = got.panels["front"], got.panels["back"]
+    assert sum("_side_dart" in st.label for st in got.stitches) == 2
+    for side in ("right_side", "left_side"):
+        assert run(front, side) == pytest.approx(run(back, side), abs=1e-9)
+        legs = [e for e in front.edges if e.label.startswith(side + "_dart")]
+        assert len(legs) == 2
+        lo, hi = (np.linalg.norm(front.vertices[e.end] - front.vertices[e.start]) for e in legs)
+        assert lo == pytest.approx(hi, abs=1e-9)  # the legs sewn to each other match
+    assert len(got.stitches) == len(top.stitches) + 2
