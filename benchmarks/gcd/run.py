@@ -15,6 +15,7 @@
     python -m benchmarks gcd panels --results R --cases DIR   per true piece, each fit stage; darts' floor
     python -m benchmarks gcd sew-probe CASE_DIR ['{"sew_contact_mu": 0.5}'] [--no-attach] [--no-guide]
     python -m benchmarks gcd starts [--out DIR] [--drapes DIR] [--only ...] [--record] [--drafts [--darts]]
+    python -m benchmarks gcd unwelded [--out DIR] [--only ...] [--no-weld]   targets read with panels unwelded
 
 ``build`` samples GarmentCode's designs (seed k sized to and draped on body k of manifest.json),
 drapes each with newton from the specification's own 3D placement and writes the case folders
@@ -43,6 +44,7 @@ import kept  # noqa: E402
 import score  # noqa: E402
 import settle  # noqa: E402
 import starts  # noqa: E402
+import unwelded  # noqa: E402
 
 RESULTS = HERE / "results.json"
 TYPES_RECORD = HERE.parent / "results" / "gcd_types.json"
@@ -319,6 +321,10 @@ def main(argv=None) -> int:
     se.add_argument("--only", nargs="*", help="case ids (default: every case with a target)")
     _add_types_parser(sub)
     _add_starts_parser(sub)
+    uw = sub.add_parser("unwelded", help="the design read off each newton target with its panels unwelded")
+    uw.add_argument("--out", default=str(DEFAULT_CASES))
+    uw.add_argument("--only", nargs="*", help="case ids (default: every case with a newton target)")
+    uw.add_argument("--no-weld", action="store_true", help="the repair's seam welding off (as before it)")
     args = ap.parse_args(argv)
     if args.cmd in ("types", "starts") and not _folders_given(args):
         return 2
@@ -328,6 +334,7 @@ def main(argv=None) -> int:
     modes = {
         "types": cmd_types,
         "starts": lambda a: starts.cmd_starts(a, [cid for cid, _, _ in build.case_ids()], STARTS_RECORD),
+        "unwelded": lambda a: unwelded.cmd_unwelded(a, [cid for cid, _, _ in build.case_ids()]),
         "build": cmd_build,
         "fit": lambda a: fits.cmd_fit(a, [cid for cid, _, _ in build.case_ids()]),
         "score": lambda a: score.cmd_score(a, Path(a.record_file)),

@@ -867,3 +867,23 @@ def test_side_darts_keep_the_side_seam_sewn_length():
         lo, hi = (np.linalg.norm(front.vertices[e.end] - front.vertices[e.start]) for e in legs)
         assert lo == pytest.approx(hi, abs=1e-9)  # the legs sewn to each other match
     assert len(got.stitches) == len(top.stitches) + 2
+
+
+def test_unwelded_copies_weld_back_on_load():
+    """`gcd unwelded`'s two exports of a garment (its front and back pieces unwelded, the back
+    once meshed twice as finely) are welded back by the target's repair: one surface whose
+    openings are the garment's own."""
+    sys.path.insert(0, str(ROOT / "tests"))
+    from geometry_meshes import grid_tube
+
+    from unsew.geometry import topology
+    from unsew.geometry.repair import repair_garment
+
+    unwelded = _load("unwelded")
+    v, f = grid_tube()
+    for finer in (False, True):
+        v2, f2 = unwelded.split_front_back(v, f, 0.0, finer=finer)
+        assert topology.components(f2, len(v2))[0] == 2
+        _, f3, rep = repair_garment(v2, f2)
+        assert rep.components == 1 and rep.welded_vertices > 0
+        assert len(topology.boundary_loops(f3)) == 2  # the tube's two rims

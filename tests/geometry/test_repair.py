@@ -87,6 +87,56 @@ def test_two_garments_refused_and_split_panels_kept():
     assert rep.components == 2 and len(f2) == 2 * len(f)
 
 
+def _split_open(v, f, gap):
+    """The tube cut into a front (z > 0) and a back piece along its two side seams, each seam
+    vertex doubled and the back's copy moved ``gap`` [m] back: panels exported unwelded."""
+    front = v[f].mean(1)[:, 2] > 0
+    seam = np.intersect1d(f[front].ravel(), f[~front].ravel())
+    copy = {int(i): len(v) + k for k, i in enumerate(seam)}
+    back = np.vectorize(lambda i: copy.get(int(i), int(i)))(f[~front])
+    v2 = np.concatenate([v, v[seam] + [0.0, 0.0, -gap]])
+    return v2, np.concatenate([f[front], back]), len(seam)
+
+
+def test_open_seams_welded_to_one_surface():
+    """Panels exported with their seams unwelded (0.5 mm apart) are one surface again: the tube's
+    two rims are its only openings, not the seams; pieces 5 mm apart stay apart."""
+    from unsew.geometry import topology
+
+    v, f = grid_tube()
+    v2, f2, n_seam = _split_open(v, f, 0.0005)
+    assert len(topology.boundary_loops(f2)) == 2  # each piece one outline: its seams run into the rims
+    v3, f3, rep = repair_garment(v2, f2)
+    assert rep.components == 1 and rep.welded_vertices == n_seam
+    assert any("welded" in note for note in rep.notes)
+    loops = topology.boundary_loops(f3)
+    assert sorted(len(loop) for loop in loops) == [12, 12]  # the rims, as on the welded tube
+    assert np.allclose(np.sort(v3, axis=0), np.sort(v, axis=0), atol=0.001)
+    _, f4, rep = repair_garment(*_split_open(v, f, 0.005)[:2])
+    assert rep.welded_vertices == 0 and rep.components == 2 and len(f4) == len(f)
+
+
+def test_open_seams_sampled_otherwise_are_sewn_edge_to_edge():
+    """A back piece meshed twice as finely as the front (its seams carry a vertex between each
+    two of the front's): the extra vertices are sewn into the front's edges, no slit is left."""
+    import trimesh
+
+    from unsew.geometry import topology
+
+    v, f = grid_tube()
+    v2, f2, _ = _split_open(v, f, 0.0005)
+    front = v2[f2].mean(1)[:, 2] > 0
+    back = trimesh.Trimesh(v2, f2[~front], process=False).subdivide()
+    front_mesh = trimesh.Trimesh(v2, f2[front], process=False)
+    both = trimesh.util.concatenate([front_mesh, back])
+    v3, f3, rep = repair_garment(np.asarray(both.vertices), np.asarray(both.faces))
+    assert rep.components == 1
+    loops = topology.boundary_loops(f3)
+    assert len(loops) == 2  # the rims alone
+    _, _, cnt = topology.unique_edges(f3)
+    assert cnt.max() == 2
+
+
 def test_loose_debris_removed():
     v, f = grid_tube(24, 12)
     bit = np.array([[0.0, 2.0, 0.0], [0.01, 2.0, 0.0], [0.0, 2.01, 0.0]])

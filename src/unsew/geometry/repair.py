@@ -14,6 +14,12 @@ Repaired where safe:
   non-manifold edge (an edge with three or more faces) are cut off. The pieces are found as
   components of the faces connected through manifold edges only.
 - floating debris: components under ``SMALL_PIECE`` of the area are removed.
+- seams left open: where the pieces of a garment meet with their seam vertices unmerged but
+  within ``SEAM_WELD`` of each other (other simulators' exports keep each panel's vertices), each
+  boundary vertex is merged with its mutual nearest boundary vertex of another piece, and one
+  left over (the two sides sampled otherwise) is sewn into the edge of the other piece it lies
+  on; without it every seam would read as an opening. A weld that would make an edge branch is
+  not made.
 
 Refused (:class:`unsew.errors.InputError`):
 
@@ -21,8 +27,8 @@ Refused (:class:`unsew.errors.InputError`):
 - surfaces farther than ``SEPARATE_GAP`` apart: several garments in one file. Pieces closer than
   that (panels of one garment whose seam vertices were not merged) are kept.
 
-Vertex and face order are kept (the first of duplicates survives), so a damaged copy of a clean
-mesh is cleaned back to exactly the clean mesh.
+Vertex and face order are kept (the first of duplicates survives; faces split by a weld go
+last), so a damaged copy of a clean mesh is cleaned back to exactly the clean mesh.
 """
 
 from __future__ import annotations
@@ -42,6 +48,7 @@ __all__ = [
     "DEGENERATE_REL",
     "SMALL_PIECE",
     "SEPARATE_GAP",
+    "SEAM_WELD",
     "triangle_areas",
 ]
 
@@ -53,6 +60,8 @@ DEGENERATE_REL = 1e-8
 SMALL_PIECE = 0.01
 #: surfaces farther apart than this are separate garments [m]
 SEPARATE_GAP = 0.05
+#: boundary vertices of two pieces closer than this are one seam's, welded [m]
+SEAM_WELD = 0.002
 
 
 @dataclass
@@ -65,6 +74,7 @@ class MeshRepair:
     unreferenced_vertices: int = 0  # vertices in no face removed
     fin_faces: int = 0  # faces of small pieces cut off non-manifold edges
     debris_faces: int = 0  # faces of small disconnected pieces removed
+    welded_vertices: int = 0  # seam vertices of one piece merged into another's
     components: int = 1  # surfaces kept (pieces of one garment closer than SEPARATE_GAP)
     notes: list = field(default_factory=list)  # one phrase per repair, with where
 
@@ -133,6 +143,9 @@ def repair_garment(verts, faces, *, what: str = "target") -> tuple[np.ndarray, n
     f = _drop_bad_faces(v, f, rep, what)
     area = triangle_areas(v, f)
     f, area = _cut_fins(v, f, area, rep, what)
+    f = _weld_seams(v, f, rep)
+    if rep.welded_vertices:
+        area = triangle_areas(v, f)
     f, rep.components = _drop_debris(v, f, area, rep, what)
 
     # compact vertices, keeping their order
@@ -210,6 +223,100 @@ def _cut_fins(v, f, area, rep: MeshRepair, what: str) -> tuple[np.ndarray, np.nd
             "'Select non-manifold edges' then delete) and retry"
         )
     return f, area
+
+
+def _weld_seams(v: np.ndarray, f: np.ndarray, rep: MeshRepair) -> np.ndarray:
+    """Faces with the open seams between pieces welded (module docstring), counted in ``rep``:
+    boundary vertices merged with their mutual nearest on another piece, then the ones left (the
+    two sides sampled otherwise) inserted into the boundary edge of another piece they lie on."""
+    from scipy.spatial import cKDTree
+
+    n, lab = topology.components(f, len(v))
+    if n < 2:
+        return f
+    piece = np.full(len(v), -1)
+    piece[f.ravel()] = np.repeat(lab, 3)
+    bv = np.unique(topology.boundary_edges(f))
+    pairs = cKDTree(v[bv]).query_pairs(SEAM_WELD, output_type="ndarray")
+    pairs = pairs[piece[bv[pairs[:, 0]]] != piece[bv[pairs[:, 1]]]]
+    if len(pairs) == 0:
+        return f
+    d = np.linalg.norm(v[bv[pairs[:, 0]]] - v[bv[pairs[:, 1]]], axis=1)
+    nearest = np.full(len(bv), -1)
+    best = np.full(len(bv), np.inf)
+    for (i, j), dij in zip(pairs, d):  # each boundary vertex's nearest on another piece
+        for a, b in ((i, j), (j, i)):
+            if dij < best[a]:
+                best[a], nearest[a] = dij, b
+    mutual = [(i, j) for i, j in enumerate(nearest) if j > i and nearest[j] == i]
+    remap = np.arange(len(v))
+    for i, j in mutual:
+        remap[bv[j]] = bv[i]
+    welded, face_piece = remap[f], lab
+    for _ in range(3):  # a face with two cut edges has its second cut on the next pass
+        welded, face_piece, cut = _zip_t_junctions(v, welded, face_piece, piece)
+        if not cut:
+            break
+    _, _, cnt = topology.unique_edges(welded)
+    if (cnt > 2).any():
+        return f  # the pieces overlap rather than meet: left as they are
+    inserted = len(welded) - len(f)  # each vertex sewn into an edge adds one face
+    rep.welded_vertices = len(mutual) + inserted
+    rep.notes.append(
+        f"welded {len(mutual) + inserted} seam vertices left open between pieces "
+        f"(within {SEAM_WELD * 1000:g} mm)"
+        + (f", {inserted} of them sewn into the other side's edges" if inserted else "")
+    )
+    return welded
+
+
+def _zip_t_junctions(v: np.ndarray, f: np.ndarray, face_piece: np.ndarray, piece: np.ndarray):
+    """Faces with each boundary vertex that lies within SEAM_WELD of a boundary edge of another
+    piece (inside the edge, not at its ends) inserted into that edge: the edge's face is split
+    into a fan through the inserted vertices, in order along the edge, so both sides of a seam
+    sampled differently share their edges. face_piece: (F,) the piece of each face; piece: (V,)
+    each vertex's piece. Returns (faces, their pieces, whether any edge was cut); a face with two
+    cut edges is cut along its first only."""
+    from scipy.spatial import cKDTree
+
+    he = topology.half_edges(f)
+    _, inv, cnt = topology.unique_edges(f)
+    bidx = np.flatnonzero(cnt[inv] == 1)
+    if len(bidx) == 0:
+        return f, face_piece, False
+    bverts = np.unique(he[bidx])
+    tree = cKDTree(v[bverts])
+    cuts: dict[int, list] = {}
+    for h in bidx:
+        a, b = he[h]
+        fa = h // 3
+        ab = v[b] - v[a]
+        length = float(np.linalg.norm(ab))
+        if length == 0.0:
+            continue
+        for k in tree.query_ball_point(0.5 * (v[a] + v[b]), 0.5 * length + SEAM_WELD):
+            m = int(bverts[k])
+            if m in (a, b) or piece[m] == face_piece[fa]:
+                continue
+            t = float(np.dot(v[m] - v[a], ab) / length**2)
+            if not 0.01 < t < 0.99 or np.linalg.norm(v[a] + t * ab - v[m]) > SEAM_WELD:
+                continue
+            cuts.setdefault(int(h), []).append((t, m))
+    if not cuts:
+        return f, face_piece, False
+    keep = np.ones(len(f), bool)
+    new, new_piece = [], []
+    for h, ms in cuts.items():
+        fa, k = divmod(h, 3)
+        a, b, c = f[fa, k], f[fa, (k + 1) % 3], f[fa, (k + 2) % 3]
+        chain = [a] + [m for _, m in sorted(ms)] + [b]
+        if not keep[fa]:
+            continue  # a face with two cut edges keeps its first cut only
+        keep[fa] = False
+        new += [[chain[i], chain[i + 1], c] for i in range(len(chain) - 1)]
+        new_piece += [face_piece[fa]] * (len(chain) - 1)
+    faces = np.concatenate([f[keep], np.asarray(new, dtype=f.dtype).reshape(-1, 3)])
+    return faces, np.concatenate([face_piece[keep], np.asarray(new_piece, dtype=face_piece.dtype)]), True
 
 
 def _drop_debris(v, f, area, rep: MeshRepair, what: str) -> tuple[np.ndarray, int]:
