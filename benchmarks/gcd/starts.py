@@ -283,6 +283,18 @@ def darts_both_ways(truth: dict, design, m) -> dict:
     return out
 
 
+def _print_change(rows: list[dict], before: str, after: str, what: str) -> None:
+    """One line: the median turning distance of the rows having both keys, ``before`` -> ``after``,
+    and on how many rows it is lower after."""
+    both = [r for r in rows if r.get(before) is not None and r.get(after) is not None]
+    if both:
+        a, b = [r[before] for r in both], [r[after] for r in both]
+        print(
+            f"{len(both)} {what}: turning median {np.median(a):.3f} -> {np.median(b):.3f}, "
+            f"lower on {sum(y < x for x, y in zip(a, b))}"
+        )
+
+
 def cmd_drafts(args, case_ids: list[str]) -> int:
     """Print ``--drafts``' rows (:func:`draft_row`) and the medians of their panel error and turning."""
     from tables import print_table
@@ -304,22 +316,10 @@ def cmd_drafts(args, case_ids: list[str]) -> int:
             f"{len(e)} of {len(rows)} drafted: panel err median {np.median(e):.3f}, "
             f"turning median {np.median(tu):.3f}"
         )
-    both = [r for r in rows if r.get("turning darts") is not None and r.get("turning no darts") is not None]
-    if args.darts and both:
-        off = [r["turning no darts"] for r in both]
-        on = [r["turning darts"] for r in both]
-        print(
-            f"{len(both)} drafted with and without waist darts: turning median {np.median(off):.3f} -> "
-            f"{np.median(on):.3f}, lower with darts on {sum(b < a for a, b in zip(off, on))}"
-        )
-    side = [r for r in both if r.get("turning side darts") is not None]
-    if args.darts and side:
-        on = [r["turning darts"] for r in side]
-        sd = [r["turning side darts"] for r in side]
-        print(
-            f"{len(side)} with a bust dart in each front side seam too: turning median "
-            f"{np.median(on):.3f} -> "
-            f"{np.median(sd):.3f}, lower on {sum(b < a for a, b in zip(on, sd))}"
+    if args.darts:
+        _print_change(rows, "turning no darts", "turning darts", "drafted with and without waist darts")
+        _print_change(
+            rows, "turning darts", "turning side darts", "with a bust dart in each front side seam too"
         )
     return 0
 
