@@ -87,10 +87,11 @@ def test_two_garments_refused_and_split_panels_kept():
     assert rep.components == 2 and len(f2) == 2 * len(f)
 
 
-def _split_open(v, f, gap):
-    """The tube cut into a front (z > 0) and a back piece along its two side seams, each seam
-    vertex doubled and the back's copy moved ``gap`` [m] back: panels exported unwelded."""
-    front = v[f].mean(1)[:, 2] > 0
+def _split_open(v, f, gap, slope=0.0):
+    """The tube cut into a front (z > slope y) and a back piece along its two side seams (faces
+    by their centroid: a slanted cut's seams are stepped), each seam vertex doubled and the
+    back's copy moved ``gap`` [m] back: panels exported unwelded."""
+    front = (v[f].mean(1) @ [0.0, -slope, 1.0]) > 0
     seam = np.intersect1d(f[front].ravel(), f[~front].ravel())
     copy = {int(i): len(v) + k for k, i in enumerate(seam)}
     back = np.vectorize(lambda i: copy.get(int(i), int(i)))(f[~front])
@@ -119,13 +120,19 @@ def test_open_seams_welded_to_one_surface():
 def test_open_seams_sampled_otherwise_are_sewn_edge_to_edge():
     """A back piece meshed twice as finely as the front (its seams carry a vertex between each
     two of the front's): the extra vertices are sewn into the front's edges, no slit is left."""
+    _sewn_edge_to_edge(*grid_tube())
+    # stepped seams of 3-6 mm edges (the back's halved): a vertex is within the weld's reach of
+    # edges next to its own, and is sewn into its nearest only
+    _sewn_edge_to_edge(*grid_tube(nu=200, nv=170), slope=0.3)
+
+
+def _sewn_edge_to_edge(v, f, slope=0.0):
     import trimesh
 
     from unsew.geometry import topology
 
-    v, f = grid_tube()
-    v2, f2, _ = _split_open(v, f, 0.0005)
-    front = v2[f2].mean(1)[:, 2] > 0
+    v2, f2, _ = _split_open(v, f, 0.0005, slope)
+    front = (v2[f2].mean(1) @ [0.0, -slope, 1.0]) > 0
     back = trimesh.Trimesh(v2, f2[~front], process=False).subdivide()
     front_mesh = trimesh.Trimesh(v2, f2[front], process=False)
     both = trimesh.util.concatenate([front_mesh, back])

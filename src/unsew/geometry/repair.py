@@ -272,11 +272,12 @@ def _weld_seams(v: np.ndarray, f: np.ndarray, rep: MeshRepair) -> np.ndarray:
 
 def _zip_t_junctions(v: np.ndarray, f: np.ndarray, face_piece: np.ndarray, piece: np.ndarray):
     """Faces with each boundary vertex that lies within SEAM_WELD of a boundary edge of another
-    piece (inside the edge, not at its ends) inserted into that edge: the edge's face is split
-    into a fan through the inserted vertices, in order along the edge, so both sides of a seam
-    sampled differently share their edges. face_piece: (F,) the piece of each face; piece: (V,)
-    each vertex's piece. Returns (faces, their pieces, whether any edge was cut); a face with two
-    cut edges is cut along its first only."""
+    piece (inside the edge, not at its ends; the nearest such edge, of a piece the vertex is not
+    already welded to) inserted into that edge: the edge's face is split into a fan through the
+    inserted vertices, in order along the edge, so both sides of a seam sampled differently share
+    their edges. face_piece: (F,) the piece of each face; piece: (V,) each vertex's piece.
+    Returns (faces, their pieces, whether any edge was cut); a face with two cut edges is cut
+    along its first only (the caller runs it again for the second)."""
     from scipy.spatial import cKDTree
 
     he = topology.half_edges(f)
@@ -285,8 +286,14 @@ def _zip_t_junctions(v: np.ndarray, f: np.ndarray, face_piece: np.ndarray, piece
     if len(bidx) == 0:
         return f, face_piece, False
     bverts = np.unique(he[bidx])
+    on_boundary = np.zeros(len(v), bool)
+    on_boundary[bverts] = True
+    near = on_boundary[f].any(1)
+    # (vertex, piece) for every piece a boundary vertex is a corner of: a vertex already in a
+    # piece's faces (welded to it) is never sewn into that piece's edges
+    member = set(zip(f[near].ravel().tolist(), np.repeat(face_piece[near], 3).tolist()))
     tree = cKDTree(v[bverts])
-    cuts: dict[int, list] = {}
+    best: dict[int, tuple] = {}  # vertex -> (distance, half-edge, t): the nearest edge it lies on
     for h in bidx:
         a, b = he[h]
         fa = h // 3
@@ -296,12 +303,15 @@ def _zip_t_junctions(v: np.ndarray, f: np.ndarray, face_piece: np.ndarray, piece
             continue
         for k in tree.query_ball_point(0.5 * (v[a] + v[b]), 0.5 * length + SEAM_WELD):
             m = int(bverts[k])
-            if m in (a, b) or piece[m] == face_piece[fa]:
+            if m in (a, b) or piece[m] == face_piece[fa] or (m, int(face_piece[fa])) in member:
                 continue
             t = float(np.dot(v[m] - v[a], ab) / length**2)
-            if not 0.01 < t < 0.99 or np.linalg.norm(v[a] + t * ab - v[m]) > SEAM_WELD:
-                continue
-            cuts.setdefault(int(h), []).append((t, m))
+            dist = float(np.linalg.norm(v[a] + t * ab - v[m]))
+            if 0.01 < t < 0.99 and dist <= SEAM_WELD and dist < best.get(m, (np.inf,))[0]:
+                best[m] = (dist, int(h), t)
+    cuts: dict[int, list] = {}
+    for m, (_, h, t) in best.items():
+        cuts.setdefault(h, []).append((t, m))
     if not cuts:
         return f, face_piece, False
     keep = np.ones(len(f), bool)
