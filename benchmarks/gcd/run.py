@@ -263,7 +263,7 @@ def _own_options(argv: list) -> int:
 
 
 def _folders_given(args) -> bool:
-    """Whether the folders ``types`` and ``starts`` read exist (else one line on stderr: a
+    """Whether the folders ``types``, ``starts`` and ``unwelded`` read exist (else one line on stderr: a
     missing folder is an error, not an empty table)."""
     for opt in ("out", "drapes"):
         d = getattr(args, opt, None)
@@ -326,7 +326,7 @@ def main(argv=None) -> int:
     uw.add_argument("--only", nargs="*", help="case ids (default: every case with a newton target)")
     uw.add_argument("--no-weld", action="store_true", help="the repair's seam welding off (as before it)")
     args = ap.parse_args(argv)
-    if args.cmd in ("types", "starts") and not _folders_given(args):
+    if args.cmd in ("types", "starts", "unwelded") and not _folders_given(args):
         return 2
     if args.cmd == "starts" and args.darts and not args.drafts:
         print("gcd starts: --darts judges the drafts; give it with --drafts", file=sys.stderr)

@@ -258,8 +258,9 @@ def _weld_seams(v: np.ndarray, f: np.ndarray, rep: MeshRepair) -> np.ndarray:
         if not cut:
             break
     _, _, cnt = topology.unique_edges(welded)
-    if (cnt > 2).any():
-        return f  # the pieces overlap rather than meet: left as they are
+    if (cnt > 2).any():  # the pieces overlap rather than meet: left as they are, and said
+        rep.notes.append(f"left {len(mutual)} seam vertices open: welding them would make edges branch")
+        return f
     inserted = len(welded) - len(f)  # each vertex sewn into an edge adds one face
     rep.welded_vertices = len(mutual) + inserted
     rep.notes.append(

@@ -109,9 +109,9 @@ def _tshirt(d: Design, m: Measurements) -> Pattern:
     f = body_frame(m)
     hem_y = f.hip_y - TEE_HEM_DROP if d.length is None else f.waist_y - d.length
     if f.armpit_y - hem_y < MIN_TOP_SIDE:
-        where = "above" if d.length < 0 else "below"
+        where = "above" if hem_y > f.waist_y else "below"
         raise InputError(
-            f"a top's hem {abs(100 * d.length):.0f} cm {where} the waist leaves "
+            f"a top's hem {abs(100 * (f.waist_y - hem_y)):.0f} cm {where} the waist leaves "
             f"{100 * (f.armpit_y - hem_y):.0f} cm under the armpit on this body; at least "
             f"{100 * MIN_TOP_SIDE:.0f} cm are needed"
         )
