@@ -411,7 +411,9 @@ def summary(rec: dict) -> dict:
         "chamfer_median": _median([r.get("chamfer_mm") for r in fit]),
         "chamfer_bar_median": _median([_bar(r.get("chamfer_bar_mm")) for r in fit]),
         "chamfer_within_bar": sum(
-            1 for r in fit if r.get("chamfer_bar_mm") is not None and r["chamfer_mm"] <= _bar(r["chamfer_bar_mm"])
+            1
+            for r in fit
+            if r.get("chamfer_bar_mm") is not None and r["chamfer_mm"] <= _bar(r["chamfer_bar_mm"])
         ),
         "chamfer_floor_median": _median([r.get("chamfer_bar_mm") for r in rs]),
         "redrape_ratio_median": _median([r.get("redrape_ratio") for r in fit]),

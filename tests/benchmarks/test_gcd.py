@@ -256,7 +256,8 @@ def test_summary_counts_every_case_and_takes_medians_over_the_fitted():
     assert s["cases"] == 40 and s["built"] == 2 and s["fitted"] == 1 and s["type_right"] == 1
     assert s["choices_right"] == 0 and s["panel_err_median"] == 0.2
     # the bar is max(5 mm, 1.5 x the floor), over the fitted cases; the floor's median over the built
-    assert s["chamfer_bar_median"] == 12.0 and s["chamfer_within_bar"] == 1 and s["chamfer_floor_median"] == 14.0
+    assert s["chamfer_bar_median"] == 12.0 and s["chamfer_within_bar"] == 1
+    assert s["chamfer_floor_median"] == 14.0
     # the floors are medians over the built cases, fitted or not
     assert s["floor_median"] == 5.0 and s["floor_fitted_median"] == 4.0
     assert s["floor_fitted_flared_median"] == 5.0  # the circle and flared skirts' alone
