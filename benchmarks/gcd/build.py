@@ -39,8 +39,16 @@ MANIFEST = HERE / "manifest.json"
 LOWER_TYPES = ("skirt", "pants", "shorts")
 #: Acceptance of a drape (as the foreign benchmark's): share of vertices inside the body.
 MAX_INSIDE = 0.005
-#: ... and the largest per-triangle stretch (a seam left open shows here).
+#: ... and the share of the cloth's rest area stretched past MAX_STRETCH (largest principal
+#: stretch - 1 of a triangle: a seam left open or a burst shows here). A share, as for the
+#: vertices inside, not the single worst triangle: a gathered cuff or collar seam stretches a
+#: few triangles past it in drapes that are otherwise sound (docs/decisions/049).
 MAX_STRETCH = 1.0
+MAX_OVERSTRETCHED = 0.005
+#: Drapes that pass every check and were refused when their preview was looked at, with why.
+REFUSED_ON_SIGHT = {
+    "gc_s2_001": "refused on sight: its flared skirt stands out behind the body, in the air",
+}
 #: ... and how far below the ground (the plane under the body's lowest point, newton_drape's
 #: ``ground``) cloth may reach [m]: a garment long enough lies on it, none goes through it.
 GROUND_TOL = 0.01
@@ -713,6 +721,33 @@ def wrap_share(
     return best / bins
 
 
+def overstretched(st: np.ndarray, mesh) -> float:
+    """The share of ``mesh``'s rest area (its uv triangles) whose stretch ``st`` (F,) (largest
+    principal stretch - 1 per triangle) exceeds MAX_STRETCH."""
+    uv, fu = np.asarray(mesh.uv, np.float64), np.asarray(mesh.faces_uv)
+    e1, e2 = uv[fu[:, 1]] - uv[fu[:, 0]], uv[fu[:, 2]] - uv[fu[:, 0]]
+    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+    return float(area[st > MAX_STRETCH].sum() / area.sum())
+
+
+def _stretch_checks(rec: dict, x: np.ndarray, mesh) -> list[str]:
+    """The stretch check of drape ``x`` (n_x, 3) [m] on ``mesh`` recorded into ``rec``; its failed line."""
+    import checks
+
+    st = checks.stretch(x, np.asarray(mesh.faces), np.asarray(mesh.uv), np.asarray(mesh.faces_uv))
+    share = overstretched(st, mesh)
+    rec.update(
+        stretch_p95=round(float(np.percentile(st, 95)), 4),
+        stretch_max=round(float(st.max()), 3),
+        overstretched_share=round(share, 5),
+    )
+    if share <= MAX_OVERSTRETCHED:
+        return []
+    return [
+        f"{share:.2%} of the cloth stretched past {1 + MAX_STRETCH:g}x (largest {1 + float(st.max()):.2f}x)"
+    ]
+
+
 def _accept(rec: dict, x: np.ndarray, x0: np.ndarray, mesh, body, info: dict) -> list[str]:
     """The drape's acceptance checks (inside, stretch, floor, slide, wrap) recorded into ``rec``;
     returns the failed ones' lines (empty: accepted). x (n_x, 3), x0 (n_uv, 3) [m]: drape, start."""
@@ -720,12 +755,10 @@ def _accept(rec: dict, x: np.ndarray, x0: np.ndarray, mesh, body, info: dict) ->
 
     body_v, body_f = body
     inside = float(checks.inside_mask(x, body_v, body_f).mean())
-    st = checks.stretch(x, np.asarray(mesh.faces), np.asarray(mesh.uv), np.asarray(mesh.faces_uv))
     fails = []
     if inside >= MAX_INSIDE:
         fails.append(f"{inside:.2%} of vertices inside the body")
-    if float(st.max()) > MAX_STRETCH:
-        fails.append(f"largest stretch {float(st.max()):.2f}")
+    fails += _stretch_checks(rec, x, mesh)
     if x[:, 1].min() < body_v[:, 1].min() - GROUND_TOL:
         fails.append("through the ground")
     drop = top_drop(x, x0, mesh)
@@ -734,12 +767,12 @@ def _accept(rec: dict, x: np.ndarray, x0: np.ndarray, mesh, body, info: dict) ->
     wrap = wrap_share(x, np.asarray(mesh.faces), body_v)
     if wrap < MIN_WRAP:
         fails.append(f"off the body: it covers {wrap:.0%} of the directions round the body at best")
+    if rec["case"] in REFUSED_ON_SIGHT:
+        fails.append(REFUSED_ON_SIGHT[rec["case"]])
     rec.update(
         inside_fraction=round(inside, 5),
         top_drop_m=round(drop, 3),
         wrap_share=round(wrap, 3),
-        stretch_p95=round(float(np.percentile(st, 95)), 4),
-        stretch_max=round(float(st.max()), 3),
         seam_gap_after_sewing_mm=round(info["gap_after_sewing_m"] * 1000, 1),
         drape_s=round(info["sew_s"] + info["drape_s"], 1),
     )
@@ -832,11 +865,13 @@ def recheck(out: Path, cid: str) -> dict | None:
     x = np.asarray(trimesh.load(d / "target.obj", process=False, force="mesh").vertices)
     inside = float(checks.inside_mask(x, body_v, body_f).mean())
     drop = top_drop(x, x0, mesh)
-    fails = [
-        f
-        for f in (rec.get("reason") or "").split("; ")
-        if f and "inside the body" not in f and "slid down" not in f and "off the body" not in f
-    ]
+    redo = ("inside the body", "slid down", "off the body", "on sight")
+    same_mesh = len(x) == mesh.n_x  # a kept target on an earlier mesh keeps its recorded stretch
+    if same_mesh:
+        redo += ("stretch",)
+    fails = [f for f in (rec.get("reason") or "").split("; ") if f and not any(r in f for r in redo)]
+    if same_mesh:
+        fails += _stretch_checks(rec, x, mesh)
     if inside >= MAX_INSIDE:
         fails.append(f"{inside:.2%} of vertices inside the body")
     if drop > MAX_DROP:
@@ -844,6 +879,8 @@ def recheck(out: Path, cid: str) -> dict | None:
     wrap = wrap_share(x, np.asarray(mesh.faces), body_v)
     if wrap < MIN_WRAP:
         fails.append(f"off the body: it covers {wrap:.0%} of the directions round the body at best")
+    if cid in REFUSED_ON_SIGHT:
+        fails.append(REFUSED_ON_SIGHT[cid])
     rec.update(
         inside_fraction=round(inside, 5),
         top_drop_m=round(drop, 3),

@@ -229,7 +229,8 @@ def _add_fit_score_parsers(sub) -> None:
     s.add_argument(
         "--only-tried",
         action="store_true",
-        help="score only the built cases fitted or tried (a result folder or an outcome in fits.json)",
+        help="score only the built cases fitted or tried (a result folder or an outcome in fits.json); "
+        "the others keep their recorded rows",
     )
     fi = sub.add_parser(
         "fit", help="run unsew fit on every built case, each outcome kept in RESULTS/fits.json"

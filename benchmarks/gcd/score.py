@@ -265,9 +265,16 @@ def cmd_score(args, record_file: Path) -> int:
     results = Path(args.results)
     built = json.loads((cases / "build.json").read_text()) if (cases / "build.json").is_file() else {}
     fit_log = fits.read_log(results)
+    old = json.loads(record_file.read_text()).get("cases", {}) if record_file.is_file() else {}
     recs = {}
     for cid, _, _ in build.case_ids():
         b = built.get(cid)
+        if (b is None or b.get("status") != "built") and args.only_tried and old.get(cid, {}).get("built"):
+            # built where it was recorded; its kept target is not restored here (kept.py: the
+            # sampler gave this machine another specification's digest)
+            print(f"{cid}: not built in {cases}; its recorded row stands", file=sys.stderr)
+            recs[cid] = old[cid]
+            continue
         if b is None or b.get("status") != "built":
             recs[cid] = {
                 "case": cid,
@@ -283,6 +290,8 @@ def cmd_score(args, record_file: Path) -> int:
         res = results / cid
         outcome = fit_log.get(cid)
         if not res.is_dir() and outcome is None and args.only_tried:
+            if old.get(cid, {}).get("built"):  # its recorded row stands (fitted elsewhere)
+                recs[cid] = old[cid]
             continue
         failed = outcome is not None and outcome["exit"] != 0
         t0 = time.time()
@@ -299,8 +308,7 @@ def cmd_score(args, record_file: Path) -> int:
         rec["score_s"] = round(time.time() - t0, 1)
         recs[cid] = rec
         print(json.dumps(rec), flush=True)
-    if record_file.is_file():
-        carry_over(recs, json.loads(record_file.read_text()).get("cases", {}))
+    carry_over(recs, old)
     print_record({"cases": recs})
     if args.record:
         record_file.write_text(

@@ -564,6 +564,39 @@ def test_a_fit_that_stops_is_kept_as_a_tried_miss(tmp_path):
     assert s["fit_failed"] == 1 and s["fitted"] == 0
 
 
+def test_scoring_only_the_tried_keeps_the_other_built_cases_recorded_rows(tmp_path, monkeypatch):
+    """``gcd score --only-tried --record`` over a folder with one case's fit: that case is scored
+    again, a built case fitted elsewhere keeps its recorded row, a case not built is a miss."""
+    score = _load("score")
+    cases, results, record = tmp_path / "cases", tmp_path / "results", tmp_path / "results.json"
+    (results / "gc_s1_001").mkdir(parents=True)
+    built = {c: {"status": "built", "type": "skirt"} for c in ("gc_s1_000", "gc_s1_001")}
+    cases.mkdir()
+    (cases / "build.json").write_text(json.dumps(built))
+    old = {
+        "gc_s1_000": {"case": "gc_s1_000", "built": True, "fitted": True, "chamfer_mm": 7.0, "panel_err": 0.1}
+    }
+    record.write_text(json.dumps({"cases": old}))
+    monkeypatch.setattr(
+        score,
+        "score_case",
+        lambda d, res, **kw: {"case": d.name, "fitted": True, "chamfer_mm": 9.0, "panel_err": 0.2},
+    )
+
+    class Args:
+        no_floor = no_redrape = only_tried = record = True
+
+    Args.cases, Args.results = str(cases), str(results)
+    assert score.cmd_score(Args, record) == 0
+    rows = json.loads(record.read_text())["cases"]
+    assert rows["gc_s1_000"]["chamfer_mm"] == 7.0 and rows["gc_s1_001"]["chamfer_mm"] == 9.0
+    assert rows["gc_s1_002"]["built"] is False and not rows["gc_s1_002"]["fitted"]
+    # a recorded built case whose target this cases folder lacks keeps its row too
+    (cases / "build.json").write_text(json.dumps({"gc_s1_001": built["gc_s1_001"]}))
+    assert score.cmd_score(Args, record) == 0
+    assert json.loads(record.read_text())["cases"]["gc_s1_000"]["chamfer_mm"] == 7.0
+
+
 def test_the_material_only_fits_hold_the_true_pattern(tmp_path, monkeypatch):
     """``gcd fit --material-only`` hands each case's own true pattern to ``unsew fit
     --material-only`` (the material-fitted floor), and records the outcome like any fit."""
@@ -688,6 +721,31 @@ def test_top_drop_leaves_a_settled_hood_out_but_not_a_torso_that_slid():
     slid = x.copy()
     slid[:, 1] -= 0.15
     assert build.top_drop(slid, x0, mesh) == pytest.approx(0.15, abs=1e-9)
+
+
+def test_a_few_burst_triangles_pass_the_stretch_check_and_a_stretched_region_does_not():
+    """A flat panel draped as cut passes; one vertex pulled 10 cm out of it (a few triangles past
+    2x, as a gathered cuff's seam) passes too; the panel's lower half pulled to 2.2x fails with a
+    line that says how much of the cloth."""
+    sys.path.insert(0, str(ROOT / "benchmarks" / "foreign"))
+    build = _load("build")
+    spec = _spec({"front": _panel([[0, 0], [40, 0], [40, 40], [0, 40]], t=(-20, 100, 20))}, [])
+    mesh = build.mesh_spec(spec, "sheet", 0.02)
+    x = np.zeros((mesh.n_x, 3))
+    x[mesh.x_of_u] = build.spec_placement(spec, mesh)
+    rec = {}
+    assert build._stretch_checks(rec, x, mesh) == [] and rec["overstretched_share"] == 0.0
+    inner = int(np.argmin(np.linalg.norm(x - x.mean(0), axis=1)))
+    poked = x.copy()
+    poked[inner, 2] += 0.10
+    assert build._stretch_checks(rec, poked, mesh) == []
+    assert rec["stretch_max"] > 1.0 and 0 < rec["overstretched_share"] < 0.02
+    low = x[:, 1] < x[:, 1].mean()
+    pulled = x.copy()
+    pulled[low, 1] = x[:, 1].mean() - 2.2 * (x[:, 1].mean() - x[low, 1])
+    fails = build._stretch_checks(rec, pulled, mesh)
+    assert len(fails) == 1 and "of the cloth stretched past 2x" in fails[0]
+    assert rec["overstretched_share"] > 0.3
 
 
 def test_a_garment_round_the_body_wraps_it_and_one_fallen_behind_it_does_not():
