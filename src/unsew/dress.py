@@ -279,8 +279,8 @@ def _fall_back_held(job: _Job) -> tuple[Dressed, _Job]:
     if job is not free_job and _unsound(d, body):
         # held where the pattern puts its hanging edges, the cloth can be pulled too far for a
         # sound drape (a strap off the shoulder): dress it free and keep the sounder of the two
-        free = _dress_retried(free_job)
-        if _sounder(free, d, body):
+        free = _unless_diverged(d, "the drape with nothing held", _dress_retried, free_job)
+        if free is not None and _sounder(free, d, body):
             job, d = free_job, free
     held = 0 if job.cloth.anchors is None else len(job.cloth.anchors[0])
     d = _fall_back_unheld(job, d)
@@ -295,10 +295,9 @@ def _fall_back_unheld(job: _Job, d: Dressed) -> Dressed:
     if d.stats["guided_seams"] and _unsound(d, body):
         # a seam led round the body can also drag cloth where it should not go: dress again
         # sewing straight and keep the sounder of the two (docs/decisions/033)
-        plain = _dress_retried(
-            dataclasses.replace(job, settings=dataclasses.replace(job.settings, seam_guide=False))
-        )
-        if _sounder(plain, d, body):
+        straight = dataclasses.replace(job, settings=dataclasses.replace(job.settings, seam_guide=False))
+        plain = _unless_diverged(d, "the drape sewn straight", _dress_retried, straight)
+        if plain is not None and _sounder(plain, d, body):
             plain.stats["guide_dropped"] = d.stats["guided_seams"]
             d = plain
     if _unsound(d, body):
@@ -326,13 +325,25 @@ def _dress_retried(job: _Job) -> Dressed:
             # Seam copies started apart can tear an edge (a loose tee's sleeve on an A-pose body)
             # or leave a band's seams open and triangles folded: dress again with the copies
             # started at their midpoint, and keep that when it is sound.
-            retry = _dress_once(job, force_meet=True)
-            if not _sewing_fault(retry, body) or (
-                not check_dressed(d, body=body).ok and check_dressed(retry, body=body).ok
+            met = "the retry with the seam copies met"
+            retry = _unless_diverged(d, met, _dress_once, job, force_meet=True)
+            if retry is not None and (
+                not _sewing_fault(retry, body)
+                or (not check_dressed(d, body=body).ok and check_dressed(retry, body=body).ok)
             ):
                 retry.stats["placement_retry"] = fault
                 return retry
     return d
+
+
+def _unless_diverged(d: Dressed, what: str, dress_fn, *args, **kwargs) -> Dressed | None:
+    """``dress_fn(*args, **kwargs)``, a second try at a sounder drape than ``d``; None where it
+    diverged, which is noted in ``d.stats["diverged"]``: the drape in hand stands."""
+    try:
+        return dress_fn(*args, **kwargs)
+    except SimulationError:
+        d.stats.setdefault("diverged", []).append(what)
+        return None
 
 
 def _unsound(d: Dressed, body) -> bool:

@@ -201,3 +201,39 @@ def test_a_start_that_tears_is_dressed_again_with_the_seam_copies_met(monkeypatc
     assert "stretched" in out.stats["placement_retry"]
     out, calls = _retry_run(monkeypatch, first_ok=True)
     assert calls == [False] and out.ok and "placement_retry" not in out.stats
+
+
+def test_a_straight_drape_that_diverges_leaves_the_guided_one_in_hand(monkeypatch):
+    """A second try that blows up is no reason to lose the drape already made: dress() goes on
+    with it (here to the pattern's own start) and says what diverged."""
+    from unsew.errors import SimulationError
+
+    guided = _fake(False, 4.0, 3)
+
+    def straight_bursts(job):
+        if not job.settings.seam_guide:
+            raise SimulationError("simulation diverged at step 27")
+        return guided
+
+    out, calls = _run(monkeypatch, guided, retried=straight_bursts, edge_fallback=False)
+    assert calls == [True, False, "given"]
+    assert out is guided and guided.stats["diverged"] == ["the drape sewn straight"]
+
+
+def test_a_placement_retry_that_diverges_keeps_the_first_drape(monkeypatch):
+    """The retry with the seam copies started at their midpoint, made because the first drape tore
+    an edge, diverges: the first drape is returned, not the error."""
+    from unsew.errors import SimulationError
+
+    first = _fake(False, 3.0, 0)
+    first.stats["met_seams"] = False
+
+    def once(job, force_meet, given=False):
+        if force_meet:
+            raise SimulationError("simulation diverged at step 27")
+        return first
+
+    monkeypatch.setattr(dress_mod, "_dress_once", once)
+    monkeypatch.setattr(dress_mod, "_sewing_fault", lambda d, body: "an edge torn")
+    out = dress_mod._dress_retried(SimpleNamespace(body=None))
+    assert out is first and first.stats["diverged"] == ["the retry with the seam copies met"]

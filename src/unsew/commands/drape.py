@@ -219,6 +219,8 @@ def run(args: argparse.Namespace) -> int:
     s = d.stats
     if s.get("held"):
         print(f"{s['held']} vertices of the pattern's hanging edges (lower_interface, strapless_top) held")
+    if s.get("diverged"):
+        print(f"{' and '.join(s['diverged'])} diverged: the drape before it was kept")
     if s.get("start_given"):
         print("the drape started from the pattern's own placement (the wrapped start drapes unsound)")
     if contact is not None:
