@@ -1030,3 +1030,36 @@ def test_a_start_graded_again_carries_its_own_meshs_held_vertices(monkeypatch):
     table = [{"material": "wool", "chamfer_mm": 3.0}]
     cur, cf = fm._regraded(first, first, table, scene, "tshirt", TimeBudget(0))
     assert cf == 1.0 and cur.mesh is mesh_b and cur.x is again.x and cur.anchors == "held_b"
+
+
+def test_redress_returns_the_graded_pattern_when_the_fit_cannot_be_dressed(monkeypatch):
+    """Phase two's pattern whose drape from scratch diverges (a foreign tee's re-dress check, at
+    193 m/s in its settling) leaves the graded pattern as the result, said in one line, instead
+    of ending the fit with the simulator's error."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    import unsew.fit.checks as checks
+    from unsew.errors import SimulationError
+    from unsew.fit.config import FitConfig
+    from unsew.fit.progress import Progress
+    from unsew.pattern.base import make_base_pattern
+
+    def bursts(*a, **k):
+        raise SimulationError("simulation diverged at step 27: vertex 204 speed 193 m/s (limit 50)")
+
+    monkeypatch.setattr(checks, "dress", bursts)
+    monkeypatch.setattr(checks, "moved_mesh", lambda *a: None)
+    start = SimpleNamespace(x=np.zeros((3, 3)), mesh=SimpleNamespace(faces=np.array([[0, 1, 2]])))
+    target = SimpleNamespace(distance_mm=lambda x, f: 7.5)
+    lines = []
+    rd = checks.redress_check(
+        make_base_pattern("tshirt"),
+        None,
+        None,
+        start,
+        Scene(None, target, None, FitConfig(), progress=Progress(False), log=lines.append),
+    )
+    assert not rd.phase_two_kept and rd.graded_mm == 7.5 and "diverged" in rd.failed
+    assert len(lines) == 1 and "graded pattern is returned" in lines[0]

@@ -143,18 +143,21 @@ def redress_check(pattern, uv, material, start: Start, scene: Scene) -> RedressC
         )
         return RedressCheck(None, cf_graded, False, refused=str(exc))
     with scene.progress.phase("re-dress the fit") as bar:
-        x, failed = _judged(
-            dress(
-                pattern,
+        try:
+            x, failed = _judged(
+                dress(
+                    pattern,
+                    body,
+                    sdf=scene.sdf,
+                    mesh=moved_mesh(start.mesh, pattern, uv),
+                    material=material,
+                    settings=cfg.drape,
+                    progress=bar,
+                ),
                 body,
-                sdf=scene.sdf,
-                mesh=moved_mesh(start.mesh, pattern, uv),
-                material=material,
-                settings=cfg.drape,
-                progress=bar,
-            ),
-            body,
-        )
+            )
+        except SimulationError as exc:  # phase two's pattern cannot be dressed: the graded one stands
+            x, failed = None, str(exc)
     if failed:
         log(
             f"re-dress check: the fitted pattern dressed from scratch failed ({failed}): the graded pattern "
