@@ -724,13 +724,6 @@ def test_redress_refuses_a_pattern_that_cannot_be_meshed_afresh():
     """Phase two moves the rest mesh's vertices and can squeeze a panel flat while the moved mesh
     still drapes (a waistband 0.9 mm high on a foreign flared skirt): such a pattern is refused
     before dressing and the graded one returned, not crashed on later by the mesh spread."""
-    from types import SimpleNamespace
-
-    import numpy as np
-
-    from unsew.fit.checks import redress_check
-    from unsew.fit.config import FitConfig
-    from unsew.fit.progress import Progress
     from unsew.pattern.base import make_base_pattern
 
     pat = make_base_pattern("skirt_band")
@@ -738,16 +731,7 @@ def test_redress_refuses_a_pattern_that_cannot_be_meshed_afresh():
     v = band.vertices.copy()
     v[:, 1] = v[:, 1].min() + (v[:, 1] - v[:, 1].min()) * 0.02  # 4 cm high -> under 1 mm
     band.vertices = v
-    start = SimpleNamespace(x=np.zeros((3, 3)), mesh=SimpleNamespace(faces=np.array([[0, 1, 2]])))
-    target = SimpleNamespace(distance_mm=lambda x, f: 7.5)
-    lines = []
-    rd = redress_check(
-        pat,
-        None,
-        None,
-        start,
-        Scene(None, target, None, FitConfig(), progress=Progress(False), log=lines.append),
-    )
+    rd, lines = _redress_on_stand_ins(pat)
     assert not rd.phase_two_kept and rd.fit_redressed_mm is None and rd.graded_mm == 7.5
     assert "waistband_front" in rd.refused and "sliver" in rd.refused
     assert "graded pattern is returned" in lines[0]
@@ -758,14 +742,8 @@ def test_redress_refuses_a_pattern_its_reader_would_refuse(monkeypatch):
     seam's point past the armhole; written, load_pattern refused it and the benchmark's reader
     crashed) is refused like one that cannot be meshed: the graded pattern is returned. The
     validator stands in for such an outline here."""
-    from types import SimpleNamespace
-
-    import numpy as np
-
     import unsew.fit.checks as checks
     from unsew.errors import PatternError
-    from unsew.fit.config import FitConfig
-    from unsew.fit.progress import Progress
     from unsew.pattern.base import make_base_pattern
 
     def crossing(p):
@@ -774,16 +752,7 @@ def test_redress_refuses_a_pattern_its_reader_would_refuse(monkeypatch):
     monkeypatch.setattr(checks, "validate_pattern", crossing)
     meshed = []
     monkeypatch.setattr(checks, "mesh_pattern", lambda *a, **k: meshed.append(1))
-    start = SimpleNamespace(x=np.zeros((3, 3)), mesh=SimpleNamespace(faces=np.array([[0, 1, 2]])))
-    target = SimpleNamespace(distance_mm=lambda x, f: 7.5)
-    lines = []
-    rd = checks.redress_check(
-        make_base_pattern("tshirt"),
-        None,
-        None,
-        start,
-        Scene(None, target, None, FitConfig(), progress=Progress(False), log=lines.append),
-    )
+    rd, lines = _redress_on_stand_ins(make_base_pattern("tshirt"))
     assert not rd.phase_two_kept and rd.fit_redressed_mm is None and "crosses edge 4" in rd.refused
     assert meshed == [] and "graded pattern is returned" in lines[0]
 
@@ -1036,14 +1005,8 @@ def test_redress_returns_the_graded_pattern_when_the_fit_cannot_be_dressed(monke
     """Phase two's pattern whose drape from scratch diverges (a foreign tee's re-dress check, at
     193 m/s in its settling) leaves the graded pattern as the result, said in one line, instead
     of ending the fit with the simulator's error."""
-    from types import SimpleNamespace
-
-    import numpy as np
-
     import unsew.fit.checks as checks
     from unsew.errors import SimulationError
-    from unsew.fit.config import FitConfig
-    from unsew.fit.progress import Progress
     from unsew.pattern.base import make_base_pattern
 
     def bursts(*a, **k):
@@ -1051,15 +1014,22 @@ def test_redress_returns_the_graded_pattern_when_the_fit_cannot_be_dressed(monke
 
     monkeypatch.setattr(checks, "dress", bursts)
     monkeypatch.setattr(checks, "moved_mesh", lambda *a: None)
+    rd, lines = _redress_on_stand_ins(make_base_pattern("tshirt"))
+    assert not rd.phase_two_kept and rd.graded_mm == 7.5 and "diverged" in rd.failed
+    assert len(lines) == 1 and "graded pattern is returned" in lines[0]
+
+
+def _redress_on_stand_ins(pattern):
+    """``redress_check`` of ``pattern`` with a stand-in start (one triangle) and target (7.5 mm
+    from anything): (its result, the lines it logged)."""
+    from types import SimpleNamespace
+
+    from unsew.fit import checks
+    from unsew.fit.config import FitConfig
+    from unsew.fit.progress import Progress
+
     start = SimpleNamespace(x=np.zeros((3, 3)), mesh=SimpleNamespace(faces=np.array([[0, 1, 2]])))
     target = SimpleNamespace(distance_mm=lambda x, f: 7.5)
     lines = []
-    rd = checks.redress_check(
-        make_base_pattern("tshirt"),
-        None,
-        None,
-        start,
-        Scene(None, target, None, FitConfig(), progress=Progress(False), log=lines.append),
-    )
-    assert not rd.phase_two_kept and rd.graded_mm == 7.5 and "diverged" in rd.failed
-    assert len(lines) == 1 and "graded pattern is returned" in lines[0]
+    scene = Scene(None, target, None, FitConfig(), progress=Progress(False), log=lines.append)
+    return checks.redress_check(pattern, None, None, start, scene), lines
