@@ -724,9 +724,9 @@ def wrap_share(
 def overstretched(st: np.ndarray, mesh) -> float:
     """The share of ``mesh``'s rest area (its uv triangles) whose stretch ``st`` (F,) (largest
     principal stretch - 1 per triangle) exceeds MAX_STRETCH."""
-    uv, fu = np.asarray(mesh.uv, np.float64), np.asarray(mesh.faces_uv)
-    e1, e2 = uv[fu[:, 1]] - uv[fu[:, 0]], uv[fu[:, 2]] - uv[fu[:, 0]]
-    area = 0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])
+    from unsew.meshing.triangulate import signed_areas
+
+    area = np.abs(signed_areas(np.asarray(mesh.uv, np.float64), np.asarray(mesh.faces_uv)))
     return float(area[st > MAX_STRETCH].sum() / area.sum())
 
 
