@@ -596,6 +596,15 @@ def test_choose_material_ranks_by_the_objective():
     assert [r["material"] for r in table] == ["silk", "cotton"]
     with pytest.raises(InputError):
         choose_material(["wool"], lambda m, bar: drapes[m.density], lambda x: math.nan)
+    # no room after the first fabric (the time limit): the ones draped so far compete
+    asked = []
+    mat, _, table = choose_material(
+        ["cotton", "silk", "wool"],
+        lambda m, bar: drapes[m.density],
+        lambda x: score[float(x[0, 0])],
+        room=lambda s: asked.append(s) or False,
+    )
+    assert mat == MATERIALS["cotton"] and [r["material"] for r in table] == ["cotton"] and len(asked) == 1
 
 
 def test_refine_material_walks_towards_the_closest_stiffness():
@@ -880,8 +889,8 @@ def test_the_time_limit_counts_the_time_before_the_fit(auto_spent):
 
 
 def test_a_spent_time_limit_leaves_out_the_optional_work_and_says_so(auto_spent, auto_fit):
-    """With the time limit spent before the fit, the material choice grades in no other fabric and
-    searches no stiffness, phase two makes no iteration, the mesh spread is skipped, and the fit
+    """With the time limit spent before the fit, the material choice drapes no fabric (the start's
+    cotton kept), phase two makes no iteration, the mesh spread is skipped, and the fit
     still ends with a complete result (the graded pattern) whose metrics.json lists each cut;
     without the limit (auto_fit: the same settings, no mesh spread asked) the material choice
     grades again and searches the stiffness, and phase two iterates."""
@@ -890,8 +899,7 @@ def test_a_spent_time_limit_leaves_out_the_optional_work_and_says_so(auto_spent,
     out, result, metrics = auto_spent
     cuts = json.loads((out / "metrics.json").read_text())["time_limit"]["cuts"]
     assert cuts == [
-        "material choice: not graded again in jersey (half the limit spent)",
-        "material choice: stiffness search stopped (half the limit spent)",
+        "material choice: cotton kept (draping the fabrics would overrun)",
         "phase two stopped after 0 of 1 iterations",
         "mesh spread skipped",
     ]
@@ -899,8 +907,9 @@ def test_a_spent_time_limit_leaves_out_the_optional_work_and_says_so(auto_spent,
     np.testing.assert_array_equal(result.x, result.x_graded)
     assert (out / "pattern.json").is_file() and metrics["drape_check"]["ok"]
     assert "time limit 600 s (--time-limit): material choice" in (out / "report.html").read_text()
-    table = {r["material"] for r in result.material_choice}
-    assert table == {"cotton", "denim", "jersey"}  # the candidates, nothing graded again or scaled
+    from unsew.sim.material import MATERIALS
+
+    assert result.material_choice == [] and result.material == MATERIALS["cotton"]  # no fabric draped
 
     whole, m2 = auto_fit
     assert m2["time_limit"] == {"limit_s": None, "cuts": []}

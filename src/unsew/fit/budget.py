@@ -6,6 +6,11 @@ fit's own clock would not see them.
 
 What gives way, in the order a fit reaches it:
 
+- the runner-up of a tie in the base choice is graded only while less than half the limit is
+  spent and a grading as long as the chosen base's still ends in time;
+- the material choice drapes the fabrics only while each (timed as the one before it; the first
+  estimated from the base's drape from scratch by its number of steps) and the check's drape from
+  scratch still end in time; otherwise the start fabric (cotton) stays;
 - the material choice's optional steps (grading again in other fabrics, the stiffness search)
   run only while less than half the limit is spent;
 - phase two stops before an iteration that would leave too little time for one more iteration
@@ -16,7 +21,7 @@ What gives way, in the order a fit reaches it:
 - the mesh spread (two drapes from scratch, a diagnostic; the three-mesh check's own when that
   ran) is skipped when it would not fit.
 
-The base choice, grading and the re-dress check on the fit's mesh always run: without them
+The base choice, the chosen base's grading and the re-dress check on the fit's mesh always run: without them
 there is no result, or no judgement of phase two's. Times to come are estimated from ones measured in this
 fit: a drape from scratch (the base's, in phase one) and phase two's iterations.
 """

@@ -74,20 +74,26 @@ class MaterialChoice:
     seconds: float = 0.0  #: time the choice took [s]
 
 
-def choose_material(names, dress_in, objective, *, progress: Progress | None = None):
+def choose_material(names, dress_in, objective, *, progress: Progress | None = None, room=None):
     """The library material whose drape of the graded pattern lies closest to the target.
 
     names: library material names; dress_in(material, bar, x_from) -> (Nx, 3) drape [m] of the
     graded pattern in that material (settled from ``x_from``, or from the pattern's own drape when
     None, or dressed from scratch: :func:`_dresser`); objective(x) -> its distance to the target
-    [mm]. Returns (Material, drape of the winner, table): the table lists every finite candidate,
+    [mm]; room(seconds) -> False stops the choice before the next material (the fit's time limit;
+    seconds: the last drape's duration [s]), the ones draped so far competing.
+    Returns (Material, drape of the winner, table): the table lists every finite candidate,
     best first, as {"material", "chamfer_mm"}.
     """
     progress = progress or Progress(False)
-    rows, drapes = [], {}
+    rows, drapes, last_s = [], {}, None
     for name in names:
+        if last_s is not None and room is not None and not room(last_s):
+            break
+        t0 = time.perf_counter()
         with progress.phase(f"material {name}") as bar:
             x = dress_in(get_material(name), bar)
+        last_s = time.perf_counter() - t0
         loss = objective(x)
         if not math.isfinite(loss):
             continue
@@ -218,10 +224,24 @@ def choose_start(
     """The material stage: ``first`` unchanged when ``scene.cfg.material.start`` names a material,
     else the auto choice (module docstring) starting from ``first`` (graded in cotton). With a
     ``budget``, the grading in other fabrics and the stiffness search stop once half its limit is
-    spent (:mod:`unsew.fit.budget`)."""
+    spent, and the fabrics are draped only while each (timed as the one before) and the check's drape
+    from scratch (``first.dress_s``) still end in time (:mod:`unsew.fit.budget`)."""
     budget = budget or TimeBudget(0)
     if scene.cfg.material.start != "auto":
         return MaterialChoice(first)
+    # each fabric's settle and, after them, the check's drape from scratch must end in time
+    check_s = first.dress_s if CHECK_CHOICE else 0.0
+    settle_s = first.dress_s * WARM_STEPS / max(scene.cfg.drape.sew_steps + scene.cfg.drape.settle_steps, 1)
+    if not budget.fits(settle_s + check_s):
+        budget.cut(f"material choice: {AUTO_START_MATERIAL} kept (draping the fabrics would overrun)")
+        return MaterialChoice(first)
+
+    def room(next_s: float) -> bool:
+        if budget.fits(next_s + check_s):
+            return True
+        budget.cut("material choice: the other fabrics not draped (they would overrun)")
+        return False
+
     t0 = time.perf_counter()
 
     def objective(x, mesh=None):
@@ -232,6 +252,7 @@ def choose_start(
         _dresser(first, scene),
         objective,
         progress=scene.progress,
+        room=room,
     )
     for row in table:
         row["pattern"] = f"graded in {AUTO_START_MATERIAL}"

@@ -419,7 +419,8 @@ def _said(r: dict, patterns: dict) -> str:
 def start_chosen(choice: BaseChoice, scene: Scene, material, *, budget=None) -> Start:
     """Phase one from the base choice: :func:`start` from ``choice.pattern`` and, when the choice
     was a tie (``choice.tie``) and ``budget`` (a :class:`unsew.fit.budget.TimeBudget`) has more
-    than half its limit left, from the runner-up too. The runner-up's Start is kept when its graded
+    than half its limit left, from the runner-up too, when a grading as long as the first still
+    fits the limit. The runner-up's Start is kept when its graded
     drape lies closer to the target (:meth:`Target.distance_mm`) than the chosen base's by more
     than :data:`unsew.fit.material.CHECK_MARGIN_MM` and ``CHECK_MARGIN_REL`` of it (what two drapes
     from scratch of one pattern differ by); otherwise the chosen base's. The graded distances
@@ -430,8 +431,12 @@ def start_chosen(choice: BaseChoice, scene: Scene, material, *, budget=None) -> 
     if choice.tie and budget is not None and not budget.within(0.5):
         budget.cut(f"base choice: {choice.tie[0]} not graded (half the limit spent)")
         names, patterns = names[:1], patterns[:1]
-    starts = []
+    starts, graded_s = [], 0.0
     for name, pattern in zip(names, patterns):
+        if starts and budget is not None and not budget.fits(graded_s):  # the first's grading as estimate
+            budget.cut(f"base choice: {name} not graded (its grading, about {graded_s:.0f} s, would overrun)")
+            break
+        t0 = time.perf_counter()
         try:
             s = start(
                 pattern,
@@ -446,6 +451,7 @@ def start_chosen(choice: BaseChoice, scene: Scene, material, *, budget=None) -> 
                 raise
             scene.log(f"base {name}: grading failed ({str(exc).splitlines()[0]}); left out")
             continue
+        graded_s = time.perf_counter() - t0
         starts.append((scene.target.distance_mm(s.x, s.mesh.faces) if len(names) > 1 else math.nan, name, s))
     table = [dict(r) for r in choice.table]
     for cf, name, _ in starts:
