@@ -41,7 +41,7 @@ def scatter_blocks(nnz: int, src: torch.Tensor, dst: torch.Tensor, blocks: torch
     out = blocks.new_zeros(nnz)
     if src.numel() == 0:
         return out
-    return out.index_add(0, dst, blocks.reshape(-1)[src])
+    return out.index_add(0, dst, torch.index_select(blocks.reshape(-1), 0, src))
 
 
 def _unscatter(gvals: torch.Tensor, src: torch.Tensor, dst: torch.Tensor, shape) -> torch.Tensor:

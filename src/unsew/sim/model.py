@@ -196,6 +196,8 @@ class SimModel:
             index maps from flat element blocks to the value array.
         hinge_w: (len(hinge_src),) int64 the entry of the flat 12x12 hinge block each hinge_src
             entry reads (hinge_src % 144), where the "ring" stencil's corner weight is read.
+        hinge_rows, hinge_cols: (len(hinge_src),) int64 the two factors of each hinge_src entry of
+            the block s g g^T: its positions in the flat (H * 12,) arrays s g and g.
         keep: (nnz,) float64 0 on rows/cols of pinned dofs, 1 elsewhere.
         n_nonmanifold: interior edges skipped for bending (more than two faces).
         bending_stencil: "ring" (hinge blocks without the opposite-vertex coupling, see the
@@ -219,6 +221,8 @@ class SimModel:
     hinge_src: torch.Tensor
     hinge_dst: torch.Tensor
     hinge_w: torch.Tensor
+    hinge_rows: torch.Tensor
+    hinge_cols: torch.Tensor
     spring_src: torch.Tensor
     spring_dst: torch.Tensor
     vert_src: torch.Tensor
@@ -306,6 +310,8 @@ class SimModel:
             diag_dst=t(diag_dst),
             **{f"{g}_{end}": maps[g][i] for g in groups for i, end in enumerate(("src", "dst"))},
             hinge_w=maps["hinge"][0] % 144,
+            hinge_rows=maps["hinge"][0] // 12,
+            hinge_cols=(maps["hinge"][0] // 144) * 12 + maps["hinge"][0] % 12,
             keep=t(keep),
             n_nonmanifold=n_nm,
             bending_stencil=bending_stencil,

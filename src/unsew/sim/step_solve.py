@@ -36,22 +36,29 @@ __all__ = ["step_solve"]
 
 
 def _values(membrane, bending, vblk, extra, st):
-    """Forward assembly of A's lower values (no autograd). membrane: (G, H, P, area); bending: (g, s)."""
+    """Forward assembly of A's lower values (no autograd). membrane: (G, H, P, area); bending: (g, s).
+    Gathers use ``index_select`` (a few times faster on CPU than indexing with a tensor) and the
+    membrane's G^T (H G) its three rank-one terms (faster than a batched 9x3 by 3x9 product)."""
     G, H, P, area = membrane
     bg, bs = bending
     model, pat, dt2, w4 = st["model"], st["pattern"], st["dt2"], st["w4"]
     F = G.shape[0]
-    HGa = torch.matmul(H, G) * area[:, None, None]
-    blocks = torch.bmm(G.transpose(1, 2), HGa)  # (F, 9, 9)
+    HGa = torch.matmul(H, G) * area[:, None, None]  # (F, 3, 9)
+    blocks = G[:, 0, :, None] * HGa[:, 0, None, :]
+    blocks += G[:, 1, :, None] * HGa[:, 1, None, :]
+    blocks += G[:, 2, :, None] * HGa[:, 2, None, :]  # (F, 9, 9)
     blocks.view(F, 3, 3, 3, 3).diagonal(dim1=2, dim2=4).add_(area[:, None, None, None] * P[..., None])
-    K = blocks.new_zeros(model.nnz).index_add_(0, model.tri_dst, blocks.reshape(-1)[model.tri_src])
+    K = blocks.new_zeros(model.nnz).index_add_(
+        0, model.tri_dst, torch.index_select(blocks.reshape(-1), 0, model.tri_src)
+    )
     if bg.shape[0]:
-        sg = bs[:, None] * bg
-        hb = sg[:, :, None] * bg[:, None, :]  # (Hn, 12, 12)
-        picked = hb.reshape(-1)[model.hinge_src]
+        sg = (bs[:, None] * bg).reshape(-1)
+        picked = torch.index_select(sg, 0, model.hinge_rows) * torch.index_select(
+            bg.reshape(-1), 0, model.hinge_cols
+        )
         if w4 is not None:
             w12 = w4.repeat_interleave(3, 0).repeat_interleave(3, 1)
-            picked = picked * w12.reshape(-1)[model.hinge_w]
+            picked = picked * torch.index_select(w12.reshape(-1), 0, model.hinge_w)
         K.index_add_(0, model.hinge_dst, picked)
     A = dt2 * K + scatter_blocks(model.nnz, model.vert_src, model.vert_dst, vblk)
     if extra is not None:
