@@ -111,3 +111,43 @@ def test_a_settled_drape_that_fails_the_results_check_gives_way_to_its_drape_fro
     assert np.all(s.x == 5.0) and s.anchors == "anchors of the drape from scratch"
     assert rows[0]["material"].startswith("polyester")
     assert any(torn in line and line.endswith("its drape from scratch kept") for line in lines)
+
+
+def test_a_material_choice_past_the_time_limit_is_made_only_to_mend_an_unsound_graded_drape(monkeypatch):
+    """With no time left for the fabrics' drapes, the cotton-graded start is kept and the cut
+    said when its drape passes a result's checks; when it fails them (an exploded graded drape:
+    the fit would end on it), every fabric is draped all the same, none stopped by the limit."""
+    from unsew.fit.budget import TimeBudget
+
+    first = _start("cotton", 7.0).replace(dress_s=100.0)
+    scene = Scene(
+        None,
+        None,
+        None,
+        load_config(**{"material.start": "auto"}),
+        progress=Progress(False),
+        log=lambda s: None,
+    )
+    made = []
+
+    def fake_choose(names, dress_in, objective, *, progress=None, room=None):
+        made.append([room(1.0) for _ in names[1:]] if room is not None else None)
+        return first.material, first.x, [{"material": "cotton", "chamfer_mm": 7.0}]
+
+    monkeypatch.setattr(mat_mod, "choose_material", fake_choose)
+    monkeypatch.setattr(mat_mod, "_dresser", lambda s, sc: None)
+    monkeypatch.setattr(mat_mod, "_checked", lambda first, cur, table, scene: (cur, table))
+    for sound in (True, False):
+        verdict = SimpleNamespace(
+            ok=sound, reason="" if sound else "exploded: an edge is stretched to 5.4 times its pattern length"
+        )
+        monkeypatch.setattr(mat_mod, "check_drape", lambda x, **k: verdict)
+        budget = TimeBudget(540.0, log=lambda s: None, clock=iter([0.0] + [530.0] * 50).__next__)
+        made.clear()
+        choice = mat_mod.choose_start(first, scene, budget=budget)
+        if sound:
+            assert choice.start is first and choice.table == [] and not made
+            assert budget.cuts == ["material choice: cotton kept (draping the fabrics would overrun)"]
+        else:
+            assert made and all(made[0])  # every fabric draped, past the limit
+            assert not any("fabrics" in c for c in budget.cuts)

@@ -10,7 +10,8 @@ What gives way, in the order a fit reaches it:
   spent and a grading as long as the chosen base's still ends in time;
 - the material choice drapes the fabrics only while each (timed as the one before it; the first
   estimated from the base's drape from scratch by its number of steps) and the check's drape from
-  scratch still end in time; otherwise the start fabric (cotton) stays;
+  scratch still end in time; otherwise the start fabric (cotton) stays, unless the drape graded
+  in it fails the checks a result passes (then every fabric is draped, past the limit);
 - the material choice's optional steps (grading again in other fabrics, the stiffness search)
   run only while less than half the limit is spent;
 - phase two stops before an iteration that would leave too little time for one more iteration

@@ -225,19 +225,32 @@ def choose_start(
     else the auto choice (module docstring) starting from ``first`` (graded in cotton). With a
     ``budget``, the grading in other fabrics and the stiffness search stop once half its limit is
     spent, and the fabrics are draped only while each (timed as the one before) and the check's drape
-    from scratch (``first.dress_s``) still end in time (:mod:`unsew.fit.budget`)."""
+    from scratch (``first.dress_s``) still end in time (:mod:`unsew.fit.budget`), unless ``first``'s
+    drape fails the checks a result passes (:func:`~unsew.sim.checks.check_drape`): another fabric
+    is then the fit's only way to a sound result, and they are all draped."""
     budget = budget or TimeBudget(0)
     if scene.cfg.material.start != "auto":
         return MaterialChoice(first)
     # each fabric's settle and, after them, the check's drape from scratch must end in time
     check_s = first.dress_s if CHECK_CHOICE else 0.0
     settle_s = first.dress_s * WARM_STEPS / max(scene.cfg.drape.sew_steps + scene.cfg.drape.settle_steps, 1)
+    rescue = False  # the graded drape fails a result's checks: the fabrics are draped whatever the time
     if not budget.fits(settle_s + check_s):
-        budget.cut(f"material choice: {AUTO_START_MATERIAL} kept (draping the fabrics would overrun)")
-        return MaterialChoice(first)
+        m = first.mesh
+        verdict = check_drape(
+            first.x, faces=m.faces, uv=m.uv, faces_uv=m.faces_uv, body=scene.body, sdf=scene.sdf
+        )
+        if verdict.ok:
+            budget.cut(f"material choice: {AUTO_START_MATERIAL} kept (draping the fabrics would overrun)")
+            return MaterialChoice(first)
+        rescue = True
+        scene.log(
+            f"material choice: made past the time limit, as the drape graded in {AUTO_START_MATERIAL} "
+            f"fails its check ({verdict.reason})"
+        )
 
     def room(next_s: float) -> bool:
-        if budget.fits(next_s + check_s):
+        if rescue or budget.fits(next_s + check_s):
             return True
         budget.cut("material choice: the other fabrics not draped (they would overrun)")
         return False
