@@ -305,12 +305,23 @@ def test_a_tie_keeps_the_base_whose_graded_drape_lies_clearly_closer(monkeypatch
         assert lines[-1].endswith(f"; {s.base_name} kept")
 
 
+def _straight_waisted_tie():
+    """A base choice tied between a straight (chosen) and a waisted dress, both dressed."""
+    from unsew.fit.start import BaseChoice
+
+    rows = [
+        {"base": "straight", "chamfer_mm": 19.3, "arms": True},
+        {"base": "waisted", "chamfer_mm": 20.2, "arms": True},
+    ]
+    return BaseChoice("P-straight", "straight", rows, 1.0, ("waisted", "P-waisted"))
+
+
 def test_a_tie_runner_up_whose_grading_would_overrun_the_limit_is_not_graded(monkeypatch):
     """Within half the limit when phase one begins, the runner-up of a tie is still left out when
     a grading as long as the chosen base's (40 s here) would end past the limit; the cut says so."""
     import unsew.fit.start as start_mod
     from unsew.fit.budget import RESERVE_FACTOR, TimeBudget
-    from unsew.fit.start import BaseChoice, Start
+    from unsew.fit.start import Start
 
     now, calls = [10.0], []
 
@@ -322,16 +333,7 @@ def test_a_tie_runner_up_whose_grading_would_overrun_the_limit_is_not_graded(mon
     monkeypatch.setattr(start_mod, "start", fake_start)
     monkeypatch.setattr(start_mod, "time", SimpleNamespace(perf_counter=lambda: now[0]))
     target = SimpleNamespace(distance_mm=lambda x, f, **k: {"straight": 14.5, "waisted": 11.7}[x])
-    choice = BaseChoice(
-        "P-straight",
-        "straight",
-        [
-            {"base": "straight", "chamfer_mm": 19.3, "arms": True},
-            {"base": "waisted", "chamfer_mm": 20.2, "arms": True},
-        ],
-        1.0,
-        ("waisted", "P-waisted"),
-    )
+    choice = _straight_waisted_tie()
     for limit, graded in (
         (40.0 + RESERVE_FACTOR * 40.0 - 1.0, ["straight"]),
         (40.0 + RESERVE_FACTOR * 40.0 + 1.0, ["straight", "waisted"]),
@@ -352,7 +354,7 @@ def test_a_tie_runner_up_whose_grading_would_overrun_the_limit_is_not_graded(mon
 
 def test_a_tie_whose_runner_up_fails_to_grade_keeps_the_chosen_base(monkeypatch):
     import unsew.fit.start as start_mod
-    from unsew.fit.start import BaseChoice, Start
+    from unsew.fit.start import Start
 
     def fake_start(pattern, scene, material, *, garment, **k):
         if garment == "waisted":
@@ -360,16 +362,7 @@ def test_a_tie_whose_runner_up_fails_to_grade_keeps_the_chosen_base(monkeypatch)
         return Start(pattern, pattern, SimpleNamespace(faces=None), garment, [], None, None, material)
 
     monkeypatch.setattr(start_mod, "start", fake_start)
-    choice = BaseChoice(
-        "P-straight",
-        "straight",
-        [
-            {"base": "straight", "chamfer_mm": 19.3, "arms": True},
-            {"base": "waisted", "chamfer_mm": 20.2, "arms": True},
-        ],
-        1.0,
-        ("waisted", "P-waisted"),
-    )
+    choice = _straight_waisted_tie()
     lines = []
     s = start_mod.start_chosen(
         choice,
