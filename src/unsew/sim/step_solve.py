@@ -37,8 +37,8 @@ __all__ = ["step_solve"]
 
 def _values(membrane, bending, vblk, extra, st):
     """Forward assembly of A's lower values (no autograd). membrane: (G, H, P, area); bending: (g, s).
-    Gathers use ``index_select`` (a few times faster on CPU than indexing with a tensor) and the
-    membrane's G^T (H G) its three rank-one terms (faster than a batched 9x3 by 3x9 product)."""
+    Gathers use ``index_select`` and the membrane's G^T (H G) is summed from its three rank-one
+    terms: both faster on CPU than tensor indexing and a batched 9x3 by 3x9 product."""
     G, H, P, area = membrane
     bg, bs = bending
     model, pat, dt2, w4 = st["model"], st["pattern"], st["dt2"], st["w4"]
