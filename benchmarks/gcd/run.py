@@ -5,6 +5,7 @@
     python -m benchmarks gcd build [--out DIR] [--seeds 1-5] [--count 8] [--only gc_s1_000 ...] [--no-drape]
     python -m benchmarks gcd fit --results RESULTS_DIR [--only ...] [--redo] fit each built case
     python -m benchmarks gcd score --results RESULTS_DIR [--cases DIR] [--only-tried] [--record]
+    python -m benchmarks gcd compare BEFORE AFTER [--only ...]   two folders of fits judged side by side
     python -m benchmarks gcd floor-fitted --results DIR [--record]   the material-fitted floor
     python -m benchmarks gcd reexport --results DIR --to DIR2   fits placed as unsew fit exports them now
     python -m benchmarks gcd status [--out DIR]    every case's build status
@@ -39,6 +40,7 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent))
 
 import build  # noqa: E402  (this folder on the path first)
+import compare  # noqa: E402
 import fits  # noqa: E402
 import kept  # noqa: E402
 import score  # noqa: E402
@@ -232,6 +234,11 @@ def _add_fit_score_parsers(sub) -> None:
         help="score only the built cases fitted or tried (a result folder or an outcome in fits.json); "
         "the others keep their recorded rows",
     )
+    co = sub.add_parser("compare", help="two folders of fits of the same cases judged side by side")
+    co.add_argument("before", help="folder of fit results (one folder per case id)")
+    co.add_argument("after", help="folder of fit results of the same cases")
+    co.add_argument("--cases", default=str(DEFAULT_CASES))
+    co.add_argument("--only", nargs="*", help="case ids (default: every case fitted in either folder)")
     fi = sub.add_parser(
         "fit", help="run unsew fit on every built case, each outcome kept in RESULTS/fits.json"
     )
@@ -339,6 +346,7 @@ def main(argv=None) -> int:
         "build": cmd_build,
         "fit": lambda a: fits.cmd_fit(a, [cid for cid, _, _ in build.case_ids()]),
         "score": lambda a: score.cmd_score(a, Path(a.record_file)),
+        "compare": lambda a: compare.cmd_compare(a, [cid for cid, _, _ in build.case_ids()]),
         "reexport": lambda a: fits.cmd_reexport(a, [cid for cid, _, _ in build.case_ids()]),
         "floor-fitted": lambda a: score.cmd_floor_fitted(a, Path(a.record_file)),
         "status": cmd_status,

@@ -950,3 +950,48 @@ def test_unwelded_copies_weld_back_on_load():
         _, f3, rep = repair_garment(v2, f2)
         assert rep.components == 1 and rep.welded_vertices > 0
         assert len(topology.boundary_loops(f3)) == 2  # the tube's two rims
+
+
+def test_compare_judges_two_folders_of_fits_side_by_side(tmp_path, monkeypatch, capsys):
+    """``gcd compare BEFORE AFTER``: each case fitted in either folder judged in both, a fit that
+    ended with an error shown by its exit and counted as failed, a case fitted on one side only
+    listed but not counted, the tally beyond the tolerances; a missing folder is refused."""
+    compare = _load("compare")
+    cases, before, after = tmp_path / "cases", tmp_path / "before", tmp_path / "after"
+    cases.mkdir()
+    figures = {
+        ("before", "gc_s1_000"): (9.0, 0.40, 1.00),
+        ("after", "gc_s1_000"): (7.0, 0.40, 1.20),
+        ("before", "gc_s1_001"): (5.0, 0.30, 0.50),
+        ("before", "gc_s1_002"): (4.0, 0.20, 0.40),
+    }
+    for side, cid in figures:
+        (tmp_path / side / cid).mkdir(parents=True)
+        (tmp_path / side / cid / "pattern.json").write_text("{}")
+    (after / "fits.json").write_text(
+        json.dumps({"gc_s1_001": {"exit": 2, "message": "fallen", "seconds": 1}})
+    )
+
+    def fake(case, res, **kw):
+        assert kw == {"floor": False, "redrape": False}  # no newton drapes in a comparison
+        ch, err, turn = figures[(res.parent.name, case.name)]
+        return {"chamfer_mm": ch, "panel_err": err, "turning": turn, "panels_rec": 2, "fit_ok": True}
+
+    monkeypatch.setattr(compare.score, "score_case", fake)
+
+    class Args:
+        only = None
+
+    Args.cases, Args.before, Args.after = str(cases), str(before), str(after)
+    ids = ["gc_s1_000", "gc_s1_001", "gc_s1_002", "gc_s1_003"]
+    assert compare.cmd_compare(Args, ids) == 0
+    out = capsys.readouterr().out
+    assert "| gc_s1_001 | 5.00 mm, 0.300, 0.500, 2 pieces | exit 2 |" in out
+    assert "| gc_s1_002 | 4.00 mm, 0.200, 0.400, 2 pieces | - |" in out and "gc_s1_003" not in out
+    t = json.loads(out.strip().splitlines()[-1])
+    assert t["cases"] == 1 and t["failed_after"] == 1 and t["failed_before"] == 0
+    assert t["chamfer_mm"] == {"lower": 1, "higher": 0, "same": 0}
+    assert t["panel_err"] == {"lower": 0, "higher": 0, "same": 1}
+    assert t["turning"]["higher"] == 1
+    Args.before = str(tmp_path / "missing")
+    assert compare.cmd_compare(Args, ids) == 2
