@@ -60,7 +60,38 @@ def _cell(r: dict | None) -> str:
     if r["exit"] != 0:
         return f"exit {r['exit']}"
     ok = "" if r.get("fit_ok", True) else ' ("ok": false)'
-    return f"{r['chamfer_mm']:.2f} mm, {r['panel_err']:.3f}, {r['turning']:.3f}, {r['panels_rec']} pieces{ok}"
+    f = {
+        k: "-" if r.get(k) is None else f"{r[k]:{w}}"
+        for k, w in (("chamfer_mm", ".2f"), ("panel_err", ".3f"), ("turning", ".3f"))
+    }
+    return f"{f['chamfer_mm']} mm, {f['panel_err']}, {f['turning']}, {r.get('panels_rec')} pieces{ok}"
+
+
+#: What a case folder needs to judge a fit of it.
+CASE_FILES = ("truth.json", "pattern_gt.json", "target.obj")
+
+
+class Unjudged(Exception):
+    """A fit or a case that cannot be judged, with the one-line reason."""
+
+
+def _rows(cases: Path, before: Path, after: Path, wanted: list[str]) -> list:
+    """(case, before, after) of each case fitted in either folder; raises Unjudged."""
+    rows = []
+    for cid in wanted:
+        if not any((d / cid).is_dir() or cid in fits.read_log(d) for d in (before, after)):
+            continue
+        missing = [f for f in CASE_FILES if not (cases / cid / f).is_file()]
+        if missing:
+            raise Unjudged(f"case {cid} has no {', '.join(missing)} in {cases} (give --cases)")
+        pair = []
+        for d in (before, after):
+            try:
+                pair.append(judged(cases, d, cid))
+            except (KeyError, ValueError, TypeError, OSError) as exc:
+                raise Unjudged(f"{d / cid} cannot be judged: {type(exc).__name__}: {exc}") from exc
+        rows.append((cid, *pair))
+    return rows
 
 
 def cmd_compare(args, case_ids: list[str]) -> int:
@@ -71,9 +102,16 @@ def cmd_compare(args, case_ids: list[str]) -> int:
         if not p.is_dir():
             print(f"gcd compare: no folder {p}", file=sys.stderr)
             return 2
+    unknown = sorted(set(args.only or ()) - set(case_ids))
+    if unknown:
+        print(f"gcd compare: no such case {', '.join(unknown)} (ids are gc_s<seed>_<index>)", file=sys.stderr)
+        return 2
     wanted = [c for c in case_ids if not args.only or c in args.only]
-    rows = [(cid, judged(cases, before, cid), judged(cases, after, cid)) for cid in wanted]
-    rows = [r for r in rows if r[1] is not None or r[2] is not None]
+    try:
+        rows = _rows(cases, before, after, wanted)
+    except Unjudged as exc:
+        print(f"gcd compare: {exc}", file=sys.stderr)
+        return 2
     if not rows:
         print(f"gcd compare: no fit of these cases in {before} or {after}", file=sys.stderr)
         return 2

@@ -955,7 +955,7 @@ def test_unwelded_copies_weld_back_on_load():
 def test_compare_judges_two_folders_of_fits_side_by_side(tmp_path, monkeypatch, capsys):
     """``gcd compare BEFORE AFTER``: each case fitted in either folder judged in both, a fit that
     ended with an error shown by its exit and counted as failed, a case fitted on one side only
-    listed but not counted, the tally beyond the tolerances; a missing folder is refused."""
+    listed but not counted, the tally beyond the tolerances; bad input refused in one line."""
     compare = _load("compare")
     cases, before, after = tmp_path / "cases", tmp_path / "before", tmp_path / "after"
     cases.mkdir()
@@ -971,6 +971,10 @@ def test_compare_judges_two_folders_of_fits_side_by_side(tmp_path, monkeypatch, 
     (after / "fits.json").write_text(
         json.dumps({"gc_s1_001": {"exit": 2, "message": "fallen", "seconds": 1}})
     )
+    for cid in ("gc_s1_000", "gc_s1_001", "gc_s1_002"):  # what judging a case needs
+        (cases / cid).mkdir()
+        for name in compare.CASE_FILES:
+            (cases / cid / name).write_text("")
 
     def fake(case, res, **kw):
         assert kw == {"floor": False, "redrape": False}  # no newton drapes in a comparison
@@ -993,5 +997,17 @@ def test_compare_judges_two_folders_of_fits_side_by_side(tmp_path, monkeypatch, 
     assert t["chamfer_mm"] == {"lower": 1, "higher": 0, "same": 0}
     assert t["panel_err"] == {"lower": 0, "higher": 0, "same": 1}
     assert t["turning"]["higher"] == 1
-    Args.before = str(tmp_path / "missing")
+    # bad input ends in one line and exit 2: a missing folder, an unknown id, a case without its
+    # truth, a fit the judge cannot read
+    for bad in ({"before": str(tmp_path / "missing")}, {"only": ["gc_s9_999"]}):
+        A = type("A", (Args,), bad)
+        assert compare.cmd_compare(A, ids) == 2
+        assert len(capsys.readouterr().err.strip().splitlines()) == 1
+    (cases / "gc_s1_002" / "truth.json").unlink()
     assert compare.cmd_compare(Args, ids) == 2
+    assert "gc_s1_002 has no truth.json" in capsys.readouterr().err
+    (cases / "gc_s1_002" / "truth.json").write_text("")
+    monkeypatch.setattr(compare.score, "score_case", lambda case, res, **kw: {}["pattern"])
+    assert compare.cmd_compare(Args, ids) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "cannot be judged: KeyError" in err
