@@ -52,6 +52,10 @@ REFUSED_ON_SIGHT = {
 #: ... and how far below the ground (the plane under the body's lowest point, newton_drape's
 #: ``ground``) cloth may reach [m]: a garment long enough lies on it, none goes through it.
 GROUND_TOL = 0.01
+#: ... and the height above the ground [m] below which cloth inside the body is not counted as
+#: inside: the body stands on the ground, so cloth lying under a sole is inside it by construction
+#: (trousers long enough reach the floor round the feet: docs/decisions/051).
+UNDERFOOT = 0.01
 #: ... and how far the garment's top may sink below the specification's placement of it [m]
 #: (a bodice whose shoulder seams did not close slides down the torso).
 MAX_DROP = 0.08
@@ -748,13 +752,21 @@ def _stretch_checks(rec: dict, x: np.ndarray, mesh) -> list[str]:
     ]
 
 
+def inside_share(x: np.ndarray, body_v: np.ndarray, body_f: np.ndarray) -> float:
+    """The share of the drape's vertices x (n, 3) [m] inside the body, those lying under a sole
+    (less than UNDERFOOT above the body's lowest point) left out."""
+    import checks
+
+    inside = np.asarray(checks.inside_mask(x, body_v, body_f), bool)
+    return float((inside & (x[:, 1] > body_v[:, 1].min() + UNDERFOOT)).mean())
+
+
 def _accept(rec: dict, x: np.ndarray, x0: np.ndarray, mesh, body, info: dict) -> list[str]:
     """The drape's acceptance checks (inside, stretch, floor, slide, wrap) recorded into ``rec``;
     returns the failed ones' lines (empty: accepted). x (n_x, 3), x0 (n_uv, 3) [m]: drape, start."""
-    import checks
 
     body_v, body_f = body
-    inside = float(checks.inside_mask(x, body_v, body_f).mean())
+    inside = inside_share(x, body_v, body_f)
     fails = []
     if inside >= MAX_INSIDE:
         fails.append(f"{inside:.2%} of vertices inside the body")
@@ -863,7 +875,7 @@ def recheck(out: Path, cid: str) -> dict | None:
     import trimesh
 
     x = np.asarray(trimesh.load(d / "target.obj", process=False, force="mesh").vertices)
-    inside = float(checks.inside_mask(x, body_v, body_f).mean())
+    inside = inside_share(x, body_v, body_f)
     drop = top_drop(x, x0, mesh)
     redo = ("inside the body", "slid down", "off the body", "on sight")
     same_mesh = len(x) == mesh.n_x  # a kept target on an earlier mesh keeps its recorded stretch

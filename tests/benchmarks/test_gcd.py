@@ -748,6 +748,24 @@ def test_a_few_burst_triangles_pass_the_stretch_check_and_a_stretched_region_doe
     assert rec["overstretched_share"] > 0.3
 
 
+def test_cloth_under_a_sole_is_not_counted_inside_but_cloth_through_a_leg_is():
+    """A body standing on the ground (a box, its sole at y = 0): cloth points inside it within
+    5 mm of the ground are not counted as inside, the same points 30 cm up are."""
+    import trimesh
+
+    sys.path.insert(0, str(ROOT / "benchmarks" / "foreign"))
+    build = _load("build")
+    body = trimesh.creation.box(extents=(0.3, 1.6, 0.2))
+    body_v = np.asarray(body.vertices) + [0, 0.8, 0]
+    body_f = np.asarray(body.faces)
+    rng = np.random.default_rng(0)
+    out = np.c_[rng.uniform(0.2, 0.4, 190), rng.uniform(0.0, 1.0, 190), np.zeros(190)]
+    under = np.c_[rng.uniform(-0.1, 0.1, 10), rng.uniform(0.001, 0.005, 10), np.zeros(10)]
+    assert build.inside_share(np.r_[out, under], body_v, body_f) == 0.0
+    through = under + [0, 0.3, 0]
+    assert build.inside_share(np.r_[out, through], body_v, body_f) == pytest.approx(0.05)
+
+
 def test_a_garment_round_the_body_wraps_it_and_one_fallen_behind_it_does_not():
     """A tube round a 15 cm torso covers every direction at its height; the same cloth crumpled
     into a lump behind the back covers under a third of them."""
