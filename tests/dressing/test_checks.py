@@ -7,7 +7,15 @@ import pytest
 from unsew.body.body import default_body
 from unsew.body.sdf import BodySDF
 from unsew.errors import SimulationError
-from unsew.sim.checks import DROP_MAX, FAR_DIST, RISE_DIST, STRETCH_MAX, TOP_DROP_MAX, check_drape
+from unsew.sim.checks import (
+    DROP_MAX,
+    FAR_DIST,
+    RISE_DIST,
+    STRETCH_MAX,
+    TOP_DROP_MAX,
+    check_drape,
+    check_dressed,
+)
 
 
 @pytest.fixture(scope="module")
@@ -103,6 +111,24 @@ def test_fallen(body_sdf):
     y0 = x[:, 1].copy()
     y0[y0 > np.quantile(y0, 2 / 3)] += 0.5 * TOP_DROP_MAX
     assert _check(body, sdf, x, faces, uv, start_y=y0).ok
+
+
+def test_fallen_from_where_the_pattern_places_it(body_sdf):
+    """A garment that started low and stayed there drops nothing from its start: judged against
+    the pattern's own placement too, its top 0.3 m under that placement's (and under the
+    shoulders) is fallen; 0.1 m under it is settling."""
+    from types import SimpleNamespace
+
+    body, sdf = body_sdf
+    faces, uv, x = _tube(body)
+    mesh = SimpleNamespace(faces=faces, uv=uv, faces_uv=faces)
+    d = SimpleNamespace(x=x, mesh=mesh, sdf=sdf, stats={}, x_start=x.copy())
+    top = float(np.quantile(x[:, 1], 0.98))
+    assert check_dressed(d, body=body).ok
+    assert check_dressed(d, body=body, placed_top=top + 0.5 * TOP_DROP_MAX).ok
+    v = check_dressed(d, body=body, placed_top=top + 0.3)
+    assert not v.ok and v.reason.startswith("fallen")
+    assert "0.30 m below where the pattern places it" in v.reason
 
 
 def test_rose(body_sdf):

@@ -201,10 +201,12 @@ def run(args: argparse.Namespace) -> int:
     # bars on a terminal, else a line per phase
     with Progress(not args.no_progress).phase("drape") as progress:
         d = dress(pattern, body, material=material, settings=settings, progress=progress)
-    from unsew.sim.checks import check_dressed
+    from unsew.sim.checks import check_dressed, placed_top
 
     m = d.mesh
-    verdict = check_dressed(d, body=body)
+    # judged against where the pattern itself places the garment too: a start that already lay
+    # low (a bodice placed at the hips) drops nothing from itself
+    verdict = check_dressed(d, body=body, placed_top=placed_top(pattern, m, body, sdf=d.sdf))
     if not verdict.ok:
         if args.keep_failed:
             failed = out.with_name(out.stem + ".failed.obj")

@@ -20,7 +20,11 @@ Checks, in order (the first that fails is the reason):
    its mean height; or its top (the :data:`TOP_QUANTILE` quantile of its vertex heights) has
    dropped by more than :data:`TOP_DROP_MAX` from the start's and ends below the shoulder
    joints (a top whose sleeves and bodice slid off the shoulders into a heap at the hips drops
-   its median less than its top; a hood falling onto the head ends above the shoulders).
+   its median less than its top; a hood falling onto the head ends above the shoulders); or,
+   in :func:`check_dressed` given the top of the pattern's own placement (its panels'
+   translation and rotation), its top ends more than :data:`TOP_DROP_MAX` below that and below
+   the shoulder joints (a start that already lay low, a bodice placed at the hips, drops
+   nothing from itself).
    ``rose``: when the start's vertex heights are given, more than :data:`RISE_MAX_PCT` % of the
    vertices ended above the body's chest joint and more than :data:`RISE_DIST` above where
    they were placed (a top gathered up round the neck, a skirt bunched on the shoulders; a
@@ -38,7 +42,7 @@ inside, stretch below 1.5).
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
@@ -48,6 +52,7 @@ __all__ = [
     "DrapeVerdict",
     "check_drape",
     "check_dressed",
+    "placed_top",
     "STRETCH_MAX",
     "STRETCH_P99_MAX",
     "AREA_MIN",
@@ -326,6 +331,27 @@ def _height_failure(y_min, y_max, drops, *, floor, crotch, shoulder) -> str:
     return ""
 
 
+def _placed_failure(below: float, y_top: float, *, shoulder: float) -> str:
+    """The reason of a failed drop check against the pattern's own placement ("" when it passes):
+    the top ``below`` [m] under that placement's top, ending at ``y_top`` [m]; the lower shoulder
+    joint's height ``shoulder`` [m]."""
+    if below > TOP_DROP_MAX and y_top < shoulder:
+        return (
+            f"fallen: the garment's top is {below:.2f} m below where the pattern places it "
+            f"(off the shoulders or the hips; bound {TOP_DROP_MAX:g} m)"
+        )
+    return ""
+
+
+def placed_top(pattern, mesh, body, sdf=None) -> float:
+    """The height [m] of the garment's top (TOP_QUANTILE of its vertex heights) in the pattern's
+    own placement of its panels on ``body`` (:func:`unsew.body.placement.place_as_given`)."""
+    from unsew.body.placement import place_as_given
+
+    x = np.asarray(place_as_given(pattern, mesh, body, sdf=sdf), dtype=np.float64)
+    return float(np.quantile(x[:, 1], TOP_QUANTILE))
+
+
 def _body_failure(far_pct, inside_pct) -> str:
     """The reason of the first failed check against the body ("" when both pass); shares [%]."""
     if far_pct > FAR_MAX_PCT:
@@ -350,14 +376,16 @@ def _crotch_height(body) -> float:
     return float(v[m, 1].min()) if m.any() else float(0.5 * (pel[1] + knee))
 
 
-def check_dressed(d, *, body=None, start_height=None, start_y=None) -> DrapeVerdict:
+def check_dressed(d, *, body=None, start_height=None, start_y=None, placed_top=None) -> DrapeVerdict:
     """:func:`check_drape` of a :class:`unsew.dress.Dressed` (its sewn mesh, rest shape and SDF).
 
     body: the body it was dressed on (needed: a Dressed does not keep it). start_height: see
     :func:`check_drape`; when None, the mean height of the placed panels that
     :func:`unsew.dress.dress` records as ``d.stats["start_height"]`` [m] is used. start_y: see
     :func:`check_drape`; when None, the heights of the placed vertices ``d.x_start`` (n_x, 3) [m]
-    (None when the Dressed has none).
+    (None when the Dressed has none). placed_top: optional height [m] of the garment's top
+    (TOP_QUANTILE of its heights) in the pattern's own placement (:func:`placed_top`): a drape
+    that passes :func:`check_drape` is judged against it too (the module docstring's ``fallen``).
     """
     if body is None:
         raise ValueError("check_dressed needs the body the garment was dressed on")
@@ -367,7 +395,7 @@ def check_dressed(d, *, body=None, start_height=None, start_y=None) -> DrapeVerd
     if start_y is None and x_start is not None:
         start_y = _float64(x_start)[:, 1]
     m = d.mesh
-    return check_drape(
+    v = check_drape(
         d.x,
         faces=m.faces,
         uv=m.uv,
@@ -377,3 +405,8 @@ def check_dressed(d, *, body=None, start_height=None, start_y=None) -> DrapeVerd
         start_height=start_height,
         start_y=start_y,
     )
+    if not v.ok or placed_top is None:
+        return v
+    y_top = float(np.quantile(_float64(d.x)[:, 1], TOP_QUANTILE))
+    reason = _placed_failure(float(placed_top) - y_top, y_top, shoulder=_shoulder(body))
+    return replace(v, ok=False, reason=reason) if reason else v
