@@ -764,7 +764,6 @@ def inside_share(x: np.ndarray, body_v: np.ndarray, body_f: np.ndarray) -> float
 def _accept(rec: dict, x: np.ndarray, x0: np.ndarray, mesh, body, info: dict) -> list[str]:
     """The drape's acceptance checks (inside, stretch, floor, slide, wrap) recorded into ``rec``;
     returns the failed ones' lines (empty: accepted). x (n_x, 3), x0 (n_uv, 3) [m]: drape, start."""
-
     body_v, body_f = body
     inside = inside_share(x, body_v, body_f)
     fails = []
