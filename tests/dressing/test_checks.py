@@ -125,8 +125,8 @@ def test_fallen_from_where_the_pattern_places_it(body_sdf):
     d = SimpleNamespace(x=x, mesh=mesh, sdf=sdf, stats={}, x_start=x.copy())
     top = float(np.quantile(x[:, 1], 0.98))
     assert check_dressed(d, body=body).ok
-    assert check_dressed(d, body=body, placed_top=top + 0.5 * TOP_DROP_MAX).ok
-    v = check_dressed(d, body=body, placed_top=top + 0.3)
+    assert check_dressed(d, body=body, placed_top_m=top + 0.5 * TOP_DROP_MAX).ok
+    v = check_dressed(d, body=body, placed_top_m=top + 0.3)
     assert not v.ok and v.reason.startswith("fallen")
     assert "0.30 m below where the pattern places it" in v.reason
 

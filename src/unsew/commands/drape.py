@@ -206,7 +206,7 @@ def run(args: argparse.Namespace) -> int:
     m = d.mesh
     # judged against where the pattern itself places the garment too: a start that already lay
     # low (a bodice placed at the hips) drops nothing from itself
-    verdict = check_dressed(d, body=body, placed_top=placed_top(pattern, m, body, sdf=d.sdf))
+    verdict = check_dressed(d, body=body, placed_top_m=placed_top(pattern, m, body, sdf=d.sdf))
     if not verdict.ok:
         if args.keep_failed:
             failed = out.with_name(out.stem + ".failed.obj")

@@ -345,7 +345,12 @@ def _placed_failure(below: float, y_top: float, *, shoulder: float) -> str:
 
 def placed_top(pattern, mesh, body, sdf=None) -> float:
     """The height [m] of the garment's top (TOP_QUANTILE of its vertex heights) in the pattern's
-    own placement of its panels on ``body`` (:func:`unsew.body.placement.place_as_given`)."""
+    own placement of its panels on ``body`` (:func:`unsew.body.placement.place_as_given`).
+
+    pattern: unsew.pattern.model.Pattern whose panels carry their translation and rotation;
+    mesh: its GarmentMesh; body: unsew.body.body.Body with a skeleton; sdf: the body's BodySDF
+    (built when None). Returns a float [m]; a pattern placed low (no translation) gives a low
+    top, which no drape falls from."""
     from unsew.body.placement import place_as_given
 
     x = np.asarray(place_as_given(pattern, mesh, body, sdf=sdf), dtype=np.float64)
@@ -376,14 +381,14 @@ def _crotch_height(body) -> float:
     return float(v[m, 1].min()) if m.any() else float(0.5 * (pel[1] + knee))
 
 
-def check_dressed(d, *, body=None, start_height=None, start_y=None, placed_top=None) -> DrapeVerdict:
+def check_dressed(d, *, body=None, start_height=None, start_y=None, placed_top_m=None) -> DrapeVerdict:
     """:func:`check_drape` of a :class:`unsew.dress.Dressed` (its sewn mesh, rest shape and SDF).
 
     body: the body it was dressed on (needed: a Dressed does not keep it). start_height: see
     :func:`check_drape`; when None, the mean height of the placed panels that
     :func:`unsew.dress.dress` records as ``d.stats["start_height"]`` [m] is used. start_y: see
     :func:`check_drape`; when None, the heights of the placed vertices ``d.x_start`` (n_x, 3) [m]
-    (None when the Dressed has none). placed_top: optional height [m] of the garment's top
+    (None when the Dressed has none). placed_top_m: optional height [m] of the garment's top
     (TOP_QUANTILE of its heights) in the pattern's own placement (:func:`placed_top`): a drape
     that passes :func:`check_drape` is judged against it too (the module docstring's ``fallen``).
     """
@@ -405,8 +410,8 @@ def check_dressed(d, *, body=None, start_height=None, start_y=None, placed_top=N
         start_height=start_height,
         start_y=start_y,
     )
-    if not v.ok or placed_top is None:
+    if not v.ok or placed_top_m is None:
         return v
     y_top = float(np.quantile(_float64(d.x)[:, 1], TOP_QUANTILE))
-    reason = _placed_failure(float(placed_top) - y_top, y_top, shoulder=_shoulder(body))
+    reason = _placed_failure(float(placed_top_m) - y_top, y_top, shoulder=_shoulder(body))
     return replace(v, ok=False, reason=reason) if reason else v
