@@ -101,6 +101,25 @@ def test_a_flare_near_a_class_edge_tries_the_neighbouring_style():
     assert {d.skirt for _, d in design_candidates(far)} == {"pencil"}
 
 
+@pytest.mark.parametrize("garment", ["tshirt", "dress", "jumpsuit"])
+def test_a_sleeve_class_read_through_the_opening_far_from_an_edge_is_kept(garment):
+    """An armhole the arm line passes through near the shoulder drafts no sleeve, a sleeve end
+    it passes through past the elbow no short sleeve; the same shares read off an opening's
+    centre (a sleeve hanging off the arm) or near a class edge draft the neighbouring class too."""
+    from dataclasses import replace
+
+    def sleeves(cls, share, through):
+        nums = {**READINGS[garment].numbers, "sleeve_share": share, "sleeve_through": through}
+        cands = design_candidates(replace(READINGS[garment], sleeves=cls, numbers=nums))
+        return {d.sleeves for _, d in cands}
+
+    assert sleeves("none", 0.05, 1.0) == {"none"}
+    assert sleeves("long", 0.85, 1.0) == {"long"}
+    assert sleeves("none", 0.05, 0.0) == {"none", "short"}
+    assert sleeves("none", 0.15, 1.0) == {"none", "short"}  # within the margin of the armhole's edge
+    assert sleeves("short", 0.35, 1.0) == {"short"} and sleeves("short", 0.45, 1.0) == {"short", "long"}
+
+
 def test_the_read_hem_depth_sets_the_length():
     short, long = (
         design_candidates(DesignReading("pants", length=c, numbers={"hem_share": s}))[0][1]

@@ -10,7 +10,8 @@ the waist darts the reading decided (a two-panel pencil skirt's; a dress cut to 
 chest is drafted first as a bodice with waist darts over a waistband and a skirt). The
 alternatives are the choices the reading cannot see (a waistband, the number of gores, a dress in
 one piece or a bodice and a skirt, sleeves in two pieces, cuffs), the neighbouring sleeve classes
-and the neighbouring skirt style where the flare lies near a class's edge (:data:`FLARE_MARGIN`). At most
+where the sleeve's share is uncertain or near a class's edge (:data:`SLEEVE_MARGIN`) and the
+neighbouring skirt style where the flare lies near a class's edge (:data:`FLARE_MARGIN`). At most
 :data:`MAX_CANDIDATES`, the design as read first; each is dressed and compared as the library's
 bases are (:func:`unsew.fit.start.choose_base`).
 """
@@ -26,12 +27,22 @@ from unsew.pattern.base._band import BAND_HEIGHT
 from unsew.pattern.design import GARMENTS, STRAPLESS_DROP, TOP_DROP_RANGE, Design, design_name, draft
 from unsew.pattern.measurements import Measurements
 
-__all__ = ["design_candidates", "drafted_candidates", "read_measures", "MAX_CANDIDATES", "FLARE_MARGIN"]
+__all__ = [
+    "design_candidates",
+    "drafted_candidates",
+    "read_measures",
+    "MAX_CANDIDATES",
+    "FLARE_MARGIN",
+    "SLEEVE_MARGIN",
+]
 
 #: The most candidates one reading gives (each is one drape on the base choice's coarse mesh).
 MAX_CANDIDATES = 6
 #: A flare within this ratio of a class edge adds the neighbouring skirt style.
 FLARE_MARGIN = 1.06
+#: A sleeve share read where the arm line passes through the opening, within this share of the
+#: arm of a class edge, adds the neighbouring sleeve class (docs/decisions/052).
+SLEEVE_MARGIN = 0.1
 #: The reading's necklines as a design's (no neck opening, or none read: round).
 _NECK = {"round": "round", "v": "v", "square": "square"}
 #: The reading's collars the design space drafts (a hood, a standing collar).
@@ -195,14 +206,20 @@ def _top_fields(reading, m: Measurements, measures: dict) -> dict:
 
 def _top_alternatives(first: Design, reading) -> list[Design]:
     """The neighbouring sleeve classes, the one whose edge the read share lies nearer first
-    (grading cannot grow or remove a sleeve, and the share of a sleeve hanging off the arm is
-    uncertain), then two-piece sleeves and cuffs (which the reading cannot see) on a sleeved
-    design; for a strapless top, the sleeveless one with a round neck."""
+    (grading cannot grow or remove a sleeve): those of a share read off a sleeve end off the arm
+    line (uncertain), and, of a share where the arm line passes through the opening, those whose
+    edge lies within :data:`SLEEVE_MARGIN`; then two-piece sleeves and cuffs (which the reading
+    cannot see) on a sleeved design; for a strapless top, the sleeveless one with a round neck."""
     if first.strapless:  # the reading may have missed straps: the sleeveless round neck
         return [first.replace(strapless=False, top_drop=STRAPLESS_DROP)]
     share = reading.numbers.get("sleeve_share", 0.0)
+    sure = reading.numbers.get("sleeve_through", 0.0) > 0.5
     edges = {("none", "short"): ARMHOLE_SHARE, ("short", "long"): SHORT_SLEEVE_SHARE}
-    near = sorted((abs(share - e), pair) for pair, e in edges.items() if first.sleeves in pair)
+    near = sorted(
+        (abs(share - e), pair)
+        for pair, e in edges.items()
+        if first.sleeves in pair and not (sure and abs(share - e) > SLEEVE_MARGIN)
+    )
     out = [first.replace(sleeves=b if first.sleeves == a else a) for _, (a, b) in near]
     if first.sleeves != "none":
         out += [first.replace(sleeve_pieces=2), first.replace(cuffs=True)]

@@ -109,7 +109,9 @@ class DesignReading:
     :data:`COLLAR_CLASSES`; skirt: :data:`SKIRT_CLASSES`; length: :data:`LENGTH_CLASSES`;
     darts: whether the cut needs waist darts (decided, not seen: :func:`_darts`);
     evidence: {choice: the measure it was read from, in words}; numbers: {"sleeve_share",
-    "hem_share", "flare", "front_deg", ...} the measures themselves (shares [-], angles [deg]).
+    "hem_share", "flare", "front_deg", ...} the measures themselves (shares [-], angles [deg]);
+    "sleeve_through" 1.0 where the sleeve share is where the arm line passes through the opening
+    (no arm opening: none to read), 0.0 where it is an opening's centre off the arm line.
     """
 
     garment: str
@@ -209,15 +211,16 @@ def _arm_crossing(pts: np.ndarray, arm: list[np.ndarray], centre: np.ndarray) ->
     return None
 
 
-def _sleeves(v: np.ndarray, loops, skeleton) -> tuple[str, float, str]:
-    """(class, share, evidence): the longer side's arm opening's share of the arm: where the arm
-    line passes through it, or, where it misses it, where its centre lies along the arm."""
+def _sleeves(v: np.ndarray, loops, skeleton) -> tuple[str, float, str, bool]:
+    """(class, share, evidence, through): the longer side's arm opening's share of the arm: where
+    the arm line passes through it (``through``), or, where it misses it, where its centre lies
+    along the arm."""
     centres = np.stack([np.asarray(c.centre, dtype=np.float64) for c in loops])
     leg, _, on = _openings_by_part(v, loops, centres, skeleton)
     neck = _neck_opening(v, loops, skeleton)
     chains = _limb_chains(skeleton)
     mid = 0.5 * (skeleton.position("left_shoulder") + skeleton.position("right_shoulder"))
-    shares, hows = [], []
+    shares, hows, through = [], [], []
     for s in ("left", "right"):
         arm = chains[f"{s}_arm"]
         for i in np.flatnonzero(on[f"{s}_arm"] & ~leg):
@@ -226,19 +229,21 @@ def _sleeves(v: np.ndarray, loops, skeleton) -> tuple[str, float, str]:
             p = _arm_crossing(v[np.asarray(loops[i].indices)], arm, mid)
             shares.append(_arm_share(centres[i] if p is None else p, arm))
             hows.append(" (the arm line through it)" if p is not None else " (its centre)")
+            through.append(p is not None)
     free = ~(leg | on["left_arm"] | on["right_arm"])
     hanging = _hanging_ends(v, loops, centres, skeleton, free)
     shares += hanging
     hows += [" (a sleeve end off the arm line)"] * len(hanging)
+    through += [False] * len(hanging)
     if not shares:
-        return "none", 0.0, "no arm opening"
+        return "none", 0.0, "no arm opening", True
     k = int(np.argmax(shares))
     share = shares[k]
     if share <= ARMHOLE_SHARE:
         cls = "none"
     else:
         cls = "short" if share <= SHORT_SLEEVE_SHARE else "long"
-    return cls, round(share, 2), f"arm opening {share:.2f} of the arm from the shoulder{hows[k]}"
+    return cls, round(share, 2), f"arm opening {share:.2f} of the arm from the shoulder{hows[k]}", through[k]
 
 
 def _is_square(pts: np.ndarray, width: float) -> tuple[bool, float]:
@@ -446,7 +451,8 @@ def read_design(
     r = read_garment_type(v, f, skeleton, contours=loops) if reading is None else reading
     got, nums, ev = {}, {}, {}
     if r.garment in ("tshirt", "dress", "jumpsuit"):
-        got["sleeves"], nums["sleeve_share"], ev["sleeves"] = _sleeves(v, loops, skeleton)
+        got["sleeves"], nums["sleeve_share"], ev["sleeves"], through = _sleeves(v, loops, skeleton)
+        nums["sleeve_through"] = 1.0 if through else 0.0
         nums["over_shoulders"] = round(_over_shoulders(v, skeleton), 3)
         if nums["over_shoulders"] < 0.0:
             got["collar"], got["neck_front"], got["neck_back"] = "none", "none", "none"
