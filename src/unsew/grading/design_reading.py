@@ -111,7 +111,8 @@ class DesignReading:
     evidence: {choice: the measure it was read from, in words}; numbers: {"sleeve_share",
     "hem_share", "flare", "front_deg", ...} the measures themselves (shares [-], angles [deg]);
     "sleeve_through" 1.0 where the sleeve share is where the arm line passes through the opening
-    (no arm opening: none to read), 0.0 where it is an opening's centre off the arm line.
+    or where the garment has no arm opening (no share to doubt), 0.0 where it is an opening's
+    centre off the arm line.
     """
 
     garment: str
