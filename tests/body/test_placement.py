@@ -381,3 +381,74 @@ def test_the_patterns_own_placement_is_kept_bent_round_the_body_and_clear_of_it(
     with torch.no_grad():
         d = sdf.query(torch.as_tensor(x))[0].numpy()
     assert (d < 0).mean() < 0.005
+
+
+def _hoodie_on_its_body():
+    """GarmentCode's hoodie with short sleeves cut in front and back halves, sized to the short
+    anny body in A-pose (design gc_s5_003 of the GarmentCode benchmark, GarmentCode's design
+    sampler, MIT), and that body."""
+    import warnings
+    from pathlib import Path
+
+    from unsew.body.anny_body import make_anny_body
+    from unsew.io.garmentcode import load_pattern
+
+    root = Path(__file__).resolve().parents[2]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # GarmentCode's gathered seams: lengths apart
+        pattern = load_pattern(root / "tests" / "data" / "gc_hoodie_short_sleeves_anny_specification.json")
+    return pattern, make_anny_body({"height": 0.2}, pose="A")
+
+
+def test_wide_sleeve_halves_are_sleeves():
+    """A sleeve half whose armhole corner lies at 0.59 of the shoulder's offset from the centre
+    plane, where a front half of this hoodie lies (the back half at 0.61), is a sleeve, as its other
+    half is: taken for a torso piece, it was wrapped round the chest and the drape exploded."""
+    pattern, body = _hoodie_on_its_body()
+    roles = panel_roles(pattern, body)
+    for side in ("left", "right"):
+        assert roles[f"{side}_sleeve_f"] == roles[f"{side}_sleeve_b"] == f"{side}_sleeve", roles
+        assert roles[f"{side}_ftorso"] == roles[f"{side}_btorso"] == "torso", roles
+
+
+def test_wide_sleeve_halves_start_round_their_arm():
+    """Each of the hoodie's sleeve halves starts round its own arm: every vertex within 0.15 m of
+    the arm's bones (shoulder, elbow, wrist) and nearer them than the torso's axis."""
+    from unsew.body.placement import _arm_distance, _landmarks
+
+    pattern, body = _hoodie_on_its_body()
+    mesh = mesh_pattern(pattern, edge_length=0.04)
+    x = place_garment(pattern, mesh, body)
+    J, _, _, cx, _ = _landmarks(body)
+    pid = np.asarray(mesh.uv_panel)
+    for k, name in enumerate(mesh.panel_names):
+        if "sleeve" not in name:
+            continue
+        side = name.split("_")[0]
+        pts = x[pid == k]
+        d_arm = np.array([_arm_distance(p, J, side) for p in pts])
+        d_axis = np.hypot(pts[:, 0] - cx, pts[:, 2])
+        assert d_arm.max() < 0.15 and (d_arm < d_axis).all(), (name, d_arm.max())
+
+
+def test_a_circle_skirts_gores_are_not_sleeves():
+    """The gores of a drafted four-gore circle skirt on GarmentCode's mean female body lie beside
+    the hanging hands as far from the centre plane as a wide sleeve's halves, but stay below the
+    upper arm: none is a sleeve."""
+    import os
+    from pathlib import Path
+
+    from unsew.body.body import load_body
+    from unsew.body.measure import measure_body
+    from unsew.pattern.design import Design, draft
+
+    root = Path(__file__).resolve().parents[2]
+    shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
+    body_mesh = shared / "foreign" / "bodies" / "mean_female.obj"
+    if not body_mesh.is_file():
+        pytest.skip(f"GarmentCode bodies not at {body_mesh.parent}")
+    body = load_body(body_mesh, None)
+    for frac in (0.75, 1.0):
+        design = Design(garment="skirt", skirt="circle", circle_fraction=frac, panels=4, waistband=True)
+        roles = panel_roles(draft(design, measure_body(body)), body)
+        assert not any("sleeve" in r for r in roles.values()), (frac, roles)

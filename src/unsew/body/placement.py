@@ -68,6 +68,10 @@ LEG_GAP = 0.03
 #: A panel whose every point lies beyond this share of the shoulder's offset from the centre
 #: plane (in its hint placement) is a sleeve, whichever way it faces.
 SLEEVE_INNER = 0.6
+#: ... and one beyond this share that reaches up past the middle of the upper arm is one too: a
+#: wide sleeve's armhole comes nearer the centre plane (a torso's half reaches it, a skirt's gore
+#: stays below; docs/decisions/053).
+UPPER_SLEEVE_INNER = 0.25
 #: ... and a sleeve's centre lies within this distance of its arm's bones (shoulder, elbow,
 #: wrist) in its hint [m]: a wide skirt's side panels reach as far out as a sleeve under a
 #: raised (T-pose) arm.
@@ -243,7 +247,9 @@ def panel_roles(pattern, body) -> dict:
     A sleeve is a panel out to the side of its shoulder and above the crotch: either facing
     sideways (one panel round the arm, as unsew's base patterns draw it) or lying entirely
     beyond SLEEVE_INNER of the shoulder's offset from the centre plane (GarmentCode's front and
-    back halves of a sleeve, facing front and back)."""
+    back halves of a sleeve, facing front and back), or beyond UPPER_SLEEVE_INNER of it and
+    reaching up past the middle of the upper arm (a wide sleeve's halves, whose armhole corner
+    lies nearer the centre plane)."""
     J, _, _, cx, crotch_y = _landmarks(body)
     roles = {}
     for name in pattern.panel_order:
@@ -254,16 +260,20 @@ def panel_roles(pattern, body) -> dict:
         side = "left" if c[0] > cx else "right"
         sh = J[f"{side}_shoulder"]
         off_sh = abs(sh[0] - cx)
-        if w[:, 1].min() > J["neck"][1] + 0.03 or c[1] > J["neck"][1]:
-            roles[name] = "free"  # a collar, a hood
-        elif (
+        out_by_arm = (
             c[1] > crotch_y + 0.1
             and abs(c[0] - cx) > 0.8 * off_sh
             and _arm_distance(c, J, side) < SLEEVE_REACH
-            and (
-                (abs(n[0]) > 0.7 and c[1] > J[f"{side}_wrist"][1] - 0.1)
-                or np.min(np.abs(w[:, 0] - cx)) > SLEEVE_INNER * off_sh
-            )
+        )
+        if w[:, 1].min() > J["neck"][1] + 0.03 or c[1] > J["neck"][1]:
+            roles[name] = "free"  # a collar, a hood
+            continue
+        inner = np.min(np.abs(w[:, 0] - cx)) / max(off_sh, 1e-6)  # its nearest to the centre plane
+        upper_arm = w[:, 1].max() > 0.5 * (sh[1] + J[f"{side}_elbow"][1])  # up by the shoulder
+        if out_by_arm and (
+            (abs(n[0]) > 0.7 and c[1] > J[f"{side}_wrist"][1] - 0.1)
+            or inner > SLEEVE_INNER
+            or (upper_arm and inner > UPPER_SLEEVE_INNER)
         ):
             roles[name] = f"{side}_sleeve"
         elif (
