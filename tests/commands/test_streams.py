@@ -88,12 +88,12 @@ def test_drape_through_a_pipe_has_no_control_codes(tmp_path):
     pattern, out = tmp_path / "s.json", tmp_path / "g.obj"
     assert _unsew("pattern", "new", "skirt", "--out", pattern).returncode == 0
     r = _unsew(
-        "drape", pattern, "--out", out, "--edge-length", "0.05", "--sew-steps", "10", "--settle-steps", "5"
+        "drape", pattern, "--out", out, "--edge-length", "0.05", "--sew-steps", "30", "--settle-steps", "5"
     )
     assert r.returncode == 0, r.stderr
     _clean(r.stdout, "stdout")
     _clean(r.stderr, "stderr")
-    assert "drape: sew (10 steps)" in r.stderr.splitlines() and r.stdout.startswith(f"wrote {out}")
+    assert "drape: sew (30 steps)" in r.stderr.splitlines() and r.stdout.startswith(f"wrote {out}")
     assert out.is_file()
 
 

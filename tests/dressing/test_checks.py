@@ -11,6 +11,7 @@ from unsew.sim.checks import (
     DROP_MAX,
     FAR_DIST,
     RISE_DIST,
+    SEAM_GAP_MAX,
     STRETCH_MAX,
     TOP_DROP_MAX,
     check_drape,
@@ -129,6 +130,22 @@ def test_fallen_from_where_the_pattern_places_it(body_sdf):
     v = check_dressed(d, body=body, placed_top_m=top + 0.3)
     assert not v.ok and v.reason.startswith("fallen")
     assert "0.30 m below where the pattern places it" in v.reason
+
+
+def test_unsewn(body_sdf):
+    """A drape whose sewing left a seam open wider than the bound asked for is unsewn (its
+    garment merged from panels that never met); under the bound, or not asked, it passes."""
+    from types import SimpleNamespace
+
+    body, sdf = body_sdf
+    faces, uv, x = _tube(body)
+    mesh = SimpleNamespace(faces=faces, uv=uv, faces_uv=faces)
+    d = SimpleNamespace(x=x, mesh=mesh, sdf=sdf, stats={"seam_gap": 0.028}, x_start=x.copy())
+    assert check_dressed(d, body=body).ok
+    v = check_dressed(d, body=body, seam_gap_max=SEAM_GAP_MAX)
+    assert not v.ok and v.reason.startswith("unsewn") and "28 mm open" in v.reason, v.reason
+    d.stats["seam_gap"] = 0.008  # the widest of twenty sound true-pattern drapes
+    assert check_dressed(d, body=body, seam_gap_max=SEAM_GAP_MAX).ok
 
 
 def test_rose(body_sdf):

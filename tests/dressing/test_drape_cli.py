@@ -21,7 +21,7 @@ def test_drape_cli_writes_obj(tmp_path, capsys):
             "--edge-length",
             "0.05",
             "--sew-steps",
-            "20",
+            "30",  # 20 left the skirt's seams 93 mm open: unsewn
             "--settle-steps",
             "2",
             "--no-progress",
@@ -59,7 +59,7 @@ def test_drape_cli_uses_the_patterns_fitted_material(tmp_path, capsys):
     pj = tmp_path / "fitted.json"
     save_pattern(p, pj)
     out = tmp_path / "garment.obj"
-    small = ["--edge-length", "0.05", "--sew-steps", "10", "--settle-steps", "1", "--no-progress"]
+    small = ["--edge-length", "0.05", "--sew-steps", "30", "--settle-steps", "1", "--no-progress"]
     assert main(["drape", str(pj), *small, "--out", str(out)]) == 0
     assert "the pattern's fitted material" in out.read_text().splitlines()[0]
     assert main(["drape", str(pj), *small, "--material", "cotton", "--out", str(out), "--overwrite"]) == 0
@@ -129,7 +129,7 @@ def test_drape_cli_uses_the_contact_a_fit_wrote(tmp_path, capsys):
     fitted = written({"mode": "target", "gap_mm": 3.4, "threshold_mm": 3.4, "stiffness": 1e9})
     assert pattern_contact(load_pattern(fitted)) == {"contact_threshold": 3.4e-3, "contact_stiffness": 1e9}
     out = tmp_path / "garment.obj"
-    small = ["--edge-length", "0.05", "--sew-steps", "10", "--settle-steps", "1", "--no-progress"]
+    small = ["--edge-length", "0.05", "--sew-steps", "30", "--settle-steps", "1", "--no-progress"]
     assert main(["drape", str(fitted), *small, "--out", str(out)]) == 0
     assert "fitted contact: threshold 3.4 mm, stiffness 1e+09" in capsys.readouterr().out
     p = load_pattern(fitted)

@@ -2,8 +2,8 @@
 
 Places the pattern's panels around the body, sews them shut and lets the garment settle
 (:func:`unsew.dress.dress`), judges the result (:func:`unsew.sim.checks.check_dressed`: fallen,
-off the body, exploded or inside it), then writes the draped garment as OBJ with the pattern's
-2D coordinates [m] as UVs, atomically. A bad verdict exits non-zero with one line and writes no
+off the body, exploded, inside it or left unsewn), then writes the draped garment as OBJ with
+the pattern's 2D coordinates [m] as UVs, atomically. A bad verdict exits non-zero with one line and writes no
 ``--out`` (with ``--keep-failed`` the garment goes to ``<out stem>.failed.obj`` for a look).
 This is also how a fitted pattern is retargeted to another body or pose (paper Fig. 12). A
 pattern written by a fit carries its fitted material and, when the fit's drapes did not use the
@@ -201,12 +201,13 @@ def run(args: argparse.Namespace) -> int:
     # bars on a terminal, else a line per phase
     with Progress(not args.no_progress).phase("drape") as progress:
         d = dress(pattern, body, material=material, settings=settings, progress=progress)
-    from unsew.sim.checks import check_dressed, placed_top
+    from unsew.sim.checks import SEAM_GAP_MAX, check_dressed, placed_top
 
     m = d.mesh
     # judged against where the pattern itself places the garment too: a start that already lay
     # low (a bodice placed at the hips) drops nothing from itself
-    verdict = check_dressed(d, body=body, placed_top_m=placed_top(pattern, m, body, sdf=d.sdf))
+    top = placed_top(pattern, m, body, sdf=d.sdf)
+    verdict = check_dressed(d, body=body, placed_top_m=top, seam_gap_max=SEAM_GAP_MAX)
     if not verdict.ok:
         if args.keep_failed:
             failed = out.with_name(out.stem + ".failed.obj")

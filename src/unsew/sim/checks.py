@@ -35,6 +35,11 @@ Checks, in order (the first that fails is the reason):
 5. ``inside the body``: more than :data:`INSIDE_MAX_PCT` % of the vertices are inside it.
 6. ``crumpled``: the draped surface's area is below :data:`AREA_MIN` times the pattern's (cloth
    does not shrink: a garment gathered into a strip or a ball loses area, a folded one does not).
+7. ``unsewn``: in :func:`check_dressed` asked for it (``seam_gap_max``, as ``unsew drape`` asks
+   for :data:`SEAM_GAP_MAX`), a seam still open wider than that when the sewing phase ended (the
+   two copies of a seam vertex apart before they are merged): the panels never met where the
+   seam is, and the garment merged from them is not the one sewn (a sleeve left hanging beside
+   the torso, docs/decisions/053).
 
 The thresholds are failure bounds, far from a good drape's figures (a good drape has < 0.5 %
 inside, stretch below 1.5).
@@ -91,6 +96,8 @@ FAR_DIST = 0.15
 FAR_MAX_PCT = 30.0
 #: Largest share of vertices inside the body [%].
 INSIDE_MAX_PCT = 5.0
+#: Widest seam left open when the sewing phase ends [m] (the ``unsewn`` check, docs/decisions/053).
+SEAM_GAP_MAX = 0.02
 
 
 @dataclass(frozen=True)
@@ -381,7 +388,9 @@ def _crotch_height(body) -> float:
     return float(v[m, 1].min()) if m.any() else float(0.5 * (pel[1] + knee))
 
 
-def check_dressed(d, *, body=None, start_height=None, start_y=None, placed_top_m=None) -> DrapeVerdict:
+def check_dressed(
+    d, *, body=None, start_height=None, start_y=None, placed_top_m=None, seam_gap_max=None
+) -> DrapeVerdict:
     """:func:`check_drape` of a :class:`unsew.dress.Dressed` (its sewn mesh, rest shape and SDF).
 
     body: the body it was dressed on (needed: a Dressed does not keep it). start_height: see
@@ -391,6 +400,8 @@ def check_dressed(d, *, body=None, start_height=None, start_y=None, placed_top_m
     (None when the Dressed has none). placed_top_m: optional height [m] of the garment's top
     (TOP_QUANTILE of its heights) in the pattern's own placement (:func:`placed_top`): a drape
     that passes :func:`check_drape` is judged against it too (the module docstring's ``fallen``).
+    seam_gap_max: optional bound [m] on ``d.stats["seam_gap"]``, the widest seam left open by the
+    sewing phase (the module docstring's ``unsewn``), checked last.
     """
     if body is None:
         raise ValueError("check_dressed needs the body the garment was dressed on")
@@ -410,8 +421,16 @@ def check_dressed(d, *, body=None, start_height=None, start_y=None, placed_top_m
         start_height=start_height,
         start_y=start_y,
     )
-    if not v.ok or placed_top_m is None:
+    if not v.ok:
         return v
-    y_top = float(np.quantile(_float64(d.x)[:, 1], TOP_QUANTILE))
-    reason = _placed_failure(float(placed_top_m) - y_top, y_top, shoulder=_shoulder(body))
+    reason = ""
+    if placed_top_m is not None:
+        y_top = float(np.quantile(_float64(d.x)[:, 1], TOP_QUANTILE))
+        reason = _placed_failure(float(placed_top_m) - y_top, y_top, shoulder=_shoulder(body))
+    gap = float(d.stats.get("seam_gap", 0.0))
+    if not reason and seam_gap_max is not None and gap > seam_gap_max:
+        reason = (
+            f"unsewn: a seam was still {gap * 1000:.0f} mm open when the sewing ended "
+            f"(bound {seam_gap_max * 1000:g} mm)"
+        )
     return replace(v, ok=False, reason=reason) if reason else v
