@@ -144,7 +144,7 @@ def test_unsewn(body_sdf):
     assert check_dressed(d, body=body).ok
     v = check_dressed(d, body=body, seam_gap_max=SEAM_GAP_MAX)
     assert not v.ok and v.reason.startswith("unsewn") and "28 mm open" in v.reason, v.reason
-    d.stats["seam_gap"] = 0.008  # the widest of twenty sound true-pattern drapes
+    d.stats["seam_gap"] = 0.008  # the widest of nineteen sound true-pattern drapes
     assert check_dressed(d, body=body, seam_gap_max=SEAM_GAP_MAX).ok
 
 
