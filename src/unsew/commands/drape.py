@@ -13,6 +13,7 @@ default body contact (``contact: target``), that contact; the drape uses both.
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
 
 from unsew.commands._output import check_out
 from unsew.commands._help import HelpFormatter, add_progress_switch, examples
@@ -176,6 +177,24 @@ def _write_garment(path, d, header: str) -> None:
     write_obj(path, d.x.detach().cpu().numpy(), m.faces, uv=m.uv, faces_uv=m.faces_uv, header=header)
 
 
+def _judged(d, pattern, body, out: Path, *, keep_failed: bool):
+    """The verdict on drape ``d`` (:func:`unsew.sim.checks.check_dressed`), judged against where
+    the pattern itself places the garment too (a start that already lay low, a bodice placed at
+    the hips, drops nothing from itself) and refusing a seam left open (``SEAM_GAP_MAX``); a bad
+    one raises its one line, the garment first written to ``<out stem>.failed.obj`` when
+    ``keep_failed``."""
+    from unsew.sim.checks import SEAM_GAP_MAX, check_dressed, placed_top
+
+    top = placed_top(pattern, d.mesh, body, sdf=d.sdf)
+    verdict = check_dressed(d, body=body, placed_top_m=top, seam_gap_max=SEAM_GAP_MAX)
+    if not verdict.ok:
+        if keep_failed:
+            failed = out.with_name(out.stem + ".failed.obj")
+            _write_garment(failed, d, f"unsew drape FAILED ({verdict.reason}): {pattern.name}")
+        verdict.raise_if_bad(f"drape of {pattern.name}")
+    return verdict
+
+
 def run(args: argparse.Namespace) -> int:
     out = _checked_out(args)
 
@@ -201,18 +220,8 @@ def run(args: argparse.Namespace) -> int:
     # bars on a terminal, else a line per phase
     with Progress(not args.no_progress).phase("drape") as progress:
         d = dress(pattern, body, material=material, settings=settings, progress=progress)
-    from unsew.sim.checks import SEAM_GAP_MAX, check_dressed, placed_top
-
     m = d.mesh
-    # judged against where the pattern itself places the garment too: a start that already lay
-    # low (a bodice placed at the hips) drops nothing from itself
-    top = placed_top(pattern, m, body, sdf=d.sdf)
-    verdict = check_dressed(d, body=body, placed_top_m=top, seam_gap_max=SEAM_GAP_MAX)
-    if not verdict.ok:
-        if args.keep_failed:
-            failed = out.with_name(out.stem + ".failed.obj")
-            _write_garment(failed, d, f"unsew drape FAILED ({verdict.reason}): {pattern.name}")
-        verdict.raise_if_bad(f"drape of {pattern.name}")
+    verdict = _judged(d, pattern, body, out, keep_failed=args.keep_failed)
     _write_garment(
         out,
         d,
