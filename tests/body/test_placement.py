@@ -383,28 +383,46 @@ def test_the_patterns_own_placement_is_kept_bent_round_the_body_and_clear_of_it(
     assert (d < 0).mean() < 0.005
 
 
-def _hoodie_on_its_body():
-    """GarmentCode's hoodie with short sleeves cut in front and back halves, sized to the short
-    anny body in A-pose (design gc_s5_003 of the GarmentCode benchmark, GarmentCode's design
-    sampler, MIT), and that body."""
+def _wide_sleeved(name: str):
+    """A GarmentCode design with sleeves cut in front and back halves (tests/data, made by
+    GarmentCode's design sampler, MIT) and the body it is sized to: ``"hoodie"``, a hoodie with
+    short sleeves on the short anny body in A-pose (design gc_s5_003 of the GarmentCode
+    benchmark; skips without anny), or ``"dress"``, a dress with cuffed sleeves on GarmentCode's
+    mean male body (sampler seed 102, design 13; skips without GarmentCode's bodies)."""
+    import os
     import warnings
     from pathlib import Path
 
-    from unsew.body.anny_body import make_anny_body
+    from unsew.body.body import load_body
     from unsew.io.garmentcode import load_pattern
 
     root = Path(__file__).resolve().parents[2]
+    if name == "hoodie":
+        pytest.importorskip("anny", reason="the hoodie's wearer is an anny body (extra unsew[anny])")
+        from unsew.body.anny_body import make_anny_body
+
+        spec, body = (
+            "gc_hoodie_short_sleeves_anny_specification.json",
+            make_anny_body({"height": 0.2}, pose="A"),
+        )
+    else:
+        shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
+        mesh = shared / "foreign" / "bodies" / "mean_male.obj"
+        if not mesh.is_file():
+            pytest.skip(f"GarmentCode bodies not at {mesh.parent}")
+        spec, body = "gc_dress_wide_sleeves_mean_male_specification.json", load_body(mesh, None)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # GarmentCode's gathered seams: lengths apart
-        pattern = load_pattern(root / "tests" / "data" / "gc_hoodie_short_sleeves_anny_specification.json")
-    return pattern, make_anny_body({"height": 0.2}, pose="A")
+        pattern = load_pattern(root / "tests" / "data" / spec)
+    return pattern, body
 
 
-def test_wide_sleeve_halves_are_sleeves():
-    """A sleeve half whose armhole corner lies at 0.59 of the shoulder's offset from the centre
-    plane, where a front half of this hoodie lies (the back half at 0.61), is a sleeve, as its other
-    half is: taken for a torso piece, it was wrapped round the chest and the drape exploded."""
-    pattern, body = _hoodie_on_its_body()
+@pytest.mark.parametrize("name", ["hoodie", "dress"])
+def test_wide_sleeve_halves_are_sleeves(name):
+    """A sleeve half whose armhole corner lies nearer the centre plane than 0.6 of the shoulder's
+    offset (the hoodie's front halves at 0.59, the dress's halves at 0.5) is a sleeve, as its other
+    half is: taken for a torso piece, it was wrapped round the chest (the hoodie's drape exploded)."""
+    pattern, body = _wide_sleeved(name)
     roles = panel_roles(pattern, body)
     for side in ("left", "right"):
         assert roles[f"{side}_sleeve_f"] == roles[f"{side}_sleeve_b"] == f"{side}_sleeve", roles
@@ -412,11 +430,11 @@ def test_wide_sleeve_halves_are_sleeves():
 
 
 def test_wide_sleeve_halves_start_round_their_arm():
-    """Each of the hoodie's sleeve halves starts round its own arm: every vertex within 0.15 m of
+    """Each of the dress's sleeve halves starts round its own arm: every vertex within 0.2 m of
     the arm's bones (shoulder, elbow, wrist) and nearer them than the torso's axis."""
     from unsew.body.placement import _arm_distance, _landmarks
 
-    pattern, body = _hoodie_on_its_body()
+    pattern, body = _wide_sleeved("dress")
     mesh = mesh_pattern(pattern, edge_length=0.04)
     x = place_garment(pattern, mesh, body)
     J, _, _, cx, _ = _landmarks(body)
@@ -428,7 +446,7 @@ def test_wide_sleeve_halves_start_round_their_arm():
         pts = x[pid == k]
         d_arm = np.array([_arm_distance(p, J, side) for p in pts])
         d_axis = np.hypot(pts[:, 0] - cx, pts[:, 2])
-        assert d_arm.max() < 0.15 and (d_arm < d_axis).all(), (name, d_arm.max())
+        assert d_arm.max() < 0.2 and (d_arm < d_axis).all(), (name, d_arm.max(), (d_arm >= d_axis).sum())
 
 
 def test_a_circle_skirts_gores_are_not_sleeves():
