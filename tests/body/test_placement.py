@@ -420,7 +420,7 @@ def _wide_sleeved(name: str):
 @pytest.mark.parametrize("name", ["hoodie", "dress"])
 def test_wide_sleeve_halves_are_sleeves(name):
     """A sleeve half whose armhole corner lies nearer the centre plane than 0.6 of the shoulder's
-    offset (the hoodie's front halves at 0.59, the dress's halves at 0.5) is a sleeve, as its other
+    offset (the hoodie's front halves at 0.59, the dress's halves at 0.42-0.47) is a sleeve, as its other
     half is: taken for a torso piece, it was wrapped round the chest (the hoodie's drape exploded)."""
     pattern, body = _wide_sleeved(name)
     roles = panel_roles(pattern, body)

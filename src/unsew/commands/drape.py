@@ -3,8 +3,9 @@
 Places the pattern's panels around the body, sews them shut and lets the garment settle
 (:func:`unsew.dress.dress`), judges the result (:func:`unsew.sim.checks.check_dressed`: fallen,
 off the body, exploded, inside it or left unsewn), then writes the draped garment as OBJ with
-the pattern's 2D coordinates [m] as UVs, atomically. A bad verdict exits non-zero with one line and writes no
-``--out`` (with ``--keep-failed`` the garment goes to ``<out stem>.failed.obj`` for a look).
+the pattern's 2D coordinates [m] as UVs, atomically. A bad verdict exits non-zero with one line
+and writes no ``--out`` (with ``--keep-failed`` the garment goes to ``<out stem>.failed.obj`` for
+a look).
 This is also how a fitted pattern is retargeted to another body or pose (paper Fig. 12). A
 pattern written by a fit carries its fitted material and, when the fit's drapes did not use the
 default body contact (``contact: target``), that contact; the drape uses both.
@@ -51,8 +52,8 @@ def register(sub: argparse._SubParsersAction) -> None:
         help="drape a sewing pattern on a body (place, sew, settle) and write garment.obj",
         description="Drape PATTERN.json (GarmentCode JSON) on a body: 'default' (the embedded body), "
         "a case folder or a body folder (its body.obj + skeleton.json, as `unsew body make` writes it), "
-        "or a body mesh with --skeleton. A drape that ends fallen, off the body, exploded or inside it "
-        "exits non-zero with one line and writes no --out.",
+        "or a body mesh with --skeleton. A drape that ends fallen, off the body, exploded, inside it "
+        "or with a seam left open (unsewn) exits non-zero with one line and writes no --out.",
         formatter_class=HelpFormatter,
         epilog=examples(
             "unsew drape result/pattern.json --out garment.obj",
