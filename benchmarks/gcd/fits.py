@@ -90,12 +90,11 @@ def cmd_fit(args, case_ids: list[str]) -> int:
     return 0
 
 
-def reexport(src: Path, dst: Path) -> None:
-    """The fit result folder ``src`` copied to ``dst`` with its pattern.json placed as ``unsew
-    fit`` exports it now (:func:`unsew.fit.outputs.placed_where_draped`: each panel moved within
-    its plane over where garment.obj drapes it), for fits made before that export; newton's
-    re-drape of the earlier pattern is not copied."""
-    import shutil
+def garment_panels(src: Path, panel_order: list):
+    """(x (V, 3) [m], faces (F, 3), uv (Nu, 2) [m], mesh) of a fit's garment.obj, ``mesh`` with
+    ``uv_panel`` (Nu,) indices into ``panel_names`` (= ``panel_order``, the pattern's panels in its
+    file's order) and ``x_of_u`` (Nu,): each panel's rest mesh is one piece of the OBJ's pattern
+    coordinates, written in the pattern's panel order."""
     from types import SimpleNamespace
 
     import numpy as np
@@ -105,21 +104,30 @@ def reexport(src: Path, dst: Path) -> None:
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
     from bench_true_patterns import read_obj_uv
 
+    x, f, uv, fu = read_obj_uv(src / "garment.obj")
+    x_of_u = np.zeros(len(uv), np.int64)
+    x_of_u[fu.ravel()] = f.ravel()
+    ij = np.concatenate([fu[:, [0, 1]], fu[:, [1, 2]]])
+    n, comp = connected_components(coo_matrix((np.ones(len(ij)), (ij[:, 0], ij[:, 1])), (len(uv), len(uv))))
+    if n != len(panel_order):
+        raise ValueError(f"{src}: garment.obj has {n} pieces for {len(panel_order)} panels")
+    first = [np.flatnonzero(comp == k).min() for k in range(n)]
+    uv_panel = np.argsort(np.argsort(first))[comp]
+    return x, f, uv, SimpleNamespace(uv_panel=uv_panel, x_of_u=x_of_u, panel_names=list(panel_order))
+
+
+def reexport(src: Path, dst: Path) -> None:
+    """The fit result folder ``src`` copied to ``dst`` with its pattern.json placed as ``unsew
+    fit`` exports it now (:func:`unsew.fit.outputs.placed_where_draped`: each panel moved within
+    its plane over where garment.obj drapes it), for fits made before that export; newton's
+    re-drape of the earlier pattern is not copied."""
+    import shutil
+
     from unsew.fit.outputs import placed_where_draped
     from unsew.io.garmentcode import load_pattern, save_pattern
 
     pattern = load_pattern(src / "pattern.json")
-    x, f, uv, fu = read_obj_uv(src / "garment.obj")
-    x_of_u = np.zeros(len(uv), np.int64)
-    x_of_u[fu.ravel()] = f.ravel()
-    # each panel's rest mesh is one piece in pattern coordinates, written in the pattern's panel order
-    ij = np.concatenate([fu[:, [0, 1]], fu[:, [1, 2]]])
-    n, comp = connected_components(coo_matrix((np.ones(len(ij)), (ij[:, 0], ij[:, 1])), (len(uv), len(uv))))
-    if n != len(pattern.panel_order):
-        raise ValueError(f"{src}: garment.obj has {n} pieces for {len(pattern.panel_order)} panels")
-    first = [np.flatnonzero(comp == k).min() for k in range(n)]
-    uv_panel = np.argsort(np.argsort(first))[comp]
-    mesh = SimpleNamespace(uv_panel=uv_panel, x_of_u=x_of_u, panel_names=list(pattern.panel_order))
+    x, _, uv, mesh = garment_panels(src, list(pattern.panel_order))
     placed = placed_where_draped(pattern, mesh, uv, x)  # made before anything is written
     shutil.copytree(src, dst, ignore=shutil.ignore_patterns("redrape_newton*"), dirs_exist_ok=True)
     save_pattern(placed, dst / "pattern.json")

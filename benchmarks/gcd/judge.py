@@ -19,12 +19,22 @@
   then grow panel by panel, glued by a rigid 2D motion without overlap, each glue the one that
   closes the most other hidden seams with it. A centre-front seam between mirror halves (a fold
   in the other pattern) and a straight seam between sleeve halves are such seams.
-- ``compare_patterns``: true panels matched to recovered ones (Hungarian assignment on the
-  distance of their 3D centroids [m] plus their relative area difference); per true panel the
-  relative surface-area error |A_rec - A_true| / A_true (1 for a true panel left unmatched) and
-  the turning-function distance (Arkin et al. 1991: outlines scaled to unit perimeter, L2 over
-  arc length of the tangent angle, minimized over the start point and a rotation) [rad];
-  both averaged over the true panels.
+- ``compare_patterns``: which true piece each recovered piece stands for is read where both
+  garments drape (``drape_shares``): each point of the recovered drape counts, by its share of
+  the drape's area, for the true panel whose draped cloth lies nearest, if that lies within
+  ``CORRESPOND_GATE`` (else for none: cloth where the true garment has none). A recovered piece's
+  pattern area is shared out in those proportions among the true pieces that take at least
+  ``SHARE_MIN`` of it (the one taking most at least). Per true piece the relative surface-area
+  error |A_given - A_true| / A_true (1 for a true piece given nothing: a waistband the recovered
+  pattern lacks is not stood in for by a sleeve) and the turning-function distance (Arkin et al.
+  1991: outlines scaled to unit perimeter, L2 over arc length of the tangent angle, minimized over
+  the start point and a rotation) [rad] to the recovered piece giving it most area, where that
+  piece gives at least half of it; both averaged over the true pieces (the turning distance over
+  those it is measured on). A recovered piece cut where the true pattern has two (a trouser leg
+  in one piece) gives each its share: the area error counts the cloth, the piece count and the
+  turning distance the cut. Without drapes (a draft, a fit's earlier stage) the pieces are
+  matched one to one by a Hungarian assignment on the distance of their 3D centroids [m] as the
+  panels are placed plus their relative area difference, a true piece left unmatched counting 1.
 """
 
 from __future__ import annotations
@@ -37,6 +47,8 @@ FOLD_TOL = 0.005  #: [m] how far a mirror half may lie from the other half mirro
 OVERLAP_TOL = 0.01  #: [m] how far two glued panels may reach past their seam's line into each other
 CURVE_POINTS = 24  #: points per curved edge
 TURNING_SAMPLES = 200  #: arc-length samples of an outline for the turning function
+CORRESPOND_GATE = 0.05  #: [m] farthest a recovered drape's point may lie from the true cloth and count for it
+SHARE_MIN = 0.25  #: the least share of a recovered piece's area that a true piece takes from it
 
 
 # ------------------------------------------------------------------ surfaces
@@ -444,26 +456,84 @@ def _turning(loop: np.ndarray, n: int) -> np.ndarray:
 # ------------------------------------------------------------------ pattern against pattern
 
 
-def compare_patterns(spec_true: dict, spec_rec: dict) -> dict:
-    """Per-panel errors of a recovered pattern against the true one, both merged first:
-    {"panel_err": mean relative area error over true pieces, "turning": mean turning distance
-    over matched true pieces [rad], "panels_true", "panels_rec" (after merging),
-    "panels_true_raw", "panels_rec_raw", "matched": [(true names, recovered names, area error,
-    turning)]}."""
+def drape_shares(true_x, true_panel, rec_x, rec_f, rec_panel) -> dict:
+    """{recovered panel: {true panel: share of the recovered panel's draped area}}: each vertex of
+    the recovered drape (``rec_x`` (N, 3) [m], triangles ``rec_f`` (F, 3), ``rec_panel`` (N,) its
+    panel's name) weighs a third of its triangles' area and counts for the panel (``true_panel``
+    (M,) names) of the nearest vertex of the true drape (``true_x`` (M, 3) [m]) within
+    ``CORRESPOND_GATE``; the shares of a panel sum to at most one (the rest lies off the true cloth)."""
+    from scipy.spatial import cKDTree
+
+    rec_x, rec_f = np.asarray(rec_x, np.float64), np.asarray(rec_f, np.int64)
+    tri = np.linalg.norm(
+        np.cross(rec_x[rec_f[:, 1]] - rec_x[rec_f[:, 0]], rec_x[rec_f[:, 2]] - rec_x[rec_f[:, 0]]), axis=1
+    )
+    w = np.bincount(rec_f.ravel(), weights=np.repeat(tri / 6.0, 3), minlength=len(rec_x))
+    d, idx = cKDTree(np.asarray(true_x, np.float64)).query(rec_x)
+    true_panel, rec_panel = np.asarray(true_panel), np.asarray(rec_panel)
+    out = {}
+    for p in np.unique(rec_panel):
+        mine = rec_panel == p
+        near = mine & (d <= CORRESPOND_GATE)
+        names, inv = np.unique(true_panel[idx[near]], return_inverse=True)
+        got = np.bincount(inv, weights=w[near], minlength=len(names)) / max(w[mine].sum(), 1e-30)
+        out[str(p)] = {str(n): float(g) for n, g in zip(names, got)}
+    return out
+
+
+def _share_matrix(T: list, Rp: list, spec_rec: dict, shares: dict) -> np.ndarray:
+    """(len(T), len(Rp)) share of each recovered piece's area given to each true piece: its panels'
+    ``shares`` weighed by their pattern areas, shares under ``SHARE_MIN`` dropped (the largest kept)."""
+    raw = panels_of_spec(spec_rec)
+    S = np.zeros((len(T), len(Rp)))
+    for j, r in enumerate(Rp):
+        for name in r.names:
+            got = shares.get(name, {})
+            for i, t in enumerate(T):
+                S[i, j] += raw[name].area / r.area * sum(got.get(q, 0.0) for q in t.names)
+        col = S[:, j]
+        S[:, j] = np.where((col >= SHARE_MIN) | (col == col.max()), col, 0.0)
+    return S
+
+
+def _matched_by_placement(T: list, Rp: list) -> np.ndarray:
+    """(len(T), len(Rp)) 0/1: a one-to-one Hungarian assignment on the distance of the pieces'
+    placed 3D centroids [m] plus their relative area difference."""
     from scipy.optimize import linear_sum_assignment
 
+    S = np.zeros((len(T), len(Rp)))
+    if len(Rp):
+        cost = [
+            [np.linalg.norm(t.centroid3d - r.centroid3d) + abs(r.area - t.area) / t.area for r in Rp]
+            for t in T
+        ]
+        S[linear_sum_assignment(np.array(cost))] = 1.0
+    return S
+
+
+def compare_patterns(spec_true: dict, spec_rec: dict, shares: dict | None = None) -> dict:
+    """Per-panel errors of a recovered pattern against the true one, both merged first; ``shares``:
+    ``drape_shares`` of the two garments' drapes (None: pieces matched by their placement):
+    {"panel_err": mean relative area error over true pieces, "turning": mean turning distance
+    over the true pieces it is measured on [rad], "panels_true", "panels_rec" (after merging),
+    "panels_true_raw", "panels_rec_raw", "matched": [(true names, names of the recovered pieces
+    giving it area, area error, turning or nan)]}."""
     T, Rp = merge_invisible(spec_true), merge_invisible(spec_rec)
-    cost = np.array(
-        [[np.linalg.norm(t.centroid3d - r.centroid3d) + abs(r.area - t.area) / t.area for r in Rp] for t in T]
-    )
-    rows, cols = linear_sum_assignment(cost) if len(Rp) else (np.zeros(0, int), np.zeros(0, int))
+    S = _matched_by_placement(T, Rp) if shares is None else _share_matrix(T, Rp, spec_rec, shares)
+    given = S * np.array([r.area for r in Rp])[None]  # (T, R) area [m^2] each recovered piece gives
     area_err = np.ones(len(T))
     turn = np.full(len(T), np.nan)
     matched = []
-    for i, j in zip(rows, cols):
-        area_err[i] = abs(Rp[j].area - T[i].area) / T[i].area
-        turn[i] = turning_distance(T[i].loop(), Rp[j].loop())
-        matched.append((T[i].names, Rp[j].names, round(float(area_err[i]), 4), round(float(turn[i]), 4)))
+    for i, t in enumerate(T):
+        total = given[i].sum()
+        if total <= 0:
+            continue
+        area_err[i] = abs(total - t.area) / t.area
+        j = int(np.argmax(given[i]))
+        if given[i, j] >= 0.5 * total:
+            turn[i] = turning_distance(t.loop(), Rp[j].loop())
+        names = [n for k in np.flatnonzero(given[i] > 0) for n in Rp[k].names]
+        matched.append((t.names, names, round(float(area_err[i]), 4), round(float(turn[i]), 4)))
     return {
         "panel_err": float(area_err.mean()),
         "turning": float(np.nanmean(turn)) if np.isfinite(turn).any() else None,

@@ -4,8 +4,8 @@ turning distance a pattern without darts cannot go below.
 Per built case with a result folder (``RESULTS/<case>``), per stage of the fit (``--files``: the
 chosen start ``pattern_base.json``, the graded ``pattern_graded.json``, the final ``pattern.json``):
 the judge's panel error and turning distance (benchmarks/gcd/judge.py, both patterns merged
-first), the pieces' counts, and per true piece its matched recovered piece, relative area error
-(1: unmatched) and turning distance. Then the darts' floor: each true piece against itself with
+first), the pieces' counts, and per true piece the recovered pieces standing for it, relative
+area error (1: none) and turning distance. Then the darts' floor: each true piece against itself with
 every dart closed (a point of the outline where it turns by more than ``DART_TURN``, moved to
 the middle of its neighbours), the turning distance of a pattern whose outlines are the true
 ones but without darts.
@@ -55,13 +55,18 @@ def dart_floor(spec: dict) -> tuple[float, int]:
 
 
 def case_rows(case: Path, result: Path, files: list[str]) -> list[dict]:
-    """One row per stage file of ``result`` against ``case``'s true pattern, with its pieces."""
+    """One row per stage file of ``result`` against ``case``'s true pattern, with its pieces: each
+    stage's pieces stand for the true ones the final garment.obj drapes them over (the stages
+    share their panels), by placement where that is not at hand (``match``)."""
     spec = json.loads((case / "pattern_gt.json").read_text())
+    shares = _final_shares(case, result, spec)
     rows = []
     for fn in files:
         if not (result / fn).is_file():
             continue
-        cmp = judge.compare_patterns(spec, json.loads((result / fn).read_text()))
+        spec_rec = json.loads((result / fn).read_text())
+        use = shares if shares is not None and set(spec_rec["pattern"]["panels"]) <= set(shares) else None
+        cmp = judge.compare_patterns(spec, spec_rec, use)
         pieces = "; ".join(
             f"{'+'.join(t)} -> {'+'.join(r)} {e:.2f}/{tu:.2f}" for t, r, e, tu in cmp["matched"]
         )
@@ -72,10 +77,23 @@ def case_rows(case: Path, result: Path, files: list[str]) -> list[dict]:
                 "panel err": round(cmp["panel_err"], 3),
                 "turning": round(cmp["turning"], 3) if cmp["turning"] is not None else None,
                 "pieces t/r": f"{cmp['panels_true']}/{cmp['panels_rec']}",
+                "match": "placement" if use is None else "drape",
                 "matched (area err/turning)": pieces,
             }
         )
     return rows
+
+
+def _final_shares(case: Path, result: Path, spec: dict):
+    """score.panel_shares of the fit's final pattern and garment.obj (no newton run), or None."""
+    import score
+
+    if not (result / "pattern.json").is_file() or not (result / "garment.obj").is_file():
+        return None
+    truth = json.loads((case / "truth.json").read_text())
+    spec_rec = json.loads((result / "pattern.json").read_text())
+    target = score.read_obj(case / "target.obj")
+    return score.panel_shares(case, result, spec, spec_rec, truth, target, newton=False)
 
 
 def phase_two_rows(rows: list[dict], results: Path, record: dict) -> list[dict]:

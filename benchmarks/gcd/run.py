@@ -4,7 +4,7 @@
     python -m benchmarks gcd --summary             one JSON line of the recorded results
     python -m benchmarks gcd build [--out DIR] [--seeds 1-5] [--count 8] [--only gc_s1_000 ...] [--no-drape]
     python -m benchmarks gcd fit --results RESULTS_DIR [--only ...] [--redo] fit each built case
-    python -m benchmarks gcd score --results RESULTS_DIR [--cases DIR] [--only-tried] [--record]
+    python -m benchmarks gcd score --results RESULTS_DIR [--cases DIR] [--only-tried | --rejudge] [--record]
     python -m benchmarks gcd compare BEFORE AFTER [--only ...]   two folders of fits judged side by side
     python -m benchmarks gcd floor-fitted --results DIR [--record]   the material-fitted floor
     python -m benchmarks gcd reexport --results DIR --to DIR2   fits placed as unsew fit exports them now
@@ -233,6 +233,12 @@ def _add_fit_score_parsers(sub) -> None:
         action="store_true",
         help="score only the built cases fitted or tried (a result folder or an outcome in fits.json); "
         "the others keep their recorded rows",
+    )
+    s.add_argument(
+        "--rejudge",
+        action="store_true",
+        help="judge the recorded fits' patterns again (type, choices, panel error, turning) from "
+        "RESULTS, where its fit drapes as the recorded one did; every other figure stands",
     )
     co = sub.add_parser("compare", help="two folders of fits of the same cases judged side by side")
     co.add_argument("before", help="folder of fit results (one folder per case id)")

@@ -7,7 +7,10 @@ Per case (a fit result folder ``RESULTS/<case>`` from ``unsew fit CASE --out RES
 - ``choices``: each structural choice (truth.CHOICES) of the recovered pattern.json against the
   truth; ``choices_right``: all of them right (the summary's ``choice_right``: per choice, the
   fitted cases that have it right);
-- ``panel_err`` and ``turning``: judge.compare_patterns (both patterns merged first);
+- ``panel_err`` and ``turning``: judge.compare_patterns (both patterns merged first), each
+  recovered piece standing for the true pieces it drapes over (the fit's garment.obj against the
+  target's panels, or newton's drape of the true pattern where the target's rest mesh is not
+  kept: :func:`true_cloth`); ``panel_match`` says "placement" where that could not be read;
   ``panels_true``/``panels_rec``: panel counts after merging;
 - ``chamfer_mm``: the fit's garment.obj against target.obj (judge.chamfer_mm);
   ``chamfer_bar_mm``: the cross-simulator floor, ``unsew drape pattern_gt.json --body CASE``
@@ -44,10 +47,13 @@ HERE = Path(__file__).resolve().parent
 import build  # noqa: E402  (this folder on the path first)
 import fits  # noqa: E402
 import judge  # noqa: E402
+import kept  # noqa: E402
 from truth import CHOICES, built_choices, choices_of_spec, truth_of_design  # noqa: E402
 
 #: Newton's drape of a recovered pattern, kept in its result folder (keyed on the pattern and the target).
 REDRAPE_CACHE = "redrape_newton.json"
+#: Where the true panels drape where the target's rest mesh is not kept, in the case folder.
+TRUE_DRAPE_CACHE = "true_drape_newton.npz"
 
 #: GarmentCode's skirt components that flare out from the hips: circle, asymmetric circle, the
 #: many-panel (flared gores) and godet skirts (the circle and flared cases of the summary).
@@ -78,11 +84,64 @@ def read_obj(path: Path):
 def newton_redrape(spec: dict, case: Path, edge_length: float, lower: bool):
     """(verts (N, 3) [m], faces) of a specification draped by newton from its own placement, as
     the case's target was (:func:`build.newton_start`, :func:`build.newton_dress`)."""
+    x, mesh = _newton_drape_mesh(spec, case, edge_length, lower)
+    return x, np.asarray(mesh.faces)
+
+
+def _newton_drape_mesh(spec: dict, case: Path, edge_length: float, lower: bool):
+    """(verts (N, 3) [m], the panel mesh they belong to) of :func:`newton_redrape`."""
     body_v, body_f = build.read_body(case)
     mesh = build.mesh_spec(spec, case.name, edge_length)
     x0 = build.newton_start(spec, mesh, build.spec_placement(spec, mesh), body_v, body_f)
     x, _, _, _ = build.newton_dress(spec, mesh, x0, (body_v, body_f), lower)
-    return x, np.asarray(mesh.faces)
+    return x, mesh
+
+
+def _panel_of_x(mesh, n_x: int) -> np.ndarray:
+    """(n_x,) the name of a panel each vertex of a panel mesh belongs to (a seam's: one of its panels)."""
+    names = np.asarray(mesh.panel_names, dtype=object)
+    out = np.empty(n_x, dtype=object)
+    out[np.asarray(mesh.x_of_u)] = names[np.asarray(mesh.uv_panel)]
+    return out
+
+
+def true_cloth(case: Path, spec_gt: dict, truth: dict, target, *, newton: bool = True):
+    """(x (N, 3) [m], panel name per vertex (N,)) of where the true pattern's panels drape: the
+    target's own vertices through the rest mesh it was draped on (:func:`kept.own_mesh`), else
+    newton's drape of the true pattern on the floor's finer mesh, dressed as the target was (kept
+    in the case folder, ``TRUE_DRAPE_CACHE``; None where it is not kept and not ``newton``)."""
+    tv, tf = target
+    edge = build.manifest()["edge_length_m"]
+    mesh = build.mesh_spec(spec_gt, case.name, edge)
+    rest = kept.own_mesh(case, mesh, tv, tf)
+    if rest is not None and int(np.max(rest.uv_panel)) + 1 == len(mesh.panel_names):
+        rest.panel_names = mesh.panel_names
+        return tv, _panel_of_x(rest, len(tv))
+    cache = case / TRUE_DRAPE_CACHE
+    if cache.is_file():
+        with np.load(cache, allow_pickle=False) as z:
+            return z["x"], z["panel"].astype(object)
+    if not newton:
+        return None
+    x, fine = _newton_drape_mesh(spec_gt, case, edge * FINER, truth["type"] in build.LOWER_TYPES)
+    panel = _panel_of_x(fine, len(x))
+    np.savez_compressed(cache, x=np.asarray(x, np.float64), panel=panel.astype(str))
+    return x, panel
+
+
+def panel_shares(
+    case: Path, result: Path, spec_gt: dict, spec_rec: dict, truth: dict, target, *, newton=True
+):
+    """judge.drape_shares of the fit's garment.obj against where the true panels drape, or None
+    where the garment's pieces cannot be told apart or the true drape is not at hand without
+    ``newton`` (the judge then matches by placement)."""
+    order = spec_rec["pattern"].get("panel_order") or list(spec_rec["pattern"]["panels"])
+    try:
+        x, f, _, mesh = fits.garment_panels(result, order)
+    except ValueError:
+        return None
+    true = true_cloth(case, spec_gt, truth, target, newton=newton)
+    return None if true is None else judge.drape_shares(*true, x, f, _panel_of_x(mesh, len(x)))
 
 
 def unsew_drape(case: Path, timeout: int = 1800):
@@ -123,7 +182,7 @@ def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: 
     if result is None or not (result / "pattern.json").is_file():
         rec.update(fitted=False, type_right=False, choices_right=False)
         return rec
-    _score_pattern(rec, case, result, truth, spec_gt)
+    _score_pattern(rec, case, result, truth, spec_gt, (tv, tf), newton=redrape)
     _score_drapes(rec, case, result, truth, (tv, tf), redrape=redrape)
     return rec
 
@@ -175,7 +234,9 @@ def _floors(case: Path, spec_gt: dict, truth: dict, target, *, floor: bool, redr
     return known
 
 
-def _score_pattern(rec: dict, case: Path, result: Path, truth: dict, spec_gt: dict) -> None:
+def _score_pattern(
+    rec: dict, case: Path, result: Path, truth: dict, spec_gt: dict, target, *, newton: bool
+) -> None:
     """The recovered pattern's type, structural choices and panels against the truth, into ``rec``."""
     metrics = json.loads((result / "metrics.json").read_text()) if (result / "metrics.json").is_file() else {}
     spec_rec = json.loads((result / "pattern.json").read_text())
@@ -189,7 +250,9 @@ def _score_pattern(rec: dict, case: Path, result: Path, truth: dict, spec_gt: di
     rec["choices_rec"] = ch
     rec["choices_ok"] = {k: ch[k] == truth["choices"][k] for k in CHOICES}
     rec["choices_right"] = all(rec["choices_ok"].values())
-    cmp = judge.compare_patterns(spec_gt, spec_rec)
+    shares = panel_shares(case, result, spec_gt, spec_rec, truth, target, newton=newton)
+    rec["panel_match"] = "placement" if shares is None else "drape"
+    cmp = judge.compare_patterns(spec_gt, spec_rec, shares)
     keys = ("panel_err", "turning", "panels_true", "panels_rec", "panels_true_raw", "panels_rec_raw")
     rec.update({k: cmp[k] for k in keys})
     t = metrics.get("timings_s") or {}
@@ -261,6 +324,8 @@ def type_given(meta: dict, config_yaml: str) -> bool:
 
 
 def cmd_score(args, record_file: Path) -> int:
+    if getattr(args, "rejudge", False):
+        return cmd_rejudge(args, record_file)
     cases = Path(args.cases)
     results = Path(args.results)
     built = json.loads((cases / "build.json").read_text()) if (cases / "build.json").is_file() else {}
@@ -317,6 +382,57 @@ def cmd_score(args, record_file: Path) -> int:
             )
             + "\n"
         )
+    return 0
+
+
+#: How far [mm] a fit's drape may lie from its recorded Chamfer and still be the fit of record.
+SAME_FIT_MM = 0.01
+
+
+def cmd_rejudge(args, record_file: Path) -> int:
+    """``gcd score --rejudge``: each recorded fit's pattern judged again (:func:`_score_pattern`:
+    type, choices, panel error, turning) from ``RESULTS/<case>``, where that folder's garment.obj
+    lies within ``SAME_FIT_MM`` of the recorded Chamfer (the fit of record made again); every
+    other figure of the row stands, and a case whose fit drapes otherwise keeps its row."""
+    cases, results = Path(args.cases), Path(args.results)
+    if not record_file.is_file():
+        print(f"gcd score --rejudge: no recorded results in {record_file}", file=sys.stderr)
+        return 2
+    recs = json.loads(record_file.read_text())["cases"]
+    kept_rows = []
+    for cid, old in recs.items():
+        case, res = cases / cid, results / cid
+        if (
+            not old.get("fitted")
+            or not (res / "pattern.json").is_file()
+            or not (case / "target.obj").is_file()
+        ):
+            if old.get("fitted"):
+                kept_rows.append(f"{cid} (no fit or target here)")
+            continue
+        tv, tf = read_obj(case / "target.obj")
+        mm = round(judge.chamfer_mm(*read_obj(res / "garment.obj"), tv, tf)["chamfer_mm"], 2)
+        if abs(mm - old.get("chamfer_mm", np.inf)) > SAME_FIT_MM:
+            kept_rows.append(f"{cid} (drapes {mm} mm from the target, recorded {old.get('chamfer_mm')})")
+            continue
+        truth = json.loads((case / "truth.json").read_text())
+        spec_gt = json.loads((case / "pattern_gt.json").read_text())
+        truth["choices"] = built_choices(
+            truth_of_design((case / "design_params.yaml").read_text())["choices"], spec_gt
+        )
+        rec = dict(old)
+        _score_pattern(rec, case, res, truth, spec_gt, (tv, tf), newton=not args.no_redrape)
+        rec["fit_s"] = old.get("fit_s", rec.get("fit_s"))  # the fit of record's time
+        recs[cid] = rec
+        print(
+            json.dumps({k: rec.get(k) for k in ("case", "panel_err", "turning", "panel_match")}), flush=True
+        )
+    for row in kept_rows:
+        print(f"kept as recorded: {row}", file=sys.stderr)
+    print_record({"cases": recs})
+    if args.record:
+        about = "python -m benchmarks gcd score --results DIR --record; patterns judged again with --rejudge"
+        record_file.write_text(json.dumps({"about": about, "cases": recs}, indent=1) + "\n")
     return 0
 
 

@@ -597,6 +597,53 @@ def test_scoring_only_the_tried_keeps_the_other_built_cases_recorded_rows(tmp_pa
     assert json.loads(record.read_text())["cases"]["gc_s1_000"]["chamfer_mm"] == 7.0
 
 
+def test_rejudging_takes_only_the_fits_that_drape_as_recorded(tmp_path, monkeypatch):
+    """``gcd score --rejudge --record``: a recorded fit whose folder drapes as recorded has its
+    pattern judged again and keeps every other figure; one that drapes otherwise keeps its row."""
+    score = _load("score")
+    cases, results, record = tmp_path / "cases", tmp_path / "results", tmp_path / "results.json"
+    old = {}
+    for cid, mm in (("gc_s1_000", 7.0), ("gc_s1_001", 9.0)):
+        for d in (cases / cid, results / cid):
+            d.mkdir(parents=True)
+        for fn in ("target.obj", "truth.json", "pattern_gt.json", "design_params.yaml"):
+            (cases / cid / fn).write_text("{}")
+        (results / cid / "pattern.json").write_text("{}")
+        (results / cid / "garment.obj").write_text(cid)
+        old[cid] = {
+            "case": cid,
+            "built": True,
+            "fitted": True,
+            "chamfer_mm": mm,
+            "panel_err": 0.9,
+            "fit_s": 100.0,
+        }
+    old["gc_s1_002"] = {"case": "gc_s1_002", "built": False, "fitted": False}
+    record.write_text(json.dumps({"cases": old}))
+    monkeypatch.setattr(score, "read_obj", lambda p: (p.read_text(), None))
+    # the second fit now drapes 0.5 mm farther from its target than its recorded row says
+    drapes = {"gc_s1_000": 7.004, "gc_s1_001": 9.5}
+    monkeypatch.setattr(score.judge, "chamfer_mm", lambda gv, gf, tv, tf: {"chamfer_mm": drapes[gv]})
+    monkeypatch.setattr(score, "truth_of_design", lambda text: {"choices": {}})
+    monkeypatch.setattr(score, "built_choices", lambda design, spec: {})
+
+    def judged(rec, case, res, truth, spec_gt, target, *, newton):
+        rec.update(panel_err=0.3, panel_match="drape", fit_s=555.0)
+
+    monkeypatch.setattr(score, "_score_pattern", judged)
+
+    class Args:
+        rejudge = record = True
+        no_redrape = False
+
+    Args.cases, Args.results = str(cases), str(results)
+    assert score.cmd_score(Args, record) == 0
+    rows = json.loads(record.read_text())["cases"]
+    assert rows["gc_s1_000"]["panel_err"] == 0.3 and rows["gc_s1_000"]["panel_match"] == "drape"
+    assert rows["gc_s1_000"]["chamfer_mm"] == 7.0 and rows["gc_s1_000"]["fit_s"] == 100.0
+    assert rows["gc_s1_001"] == old["gc_s1_001"] and rows["gc_s1_002"] == old["gc_s1_002"]
+
+
 def test_the_material_only_fits_hold_the_true_pattern(tmp_path, monkeypatch):
     """``gcd fit --material-only`` hands each case's own true pattern to ``unsew fit
     --material-only`` (the material-fitted floor), and records the outcome like any fit."""
@@ -1029,3 +1076,25 @@ def test_compare_judges_two_folders_of_fits_side_by_side(tmp_path, monkeypatch, 
     assert compare.cmd_compare(Args, ids) == 2
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and "cannot be judged: KeyError" in err
+
+
+def test_panels_table_judges_each_stage_of_a_fit(tmp_path, capsys):
+    """``gcd panels`` (small: one case, two stages, no drape at hand): each stage's panel error
+    against the truth, matched by placement, and the true pieces' darts' floor."""
+    panels = _load("panels")
+    front = _panel([[0, 0], [50, 0], [50, 60], [0, 60]], t=(-25, 90, 20))
+    back = _panel([[0, 0], [50, 0], [50, 60], [0, 60]], t=(-25, 90, -20))
+    case, res = tmp_path / "cases" / "gc_s1_000", tmp_path / "results" / "gc_s1_000"
+    case.mkdir(parents=True)
+    res.mkdir(parents=True)
+    (case / "target.obj").write_text("v 0 0 0\n")
+    (case / "pattern_gt.json").write_text(json.dumps(_spec({"front": front, "back": back}, [])))
+    graded = _spec({"front": front, "back": dict(back, vertices=[[0, 0], [55, 0], [55, 66], [0, 66]])}, [])
+    (res / "pattern_graded.json").write_text(json.dumps(graded))
+    (res / "pattern.json").write_text(json.dumps(_spec({"front": front, "back": back}, [])))
+    args = ["--results", str(tmp_path / "results"), "--cases", str(tmp_path / "cases")]
+    assert panels.main(args + ["--files", "pattern_graded.json,pattern.json"]) == 0
+    out = capsys.readouterr().out
+    assert "pattern_graded.json: 1 cases, panel err median 0.105" in out  # one of two 21 % larger
+    assert "pattern.json: 1 cases, panel err median 0.000" in out
+    assert "| gc_s1_000 | 0 | 0.000 |" in out  # rectangles: no darts

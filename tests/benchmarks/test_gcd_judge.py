@@ -185,3 +185,64 @@ def _turned(verts, deg):
     a = np.radians(deg)
     R = np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
     return (np.asarray(verts, float) @ R.T).tolist()
+
+
+def _sheet(x0, x1, y0, y1, z, step=0.02):
+    """A flat triangulated sheet [m] at depth z: (vertices (N, 3), triangles (F, 3))."""
+    xs, ys = np.arange(x0, x1 + 1e-9, step), np.arange(y0, y1 + 1e-9, step)
+    X, Y = np.meshgrid(xs, ys)
+    v = np.c_[X.ravel(), Y.ravel(), np.full(X.size, z)]
+    n = len(xs)
+    k = (np.arange(len(ys) - 1)[:, None] * n + np.arange(n - 1)[None]).ravel()
+    f = np.r_[np.c_[k, k + 1, k + n + 1], np.c_[k, k + n + 1, k + n]]
+    return v, f
+
+
+def _drape(*sheets):
+    """(vertices, triangles, panel name per vertex) of named sheets (name, (v, f)) in one mesh."""
+    vs, fs, names, off = [], [], [], 0
+    for name, (v, f) in sheets:
+        vs.append(v)
+        fs.append(f + off)
+        names += [name] * len(v)
+        off += len(v)
+    return np.concatenate(vs), np.concatenate(fs), np.array(names)
+
+
+def test_a_leg_cut_in_one_piece_gives_each_true_panel_its_share_of_the_cloth(judge):
+    # the truth: a leg's front and back (40 x 60 cm each); recovered: the same leg in one 80 x 60
+    # piece, whose two halves drape where the true front and back do
+    true = _spec({"front": _rect(40, 60, (-20, 30, 10)), "back": _rect(40, 60, (20, 30, -10))}, [])
+    rec = _spec({"leg": _rect(80, 60, (-40, 30, 10))}, [])
+    tx, _, tp = _drape(
+        ("front", _sheet(-0.2, 0.2, 0.3, 0.9, 0.1)), ("back", _sheet(-0.2, 0.2, 0.3, 0.9, -0.1))
+    )
+    front, back = _sheet(-0.2, 0.2, 0.3, 0.9, 0.11), _sheet(-0.2, 0.2, 0.3, 0.9, -0.11)
+    rx, rf, rp = _drape(("leg", front), ("leg", back))
+    shares = judge.drape_shares(tx, tp, rx, rf, rp)
+    assert shares["leg"]["front"] == pytest.approx(0.5, abs=0.02)
+    assert shares["leg"]["back"] == pytest.approx(0.5, abs=0.02)
+    by_drape = judge.compare_patterns(true, rec, shares)
+    assert by_drape["panel_err"] < 0.05
+    # matched one to one by placement, the piece stands for one panel and leaves the other out
+    assert judge.compare_patterns(true, rec)["panel_err"] > 0.5
+
+
+def test_a_sleeve_does_not_stand_for_a_missing_waistband(judge):
+    # the truth: a top and a waistband; recovered: the top and a sleeve, no band; the sleeve's area
+    # is the band's, so a match by placement and area pairs them
+    true = _spec({"top": _rect(50, 40, (-25, 100, 15)), "band": _rect(50, 5, (-25, 95, 15))}, [])
+    rec = _spec({"top": _rect(50, 40, (-25, 100, 15)), "sleeve": _rect(25, 10, (30, 120, 0))}, [])
+    tx, _, tp = _drape(
+        ("top", _sheet(-0.25, 0.25, 1.0, 1.4, 0.15)), ("band", _sheet(-0.25, 0.25, 0.95, 1.0, 0.15))
+    )
+    rx, rf, rp = _drape(
+        ("top", _sheet(-0.25, 0.25, 1.0, 1.4, 0.16)), ("sleeve", _sheet(0.3, 0.55, 1.2, 1.3, 0.0))
+    )
+    shares = judge.drape_shares(tx, tp, rx, rf, rp)
+    assert shares["sleeve"] == {}  # it lies off the true garment's cloth
+    r = judge.compare_patterns(true, rec, shares)
+    assert r["panel_err"] == pytest.approx(0.5, abs=0.01)  # the top right, the band missing (1)
+    assert [m[:2] for m in r["matched"]] == [(["top"], ["top"])]
+    by_placement = judge.compare_patterns(true, rec)
+    assert (["band"], ["sleeve"]) in [tuple(m[:2]) for m in by_placement["matched"]]
