@@ -11,6 +11,7 @@ the middle of its neighbours), the turning distance of a pattern whose outlines 
 ones but without darts.
 
     python -m benchmarks gcd panels --results R --cases CASES [--files pattern_base.json,pattern.json]
+        [--by-placement]
 """
 
 from __future__ import annotations
@@ -54,12 +55,12 @@ def dart_floor(spec: dict) -> tuple[float, int]:
     return float(np.mean(dists)), darts
 
 
-def case_rows(case: Path, result: Path, files: list[str]) -> list[dict]:
+def case_rows(case: Path, result: Path, files: list[str], *, by_placement: bool = False) -> list[dict]:
     """One row per stage file of ``result`` against ``case``'s true pattern, with its pieces: each
     stage's pieces stand for the true ones the final garment.obj drapes them over (the stages
-    share their panels), by placement where that is not at hand (``match``)."""
+    share their panels), by placement where that is not at hand or ``by_placement`` (``match``)."""
     spec = json.loads((case / "pattern_gt.json").read_text())
-    shares = _final_shares(case, result, spec)
+    shares = None if by_placement else _final_shares(case, result, spec)
     rows = []
     for fn in files:
         if not (result / fn).is_file():
@@ -85,7 +86,8 @@ def case_rows(case: Path, result: Path, files: list[str]) -> list[dict]:
 
 
 def _final_shares(case: Path, result: Path, spec: dict):
-    """score.panel_shares of the fit's final pattern and garment.obj (no newton run), or None."""
+    """score.panel_shares of the fit's final pattern and garment.obj, or None (newton drapes the
+    true pattern once where the target's rest mesh is not kept: score.true_cloth)."""
     import score
 
     if not (result / "pattern.json").is_file() or not (result / "garment.obj").is_file():
@@ -93,7 +95,7 @@ def _final_shares(case: Path, result: Path, spec: dict):
     truth = json.loads((case / "truth.json").read_text())
     spec_rec = json.loads((result / "pattern.json").read_text())
     target = score.read_obj(case / "target.obj")
-    return score.panel_shares(case, result, spec, spec_rec, truth, target, newton=False)
+    return score.panel_shares(case, result, spec, spec_rec, truth, target)
 
 
 def phase_two_rows(rows: list[dict], results: Path, record: dict) -> list[dict]:
@@ -145,6 +147,12 @@ def main(argv=None) -> int:
     ap.add_argument("--results", required=True, help="folder of fit results, one per case")
     ap.add_argument("--cases", required=True, help="folder of built cases (target.obj, pattern_gt.json)")
     ap.add_argument("--files", default="pattern_base.json,pattern_graded.json,pattern.json")
+    ap.add_argument(
+        "--by-placement",
+        action="store_true",
+        help="match the pieces one to one by their placement (the judge without drapes), "
+        "not by where they drape",
+    )
     args = ap.parse_args(argv)
     for what, d in (("--results", args.results), ("--cases", args.cases)):
         if not Path(d).is_dir():
@@ -161,7 +169,7 @@ def main(argv=None) -> int:
     rows, floors = [], []
     for case in cases:
         if (Path(args.results) / case.name).is_dir():
-            rows += case_rows(case, Path(args.results) / case.name, files)
+            rows += case_rows(case, Path(args.results) / case.name, files, by_placement=args.by_placement)
         f, k = dart_floor(json.loads((case / "pattern_gt.json").read_text()))
         floors.append({"case": case.name, "darts": k, "turning without darts": round(f, 3)})
     print_table(rows, title="panels of the recovered patterns against the true ones", digits=3)
