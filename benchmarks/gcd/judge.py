@@ -32,7 +32,7 @@
   piece gives at least half of it; both averaged over the true pieces (the turning distance over
   those it is measured on). A recovered piece cut where the true pattern has two (a trouser leg
   in one piece) gives each its share: the area error counts the cloth, the piece count and the
-  turning distance the cut. Without drapes (a draft, a fit's earlier stage) the pieces are
+  turning distance the cut. Without drapes (a draft in ``gcd starts``) the pieces are
   matched one to one by a Hungarian assignment on the distance of their 3D centroids [m] as the
   panels are placed plus their relative area difference, a true piece left unmatched counting 1.
 """
