@@ -376,13 +376,22 @@ def cmd_score(args, record_file: Path) -> int:
     carry_over(recs, old)
     print_record({"cases": recs})
     if args.record:
-        record_file.write_text(
-            json.dumps(
-                {"about": "python -m benchmarks gcd score --results DIR --record", "cases": recs}, indent=1
-            )
-            + "\n"
-        )
+        stood = {cid for cid, r in recs.items() if r is old.get(cid)} if args.only_tried else set()
+        write_record(record_file, recs, stood, "python -m benchmarks gcd score --results DIR --record")
     return 0
+
+
+def write_record(record_file: Path, recs: dict, stood: set, about: str) -> None:
+    """Write ``recs`` as the recorded results, the rows of ``stood`` (kept as recorded, not scored
+    now) read again from the file as it is at this moment, under a lock: two ``gcd score
+    --only-tried --record`` runs over different fit folders can run side by side."""
+    import fcntl
+
+    with open(record_file.with_name(record_file.name + ".lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        now = json.loads(record_file.read_text()).get("cases", {}) if record_file.is_file() else {}
+        rows = {cid: now.get(cid, r) if cid in stood else r for cid, r in recs.items()}
+        record_file.write_text(json.dumps({"about": about, "cases": rows}, indent=1) + "\n")
 
 
 #: How far [mm] a fit's drape may lie from its recorded Chamfer and still be the fit of record.
@@ -432,7 +441,7 @@ def cmd_rejudge(args, record_file: Path) -> int:
     print_record({"cases": recs})
     if args.record:
         about = "python -m benchmarks gcd score --results DIR --record; patterns judged again with --rejudge"
-        record_file.write_text(json.dumps({"about": about, "cases": recs}, indent=1) + "\n")
+        write_record(record_file, recs, set(), about)
     return 0
 
 

@@ -597,6 +597,38 @@ def test_scoring_only_the_tried_keeps_the_other_built_cases_recorded_rows(tmp_pa
     assert json.loads(record.read_text())["cases"]["gc_s1_000"]["chamfer_mm"] == 7.0
 
 
+def test_two_scorings_of_split_fit_folders_keep_each_others_rows(tmp_path, monkeypatch):
+    """Two ``gcd score --only-tried --record`` runs side by side, each over a folder with some of
+    the fits: the row the other one writes while this one scores is not overwritten by this one's
+    copy of the row as it stood when it started."""
+    score = _load("score")
+    cases, record = tmp_path / "cases", tmp_path / "results.json"
+    cases.mkdir()
+    built = {c: {"status": "built", "type": "skirt"} for c in ("gc_s1_000", "gc_s1_001")}
+    (cases / "build.json").write_text(json.dumps(built))
+    old = {c: {"case": c, "built": True, "fitted": True, "chamfer_mm": 7.0, "panel_err": 0.1} for c in built}
+    record.write_text(json.dumps({"cases": old}))
+    (tmp_path / "A" / "gc_s1_000").mkdir(parents=True)
+
+    def scored(d, res, **kw):
+        # meanwhile the other run, over a folder with gc_s1_001's fit, records its row
+        rows = json.loads(record.read_text())["cases"]
+        rows["gc_s1_001"] = dict(rows["gc_s1_001"], chamfer_mm=5.0)
+        record.write_text(json.dumps({"cases": rows}))
+        return {"case": d.name, "fitted": True, "chamfer_mm": 6.0, "panel_err": 0.2}
+
+    monkeypatch.setattr(score, "score_case", scored)
+
+    class Args:
+        no_floor = no_redrape = only_tried = record = True
+        rejudge = False
+
+    Args.cases, Args.results = str(cases), str(tmp_path / "A")
+    assert score.cmd_score(Args, record) == 0
+    rows = json.loads(record.read_text())["cases"]
+    assert rows["gc_s1_000"]["chamfer_mm"] == 6.0 and rows["gc_s1_001"]["chamfer_mm"] == 5.0
+
+
 def test_rejudging_takes_only_the_fits_that_drape_as_recorded(tmp_path, monkeypatch):
     """``gcd score --rejudge --record``: a recorded fit whose folder drapes as recorded has its
     pattern judged again and keeps every other figure; one that drapes otherwise keeps its row."""
