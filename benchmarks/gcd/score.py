@@ -169,13 +169,19 @@ def unsew_drape(case: Path, timeout: int = 1800):
         return read_obj(out)
 
 
-def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: bool = True) -> dict:
-    """The score record of one built case (``result``: its fit folder, or None: not fitted)."""
+def case_truth(case: Path) -> tuple[dict, dict]:
+    """(truth.json with its choices read from the design itself, pattern_gt.json) of a case
+    (truth.json's choices may predate a choice scored now)."""
     truth = json.loads((case / "truth.json").read_text())
     spec_gt = json.loads((case / "pattern_gt.json").read_text())
-    # the choices from the design itself (truth.json's may predate a choice scored now)
     design = truth_of_design((case / "design_params.yaml").read_text())["choices"]
     truth["choices"] = built_choices(design, spec_gt)
+    return truth, spec_gt
+
+
+def score_case(case: Path, result: Path | None, *, floor: bool = True, redrape: bool = True) -> dict:
+    """The score record of one built case (``result``: its fit folder, or None: not fitted)."""
+    truth, spec_gt = case_truth(case)
     tv, tf = read_obj(case / "target.obj")
     rec = {"case": case.name, "type_true": truth["type"], "choices_true": truth["choices"]}
     rec.update(_floors(case, spec_gt, truth, (tv, tf), floor=floor, redrape=redrape))
@@ -404,6 +410,10 @@ def cmd_rejudge(args, record_file: Path) -> int:
     lies within ``SAME_FIT_MM`` of the recorded Chamfer (the fit of record made again); every
     other figure of the row stands, and a case whose fit drapes otherwise keeps its row."""
     cases, results = Path(args.cases), Path(args.results)
+    for what, d in (("--results", results), ("--cases", cases)):
+        if not d.is_dir():
+            print(f"gcd score --rejudge: {what} {d} is not a folder", file=sys.stderr)
+            return 2
     if not record_file.is_file():
         print(f"gcd score --rejudge: no recorded results in {record_file}", file=sys.stderr)
         return 2
@@ -413,7 +423,7 @@ def cmd_rejudge(args, record_file: Path) -> int:
         case, res = cases / cid, results / cid
         if (
             not old.get("fitted")
-            or not (res / "pattern.json").is_file()
+            or not all((res / fn).is_file() for fn in ("pattern.json", "garment.obj"))
             or not (case / "target.obj").is_file()
         ):
             if old.get("fitted"):
@@ -424,11 +434,7 @@ def cmd_rejudge(args, record_file: Path) -> int:
         if abs(mm - old.get("chamfer_mm", np.inf)) > SAME_FIT_MM:
             kept_rows.append(f"{cid} (drapes {mm} mm from the target, recorded {old.get('chamfer_mm')})")
             continue
-        truth = json.loads((case / "truth.json").read_text())
-        spec_gt = json.loads((case / "pattern_gt.json").read_text())
-        truth["choices"] = built_choices(
-            truth_of_design((case / "design_params.yaml").read_text())["choices"], spec_gt
-        )
+        truth, spec_gt = case_truth(case)
         rec = dict(old)
         _score_pattern(rec, case, res, truth, spec_gt, (tv, tf), newton=not args.no_redrape)
         rec["fit_s"] = old.get("fit_s", rec.get("fit_s"))  # the fit of record's time
