@@ -344,6 +344,59 @@ def test_cuffs_close_the_sleeves_at_the_same_length():
     assert "left_cuff" not in draft(Design(sleeves="none", cuffs=True)).panels
 
 
+@pytest.mark.parametrize(
+    "design",
+    [
+        Design(garment="pants", leg_cuffs=True),
+        Design(garment="shorts", leg_cuffs=True, waistband=True, darts=True),
+        Design(garment="jumpsuit", leg="knee", leg_cuffs=True, sleeves="long", cuffs=True),
+    ],
+    ids=design_name,
+)
+def test_leg_cuffs_end_the_legs_where_the_plain_legs_end(design):
+    """A cuffed leg's opening lies where the plain leg's hem lies, as wide; the leg panels end a
+    cuff's height higher; each cuff's top is sewn to its leg panel's whole hem and a leg's front
+    and back cuffs to each other (a tube)."""
+    from unsew.pattern.design._top import CUFF_HEIGHT
+
+    plain, cuffed = draft(design.replace(leg_cuffs=False)), draft(design)
+
+    def low(p, names):  # the lowest point of the named panels as placed [m]
+        return min(p.panels[n].to_world(panel_outline(p.panels[n]))[:, 1].min() for n in names)
+
+    legs = ("left_front", "left_back", "right_front", "right_back")
+    cuffs = [f"{n}_cuff" for n in legs]
+    assert set(cuffs) <= set(cuffed.panels) and not set(cuffs) & set(plain.panels)
+    assert low(cuffed, cuffs) == pytest.approx(low(plain, legs), abs=1e-9)
+    assert low(cuffed, legs) == pytest.approx(low(plain, legs) + CUFF_HEIGHT, abs=1e-9)
+    for leg in legs:
+        hem = next(i for i, e in enumerate(plain.panels[leg].edges) if e.label == "hem")
+        cuff = cuffed.panels[f"{leg}_cuff"]
+        opening = [i for i, e in enumerate(cuff.edges) if e.label == "hem"]
+        assert len(opening) == 1
+        assert edge_length(cuff, opening[0]) == pytest.approx(edge_length(plain.panels[leg], hem), rel=1e-9)
+        sewn = {(s.a.panel, s.b.panel) for s in cuffed.stitches if f"{leg}_cuff" in (s.a.panel, s.b.panel)}
+        assert (leg, f"{leg}_cuff") in sewn
+    for side in ("left", "right"):
+        pair = {f"{side}_front_cuff", f"{side}_back_cuff"}
+        between = [s for s in cuffed.stitches if {s.a.panel, s.b.panel} == pair]
+        assert len(between) == 2
+
+
+def test_a_cuff_is_shortened_where_the_leg_ends_just_below_the_crotch():
+    """Shorts whose hem lies 6 cm under the crotch point keep MIN_INSEAM of inseam above a
+    shortened cuff; at 4 cm there is no room for a cuff: refused in one line."""
+    from unsew.pattern.base import pants as _pants
+    from unsew.pattern.design._draft import MIN_INSEAM
+
+    f = body_frame(Measurements())
+    depth = f.waist_y - (f.crotch_y - _pants.CROTCH_DROP - 0.06)
+    cuff = draft(Design(garment="shorts", length=depth, leg_cuffs=True)).panels["left_front_cuff"]
+    assert np.ptp(cuff.vertices[:, 1]) == pytest.approx(0.06 - MIN_INSEAM, abs=1e-9)
+    with pytest.raises(InputError, match="no room for a cuff"):
+        draft(Design(garment="shorts", length=depth - 0.02, leg_cuffs=True))
+
+
 def _seam_length(p, label_start, panels):
     """Total length of the sides on ``panels`` of the stitches whose label starts with ``label_start``."""
     total = 0.0
@@ -446,10 +499,10 @@ def test_designs_that_cannot_be_cut_are_refused():
 
 @pytest.mark.slow
 def test_three_designs_dress_the_default_body():
-    """A tee with long two-piece sleeves and cuffs, a V front and a boat back; a waist-seamed dress of four
-    gores with a square neck; a knee-length jumpsuit: each goes on the default body (the drape
-    verdict, seams within 5 mm after sewing, nothing inside, no edge stretched twice its length),
-    its top between the chest and the head."""
+    """A tee with long two-piece sleeves and cuffs, a V front and a boat back; a waist-seamed
+    dress of four gores with a square neck; a knee-length jumpsuit with a waistband and cuffed
+    legs: each goes on the default body (the drape verdict, seams within 5 mm after sewing,
+    nothing inside, no edge stretched twice its length), its top between the chest and the head."""
     from unsew.body.body import default_body
     from unsew.body.sdf import BodySDF
     from unsew.dress import DRESS_SETTINGS, dress, dress_stats
@@ -461,7 +514,7 @@ def test_three_designs_dress_the_default_body():
     designs = [
         Design(neckline_front="v", neckline_back="boat", sleeves="long", sleeve_pieces=2, cuffs=True),
         Design(garment="dress", waist_seam=True, panels=4, neckline_front="square", sleeves="none"),
-        Design(garment="jumpsuit", leg="knee", neckline_front="v"),
+        Design(garment="jumpsuit", leg="knee", neckline_front="v", leg_cuffs=True, waistband=True),
     ]
     for d in designs:
         r = dress(draft(d), body, sdf=sdf, settings=DRESS_SETTINGS.replace(edge_length=0.04))

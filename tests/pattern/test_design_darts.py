@@ -110,7 +110,7 @@ def test_darts_where_the_space_cuts_none_are_refused(design):
 
 def test_the_benchmark_reads_the_new_pieces_from_their_names():
     """benchmarks/gcd/truth.py's choices_of_spec (what score.py reads a recovered pattern's choices
-    with) sees the dress's waistband and the sleeves' cuffs by name."""
+    with) sees the dress's waistband and the sleeves' and trouser legs' cuffs by name."""
     sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks" / "gcd"))
     from truth import choices_of_spec
 
@@ -120,3 +120,6 @@ def test_the_benchmark_reads_the_new_pieces_from_their_names():
     ch = choices_of_spec(pattern_to_dict(draft(d)))
     assert ch["waistband"] and ch["cuffs"] and ch["sleeves"]
     assert not choices_of_spec(pattern_to_dict(draft(d.replace(waistband=False, darts=False))))["waistband"]
+    trousers = Design(garment="pants", leg_cuffs=True)
+    assert choices_of_spec(pattern_to_dict(draft(trousers)))["cuffs"]
+    assert not choices_of_spec(pattern_to_dict(draft(trousers.replace(leg_cuffs=False))))["cuffs"]

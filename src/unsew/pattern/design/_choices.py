@@ -39,6 +39,7 @@ CHOICES = {
     "waistband": (False, True),
     "darts": (False, True),
     "leg": ("full", "knee", "shorts"),
+    "leg_cuffs": (False, True),
     "collar": ("none", "hood", "turtle"),
 }
 #: Named hem positions a design's ``length`` may give (see :func:`unsew.pattern.design.length_to`).
@@ -98,7 +99,7 @@ class Design:
     #: skirts: number of panels (gores), even, 2-16; seams at the sides, half of them in front
     panels: int = 2
     #: skirts and trousers: under a front and a back waistband; a dress cut at the waist
-    #: (``waist_seam``): a band between the bodice and the skirt
+    #: (``waist_seam``) or a jumpsuit: a band between the bodice and the skirt or trousers
     waistband: bool = False
     #: waist darts (V notches sewn shut): a top's front and back at the hem (for a hem at the
     #: waist), a waist-seamed dress's bodice under a waistband, a two-panel pencil skirt's top
@@ -106,6 +107,9 @@ class Design:
     #: trousers and jumpsuits: ``full``, ``knee`` or ``shorts`` (None: the garment's own, set at
     #: construction: ``shorts`` for shorts, else ``full``)
     leg: str | None = None
+    #: trousers and jumpsuits: a cuff (a band CUFF_HEIGHT high, front and back) at each leg's
+    #: hem, the leg that much shorter
+    leg_cuffs: bool = False
     #: hem below the natural waist [m] (a top's may lie above it, down to :data:`TOP_LENGTH_MIN`),
     #: or where on the body it falls, one of :data:`LENGTHS` (``"knee"``: measured on the body
     #: drafted for, :func:`~unsew.pattern.design.length_to`); None: the garment's own (a tee at
@@ -276,7 +280,10 @@ def design_space(garment: str) -> list[Design]:
         return [Design(garment="skirt", **s) for s in _skirt_choices(band=True)]
     if garment in ("pants", "shorts"):
         legs = CHOICES["leg"] if garment == "pants" else ("shorts",)
-        return [Design(garment=garment, leg=g, waistband=b) for g in legs for b in CHOICES["waistband"]]
+        return [
+            Design(garment=garment, leg=g, waistband=b, leg_cuffs=c)
+            for g, b, c in itertools.product(legs, CHOICES["waistband"], CHOICES["leg_cuffs"])
+        ]
     if garment == "jumpsuit":
         return [Design(garment="jumpsuit", leg=g, **t) for g in CHOICES["leg"] for t in _top_choices()]
     lowers = [dict(waist_seam=False, fitted=f) for f in CHOICES["fitted"]]
@@ -329,8 +336,9 @@ def design_name(d: Design) -> str:
         frac = f"{d.circle_fraction:g}" if d.skirt == "circle" else ""
         parts.append(f"{d.skirt}{frac}x{d.panels}")
     if d.garment in LEGGED:
-        parts.append(d.leg)
-    if (d.garment in ("skirt", "pants", "shorts") or (d.garment == "dress" and d.waist_seam)) and d.waistband:
+        parts.append(d.leg + ("-legcuffs" if d.leg_cuffs else ""))
+    banded = d.garment in ("skirt", "pants", "shorts", "jumpsuit") or (d.garment == "dress" and d.waist_seam)
+    if banded and d.waistband:
         parts.append("band")
     if d.darts:
         parts.append("darts")

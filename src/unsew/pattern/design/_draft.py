@@ -20,7 +20,9 @@ from unsew.pattern.base.tshirt import BUST_EASE, TopSpec, sleeveless_frame
 from unsew.pattern.base.tshirt import HIP_EASE as TEE_HIP_EASE
 from unsew.pattern.design._choices import LEGGED, LENGTHS, Design, design_name
 from unsew.pattern.design._darts import BODICE_DART, band_between, dart_edge, symmetric_darts
+from unsew.pattern.design._trouser_cuffs import cuff_legs
 from unsew.pattern.design._trouser_darts import dart_trousers
+from unsew.pattern.design._top import CUFF_HEIGHT
 from unsew.pattern.design._skirt import SkirtCut, skirt_panels
 from unsew.pattern.design._collar import collar_set
 from unsew.pattern.design._top import (
@@ -44,6 +46,8 @@ TEE_HEM_DROP = 0.02
 MIN_TOP_SIDE = 0.05
 #: A trouser hem at least this far below the crotch point [m].
 MIN_INSEAM = 0.03
+#: A trouser leg's cuff at least this high [m] (it is shortened to keep MIN_INSEAM).
+MIN_CUFF = 0.02
 
 
 def length_to(m: Measurements, where: str) -> float:
@@ -238,7 +242,6 @@ def _banded_dress(d: Design, m: Measurements, f: BodyFrame, waist_w: float, skir
     """A waist-seamed dress's bodice ending BAND_HEIGHT above the waist, over a front and a back
     band sewn to it and to the gores' tops (``skirt``: :func:`skirt_panels`' gores, stitches
     and tops), the bodice's hem darted when ``d.darts``."""
-    from unsew.pattern.curves import edge_length
 
     gores, gore_st, tops = skirt
     half = d.panels // 2
@@ -248,19 +251,30 @@ def _banded_dress(d: Design, m: Measurements, f: BodyFrame, waist_w: float, skir
     panels, st = _top(d, m, f, spec, darts=darts)
     panels.update(gores)
     st += gore_st
-    above, below = {}, {}
-    for side, gs in (("front", tops[:half]), ("back", tops[half:])):
-        below[side] = [(g, e, edge_length(gores[g], e)) for g, e in gs]
+    below = {side: gs for side, gs in (("front", tops[:half]), ("back", tops[half:]))}
+    return _pattern(panels, st + _band_under_bodice(panels, below, f))
+
+
+def _band_under_bodice(panels: dict, below: dict, f: BodyFrame) -> list:
+    """A front and a back band from the waist up BAND_HEIGHT (added to ``panels``) sewn to the
+    bodice's hem pieces (``panels``' ``front`` and ``back``) and to the edges ``below``
+    ({"front": [(panel, edge)], "back": [...]}, in the band's +x order, :func:`band_between`);
+    their stitches."""
+    from unsew.pattern.curves import edge_length
+
+    above, under = {}, {}
+    for side, edges in below.items():
+        under[side] = [(pn, e, edge_length(panels[pn], e)) for pn, e in edges]
         hem = [
             j for j, e in enumerate(panels[side].edges) if e.label.startswith("hem") and "dart" not in e.label
         ]
         above[side] = [(side, j, edge_length(panels[side], j)) for j in hem]
-        # the band is as wide as the gores' tops; the bodice's sewn hem meets it to rounding
-        scale = sum(p[2] for p in below[side]) / sum(p[2] for p in above[side])
+        # the band is as wide as the edges below; the bodice's sewn hem meets it to rounding
+        scale = sum(p[2] for p in under[side]) / sum(p[2] for p in above[side])
         above[side] = [(pn, e, ln * scale) for pn, e, ln in above[side]]
-    bands, band_st = band_between(below, above, bottom_y=f.waist_y, height=BAND_HEIGHT, depth_z=f.hip_z)
+    bands, band_st = band_between(under, above, bottom_y=f.waist_y, height=BAND_HEIGHT, depth_z=f.hip_z)
     panels.update(bands)
-    return _pattern(panels, st + band_st)
+    return band_st
 
 
 def _dress_garment(d: Design, m: Measurements) -> Pattern:
@@ -269,9 +283,11 @@ def _dress_garment(d: Design, m: Measurements) -> Pattern:
     return _seamed_dress(d, m) if d.waist_seam else _one_piece_dress(d, m)
 
 
-def _legs_cut(d: Design, m: Measurements) -> tuple[float, float]:
-    """Hem height [m] and a front leg panel's hem half width [m] of ``d``'s trousers: the
-    library's pants or shorts, a knee length half-way between them, or ``d.length``."""
+def _legs_cut(d: Design, m: Measurements) -> tuple[float, float, float]:
+    """Hem height [m], a front leg panel's hem half width [m] and the cuffs' height [m] of ``d``'s
+    trousers: the library's pants or shorts, a knee length half-way between them, or
+    ``d.length``; with ``d.leg_cuffs`` the legs end a cuff's height higher (less where the inseam
+    would end above :data:`MIN_INSEAM`), the cuffs' lower edge at the hem, as wide as it."""
     f = body_frame(m)
     y_full = _pants.PANTS_HEM_HEIGHT * m.height / 1.70
     half_full = _pants.PANTS_HEM_GIRTH / 4 - 0.01
@@ -282,31 +298,48 @@ def _legs_cut(d: Design, m: Measurements) -> tuple[float, float]:
         hem_y = f.waist_y - d.length
     else:
         hem_y = {"full": y_full, "shorts": y_short, "knee": f.waist_y - length_to(m, "knee")}[leg]
-    if hem_y > f.crotch_y - _pants.CROTCH_DROP - MIN_INSEAM:
+    room = f.crotch_y - _pants.CROTCH_DROP - MIN_INSEAM - hem_y
+    if room < 0.0:
         raise InputError(f"trousers' hem {f.waist_y - hem_y:.3f} m below the waist is above the crotch")
+    cuff = min(CUFF_HEIGHT, room) if d.leg_cuffs else 0.0
+    if d.leg_cuffs and cuff < MIN_CUFF:
+        raise InputError(f"trousers' hem {f.waist_y - hem_y:.3f} m below the waist leaves no room for a cuff")
     t = (hem_y - y_short) / (y_full - y_short)  # 0 at the shorts' hem, 1 at the ankle
     half = half_short if t == 0.0 else (half_full if t == 1.0 else half_short + t * (half_full - half_short))
     if d.hem_girth is not None:  # a leg's hem: front and back, each two half widths, the back's
         # inseam end further out by the difference of the crotch extensions (pants._leg)
         half = (d.hem_girth - (_pants.BACK_CROTCH_EXT - _pants.FRONT_CROTCH_EXT) * m.hip) / 4
-    return hem_y, half + (d.hem_flare or 0.0)
+    return hem_y + cuff, half + (d.hem_flare or 0.0), cuff
 
 
 def _trousers(d: Design, m: Measurements) -> Pattern:
-    hem_y, half = _legs_cut(d, m)
+    hem_y, half, cuff = _legs_cut(d, m)
     p = _pants._legs(m, hem_y, half, "", band=d.waistband)
-    return dart_trousers(p, m, band=d.waistband) if d.darts else p
+    p = dart_trousers(p, m, band=d.waistband) if d.darts else p
+    return cuff_legs(p, cuff) if d.leg_cuffs else p
 
 
 def _jumpsuit(d: Design, m: Measurements) -> Pattern:
     """A bodice and trousers sewn at the natural waist: the bodice's waist cut at the centre,
-    each half sewn to a leg panel's waist (as the library's trouser waistbands are)."""
+    each half sewn to a leg panel's waist (as the library's trouser waistbands are); under a
+    waistband (``d.waistband``) the bodice ends BAND_HEIGHT above the waist, the band between it
+    and the legs, as a banded dress's."""
     if d.darts:
         raise InputError("the design space's jumpsuits take no darts")
     f = body_frame(m)
-    hem_y, half = _legs_cut(d, m)
+    hem_y, half, cuff = _legs_cut(d, m)
     legs = _pants._legs(m, hem_y, half, "", band=False)
+    legs = cuff_legs(legs, cuff) if d.leg_cuffs else legs
     waist_w = (m.waist + _pants.WAIST_EASE) / 4  # a leg panel's waist edge
+    if d.waistband:  # the bodice ends a band's height above the waist, the band between
+        spec = TopSpec(lower=((waist_w, 0.0),), lower_curves=(None,), hem_y=f.waist_y + BAND_HEIGHT)
+        panels, st = _top(d, m, f, spec)
+        panels.update(legs.panels)
+        below = {
+            "front": [("right_front", 2), ("left_front", 3)],
+            "back": [("left_back", 2), ("right_back", 3)],
+        }
+        return _pattern(panels, st + legs.stitches + _band_under_bodice(panels, below, f))
     spec = TopSpec(lower=((waist_w, 0.0),), lower_curves=(None,), hem_y=f.waist_y)
     panels, st = _top(d, m, f, spec, [0.0])
     panels.update(legs.panels)
