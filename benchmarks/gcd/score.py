@@ -380,17 +380,18 @@ def cmd_score(args, record_file: Path) -> int:
         recs[cid] = rec
         print(json.dumps(rec), flush=True)
     carry_over(recs, old)
-    print_record({"cases": recs})
-    if args.record:
+    if args.record:  # the table of the record as written, with the rows another scoring wrote
         stood = {cid for cid, r in recs.items() if r is old.get(cid)} if args.only_tried else set()
-        write_record(record_file, recs, stood, "python -m benchmarks gcd score --results DIR --record")
+        recs = write_record(record_file, recs, stood, "python -m benchmarks gcd score --results DIR --record")
+    print_record({"cases": recs})
     return 0
 
 
-def write_record(record_file: Path, recs: dict, stood: set, about: str) -> None:
+def write_record(record_file: Path, recs: dict, stood: set, about: str) -> dict:
     """Write ``recs`` as the recorded results, the rows of ``stood`` (kept as recorded, not scored
     now) read again from the file as it is at this moment, under a lock: two ``gcd score
-    --only-tried --record`` runs over different fit folders can run side by side."""
+    --only-tried --record`` runs over different fit folders can run side by side. Returns the
+    rows written."""
     import fcntl
 
     with open(record_file.with_name(record_file.name + ".lock"), "w") as lock:
@@ -398,6 +399,7 @@ def write_record(record_file: Path, recs: dict, stood: set, about: str) -> None:
         now = json.loads(record_file.read_text()).get("cases", {}) if record_file.is_file() else {}
         rows = {cid: now.get(cid, r) if cid in stood else r for cid, r in recs.items()}
         record_file.write_text(json.dumps({"about": about, "cases": rows}, indent=1) + "\n")
+    return rows
 
 
 #: How far [mm] a fit's drape may lie from its recorded Chamfer and still be the fit of record.

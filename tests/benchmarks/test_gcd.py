@@ -597,10 +597,11 @@ def test_scoring_only_the_tried_keeps_the_other_built_cases_recorded_rows(tmp_pa
     assert json.loads(record.read_text())["cases"]["gc_s1_000"]["chamfer_mm"] == 7.0
 
 
-def test_two_scorings_of_split_fit_folders_keep_each_others_rows(tmp_path, monkeypatch):
+def test_two_scorings_of_split_fit_folders_keep_each_others_rows(tmp_path, monkeypatch, capsys):
     """Two ``gcd score --only-tried --record`` runs side by side, each over a folder with some of
     the fits: the row the other one writes while this one scores is not overwritten by this one's
-    copy of the row as it stood when it started."""
+    copy of the row as it stood when it started, and the summary printed is the record's as
+    written (with the other one's row)."""
     score = _load("score")
     cases, record = tmp_path / "cases", tmp_path / "results.json"
     cases.mkdir()
@@ -624,9 +625,12 @@ def test_two_scorings_of_split_fit_folders_keep_each_others_rows(tmp_path, monke
         rejudge = False
 
     Args.cases, Args.results = str(cases), str(tmp_path / "A")
+    capsys.readouterr()
     assert score.cmd_score(Args, record) == 0
     rows = json.loads(record.read_text())["cases"]
     assert rows["gc_s1_000"]["chamfer_mm"] == 6.0 and rows["gc_s1_001"]["chamfer_mm"] == 5.0
+    printed = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert printed["chamfer_median"] == 5.5  # the median of 6.0 and the other run's 5.0, not its 7.0
 
 
 def test_rejudging_takes_only_the_fits_that_drape_as_recorded(tmp_path, monkeypatch):
