@@ -94,19 +94,6 @@ def test_a_flared_skirt_gets_circle_skirts_of_more_flare_than_an_aline():
     assert {d.waistband for _, d in wide} == {False, True} and len({d.panels for _, d in wide}) > 1
 
 
-@pytest.mark.parametrize("kind", ["pants", "shorts", "jumpsuit"])
-def test_trousers_try_cuffed_legs(kind):
-    """Neither a cuff nor a band is read: trousers and jumpsuits try their legs with cuffs too
-    (trousers also under a waistband), a jumpsuit a band at its waist, the design as read first
-    without either."""
-    cands = [d for _, d in design_candidates(READINGS[kind])]
-    assert not cands[0].leg_cuffs and any(d.leg_cuffs for d in cands)
-    if kind != "jumpsuit":
-        assert any(d.leg_cuffs and d.waistband for d in cands)
-    else:  # and a band between the bodice and the trousers
-        assert cands[1].waistband and "waistband_front" in draft(cands[1]).panels
-
-
 def test_a_flare_near_a_class_edge_tries_the_neighbouring_style():
     styles = {d.skirt for _, d in design_candidates(READINGS["skirt_near_edge"])}
     assert styles == {"pencil", "aline"}

@@ -9,8 +9,7 @@ whose drape has that flare (an A-line's ``aline_flare``, a circle's ``circle_fra
 the waist darts the reading decided (a two-panel pencil skirt's; a dress cut to the body at the
 chest is drafted first as a bodice with waist darts over a waistband and a skirt). The
 alternatives are the choices the reading cannot see (a waistband, the number of gores, a dress in
-one piece or a bodice and a skirt, sleeves in two pieces, cuffs on sleeves or trouser legs), the
-neighbouring sleeve classes
+one piece or a bodice and a skirt, sleeves in two pieces, cuffs), the neighbouring sleeve classes
 where the sleeve's share is uncertain or near a class's edge (:data:`SLEEVE_MARGIN`) and the
 neighbouring skirt style where the flare lies near a class's edge (:data:`FLARE_MARGIN`). At most
 :data:`MAX_CANDIDATES`, the design as read first; each is dressed and compared as the library's
@@ -287,26 +286,22 @@ def _skirt_garment(reading, m: Measurements, meas: dict) -> tuple[Design, list[D
 
 def _trousers(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
     """Trousers of the read length (with back waist darts where the reading decided them: cut to
-    the hips), then under a waistband, with flared legs, with cuffs, and under a waistband with
-    cuffs (neither a band nor a cuff is read); the legs keep their own hem, not the read
-    openings' (docs/decisions/024-hems-read-off-the-target.md)."""
+    the hips), then under a waistband, then with flared legs; the legs keep
+    their own hem, not the read openings' (docs/decisions/024-hems-read-off-the-target.md)."""
     length = _hem_length(reading, m)
     g = reading.garment
     leg = "shorts" if g == "shorts" else _LEG.get(reading.length, "full")
     first = Design(garment=g, leg=leg, length=length, darts=bool(reading.darts))
-    band, cuffs = first.replace(waistband=True), first.replace(leg_cuffs=True)
-    return first, [band, first.replace(hem_flare=0.05), cuffs, band.replace(leg_cuffs=True)]
+    return first, [first.replace(waistband=True), first.replace(hem_flare=0.05)]
 
 
 def _jumpsuit(reading, m: Measurements, meas: dict) -> tuple[Design, list[Design]]:
-    """A bodice as read on trousers of the read length (their own hem, as :func:`_trousers`');
-    the same with a waistband between them, the sleeves' alternatives, then flared legs, then
-    cuffed legs."""
+    """A bodice as read on trousers of the read length (their own hem, as :func:`_trousers`'); the
+    sleeves' alternatives, then the neighbouring leg."""
     length = _hem_length(reading, m)
     leg = _LEG.get(reading.length, "full")
     first = Design(garment="jumpsuit", leg=leg, length=length, **_top_fields(reading, m, meas))
-    legs = [first.replace(hem_flare=0.05), first.replace(leg_cuffs=True)]
-    return first, [first.replace(waistband=True)] + _top_alternatives(first, reading) + legs
+    return first, _top_alternatives(first, reading) + [first.replace(hem_flare=0.05)]
 
 
 _BUILDERS = {
