@@ -26,6 +26,10 @@ READ_TYPES = ("tshirt", "dress", "pants", "shorts", "skirt", "jumpsuit")
 LIMB_NEAR = 0.05
 #: ... the line running on past the wrist and the ankle by this much [m] (a hand, a foot).
 LIMB_END = 0.08
+#: A loop round one leg alone has the other leg's opening for a twin when another loop lies at its
+#: mirror image across the hip joints' centre plane (height and distance across) and has its
+#: radius, each within this share of its radius [-].
+TWIN_TOL = 0.5
 #: Fraction of the way from the hip joints up to the shoulder joints above which a garment covers
 #: the chest: a skirt's or trousers' waistband stays below it, a bodice reaches above it.
 CHEST_LEVEL = 0.7
@@ -173,12 +177,33 @@ def _openings_by_part(v: np.ndarray, loops, centres: np.ndarray, skeleton):
         for limb in ("arm", "leg"):
             # round this limb, with the other side's limb outside the loop
             on[f"{side}_{limb}"] = (dist[f"{side}_{limb}"] < near) & (dist[f"{other}_{limb}"] > radii)
+    for side, other in (("left", "right"), ("right", "left")):
+        if on[f"{side}_leg"].any() and not on[f"{other}_leg"].any():
+            on[f"{other}_leg"] = _mirror_twin(on[f"{side}_leg"], centres, radii, skeleton)
     if not (on["left_leg"].any() and on["right_leg"].any()):
         # a loop round one leg alone is a hem hanging to one side (legs' openings come in pairs)
         on["left_leg"] = on["right_leg"] = np.zeros(len(loops), dtype=bool)
     leg = on["left_leg"] | on["right_leg"]
     arm = (on["left_arm"] | on["right_arm"]) & ~leg
     return leg, arm, on
+
+
+def _mirror_twin(round_leg: np.ndarray, centres: np.ndarray, radii: np.ndarray, skeleton) -> np.ndarray:
+    """(C,) bool: the loops that mirror a loop of ``round_leg`` (C,) bool across the hip joints'
+    centre plane, at its height and of its size (within :data:`TWIN_TOL` of its radius, centres
+    and radii [m]): the other leg's opening, where that leg's line misses it by a little (a hem
+    lying on the floor round a foot, the foot forward of the ankle's line)."""
+    lh, rh = skeleton.position("left_hip"), skeleton.position("right_hip")
+    mid, across = 0.5 * (lh + rh), (lh - rh) / max(float(np.linalg.norm(lh - rh)), 1e-9)
+    out = np.zeros(len(centres), dtype=bool)
+    for i in np.flatnonzero(round_leg):
+        mirrored = centres[i] - 2.0 * float((centres[i] - mid) @ across) * across
+        tol = TWIN_TOL * radii[i]
+        # the mirrored point's height and distance across, not its depth: one foot may stand forward
+        dy = np.abs(centres[:, 1] - mirrored[1])
+        dx = np.abs((centres - mid) @ across - (mirrored - mid) @ across)
+        out |= (dy < tol) & (dx < tol) & (np.abs(radii - radii[i]) < tol) & ~round_leg
+    return out
 
 
 def _type_of(split: bool, upper: bool, hem_y: float, h: dict, said: str):
