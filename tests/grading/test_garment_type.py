@@ -99,3 +99,23 @@ def test_a_v_neck_is_read_off_its_drape():
     )
     shapes, angles = read_necklines(d.x.numpy(), d.mesh.faces, body.skeleton)
     assert shapes == ("v", "round"), angles
+
+
+def test_a_leg_opening_its_legs_line_misses_is_paired_with_its_twin():
+    """Trousers whose right hem the right leg's line misses (the ankle moved back, as a hem lying
+    on the floor round a foot lies forward of the ankle's line): the right hem mirrors the left one
+    across the hips, at its height and of its size, so both legs' openings are read."""
+    from unsew.grading import garment_type as gt
+    from unsew.losses.contours import open_contours
+
+    v, f = _target("trousers_slim__default")
+    sk = default_body().skeleton
+    pos = sk.positions.copy()
+    pos[list(sk.names).index("right_ankle"), 2] -= 0.1
+    moved = type(sk)(list(sk.names), sk.parents.copy(), pos, list(sk.parts))
+    loops = open_contours(v, f)
+    hem = min(loops, key=lambda c: c.centre[1] + 10.0 * (c.centre[0] > sk.position("pelvis")[0]))
+    line = gt._limb_chains(moved)["right_leg"]
+    assert gt._chain_distance(np.asarray([hem.centre]), line)[0] > max(gt._radius(v, hem), gt.LIMB_NEAR)
+    reading = read_garment_type(v, f, moved)
+    assert reading.garment == "pants" and min(reading.legs) == 1, reading.reason
