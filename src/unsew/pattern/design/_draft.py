@@ -22,10 +22,10 @@ from unsew.pattern.design._choices import LEGGED, LENGTHS, Design, design_name
 from unsew.pattern.design._darts import BODICE_DART, band_between, dart_edge, symmetric_darts
 from unsew.pattern.design._trouser_cuffs import cuff_legs
 from unsew.pattern.design._trouser_darts import dart_trousers
-from unsew.pattern.design._top import CUFF_HEIGHT
 from unsew.pattern.design._skirt import SkirtCut, skirt_panels
 from unsew.pattern.design._collar import collar_set
 from unsew.pattern.design._top import (
+    CUFF_HEIGHT,
     NECK_DEPTHS,
     hem_cuts,
     sleeve_set,
@@ -242,7 +242,6 @@ def _banded_dress(d: Design, m: Measurements, f: BodyFrame, waist_w: float, skir
     """A waist-seamed dress's bodice ending BAND_HEIGHT above the waist, over a front and a back
     band sewn to it and to the gores' tops (``skirt``: :func:`skirt_panels`' gores, stitches
     and tops), the bodice's hem darted when ``d.darts``."""
-
     gores, gore_st, tops = skirt
     half = d.panels // 2
     hem_y = f.waist_y + BAND_HEIGHT
