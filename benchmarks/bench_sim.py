@@ -6,11 +6,13 @@ forward and reverse (backprop of a loss on the final positions), peak memory of 
 forward+reverse (tracemalloc-free: resident set size growth via getrusage), and the assembly of
 the system matrix done by a plain per-element Python loop (the paper's baseline) versus our
 static index maps. Also the linear solver backends (factor + 2 solves of the step-0 system:
-cholespy, CHOLMOD with the symbolic analysis reused, scipy splu tuned for SPD).
+cholespy, CHOLMOD with the symbolic analysis reused, simplicial and supernodal, scipy splu tuned
+for SPD).
 
 Simulator variants (--variants, "stencil:backend" pairs) are run interleaved, repeat by repeat,
 so they see the same machine load: stencil "full" (exact Gauss-Newton hinge blocks, the
-original) or "ring" (model.py), backend "cholespy", "cholmod" or "scipy" (solve.py), and
+original) or "ring" (model.py), backend "cholespy", "cholmod" or "scipy" (solve.py; "cholmod@supernodal"
+or "cholmod@simplicial" names CHOLMOD's factorization, solve.CHOLMOD_MODE), and
 ":unfused" for separate assembly Functions + sparse_solve instead of the fused step_solve, ":nols"
 for steps without the line search on the step's incremental potential (integrator.py).
 
@@ -28,6 +30,7 @@ import argparse
 import os
 import resource
 import time
+from pathlib import Path
 
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
@@ -67,7 +70,8 @@ def _run(model, st, sdf, uv, gamma, steps, *, checkpoint, variant):
     and Gamma); variant = (stencil, backend, fused, line_search)."""
     from unsew.sim import Cloth, DrapeSettings, drape
 
-    _, backend, fused, line_search = variant
+    _, name, fused, line_search = variant
+    backend = _backend_mode(name)
     uvp = uv.clone().requires_grad_(True)
     gp = gamma.clone().requires_grad_(True)
     t0 = time.perf_counter()
@@ -124,7 +128,69 @@ def _parse(argv):
     ap.add_argument("--no-loop", action="store_true", help="skip the per-element loop assembly baseline")
     ap.add_argument("--sheet", action="store_true", help="use square sheets even if the t-shirt exists")
     ap.add_argument("--checkpoint", action="store_true", help="recompute steps in backward (less memory)")
+    ap.add_argument(
+        "--dress",
+        nargs="*",
+        metavar="CASE",
+        help="instead: dress each case folder's pattern_gt.json on its body (unsew drape's dress()) once "
+        "per CHOLMOD mode of --modes, timed, and the drapes compared vertex by vertex",
+    )
+    ap.add_argument("--modes", default="supernodal,simplicial", help="CHOLMOD modes for --dress")
     return ap.parse_args(argv)
+
+
+def _gap_mm(a, b) -> str:
+    """Median and largest distance [mm] between two drapes (n, 3) [m] of one mesh ("n/a" where
+    either diverged)."""
+    if a is None or b is None:
+        return f"{'n/a':>18}"
+    d = np.linalg.norm(a - b, axis=1) * 1e3
+    return f"{np.median(d):10.3f} {d.max():7.2f}"
+
+
+def _dress_modes(cases: list[str], modes: list[str]) -> None:
+    """One row per case: seconds of dress() in each CHOLMOD mode, its factorizations, and the
+    median and largest distance [mm] between the first mode's drape and each other's."""
+    import warnings
+
+    import unsew.sim.solve as solve_mod
+    from unsew.body.case import load_case
+    from unsew.dress import dress
+    from unsew.errors import SimulationError
+    from unsew.io.garmentcode import load_pattern
+
+    head = " | ".join(f"{m + ' s':>14} {'factor.':>7}" for m in modes)
+    gaps = " | ".join(f"{m[:5]} vs {modes[0][:5]} mm: median max" for m in modes[1:])
+    print(f"{'case':>12} {'verts':>6} | {head} | {gaps}")
+    calls = []
+    orig = solve_mod._Factor._factorize
+
+    def counted(self, pattern, values):
+        calls.append(1)
+        return orig(self, pattern, values)
+
+    solve_mod._Factor._factorize = counted
+    try:
+        for case in cases:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # the reader's notes on the pattern (gathered seams...)
+                body, pattern = load_case(Path(case)).body, load_pattern(Path(case) / "pattern_gt.json")
+            cells, drapes = [], []
+            for mode in modes:
+                solve_mod.CHOLMOD_MODE = mode
+                calls.clear()
+                t0 = time.perf_counter()
+                try:
+                    drapes.append(dress(pattern, body).x.numpy())
+                except SimulationError:
+                    drapes.append(None)
+                cells.append(f"{time.perf_counter() - t0:14.1f} {len(calls):7d}")
+            n = len(drapes[0]) if drapes[0] is not None else 0
+            gaps = " | ".join(_gap_mm(drapes[0], x) for x in drapes[1:])
+            print(f"{Path(case).name:>12} {n:>6} | {' | '.join(cells)} | {gaps}", flush=True)
+    finally:
+        solve_mod._Factor._factorize = orig
+        solve_mod.CHOLMOD_MODE = solve_mod.DEFAULT_CHOLMOD_MODE
 
 
 def _variants(spec: str) -> list[tuple]:
@@ -135,7 +201,7 @@ def _variants(spec: str) -> list[tuple]:
     for v in spec.split(","):
         stencil, backend, *rest_ = v.split(":")
         try:
-            resolve_backend(backend)
+            resolve_backend(backend.partition("@")[0])
         except ImportError as exc:
             print(f"(skipping {v}: {exc})")
             continue
@@ -178,12 +244,13 @@ def _time_solvers(models, rest, Hm, Hb, n) -> dict:
         A[m.diag_dst] += rest.mass.repeat_interleave(3)
         pat = SparsePattern(3 * n, m.rows, m.cols)
         b = np.random.default_rng(0).standard_normal(3 * n)
-        for be in ("cholespy", "cholmod", "scipy"):
+        for name in ("cholespy", "cholmod@simplicial", "cholmod@supernodal", "scipy"):
+            be = _backend_mode(name)
             try:
                 resolve_backend(be)
             except ImportError:
                 continue
-            _Factor(pat, A.numpy(), be)  # CHOLMOD: analysis once per pattern, not timed
+            _Factor(pat, A.numpy(), be)  # CHOLMOD: analysis once per pattern and mode, not timed
             t = np.inf
             for _ in range(3):
                 t0 = time.perf_counter()
@@ -192,8 +259,19 @@ def _time_solvers(models, rest, Hm, Hb, n) -> dict:
                 fac.solve(b)
                 t = min(t, time.perf_counter() - t0)
                 del fac
-            tb[(stencil, be)] = (t, m.nnz)
+            tb[(stencil, name)] = (t, m.nnz)
+    _backend_mode("cholmod")
     return tb
+
+
+def _backend_mode(name: str) -> str:
+    """The backend of a name "backend[@mode]", CHOLMOD's factorization mode set from it (the
+    library's default where none is named)."""
+    import unsew.sim.solve as solve_mod
+
+    be, _, mode = name.partition("@")
+    solve_mod.CHOLMOD_MODE = mode or solve_mod.DEFAULT_CHOLMOD_MODE
+    return be
 
 
 def _time_assembly(models, st, uvt, gamma, n, no_loop: bool):
@@ -247,6 +325,9 @@ def main(argv=None):
     args = _parse(argv)
     torch.set_num_threads(args.threads)
     print(f"load average at start: {os.getloadavg()[0]:.2f} (2 shared cores)")
+    if args.dress is not None:
+        _dress_modes(args.dress, args.modes.split(","))
+        return
     from unsew.sim import MATERIALS, SimModel, SimState, SphereSDF
 
     gamma = MATERIALS["cotton"].gamma()

@@ -155,9 +155,14 @@ def test_a_differentiable_drape_factorizes_once_per_step(fused, monkeypatch):
     assert uvt.grad is not None
 
 
+@pytest.mark.parametrize("mode", ["simplicial", "supernodal"])
 @pytest.mark.parametrize("backend", _CHOLMOD)
-def test_cholmod_symbolic_analysis_is_reused_across_values(backend):
-    """The cholmod backend analyses the pattern once; new values on the same pattern solve right."""
+def test_cholmod_symbolic_analysis_is_reused_across_values(backend, mode, monkeypatch):
+    """The cholmod backend analyses the pattern once per mode; new values on the same pattern
+    solve right."""
+    import unsew.sim.solve as solve_mod
+
+    monkeypatch.setattr(solve_mod, "CHOLMOD_MODE", mode)
     p = _pattern()
     g = torch.Generator().manual_seed(2)
     first = None
@@ -168,8 +173,26 @@ def test_cholmod_symbolic_analysis_is_reused_across_values(backend):
         assert_close(
             x, torch.linalg.solve(p.dense(_values(p, w)), b), rtol=1e-12, atol=1e-14, what=f"values {k} "
         )
-        first = first or p._cholmod_symbolic
-        assert p._cholmod_symbolic is first is not None
+        first = first or p._cholmod_symbolic[mode]
+        assert list(p._cholmod_symbolic) == [mode]
+        assert p._cholmod_symbolic[mode] is first is not None
+
+
+@pytest.mark.parametrize("mode", ["simplicial", "supernodal"])
+@pytest.mark.parametrize("backend", _CHOLMOD)
+def test_cholmod_refuses_an_indefinite_matrix_in_either_mode(backend, mode, monkeypatch):
+    """A symmetric matrix with one negative eigenvalue among positive ones (its leading minors
+    positive until the last) is refused in both modes: simplicial LDL' factors it without a
+    complaint, so its pivots are what tell."""
+    import unsew.sim.solve as solve_mod
+    from unsew.errors import SimulationError
+
+    monkeypatch.setattr(solve_mod, "CHOLMOD_MODE", mode)
+    p = SparsePattern(3, [0, 1, 1, 2, 2], [0, 0, 1, 1, 2])
+    values = torch.tensor([2.0, 1.0, 2.0, 3.0, 2.0], dtype=torch.float64)  # det -9.0
+    assert torch.linalg.eigvalsh(p.dense(values)).min() < 0
+    with pytest.raises(SimulationError, match="not positive definite"):
+        sparse_solve(values, torch.ones(3, dtype=torch.float64), p, backend=backend)
 
 
 def test_unknown_backend_is_refused():

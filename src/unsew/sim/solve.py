@@ -13,9 +13,10 @@ and one value per stored entry (A_ij = A_ji = value for i != j). Forward: factor
 Backends: ``"cholmod"`` (CHOLMOD through scikit-sparse, an optional extra: ``pip install
 unsew[cholmod]`` against Debian's libsuitesparse-dev) analyses the sparsity pattern once (nested
 dissection ordering) and keeps that symbolic factorization on the :class:`SparsePattern`, so a step
-pays the numeric factorization only; ``"cholespy"`` (a hard dependency) redoes the analysis
-every factorization; ``"scipy"`` is splu tuned for SPD. ``"auto"`` (the default) is "cholmod"
-when scikit-sparse imports and "cholespy" otherwise. ``benchmarks/bench_sim.py`` measures them.
+pays the numeric factorization only (simplicial LDL', :data:`CHOLMOD_MODE`); ``"cholespy"`` (a
+hard dependency) redoes the analysis every factorization; ``"scipy"`` is splu tuned for SPD.
+``"auto"`` (the default) is "cholmod" when scikit-sparse imports and "cholespy" otherwise.
+``benchmarks/bench_sim.py`` measures them.
 
 Round-off. The step's matrix is positive definite in exact arithmetic (masses plus PSD element
 blocks: the membrane's stress term projected, Gauss-Newton bending, n n^T contact), but a
@@ -96,7 +97,7 @@ class SparsePattern:
         self.cols = torch.from_numpy(c.astype(np.int64)).to(device or "cpu")
         self.diag_half = torch.where(self.rows == self.cols, 0.5, 1.0).to(torch.float64)
         self._csc = None  # (order, indices, indptr) of the lower triangle in CSC order
-        self._cholmod_symbolic = None  # CHOLMOD analysis, computed at the first factorization
+        self._cholmod_symbolic = {}  # CHOLMOD's analysis per mode, made at its first factorization
 
     def csc_lower(self, values: np.ndarray):
         """scipy CSC matrix of the lower triangle with these values (nnz,) (the COO order of
@@ -124,6 +125,13 @@ class SparsePattern:
 #: relative diagonal shifts tau tried, in order, when a Cholesky factorization of a finite matrix
 #: fails: A + tau diag(|A|) (module docstring, "Round-off")
 SHIFTS = (1e-12, 1e-10, 1e-8, 1e-6, 1e-4)
+
+
+#: CHOLMOD's factorization: "simplicial" (LDL', column by column) or "supernodal" (dense blocks
+#: through BLAS, on one thread here); simplicial is the faster at a garment's sizes
+#: (docs/decisions/057-simplicial-cholmod.md).
+DEFAULT_CHOLMOD_MODE = "simplicial"
+CHOLMOD_MODE = DEFAULT_CHOLMOD_MODE
 
 
 class _NotPositiveDefinite(Exception):
@@ -175,12 +183,20 @@ class _Factor:
             A = pattern.csc_lower(values)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")  # CholmodTypeConversionWarning never applies here
-                if pattern._cholmod_symbolic is None:
-                    pattern._cholmod_symbolic = analyze(A, mode="supernodal", ordering_method="nesdis")
+                mode = CHOLMOD_MODE
+                if mode not in pattern._cholmod_symbolic:
+                    pattern._cholmod_symbolic[mode] = analyze(A, mode=mode, ordering_method="nesdis")
                 try:
-                    return pattern._cholmod_symbolic.cholesky(A)
+                    factor = pattern._cholmod_symbolic[mode].cholesky(A)
                 except CholmodError as exc:
                     raise _NotPositiveDefinite(str(exc)) from None
+            if mode == "simplicial":
+                # a simplicial factor is LDL', which CHOLMOD computes for indefinite matrices too:
+                # A is positive definite exactly when every pivot in D is
+                d = factor.D()
+                if not np.all(d > 0.0):
+                    raise _NotPositiveDefinite(f"pivot {float(np.min(d)):.3g} <= 0 in LDL'")
+            return factor
         if backend == "cholespy":
             from cholespy import CholeskySolverD, MatrixType
 
