@@ -98,3 +98,64 @@ def test_grade_places_a_skirt_at_a_higher_target(skirt):
     )
     assert not any(e.startswith("placement") for r in off.table for e in r["edits"])
     assert off.pattern.panels[name].translation[1] == pytest.approx(p.panels[name].translation[1])
+
+
+def test_choose_lift_drapes_no_lift_the_room_refuses(skirt):
+    """A lift refused room (a fit's time limit) is not draped, nor is any after it; the placement
+    stays the input's, and what was left out is said."""
+    p, m = skirt
+    x = flat_drape(p, m)
+    tx = flat_drape(lifted(p, 0.04), lifted_mesh(m, 0.04))
+    draped, asked = [], []
+
+    def counting(pattern, mesh, body):
+        draped.append(pattern)
+        return _drape(pattern, mesh, body)
+
+    def room(what):
+        asked.append(what)
+        return len(asked) < 2  # the first lift has room, the second not
+
+    q, mq, xq, row = choose_lift(p, m, x, None, counting, tx, m.faces, room)
+    assert len(draped) == 1 and len(asked) == 2 and "lift of +4.0 cm not draped" in asked[1]
+    assert row["tried_m"] == pytest.approx([0.0, 0.02], abs=1e-3)
+    assert row["lift_m"] == pytest.approx(0.02, abs=1e-3)  # the nearer of the two tried
+
+
+def test_grade_drapes_no_further_pass_nor_lift_without_room(skirt):
+    """Grading under a room that refuses everything optional drapes its first pass only, and asks
+    with that drape's duration as the estimate."""
+    from unsew.body.body import default_body
+    from unsew.grading.grade import GradingSettings, grade
+
+    p, m = skirt
+    tx = flat_drape(lifted(p, 0.04), lifted_mesh(m, 0.04))
+    draped, asked = [], []
+
+    def counting(pattern, mesh, body):
+        draped.append(pattern)
+        return _drape(pattern, mesh, body)
+
+    def refuse(seconds, what):
+        asked.append((seconds, what))
+        return False
+
+    def grade_with(room):
+        draped.clear()
+        settings = GradingSettings(passes=3, room=room)
+        x0 = flat_drape(p, m)  # the base's drape given: grading's own drapes are counted
+        return grade(
+            p, default_body(), tx * [1.1, 1.0, 1.1], m.faces, settings, mesh=m, x_init=x0, drape_fn=counting
+        )
+
+    grade_with(None)
+    assert len(draped) > 1  # further passes or lifts were worth a drape
+    g = grade_with(refuse)
+    assert len(draped) == 1
+    assert asked and all(s >= 0.0 for s, _ in asked)
+    assert "grading: passes 2-3 not draped" in [w for _, w in asked]
+    assert any(w.startswith("placement: a lift of") for _, w in asked)
+    (kept,) = [e for r in g.table for e in r["edits"] if e.startswith("placement")]
+    assert kept.startswith("placement kept") and "drapes +0.0 cm" in kept  # no lift draped
+    name = p.panel_order[0]
+    assert g.pattern.panels[name].translation[1] == pytest.approx(p.panels[name].translation[1], abs=0.02)

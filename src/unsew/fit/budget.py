@@ -8,6 +8,8 @@ What gives way, in the order a fit reaches it:
 
 - the runner-up of a tie in the base choice is graded only while less than half the limit is
   spent and a grading as long as the chosen base's still ends in time;
+- grading's passes after the first and its lift choice's drapes run only while one more (timed
+  as the last graded drape) and the re-dress check's drape from scratch still end in time;
 - the material choice drapes the fabrics only while each (timed as the one before it; the first
   estimated from the base's drape from scratch by its number of steps) and the check's drape from
   scratch still end in time; otherwise the start fabric (cotton) stays, unless the drape graded
@@ -22,9 +24,10 @@ What gives way, in the order a fit reaches it:
 - the mesh spread (two drapes from scratch, a diagnostic; the three-mesh check's own when that
   ran) is skipped when it would not fit.
 
-The base choice, the chosen base's grading and the re-dress check on the fit's mesh always run: without them
-there is no result, or no judgement of phase two's. Times to come are estimated from ones measured in this
-fit: a drape from scratch (the base's, in phase one) and phase two's iterations.
+The base choice, the chosen base's first grading pass and the re-dress check on the fit's mesh
+always run: without them there is no result, or no judgement of phase two's. Times to come are
+estimated from ones measured in this fit: a drape from scratch (the base's, in phase one), the
+graded drapes and phase two's iterations.
 """
 
 from __future__ import annotations

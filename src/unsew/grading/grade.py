@@ -18,6 +18,7 @@ and left alone.
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field, replace
 from typing import Callable
 
@@ -243,6 +244,11 @@ class GradingSettings:
     #: the target's top opening and keep the placement whose drape lies closest
     #: (:mod:`unsew.grading.placement`; two more drapes; needs ``redrape``)
     lift: bool = True
+    #: ``room(seconds, what)``, asked before each drape grading can do without (the passes after
+    #: the first, the lift choice's) with the last graded drape's duration [s] as its estimate;
+    #: False leaves it and what follows out, ``what`` saying it in words (a fit's time limit,
+    #: :mod:`unsew.fit.budget`). None: every drape runs.
+    room: Callable[[float, str], bool] | None = None
 
     def replace(self, **changes) -> "GradingSettings":
         """A copy with ``changes`` applied."""
@@ -284,12 +290,13 @@ def grade(
     x_init = _base_drape(pattern, mesh, body, x_init, drape_fn)
     ctx = _pass_context(tv, tf, body, settings)
     first = _grade_pass(pattern, mesh, x_init, ctx)
-    cur, rows, x_lg, scales = _graded_passes(first, body, ctx, settings, drape_fn)
+    cur, rows, x_lg, scales, drape_s = _graded_passes(first, body, ctx, settings, drape_fn)
     tried = None
     if settings.lift and x_lg is not None and is_lower(ctx.tgt):
-        pattern_l, mesh_l, x_lg, tried = choose_lift(cur.pattern, cur.mesh, x_lg, body, drape_fn, tv, tf)
+        room = None if settings.room is None else lambda what: settings.room(drape_s, what)
+        p_l, mesh_l, x_lg, tried = choose_lift(cur.pattern, cur.mesh, x_lg, body, drape_fn, tv, tf, room)
         if tried is not None:
-            cur = replace(cur, pattern=pattern_l, mesh=mesh_l)
+            cur = replace(cur, pattern=p_l, mesh=mesh_l)
             rows.append(_lift_row(tried))
     return GradeResult(
         pattern=cur.pattern,
@@ -332,13 +339,18 @@ def _pass_context(tv: np.ndarray, tf: np.ndarray, body, settings: GradingSetting
 
 
 def _graded_passes(first: "GradePass", body, ctx: "_PassContext", settings: GradingSettings, drape_fn):
-    """(last pass, table rows, its drape X_LG (None without ``redrape``), area scale per pass):
-    the first pass, then further ones from each pass's drape while they are worth it
-    (:func:`_further_pass`), each scaled to ``settings.area`` and draped."""
+    """(last pass, table rows, its drape X_LG (None without ``redrape``), area scale per pass, the
+    last drape's seconds): the first pass, then further ones from each pass's drape while they are
+    worth it (:func:`_further_pass`) and ``settings.room`` lets them, each scaled to
+    ``settings.area`` and draped."""
     cur, rows = first, list(first.rows)
-    x_lg, scales = None, []
-    for k in range(max(int(settings.passes), 1)):
+    x_lg, scales, drape_s = None, [], 0.0
+    n = max(int(settings.passes), 1)
+    for k in range(n):
         if k > 0:
+            what = f"grading: passes {k + 1}-{n} not draped"
+            if settings.room is not None and not settings.room(drape_s, what):
+                break
             nxt = _further_pass(cur, x_lg, ctx)
             if nxt is None:
                 break
@@ -357,8 +369,10 @@ def _graded_passes(first: "GradePass", body, ctx: "_PassContext", settings: Grad
             scales.append(s)
         if not settings.redrape:
             break
+        t0 = time.perf_counter()
         x_lg = np.asarray(drape_fn(cur.pattern, cur.mesh, body), dtype=np.float64)
-    return cur, rows, x_lg, scales
+        drape_s = time.perf_counter() - t0
+    return cur, rows, x_lg, scales, drape_s
 
 
 def _lift_row(tried: dict) -> dict:

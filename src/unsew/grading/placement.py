@@ -77,7 +77,14 @@ def is_lower(placed) -> bool:
 
 
 def choose_lift(
-    pattern, mesh, x, body, drape_fn: Callable, target_verts, target_faces, *, seed: int = 0
+    pattern,
+    mesh,
+    x,
+    body,
+    drape_fn: Callable,
+    target_verts,
+    target_faces,
+    may_drape: Callable[[str], bool] | None = None,
 ) -> tuple[object, object, np.ndarray, dict | None]:
     """The placement of ``pattern`` whose drape lies closest to the target.
 
@@ -87,7 +94,8 @@ def choose_lift(
     row None when the two top openings lie within :data:`LIFT_TOL` of each other; otherwise the
     closest of the input and its :data:`LIFT_FRACTIONS` lifts, and a row saying what was tried
     (``lift_m``, ``tried_m``, ``chamfer_mm`` of each, in the order tried). A candidate whose
-    drape fails is left out.
+    drape fails is left out, and so are the candidates from the first one ``may_drape(what)``
+    refuses (a fit's time limit; None: all are draped).
     """
     tv = np.asarray(target_verts, dtype=np.float64)
     t_top, s_top = top_height(tv, target_faces), top_height(x, mesh.faces)
@@ -95,14 +103,17 @@ def choose_lift(
         return pattern, mesh, x, None
 
     def distance(xx) -> float:
-        return surface_metrics(
-            np.asarray(xx), mesh.faces, tv, target_faces, n_samples=LIFT_SAMPLES, seed=seed
-        )["chamfer_mm"]
+        return surface_metrics(np.asarray(xx), mesh.faces, tv, target_faces, n_samples=LIFT_SAMPLES, seed=0)[
+            "chamfer_mm"
+        ]
 
     dy = t_top - s_top
     best = (distance(x), 0.0, pattern, mesh, x)
     tried, chamfers = [0.0], [round(best[0], 3)]
     for frac in LIFT_FRACTIONS:
+        what = f"placement: a lift of {frac * dy * 100:+.1f} cm not draped"
+        if may_drape is not None and not may_drape(what):
+            break
         p, m = lifted(pattern, frac * dy), lifted_mesh(mesh, frac * dy)
         try:
             xl = np.asarray(drape_fn(p, m, body), dtype=np.float64)
