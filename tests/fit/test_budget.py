@@ -77,20 +77,17 @@ def test_unsew_fit_starts_the_clock_before_loading_the_case(monkeypatch, tmp_pat
     assert seen["started"] is not None and seen["started"] <= seen["loaded"]
 
 
-def test_grading_room_keeps_a_drape_and_the_redress_check_in_time():
-    """Grading's optional drapes run while one more (the last one's duration) and the re-dress
-    check after phase two (a drape from scratch, at least the base's) end in time; a refusal is
-    recorded as a cut."""
+def test_grading_room_keeps_each_optional_drape_in_time():
+    """Grading's optional drapes run while one more (the last one's duration, reserved
+    RESERVE_FACTOR times over) ends in time; a refusal is recorded as a cut."""
     from unsew.fit.start import _grading_room
 
     clock, said = FakeClock(), []
     b = TimeBudget(540.0, clock=clock, log=said.append)
     clock.t += 400.0  # 140 s left
-    assert _grading_room(b, dress_s=40.0)(40.0, "a")  # 1.3 x (40 + 40) = 104 s
-    assert not _grading_room(b, dress_s=40.0)(60.0, "grading: passes 2-3 not draped")  # 1.3 x 120
-    assert not _grading_room(b, dress_s=100.0)(20.0, "b")  # the check drapes like the base: 1.3 x 120
-    assert b.cuts == [
-        "grading: passes 2-3 not draped (about 60 s a drape: it would overrun)",
-        "b (about 20 s a drape: it would overrun)",
-    ]
-    assert _grading_room(TimeBudget(0, clock=clock), dress_s=1e9)(1e9, "c")  # no limit: always room
+    room = _grading_room(b)
+    assert room(100.0, "a")  # 1.3 x 100 = 130 s
+    assert not room(110.0, "grading: passes 2-3 not draped")  # 1.3 x 110 = 143 s
+    assert b.cuts == ["grading: passes 2-3 not draped (about 110 s a drape: it would overrun)"]
+    assert said == ["time limit 540 s: " + b.cuts[0]]
+    assert _grading_room(TimeBudget(0, clock=clock))(1e9, "c")  # no limit: always room

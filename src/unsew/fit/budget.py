@@ -9,7 +9,7 @@ What gives way, in the order a fit reaches it:
 - the runner-up of a tie in the base choice is graded only while less than half the limit is
   spent and a grading as long as the chosen base's still ends in time;
 - grading's passes after the first and its lift choice's drapes run only while one more (timed
-  as the last graded drape) and the re-dress check's drape from scratch still end in time;
+  as the last graded drape) still ends in time;
 - the material choice drapes the fabrics only while each (timed as the one before it; the first
   estimated from the base's drape from scratch by its number of steps) and the check's drape from
   scratch still end in time; otherwise the start fabric (cotton) stays, unless the drape graded

@@ -524,7 +524,7 @@ def start(
         area=target.area if cfg.area == "target" else None,
         side_seams=cfg.side_seams,
         band_gap=cfg.band_gap,
-        room=_grading_room(scene.budget, dress_s),
+        room=_grading_room(scene.budget),
     )
     g = grade(
         base, scene.body, target.verts, target.faces, settings, mesh=mesh_b, x_init=x_b, drape_fn=drape_fn
@@ -543,15 +543,15 @@ def start(
     return Start(base, g.pattern, g.mesh, x, g.table, x_b, mesh_b, material, dress_s=dress_s, anchors=anchors)
 
 
-def _grading_room(budget, dress_s: float) -> Callable[[float, str], bool]:
+def _grading_room(budget) -> Callable[[float, str], bool]:
     """Grading's ``room`` (:class:`~unsew.grading.grade.GradingSettings`) under the fit's time
     limit (:mod:`unsew.fit.budget`): a drape grading can do without runs when it (estimated at
-    ``seconds``, the last graded drape's) and the re-dress check after phase two (a drape from
-    scratch, estimated as the larger of ``dress_s``, the base's from scratch, and ``seconds``)
-    still end in time; otherwise ``what`` is recorded as cut."""
+    ``seconds``, the last graded drape's) still ends in time; otherwise ``what`` is recorded as
+    cut. Nothing after grading is reserved for: all that follows gives way in its turn, and a fit
+    whose phase two does not run returns the graded drape without dressing it again."""
 
     def may_drape(seconds: float, what: str) -> bool:
-        if budget.fits(seconds + max(dress_s, seconds)):
+        if budget.fits(seconds):
             return True
         budget.cut(f"{what} (about {seconds:.0f} s a drape: it would overrun)")
         return False
