@@ -30,7 +30,7 @@ from unsew.dress import dress, held_anchors, settle
 from unsew.errors import InputError
 from unsew.fit.config import FitConfig
 from unsew.fit.progress import Progress
-from unsew.fit.scene import Scene
+from unsew.fit.scene import FitContext, Scene
 from unsew.fit.target import Target
 from unsew.grading.contours import place_contours
 from unsew.grading.design_reading import read_design
@@ -524,7 +524,7 @@ def start(
         area=target.area if cfg.area == "target" else None,
         side_seams=cfg.side_seams,
         band_gap=cfg.band_gap,
-        room=_grading_room(scene.budget),
+        room=_grading_room(scene.budget) if isinstance(scene, FitContext) else None,
     )
     g = grade(
         base, scene.body, target.verts, target.faces, settings, mesh=mesh_b, x_init=x_b, drape_fn=drape_fn
@@ -544,11 +544,12 @@ def start(
 
 
 def _grading_room(budget) -> Callable[[float, str], bool]:
-    """Grading's ``room`` (:class:`~unsew.grading.grade.GradingSettings`) under the fit's time
-    limit (:mod:`unsew.fit.budget`): a drape grading can do without runs when it (estimated at
-    ``seconds``, the last graded drape's) still ends in time; otherwise ``what`` is recorded as
-    cut. Nothing after grading is reserved for: all that follows gives way in its turn, and a fit
-    whose phase two does not run returns the graded drape without dressing it again."""
+    """Grading's ``room`` (:class:`~unsew.grading.grade.GradingSettings`) under a fit's time limit
+    (:mod:`unsew.fit.budget`; a :class:`Scene` that is not a fit's has none): a drape grading can
+    do without runs when it (estimated at ``seconds``, the last graded drape's) still ends in
+    time; otherwise ``what`` is recorded as cut. Nothing after grading is reserved for: all that
+    follows gives way in its turn, and a fit whose phase two does not run returns the graded
+    drape without dressing it again."""
 
     def may_drape(seconds: float, what: str) -> bool:
         if budget.fits(seconds):
