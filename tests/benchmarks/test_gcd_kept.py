@@ -58,6 +58,44 @@ def test_a_kept_target_comes_back_beside_its_own_specification_only(kept, tmp_pa
     assert not (other / "target.obj").exists()
 
 
+def test_a_number_across_a_rounding_edge_is_the_same_specification(kept, tmp_path):
+    """Two processors' numbers 2e-8 cm apart on either side of the digest's sixth decimal's
+    rounding edge: the digests differ, the kept specification says they are one design."""
+    edge = 12.3456785  # rounds to 12.345678 or 12.345679 as its last bits fall
+    spec = {"pattern": {"panels": {"a": {"vertices": [[0, 0], [edge - 1e-8, 0], [0, 1]]}}}}
+    built = tmp_path / "built"
+    _case(built, "gc_s1_000", "built", spec)
+    store = tmp_path / "store"
+    assert kept.keep(built, "gc_s1_000", store)
+
+    fresh = tmp_path / "fresh" / "gc_s1_000"
+    fresh.mkdir(parents=True)
+    spec["pattern"]["panels"]["a"]["vertices"][1][0] = edge + 1e-8
+    (fresh / "pattern_gt.json").write_text(json.dumps(spec))
+    (fresh / "meta.json").write_text("{}")
+    first = kept.spec_digest(built / "gc_s1_000" / "pattern_gt.json")
+    assert kept.spec_digest(fresh / "pattern_gt.json") != first
+    assert kept.restore(tmp_path / "fresh", "gc_s1_000", store)["status"] == "built"
+
+    # without the kept specification the digest is all there is to go by
+    (store / "gc_s1_000.spec.json.gz").unlink()
+    (fresh / "target.obj").unlink()
+    assert kept.restore(tmp_path / "fresh", "gc_s1_000", store) is None
+    assert not (fresh / "target.obj").exists()
+
+
+def test_specifications_differ_in_structure_text_or_a_micrometre(kept):
+    a = {"panels": {"a": {"vertices": [[0, 0], [1, 0]], "name": "front"}}, "flag": True}
+    assert kept.same_spec(a, json.loads(json.dumps(a)))
+    reordered = {"flag": True, "panels": {"a": {"name": "front", "vertices": [[0.0, 0], [1, 0.0]]}}}
+    assert kept.same_spec(a, reordered)
+    assert not kept.same_spec(a, {**a, "flag": 1})
+    assert not kept.same_spec(a, {**a, "panels": {"a": {"vertices": [[0, 0], [1, 0]], "name": "back"}}})
+    assert not kept.same_spec(a, {**a, "panels": {"a": {"vertices": [[0, 0]], "name": "front"}}})
+    assert not kept.same_spec(a, {**a, "panels": {"a": {"vertices": [[0, 0], [1.0001, 0]], "name": "front"}}})
+    assert not kept.same_spec(a, {**a, "extra": 0})
+
+
 def test_every_kept_target_names_its_specification_and_passed_checks(kept):
     """The committed store: each target's record is a built one with its specification's digest."""
     infos = sorted(kept.KEPT.glob("*.json"))
