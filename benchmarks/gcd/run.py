@@ -8,6 +8,7 @@
     python -m benchmarks gcd compare BEFORE AFTER [--only ...]   two folders of fits judged side by side
     python -m benchmarks gcd floor-fitted --results DIR [--record]   the material-fitted floor
     python -m benchmarks gcd reexport --results DIR --to DIR2   fits placed as unsew fit exports them now
+    python -m benchmarks gcd graded --results DIR --to DIR2     fits with the pattern phase two started from
     python -m benchmarks gcd status [--out DIR]    every case's build status
     python -m benchmarks gcd keep [--out DIR]      store the built targets in targets/ (kept.py)
     python -m benchmarks gcd settle --out DIR --to DIR2 [--only ...]   each built target run on to rest
@@ -252,6 +253,11 @@ def _add_fit_score_parsers(sub) -> None:
     fi.add_argument("--results", required=True, help="folder for one fit result folder per case id")
     fi.add_argument("--only", nargs="*", help="case ids (default: every built case)")
     fi.add_argument("--redo", action="store_true", help="fit again a case with an outcome already")
+    gr = sub.add_parser(
+        "graded", help="copy the fits whose phase two was kept with their graded pattern as the result"
+    )
+    gr.add_argument("--results", required=True, help="folder of fit results, one folder per case id")
+    gr.add_argument("--to", required=True, help="folder for the copies")
     rx = sub.add_parser(
         "reexport", help="copy fit results with each pattern.json placed where its garment.obj drapes it"
     )
@@ -354,6 +360,7 @@ def main(argv=None) -> int:
         "score": lambda a: score.cmd_score(a, Path(a.record_file)),
         "compare": lambda a: compare.cmd_compare(a, [cid for cid, _, _ in build.case_ids()]),
         "reexport": lambda a: fits.cmd_reexport(a, [cid for cid, _, _ in build.case_ids()]),
+        "graded": lambda a: fits.cmd_graded(a, [cid for cid, _, _ in build.case_ids()]),
         "floor-fitted": lambda a: score.cmd_floor_fitted(a, Path(a.record_file)),
         "status": cmd_status,
         "keep": cmd_keep,

@@ -1134,3 +1134,51 @@ def test_panels_table_judges_each_stage_of_a_fit(tmp_path, capsys):
     assert "pattern_graded.json: 1 cases, panel err median 0.105" in out  # one of two 21 % larger
     assert "pattern.json: 1 cases, panel err median 0.000" in out
     assert "| gc_s1_000 | 0 | 0.000 |" in out  # rectangles: no darts
+
+
+def test_graded_copy_judges_the_pattern_phase_two_started_from_placed_as_the_fit_places_its_own(tmp_path):
+    """``gcd graded`` puts the graded pattern in place of a fit's result where phase two's was kept,
+    moved over where the fit's drape hangs its panels (a pattern left where it was drafted would
+    start newton's re-drape elsewhere); a fit that returned the graded pattern is not copied."""
+    from unsew.fit.outputs import placed_where_draped
+    from unsew.io.garmentcode import load_pattern, save_pattern
+    from unsew.io.mesh import write_obj
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.design import Design, draft
+
+    fits = _load("fits")
+    graded = draft(Design(garment="tshirt", sleeves="short"))
+    result = draft(Design(garment="tshirt", sleeves="short", length=0.7))  # phase two's: another cut
+    mesh = mesh_pattern(result, edge_length=0.05)
+    x = np.zeros((mesh.n_x, 3))
+    x[np.asarray(mesh.x_of_u)] = np.asarray(mesh.uv_placed3d) + [0.0, 0.12, 0.0]
+    src = tmp_path / "fits" / "c"
+    src.mkdir(parents=True)
+    save_pattern(result, src / "pattern.json")
+    save_pattern(graded, src / "pattern_graded.json")
+    write_obj(src / "garment.obj", x, mesh.faces, uv=mesh.uv, faces_uv=mesh.faces_uv)
+    (src / "redrape_newton.json").write_text("{}")
+    (src / "metrics.json").write_text(json.dumps({"redress": {"phase_two_kept": True}}))
+    assert fits.graded_copy(src, tmp_path / "graded" / "c")
+    out = load_pattern(tmp_path / "graded" / "c" / "pattern.json")
+    want = placed_where_draped(graded, mesh, mesh.uv, x)
+    for name in graded.panel_order:
+        assert np.allclose(out.panels[name].translation, want.panels[name].translation, atol=1e-6), name
+        assert np.allclose(out.panels[name].vertices, graded.panels[name].vertices), name
+    assert abs(out.panels["front"].translation[1] - graded.panels["front"].translation[1]) > 0.05  # moved
+    assert not (tmp_path / "graded" / "c" / "redrape_newton.json").exists()
+
+    (src / "metrics.json").write_text(json.dumps({"redress": {"phase_two_kept": False}}))
+    assert not fits.graded_copy(src, tmp_path / "none" / "c")
+    assert not (tmp_path / "none").exists()
+
+
+def test_graded_refuses_a_missing_folder_or_fits_without_phase_two_in_one_line(tmp_path, capsys):
+    run = _load("run")
+    assert run.main(["graded", "--results", str(tmp_path / "none"), "--to", str(tmp_path / "x")]) == 2
+    assert "must be a folder" in capsys.readouterr().err
+    (tmp_path / "gc_s1_000").mkdir()
+    (tmp_path / "gc_s1_000" / "pattern_graded.json").write_text("{}")
+    (tmp_path / "gc_s1_000" / "metrics.json").write_text(json.dumps({"redress": None}))
+    assert run.main(["graded", "--results", str(tmp_path), "--to", str(tmp_path / "x")]) == 2
+    assert "kept phase two's pattern" in capsys.readouterr().err
