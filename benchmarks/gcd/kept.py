@@ -10,9 +10,8 @@ simulator and checks, and the SHA-256 of that specification, its numbers rounded
 It is restored only beside a freshly sampled ``pattern_gt.json`` that is the same specification:
 the same digest, or the same text and structure with every number within SPEC_TOLERANCE_CM of the
 kept one's. So a changed sampler, sizing or body never pairs a design with another design's drape,
-while the noise another processor's arithmetic leaves in the sampler's numbers does not count (up
-to 1e-7 cm on an AMD EPYC machine, which flips a sixth decimal's rounding in a quarter of the
-specifications: the digest alone is not enough).
+while the noise another processor's arithmetic leaves in the sampler's numbers, which can flip a
+rounding and so the digest, does not count (docs/gcd.md has what was measured).
 """
 
 from __future__ import annotations
@@ -33,7 +32,7 @@ KEPT = HERE / "targets"
 SPEC_DECIMALS = 6
 
 #: Largest difference [cm] between a kept specification's number and a fresh one's that still
-#: counts as the same design: 100 times the noise seen between processors, a tenth of a micrometre.
+#: counts as the same design: far above another processor's noise (docs/gcd.md), below a micrometre.
 SPEC_TOLERANCE_CM = 1e-5
 
 
