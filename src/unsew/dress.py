@@ -20,7 +20,8 @@ from unsew.body.placement import meets_seams, place_as_given, place_garment
 from unsew.body.sdf import BodySDF
 from unsew.errors import SimulationError
 from unsew.meshing import mesh_pattern
-from unsew.sim.checks import check_dressed
+from unsew.sim.checks import SEAM_GAP_MAX as UNSEWN_GAP
+from unsew.sim.checks import check_dressed, placed_top
 from unsew.sim.drape import Cloth, DrapeSettings, drape, merge_sewn, sew
 from unsew.sim.material import Material, get_material
 from unsew.sim.model import SimModel
@@ -240,7 +241,8 @@ def dress(
 
     anchors = attached_vertices(pattern, mesh, body, sdf)
     cloth = Cloth(uv, g, mat.density, friction=mat.friction, anchors=anchors)
-    job = _Job(pattern, body, sdf, mesh, mat, cloth, settings, progress)
+    top = placed_top(pattern, mesh, body, sdf=sdf) if settings.judge_placement else None
+    job = _Job(pattern, body, sdf, mesh, mat, cloth, settings, progress, top)
     return _fall_back(job)
 
 
@@ -249,7 +251,7 @@ def _fall_back(job: _Job) -> Dressed:
     edges, sewn straight instead of round the body, from the pattern's own placement, then with
     the body repelling the mesh edges too."""
     d, job = _fall_back_held(job)
-    if _unsound(d, job.body) and job.settings.edge_fallback and not job.settings.edge_contact:
+    if _unsound(d, job) and job.settings.edge_fallback and not job.settings.edge_contact:
         # cloth caught across a limb or the armpit, its vertices either side of the body: dress
         # again with the edges' midpoints repelled too and keep the sounder (docs/decisions/042)
         edged = dataclasses.replace(job, settings=job.settings.replace(edge_contact=True))
@@ -257,7 +259,7 @@ def _fall_back(job: _Job) -> Dressed:
             e = _fall_back_unheld(edged, _dress_retried(edged))
         except SimulationError:
             return d
-        if _sounder(e, d, job.body):
+        if _sounder(e, d, job):
             e.stats["edge_contact"] = True
             e.stats["held"] = d.stats["held"]
             return e
@@ -266,7 +268,6 @@ def _fall_back(job: _Job) -> Dressed:
 
 def _fall_back_held(job: _Job) -> tuple[Dressed, _Job]:
     """:func:`_fall_back` but the last step, with the job whose drape it returns (held or free)."""
-    body = job.body
     if job.cloth.anchors is None:
         d = _fall_back_unheld(job, _dress_retried(job))
         d.stats["held"] = 0
@@ -276,11 +277,11 @@ def _fall_back_held(job: _Job) -> tuple[Dressed, _Job]:
         d = _dress_retried(job)
     except SimulationError:
         job, d = free_job, _dress_retried(free_job)
-    if job is not free_job and _unsound(d, body):
+    if job is not free_job and _unsound(d, job):
         # held where the pattern puts its hanging edges, the cloth can be pulled too far for a
         # sound drape (a strap off the shoulder): dress it free and keep the sounder of the two
         free = _unless_diverged(d, "the drape with nothing held", _dress_retried, free_job)
-        if free is not None and _sounder(free, d, body):
+        if free is not None and _sounder(free, d, job):
             job, d = free_job, free
     held = 0 if job.cloth.anchors is None else len(job.cloth.anchors[0])
     d = _fall_back_unheld(job, d)
@@ -291,16 +292,15 @@ def _fall_back_held(job: _Job) -> tuple[Dressed, _Job]:
 def _fall_back_unheld(job: _Job, d: Dressed) -> Dressed:
     """:func:`_fall_back` after the choice of holding the labelled edges: sewn straight, then from
     the pattern's own placement."""
-    body = job.body
-    if d.stats["guided_seams"] and _unsound(d, body):
+    if d.stats["guided_seams"] and _unsound(d, job):
         # a seam led round the body can also drag cloth where it should not go: dress again
         # sewing straight and keep the sounder of the two (docs/decisions/033)
         straight = dataclasses.replace(job, settings=dataclasses.replace(job.settings, seam_guide=False))
         plain = _unless_diverged(d, "the drape sewn straight", _dress_retried, straight)
-        if plain is not None and _sounder(plain, d, body):
+        if plain is not None and _sounder(plain, d, job):
             plain.stats["guide_dropped"] = d.stats["guided_seams"]
             d = plain
-    if _unsound(d, body):
+    if _unsound(d, job):
         # the wrapped start's reading of the panels can be wrong for a design (a long sleeve
         # taken for a leg, a collar wrapped on the torso): dress again from the pattern's own
         # placement and keep the sounder of the two
@@ -308,7 +308,7 @@ def _fall_back_unheld(job: _Job, d: Dressed) -> Dressed:
             given = _dress_once(job, force_meet=False, given=True)
         except SimulationError:
             return d  # that drape diverged: the first one's verdict stands
-        if _sounder(given, d, body):
+        if _sounder(given, d, job):
             given.stats["start_given"] = True
             return given
     return d
@@ -317,10 +317,9 @@ def _fall_back_unheld(job: _Job, d: Dressed) -> Dressed:
 def _dress_retried(job: _Job) -> Dressed:
     """:func:`_dress_once`, and once more with the seam copies started at their midpoint when the
     first drape is unsound and the placement had left them apart."""
-    body = job.body
     d = _dress_once(job, force_meet=False)
     if not d.stats["met_seams"]:
-        fault = _sewing_fault(d, body)
+        fault = _sewing_fault(d, job)
         if fault:
             # Seam copies started apart can tear an edge (a loose tee's sleeve on an A-pose body)
             # or leave a band's seams open and triangles folded: dress again with the copies
@@ -328,8 +327,7 @@ def _dress_retried(job: _Job) -> Dressed:
             met = "the retry with the seam copies met"
             retry = _unless_diverged(d, met, _dress_once, job, force_meet=True)
             if retry is not None and (
-                not _sewing_fault(retry, body)
-                or (not check_dressed(d, body=body).ok and check_dressed(retry, body=body).ok)
+                not _sewing_fault(retry, job) or (not _verdict(d, job).ok and _verdict(retry, job).ok)
             ):
                 retry.stats["placement_retry"] = fault
                 return retry
@@ -346,15 +344,24 @@ def _unless_diverged(d: Dressed, what: str, dress_fn, *args, **kwargs) -> Dresse
         return None
 
 
-def _unsound(d: Dressed, body) -> bool:
+def _verdict(d: Dressed, job: _Job):
+    """The checks of drape ``d`` (:func:`unsew.sim.checks.check_dressed`); where the job judges
+    the placement (``job.placed_top``), also against the pattern's own placement of its top and
+    refusing a seam left open wider than :data:`unsew.sim.checks.SEAM_GAP_MAX`."""
+    if job.placed_top is None:
+        return check_dressed(d, body=job.body)
+    return check_dressed(d, body=job.body, placed_top_m=job.placed_top, seam_gap_max=UNSEWN_GAP)
+
+
+def _unsound(d: Dressed, job: _Job) -> bool:
     """A drape that fails its checks or keeps an edge over SETTLED_STRETCH."""
-    return not check_dressed(d, body=body).ok or _stretch_max(d.x, d.mesh) > SETTLED_STRETCH
+    return not _verdict(d, job).ok or _stretch_max(d.x, d.mesh) > SETTLED_STRETCH
 
 
-def _sounder(a: Dressed, b: Dressed, body) -> bool:
+def _sounder(a: Dressed, b: Dressed, job: _Job) -> bool:
     """Whether drape ``a`` is sounder than ``b``: it passes its checks where ``b`` fails, or both
     alike and its largest edge stretch is lower."""
-    ok_a, ok_b = check_dressed(a, body=body).ok, check_dressed(b, body=body).ok
+    ok_a, ok_b = _verdict(a, job).ok, _verdict(b, job).ok
     if ok_a != ok_b:
         return ok_a
     return _stretch_max(a.x, a.mesh) < _stretch_max(b.x, b.mesh)
@@ -424,11 +431,10 @@ def _stretch_max(x, mesh) -> float:
     return float((L / np.linalg.norm(mesh.uv[eu[:, 0]] - mesh.uv[eu[:, 1]], axis=1)).max())
 
 
-def _sewing_fault(d, body) -> str:
-    """Why a dressed garment is unsound ("" when it is): a failed verdict
-    (:func:`unsew.sim.checks.check_dressed`), a seam left open wider than SEAM_GAP_MAX, or
-    triangles folded through their neighbours."""
-    v = check_dressed(d, body=body)
+def _sewing_fault(d, job) -> str:
+    """Why a dressed garment is unsound ("" when it is): a failed verdict (:func:`_verdict`), a
+    seam left open wider than SEAM_GAP_MAX, or triangles folded through their neighbours."""
+    v = _verdict(d, job)
     if not v.ok:
         return v.reason
     if d.stats["seam_gap"] > SEAM_GAP_MAX:
@@ -450,6 +456,9 @@ class _Job:
     cloth: Cloth
     settings: DrapeSettings
     progress: Callable[[str, int, int], None] | None
+    #: the height [m] of the garment's top in the pattern's own placement, where each drape is
+    #: judged against it (``DrapeSettings.judge_placement``), else None
+    placed_top: float | None = None
 
 
 def _guided_seams(job: _Job, x_unsewn) -> int:

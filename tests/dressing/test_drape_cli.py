@@ -95,6 +95,35 @@ def test_drape_cli_body_folder(tmp_path, capsys):
     assert out.is_file()
 
 
+def test_drape_cli_case_folder_without_its_target(tmp_path, capsys):
+    """--body takes a case folder before its garment is draped (meta.json and body.obj, no
+    target): its wearer is read in meta.json's units; a folder whose meta.json names no body
+    and has no body.obj is refused in one line."""
+    import json
+
+    from unsew.body.body import default_body
+    from unsew.io.mesh import write_obj
+
+    b = default_body()
+    case = tmp_path / "case"
+    case.mkdir()
+    write_obj(case / "body.obj", b.verts * 100.0, b.faces)  # centimetres, as meta.json says
+    (case / "meta.json").write_text(json.dumps({"units": "cm"}))
+    pj = tmp_path / "skirt.json"
+    save_pattern(make_base_pattern("skirt"), pj)
+    out = tmp_path / "garment.obj"
+    small = ["--edge-length", "0.06", "--sew-steps", "30", "--settle-steps", "0", "--no-progress"]
+    assert main(["drape", str(pj), "--body", str(case), *small, "--out", str(out)]) == 0
+    from unsew.io.mesh import read_mesh
+
+    v = read_mesh(out)[0]
+    assert 0.5 < v[:, 1].mean() < 1.3  # on the body in metres, not a hundred times off
+    (case / "body.obj").unlink()
+    out.unlink()
+    assert main(["drape", str(pj), "--body", str(case), *small, "--out", str(out)]) == 2
+    assert "names no body" in capsys.readouterr().err and not out.exists()
+
+
 def test_drape_cli_uses_the_contact_a_fit_wrote(tmp_path, capsys):
     """A fit with ``contact: target`` writes its contact into pattern.json (pattern_with_extras);
     drape reads it back and rests the cloth with it; a default-contact fit writes none; a broken

@@ -192,7 +192,7 @@ def _retry_run(monkeypatch, first_ok: bool):
 
     monkeypatch.setattr(dress_mod, "_dress_once", fake_once)
     monkeypatch.setattr(dress_mod, "check_dressed", verdict)
-    return dress_mod._dress_retried(SimpleNamespace(body=None)), calls
+    return dress_mod._dress_retried(SimpleNamespace(body=None, placed_top=None)), calls
 
 
 def test_a_start_that_tears_is_dressed_again_with_the_seam_copies_met(monkeypatch):
@@ -235,5 +235,44 @@ def test_a_placement_retry_that_diverges_keeps_the_first_drape(monkeypatch):
 
     monkeypatch.setattr(dress_mod, "_dress_once", once)
     monkeypatch.setattr(dress_mod, "_sewing_fault", lambda d, body: "an edge torn")
-    out = dress_mod._dress_retried(SimpleNamespace(body=None))
+    out = dress_mod._dress_retried(SimpleNamespace(body=None, placed_top=None))
     assert out is first and first.stats["diverged"] == ["the retry with the seam copies met"]
+
+
+def _fallen_run(monkeypatch, *, judge: bool):
+    """dress() whose wrapped starts (guided and straight) both drape sound by the body's checks but
+    end with their top under the pattern's own placement of it, and whose drape from that
+    placement hangs where it puts it. Returns (drape, the calls in order)."""
+    fallen = _fake(True, 1.2, 3)
+    fallen.fallen = True
+    own = _fake(True, 1.4, 0)
+    own.fallen = False
+    calls = []
+
+    def verdict(d, body=None, placed_top_m=None, seam_gap_max=None):
+        calls.append(("verdict", placed_top_m))
+        return SimpleNamespace(ok=d.ok and not (placed_top_m is not None and d.fallen))
+
+    _run(monkeypatch, None, given_result=own, retried=lambda job: fallen)  # installs the stand-ins
+    monkeypatch.setattr(dress_mod, "check_dressed", verdict)
+    monkeypatch.setattr(dress_mod, "placed_top", lambda *a, **k: 1.3)
+
+    def once(job, force_meet, given=False):
+        calls.append("given")
+        return own
+
+    monkeypatch.setattr(dress_mod, "_dress_once", once)
+    settings = dress_mod.DRESS_SETTINGS.replace(judge_placement=judge)
+    return dress_mod.dress(_UNLABELLED, default_body(), sdf=object(), settings=settings), calls
+
+
+def test_judged_by_its_placement_a_fallen_drape_gives_way_to_one_from_the_patterns_own_start(monkeypatch):
+    """``judge_placement`` (what ``unsew drape`` asks): a drape sound on the body but fallen from
+    where the pattern puts it is unsound, so the drape from the pattern's own placement is made
+    and kept. Without it the fallen drape is sound and returned as it is."""
+    out, calls = _fallen_run(monkeypatch, judge=True)
+    assert out.stats.get("start_given") and not out.fallen
+    assert ("verdict", 1.3) in calls and "given" in calls
+    out, calls = _fallen_run(monkeypatch, judge=False)
+    assert out.fallen and "given" not in calls
+    assert all(c == ("verdict", None) for c in calls)

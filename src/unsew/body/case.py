@@ -16,7 +16,7 @@ from unsew.body.body import Body, default_body, load_body
 from unsew.errors import InputError
 from unsew.io.case import Case, CaseFiles, read_case
 
-__all__ = ["load_case", "load_case_body", "check_garment_on_body", "MAX_GARMENT_GAP"]
+__all__ = ["load_case", "load_case_body", "load_wearer", "check_garment_on_body", "MAX_GARMENT_GAP"]
 
 #: The garment's median distance from its wearer's vertices above which they do not overlap [m].
 #: Worn truth cases lie at 0.02 (tshirt, dress) to 0.07 (skirt); a tshirt moved 0.3 m forward
@@ -49,6 +49,12 @@ def load_case(
         files.files,
         files.target_repair,
     )
+
+
+def load_wearer(path: str | os.PathLike) -> Body:
+    """The wearer of a case folder, its target not needed (``unsew drape --body CASE`` on a case
+    made before its garment is draped). Raises InputError with a one-line reason on bad input."""
+    return load_case_body(read_case(path, need_target=False))
 
 
 def load_case_body(files: CaseFiles) -> Body:

@@ -117,14 +117,14 @@ def _load_body(args):
         return default_body()
     path = Path(src)
     if path.is_dir():
-        if (
-            (path / "target.obj").is_file()
-            or (path / "meta.json").is_file()
-            or not (path / "body.obj").is_file()
-        ):
+        if any((path / n).is_file() for n in ("target.obj", "target.ply")):
             from unsew.body.case import load_case
 
-            return load_case(path).body
+            return load_case(path).body  # the case's target is checked to lie on its wearer
+        if (path / "meta.json").is_file() or not (path / "body.obj").is_file():
+            from unsew.body.case import load_wearer
+
+            return load_wearer(path)
         # a body folder as `unsew body make` writes it: body.obj and, when known, skeleton.json
         from unsew.body.body import load_body
 
@@ -217,7 +217,9 @@ def run(args: argparse.Namespace) -> int:
     kw = {k: getattr(args, k) for k in ("sew_steps", "settle_steps") if getattr(args, k) is not None}
     # the fit's contact (contact: target), so the drape rests as the fit's did
     contact = pattern_contact(pattern)
-    settings = DRESS_SETTINGS.replace(edge_length=args.edge_length, **kw, **(contact or {}))
+    settings = DRESS_SETTINGS.replace(
+        edge_length=args.edge_length, judge_placement=True, **kw, **(contact or {})
+    )
     # bars on a terminal, else a line per phase
     with Progress(not args.no_progress).phase("drape") as progress:
         d = dress(pattern, body, material=material, settings=settings, progress=progress)

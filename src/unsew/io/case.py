@@ -108,8 +108,11 @@ def read_case(
     up: str | None = None,
     front: str | None = None,
     garment: str | None = None,
+    need_target: bool = True,
 ) -> CaseFiles:
-    """Read and check a case folder's files. Options override meta.json's units/up/front/garment."""
+    """Read and check a case folder's files. Options override meta.json's units/up/front/garment.
+    ``need_target=False``: a folder without target.obj or target.ply reads as its wearer alone
+    (empty target arrays), as ``unsew drape --body CASE`` needs it."""
     d = Path(path)
     if not d.is_dir():
         raise InputError(f"case folder {d} does not exist")
@@ -123,12 +126,7 @@ def read_case(
             f"garment {garment!r} in {d / 'meta.json'} must be one of {', '.join(GARMENT_TYPES)}"
         )
 
-    target = next((d / n for n in ("target.obj", "target.ply") if (d / n).is_file()), None)
-    if target is None:
-        raise InputError(f"case {d} has no target.obj or target.ply (the draped garment to invert)")
-    tv, tf, repair = read_garment(target, units=units, up=up, front=front)
-    _check_target(tv, tf, target)
-    files = {"target": target}
+    tv, tf, repaired, files = _read_target(d, (units, up, front), need=need_target)
     mesh = next((d / n for n in ("body.obj", "body.ply") if (d / n).is_file()), None)
     skel = d / "skeleton.json" if (d / "skeleton.json").is_file() else None
     if mesh is not None:
@@ -159,8 +157,22 @@ def read_case(
         meta.get("body"),
         pattern_gt,
         files,
-        repair.as_dict(),
+        repaired,
     )
+
+
+def _read_target(d: Path, frame: tuple[str, str, str], *, need: bool):
+    """The case's target: (verts (V, 3) [m], faces (F, 3), what loading repaired, {"target": path});
+    empty arrays and no file where it has none and ``need`` is False. frame: (units, up, front)."""
+    target = next((d / n for n in ("target.obj", "target.ply") if (d / n).is_file()), None)
+    if target is None:
+        if need:
+            raise InputError(f"case {d} has no target.obj or target.ply (the draped garment to invert)")
+        return np.zeros((0, 3)), np.zeros((0, 3), np.int64), {}, {}
+    units, up, front = frame
+    tv, tf, repair = read_garment(target, units=units, up=up, front=front)
+    _check_target(tv, tf, target)
+    return tv, tf, repair.as_dict(), {"target": target}
 
 
 def _check_target(v: np.ndarray, f: np.ndarray, path: Path) -> None:
