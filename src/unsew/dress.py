@@ -20,7 +20,6 @@ from unsew.body.placement import meets_seams, place_as_given, place_garment
 from unsew.body.sdf import BodySDF
 from unsew.errors import SimulationError
 from unsew.meshing import mesh_pattern
-from unsew.sim.checks import SEAM_GAP_MAX as UNSEWN_GAP
 from unsew.sim.checks import check_dressed, placed_top
 from unsew.sim.drape import Cloth, DrapeSettings, drape, merge_sewn, sew
 from unsew.sim.material import Material, get_material
@@ -346,11 +345,12 @@ def _unless_diverged(d: Dressed, what: str, dress_fn, *args, **kwargs) -> Dresse
 
 def _verdict(d: Dressed, job: _Job):
     """The checks of drape ``d`` (:func:`unsew.sim.checks.check_dressed`); where the job judges
-    the placement (``job.placed_top``), also against the pattern's own placement of its top and
-    refusing a seam left open wider than :data:`unsew.sim.checks.SEAM_GAP_MAX`."""
+    the placement (``job.placed_top``), also against the pattern's own placement of its top. A
+    seam left open is not judged here: a drape sewn instead can hang off the shoulders, which no
+    check sees (docs/decisions/060); ``unsew drape`` refuses the unsewn one it is left with."""
     if job.placed_top is None:
         return check_dressed(d, body=job.body)
-    return check_dressed(d, body=job.body, placed_top_m=job.placed_top, seam_gap_max=UNSEWN_GAP)
+    return check_dressed(d, body=job.body, placed_top_m=job.placed_top)
 
 
 def _unsound(d: Dressed, job: _Job) -> bool:

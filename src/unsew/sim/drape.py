@@ -137,8 +137,8 @@ class DrapeSettings:
     #: ``edge_contact`` (off for the fit's grading drapes, which only measure lengths, 042)
     edge_fallback: bool = True
     #: :func:`unsew.dress.dress` judges each drape on its way (which fallback is tried, which drape
-    #: is kept) as ``unsew drape`` judges the one it writes: a top fallen from where the pattern's
-    #: own placement puts it, or a seam left open, is unsound too (docs/decisions/060)
+    #: is kept) against the pattern's own placement, as ``unsew drape`` judges the one it writes:
+    #: a top fallen from where that placement puts it is unsound too (docs/decisions/060)
     judge_placement: bool = False
 
     def replace(self, **changes) -> "DrapeSettings":
