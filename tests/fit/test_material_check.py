@@ -116,38 +116,50 @@ def test_a_settled_drape_that_fails_the_results_check_gives_way_to_its_drape_fro
 def test_a_material_choice_past_the_time_limit_is_made_only_to_mend_an_unsound_graded_drape(monkeypatch):
     """With no time left for the fabrics' drapes, the cotton-graded start is kept and the cut
     said when its drape passes a result's checks; when it fails them (an exploded graded drape:
-    the fit would end on it), every fabric is draped all the same, none stopped by the limit."""
+    the fit would end on it), the fabrics are draped past the limit until one drapes soundly,
+    and the limit stops the rest."""
     from unsew.fit.budget import TimeBudget
 
     first = _start("cotton", 7.0).replace(dress_s=100.0)
     scene = Scene(
         None,
-        None,
+        SimpleNamespace(distance_mm=lambda x, faces: 9.0),
         None,
         load_config(**{"material.start": "auto"}),
         progress=Progress(False),
         log=lambda s: None,
     )
-    made = []
+    names = ["silk", "wool", "jersey", "cotton", "polyester", "denim"]
+    draped = []
 
-    def fake_choose(names, dress_in, objective, *, progress=None, room=None):
-        made.append([room(1.0) for _ in names[1:]] if room is not None else None)
+    def fake_choose(_names, dress_in, objective, *, progress=None, room=None):
+        for k, name in enumerate(names):
+            if k and not room(1.0):
+                break
+            draped.append(name)
+            objective(np.full((3, 3), float(k)))  # fabric k's drape
         return first.material, first.x, [{"material": "cotton", "chamfer_mm": 7.0}]
 
+    torn = "exploded: an edge is stretched to 5.4 times its pattern length"
     monkeypatch.setattr(mat_mod, "choose_material", fake_choose)
     monkeypatch.setattr(mat_mod, "_dresser", lambda s, sc: None)
     monkeypatch.setattr(mat_mod, "_checked", lambda first, cur, table, scene: (cur, table))
-    for sound in (True, False):
-        verdict = SimpleNamespace(
-            ok=sound, reason="" if sound else "exploded: an edge is stretched to 5.4 times its pattern length"
-        )
-        monkeypatch.setattr(mat_mod, "check_drape", lambda x, **k: verdict)
+    for graded_sound, sound_fabric in ((True, None), (False, 2), (False, None)):
+
+        def verdict(x, graded_sound=graded_sound, sound_fabric=sound_fabric, **k):
+            graded = bool(np.all(x == 7.0))
+            ok = graded_sound if graded else (sound_fabric is not None and x[0, 0] == sound_fabric)
+            return SimpleNamespace(ok=ok, reason="" if ok else torn)
+
+        monkeypatch.setattr(mat_mod, "check_drape", verdict)
         budget = TimeBudget(540.0, log=lambda s: None, clock=iter([0.0] + [530.0] * 50).__next__)
-        made.clear()
+        draped.clear()
         choice = mat_mod.choose_start(first, scene, budget=budget)
-        if sound:
-            assert choice.start is first and choice.table == [] and not made
+        if graded_sound:
+            assert choice.start is first and choice.table == [] and not draped
             assert budget.cuts == ["material choice: cotton kept (draping the fabrics would overrun)"]
-        else:
-            assert made and all(made[0])  # every fabric draped, past the limit
-            assert not any("fabrics" in c for c in budget.cuts)
+        elif sound_fabric is not None:  # jersey mends it: the three after it are not draped
+            assert draped == names[: sound_fabric + 1]
+            assert "material choice: the other fabrics not draped (they would overrun)" in budget.cuts
+        else:  # none mends it: every fabric draped, past the limit
+            assert draped == names and not any("fabrics" in c for c in budget.cuts)

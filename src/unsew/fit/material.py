@@ -218,6 +218,37 @@ def _dresser(s: Start, scene: Scene):
     return dress_in
 
 
+@dataclass
+class _Room:
+    """Whether the material choice drapes the next fabric (``room(seconds)``, the last drape's
+    duration): while it and the check's drape from scratch (``check_s`` [s]) still end within the
+    budget, or, past it (``rescue``: the graded drape fails a result's checks), until a fabric's
+    drape (``seen``) passes them: another fabric is then the fit's only way to a sound result, and
+    the first sound one ends the need. mesh: the graded pattern's GarmentMesh; scene: the fit's."""
+
+    budget: TimeBudget
+    check_s: float
+    mesh: object
+    scene: Scene
+    rescue: bool = False
+    mended: bool = False
+
+    def verdict(self, x):
+        """:func:`~unsew.sim.checks.check_drape` of a drape x (Nx, 3) [m] of the graded pattern."""
+        m, sc = self.mesh, self.scene
+        return check_drape(x, faces=m.faces, uv=m.uv, faces_uv=m.faces_uv, body=sc.body, sdf=sc.sdf)
+
+    def seen(self, x) -> None:
+        if self.rescue and not self.mended:
+            self.mended = self.verdict(x).ok
+
+    def __call__(self, next_s: float) -> bool:
+        if (self.rescue and not self.mended) or self.budget.fits(next_s + self.check_s):
+            return True
+        self.budget.cut("material choice: the other fabrics not draped (they would overrun)")
+        return False
+
+
 def choose_start(
     first: Start, scene: Scene, *, garment: str = "", budget: TimeBudget | None = None
 ) -> MaterialChoice:
@@ -226,44 +257,38 @@ def choose_start(
     ``budget``, the grading in other fabrics and the stiffness search stop once half its limit is
     spent, and the fabrics are draped only while each (timed as the one before) and the check's drape
     from scratch (``first.dress_s``) still end in time (:mod:`unsew.fit.budget`), unless ``first``'s
-    drape fails the checks a result passes (:func:`~unsew.sim.checks.check_drape`): another fabric
-    is then the fit's only way to a sound result, and they are all draped."""
+    drape fails the checks a result passes (:func:`~unsew.sim.checks.check_drape`): the fabrics
+    are then draped until one drapes soundly (:class:`_Room`)."""
     budget = budget or TimeBudget(0)
     if scene.cfg.material.start != "auto":
         return MaterialChoice(first)
     # each fabric's settle and, after them, the check's drape from scratch must end in time
     check_s = first.dress_s if CHECK_CHOICE else 0.0
     settle_s = first.dress_s * WARM_STEPS / max(scene.cfg.drape.sew_steps + scene.cfg.drape.settle_steps, 1)
-    rescue = False  # the graded drape fails a result's checks: the fabrics are draped whatever the time
+    room = _Room(budget, check_s, first.mesh, scene)
     if not budget.fits(settle_s + check_s):
-        m = first.mesh
-        verdict = check_drape(
-            first.x, faces=m.faces, uv=m.uv, faces_uv=m.faces_uv, body=scene.body, sdf=scene.sdf
-        )
+        verdict = room.verdict(first.x)
         if verdict.ok:
             budget.cut(f"material choice: {AUTO_START_MATERIAL} kept (draping the fabrics would overrun)")
             return MaterialChoice(first)
-        rescue = True
+        room.rescue = True
         scene.log(
             f"material choice: made past the time limit, as the drape graded in {AUTO_START_MATERIAL} "
             f"fails its check ({verdict.reason})"
         )
-
-    def room(next_s: float) -> bool:
-        if rescue or budget.fits(next_s + check_s):
-            return True
-        budget.cut("material choice: the other fabrics not draped (they would overrun)")
-        return False
-
     t0 = time.perf_counter()
 
     def objective(x, mesh=None):
         return scene.target.distance_mm(x, (mesh or first.mesh).faces)
 
+    def fabric_objective(x):
+        room.seen(x)
+        return objective(x)
+
     mat, x, table = choose_material(
         material_candidates(scene.cfg.material.candidates),
         _dresser(first, scene),
-        objective,
+        fabric_objective,
         progress=scene.progress,
         room=room,
     )
