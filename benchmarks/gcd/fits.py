@@ -133,25 +133,35 @@ def reexport(src: Path, dst: Path) -> None:
     save_pattern(placed, dst / "pattern.json")
 
 
-def graded_copy(src: Path, dst: Path) -> bool:
-    """The fit result folder ``src`` copied to ``dst`` with its graded pattern (pattern_graded.json,
-    the pattern phase two started from) as pattern.json, placed where the fit's drape hangs its
-    panels, as the fit places its own (:func:`unsew.fit.outputs.placed_where_draped`): judged as
-    a result, it says what phase two changed. garment.obj stays the fit's drape, so only the
-    pattern's figures and newton's re-drape in ``gcd score --results DST`` are the graded
-    pattern's. False (nothing written) where phase two's pattern was not kept: the fit returned
-    the graded pattern already."""
-    import shutil
-
+def graded_placed(src: Path):
+    """The graded pattern of the fit result folder ``src`` (pattern_graded.json, the pattern phase
+    two started from) placed where the fit's drape hangs its panels, as the fit places its own
+    (:func:`unsew.fit.outputs.placed_where_draped`); None where phase two's pattern was not kept:
+    the fit returned the graded pattern already."""
     from unsew.fit.outputs import placed_where_draped
-    from unsew.io.garmentcode import load_pattern, save_pattern
+    from unsew.io.garmentcode import load_pattern
 
     metrics = json.loads((src / "metrics.json").read_text())
     if not (metrics.get("redress") or {}).get("phase_two_kept"):
-        return False
+        return None
     graded = load_pattern(src / "pattern_graded.json")
     x, _, uv, mesh = garment_panels(src, list(graded.panel_order))
-    placed = placed_where_draped(graded, mesh, uv, x)  # made before anything is written
+    return placed_where_draped(graded, mesh, uv, x)
+
+
+def graded_copy(src: Path, dst: Path, placed=None) -> bool:
+    """The fit result folder ``src`` copied to ``dst`` with its graded pattern as pattern.json
+    (``placed``, or :func:`graded_placed`): judged as a result, it says what phase two changed.
+    garment.obj stays the fit's drape, so only the pattern's figures and newton's re-drape in
+    ``gcd score --results DST`` are the graded pattern's. False (nothing written) where phase
+    two's pattern was not kept."""
+    import shutil
+
+    from unsew.io.garmentcode import save_pattern
+
+    placed = graded_placed(src) if placed is None else placed
+    if placed is None:
+        return False
     shutil.copytree(src, dst, ignore=shutil.ignore_patterns("redrape_newton*"), dirs_exist_ok=True)
     save_pattern(placed, dst / "pattern.json")
     return True
@@ -159,29 +169,33 @@ def graded_copy(src: Path, dst: Path) -> bool:
 
 def cmd_graded(args, cases: list[str]) -> int:
     """``gcd graded --results IN --to OUT``: each fit of IN whose phase two was kept, with its
-    graded pattern in place of its result (:func:`graded_copy`), and IN's outcomes of them."""
+    graded pattern in place of its result (:func:`graded_copy`), and IN's outcomes of them. Every
+    pattern is placed before anything is written: a fit that cannot be read leaves OUT as it was."""
     from unsew.errors import UnsewError
 
     src, dst = Path(args.results), Path(args.to)
     if not src.is_dir() or dst.resolve() == src.resolve():
         print(f"gcd graded: --results {src} must be a folder and --to another one", file=sys.stderr)
         return 2
-    copied = []
+    placed = {}
     for cid in cases:
         if not (src / cid / "pattern_graded.json").is_file():
             continue
         try:
-            if graded_copy(src / cid, dst / cid):
-                copied.append(cid)
+            p = graded_placed(src / cid)
         except (UnsewError, OSError, ValueError) as exc:
-            print(f"gcd graded: {cid}: {str(exc).splitlines()[0]}", file=sys.stderr)
+            print(f"gcd graded: {cid}: {str(exc).splitlines()[0]} (nothing written)", file=sys.stderr)
             return 2
-    if not copied:
+        if p is not None:
+            placed[cid] = p
+    if not placed:
         print(f"gcd graded: no fit in {src} kept phase two's pattern", file=sys.stderr)
         return 2
-    print(f"{len(copied)} fits with their graded pattern in {dst}: {' '.join(copied)}")
+    for cid, p in placed.items():
+        graded_copy(src / cid, dst / cid, p)
+    print(f"{len(placed)} fits with their graded pattern in {dst}: {' '.join(placed)}")
     log = read_log(src)
-    _write_log(dst, {cid: log[cid] for cid in copied if cid in log})
+    _write_log(dst, {cid: log[cid] for cid in placed if cid in log})
     return 0
 
 

@@ -1182,3 +1182,31 @@ def test_graded_refuses_a_missing_folder_or_fits_without_phase_two_in_one_line(t
     (tmp_path / "gc_s1_000" / "metrics.json").write_text(json.dumps({"redress": None}))
     assert run.main(["graded", "--results", str(tmp_path), "--to", str(tmp_path / "x")]) == 2
     assert "kept phase two's pattern" in capsys.readouterr().err
+
+
+def test_graded_writes_nothing_when_one_fit_cannot_be_read(tmp_path, capsys):
+    """A fit folder whose garment.obj is missing stops ``gcd graded`` with one line before any copy
+    is made: no folder of copies that looks complete but lacks a case."""
+    from unsew.io.garmentcode import save_pattern
+    from unsew.io.mesh import write_obj
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.design import Design, draft
+
+    run = _load("run")
+    pattern = draft(Design(garment="tshirt", sleeves="short"))
+    mesh = mesh_pattern(pattern, edge_length=0.05)
+    x = np.zeros((mesh.n_x, 3))
+    x[np.asarray(mesh.x_of_u)] = np.asarray(mesh.uv_placed3d)
+    for cid in ("gc_s1_000", "gc_s1_001"):
+        d = tmp_path / "fits" / cid
+        d.mkdir(parents=True)
+        save_pattern(pattern, d / "pattern.json")
+        save_pattern(pattern, d / "pattern_graded.json")
+        (d / "metrics.json").write_text(json.dumps({"redress": {"phase_two_kept": True}}))
+        if cid == "gc_s1_000":
+            write_obj(d / "garment.obj", x, mesh.faces, uv=mesh.uv, faces_uv=mesh.faces_uv)
+    out = tmp_path / "graded"
+    assert run.main(["graded", "--results", str(tmp_path / "fits"), "--to", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "gc_s1_001" in err and "nothing written" in err and len(err.strip().splitlines()) == 1
+    assert not out.exists()
