@@ -20,7 +20,7 @@ from unsew.body.placement import meets_seams, place_as_given, place_garment
 from unsew.body.sdf import BodySDF
 from unsew.errors import SimulationError
 from unsew.meshing import mesh_pattern
-from unsew.sim.checks import check_dressed, placed_top
+from unsew.sim.checks import check_dressed, placed_top, sleeve_vertices
 from unsew.sim.drape import Cloth, DrapeSettings, drape, merge_sewn, sew
 from unsew.sim.material import Material, get_material
 from unsew.sim.model import SimModel
@@ -240,8 +240,10 @@ def dress(
 
     anchors = attached_vertices(pattern, mesh, body, sdf)
     cloth = Cloth(uv, g, mat.density, friction=mat.friction, anchors=anchors)
-    top = placed_top(pattern, mesh, body, sdf=sdf) if settings.judge_placement else None
-    job = _Job(pattern, body, sdf, mesh, mat, cloth, settings, progress, top)
+    top, sleeves = None, None
+    if settings.judge_placement:
+        top, sleeves = placed_top(pattern, mesh, body, sdf=sdf), sleeve_vertices(pattern, mesh, body)
+    job = _Job(pattern, body, sdf, mesh, mat, cloth, settings, progress, top, sleeves)
     return _fall_back(job)
 
 
@@ -345,12 +347,12 @@ def _unless_diverged(d: Dressed, what: str, dress_fn, *args, **kwargs) -> Dresse
 
 def _verdict(d: Dressed, job: _Job):
     """The checks of drape ``d`` (:func:`unsew.sim.checks.check_dressed`); where the job judges
-    the placement (``job.placed_top``), also against the pattern's own placement of its top. A
-    seam left open is not judged here: a drape sewn instead can hang off the shoulders, which no
-    check sees (docs/decisions/060); ``unsew drape`` refuses the unsewn one it is left with."""
+    the placement (``job.placed_top``), also against the pattern's own placement of its top and
+    of its sleeves (round the arms, docs/decisions/062). A seam left open is not judged here
+    (docs/decisions/060); ``unsew drape`` refuses the unsewn one it is left with."""
     if job.placed_top is None:
         return check_dressed(d, body=job.body)
-    return check_dressed(d, body=job.body, placed_top_m=job.placed_top)
+    return check_dressed(d, body=job.body, placed_top_m=job.placed_top, sleeves=job.sleeves)
 
 
 def _unsound(d: Dressed, job: _Job) -> bool:
@@ -459,6 +461,8 @@ class _Job:
     #: the height [m] of the garment's top in the pattern's own placement, where each drape is
     #: judged against it (``DrapeSettings.judge_placement``), else None
     placed_top: float | None = None
+    #: :func:`unsew.sim.checks.sleeve_vertices` where the job judges the placement, else None
+    sleeves: dict | None = None
 
 
 def _guided_seams(job: _Job, x_unsewn) -> int:

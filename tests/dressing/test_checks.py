@@ -14,8 +14,11 @@ from unsew.sim.checks import (
     SEAM_GAP_MAX,
     STRETCH_MAX,
     TOP_DROP_MAX,
+    SLEEVE_COVER_MIN,
     check_drape,
     check_dressed,
+    sleeve_cover,
+    sleeve_vertices,
 )
 
 
@@ -146,6 +149,68 @@ def test_unsewn(body_sdf):
     assert not v.ok and v.reason.startswith("unsewn") and "28 mm open" in v.reason, v.reason
     d.stats["seam_gap"] = 0.008  # the widest of nineteen sound true-pattern drapes
     assert check_dressed(d, body=body, seam_gap_max=SEAM_GAP_MAX).ok
+
+
+def _arm_ring(body, side, *, radius=0.08, sector=2 * np.pi, along=(0.3, 0.45, 0.6)):
+    """Points (k, 3) [m] round the ``side`` upper arm's bone at ``radius``, over the angle ``sector``
+    [rad] (the whole way round, or a sleeve bunched to one side of the arm), at the fractions
+    ``along`` of the bone from shoulder to elbow."""
+    a = np.asarray(body.skeleton.position(f"{side}_shoulder"))
+    b = np.asarray(body.skeleton.position(f"{side}_elbow"))
+    ax = (b - a) / np.linalg.norm(b - a)
+    u = np.cross(ax, [0.0, 0.0, 1.0])
+    u /= np.linalg.norm(u)
+    w = np.cross(ax, u)
+    th = np.linspace(0.0, sector, 48, endpoint=False)
+    ring = np.cos(th)[:, None] * u + np.sin(th)[:, None] * w
+    return np.concatenate([a + t * (b - a) + radius * ring for t in along])
+
+
+def test_off_the_arm(body_sdf):
+    """A sleeve whose cloth lies round its upper arm passes; the same cloth bunched to one side
+    of the arm (the arm outside the sleeve) is off the arm; a sleeve with no cloth along the upper
+    arm (a cap sleeve) is not judged."""
+    from types import SimpleNamespace
+
+    body, sdf = body_sdf
+    faces, uv, x = _tube(body)
+    mesh = SimpleNamespace(faces=faces, uv=uv, faces_uv=faces)
+    on, off = _arm_ring(body, "left"), _arm_ring(body, "left", sector=np.pi / 3)
+    assert sleeve_cover(on, np.arange(len(on)), body, "left") == pytest.approx(1.0)
+    assert sleeve_cover(off, np.arange(len(off)), body, "left") < SLEEVE_COVER_MIN
+    for ring, ok in ((on, True), (off, False)):
+        xs = np.concatenate([x, ring])
+        d = SimpleNamespace(x=xs, mesh=mesh, sdf=sdf, stats={}, x_start=xs.copy())
+        sleeves = {"left": np.arange(len(x), len(xs))}
+        v = check_dressed(d, body=body, sleeves=sleeves)
+        assert v.ok == ok, v.reason
+        if not ok:
+            assert v.reason.startswith("off the arm: the left sleeve covers 17 %"), v.reason
+    cap = _arm_ring(body, "left", along=(0.05, 0.12))
+    assert np.isnan(sleeve_cover(cap, np.arange(len(cap)), body, "left"))
+
+
+def test_sleeve_vertices_of_a_placed_tee(body_sdf):
+    """A tee's sleeves, as the wrapped start puts them round the arms, cover their upper arms; its
+    torso's vertices are no sleeve's."""
+    from unsew.body.placement import place_garment
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.base import make_base_pattern
+
+    body, sdf = body_sdf
+    pat = make_base_pattern("tshirt")
+    mesh = mesh_pattern(pat, edge_length=0.04)
+    sleeves = sleeve_vertices(pat, mesh, body)
+    assert set(sleeves) == {"left", "right"}
+    torso = [mesh.panel_names.index(n) for n in ("front", "back")]
+    torso_x = set(mesh.x_of_u[np.isin(mesh.uv_panel, torso)].tolist())
+    for idx in sleeves.values():  # the sleeve's own vertices, beyond the armhole seam it shares
+        assert len(set(idx.tolist()) - torso_x) > 0.8 * len(idx)
+    x_u = np.asarray(place_garment(pat, mesh, body, sdf=sdf))
+    x = np.zeros((mesh.n_x, 3))
+    x[mesh.x_of_u] = x_u
+    for side, idx in sleeves.items():
+        assert sleeve_cover(x, idx, body, side) >= 0.9, side
 
 
 def test_rose(body_sdf):

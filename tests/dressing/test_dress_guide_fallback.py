@@ -249,13 +249,14 @@ def _fallen_run(monkeypatch, *, judge: bool):
     own.fallen = False
     calls = []
 
-    def verdict(d, body=None, placed_top_m=None, seam_gap_max=None):
+    def verdict(d, body=None, placed_top_m=None, seam_gap_max=None, sleeves=None):
         calls.append(("verdict", placed_top_m))
         return SimpleNamespace(ok=d.ok and not (placed_top_m is not None and d.fallen))
 
     _run(monkeypatch, None, given_result=own, retried=lambda job: fallen)  # installs the stand-ins
     monkeypatch.setattr(dress_mod, "check_dressed", verdict)
     monkeypatch.setattr(dress_mod, "placed_top", lambda *a, **k: 1.3)
+    monkeypatch.setattr(dress_mod, "sleeve_vertices", lambda *a, **k: {})
 
     def once(job, force_meet, given=False):
         calls.append("given")

@@ -181,13 +181,14 @@ def _write_garment(path, d, header: str) -> None:
 def _judged(d, pattern, body, out: Path, *, keep_failed: bool):
     """The verdict on drape ``d`` (:func:`unsew.sim.checks.check_dressed`), judged against where
     the pattern itself places the garment too (a start that already lay low, a bodice placed at
-    the hips, drops nothing from itself) and refusing a seam left open (``SEAM_GAP_MAX``); a bad
-    one raises its one line, the garment first written to ``<out stem>.failed.obj`` when
-    ``keep_failed``."""
-    from unsew.sim.checks import SEAM_GAP_MAX, check_dressed, placed_top
+    the hips, drops nothing from itself), refusing a seam left open (``SEAM_GAP_MAX``) and a
+    sleeve off its arm; a bad one raises its one line, the garment first written to
+    ``<out stem>.failed.obj`` when ``keep_failed``."""
+    from unsew.sim.checks import SEAM_GAP_MAX, check_dressed, placed_top, sleeve_vertices
 
     top = placed_top(pattern, d.mesh, body, sdf=d.sdf)
-    verdict = check_dressed(d, body=body, placed_top_m=top, seam_gap_max=SEAM_GAP_MAX)
+    sleeves = sleeve_vertices(pattern, d.mesh, body)
+    verdict = check_dressed(d, body=body, placed_top_m=top, seam_gap_max=SEAM_GAP_MAX, sleeves=sleeves)
     if not verdict.ok:
         if keep_failed:
             failed = out.with_name(out.stem + ".failed.obj")

@@ -40,6 +40,11 @@ Checks, in order (the first that fails is the reason):
    two copies of a seam vertex apart before they are merged): the panels never met where the
    seam is, and the garment merged from them is not the one sewn (a sleeve left hanging beside
    the torso, docs/decisions/053).
+8. ``off the arm``: in :func:`check_dressed` given the sleeves' vertices (:func:`sleeve_vertices`:
+   the panels the pattern's own placement puts round an arm), a sleeve whose cloth along the
+   upper arm covers less than :data:`SLEEVE_COVER_MIN` of the directions round the arm's bone:
+   the arm is not in it (a top worn off its shoulders, its sleeves bunched beside the arms or
+   the torso, docs/decisions/062).
 
 The thresholds are failure bounds, far from a good drape's figures (a good drape has < 0.5 %
 inside, stretch below 1.5).
@@ -58,6 +63,8 @@ __all__ = [
     "check_drape",
     "check_dressed",
     "placed_top",
+    "sleeve_vertices",
+    "SLEEVE_COVER_MIN",
     "STRETCH_MAX",
     "STRETCH_P99_MAX",
     "AREA_MIN",
@@ -98,6 +105,19 @@ FAR_MAX_PCT = 30.0
 INSIDE_MAX_PCT = 5.0
 #: Widest seam left open when the sewing phase ends [m] (the ``unsewn`` check, docs/decisions/053).
 SEAM_GAP_MAX = 0.02
+#: Least share of the directions round an upper arm that its sleeve's cloth covers [-] (the
+#: ``off the arm`` check, docs/decisions/062).
+SLEEVE_COVER_MIN = 0.5
+#: The stretch of the bone from shoulder to elbow (fractions of it) where a sleeve is judged:
+#: below a short sleeve's hem, clear of the armpit.
+SLEEVE_BAND = (0.2, 0.7)
+#: Farthest from the bone a sleeve vertex counts [m] (a skirt's side gore read as a sleeve hangs
+#: 0.2-0.3 m from it at the waist; a sleeve bunched beside the arm lies 0.08-0.15 m off).
+SLEEVE_NEAR = 0.18
+#: Fewest sleeve vertices in that band for a judgment (a cap sleeve ends above it) [-].
+SLEEVE_MIN_POINTS = 8
+#: Directions round the bone counted [-].
+SLEEVE_SECTORS = 24
 
 
 @dataclass(frozen=True)
@@ -364,6 +384,64 @@ def placed_top(pattern, mesh, body, sdf=None) -> float:
     return float(np.quantile(x[:, 1], TOP_QUANTILE))
 
 
+def sleeve_vertices(pattern, mesh, body) -> dict:
+    """{side ("left"/"right"): (k,) int64 sewn vertices of the panels the pattern's own placement
+    puts round that arm} (:func:`unsew.body.placement.panel_roles`); sides without one left out.
+
+    pattern: Pattern whose panels carry their translation and rotation; mesh: its GarmentMesh;
+    body: Body with a skeleton."""
+    from unsew.body.placement import panel_roles
+
+    roles = panel_roles(pattern, body)
+    names = list(mesh.panel_names)
+    out = {}
+    for side in ("left", "right"):
+        ids = [names.index(n) for n, r in roles.items() if r == f"{side}_sleeve" and n in names]
+        if ids:
+            uv_of = np.isin(np.asarray(mesh.uv_panel), ids)
+            out[side] = np.unique(np.asarray(mesh.x_of_u)[uv_of]).astype(np.int64)
+    return out
+
+
+def sleeve_cover(x, idx, body, side: str) -> float:
+    """The share [-] of SLEEVE_SECTORS directions round the ``side`` upper arm's bone (shoulder
+    to elbow joint) in which some of the vertices ``x[idx]`` ((N, 3) [m], (k,) int) lie, counting
+    those whose projection on the bone falls in SLEEVE_BAND, within SLEEVE_NEAR of it; NaN with
+    fewer than SLEEVE_MIN_POINTS there."""
+    sk = body.skeleton
+    a = np.asarray(sk.position(f"{side}_shoulder"), dtype=np.float64)
+    b = np.asarray(sk.position(f"{side}_elbow"), dtype=np.float64)
+    length = float(np.linalg.norm(b - a))
+    if length <= 0.0:
+        return float("nan")
+    ax = (b - a) / length
+    p = _float64(x)[np.asarray(idx, dtype=np.int64)] - a
+    t = p @ ax / length
+    p = p - np.outer(p @ ax, ax)  # off the bone
+    p = p[(t > SLEEVE_BAND[0]) & (t < SLEEVE_BAND[1]) & (np.linalg.norm(p, axis=1) < SLEEVE_NEAR)]
+    if len(p) < SLEEVE_MIN_POINTS:
+        return float("nan")
+    helper = np.array([0.0, 0.0, 1.0]) if abs(ax[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
+    u = np.cross(ax, helper)
+    u /= np.linalg.norm(u)
+    w = np.cross(ax, u)
+    ang = np.arctan2(p @ w, p @ u)
+    sector = np.floor((ang + np.pi) / (2 * np.pi) * SLEEVE_SECTORS).astype(np.int64) % SLEEVE_SECTORS
+    return len(np.unique(sector)) / SLEEVE_SECTORS
+
+
+def _sleeve_failure(x, sleeves: dict, body) -> str:
+    """The reason of a failed ``off the arm`` check ("" when every judged sleeve passes)."""
+    for side, idx in sleeves.items():
+        cover = sleeve_cover(x, idx, body, side)
+        if cover < SLEEVE_COVER_MIN:  # NaN (nothing to judge) passes
+            return (
+                f"off the arm: the {side} sleeve covers {cover * 100:.0f} % of the directions round "
+                f"the upper arm (bound {SLEEVE_COVER_MIN * 100:g} %)"
+            )
+    return ""
+
+
 def _body_failure(far_pct, inside_pct) -> str:
     """The reason of the first failed check against the body ("" when both pass); shares [%]."""
     if far_pct > FAR_MAX_PCT:
@@ -389,7 +467,7 @@ def _crotch_height(body) -> float:
 
 
 def check_dressed(
-    d, *, body=None, start_height=None, start_y=None, placed_top_m=None, seam_gap_max=None
+    d, *, body=None, start_height=None, start_y=None, placed_top_m=None, seam_gap_max=None, sleeves=None
 ) -> DrapeVerdict:
     """:func:`check_drape` of a :class:`unsew.dress.Dressed` (its sewn mesh, rest shape and SDF).
 
@@ -401,7 +479,8 @@ def check_dressed(
     (TOP_QUANTILE of its heights) in the pattern's own placement (:func:`placed_top`): a drape
     that passes :func:`check_drape` is judged against it too (the module docstring's ``fallen``).
     seam_gap_max: optional bound [m] on ``d.stats["seam_gap"]``, the widest seam left open by the
-    sewing phase (the module docstring's ``unsewn``), checked last.
+    sewing phase (the module docstring's ``unsewn``). sleeves: optional :func:`sleeve_vertices`
+    of the garment, each judged against its arm (``off the arm``), checked last.
     """
     if body is None:
         raise ValueError("check_dressed needs the body the garment was dressed on")
@@ -433,4 +512,6 @@ def check_dressed(
             f"unsewn: a seam was still {gap * 1000:.0f} mm open when the sewing ended "
             f"(bound {seam_gap_max * 1000:g} mm)"
         )
+    if not reason and sleeves:
+        reason = _sleeve_failure(d.x, sleeves, body)
     return replace(v, ok=False, reason=reason) if reason else v

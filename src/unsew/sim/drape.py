@@ -138,7 +138,8 @@ class DrapeSettings:
     edge_fallback: bool = True
     #: :func:`unsew.dress.dress` judges each drape on its way (which fallback is tried, which drape
     #: is kept) against the pattern's own placement, as ``unsew drape`` judges the one it writes:
-    #: a top fallen from where that placement puts it is unsound too (docs/decisions/060)
+    #: a top fallen from where that placement puts it is unsound too (docs/decisions/060), and so
+    #: is a sleeve that does not go round the arm that placement puts it on (062)
     judge_placement: bool = False
 
     def replace(self, **changes) -> "DrapeSettings":
