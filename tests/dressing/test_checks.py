@@ -19,6 +19,7 @@ from unsew.sim.checks import (
     check_dressed,
     sleeve_cover,
     sleeve_vertices,
+    sleeves_judged,
 )
 
 
@@ -186,6 +187,9 @@ def test_off_the_arm(body_sdf):
         assert v.ok == ok, v.reason
         if not ok:
             assert v.reason.startswith("off the arm: the left sleeve covers 17 %"), v.reason
+        # the fit's last verdict: the body's checks, then the sleeves
+        w = sleeves_judged(_check(body, sdf, xs, faces, uv), xs, sleeves, body)
+        assert (w.ok, w.reason) == (v.ok, v.reason)
     cap = _arm_ring(body, "left", along=(0.05, 0.12))
     assert np.isnan(sleeve_cover(cap, np.arange(len(cap)), body, "left"))
 

@@ -36,7 +36,7 @@ from unsew.fit.stages import (
     spread_stage,
 )
 from unsew.fit.start import with_garment_read
-from unsew.sim.checks import DrapeVerdict, check_drape
+from unsew.sim.checks import DrapeVerdict, check_drape, sleeve_vertices, sleeves_judged
 
 __all__ = ["FitResult", "fit"]
 
@@ -69,7 +69,8 @@ class FitResult:
     (:class:`~unsew.fit.stages.PhaseTwoResult`); checks: what the re-dress check and the mesh
     spread decided is returned (:class:`~unsew.fit.stages.ChecksResult`). Computed at the end:
     drape_check, the returned drape judged on its body (:func:`unsew.sim.checks.check_drape`:
-    fallen, off the body, exploded, inside it; :func:`unsew.fit.run.run_fit` refuses a bad one);
+    fallen, off the body, exploded, inside it; a sleeve off its arm; :func:`unsew.fit.run.run_fit`
+    refuses a bad one);
     timings: seconds per stage; memory_mb: the process's peak resident memory [MB] at the end of
     each stage (keys as ``timings``, "loaded" at the fit's start), so the stage that set the peak
     is the first one reaching the last value; time_limit: the fit's time limit and what gave way
@@ -195,19 +196,27 @@ def _fit_result(
     ctx: FitContext, one: PhaseOneResult, two: PhaseTwoResult, checked: ChecksResult, clock: "_Clock"
 ) -> FitResult:
     """The FitResult of the stages' results, the returned drape judged on its body."""
-    timings, mesh = clock.total(), checked.mesh
+    timings = clock.total()
     return FitResult(
         one,
         two,
         checked,
-        drape_check=check_drape(
-            checked.x, faces=mesh.faces, uv=checked.uv, faces_uv=mesh.faces_uv, body=ctx.body, sdf=ctx.sdf
-        ),
+        drape_check=_result_verdict(ctx, checked),
         timings=timings,
         memory_mb=clock.peaks,
         time_limit=ctx.budget.as_dict(),
         contact=ctx.contact,
     )
+
+
+def _result_verdict(ctx: FitContext, checked: ChecksResult):
+    """The returned drape judged on its body (:func:`unsew.sim.checks.check_drape`), its sleeves
+    round the arms the pattern's placement puts them on (docs/decisions/062)."""
+    mesh = checked.mesh
+    v = check_drape(
+        checked.x, faces=mesh.faces, uv=checked.uv, faces_uv=mesh.faces_uv, body=ctx.body, sdf=ctx.sdf
+    )
+    return sleeves_judged(v, checked.x, sleeve_vertices(checked.pattern, mesh, ctx.body), ctx.body)
 
 
 def _check_device(device: str) -> None:

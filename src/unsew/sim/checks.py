@@ -64,6 +64,7 @@ __all__ = [
     "check_dressed",
     "placed_top",
     "sleeve_vertices",
+    "sleeves_judged",
     "SLEEVE_COVER_MIN",
     "STRETCH_MAX",
     "STRETCH_P99_MAX",
@@ -442,6 +443,13 @@ def _sleeve_failure(x, sleeves: dict, body) -> str:
     return ""
 
 
+def sleeves_judged(verdict: DrapeVerdict, x, sleeves: dict, body) -> DrapeVerdict:
+    """``verdict`` on the drape ``x`` (N, 3) [m], failed ``off the arm`` where it passed and one
+    of the ``sleeves`` (:func:`sleeve_vertices`) does not go round its arm."""
+    reason = _sleeve_failure(x, sleeves, body) if verdict.ok and sleeves else ""
+    return replace(verdict, ok=False, reason=reason) if reason else verdict
+
+
 def _body_failure(far_pct, inside_pct) -> str:
     """The reason of the first failed check against the body ("" when both pass); shares [%]."""
     if far_pct > FAR_MAX_PCT:
@@ -512,6 +520,5 @@ def check_dressed(
             f"unsewn: a seam was still {gap * 1000:.0f} mm open when the sewing ended "
             f"(bound {seam_gap_max * 1000:g} mm)"
         )
-    if not reason and sleeves:
-        reason = _sleeve_failure(d.x, sleeves, body)
-    return replace(v, ok=False, reason=reason) if reason else v
+    v = replace(v, ok=False, reason=reason) if reason else v
+    return sleeves_judged(v, d.x, sleeves, body)
