@@ -323,6 +323,8 @@ GCD_COLUMNS = {
     "to_newton_mm": "to newton's, per vertex mm",
     "above_newton_mm": "above newton's mm",
     "newton_area_pct": "newton's area +%",
+    "sleeve_cover": "sleeve cover",
+    "newton_sleeve_cover": "newton's sleeve cover",
     "vertices": "vertices",
     "time_s": "time s",
     "ok": "good",
@@ -399,6 +401,40 @@ def to_newton(case_dir: Path, obj: Path, target=None) -> dict:
         "above_newton_mm": float(1000 * np.mean(v[:, 1] - x[:, 1])),
         "newton_area_pct": float(100 * (area / rest - 1)),
     }
+
+
+def sleeve_covers(case_dir: Path, obj: Path, target=None) -> dict:
+    """How well each sleeve goes round its arm (:func:`unsew.sim.checks.sleeve_cover`, the least
+    over the design's sleeves, docs/decisions/062) in unsew's drape ``obj`` (or the failed drape
+    ``unsew drape --keep-failed`` wrote beside it) and in the case's newton target:
+    {"sleeve_cover", "newton_sleeve_cover"} [-], each None where no sleeve is judged or the mesh
+    differs; empty for a design without sleeves. ``target``: :func:`_target_on_mesh`'s answer."""
+    from unsew.body.body import load_body
+    from unsew.io.garmentcode import load_pattern
+    from unsew.meshing import mesh_pattern
+    from unsew.sim.checks import sleeve_cover, sleeve_vertices
+
+    edge = json.loads((HERE / "gcd" / "manifest.json").read_text())["edge_length_m"]
+    skel = case_dir / "skeleton.json"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # GarmentCode's gathered seams: lengths apart
+        pattern = load_pattern(case_dir / "pattern_gt.json")
+        mesh = mesh_pattern(pattern, edge_length=edge)
+        body = load_body(case_dir / "body.obj", skel if skel.is_file() else None)
+    sleeves = sleeve_vertices(pattern, mesh, body)
+    if not sleeves:
+        return {}
+
+    def least(x):
+        if x is None or len(x) != mesh.n_x:
+            return None
+        covers = [sleeve_cover(x, idx, body, side) for side, idx in sleeves.items()]
+        covers = [c for c in covers if np.isfinite(c)]
+        return min(covers) if covers else None
+
+    obj = obj if obj.is_file() else obj.with_name(obj.stem + ".failed.obj")
+    drape = read_obj_uv(obj)[0] if obj.is_file() else None
+    return {"sleeve_cover": least(drape), "newton_sleeve_cover": least(None if target is None else target[0])}
 
 
 def gcd_case_ids() -> list[str]:
@@ -635,6 +671,18 @@ def main() -> None:
     )
 
 
+def _measure_against_targets(rows: list[dict], cases: Path, out: Path) -> None:
+    """Each row's columns against its case's newton target and its sleeves' arms, measured again
+    each time (the targets are the cases', the rows unsew's drapes in ``out``)."""
+    for r in rows:
+        d = cases / r["case"]
+        target = _target_on_mesh(d)  # meshed once for every measure
+        r["newton_stretch_max"] = newton_stretch(d, target) if target is not None else None
+        r.update(to_newton(d, out / f"{r['case']}.obj", target) if target is not None else {})
+        if (d / "pattern_gt.json").is_file() and (d / "body.obj").is_file() and r.get("vertices"):
+            r.update(sleeve_covers(d, out / f"{r['case']}.obj", target))
+
+
 def main_gcd(args) -> int:
     """``--gcd``: dress the cases, print their table, record it when asked."""
     from tables import markdown_table
@@ -664,11 +712,7 @@ def main_gcd(args) -> int:
     elif args.edge_length is not None:
         kw = {"edge_length": args.edge_length}
     rows = run_gcd(Path(args.cases), ids, out=out, redo=args.redo, **kw)
-    for r in rows:  # measured again each time: the targets are the cases', the rows are unsew's
-        d = Path(args.cases) / r["case"]
-        target = _target_on_mesh(d)  # meshed once for both measures
-        r["newton_stretch_max"] = newton_stretch(d, target) if target is not None else None
-        r.update(to_newton(d, out / f"{r['case']}.obj", target) if target is not None else {})
+    _measure_against_targets(rows, Path(args.cases), out)
     print()
     print(markdown_table(gcd_table_rows(rows), list(GCD_COLUMNS.values())))
     if args.seams:
