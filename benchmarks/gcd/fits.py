@@ -90,11 +90,12 @@ def cmd_fit(args, case_ids: list[str]) -> int:
     return 0
 
 
-def garment_panels(src: Path, panel_order: list):
+def garment_panels(src: Path, panel_order: list, pattern=None):
     """(x (V, 3) [m], faces (F, 3), uv (Nu, 2) [m], mesh) of a fit's garment.obj, ``mesh`` with
     ``uv_panel`` (Nu,) indices into ``panel_names`` (= ``panel_order``, the pattern's panels in its
     file's order) and ``x_of_u`` (Nu,): each panel's rest mesh is one piece of the OBJ's pattern
-    coordinates, written in the pattern's panel order."""
+    coordinates, written in the pattern's panel order. Given the ``pattern`` (a Pattern), also
+    ``edge_verts``: (panel, edge index) -> the rest vertices lying on that edge."""
     from types import SimpleNamespace
 
     import numpy as np
@@ -113,7 +114,36 @@ def garment_panels(src: Path, panel_order: list):
         raise ValueError(f"{src}: garment.obj has {n} pieces for {len(panel_order)} panels")
     first = [np.flatnonzero(comp == k).min() for k in range(n)]
     uv_panel = np.argsort(np.argsort(first))[comp]
-    return x, f, uv, SimpleNamespace(uv_panel=uv_panel, x_of_u=x_of_u, panel_names=list(panel_order))
+    mesh = SimpleNamespace(uv_panel=uv_panel, x_of_u=x_of_u, panel_names=list(panel_order))
+    if pattern is not None:
+        mesh.edge_verts = _edge_verts(pattern, uv, uv_panel, list(panel_order))
+    return x, f, uv, mesh
+
+
+#: How far [m] from an edge of its panel's outline a rest vertex may lie and count as on it.
+ON_EDGE = 1e-3
+
+
+def _edge_verts(pattern, uv, uv_panel, names: list) -> dict:
+    """(panel, edge index) -> (k,) indices of the rest vertices ``uv`` (Nu, 2) [m] of that panel
+    (``uv_panel`` (Nu,) into ``names``) within ``ON_EDGE`` of the edge (sampled finely)."""
+    import numpy as np
+
+    from unsew.pattern.curves import sample_edge
+
+    out = {}
+    for i, name in enumerate(names):
+        ids = np.flatnonzero(uv_panel == i)
+        pts = uv[ids]
+        pan = pattern.panels[name]
+        for e in range(len(pan.edges)):
+            q = sample_edge(pan, e, 256)
+            a, d = q[:-1], np.diff(q, axis=0)
+            w = pts[:, None] - a[None]  # (k, S, 2) from each segment's start
+            t = np.clip((w * d[None]).sum(-1) / np.maximum((d * d).sum(-1), 1e-30), 0.0, 1.0)
+            dist = np.linalg.norm(w - t[..., None] * d[None], axis=-1).min(axis=1)
+            out[(name, e)] = ids[dist <= ON_EDGE]
+    return out
 
 
 def reexport(src: Path, dst: Path) -> None:
@@ -127,7 +157,7 @@ def reexport(src: Path, dst: Path) -> None:
     from unsew.io.garmentcode import load_pattern, save_pattern
 
     pattern = load_pattern(src / "pattern.json")
-    x, _, uv, mesh = garment_panels(src, list(pattern.panel_order))
+    x, _, uv, mesh = garment_panels(src, list(pattern.panel_order), pattern)
     placed = placed_where_draped(pattern, mesh, uv, x)  # made before anything is written
     shutil.copytree(src, dst, ignore=shutil.ignore_patterns("redrape_newton*"), dirs_exist_ok=True)
     save_pattern(placed, dst / "pattern.json")
@@ -145,7 +175,7 @@ def graded_placed(src: Path):
     if not (metrics.get("redress") or {}).get("phase_two_kept"):
         return None
     graded = load_pattern(src / "pattern_graded.json")
-    x, _, uv, mesh = garment_panels(src, list(graded.panel_order))
+    x, _, uv, mesh = garment_panels(src, list(graded.panel_order), graded)
     return placed_where_draped(graded, mesh, uv, x)
 
 

@@ -1210,3 +1210,24 @@ def test_graded_writes_nothing_when_one_fit_cannot_be_read(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "gc_s1_001" in err and "nothing written" in err and len(err.strip().splitlines()) == 1
     assert not out.exists()
+
+
+def test_a_fits_garment_obj_gives_each_edges_vertices(tmp_path):
+    """``fits.garment_panels`` given the pattern finds the rest vertices on each edge of every
+    panel from garment.obj's pattern coordinates alone, as the mesher laid them (a skirt's band
+    and gores, curved edges included), so a re-export places a hanging edge as the fit does."""
+    from unsew.io.mesh import write_obj
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.design import Design, draft
+
+    fits = _load("fits")
+    p = draft(Design(garment="skirt", waistband=True))
+    mesh = mesh_pattern(p, edge_length=0.05)
+    x = np.zeros((mesh.n_x, 3))
+    x[np.asarray(mesh.x_of_u)] = np.asarray(mesh.uv_placed3d)
+    write_obj(tmp_path / "garment.obj", x, mesh.faces, uv=mesh.uv, faces_uv=mesh.faces_uv)
+    _, _, uv, got = fits.garment_panels(tmp_path, list(p.panel_order), p)
+    assert np.allclose(uv, mesh.uv)  # the OBJ keeps the mesher's rest vertices in order
+    assert set(got.edge_verts) == set(mesh.edge_verts)
+    for key, want in mesh.edge_verts.items():
+        assert sorted(got.edge_verts[key]) == sorted(np.asarray(want).tolist()), key

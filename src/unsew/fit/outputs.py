@@ -68,28 +68,37 @@ def placed_where_draped(pattern, mesh, uv, x):
     distance along its normal kept) so that its placed mesh vertices' centroid lies over its
     draped ones' (the panel's translation [m]): the exported placement starts another simulator
     where the fit's drape hangs, not where the base was drafted before grading changed the panels.
-    Only panels facing front or back move (normal within
+    Only panels facing front or back move so (normal within
     :data:`unsew.body.placement.FACING_DEG` of the body's front axis: a bodice's, a skirt's, a
     trouser leg's): a sleeve, cuff or hood drapes round a limb or the head, its centroid inside
-    it, and keeps the placement it was drafted with; so does a panel held by an open labelled edge
-    (:func:`unsew.dress.hanging_edges`): it was held there.
+    it, and keeps the placement it was drafted with. A panel that hangs from an open labelled
+    edge (:func:`unsew.dress.hanging_edges`) stays where the drape held those edges (all of them
+    within :data:`unsew.dress.HELD_WITHIN`, at the median, as :func:`unsew.dress.held_anchors`
+    tells a held drape); where it did not hold them, it moves up or down only, so that its edge
+    lies at the height it drapes at: a simulator that holds such an edge where the file places
+    it (unsew's drape, GarmentCode's) hangs the garment from there, not from where grading
+    lifted it to start.
 
-    mesh: the pattern's GarmentMesh (its ``uv_panel``, ``x_of_u`` and ``panel_names``); uv:
-    (Nu, 2) float panel-frame positions of its rest vertices [m]; x: (n_x, 3) float draped sewn
-    positions [m] (numpy or torch). Returns the moved copy (a Pattern; translations [m])."""
+    mesh: the pattern's GarmentMesh (its ``uv_panel``, ``x_of_u``, ``edge_verts`` and
+    ``panel_names``); uv: (Nu, 2) float panel-frame positions of its rest vertices [m]; x: (n_x, 3)
+    float draped sewn positions [m] (numpy or torch). Returns the moved copy (a Pattern;
+    translations [m])."""
     from unsew.body.placement import FACING_DEG
-    from unsew.dress import hanging_edges
+    from unsew.dress import HELD_WITHIN
 
     p = pattern.copy()
-    held = {name for name, _ in hanging_edges(p)}
     uv = np.asarray(uv.detach().cpu() if hasattr(uv, "detach") else uv, np.float64)
     x = np.asarray(x.detach().cpu() if hasattr(x, "detach") else x, np.float64)
     on = np.asarray(mesh.uv_panel)
     draped = x[np.asarray(mesh.x_of_u)]
+    drops = _hanging_drops(p, mesh, uv, draped)
+    held = bool(drops) and np.median(np.abs(np.concatenate(list(drops.values())))) < HELD_WITHIN
     for i, name in enumerate(mesh.panel_names):
-        if name in held:  # held by an open edge where it is placed: it hangs from there
-            continue
         pan = p.panels[name]
+        if name in drops:  # hangs from an open edge
+            if not held:
+                pan.translation = pan.translation + np.array([0.0, drops[name].mean(), 0.0])
+            continue
         n = pan.rotation_matrix()[:, 2]
         if abs(n[2]) < np.cos(np.radians(FACING_DEG)):
             continue
@@ -97,6 +106,22 @@ def placed_where_draped(pattern, mesh, uv, x):
         d = draped[on == i].mean(axis=0) - placed.mean(axis=0)
         pan.translation = pan.translation + d - (d @ n) * n
     return p
+
+
+def _hanging_drops(pattern, mesh, uv, draped) -> dict:
+    """{panel: (k,) heights [m] its open labelled edges' vertices drape at over where ``pattern``
+    places them} for each panel hanging from such an edge (:func:`unsew.dress.hanging_edges`);
+    uv (Nu, 2) rest positions [m], draped (Nu, 3) their draped positions [m]."""
+    from unsew.dress import hanging_edges
+
+    hung = sorted(hanging_edges(pattern))
+    out = {}
+    for name in mesh.panel_names:
+        idx = [np.asarray(mesh.edge_verts[key], np.int64) for key in hung if key[0] == name]
+        if idx:
+            idx = np.unique(np.concatenate(idx))
+            out[name] = draped[idx, 1] - pattern.panels[name].to_world(uv[idx])[:, 1]
+    return out
 
 
 def pattern_with_extras(result) -> object:
