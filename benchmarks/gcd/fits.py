@@ -146,11 +146,11 @@ def _edge_verts(pattern, uv, uv_panel, names: list) -> dict:
     return out
 
 
-def reexport(src: Path, dst: Path) -> None:
+def reexport(src: Path, dst: Path, body=None) -> None:
     """The fit result folder ``src`` copied to ``dst`` with its pattern.json placed as ``unsew
-    fit`` exports it now (:func:`unsew.fit.outputs.placed_where_draped`: each panel moved within
-    its plane over where garment.obj drapes it), for fits made before that export; newton's
-    re-drape of the earlier pattern is not copied."""
+    fit`` exports it now (:func:`unsew.fit.outputs.placed_where_draped`: each panel moved over
+    where garment.obj drapes it; ``body``, the wearer, lays a sleeve's halves round its arm), for
+    fits made before that export; newton's re-drape of the earlier pattern is not copied."""
     import shutil
 
     from unsew.fit.outputs import placed_where_draped
@@ -158,7 +158,7 @@ def reexport(src: Path, dst: Path) -> None:
 
     pattern = load_pattern(src / "pattern.json")
     x, _, uv, mesh = garment_panels(src, list(pattern.panel_order), pattern)
-    placed = placed_where_draped(pattern, mesh, uv, x)  # made before anything is written
+    placed = placed_where_draped(pattern, mesh, uv, x, body)  # made before anything is written
     shutil.copytree(src, dst, ignore=shutil.ignore_patterns("redrape_newton*"), dirs_exist_ok=True)
     save_pattern(placed, dst / "pattern.json")
 
@@ -229,6 +229,17 @@ def cmd_graded(args, cases: list[str]) -> int:
     return 0
 
 
+def _wearer(case: Path):
+    """The Body of a case folder (body.obj, with its skeleton.json where it has one), or None
+    without a body.obj."""
+    from unsew.body.body import load_body
+
+    if not (case / "body.obj").is_file():
+        return None
+    skel = case / "skeleton.json"
+    return load_body(case / "body.obj", skel if skel.is_file() else None)
+
+
 def cmd_reexport(args, cases: list[str]) -> int:
     """``gcd reexport --results IN --to OUT``: every fitted case of IN re-exported into OUT
     (:func:`reexport`), with IN's fits.json."""
@@ -247,7 +258,7 @@ def cmd_reexport(args, cases: list[str]) -> int:
         return 2
     for cid in done:
         try:
-            reexport(src / cid, dst / cid)
+            reexport(src / cid, dst / cid, _wearer(Path(args.cases) / cid))
         except (UnsewError, OSError, ValueError) as exc:  # an unreadable fit, or a drape of another pattern
             print(f"gcd reexport: {cid}: {str(exc).splitlines()[0]}", file=sys.stderr)
             return 2

@@ -7,7 +7,7 @@
     python -m benchmarks gcd score --results RESULTS_DIR [--cases DIR] [--only-tried | --rejudge] [--record]
     python -m benchmarks gcd compare BEFORE AFTER [--only ...]   two folders of fits judged side by side
     python -m benchmarks gcd floor-fitted --results DIR [--record]   the material-fitted floor
-    python -m benchmarks gcd reexport --results DIR --to DIR2   fits placed as unsew fit exports them now
+    python -m benchmarks gcd reexport --results DIR --to DIR2 [--cases DIR]   fits placed as exported now
     python -m benchmarks gcd graded --results DIR --to DIR2     fits with the pattern phase two started from
     python -m benchmarks gcd status [--out DIR]    every case's build status
     python -m benchmarks gcd keep [--out DIR]      store the built targets in targets/ (kept.py)
@@ -263,6 +263,7 @@ def _add_fit_score_parsers(sub) -> None:
     )
     rx.add_argument("--results", required=True, help="folder of fit results, one folder per case id")
     rx.add_argument("--to", required=True, help="folder for the re-exported copies")
+    rx.add_argument("--cases", default=str(DEFAULT_CASES), help="the case folders (their wearers)")
     fi.add_argument(
         "--material-only",
         action="store_true",

@@ -110,3 +110,47 @@ def test_a_panel_hanging_from_its_open_top_is_placed_at_the_height_it_drapes():
         else:  # a gore moves within its plane (its top's seam copies take the band's positions)
             n = pan.rotation_matrix()[:, 2]
             assert np.allclose(moved, shift - (shift @ n) * n, atol=1e-3), (name, moved)
+
+
+def test_a_sleeves_halves_are_exported_laid_round_the_arm():
+    """Given the wearer, the front and back halves of a two-piece sleeve are exported as another
+    simulator sews them round the arm: each turned onto where it drapes (here unsew's wrapped
+    start stands for the drape), its long side along the upper arm, in front of the arm and
+    behind it, every vertex of its drape between the flat half and the arm's bone. Without the
+    wearer they stay where their drape's centroid puts them in their own plane, as before."""
+    from unsew.body.body import default_body
+    from unsew.body.placement import panel_roles, place_garment
+    from unsew.fit.outputs import placed_where_draped
+    from unsew.meshing import mesh_pattern
+    from unsew.pattern.design import Design, draft
+
+    body = default_body()
+    p = draft(Design(garment="tshirt", sleeves="short", sleeve_pieces=2))
+    mesh = mesh_pattern(p, edge_length=0.03)
+    xu = np.asarray(place_garment(p, mesh, body))  # (Nu, 3) the panels wrapped round the body
+    x = np.zeros((mesh.n_x, 3))
+    x[np.asarray(mesh.x_of_u)] = xu
+    roles = panel_roles(p, body)
+    halves = [n for n, r in roles.items() if r.endswith("_sleeve")]
+    assert len(halves) == 4
+    out = placed_where_draped(p, mesh, mesh.uv, x, body)
+    on = np.asarray(mesh.uv_panel)
+    for name in halves:
+        side = roles[name].split("_")[0]
+        sh, el = body.skeleton.position(f"{side}_shoulder"), body.skeleton.position(f"{side}_elbow")
+        axis = (el - sh) / np.linalg.norm(el - sh)
+        pan = out.panels[name]
+        n = pan.rotation_matrix()[:, 2]
+        assert abs(n @ axis) < 0.35, name  # the half lies along the arm
+        draped = xu[on == mesh.panel_names.index(name)]
+        flat = pan.to_world(np.asarray(mesh.uv)[on == mesh.panel_names.index(name)])
+        c = flat.mean(axis=0)
+        out_dir = (c - sh) - ((c - sh) @ axis) * axis
+        n_out = n if n @ out_dir > 0 else -n
+        assert ((draped - c) @ n_out).max() <= 1e-9, name  # the drape between it and the bone
+        assert ((flat - sh) @ n_out).min() > 0.0, name  # the flat half outside the bone
+    fronts = [out.panels[n].to_world(out.panels[n].vertices)[:, 2].mean() for n in halves if "front" in n]
+    backs = [out.panels[n].to_world(out.panels[n].vertices)[:, 2].mean() for n in halves if "back" in n]
+    assert min(fronts) > 0.0 > max(backs)
+    free = placed_where_draped(p, mesh, mesh.uv, x)
+    assert all(np.allclose(free.panels[n].rotation, p.panels[n].rotation) for n in halves)

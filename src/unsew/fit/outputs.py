@@ -63,7 +63,7 @@ def file_sha256(path: str | os.PathLike) -> str:
     return h.hexdigest()
 
 
-def placed_where_draped(pattern, mesh, uv, x):
+def placed_where_draped(pattern, mesh, uv, x, body=None):
     """A copy of ``pattern`` with each panel moved within its own plane (its rotation and its
     distance along its normal kept) so that its placed mesh vertices' centroid lies over its
     draped ones' (the panel's translation [m]): the exported placement starts another simulator
@@ -77,13 +77,17 @@ def placed_where_draped(pattern, mesh, uv, x):
     tells a held drape); where it did not hold them, it moves up or down only, so that its edge
     lies at the height it drapes at: a simulator that holds such an edge where the file places
     it (unsew's drape, GarmentCode's) hangs the garment from there, not from where grading
-    lifted it to start.
+    lifted it to start. Given the ``body``, the halves of a sleeve (panels
+    :func:`unsew.body.placement.panel_roles` puts round an arm, facing front or back) are laid as
+    another simulator sews them round the arm: each turned and moved as a whole onto its drape
+    (the rigid fit of its placed vertices to its draped ones), then out along its normal, away
+    from the upper arm's bone, until every draped vertex lies between it and the bone.
 
     mesh: the pattern's GarmentMesh (its ``uv_panel``, ``x_of_u``, ``edge_verts`` and
     ``panel_names``); uv: (Nu, 2) float panel-frame positions of its rest vertices [m]; x: (n_x, 3)
-    float draped sewn positions [m] (numpy or torch). Returns the moved copy (a Pattern;
-    translations [m])."""
-    from unsew.body.placement import FACING_DEG
+    float draped sewn positions [m] (numpy or torch); body: the wearer (a Body), or None. Returns
+    the moved copy (a Pattern; translations [m])."""
+    from unsew.body.placement import FACING_DEG, panel_roles
     from unsew.dress import HELD_WITHIN
 
     p = pattern.copy()
@@ -93,6 +97,7 @@ def placed_where_draped(pattern, mesh, uv, x):
     draped = x[np.asarray(mesh.x_of_u)]
     drops = _hanging_drops(p, mesh, uv, draped)
     held = bool(drops) and np.median(np.abs(np.concatenate(list(drops.values())))) < HELD_WITHIN
+    roles = panel_roles(p, body) if body is not None else {}
     for i, name in enumerate(mesh.panel_names):
         pan = p.panels[name]
         if name in drops:  # hangs from an open edge
@@ -102,10 +107,35 @@ def placed_where_draped(pattern, mesh, uv, x):
         n = pan.rotation_matrix()[:, 2]
         if abs(n[2]) < np.cos(np.radians(FACING_DEG)):
             continue
+        if roles.get(name, "").endswith("_sleeve"):
+            _laid_round_the_arm(pan, uv[on == i], draped[on == i], body, roles[name].split("_")[0])
+            continue
         placed = pan.to_world(uv[on == i])
         d = draped[on == i].mean(axis=0) - placed.mean(axis=0)
         pan.translation = pan.translation + d - (d @ n) * n
     return p
+
+
+def _laid_round_the_arm(pan, uv, draped, body, side: str) -> None:
+    """Place the sleeve half ``pan`` (in place) by the rigid fit of its rest vertices ``uv``
+    (k, 2) [m] placed to where they drape, ``draped`` (k, 3) [m], then moved along its normal,
+    away from the ``side`` (left/right) upper arm's bone of ``body``, to the outermost of them."""
+    from scipy.spatial.transform import Rotation
+
+    from unsew.pattern.model import matrix_to_euler_xyz
+
+    placed = pan.to_world(uv)
+    pc, dc = placed.mean(axis=0), draped.mean(axis=0)
+    turn = Rotation.align_vectors(draped - dc, placed - pc)[0].as_matrix()
+    R = turn @ pan.rotation_matrix()
+    n = R[:, 2]
+    sh, el = body.skeleton.position(f"{side}_shoulder"), body.skeleton.position(f"{side}_elbow")
+    axis = (el - sh) / np.linalg.norm(el - sh)
+    out = (dc - sh) - ((dc - sh) @ axis) * axis  # from the bone to the half's drape
+    n_out = n if n @ out >= 0 else -n
+    lift = float(((draped - dc) @ n_out).max())
+    pan.rotation = matrix_to_euler_xyz(R)
+    pan.translation = turn @ (pan.translation - pc) + dc + lift * n_out
 
 
 def _hanging_drops(pattern, mesh, uv, draped) -> dict:
@@ -124,13 +154,13 @@ def _hanging_drops(pattern, mesh, uv, draped) -> dict:
     return out
 
 
-def pattern_with_extras(result) -> object:
+def pattern_with_extras(result, body=None) -> object:
     """The final pattern, placed where it drapes (:func:`placed_where_draped`), with unsew's
     additions under its ``unsew`` key: control points per panel,
     symmetry (pairs, mirror axes, effective K), the material and, when the fit's drapes did not use
     the default body contact (``contact: target``), that contact (``{"threshold_m",
     "stiffness_n_m4"}``, :func:`unsew.commands.drape.pattern_contact` reads it back)."""
-    p = placed_where_draped(result.pattern, result.mesh, result.uv, result.x)
+    p = placed_where_draped(result.pattern, result.mesh, result.uv, result.x, body)
     params = result.params
     extras = dict(p.unsew)
     try:
@@ -282,7 +312,7 @@ def write_result(work: Path, result, case, cfg, *, report: bool = True, metrics:
 
     work = Path(work)
     work.mkdir(parents=True, exist_ok=True)
-    pattern = pattern_with_extras(result)
+    pattern = pattern_with_extras(result, case.body)
     save_pattern(pattern, work / "pattern.json")
     save_pattern(result.base_pattern, work / BASE_PATTERN_FILE)
     if result.graded_pattern is not None:
