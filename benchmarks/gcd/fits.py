@@ -163,11 +163,11 @@ def reexport(src: Path, dst: Path, body=None) -> None:
     save_pattern(placed, dst / "pattern.json")
 
 
-def graded_placed(src: Path):
+def graded_placed(src: Path, body=None):
     """The graded pattern of the fit result folder ``src`` (pattern_graded.json, the pattern phase
     two started from) placed where the fit's drape hangs its panels, as the fit places its own
-    (:func:`unsew.fit.outputs.placed_where_draped`); None where phase two's pattern was not kept:
-    the fit returned the graded pattern already."""
+    (:func:`unsew.fit.outputs.placed_where_draped`, ``body`` the wearer); None where phase two's
+    pattern was not kept: the fit returned the graded pattern already."""
     from unsew.fit.outputs import placed_where_draped
     from unsew.io.garmentcode import load_pattern
 
@@ -176,7 +176,7 @@ def graded_placed(src: Path):
         return None
     graded = load_pattern(src / "pattern_graded.json")
     x, _, uv, mesh = garment_panels(src, list(graded.panel_order), graded)
-    return placed_where_draped(graded, mesh, uv, x)
+    return placed_where_draped(graded, mesh, uv, x, body)
 
 
 def graded_copy(src: Path, dst: Path, placed=None) -> bool:
@@ -212,7 +212,7 @@ def cmd_graded(args, cases: list[str]) -> int:
         if not (src / cid / "pattern_graded.json").is_file():
             continue
         try:
-            p = graded_placed(src / cid)
+            p = graded_placed(src / cid, _wearer(Path(args.cases) / cid))
         except (UnsewError, OSError, ValueError) as exc:
             print(f"gcd graded: {cid}: {str(exc).splitlines()[0]} (nothing written)", file=sys.stderr)
             return 2

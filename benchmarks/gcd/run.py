@@ -258,6 +258,7 @@ def _add_fit_score_parsers(sub) -> None:
     )
     gr.add_argument("--results", required=True, help="folder of fit results, one folder per case id")
     gr.add_argument("--to", required=True, help="folder for the copies")
+    gr.add_argument("--cases", default=str(DEFAULT_CASES), help="the case folders (their wearers)")
     rx = sub.add_parser(
         "reexport", help="copy fit results with each pattern.json placed where its garment.obj drapes it"
     )
