@@ -21,6 +21,10 @@ Per case (a fit result folder ``RESULTS/<case>`` from ``unsew fit CASE --out RES
   targets are (their start and holds), against the target; ``floor_mm``: the true pattern
   draped so on a 10 % finer mesh against the target (that figure's floor); ``redrape_ratio`` =
   redrape_mm / floor_mm;
+- ``own_redrape_mm``: the recovered pattern.json draped again by unsew from its own placement
+  (``unsew drape RESULT/pattern.json --body CASE``, what a user does next in unsew) against the
+  target, or ``own_redrape_error``: that drape's one line where it is refused (the summary's
+  ``own_redrape_median`` and ``own_redrape_refused``);
 - ``fit_s``: the fit's wall time (metrics.json timings_s).
 A built case without a fit result, or whose fit failed (a non-zero exit in RESULTS/fits.json,
 written by ``gcd fit``: ``fit_exit`` and ``fit_message`` say how), counts as a miss (type and
@@ -144,8 +148,9 @@ def panel_shares(
     return None if true is None else judge.drape_shares(*true, x, f, _panel_of_x(mesh, len(x)))
 
 
-def unsew_drape(case: Path, timeout: int = 1800):
-    """(verts, faces) of ``unsew drape pattern_gt.json --body CASE``, or an error string."""
+def unsew_drape(case: Path, timeout: int = 1800, pattern: Path | None = None):
+    """(verts, faces) of ``unsew drape PATTERN --body CASE`` (default: the case's
+    pattern_gt.json), or an error string."""
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "garment.obj"
         cmd = [
@@ -153,7 +158,7 @@ def unsew_drape(case: Path, timeout: int = 1800):
             "-m",
             "unsew",
             "drape",
-            str(case / "pattern_gt.json"),
+            str(case / "pattern_gt.json" if pattern is None else pattern),
             "--body",
             str(case),
             "--out",
@@ -299,6 +304,31 @@ def _score_drapes(rec: dict, case: Path, result: Path, truth: dict, target, *, r
         cache.write_text(json.dumps({**key, **{k: rec.get(k) for k in ("redrape_mm", "redrape_error")}}))
     if rec.get("redrape_mm") and rec.get("floor_mm"):
         rec["redrape_ratio"] = round(rec["redrape_mm"] / rec["floor_mm"], 3)
+    own_redrape(rec, case, result, target)
+
+
+#: unsew's drape of a fit's pattern.json, kept beside it with the hashes it was made from
+OWN_REDRAPE_CACHE = "redrape_unsew.json"
+
+
+def own_redrape(rec: dict, case: Path, result: Path, target) -> None:
+    """``own_redrape_mm`` (or ``own_redrape_error``) into ``rec``: the fit's pattern.json dressed
+    by ``unsew drape`` on the case's body against ``target`` (verts, faces) [mm], made again only
+    when the file or unsew's source (:func:`unsew_code`) changed."""
+    key = {
+        "pattern_sha256": hashlib.sha256((result / "pattern.json").read_bytes()).hexdigest(),
+        "code": unsew_code(),
+    }
+    cache = result / OWN_REDRAPE_CACHE
+    known = json.loads(cache.read_text()) if cache.is_file() else {}
+    if any(known.get(k) != v for k, v in key.items()):
+        got = unsew_drape(case, pattern=result / "pattern.json")
+        mm = None if isinstance(got, str) else round(judge.chamfer_mm(*got, *target)["chamfer_mm"], 2)
+        known = {**key, "mm": mm, "error": got if isinstance(got, str) else None}
+        cache.write_text(json.dumps(known))
+    rec["own_redrape_mm"] = known["mm"]
+    if known["error"]:
+        rec["own_redrape_error"] = known["error"]
 
 
 def keep_redrape(result: Path, case: Path, x: np.ndarray, f: np.ndarray, mm: float) -> None:
@@ -558,6 +588,8 @@ def summary(rec: dict) -> dict:
         ),
         "chamfer_floor_median": _median([r.get("chamfer_bar_mm") for r in rs]),
         "redrape_ratio_median": _median([r.get("redrape_ratio") for r in fit]),
+        "own_redrape_median": _median([r.get("own_redrape_mm") for r in fit]),
+        "own_redrape_refused": sum(1 for r in fit if r.get("own_redrape_error")),
         "fit_s_median": _median([r.get("fit_s") for r in fit]),
         "floor_median": _median([r.get("floor_mm") for r in rs]),
         "floor_fitted_median": _median([r.get("floor_fitted_mm") for r in rs]),

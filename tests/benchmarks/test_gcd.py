@@ -1231,3 +1231,34 @@ def test_a_fits_garment_obj_gives_each_edges_vertices(tmp_path):
     assert set(got.edge_verts) == set(mesh.edge_verts)
     for key, want in mesh.edge_verts.items():
         assert sorted(got.edge_verts[key]) == sorted(np.asarray(want).tolist()), key
+
+
+def test_the_fits_own_file_is_draped_again_by_unsew_once(tmp_path, monkeypatch):
+    """``gcd score`` drapes each fit's pattern.json again with ``unsew drape`` (what a user does
+    next in unsew) and records its distance to the target, or the one line refusing it; the drape
+    is made again only when the file changes, and the summary counts the refused."""
+    score = _load("score")
+    calls = []
+    square = (np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]]), np.array([[0, 1, 2], [1, 3, 2]]))
+
+    def fake(case, timeout=1800, pattern=None):
+        calls.append(pattern)
+        return "exit 2: unsew: error: drape of P failed: fallen" if "bad" in pattern.read_text() else square
+
+    monkeypatch.setattr(score, "unsew_drape", fake)
+    result = tmp_path / "fit"
+    result.mkdir()
+    (result / "pattern.json").write_text('{"good": 1}')
+    rec = {}
+    score.own_redrape(rec, tmp_path, result, square)
+    assert rec == {"own_redrape_mm": 0.0} and calls == [result / "pattern.json"]
+    score.own_redrape(rec, tmp_path, result, square)
+    assert len(calls) == 1  # the same file: its drape is not made again
+    (result / "pattern.json").write_text('{"bad": 1}')
+    rec = {}
+    score.own_redrape(rec, tmp_path, result, square)
+    assert len(calls) == 2 and rec["own_redrape_mm"] is None and "fallen" in rec["own_redrape_error"]
+    fitted = {"fitted": True, "panel_err": 0.1}
+    recs = {"cases": {"a": {**fitted, "own_redrape_mm": 4.0}, "b": {**fitted, **rec}}}
+    s = score.summary(recs)
+    assert s["own_redrape_median"] == 4.0 and s["own_redrape_refused"] == 1
