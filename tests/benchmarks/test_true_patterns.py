@@ -8,11 +8,16 @@ from benchmarks_loader import load_benchmark
 bench = load_benchmark("bench_true_patterns")
 
 
-def test_small_mode_dresses_the_hoodie(tmp_path):
+@pytest.fixture
+def foreign():
+    """shared/foreign beside the repository (GarmentCode's bodies and patterns), or the test skipped."""
     try:
-        bench.foreign_dir()
+        return bench.foreign_dir()
     except SystemExit:
         pytest.skip("no shared/foreign beside the repository")
+
+
+def test_small_mode_dresses_the_hoodie(tmp_path, foreign):
     s = bench.SMALL
     (row,) = bench.run(
         [s["pattern"]],
@@ -58,16 +63,12 @@ def _fake_gcd_cases(root, foreign, ids):
         (d / "meta.json").write_text(json.dumps({"source": {"body": {"name": "gc_mean_all"}}}))
 
 
-def test_gcd_small_mode_dresses_a_case_resumes_and_records(tmp_path, monkeypatch):
+def test_gcd_small_mode_dresses_a_case_resumes_and_records(tmp_path, monkeypatch, foreign):
     """The --gcd path: a case's pattern_gt.json dressed on its body.obj, the row written as it is
     measured and not dressed again, a case without files listed as not dressed, and the record
     (results JSON and the docs table between its markers, replaced on a second record)."""
     import json
 
-    try:
-        foreign = bench.foreign_dir()
-    except SystemExit:
-        pytest.skip("no shared/foreign beside the repository")
     cases, out = tmp_path / "cases", tmp_path / "out"
     _fake_gcd_cases(cases, foreign, ["gc_s1_000"])
     s = bench.SMALL
@@ -131,17 +132,13 @@ def _placed(d):
     return mesh, x / np.bincount(np.asarray(mesh.x_of_u), minlength=mesh.n_x)[:, None]
 
 
-def test_to_newton_reads_where_unsews_drape_puts_each_vertex_against_the_target(tmp_path):
+def test_to_newton_reads_where_unsews_drape_puts_each_vertex_against_the_target(tmp_path, foreign):
     """unsew's drape 5 cm above the target, vertex for vertex: 50 mm apart, 50 mm above; the
     target scaled 1.1 times has 1.21 times the cloth; nothing without a target or with a drape
     of another mesh."""
     import numpy as np
     import trimesh
 
-    try:
-        foreign = bench.foreign_dir()
-    except SystemExit:
-        pytest.skip("no shared/foreign beside the repository")
     _fake_gcd_cases(tmp_path, foreign, ["gc_s1_000"])
     d, obj = tmp_path / "gc_s1_000", tmp_path / "gc_s1_000.obj"
     mesh, x = _placed(d)
@@ -167,7 +164,7 @@ def test_to_newton_reads_where_unsews_drape_puts_each_vertex_against_the_target(
     assert bench.to_newton(d, obj) == {}
 
 
-def test_newton_stretch_reads_the_targets_edges_as_unsews_drapes_are_read(tmp_path):
+def test_newton_stretch_reads_the_targets_edges_as_unsews_drapes_are_read(tmp_path, foreign):
     """A case's newton target read for its largest edge stretch: none without a target or with
     one on another mesh; a target scaled 1.3 times about its centre reads 1.3 times more."""
     import json
@@ -178,10 +175,6 @@ def test_newton_stretch_reads_the_targets_edges_as_unsews_drapes_are_read(tmp_pa
     from unsew.io.garmentcode import load_pattern
     from unsew.meshing import mesh_pattern
 
-    try:
-        foreign = bench.foreign_dir()
-    except SystemExit:
-        pytest.skip("no shared/foreign beside the repository")
     _fake_gcd_cases(tmp_path, foreign, ["gc_s1_000"])
     d = tmp_path / "gc_s1_000"
     assert bench.newton_stretch(d) is None
@@ -242,15 +235,11 @@ def test_sewn_ratio_says_which_edge_is_gathered_onto_a_longer_one():
     assert bench._sewn_ratio(p, "top", 1) is None
 
 
-def test_sleeve_covers_read_drapes_on_the_specifications_mesh(tmp_path):
+def test_sleeve_covers_read_drapes_on_the_specifications_mesh(tmp_path, foreign):
     """sleeve_covers: the shirt's sleeves where its own placement puts them (flat halves before and
     behind each arm, not yet sewn round it), on the mesh the benchmark makes of the specification,
     are judged off the arm in unsew's drape and in the target alike; a drape on another mesh is not
     judged; the hoodie has no sleeves."""
-    try:
-        foreign = bench.foreign_dir()
-    except SystemExit:
-        pytest.skip("no shared/foreign beside the repository")
     import shutil
 
     from unsew.io.mesh import write_obj
