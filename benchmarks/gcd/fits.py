@@ -207,6 +207,9 @@ def cmd_graded(args, cases: list[str]) -> int:
     if not src.is_dir() or dst.resolve() == src.resolve():
         print(f"gcd graded: --results {src} must be a folder and --to another one", file=sys.stderr)
         return 2
+    if not Path(args.cases).is_dir():
+        print(f"gcd graded: --cases {args.cases} is not a folder (the wearers)", file=sys.stderr)
+        return 2
     placed = {}
     for cid in cases:
         if not (src / cid / "pattern_graded.json").is_file():
@@ -255,6 +258,9 @@ def cmd_reexport(args, cases: list[str]) -> int:
     done = [cid for cid in cases if (src / cid / "pattern.json").is_file()]
     if not done:
         print(f"gcd reexport: no fit result folder in {src}", file=sys.stderr)
+        return 2
+    if not Path(args.cases).is_dir():
+        print(f"gcd reexport: --cases {args.cases} is not a folder (the wearers)", file=sys.stderr)
         return 2
     for cid in done:
         try:
