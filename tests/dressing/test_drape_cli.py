@@ -170,3 +170,26 @@ def test_drape_cli_uses_the_contact_a_fit_wrote(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "positive threshold" in err and len(err.strip().splitlines()) == 1
     assert not out.exists()
+
+
+def test_drape_cli_case_folder_reads_its_wearer_only(tmp_path, capsys):
+    """--body CASE takes the case's wearer: its pattern_gt.json is not what is draped, so a true
+    pattern that does not read (or warns) neither stops the drape nor speaks in its output."""
+    from unsew.body.body import default_body
+    from unsew.io.mesh import write_obj
+
+    b = default_body()
+    case = tmp_path / "case"
+    case.mkdir()
+    write_obj(case / "body.obj", b.verts, b.faces)
+    c = b.verts[b.faces].mean(axis=1)
+    band = b.faces[(c[:, 1] > 1.0) & (c[:, 1] < 1.2)]  # an open tube lying on the torso
+    write_obj(case / "target.obj", b.verts, band)
+    (case / "meta.json").write_text("{}")
+    (case / "pattern_gt.json").write_text("{ not a pattern")
+    pj = tmp_path / "skirt.json"
+    save_pattern(make_base_pattern("skirt"), pj)
+    out = tmp_path / "garment.obj"
+    small = ["--edge-length", "0.06", "--sew-steps", "30", "--settle-steps", "0", "--no-progress"]
+    assert main(["drape", str(pj), "--body", str(case), *small, "--out", str(out)]) == 0
+    assert out.is_file() and "pattern_gt" not in capsys.readouterr().err

@@ -31,10 +31,12 @@ def load_case(
     up: str | None = None,
     front: str | None = None,
     garment: str | None = None,
+    truth: bool = True,
 ) -> Case:
     """Load and check a case folder (FORMATS.md). Options override meta.json's
-    units/up/front/garment. Raises InputError with a one-line reason on bad input."""
-    files = read_case(path, units=units, up=up, front=front, garment=garment)
+    units/up/front/garment; ``truth=False`` leaves its pattern_gt.json unread. Raises InputError
+    with a one-line reason on bad input."""
+    files = read_case(path, units=units, up=up, front=front, garment=garment, need_truth=truth)
     body = load_case_body(files)
     target = files.files["target"]
     check_garment_on_body(files.target_verts, body, what=f"target {target}")
@@ -54,7 +56,7 @@ def load_case(
 def load_wearer(path: str | os.PathLike) -> Body:
     """The wearer of a case folder, its target not needed (``unsew drape --body CASE`` on a case
     made before its garment is draped). Raises InputError with a one-line reason on bad input."""
-    return load_case_body(read_case(path, need_target=False))
+    return load_case_body(read_case(path, need_target=False, need_truth=False))
 
 
 def load_case_body(files: CaseFiles) -> Body:

@@ -120,7 +120,8 @@ def _load_body(args):
         if any((path / n).is_file() for n in ("target.obj", "target.ply")):
             from unsew.body.case import load_case
 
-            return load_case(path).body  # the case's target is checked to lie on its wearer
+            # the case's target is checked to lie on its wearer; its true pattern is not what is draped
+            return load_case(path, truth=False).body
         if (path / "meta.json").is_file() or not (path / "body.obj").is_file():
             from unsew.body.case import load_wearer
 

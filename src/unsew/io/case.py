@@ -109,10 +109,12 @@ def read_case(
     front: str | None = None,
     garment: str | None = None,
     need_target: bool = True,
+    need_truth: bool = True,
 ) -> CaseFiles:
     """Read and check a case folder's files. Options override meta.json's units/up/front/garment.
     ``need_target=False``: a folder without target.obj or target.ply reads as its wearer alone
-    (empty target arrays), as ``unsew drape --body CASE`` needs it."""
+    (empty target arrays), as ``unsew drape --body CASE`` needs it. ``need_truth=False``: its
+    pattern_gt.json is left unread (``pattern_gt`` None), so a wearer's case says nothing of it."""
     d = Path(path)
     if not d.is_dir():
         raise InputError(f"case folder {d} does not exist")
@@ -140,7 +142,7 @@ def read_case(
         )
     pattern_gt = None
     gt = d / "pattern_gt.json"
-    if gt.is_file():
+    if need_truth and gt.is_file():
         pattern_gt = load_pattern(gt)
         files["pattern_gt"] = gt
     return CaseFiles(
