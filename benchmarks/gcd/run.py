@@ -12,6 +12,7 @@
     python -m benchmarks gcd status [--out DIR]    every case's build status
     python -m benchmarks gcd keep [--out DIR]      store the built targets in targets/ (kept.py)
     python -m benchmarks gcd settle --out DIR --to DIR2 [--only ...]   each built target run on to rest
+    python -m benchmarks gcd remesh --out DIR --to DIR2 [--max-edge M] [--only ...]   targets meshed finer
     python -m benchmarks gcd types [--out DIR] [--drapes DIR] [--record]   the design read off the targets
     python -m benchmarks gcd judge-check           the judge on synthetic inputs (seconds)
     python -m benchmarks gcd panels --results R --cases DIR   per true piece, each fit stage; darts' floor
@@ -44,6 +45,7 @@ import build  # noqa: E402  (this folder on the path first)
 import compare  # noqa: E402
 import fits  # noqa: E402
 import kept  # noqa: E402
+import remesh  # noqa: E402
 import score  # noqa: E402
 import settle  # noqa: E402
 import starts  # noqa: E402
@@ -141,6 +143,31 @@ def cmd_settle(args) -> int:
             f"moved {rec['moved_mm']:.2f} mm, {rec['seconds']:.0f} s",
             flush=True,
         )
+    return 0
+
+
+def cmd_remesh(args) -> int:
+    """Every case of ``--out`` with a target (or ``--only``) copied to ``--to`` with its target
+    meshed finer (remesh.py)."""
+    src, dst = Path(args.out), Path(args.to)
+    if not src.is_dir() or src.resolve() == dst.resolve():
+        print(f"gcd remesh: --out {src} is not a folder, or it is --to", file=sys.stderr)
+        return 2
+    if not 0.001 <= args.max_edge <= 0.1:
+        print(f"gcd remesh: --max-edge {args.max_edge:g} is in metres, within 0.001..0.1", file=sys.stderr)
+        return 2
+    ids = args.only or [c for c, _, _ in build.case_ids() if (src / c / "target.obj").is_file()]
+    missing = [c for c in ids if not (src / c / "target.obj").is_file()]
+    if missing:
+        print(f"gcd remesh: {missing[0]} has no target in {src}", file=sys.stderr)
+        return 2
+    dst.mkdir(parents=True, exist_ok=True)
+    if (src / "build.json").is_file():  # the copies count as built where the originals do
+        (dst / "build.json").write_text((src / "build.json").read_text())
+    for cid in ids:
+        rec = remesh.remesh_case(src / cid, dst / cid, max_edge=args.max_edge)
+        n0, n1 = rec["vertices"]
+        print(f"{cid}: {n0} -> {n1} vertices, area {rec['area_m2'][0]:.4f} -> {rec['area_m2'][1]:.4f} m^2")
     return 0
 
 
@@ -319,6 +346,19 @@ def _add_build_parsers(sub) -> None:
     ff.add_argument("--record", action="store_true", help="write them into results.json")
 
 
+def _add_copy_parsers(sub) -> None:
+    """The modes that copy the built cases with their targets changed: settle, remesh."""
+    se = sub.add_parser("settle", help="copy the built cases with each newton target run on until at rest")
+    se.add_argument("--out", default=str(DEFAULT_CASES), help="the built cases")
+    se.add_argument("--to", required=True, help="folder for the settled copies")
+    se.add_argument("--only", nargs="*", help="case ids (default: every case with a target)")
+    rm = sub.add_parser("remesh", help="copy the cases with each target meshed finer (the same surface)")
+    rm.add_argument("--out", default=str(DEFAULT_CASES), help="the built cases")
+    rm.add_argument("--to", required=True, help="folder for the copies")
+    rm.add_argument("--max-edge", type=float, default=remesh.MAX_EDGE, help="longest target edge [m]")
+    rm.add_argument("--only", nargs="*", help="case ids (default: every case with a target)")
+
+
 def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv[:1] in (["panels"], ["sew-probe"]):  # the modes with their own options
@@ -337,10 +377,7 @@ def main(argv=None) -> int:
     st.add_argument("--out", default=str(DEFAULT_CASES))
     kp = sub.add_parser("keep", help="store the built cases' newton targets in benchmarks/gcd/targets")
     kp.add_argument("--out", default=str(DEFAULT_CASES))
-    se = sub.add_parser("settle", help="copy the built cases with each newton target run on until at rest")
-    se.add_argument("--out", default=str(DEFAULT_CASES), help="the built cases")
-    se.add_argument("--to", required=True, help="folder for the settled copies")
-    se.add_argument("--only", nargs="*", help="case ids (default: every case with a target)")
+    _add_copy_parsers(sub)
     _add_types_parser(sub)
     _add_starts_parser(sub)
     uw = sub.add_parser("unwelded", help="the design read off each newton target with its panels unwelded")
@@ -367,6 +404,7 @@ def main(argv=None) -> int:
         "status": cmd_status,
         "keep": cmd_keep,
         "settle": cmd_settle,
+        "remesh": cmd_remesh,
         "judge-check": lambda a: score.judge_check(),
     }
     if args.cmd in modes:

@@ -1314,3 +1314,50 @@ def test_the_fits_own_file_is_draped_again_by_unsew_once(tmp_path, monkeypatch):
     recs = {"cases": {"a": {**fitted, "own_redrape_mm": 4.0}, "b": {**fitted, **rec}}}
     s = score.summary(recs)
     assert s["own_redrape_median"] == 4.0 and s["own_redrape_refused"] == 1
+
+
+def test_gcd_remesh_copies_a_case_with_its_target_meshed_finer_on_the_same_surface(tmp_path):
+    """Each copy's target has no edge over --max-edge, the same area and bounds and the same
+    openings; every other file is copied and a floor measured on the old meshing is dropped."""
+    import trimesh
+
+    case = tmp_path / "cases" / "gc_s1_000"
+    case.mkdir(parents=True)
+    tube = trimesh.creation.cylinder(radius=0.15, height=0.4, sections=12)
+    keep = np.abs(tube.face_normals[:, 2]) < 0.5  # the side alone: a tube open at both ends
+    target = trimesh.Trimesh(tube.vertices, tube.faces[keep], process=False)
+    target.export(case / "target.obj")
+    for name in ("body.obj", "meta.json", "pattern_gt.json", "floors.json"):
+        (case / name).write_text("{}" if name.endswith(".json") else "v 0 0 0\n")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "src"), str(ROOT)]))
+    args = ["gcd", "remesh", "--out", str(tmp_path / "cases"), "--to", str(tmp_path / "to")]
+    r = subprocess.run(
+        [sys.executable, "-m", "benchmarks", *args, "--max-edge", "0.02", "--only", case.name],
+        cwd=ROOT,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert r.returncode == 0, r.stderr
+    out = tmp_path / "to" / case.name
+    fine = trimesh.load(out / "target.obj", process=False, force="mesh")
+    assert fine.edges_unique_length.max() <= 0.02 + 1e-9 < target.edges_unique_length.max()
+    assert len(fine.vertices) > 4 * len(target.vertices)
+    assert fine.area == pytest.approx(target.area, rel=1e-6)  # the OBJ keeps 8 decimals
+    assert np.allclose(fine.bounds, target.bounds, atol=1e-7)
+    open_edges = trimesh.grouping.group_rows(fine.edges_sorted, require_count=1)
+    assert len(open_edges) > 0 and len(trimesh.graph.connected_components(fine.edges_sorted[open_edges])) == 2
+    assert (out / "pattern_gt.json").is_file() and (out / "body.obj").is_file()
+    assert not (out / "floors.json").exists()
+    counts = [len(trimesh.load(case / "target.obj", process=False).vertices), len(fine.vertices)]
+    assert json.loads((out / "remesh.json").read_text())["vertices"] == counts
+    bad = subprocess.run(
+        [sys.executable, "-m", "benchmarks", *args, "--max-edge", "2", "--only", case.name],
+        cwd=ROOT,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert bad.returncode == 2 and len(bad.stderr.strip().splitlines()) == 1
