@@ -1331,14 +1331,13 @@ def test_gcd_remesh_copies_a_case_with_its_target_meshed_finer_on_the_same_surfa
         (case / name).write_text("{}" if name.endswith(".json") else "v 0 0 0\n")
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "src"), str(ROOT)]))
     args = ["gcd", "remesh", "--out", str(tmp_path / "cases"), "--to", str(tmp_path / "to")]
-    r = subprocess.run(
-        [sys.executable, "-m", "benchmarks", *args, "--max-edge", "0.02", "--only", case.name],
-        cwd=ROOT,
-        env=env,
-        capture_output=True,
-        text=True,
-        check=False,
-    )
+    args += ["--only", case.name]
+
+    def remesh(max_edge: str):
+        cmd = [sys.executable, "-m", "benchmarks", *args, "--max-edge", max_edge]
+        return subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True, check=False)
+
+    r = remesh("0.02")
     assert r.returncode == 0, r.stderr
     out = tmp_path / "to" / case.name
     fine = trimesh.load(out / "target.obj", process=False, force="mesh")
@@ -1352,12 +1351,5 @@ def test_gcd_remesh_copies_a_case_with_its_target_meshed_finer_on_the_same_surfa
     assert not (out / "floors.json").exists()
     counts = [len(trimesh.load(case / "target.obj", process=False).vertices), len(fine.vertices)]
     assert json.loads((out / "remesh.json").read_text())["vertices"] == counts
-    bad = subprocess.run(
-        [sys.executable, "-m", "benchmarks", *args, "--max-edge", "2", "--only", case.name],
-        cwd=ROOT,
-        env=env,
-        capture_output=True,
-        text=True,
-        check=False,
-    )
+    bad = remesh("2")  # metres: a target edge of two metres is no meshing
     assert bad.returncode == 2 and len(bad.stderr.strip().splitlines()) == 1
