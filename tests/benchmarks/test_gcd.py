@@ -965,34 +965,18 @@ def test_reexport_places_an_earlier_fit_as_the_fit_exports_it_now(tmp_path):
     assert (dst / "garment.obj").is_file() and not (dst / "redrape_newton.json").exists()
 
 
+def _copied(run, mode: str, results, to, cases) -> int:
+    """``gcd reexport`` or ``gcd graded`` run on these folders; its exit code."""
+    return run.main([mode, "--results", str(results), "--to", str(to), "--cases", str(cases)])
+
+
 def test_reexport_refuses_a_missing_or_same_folder_in_one_line(tmp_path, capsys):
     run = _load("run")
-    assert (
-        run.main(
-            [
-                "reexport",
-                "--results",
-                str(tmp_path / "none"),
-                "--to",
-                str(tmp_path / "x"),
-                "--cases",
-                str(tmp_path),
-            ]
-        )
-        == 2
-    )
+    assert _copied(run, "reexport", tmp_path / "none", tmp_path / "x", tmp_path) == 2
     assert "is not a folder" in capsys.readouterr().err
-    assert (
-        run.main(["reexport", "--results", str(tmp_path), "--to", str(tmp_path), "--cases", str(tmp_path)])
-        == 2
-    )
+    assert _copied(run, "reexport", tmp_path, tmp_path, tmp_path) == 2
     assert "another folder" in capsys.readouterr().err
-    assert (
-        run.main(
-            ["reexport", "--results", str(tmp_path), "--to", str(tmp_path / "x"), "--cases", str(tmp_path)]
-        )
-        == 2
-    )
+    assert _copied(run, "reexport", tmp_path, tmp_path / "x", tmp_path) == 2
     assert "no fit result folder" in capsys.readouterr().err
     (tmp_path / "gc_s1_000").mkdir(exist_ok=True)
     (tmp_path / "gc_s1_000" / "pattern.json").write_text("{}")  # a fit, but no wearers to read
@@ -1001,12 +985,7 @@ def test_reexport_refuses_a_missing_or_same_folder_in_one_line(tmp_path, capsys)
     assert "--cases" in capsys.readouterr().err
     (tmp_path / "gc_s1_000").mkdir(exist_ok=True)
     (tmp_path / "gc_s1_000" / "pattern.json").write_text("{}")
-    assert (
-        run.main(
-            ["reexport", "--results", str(tmp_path), "--to", str(tmp_path / "x"), "--cases", str(tmp_path)]
-        )
-        == 2
-    )
+    assert _copied(run, "reexport", tmp_path, tmp_path / "x", tmp_path) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("gcd reexport: gc_s1_000: ")
     assert not (tmp_path / "x" / "gc_s1_000").exists()  # nothing half written
@@ -1206,30 +1185,12 @@ def test_graded_copy_judges_the_pattern_phase_two_started_from_placed_as_the_fit
 
 def test_graded_refuses_a_missing_folder_or_fits_without_phase_two_in_one_line(tmp_path, capsys):
     run = _load("run")
-    assert (
-        run.main(
-            [
-                "graded",
-                "--results",
-                str(tmp_path / "none"),
-                "--to",
-                str(tmp_path / "x"),
-                "--cases",
-                str(tmp_path),
-            ]
-        )
-        == 2
-    )
+    assert _copied(run, "graded", tmp_path / "none", tmp_path / "x", tmp_path) == 2
     assert "must be a folder" in capsys.readouterr().err
     (tmp_path / "gc_s1_000").mkdir()
     (tmp_path / "gc_s1_000" / "pattern_graded.json").write_text("{}")
     (tmp_path / "gc_s1_000" / "metrics.json").write_text(json.dumps({"redress": None}))
-    assert (
-        run.main(
-            ["graded", "--results", str(tmp_path), "--to", str(tmp_path / "x"), "--cases", str(tmp_path)]
-        )
-        == 2
-    )
+    assert _copied(run, "graded", tmp_path, tmp_path / "x", tmp_path) == 2
     assert "kept phase two's pattern" in capsys.readouterr().err
 
 
@@ -1255,10 +1216,7 @@ def test_graded_writes_nothing_when_one_fit_cannot_be_read(tmp_path, capsys):
         if cid == "gc_s1_000":
             write_obj(d / "garment.obj", x, mesh.faces, uv=mesh.uv, faces_uv=mesh.faces_uv)
     out = tmp_path / "graded"
-    assert (
-        run.main(["graded", "--results", str(tmp_path / "fits"), "--to", str(out), "--cases", str(tmp_path)])
-        == 2
-    )
+    assert _copied(run, "graded", tmp_path / "fits", out, tmp_path) == 2
     err = capsys.readouterr().err
     assert "gc_s1_001" in err and "nothing written" in err and len(err.strip().splitlines()) == 1
     assert not out.exists()
