@@ -139,6 +139,35 @@ def test_a_deep_armhole_is_crossed_at_the_shoulder_and_a_sleeve_end_where_it_end
     assert p is not None and abs(_arm_share(p, arm) - reach) < 0.02
 
 
+def _with_bands(v, f, centre, radius):
+    """The garment (V, 3), (F, 3) with a short open tube of ``radius`` [m] at ``centre`` (3,) [m]
+    and its mirror across x = 0, their axes front to back: two free loops per side."""
+    import trimesh
+
+    out_v, out_f = [v], [f]
+    n = len(v)
+    for c in (np.asarray(centre, float), np.asarray(centre, float) * [-1.0, 1.0, 1.0]):
+        t = trimesh.creation.cylinder(radius=radius, height=0.03, sections=24)
+        t = trimesh.Trimesh(t.vertices, t.faces[np.abs(t.face_normals[:, 2]) < 0.5], process=True)
+        t.apply_translation(c)
+        out_v.append(np.asarray(t.vertices))
+        out_f.append(np.asarray(t.faces) + n)
+        n += len(t.vertices)
+    return np.concatenate(out_v), np.concatenate(out_f)
+
+
+def test_a_wide_cuff_hanging_far_from_the_shoulder_is_a_sleeve_end(skeleton):
+    """A loop round no limb, 6.5 cm in radius (wider than a tight cuff), hanging beside the
+    torso: by the wrist's height a bell sleeve's end (a long sleeve); 20 cm under the shoulder
+    joint an armhole's rim, which leaves the sleeveless top sleeveless."""
+    v, f = _target("tank_top__default")
+    wrist, sh = skeleton.position("left_wrist"), skeleton.position("left_shoulder")
+    r = read_design(*_with_bands(v, f, wrist + [0.0, 0.08, -0.12], 0.065), skeleton)
+    assert r.sleeves == "long" and "off the arm line" in r.evidence["sleeves"], r.evidence
+    r = read_design(*_with_bands(v, f, sh + [0.05, -0.2, 0.0], 0.065), skeleton)
+    assert r.sleeves == "none", r.evidence
+
+
 def _tube(radius, top, bottom, slit=0.0, n=48, rows=12):
     """(V, 3), (F, 3) an open cylinder round the Y axis [m] from height ``top`` down to
     ``bottom``, with a slit ``slit`` [m] high up the front from its hem."""

@@ -68,8 +68,12 @@ ARMHOLE_SHARE = 0.2
 #: ... one past it and up to this share ends a short sleeve (above the elbow), beyond it a long one.
 SHORT_SLEEVE_SHARE = 0.5
 #: A loop round no limb, beside the torso and narrower than this [m] (mean radius) is a sleeve's
-#: end hanging off the arm line (a wide armhole's radius is about 0.07 m).
+#: end hanging off the arm line (a wide armhole's radius is about 0.07 m) ...
 SLEEVE_END_RADIUS = 0.05
+#: ... and so is a wider one (a bell sleeve's cuff) whose centre lies farther than this many of
+#: its radii from the shoulder joint: an armhole goes round the shoulder, its centre within about
+#: its diameter of the joint.
+SLEEVE_END_REACH = 4.0
 #: A square neckline half: its bottom stays within this share of the half's depth over at least
 #: :data:`SQUARE_FLAT` of the neckline's width (a round bottom: about half of it; a V: a point)
 #: and ends in a corner (a shallow round back is as flat, without corners).
@@ -170,9 +174,10 @@ def _arm_share(p: np.ndarray, joints: list[np.ndarray]) -> float:
 def _hanging_ends(v: np.ndarray, loops, centres: np.ndarray, skeleton, free: np.ndarray) -> list[float]:
     """Shares of the arm of the sleeve ends that hang off the arm line (a tight cuff of a sleeve
     that did not follow the arm): ``free`` (C,) bool loops round no limb, narrower than
-    :data:`SLEEVE_END_RADIUS`, beside the torso (out past the shoulder joints' half-way line) and
-    between the hips and the shoulders. The share: the farther of the end's projection on the
-    arm line and its straight distance from the shoulder joint, over the arm's length."""
+    :data:`SLEEVE_END_RADIUS` or farther than :data:`SLEEVE_END_REACH` radii from the shoulder
+    joint, beside the torso (out past the shoulder joints' half-way line) and between the hips
+    and the shoulders. The share: the farther of the end's projection on the arm line and its
+    straight distance from the shoulder joint, over the arm's length."""
     chains = _limb_chains(skeleton)
     mid_x = 0.5 * (skeleton.position("left_shoulder")[0] + skeleton.position("right_shoulder")[0])
     half = 0.5 * abs(skeleton.position("left_shoulder")[0] - skeleton.position("right_shoulder")[0])
@@ -180,16 +185,15 @@ def _hanging_ends(v: np.ndarray, loops, centres: np.ndarray, skeleton, free: np.
     out = []
     for i in np.flatnonzero(free):
         c = centres[i]
-        if (
-            _radius(v, loops[i]) > SLEEVE_END_RADIUS
-            or abs(c[0] - mid_x) < 0.5 * half
-            or not hip_y < c[1] < sh_y
-        ):
+        if abs(c[0] - mid_x) < 0.5 * half or not hip_y < c[1] < sh_y:
             continue
         side = "left" if (c[0] - mid_x) * (skeleton.position("left_shoulder")[0] - mid_x) > 0 else "right"
         arm = chains[f"{side}_arm"]
+        radius, from_shoulder = _radius(v, loops[i]), float(np.linalg.norm(c - arm[0]))
+        if radius > SLEEVE_END_RADIUS and from_shoulder <= SLEEVE_END_REACH * radius:
+            continue
         reach = float(np.linalg.norm(arm[1] - arm[0]) + np.linalg.norm(arm[2] - arm[1]))
-        out.append(max(_arm_share(c, arm), float(np.linalg.norm(c - arm[0])) / reach))
+        out.append(max(_arm_share(c, arm), from_shoulder / reach))
     return out
 
 
