@@ -53,9 +53,9 @@ def start_row(d: Path, source: str, target: Path, *, log) -> dict:
     """One case's row: the truth, the design read, the chosen design and the library's choice."""
     from unsew.errors import InputError
     from unsew.fit.config import FitConfig
-    from unsew.fit.fit import _scene
     from unsew.fit.material import AUTO_START_MATERIAL
     from unsew.fit.progress import Progress
+    from unsew.fit.stages import build_context
     from unsew.fit.start import choose_base, with_garment_read
     from unsew.pattern.base import BASES
     from unsew.sim.material import get_material
@@ -70,9 +70,9 @@ def start_row(d: Path, source: str, target: Path, *, log) -> dict:
     except InputError as exc:
         return {**row, "read": f"refused: {str(exc).splitlines()[0]}"}
     row["read"] = case.design.summary()
-    scene, _ = _scene(case, cfg, Progress(False), log)
+    scene = build_context(case, cfg, progress=Progress(False), log=log)
     try:
-        design = choose_base(case, scene.target, scene.sdf, cfg, mat, progress=Progress(False), log=log)
+        design = choose_base(case, scene.target, scene.sdf, scene.cfg, mat, progress=Progress(False), log=log)
     except InputError as exc:
         return {**row, "design": f"refused: {str(exc).splitlines()[0][:200]}"}
     row["design"], row["design_mm"], row["design_torso_mm"] = _best(design)
@@ -84,7 +84,7 @@ def start_row(d: Path, source: str, target: Path, *, log) -> dict:
             dataclasses.replace(case, design=None),
             scene.target,
             scene.sdf,
-            cfg,
+            scene.cfg,
             mat,
             progress=Progress(False),
             log=log,

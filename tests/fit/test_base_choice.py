@@ -391,3 +391,35 @@ def test_no_base_dressed_says_each_candidates_reason_in_one_line(monkeypatch):
     assert "\n" not in msg and "--base" in msg
     for name, why in reasons.items():
         assert f"{name}: {why}" in msg
+
+
+def _row(base, whole, torso, arms=True):
+    return {"base": base, "chamfer_mm": whole, "torso_mm": torso, "arms": arms}
+
+
+def test_drafted_dresses_close_on_the_torso_are_told_apart_by_the_skirt():
+    """A dress read off a target (the GarmentCode sample's gc_s5_001, its candidates' coarse drapes
+    [mm]): the six lie within 0.6-1.0 mm of each other over the torso, where the bodice shows,
+    and 12.4-16.2 mm apart over the whole garment, where the skirt does; the seamed A-line dress,
+    nearest over the whole garment, is chosen, and the runner-up graded too is the next nearest
+    there. A candidate nearer over the whole garment but farther over the torso than the tie
+    allows stays behind (its bodice is not the target's); the library's bases keep the torso order."""
+    from unsew.fit.start import _ranked, _tie
+
+    rows = [
+        _row("fitted-long2", 15.8, 11.6),
+        _row("straight-long", 13.7, 11.7),
+        _row("seam-alinex2-band", 13.6, 12.0),
+        _row("fitted-long", 16.2, 12.4),
+        _row("seam-alinex4", 12.4, 12.4),
+        _row("seam-alinex2", 12.9, 12.6),
+        _row("straight-short", 9.0, 14.0),
+        _row("failed", None, None, None),
+    ]
+    patterns = {r["base"]: object() for r in rows if r["chamfer_mm"] is not None}
+    ranked, key = _ranked(rows, patterns, "torso_mm", True, skirts=True)
+    assert [r["base"] for r in ranked[:2]] == ["seam-alinex4", "seam-alinex2"]
+    assert key == "chamfer_mm" and _tie(ranked, patterns, key, True)[0] == "seam-alinex2"
+    assert ranked[-1]["base"] == "failed" and ranked[-2]["base"] == "straight-short"
+    library, key = _ranked(rows, patterns, "torso_mm", True, skirts=False)
+    assert library[0]["base"] == "fitted-long2" and key == "torso_mm"

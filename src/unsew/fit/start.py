@@ -284,9 +284,9 @@ def choose_base(
     # every candidate and the target have cloth there: a skeleton without torso bones has none)
     any_arms = any(r.get("arms") and r["base"] in patterns for r in rows)
     key = "torso_mm" if on_torso else "chamfer_mm"
-    rows.sort(key=lambda r: (r["base"] not in patterns, any_arms and not r.get("arms"), r.get(key) or 0.0))
+    rows, key = _ranked(rows, patterns, key, any_arms, skirts=on_torso and reading is not None)
     tie = _tie(rows, patterns, key, any_arms)
-    how = _how(band, on_torso, tie)
+    how = _how(band, on_torso, tie, skirts=key != "torso_mm" and on_torso)
     best = rows[0]["base"]
     log(
         "base: "
@@ -340,9 +340,10 @@ def _require_one_dressed(rows: list, patterns: dict, garment: str) -> None:
     )
 
 
-def _how(band: tuple | None, on_torso: bool, tie: tuple | None) -> str:
+def _how(band: tuple | None, on_torso: bool, tie: tuple | None, *, skirts: bool = False) -> str:
     """How the base was chosen, for the log: on the torso ``band`` (heights [m]) or the whole
-    garment, and the runner-up graded too when ``tie``."""
+    garment (``skirts``: among those within BASE_TIE on the torso), and the runner-up graded too
+    when ``tie``."""
     how = ""
     if band:
         how = (
@@ -350,6 +351,8 @@ def _how(band: tuple | None, on_torso: bool, tie: tuple | None) -> str:
             if on_torso
             else "; no cloth over the torso to compare, chosen on the whole garment"
         )
+        if skirts:
+            how += f", then on the whole garment among those within {100 * (BASE_TIE - 1):.0f} % there"
     if tie is not None:
         how += f"; {tie[0]} within {100 * (BASE_TIE - 1):.0f} %: both graded"
     return how
@@ -392,6 +395,25 @@ def _candidate(name: str, pat, scene: Scene, material, want: tuple, band: tuple 
     if band:
         row["torso_mm"] = torso if math.isfinite(torso) else None
     return row
+
+
+def _ranked(rows: list, patterns: dict, key: str, any_arms: bool, *, skirts: bool) -> tuple[list, str]:
+    """(rows best first, the distance the best and the runner-up are told apart on): the dressed
+    first, those whose arms agree with the target's first when any do, then the nearest on
+    ``key``. With ``skirts`` (dresses drafted from the reading: they differ below the hips too,
+    in the skirt's cut, where the torso band does not look) the candidates lying within
+    :data:`BASE_TIE` of the best on the torso are ranked again on the whole garment."""
+    rows = sorted(
+        rows, key=lambda r: (r["base"] not in patterns, any_arms and not r.get("arms"), r.get(key) or 0.0)
+    )
+    if not skirts or rows[0]["base"] not in patterns:
+        return rows, key
+    d0, arms0 = rows[0][key], rows[0].get("arms")
+    near = [r for r in rows if r["base"] in patterns and r.get("arms") == arms0 and r[key] <= BASE_TIE * d0]
+    if len(near) < 2:
+        return rows, key
+    near.sort(key=lambda r: r["chamfer_mm"])
+    return near + [r for r in rows if r not in near], "chamfer_mm"
 
 
 def _tie(rows: list, patterns: dict, key: str, any_arms: bool) -> tuple | None:
