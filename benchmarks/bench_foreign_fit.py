@@ -469,10 +469,11 @@ def print_latest(path: Path) -> int:
     for r in rows:  # today's floor: a case re-floored since its fit is judged on the new one
         meta = json.loads((CASES / r["case"] / "meta.json").read_text())
         r["floor_mm"] = (meta.get("floor") or {}).get("chamfer_mm", r.get("floor_mm"))
+        r["floor_fitted_mm"] = (meta.get("floor_fitted") or {}).get("chamfer_mm")
     missing = [c.name for c in case_dirs() if c.name not in rec]
     print_table(
         rows,
-        ["case", "code", *COLUMNS[1:]],
+        ["case", "code", *COLUMNS[1:11], "floor_fitted_mm", *COLUMNS[11:]],
         title=f"Foreign benchmark: each case's latest recorded fit ({path})",
         digits=1,
     )
@@ -561,6 +562,16 @@ def bars(rows: list[dict]) -> list[dict]:
         if r.get("floor_mm") is not None and r["cf_final_mm"] <= max(5.0, 1.5 * r["floor_mm"])
     ]
     out.append({"figure": "Chamfer within max(5 mm, 1.5 x floor)", "value": f"{len(within)} of {len(done)}"})
+    fitted = [r["floor_fitted_mm"] for r in done if r.get("floor_fitted_mm") is not None]
+    if fitted:
+        floors = [r["floor_mm"] for r in done if r.get("floor_fitted_mm") is not None and r.get("floor_mm")]
+        out.append(
+            {
+                "figure": "material-fitted floor (the true pattern, its fabric fitted): median [mm] "
+                "(plain floor of the same cases); cases measured",
+                "value": f"{_median(fitted):.1f} ({_median(floors):.1f}); {len(fitted)} of {len(done)}",
+            }
+        )
     out += _better_than_base(done)
     timed = [r for r in done if r.get("time_s") is not None]
     out.append(

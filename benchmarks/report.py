@@ -37,6 +37,7 @@ CASE_COLUMNS = {
     "cf_graded_mm": "graded mm",
     "cf_final_mm": "fit mm",
     "floor_mm": "floor mm",
+    "floor_fitted_mm": "material-fitted floor mm",
     "total_final_pct": "total area %",
     "area_final_pct": "panel area %",
     "phase2_kept": "phase two kept",
@@ -97,6 +98,7 @@ def foreign_section(record: Path) -> list[str]:
         r = dict(rec[c.name])
         meta = json.loads((c / "meta.json").read_text())
         r["floor_mm"] = (meta.get("floor") or {}).get("chamfer_mm", r.get("floor_mm"))
+        r["floor_fitted_mm"] = (meta.get("floor_fitted") or {}).get("chamfer_mm")
         r["code"] = _commit(r.get("code"))
         rows.append(r)
     missing = [c.name for c in cases if c.name not in rec]

@@ -142,3 +142,20 @@ def test_a_demo_run_is_recorded_from_its_metrics(tmp_path, capsys):
     assert t["commit"] == "abc1234"
     assert {"metric": "Chamfer [mm]", "base": 8.2, "graded": 2.7, "final": 2.5} in t["rows"]
     assert {"metric": "panel area error [%]", "base": 13.5, "graded": 0.3, "final": 0.4} in t["rows"]
+
+
+def test_the_bars_give_the_material_fitted_floor_where_it_was_measured():
+    """Two of three cases have a material-fitted floor: its median beside the same cases' plain
+    floor, and how many; none measured, no such line."""
+    ff = load_benchmark("bench_foreign_fit")
+    base = {"exit": "ok", "cf_base_mm": 40.0, "time_s": 100.0}
+    rows = [
+        {**base, "case": "a", "cf_final_mm": 5.0, "floor_mm": 20.0, "floor_fitted_mm": 10.0},
+        {**base, "case": "b", "cf_final_mm": 6.0, "floor_mm": 30.0, "floor_fitted_mm": 14.0},
+        {**base, "case": "c", "cf_final_mm": 7.0, "floor_mm": 8.0},
+    ]
+    figures = {r["figure"].split(":")[0]: r["value"] for r in ff.bars(rows)}
+    assert figures["material-fitted floor (the true pattern, its fabric fitted)"] == "12.0 (25.0); 2 of 3"
+    for r in rows:
+        r.pop("floor_fitted_mm", None)
+    assert not any(r["figure"].startswith("material-fitted") for r in ff.bars(rows))
