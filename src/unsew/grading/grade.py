@@ -39,7 +39,6 @@ from unsew.grading.guards import (
     bounded_extensions,
     bounded_girth,
     bounded_waist,
-    bounded_widening,
     waist_bound,
 )
 from unsew.grading.placement import choose_lift, is_lower
@@ -1041,9 +1040,6 @@ def _edit(params, mesh, items, exts: dict, ctx: _PassContext, seams: np.ndarray 
             if _whole_panel(params.pattern, c):
                 continue
             dg, note = bounded_girth(params.pattern, c, dg)
-            if note:
-                notes.setdefault(it.match.target, []).append(note)
-            dg, note = bounded_widening(params.pattern, C0, c, dg, params.controls)
             if note:
                 notes.setdefault(it.match.target, []).append(note)
             delta += curve_edit(

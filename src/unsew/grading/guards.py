@@ -16,10 +16,6 @@ So, per edit (:func:`bounded_extensions`, :func:`bounded_girth`, :func:`bounded_
   along the move (all of it when the panel already has less); one contour's curves move together
   by the most any of them allows, so a hem stays one line across its panels;
 - *width*: a curve narrowed keeps at least :data:`MIN_KEEP_WIDTH` of its 2D length;
-- *room*: a curve widened (its ends moving apart along its chord) stays at least
-  :data:`MIN_KEEP_LENGTH` from the rest of its panel's outline beyond its neighbouring edges,
-  and those edges keep that much of their length (:func:`bounded_widening`): a neckline widened
-  leaves the straps and the shoulder seams, instead of running into the armholes;
 - *waist*: the top opening of a garment hanging from the waist (its centre nearer the hip joints
   than the shoulders) is moved down no lower than :data:`WAIST_ABOVE_HIP` above the hip joints,
   and widened to no more than the body's hip girth less :data:`WAIST_HIP_EASE` (a waist already
@@ -51,7 +47,6 @@ __all__ = [
     "room_inward",
     "bounded_extensions",
     "bounded_girth",
-    "bounded_widening",
     "bounded_waist",
     "bounded_band",
 ]
@@ -61,8 +56,6 @@ __all__ = [
 MIN_KEEP_LENGTH = 0.03
 #: Length [m] a narrowed open curve keeps in 2D (a cuff or hem never closes up).
 MIN_KEEP_WIDTH = 0.03
-#: Lengthenings a widened curve is checked at, evenly up to the asked one (:func:`bounded_widening`).
-WIDENING_STEPS = 16
 #: Height [m] above the hip joints below which grading does not move a waist.
 WAIST_ABOVE_HIP = 0.03
 #: A waist opening stays at least this much [m] smaller than the body's hip girth.
@@ -162,101 +155,6 @@ def bounded_girth(pattern, curve, girth_change: float) -> tuple[float, str]:
     return floor, (
         f"{curve.panel}: narrowing cut from {girth_change * 100:+.1f} to {floor * 100:+.1f} cm: "
         f"the curve keeps {MIN_KEEP_WIDTH * 100:.0f} cm"
-    )
-
-
-def _segment_gap(p0: np.ndarray, p1: np.ndarray, q0: np.ndarray, q1: np.ndarray) -> float:
-    """Distance [m] between 2D segments p0-p1 and q0-q1 (0 where they cross)."""
-
-    def to_segment(x, a, b):
-        ab = b - a
-        t = float(np.clip((x - a) @ ab / max(float(ab @ ab), 1e-18), 0.0, 1.0))
-        return float(np.linalg.norm(a + t * ab - x))
-
-    def side(a, b, c):
-        return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
-
-    if side(p0, p1, q0) * side(p0, p1, q1) < 0 and side(q0, q1, p0) * side(q0, q1, p1) < 0:
-        return 0.0
-    return min(to_segment(p0, q0, q1), to_segment(p1, q0, q1), to_segment(q0, p0, p1), to_segment(q1, p0, p1))
-
-
-def _gap_to_rest(panel, curve, moved: dict) -> float:
-    """Least distance [m] between the curve's vertices' polyline (``moved``: panel vertex -> its
-    position) and the panel's outline edges that neither belong to the curve nor touch it."""
-    n = len(panel.vertices)
-    path = [curve.start] + [(e + 1) % n for e in curve.edges]
-    pts = [np.asarray(moved.get(i, panel.vertices[i]), dtype=np.float64) for i in path]
-    gap = np.inf
-    for e in range(n):
-        a, b = e, (e + 1) % n
-        if a in path or b in path:
-            continue
-        qa, qb = (
-            np.asarray(panel.vertices[a], dtype=np.float64),
-            np.asarray(panel.vertices[b], dtype=np.float64),
-        )
-        for p0, p1 in zip(pts[:-1], pts[1:]):
-            gap = min(gap, _segment_gap(p0, p1, qa, qb))
-    return gap
-
-
-def bounded_widening(
-    pattern, positions: np.ndarray, curve, girth_change: float, controls
-) -> tuple[float, str]:
-    """A curve's lengthening [m] cut so that, its ends moving apart along its chord as
-    :func:`unsew.grading.edit.curve_edit` moves them, the curve comes no nearer than
-    :data:`MIN_KEEP_LENGTH` (nor than half as near as it already is: a waist beside a dart) to the
-    rest of its panel's outline beyond its neighbouring edges, and each neighbouring edge keeps
-    that much of its length along its own direction: a neckline widened keeps its straps and
-    its shoulder seams, a hem widened only tilts its side seams. And a warning ("" when nothing
-    was cut).
-
-    pattern, positions (Nc, 2) [m], curve, controls: as :func:`unsew.grading.edit.edit_directions`."""
-    if girth_change <= 0 or len(curve.controls) < 2 or curve.start == curve.end:
-        return girth_change, ""
-    panel = pattern.panels[curve.panel]
-    n = len(panel.vertices)
-    _, w, chord = edit_directions(pattern, positions, curve, controls)
-    length2d = sum(edge_length(panel, e) for e in curve.edges)
-    if chord <= 0 or length2d <= 0:
-        return girth_change, ""
-    at = {int(controls.vertex[g]): np.asarray(positions[g], dtype=np.float64) for g in curve.controls}
-    a = at.get(curve.start, np.asarray(panel.vertices[curve.start], dtype=np.float64))
-    sides = [
-        (e, np.asarray(panel.vertices[nb], dtype=np.float64))
-        for e, nb in ((curve.start, (curve.start - 1) % n), (curve.end, (curve.end + 1) % n))
-        if e in at and nb not in at
-    ]
-
-    def moved(girth: float) -> dict:
-        dw = girth * chord / length2d
-        return {i: x + (float((x - a) @ w) / chord - 0.5) * dw * w for i, x in at.items()}
-
-    keep = min(MIN_KEEP_LENGTH, 0.5 * _gap_to_rest(panel, curve, at))
-
-    def fits(girth: float) -> bool:
-        m = moved(girth)
-        for e, q in sides:  # the neighbouring edge's length left along its own direction
-            u = q - at[e]
-            length = float(np.linalg.norm(u))
-            if length > 0 and float((q - m[e]) @ u) / length < min(MIN_KEEP_LENGTH, length) - 1e-9:
-                return False
-        return _gap_to_rest(panel, curve, m) >= keep - 1e-9
-
-    # the first of WIDENING_STEPS lengthenings that does not fit (an end may pass a corner and
-    # draw away from it again), then bisection between it and the one before
-    steps = np.linspace(0.0, girth_change, WIDENING_STEPS + 1)
-    bad = next((k for k in range(1, len(steps)) if not fits(float(steps[k]))), None)
-    if bad is None:
-        return girth_change, ""
-    lo, hi = float(steps[bad - 1]), float(steps[bad])
-    for _ in range(10):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if fits(mid) else (lo, mid)
-    return lo, (
-        f"{curve.panel}: widening cut from {girth_change * 100:+.1f} to {lo * 100:+.1f} cm: "
-        f"the curve keeps {keep * 100:.1f} cm from the rest of the panel"
     )
 
 
