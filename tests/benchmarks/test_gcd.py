@@ -1311,3 +1311,33 @@ def test_gcd_remesh_copies_a_case_with_its_target_meshed_finer_on_the_same_surfa
     assert json.loads((out / "remesh.json").read_text())["vertices"] == counts
     bad = remesh("2")  # metres: a target edge of two metres is no meshing
     assert bad.returncode == 2 and len(bad.stderr.strip().splitlines()) == 1
+
+
+def test_starts_row_builds_the_fits_context_and_reads_the_design(tmp_path, monkeypatch):
+    """`gcd starts`' row of one case: the design read off the target, the fit's context built
+    (its SDF and target, as the fit builds them) and handed to the base choice; the
+    candidates' drapes themselves are stubbed (a coarse drape each, tens of seconds)."""
+    import trimesh
+
+    from unsew.body.body import default_body
+    from unsew.body.skeleton import save_skeleton
+    from unsew.fit.start import BaseChoice
+
+    starts = _load("starts")
+    body = default_body()
+    d = tmp_path / "gc_s0_000"
+    d.mkdir()
+    trimesh.Trimesh(body.verts, body.faces, process=False).export(d / "body.obj")
+    save_skeleton(body.skeleton, d / "skeleton.json")
+    target = ROOT / "benchmarks" / "foreign" / "cases" / "tee_fitted_short__default" / "target.obj"
+    monkeypatch.setattr(starts.gt_reading, "truth_of", lambda _d: {"type": "tshirt", "sleeves": "short"})
+    seen = []
+
+    def chosen(case, target, sdf, cfg, material, **_):
+        seen.append((case.design is not None, len(target.verts), sdf is not None))
+        return BaseChoice(None, "a design", [{"base": "a design", "chamfer_mm": 3.0}])
+
+    monkeypatch.setattr("unsew.fit.start.choose_base", chosen)
+    row = starts.start_row(d, "newton", target, log=lambda s: None)
+    assert row["read"].startswith("read: tshirt") and row["design"] == "a design"
+    assert row["design_mm"] == 3.0 and seen and seen[0][0] and seen[0][1] > 100 and seen[0][2]
