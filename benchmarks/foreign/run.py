@@ -569,6 +569,8 @@ def cmd_floor(args):
     if args.material_only and not args.results:
         _log("floor --material-only: pass --results DIR (a folder for the fits' result folders)")
         return 2
+    if args.material_only:  # made here, as gcd fit makes its own: a missing one would fail every fit
+        Path(args.results).mkdir(parents=True, exist_ok=True)
     for d in dirs:
         if not (d / "meta.json").is_file():  # not built, or rejected by the checks (build's log says which)
             _log(f"{d.name}: no committed case here ({d}), skipped")

@@ -182,3 +182,34 @@ def test_against_prints_each_fit_beside_its_record(tmp_path, capsys):
     assert "| b |" not in out and "| c |" not in out
     assert "Chamfer: median change +0.50 mm over 2; lower on 0, higher on 1" in out
     assert "per-panel area error: median change -3.00 points over 1; lower on 1, higher on 0" in out
+
+
+def test_the_material_fitted_floor_makes_its_results_folder(tmp_path, monkeypatch):
+    """``foreign floor --material-only --results DIR``: a DIR not there yet is made before the
+    first fit (``unsew fit --out`` refuses a missing folder, which failed every case), and a fit
+    that fails is recorded as its exit and last line."""
+    import argparse
+
+    mod = load_benchmark("foreign/run")
+    case = tmp_path / "cases" / "a_case"
+    case.mkdir(parents=True)
+    (case / "meta.json").write_text("{}")
+    seen = []
+
+    def fake_unsew(cmd, timeout):
+        out = cmd[cmd.index("--out") + 1]
+        seen.append((tmp_path / "new" / "results").is_dir() and out.endswith("a_case"))
+        return 3, "error: the garment fell"
+
+    monkeypatch.setattr(mod, "_run_unsew", fake_unsew)
+    args = argparse.Namespace(
+        dir=str(tmp_path / "cases"),
+        cases=None,
+        material_only=True,
+        results=str(tmp_path / "new" / "results"),
+        timeout=5,
+    )
+    assert mod.cmd_floor(args) == 0
+    assert seen == [True]
+    rec = json.loads((case / "meta.json").read_text())["floor_fitted"]
+    assert rec["error"] == "exit 3: error: the garment fell"
