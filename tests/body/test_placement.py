@@ -470,3 +470,36 @@ def test_a_circle_skirts_gores_are_not_sleeves():
         design = Design(garment="skirt", skirt="circle", circle_fraction=frac, panels=4, waistband=True)
         roles = panel_roles(draft(design, measure_body(body)), body)
         assert not any("sleeve" in r for r in roles.values()), (frac, roles)
+
+
+def test_a_top_sized_to_a_shorter_body_starts_on_the_shoulders(tmp_path):
+    """GarmentCode's shirt sized to its mean body, put on that body scaled to 1.2 times its
+    height: its placement's shoulder seams lie below the taller body's chest, yet the shirt is a
+    top, lifted to hang from the shoulders (not kept at its placement's height, at the waist)."""
+    import os
+    import warnings
+    from pathlib import Path
+
+    import trimesh
+
+    from unsew.body.body import load_body
+    from unsew.io.garmentcode import load_pattern
+
+    root = Path(__file__).resolve().parents[2]
+    shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
+    body_mesh, spec = shared / "foreign" / "bodies" / "mean_all.obj", shared / "foreign" / "patterns"
+    if not body_mesh.is_file() or not (spec / "shirt_mean_specification.json").is_file():
+        pytest.skip(f"GarmentCode's bodies and patterns not under {shared / 'foreign'}")
+    tall = trimesh.load(body_mesh, process=False)
+    tall.vertices = np.asarray(tall.vertices) * 1.2
+    tall.export(tmp_path / "tall.obj")
+    body = load_body(tmp_path / "tall.obj", None)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        pattern = load_pattern(spec / "shirt_mean_specification.json")
+    mesh = mesh_pattern(pattern, edge_length=0.04)
+    x = place_garment(pattern, mesh, body)
+    hint_top = float(np.asarray(mesh.uv_placed3d)[:, 1].max())
+    shoulder = float(body.skeleton.position("left_shoulder")[1])
+    assert hint_top < body.skeleton.position("chest")[1]  # the placement alone puts it low
+    assert x[:, 1].max() > shoulder

@@ -57,6 +57,10 @@ NEED_WINDOW = 0.15
 #: Each shoulder edge of a top is brought this close to the body's centre plane [m] (front
 #: and back edges 2 * SHOULDER_MEET apart over the shoulder ridge).
 SHOULDER_MEET = 0.012
+#: A sleeved garment's unlabelled shoulder seam below the body's chest (a top sized to a
+#: shorter body) lies on average within this of the top of its torso panels [m] (GarmentCode's
+#: shirt: 0.01; a sleeved dress's waist seam lies far lower).
+SHOULDER_AT_TOP = 0.05
 #: Secant iterations solving a top's lift, and the largest change of the lift per step [m].
 LIFT_ITERS = 6
 LIFT_MAX_STEP = 0.1
@@ -858,8 +862,13 @@ def _shoulder_edges(pattern, mesh, info, *, above: float = -np.inf) -> dict:
     files), a horizontal seam (:func:`_is_horizontal` in the hint placement) between a torso
     panel facing front and one facing back, in the upper half of both and higher than
     ``above`` [m] (the body's chest: a circle skirt laid out flat has horizontal side seams at
-    its waist)."""
+    its waist), or, in a garment with sleeves, within SHOULDER_AT_TOP of its torso panels' top
+    (a top sized to a shorter body has its shoulder seams below this body's chest)."""
     out = {}
+    torso = [d["hint"][:, 1].max() for d in info.values() if d["role"] == "torso"]
+    sleeved = any(d["role"].endswith("sleeve") for d in info.values())
+    # a sleeved garment's seams at its top are shoulders wherever the chest of this body lies
+    above = min(above, max(torso, default=np.inf) - SHOULDER_AT_TOP) if sleeved else above
     for st in pattern.stitches:
         sides = (st.a, st.b)
         labelled = any("shoulder" in (pattern.panels[s.panel].edges[s.edge].label or "") for s in sides)
