@@ -2,6 +2,7 @@
 drapes fail with one line naming why; unsew drape stops on a bad verdict and writes no --out."""
 
 import numpy as np
+import torch
 import pytest
 
 from unsew.body.body import default_body
@@ -170,7 +171,8 @@ def _arm_ring(body, side, *, radius=0.08, sector=2 * np.pi, along=(0.3, 0.45, 0.
 def test_off_the_arm(body_sdf):
     """A sleeve whose cloth lies round its upper arm passes; the same cloth bunched to one side
     of the arm (the arm outside the sleeve) is off the arm; a sleeve with no cloth along the upper
-    arm (a cap sleeve) is not judged."""
+    arm passes where it lies at the shoulder (a cap sleeve), and fails where it slid down off the
+    arm."""
     from types import SimpleNamespace
 
     body, sdf = body_sdf
@@ -192,6 +194,18 @@ def test_off_the_arm(body_sdf):
         assert (w.ok, w.reason) == (v.ok, v.reason)
     cap = _arm_ring(body, "left", along=(0.05, 0.12))
     assert np.isnan(sleeve_cover(cap, np.arange(len(cap)), body, "left"))
+    cap = _arm_ring(body, "left", radius=0.1, along=(0.05, 0.12))
+    with torch.no_grad():  # the cap's cloth outside the body: a ring there cuts into the torso
+        cap = cap[sdf.query(torch.as_tensor(cap))[0].numpy() > 0.005]
+    slid = _arm_ring(body, "left", along=(1.2, 1.3))  # down past the elbow, round the forearm
+    assert np.isnan(sleeve_cover(slid, np.arange(len(slid)), body, "left"))
+    for ring, ok in ((cap, True), (slid, False)):
+        xs = np.concatenate([x, ring])
+        d = SimpleNamespace(x=xs, mesh=mesh, sdf=sdf, stats={}, x_start=xs.copy())
+        v = check_dressed(d, body=body, sleeves={"left": np.arange(len(x), len(xs))})
+        assert v.ok == ok, v.reason
+        if not ok:
+            assert v.reason.startswith("off the arm: the left sleeve lies 0."), v.reason
 
 
 def test_sleeve_vertices_of_a_placed_tee(body_sdf):

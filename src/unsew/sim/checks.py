@@ -44,7 +44,9 @@ Checks, in order (the first that fails is the reason):
    the panels the pattern's own placement puts round an arm), a sleeve whose cloth along the
    upper arm covers less than :data:`SLEEVE_COVER_MIN` of the directions round the arm's bone:
    the arm is not in it (a top worn off its shoulders, its sleeves bunched beside the arms or
-   the torso, docs/decisions/062).
+   the torso, docs/decisions/062); or one with too little cloth along the upper arm to judge
+   that lies farther than :data:`SLEEVE_ROOT_NEAR` from its shoulder joint (a top slid down
+   the arms to the hips, its sleeves with it).
 
 The thresholds are failure bounds, far from a good drape's figures (a good drape has < 0.5 %
 inside, stretch below 1.5).
@@ -117,6 +119,10 @@ SLEEVE_BAND = (0.2, 0.7)
 SLEEVE_NEAR = 0.18
 #: Fewest sleeve vertices in that band for a judgment (a cap sleeve ends above it) [-].
 SLEEVE_MIN_POINTS = 8
+#: A sleeve with too few vertices along the upper arm to judge passes only with one within this
+#: distance of its shoulder joint [m] (a cap sleeve's armhole goes round it 0.05-0.1 m off; a
+#: sleeve slid down off the arm with its top lies 0.28-0.30 m off).
+SLEEVE_ROOT_NEAR = 0.15
 #: Directions round the bone counted [-].
 SLEEVE_SECTORS = 24
 
@@ -435,11 +441,19 @@ def _sleeve_failure(x, sleeves: dict, body) -> str:
     """The reason of a failed ``off the arm`` check ("" when every judged sleeve passes)."""
     for side, idx in sleeves.items():
         cover = sleeve_cover(x, idx, body, side)
-        if cover < SLEEVE_COVER_MIN:  # NaN (nothing to judge) passes
+        if cover < SLEEVE_COVER_MIN:
             return (
                 f"off the arm: the {side} sleeve covers {cover * 100:.0f} % of the directions round "
                 f"the upper arm (bound {SLEEVE_COVER_MIN * 100:g} %)"
             )
+        if np.isnan(cover):  # nothing along the upper arm: a cap sleeve, or one fallen off it
+            root = np.asarray(body.skeleton.position(f"{side}_shoulder"), dtype=np.float64)
+            gap = float(np.linalg.norm(_float64(x)[np.asarray(idx, dtype=np.int64)] - root, axis=1).min())
+            if gap > SLEEVE_ROOT_NEAR:
+                return (
+                    f"off the arm: the {side} sleeve lies {gap:.2f} m from the shoulder joint at its "
+                    f"nearest (bound {SLEEVE_ROOT_NEAR:g} m)"
+                )
     return ""
 
 
