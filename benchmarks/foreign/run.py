@@ -635,7 +635,8 @@ def _floor_fitted(d: Path, results: Path, timeout: int) -> dict:
     """The material-fitted floor: the case's true pattern held and only its fabric fitted
     (``unsew fit CASE --material-only --base CASE/pattern_gt.json --out RESULTS/<case>``), the
     fit's garment.obj against the target; with the fit's material (metrics.json says whether the
-    fitted one was kept or the re-dress check returned the start's)."""
+    fitted one was kept or the re-dress check returned the start's). A fit that ends ``"ok":
+    false`` records that and its miss, its distance as ``chamfer_missed_mm``, not as a floor."""
     out = results / d.name
     cmd = ["fit", str(d), "--material-only", "--base", str(d / "pattern_gt.json"), "--out", str(out)]
     cmd += ["--no-progress"] + (["--overwrite"] if out.exists() else [])
@@ -650,6 +651,9 @@ def _floor_fitted(d: Path, results: Path, timeout: int) -> dict:
         m = json.loads((out / "metrics.json").read_text())
         floor["material_fitted"] = bool(m.get("material_fitted"))
         floor["material"] = json.loads((out / "material.json").read_text())
+        if m.get("ok") is False:  # a fit that missed is no floor: its distance kept aside
+            floor["ok"], floor["miss"] = False, m.get("miss", "")
+            floor["chamfer_missed_mm"] = floor.pop("chamfer_mm")
     else:
         floor["error"] = f"exit {rc}: {err[:200]}"
     return floor

@@ -4,6 +4,7 @@ and not rerun, and a result folder's metrics.json becomes the row's Chamfer, are
 
 import json
 import shutil
+from pathlib import Path
 
 from benchmarks_loader import load_benchmark
 
@@ -213,3 +214,33 @@ def test_the_material_fitted_floor_makes_its_results_folder(tmp_path, monkeypatc
     assert seen == [True]
     rec = json.loads((case / "meta.json").read_text())["floor_fitted"]
     assert rec["error"] == "exit 3: error: the garment fell"
+
+
+def test_a_material_fitted_floor_whose_fit_missed_is_no_floor(tmp_path, monkeypatch):
+    """A material-only fit that exits 0 but ends ``"ok": false`` (far from its target) is
+    recorded as missed, its distance kept aside: no table counts it as a floor."""
+    import argparse
+
+    mod = load_benchmark("foreign/run")
+    case = tmp_path / "cases" / "a_case"
+    case.mkdir(parents=True)
+    (case / "meta.json").write_text("{}")
+
+    def fake_unsew(cmd, timeout):
+        out = Path(cmd[cmd.index("--out") + 1])
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "garment.obj").write_text("v 0 0 0\n")
+        miss = "the fitted garment lies 158.2 mm from its target"
+        (out / "metrics.json").write_text(json.dumps({"ok": False, "miss": miss, "material_fitted": False}))
+        (out / "material.json").write_text("{}")
+        return 0, ""
+
+    monkeypatch.setattr(mod, "_run_unsew", fake_unsew)
+    monkeypatch.setattr(mod, "_chamfer_to_target", lambda g, d: {"chamfer_mm": 158.2, "p95_mm": 300.0})
+    args = argparse.Namespace(
+        dir=str(tmp_path / "cases"), cases=None, material_only=True, results=str(tmp_path / "r"), timeout=5
+    )
+    assert mod.cmd_floor(args) == 0
+    rec = json.loads((case / "meta.json").read_text())["floor_fitted"]
+    assert rec["ok"] is False and rec["miss"].startswith("the fitted garment lies 158.2 mm")
+    assert "chamfer_mm" not in rec and rec["chamfer_missed_mm"] == 158.2
