@@ -58,8 +58,7 @@ NEED_WINDOW = 0.15
 #: and back edges 2 * SHOULDER_MEET apart over the shoulder ridge).
 SHOULDER_MEET = 0.012
 #: A sleeved garment's unlabelled shoulder seam below the body's chest (a top sized to a
-#: shorter body) lies on average within this of the top of its torso panels [m] (GarmentCode's
-#: shirt: 0.01; a sleeved dress's waist seam lies far lower).
+#: shorter body) lies on average within this of the top of its torso panels [m] (decision 069).
 SHOULDER_AT_TOP = 0.05
 #: Secant iterations solving a top's lift, and the largest change of the lift per step [m].
 LIFT_ITERS = 6

@@ -120,8 +120,7 @@ SLEEVE_NEAR = 0.18
 #: Fewest sleeve vertices in that band for a judgment (a cap sleeve ends above it) [-].
 SLEEVE_MIN_POINTS = 8
 #: A sleeve with too few vertices along the upper arm to judge passes only with one within this
-#: distance of its shoulder joint [m] (a cap sleeve's armhole goes round it 0.05-0.1 m off; a
-#: sleeve slid down off the arm with its top lies 0.28-0.30 m off).
+#: distance of its shoulder joint [m] (a cap sleeve's armhole goes round it; decision 069).
 SLEEVE_ROOT_NEAR = 0.15
 #: Directions round the bone counted [-].
 SLEEVE_SECTORS = 24
