@@ -472,10 +472,11 @@ def test_a_circle_skirts_gores_are_not_sleeves():
         assert not any("sleeve" in r for r in roles.values()), (frac, roles)
 
 
-def test_a_top_sized_to_a_shorter_body_starts_on_the_shoulders(tmp_path):
-    """GarmentCode's shirt sized to its mean body, put on that body scaled to 1.2 times its
-    height: its placement's shoulder seams lie below the taller body's chest, yet the shirt is a
-    top, lifted to hang from the shoulders (not kept at its placement's height, at the waist)."""
+@pytest.mark.parametrize("spec_name", ["shirt_mean", "dress_pencil"])
+def test_a_top_sized_to_a_shorter_body_starts_on_the_shoulders(tmp_path, spec_name):
+    """GarmentCode's shirt and sleeveless pencil dress sized to its mean body, put on that body
+    scaled to 1.2 times its height: their placement's shoulder seams lie below the taller body's
+    chest, yet each hangs from the shoulders (not kept at its placement's height, at the waist)."""
     import os
     import warnings
     from pathlib import Path
@@ -488,7 +489,7 @@ def test_a_top_sized_to_a_shorter_body_starts_on_the_shoulders(tmp_path):
     root = Path(__file__).resolve().parents[2]
     shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
     body_mesh, spec = shared / "foreign" / "bodies" / "mean_all.obj", shared / "foreign" / "patterns"
-    if not body_mesh.is_file() or not (spec / "shirt_mean_specification.json").is_file():
+    if not body_mesh.is_file() or not (spec / f"{spec_name}_specification.json").is_file():
         pytest.skip(f"GarmentCode's bodies and patterns not under {shared / 'foreign'}")
     tall = trimesh.load(body_mesh, process=False)
     tall.vertices = np.asarray(tall.vertices) * 1.2
@@ -496,7 +497,7 @@ def test_a_top_sized_to_a_shorter_body_starts_on_the_shoulders(tmp_path):
     body = load_body(tmp_path / "tall.obj", None)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        pattern = load_pattern(spec / "shirt_mean_specification.json")
+        pattern = load_pattern(spec / f"{spec_name}_specification.json")
     mesh = mesh_pattern(pattern, edge_length=0.04)
     x = place_garment(pattern, mesh, body)
     hint_top = float(np.asarray(mesh.uv_placed3d)[:, 1].max())

@@ -57,8 +57,8 @@ NEED_WINDOW = 0.15
 #: Each shoulder edge of a top is brought this close to the body's centre plane [m] (front
 #: and back edges 2 * SHOULDER_MEET apart over the shoulder ridge).
 SHOULDER_MEET = 0.012
-#: A sleeved garment's unlabelled shoulder seam below the body's chest (a top sized to a
-#: shorter body) lies on average within this of the top of its torso panels [m] (decision 069).
+#: An unlabelled shoulder seam below the body's chest (a top sized to a shorter body) lies on
+#: average within this of the top of the torso panels [m] (decision 069).
 SHOULDER_AT_TOP = 0.05
 #: Secant iterations solving a top's lift, and the largest change of the lift per step [m].
 LIFT_ITERS = 6
@@ -861,27 +861,23 @@ def _shoulder_edges(pattern, mesh, info, *, above: float = -np.inf) -> dict:
     files), a horizontal seam (:func:`_is_horizontal` in the hint placement) between a torso
     panel facing front and one facing back, in the upper half of both and higher than
     ``above`` [m] (the body's chest: a circle skirt laid out flat has horizontal side seams at
-    its waist), or, in a garment with sleeves, within SHOULDER_AT_TOP of its torso panels' top
-    (a top sized to a shorter body has its shoulder seams below this body's chest)."""
+    its waist), or within SHOULDER_AT_TOP of the torso panels' top where the two panels are
+    also sewn at their sides (a top sized to a shorter body has its shoulder seams below this
+    body's chest; a flat-laid circle skirt's halves meet only at its horizontal seams)."""
     out = {}
-    torso = [d["hint"][:, 1].max() for d in info.values() if d["role"] == "torso"]
-    sleeved = any(d["role"].endswith("sleeve") for d in info.values())
-    # a sleeved garment's seams at its top are shoulders wherever the chest of this body lies
-    above = min(above, max(torso, default=np.inf) - SHOULDER_AT_TOP) if sleeved else above
+    top = max((d["hint"][:, 1].max() for d in info.values() if d["role"] == "torso"), default=np.inf)
+    sided = _sewn_at_sides(pattern, mesh, info)
     for st in pattern.stitches:
         sides = (st.a, st.b)
         labelled = any("shoulder" in (pattern.panels[s.panel].edges[s.edge].label or "") for s in sides)
         if not labelled:
-            if any(info[s.panel]["role"] != "torso" for s in sides):
+            if not _front_to_back(info, sides):
                 continue
-            nz = [info[s.panel]["R"][2, 2] for s in sides]
-            if not (nz[0] * nz[1] < 0 and min(abs(z) for z in nz) > 0.5):
-                continue
+            low = min(above, top - SHOULDER_AT_TOP) if frozenset(s.panel for s in sides) in sided else above
             ok = True
             for s in sides:
-                h = info[s.panel]["hint"]
-                e = h[np.asarray(mesh.edge_verts[(s.panel, s.edge)]) - info[s.panel]["sl"].start]
-                ok &= _is_horizontal(e) and e[:, 1].mean() > max(h[:, 1].min() + 0.5 * np.ptp(h[:, 1]), above)
+                h, e = info[s.panel]["hint"], _hint_edge(info, mesh, s)
+                ok &= _is_horizontal(e) and e[:, 1].mean() > max(h[:, 1].min() + 0.5 * np.ptp(h[:, 1]), low)
             if not ok:
                 continue
         for side in sides:
@@ -889,6 +885,30 @@ def _shoulder_edges(pattern, mesh, info, *, above: float = -np.inf) -> dict:
                 idx = np.asarray(mesh.edge_verts[(side.panel, side.edge)])
                 out[side.panel] = np.union1d(out.get(side.panel, np.zeros(0, np.int64)), idx)
     return out
+
+
+def _front_to_back(info, sides) -> bool:
+    """Whether a stitch's two sides lie on torso panels, one facing front and one back."""
+    if any(info[s.panel]["role"] != "torso" for s in sides):
+        return False
+    nz = [info[s.panel]["R"][2, 2] for s in sides]
+    return bool(nz[0] * nz[1] < 0 and min(abs(z) for z in nz) > 0.5)
+
+
+def _hint_edge(info, mesh, side) -> np.ndarray:
+    """(k, 3) [m] hint positions of a stitch side's edge vertices."""
+    d = info[side.panel]
+    return d["hint"][np.asarray(mesh.edge_verts[(side.panel, side.edge)]) - d["sl"].start]
+
+
+def _sewn_at_sides(pattern, mesh, info) -> set:
+    """Pairs (frozensets of panel names) of front and back torso panels joined by a seam that is
+    not horizontal in the hint placement: a bodice's halves at its side seams."""
+    return {
+        frozenset(s.panel for s in (st.a, st.b))
+        for st in pattern.stitches
+        if _front_to_back(info, (st.a, st.b)) and not _is_horizontal(_hint_edge(info, mesh, st.a))
+    }
 
 
 def _shoulder_lift(p, idx, xb, ytop, clearance, stack, ys) -> float:
