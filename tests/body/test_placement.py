@@ -504,3 +504,36 @@ def test_a_top_sized_to_a_shorter_body_starts_on_the_shoulders(tmp_path, spec_na
     shoulder = float(body.skeleton.position("left_shoulder")[1])
     assert hint_top < body.skeleton.position("chest")[1]  # the placement alone puts it low
     assert x[:, 1].max() > shoulder
+
+
+def test_a_pattern_placed_over_a_much_shorter_body_is_refused(tmp_path):
+    """GarmentCode's shirt sized to its mean body, on that body scaled to 0.65 times its height:
+    every panel lies above the short body's neck, where the placement would keep it (a bag over
+    the head); both starts refuse it in one line instead."""
+    import os
+    import warnings
+    from pathlib import Path
+
+    import trimesh
+
+    from unsew.body.body import load_body
+    from unsew.body.placement import place_as_given
+    from unsew.errors import InputError
+    from unsew.io.garmentcode import load_pattern
+
+    root = Path(__file__).resolve().parents[2]
+    shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
+    body_mesh, spec = shared / "foreign" / "bodies" / "mean_all.obj", shared / "foreign" / "patterns"
+    if not body_mesh.is_file() or not (spec / "shirt_mean_specification.json").is_file():
+        pytest.skip(f"GarmentCode's bodies and patterns not under {shared / 'foreign'}")
+    short = trimesh.load(body_mesh, process=False)
+    short.vertices = np.asarray(short.vertices) * 0.65
+    short.export(tmp_path / "short.obj")
+    body = load_body(tmp_path / "short.obj", None)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        pattern = load_pattern(spec / "shirt_mean_specification.json")
+    mesh = mesh_pattern(pattern, edge_length=0.04)
+    for start in (place_garment, place_as_given):
+        with pytest.raises(InputError, match="above this body's neck .* placed for a taller body"):
+            start(pattern, mesh, body)

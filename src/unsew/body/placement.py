@@ -292,6 +292,23 @@ def panel_roles(pattern, body) -> dict:
     return roles
 
 
+def _roles_on_body(pattern, body, J) -> dict:
+    """:func:`panel_roles`, refusing a pattern whose own placement leaves every panel free, its
+    centre above the body's neck (sized and placed for a much taller body: kept there, it drapes
+    as a bag over the head)."""
+    roles = panel_roles(pattern, body)
+    if not roles or any(r != "free" for r in roles.values()):
+        return roles
+    low = min(float(pattern.panels[n].to_world(pattern.panels[n].vertices)[:, 1].mean()) for n in roles)
+    if low > float(J["neck"][1]):
+        raise InputError(
+            f"the pattern's own placement puts every panel's centre above this body's neck (the "
+            f"lowest at y = {low:.2f} m, the neck joint at {float(J['neck'][1]):.2f} m): it is sized "
+            "and placed for a taller body; give the pattern made for this one"
+        )
+    return roles
+
+
 def _arm_distance(p, J, side) -> float:
     """Distance [m] of a point p (3,) [m] from one arm's bones (shoulder-elbow, elbow-wrist)."""
     out = np.inf
@@ -337,7 +354,7 @@ def place_garment(
     if len(uv) == 0:
         raise InputError("the garment mesh is empty; mesh the pattern first")
     J, parts, v, cx0, crotch_y = _landmarks(body)
-    roles = panel_roles(pattern, body)
+    roles = _roles_on_body(pattern, body, J)
     ys = np.arange(v[:, 1].min() - 0.05, v[:, 1].max() + 0.3, _DY)  # (H,)
     x = np.asarray(mesh.uv_placed3d, np.float64).copy()  # free panels stay at their hint
     info = _panel_info(pattern, mesh, roles, x)
@@ -372,7 +389,7 @@ def place_as_given(pattern, mesh, body, *, sdf=None) -> np.ndarray:
     J, parts, v, cx, _ = _landmarks(body)
     torso = v[parts == "torso"] if (parts == "torso").any() else v
     axis = (cx, 0.5 * float(torso[:, 2].min() + torso[:, 2].max()))
-    roles = panel_roles(pattern, body)
+    roles = _roles_on_body(pattern, body, J)
     bent = np.zeros(len(x), bool)
     for i, name in enumerate(mesh.panel_names):
         n = pattern.panels[name].rotation_matrix()[:, 2]
