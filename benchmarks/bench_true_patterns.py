@@ -18,6 +18,12 @@ each garment's most stretched pattern edges (:func:`seam_rows`). A good drape ex
     python -m benchmarks true_patterns [--patterns shirt_mean ...] [--out DIR] [--edge-length 0.025] [--seams]
     python -m benchmarks true_patterns --small     # one pattern, coarse mesh, short sewing (tests)
 
+With ``--bodies CASE ...`` each pattern is put on each case folder's wearer instead (patterns sized
+to GarmentCode's mean body on other bodies, as a user may give them), with the garment's top over
+the wearer's neck joint beside the drape's measures (:func:`run_on_wearers`).
+
+    python -m benchmarks true_patterns --bodies benchmarks/foreign/cases/shirt_gc__tall_thin ... --out DIR
+
 With ``--gcd`` the same for the GarmentCode design benchmark's 40 cases (benchmarks/gcd, built
 with ``python -m benchmarks gcd build``, ``--no-drape`` is enough): each case's ``pattern_gt.json``
 dressed on its own ``body.obj`` (+ ``skeleton.json``). One drape at a time; each case's row is
@@ -271,6 +277,30 @@ def drape_file(
         and row.get("stretch_max", np.inf) <= STRETCH_MAX
     )
     return row
+
+
+def run_on_wearers(names, wearers, *, out: Path, **kw) -> list[dict]:
+    """One row per pattern and wearer (a case folder: ``unsew drape PATTERN --body CASE``), the
+    patterns sized to GarmentCode's mean body put on other bodies, as a user may give them; with
+    ``top_to_neck_m``, the garment's highest point over the wearer's neck joint [m] (a top hangs
+    from the shoulders at about 0, a hood reaches 0.2, a bodice slid to the hips lies far below)."""
+    from unsew.body.case import load_wearer
+    from unsew.body.sdf import BodySDF
+
+    foreign, rows = foreign_dir(), []
+    for case in map(Path, wearers):
+        body = load_wearer(case)
+        sdf, neck = BodySDF.build(body), float(body.skeleton.position("neck")[1])
+        for name in names:
+            spec = foreign / "patterns" / f"{name}_specification.json"
+            row = drape_file(f"{name}__{case.name}", spec, ["--body", str(case)], out, sdf=sdf, **kw)
+            row = {"pattern": name, "body": case.name, **row}
+            obj = out / f"{name}__{case.name}.obj"
+            obj = obj if obj.is_file() else obj.with_name(obj.stem + ".failed.obj")
+            row["top_to_neck_m"] = float(read_obj_uv(obj)[0][:, 1].max()) - neck if obj.is_file() else None
+            rows.append(row)
+            print({k: (round(v, 3) if isinstance(v, float) else v) for k, v in row.items()}, flush=True)
+    return rows
 
 
 def run(names, *, out: Path, edge_length=None, sew_steps=None, settle_steps=None) -> list[dict]:
@@ -604,6 +634,12 @@ def _parse(argv=None):
     ap.add_argument(
         "--seams", action="store_true", help="also list each garment's most stretched pattern edges"
     )
+    ap.add_argument(
+        "--bodies",
+        nargs="*",
+        default=None,
+        help="case folders whose wearers the patterns are put on instead of their own body",
+    )
     ap.add_argument("--gcd", action="store_true", help="the GarmentCode design benchmark's cases instead")
     ap.add_argument("--cases", default=str(GCD_CASES), help="--gcd: the built cases' folder")
     ap.add_argument("--only", nargs="*", default=None, help="--gcd: these case ids only")
@@ -628,6 +664,8 @@ def _dress_foreign(args) -> tuple[list[dict], list[dict]]:
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(args.out or tmp)
         out.mkdir(parents=True, exist_ok=True)
+        if args.bodies:
+            return run_on_wearers(names, args.bodies, out=out, **kw), []
         rows = run(names, out=out, **kw)
         seams = []
         if args.seams:
@@ -658,7 +696,7 @@ def main() -> None:
     rows, seams = _dress_foreign(args)
     print()
     cols = ["pattern", "body", "exit", "inside_pct", "stretch_max", "stretch_p99", "vertices", "time_s", "ok"]
-    print_table(rows, cols + ["message"])
+    print_table(rows, cols + (["top_to_neck_m"] if args.bodies else []) + ["message"])
     if seams:
         print_table(
             seams,

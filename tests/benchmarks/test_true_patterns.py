@@ -33,6 +33,30 @@ def test_small_mode_dresses_the_hoodie(tmp_path, foreign):
     assert row["stretch_max"] <= bench.STRETCH_MAX
 
 
+def test_small_mode_on_other_wearers(tmp_path, foreign):
+    """``--bodies``: the hoodie on GarmentCode's mean body (a case folder of body.obj and meta.json)
+    hangs from the shoulders, its hood over the head; on that body scaled to 0.65 its height the
+    drape is refused in one line (every panel placed above the short body's neck)."""
+    import numpy as np
+    import trimesh
+
+    s = bench.SMALL
+    for name, scale in (("mean", 1.0), ("short", 0.65)):
+        body = trimesh.load(foreign / "bodies" / "mean_all.obj", process=False)
+        body.vertices = np.asarray(body.vertices) * scale
+        (tmp_path / name).mkdir()
+        body.export(tmp_path / name / "body.obj")
+        (tmp_path / name / "meta.json").write_text('{"units": "m", "up": "y", "front": "z"}')
+    kw = {k: s[k] for k in ("edge_length", "sew_steps", "settle_steps")}
+    mean, short = bench.run_on_wearers(
+        [s["pattern"]], [tmp_path / "mean", tmp_path / "short"], out=tmp_path, **kw
+    )
+    assert mean["exit"] == 0 and mean["ok"], mean["message"]
+    assert 0.1 < mean["top_to_neck_m"] < 0.4  # the hood over the head
+    assert short["exit"] != 0 and short["top_to_neck_m"] is None
+    assert "placed for a taller body" in short["message"], short["message"]
+
+
 def test_obj_reader_measures_stretch(tmp_path):
     """The stretch the benchmark reports is 3D edge length over its UV (pattern) length."""
     import numpy as np
