@@ -16,7 +16,7 @@ from typing import Callable
 import numpy as np
 import torch
 
-from unsew.body.placement import meets_seams, place_as_given, place_garment
+from unsew.body.placement import hint_shift, meets_seams, place_as_given, place_garment
 from unsew.body.sdf import BodySDF
 from unsew.errors import SimulationError
 from unsew.meshing import mesh_pattern
@@ -200,7 +200,9 @@ def dress(
     settings: DrapeSettings = DRESS_SETTINGS,
     progress: Callable[[str, int, int], None] | None = None,
 ) -> Dressed:
-    """Mesh, place, sew and settle ``pattern`` on ``body``.
+    """Mesh, place, sew and settle ``pattern`` on ``body``; a pattern file sized to another body
+    is first moved onto this one's shoulders (:func:`_on_this_body`; the returned ``pattern`` and
+    ``mesh`` are then the moved ones).
 
     Args:
         pattern: unsew.pattern.model.Pattern. body: unsew.body.body.Body.
@@ -233,6 +235,7 @@ def dress(
     mat = resolve_material(material)
     if mesh is None:
         mesh = mesh_pattern(pattern, edge_length=settings.edge_length)
+    pattern, mesh = _on_this_body(pattern, mesh, body)
     if sdf is None:
         sdf = BodySDF.build(body)
     g = mat.gamma() if gamma is None else torch.as_tensor(gamma, dtype=torch.float64).detach()
@@ -245,6 +248,17 @@ def dress(
         top, sleeves = placed_top(pattern, mesh, body, sdf=sdf), sleeve_vertices(pattern, mesh, body)
     job = _Job(pattern, body, sdf, mesh, mat, cloth, settings, progress, top, sleeves)
     return _fall_back(job)
+
+
+def _on_this_body(pattern, mesh, body):
+    """(pattern, mesh), their own placement moved onto ``body``'s shoulders where the file was
+    sized to another body (:func:`unsew.body.placement.hint_shift`, docs/decisions/070)."""
+    shift = hint_shift(pattern, mesh, body)
+    if not shift:
+        return pattern, mesh
+    from unsew.grading.placement import lifted, lifted_mesh
+
+    return lifted(pattern, shift), lifted_mesh(mesh, shift)
 
 
 def _fall_back(job: _Job) -> Dressed:

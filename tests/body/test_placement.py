@@ -537,3 +537,44 @@ def test_a_pattern_placed_over_a_much_shorter_body_is_refused(tmp_path):
     for start in (place_garment, place_as_given):
         with pytest.raises(InputError, match="above this body's neck .* placed for a taller body"):
             start(pattern, mesh, body)
+
+
+def test_a_file_sized_to_another_body_is_moved_onto_this_one(tmp_path):
+    """GarmentCode's shirt, placed by its file for its mean body, is moved by the file's own
+    shoulder seams onto that body scaled to 1.2 and 0.65 times its height (up and down by about
+    the shoulders' change of height), and stays where it is on its own body; unsew's own draft,
+    placed for its body, is never moved."""
+    import os
+    import warnings
+    from pathlib import Path
+
+    import trimesh
+
+    from unsew.body.body import load_body
+    from unsew.body.placement import hint_shift
+    from unsew.io.garmentcode import load_pattern
+    from unsew.pattern.base import make_base_pattern
+
+    root = Path(__file__).resolve().parents[2]
+    shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
+    body_mesh, spec = shared / "foreign" / "bodies" / "mean_all.obj", shared / "foreign" / "patterns"
+    if not body_mesh.is_file() or not (spec / "shirt_mean_specification.json").is_file():
+        pytest.skip(f"GarmentCode's bodies and patterns not under {shared / 'foreign'}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        shirt = load_pattern(spec / "shirt_mean_specification.json")
+    mesh = mesh_pattern(shirt, edge_length=0.04)
+    own = trimesh.load(body_mesh, process=False)
+    shoulder = {}
+    for scale in (1.0, 1.2, 0.65):
+        m = own.copy()
+        m.vertices = np.asarray(own.vertices) * scale
+        m.export(tmp_path / f"b{scale}.obj")
+        body = load_body(tmp_path / f"b{scale}.obj", None)
+        shoulder[scale] = (body, float(body.skeleton.position("left_shoulder")[1]))
+    assert hint_shift(shirt, mesh, shoulder[1.0][0]) == 0.0
+    for scale in (1.2, 0.65):
+        body, y = shoulder[scale]
+        assert hint_shift(shirt, mesh, body) == pytest.approx(y - shoulder[1.0][1], abs=0.05)
+    base = make_base_pattern("tshirt")
+    assert hint_shift(base, mesh_pattern(base, edge_length=0.04), shoulder[1.2][0]) == 0.0

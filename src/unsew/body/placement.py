@@ -42,7 +42,15 @@ import numpy as np
 
 from unsew.errors import InputError
 
-__all__ = ["place_garment", "place_as_given", "panel_roles", "meets_seams", "CLEARANCE", "MAX_PUSH"]
+__all__ = [
+    "place_garment",
+    "place_as_given",
+    "panel_roles",
+    "meets_seams",
+    "hint_shift",
+    "CLEARANCE",
+    "MAX_PUSH",
+]
 
 #: Gap between the body's cross-section and the wrapped cloth [m].
 CLEARANCE = 0.02
@@ -60,6 +68,15 @@ SHOULDER_MEET = 0.012
 #: An unlabelled shoulder seam below the body's chest (a top sized to a shorter body) lies on
 #: average within this of the top of the torso panels [m] (decision 069).
 SHOULDER_AT_TOP = 0.05
+#: A pattern file places its shoulder seams about this far below its own body's shoulder line
+#: [m] ...
+HINT_SHOULDER_GAP = 0.03
+#: ... and one whose seams lie more than this farther from that on the body it is dressed on is
+#: sized to another body, and moved up or down to this one before it is placed [m] (decision 070).
+HINT_SHIFT_TOL = 0.15
+#: Unlabelled shoulder seams lie within this share of the shoulder joints' half span from the
+#: body's centre plane (a wide sleeve's halves, sewn like a bodice's, lie farther out).
+HINT_SHOULDER_REACH = 2.0
 #: Secant iterations solving a top's lift, and the largest change of the lift per step [m].
 LIFT_ITERS = 6
 LIFT_MAX_STEP = 0.1
@@ -369,6 +386,65 @@ def place_garment(
     if meet_seams:
         x = _close_stubs(x, mesh)
     return _push_out(x, body, sdf)
+
+
+def hint_shift(pattern, mesh, body) -> float:
+    """How far [m] (+y up) to move a pattern's own placement so that it sits on ``body`` as on the
+    body its file was sized to: 0 unless the file's unlabelled shoulder seams (found by their
+    structure alone, :func:`_hint_shoulders`) lie, as a median, more than HINT_SHIFT_TOL from
+    HINT_SHOULDER_GAP below this body's shoulder line. unsew's own drafts, placed for their
+    body and labelled, are never moved.
+
+    pattern: Pattern whose panels carry their placement; mesh: its GarmentMesh; body: Body with a
+    skeleton."""
+    if not pattern.stitches:
+        return 0.0  # no seams, no shoulders
+    J, parts, v, cx, _ = _landmarks(body)
+    reach = HINT_SHOULDER_REACH * 0.5 * abs(J["left_shoulder"][0] - J["right_shoulder"][0])
+    q = _hint_shoulders(pattern, mesh, cx, reach)
+    if q is None:
+        return 0.0
+    xb, ytop = _shoulder_line(v, parts, J, cx)
+    dy = float(np.median(np.interp(q[:, 0], xb, ytop) - q[:, 1])) - HINT_SHOULDER_GAP
+    return dy if abs(dy) > HINT_SHIFT_TOL else 0.0
+
+
+def _hint_shoulders(pattern, mesh, cx: float, reach: float):
+    """(k, 3) [m] own-placement points of a pattern's unlabelled shoulder seams, or None: seams
+    between a panel facing front and one facing back, horizontal, each within SHOULDER_AT_TOP of
+    its panel's top, within ``reach`` [m] of the centre plane ``x = cx`` on average, where the two
+    panels are also sewn at their sides (a seam that is not horizontal)."""
+    if any("shoulder" in (e.label or "") for p in pattern.panels.values() for e in p.edges):
+        return None  # labelled: unsew's own draft, placed for its body
+    hint = np.asarray(mesh.uv_placed3d, np.float64)
+    names = list(mesh.panel_names)
+    nz = {n: pattern.panels[n].rotation_matrix()[2, 2] for n in names}
+
+    def front_back(st) -> bool:
+        a, b = nz[st.a.panel], nz[st.b.panel]
+        return bool(a * b < 0 and min(abs(a), abs(b)) > 0.5)
+
+    def points(side):
+        return hint[np.asarray(mesh.edge_verts[(side.panel, side.edge)])]
+
+    def top(name) -> float:
+        i = names.index(name)
+        return float(hint[int(mesh.panel_offsets[i]) : int(mesh.panel_offsets[i + 1]), 1].max())
+
+    pairs = [st for st in pattern.stitches if front_back(st)]
+    sided = {frozenset((st.a.panel, st.b.panel)) for st in pairs if not _is_horizontal(points(st.a))}
+    out = []
+    for st in pairs:
+        sides = (st.a, st.b)
+        if frozenset(s.panel for s in sides) not in sided:
+            continue
+        e = [points(s) for s in sides]
+        if all(
+            _is_horizontal(p) and p[:, 1].mean() > top(s.panel) - SHOULDER_AT_TOP for p, s in zip(e, sides)
+        ):
+            if np.abs(e[0][:, 0] - cx).mean() < reach:
+                out.append(e[0])
+    return np.concatenate(out) if out else None
 
 
 def place_as_given(pattern, mesh, body, *, sdf=None) -> np.ndarray:

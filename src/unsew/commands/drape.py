@@ -187,8 +187,9 @@ def _judged(d, pattern, body, out: Path, *, keep_failed: bool):
     ``<out stem>.failed.obj`` when ``keep_failed``."""
     from unsew.sim.checks import SEAM_GAP_MAX, check_dressed, placed_top, sleeve_vertices
 
-    top = placed_top(pattern, d.mesh, body, sdf=d.sdf)
-    sleeves = sleeve_vertices(pattern, d.mesh, body)
+    # d.pattern: the pattern as dressed (a file sized to another body moved onto this one)
+    top = placed_top(d.pattern, d.mesh, body, sdf=d.sdf)
+    sleeves = sleeve_vertices(d.pattern, d.mesh, body)
     verdict = check_dressed(d, body=body, placed_top_m=top, seam_gap_max=SEAM_GAP_MAX, sleeves=sleeves)
     if not verdict.ok:
         if keep_failed:
