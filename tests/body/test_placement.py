@@ -472,11 +472,9 @@ def test_a_circle_skirts_gores_are_not_sleeves():
         assert not any("sleeve" in r for r in roles.values()), (frac, roles)
 
 
-@pytest.mark.parametrize("spec_name", ["shirt_mean", "dress_pencil"])
-def test_a_top_sized_to_a_shorter_body_starts_on_the_shoulders(tmp_path, spec_name):
-    """GarmentCode's shirt and sleeveless pencil dress sized to its mean body, put on that body
-    scaled to 1.2 times its height: their placement's shoulder seams lie below the taller body's
-    chest, yet each hangs from the shoulders (not kept at its placement's height, at the waist)."""
+def _gc_on_scaled_mean_body(tmp_path, spec_name: str, scales):
+    """GarmentCode's ``spec_name`` sample pattern (sized to its mean body) and that body scaled
+    to each of ``scales`` times its height (``[(scale, Body)]``); skips without shared/foreign."""
     import os
     import warnings
     from pathlib import Path
@@ -487,17 +485,31 @@ def test_a_top_sized_to_a_shorter_body_starts_on_the_shoulders(tmp_path, spec_na
     from unsew.io.garmentcode import load_pattern
 
     root = Path(__file__).resolve().parents[2]
-    shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
-    body_mesh, spec = shared / "foreign" / "bodies" / "mean_all.obj", shared / "foreign" / "patterns"
-    if not body_mesh.is_file() or not (spec / f"{spec_name}_specification.json").is_file():
-        pytest.skip(f"GarmentCode's bodies and patterns not under {shared / 'foreign'}")
-    tall = trimesh.load(body_mesh, process=False)
-    tall.vertices = np.asarray(tall.vertices) * 1.2
-    tall.export(tmp_path / "tall.obj")
-    body = load_body(tmp_path / "tall.obj", None)
+    foreign = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared")) / "foreign"
+    body_mesh, spec = (
+        foreign / "bodies" / "mean_all.obj",
+        foreign / "patterns" / f"{spec_name}_specification.json",
+    )
+    if not body_mesh.is_file() or not spec.is_file():
+        pytest.skip(f"GarmentCode's bodies and patterns not under {foreign}")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        pattern = load_pattern(spec / f"{spec_name}_specification.json")
+        pattern = load_pattern(spec)
+    own, bodies = trimesh.load(body_mesh, process=False), []
+    for scale in scales:
+        m = own.copy()
+        m.vertices = np.asarray(own.vertices) * scale
+        m.export(tmp_path / f"mean_x{scale}.obj")
+        bodies.append((scale, load_body(tmp_path / f"mean_x{scale}.obj", None)))
+    return pattern, bodies
+
+
+@pytest.mark.parametrize("spec_name", ["shirt_mean", "dress_pencil"])
+def test_a_top_sized_to_a_shorter_body_starts_on_the_shoulders(tmp_path, spec_name):
+    """GarmentCode's shirt and sleeveless pencil dress sized to its mean body, put on that body
+    scaled to 1.2 times its height: their placement's shoulder seams lie below the taller body's
+    chest, yet each hangs from the shoulders (not kept at its placement's height, at the waist)."""
+    pattern, ((_, body),) = _gc_on_scaled_mean_body(tmp_path, spec_name, [1.2])
     mesh = mesh_pattern(pattern, edge_length=0.04)
     x = place_garment(pattern, mesh, body)
     hint_top = float(np.asarray(mesh.uv_placed3d)[:, 1].max())
@@ -510,29 +522,9 @@ def test_a_pattern_placed_over_a_much_shorter_body_is_refused(tmp_path):
     """GarmentCode's shirt sized to its mean body, on that body scaled to 0.65 times its height:
     every panel lies above the short body's neck, where the placement would keep it (a bag over
     the head); both starts refuse it in one line instead."""
-    import os
-    import warnings
-    from pathlib import Path
-
-    import trimesh
-
-    from unsew.body.body import load_body
     from unsew.body.placement import place_as_given
-    from unsew.errors import InputError
-    from unsew.io.garmentcode import load_pattern
 
-    root = Path(__file__).resolve().parents[2]
-    shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
-    body_mesh, spec = shared / "foreign" / "bodies" / "mean_all.obj", shared / "foreign" / "patterns"
-    if not body_mesh.is_file() or not (spec / "shirt_mean_specification.json").is_file():
-        pytest.skip(f"GarmentCode's bodies and patterns not under {shared / 'foreign'}")
-    short = trimesh.load(body_mesh, process=False)
-    short.vertices = np.asarray(short.vertices) * 0.65
-    short.export(tmp_path / "short.obj")
-    body = load_body(tmp_path / "short.obj", None)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        pattern = load_pattern(spec / "shirt_mean_specification.json")
+    pattern, ((_, body),) = _gc_on_scaled_mean_body(tmp_path, "shirt_mean", [0.65])
     mesh = mesh_pattern(pattern, edge_length=0.04)
     for start in (place_garment, place_as_given):
         with pytest.raises(InputError, match="above this body's neck .* placed for a taller body"):
@@ -544,37 +536,13 @@ def test_a_file_sized_to_another_body_is_moved_onto_this_one(tmp_path):
     shoulder seams onto that body scaled to 1.2 and 0.65 times its height (up and down by about
     the shoulders' change of height), and stays where it is on its own body; unsew's own draft,
     placed for its body, is never moved."""
-    import os
-    import warnings
-    from pathlib import Path
-
-    import trimesh
-
-    from unsew.body.body import load_body
     from unsew.body.placement import hint_shift
-    from unsew.io.garmentcode import load_pattern
-    from unsew.pattern.base import make_base_pattern
 
-    root = Path(__file__).resolve().parents[2]
-    shared = Path(os.environ.get("UNSEW_SHARED", root.parent / "shared"))
-    body_mesh, spec = shared / "foreign" / "bodies" / "mean_all.obj", shared / "foreign" / "patterns"
-    if not body_mesh.is_file() or not (spec / "shirt_mean_specification.json").is_file():
-        pytest.skip(f"GarmentCode's bodies and patterns not under {shared / 'foreign'}")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        shirt = load_pattern(spec / "shirt_mean_specification.json")
+    shirt, bodies = _gc_on_scaled_mean_body(tmp_path, "shirt_mean", [1.0, 1.2, 0.65])
     mesh = mesh_pattern(shirt, edge_length=0.04)
-    own = trimesh.load(body_mesh, process=False)
-    shoulder = {}
-    for scale in (1.0, 1.2, 0.65):
-        m = own.copy()
-        m.vertices = np.asarray(own.vertices) * scale
-        m.export(tmp_path / f"b{scale}.obj")
-        body = load_body(tmp_path / f"b{scale}.obj", None)
-        shoulder[scale] = (body, float(body.skeleton.position("left_shoulder")[1]))
-    assert hint_shift(shirt, mesh, shoulder[1.0][0]) == 0.0
-    for scale in (1.2, 0.65):
-        body, y = shoulder[scale]
-        assert hint_shift(shirt, mesh, body) == pytest.approx(y - shoulder[1.0][1], abs=0.05)
+    y = {scale: float(body.skeleton.position("left_shoulder")[1]) for scale, body in bodies}
+    for scale, body in bodies:
+        shift = hint_shift(shirt, mesh, body)
+        assert shift == (0.0 if scale == 1.0 else pytest.approx(y[scale] - y[1.0], abs=0.05)), scale
     base = make_base_pattern("tshirt")
-    assert hint_shift(base, mesh_pattern(base, edge_length=0.04), shoulder[1.2][0]) == 0.0
+    assert hint_shift(base, mesh_pattern(base, edge_length=0.04), bodies[1][1]) == 0.0

@@ -413,37 +413,24 @@ def _hint_shoulders(pattern, mesh, cx: float, reach: float):
     """(k, 3) [m] own-placement points of a pattern's unlabelled shoulder seams, or None: seams
     between a panel facing front and one facing back, horizontal, each within SHOULDER_AT_TOP of
     its panel's top, within ``reach`` [m] of the centre plane ``x = cx`` on average, where the two
-    panels are also sewn at their sides (a seam that is not horizontal)."""
+    panels are also sewn at their sides (:func:`_sewn_at_sides`). Every panel is taken for a
+    torso panel: its role on this body is what a file sized to another body gets wrong."""
     if any("shoulder" in (e.label or "") for p in pattern.panels.values() for e in p.edges):
         return None  # labelled: unsew's own draft, placed for its body
-    hint = np.asarray(mesh.uv_placed3d, np.float64)
-    names = list(mesh.panel_names)
-    nz = {n: pattern.panels[n].rotation_matrix()[2, 2] for n in names}
-
-    def front_back(st) -> bool:
-        a, b = nz[st.a.panel], nz[st.b.panel]
-        return bool(a * b < 0 and min(abs(a), abs(b)) > 0.5)
-
-    def points(side):
-        return hint[np.asarray(mesh.edge_verts[(side.panel, side.edge)])]
-
-    def top(name) -> float:
-        i = names.index(name)
-        return float(hint[int(mesh.panel_offsets[i]) : int(mesh.panel_offsets[i + 1]), 1].max())
-
-    pairs = [st for st in pattern.stitches if front_back(st)]
-    sided = {frozenset((st.a.panel, st.b.panel)) for st in pairs if not _is_horizontal(points(st.a))}
+    info = _panel_info(pattern, mesh, dict.fromkeys(mesh.panel_names, "torso"), np.asarray(mesh.uv_placed3d))
+    sided = _sewn_at_sides(pattern, mesh, info)
     out = []
-    for st in pairs:
+    for st in pattern.stitches:
         sides = (st.a, st.b)
-        if frozenset(s.panel for s in sides) not in sided:
+        if frozenset(s.panel for s in sides) not in sided or not _front_to_back(info, sides):
             continue
-        e = [points(s) for s in sides]
-        if all(
-            _is_horizontal(p) and p[:, 1].mean() > top(s.panel) - SHOULDER_AT_TOP for p, s in zip(e, sides)
-        ):
-            if np.abs(e[0][:, 0] - cx).mean() < reach:
-                out.append(e[0])
+        e = [_hint_edge(info, mesh, s) for s in sides]
+        at_top = all(
+            _is_horizontal(p) and p[:, 1].mean() > info[s.panel]["hint"][:, 1].max() - SHOULDER_AT_TOP
+            for p, s in zip(e, sides)
+        )
+        if at_top and np.abs(e[0][:, 0] - cx).mean() < reach:
+            out.append(e[0])
     return np.concatenate(out) if out else None
 
 
